@@ -1,0 +1,2 @@
+//! Reference engine for oblique elastic impacts with friction.
+pub mod physics;

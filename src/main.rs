@@ -1,0 +1,215 @@
+//! `sweep`: the command-line front end. Thin: parses arguments, calls the library, prints.
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::Result;
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use serde_json::json;
+
+use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Resolution, Scheme};
+
+#[derive(Parser)]
+#[command(
+    name = "sweep",
+    version,
+    about = "Oblique elastic impacts with friction: the universal tangential restitution P(gamma, alpha)",
+    long_about = "Oblique elastic impacts with friction by the method of dimensionality reduction \
+(Hertz normal contact, Cattaneo-Mindlin partial slip).\n\n\
+Every rebound of a sphere on a half-space is decided by one function P(gamma, alpha):\n  \
+gamma = sqrt((7/2) G*/E*)        material group (1.52 < gamma < 2.16 for one isotropic material)\n  \
+alpha = mu v_z0 / |v_x0 + R w0|  friction group (alpha = inf: no slip)\n  \
+P     = u_after / u_before       restitution of the contact-point velocity u = v_x + R w\n\
+For a solid sphere without initial spin, e_t = v_x/v_x0 = (2P + 5)/7."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Simulate one impact in dimensionless form and print P(gamma, alpha) with its error estimate.
+    #[command(after_help = "Examples:\n  \
+sweep impact --gamma 1.754 --alpha 1\n  \
+sweep impact --gamma 1.754 --alpha inf --tol 1e-8 --json\n  \
+sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler")]
+    Impact(ImpactArgs),
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum SchemeArg {
+    /// Second order, with an error estimate (default).
+    Accurate,
+    /// The seed paper's explicit Euler scheme (first order; baseline for comparisons).
+    Euler,
+}
+
+#[derive(Args)]
+struct ImpactArgs {
+    /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
+    #[arg(long, value_parser = parse_gamma, allow_hyphen_values = true)]
+    gamma: f64,
+    /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
+    #[arg(long, value_parser = parse_alpha, allow_hyphen_values = true)]
+    alpha: f64,
+    /// Target absolute error of P; the resolution is doubled until the error estimate is below it.
+    #[arg(long, value_parser = parse_tol, allow_hyphen_values = true, conflicts_with_all = ["springs", "steps"])]
+    tol: Option<f64>,
+    /// Springs on the half-row [0, a_max] (>= 2); use with --steps instead of --tol.
+    #[arg(long, requires = "steps", value_parser = parse_springs)]
+    springs: Option<usize>,
+    /// Time steps per contact time (>= 8); use with --springs instead of --tol.
+    #[arg(long, requires = "springs", value_parser = parse_steps)]
+    steps: Option<usize>,
+    /// Numerical scheme.
+    #[arg(long, value_enum, default_value = "accurate")]
+    scheme: SchemeArg,
+    /// Simulate even where P is known in closed form (full-slip line, gamma = 1 plateau).
+    #[arg(long)]
+    simulate: bool,
+    /// Print one JSON object instead of a summary (alpha = inf is written as the string "inf").
+    #[arg(long)]
+    json: bool,
+}
+
+/// Default tolerance of `sweep impact` when neither `--tol` nor `--springs/--steps` is given.
+const DEFAULT_TOL: f64 = 1e-6;
+
+fn parse_f64(s: &str) -> Result<f64, String> {
+    let t = s.trim().to_ascii_lowercase();
+    match t.as_str() {
+        "inf" | "infinity" | "+inf" | "∞" => Ok(f64::INFINITY),
+        _ => t
+            .parse::<f64>()
+            .map_err(|_| format!("`{s}` is not a number")),
+    }
+}
+
+fn parse_gamma(s: &str) -> Result<f64, String> {
+    let v = parse_f64(s)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err("gamma must be a finite number > 0".into())
+    }
+}
+
+fn parse_alpha(s: &str) -> Result<f64, String> {
+    let v = parse_f64(s)?;
+    if v >= 0.0 {
+        Ok(v)
+    } else {
+        Err("alpha must be >= 0 (or inf for no slip)".into())
+    }
+}
+
+fn parse_tol(s: &str) -> Result<f64, String> {
+    let v = parse_f64(s)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err("tol must be a finite number > 0 (e.g. 1e-6)".into())
+    }
+}
+
+fn parse_count(s: &str, name: &str, min: usize) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(v) if v >= min => Ok(v),
+        _ => Err(format!("{name} must be an integer >= {min}")),
+    }
+}
+
+fn parse_springs(s: &str) -> Result<usize, String> {
+    parse_count(s, "springs", 2)
+}
+
+fn parse_steps(s: &str) -> Result<usize, String> {
+    parse_count(s, "steps", 8)
+}
+
+fn json_number(v: f64) -> serde_json::Value {
+    if v.is_finite() {
+        json!(v)
+    } else {
+        json!("inf")
+    }
+}
+
+fn impact(args: ImpactArgs) -> Result<()> {
+    let scheme = match args.scheme {
+        SchemeArg::Accurate => Scheme::Accurate,
+        SchemeArg::Euler => Scheme::Euler,
+    };
+    let accuracy = match (args.springs, args.steps) {
+        (Some(springs), Some(steps)) => Accuracy::Fixed(Resolution { springs, steps }),
+        _ => Accuracy::Tolerance(args.tol.unwrap_or(DEFAULT_TOL)),
+    };
+    let start = Instant::now();
+    let sol = oblique::physics::solve(args.gamma, args.alpha, accuracy, scheme, args.simulate)?;
+    let elapsed = start.elapsed().as_secs_f64();
+    let e_t = regimes::tangential_restitution(sol.p);
+    let regime = regimes::Regime::of(args.gamma, args.alpha);
+    let method = match sol.method {
+        Method::ClosedForm => "closed-form",
+        Method::Simulated => "simulated",
+    };
+    if args.json {
+        let out = json!({
+            "gamma": args.gamma,
+            "alpha": json_number(args.alpha),
+            "P": sol.p,
+            "e_t": e_t,
+            "error_estimate": sol.error_estimate,
+            "springs": sol.resolution.springs,
+            "steps": sol.resolution.steps,
+            "scheme": sol.scheme.name(),
+            "method": method,
+            "regime": regime.name(),
+            "alpha_c1": regimes::alpha_c1(args.gamma),
+            "alpha_c2": regimes::alpha_c2(args.gamma),
+            "elapsed_s": elapsed,
+        });
+        println!("{out}");
+    } else {
+        println!(
+            "P(gamma = {}, alpha = {}) = {:.9}  +/- {:.1e}",
+            args.gamma, args.alpha, sol.p, sol.error_estimate
+        );
+        println!("e_t = (2P + 5)/7 = {e_t:.9}   (solid sphere, no initial spin)");
+        println!(
+            "regime {} (alpha_c1 = {:.6}, alpha_c2 = {:.6})",
+            regime.name(),
+            regimes::alpha_c1(args.gamma),
+            regimes::alpha_c2(args.gamma)
+        );
+        match sol.method {
+            Method::ClosedForm => println!("closed form (exact; --simulate to simulate anyway)"),
+            Method::Simulated => println!(
+                "{} scheme, {} springs x {} steps, {:.3} ms",
+                sol.scheme.name(),
+                sol.resolution.springs,
+                sol.resolution.steps,
+                elapsed * 1e3
+            ),
+        }
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Impact(a) => impact(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            match e.downcast_ref::<PhysicsError>() {
+                Some(PhysicsError::InvalidParameter { .. }) => ExitCode::from(2),
+                _ => ExitCode::FAILURE,
+            }
+        }
+    }
+}

@@ -1,0 +1,15 @@
+//! The physics core: one oblique elastic impact with Coulomb friction by the method of
+//! dimensionality reduction (MDR). No I/O happens here.
+//!
+//! Symbols follow `physics.md`: `γ = √((7/2) G*/E*)` (generally `γ² = (m*/m_t) G*/E*`),
+//! `α = μ v_z0 / |u0|` (generally `α = (2/7)(m*/m_t) μ v_z0/|u0|`), `P = u_after/u_before`.
+
+pub mod error;
+pub mod hertz;
+pub mod impact;
+pub mod regimes;
+pub mod springs;
+pub mod units;
+
+pub use error::PhysicsError;
+pub use impact::{simulate, solve, Accuracy, Method, Resolution, Scheme, Solution};
