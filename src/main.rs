@@ -8,6 +8,10 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use serde_json::json;
 
 use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Resolution, Scheme};
+use oblique::sweep::config::ConfigError;
+
+mod progress;
+mod table_cmds;
 
 #[derive(Parser)]
 #[command(
@@ -35,6 +39,15 @@ sweep impact --gamma 1.754 --alpha 1\n  \
 sweep impact --gamma 1.754 --alpha inf --tol 1e-8 --json\n  \
 sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler")]
     Impact(ImpactArgs),
+    /// Build a P(gamma, alpha) table from a TOML config and write it as HDF5.
+    #[command(after_help = "Examples:\n  \
+sweep run configs/full.toml\n  \
+sweep run configs/quick.toml -o /tmp/quick.h5 --threads 2 --quiet\n\n\
+The table is written atomically: a temporary file next to the output, renamed when complete.\n\
+Config keys and the file format: docs/table-format.md.")]
+    Run(table_cmds::RunArgs),
+    /// Print a table's domain, node counts, error statistics and provenance.
+    Inspect(table_cmds::InspectArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -201,14 +214,21 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Impact(a) => impact(a),
+        Command::Run(a) => table_cmds::run(a),
+        Command::Inspect(a) => table_cmds::inspect(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            match e.downcast_ref::<PhysicsError>() {
-                Some(PhysicsError::InvalidParameter { .. }) => ExitCode::from(2),
-                _ => ExitCode::FAILURE,
+            let usage = matches!(
+                e.downcast_ref::<PhysicsError>(),
+                Some(PhysicsError::InvalidParameter { .. })
+            ) || e.downcast_ref::<ConfigError>().is_some();
+            if usage {
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
             }
         }
     }

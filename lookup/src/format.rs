@@ -1,0 +1,76 @@
+//! Names of the HDF5 objects of a table (schema v1). `docs/table-format.md` documents each.
+
+/// Schema version written and read by this crate.
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// Root attribute: schema version (integer).
+pub const ATTR_SCHEMA: &str = "schema_version";
+/// Root attribute: fixed string identifying the file kind.
+pub const ATTR_FORMAT: &str = "format";
+/// Value of [`ATTR_FORMAT`].
+pub const FORMAT_NAME: &str = "oblique-P-table";
+/// Root attribute: number of points of the Lagrange stencil per axis (even, ≥ 2).
+pub const ATTR_STENCIL: &str = "stencil_points";
+/// Root attribute: lower end of the γ domain.
+pub const ATTR_GAMMA_MIN: &str = "gamma_min";
+/// Root attribute: upper end of the γ domain.
+pub const ATTR_GAMMA_MAX: &str = "gamma_max";
+/// Root attribute: upper end of the α domain (`inf` for no slip included).
+pub const ATTR_ALPHA_MAX: &str = "alpha_max";
+/// Root attribute: engine version.
+pub const ATTR_ENGINE_VERSION: &str = "engine_version";
+/// Root attribute: git commit of the engine (or "unknown").
+pub const ATTR_GIT_COMMIT: &str = "git_commit";
+/// Root attribute: the TOML config text the table was built from.
+pub const ATTR_CONFIG: &str = "config";
+/// Root attribute: solver settings (scheme, tolerance), human-readable.
+pub const ATTR_SOLVER: &str = "solver";
+/// Root attribute: node solver tolerance (absolute error of P).
+pub const ATTR_NODE_TOL: &str = "node_tol";
+/// Root attribute: target interpolation error.
+pub const ATTR_TARGET_ERROR: &str = "target_error";
+/// Root attribute: creation time (UTC, RFC 3339).
+pub const ATTR_CREATED: &str = "created";
+/// Root attribute: wall time of the build (s).
+pub const ATTR_WALL_TIME: &str = "wall_time_s";
+
+/// Group holding one sub-group per patch.
+pub const GROUP_PATCHES: &str = "patches";
+/// Patch below γ = 1: α from α_c2 to α_max.
+pub const PATCH_STICK_LOW: &str = "stick_low";
+/// Patch above γ = 1: α from α_c1 to α_c2 (partial slip).
+pub const PATCH_PARTIAL_HIGH: &str = "partial_high";
+/// Patch above γ = 1: α from α_c2 to α_max.
+pub const PATCH_STICK_HIGH: &str = "stick_high";
+/// Patch attribute: "partial-slip" or "stick".
+pub const ATTR_KIND: &str = "kind";
+/// Patch dataset: γ nodes (uniform), shape `[n_gamma]`.
+pub const DS_GAMMA: &str = "gamma";
+/// Patch dataset: coordinate nodes (uniform on [0, 1]), shape `[n_coord]`.
+pub const DS_COORD: &str = "coord";
+/// Patch dataset: α at every node (`inf` allowed), shape `[n_gamma, n_coord]`.
+pub const DS_ALPHA: &str = "alpha";
+/// Patch dataset: P at every node, shape `[n_gamma, n_coord]`.
+pub const DS_P: &str = "P";
+/// Patch dataset: solver error estimate of P at every node, shape `[n_gamma, n_coord]`.
+pub const DS_ERROR: &str = "error_estimate";
+
+/// Group with the no-slip limit `P(γ, ∞)`: datasets `gamma`, `P`, `error_estimate`.
+pub const GROUP_NO_SLIP: &str = "no_slip";
+/// Group with the critical curves: datasets `gamma`, `alpha_c1`, `alpha_c2`.
+pub const GROUP_CRITICAL: &str = "critical";
+/// Dataset name of α_c1 samples.
+pub const DS_ALPHA_C1: &str = "alpha_c1";
+/// Dataset name of α_c2 samples.
+pub const DS_ALPHA_C2: &str = "alpha_c2";
+
+/// Group with the held-out check points.
+pub const GROUP_CHECKS: &str = "checks";
+/// Check dataset: simulated P.
+pub const DS_P_SIMULATED: &str = "P_simulated";
+/// Check dataset: P interpolated from the table.
+pub const DS_P_INTERPOLATED: &str = "P_interpolated";
+/// Check dataset: |P_interpolated − P_simulated|.
+pub const DS_INTERP_ERROR: &str = "interpolation_error";
+/// Check dataset: patch index (0 stick_low, 1 partial_high, 2 stick_high).
+pub const DS_PATCH: &str = "patch";

@@ -1,0 +1,246 @@
+//! The storage layer: writes a built table as HDF5 (schema v1, `docs/table-format.md`), atomically
+//! (temporary file in the same directory, then rename). Names come from `oblique_lookup::format`,
+//! which owns the format; the lookup crate reads what this writes.
+
+use std::path::{Path, PathBuf};
+
+use hdf5::types::VarLenUnicode;
+use oblique_lookup::format::*;
+use oblique_lookup::surface::{alpha_c1, alpha_c2};
+use thiserror::Error;
+
+use crate::sweep::Built;
+
+/// Errors of writing a table.
+#[derive(Debug, Error)]
+pub enum StorageError {
+    /// HDF5 refused an operation.
+    #[error("writing {path}: {message}")]
+    Hdf5 {
+        /// Output path.
+        path: String,
+        /// What failed.
+        message: String,
+    },
+    /// Filesystem error (directory, rename).
+    #[error("writing {path}: {source}")]
+    Io {
+        /// Output path.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+}
+
+/// Provenance written as root attributes.
+#[derive(Debug, Clone)]
+pub struct Provenance {
+    /// Engine version.
+    pub engine_version: String,
+    /// Git commit (or "unknown").
+    pub git_commit: String,
+    /// Config text.
+    pub config: String,
+    /// Solver settings.
+    pub solver: String,
+    /// Creation time, RFC 3339 UTC.
+    pub created: String,
+    /// Wall time of the build (s).
+    pub wall_time_s: f64,
+    /// Node tolerance.
+    pub node_tol: f64,
+    /// Target interpolation error.
+    pub target_error: f64,
+}
+
+struct W<'a> {
+    path: &'a str,
+}
+
+impl W<'_> {
+    fn e(&self, what: &str) -> impl Fn(hdf5::Error) -> StorageError + '_ {
+        let what = what.to_string();
+        move |err| StorageError::Hdf5 {
+            path: self.path.to_string(),
+            message: format!("{what}: {err}"),
+        }
+    }
+
+    fn attr_f64(&self, loc: &hdf5::Location, name: &str, v: f64) -> Result<(), StorageError> {
+        loc.new_attr::<f64>()
+            .create(name)
+            .and_then(|a| a.write_scalar(&v))
+            .map_err(self.e(name))
+    }
+
+    fn attr_str(&self, loc: &hdf5::Location, name: &str, v: &str) -> Result<(), StorageError> {
+        let s: VarLenUnicode = v.parse().map_err(|_| StorageError::Hdf5 {
+            path: self.path.to_string(),
+            message: format!("attribute {name}: string contains a NUL byte"),
+        })?;
+        loc.new_attr::<VarLenUnicode>()
+            .create(name)
+            .and_then(|a| a.write_scalar(&s))
+            .map_err(self.e(name))
+    }
+
+    fn ds(
+        &self,
+        g: &hdf5::Group,
+        name: &str,
+        data: &[f64],
+        shape: &[usize],
+    ) -> Result<(), StorageError> {
+        let arr = ndarray::ArrayView::from_shape(ndarray::IxDyn(shape), data).map_err(|e| {
+            StorageError::Hdf5 {
+                path: self.path.to_string(),
+                message: format!("{name}: {e}"),
+            }
+        })?;
+        g.new_dataset_builder()
+            .with_data(arr)
+            .create(name)
+            .map(|_| ())
+            .map_err(self.e(name))
+    }
+}
+
+/// Write `built` to `out` atomically: an interrupted write never leaves a partial file at `out`.
+pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), StorageError> {
+    let path = out.display().to_string();
+    let io = |source| StorageError::Io {
+        path: path.clone(),
+        source,
+    };
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(io)?;
+    }
+    let file_name = out
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_else(|| "table.h5".into());
+    let tmp: PathBuf = out.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
+    let result = write_to(&tmp, &path, built, prov);
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, out).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io(e)
+    })
+}
+
+fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<(), StorageError> {
+    let w = W { path };
+    let file = hdf5::File::create(tmp).map_err(w.e("create file"))?;
+    let s = &built.surface;
+    w.attr_str(&file, ATTR_FORMAT, FORMAT_NAME)?;
+    w.attr_f64(&file, ATTR_SCHEMA, SCHEMA_VERSION as f64)?;
+    w.attr_f64(&file, ATTR_STENCIL, s.stencil as f64)?;
+    w.attr_f64(&file, ATTR_GAMMA_MIN, s.gamma_min)?;
+    w.attr_f64(&file, ATTR_GAMMA_MAX, s.gamma_max)?;
+    w.attr_f64(&file, ATTR_ALPHA_MAX, s.alpha_max)?;
+    w.attr_str(&file, ATTR_ENGINE_VERSION, &prov.engine_version)?;
+    w.attr_str(&file, ATTR_GIT_COMMIT, &prov.git_commit)?;
+    w.attr_str(&file, ATTR_CONFIG, &prov.config)?;
+    w.attr_str(&file, ATTR_SOLVER, &prov.solver)?;
+    w.attr_str(&file, ATTR_CREATED, &prov.created)?;
+    w.attr_f64(&file, ATTR_WALL_TIME, prov.wall_time_s)?;
+    w.attr_f64(&file, ATTR_NODE_TOL, prov.node_tol)?;
+    w.attr_f64(&file, ATTR_TARGET_ERROR, prov.target_error)?;
+
+    let patches = file.create_group(GROUP_PATCHES).map_err(w.e("patches"))?;
+    for bp in &built.patches {
+        let p = &bp.patch;
+        let g = patches.create_group(bp.name).map_err(w.e(bp.name))?;
+        w.attr_str(&g, ATTR_KIND, p.kind.name())?;
+        w.attr_f64(&g, "predicted_error_gamma", bp.predicted_error.0)?;
+        w.attr_f64(&g, "predicted_error_coord", bp.predicted_error.1)?;
+        let gamma: Vec<f64> = (0..p.n_gamma).map(|i| p.gamma_node(i)).collect();
+        let coord: Vec<f64> = (0..p.n_coord).map(|j| p.coord_node(j)).collect();
+        let shape = [p.n_gamma, p.n_coord];
+        w.ds(&g, DS_GAMMA, &gamma, &[p.n_gamma])?;
+        w.ds(&g, DS_COORD, &coord, &[p.n_coord])?;
+        w.ds(&g, DS_ALPHA, &bp.alpha, &shape)?;
+        w.ds(&g, DS_P, &p.p, &shape)?;
+        w.ds(&g, DS_ERROR, &p.error_estimate, &shape)?;
+    }
+
+    // No-slip limit: the last coordinate column of the stick patches (when α_max = ∞).
+    if s.alpha_max.is_infinite() {
+        let mut gamma = Vec::new();
+        let mut p_inf = Vec::new();
+        let mut err = Vec::new();
+        for bp in built
+            .patches
+            .iter()
+            .filter(|b| b.name != PATCH_PARTIAL_HIGH)
+        {
+            let p = &bp.patch;
+            for i in 0..p.n_gamma {
+                let gi = p.gamma_node(i);
+                if gamma.last().is_some_and(|&last: &f64| gi <= last) {
+                    continue;
+                }
+                gamma.push(gi);
+                p_inf.push(p.p[i * p.n_coord + p.n_coord - 1]);
+                err.push(p.error_estimate[i * p.n_coord + p.n_coord - 1]);
+            }
+        }
+        let g = file.create_group(GROUP_NO_SLIP).map_err(w.e("no_slip"))?;
+        w.ds(&g, DS_GAMMA, &gamma, &[gamma.len()])?;
+        w.ds(&g, DS_P, &p_inf, &[p_inf.len()])?;
+        w.ds(&g, DS_ERROR, &err, &[err.len()])?;
+    }
+
+    // Critical curves sampled on 401 points of the γ domain (α_c1 is NaN below γ = 1, where it
+    // marks nothing).
+    let n = 401;
+    let gamma: Vec<f64> = (0..n)
+        .map(|i| s.gamma_min + (s.gamma_max - s.gamma_min) * i as f64 / (n - 1) as f64)
+        .collect();
+    let c1: Vec<f64> = gamma
+        .iter()
+        .map(|&g| if g >= 1.0 { alpha_c1(g) } else { f64::NAN })
+        .collect();
+    let c2: Vec<f64> = gamma.iter().map(|&g| alpha_c2(g)).collect();
+    let g = file.create_group(GROUP_CRITICAL).map_err(w.e("critical"))?;
+    w.ds(&g, DS_GAMMA, &gamma, &[n])?;
+    w.ds(&g, DS_ALPHA_C1, &c1, &[n])?;
+    w.ds(&g, DS_ALPHA_C2, &c2, &[n])?;
+
+    let ch = &built.checks;
+    let g = file.create_group(GROUP_CHECKS).map_err(w.e("checks"))?;
+    let col = |f: fn(&oblique_lookup::Check) -> f64| ch.iter().map(f).collect::<Vec<f64>>();
+    w.ds(&g, DS_GAMMA, &col(|c| c.gamma), &[ch.len()])?;
+    w.ds(&g, DS_ALPHA, &col(|c| c.alpha), &[ch.len()])?;
+    w.ds(&g, DS_P_SIMULATED, &col(|c| c.p_simulated), &[ch.len()])?;
+    w.ds(
+        &g,
+        DS_P_INTERPOLATED,
+        &col(|c| c.p_interpolated),
+        &[ch.len()],
+    )?;
+    w.ds(
+        &g,
+        DS_INTERP_ERROR,
+        &col(|c| c.interpolation_error),
+        &[ch.len()],
+    )?;
+    let patch: Vec<i32> = ch.iter().map(|c| c.patch).collect();
+    g.new_dataset_builder()
+        .with_data(&patch[..])
+        .create(DS_PATCH)
+        .map_err(w.e(DS_PATCH))?;
+    file.flush().map_err(w.e("flush"))?;
+    drop(file);
+    // Make sure the bytes are on disk before the rename publishes the file.
+    std::fs::File::open(tmp)
+        .and_then(|f| f.sync_all())
+        .map_err(|source| StorageError::Io {
+            path: path.to_string(),
+            source,
+        })?;
+    Ok(())
+}
