@@ -91,6 +91,16 @@ impl W<'_> {
         data: &[f64],
         shape: &[usize],
     ) -> Result<(), StorageError> {
+        self.ints(g, name, data, shape)
+    }
+
+    fn ints<T: hdf5::H5Type>(
+        &self,
+        g: &hdf5::Group,
+        name: &str,
+        data: &[T],
+        shape: &[usize],
+    ) -> Result<(), StorageError> {
         let arr = ndarray::ArrayView::from_shape(ndarray::IxDyn(shape), data).map_err(|e| {
             StorageError::Hdf5 {
                 path: self.path.to_string(),
@@ -155,43 +165,44 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         let p = &bp.patch;
         let g = patches.create_group(bp.name).map_err(w.e(bp.name))?;
         w.attr_str(&g, ATTR_KIND, p.kind.name())?;
-        w.attr_f64(&g, "predicted_error_gamma", bp.predicted_error.0)?;
-        w.attr_f64(&g, "predicted_error_coord", bp.predicted_error.1)?;
-        let gamma: Vec<f64> = (0..p.n_gamma).map(|i| p.gamma_node(i)).collect();
-        let coord: Vec<f64> = (0..p.n_coord).map(|j| p.coord_node(j)).collect();
-        let shape = [p.n_gamma, p.n_coord];
-        w.ds(&g, DS_GAMMA, &gamma, &[p.n_gamma])?;
-        w.ds(&g, DS_COORD, &coord, &[p.n_coord])?;
-        w.ds(&g, DS_ALPHA, &bp.alpha, &shape)?;
-        w.ds(&g, DS_P, &p.p, &shape)?;
-        w.ds(&g, DS_ERROR, &p.error_estimate, &shape)?;
+        w.attr_f64(&g, ATTR_GAMMA_LO, p.gamma_lo)?;
+        w.attr_f64(&g, ATTR_GAMMA_HI, p.gamma_hi)?;
+        w.attr_f64(&g, ATTR_BLOCKS_GAMMA, p.blocks_gamma as f64)?;
+        w.attr_f64(&g, ATTR_BLOCKS_COORD, p.blocks_coord as f64)?;
+        w.attr_f64(&g, ATTR_BLOCK_INTERVALS, p.block_intervals as f64)?;
+        let blocks = [p.blocks_gamma, p.blocks_coord];
+        let level: Vec<i32> = p.level.iter().map(|&l| l as i32).collect();
+        let offset: Vec<i64> = p.offset.iter().map(|&o| o as i64).collect();
+        w.ints(&g, DS_LEVEL, &level, &blocks)?;
+        w.ints(&g, DS_OFFSET, &offset, &blocks)?;
+        w.ds(&g, DS_BLOCK_ERROR, &bp.block_error, &blocks)?;
+        let n = [p.p.len()];
+        w.ds(&g, DS_GAMMA, &bp.gamma, &n)?;
+        w.ds(&g, DS_COORD, &bp.coord, &n)?;
+        w.ds(&g, DS_ALPHA, &bp.alpha, &n)?;
+        w.ds(&g, DS_P, &p.p, &n)?;
+        w.ds(&g, DS_ERROR, &p.error_estimate, &n)?;
     }
 
-    // No-slip limit: the last coordinate column of the stick patches (when α_max = ∞).
+    // No-slip limit: the nodes at c = 1 of the stick patches (when α_max = ∞), by γ.
     if s.alpha_max.is_infinite() {
-        let mut gamma = Vec::new();
-        let mut p_inf = Vec::new();
-        let mut err = Vec::new();
-        for bp in built
+        let mut rows: Vec<(f64, f64, f64)> = built
             .patches
             .iter()
-            .filter(|b| b.name != PATCH_PARTIAL_HIGH)
-        {
-            let p = &bp.patch;
-            for i in 0..p.n_gamma {
-                let gi = p.gamma_node(i);
-                if gamma.last().is_some_and(|&last: &f64| gi <= last) {
-                    continue;
-                }
-                gamma.push(gi);
-                p_inf.push(p.p[i * p.n_coord + p.n_coord - 1]);
-                err.push(p.error_estimate[i * p.n_coord + p.n_coord - 1]);
-            }
-        }
+            .filter(|b| b.patch.kind == oblique_lookup::PatchKind::Stick)
+            .flat_map(|b| {
+                (0..b.coord.len())
+                    .filter(|&i| b.coord[i] == 1.0)
+                    .map(|i| (b.gamma[i], b.patch.p[i], b.patch.error_estimate[i]))
+            })
+            .collect();
+        rows.sort_by(|x, y| x.0.total_cmp(&y.0));
+        rows.dedup_by(|x, y| x.0 == y.0);
         let g = file.create_group(GROUP_NO_SLIP).map_err(w.e("no_slip"))?;
-        w.ds(&g, DS_GAMMA, &gamma, &[gamma.len()])?;
-        w.ds(&g, DS_P, &p_inf, &[p_inf.len()])?;
-        w.ds(&g, DS_ERROR, &err, &[err.len()])?;
+        let col = |f: fn(&(f64, f64, f64)) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
+        w.ds(&g, DS_GAMMA, &col(|r| r.0), &[rows.len()])?;
+        w.ds(&g, DS_P, &col(|r| r.1), &[rows.len()])?;
+        w.ds(&g, DS_ERROR, &col(|r| r.2), &[rows.len()])?;
     }
 
     // Critical curves sampled on 401 points of the γ domain (α_c1 is NaN below γ = 1, where it
@@ -229,10 +240,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         &[ch.len()],
     )?;
     let patch: Vec<i32> = ch.iter().map(|c| c.patch).collect();
-    g.new_dataset_builder()
-        .with_data(&patch[..])
-        .create(DS_PATCH)
-        .map_err(w.e(DS_PATCH))?;
+    w.ints(&g, DS_PATCH, &patch, &[ch.len()])?;
     file.flush().map_err(w.e("flush"))?;
     drop(file);
     // Make sure the bytes are on disk before the rename publishes the file.

@@ -92,16 +92,19 @@ pub fn run(args: RunArgs) -> Result<()> {
     };
     write_table(&cfg.output, &built, &prov)?;
     if !args.quiet {
-        let nodes: usize = built.patches.iter().map(|p| p.patch.p.len()).sum();
+        let nodes: usize = built.patches.iter().map(|p| p.unique_nodes).sum();
         let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
         for p in &built.patches {
             eprintln!(
-                "  {:13} {:4} x {:4} nodes ({} simulated), predicted error {:.1e}",
+                "  {:13} {} x {} blocks, levels {}..{}, {} nodes ({} simulated), max predicted error {:.1e}",
                 p.name,
-                p.patch.n_gamma,
-                p.patch.n_coord,
+                p.patch.blocks_gamma,
+                p.patch.blocks_coord,
+                p.patch.level.iter().min().unwrap_or(&0),
+                p.patch.level.iter().max().unwrap_or(&0),
+                p.unique_nodes,
                 p.simulated,
-                p.predicted_error.0 + p.predicted_error.1
+                p.block_error.iter().copied().fold(0.0, f64::max)
             );
         }
         let max_err = built
@@ -147,7 +150,10 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
             .map(|(n, p)| {
                 json!({
                     "name": n, "kind": p.kind.name(), "gamma_lo": p.gamma_lo, "gamma_hi": p.gamma_hi,
-                    "n_gamma": p.n_gamma, "n_coord": p.n_coord,
+                    "blocks_gamma": p.blocks_gamma, "blocks_coord": p.blocks_coord,
+                    "block_intervals": p.block_intervals,
+                    "level_min": p.level.iter().min(), "level_max": p.level.iter().max(),
+                    "nodes": p.p.len(),
                     "max_node_error_estimate": p.error_estimate.iter().copied().fold(0.0, f64::max),
                 })
             })
@@ -177,12 +183,15 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
     );
     for (n, p) in &patches {
         println!(
-            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {:4} x {:4} nodes, max node error estimate {:.1e}",
+            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} blocks, levels {}..{}, {} nodes, max node error estimate {:.1e}",
             p.kind.name(),
             p.gamma_lo,
             p.gamma_hi,
-            p.n_gamma,
-            p.n_coord,
+            p.blocks_gamma,
+            p.blocks_coord,
+            p.level.iter().min().unwrap_or(&0),
+            p.level.iter().max().unwrap_or(&0),
+            p.p.len(),
             p.error_estimate.iter().copied().fold(0.0, f64::max)
         );
     }

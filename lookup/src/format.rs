@@ -44,16 +44,32 @@ pub const PATCH_PARTIAL_HIGH: &str = "partial_high";
 pub const PATCH_STICK_HIGH: &str = "stick_high";
 /// Patch attribute: "partial-slip" or "stick".
 pub const ATTR_KIND: &str = "kind";
-/// Patch dataset: γ nodes (uniform), shape `[n_gamma]`.
+/// Patch attribute: lower γ edge.
+pub const ATTR_GAMMA_LO: &str = "gamma_lo";
+/// Patch attribute: upper γ edge.
+pub const ATTR_GAMMA_HI: &str = "gamma_hi";
+/// Patch attribute: number of blocks along γ.
+pub const ATTR_BLOCKS_GAMMA: &str = "blocks_gamma";
+/// Patch attribute: number of blocks along the coordinate.
+pub const ATTR_BLOCKS_COORD: &str = "blocks_coord";
+/// Patch attribute: intervals per axis of a level-0 block.
+pub const ATTR_BLOCK_INTERVALS: &str = "block_intervals";
+/// Patch dataset (int32 `[blocks_gamma, blocks_coord]`): refinement level of every block.
+pub const DS_LEVEL: &str = "level";
+/// Patch dataset (int64 `[blocks_gamma, blocks_coord]`): offset of every block in the node arrays.
+pub const DS_OFFSET: &str = "offset";
+/// Node dataset (flat, block by block): γ of every node.
 pub const DS_GAMMA: &str = "gamma";
-/// Patch dataset: coordinate nodes (uniform on [0, 1]), shape `[n_coord]`.
+/// Node dataset (flat): patch coordinate `c` of every node.
 pub const DS_COORD: &str = "coord";
-/// Patch dataset: α at every node (`inf` allowed), shape `[n_gamma, n_coord]`.
+/// Node dataset (flat): α of every node (`inf` allowed).
 pub const DS_ALPHA: &str = "alpha";
-/// Patch dataset: P at every node, shape `[n_gamma, n_coord]`.
+/// Node dataset (flat): P of every node.
 pub const DS_P: &str = "P";
-/// Patch dataset: solver error estimate of P at every node, shape `[n_gamma, n_coord]`.
+/// Node dataset (flat): solver error estimate of P at every node.
 pub const DS_ERROR: &str = "error_estimate";
+/// Patch dataset (`[blocks_gamma, blocks_coord]`): predicted interpolation error of every block.
+pub const DS_BLOCK_ERROR: &str = "block_predicted_error";
 
 /// Group with the no-slip limit `P(γ, ∞)`: datasets `gamma`, `P`, `error_estimate`.
 pub const GROUP_NO_SLIP: &str = "no_slip";

@@ -112,6 +112,16 @@ impl Reader<'_> {
         }
     }
 
+    fn count_attr(&self, g: &hdf5::Group, name: &str, max: usize) -> Result<usize, LookupError> {
+        let v = self.attr_f64(g, name)?;
+        if v.fract() != 0.0 || v < 1.0 || v > max as f64 {
+            return Err(self.invalid(format!(
+                "patch attribute '{name}' = {v}: must be an integer in [1, {max}]"
+            )));
+        }
+        Ok(v as usize)
+    }
+
     fn patch(
         &self,
         root: &hdf5::Group,
@@ -129,64 +139,79 @@ impl Reader<'_> {
                 kind.name()
             )));
         }
-        let n_gamma = g
-            .dataset(DS_GAMMA)
-            .map_err(|_| self.invalid(format!("missing dataset '{name}/{DS_GAMMA}'")))?
-            .shape();
-        let n_coord = g
-            .dataset(DS_COORD)
-            .map_err(|_| self.invalid(format!("missing dataset '{name}/{DS_COORD}'")))?
-            .shape();
-        let (ng, nc) = match (n_gamma.as_slice(), n_coord.as_slice()) {
-            (&[a], &[b]) if a >= 2 && b >= 2 => (a, b),
-            _ => {
-                return Err(self.invalid(format!(
-                    "patch '{name}': gamma and coord must be 1-D with >= 2 nodes"
-                )))
-            }
-        };
-        if stencil > ng.min(nc) {
+        let gamma_lo = self.attr_f64(&g, ATTR_GAMMA_LO)?;
+        let gamma_hi = self.attr_f64(&g, ATTR_GAMMA_HI)?;
+        if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi > gamma_lo)
+        {
             return Err(self.invalid(format!(
-                "patch '{name}' has {ng}x{nc} nodes, fewer than stencil_points = {stencil}"
+                "patch '{name}': gamma edges [{gamma_lo}, {gamma_hi}] must be finite, > 0, increasing"
             )));
         }
-        let gamma = self.dataset(&g, DS_GAMMA, &[ng])?;
-        let coord = self.dataset(&g, DS_COORD, &[nc])?;
-        let p = self.dataset(&g, DS_P, &[ng, nc])?;
-        let err = self.dataset(&g, DS_ERROR, &[ng, nc])?;
-        self.finite(&format!("{name}/{DS_GAMMA}"), &gamma)?;
-        self.finite(&format!("{name}/{DS_COORD}"), &coord)?;
-        self.finite(&format!("{name}/{DS_P}"), &p)?;
-        self.finite(&format!("{name}/{DS_ERROR}"), &err)?;
-        let patch = Patch {
-            kind,
-            gamma_lo: gamma[0],
-            gamma_hi: gamma[ng - 1],
-            n_gamma: ng,
-            n_coord: nc,
-            p,
-            error_estimate: err,
-        };
-        if patch.gamma_hi.is_nan() || patch.gamma_hi <= patch.gamma_lo {
-            return Err(self.invalid(format!("patch '{name}': gamma nodes not increasing")));
+        let bg = self.count_attr(&g, ATTR_BLOCKS_GAMMA, 1 << 16)?;
+        let bc = self.count_attr(&g, ATTR_BLOCKS_COORD, 1 << 16)?;
+        let m = self.count_attr(&g, ATTR_BLOCK_INTERVALS, 1 << 12)?;
+        if m + 1 < stencil {
+            return Err(self.invalid(format!(
+                "patch '{name}': block_intervals = {m} gives fewer nodes than stencil_points = {stencil}"
+            )));
         }
-        let h = patch.gamma_step();
-        for (i, g) in gamma.iter().enumerate() {
-            if (g - patch.gamma_node(i)).abs() > 1e-9 * h.max(1.0) {
-                return Err(self.invalid(format!("patch '{name}': gamma nodes are not uniform")));
+        let level_raw = g
+            .dataset(DS_LEVEL)
+            .ok()
+            .filter(|d| d.shape() == [bg, bc])
+            .and_then(|d| d.read_raw::<i32>().ok())
+            .ok_or_else(|| {
+                self.invalid(format!(
+                    "patch '{name}': dataset 'level' missing or not [{bg}, {bc}]"
+                ))
+            })?;
+        let offset_raw = g
+            .dataset(DS_OFFSET)
+            .ok()
+            .filter(|d| d.shape() == [bg, bc])
+            .and_then(|d| d.read_raw::<i64>().ok())
+            .ok_or_else(|| {
+                self.invalid(format!(
+                    "patch '{name}': dataset 'offset' missing or not [{bg}, {bc}]"
+                ))
+            })?;
+        let mut level = Vec::with_capacity(level_raw.len());
+        let mut offset = Vec::with_capacity(level_raw.len());
+        let mut total = 0usize;
+        for (i, (&l, &o)) in level_raw.iter().zip(&offset_raw).enumerate() {
+            if !(0..=12).contains(&l) {
+                return Err(
+                    self.invalid(format!("patch '{name}': level[{i}] = {l} not in [0, 12]"))
+                );
             }
-        }
-        for (j, c) in coord.iter().enumerate() {
-            if (c - patch.coord_node(j)).abs() > 1e-12 {
+            if o != total as i64 {
                 return Err(self.invalid(format!(
-                    "patch '{name}': coord nodes are not uniform on [0, 1]"
+                    "patch '{name}': offset[{i}] = {o}, expected {total} (blocks must be stored in order)"
                 )));
             }
+            level.push(l as u32);
+            offset.push(total);
+            total += ((m << l) + 1).pow(2);
         }
-        if patch.p.iter().any(|p| p.abs() > 1.0 + 1e-6) {
-            return Err(self.invalid(format!("patch '{name}': |P| > 1 at a node")));
+        let p = self.dataset(&g, DS_P, &[total])?;
+        let err = self.dataset(&g, DS_ERROR, &[total])?;
+        self.finite(&format!("{name}/{DS_P}"), &p)?;
+        self.finite(&format!("{name}/{DS_ERROR}"), &err)?;
+        if let Some(i) = p.iter().position(|x| x.abs() > 1.0 + 1e-6) {
+            return Err(self.invalid(format!("patch '{name}': |P| = {} > 1 at node {i}", p[i])));
         }
-        Ok(Some(patch))
+        Ok(Some(Patch {
+            kind,
+            gamma_lo,
+            gamma_hi,
+            blocks_gamma: bg,
+            blocks_coord: bc,
+            block_intervals: m,
+            level,
+            offset,
+            p,
+            error_estimate: err,
+        }))
     }
 }
 

@@ -5,13 +5,14 @@
 //!
 //! | patch          | γ range        | α range          | coordinate `c ∈ [0, 1]`                        |
 //! |----------------|----------------|------------------|------------------------------------------------|
-//! | `stick_low`    | `γ_min ≤ γ ≤ 1` | `α_c2 … α_max`  | `(1/α_c2 − 1/α) / (1/α_c2 − 1/α_max)`          |
+//! | `stick_low`    | `γ_min ≤ γ ≤ 1` | `α_c2 … α_max`  | `S(α)/S(α_max)`, `S = r/(r + ρ)`               |
 //! | `partial_high` | `1 ≤ γ ≤ γ_max` | `α_c1 … α_c2`   | `ln(α/α_c1) / ln(α_c2/α_c1)`                    |
-//! | `stick_high`   | `1 ≤ γ ≤ γ_max` | `α_c2 … α_max`  | `(1/α_c2 − 1/α) / (1/α_c2 − 1/α_max)`          |
+//! | `stick_high`   | `1 ≤ γ ≤ γ_max` | `α_c2 … α_max`  | `S(α)/S(α_max)`, `S = r/(r + ρ)`               |
 //!
-//! (`1/α_max = 0` when `α_max = ∞`, so `α = ∞` maps to `c = 1`.) Each patch stores `P` on a grid
-//! uniform in `γ` and in `c`; between nodes `P` is the tensor product of 1-D Lagrange
-//! polynomials through `k` consecutive nodes per axis (`k = stencil_points`).
+//! with `r = α/α_c2 − 1`, `ρ = 2(1 − γ²)` for `γ < 1` and `ρ = 1` for `γ ≥ 1`, `S(∞) = 1`. Each patch is cut into equal
+//! blocks in `(γ, c)`; each block stores `P` on its own uniform grid, refined where `P` needs it.
+//! Inside a block `P` is the tensor product of 1-D Lagrange polynomials through `k` consecutive
+//! nodes of that block per axis (`k = stencil_points`).
 
 use crate::LookupError;
 
@@ -61,8 +62,16 @@ impl PatchKind {
                 (alpha / c1).ln() / (alpha_c2(gamma) / c1).ln()
             }
             PatchKind::Stick => {
-                let inv2 = 1.0 / alpha_c2(gamma);
-                (inv2 - 1.0 / alpha) / (inv2 - 1.0 / alpha_max)
+                let rho = stick_scale(gamma);
+                let squash = |alpha: f64| {
+                    if alpha.is_infinite() {
+                        1.0
+                    } else {
+                        let r = alpha / alpha_c2(gamma) - 1.0;
+                        r / (r + rho)
+                    }
+                };
+                squash(alpha) / squash(alpha_max)
             }
         }
     }
@@ -76,32 +85,58 @@ impl PatchKind {
                 c1 * (alpha_c2(gamma) / c1).powf(c)
             }
             PatchKind::Stick => {
-                let inv2 = 1.0 / alpha_c2(gamma);
-                let inv = inv2 - c * (inv2 - 1.0 / alpha_max);
                 if c >= 1.0 {
-                    alpha_max
-                } else {
-                    1.0 / inv
+                    return alpha_max;
                 }
+                let c2 = alpha_c2(gamma);
+                let rho = stick_scale(gamma);
+                let top = if alpha_max.is_infinite() {
+                    1.0
+                } else {
+                    let r = alpha_max / c2 - 1.0;
+                    r / (r + rho)
+                };
+                let q = c * top;
+                c2 * (1.0 + rho * q / (1.0 - q))
             }
         }
     }
 }
 
-/// One patch: `P` on a grid uniform in `γ ∈ [gamma_lo, gamma_hi]` and `c ∈ [0, 1]`.
+/// Width `ρ(γ)` of the stick coordinate, in units of `r = α/α_c2 − 1`: `2(1 − γ²)` for `γ < 1`
+/// (the boundary layer below γ = 1 has width `α_c1/α_c2 − 1 = r₁`, and `r₁/(1 + r₁) = 2(1 − γ²)`),
+/// `1` for `γ ≥ 1`.
+pub fn stick_scale(gamma: f64) -> f64 {
+    if gamma < 1.0 {
+        2.0 * (1.0 - gamma * gamma)
+    } else {
+        1.0
+    }
+}
+
+/// One patch, cut into `blocks_gamma × blocks_coord` equal blocks in `(γ, c)`. Block `(a, b)` has
+/// refinement level `ℓ = level[a·blocks_coord + b]` and carries a uniform grid of
+/// `n + 1` × `n + 1` nodes, `n = block_intervals · 2^ℓ`, stored row-major (`γ` outer) from
+/// `offset[a·blocks_coord + b]` in the flat arrays `p` and `error_estimate`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Patch {
     /// Region and coordinate.
     pub kind: PatchKind,
-    /// First γ node.
+    /// Lower γ edge.
     pub gamma_lo: f64,
-    /// Last γ node.
+    /// Upper γ edge.
     pub gamma_hi: f64,
-    /// Number of γ nodes (≥ 2).
-    pub n_gamma: usize,
-    /// Number of coordinate nodes (≥ 2).
-    pub n_coord: usize,
-    /// `P` at the nodes, row-major `[i_gamma][i_coord]`.
+    /// Blocks along γ.
+    pub blocks_gamma: usize,
+    /// Blocks along `c`.
+    pub blocks_coord: usize,
+    /// Intervals per axis of a level-0 block.
+    pub block_intervals: usize,
+    /// Level of every block, row-major `[a][b]`.
+    pub level: Vec<u32>,
+    /// Offset of every block's first node in `p`.
+    pub offset: Vec<usize>,
+    /// `P` at the nodes.
     pub p: Vec<f64>,
     /// Solver error estimate of each node, same layout.
     pub error_estimate: Vec<f64>,
@@ -127,40 +162,55 @@ pub fn stencil(u: f64, n: usize, k: usize, w: &mut [f64; 8]) -> (usize, usize) {
     (start, k)
 }
 
+/// Block index and position inside the block (in `[0, 1]`) of a patch coordinate `x ∈ [0, 1]`.
+#[inline]
+pub fn locate(x: f64, blocks: usize) -> (usize, f64) {
+    let u = (x * blocks as f64).clamp(0.0, blocks as f64);
+    let a = (u.floor() as usize).min(blocks - 1);
+    (a, u - a as f64)
+}
+
 impl Patch {
-    /// γ node spacing.
-    pub fn gamma_step(&self) -> f64 {
-        (self.gamma_hi - self.gamma_lo) / (self.n_gamma - 1) as f64
+    /// Nodes per axis of a block at level `l`, minus one.
+    pub fn intervals(&self, l: u32) -> usize {
+        self.block_intervals << l
     }
 
-    /// γ of node `i`.
-    pub fn gamma_node(&self, i: usize) -> f64 {
-        if i + 1 == self.n_gamma {
+    /// γ at fractional patch position `x ∈ [0, 1]`.
+    pub fn gamma_at(&self, x: f64) -> f64 {
+        if x >= 1.0 {
             self.gamma_hi
         } else {
-            self.gamma_lo + i as f64 * self.gamma_step()
+            self.gamma_lo + (self.gamma_hi - self.gamma_lo) * x
         }
     }
 
-    /// Coordinate of node `j`.
-    pub fn coord_node(&self, j: usize) -> f64 {
-        j as f64 / (self.n_coord - 1) as f64
+    /// Total number of nodes implied by the levels.
+    pub fn node_count(&self) -> usize {
+        self.level
+            .iter()
+            .map(|&l| (self.intervals(l) + 1).pow(2))
+            .sum()
     }
 
     /// Interpolate `P` at `(γ, c)` with a `k`-point stencil per axis.
     #[inline]
     pub fn interpolate(&self, gamma: f64, c: f64, k: usize) -> f64 {
+        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
+        let (a, fg) = locate(xg, self.blocks_gamma);
+        let (b, fc) = locate(c, self.blocks_coord);
+        let blk = a * self.blocks_coord + b;
+        let n = self.intervals(self.level[blk]);
+        let vals = &self.p[self.offset[blk]..];
         let mut wg = [0.0; 8];
         let mut wc = [0.0; 8];
-        let ug = (gamma - self.gamma_lo) / self.gamma_step();
-        let uc = c * (self.n_coord - 1) as f64;
-        let (sg, kg) = stencil(ug, self.n_gamma, k, &mut wg);
-        let (sc, kc) = stencil(uc, self.n_coord, k, &mut wc);
+        let (sg, kg) = stencil(fg * n as f64, n + 1, k, &mut wg);
+        let (sc, kc) = stencil(fc * n as f64, n + 1, k, &mut wc);
         let mut total = 0.0;
-        for (a, wa) in wg.iter().enumerate().take(kg) {
-            let row = &self.p[(sg + a) * self.n_coord + sc..][..kc];
+        for (i, wi) in wg.iter().enumerate().take(kg) {
+            let row = &vals[(sg + i) * (n + 1) + sc..][..kc];
             let inner: f64 = row.iter().zip(&wc[..kc]).map(|(p, w)| p * w).sum();
-            total += wa * inner;
+            total += wi * inner;
         }
         total
     }

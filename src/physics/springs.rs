@@ -5,6 +5,49 @@
 //! tangential displacement `ũ_x,i` bounded by the local Coulomb limit
 //! `|ũ_x,i| ≤ c (d − x_i²/R*)`, `c = μ E*/G*`.
 
+/// Motion over one time step, as the accurate update needs it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepMotion {
+    /// Step length `h` (s).
+    pub h: f64,
+    /// Indentation at the start of the step `d_n` (m).
+    pub d0: f64,
+    /// Indentation rate `ḋ_n` (m/s).
+    pub rate0: f64,
+    /// Indentation acceleration `d̈_n` (m/s²).
+    pub accel0: f64,
+    /// Slip velocity `u_n = ẇ_n` (m/s).
+    pub slip_velocity: f64,
+    /// Slip acceleration `ẅ_n` (m/s²); `w` is quadratic over the step.
+    pub slip_accel: f64,
+}
+
+impl StepMotion {
+    /// Release of the springs at the `+` and `−` Coulomb limits during the step: the instant `τ`
+    /// where `ẇ = ±L̇` (with `L̇ = c ḋ` the same for every spring), if it falls inside the step.
+    /// `A` is the rate difference at the start and `B` its slope, both linear over the step.
+    pub fn release_times(&self, c: f64) -> (Option<f64>, Option<f64>) {
+        let time = |a0: f64, b0: f64| (a0 < 0.0 && b0 > 0.0 && -a0 < b0 * self.h).then(|| -a0 / b0);
+        let (v, a) = (self.slip_velocity, self.slip_accel);
+        (
+            time(c * self.rate0 - v, c * self.accel0 - a),
+            time(c * self.rate0 + v, c * self.accel0 + a),
+        )
+    }
+
+    /// The displacement a released spring misses in the end-of-step clip, `∫₀^τ (L̇ ∓ ẇ) dt`
+    /// `= −A²/(2B)`, for the `+` and `−` limits (0 when there is no release in the step).
+    fn release_corrections(&self, c: f64) -> (f64, f64) {
+        let (v, a) = (self.slip_velocity, self.slip_accel);
+        let (tp, tm) = self.release_times(c);
+        let corr = |a0: f64, b0: f64, t: Option<f64>| t.map_or(0.0, |_| -a0 * a0 / (2.0 * b0));
+        (
+            corr(c * self.rate0 - v, c * self.accel0 - a, tp),
+            -corr(c * self.rate0 + v, c * self.accel0 + a, tm),
+        )
+    }
+}
+
 /// What one accurate step returns.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepResult {
@@ -32,6 +75,8 @@ pub struct SpringRow {
     radius: f64,
     /// Number of springs in contact after the last step.
     in_contact: usize,
+    /// Whether some spring ended the last step at the `+` / `−` Coulomb limit.
+    at_limit: (bool, bool),
 }
 
 impl SpringRow {
@@ -82,7 +127,13 @@ impl SpringRow {
             u,
             radius,
             in_contact: 0,
+            at_limit: (false, false),
         }
+    }
+
+    /// Whether some spring sits at the `+` / `−` Coulomb limit (after the last step).
+    pub fn at_limit(&self) -> (bool, bool) {
+        self.at_limit
     }
 
     /// Mean spring spacing `Δx` (m).
@@ -105,7 +156,9 @@ impl SpringRow {
     /// leaving contact drop to zero. Returns `∫₀^a ũ_x dx` (m²) at the end of the step by the
     /// trapezoid rule, the last partial interval `[x_k, a]` included, so the force is continuous
     /// in time as the contact edge crosses nodes; and the mean displacement over the contact.
-    pub fn step_accurate(&mut self, dw: f64, d0: f64, d1: f64, c: f64) -> StepResult {
+    pub fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        let (d0, h, v, a) = (m.d0, m.h, m.slip_velocity, m.slip_accel);
+        let dw = h * v + 0.5 * h * h * a;
         let center = self.u[0];
         let n0 = self.in_contact;
         let n1 = self.count_in_contact(d1);
@@ -114,10 +167,26 @@ impl SpringRow {
             let u = &mut self.u[..old];
             let g = &self.g[..old];
             if c.is_finite() {
+                // Springs at the Coulomb limit at the start of the step that stick again inside
+                // it: all share L̇ = c ḋ, so they release at one instant τ where ẇ = ±L̇, and
+                // miss ∫₀^τ (L̇ ∓ ẇ) dt in the end-of-step clip. With ẇ and ḋ linear over the
+                // step that integral is −A²/(2B) (A, B: the rate difference and its slope).
+                let (plus, minus) = m.release_corrections(c);
+                let (mut any_plus, mut any_minus) = (false, false);
                 for (ui, &gi) in u.iter_mut().zip(g) {
+                    let lim0 = c * (d0 - gi);
                     let lim = c * (d1 - gi);
-                    *ui = (*ui + dw).clamp(-lim, lim);
+                    let mut next = *ui + dw;
+                    if *ui == lim0 && next < lim {
+                        next += plus;
+                    } else if *ui == -lim0 && next > -lim {
+                        next += minus;
+                    }
+                    *ui = next.clamp(-lim, lim);
+                    any_plus |= *ui == lim && lim > 0.0;
+                    any_minus |= *ui == -lim && lim > 0.0;
                 }
+                self.at_limit = (any_plus, any_minus);
             } else {
                 for ui in u.iter_mut() {
                     *ui += dw;
@@ -132,9 +201,15 @@ impl SpringRow {
                 } else {
                     0.0
                 };
-                let v = (1.0 - theta) * dw;
+                // w(h) − w(θh) for w quadratic over the step.
+                let rest = 1.0 - theta;
+                let inc = h * v * rest + 0.5 * a * h * h * (1.0 - theta * theta);
                 let lim = c * (d1 - self.g[i]);
-                self.u[i] = if c.is_finite() { v.clamp(-lim, lim) } else { v };
+                self.u[i] = if c.is_finite() {
+                    inc.clamp(-lim, lim)
+                } else {
+                    inc
+                };
             }
         } else {
             self.u[n1..n0].fill(0.0);
@@ -266,12 +341,24 @@ fn clamped_line_integral(x0: f64, a: f64, u0: f64, s: f64, c: f64, d: f64, r: f6
 mod tests {
     use super::*;
 
+    /// A unit step with increment `dw` (constant slip velocity) from indentation `d0`.
+    fn motion(dw: f64, d0: f64) -> StepMotion {
+        StepMotion {
+            h: 1.0,
+            d0,
+            rate0: 0.0,
+            accel0: 0.0,
+            slip_velocity: dw,
+            slip_accel: 0.0,
+        }
+    }
+
     #[test]
     fn trapezoid_integrates_linear_edge_profile_exactly() {
         // Slip everywhere: ũ = c (d − x²), whose integral over [0, √d] is (2/3) c d^{3/2}.
         let mut row = SpringRow::nodes(1.0, 400, 1.0);
         let d = 0.49;
-        let got = row.step_accurate(10.0, 0.0, d, 1.0).integral;
+        let got = row.step_accurate(&motion(10.0, 0.0), d, 1.0).integral;
         let exact = 2.0 / 3.0 * d.powf(1.5);
         assert!((got - exact).abs() < 1e-5, "{got} vs {exact}");
     }
@@ -295,8 +382,8 @@ mod tests {
     #[test]
     fn springs_leaving_contact_are_reset() {
         let mut row = SpringRow::nodes(1.0, 10, 1.0);
-        row.step_accurate(1.0, 0.0, 0.81, f64::INFINITY);
-        row.step_accurate(0.0, 0.81, 0.04, f64::INFINITY);
+        row.step_accurate(&motion(1.0, 0.0), 0.81, f64::INFINITY);
+        row.step_accurate(&motion(0.0, 0.81), 0.04, f64::INFINITY);
         assert!(row.u[3..].iter().all(|&u| u == 0.0));
         assert!(row.u[..2].iter().all(|&u| u > 0.0));
     }

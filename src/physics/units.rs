@@ -339,7 +339,7 @@ impl PhysicalImpact {
             return self.simulate(base);
         }
         let mut last = None;
-        let (_, est, _) = refine(base, 2, tol, Limits::default(), |res| {
+        let (_, est, _) = refine(base, 2, tol, false, Limits::default(), |res| {
             let out = self.simulate(res)?;
             let p = out.p.unwrap_or(0.0);
             last = Some(out);

@@ -88,9 +88,15 @@ pub struct Nodes {
     /// Target maximum interpolation error of P; node counts are doubled per axis until the
     /// predicted error is below it.
     pub target_error: f64,
-    /// Intervals per axis of the first grid of every patch (≥ 2·stencil).
-    #[serde(default = "default_initial")]
-    pub initial_intervals: usize,
+    /// Intervals per axis of a level-0 block (≥ stencil).
+    #[serde(default = "default_block_intervals")]
+    pub block_intervals: usize,
+    /// Blocks per unit of γ along the γ axis of a patch.
+    #[serde(default = "default_blocks_gamma")]
+    pub blocks_per_unit_gamma: f64,
+    /// Blocks along the patch coordinate.
+    #[serde(default = "default_blocks_coord")]
+    pub blocks_coord: usize,
     /// Refuse to place more nodes than this in total.
     #[serde(default = "default_max_nodes")]
     pub max_nodes: usize,
@@ -102,8 +108,14 @@ fn default_placement() -> String {
 fn default_stencil() -> usize {
     4
 }
-fn default_initial() -> usize {
-    8
+fn default_block_intervals() -> usize {
+    4
+}
+fn default_blocks_gamma() -> f64 {
+    2.0
+}
+fn default_blocks_coord() -> usize {
+    4
 }
 fn default_max_nodes() -> usize {
     200_000
@@ -243,11 +255,28 @@ impl Config {
                 "in (0, 0.1)".into(),
             ));
         }
-        if n.initial_intervals < 2 * n.stencil || n.initial_intervals > 4096 {
+        if n.block_intervals < n.stencil || n.block_intervals > 64 {
             return Err(err(
-                "nodes.initial_intervals",
-                n.initial_intervals.to_string(),
-                format!("in [2*stencil = {}, 4096]", 2 * n.stencil),
+                "nodes.block_intervals",
+                n.block_intervals.to_string(),
+                format!("in [stencil = {}, 64]", n.stencil),
+            ));
+        }
+        if !(n.blocks_per_unit_gamma.is_finite()
+            && n.blocks_per_unit_gamma >= 0.1
+            && n.blocks_per_unit_gamma <= 1024.0)
+        {
+            return Err(err(
+                "nodes.blocks_per_unit_gamma",
+                n.blocks_per_unit_gamma.to_string(),
+                "in [0.1, 1024]".into(),
+            ));
+        }
+        if n.blocks_coord == 0 || n.blocks_coord > 1024 {
+            return Err(err(
+                "nodes.blocks_coord",
+                n.blocks_coord.to_string(),
+                "in [1, 1024]".into(),
             ));
         }
         if n.max_nodes < 100 {

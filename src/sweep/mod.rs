@@ -66,18 +66,24 @@ impl Progress for Silent {
     fn phase(&self, _: &str) {}
 }
 
-/// One patch as built, with the α of every node (the patch itself stores only P).
+/// One patch as built, with the coordinates of every node (same flat layout as `patch.p`).
 #[derive(Debug, Clone)]
 pub struct BuiltPatch {
     /// Patch name in the file.
     pub name: &'static str,
     /// The patch.
     pub patch: Patch,
-    /// α at every node, row-major like `patch.p` (`∞` allowed).
+    /// γ of every node.
+    pub gamma: Vec<f64>,
+    /// Patch coordinate `c` of every node.
+    pub coord: Vec<f64>,
+    /// α of every node (`∞` allowed).
     pub alpha: Vec<f64>,
-    /// Predicted interpolation error along γ and along the coordinate.
-    pub predicted_error: (f64, f64),
-    /// Nodes that were simulated (the others are closed forms).
+    /// Predicted interpolation error of every block.
+    pub block_error: Vec<f64>,
+    /// Distinct nodes (blocks share their edges).
+    pub unique_nodes: usize,
+    /// Distinct nodes that were simulated (the others are closed forms).
     pub simulated: usize,
 }
 
@@ -92,8 +98,8 @@ pub struct Built {
     pub checks: Vec<Check>,
 }
 
-/// Maximum doublings per axis beyond the initial grid.
-const MAX_LEVELS: u32 = 12;
+/// Highest block level (`block_intervals · 2^MAX_LEVEL` intervals per block axis).
+const MAX_LEVEL: u32 = 8;
 
 /// Compute P at many points in parallel, in order (deterministic whatever the thread count).
 pub fn solve_points(
@@ -160,30 +166,77 @@ fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
     specs
 }
 
-/// Node coordinates on the finest lattice: node `i` of `n` intervals ↦ `i · (LATTICE / n)`.
-fn lattice(cfg: &Config) -> u64 {
-    (cfg.nodes.initial_intervals as u64) << MAX_LEVELS
+/// The block layout of a patch being built and the exact lattice its nodes live on.
+struct Layout<'a> {
+    spec: &'a PatchSpec,
+    bg: usize,
+    bc: usize,
+    m: usize,
+    alpha_max: f64,
 }
 
-/// Largest deviation of the values at odd nodes from the `k`-point interpolation through the
-/// even nodes, along one axis of an `(n0+1) × (n1+1)` grid (`axis` 0 or 1).
-fn axis_surplus(p: &[f64], n0: usize, n1: usize, axis: usize, k: usize) -> f64 {
-    let (na, nb) = if axis == 0 { (n0, n1) } else { (n1, n0) };
-    let at = |a: usize, b: usize| {
-        if axis == 0 {
-            p[a * (n1 + 1) + b]
+/// A node on the finest lattice of a patch: `(γ index, c index)`.
+type Key = (u64, u64);
+
+impl Layout<'_> {
+    fn fine(&self) -> u64 {
+        (self.m as u64) << MAX_LEVEL
+    }
+
+    /// Lattice key of node `(i, j)` of block `(a, b)` at level `l`.
+    fn key(&self, a: usize, b: usize, l: u32, i: usize, j: usize) -> Key {
+        let step = 1u64 << (MAX_LEVEL - l);
+        (
+            a as u64 * self.fine() + i as u64 * step,
+            b as u64 * self.fine() + j as u64 * step,
+        )
+    }
+
+    /// `(γ, c, α)` of a lattice node (computed from the key alone, so shared nodes agree).
+    fn point(&self, key: Key) -> (f64, f64, f64) {
+        let ng = self.bg as u64 * self.fine();
+        let nc = self.bc as u64 * self.fine();
+        let xg = key.0 as f64 / ng as f64;
+        let gamma = if key.0 == ng {
+            self.spec.gamma_hi
         } else {
-            p[b * (n1 + 1) + a]
-        }
-    };
-    let coarse = na / 2 + 1;
-    let mut w = [0.0; 8];
+            self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * xg
+        };
+        let c = key.1 as f64 / nc as f64;
+        (gamma, c, self.spec.kind.alpha(gamma, c, self.alpha_max))
+    }
+
+    fn block_keys(&self, a: usize, b: usize, l: u32) -> Vec<Key> {
+        let n = self.m << l;
+        (0..=n)
+            .flat_map(|i| (0..=n).map(move |j| (i, j)))
+            .map(|(i, j)| self.key(a, b, l, i, j))
+            .collect()
+    }
+}
+
+/// Largest deviation, over the nodes of a level-`l` block grid that are not on its level-`l−1`
+/// sub-grid, between the value and the `k`-point tensor interpolation from the sub-grid.
+fn surplus(values: &[f64], n: usize, k: usize) -> f64 {
+    let coarse_n = n / 2;
+    let at = |i: usize, j: usize| values[i * (n + 1) + j];
+    let mut wg = [0.0; 8];
+    let mut wc = [0.0; 8];
     let mut worst = 0.0_f64;
-    for a in (1..na).step_by(2) {
-        let (start, kk) = stencil(a as f64 / 2.0, coarse, k, &mut w);
-        for b in 0..=nb {
-            let interp: f64 = (0..kk).map(|j| w[j] * at(2 * (start + j), b)).sum();
-            worst = worst.max((interp - at(a, b)).abs());
+    for i in 0..=n {
+        for j in 0..=n {
+            if i % 2 == 0 && j % 2 == 0 {
+                continue;
+            }
+            let (sg, kg) = stencil(i as f64 / 2.0, coarse_n + 1, k, &mut wg);
+            let (sc, kc) = stencil(j as f64 / 2.0, coarse_n + 1, k, &mut wc);
+            let mut v = 0.0;
+            for (x, wx) in wg.iter().enumerate().take(kg) {
+                for (y, wy) in wc.iter().enumerate().take(kc) {
+                    v += wx * wy * at(2 * (sg + x), 2 * (sc + y));
+                }
+            }
+            worst = worst.max((v - at(i, j)).abs());
         }
     }
     worst
@@ -196,86 +249,125 @@ fn build_patch(
     total_nodes: &mut usize,
 ) -> Result<BuiltPatch, SweepError> {
     let k = cfg.nodes.stencil;
-    let m = cfg.nodes.initial_intervals;
-    let lat = lattice(cfg);
-    let alpha_max = cfg.domain.alpha_max;
-    let mut cache: HashMap<(u64, u64), (f64, f64)> = HashMap::new();
-    let node = |key: (u64, u64)| {
-        let gamma = if key.0 == lat {
-            spec.gamma_hi
-        } else {
-            spec.gamma_lo + (spec.gamma_hi - spec.gamma_lo) * (key.0 as f64 / lat as f64)
-        };
-        let c = key.1 as f64 / lat as f64;
-        (gamma, spec.kind.alpha(gamma, c, alpha_max))
+    let layout = Layout {
+        spec,
+        bg: ((spec.gamma_hi - spec.gamma_lo) * cfg.nodes.blocks_per_unit_gamma)
+            .ceil()
+            .max(1.0) as usize,
+        bc: cfg.nodes.blocks_coord,
+        m: cfg.nodes.block_intervals,
+        alpha_max: cfg.domain.alpha_max,
     };
-    let (mut a, mut b) = (0u32, 0u32);
-    loop {
-        let (ng, nc) = (m << a, m << b);
-        let (sg, sc) = (lat / ng as u64, lat / nc as u64);
-        let keys: Vec<(u64, u64)> = (0..=ng as u64)
-            .flat_map(|i| (0..=nc as u64).map(move |j| (i * sg, j * sc)))
+    let nblocks = layout.bg * layout.bc;
+    let mut level = vec![1u32; nblocks];
+    let mut done = vec![false; nblocks];
+    let mut predicted = vec![f64::NAN; nblocks];
+    let mut cache: HashMap<Key, (f64, f64)> = HashMap::new();
+    // The surplus of level l measures the error of level l − 1; level l is predicted smaller by
+    // 2^k asymptotically. Predict with 2^(k−1) for a margin of 2.
+    let shrink = 2f64.powi(k as i32 - 1);
+    for round in 0.. {
+        let mut wanted: Vec<Key> = (0..nblocks)
+            .filter(|&blk| !done[blk])
+            .flat_map(|blk| layout.block_keys(blk / layout.bc, blk % layout.bc, level[blk]))
+            .filter(|key| !cache.contains_key(key))
             .collect();
-        let missing: Vec<(u64, u64)> = keys
+        wanted.sort_unstable();
+        wanted.dedup();
+        if *total_nodes + wanted.len() > cfg.nodes.max_nodes {
+            let worst = predicted.iter().copied().fold(0.0, f64::max);
+            return Err(SweepError::TooManyNodes {
+                patch: spec.name,
+                target: cfg.nodes.target_error,
+                max: cfg.nodes.max_nodes,
+                predicted: worst,
+                nodes: *total_nodes,
+            });
+        }
+        let open = done.iter().filter(|d| !**d).count();
+        progress.phase(&format!("{} round {round}: {open} blocks", spec.name));
+        let points: Vec<(f64, f64)> = wanted
             .iter()
-            .copied()
-            .filter(|k| !cache.contains_key(k))
+            .map(|&key| {
+                let (g, _, a) = layout.point(key);
+                (g, a)
+            })
             .collect();
-        if *total_nodes + missing.len() > cfg.nodes.max_nodes {
-            return Err(SweepError::TooManyNodes {
-                patch: spec.name,
-                target: cfg.nodes.target_error,
-                max: cfg.nodes.max_nodes,
-                predicted: f64::NAN,
-                nodes: *total_nodes,
-            });
-        }
-        progress.phase(&format!("{}: {} x {} nodes", spec.name, ng + 1, nc + 1));
-        let points: Vec<(f64, f64)> = missing.iter().map(|&key| node(key)).collect();
         let values = solve_points(&points, cfg.solver.tol, progress)?;
-        *total_nodes += missing.len();
-        cache.extend(missing.into_iter().zip(values));
-        let p: Vec<f64> = keys.iter().map(|key| cache[key].0).collect();
-        let eg = axis_surplus(&p, ng, nc, 0, k);
-        let ec = axis_surplus(&p, ng, nc, 1, k);
-        // The surplus measures the error of the grid with twice the spacing; the current grid's
-        // error is smaller by 2^k asymptotically. Predict with 2^(k-1) for a margin of 2.
-        let shrink = 2f64.powi(k as i32 - 1);
-        let (pg, pc) = (eg / shrink, ec / shrink);
-        if pg + pc <= cfg.nodes.target_error {
-            let err: Vec<f64> = keys.iter().map(|key| cache[key].1).collect();
-            let alpha: Vec<f64> = keys.iter().map(|&key| node(key).1).collect();
-            let simulated = err.iter().filter(|e| **e > 0.0).count();
-            return Ok(BuiltPatch {
-                name: spec.name,
-                patch: Patch {
-                    kind: spec.kind,
-                    gamma_lo: spec.gamma_lo,
-                    gamma_hi: spec.gamma_hi,
-                    n_gamma: ng + 1,
-                    n_coord: nc + 1,
-                    p,
-                    error_estimate: err,
-                },
-                alpha,
-                predicted_error: (pg, pc),
-                simulated,
-            });
+        *total_nodes += wanted.len();
+        cache.extend(wanted.into_iter().zip(values));
+        let mut refined = false;
+        for blk in 0..nblocks {
+            if done[blk] {
+                continue;
+            }
+            let (a, b, l) = (blk / layout.bc, blk % layout.bc, level[blk]);
+            let vals: Vec<f64> = layout
+                .block_keys(a, b, l)
+                .iter()
+                .map(|key| cache[key].0)
+                .collect();
+            let pred = surplus(&vals, layout.m << l, k) / shrink;
+            predicted[blk] = pred;
+            if pred <= cfg.nodes.target_error {
+                done[blk] = true;
+            } else if l >= MAX_LEVEL {
+                return Err(SweepError::TooManyNodes {
+                    patch: spec.name,
+                    target: cfg.nodes.target_error,
+                    max: cfg.nodes.max_nodes,
+                    predicted: pred,
+                    nodes: *total_nodes,
+                });
+            } else {
+                level[blk] += 1;
+                refined = true;
+            }
         }
-        let half = 0.5 * cfg.nodes.target_error;
-        let (grow_g, grow_c) = (pg > half || pg >= pc, pc > half || pc > pg);
-        if (grow_g && a >= MAX_LEVELS) || (grow_c && b >= MAX_LEVELS) {
-            return Err(SweepError::TooManyNodes {
-                patch: spec.name,
-                target: cfg.nodes.target_error,
-                max: cfg.nodes.max_nodes,
-                predicted: pg + pc,
-                nodes: *total_nodes,
-            });
+        if !refined {
+            break;
         }
-        a += grow_g as u32;
-        b += grow_c as u32;
     }
+    let mut p = Vec::new();
+    let mut err = Vec::new();
+    let mut gamma = Vec::new();
+    let mut coord = Vec::new();
+    let mut alpha = Vec::new();
+    let mut offset = Vec::with_capacity(nblocks);
+    for (blk, &l) in level.iter().enumerate() {
+        offset.push(p.len());
+        for key in layout.block_keys(blk / layout.bc, blk % layout.bc, l) {
+            let (g, c, a) = layout.point(key);
+            let (v, e) = cache[&key];
+            p.push(v);
+            err.push(e);
+            gamma.push(g);
+            coord.push(c);
+            alpha.push(a);
+        }
+    }
+    let simulated = cache.values().filter(|(_, e)| *e > 0.0).count();
+    Ok(BuiltPatch {
+        name: spec.name,
+        patch: Patch {
+            kind: spec.kind,
+            gamma_lo: spec.gamma_lo,
+            gamma_hi: spec.gamma_hi,
+            blocks_gamma: layout.bg,
+            blocks_coord: layout.bc,
+            block_intervals: layout.m,
+            level,
+            offset,
+            p,
+            error_estimate: err,
+        },
+        gamma,
+        coord,
+        alpha,
+        block_error: predicted,
+        unique_nodes: cache.len(),
+        simulated,
+    })
 }
 
 /// Deterministic generator for check points (SplitMix64).
