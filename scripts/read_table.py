@@ -1,0 +1,537 @@
+#!/usr/bin/env python3
+"""Reference reader of the P(gamma, alpha) table (HDF5, schema v1), h5py + numpy only.
+
+Implements the interpolation rule of docs/table-format.md (steps 1-7) exactly, independently of
+the Rust code, so that it can cross-check both the `oblique-lookup` crate and the simulator.
+
+    python3 scripts/read_table.py TABLE --gamma G --alpha A        # prints P (alpha may be inf)
+    python3 scripts/read_table.py TABLE --check-stored             # vs /checks/P_interpolated
+    python3 scripts/read_table.py TABLE --check-against-sweep 12 --max-error 1e-5
+
+Exit status: 0 success, 1 a check failed, 2 usage error / unreadable table / query outside
+the domain.
+
+As a library:
+
+    from read_table import Table
+    t = Table("tables/full.h5")
+    t.p(1.754, 1.0), t.p(0.8, float("inf"))
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+try:
+    import h5py
+    import numpy as np
+except ImportError as e:  # pragma: no cover - depends on the machine
+    sys.stderr.write(f"error: {e}; install the dependencies with `pip install h5py numpy`\n")
+    sys.exit(2)
+
+FORMAT_NAME = "oblique-P-table"
+SCHEMA_VERSION = 1
+PATCH_NAMES = ("stick_low", "partial_high", "stick_high")
+PATCH_KINDS = {"stick_low": "stick", "partial_high": "partial-slip", "stick_high": "stick"}
+
+
+class TableError(Exception):
+    """The file is not a readable P table of schema v1."""
+
+
+class DomainError(ValueError):
+    """A query (gamma, alpha) outside what the table (or the rule) answers."""
+
+
+def alpha_c1(gamma):
+    """alpha_c1 = 2 gamma^2 / (7 (2 gamma^2 - 1))."""
+    g2 = gamma * gamma
+    return 2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
+
+
+def alpha_c2(gamma):
+    """alpha_c2 = 2 gamma^2 / 7."""
+    return 2.0 * gamma * gamma / 7.0
+
+
+def alpha_lin(gamma):
+    """Upper end of the exact full-slip line P = 1 - 7 alpha (step 1)."""
+    return alpha_c1(gamma) if gamma > 1.0 else alpha_c2(gamma)
+
+
+def stick_rho(gamma):
+    """rho = 2 (1 - gamma^2) for gamma < 1, 1 for gamma >= 1."""
+    return 2.0 * (1.0 - gamma * gamma) if gamma < 1.0 else 1.0
+
+
+def stick_s(gamma, alpha):
+    """S(alpha) = r / (r + rho), r = alpha/alpha_c2 - 1, S(inf) = 1."""
+    if math.isinf(alpha):
+        return 1.0
+    r = alpha / alpha_c2(gamma) - 1.0
+    return r / (r + stick_rho(gamma))
+
+
+def coordinate(kind, gamma, alpha, alpha_max):
+    """Patch coordinate c of (gamma, alpha) (before clamping)."""
+    if kind == "partial-slip":
+        c1 = alpha_c1(gamma)
+        return math.log(alpha / c1) / math.log(alpha_c2(gamma) / c1)
+    return stick_s(gamma, alpha) / stick_s(gamma, alpha_max)
+
+
+def alpha_at(kind, gamma, c, alpha_max):
+    """Inverse of `coordinate`: alpha at patch coordinate c in [0, 1] (alpha_max at c = 1)."""
+    if kind == "partial-slip":
+        c1 = alpha_c1(gamma)
+        return c1 * (alpha_c2(gamma) / c1) ** c
+    if c >= 1.0:
+        return alpha_max
+    rho = stick_rho(gamma)
+    q = c * stick_s(gamma, alpha_max)
+    return alpha_c2(gamma) * (1.0 + rho * q / (1.0 - q))
+
+
+def lagrange(u, n, k):
+    """Step 6: start index and the k Lagrange weights at grid position u on nodes 0..n."""
+    cell = min(int(math.floor(u)), n - 1)
+    start = min(max(cell + 1 - k // 2, 0), n + 1 - k)
+    w = []
+    for j in range(k):
+        prod = 1.0
+        for m in range(k):
+            if m != j:
+                prod *= (u - (start + m)) / (j - m)
+        w.append(prod)
+    return start, w
+
+
+def _clamp01(v):
+    return min(max(v, 0.0), 1.0)
+
+
+def _str_attr(attrs, name):
+    v = attrs[name]
+    if isinstance(v, bytes):
+        v = v.decode("utf-8")
+    if isinstance(v, np.ndarray) and v.shape == ():
+        v = v[()]
+        if isinstance(v, bytes):
+            v = v.decode("utf-8")
+    if not isinstance(v, str):
+        raise TypeError(f"attribute '{name}' is not a string")
+    return v
+
+
+def _float_attr(attrs, name):
+    v = np.asarray(attrs[name])
+    if v.shape not in ((), (1,)) or v.dtype.kind not in "fiu":
+        raise TypeError(f"attribute '{name}' is not a number")
+    return float(v.reshape(()))
+
+
+class Patch:
+    """One patch held in memory: block layout and node values."""
+
+    def __init__(self, name, kind, gamma_lo, gamma_hi, blocks_gamma, blocks_coord,
+                 block_intervals, level, offset, p):
+        self.name = name
+        self.kind = kind
+        self.gamma_lo = gamma_lo
+        self.gamma_hi = gamma_hi
+        self.blocks_gamma = blocks_gamma
+        self.blocks_coord = blocks_coord
+        self.block_intervals = block_intervals
+        self.level = level  # int array [blocks_gamma, blocks_coord]
+        self.offset = offset  # int array [blocks_gamma, blocks_coord]
+        self.p = p  # float64 [N]
+
+    def interpolate(self, gamma, c, k):
+        """Steps 4 (x, with c given) to 7."""
+        x = _clamp01((gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo))
+        c = _clamp01(c)
+        bg, bc = self.blocks_gamma, self.blocks_coord
+        a = min(int(math.floor(x * bg)), bg - 1)
+        fx = x * bg - a
+        b = min(int(math.floor(c * bc)), bc - 1)
+        fc = c * bc - b
+        n = self.block_intervals * 2 ** int(self.level[a, b])
+        off = int(self.offset[a, b])
+        sg, wg = lagrange(fx * n, n, k)
+        sc, wc = lagrange(fc * n, n, k)
+        total = 0.0
+        for i in range(k):
+            row = off + (sg + i) * (n + 1) + sc
+            inner = 0.0
+            for j in range(k):
+                inner += float(self.p[row + j]) * wc[j]
+            total += wg[i] * inner
+        return total
+
+
+class Table:
+    """A P(gamma, alpha) table of schema v1, loaded into memory (no HDF5 call per query)."""
+
+    def __init__(self, path):
+        self.path = str(path)
+        if not os.path.isfile(self.path):
+            raise TableError(f"{self.path}: no such file")
+        try:
+            f = h5py.File(self.path, "r")
+        except OSError as e:
+            raise TableError(
+                f"{self.path}: not an HDF5 file, or truncated/corrupted ({e})") from None
+        with f:
+            self._load(f)
+
+    def _invalid(self, msg):
+        return TableError(f"{self.path}: {msg}")
+
+    def _load(self, f):
+        try:
+            fmt = _str_attr(f.attrs, "format")
+        except (KeyError, TypeError):
+            raise self._invalid(
+                f"not a P table (root attribute 'format' = '{FORMAT_NAME}' missing)") from None
+        if fmt != FORMAT_NAME:
+            raise self._invalid(f"not a P table (format '{fmt}', expected '{FORMAT_NAME}')")
+        try:
+            version = _float_attr(f.attrs, "schema_version")
+        except (KeyError, TypeError):
+            raise self._invalid("missing or non-numeric attribute 'schema_version'") from None
+        if version != SCHEMA_VERSION:
+            raise self._invalid(
+                f"schema version {version:g}, this reader understands {SCHEMA_VERSION}")
+
+        def num(attrs, name, where="root"):
+            try:
+                return _float_attr(attrs, name)
+            except (KeyError, TypeError):
+                raise self._invalid(
+                    f"missing or non-numeric {where} attribute '{name}'") from None
+
+        k = num(f.attrs, "stencil_points")
+        if k != int(k) or not 2 <= k <= 8 or int(k) % 2:
+            raise self._invalid(f"stencil_points = {k:g}: must be an even integer in [2, 8]")
+        self.stencil = int(k)
+        self.gamma_min = num(f.attrs, "gamma_min")
+        self.gamma_max = num(f.attrs, "gamma_max")
+        self.alpha_max = num(f.attrs, "alpha_max")
+        if not (0 < self.gamma_min < self.gamma_max < math.inf):
+            raise self._invalid(
+                f"gamma domain [{self.gamma_min}, {self.gamma_max}] must satisfy "
+                "0 < gamma_min < gamma_max < inf")
+        if math.isnan(self.alpha_max) or self.alpha_max <= 0:
+            raise self._invalid(f"alpha_max = {self.alpha_max} must be > 0 or inf")
+        if "patches" not in f or not isinstance(f["patches"], h5py.Group):
+            raise self._invalid("missing group '/patches'")
+        self.patches = {}
+        for name in PATCH_NAMES:
+            if name in f["patches"]:
+                self.patches[name] = self._patch(f["patches"][name], name, num)
+        if self.gamma_min < 1.0 and "stick_low" not in self.patches:
+            raise self._invalid("missing patch 'stick_low' (gamma_min < 1)")
+        if self.gamma_max > 1.0 and not {"partial_high", "stick_high"} <= set(self.patches):
+            raise self._invalid("missing patch 'partial_high' or 'stick_high' (gamma_max > 1)")
+        self.checks = None
+        if "checks" in f:
+            g = f["checks"]
+            self.checks = {n: g[n][()] for n in
+                           ("gamma", "alpha", "P_simulated", "P_interpolated",
+                            "interpolation_error", "patch") if n in g}
+
+    def _patch(self, g, name, num):
+        where = f"patch '{name}'"
+        try:
+            kind = _str_attr(g.attrs, "kind")
+        except (KeyError, TypeError):
+            raise self._invalid(f"{where}: missing or non-string attribute 'kind'") from None
+        if kind != PATCH_KINDS[name]:
+            raise self._invalid(f"{where}: kind '{kind}', expected '{PATCH_KINDS[name]}'")
+        lo = num(g.attrs, "gamma_lo", where)
+        hi = num(g.attrs, "gamma_hi", where)
+        if not (0 < lo < hi < math.inf):
+            raise self._invalid(f"{where}: gamma edges [{lo}, {hi}] must be finite, > 0, increasing")
+        counts = []
+        for a in ("blocks_gamma", "blocks_coord", "block_intervals"):
+            v = num(g.attrs, a, where)
+            if v != int(v) or v < 1:
+                raise self._invalid(f"{where}: attribute '{a}' = {v}: must be an integer >= 1")
+            counts.append(int(v))
+        bg, bc, m = counts
+        if m + 1 < self.stencil:
+            raise self._invalid(
+                f"{where}: block_intervals = {m} gives fewer nodes than stencil_points")
+        arrays = {}
+        for ds, kinds in (("level", "i"), ("offset", "i")):
+            if ds not in g:
+                raise self._invalid(f"{where}: missing dataset '{ds}'")
+            d = g[ds]
+            if d.shape != (bg, bc) or d.dtype.kind not in kinds:
+                raise self._invalid(
+                    f"{where}: dataset '{ds}' is {d.dtype}{list(d.shape)}, "
+                    f"expected integer [{bg}, {bc}]")
+            arrays[ds] = d[()].astype(np.int64)
+        level, offset = arrays["level"], arrays["offset"]
+        total = 0
+        for idx, (lv, off) in enumerate(zip(level.ravel(), offset.ravel())):
+            if not 0 <= lv <= 30:
+                raise self._invalid(f"{where}: level[{idx}] = {lv} out of range")
+            if off != total:
+                raise self._invalid(
+                    f"{where}: offset[{idx}] = {off}, expected {total} (running sum of (n+1)^2)")
+            total += (m * 2 ** int(lv) + 1) ** 2
+        if "P" not in g:
+            raise self._invalid(f"{where}: missing dataset 'P'")
+        d = g["P"]
+        if d.shape != (total,) or d.dtype.kind != "f":
+            raise self._invalid(
+                f"{where}: dataset 'P' is {d.dtype}{list(d.shape)}, expected float [{total}]")
+        p = d[()].astype(np.float64)
+        if not np.all(np.isfinite(p)):
+            raise self._invalid(f"{where}: non-finite value in 'P'")
+        return Patch(name, kind, lo, hi, bg, bc, m, level, offset, p)
+
+    def region(self, gamma, alpha):
+        """Patch name of a query (steps 1 and 3), or 'line' for the exact full-slip line."""
+        if alpha <= alpha_lin(gamma):
+            return "line"
+        if gamma <= 1.0:
+            return "stick_low"
+        return "partial_high" if alpha < alpha_c2(gamma) else "stick_high"
+
+    def p(self, gamma, alpha):
+        """P(gamma, alpha) by steps 1-7. Raises DomainError outside the answered domain."""
+        gamma = float(gamma)
+        alpha = float(alpha)
+        if not (math.isfinite(gamma) and gamma > 0):
+            raise DomainError(f"gamma = {gamma}: must be a finite number > 0")
+        if math.isnan(alpha) or alpha < 0:
+            raise DomainError(f"alpha = {alpha}: must be >= 0 (or inf)")
+        # 1. Full slip, exact (any gamma).
+        name = self.region(gamma, alpha)
+        if name == "line":
+            return 1.0 - 7.0 * alpha
+        # 2. Domain.
+        if not self.gamma_min <= gamma <= self.gamma_max:
+            raise DomainError(
+                f"gamma = {gamma} outside the table's domain [{self.gamma_min}, "
+                f"{self.gamma_max}] (only alpha <= alpha_lin(gamma) = {alpha_lin(gamma)} "
+                "is answered outside it)")
+        if alpha > self.alpha_max:
+            raise DomainError(f"alpha = {alpha} above the table's alpha_max = {self.alpha_max}")
+        # 3. Patch.
+        patch = self.patches.get(name)
+        if patch is None:
+            return -1.0
+        # 4-7.
+        c = coordinate(patch.kind, gamma, alpha, self.alpha_max)
+        return patch.interpolate(gamma, c, self.stencil)
+
+
+# ---------------------------------------------------------------------------------------------
+# Command line
+
+
+def parse_number(s):
+    t = s.strip().lower()
+    if t in ("inf", "+inf", "infinity", "\u221e"):
+        return math.inf
+    try:
+        return float(t)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{s}' is not a number") from None
+
+
+class SplitMix64:
+    """Small deterministic generator (independent of numpy's streams)."""
+
+    def __init__(self, seed):
+        self.state = seed & 0xFFFFFFFFFFFFFFFF
+
+    def uniform(self):
+        mask = 0xFFFFFFFFFFFFFFFF
+        self.state = (self.state + 0x9E3779B97F4A7C15) & mask
+        z = self.state
+        z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & mask
+        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & mask
+        z ^= z >> 31
+        return (z >> 11) / float(1 << 53)
+
+
+def sample_points(table, count, seed=20240611):
+    """`count` deterministic points cycling over the table's patches; in each patch gamma and the
+    coordinate c are uniform, and every fourth point of a stick patch sits at c = 1
+    (alpha = alpha_max, i.e. inf for a table with no slip)."""
+    rng = SplitMix64(seed)
+    names = [n for n in PATCH_NAMES if n in table.patches]
+    pts = []
+    for i in range(count):
+        patch = table.patches[names[i % len(names)]]
+        per = i // len(names)
+        gamma = patch.gamma_lo + (patch.gamma_hi - patch.gamma_lo) * rng.uniform()
+        u = rng.uniform()
+        if patch.kind == "stick" and per % 4 == 3:
+            c = 1.0
+        else:
+            c = 0.02 + 0.96 * u  # strictly inside: away from the patch's curved edges
+        alpha = alpha_at(patch.kind, gamma, c, table.alpha_max)
+        pts.append((patch.name, gamma, alpha))
+    return pts
+
+
+def fmt_alpha(a):
+    return "inf" if math.isinf(a) else repr(float(a))
+
+
+def run_sweep(sweep, gamma, alpha, tol):
+    cmd = [sweep, "impact", "--gamma", repr(float(gamma)), "--alpha", fmt_alpha(alpha),
+           "--tol", repr(float(tol)), "--json"]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"`{' '.join(cmd)}` exited {r.returncode}: {r.stderr.strip()}")
+    out = json.loads(r.stdout)
+    return float(out["P"]), float(out["error_estimate"])
+
+
+def check_against_sweep(table, count, sweep, max_error, tol, jobs):
+    if not (os.path.isfile(sweep) and os.access(sweep, os.X_OK)):
+        print(f"error: sweep binary {sweep} not found or not executable "
+              "(build it with `cargo build --release` or pass --sweep PATH)", file=sys.stderr)
+        return 2
+    pts = sample_points(table, count)
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as ex:
+        futs = [ex.submit(run_sweep, sweep, g, a, tol) for _, g, a in pts]
+        results = []
+        for fut in futs:
+            try:
+                results.append(fut.result())
+            except Exception as e:  # noqa: BLE001 - reported per point
+                results.append(e)
+    print(f"{'#':>3} {'patch':<13} {'gamma':>10} {'alpha':>12} {'P_table':>20} "
+          f"{'P_sweep':>20} {'sweep_err':>9} {'|diff|':>9}")
+    worst = 0.0
+    failed = 0
+    for i, ((name, g, a), res) in enumerate(zip(pts, results)):
+        try:
+            pt = table.p(g, a)
+        except DomainError as e:
+            pt = float("nan")
+            print(f"    point {i}: table refused it: {e}", file=sys.stderr)
+        if isinstance(res, Exception):
+            print(f"{i:>3} {name:<13} {g:>10.6f} {fmt_alpha(a)[:12]:>12} {pt:>20.15f} "
+                  f"{'FAILED':>20}", flush=True)
+            print(f"    {res}", file=sys.stderr)
+            failed += 1
+            continue
+        ps, pe = res
+        d = abs(pt - ps)
+        bad = not d <= max_error
+        failed += bad
+        if not math.isnan(d):
+            worst = max(worst, d)
+        print(f"{i:>3} {name:<13} {g:>10.6f} {fmt_alpha(a)[:12]:>12} {pt:>20.15f} "
+              f"{ps:>20.15f} {pe:>9.1e} {d:>9.2e}{'  > max-error' if bad else ''}")
+    print(f"max |P_table - P_sweep| = {worst:.3e} over {count} points "
+          f"(bound {max_error:g}, sweep tol {tol:g})")
+    if failed:
+        print(f"FAIL: {failed} of {count} points exceed the bound or failed", file=sys.stderr)
+        return 1
+    return 0
+
+
+def check_stored(table, tolerance=1e-12):
+    ch = table.checks
+    need = ("gamma", "alpha", "P_interpolated", "patch")
+    if ch is None or any(n not in ch for n in need):
+        print(f"error: {table.path} has no complete /checks group", file=sys.stderr)
+        return 1
+    n = len(ch["gamma"])
+    if n == 0:
+        print(f"error: {table.path} has no held-out checks", file=sys.stderr)
+        return 1
+    index = {"stick_low": 0, "partial_high": 1, "stick_high": 2, "line": -1}
+    worst = 0.0
+    bad = 0
+    for i in range(n):
+        g, a = float(ch["gamma"][i]), float(ch["alpha"][i])
+        stored = float(ch["P_interpolated"][i])
+        try:
+            mine = table.p(g, a)
+        except DomainError as e:
+            print(f"check {i}: (gamma {g!r}, alpha {a!r}) refused: {e}", file=sys.stderr)
+            bad += 1
+            continue
+        d = abs(mine - stored)
+        if not d <= tolerance:
+            bad += 1
+            print(f"check {i}: gamma {g!r} alpha {a!r}: reader {mine!r}, stored {stored!r}, "
+                  f"|diff| {d:.3e}", file=sys.stderr)
+        else:
+            worst = max(worst, d)
+        want = index[table.region(g, a)]
+        if int(ch["patch"][i]) != want:
+            bad += 1
+            print(f"check {i}: gamma {g!r} alpha {a!r}: stored patch {int(ch['patch'][i])}, "
+                  f"the rule selects {want}", file=sys.stderr)
+    print(f"{n} held-out checks: max |reader - P_interpolated| = {worst:.3e} "
+          f"(tolerance {tolerance:g}), {bad} mismatches")
+    return 1 if bad else 0
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(
+        description="Reference reader of a P(gamma, alpha) table (docs/table-format.md).")
+    ap.add_argument("table", help="HDF5 table written by `sweep run`")
+    ap.add_argument("--gamma", type=parse_number, help="gamma > 0")
+    ap.add_argument("--alpha", type=parse_number, help="alpha >= 0, or inf")
+    ap.add_argument("--check-stored", action="store_true",
+                    help="compare with /checks/P_interpolated (1e-12)")
+    ap.add_argument("--check-against-sweep", type=int, metavar="N",
+                    help="compare N deterministic points with `sweep impact`")
+    ap.add_argument("--sweep", default=None,
+                    help="sweep binary (default: target/release/sweep of this repository)")
+    ap.add_argument("--max-error", type=float, default=1e-5,
+                    help="bound of |P_table - P_sweep| (default 1e-5)")
+    ap.add_argument("--tol", type=float, default=1e-8,
+                    help="`sweep impact --tol` (default 1e-8)")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
+                    help="parallel `sweep impact` processes (default: cores)")
+    args = ap.parse_args(argv)
+
+    query = args.gamma is not None or args.alpha is not None
+    if query and (args.gamma is None or args.alpha is None):
+        ap.error("--gamma and --alpha go together")
+    if not (query or args.check_stored or args.check_against_sweep is not None):
+        ap.error("nothing to do: give --gamma/--alpha, --check-stored or --check-against-sweep N")
+    if args.check_against_sweep is not None and args.check_against_sweep < 1:
+        ap.error("--check-against-sweep N needs N >= 1")
+    try:
+        table = Table(args.table)
+    except TableError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    status = 0
+    if query:
+        try:
+            print(repr(table.p(args.gamma, args.alpha)))
+        except DomainError as e:
+            print(f"error: {e}", file=sys.stderr)
+            return 2
+    if args.check_stored:
+        status = max(status, check_stored(table))
+    if args.check_against_sweep is not None:
+        sweep = args.sweep or os.path.join(
+            os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "target", "release",
+            "sweep")
+        status = max(status, check_against_sweep(table, args.check_against_sweep, sweep,
+                                                 args.max_error, args.tol, args.jobs))
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())

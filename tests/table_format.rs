@@ -1,0 +1,1334 @@
+//! Tests of the HDF5 table (schema v1) against its specification, `docs/table-format.md`:
+//! the file layout (names, types, shapes) as documented, `oblique_lookup::Table` reproducing the
+//! held-out checks and the exact full-slip line, atomic writes under SIGKILL, unwritable outputs,
+//! thread-count independence, `sweep inspect --json`, and refusal of bad files.
+//!
+//! Tables are built by the real `sweep` binary from a small inline config (well under a second
+//! of solving each) into a scratch directory under `CARGO_TARGET_TMPDIR`.
+#![cfg(unix)]
+
+use std::collections::{BTreeSet, HashMap};
+use std::os::unix::process::ExitStatusExt;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
+use oblique_lookup::surface::{alpha_c1, alpha_c2, linear_limit};
+use oblique_lookup::{PatchKind, Table};
+
+/// Small table: all three patches (γ from 0.8 to 1.6), several blocks along γ, mixed refinement
+/// levels, α up to ∞.
+const SMALL_CONFIG: &str = r#"# tests/table_format.rs: small table with all three patches
+output = "unused.h5"
+
+[domain]
+gamma_min = 0.8
+gamma_max = 1.6
+alpha_max = "inf"
+
+[nodes]
+placement = "aligned"
+stencil = 4
+target_error = 1e-4
+block_intervals = 4
+blocks_per_unit_gamma = 2.0
+blocks_coord = 3
+
+[solver]
+tol = 2e-5
+
+[checks]
+per_patch = 6
+seed = 3
+"#;
+
+/// A run that takes far longer than the 300 ms after which the atomic-write test kills it.
+const SLOW_CONFIG: &str = r#"output = "unused.h5"
+
+[domain]
+gamma_min = 0.3
+gamma_max = 3.0
+alpha_max = "inf"
+
+[nodes]
+target_error = 1e-7
+max_nodes = 200000
+
+[solver]
+tol = 1e-8
+
+[checks]
+per_patch = 1
+"#;
+
+const GAMMA_MIN: f64 = 0.8;
+const GAMMA_MAX: f64 = 1.6;
+const CHECKS_PER_PATCH: usize = 6;
+const NODE_TOL: f64 = 2e-5;
+const TARGET_ERROR: f64 = 1e-4;
+
+/// What a table was built from (the values the layout check expects).
+struct Expect {
+    gamma_min: f64,
+    gamma_max: f64,
+    alpha_max: f64,
+    config: String,
+}
+
+impl Expect {
+    fn small() -> Self {
+        Expect {
+            gamma_min: GAMMA_MIN,
+            gamma_max: GAMMA_MAX,
+            alpha_max: f64::INFINITY,
+            config: SMALL_CONFIG.to_string(),
+        }
+    }
+
+    /// SMALL_CONFIG with another domain.
+    fn variant(gamma_min: f64, gamma_max: f64, alpha_max: f64) -> Self {
+        let am = if alpha_max.is_infinite() {
+            "\"inf\"".to_string()
+        } else {
+            format!("{alpha_max:?}")
+        };
+        let config = SMALL_CONFIG
+            .replace("gamma_min = 0.8", &format!("gamma_min = {gamma_min:?}"))
+            .replace("gamma_max = 1.6", &format!("gamma_max = {gamma_max:?}"))
+            .replace("alpha_max = \"inf\"", &format!("alpha_max = {am}"));
+        Expect {
+            gamma_min,
+            gamma_max,
+            alpha_max,
+            config,
+        }
+    }
+
+    /// The patches the doc says the domain has.
+    fn patches(&self) -> Vec<&'static str> {
+        PATCHES
+            .iter()
+            .map(|x| x.0)
+            .filter(|&n| {
+                if n == "stick_low" {
+                    self.gamma_min < 1.0
+                } else {
+                    self.gamma_max > 1.0
+                }
+            })
+            .collect()
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// What docs/table-format.md says is in the file (checked against the doc text below).
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ty {
+    F64,
+    I32,
+    I64,
+    Str,
+}
+
+impl Ty {
+    fn descriptor(self) -> TypeDescriptor {
+        match self {
+            Ty::F64 => TypeDescriptor::Float(FloatSize::U8),
+            Ty::I32 => TypeDescriptor::Integer(IntSize::U4),
+            Ty::I64 => TypeDescriptor::Integer(IntSize::U8),
+            Ty::Str => TypeDescriptor::VarLenUnicode,
+        }
+    }
+}
+
+/// Root attributes.
+const ROOT_ATTRS: &[(&str, Ty)] = &[
+    ("format", Ty::Str),
+    ("schema_version", Ty::F64),
+    ("stencil_points", Ty::F64),
+    ("gamma_min", Ty::F64),
+    ("gamma_max", Ty::F64),
+    ("alpha_max", Ty::F64),
+    ("node_tol", Ty::F64),
+    ("target_error", Ty::F64),
+    ("engine_version", Ty::Str),
+    ("git_commit", Ty::Str),
+    ("config", Ty::Str),
+    ("solver", Ty::Str),
+    ("created", Ty::Str),
+    ("wall_time_s", Ty::F64),
+];
+
+/// Patches and their `kind`.
+const PATCHES: &[(&str, &str)] = &[
+    ("stick_low", "stick"),
+    ("partial_high", "partial-slip"),
+    ("stick_high", "stick"),
+];
+
+/// Patch attributes.
+const PATCH_ATTRS: &[(&str, Ty)] = &[
+    ("kind", Ty::Str),
+    ("gamma_lo", Ty::F64),
+    ("gamma_hi", Ty::F64),
+    ("blocks_gamma", Ty::F64),
+    ("blocks_coord", Ty::F64),
+    ("block_intervals", Ty::F64),
+];
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum PatchShape {
+    /// `[blocks_gamma, blocks_coord]`
+    Blocks,
+    /// `[N]`, N = Σ (n+1)²
+    Nodes,
+}
+
+/// Patch datasets.
+const PATCH_DATASETS: &[(&str, Ty, PatchShape)] = &[
+    ("level", Ty::I32, PatchShape::Blocks),
+    ("offset", Ty::I64, PatchShape::Blocks),
+    ("P", Ty::F64, PatchShape::Nodes),
+    ("error_estimate", Ty::F64, PatchShape::Nodes),
+    ("gamma", Ty::F64, PatchShape::Nodes),
+    ("coord", Ty::F64, PatchShape::Nodes),
+    ("alpha", Ty::F64, PatchShape::Nodes),
+    ("block_predicted_error", Ty::F64, PatchShape::Blocks),
+];
+
+/// Datasets of the other groups; all of one group share one length (`None`: any, `Some(n)`: n).
+const OTHER_DATASETS: &[(&str, Ty, Option<usize>)] = &[
+    ("/no_slip/gamma", Ty::F64, None),
+    ("/no_slip/P", Ty::F64, None),
+    ("/no_slip/error_estimate", Ty::F64, None),
+    ("/critical/gamma", Ty::F64, Some(401)),
+    ("/critical/alpha_c1", Ty::F64, Some(401)),
+    ("/critical/alpha_c2", Ty::F64, Some(401)),
+    ("/checks/gamma", Ty::F64, None),
+    ("/checks/alpha", Ty::F64, None),
+    ("/checks/P_simulated", Ty::F64, None),
+    ("/checks/P_interpolated", Ty::F64, None),
+    ("/checks/interpolation_error", Ty::F64, None),
+    ("/checks/patch", Ty::I32, None),
+];
+
+// ---------------------------------------------------------------------------------------------
+// Helpers
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Scratch directory of this test process (stale ones of dead processes are removed).
+fn scratch() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let base = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+        if Path::new("/proc/self").exists() {
+            if let Ok(entries) = std::fs::read_dir(&base) {
+                for e in entries.flatten() {
+                    let name = e.file_name().to_string_lossy().to_string();
+                    if let Some(pid) = name.strip_prefix("table_format-") {
+                        if !Path::new("/proc").join(pid).exists() {
+                            let _ = std::fs::remove_dir_all(e.path());
+                        }
+                    }
+                }
+            }
+        }
+        let dir = base.join(format!("table_format-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create scratch directory");
+        dir
+    })
+}
+
+/// A fresh sub-directory of the scratch directory.
+fn subdir(name: &str) -> PathBuf {
+    let d = scratch().join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write_config(name: &str, text: &str) -> PathBuf {
+    let p = scratch().join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn sweep(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(args)
+        .output()
+        .expect("run the sweep binary")
+}
+
+fn spawn_run(config: &Path, out: &Path, threads: usize) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .arg("run")
+        .arg(config)
+        .arg("-o")
+        .arg(out)
+        .args(["--threads", &threads.to_string(), "--quiet"])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start sweep run")
+}
+
+fn assert_no_panic(out: &Output, what: &str) {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !stderr.contains("panicked")
+            && out.status.code() != Some(101)
+            && out.status.code().is_some(),
+        "{what}: panicked or died ({:?}): {stderr}",
+        out.status
+    );
+}
+
+/// Build a table with `sweep run CONFIG -o OUT --threads T --quiet`; returns the wall time.
+fn build(config: &Path, out: &Path, threads: usize) -> Duration {
+    let start = Instant::now();
+    let o = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .arg("run")
+        .arg(config)
+        .arg("-o")
+        .arg(out)
+        .args(["--threads", &threads.to_string(), "--quiet"])
+        .output()
+        .expect("run sweep run");
+    let wall = start.elapsed();
+    assert_no_panic(&o, "sweep run");
+    assert!(
+        o.status.success(),
+        "sweep run {} failed: {}",
+        config.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.is_file(), "sweep run did not write {}", out.display());
+    wall
+}
+
+struct Fixture {
+    /// Table of SMALL_CONFIG built with --threads 2.
+    table: PathBuf,
+    config: PathBuf,
+}
+
+fn fixture() -> &'static Fixture {
+    static F: OnceLock<Fixture> = OnceLock::new();
+    F.get_or_init(|| {
+        let config = write_config("small.toml", SMALL_CONFIG);
+        let dir = subdir("fixture");
+        let table = dir.join("small.h5");
+        build(&config, &table, 2);
+        // A completed run leaves exactly the table: no temporary or probe file.
+        let names = dir_names(&dir);
+        assert_eq!(
+            names,
+            vec!["small.h5".to_string()],
+            "files left next to the table"
+        );
+        Fixture { table, config }
+    })
+}
+
+fn dir_names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    v.sort();
+    v
+}
+
+fn open(path: &Path) -> hdf5::File {
+    hdf5::File::open(path).unwrap_or_else(|e| panic!("open {}: {e}", path.display()))
+}
+
+fn f64s(g: &hdf5::Group, name: &str) -> Vec<f64> {
+    g.dataset(name)
+        .and_then(|d| d.read_raw::<f64>())
+        .unwrap_or_else(|e| panic!("read {}/{name}: {e}", g.name()))
+}
+
+fn ints<T: hdf5::H5Type>(g: &hdf5::Group, name: &str) -> Vec<T> {
+    g.dataset(name)
+        .and_then(|d| d.read_raw::<T>())
+        .unwrap_or_else(|e| panic!("read {}/{name}: {e}", g.name()))
+}
+
+fn attr_f64(loc: &hdf5::Location, name: &str) -> f64 {
+    loc.attr(name)
+        .and_then(|a| a.read_scalar::<f64>())
+        .unwrap_or_else(|e| panic!("attribute {}@{name}: {e}", loc.name()))
+}
+
+fn attr_str(loc: &hdf5::Location, name: &str) -> String {
+    loc.attr(name)
+        .and_then(|a| a.read_scalar::<VarLenUnicode>())
+        .map(|s| s.as_str().to_string())
+        .unwrap_or_else(|e| panic!("attribute {}@{name}: {e}", loc.name()))
+}
+
+fn count_attr(g: &hdf5::Group, name: &str) -> usize {
+    let v = attr_f64(g, name);
+    assert!(
+        v >= 1.0 && v.fract() == 0.0,
+        "{}@{name} = {v}: documented as a float64 with an integer value >= 1",
+        g.name()
+    );
+    v as usize
+}
+
+fn set<S: AsRef<str>>(it: impl IntoIterator<Item = S>) -> BTreeSet<String> {
+    it.into_iter().map(|s| s.as_ref().to_string()).collect()
+}
+
+fn check_attr(loc: &hdf5::Location, name: &str, ty: Ty) {
+    let a = loc
+        .attr(name)
+        .unwrap_or_else(|e| panic!("documented attribute {}@{name} missing: {e}", loc.name()));
+    assert!(a.is_scalar(), "{}@{name} is not scalar", loc.name());
+    let d = a.dtype().unwrap().to_descriptor().unwrap();
+    assert_eq!(
+        d,
+        ty.descriptor(),
+        "{}@{name}: type {d:?}, documented {ty:?}",
+        loc.name()
+    );
+}
+
+fn check_dataset(g: &hdf5::Group, name: &str, ty: Ty, shape: &[usize]) {
+    let ds = g
+        .dataset(name)
+        .unwrap_or_else(|e| panic!("documented dataset {}/{name} missing: {e}", g.name()));
+    let d = ds.dtype().unwrap().to_descriptor().unwrap();
+    assert_eq!(
+        d,
+        ty.descriptor(),
+        "{}/{name}: type {d:?}, documented {ty:?}",
+        g.name()
+    );
+    assert_eq!(ds.shape(), shape, "{}/{name}: shape", g.name());
+}
+
+// ---------------------------------------------------------------------------------------------
+// The document
+
+fn doc_text() -> String {
+    std::fs::read_to_string(repo().join("docs/table-format.md")).expect("read docs/table-format.md")
+}
+
+/// Names in backticks in the first column of every markdown table of the section
+/// "What is in the file".
+fn doc_table_names(doc: &str) -> BTreeSet<String> {
+    let start = doc
+        .find("## What is in the file")
+        .expect("section 'What is in the file' in docs/table-format.md");
+    let rest = &doc[start + 3..];
+    let section = &rest[..rest.find("\n## ").unwrap_or(rest.len())];
+    let mut names = BTreeSet::new();
+    for line in section.lines() {
+        let line = line.trim();
+        if !line.starts_with('|') || line.starts_with("|---") {
+            continue;
+        }
+        let first = line[1..].split('|').next().unwrap_or("");
+        let mut parts = first.split('`');
+        parts.next();
+        while let (Some(name), Some(_)) = (parts.next(), parts.next()) {
+            names.insert(name.to_string());
+        }
+    }
+    names
+}
+
+#[test]
+fn a_documented_names_match_the_explicit_lists() {
+    let doc = doc_text();
+    let explicit: BTreeSet<String> = ROOT_ATTRS
+        .iter()
+        .map(|x| x.0)
+        .chain(PATCHES.iter().map(|x| x.0))
+        .chain(PATCH_ATTRS.iter().map(|x| x.0))
+        .chain(PATCH_DATASETS.iter().map(|x| x.0))
+        .chain(OTHER_DATASETS.iter().map(|x| x.0))
+        .map(String::from)
+        .collect();
+    for name in &explicit {
+        assert!(
+            doc.contains(&format!("`{name}`")),
+            "`{name}` is not in docs/table-format.md"
+        );
+    }
+    let parsed = doc_table_names(&doc);
+    assert!(parsed.len() > 40, "parsed too few names: {parsed:?}");
+    let undocumented: Vec<_> = explicit.difference(&parsed).collect();
+    let untested: Vec<_> = parsed.difference(&explicit).collect();
+    assert!(
+        undocumented.is_empty() && untested.is_empty(),
+        "doc tables and test lists differ: not in the doc tables {undocumented:?}, not in the \
+         test {untested:?}"
+    );
+    // The documented types of the integer datasets.
+    assert!(doc.contains("| `level` | dataset | int32 `[blocks_gamma, blocks_coord]`"));
+    assert!(doc.contains("| `offset` | dataset | int64 `[blocks_gamma, blocks_coord]`"));
+    assert!(doc.contains("| `/checks/patch` | int32 `[K]`"));
+}
+
+#[test]
+fn a_file_has_exactly_the_documented_layout() {
+    check_layout(&fixture().table, &Expect::small());
+}
+
+/// Everything section "What is in the file" of docs/table-format.md states, for a table built
+/// from `ex`.
+fn check_layout(path: &Path, ex: &Expect) {
+    let f = open(path);
+    let (gamma_min, gamma_max, alpha_max) = (ex.gamma_min, ex.gamma_max, ex.alpha_max);
+
+    // Root attributes: all documented ones, with their types, and nothing else.
+    for &(name, ty) in ROOT_ATTRS {
+        check_attr(&f, name, ty);
+    }
+    assert_eq!(
+        set(f.attr_names().unwrap()),
+        set(ROOT_ATTRS.iter().map(|x| x.0)),
+        "root attributes differ from the documented ones"
+    );
+    assert_eq!(attr_str(&f, "format"), "oblique-P-table");
+    assert_eq!(attr_f64(&f, "schema_version"), 1.0);
+    assert_eq!(attr_f64(&f, "stencil_points"), 4.0);
+    assert_eq!(attr_f64(&f, "gamma_min"), gamma_min);
+    assert_eq!(attr_f64(&f, "gamma_max"), gamma_max);
+    assert_eq!(attr_f64(&f, "alpha_max"), alpha_max);
+    assert_eq!(attr_f64(&f, "node_tol"), NODE_TOL);
+    assert_eq!(attr_f64(&f, "target_error"), TARGET_ERROR);
+    assert_eq!(attr_str(&f, "config"), ex.config);
+    let wall = attr_f64(&f, "wall_time_s");
+    assert!(wall.is_finite() && wall >= 0.0, "wall_time_s = {wall}");
+    for s in ["engine_version", "git_commit", "solver"] {
+        assert!(!attr_str(&f, s).is_empty(), "{s} is empty");
+    }
+    let created = attr_str(&f, "created");
+    let b = created.as_bytes();
+    let rfc3339 = b.len() == 20
+        && b.iter().enumerate().all(|(i, &c)| match i {
+            4 | 7 => c == b'-',
+            10 => c == b'T',
+            13 | 16 => c == b':',
+            19 => c == b'Z',
+            _ => c.is_ascii_digit(),
+        });
+    assert!(rfc3339, "created = {created:?} is not UTC RFC 3339");
+
+    // Top-level groups: exactly the documented ones (`no_slip` when α_max = ∞).
+    let mut groups = vec!["patches", "critical", "checks"];
+    if alpha_max.is_infinite() {
+        groups.push("no_slip");
+    }
+    assert_eq!(
+        set(f.member_names().unwrap()),
+        set(groups),
+        "top-level members differ from the documented groups"
+    );
+
+    // Patches.
+    let patches = f.group("patches").unwrap();
+    assert_eq!(
+        set(patches.member_names().unwrap()),
+        set(ex.patches()),
+        "patches of the domain [{gamma_min}, {gamma_max}]"
+    );
+    let mut stick_c1: Vec<(f64, f64, f64)> = Vec::new(); // (γ, P, error) at c = 1
+    for &(pname, kind) in PATCHES.iter().filter(|x| ex.patches().contains(&x.0)) {
+        let g = patches.group(pname).unwrap();
+        for &(name, ty) in PATCH_ATTRS {
+            check_attr(&g, name, ty);
+        }
+        assert_eq!(
+            set(g.attr_names().unwrap()),
+            set(PATCH_ATTRS.iter().map(|x| x.0)),
+            "{pname}: attributes differ from the documented ones"
+        );
+        assert_eq!(
+            set(g.member_names().unwrap()),
+            set(PATCH_DATASETS.iter().map(|x| x.0)),
+            "{pname}: datasets differ from the documented ones"
+        );
+        assert_eq!(attr_str(&g, "kind"), kind, "{pname}: kind");
+        let (lo, hi) = (attr_f64(&g, "gamma_lo"), attr_f64(&g, "gamma_hi"));
+        let want = if pname == "stick_low" {
+            (gamma_min, gamma_max.min(1.0))
+        } else {
+            (gamma_min.max(1.0), gamma_max)
+        };
+        assert_eq!((lo, hi), want, "{pname}: gamma edges");
+        let bg = count_attr(&g, "blocks_gamma");
+        let bc = count_attr(&g, "blocks_coord");
+        let m = count_attr(&g, "block_intervals");
+        let level: Vec<i32> = ints(&g, "level");
+        let offset: Vec<i64> = ints(&g, "offset");
+        assert_eq!(level.len(), bg * bc, "{pname}: level size");
+        let mut total = 0usize;
+        for (i, (&l, &o)) in level.iter().zip(&offset).enumerate() {
+            assert!((0..=12).contains(&l), "{pname}: level[{i}] = {l}");
+            assert_eq!(
+                o, total as i64,
+                "{pname}: offset[{i}] is not the running sum"
+            );
+            total += ((m << l) + 1).pow(2);
+        }
+        for &(name, ty, shape) in PATCH_DATASETS {
+            let shape = match shape {
+                PatchShape::Blocks => vec![bg, bc],
+                PatchShape::Nodes => vec![total],
+            };
+            check_dataset(&g, name, ty, &shape);
+        }
+        // Node positions as documented.
+        let (gam, coord, alpha) = (f64s(&g, "gamma"), f64s(&g, "coord"), f64s(&g, "alpha"));
+        let (p, err) = (f64s(&g, "P"), f64s(&g, "error_estimate"));
+        let pk = if kind == "stick" {
+            PatchKind::Stick
+        } else {
+            PatchKind::PartialSlip
+        };
+        for a in 0..bg {
+            for b in 0..bc {
+                let blk = a * bc + b;
+                let n = m << level[blk];
+                for i in 0..=n {
+                    for j in 0..=n {
+                        let idx = offset[blk] as usize + i * (n + 1) + j;
+                        let g_doc = lo + (hi - lo) * (a as f64 + i as f64 / n as f64) / bg as f64;
+                        let c_doc = (b as f64 + j as f64 / n as f64) / bc as f64;
+                        assert!(
+                            (gam[idx] - g_doc).abs() <= 1e-12,
+                            "{pname}: node {idx} (block {a},{b}, i {i}, j {j}) gamma {} vs {g_doc}",
+                            gam[idx]
+                        );
+                        assert!(
+                            (coord[idx] - c_doc).abs() <= 1e-12,
+                            "{pname}: node {idx} coord {} vs {c_doc}",
+                            coord[idx]
+                        );
+                        if pk == PatchKind::Stick && coord[idx] == 1.0 {
+                            assert_eq!(alpha[idx], alpha_max, "{pname}: node {idx} at c = 1");
+                            stick_c1.push((gam[idx], p[idx], err[idx]));
+                        } else if pk == PatchKind::PartialSlip && gam[idx] == 1.0 {
+                            // α_c1 = α_c2 at γ = 1: the patch has zero width, c is undefined.
+                            assert!(
+                                (alpha[idx] - 2.0 / 7.0).abs() <= 1e-15,
+                                "{pname}: node {idx} at gamma 1: alpha {}",
+                                alpha[idx]
+                            );
+                        } else {
+                            assert!(alpha[idx].is_finite(), "{pname}: node {idx} alpha");
+                            let c = pk.coord(gam[idx], alpha[idx], alpha_max);
+                            assert!(
+                                (c - coord[idx]).abs() <= 1e-9,
+                                "{pname}: node {idx}: alpha {} has coordinate {c}, stored {}",
+                                alpha[idx],
+                                coord[idx]
+                            );
+                        }
+                        assert!(p[idx].is_finite() && p[idx].abs() <= 1.0 + 1e-9);
+                        assert!(
+                            err[idx] >= 0.0 && err[idx] <= NODE_TOL,
+                            "{pname}: node {idx} error estimate {} > node_tol",
+                            err[idx]
+                        );
+                    }
+                }
+            }
+        }
+        // Shared block edges carry identical values.
+        let mut seen: HashMap<(u64, u64), f64> = HashMap::new();
+        for idx in 0..total {
+            let key = (gam[idx].to_bits(), coord[idx].to_bits());
+            if let Some(&prev) = seen.get(&key) {
+                assert_eq!(
+                    prev.to_bits(),
+                    p[idx].to_bits(),
+                    "{pname}: node {idx} stored twice with different P"
+                );
+            } else {
+                seen.insert(key, p[idx]);
+            }
+        }
+        let bpe = f64s(&g, "block_predicted_error");
+        assert!(
+            bpe.iter()
+                .all(|e| e.is_finite() && *e >= 0.0 && *e <= TARGET_ERROR),
+            "{pname}: block_predicted_error above target_error: {bpe:?}"
+        );
+    }
+
+    // Other groups: members exactly as documented, shapes, types.
+    for group in ["no_slip", "critical", "checks"] {
+        let Ok(g) = f.group(group) else {
+            continue; // presence is checked above
+        };
+        let documented: Vec<_> = OTHER_DATASETS
+            .iter()
+            .filter(|x| x.0.starts_with(&format!("/{group}/")))
+            .collect();
+        let names = set(documented.iter().map(|x| x.0.rsplit('/').next().unwrap()));
+        assert_eq!(
+            set(g.member_names().unwrap()),
+            names,
+            "/{group}: members differ from the documented ones"
+        );
+        let len = g
+            .dataset(documented[0].0.rsplit('/').next().unwrap())
+            .unwrap()
+            .shape();
+        assert_eq!(len.len(), 1, "/{group}: 1-D");
+        for &&(path, ty, fixed) in &documented {
+            let name = path.rsplit('/').next().unwrap();
+            check_dataset(&g, name, ty, &[fixed.unwrap_or(len[0])]);
+        }
+    }
+
+    // /no_slip: the c = 1 nodes of the stick patches, sorted by γ (one row per γ).
+    if alpha_max.is_infinite() {
+        stick_c1.sort_by(|x, y| x.0.total_cmp(&y.0));
+        stick_c1.dedup_by(|x, y| x.0 == y.0);
+        let ns = f.group("no_slip").unwrap();
+        let (ng, np, ne) = (
+            f64s(&ns, "gamma"),
+            f64s(&ns, "P"),
+            f64s(&ns, "error_estimate"),
+        );
+        assert_eq!(ng.len(), stick_c1.len(), "no_slip rows");
+        for (i, &(g0, p0, e0)) in stick_c1.iter().enumerate() {
+            assert_eq!((ng[i], np[i], ne[i]), (g0, p0, e0), "no_slip row {i}");
+        }
+        assert!(ng.windows(2).all(|w| w[0] < w[1]), "no_slip/gamma sorted");
+        assert_eq!((ng[0], ng[ng.len() - 1]), (gamma_min, gamma_max));
+    }
+
+    // /critical: closed forms on 401 points of the γ domain.
+    let cr = f.group("critical").unwrap();
+    let (cg, c1, c2) = (
+        f64s(&cr, "gamma"),
+        f64s(&cr, "alpha_c1"),
+        f64s(&cr, "alpha_c2"),
+    );
+    for i in 0..401 {
+        let g = gamma_min + (gamma_max - gamma_min) * i as f64 / 400.0;
+        assert!((cg[i] - g).abs() <= 1e-14, "critical/gamma[{i}]");
+        assert!(
+            (c2[i] - alpha_c2(cg[i])).abs() <= 1e-15,
+            "critical/alpha_c2[{i}]"
+        );
+        if cg[i] < 1.0 {
+            assert!(
+                c1[i].is_nan(),
+                "critical/alpha_c1[{i}] must be NaN below γ = 1"
+            );
+        } else {
+            assert!(
+                (c1[i] - alpha_c1(cg[i])).abs() <= 1e-15,
+                "critical/alpha_c1[{i}]"
+            );
+        }
+    }
+
+    // /checks: per_patch points per patch, consistent columns.
+    let ch = f.group("checks").unwrap();
+    let (g, a) = (f64s(&ch, "gamma"), f64s(&ch, "alpha"));
+    let (ps, pi, e) = (
+        f64s(&ch, "P_simulated"),
+        f64s(&ch, "P_interpolated"),
+        f64s(&ch, "interpolation_error"),
+    );
+    let patch: Vec<i32> = ints(&ch, "patch");
+    let npatches = ex.patches().len();
+    assert_eq!(g.len(), npatches * CHECKS_PER_PATCH, "checks count");
+    for i in 0..g.len() {
+        assert!(
+            g[i] >= gamma_min && g[i] <= gamma_max,
+            "check {i} gamma {}",
+            g[i]
+        );
+        assert!(
+            a[i] > linear_limit(g[i]) && a[i].is_finite(),
+            "check {i} alpha {}",
+            a[i]
+        );
+        assert_eq!(
+            e[i],
+            (pi[i] - ps[i]).abs(),
+            "check {i}: interpolation_error"
+        );
+        let want = if g[i] <= 1.0 {
+            0
+        } else if a[i] < alpha_c2(g[i]) {
+            1
+        } else {
+            2
+        };
+        assert_eq!(
+            patch[i], want,
+            "check {i}: patch index vs the rule's step 3"
+        );
+    }
+    for name in ex.patches() {
+        let want = PATCHES.iter().position(|x| x.0 == name).unwrap() as i32;
+        assert!(patch.contains(&want), "no check in patch {name} ({want})");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Other domains: a finite α_max (no `/no_slip`), a domain starting at γ = 1 (no `stick_low`) and
+// one ending at γ = 1 (no high patches).
+
+#[test]
+fn a_domain_variants_follow_the_documented_layout() {
+    let dir = subdir("variants");
+    for (i, ex) in [
+        Expect::variant(0.8, 1.6, 3.0),
+        Expect::variant(1.0, 1.5, f64::INFINITY),
+        Expect::variant(0.6, 1.0, f64::INFINITY),
+    ]
+    .iter()
+    .enumerate()
+    {
+        let config = write_config(&format!("variant{i}.toml"), &ex.config);
+        let out = dir.join(format!("variant{i}.h5"));
+        build(&config, &out, 2);
+        check_layout(&out, ex);
+
+        let t = Table::open(&out).expect("open the table");
+        for c in &t.checks {
+            let p = t.p(c.gamma, c.alpha).unwrap();
+            assert!(
+                (p - c.p_interpolated).abs() <= 1e-12,
+                "variant {i}: check ({}, {}): {p} vs {}",
+                c.gamma,
+                c.alpha,
+                c.p_interpolated
+            );
+        }
+        let mid = 0.5 * (ex.gamma_min + ex.gamma_max);
+        let inf = t.p(mid, f64::INFINITY);
+        assert_eq!(
+            inf.is_ok(),
+            ex.alpha_max.is_infinite(),
+            "variant {i}: alpha = inf: {inf:?}"
+        );
+        if ex.alpha_max.is_finite() {
+            assert!(
+                t.p(mid, ex.alpha_max).is_ok(),
+                "variant {i}: alpha = alpha_max"
+            );
+            assert!(
+                t.p(mid, ex.alpha_max * 1.01).is_err(),
+                "variant {i}: above alpha_max"
+            );
+        }
+        if ex.gamma_min == 1.0 {
+            // Step 3: γ = 1 selects the absent `stick_low`, where P = −1.
+            assert_eq!(t.p(1.0, 0.5).unwrap(), -1.0, "variant {i}: gamma 1");
+        }
+        // Full slip outside the domain stays exact.
+        assert_eq!(t.p(5.0, 0.1).unwrap(), 1.0 - 7.0 * 0.1);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// (b) the lookup crate
+
+#[test]
+fn b_lookup_reproduces_checks_and_full_slip_line() {
+    let fx = fixture();
+    let t = Table::open(&fx.table).expect("open the table");
+    let f = open(&fx.table);
+    let ch = f.group("checks").unwrap();
+    let (g, a, pi) = (
+        f64s(&ch, "gamma"),
+        f64s(&ch, "alpha"),
+        f64s(&ch, "P_interpolated"),
+    );
+    assert_eq!(t.checks.len(), g.len());
+    let mut worst = 0.0_f64;
+    for i in 0..g.len() {
+        let p = t.p(g[i], a[i]).expect("check point inside the domain");
+        let d = (p - pi[i]).abs();
+        worst = worst.max(d);
+        assert!(
+            d <= 1e-12,
+            "check {i} (gamma {}, alpha {}): lookup {p}, stored P_interpolated {}",
+            g[i],
+            a[i],
+            pi[i]
+        );
+        assert_eq!(t.checks[i].p_interpolated.to_bits(), pi[i].to_bits());
+    }
+    eprintln!(
+        "lookup vs stored P_interpolated: max |diff| {worst:e} over {} checks",
+        g.len()
+    );
+
+    // Full-slip line: exact for every γ > 0, inside the domain or not.
+    for gamma in [
+        0.05,
+        0.3,
+        0.72,
+        0.8,
+        0.95,
+        1.0,
+        1.0 + 1e-12,
+        1.2,
+        1.6,
+        2.0,
+        10.0,
+        300.0,
+    ] {
+        let lin = linear_limit(gamma);
+        assert!(lin > 0.0);
+        for alpha in [
+            0.0,
+            0.25 * lin,
+            0.5 * lin,
+            lin * (1.0 - 1e-12),
+            lin,
+            f64::MIN_POSITIVE,
+        ] {
+            let p = t.p(gamma, alpha).unwrap_or_else(|e| {
+                panic!("full slip at gamma {gamma}, alpha {alpha} refused: {e}")
+            });
+            assert_eq!(
+                p.to_bits(),
+                (1.0 - 7.0 * alpha).to_bits(),
+                "full slip at gamma {gamma}, alpha {alpha}: {p}"
+            );
+        }
+        let outside = !(GAMMA_MIN..=GAMMA_MAX).contains(&gamma);
+        let above = t.p(gamma, lin * 1.5 + 1e-9);
+        assert_eq!(
+            above.is_err(),
+            outside,
+            "gamma {gamma} above the line: {above:?}"
+        );
+        let inf = t.p(gamma, f64::INFINITY);
+        assert_eq!(inf.is_err(), outside, "gamma {gamma}, alpha inf: {inf:?}");
+    }
+
+    // α = ∞ at the stored no-slip nodes reproduces the node values.
+    let ns = f.group("no_slip").unwrap();
+    let (ng, np) = (f64s(&ns, "gamma"), f64s(&ns, "P"));
+    for (&gamma, &p0) in ng.iter().zip(&np) {
+        let p = t.p(gamma, f64::INFINITY).unwrap();
+        assert!(
+            (p - p0).abs() <= 1e-10,
+            "P(gamma {gamma}, inf) = {p}, no_slip node {p0}"
+        );
+    }
+
+    // Invalid queries are errors, not panics or NaN.
+    for (gamma, alpha) in [
+        (f64::NAN, 0.5),
+        (0.0, 0.5),
+        (-1.0, 0.5),
+        (f64::INFINITY, 0.5),
+        (1.2, f64::NAN),
+        (1.2, -0.1),
+    ] {
+        assert!(t.p(gamma, alpha).is_err(), "({gamma}, {alpha}) accepted");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// (c) atomic write, unwritable output
+
+fn kill9(child: &mut Child) -> std::process::ExitStatus {
+    let st = Command::new("kill")
+        .args(["-9", &child.id().to_string()])
+        .status()
+        .expect("run kill");
+    if !st.success() {
+        // The process may have exited just before; reap it below either way.
+        let _ = child.kill();
+    }
+    child.wait().expect("wait for sweep run")
+}
+
+#[test]
+fn c_sigkill_leaves_the_old_table_untouched() {
+    let fx = fixture();
+    let slow = write_config("slow.toml", SLOW_CONFIG);
+    let dir = subdir("atomic");
+    let out = dir.join("t.h5");
+    std::fs::copy(&fx.table, &out).unwrap();
+    let before = std::fs::read(&out).unwrap();
+
+    let mut child = spawn_run(&slow, &out, 2);
+    std::thread::sleep(Duration::from_millis(300));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "the slow run ended within 300 ms; the test needs it still running"
+    );
+    let status = kill9(&mut child);
+    assert_eq!(
+        status.signal(),
+        Some(9),
+        "sweep run was not killed: {status:?}"
+    );
+
+    let after = std::fs::read(&out).unwrap();
+    assert!(
+        after == before,
+        "the table at the output path changed after SIGKILL ({} -> {} bytes)",
+        before.len(),
+        after.len()
+    );
+    assert_eq!(
+        dir_names(&dir),
+        vec!["t.h5".to_string()],
+        "files appeared next to the output"
+    );
+    Table::open(&out).expect("old table still opens");
+}
+
+/// Kill runs the moment the writer's temporary file appears next to the output, i.e. while the
+/// table is being written: the output path must still hold the previous bytes (or, if the
+/// rename already happened, a complete valid table). Timing decides where exactly each kill
+/// lands; every attempt must pass.
+#[test]
+fn c_sigkill_during_the_write_leaves_old_or_complete_table() {
+    let fx = fixture();
+    let dir = subdir("atomic_write");
+    let out = dir.join("t.h5");
+    std::fs::copy(&fx.table, &out).unwrap();
+    let checks = Table::open(&fx.table).unwrap().checks;
+    let (mut mid_write, mut finished, mut replaced) = (0, 0, 0);
+    for attempt in 0..4 {
+        let before = std::fs::read(&out).unwrap();
+        let existing: BTreeSet<String> = dir_names(&dir).into_iter().collect();
+        let mut child = spawn_run(&fx.config, &out, 2);
+        let start = Instant::now();
+        let status = loop {
+            if let Some(st) = child.try_wait().unwrap() {
+                break st;
+            }
+            let appeared = dir_names(&dir)
+                .into_iter()
+                .any(|n| !existing.contains(&n) && !n.starts_with(".sweep-probe-"));
+            if appeared {
+                break kill9(&mut child);
+            }
+            assert!(
+                start.elapsed() < Duration::from_secs(60),
+                "attempt {attempt}: run neither wrote nor finished in 60 s"
+            );
+            std::thread::sleep(Duration::from_micros(200));
+        };
+        if status.signal() == Some(9) {
+            mid_write += 1;
+        } else {
+            assert!(
+                status.success(),
+                "attempt {attempt}: sweep run failed: {status:?}"
+            );
+            finished += 1;
+        }
+        let after = std::fs::read(&out).unwrap();
+        if after != before {
+            replaced += 1;
+            let table = Table::open(&out).unwrap_or_else(|e| {
+                panic!(
+                    "attempt {attempt} ({status:?}): the output path holds neither the old \
+                     table nor a valid new one: {e}"
+                )
+            });
+            assert_eq!(
+                table.checks, checks,
+                "a replaced table differs in its checks"
+            );
+        }
+        // Besides the table, only the writer's hidden temporary files (left by SIGKILL).
+        for name in dir_names(&dir) {
+            assert!(
+                name == "t.h5" || name.starts_with(".t.h5.tmp-"),
+                "unexpected file {name} next to the output"
+            );
+        }
+    }
+    eprintln!(
+        "kill during write: {mid_write} killed with the temporary file present, {finished} \
+         finished first, {replaced} replaced the table"
+    );
+}
+
+#[test]
+fn c_unwritable_output_fails_early_naming_the_path() {
+    let slow = write_config("slow_unwritable.toml", SLOW_CONFIG);
+    let dir = subdir("unwritable");
+    let cases = [
+        PathBuf::from("/proc/nope/t.h5"),
+        dir.clone(), // a directory, not a file
+    ];
+    for out in cases {
+        let start = Instant::now();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .arg("run")
+            .arg(&slow)
+            .arg("-o")
+            .arg(&out)
+            .args(["--quiet", "--threads", "1"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // The slow config would solve for minutes: the error must come before any solving.
+        while child.try_wait().unwrap().is_none() {
+            if start.elapsed() > Duration::from_secs(10) {
+                kill9(&mut child);
+                panic!("sweep run -o {} did not fail early", out.display());
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        let o = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_no_panic(&o, "sweep run to an unwritable path");
+        assert!(
+            !o.status.success(),
+            "-o {}: exit status {:?}",
+            out.display(),
+            o.status
+        );
+        assert!(
+            stderr.contains(&out.display().to_string()),
+            "message does not name {}: {stderr}",
+            out.display()
+        );
+    }
+    assert!(
+        dir_names(&dir).is_empty(),
+        "files left in {}",
+        dir.display()
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// (d) thread-count independence
+
+#[test]
+fn d_tables_do_not_depend_on_thread_count() {
+    let fx = fixture(); // built with --threads 2
+    let dir = subdir("threads");
+    let one = dir.join("t1.h5");
+    build(&fx.config, &one, 1);
+    let (f1, f2) = (open(&one), open(&fx.table));
+    let (p1, p2) = (f1.group("patches").unwrap(), f2.group("patches").unwrap());
+    assert_eq!(
+        set(p1.member_names().unwrap()),
+        set(p2.member_names().unwrap())
+    );
+    let bits = |v: Vec<f64>| v.into_iter().map(f64::to_bits).collect::<Vec<u64>>();
+    for (pname, _) in PATCHES {
+        let (g1, g2) = (p1.group(pname).unwrap(), p2.group(pname).unwrap());
+        assert_eq!(
+            ints::<i32>(&g1, "level"),
+            ints::<i32>(&g2, "level"),
+            "{pname}: levels differ between --threads 1 and 2"
+        );
+        assert!(
+            bits(f64s(&g1, "P")) == bits(f64s(&g2, "P")),
+            "{pname}: P differs between --threads 1 and 2"
+        );
+        for name in ["error_estimate", "block_predicted_error", "alpha"] {
+            assert!(
+                bits(f64s(&g1, name)) == bits(f64s(&g2, name)),
+                "{pname}/{name} differs between --threads 1 and 2"
+            );
+        }
+    }
+    let (c1, c2) = (f1.group("checks").unwrap(), f2.group("checks").unwrap());
+    for name in ["P_simulated", "P_interpolated"] {
+        assert!(
+            bits(f64s(&c1, name)) == bits(f64s(&c2, name)),
+            "checks/{name} differs between --threads 1 and 2"
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// (e) sweep inspect
+
+#[test]
+fn e_inspect_json_reports_the_files_node_counts() {
+    let fx = fixture();
+    let path = fx.table.to_str().unwrap();
+    let o = sweep(&["inspect", path, "--json"]);
+    assert_no_panic(&o, "sweep inspect --json");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("inspect --json is JSON");
+    let f = open(&fx.table);
+    let patches = f.group("patches").unwrap();
+    let mut total = 0u64;
+    let listed = v["patches"].as_array().expect("patches array");
+    assert_eq!(listed.len(), 3);
+    for entry in listed {
+        let name = entry["name"].as_str().unwrap();
+        let g = patches.group(name).unwrap();
+        let n = g.dataset("P").unwrap().shape()[0] as u64;
+        total += n;
+        assert_eq!(entry["nodes"].as_u64(), Some(n), "{name}: nodes");
+        assert_eq!(entry["kind"].as_str().unwrap(), attr_str(&g, "kind"));
+        for key in ["blocks_gamma", "blocks_coord", "block_intervals"] {
+            assert_eq!(
+                entry[key].as_u64(),
+                Some(count_attr(&g, key) as u64),
+                "{name}: {key}"
+            );
+        }
+        let level: Vec<i32> = ints(&g, "level");
+        assert_eq!(
+            entry["level_min"].as_i64(),
+            level.iter().min().map(|&x| x as i64)
+        );
+        assert_eq!(
+            entry["level_max"].as_i64(),
+            level.iter().max().map(|&x| x as i64)
+        );
+        assert_eq!(entry["gamma_lo"].as_f64(), Some(attr_f64(&g, "gamma_lo")));
+        assert_eq!(entry["gamma_hi"].as_f64(), Some(attr_f64(&g, "gamma_hi")));
+    }
+    assert_eq!(v["nodes"].as_u64(), Some(total), "total nodes");
+    let ch = f.group("checks").unwrap();
+    let err = f64s(&ch, "interpolation_error");
+    assert_eq!(v["checks"]["count"].as_u64(), Some(err.len() as u64));
+    assert_eq!(
+        v["checks"]["max_interpolation_error"].as_f64(),
+        Some(err.iter().copied().fold(0.0, f64::max))
+    );
+    assert_eq!(v["schema_version"].as_u64(), Some(1));
+    assert_eq!(v["stencil_points"].as_u64(), Some(4));
+    assert_eq!(v["alpha_max"].as_str(), Some("inf"));
+    assert_eq!(v["gamma_min"].as_f64(), Some(GAMMA_MIN));
+    assert_eq!(v["gamma_max"].as_f64(), Some(GAMMA_MAX));
+    assert_eq!(v["provenance"]["config"].as_str(), Some(SMALL_CONFIG));
+
+    // The text summary names every patch with its node count.
+    let o = sweep(&["inspect", path]);
+    assert!(o.status.success());
+    let text = String::from_utf8(o.stdout).unwrap();
+    for entry in listed {
+        let line = text
+            .lines()
+            .find(|l| l.trim_start().starts_with(entry["name"].as_str().unwrap()))
+            .unwrap_or_else(|| panic!("no line for {} in {text}", entry["name"]));
+        assert!(
+            line.contains(&format!("{} nodes", entry["nodes"])),
+            "{line}"
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// (f) bad files
+
+/// `Table::open` fails with a message containing one of `needles`; `sweep inspect` exits
+/// non-zero without panicking and says the same.
+fn refused(path: &Path, needles: &[&str]) {
+    let e = Table::open(path)
+        .map(|_| ())
+        .expect_err(&format!("{} was accepted", path.display()));
+    let msg = e.to_string();
+    let lower = msg.to_lowercase();
+    assert!(
+        needles.iter().any(|n| lower.contains(n)),
+        "{}: message {msg:?} mentions none of {needles:?}",
+        path.display()
+    );
+    let o = sweep(&["inspect", path.to_str().unwrap()]);
+    assert_no_panic(&o, "sweep inspect on a bad file");
+    assert!(
+        !o.status.success(),
+        "sweep inspect accepted {}",
+        path.display()
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr).to_lowercase();
+    assert!(
+        needles.iter().any(|n| stderr.contains(n)),
+        "sweep inspect {}: {stderr}",
+        path.display()
+    );
+    let o = sweep(&["inspect", path.to_str().unwrap(), "--json"]);
+    assert_no_panic(&o, "sweep inspect --json on a bad file");
+    assert!(!o.status.success());
+}
+
+#[test]
+fn f_bad_files_are_refused_with_clear_messages() {
+    let fx = fixture();
+    let dir = subdir("bad");
+    let bytes = std::fs::read(&fx.table).unwrap();
+    let not_hdf5 = ["truncated", "not an hdf5"];
+
+    let truncated = dir.join("truncated.h5");
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    refused(&truncated, &not_hdf5);
+
+    let random = dir.join("random.h5");
+    let mut x = 0x2545_F491_4F6C_DD1Du64;
+    let noise: Vec<u8> = (0..65536)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 32) as u8
+        })
+        .collect();
+    std::fs::write(&random, noise).unwrap();
+    refused(&random, &not_hdf5);
+
+    let empty = dir.join("empty.h5");
+    std::fs::write(&empty, b"").unwrap();
+    refused(&empty, &not_hdf5);
+
+    refused(&dir.join("missing.h5"), &["no such file"]);
+
+    let no_format = dir.join("no_format.h5");
+    {
+        let f = hdf5::File::create(&no_format).unwrap();
+        f.new_attr::<f64>()
+            .create("schema_version")
+            .unwrap()
+            .write_scalar(&1.0)
+            .unwrap();
+        f.create_group("patches").unwrap();
+    }
+    refused(&no_format, &["not a p table"]);
+
+    let wrong_format = dir.join("wrong_format.h5");
+    std::fs::copy(&fx.table, &wrong_format).unwrap();
+    {
+        let f = hdf5::File::open_rw(&wrong_format).unwrap();
+        let s: VarLenUnicode = "something-else".parse().unwrap();
+        f.attr("format").unwrap().write_scalar(&s).unwrap();
+    }
+    refused(&wrong_format, &["not a p table"]);
+
+    let schema2 = dir.join("schema2.h5");
+    std::fs::copy(&fx.table, &schema2).unwrap();
+    {
+        let f = hdf5::File::open_rw(&schema2).unwrap();
+        f.attr("schema_version")
+            .unwrap()
+            .write_scalar(&2.0)
+            .unwrap();
+    }
+    refused(&schema2, &["schema version"]);
+}
