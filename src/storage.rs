@@ -129,6 +129,7 @@ pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), S
         .file_name()
         .map(|n| n.to_string_lossy().to_string())
         .unwrap_or_else(|| "table.h5".into());
+    remove_stale_temporaries(out, &file_name);
     let tmp: PathBuf = out.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
     let result = write_to(&tmp, &path, built, prov);
     if let Err(e) = result {
@@ -139,6 +140,31 @@ pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), S
         let _ = std::fs::remove_file(&tmp);
         io(e)
     })
+}
+
+/// Remove `.NAME.tmp-PID` files left next to `out` by writers that were killed (their process no
+/// longer exists). Best effort: errors are ignored.
+fn remove_stale_temporaries(out: &Path, file_name: &str) {
+    let dir = match out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(d) => d.to_path_buf(),
+        None => PathBuf::from("."),
+    };
+    let prefix = format!(".{file_name}.tmp-");
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().to_string();
+        let Some(pid) = name.strip_prefix(&prefix) else {
+            continue;
+        };
+        let alive = pid
+            .parse::<u32>()
+            .is_ok_and(|p| p == std::process::id() || Path::new(&format!("/proc/{p}")).exists());
+        if !alive {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<(), StorageError> {

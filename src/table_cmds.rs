@@ -154,6 +154,7 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
                     "block_intervals": p.block_intervals,
                     "level_min": p.level.iter().min(), "level_max": p.level.iter().max(),
                     "nodes": p.p.len(),
+                    "nodes_note": "stored node values; blocks store their shared edges each",
                     "max_node_error_estimate": p.error_estimate.iter().copied().fold(0.0, f64::max),
                 })
             })
@@ -183,7 +184,7 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
     );
     for (n, p) in &patches {
         println!(
-            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} blocks, levels {}..{}, {} nodes, max node error estimate {:.1e}",
+            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} blocks, levels {}..{}, {} nodes stored (shared block edges once per block), max node error estimate {:.1e}",
             p.kind.name(),
             p.gamma_lo,
             p.gamma_hi,

@@ -3,7 +3,7 @@
 /// Schema version written and read by this crate.
 pub const SCHEMA_VERSION: u32 = 1;
 
-/// Root attribute: schema version (integer).
+/// Root attribute: schema version (an integer value stored as float64).
 pub const ATTR_SCHEMA: &str = "schema_version";
 /// Root attribute: fixed string identifying the file kind.
 pub const ATTR_FORMAT: &str = "format";

@@ -41,7 +41,8 @@ pub fn linear_limit(gamma: f64) -> f64 {
 pub enum PatchKind {
     /// `α_c1 ≤ α ≤ α_c2`, `γ ≥ 1`; coordinate `ln(α/α_c1)/ln(α_c2/α_c1)`.
     PartialSlip,
-    /// `α_c2 ≤ α ≤ α_max`; coordinate `(1/α_c2 − 1/α)/(1/α_c2 − 1/α_max)`.
+    /// `α_c2 ≤ α ≤ α_max`; coordinate `S(α)/S(α_max)`, `S = r/(r + ρ)`, `r = α/α_c2 − 1`,
+    /// `ρ =` [`stick_scale`]`(γ)`.
     Stick,
 }
 
