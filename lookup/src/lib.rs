@@ -10,6 +10,7 @@
 
 pub mod format;
 mod read;
+pub mod rebound;
 pub mod surface;
 
 pub use read::{Check, Provenance, Table};
