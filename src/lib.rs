@@ -1,10 +1,13 @@
 //! Reference engine for oblique elastic impacts with friction.
 //!
 //! Layers: [`physics`] (one impact, no I/O), [`sweep`] (schedules many impacts and places the
-//! table's nodes), [`storage`] (owns writing the HDF5 table format). The `sweep` binary is a thin
+//! table's nodes), [`storage`] (owns writing the HDF5 table format), [`scene`] (a user's bodies
+//! and impact conditions to rebound curves) and [`plot`] (figures). The `sweep` binary is a thin
 //! CLI over them; the `oblique-lookup` crate reads the tables.
 
 pub mod physics;
+pub mod plot;
+pub mod scene;
 pub mod storage;
 pub mod sweep;
 

@@ -1,0 +1,858 @@
+//! The scene file (TOML): bodies, friction and the impact conditions to sweep.
+//!
+//! See `docs/scenes.md` for every key. Parsing is strict: unknown keys are refused, and every
+//! value is checked with an error naming the key and its allowed range.
+
+use std::f64::consts::PI;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use oblique_lookup::rebound::{Body, Elastic, Incident, Pair, State};
+use serde::de::{self, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer};
+
+use super::materials::{self, CatalogueMaterial};
+use super::SceneError;
+
+/// Default solver tolerance of `P` (absolute) when the scene gives none.
+pub const DEFAULT_TOL: f64 = 1e-6;
+/// Most cases one scene may ask for.
+pub const MAX_CASES: usize = 100_000;
+
+/// A number, a list of numbers or an evenly spaced range `{ from, to, count }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Values(pub Vec<f64>);
+
+impl<'de> Deserialize<'de> for Values {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(ValuesVisitor)
+    }
+}
+
+struct ValuesVisitor;
+
+impl<'de> Visitor<'de> for ValuesVisitor {
+    type Value = Values;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a number, a list of numbers, or a table { from = A, to = B, count = N }")
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Values, E> {
+        Ok(Values(vec![v]))
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Values, E> {
+        Ok(Values(vec![v as f64]))
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Values, E> {
+        Ok(Values(vec![v as f64]))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Values, A::Error> {
+        let mut out = Vec::new();
+        while let Some(v) = seq.next_element::<f64>()? {
+            if out.len() >= MAX_CASES {
+                return Err(de::Error::custom(format!(
+                    "more than {MAX_CASES} values in one list"
+                )));
+            }
+            out.push(v);
+        }
+        if out.is_empty() {
+            return Err(de::Error::custom("an empty list: give at least one value"));
+        }
+        Ok(Values(out))
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Values, A::Error> {
+        let (mut from, mut to, mut count) = (None, None, None);
+        while let Some(key) = map.next_key::<String>()? {
+            match key.as_str() {
+                "from" => from = Some(map.next_value::<f64>()?),
+                "to" => to = Some(map.next_value::<f64>()?),
+                "count" => count = Some(map.next_value::<i64>()?),
+                other => return Err(de::Error::unknown_field(other, &["from", "to", "count"])),
+            }
+        }
+        let from = from.ok_or_else(|| de::Error::missing_field("from"))?;
+        let to = to.ok_or_else(|| de::Error::missing_field("to"))?;
+        let count = count.ok_or_else(|| de::Error::missing_field("count"))?;
+        if count < 1 || count as usize > MAX_CASES || (count == 1 && from != to) {
+            return Err(de::Error::custom(format!(
+                "count = {count}: must be an integer in [2, {MAX_CASES}] (1 only when from = to)"
+            )));
+        }
+        let n = count as usize;
+        let values = (0..n)
+            .map(|i| {
+                if i + 1 == n {
+                    to
+                } else {
+                    from + (to - from) * i as f64 / (n - 1).max(1) as f64
+                }
+            })
+            .collect();
+        Ok(Values(values))
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    name: Option<String>,
+    description: Option<String>,
+    friction: f64,
+    tol: Option<f64>,
+    sphere: SphereFile,
+    target: TargetFile,
+    cases: CasesFile,
+    measured: Option<MeasuredFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SphereFile {
+    material: Option<String>,
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
+    density: Option<f64>,
+    mass: Option<f64>,
+    radius: f64,
+    inner_radius: Option<f64>,
+    kappa: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TargetFile {
+    kind: String,
+    material: Option<String>,
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
+    density: Option<f64>,
+    mass: Option<f64>,
+    radius: Option<f64>,
+    inner_radius: Option<f64>,
+    kappa: Option<f64>,
+    v_x: Option<f64>,
+    v_z: Option<f64>,
+    omega: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CasesFile {
+    kind: String,
+    speed: Option<f64>,
+    angles_deg: Option<Values>,
+    normal_speed: Option<f64>,
+    tangential_speed: Option<Values>,
+    omega0: Option<Values>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeasuredFile {
+    file: PathBuf,
+    source: String,
+}
+
+/// A material as resolved for one body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaterialUse {
+    /// Elastic constants used.
+    pub elastic: Elastic,
+    /// Catalogue entry the values started from, if any.
+    pub catalogue: Option<&'static CatalogueMaterial>,
+    /// Which catalogue values the scene overrode (`youngs_modulus`, `poisson_ratio`, `density`).
+    pub overridden: Vec<&'static str>,
+}
+
+impl MaterialUse {
+    /// Short description: `alumina-96`, `alumina-96 (density overridden)` or
+    /// `E = 200 GPa, nu = 0.3`.
+    pub fn describe(&self) -> String {
+        match self.catalogue {
+            Some(c) if self.overridden.is_empty() => c.name.to_string(),
+            Some(c) => format!("{} ({} overridden)", c.name, self.overridden.join(", ")),
+            None => format!(
+                "E = {} GPa, nu = {}",
+                self.elastic.youngs_modulus / 1e9,
+                self.elastic.poisson_ratio
+            ),
+        }
+    }
+}
+
+/// What sphere 1 hits.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SceneTarget {
+    /// A fixed flat wall (half-space).
+    Wall {
+        /// Its material.
+        material: MaterialUse,
+    },
+    /// A free second sphere.
+    Sphere {
+        /// Mass, radius, κ.
+        body: Body,
+        /// Its material.
+        material: MaterialUse,
+        /// Its incident motion (the same for every case).
+        motion: State,
+    },
+}
+
+/// The quantity a scene sweeps (the three oblique-impact benchmark tests of DEM codes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CaseKind {
+    /// Fixed speed, incidence angle from the normal swept.
+    Angles,
+    /// Fixed normal speed, tangential speed swept.
+    TangentialSpeed,
+    /// Fixed normal (and tangential) speed, initial spin swept.
+    Spin,
+}
+
+impl CaseKind {
+    /// Name used in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            CaseKind::Angles => "angles",
+            CaseKind::TangentialSpeed => "tangential-speed",
+            CaseKind::Spin => "spin",
+        }
+    }
+
+    /// Column of the swept quantity in CSV files (also the measured file's first column).
+    pub fn x_column(self) -> &'static str {
+        match self {
+            CaseKind::Angles => "angle_deg",
+            CaseKind::TangentialSpeed => "v_x0",
+            CaseKind::Spin => "omega0",
+        }
+    }
+
+    /// Axis label of the swept quantity, with symbol and unit.
+    pub fn x_label(self) -> &'static str {
+        match self {
+            CaseKind::Angles => "incidence angle θ from the normal (°)",
+            CaseKind::TangentialSpeed => "incident tangential velocity v_x0 (m/s)",
+            CaseKind::Spin => "initial spin ω0 (rad/s)",
+        }
+    }
+}
+
+/// The swept impact conditions of sphere 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cases {
+    /// What is swept.
+    pub kind: CaseKind,
+    /// The swept values, in scene order (degrees, m/s or rad/s).
+    pub values: Vec<f64>,
+    /// `angles`: the speed `|v|` (m/s); otherwise the normal speed `v_z0` (m/s).
+    pub speed: f64,
+    /// Tangential speed `v_x0` (m/s) when not swept.
+    pub tangential_speed: f64,
+    /// Initial spin `ω0` (rad/s) when not swept.
+    pub omega0: f64,
+}
+
+impl Cases {
+    /// Sphere 1's incident state at swept value `x`.
+    pub fn sphere_state(&self, x: f64) -> State {
+        match self.kind {
+            CaseKind::Angles => {
+                let t = x.to_radians();
+                State {
+                    v_x: self.speed * t.sin(),
+                    v_z: self.speed * t.cos(),
+                    omega: self.omega0,
+                }
+            }
+            CaseKind::TangentialSpeed => State {
+                v_x: x,
+                v_z: self.speed,
+                omega: self.omega0,
+            },
+            CaseKind::Spin => State {
+                v_x: self.tangential_speed,
+                v_z: self.speed,
+                omega: x,
+            },
+        }
+    }
+}
+
+/// The measured data a scene names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredRef {
+    /// CSV path (resolved against the scene file's folder).
+    pub file: PathBuf,
+    /// Citation of the data.
+    pub source: String,
+}
+
+/// A validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Name (output file stem): `[A-Za-z0-9_.-]+`.
+    pub name: String,
+    /// Free text.
+    pub description: String,
+    /// Scene file it was read from (for captions and messages).
+    pub path: PathBuf,
+    /// Coulomb friction coefficient `μ` (`∞`: no slip).
+    pub friction: f64,
+    /// Solver tolerance of `P` when simulating (absolute).
+    pub tol: f64,
+    /// Sphere 1: mass, radius, κ.
+    pub sphere: Body,
+    /// Sphere 1's material.
+    pub sphere_material: MaterialUse,
+    /// Wall or sphere 2.
+    pub target: SceneTarget,
+    /// The cases.
+    pub cases: Cases,
+    /// Measured data, if named.
+    pub measured: Option<MeasuredRef>,
+}
+
+impl Scene {
+    /// The rigid-body data of the pair.
+    pub fn pair(&self) -> Pair {
+        Pair {
+            sphere: self.sphere,
+            other: match &self.target {
+                SceneTarget::Wall { .. } => None,
+                SceneTarget::Sphere { body, .. } => Some(*body),
+            },
+        }
+    }
+
+    /// The target's material.
+    pub fn target_material(&self) -> &MaterialUse {
+        match &self.target {
+            SceneTarget::Wall { material } | SceneTarget::Sphere { material, .. } => material,
+        }
+    }
+
+    /// The incident state of both bodies at swept value `x`.
+    pub fn incident(&self, x: f64) -> Incident {
+        Incident {
+            sphere: self.cases.sphere_state(x),
+            other: match &self.target {
+                SceneTarget::Wall { .. } => State::default(),
+                SceneTarget::Sphere { motion, .. } => *motion,
+            },
+        }
+    }
+
+    /// Read and validate a scene file.
+    pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Scene::parse(&text, path)
+    }
+
+    /// Parse and validate scene text; `path` names it in messages, gives the default name and
+    /// the folder that a measured-data file is relative to.
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        let shown = path.display().to_string();
+        let file: SceneFile = toml::from_str(text).map_err(|e| SceneError::Parse {
+            path: shown.clone(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        let v = Validator { path: &shown };
+        v.build(file, path)
+    }
+}
+
+struct Validator<'a> {
+    path: &'a str,
+}
+
+/// Body fields shared by `[sphere]` and a `[target]` of kind `sphere`.
+struct BodyFields<'a> {
+    section: &'static str,
+    material: Option<&'a str>,
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
+    density: Option<f64>,
+    mass: Option<f64>,
+    radius: f64,
+    inner_radius: Option<f64>,
+    kappa: Option<f64>,
+}
+
+impl Validator<'_> {
+    fn invalid(
+        &self,
+        key: impl Into<String>,
+        value: impl fmt::Display,
+        allowed: &str,
+    ) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_string(),
+            key: key.into(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        }
+    }
+
+    fn positive(&self, key: String, v: f64, unit: &str) -> Result<f64, SceneError> {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.invalid(key, v, &format!("a finite number > 0 ({unit})")))
+        }
+    }
+
+    fn build(&self, f: SceneFile, path: &Path) -> Result<Scene, SceneError> {
+        let name = match f.name {
+            Some(n) => n,
+            None => path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "scene".into()),
+        };
+        let name_ok = !name.is_empty()
+            && name.len() <= 100
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'))
+            && !name.starts_with('.');
+        if !name_ok {
+            return Err(self.invalid(
+                "name",
+                format!("{name:?}"),
+                "1-100 characters from A-Z a-z 0-9 _ - . (not starting with '.'); it names the \
+                 output files",
+            ));
+        }
+        if f.friction.is_nan() || f.friction < 0.0 {
+            return Err(self.invalid("friction", f.friction, ">= 0 (inf for no slip)"));
+        }
+        let tol = f.tol.unwrap_or(DEFAULT_TOL);
+        if !(1e-10..=1e-2).contains(&tol) {
+            return Err(self.invalid("tol", tol, "in [1e-10, 1e-2] (absolute error of P)"));
+        }
+        let s = &f.sphere;
+        let (sphere, sphere_material) = self.body(&BodyFields {
+            section: "sphere",
+            material: s.material.as_deref(),
+            youngs_modulus: s.youngs_modulus,
+            poisson_ratio: s.poisson_ratio,
+            density: s.density,
+            mass: s.mass,
+            radius: s.radius,
+            inner_radius: s.inner_radius,
+            kappa: s.kappa,
+        })?;
+        if sphere_material.elastic.youngs_modulus.is_infinite() {
+            return Err(self.invalid(
+                "sphere.youngs_modulus",
+                "inf",
+                "finite: the sphere must be elastic (a rigid target is allowed)",
+            ));
+        }
+        let target = self.target(&f.target)?;
+        let cases = self.cases(&f.cases)?;
+        let measured = match f.measured {
+            None => None,
+            Some(m) => {
+                if m.source.trim().is_empty() {
+                    return Err(self.invalid(
+                        "measured.source",
+                        "\"\"",
+                        "a citation of the measured data (who measured it, where published)",
+                    ));
+                }
+                let dir = path.parent().unwrap_or(Path::new(""));
+                Some(MeasuredRef {
+                    file: dir.join(m.file),
+                    source: m.source,
+                })
+            }
+        };
+        let scene = Scene {
+            name,
+            description: f.description.unwrap_or_default(),
+            path: path.to_path_buf(),
+            friction: f.friction,
+            tol,
+            sphere,
+            sphere_material,
+            target,
+            cases,
+            measured,
+        };
+        // Every case must approach.
+        let pair = scene.pair();
+        for &x in &scene.cases.values {
+            let inc = scene.incident(x);
+            let v = pair.approach_speed(&inc);
+            if !v.is_finite() || v <= 0.0 {
+                return Err(self.invalid(
+                    format!("cases.{}", x_key(scene.cases.kind)),
+                    x,
+                    &format!(
+                        "values for which sphere 1 approaches the target: the relative normal \
+                         speed is {v} m/s there (target.v_z must be < sphere 1's v_z)"
+                    ),
+                ));
+            }
+        }
+        Ok(scene)
+    }
+
+    fn material(&self, b: &BodyFields) -> Result<(MaterialUse, Option<f64>), SceneError> {
+        let sec = b.section;
+        let catalogue = match b.material {
+            None => None,
+            Some(name) => Some(materials::find(name).ok_or_else(|| {
+                self.invalid(
+                    format!("{sec}.material"),
+                    format!("{name:?}"),
+                    &format!("one of the catalogue's materials: {}", materials::names()),
+                )
+            })?),
+        };
+        let mut overridden = Vec::new();
+        let mut pick = |key: &'static str, given: Option<f64>, cat: Option<f64>| match (given, cat)
+        {
+            (Some(v), Some(_)) => {
+                overridden.push(key);
+                Some(v)
+            }
+            (Some(v), None) => Some(v),
+            (None, c) => c,
+        };
+        let e = pick(
+            "youngs_modulus",
+            b.youngs_modulus,
+            catalogue.map(|c| c.youngs_modulus),
+        );
+        let nu = pick(
+            "poisson_ratio",
+            b.poisson_ratio,
+            catalogue.map(|c| c.poisson_ratio),
+        );
+        let density = pick(
+            "density",
+            b.density,
+            catalogue.map(|c| c.density).filter(|d| d.is_finite()),
+        );
+        let (Some(e), Some(nu)) = (e, nu) else {
+            return Err(self.invalid(
+                format!("{sec}.material"),
+                "(none)",
+                "a catalogue name, or both youngs_modulus (Pa) and poisson_ratio",
+            ));
+        };
+        if e.is_nan() || e <= 0.0 {
+            return Err(self.invalid(
+                format!("{sec}.youngs_modulus"),
+                e,
+                "> 0 (Pa; inf for a rigid wall)",
+            ));
+        }
+        if !(-1.0..=0.5).contains(&nu) || nu == -1.0 {
+            return Err(self.invalid(format!("{sec}.poisson_ratio"), nu, "in (-1, 0.5]"));
+        }
+        Ok((
+            MaterialUse {
+                elastic: Elastic {
+                    youngs_modulus: e,
+                    poisson_ratio: nu,
+                },
+                catalogue,
+                overridden,
+            },
+            density,
+        ))
+    }
+
+    fn body(&self, b: &BodyFields) -> Result<(Body, MaterialUse), SceneError> {
+        let sec = b.section;
+        let (material, density) = self.material(b)?;
+        let radius = self.positive(format!("{sec}.radius"), b.radius, "m")?;
+        let inner = match b.inner_radius {
+            None => 0.0,
+            Some(r) if r >= 0.0 && r < radius => r,
+            Some(r) => {
+                return Err(self.invalid(
+                    format!("{sec}.inner_radius"),
+                    r,
+                    "in [0, radius) (m): the cavity of a hollow sphere",
+                ))
+            }
+        };
+        let kappa = match (b.kappa, b.inner_radius) {
+            (Some(_), Some(_)) => {
+                return Err(self.invalid(
+                    format!("{sec}.kappa"),
+                    "(given with inner_radius)",
+                    "either kappa or inner_radius, not both (inner_radius implies kappa)",
+                ))
+            }
+            (Some(k), None) => {
+                if !(0.0..=2.0 / 3.0).contains(&k) || k == 0.0 {
+                    return Err(self.invalid(
+                        format!("{sec}.kappa"),
+                        k,
+                        "in (0, 2/3] (I = kappa m R^2; 0.4 solid, 2/3 thin shell)",
+                    ));
+                }
+                k
+            }
+            (None, _) => {
+                let q = inner / radius;
+                0.4 * (1.0 - q.powi(5)) / (1.0 - q.powi(3))
+            }
+        };
+        let volume = 4.0 / 3.0 * PI * (radius.powi(3) - inner.powi(3));
+        let mass = match (b.mass, b.density) {
+            (Some(_), Some(_)) => {
+                return Err(self.invalid(
+                    format!("{sec}.mass"),
+                    "(given with density)",
+                    "either mass (kg) or density (kg/m^3), not both",
+                ))
+            }
+            (Some(m), None) => self.positive(format!("{sec}.mass"), m, "kg")?,
+            (None, _) => match density {
+                Some(d) => self.positive(format!("{sec}.density"), d, "kg/m^3")? * volume,
+                None => {
+                    return Err(self.invalid(
+                        format!("{sec}.density"),
+                        "(none)",
+                        "a density (kg/m^3) or a mass (kg): the material gives none",
+                    ))
+                }
+            },
+        };
+        if !(mass.is_finite() && mass > 0.0) {
+            return Err(self.invalid(format!("{sec}.mass"), mass, "a finite mass > 0 (kg)"));
+        }
+        Ok((
+            Body {
+                mass,
+                radius,
+                kappa,
+            },
+            material,
+        ))
+    }
+
+    fn target(&self, t: &TargetFile) -> Result<SceneTarget, SceneError> {
+        match t.kind.as_str() {
+            "wall" => {
+                let extra = [
+                    ("density", t.density.is_some()),
+                    ("mass", t.mass.is_some()),
+                    ("radius", t.radius.is_some()),
+                    ("inner_radius", t.inner_radius.is_some()),
+                    ("kappa", t.kappa.is_some()),
+                    ("v_x", t.v_x.is_some()),
+                    ("v_z", t.v_z.is_some()),
+                    ("omega", t.omega.is_some()),
+                ];
+                if let Some((k, _)) = extra.iter().find(|(_, given)| *given) {
+                    return Err(self.invalid(
+                        format!("target.{k}"),
+                        "(given)",
+                        "absent for kind = \"wall\" (a fixed half-space has only material, \
+                         youngs_modulus, poisson_ratio)",
+                    ));
+                }
+                let (material, _) = self.material(&BodyFields {
+                    section: "target",
+                    material: t.material.as_deref(),
+                    youngs_modulus: t.youngs_modulus,
+                    poisson_ratio: t.poisson_ratio,
+                    density: None,
+                    mass: None,
+                    radius: 1.0,
+                    inner_radius: None,
+                    kappa: None,
+                })?;
+                Ok(SceneTarget::Wall { material })
+            }
+            "sphere" => {
+                let Some(radius) = t.radius else {
+                    return Err(self.invalid(
+                        "target.radius",
+                        "(none)",
+                        "a finite number > 0 (m), required for kind = \"sphere\"",
+                    ));
+                };
+                let (body, material) = self.body(&BodyFields {
+                    section: "target",
+                    material: t.material.as_deref(),
+                    youngs_modulus: t.youngs_modulus,
+                    poisson_ratio: t.poisson_ratio,
+                    density: t.density,
+                    mass: t.mass,
+                    radius,
+                    inner_radius: t.inner_radius,
+                    kappa: t.kappa,
+                })?;
+                if material.elastic.youngs_modulus.is_infinite() {
+                    return Err(self.invalid(
+                        "target.youngs_modulus",
+                        "inf",
+                        "finite for kind = \"sphere\" (a rigid body can only be a wall)",
+                    ));
+                }
+                let mut motion = State::default();
+                for (key, given, slot) in [
+                    ("target.v_x", t.v_x, &mut motion.v_x),
+                    ("target.v_z", t.v_z, &mut motion.v_z),
+                    ("target.omega", t.omega, &mut motion.omega),
+                ] {
+                    let v = given.unwrap_or(0.0);
+                    if !v.is_finite() {
+                        return Err(self.invalid(key, v, "a finite number (m/s or rad/s)"));
+                    }
+                    *slot = v;
+                }
+                Ok(SceneTarget::Sphere {
+                    body,
+                    material,
+                    motion,
+                })
+            }
+            other => Err(self.invalid(
+                "target.kind",
+                format!("{other:?}"),
+                "\"wall\" or \"sphere\"",
+            )),
+        }
+    }
+
+    fn single(&self, key: &str, v: &Option<Values>) -> Result<f64, SceneError> {
+        match v {
+            None => Ok(0.0),
+            Some(Values(list)) if list.len() == 1 && list[0].is_finite() => Ok(list[0]),
+            Some(Values(list)) => Err(self.invalid(
+                format!("cases.{key}"),
+                format!("{list:?}"),
+                "one finite number here (it is swept only by its own kind of cases)",
+            )),
+        }
+    }
+
+    fn cases(&self, c: &CasesFile) -> Result<Cases, SceneError> {
+        let forbid = |key: &str, given: bool, kind: &str| {
+            if given {
+                Err(self.invalid(
+                    format!("cases.{key}"),
+                    "(given)",
+                    &format!("absent for kind = \"{kind}\""),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        let require = |key: &str, v: Option<f64>, kind: &str| match v {
+            Some(v) if v.is_finite() && v > 0.0 => Ok(v),
+            Some(v) => Err(self.invalid(format!("cases.{key}"), v, "a finite number > 0 (m/s)")),
+            None => Err(self.invalid(
+                format!("cases.{key}"),
+                "(none)",
+                &format!("a finite number > 0 (m/s), required for kind = \"{kind}\""),
+            )),
+        };
+        let list = |key: &str, v: &Option<Values>, kind: &str, range: (f64, f64), what: &str| {
+            let Some(Values(list)) = v else {
+                return Err(self.invalid(
+                    format!("cases.{key}"),
+                    "(none)",
+                    &format!(
+                        "required for kind = \"{kind}\": a list or {{ from, to, count }} of {what}"
+                    ),
+                ));
+            };
+            if let Some(bad) = list
+                .iter()
+                .find(|x| !(x.is_finite() && **x > range.0 && **x < range.1))
+            {
+                return Err(self.invalid(format!("cases.{key}"), bad, what));
+            }
+            Ok(list.clone())
+        };
+        let kind = c.kind.as_str();
+        match kind {
+            "angles" => {
+                forbid("normal_speed", c.normal_speed.is_some(), kind)?;
+                forbid("tangential_speed", c.tangential_speed.is_some(), kind)?;
+                Ok(Cases {
+                    kind: CaseKind::Angles,
+                    speed: require("speed", c.speed, kind)?,
+                    values: list(
+                        "angles_deg",
+                        &c.angles_deg,
+                        kind,
+                        (-90.0, 90.0),
+                        "angles in (-90, 90) degrees from the normal",
+                    )?,
+                    tangential_speed: 0.0,
+                    omega0: self.single("omega0", &c.omega0)?,
+                })
+            }
+            "tangential-speed" => {
+                forbid("speed", c.speed.is_some(), kind)?;
+                forbid("angles_deg", c.angles_deg.is_some(), kind)?;
+                Ok(Cases {
+                    kind: CaseKind::TangentialSpeed,
+                    speed: require("normal_speed", c.normal_speed, kind)?,
+                    values: list(
+                        "tangential_speed",
+                        &c.tangential_speed,
+                        kind,
+                        (f64::NEG_INFINITY, f64::INFINITY),
+                        "finite tangential speeds (m/s)",
+                    )?,
+                    tangential_speed: 0.0,
+                    omega0: self.single("omega0", &c.omega0)?,
+                })
+            }
+            "spin" => {
+                forbid("speed", c.speed.is_some(), kind)?;
+                forbid("angles_deg", c.angles_deg.is_some(), kind)?;
+                Ok(Cases {
+                    kind: CaseKind::Spin,
+                    speed: require("normal_speed", c.normal_speed, kind)?,
+                    values: list(
+                        "omega0",
+                        &c.omega0,
+                        kind,
+                        (f64::NEG_INFINITY, f64::INFINITY),
+                        "finite initial spins (rad/s)",
+                    )?,
+                    tangential_speed: self.single("tangential_speed", &c.tangential_speed)?,
+                    omega0: 0.0,
+                })
+            }
+            other => Err(self.invalid(
+                "cases.kind",
+                format!("{other:?}"),
+                "\"angles\", \"tangential-speed\" or \"spin\"",
+            )),
+        }
+    }
+}
+
+fn x_key(kind: CaseKind) -> &'static str {
+    match kind {
+        CaseKind::Angles => "angles_deg",
+        CaseKind::TangentialSpeed => "tangential_speed",
+        CaseKind::Spin => "omega0",
+    }
+}
