@@ -11,6 +11,7 @@ use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Resolution, Sche
 use oblique::sweep::config::ConfigError;
 
 mod progress;
+mod scene_cmd;
 mod table_cmds;
 
 #[derive(Parser)]
@@ -48,6 +49,13 @@ Config keys and the file format: docs/table-format.md.")]
     Run(table_cmds::RunArgs),
     /// Print a table's domain, node counts, error statistics and provenance.
     Inspect(table_cmds::InspectArgs),
+    /// Rebound curves of a scene (materials, friction, impact conditions): CSV, plot, summary.
+    #[command(after_help = "Examples:\n  \
+sweep scene configs/scenes/seed000_alumina_on_glass.toml -o out/\n  \
+sweep scene configs/scenes/steel_on_steel.toml --table tables/full.h5 -o out/\n\n\
+Without --table, only the scene's own cases are simulated (closed forms never are).\n\
+Scene file keys: docs/scenes.md.")]
+    Scene(scene_cmd::SceneArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -216,6 +224,7 @@ fn main() -> ExitCode {
         Command::Impact(a) => impact(a),
         Command::Run(a) => table_cmds::run(a),
         Command::Inspect(a) => table_cmds::inspect(a),
+        Command::Scene(a) => scene_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,572 @@
+//! Scenes (`oblique::scene`, `sweep scene`): the shipped scene files, agreement of the simulated
+//! slice with table lookup and with a direct physical-units simulation, conservation laws of
+//! sphere–sphere scenes, the measured-data overlay (on synthetic data), clear errors for bad
+//! scene files, and the command itself.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+use std::time::Instant;
+
+use oblique::physics::regimes::Regime;
+use oblique::physics::units::{Material, Motion, PhysicalImpact, Sphere, Target};
+use oblique::scene::{self, evaluate, PSource, RowMethod, Scene, SceneTarget};
+use oblique_lookup::Table;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn shipped(name: &str) -> Scene {
+    Scene::load(root().join("configs/scenes").join(format!("{name}.toml"))).expect("shipped scene")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("scene-tests")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+const SHIPPED: [&str; 5] = [
+    "seed000_alumina_on_glass",
+    "alumina_on_rigid_wall",
+    "steel_on_steel",
+    "sphere_sphere_mixed",
+    "nylon_spin_on_steel",
+];
+
+#[test]
+fn every_shipped_scene_loads() {
+    for name in SHIPPED {
+        let s = shipped(name);
+        assert_eq!(s.name, name);
+        assert!(!s.cases.values.is_empty());
+    }
+    let s = shipped("sphere_sphere_mixed");
+    assert!(matches!(s.target, SceneTarget::Sphere { .. }));
+    assert!(s.sphere.radius != s.pair().other.unwrap().radius);
+}
+
+#[test]
+fn seed_000_gamma_from_the_materials() {
+    let s = shipped("seed000_alumina_on_glass");
+    let ev = evaluate(&s, PSource::Simulate).unwrap();
+    // The seed quotes γ ≈ 1.754 (from a rounded G*); its material values give 1.7498.
+    assert!((ev.gamma - 1.754).abs() < 5e-3, "gamma = {}", ev.gamma);
+    assert!((ev.gamma - 1.749_786).abs() < 1e-6, "gamma = {}", ev.gamma);
+    assert!((ev.e_star / 6.42e10 - 1.0).abs() < 1e-3);
+    assert_eq!(s.cases.speed, 3.9);
+    assert_eq!(s.friction, 0.092);
+    assert_eq!(s.sphere.radius, 2.5e-3);
+    // ω0 = 0 on a wall: the seed's formulas (32), (33) with α = μ v_z0/v_x0.
+    for r in ev.rows.iter().filter(|r| r.p.is_finite()) {
+        let t = r.x.to_radians();
+        assert!((r.alpha - 0.092 / t.tan()).abs() < 1e-12 * r.alpha);
+        assert!((r.model.e_t - (2.0 * r.p + 5.0) / 7.0).abs() < 1e-12);
+        let omega = 5.0 * 3.9 * t.sin() * (r.p - 1.0) / (7.0 * 2.5e-3);
+        assert!((r.model.sphere.omega - omega).abs() < 1e-9 * omega.abs());
+        // Where the contact slips throughout, the seed's approximation (35) is exact.
+        if r.regime == Some(Regime::FullSlip) {
+            let cf = r.closed_form.unwrap();
+            assert!((cf.e_t - r.model.e_t).abs() < 1e-12);
+            assert_eq!(
+                r.method,
+                RowMethod::ClosedForm,
+                "closed forms are never simulated"
+            );
+        }
+        let approx = 1.0 - 0.092 * 2.0 / t.tan();
+        assert!((r.closed_form.unwrap().e_t - approx).abs() < 1e-12);
+        assert!((r.rolling.e_t - 5.0 / 7.0).abs() < 1e-14);
+    }
+}
+
+#[test]
+fn seventeen_angle_seed_000_scene_without_table() {
+    let path = root().join("configs/scenes/seed000_alumina_on_glass.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let re = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("angles_deg") {
+                "angles_deg = { from = 5, to = 85, count = 17 }"
+            } else {
+                l
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let s = Scene::parse(&re, &path).unwrap();
+    assert_eq!(s.cases.values.len(), 17);
+    let start = Instant::now();
+    let ev = evaluate(&s, PSource::Simulate).unwrap();
+    let wall = start.elapsed().as_secs_f64();
+    println!(
+        "17-angle seed-000 scene without a table: {wall:.3} s ({} simulated, {} closed form)",
+        ev.count(RowMethod::Simulated),
+        ev.count(RowMethod::ClosedForm)
+    );
+    assert_eq!(ev.rows.len(), 17);
+    assert!(ev
+        .rows
+        .iter()
+        .all(|r| r.p.is_finite() && r.model.e_t.is_finite()));
+    assert!(ev.max_p_error() <= s.tol);
+    assert!(ev.count(RowMethod::ClosedForm) > 0 && ev.count(RowMethod::Simulated) > 0);
+}
+
+/// A table to compare with: `tables/full.h5` when it exists, else one built from
+/// `configs/quick.toml` by the real binary into a scratch folder (once per test run).
+fn table() -> &'static Table {
+    static TABLE: OnceLock<Table> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let full = root().join("tables/full.h5");
+        if full.exists() {
+            return Table::open(&full).expect("open tables/full.h5");
+        }
+        let out = scratch("quick-table").join("quick.h5");
+        let status = Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .args([
+                "run",
+                "configs/quick.toml",
+                "--threads",
+                "1",
+                "--quiet",
+                "-o",
+            ])
+            .arg(&out)
+            .current_dir(root())
+            .status()
+            .expect("run sweep");
+        assert!(status.success(), "sweep run configs/quick.toml failed");
+        Table::open(&out).expect("open the quick table")
+    })
+}
+
+#[test]
+fn simulated_slice_agrees_with_table_lookup_within_its_certified_error() {
+    let t = table();
+    let certified = scene::certified_error(t);
+    println!("table certified error (max held-out + node tol): {certified}");
+    for name in SHIPPED {
+        let s = shipped(name);
+        let sim = evaluate(&s, PSource::Simulate).unwrap();
+        let tab = evaluate(&s, PSource::Table(t)).unwrap();
+        assert_eq!(sim.rows.len(), tab.rows.len());
+        let mut worst: f64 = 0.0;
+        for (a, b) in sim.rows.iter().zip(&tab.rows) {
+            assert_eq!(a.x, b.x);
+            if a.method == RowMethod::NormalImpact {
+                assert_eq!(b.method, RowMethod::NormalImpact);
+                continue;
+            }
+            let bound = a.p_error + b.p_error + 1e-13;
+            let d = (a.p - b.p).abs();
+            worst = worst.max(d / bound);
+            assert!(
+                d <= bound,
+                "{name} at x = {}: simulated P = {} (+/- {:.1e}), table P = {} (+/- {:.1e})",
+                a.x,
+                a.p,
+                a.p_error,
+                b.p,
+                b.p_error
+            );
+            if a.method == RowMethod::ClosedForm {
+                assert_eq!(b.method, RowMethod::ClosedForm);
+                assert_eq!(a.p, b.p);
+            }
+        }
+        println!("{name}: worst |P_sim - P_table| / bound = {worst:.3}");
+    }
+}
+
+fn material(m: &scene::MaterialUse) -> Material {
+    Material {
+        youngs_modulus: if m.elastic.youngs_modulus.is_finite() {
+            m.elastic.youngs_modulus
+        } else {
+            1e30 // the simulator takes a finite modulus; 1e30 Pa is rigid to 1e-19
+        },
+        poisson_ratio: m.elastic.poisson_ratio,
+    }
+}
+
+#[test]
+fn scene_cases_agree_with_a_direct_physical_units_simulation() {
+    for name in [
+        "seed000_alumina_on_glass",
+        "sphere_sphere_mixed",
+        "nylon_spin_on_steel",
+    ] {
+        let s = shipped(name);
+        let ev = evaluate(&s, PSource::Simulate).unwrap();
+        let sphere = Sphere {
+            radius: s.sphere.radius,
+            mass: s.sphere.mass,
+            kappa: s.sphere.kappa,
+            material: material(&s.sphere_material),
+        };
+        // A few cases per scene, spread over the regimes.
+        let n = ev.rows.len();
+        for r in [
+            &ev.rows[1],
+            &ev.rows[n / 4],
+            &ev.rows[n / 2],
+            &ev.rows[3 * n / 4],
+        ] {
+            if r.method == RowMethod::NormalImpact {
+                continue;
+            }
+            let motion = |st: &oblique_lookup::rebound::State| Motion {
+                v_x: st.v_x,
+                v_z: st.v_z,
+                omega: st.omega,
+            };
+            let target = match &s.target {
+                SceneTarget::Wall { material: m } => Target::Wall(material(m)),
+                SceneTarget::Sphere {
+                    body, material: m, ..
+                } => Target::Sphere(
+                    Sphere {
+                        radius: body.radius,
+                        mass: body.mass,
+                        kappa: body.kappa,
+                        material: material(m),
+                    },
+                    motion(&r.incident.other),
+                ),
+            };
+            let imp = PhysicalImpact {
+                sphere,
+                motion: motion(&r.incident.sphere),
+                target,
+                friction: s.friction,
+            };
+            let phys = imp.solve(1e-6).unwrap();
+            let g = phys.groups;
+            assert!(
+                (g.gamma - ev.gamma).abs() < 1e-9 * ev.gamma,
+                "{name}: gamma"
+            );
+            assert!((g.alpha - r.alpha).abs() < 1e-9 * r.alpha, "{name}: alpha");
+            let err = phys.error_estimate + r.p_error + 1e-12;
+            let p = phys.p.unwrap();
+            assert!(
+                (p - r.p).abs() <= err,
+                "{name} x = {}: P scene {} vs physical {p} (err {err:.1e})",
+                r.x,
+                r.p
+            );
+            let dj = ev.tangential_mass * err * g.slip_velocity.abs();
+            let b = s.sphere;
+            let v = r.incident.sphere.v_z.abs() + g.slip_velocity.abs();
+            assert!((phys.sphere.v_x - r.model.sphere.v_x).abs() <= dj / b.mass + 1e-9 * v);
+            assert!((phys.sphere.v_z - r.model.sphere.v_z).abs() <= 1e-8 * v);
+            assert!(
+                (phys.sphere.omega - r.model.sphere.omega).abs()
+                    <= dj * b.radius / b.inertia() + 1e-9 * v / b.radius,
+                "{name} x = {}: omega {} vs {}",
+                r.x,
+                phys.sphere.omega,
+                r.model.sphere.omega
+            );
+            if let (Some(o), Some(mo), Some(ob)) = (phys.other, r.model.other, s.pair().other) {
+                assert!((o.v_x - mo.v_x).abs() <= dj / ob.mass + 1e-9 * v);
+                assert!((o.v_z - mo.v_z).abs() <= 1e-8 * v);
+                assert!(
+                    (o.omega - mo.omega).abs()
+                        <= dj * ob.radius / ob.inertia() + 1e-9 * v / ob.radius
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn sphere_sphere_conserves_momentum_and_angular_momentum_about_the_contact() {
+    let base = root().join("configs/scenes/sphere_sphere_mixed.toml");
+    let text = std::fs::read_to_string(&base).unwrap();
+    // The shipped scene (target at rest) and a variant with a moving, spinning target.
+    let moving = text.replace(
+        "# v_x, v_z, omega of the target default to 0 (at rest)",
+        "v_x = -0.3\nv_z = -0.7\nomega = 150.0",
+    );
+    assert_ne!(moving, text);
+    for t in [&text, &moving] {
+        let s = Scene::parse(t, &base).unwrap();
+        let ev = evaluate(&s, PSource::Simulate).unwrap();
+        let b1 = s.sphere;
+        let b2 = s.pair().other.unwrap();
+        for r in &ev.rows {
+            let (a0, c0) = (r.incident.sphere, r.incident.other);
+            let (a1, c1) = (r.model.sphere, r.model.other.unwrap());
+            let px = |a: f64, c: f64| b1.mass * a + b2.mass * c;
+            let rel = |x: f64, y: f64, scale: f64| (x - y).abs() / scale;
+            let p_scale =
+                b1.mass * a0.v_x.abs().max(a0.v_z.abs()) + b2.mass * c0.v_x.abs().max(c0.v_z.abs());
+            assert!(rel(px(a0.v_x, c0.v_x), px(a1.v_x, c1.v_x), p_scale) < 1e-12);
+            assert!(rel(px(a0.v_z, c0.v_z), px(a1.v_z, c1.v_z), p_scale) < 1e-12);
+            // About the contact point: centres at z = −R1 and z = +R2 (L_y = Σ z m v_x + I ω).
+            let l = |a: &oblique_lookup::rebound::State, c: &oblique_lookup::rebound::State| {
+                -b1.radius * b1.mass * a.v_x
+                    + b1.inertia() * a.omega
+                    + b2.radius * b2.mass * c.v_x
+                    + b2.inertia() * c.omega
+            };
+            let l_scale = b1.radius * p_scale
+                + b1.inertia() * a0.omega.abs()
+                + b2.inertia() * c0.omega.abs()
+                + b2.radius * p_scale;
+            assert!(rel(l(&a0, &c0), l(&a1, &c1), l_scale) < 1e-12);
+            // Elastic normal motion; energy balance with the reported friction loss.
+            assert!(((a1.v_z - c1.v_z) + (a0.v_z - c0.v_z)).abs() < 1e-12 * a0.v_z.abs());
+            let ke = |a: &oblique_lookup::rebound::State, c: &oblique_lookup::rebound::State| {
+                0.5 * b1.mass * (a.v_x * a.v_x + a.v_z * a.v_z)
+                    + 0.5 * b1.inertia() * a.omega * a.omega
+                    + 0.5 * b2.mass * (c.v_x * c.v_x + c.v_z * c.v_z)
+                    + 0.5 * b2.inertia() * c.omega * c.omega
+            };
+            let (k0, k1) = (ke(&a0, &c0), ke(&a1, &c1));
+            assert!((k0 - k1 - r.model.energy_lost).abs() < 1e-10 * k0);
+            assert!(r.model.energy_lost >= 0.0);
+        }
+    }
+}
+
+#[test]
+fn measured_data_overlay_reports_the_rms_difference() {
+    // SYNTHETIC data, made here from the model itself plus known offsets: it tests the
+    // bookkeeping (matching, extra points, RMS), it is not a measurement.
+    let dir = scratch("measured");
+    let scene_path = dir.join("synthetic.toml");
+    let base = r#"name = "synthetic"
+friction = 0.092
+[sphere]
+material = "alumina-96"
+radius = 2.5e-3
+[target]
+kind = "wall"
+material = "soda-lime-glass"
+[cases]
+kind = "angles"
+speed = 3.9
+angles_deg = [10, 20, 30, 40]
+"#;
+    let plain = Scene::parse(base, &scene_path).unwrap();
+    let ev0 = evaluate(&plain, PSource::Simulate).unwrap();
+    // Model at an angle outside the scene's list, for the extra point.
+    let extra = Scene::parse(&base.replace("[10, 20, 30, 40]", "[25]"), &scene_path).unwrap();
+    let ev25 = evaluate(&extra, PSource::Simulate).unwrap();
+    let mut csv = String::from("# SYNTHETIC test data (model + known offsets), not measured\n");
+    csv.push_str("angle_deg,e_t,omega\n");
+    for r in &ev0.rows[..3] {
+        csv.push_str(&format!(
+            "{},{},{}\n",
+            r.x,
+            r.model.e_t + 0.01,
+            r.model.sphere.omega - 2.0
+        ));
+    }
+    let r25 = &ev25.rows[0];
+    csv.push_str(&format!("25,{},\n", r25.model.e_t - 0.01));
+    std::fs::write(dir.join("synthetic.csv"), csv).unwrap();
+    let with =
+        format!("{base}[measured]\nfile = \"synthetic.csv\"\nsource = \"synthetic test data\"\n");
+    std::fs::write(&scene_path, &with).unwrap();
+    let s = Scene::load(&scene_path).unwrap();
+    let ev = evaluate(&s, PSource::Simulate).unwrap();
+    assert_eq!(ev.rows.len(), 5, "4 scene angles + 1 measured-only angle");
+    assert_eq!(ev.rows.iter().filter(|r| !r.in_scene).count(), 1);
+    let xs: Vec<f64> = ev.rows.iter().map(|r| r.x).collect();
+    assert_eq!(xs, vec![10.0, 20.0, 25.0, 30.0, 40.0]);
+    let rms = ev.rms.unwrap();
+    let (e_rms, e_n) = rms.e_t.unwrap();
+    let (w_rms, w_n) = rms.omega.unwrap();
+    assert_eq!((e_n, w_n), (4, 3));
+    assert!((e_rms - 0.01).abs() < 1e-9, "e_t rms {e_rms}");
+    assert!((w_rms - 2.0).abs() < 1e-6, "omega rms {w_rms}");
+    let lines = scene::csv::lines(&ev, false);
+    assert!(lines[0].ends_with("e_t_measured,omega_measured"));
+    assert_eq!(lines.len(), 6);
+    // A measured file with a bad column is refused with the line number.
+    std::fs::write(dir.join("synthetic.csv"), "angle_deg,e_t,spin\n10,0.7,1\n").unwrap();
+    let err = evaluate(&s, PSource::Simulate).unwrap_err().to_string();
+    assert!(err.contains("spin") && err.contains("line 1"), "{err}");
+}
+
+#[test]
+fn bad_scene_files_give_errors_naming_the_key() {
+    let good = r#"friction = 0.1
+[sphere]
+material = "steel"
+radius = 0.005
+[target]
+kind = "wall"
+material = "steel"
+[cases]
+kind = "angles"
+speed = 1.0
+angles_deg = { from = 10, to = 80, count = 8 }
+"#;
+    let p = Path::new("bad.toml");
+    Scene::parse(good, p).expect("the base scene is valid");
+    let cases: &[(&str, &str, &[&str])] = &[
+        ("radius = 0.005", "radiuss = 0.005", &["radiuss"]),
+        (
+            "radius = 0.005",
+            "radius = -0.005",
+            &["sphere.radius", "> 0"],
+        ),
+        (
+            "material = \"steel\"\nradius",
+            "material = \"steel\"\npoisson_ratio = 0.7\nradius",
+            &["sphere.poisson_ratio", "(-1, 0.5]"],
+        ),
+        (
+            "material = \"steel\"\nradius",
+            "material = \"unobtainium\"\nradius",
+            &["sphere.material", "soda-lime-glass"],
+        ),
+        ("count = 8", "count = 0", &["count", "[2, 100000]"]),
+        (
+            "{ from = 10, to = 80, count = 8 }",
+            "[10, 95]",
+            &["cases.angles_deg", "(-90, 90)"],
+        ),
+        ("friction = 0.1", "friction = -0.1", &["friction", ">= 0"]),
+        ("friction = 0.1", "", &["friction"]),
+        (
+            "kind = \"wall\"",
+            "kind = \"floor\"",
+            &["target.kind", "\"wall\" or \"sphere\""],
+        ),
+        (
+            "kind = \"wall\"",
+            "kind = \"wall\"\nradius = 1.0",
+            &["target.radius", "wall"],
+        ),
+        (
+            "material = \"steel\"\nradius",
+            "material = \"steel\"\nmass = 0.1\ndensity = 7000\nradius",
+            &["sphere.mass", "not both"],
+        ),
+        (
+            "material = \"steel\"\nradius",
+            "material = \"steel\"\nkappa = 0.9\nradius",
+            &["sphere.kappa", "(0, 2/3]"],
+        ),
+        (
+            "friction = 0.1",
+            "friction = 0.1\ntol = 1",
+            &["tol", "[1e-10, 1e-2]"],
+        ),
+        (
+            "kind = \"angles\"",
+            "kind = \"angle\"",
+            &["cases.kind", "tangential-speed"],
+        ),
+        ("speed = 1.0", "speed = 0", &["cases.speed", "> 0"]),
+        (
+            "speed = 1.0",
+            "speed = 1.0\nnormal_speed = 1.0",
+            &["cases.normal_speed", "angles"],
+        ),
+        (
+            "friction = 0.1",
+            "friction = 0.1\nname = \"../escape\"",
+            &["name", "A-Z"],
+        ),
+    ];
+    for (from, to, want) in cases {
+        assert!(good.contains(from), "test case does not apply: {from}");
+        let text = good.replacen(from, to, 1);
+        let err = Scene::parse(&text, p)
+            .expect_err(&format!("{to:?} should be refused"))
+            .to_string();
+        for w in *want {
+            assert!(err.contains(w), "error for {to:?} lacks {w:?}: {err}");
+        }
+        assert!(err.contains("bad.toml"), "error names the file: {err}");
+    }
+    // Sphere–sphere: a target moving away faster than sphere 1 approaches.
+    let away = good.replacen(
+        "kind = \"wall\"\nmaterial = \"steel\"",
+        "kind = \"sphere\"\nmaterial = \"steel\"\nradius = 0.01\nv_z = 5.0",
+        1,
+    );
+    let err = Scene::parse(&away, p).unwrap_err().to_string();
+    assert!(
+        err.contains("cases.angles_deg") && err.contains("approach"),
+        "{err}"
+    );
+    // A missing file.
+    let err = Scene::load("no/such/scene.toml").unwrap_err().to_string();
+    assert!(err.contains("no/such/scene.toml"), "{err}");
+}
+
+#[test]
+fn sweep_scene_writes_csv_and_plot() {
+    let out = scratch("cli");
+    let run = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args([
+            "scene",
+            "configs/scenes/alumina_on_rigid_wall.toml",
+            "--svg",
+            "-o",
+        ])
+        .arg(&out)
+        .current_dir(root())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(stdout.contains("gamma = 1.732051"), "{stdout}");
+    let csv = std::fs::read_to_string(out.join("alumina_on_rigid_wall.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let expected = [
+        "angle_deg",
+        "v_x",
+        "v_z",
+        "omega",
+        "e_t",
+        "rebound_angle_centre_deg",
+        "rebound_angle_contact_deg",
+        "P",
+        "regime",
+        "energy_lost_J",
+        "e_t_closed_form",
+        "e_t_rolling",
+    ];
+    assert_eq!(&header[..expected.len()], &expected);
+    assert_eq!(lines.len(), 18, "header + 17 angles");
+    for l in &lines[1..] {
+        assert_eq!(l.split(',').count(), header.len());
+    }
+    let png = std::fs::read(out.join("alumina_on_rigid_wall.png")).unwrap();
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 10_000);
+    let svg = std::fs::read_to_string(out.join("alumina_on_rigid_wall.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("configs/scenes/alumina_on_rigid_wall.toml"));
+
+    // A bad scene: non-zero exit, the key in the message.
+    let bad = out.join("bad.toml");
+    std::fs::write(&bad, "friction = 0.1\n[sphere]\nradius = 1\n").unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(["scene"])
+        .arg(&bad)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("target"), "{stderr}");
+}
