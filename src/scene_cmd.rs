@@ -18,10 +18,10 @@ pub struct SceneArgs {
     /// Look P up in this table (written by `sweep run`) instead of simulating each case.
     #[arg(long)]
     table: Option<PathBuf>,
-    /// Output folder for <name>.csv and <name>.png (created if missing).
+    /// Output folder for NAME.csv and NAME.png, NAME being the scene's name (created if missing).
     #[arg(short, long, default_value = ".")]
     output: PathBuf,
-    /// Also write the plot as <name>.svg.
+    /// Also write the plot as NAME.svg.
     #[arg(long)]
     svg: bool,
 }
