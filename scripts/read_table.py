@@ -80,7 +80,8 @@ def coordinate(kind, gamma, alpha, alpha_max):
     """Patch coordinate c of (gamma, alpha) (before clamping)."""
     if kind == "partial-slip":
         c1 = alpha_c1(gamma)
-        return math.log(alpha / c1) / math.log(alpha_c2(gamma) / c1)
+        ell = math.log(alpha / c1) / math.log(alpha_c2(gamma) / c1)
+        return 1.0 - math.sqrt(max(1.0 - ell, 0.0))
     return stick_s(gamma, alpha) / stick_s(gamma, alpha_max)
 
 
@@ -88,7 +89,7 @@ def alpha_at(kind, gamma, c, alpha_max):
     """Inverse of `coordinate`: alpha at patch coordinate c in [0, 1] (alpha_max at c = 1)."""
     if kind == "partial-slip":
         c1 = alpha_c1(gamma)
-        return c1 * (alpha_c2(gamma) / c1) ** c
+        return c1 * (alpha_c2(gamma) / c1) ** (1.0 - (1.0 - c) ** 2)
     if c >= 1.0:
         return alpha_max
     rho = stick_rho(gamma)

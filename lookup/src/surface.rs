@@ -6,7 +6,7 @@
 //! | patch          | γ range        | α range          | coordinate `c ∈ [0, 1]`                        |
 //! |----------------|----------------|------------------|------------------------------------------------|
 //! | `stick_low`    | `γ_min ≤ γ ≤ 1` | `α_c2 … α_max`  | `S(α)/S(α_max)`, `S = r/(r + ρ)`               |
-//! | `partial_high` | `1 ≤ γ ≤ γ_max` | `α_c1 … α_c2`   | `ln(α/α_c1) / ln(α_c2/α_c1)`                    |
+//! | `partial_high` | `1 ≤ γ ≤ γ_max` | `α_c1 … α_c2`   | `1 − √(1 − ℓ)`, `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)` |
 //! | `stick_high`   | `1 ≤ γ ≤ γ_max` | `α_c2 … α_max`  | `S(α)/S(α_max)`, `S = r/(r + ρ)`               |
 //!
 //! with `r = α/α_c2 − 1`, `ρ = 2(1 − γ²)` for `γ < 1` and `ρ = 1` for `γ ≥ 1`, `S(∞) = 1`. Each patch is cut into equal
@@ -39,7 +39,7 @@ pub fn linear_limit(gamma: f64) -> f64 {
 /// Which part of the plane a patch covers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PatchKind {
-    /// `α_c1 ≤ α ≤ α_c2`, `γ ≥ 1`; coordinate `ln(α/α_c1)/ln(α_c2/α_c1)`.
+    /// `α_c1 ≤ α ≤ α_c2`, `γ ≥ 1`; coordinate `1 − √(1 − ℓ)`, `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)`.
     PartialSlip,
     /// `α_c2 ≤ α ≤ α_max`; coordinate `S(α)/S(α_max)`, `S = r/(r + ρ)`, `r = α/α_c2 − 1`,
     /// `ρ =` [`stick_scale`]`(γ)`.
@@ -60,7 +60,8 @@ impl PatchKind {
         match self {
             PatchKind::PartialSlip => {
                 let c1 = alpha_c1(gamma);
-                (alpha / c1).ln() / (alpha_c2(gamma) / c1).ln()
+                let l = (alpha / c1).ln() / (alpha_c2(gamma) / c1).ln();
+                1.0 - (1.0 - l).max(0.0).sqrt()
             }
             PatchKind::Stick => {
                 let rho = stick_scale(gamma);
@@ -83,7 +84,8 @@ impl PatchKind {
         match self {
             PatchKind::PartialSlip => {
                 let c1 = alpha_c1(gamma);
-                c1 * (alpha_c2(gamma) / c1).powf(c)
+                let q = 1.0 - c;
+                c1 * (alpha_c2(gamma) / c1).powf(1.0 - q * q)
             }
             PatchKind::Stick => {
                 if c >= 1.0 {
