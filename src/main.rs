@@ -233,7 +233,15 @@ fn main() -> ExitCode {
             let usage = matches!(
                 e.downcast_ref::<PhysicsError>(),
                 Some(PhysicsError::InvalidParameter { .. })
-            ) || e.downcast_ref::<ConfigError>().is_some();
+            ) || e.downcast_ref::<ConfigError>().is_some()
+                || matches!(
+                    e.downcast_ref::<oblique::scene::SceneError>(),
+                    Some(
+                        oblique::scene::SceneError::Parse { .. }
+                            | oblique::scene::SceneError::Invalid { .. }
+                            | oblique::scene::SceneError::Measured { .. }
+                    )
+                );
             if usage {
                 ExitCode::from(2)
             } else {
