@@ -32,26 +32,9 @@ pub enum StorageError {
     },
 }
 
-/// Provenance written as root attributes.
-#[derive(Debug, Clone)]
-pub struct Provenance {
-    /// Engine version.
-    pub engine_version: String,
-    /// Git commit (or "unknown").
-    pub git_commit: String,
-    /// Config text.
-    pub config: String,
-    /// Solver settings.
-    pub solver: String,
-    /// Creation time, RFC 3339 UTC.
-    pub created: String,
-    /// Wall time of the build (s).
-    pub wall_time_s: f64,
-    /// Node tolerance.
-    pub node_tol: f64,
-    /// Target interpolation error.
-    pub target_error: f64,
-}
+/// Provenance written as root attributes (the reader's type; its `schema_version` is ignored
+/// here, the writer always writes [`SCHEMA_VERSION`]).
+pub use oblique_lookup::Provenance;
 
 struct W<'a> {
     path: &'a str,

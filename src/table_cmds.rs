@@ -78,6 +78,7 @@ pub fn run(args: RunArgs) -> Result<()> {
     let built = built?;
     let wall = start.elapsed().as_secs_f64();
     let prov = Provenance {
+        schema_version: oblique_lookup::format::SCHEMA_VERSION,
         engine_version: oblique::VERSION.into(),
         git_commit: oblique::GIT_COMMIT.into(),
         config: text,

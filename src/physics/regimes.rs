@@ -1,27 +1,11 @@
-//! Critical values of α, friction regimes and the closed forms of `P(γ, α)`.
+//! Critical values of α (`α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`), friction regimes and the
+//! closed forms of `P(γ, α)`.
 
 use serde::Serialize;
 
-/// `α_c1 = 2γ² / (7(2γ² − 1))`: end of full slip for `γ > 1` (negative for `γ < 1/√2`).
-pub fn alpha_c1(gamma: f64) -> f64 {
-    let g2 = gamma * gamma;
-    2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
-}
-
-/// `α_c2 = 2γ²/7`: beyond it the contact sticks during compression (`γ > 1`); for `γ < 1` the
-/// end of the straight line `P = 1 − 7α`.
-pub fn alpha_c2(gamma: f64) -> f64 {
-    2.0 * gamma * gamma / 7.0
-}
-
-/// Upper end of the exact straight line `P = 1 − 7α`: `α_c1` for `γ > 1`, `α_c2` for `γ ≤ 1`.
-pub fn linear_limit(gamma: f64) -> f64 {
-    if gamma > 1.0 {
-        alpha_c1(gamma)
-    } else {
-        alpha_c2(gamma)
-    }
-}
+// The critical values are part of the table format's interpolation rule, so they are defined once,
+// in the lookup crate (which must not depend on the simulator), and re-exported here.
+pub use oblique_lookup::surface::{alpha_c1, alpha_c2, linear_limit};
 
 /// Friction regime of an impact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
