@@ -179,23 +179,6 @@ impl Patch {
         self.block_intervals << l
     }
 
-    /// γ at fractional patch position `x ∈ [0, 1]`.
-    pub fn gamma_at(&self, x: f64) -> f64 {
-        if x >= 1.0 {
-            self.gamma_hi
-        } else {
-            self.gamma_lo + (self.gamma_hi - self.gamma_lo) * x
-        }
-    }
-
-    /// Total number of nodes implied by the levels.
-    pub fn node_count(&self) -> usize {
-        self.level
-            .iter()
-            .map(|&l| (self.intervals(l) + 1).pow(2))
-            .sum()
-    }
-
     /// Interpolate `P` at `(γ, c)` with a `k`-point stencil per axis.
     #[inline]
     pub fn interpolate(&self, gamma: f64, c: f64, k: usize) -> f64 {

@@ -136,11 +136,6 @@ impl SpringRow {
         self.at_limit
     }
 
-    /// Mean spring spacing `Δx` (m).
-    pub fn spacing(&self) -> f64 {
-        self.dx
-    }
-
     /// Number of springs whose position satisfies `g(x_i) < d`.
     fn count_in_contact(&self, d: f64) -> usize {
         // g is increasing; partition_point gives the first index with g >= d.
