@@ -112,6 +112,26 @@ impl Reader<'_> {
         }
     }
 
+    /// A `[blocks_gamma, blocks_coord]` integer dataset of a patch.
+    fn block_dataset<T: hdf5::H5Type>(
+        &self,
+        g: &hdf5::Group,
+        patch: &str,
+        name: &str,
+        shape: [usize; 2],
+    ) -> Result<Vec<T>, LookupError> {
+        g.dataset(name)
+            .ok()
+            .filter(|d| d.shape() == shape)
+            .and_then(|d| d.read_raw::<T>().ok())
+            .ok_or_else(|| {
+                self.invalid(format!(
+                    "patch '{patch}': dataset '{name}' missing or not [{}, {}]",
+                    shape[0], shape[1]
+                ))
+            })
+    }
+
     fn count_attr(&self, g: &hdf5::Group, name: &str, max: usize) -> Result<usize, LookupError> {
         let v = self.attr_f64(g, name)?;
         if v.fract() != 0.0 || v < 1.0 || v > max as f64 {
@@ -155,26 +175,8 @@ impl Reader<'_> {
                 "patch '{name}': block_intervals = {m} gives fewer nodes than stencil_points = {stencil}"
             )));
         }
-        let level_raw = g
-            .dataset(DS_LEVEL)
-            .ok()
-            .filter(|d| d.shape() == [bg, bc])
-            .and_then(|d| d.read_raw::<i32>().ok())
-            .ok_or_else(|| {
-                self.invalid(format!(
-                    "patch '{name}': dataset 'level' missing or not [{bg}, {bc}]"
-                ))
-            })?;
-        let offset_raw = g
-            .dataset(DS_OFFSET)
-            .ok()
-            .filter(|d| d.shape() == [bg, bc])
-            .and_then(|d| d.read_raw::<i64>().ok())
-            .ok_or_else(|| {
-                self.invalid(format!(
-                    "patch '{name}': dataset 'offset' missing or not [{bg}, {bc}]"
-                ))
-            })?;
+        let level_raw = self.block_dataset::<i32>(&g, name, DS_LEVEL, [bg, bc])?;
+        let offset_raw = self.block_dataset::<i64>(&g, name, DS_OFFSET, [bg, bc])?;
         let mut level = Vec::with_capacity(level_raw.len());
         let mut offset = Vec::with_capacity(level_raw.len());
         let mut total = 0usize;
