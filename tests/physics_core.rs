@@ -17,7 +17,8 @@ fn res(springs: usize, steps: usize) -> Resolution {
     Resolution { springs, steps }
 }
 
-/// The usual accurate-scheme resolution: two springs per step.
+/// A resolution of two springs per step (the accurate ladder used one per step since
+/// `base_resolution` changed; either converges).
 fn res2(steps: usize) -> Resolution {
     res(2 * steps, steps)
 }
