@@ -605,15 +605,39 @@ fn convergence_gamma_3_alpha_4_stick_by_component() {
     );
 }
 
-/// Partial slip at large γ (γ = 3, α = 1 lies between α_c1 = 0.15 and α_c2 = 2.57): the time
-/// error is O(h²) but irregular (kinks of the friction force inside steps; measured ratios per
-/// doubling 1.6–5.8, documented in docs/accuracy.md). Assert the order over the whole ladder:
-/// four doublings must reduce the error ≥ 200× (order ≥ 1.9), and no doubling may make it worse.
+/// Partial slip at large γ (γ = 3, α = 1 lies between α_c1 = 0.15 and α_c2 = 2.57). The two
+/// error components are checked on their own (`examples/errsplit.rs` prints the full table):
+/// the spatial error (springs, at 4096 steps) is clean second order; the time error (steps, at
+/// 16384 springs) is O(h²) but irregular (kinks of the friction force inside steps: measured
+/// ratios 5.4, 1.7, 4.6, 5.0 per doubling from 256 steps), so it must fall ≥ 200× over four
+/// doublings (order ≥ 1.9) and never grow. On the joint ladder of `solve` (one spring per step)
+/// the spatial error (positive) cancels part of the time error (negative): one doubling there
+/// gains nothing (6.8e-6 at 512 and at 1024 steps), so only the overall order is asserted on it.
+/// That `solve`'s error estimate still bounds the true error here is checked by
+/// `error_estimate_bounds_the_true_error`, which includes this point.
 #[test]
 fn convergence_gamma_3_alpha_1_partial_slip_overall_order() {
-    let (errs, ratios, summary) = convergence_ladder(3.0, 1.0);
+    let (g, a) = (3.0, 1.0);
+    let reference = simulate(g, a, res(16384, 16384), ACC).unwrap();
+    let spatial: Vec<f64> = (0..4)
+        .map(|k| (simulate(g, a, res(128 << k, 4096), ACC).unwrap() - reference).abs())
+        .collect();
+    let ratios: Vec<f64> = spatial.windows(2).map(|w| w[0] / w[1]).collect();
     assert!(
-        errs[0] / errs[4] >= 200.0 && ratios.iter().all(|&r| r > 1.0),
+        ratios.iter().all(|&r| r >= 3.5),
+        "spatial error not second order: {spatial:?} ratios {ratios:?}"
+    );
+    let time: Vec<f64> = (0..5)
+        .map(|k| (simulate(g, a, res(16384, 256 << k), ACC).unwrap() - reference).abs())
+        .collect();
+    let ratios: Vec<f64> = time.windows(2).map(|w| w[0] / w[1]).collect();
+    assert!(
+        time[0] / time[4] >= 200.0 && ratios.iter().all(|&r| r > 1.0),
+        "time error not second order overall: {time:?} ratios {ratios:?}"
+    );
+    let (errs, _, summary) = convergence_ladder(g, a);
+    assert!(
+        errs[0] / errs[4] >= 200.0,
         "not second order overall: {summary}"
     );
 }
