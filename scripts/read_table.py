@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Reference reader of the P(gamma, alpha) table (HDF5, schema v1), h5py + numpy only.
+"""Reference reader of the P(gamma, alpha) table (HDF5, schema v2), h5py + numpy only.
 
-Implements the interpolation rule of docs/table-format.md (steps 1-7) exactly, independently of
+Implements the interpolation rule of docs/table-format.md (steps 1-8) exactly, independently of
 the Rust code, so that it can cross-check both the `oblique-lookup` crate and the simulator.
 
     python3 scripts/read_table.py TABLE --gamma G --alpha A        # prints P (alpha may be inf)
@@ -34,13 +34,13 @@ except ImportError as e:  # pragma: no cover - depends on the machine
     sys.exit(2)
 
 FORMAT_NAME = "oblique-P-table"
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 PATCH_NAMES = ("stick_low", "partial_high", "stick_high")
 PATCH_KINDS = {"stick_low": "stick", "partial_high": "partial-slip", "stick_high": "stick"}
 
 
 class TableError(Exception):
-    """The file is not a readable P table of schema v1."""
+    """The file is not a readable P table of schema v2."""
 
 
 class DomainError(ValueError):
@@ -98,7 +98,7 @@ def alpha_at(kind, gamma, c, alpha_max):
 
 
 def lagrange(u, n, k):
-    """Step 6: start index and the k Lagrange weights at grid position u on nodes 0..n."""
+    """Step 7: start index and the k Lagrange weights at grid position u on nodes 0..n."""
     cell = min(int(math.floor(u)), n - 1)
     start = min(max(cell + 1 - k // 2, 0), n + 1 - k)
     w = []
@@ -136,46 +136,80 @@ def _float_attr(attrs, name):
 
 
 class Patch:
-    """One patch held in memory: block layout and node values."""
+    """One patch held in memory: root cells, quadtree and node values."""
 
     def __init__(self, name, kind, gamma_lo, gamma_hi, blocks_gamma, blocks_coord,
-                 block_intervals, level, offset, p):
+                 leaf_intervals, tree, p):
         self.name = name
         self.kind = kind
         self.gamma_lo = gamma_lo
         self.gamma_hi = gamma_hi
         self.blocks_gamma = blocks_gamma
         self.blocks_coord = blocks_coord
-        self.block_intervals = block_intervals
-        self.level = level  # int array [blocks_gamma, blocks_coord]
-        self.offset = offset  # int array [blocks_gamma, blocks_coord]
-        self.p = p  # float64 [N]
+        self.leaf_intervals = leaf_intervals
+        self.tree = tree  # int list [cells]
+        self.p = p  # float64 [leaves, m+1, m+1]
 
-    def interpolate(self, gamma, c, k):
-        """Steps 4 (x, with c given) to 7."""
-        x = _clamp01((gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo))
-        c = _clamp01(c)
+    def find_leaf(self, x, c):
+        """Steps 5 and 6: leaf number and position (fx, fc) inside it, for x, c in [0, 1]."""
         bg, bc = self.blocks_gamma, self.blocks_coord
         a = min(int(math.floor(x * bg)), bg - 1)
         fx = x * bg - a
         b = min(int(math.floor(c * bc)), bc - 1)
         fc = c * bc - b
-        n = self.block_intervals * 2 ** int(self.level[a, b])
-        off = int(self.offset[a, b])
-        sg, wg = lagrange(fx * n, n, k)
-        sc, wc = lagrange(fc * n, n, k)
+        i = a * bc + b
+        while self.tree[i] >= 0:
+            fx, fc = 2.0 * fx, 2.0 * fc
+            qg, qc = int(fx >= 1.0), int(fc >= 1.0)
+            fx, fc = fx - qg, fc - qc
+            i = self.tree[i] + 2 * qg + qc
+        return -self.tree[i] - 1, fx, fc
+
+    def interpolate(self, gamma, c, k):
+        """Steps 4 (x, with c given) to 8."""
+        x = _clamp01((gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo))
+        leaf, fx, fc = self.find_leaf(x, _clamp01(c))
+        m = self.leaf_intervals
+        sg, wg = lagrange(fx * m, m, k)
+        sc, wc = lagrange(fc * m, m, k)
+        vals = self.p[leaf]
         total = 0.0
         for i in range(k):
-            row = off + (sg + i) * (n + 1) + sc
             inner = 0.0
             for j in range(k):
-                inner += float(self.p[row + j]) * wc[j]
+                inner += float(vals[sg + i, sc + j]) * wc[j]
             total += wg[i] * inner
         return total
 
 
+def check_tree(tree, roots):
+    """Problem with a quadtree array (docs/table-format.md, 'The tree'), or None; and the leaf
+    count."""
+    n = len(tree)
+    if n < roots or (n - roots) % 4:
+        return f"has {n} cells: expected {roots} roots plus groups of 4 children", 0
+    referenced = [False] * n
+    leaves = []
+    for i, t in enumerate(tree):
+        if t < 0:
+            leaves.append(-t - 1)
+            continue
+        if t <= i or t < roots or t + 4 > n:
+            return f"cell {i} points to children at {t}: out of range", 0
+        for q in range(t, t + 4):
+            if referenced[q]:
+                return f"cell {i}: children at {t} shared with another cell", 0
+            referenced[q] = True
+    for i in range(roots, n):
+        if not referenced[i]:
+            return f"cell {i} is not reachable from a root", 0
+    if sorted(leaves) != list(range(len(leaves))):
+        return "does not number its leaves 0, 1, 2, ... exactly once", 0
+    return None, len(leaves)
+
+
 class Table:
-    """A P(gamma, alpha) table of schema v1, loaded into memory (no HDF5 call per query)."""
+    """A P(gamma, alpha) table of schema v2, loaded into memory (no HDF5 call per query)."""
 
     def __init__(self, path):
         self.path = str(path)
@@ -258,7 +292,7 @@ class Table:
         if not (0 < lo < hi < math.inf):
             raise self._invalid(f"{where}: gamma edges [{lo}, {hi}] must be finite, > 0, increasing")
         counts = []
-        for a in ("blocks_gamma", "blocks_coord", "block_intervals"):
+        for a in ("blocks_gamma", "blocks_coord", "leaf_intervals"):
             v = num(g.attrs, a, where)
             if v != int(v) or v < 1:
                 raise self._invalid(f"{where}: attribute '{a}' = {v}: must be an integer >= 1")
@@ -266,36 +300,28 @@ class Table:
         bg, bc, m = counts
         if m + 1 < self.stencil:
             raise self._invalid(
-                f"{where}: block_intervals = {m} gives fewer nodes than stencil_points")
-        arrays = {}
-        for ds, kinds in (("level", "i"), ("offset", "i")):
-            if ds not in g:
-                raise self._invalid(f"{where}: missing dataset '{ds}'")
-            d = g[ds]
-            if d.shape != (bg, bc) or d.dtype.kind not in kinds:
-                raise self._invalid(
-                    f"{where}: dataset '{ds}' is {d.dtype}{list(d.shape)}, "
-                    f"expected integer [{bg}, {bc}]")
-            arrays[ds] = d[()].astype(np.int64)
-        level, offset = arrays["level"], arrays["offset"]
-        total = 0
-        for idx, (lv, off) in enumerate(zip(level.ravel(), offset.ravel())):
-            if not 0 <= lv <= 30:
-                raise self._invalid(f"{where}: level[{idx}] = {lv} out of range")
-            if off != total:
-                raise self._invalid(
-                    f"{where}: offset[{idx}] = {off}, expected {total} (running sum of (n+1)^2)")
-            total += (m * 2 ** int(lv) + 1) ** 2
+                f"{where}: leaf_intervals = {m} gives fewer nodes than stencil_points")
+        if "tree" not in g:
+            raise self._invalid(f"{where}: missing dataset 'tree'")
+        d = g["tree"]
+        if d.ndim != 1 or d.dtype.kind != "i":
+            raise self._invalid(
+                f"{where}: dataset 'tree' is {d.dtype}{list(d.shape)}, expected 1-D integer")
+        tree = [int(t) for t in d[()]]
+        problem, leaves = check_tree(tree, bg * bc)
+        if problem:
+            raise self._invalid(f"{where}: dataset 'tree' {problem}")
         if "P" not in g:
             raise self._invalid(f"{where}: missing dataset 'P'")
         d = g["P"]
-        if d.shape != (total,) or d.dtype.kind != "f":
+        shape = (leaves, m + 1, m + 1)
+        if d.shape != shape or d.dtype.kind != "f":
             raise self._invalid(
-                f"{where}: dataset 'P' is {d.dtype}{list(d.shape)}, expected float [{total}]")
+                f"{where}: dataset 'P' is {d.dtype}{list(d.shape)}, expected float {list(shape)}")
         p = d[()].astype(np.float64)
         if not np.all(np.isfinite(p)):
             raise self._invalid(f"{where}: non-finite value in 'P'")
-        return Patch(name, kind, lo, hi, bg, bc, m, level, offset, p)
+        return Patch(name, kind, lo, hi, bg, bc, m, tree, p)
 
     def region(self, gamma, alpha):
         """Patch name of a query (steps 1 and 3), or 'line' for the exact full-slip line."""
@@ -306,7 +332,7 @@ class Table:
         return "partial_high" if alpha < alpha_c2(gamma) else "stick_high"
 
     def p(self, gamma, alpha):
-        """P(gamma, alpha) by steps 1-7. Raises DomainError outside the answered domain."""
+        """P(gamma, alpha) by steps 1-8. Raises DomainError outside the answered domain."""
         gamma = float(gamma)
         alpha = float(alpha)
         if not (math.isfinite(gamma) and gamma > 0):
@@ -329,7 +355,7 @@ class Table:
         patch = self.patches.get(name)
         if patch is None:
             return -1.0
-        # 4-7.
+        # 4-8.
         c = coordinate(patch.kind, gamma, alpha, self.alpha_max)
         return patch.interpolate(gamma, c, self.stencil)
 

@@ -45,7 +45,7 @@ sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler")]
 sweep run configs/full.toml\n  \
 sweep run configs/quick.toml -o /tmp/quick.h5 --threads 2 --quiet\n\n\
 The table is written atomically: a temporary file next to the output, renamed when complete.\n\
-Config keys and the file format: docs/table-format.md.")]
+Config keys, defaults and ranges: docs/config.md. The file format: docs/table-format.md.")]
     Run(table_cmds::RunArgs),
     /// Print a table's domain, node counts, error statistics and provenance.
     Inspect(table_cmds::InspectArgs),

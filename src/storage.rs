@@ -167,6 +167,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     w.attr_str(&file, ATTR_CREATED, &prov.created)?;
     w.attr_f64(&file, ATTR_WALL_TIME, prov.wall_time_s)?;
     w.attr_f64(&file, ATTR_NODE_TOL, prov.node_tol)?;
+    w.attr_f64(&file, ATTR_CHECK_TOL, prov.check_tol)?;
     w.attr_f64(&file, ATTR_TARGET_ERROR, prov.target_error)?;
 
     let patches = file.create_group(GROUP_PATCHES).map_err(w.e("patches"))?;
@@ -178,14 +179,13 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.attr_f64(&g, ATTR_GAMMA_HI, p.gamma_hi)?;
         w.attr_f64(&g, ATTR_BLOCKS_GAMMA, p.blocks_gamma as f64)?;
         w.attr_f64(&g, ATTR_BLOCKS_COORD, p.blocks_coord as f64)?;
-        w.attr_f64(&g, ATTR_BLOCK_INTERVALS, p.block_intervals as f64)?;
-        let blocks = [p.blocks_gamma, p.blocks_coord];
-        let level: Vec<i32> = p.level.iter().map(|&l| l as i32).collect();
-        let offset: Vec<i64> = p.offset.iter().map(|&o| o as i64).collect();
-        w.ints(&g, DS_LEVEL, &level, &blocks)?;
-        w.ints(&g, DS_OFFSET, &offset, &blocks)?;
-        w.ds(&g, DS_BLOCK_ERROR, &bp.block_error, &blocks)?;
-        let n = [p.p.len()];
+        w.attr_f64(&g, ATTR_LEAF_INTERVALS, p.leaf_intervals as f64)?;
+        let leaves = [bp.leaf_error.len()];
+        w.ints(&g, DS_TREE, &p.tree, &[p.tree.len()])?;
+        let depth: Vec<i32> = bp.leaf_depth.iter().map(|&d| d as i32).collect();
+        w.ints(&g, DS_LEAF_DEPTH, &depth, &leaves)?;
+        w.ds(&g, DS_LEAF_ERROR, &bp.leaf_error, &leaves)?;
+        let n = [leaves[0], p.leaf_intervals + 1, p.leaf_intervals + 1];
         w.ds(&g, DS_GAMMA, &bp.gamma, &n)?;
         w.ds(&g, DS_COORD, &bp.coord, &n)?;
         w.ds(&g, DS_ALPHA, &bp.alpha, &n)?;

@@ -15,7 +15,7 @@ use crate::progress::CliProgress;
 
 #[derive(Args)]
 pub struct RunArgs {
-    /// TOML config (see configs/ and docs/table-format.md).
+    /// TOML config (see configs/ and docs/config.md).
     config: PathBuf,
     /// Output table; overrides the config's `output`.
     #[arg(short, long)]
@@ -89,6 +89,7 @@ pub fn run(args: RunArgs) -> Result<()> {
         created: oblique::utc_now(),
         wall_time_s: wall,
         node_tol: cfg.solver.tol,
+        check_tol: cfg.check_tol(),
         target_error: cfg.nodes.target_error,
     };
     write_table(&cfg.output, &built, &prov)?;
@@ -97,15 +98,16 @@ pub fn run(args: RunArgs) -> Result<()> {
         let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
         for p in &built.patches {
             eprintln!(
-                "  {:13} {} x {} blocks, levels {}..{}, {} nodes ({} simulated), max predicted error {:.1e}",
+                "  {:13} {} x {} roots, {} leaves at depth {}..{}, {} nodes ({} simulated), max predicted error {:.1e}",
                 p.name,
                 p.patch.blocks_gamma,
                 p.patch.blocks_coord,
-                p.patch.level.iter().min().unwrap_or(&0),
-                p.patch.level.iter().max().unwrap_or(&0),
+                p.leaf_depth.len(),
+                p.leaf_depth.iter().min().unwrap_or(&0),
+                p.leaf_depth.iter().max().unwrap_or(&0),
                 p.unique_nodes,
                 p.simulated,
-                p.block_error.iter().copied().fold(0.0, f64::max)
+                p.leaf_error.iter().copied().fold(0.0, f64::max)
             );
         }
         let max_err = built
@@ -149,13 +151,15 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
         let ps: Vec<_> = patches
             .iter()
             .map(|(n, p)| {
+                let depth = p.leaf_depths();
                 json!({
                     "name": n, "kind": p.kind.name(), "gamma_lo": p.gamma_lo, "gamma_hi": p.gamma_hi,
                     "blocks_gamma": p.blocks_gamma, "blocks_coord": p.blocks_coord,
-                    "block_intervals": p.block_intervals,
-                    "level_min": p.level.iter().min(), "level_max": p.level.iter().max(),
+                    "leaf_intervals": p.leaf_intervals,
+                    "leaves": p.leaves(),
+                    "depth_min": depth.iter().min(), "depth_max": depth.iter().max(),
                     "nodes": p.p.len(),
-                    "nodes_note": "stored node values; blocks store their shared edges each",
+                    "nodes_note": "stored node values; leaves store their shared edges each",
                     "max_node_error_estimate": p.error_estimate.iter().copied().fold(0.0, f64::max),
                 })
             })
@@ -172,7 +176,7 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
             "provenance": {
                 "engine_version": pv.engine_version, "git_commit": pv.git_commit,
                 "created": pv.created, "wall_time_s": pv.wall_time_s, "solver": pv.solver,
-                "node_tol": pv.node_tol, "target_error": pv.target_error, "config": pv.config,
+                "node_tol": pv.node_tol, "check_tol": pv.check_tol, "target_error": pv.target_error, "config": pv.config,
             }
         });
         println!("{out}");
@@ -184,15 +188,17 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
         s.gamma_min, s.gamma_max, s.alpha_max, s.stencil, pv.schema_version
     );
     for (n, p) in &patches {
+        let depth = p.leaf_depths();
         println!(
-            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} blocks, levels {}..{}, {} nodes stored (shared block edges once per block), max node error estimate {:.1e}",
+            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} roots, {} leaves at depth {}..{}, {} nodes stored (shared leaf edges once per leaf), max node error estimate {:.1e}",
             p.kind.name(),
             p.gamma_lo,
             p.gamma_hi,
             p.blocks_gamma,
             p.blocks_coord,
-            p.level.iter().min().unwrap_or(&0),
-            p.level.iter().max().unwrap_or(&0),
+            p.leaves(),
+            depth.iter().min().unwrap_or(&0),
+            depth.iter().max().unwrap_or(&0),
             p.p.len(),
             p.error_estimate.iter().copied().fold(0.0, f64::max)
         );

@@ -1,4 +1,4 @@
-//! Tests of the HDF5 table (schema v1) against its specification, `docs/table-format.md`:
+//! Tests of the HDF5 table (schema v2) against its specification, `docs/table-format.md`:
 //! the file layout (names, types, shapes) as documented, `oblique_lookup::Table` reproducing the
 //! held-out checks and the exact full-slip line, atomic writes under SIGKILL, unwritable outputs,
 //! thread-count independence, `sweep inspect --json`, and refusal of bad files.
@@ -18,8 +18,8 @@ use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
 use oblique_lookup::surface::{alpha_c1, alpha_c2, linear_limit};
 use oblique_lookup::{PatchKind, Table};
 
-/// Small table: all three patches (γ from 0.8 to 1.6), several blocks along γ, mixed refinement
-/// levels, α up to ∞.
+/// Small table: all three patches (γ from 0.8 to 1.6), several root cells along γ, leaves at
+/// mixed depths, α up to ∞.
 const SMALL_CONFIG: &str = r#"# tests/table_format.rs: small table with all three patches
 output = "unused.h5"
 
@@ -32,7 +32,7 @@ alpha_max = "inf"
 placement = "aligned"
 stencil = 4
 target_error = 1e-4
-block_intervals = 4
+leaf_intervals = 8
 blocks_per_unit_gamma = 2.0
 blocks_coord = 3
 
@@ -129,7 +129,6 @@ impl Expect {
 enum Ty {
     F64,
     I32,
-    I64,
     Str,
 }
 
@@ -138,7 +137,6 @@ impl Ty {
         match self {
             Ty::F64 => TypeDescriptor::Float(FloatSize::U8),
             Ty::I32 => TypeDescriptor::Integer(IntSize::U4),
-            Ty::I64 => TypeDescriptor::Integer(IntSize::U8),
             Ty::Str => TypeDescriptor::VarLenUnicode,
         }
     }
@@ -153,6 +151,7 @@ const ROOT_ATTRS: &[(&str, Ty)] = &[
     ("gamma_max", Ty::F64),
     ("alpha_max", Ty::F64),
     ("node_tol", Ty::F64),
+    ("check_tol", Ty::F64),
     ("target_error", Ty::F64),
     ("engine_version", Ty::Str),
     ("git_commit", Ty::Str),
@@ -176,27 +175,32 @@ const PATCH_ATTRS: &[(&str, Ty)] = &[
     ("gamma_hi", Ty::F64),
     ("blocks_gamma", Ty::F64),
     ("blocks_coord", Ty::F64),
-    ("block_intervals", Ty::F64),
+    ("leaf_intervals", Ty::F64),
 ];
+
+/// A leaf's square `(x0, c0, hx, hc)` in patch coordinates and its depth.
+type LeafSquare = (f64, f64, f64, f64, i32);
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum PatchShape {
-    /// `[blocks_gamma, blocks_coord]`
-    Blocks,
-    /// `[N]`, N = Σ (n+1)²
+    /// `[cells]`
+    Cells,
+    /// `[leaves]`
+    Leaves,
+    /// `[leaves, m+1, m+1]`
     Nodes,
 }
 
 /// Patch datasets.
 const PATCH_DATASETS: &[(&str, Ty, PatchShape)] = &[
-    ("level", Ty::I32, PatchShape::Blocks),
-    ("offset", Ty::I64, PatchShape::Blocks),
+    ("tree", Ty::I32, PatchShape::Cells),
     ("P", Ty::F64, PatchShape::Nodes),
     ("error_estimate", Ty::F64, PatchShape::Nodes),
     ("gamma", Ty::F64, PatchShape::Nodes),
     ("coord", Ty::F64, PatchShape::Nodes),
     ("alpha", Ty::F64, PatchShape::Nodes),
-    ("block_predicted_error", Ty::F64, PatchShape::Blocks),
+    ("leaf_depth", Ty::I32, PatchShape::Leaves),
+    ("leaf_predicted_error", Ty::F64, PatchShape::Leaves),
 ];
 
 /// Datasets of the other groups; all of one group share one length (`None`: any, `Some(n)`: n).
@@ -478,8 +482,8 @@ fn a_documented_names_match_the_explicit_lists() {
          test {untested:?}"
     );
     // The documented types of the integer datasets.
-    assert!(doc.contains("| `level` | dataset | int32 `[blocks_gamma, blocks_coord]`"));
-    assert!(doc.contains("| `offset` | dataset | int64 `[blocks_gamma, blocks_coord]`"));
+    assert!(doc.contains("| `tree` | dataset | int32 `[cells]`"));
+    assert!(doc.contains("| `leaf_depth` | dataset | int32 `[leaves]`"));
     assert!(doc.contains("| `/checks/patch` | int32 `[K]`"));
 }
 
@@ -504,12 +508,13 @@ fn check_layout(path: &Path, ex: &Expect) {
         "root attributes differ from the documented ones"
     );
     assert_eq!(attr_str(&f, "format"), "oblique-P-table");
-    assert_eq!(attr_f64(&f, "schema_version"), 1.0);
+    assert_eq!(attr_f64(&f, "schema_version"), 2.0);
     assert_eq!(attr_f64(&f, "stencil_points"), 4.0);
     assert_eq!(attr_f64(&f, "gamma_min"), gamma_min);
     assert_eq!(attr_f64(&f, "gamma_max"), gamma_max);
     assert_eq!(attr_f64(&f, "alpha_max"), alpha_max);
     assert_eq!(attr_f64(&f, "node_tol"), NODE_TOL);
+    assert_eq!(attr_f64(&f, "check_tol"), NODE_TOL / 10.0);
     assert_eq!(attr_f64(&f, "target_error"), TARGET_ERROR);
     assert_eq!(attr_str(&f, "config"), ex.config);
     let wall = attr_f64(&f, "wall_time_s");
@@ -573,84 +578,116 @@ fn check_layout(path: &Path, ex: &Expect) {
         assert_eq!((lo, hi), want, "{pname}: gamma edges");
         let bg = count_attr(&g, "blocks_gamma");
         let bc = count_attr(&g, "blocks_coord");
-        let m = count_attr(&g, "block_intervals");
-        let level: Vec<i32> = ints(&g, "level");
-        let offset: Vec<i64> = ints(&g, "offset");
-        assert_eq!(level.len(), bg * bc, "{pname}: level size");
-        let mut total = 0usize;
-        for (i, (&l, &o)) in level.iter().zip(&offset).enumerate() {
-            assert!((0..=12).contains(&l), "{pname}: level[{i}] = {l}");
-            assert_eq!(
-                o, total as i64,
-                "{pname}: offset[{i}] is not the running sum"
-            );
-            total += ((m << l) + 1).pow(2);
+        let m = count_attr(&g, "leaf_intervals");
+        let tree: Vec<i32> = ints(&g, "tree");
+        // Walk the tree as documented: every leaf's square (x0, c0, hx, hc) and depth.
+        let mut leaves: Vec<Option<LeafSquare>> = Vec::new();
+        let mut stack: Vec<(usize, f64, f64, f64, f64, i32)> = (0..bg * bc)
+            .map(|r| {
+                let (a, b) = (r / bc, r % bc);
+                let (hx, hc) = (1.0 / bg as f64, 1.0 / bc as f64);
+                (r, a as f64 * hx, b as f64 * hc, hx, hc, 0)
+            })
+            .collect();
+        let mut visited = vec![false; tree.len()];
+        while let Some((cell, x0, c0, hx, hc, d)) = stack.pop() {
+            assert!(!visited[cell], "{pname}: cell {cell} reached twice");
+            visited[cell] = true;
+            let t = tree[cell];
+            if t < 0 {
+                let leaf = (-t - 1) as usize;
+                if leaves.len() <= leaf {
+                    leaves.resize(leaf + 1, None);
+                }
+                assert!(leaves[leaf].is_none(), "{pname}: leaf {leaf} twice");
+                leaves[leaf] = Some((x0, c0, hx, hc, d));
+            } else {
+                let t = t as usize;
+                assert!(
+                    t > cell && t + 4 <= tree.len(),
+                    "{pname}: cell {cell} -> {t}"
+                );
+                for qg in 0..2 {
+                    for qc in 0..2 {
+                        let (x, c) = (x0 + qg as f64 * hx / 2.0, c0 + qc as f64 * hc / 2.0);
+                        stack.push((t + 2 * qg + qc, x, c, hx / 2.0, hc / 2.0, d + 1));
+                    }
+                }
+            }
         }
+        assert!(visited.iter().all(|&v| v), "{pname}: unreachable cells");
+        let leaves: Vec<_> = leaves
+            .into_iter()
+            .map(|l| l.expect("leaves numbered without gaps"))
+            .collect();
+        let nl = leaves.len();
         for &(name, ty, shape) in PATCH_DATASETS {
             let shape = match shape {
-                PatchShape::Blocks => vec![bg, bc],
-                PatchShape::Nodes => vec![total],
+                PatchShape::Cells => vec![tree.len()],
+                PatchShape::Leaves => vec![nl],
+                PatchShape::Nodes => vec![nl, m + 1, m + 1],
             };
             check_dataset(&g, name, ty, &shape);
+        }
+        let depth: Vec<i32> = ints(&g, "leaf_depth");
+        for (l, leaf) in leaves.iter().enumerate() {
+            assert_eq!(depth[l], leaf.4, "{pname}: leaf_depth[{l}]");
         }
         // Node positions as documented.
         let (gam, coord, alpha) = (f64s(&g, "gamma"), f64s(&g, "coord"), f64s(&g, "alpha"));
         let (p, err) = (f64s(&g, "P"), f64s(&g, "error_estimate"));
+        let total = p.len();
         let pk = if kind == "stick" {
             PatchKind::Stick
         } else {
             PatchKind::PartialSlip
         };
-        for a in 0..bg {
-            for b in 0..bc {
-                let blk = a * bc + b;
-                let n = m << level[blk];
-                for i in 0..=n {
-                    for j in 0..=n {
-                        let idx = offset[blk] as usize + i * (n + 1) + j;
-                        let g_doc = lo + (hi - lo) * (a as f64 + i as f64 / n as f64) / bg as f64;
-                        let c_doc = (b as f64 + j as f64 / n as f64) / bc as f64;
+        for (l, &(x0, c0, hx, hc, _)) in leaves.iter().enumerate() {
+            for i in 0..=m {
+                for j in 0..=m {
+                    let idx = (l * (m + 1) + i) * (m + 1) + j;
+                    let g_doc = lo + (hi - lo) * (x0 + hx * i as f64 / m as f64);
+                    let c_doc = c0 + hc * j as f64 / m as f64;
+                    assert!(
+                        (gam[idx] - g_doc).abs() <= 1e-12,
+                        "{pname}: node {idx} (leaf {l}, i {i}, j {j}) gamma {} vs {g_doc}",
+                        gam[idx]
+                    );
+                    assert!(
+                        (coord[idx] - c_doc).abs() <= 1e-12,
+                        "{pname}: node {idx} coord {} vs {c_doc}",
+                        coord[idx]
+                    );
+                    if pk == PatchKind::Stick && coord[idx] == 1.0 {
+                        assert_eq!(alpha[idx], alpha_max, "{pname}: node {idx} at c = 1");
+                        stick_c1.push((gam[idx], p[idx], err[idx]));
+                    } else if pk == PatchKind::PartialSlip && gam[idx] == 1.0 {
+                        // α_c1 = α_c2 at γ = 1: the patch has zero width, c is undefined.
                         assert!(
-                            (gam[idx] - g_doc).abs() <= 1e-12,
-                            "{pname}: node {idx} (block {a},{b}, i {i}, j {j}) gamma {} vs {g_doc}",
-                            gam[idx]
+                            (alpha[idx] - 2.0 / 7.0).abs() <= 1e-15,
+                            "{pname}: node {idx} at gamma 1: alpha {}",
+                            alpha[idx]
                         );
+                    } else {
+                        assert!(alpha[idx].is_finite(), "{pname}: node {idx} alpha");
+                        let c = pk.coord(gam[idx], alpha[idx], alpha_max);
                         assert!(
-                            (coord[idx] - c_doc).abs() <= 1e-12,
-                            "{pname}: node {idx} coord {} vs {c_doc}",
+                            (c - coord[idx]).abs() <= 1e-9,
+                            "{pname}: node {idx}: alpha {} has coordinate {c}, stored {}",
+                            alpha[idx],
                             coord[idx]
                         );
-                        if pk == PatchKind::Stick && coord[idx] == 1.0 {
-                            assert_eq!(alpha[idx], alpha_max, "{pname}: node {idx} at c = 1");
-                            stick_c1.push((gam[idx], p[idx], err[idx]));
-                        } else if pk == PatchKind::PartialSlip && gam[idx] == 1.0 {
-                            // α_c1 = α_c2 at γ = 1: the patch has zero width, c is undefined.
-                            assert!(
-                                (alpha[idx] - 2.0 / 7.0).abs() <= 1e-15,
-                                "{pname}: node {idx} at gamma 1: alpha {}",
-                                alpha[idx]
-                            );
-                        } else {
-                            assert!(alpha[idx].is_finite(), "{pname}: node {idx} alpha");
-                            let c = pk.coord(gam[idx], alpha[idx], alpha_max);
-                            assert!(
-                                (c - coord[idx]).abs() <= 1e-9,
-                                "{pname}: node {idx}: alpha {} has coordinate {c}, stored {}",
-                                alpha[idx],
-                                coord[idx]
-                            );
-                        }
-                        assert!(p[idx].is_finite() && p[idx].abs() <= 1.0 + 1e-9);
-                        assert!(
-                            err[idx] >= 0.0 && err[idx] <= NODE_TOL,
-                            "{pname}: node {idx} error estimate {} > node_tol",
-                            err[idx]
-                        );
                     }
+                    assert!(p[idx].is_finite() && p[idx].abs() <= 1.0 + 1e-9);
+                    assert!(
+                        err[idx] >= 0.0 && err[idx] <= NODE_TOL,
+                        "{pname}: node {idx} error estimate {} > node_tol",
+                        err[idx]
+                    );
                 }
             }
         }
-        // Shared block edges carry identical values.
+        // Nodes shared by leaves carry identical values.
         let mut seen: HashMap<(u64, u64), f64> = HashMap::new();
         for idx in 0..total {
             let key = (gam[idx].to_bits(), coord[idx].to_bits());
@@ -664,11 +701,11 @@ fn check_layout(path: &Path, ex: &Expect) {
                 seen.insert(key, p[idx]);
             }
         }
-        let bpe = f64s(&g, "block_predicted_error");
+        let lpe = f64s(&g, "leaf_predicted_error");
         assert!(
-            bpe.iter()
+            lpe.iter()
                 .all(|e| e.is_finite() && *e >= 0.0 && *e <= TARGET_ERROR),
-            "{pname}: block_predicted_error above target_error: {bpe:?}"
+            "{pname}: leaf_predicted_error above target_error: {lpe:?}"
         );
     }
 
@@ -1139,15 +1176,15 @@ fn d_tables_do_not_depend_on_thread_count() {
     for (pname, _) in PATCHES {
         let (g1, g2) = (p1.group(pname).unwrap(), p2.group(pname).unwrap());
         assert_eq!(
-            ints::<i32>(&g1, "level"),
-            ints::<i32>(&g2, "level"),
-            "{pname}: levels differ between --threads 1 and 2"
+            ints::<i32>(&g1, "tree"),
+            ints::<i32>(&g2, "tree"),
+            "{pname}: quadtrees differ between --threads 1 and 2"
         );
         assert!(
             bits(f64s(&g1, "P")) == bits(f64s(&g2, "P")),
             "{pname}: P differs between --threads 1 and 2"
         );
-        for name in ["error_estimate", "block_predicted_error", "alpha"] {
+        for name in ["error_estimate", "leaf_predicted_error", "alpha"] {
             assert!(
                 bits(f64s(&g1, name)) == bits(f64s(&g2, name)),
                 "{pname}/{name} differs between --threads 1 and 2"
@@ -1182,25 +1219,26 @@ fn e_inspect_json_reports_the_files_node_counts() {
     for entry in listed {
         let name = entry["name"].as_str().unwrap();
         let g = patches.group(name).unwrap();
-        let n = g.dataset("P").unwrap().shape()[0] as u64;
+        let n = g.dataset("P").unwrap().size() as u64;
         total += n;
         assert_eq!(entry["nodes"].as_u64(), Some(n), "{name}: nodes");
         assert_eq!(entry["kind"].as_str().unwrap(), attr_str(&g, "kind"));
-        for key in ["blocks_gamma", "blocks_coord", "block_intervals"] {
+        for key in ["blocks_gamma", "blocks_coord", "leaf_intervals"] {
             assert_eq!(
                 entry[key].as_u64(),
                 Some(count_attr(&g, key) as u64),
                 "{name}: {key}"
             );
         }
-        let level: Vec<i32> = ints(&g, "level");
+        let depth: Vec<i32> = ints(&g, "leaf_depth");
+        assert_eq!(entry["leaves"].as_u64(), Some(depth.len() as u64));
         assert_eq!(
-            entry["level_min"].as_i64(),
-            level.iter().min().map(|&x| x as i64)
+            entry["depth_min"].as_i64(),
+            depth.iter().min().map(|&x| x as i64)
         );
         assert_eq!(
-            entry["level_max"].as_i64(),
-            level.iter().max().map(|&x| x as i64)
+            entry["depth_max"].as_i64(),
+            depth.iter().max().map(|&x| x as i64)
         );
         assert_eq!(entry["gamma_lo"].as_f64(), Some(attr_f64(&g, "gamma_lo")));
         assert_eq!(entry["gamma_hi"].as_f64(), Some(attr_f64(&g, "gamma_hi")));
@@ -1213,7 +1251,7 @@ fn e_inspect_json_reports_the_files_node_counts() {
         v["checks"]["max_interpolation_error"].as_f64(),
         Some(err.iter().copied().fold(0.0, f64::max))
     );
-    assert_eq!(v["schema_version"].as_u64(), Some(1));
+    assert_eq!(v["schema_version"].as_u64(), Some(2));
     assert_eq!(v["stencil_points"].as_u64(), Some(4));
     assert_eq!(v["alpha_max"].as_str(), Some("inf"));
     assert_eq!(v["gamma_min"].as_f64(), Some(GAMMA_MIN));
@@ -1321,14 +1359,31 @@ fn f_bad_files_are_refused_with_clear_messages() {
     }
     refused(&wrong_format, &["not a p table"]);
 
-    let schema2 = dir.join("schema2.h5");
-    std::fs::copy(&fx.table, &schema2).unwrap();
-    {
-        let f = hdf5::File::open_rw(&schema2).unwrap();
-        f.attr("schema_version")
-            .unwrap()
-            .write_scalar(&2.0)
-            .unwrap();
+    for (name, version) in [("schema1.h5", 1.0), ("schema3.h5", 3.0)] {
+        let other = dir.join(name);
+        std::fs::copy(&fx.table, &other).unwrap();
+        {
+            let f = hdf5::File::open_rw(&other).unwrap();
+            f.attr("schema_version")
+                .unwrap()
+                .write_scalar(&version)
+                .unwrap();
+        }
+        refused(&other, &["schema version"]);
     }
-    refused(&schema2, &["schema version"]);
+
+    // A quadtree whose cell points back to itself (a cycle) or outside the array.
+    for (name, value) in [("tree_cycle.h5", 0), ("tree_out_of_range.h5", 1 << 30)] {
+        let bad = dir.join(name);
+        std::fs::copy(&fx.table, &bad).unwrap();
+        {
+            let f = hdf5::File::open_rw(&bad).unwrap();
+            let g = f.group("patches/partial_high").unwrap();
+            let d = g.dataset("tree").unwrap();
+            let mut tree: Vec<i32> = d.read_raw().unwrap();
+            tree[0] = value;
+            d.write_raw(&tree).unwrap();
+        }
+        refused(&bad, &["tree"]);
+    }
 }

@@ -1,7 +1,7 @@
-//! Names of the HDF5 objects of a table (schema v1). `docs/table-format.md` documents each.
+//! Names of the HDF5 objects of a table (schema v2). `docs/table-format.md` documents each.
 
 /// Schema version written and read by this crate.
-pub const SCHEMA_VERSION: u32 = 1;
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// Root attribute: schema version (an integer value stored as float64).
 pub const ATTR_SCHEMA: &str = "schema_version";
@@ -27,6 +27,8 @@ pub const ATTR_CONFIG: &str = "config";
 pub const ATTR_SOLVER: &str = "solver";
 /// Root attribute: node solver tolerance (absolute error of P).
 pub const ATTR_NODE_TOL: &str = "node_tol";
+/// Root attribute: solver tolerance of the held-out check points (absolute error of P).
+pub const ATTR_CHECK_TOL: &str = "check_tol";
 /// Root attribute: target interpolation error.
 pub const ATTR_TARGET_ERROR: &str = "target_error";
 /// Root attribute: creation time (UTC, RFC 3339).
@@ -48,28 +50,29 @@ pub const ATTR_KIND: &str = "kind";
 pub const ATTR_GAMMA_LO: &str = "gamma_lo";
 /// Patch attribute: upper γ edge.
 pub const ATTR_GAMMA_HI: &str = "gamma_hi";
-/// Patch attribute: number of blocks along γ.
+/// Patch attribute: number of root cells along γ.
 pub const ATTR_BLOCKS_GAMMA: &str = "blocks_gamma";
-/// Patch attribute: number of blocks along the coordinate.
+/// Patch attribute: number of root cells along the coordinate.
 pub const ATTR_BLOCKS_COORD: &str = "blocks_coord";
-/// Patch attribute: intervals per axis of a level-0 block.
-pub const ATTR_BLOCK_INTERVALS: &str = "block_intervals";
-/// Patch dataset (int32 `[blocks_gamma, blocks_coord]`): refinement level of every block.
-pub const DS_LEVEL: &str = "level";
-/// Patch dataset (int64 `[blocks_gamma, blocks_coord]`): offset of every block in the node arrays.
-pub const DS_OFFSET: &str = "offset";
-/// Node dataset (flat, block by block): γ of every node.
+/// Patch attribute: intervals per axis of every leaf's node grid (`m`).
+pub const ATTR_LEAF_INTERVALS: &str = "leaf_intervals";
+/// Patch dataset (int32 `[cells]`): the quadtree; `≥ 0` first child of a split cell, `< 0` leaf
+/// number `−value − 1`.
+pub const DS_TREE: &str = "tree";
+/// Patch dataset (int32 `[leaves]`): depth of every leaf (roots are depth 0).
+pub const DS_LEAF_DEPTH: &str = "leaf_depth";
+/// Node dataset (`[leaves, m+1, m+1]`): γ of every node.
 pub const DS_GAMMA: &str = "gamma";
-/// Node dataset (flat): patch coordinate `c` of every node.
+/// Node dataset (`[leaves, m+1, m+1]`): patch coordinate `c` of every node.
 pub const DS_COORD: &str = "coord";
-/// Node dataset (flat): α of every node (`inf` allowed).
+/// Node dataset (`[leaves, m+1, m+1]`): α of every node (`inf` allowed).
 pub const DS_ALPHA: &str = "alpha";
-/// Node dataset (flat): P of every node.
+/// Node dataset (`[leaves, m+1, m+1]`): P of every node.
 pub const DS_P: &str = "P";
-/// Node dataset (flat): solver error estimate of P at every node.
+/// Node dataset (`[leaves, m+1, m+1]`): solver error estimate of P at every node.
 pub const DS_ERROR: &str = "error_estimate";
-/// Patch dataset (`[blocks_gamma, blocks_coord]`): predicted interpolation error of every block.
-pub const DS_BLOCK_ERROR: &str = "block_predicted_error";
+/// Patch dataset (`[leaves]`): predicted interpolation error of every leaf.
+pub const DS_LEAF_ERROR: &str = "leaf_predicted_error";
 
 /// Group with the no-slip limit `P(γ, ∞)`: datasets `gamma`, `P`, `error_estimate`.
 pub const GROUP_NO_SLIP: &str = "no_slip";

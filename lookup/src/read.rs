@@ -27,6 +27,8 @@ pub struct Provenance {
     pub wall_time_s: f64,
     /// Node solver tolerance.
     pub node_tol: f64,
+    /// Solver tolerance of the held-out check points.
+    pub check_tol: f64,
     /// Target interpolation error.
     pub target_error: f64,
 }
@@ -38,7 +40,7 @@ pub struct Check {
     pub gamma: f64,
     /// α.
     pub alpha: f64,
-    /// P simulated at the node tolerance.
+    /// P simulated at the check tolerance (`check_tol`).
     pub p_simulated: f64,
     /// P interpolated from the table.
     pub p_interpolated: f64,
@@ -112,24 +114,67 @@ impl Reader<'_> {
         }
     }
 
-    /// A `[blocks_gamma, blocks_coord]` integer dataset of a patch.
-    fn block_dataset<T: hdf5::H5Type>(
+    /// A 1-D int32 dataset of a patch (any length).
+    fn int_dataset(
         &self,
         g: &hdf5::Group,
         patch: &str,
         name: &str,
-        shape: [usize; 2],
-    ) -> Result<Vec<T>, LookupError> {
+    ) -> Result<Vec<i32>, LookupError> {
         g.dataset(name)
             .ok()
-            .filter(|d| d.shape() == shape)
-            .and_then(|d| d.read_raw::<T>().ok())
+            .filter(|d| d.ndim() == 1)
+            .and_then(|d| d.read_raw::<i32>().ok())
             .ok_or_else(|| {
                 self.invalid(format!(
-                    "patch '{patch}': dataset '{name}' missing or not [{}, {}]",
-                    shape[0], shape[1]
+                    "patch '{patch}': dataset '{name}' missing or not a 1-D int32 array"
                 ))
             })
+    }
+
+    /// Check that `tree` is a valid quadtree over `roots` root cells whose leaves are numbered
+    /// `0..leaves` each exactly once; returns the number of leaves.
+    fn check_tree(&self, patch: &str, tree: &[i32], roots: usize) -> Result<usize, LookupError> {
+        let bad = |m: String| self.invalid(format!("patch '{patch}': dataset 'tree' {m}"));
+        if tree.len() < roots || (tree.len() - roots) % 4 != 0 {
+            return Err(bad(format!(
+                "has {} cells: expected {roots} roots plus groups of 4 children",
+                tree.len()
+            )));
+        }
+        let mut referenced = vec![false; tree.len()];
+        let mut leaves = Vec::new();
+        for (i, &t) in tree.iter().enumerate() {
+            if t < 0 {
+                leaves.push((-(t as i64) - 1) as usize);
+                continue;
+            }
+            let first = t as usize;
+            // Children come after their parent (no cycles) and after the roots.
+            if first <= i || first < roots || first + 4 > tree.len() {
+                return Err(bad(format!(
+                    "cell {i} points to children at {t}: out of range"
+                )));
+            }
+            for r in &mut referenced[first..first + 4] {
+                if *r {
+                    return Err(bad(format!(
+                        "cell {i}: children at {t} shared with another cell"
+                    )));
+                }
+                *r = true;
+            }
+        }
+        if let Some(i) = (roots..tree.len()).find(|&i| !referenced[i]) {
+            return Err(bad(format!("cell {i} is not reachable from a root")));
+        }
+        leaves.sort_unstable();
+        if leaves.iter().enumerate().any(|(k, &l)| k != l) {
+            return Err(bad(
+                "does not number its leaves 0, 1, 2, ... exactly once".into()
+            ));
+        }
+        Ok(leaves.len())
     }
 
     fn count_attr(&self, g: &hdf5::Group, name: &str, max: usize) -> Result<usize, LookupError> {
@@ -169,34 +214,17 @@ impl Reader<'_> {
         }
         let bg = self.count_attr(&g, ATTR_BLOCKS_GAMMA, 1 << 16)?;
         let bc = self.count_attr(&g, ATTR_BLOCKS_COORD, 1 << 16)?;
-        let m = self.count_attr(&g, ATTR_BLOCK_INTERVALS, 1 << 12)?;
+        let m = self.count_attr(&g, ATTR_LEAF_INTERVALS, 1 << 12)?;
         if m + 1 < stencil {
             return Err(self.invalid(format!(
-                "patch '{name}': block_intervals = {m} gives fewer nodes than stencil_points = {stencil}"
+                "patch '{name}': leaf_intervals = {m} gives fewer nodes than stencil_points = {stencil}"
             )));
         }
-        let level_raw = self.block_dataset::<i32>(&g, name, DS_LEVEL, [bg, bc])?;
-        let offset_raw = self.block_dataset::<i64>(&g, name, DS_OFFSET, [bg, bc])?;
-        let mut level = Vec::with_capacity(level_raw.len());
-        let mut offset = Vec::with_capacity(level_raw.len());
-        let mut total = 0usize;
-        for (i, (&l, &o)) in level_raw.iter().zip(&offset_raw).enumerate() {
-            if !(0..=12).contains(&l) {
-                return Err(
-                    self.invalid(format!("patch '{name}': level[{i}] = {l} not in [0, 12]"))
-                );
-            }
-            if o != total as i64 {
-                return Err(self.invalid(format!(
-                    "patch '{name}': offset[{i}] = {o}, expected {total} (blocks must be stored in order)"
-                )));
-            }
-            level.push(l as u32);
-            offset.push(total);
-            total += ((m << l) + 1).pow(2);
-        }
-        let p = self.dataset(&g, DS_P, &[total])?;
-        let err = self.dataset(&g, DS_ERROR, &[total])?;
+        let tree = self.int_dataset(&g, name, DS_TREE)?;
+        let leaves = self.check_tree(name, &tree, bg * bc)?;
+        let shape = [leaves, m + 1, m + 1];
+        let p = self.dataset(&g, DS_P, &shape)?;
+        let err = self.dataset(&g, DS_ERROR, &shape)?;
         self.finite(&format!("{name}/{DS_P}"), &p)?;
         self.finite(&format!("{name}/{DS_ERROR}"), &err)?;
         if let Some(i) = p.iter().position(|x| x.abs() > 1.0 + 1e-6) {
@@ -208,9 +236,8 @@ impl Reader<'_> {
             gamma_hi,
             blocks_gamma: bg,
             blocks_coord: bc,
-            block_intervals: m,
-            level,
-            offset,
+            leaf_intervals: m,
+            tree,
             p,
             error_estimate: err,
         }))
@@ -309,6 +336,7 @@ impl Table {
             created: str_attr(ATTR_CREATED),
             wall_time_s: r.attr_f64(&file, ATTR_WALL_TIME).unwrap_or(f64::NAN),
             node_tol: r.attr_f64(&file, ATTR_NODE_TOL).unwrap_or(f64::NAN),
+            check_tol: r.attr_f64(&file, ATTR_CHECK_TOL).unwrap_or(f64::NAN),
             target_error: r.attr_f64(&file, ATTR_TARGET_ERROR).unwrap_or(f64::NAN),
         };
         let checks = match file.group(GROUP_CHECKS) {

@@ -1,4 +1,4 @@
-//! The interpolation rule of schema v1 (stated in `docs/table-format.md`).
+//! The interpolation rule of schema v2 (stated in `docs/table-format.md`).
 //!
 //! The nonlinear part of the `(γ, α)` plane is covered by up to three patches whose edges lie on
 //! the curves where `P` has curvature jumps, so that `P` is smooth inside each patch:
@@ -9,10 +9,11 @@
 //! | `partial_high` | `1 ≤ γ ≤ γ_max` | `α_c1 … α_c2`   | `1 − √(1 − ℓ)`, `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)` |
 //! | `stick_high`   | `1 ≤ γ ≤ γ_max` | `α_c2 … α_max`  | `S(α)/S(α_max)`, `S = r/(r + ρ)`               |
 //!
-//! with `r = α/α_c2 − 1`, `ρ = 2(1 − γ²)` for `γ < 1` and `ρ = 1` for `γ ≥ 1`, `S(∞) = 1`. Each patch is cut into equal
-//! blocks in `(γ, c)`; each block stores `P` on its own uniform grid, refined where `P` needs it.
-//! Inside a block `P` is the tensor product of 1-D Lagrange polynomials through `k` consecutive
-//! nodes of that block per axis (`k = stencil_points`).
+//! with `r = α/α_c2 − 1`, `ρ = 2(1 − γ²)` for `γ < 1` and `ρ = 1` for `γ ≥ 1`, `S(∞) = 1`. Each
+//! patch is cut into equal root cells in `(γ, c)`, each refined as a quadtree where `P` needs it
+//! (the kink curves inside the partial-slip patch for `γ ≳ 2`); every leaf stores `P` on its own
+//! uniform grid. Inside a leaf `P` is the tensor product of 1-D Lagrange polynomials through `k`
+//! consecutive nodes of that leaf per axis (`k = stencil_points`).
 
 use crate::LookupError;
 
@@ -117,10 +118,16 @@ pub fn stick_scale(gamma: f64) -> f64 {
     }
 }
 
-/// One patch, cut into `blocks_gamma × blocks_coord` equal blocks in `(γ, c)`. Block `(a, b)` has
-/// refinement level `ℓ = level[a·blocks_coord + b]` and carries a uniform grid of
-/// `n + 1` × `n + 1` nodes, `n = block_intervals · 2^ℓ`, stored row-major (`γ` outer) from
-/// `offset[a·blocks_coord + b]` in the flat arrays `p` and `error_estimate`.
+/// One patch: `blocks_gamma × blocks_coord` equal root cells in `(γ, c)`, each the root of a
+/// quadtree. A cell is either split into four children of half its size or is a leaf; every leaf
+/// carries a uniform grid of `(m + 1) × (m + 1)` nodes (`m = leaf_intervals`) over its own square,
+/// so the node spacing halves with each depth, only where `P` needs it.
+///
+/// `tree[i]` describes cell `i`. Cells `0 .. blocks_gamma·blocks_coord` are the roots, row-major
+/// (`γ` outer). `tree[i] ≥ 0`: the cell is split and its children are the cells
+/// `tree[i] + 2·q_γ + q_c`, where `q_γ, q_c ∈ {0, 1}` select the upper half along γ and `c`.
+/// `tree[i] < 0`: the cell is leaf number `−tree[i] − 1`, whose nodes are
+/// `p[leaf·(m+1)² + i_γ·(m+1) + i_c]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Patch {
     /// Region and coordinate.
@@ -129,17 +136,15 @@ pub struct Patch {
     pub gamma_lo: f64,
     /// Upper γ edge.
     pub gamma_hi: f64,
-    /// Blocks along γ.
+    /// Root cells along γ.
     pub blocks_gamma: usize,
-    /// Blocks along `c`.
+    /// Root cells along `c`.
     pub blocks_coord: usize,
-    /// Intervals per axis of a level-0 block.
-    pub block_intervals: usize,
-    /// Level of every block, row-major `[a][b]`.
-    pub level: Vec<u32>,
-    /// Offset of every block's first node in `p`.
-    pub offset: Vec<usize>,
-    /// `P` at the nodes.
+    /// Intervals per axis of every leaf's grid (`m`).
+    pub leaf_intervals: usize,
+    /// The quadtree, see the type's documentation.
+    pub tree: Vec<i32>,
+    /// `P` at the nodes, leaf by leaf, `[leaves, m + 1, m + 1]` row-major.
     pub p: Vec<f64>,
     /// Solver error estimate of each node, same layout.
     pub error_estimate: Vec<f64>,
@@ -174,20 +179,56 @@ pub fn locate(x: f64, blocks: usize) -> (usize, f64) {
 }
 
 impl Patch {
-    /// Nodes per axis of a block at level `l`, minus one.
-    pub fn intervals(&self, l: u32) -> usize {
-        self.block_intervals << l
+    /// Number of leaves.
+    pub fn leaves(&self) -> usize {
+        self.p.len() / (self.leaf_intervals + 1).pow(2)
+    }
+
+    /// Depth of every leaf (roots have depth 0), in leaf order.
+    pub fn leaf_depths(&self) -> Vec<u32> {
+        let mut depth = vec![0u32; self.leaves()];
+        let mut stack: Vec<(usize, u32)> = (0..self.blocks_gamma * self.blocks_coord)
+            .map(|i| (i, 0))
+            .collect();
+        while let Some((cell, d)) = stack.pop() {
+            let t = self.tree[cell];
+            if t < 0 {
+                depth[(-(t as i64) - 1) as usize] = d;
+            } else {
+                stack.extend((0..4).map(|q| (t as usize + q, d + 1)));
+            }
+        }
+        depth
+    }
+
+    /// The leaf containing `(γ, c)` and the position inside it, both components in `[0, 1]`.
+    #[inline]
+    pub fn find_leaf(&self, gamma: f64, c: f64) -> (usize, f64, f64) {
+        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
+        let (a, mut fg) = locate(xg, self.blocks_gamma);
+        let (b, mut fc) = locate(c, self.blocks_coord);
+        let mut cell = a * self.blocks_coord + b;
+        loop {
+            let t = self.tree[cell];
+            if t < 0 {
+                return ((-(t as i64) - 1) as usize, fg, fc);
+            }
+            fg *= 2.0;
+            fc *= 2.0;
+            let qg = usize::from(fg >= 1.0);
+            let qc = usize::from(fc >= 1.0);
+            fg -= qg as f64;
+            fc -= qc as f64;
+            cell = t as usize + 2 * qg + qc;
+        }
     }
 
     /// Interpolate `P` at `(γ, c)` with a `k`-point stencil per axis.
     #[inline]
     pub fn interpolate(&self, gamma: f64, c: f64, k: usize) -> f64 {
-        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
-        let (a, fg) = locate(xg, self.blocks_gamma);
-        let (b, fc) = locate(c, self.blocks_coord);
-        let blk = a * self.blocks_coord + b;
-        let n = self.intervals(self.level[blk]);
-        let vals = &self.p[self.offset[blk]..];
+        let (leaf, fg, fc) = self.find_leaf(gamma, c);
+        let n = self.leaf_intervals;
+        let vals = &self.p[leaf * (n + 1) * (n + 1)..];
         let mut wg = [0.0; 8];
         let mut wc = [0.0; 8];
         let (sg, kg) = stencil(fg * n as f64, n + 1, k, &mut wg);

@@ -79,22 +79,23 @@ pub struct Domain {
 #[serde(deny_unknown_fields)]
 pub struct Nodes {
     /// Placement: "aligned" (patches bounded by α_c1, α_c2, α_max and γ = 1; the only placement
-    /// of schema v1).
+    /// of schema v2).
     #[serde(default = "default_placement")]
     pub placement: String,
     /// Lagrange stencil points per axis: 4 (cubic) or 6 (quintic).
     #[serde(default = "default_stencil")]
     pub stencil: usize,
-    /// Target maximum interpolation error of P; node counts are doubled per axis until the
-    /// predicted error is below it.
+    /// Target maximum interpolation error of P; a quadtree cell is split into four until the
+    /// predicted error of every leaf is below it.
     pub target_error: f64,
-    /// Intervals per axis of a level-0 block (≥ stencil).
-    #[serde(default = "default_block_intervals")]
-    pub block_intervals: usize,
-    /// Blocks per unit of γ along the γ axis of a patch.
+    /// Intervals per axis of every leaf's node grid: even, ≥ 2(stencil − 1) so that the half grid
+    /// used to measure the error still holds a full stencil.
+    #[serde(default = "default_leaf_intervals")]
+    pub leaf_intervals: usize,
+    /// Root cells per unit of γ along the γ axis of a patch.
     #[serde(default = "default_blocks_gamma")]
     pub blocks_per_unit_gamma: f64,
-    /// Blocks along the patch coordinate.
+    /// Root cells along the patch coordinate.
     #[serde(default = "default_blocks_coord")]
     pub blocks_coord: usize,
     /// Refuse to place more nodes than this in total.
@@ -108,8 +109,8 @@ fn default_placement() -> String {
 fn default_stencil() -> usize {
     4
 }
-fn default_block_intervals() -> usize {
-    4
+fn default_leaf_intervals() -> usize {
+    8
 }
 fn default_blocks_gamma() -> f64 {
     2.0
@@ -139,6 +140,10 @@ pub struct Checks {
     /// Seed of the deterministic generator that places them.
     #[serde(default = "default_seed")]
     pub seed: u64,
+    /// Solver tolerance of the check points (absolute error of P); default `solver.tol / 10`,
+    /// so that the measured interpolation error is that of the table, not of the check.
+    #[serde(default)]
+    pub tol: Option<f64>,
 }
 
 fn default_checks() -> usize {
@@ -153,6 +158,7 @@ impl Default for Checks {
         Self {
             per_patch: default_checks(),
             seed: default_seed(),
+            tol: None,
         }
     }
 }
@@ -207,6 +213,14 @@ impl Config {
         Ok((Self::parse(&text, &p)?, text))
     }
 
+    /// Solver tolerance of the held-out checks: `checks.tol`, or `solver.tol / 10` (at least
+    /// 1e-10).
+    pub fn check_tol(&self) -> f64 {
+        self.checks
+            .tol
+            .unwrap_or((self.solver.tol / 10.0).max(1e-10))
+    }
+
     fn validate(&self, path: &str) -> Result<(), ConfigError> {
         let err = |key: &'static str, value: String, allowed: String| ConfigError::Range {
             path: path.to_string(),
@@ -255,11 +269,12 @@ impl Config {
                 "in (0, 0.1)".into(),
             ));
         }
-        if n.block_intervals < n.stencil || n.block_intervals > 64 {
+        let min_leaf = 2 * (n.stencil - 1);
+        if n.leaf_intervals < min_leaf || n.leaf_intervals > 64 || n.leaf_intervals % 2 != 0 {
             return Err(err(
-                "nodes.block_intervals",
-                n.block_intervals.to_string(),
-                format!("in [stencil = {}, 64]", n.stencil),
+                "nodes.leaf_intervals",
+                n.leaf_intervals.to_string(),
+                format!("an even number in [2(stencil - 1) = {min_leaf}, 64]"),
             ));
         }
         if !(n.blocks_per_unit_gamma.is_finite()
@@ -300,6 +315,15 @@ impl Config {
                 s.tol.to_string(),
                 format!("<= nodes.target_error = {} (nodes must be more accurate than the interpolation)", n.target_error),
             ));
+        }
+        if let Some(t) = self.checks.tol {
+            if !(t.is_finite() && t >= 1e-10 && t <= s.tol) {
+                return Err(err(
+                    "checks.tol",
+                    t.to_string(),
+                    format!("in [1e-10, solver.tol = {}]", s.tol),
+                ));
+            }
         }
         if self.checks.per_patch > 100_000 {
             return Err(err(

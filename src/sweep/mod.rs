@@ -45,6 +45,34 @@ pub enum SweepError {
         /// Nodes placed so far.
         nodes: usize,
     },
+    /// A cell at the deepest level still predicts more than the target: `P` is not smooth
+    /// there at the scale the node tolerance resolves (node noise or a kink).
+    #[error(
+        "patch {patch}: a cell of depth {depth} (gamma {gamma_lo:.6}..{gamma_hi:.6}, coordinate \
+         {c_lo:.6}..{c_hi:.6}) still predicts an interpolation error of {predicted:.2e} > \
+         target_error {target:e}, with node error estimates up to {node_error:.1e}; loosen \
+         nodes.target_error or tighten solver.tol"
+    )]
+    DepthLimit {
+        /// Patch name.
+        patch: &'static str,
+        /// Depth of the cell.
+        depth: u32,
+        /// γ range of the cell.
+        gamma_lo: f64,
+        /// Upper γ of the cell.
+        gamma_hi: f64,
+        /// Patch coordinate range of the cell.
+        c_lo: f64,
+        /// Upper coordinate of the cell.
+        c_hi: f64,
+        /// Predicted interpolation error.
+        predicted: f64,
+        /// Target error.
+        target: f64,
+        /// Largest node error estimate of the cell.
+        node_error: f64,
+    },
 }
 
 /// Progress reporting for long runs (implemented by the CLI).
@@ -79,9 +107,11 @@ pub struct BuiltPatch {
     pub coord: Vec<f64>,
     /// α of every node (`∞` allowed).
     pub alpha: Vec<f64>,
-    /// Predicted interpolation error of every block.
-    pub block_error: Vec<f64>,
-    /// Distinct nodes (blocks share their edges).
+    /// Predicted interpolation error of every leaf.
+    pub leaf_error: Vec<f64>,
+    /// Depth of every leaf.
+    pub leaf_depth: Vec<u32>,
+    /// Distinct nodes (leaves share their edges).
     pub unique_nodes: usize,
     /// Distinct nodes that were simulated (the others are closed forms).
     pub simulated: usize,
@@ -98,8 +128,8 @@ pub struct Built {
     pub checks: Vec<Check>,
 }
 
-/// Highest block level (`block_intervals · 2^MAX_LEVEL` intervals per block axis).
-const MAX_LEVEL: u32 = 8;
+/// Deepest quadtree level (a leaf at this depth has `2^-MAX_DEPTH` of its root's size).
+const MAX_DEPTH: u32 = 12;
 
 /// Compute P at many points in parallel, in order (deterministic whatever the thread count).
 pub fn solve_points(
@@ -166,7 +196,7 @@ fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
     specs
 }
 
-/// The block layout of a patch being built and the exact lattice its nodes live on.
+/// The root grid of a patch being built and the exact lattice its nodes live on.
 struct Layout<'a> {
     spec: &'a PatchSpec,
     bg: usize,
@@ -178,18 +208,18 @@ struct Layout<'a> {
 /// A node on the finest lattice of a patch: `(γ index, c index)`.
 type Key = (u64, u64);
 
-impl Layout<'_> {
-    fn fine(&self) -> u64 {
-        (self.m as u64) << MAX_LEVEL
-    }
+/// A quadtree cell: its depth and integer position at that depth.
+#[derive(Debug, Clone, Copy)]
+struct Cell {
+    depth: u32,
+    ig: u64,
+    ic: u64,
+}
 
-    /// Lattice key of node `(i, j)` of block `(a, b)` at level `l`.
-    fn key(&self, a: usize, b: usize, l: u32, i: usize, j: usize) -> Key {
-        let step = 1u64 << (MAX_LEVEL - l);
-        (
-            a as u64 * self.fine() + i as u64 * step,
-            b as u64 * self.fine() + j as u64 * step,
-        )
+impl Layout<'_> {
+    /// Lattice units per root cell per axis.
+    fn fine(&self) -> u64 {
+        (self.m as u64) << MAX_DEPTH
     }
 
     /// `(γ, c, α)` of a lattice node (computed from the key alone, so shared nodes agree).
@@ -206,16 +236,30 @@ impl Layout<'_> {
         (gamma, c, self.spec.kind.alpha(gamma, c, self.alpha_max))
     }
 
-    fn block_keys(&self, a: usize, b: usize, l: u32) -> Vec<Key> {
-        let n = self.m << l;
-        (0..=n)
-            .flat_map(|i| (0..=n).map(move |j| (i, j)))
-            .map(|(i, j)| self.key(a, b, l, i, j))
+    /// Lattice keys of a cell's `(m+1)²` nodes, row-major (`γ` outer).
+    fn cell_keys(&self, cell: Cell) -> Vec<Key> {
+        let step = 1u64 << (MAX_DEPTH - cell.depth);
+        let m = self.m as u64;
+        (0..=m)
+            .flat_map(|i| (0..=m).map(move |j| (i, j)))
+            .map(|(i, j)| ((cell.ig * m + i) * step, (cell.ic * m + j) * step))
             .collect()
     }
 }
 
-/// Largest deviation, over the nodes of a level-`l` block grid that are not on its level-`l−1`
+impl Cell {
+    fn children(self) -> [Cell; 4] {
+        let child = |qg: u64, qc: u64| Cell {
+            depth: self.depth + 1,
+            ig: 2 * self.ig + qg,
+            ic: 2 * self.ic + qc,
+        };
+        // Order fixed by the format: child `2·q_γ + q_c`.
+        [child(0, 0), child(0, 1), child(1, 0), child(1, 1)]
+    }
+}
+
+/// Largest deviation, over the nodes of an `n`-interval grid that are not on its `n/2`-interval
 /// sub-grid, between the value and the `k`-point tensor interpolation from the sub-grid.
 fn surplus(values: &[f64], n: usize, k: usize) -> f64 {
     let coarse_n = n / 2;
@@ -242,6 +286,14 @@ fn surplus(values: &[f64], n: usize, k: usize) -> f64 {
     worst
 }
 
+/// Build one patch by adaptive quadtree refinement.
+///
+/// Every open cell gets its `(m+1)²` nodes (nodes shared with cells already done are reused).
+/// Its surplus `s` (the error of interpolating from its own half grid) measures the error of a
+/// grid twice as coarse; the cell's own error is predicted as `s/4`, the second-order rate that
+/// holds where a kink curve (curvature jump) crosses the cell (smooth cells converge faster, so
+/// the prediction is conservative there). A cell whose prediction exceeds the target is split
+/// into four children, which reuse a quarter of its nodes.
 fn build_patch(
     cfg: &Config,
     spec: &PatchSpec,
@@ -255,21 +307,22 @@ fn build_patch(
             .ceil()
             .max(1.0) as usize,
         bc: cfg.nodes.blocks_coord,
-        m: cfg.nodes.block_intervals,
+        m: cfg.nodes.leaf_intervals,
         alpha_max: cfg.domain.alpha_max,
     };
-    let nblocks = layout.bg * layout.bc;
-    let mut level = vec![1u32; nblocks];
-    let mut done = vec![false; nblocks];
-    let mut predicted = vec![f64::NAN; nblocks];
+    let m = layout.m;
+    // All cells ever created, roots first; `child[i]` is the first child of a split cell.
+    let mut cells: Vec<Cell> = (0..layout.bg as u64)
+        .flat_map(|ig| (0..layout.bc as u64).map(move |ic| Cell { depth: 0, ig, ic }))
+        .collect();
+    let mut child: Vec<Option<usize>> = vec![None; cells.len()];
+    let mut predicted = vec![f64::NAN; cells.len()];
+    let mut open: Vec<usize> = (0..cells.len()).collect();
     let mut cache: HashMap<Key, (f64, f64)> = HashMap::new();
-    // The surplus of level l measures the error of level l − 1; level l is predicted smaller by
-    // 2^k asymptotically. Predict with 2^(k−1) for a margin of 2.
-    let shrink = 2f64.powi(k as i32 - 1);
     for round in 0.. {
-        let mut wanted: Vec<Key> = (0..nblocks)
-            .filter(|&blk| !done[blk])
-            .flat_map(|blk| layout.block_keys(blk / layout.bc, blk % layout.bc, level[blk]))
+        let mut wanted: Vec<Key> = open
+            .iter()
+            .flat_map(|&c| layout.cell_keys(cells[c]))
             .filter(|key| !cache.contains_key(key))
             .collect();
         wanted.sort_unstable();
@@ -284,8 +337,12 @@ fn build_patch(
                 nodes: *total_nodes,
             });
         }
-        let open = done.iter().filter(|d| !**d).count();
-        progress.phase(&format!("{} round {round}: {open} blocks", spec.name));
+        progress.phase(&format!(
+            "{} round {round}: {} open cells, {} new nodes",
+            spec.name,
+            open.len(),
+            wanted.len()
+        ));
         let points: Vec<(f64, f64)> = wanted
             .iter()
             .map(|&key| {
@@ -296,54 +353,70 @@ fn build_patch(
         let values = solve_points(&points, cfg.solver.tol, progress)?;
         *total_nodes += wanted.len();
         cache.extend(wanted.into_iter().zip(values));
-        let mut refined = false;
-        for blk in 0..nblocks {
-            if done[blk] {
-                continue;
-            }
-            let (a, b, l) = (blk / layout.bc, blk % layout.bc, level[blk]);
+        let mut next = Vec::new();
+        for &c in &open {
             let vals: Vec<f64> = layout
-                .block_keys(a, b, l)
+                .cell_keys(cells[c])
                 .iter()
                 .map(|key| cache[key].0)
                 .collect();
-            let pred = surplus(&vals, layout.m << l, k) / shrink;
-            predicted[blk] = pred;
+            let pred = surplus(&vals, m, k) / 4.0;
+            predicted[c] = pred;
             if pred <= cfg.nodes.target_error {
-                done[blk] = true;
-            } else if l >= MAX_LEVEL {
-                return Err(SweepError::TooManyNodes {
+                continue;
+            }
+            if cells[c].depth >= MAX_DEPTH {
+                let keys = layout.cell_keys(cells[c]);
+                let (g0, c0, _) = layout.point(keys[0]);
+                let (g1, c1, _) = layout.point(keys[keys.len() - 1]);
+                return Err(SweepError::DepthLimit {
                     patch: spec.name,
-                    target: cfg.nodes.target_error,
-                    max: cfg.nodes.max_nodes,
+                    depth: cells[c].depth,
+                    gamma_lo: g0,
+                    gamma_hi: g1,
+                    c_lo: c0,
+                    c_hi: c1,
                     predicted: pred,
-                    nodes: *total_nodes,
+                    target: cfg.nodes.target_error,
+                    node_error: keys.iter().map(|k| cache[k].1).fold(0.0, f64::max),
                 });
-            } else {
-                level[blk] += 1;
-                refined = true;
+            }
+            child[c] = Some(cells.len());
+            for ch in cells[c].children() {
+                next.push(cells.len());
+                cells.push(ch);
+                child.push(None);
+                predicted.push(f64::NAN);
             }
         }
-        if !refined {
+        if next.is_empty() {
             break;
         }
+        open = next;
     }
-    let mut p = Vec::new();
-    let mut err = Vec::new();
-    let mut gamma = Vec::new();
-    let mut coord = Vec::new();
-    let mut alpha = Vec::new();
-    let mut offset = Vec::with_capacity(nblocks);
-    for (blk, &l) in level.iter().enumerate() {
-        offset.push(p.len());
-        for key in layout.block_keys(blk / layout.bc, blk % layout.bc, l) {
-            let (g, c, a) = layout.point(key);
-            let (v, e) = cache[&key];
-            p.push(v);
-            err.push(e);
-            gamma.push(g);
-            coord.push(c);
-            alpha.push(a);
+    // Leaves are numbered in cell order.
+    let mut tree = Vec::with_capacity(cells.len());
+    let mut leaf_error = Vec::new();
+    let mut leaf_depth = Vec::new();
+    let (mut p, mut err, mut gamma, mut coord, mut alpha) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (c, cell) in cells.iter().enumerate() {
+        match child[c] {
+            Some(first) => tree.push(first as i32),
+            None => {
+                tree.push(-(leaf_error.len() as i32) - 1);
+                leaf_error.push(predicted[c]);
+                leaf_depth.push(cell.depth);
+                for key in layout.cell_keys(*cell) {
+                    let (g, cc, a) = layout.point(key);
+                    let (v, e) = cache[&key];
+                    p.push(v);
+                    err.push(e);
+                    gamma.push(g);
+                    coord.push(cc);
+                    alpha.push(a);
+                }
+            }
         }
     }
     let simulated = cache.values().filter(|(_, e)| *e > 0.0).count();
@@ -355,16 +428,16 @@ fn build_patch(
             gamma_hi: spec.gamma_hi,
             blocks_gamma: layout.bg,
             blocks_coord: layout.bc,
-            block_intervals: layout.m,
-            level,
-            offset,
+            leaf_intervals: m,
+            tree,
             p,
             error_estimate: err,
         },
         gamma,
         coord,
         alpha,
-        block_error: predicted,
+        leaf_error,
+        leaf_depth,
         unique_nodes: cache.len(),
         simulated,
     })
@@ -418,7 +491,7 @@ pub fn build(cfg: &Config, progress: &dyn Progress) -> Result<Built, SweepError>
         }
     }
     progress.phase(&format!("held-out checks: {} points", points.len()));
-    let sims = solve_points(&points, cfg.solver.tol, progress)?;
+    let sims = solve_points(&points, cfg.check_tol(), progress)?;
     let checks = points
         .iter()
         .zip(&sims)
