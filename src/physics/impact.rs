@@ -398,6 +398,21 @@ pub fn base_resolution(gamma: f64, scheme: Scheme) -> Resolution {
     }
 }
 
+/// First level of the automatic refinement: the base resolution, and for the accurate scheme
+/// one level below it, so that the acceptance guard ([`previous_estimate_agrees`]) has its
+/// coarser estimate at the same finest resolution as the three-level estimate alone (the extra
+/// level costs about 1/8 of the finest one).
+fn ladder_start(gamma: f64, scheme: Scheme) -> Resolution {
+    let base = base_resolution(gamma, scheme);
+    match scheme {
+        Scheme::Accurate => Resolution {
+            springs: base.springs / 2,
+            steps: base.steps / 2,
+        },
+        Scheme::Euler => base,
+    }
+}
+
 /// Estimate the error of a sequence of results at resolutions doubling each time.
 ///
 /// For clean convergence of order `p` the error of the finest value is
@@ -543,7 +558,7 @@ pub fn solve_with_limits(
     }
     let (p, error_estimate, resolution) = match accuracy {
         Accuracy::Tolerance(tol) => refine(
-            base_resolution(gamma, scheme),
+            ladder_start(gamma, scheme),
             scheme.order(),
             tol,
             scheme == Scheme::Accurate,
