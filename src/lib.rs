@@ -5,6 +5,7 @@
 //! and impact conditions to rebound curves) and [`plot`] (figures). The `sweep` binary is a thin
 //! CLI over them; the `oblique-lookup` crate reads the tables.
 
+pub mod nodestore;
 pub mod physics;
 pub mod plot;
 pub mod scene;

@@ -45,10 +45,20 @@ sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler")]
 sweep run configs/full.toml\n  \
 sweep run configs/quick.toml -o /tmp/quick.h5 --threads 2 --quiet\n\n\
 The table is written atomically: a temporary file next to the output, renamed when complete.\n\
+Finished nodes are saved in OUTPUT.ckpt as the run goes; after Ctrl-C, kill -9 or power loss,\n\
+`sweep run CONFIG --resume` continues from there and writes the same table as an uninterrupted\n\
+run. `--shard K/N -o PART` computes 1/N of the work for `sweep merge` (see `sweep merge --help`).\n\
 Config keys, defaults and ranges: docs/config.md. The file format: docs/table-format.md.")]
     Run(table_cmds::RunArgs),
     /// Print a table's domain, node counts, error statistics and provenance.
     Inspect(table_cmds::InspectArgs),
+    /// Merge the parts of a sharded run (`sweep run CONFIG --shard K/N -o PART`) into the table.
+    #[command(after_help = "Examples:\n  \
+for k in 1 2 3 4; do sweep run configs/full.toml --shard $k/4 -o part$k.bin & done; wait\n  \
+sweep merge part1.bin part2.bin part3.bin part4.bin -o tables/full.h5\n\n\
+The parts must come from the same config and cover every shard exactly once; the merged table's\n\
+datasets are identical to those of a single `sweep run`. On a cluster: scripts/slurm-array.sh.")]
+    Merge(table_cmds::MergeArgs),
     /// Rebound curves of a scene (materials, friction, impact conditions): CSV, plot, summary.
     #[command(after_help = "Examples:\n  \
 sweep scene configs/scenes/seed000_alumina_on_glass.toml -o out/\n  \
@@ -224,6 +234,7 @@ fn main() -> ExitCode {
         Command::Impact(a) => impact(a),
         Command::Run(a) => table_cmds::run(a),
         Command::Inspect(a) => table_cmds::inspect(a),
+        Command::Merge(a) => table_cmds::merge(a),
         Command::Scene(a) => scene_cmd::run(a),
     };
     match result {
@@ -234,6 +245,9 @@ fn main() -> ExitCode {
                 e.downcast_ref::<PhysicsError>(),
                 Some(PhysicsError::InvalidParameter { .. })
             ) || e.downcast_ref::<ConfigError>().is_some()
+                || e.downcast_ref::<table_cmds::UsageError>().is_some()
+                || e.downcast_ref::<oblique::nodestore::NodeFileError>()
+                    .is_some()
                 || matches!(
                     e.downcast_ref::<oblique::scene::SceneError>(),
                     Some(

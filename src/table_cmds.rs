@@ -1,14 +1,16 @@
 //! `sweep run` and `sweep inspect`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 
+use oblique::nodestore::{fingerprint, Checkpoint, Header, Kind, Merged};
 use oblique::storage::{write_table, Provenance};
-use oblique::sweep::{self, Config};
+use oblique::sweep::{self, Built, Config, RunError, RunOptions, Shard};
 use oblique_lookup::Table;
 
 use crate::progress::CliProgress;
@@ -17,7 +19,7 @@ use crate::progress::CliProgress;
 pub struct RunArgs {
     /// TOML config (see configs/ and docs/config.md).
     config: PathBuf,
-    /// Output table; overrides the config's `output`.
+    /// Output table (or, with --shard, the shard's part file); overrides the config's `output`.
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Worker threads (0 = one per core); overrides `run.threads`.
@@ -26,6 +28,55 @@ pub struct RunArgs {
     /// No progress output.
     #[arg(long)]
     quiet: bool,
+    /// Continue an interrupted run from its checkpoint (OUTPUT.ckpt); starts afresh if there is
+    /// none. The config must be the one the checkpoint was written for.
+    #[arg(long)]
+    resume: bool,
+    /// Compute shard K of N (1 <= K <= N) and write it as a part file (-o) for `sweep merge`.
+    #[arg(long, value_name = "K/N", value_parser = parse_shard)]
+    shard: Option<Shard>,
+}
+
+/// Parse `K/N` (1-based) into a 0-based shard.
+fn parse_shard(s: &str) -> std::result::Result<Shard, String> {
+    let bad = || format!("'{s}': expected K/N with integers 1 <= K <= N <= 100000, e.g. 3/8");
+    let (k, n) = s.split_once('/').ok_or_else(bad)?;
+    let k: usize = k.trim().parse().map_err(|_| bad())?;
+    let n: usize = n.trim().parse().map_err(|_| bad())?;
+    if k == 0 || k > n || n > 100_000 {
+        return Err(bad());
+    }
+    Ok(Shard {
+        index: k - 1,
+        count: n,
+    })
+}
+
+#[derive(Args)]
+pub struct MergeArgs {
+    /// Part files written by `sweep run CONFIG --shard K/N -o PART`, one per shard.
+    #[arg(required = true)]
+    parts: Vec<PathBuf>,
+    /// Output table.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// No summary output.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// A usage error of `sweep run`/`sweep merge` (exit code 2).
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct UsageError(pub String);
+
+/// Set by the Ctrl-C handler; the sweep stops after its current batch.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+fn checkpoint_path(out: &Path) -> PathBuf {
+    let mut s = out.as_os_str().to_owned();
+    s.push(".ckpt");
+    PathBuf::from(s)
 }
 
 #[derive(Args)]
@@ -62,21 +113,123 @@ pub fn run(args: RunArgs) -> Result<()> {
     }
     if let Some(t) = args.threads {
         if t > 1024 {
-            anyhow::bail!("--threads {t}: must be in [0, 1024] (0 = one per core)");
+            return Err(UsageError(format!(
+                "--threads {t}: must be in [0, 1024] (0 = one per core)"
+            ))
+            .into());
         }
         cfg.run.threads = t;
     }
     check_writable(&cfg.output)?;
+    let ckpt_path = checkpoint_path(&cfg.output);
+    let header = Header {
+        kind: Kind::Checkpoint,
+        shard: args.shard,
+        fingerprint: fingerprint(&cfg),
+        config: text.clone(),
+    };
+    let ckpt = if ckpt_path.exists() {
+        if !args.resume {
+            return Err(UsageError(format!(
+                "{} holds the checkpoint of an interrupted run: add --resume to continue it, \
+                 or delete it to start over",
+                ckpt_path.display()
+            ))
+            .into());
+        }
+        let c = Checkpoint::resume(&ckpt_path, header)?;
+        if !args.quiet {
+            eprintln!(
+                "resuming from {}: {} nodes already computed",
+                ckpt_path.display(),
+                c.resumed_nodes()
+            );
+        }
+        c
+    } else {
+        Checkpoint::create(&ckpt_path, header)?
+    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cfg.run.threads)
         .build()
         .context("cannot start worker threads")?;
+    // A second Ctrl-C (or a handler that cannot be installed) kills the process as usual; the
+    // checkpoint is durable after every batch either way.
+    let _ = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+    });
+    let opts = RunOptions {
+        store: Some(&ckpt),
+        strict: false,
+        stop: Some(&STOP),
+    };
     let progress = CliProgress::new(args.quiet);
     let start = Instant::now();
-    let built = pool.install(|| sweep::build(&cfg, &progress));
+    let result = pool.install(|| match args.shard {
+        Some(shard) => sweep::build_shard(&cfg, &progress, opts, shard).map(|()| None),
+        None => sweep::build_with(&cfg, &progress, opts).map(Some),
+    });
     progress.finish();
-    let built = built?;
+    let built = match result {
+        Err(RunError::Interrupted) => {
+            let shard = args
+                .shard
+                .map(|s| format!(" --shard {}/{}", s.index + 1, s.count))
+                .unwrap_or_default();
+            eprintln!(
+                "interrupted: finished nodes are saved in {}; continue with\n  sweep run {}{shard} -o {} --resume",
+                ckpt_path.display(),
+                args.config.display(),
+                cfg.output.display()
+            );
+            std::process::exit(130);
+        }
+        other => other?,
+    };
     let wall = start.elapsed().as_secs_f64();
+    let Some(built) = built else {
+        ckpt.finish_part(&cfg.output)?;
+        if !args.quiet {
+            eprintln!(
+                "wrote part {} ({wall:.1} s); merge all parts with `sweep merge PARTS... -o TABLE`",
+                cfg.output.display()
+            );
+        }
+        return Ok(());
+    };
+    write_built(&cfg, text, &built, wall, args.quiet)?;
+    ckpt.remove()?;
+    Ok(())
+}
+
+/// `sweep merge`: the table of a sharded run from its parts.
+pub fn merge(args: MergeArgs) -> Result<()> {
+    let merged = Merged::read(&args.parts)?;
+    let (mut cfg, text) = (
+        Config::parse(&merged.config, "config stored in the parts")?,
+        merged.config.clone(),
+    );
+    cfg.output = args.output;
+    check_writable(&cfg.output)?;
+    let opts = RunOptions {
+        store: Some(&merged),
+        strict: true,
+        stop: None,
+    };
+    let start = Instant::now();
+    let built = sweep::build_with(&cfg, &sweep::Silent, opts)?;
+    write_built(
+        &cfg,
+        text,
+        &built,
+        start.elapsed().as_secs_f64(),
+        args.quiet,
+    )
+}
+
+fn write_built(cfg: &Config, text: String, built: &Built, wall: f64, quiet: bool) -> Result<()> {
     let prov = Provenance {
         schema_version: oblique_lookup::format::SCHEMA_VERSION,
         engine_version: oblique::VERSION.into(),
@@ -92,8 +245,8 @@ pub fn run(args: RunArgs) -> Result<()> {
         check_tol: cfg.check_tol(),
         target_error: cfg.nodes.target_error,
     };
-    write_table(&cfg.output, &built, &prov)?;
-    if !args.quiet {
+    write_table(&cfg.output, built, &prov)?;
+    if !quiet {
         let nodes: usize = built.patches.iter().map(|p| p.unique_nodes).sum();
         let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
         for p in &built.patches {

@@ -1029,9 +1029,10 @@ fn c_sigkill_leaves_the_old_table_untouched() {
         before.len(),
         after.len()
     );
+    // Only the checkpoint of the killed run (for `--resume`, tests/resume_shard.rs) appears.
     assert_eq!(
         dir_names(&dir),
-        vec!["t.h5".to_string()],
+        vec!["t.h5".to_string(), "t.h5.ckpt".to_string()],
         "files appeared next to the output"
     );
     Table::open(&out).expect("old table still opens");
@@ -1058,9 +1059,9 @@ fn c_sigkill_during_the_write_leaves_old_or_complete_table() {
             if let Some(st) = child.try_wait().unwrap() {
                 break st;
             }
-            let appeared = dir_names(&dir)
-                .into_iter()
-                .any(|n| !existing.contains(&n) && !n.starts_with(".sweep-probe-"));
+            let appeared = dir_names(&dir).into_iter().any(|n| {
+                !existing.contains(&n) && !n.starts_with(".sweep-probe-") && !n.ends_with(".ckpt")
+            });
             if appeared {
                 break kill9(&mut child);
             }
@@ -1093,13 +1094,15 @@ fn c_sigkill_during_the_write_leaves_old_or_complete_table() {
                 "a replaced table differs in its checks"
             );
         }
-        // Besides the table, only the writer's hidden temporary files (left by SIGKILL).
+        // Besides the table, only the writer's hidden temporary files (left by SIGKILL) and
+        // the killed run's checkpoint, removed here so that the next attempt starts afresh.
         for name in dir_names(&dir) {
             assert!(
-                name == "t.h5" || name.starts_with(".t.h5.tmp-"),
+                name == "t.h5" || name.starts_with(".t.h5.tmp-") || name == "t.h5.ckpt",
                 "unexpected file {name} next to the output"
             );
         }
+        let _ = std::fs::remove_file(dir.join("t.h5.ckpt"));
     }
     eprintln!(
         "kill during write: {mid_write} killed with the temporary file present, {finished} \

@@ -5,6 +5,7 @@
 pub mod config;
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use oblique_lookup::surface::{stencil, Patch, PatchKind, Region, Surface};
 use oblique_lookup::Check;
@@ -75,6 +76,99 @@ pub enum SweepError {
     },
 }
 
+/// Errors of a sweep beyond the node computations: interruption and stored results.
+#[derive(Debug, Error)]
+pub enum RunError {
+    /// The run was stopped (Ctrl-C); the node store holds what was finished.
+    #[error("interrupted")]
+    Interrupted,
+    /// The node store could not take results.
+    #[error("cannot save results: {0}")]
+    Store(String),
+    /// A merge needs a node that none of the parts holds.
+    #[error(
+        "{count} node(s) needed by the table are in none of the parts (first: gamma = {gamma}, \
+         alpha = {alpha}); the parts are incomplete or come from different builds: rerun the \
+         missing shards"
+    )]
+    Missing {
+        /// Number of missing nodes in the first batch that had any.
+        count: usize,
+        /// γ of the first missing node.
+        gamma: f64,
+        /// α of the first missing node.
+        alpha: f64,
+    },
+    /// A node or the refinement failed.
+    #[error(transparent)]
+    Sweep(#[from] SweepError),
+}
+
+/// One computed node: `P(γ, α)` at solver tolerance `tol`, with its error estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeRecord {
+    /// γ.
+    pub gamma: f64,
+    /// α (`∞` allowed).
+    pub alpha: f64,
+    /// Solver tolerance the value was computed with.
+    pub tol: f64,
+    /// `P`.
+    pub p: f64,
+    /// Solver error estimate of `P`.
+    pub error: f64,
+}
+
+impl NodeRecord {
+    /// The exact key of a node: bit patterns of `(γ, α, tol)`.
+    pub fn key(&self) -> (u64, u64, u64) {
+        (
+            self.gamma.to_bits(),
+            self.alpha.to_bits(),
+            self.tol.to_bits(),
+        )
+    }
+}
+
+/// Where a sweep finds values computed before (a checkpoint, shard parts) and saves new ones.
+/// The storage layer implements it; the sweep does no I/O itself.
+pub trait NodeStore: Sync {
+    /// A value computed before, by its exact key.
+    fn get(&self, key: (u64, u64, u64)) -> Option<(f64, f64)>;
+    /// Save newly computed values durably (called after every batch of a few hundred).
+    fn put(&self, records: &[NodeRecord]) -> Result<(), String>;
+}
+
+/// How a sweep runs beyond its config: stored values, sharding, interruption.
+#[derive(Default, Clone, Copy)]
+pub struct RunOptions<'a> {
+    /// Values computed before and the place to save new ones.
+    pub store: Option<&'a dyn NodeStore>,
+    /// Every node must come from the store (a merge): a missing one is an error.
+    pub strict: bool,
+    /// Set (e.g. by a Ctrl-C handler) to stop after the current batch.
+    pub stop: Option<&'a AtomicBool>,
+}
+
+/// Which part of the work a shard does: root cells and check points whose global index `i`
+/// has `i mod count == index` (`index` in `0..count`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, `0 ≤ index < count`.
+    pub index: usize,
+    /// Number of shards.
+    pub count: usize,
+}
+
+impl Shard {
+    fn owns(&self, i: usize) -> bool {
+        i % self.count == self.index
+    }
+}
+
+/// Points per batch between saves and interruption checks.
+const BATCH: usize = 256;
+
 /// Progress reporting for long runs (implemented by the CLI).
 pub trait Progress: Sync {
     /// `n` more impacts are scheduled.
@@ -137,27 +231,88 @@ pub fn solve_points(
     tol: f64,
     progress: &dyn Progress,
 ) -> Result<Vec<(f64, f64)>, SweepError> {
-    progress.add(points.len() as u64);
-    points
-        .par_iter()
-        .map(|&(gamma, alpha)| {
-            let r = physics::solve(
-                gamma,
-                alpha,
-                Accuracy::Tolerance(tol),
-                Scheme::Accurate,
-                false,
-            )
-            .map(|s| (s.p, s.error_estimate))
-            .map_err(|source| SweepError::Node {
-                gamma,
-                alpha,
-                source,
+    solve_points_with(points, tol, progress, RunOptions::default()).map_err(|e| match e {
+        RunError::Sweep(e) => e,
+        // No store and no stop flag: nothing else can happen.
+        other => unreachable!("solve_points without options: {other}"),
+    })
+}
+
+fn solve_one(gamma: f64, alpha: f64, tol: f64) -> Result<(f64, f64), SweepError> {
+    physics::solve(
+        gamma,
+        alpha,
+        Accuracy::Tolerance(tol),
+        Scheme::Accurate,
+        false,
+    )
+    .map(|s| (s.p, s.error_estimate))
+    .map_err(|source| SweepError::Node {
+        gamma,
+        alpha,
+        source,
+    })
+}
+
+/// [`solve_points`] with stored values, saving in batches and stopping when asked.
+pub fn solve_points_with(
+    points: &[(f64, f64)],
+    tol: f64,
+    progress: &dyn Progress,
+    opts: RunOptions,
+) -> Result<Vec<(f64, f64)>, RunError> {
+    let rec = |&(gamma, alpha): &(f64, f64)| NodeRecord {
+        gamma,
+        alpha,
+        tol,
+        p: f64::NAN,
+        error: f64::NAN,
+    };
+    let mut out: Vec<Option<(f64, f64)>> = points
+        .iter()
+        .map(|pt| opts.store.and_then(|s| s.get(rec(pt).key())))
+        .collect();
+    let todo: Vec<usize> = (0..points.len()).filter(|&i| out[i].is_none()).collect();
+    if opts.strict {
+        if let Some(&i) = todo.first() {
+            return Err(RunError::Missing {
+                count: todo.len(),
+                gamma: points[i].0,
+                alpha: points[i].1,
             });
-            progress.inc(1);
-            r
-        })
-        .collect()
+        }
+    }
+    progress.add(todo.len() as u64);
+    let stopped = || opts.stop.is_some_and(|s| s.load(Ordering::Relaxed));
+    for batch in todo.chunks(BATCH) {
+        if stopped() {
+            return Err(RunError::Interrupted);
+        }
+        let values: Vec<(f64, f64)> = batch
+            .par_iter()
+            .map(|&i| {
+                let r = solve_one(points[i].0, points[i].1, tol);
+                progress.inc(1);
+                r
+            })
+            .collect::<Result<_, _>>()?;
+        if let Some(store) = opts.store {
+            let records: Vec<NodeRecord> = batch
+                .iter()
+                .zip(&values)
+                .map(|(&i, &(p, error))| NodeRecord {
+                    p,
+                    error,
+                    ..rec(&points[i])
+                })
+                .collect();
+            store.put(&records).map_err(RunError::Store)?;
+        }
+        for (&i, v) in batch.iter().zip(values) {
+            out[i] = Some(v);
+        }
+    }
+    Ok(out.into_iter().flatten().collect())
 }
 
 struct PatchSpec {
@@ -194,6 +349,18 @@ fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
         });
     }
     specs
+}
+
+/// Root cells of a patch along γ.
+fn roots_gamma(cfg: &Config, spec: &PatchSpec) -> usize {
+    ((spec.gamma_hi - spec.gamma_lo) * cfg.nodes.blocks_per_unit_gamma)
+        .ceil()
+        .max(1.0) as usize
+}
+
+/// Root cells of a patch.
+fn root_count(cfg: &Config, spec: &PatchSpec) -> usize {
+    roots_gamma(cfg, spec) * cfg.nodes.blocks_coord
 }
 
 /// The root grid of a patch being built and the exact lattice its nodes live on.
@@ -294,18 +461,24 @@ fn surplus(values: &[f64], n: usize, k: usize) -> f64 {
 /// holds where a kink curve (curvature jump) crosses the cell (smooth cells converge faster, so
 /// the prediction is conservative there). A cell whose prediction exceeds the target is split
 /// into four children, which reuse a quarter of its nodes.
+///
+/// With a `shard`, only the root cells whose global index (`first_root` + index in the patch)
+/// the shard owns are refined, their nodes go to the store, and nothing is assembled (`None`).
+/// Each root's tree depends only on its own nodes, so the shards together compute every node of
+/// the whole run.
 fn build_patch(
     cfg: &Config,
     spec: &PatchSpec,
     progress: &dyn Progress,
     total_nodes: &mut usize,
-) -> Result<BuiltPatch, SweepError> {
+    opts: RunOptions,
+    first_root: usize,
+    shard: Option<Shard>,
+) -> Result<Option<BuiltPatch>, RunError> {
     let k = cfg.nodes.stencil;
     let layout = Layout {
         spec,
-        bg: ((spec.gamma_hi - spec.gamma_lo) * cfg.nodes.blocks_per_unit_gamma)
-            .ceil()
-            .max(1.0) as usize,
+        bg: roots_gamma(cfg, spec),
         bc: cfg.nodes.blocks_coord,
         m: cfg.nodes.leaf_intervals,
         alpha_max: cfg.domain.alpha_max,
@@ -317,7 +490,9 @@ fn build_patch(
         .collect();
     let mut child: Vec<Option<usize>> = vec![None; cells.len()];
     let mut predicted = vec![f64::NAN; cells.len()];
-    let mut open: Vec<usize> = (0..cells.len()).collect();
+    let mut open: Vec<usize> = (0..cells.len())
+        .filter(|&i| shard.map_or(true, |sh| sh.owns(first_root + i)))
+        .collect();
     let mut cache: HashMap<Key, (f64, f64)> = HashMap::new();
     for round in 0.. {
         let mut wanted: Vec<Key> = open
@@ -329,13 +504,13 @@ fn build_patch(
         wanted.dedup();
         if *total_nodes + wanted.len() > cfg.nodes.max_nodes {
             let worst = predicted.iter().copied().fold(0.0, f64::max);
-            return Err(SweepError::TooManyNodes {
+            return Err(RunError::Sweep(SweepError::TooManyNodes {
                 patch: spec.name,
                 target: cfg.nodes.target_error,
                 max: cfg.nodes.max_nodes,
                 predicted: worst,
                 nodes: *total_nodes,
-            });
+            }));
         }
         progress.phase(&format!(
             "{} round {round}: {} open cells, {} new nodes",
@@ -350,7 +525,7 @@ fn build_patch(
                 (g, a)
             })
             .collect();
-        let values = solve_points(&points, cfg.solver.tol, progress)?;
+        let values = solve_points_with(&points, cfg.solver.tol, progress, opts)?;
         *total_nodes += wanted.len();
         cache.extend(wanted.into_iter().zip(values));
         let mut next = Vec::new();
@@ -369,7 +544,7 @@ fn build_patch(
                 let keys = layout.cell_keys(cells[c]);
                 let (g0, c0, _) = layout.point(keys[0]);
                 let (g1, c1, _) = layout.point(keys[keys.len() - 1]);
-                return Err(SweepError::DepthLimit {
+                return Err(RunError::Sweep(SweepError::DepthLimit {
                     patch: spec.name,
                     depth: cells[c].depth,
                     gamma_lo: g0,
@@ -379,7 +554,7 @@ fn build_patch(
                     predicted: pred,
                     target: cfg.nodes.target_error,
                     node_error: keys.iter().map(|k| cache[k].1).fold(0.0, f64::max),
-                });
+                }));
             }
             child[c] = Some(cells.len());
             for ch in cells[c].children() {
@@ -393,6 +568,9 @@ fn build_patch(
             break;
         }
         open = next;
+    }
+    if shard.is_some() {
+        return Ok(None);
     }
     // Leaves are numbered in cell order.
     let mut tree = Vec::with_capacity(cells.len());
@@ -420,7 +598,7 @@ fn build_patch(
         }
     }
     let simulated = cache.values().filter(|(_, e)| *e > 0.0).count();
-    Ok(BuiltPatch {
+    Ok(Some(BuiltPatch {
         name: spec.name,
         patch: Patch {
             kind: spec.kind,
@@ -440,7 +618,7 @@ fn build_patch(
         leaf_depth,
         unique_nodes: cache.len(),
         simulated,
-    })
+    }))
 }
 
 /// Deterministic generator for check points (SplitMix64).
@@ -459,10 +637,26 @@ impl SplitMix {
 
 /// Run a whole sweep: build every patch, then simulate and compare the held-out checks.
 pub fn build(cfg: &Config, progress: &dyn Progress) -> Result<Built, SweepError> {
+    build_with(cfg, progress, RunOptions::default()).map_err(|e| match e {
+        RunError::Sweep(e) => e,
+        other => unreachable!("build without options: {other}"),
+    })
+}
+
+/// [`build`] with stored values, saving and interruption ([`RunOptions`]). With a store that
+/// holds every node (a finished checkpoint, merged shard parts) nothing is simulated, and the
+/// table is the same, bit for bit, as that of an uninterrupted single run.
+pub fn build_with(
+    cfg: &Config,
+    progress: &dyn Progress,
+    opts: RunOptions,
+) -> Result<Built, RunError> {
     let mut total = 0usize;
     let mut patches = Vec::new();
     for spec in patch_specs(cfg) {
-        patches.push(build_patch(cfg, &spec, progress, &mut total)?);
+        patches.extend(build_patch(
+            cfg, &spec, progress, &mut total, opts, 0, None,
+        )?);
     }
     let find = |name: &str| {
         patches
@@ -479,19 +673,9 @@ pub fn build(cfg: &Config, progress: &dyn Progress) -> Result<Built, SweepError>
         partial_high: find(oblique_lookup::format::PATCH_PARTIAL_HIGH),
         stick_high: find(oblique_lookup::format::PATCH_STICK_HIGH),
     };
-    // Held-out points: uniform in each patch's (γ, c), strictly inside (c < 1 keeps α finite).
-    let mut rng = SplitMix(cfg.checks.seed);
-    let mut points = Vec::new();
-    for p in &patches {
-        for _ in 0..cfg.checks.per_patch {
-            let gamma = p.patch.gamma_lo + (p.patch.gamma_hi - p.patch.gamma_lo) * rng.uniform();
-            let c = rng.uniform();
-            let alpha = p.patch.kind.alpha(gamma, c, cfg.domain.alpha_max);
-            points.push((gamma, alpha));
-        }
-    }
+    let points = check_points(cfg);
     progress.phase(&format!("held-out checks: {} points", points.len()));
-    let sims = solve_points(&points, cfg.check_tol(), progress)?;
+    let sims = solve_points_with(&points, cfg.check_tol(), progress, opts)?;
     let checks = points
         .iter()
         .zip(&sims)
@@ -512,4 +696,53 @@ pub fn build(cfg: &Config, progress: &dyn Progress) -> Result<Built, SweepError>
         patches,
         checks,
     })
+}
+
+/// Compute one shard's share of a sweep into `opts.store`: the root cells and held-out checks
+/// whose global index `i` has `i mod count == index`. Merging the stores of all shards and
+/// running [`build_with`] on them (strictly) gives the single run's table.
+pub fn build_shard(
+    cfg: &Config,
+    progress: &dyn Progress,
+    opts: RunOptions,
+    shard: Shard,
+) -> Result<(), RunError> {
+    let mut total = 0usize;
+    let mut first_root = 0;
+    for spec in patch_specs(cfg) {
+        build_patch(
+            cfg,
+            &spec,
+            progress,
+            &mut total,
+            opts,
+            first_root,
+            Some(shard),
+        )?;
+        first_root += root_count(cfg, &spec);
+    }
+    let points: Vec<(f64, f64)> = check_points(cfg)
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| shard.owns(*i))
+        .map(|(_, pt)| pt)
+        .collect();
+    progress.phase(&format!("held-out checks: {} points", points.len()));
+    solve_points_with(&points, cfg.check_tol(), progress, opts)?;
+    Ok(())
+}
+
+/// Held-out points: uniform in each patch's (γ, c), strictly inside (c < 1 keeps α finite).
+fn check_points(cfg: &Config) -> Vec<(f64, f64)> {
+    let mut rng = SplitMix(cfg.checks.seed);
+    let mut points = Vec::new();
+    for p in patch_specs(cfg) {
+        for _ in 0..cfg.checks.per_patch {
+            let gamma = p.gamma_lo + (p.gamma_hi - p.gamma_lo) * rng.uniform();
+            let c = rng.uniform();
+            let alpha = p.kind.alpha(gamma, c, cfg.domain.alpha_max);
+            points.push((gamma, alpha));
+        }
+    }
+    points
 }
