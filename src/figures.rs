@@ -710,7 +710,8 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
 }
 
 /// Outline of every leaf of a patch in `(γ, α/(1+α))`: bottom, right, top and left edge, the
-/// edges of constant patch coordinate `c` sampled at 6 values of `γ`.
+/// edges of constant patch coordinate `c` (curves in this plane) sampled at 64 points per patch
+/// width, at least 5 per leaf.
 pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
     let roots = patch.blocks_gamma * patch.blocks_coord;
     let mut stack: Vec<(usize, f64, f64, f64, f64)> = (0..roots)
@@ -748,7 +749,7 @@ pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
             }
             continue;
         }
-        let xs = linspace(x0, x0 + hx, 6);
+        let xs = linspace(x0, x0 + hx, ((64.0 * hx).ceil() as usize).max(4) + 1);
         let mut line: Vec<(f64, f64)> = xs.iter().map(|&x| point(x, c0)).collect();
         line.extend(xs.iter().rev().map(|&x| point(x, c0 + hc)));
         line.push(point(x0, c0));
