@@ -2,9 +2,10 @@
 //!
 //! Layers: [`physics`] (one impact, no I/O), [`sweep`] (schedules many impacts and places the
 //! table's nodes), [`storage`] (owns writing the HDF5 table format), [`scene`] (a user's bodies
-//! and impact conditions to rebound curves) and [`plot`] (figures). The `sweep` binary is a thin
-//! CLI over them; the `oblique-lookup` crate reads the tables.
+//! and impact conditions to rebound curves), [`plot`] (drawing) and [`figures`] (the pictures of a
+//! table). The `sweep` binary is a thin CLI over them; the `oblique-lookup` crate reads the tables.
 
+pub mod figures;
 pub mod nodestore;
 pub mod physics;
 pub mod plot;

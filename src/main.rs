@@ -10,6 +10,7 @@ use serde_json::json;
 use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Resolution, Scheme};
 use oblique::sweep::config::ConfigError;
 
+mod plot_cmd;
 mod progress;
 mod scene_cmd;
 mod table_cmds;
@@ -66,6 +67,20 @@ sweep scene configs/scenes/steel_on_steel.toml --table tables/full.h5 -o out/\n\
 Without --table, only the scene's own cases are simulated (closed forms never are).\n\
 Scene file keys: docs/scenes.md.")]
     Scene(scene_cmd::SceneArgs),
+    /// Figures of a table: P surface, slices, regime diagram, held-out errors (PNG or SVG).
+    #[command(after_help = "Examples:\n  \
+sweep plot tables/full.h5 -o figures/\n  \
+sweep plot tables/full.h5 -o docs/img --figure surface\n  \
+sweep plot tables/quick.h5 -o out/ --format svg --gammas 1.52,1.84,2.16 --alphas 0.5,1,inf\n\n\
+Writes, into the output folder:\n  \
+p_surface     P(gamma, alpha) as a colour map with contours; alpha_c1, alpha_c2; isotropic band\n  \
+p_slices      P against alpha for fixed gamma (--gammas); P against gamma for fixed alpha\n                \
+(--alphas), with the seed-001 fit (29) of the no-slip limit\n  \
+regimes       full slip / partial slip / stick in the (gamma, alpha) plane\n  \
+check_errors  interpolation error at the table's held-out checks, over its quadtree leaves\n\
+The alpha axis is alpha/(1 + alpha), so alpha = inf (no slip) is on the plot. Each figure's\n\
+caption names the table, its provenance and the command. More: docs/figures.md.")]
+    Plot(plot_cmd::PlotArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -236,6 +251,7 @@ fn main() -> ExitCode {
         Command::Inspect(a) => table_cmds::inspect(a),
         Command::Merge(a) => table_cmds::merge(a),
         Command::Scene(a) => scene_cmd::run(a),
+        Command::Plot(a) => plot_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -255,6 +271,10 @@ fn main() -> ExitCode {
                             | oblique::scene::SceneError::Invalid { .. }
                             | oblique::scene::SceneError::Measured { .. }
                     )
+                )
+                || matches!(
+                    e.downcast_ref::<oblique::figures::FigureError>(),
+                    Some(oblique::figures::FigureError::Invalid { .. })
                 );
             if usage {
                 ExitCode::from(2)

@@ -13,6 +13,9 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 use thiserror::Error;
 
+mod sheet;
+pub use sheet::*;
+
 /// The embedded font (DejaVu Sans subset: Latin, Greek, math symbols).
 static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans-subset.ttf");
 const FAMILY: &str = "sans-serif";
@@ -226,34 +229,37 @@ pub fn clip_polyline(points: &[(f64, f64)], lo: f64, hi: f64) -> Vec<Vec<(f64, f
     out
 }
 
-fn draw<DB: DrawingBackend>(fig: &Figure, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+/// White background, title and subtitle at the top, caption lines at the bottom; returns the
+/// area left for the plots.
+fn draw_frame<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    subtitle: &str,
+    caption: &[String],
+) -> Result<DrawingArea<DB, Shift>, String>
 where
     DB::ErrorType: 'static,
 {
     let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
     root.fill(&WHITE).map_err(e)?;
     let (_, h) = root.dim_in_pixel();
-    let title_h = if fig.subtitle.is_empty() { 44u32 } else { 66 };
-    let caption_h = 10 + 20 * fig.caption.len() as u32;
+    let title_h = if subtitle.is_empty() { 44u32 } else { 66 };
+    let caption_h = 10 + 20 * caption.len() as u32;
     let (title_area, rest) = root.split_vertically(title_h);
     let (plots, caption_area) = rest.split_vertically(h.saturating_sub(title_h + caption_h));
     title_area
-        .draw_text(
-            &fig.title,
-            &(FAMILY, 22).into_font().color(&BLACK),
-            (16, 12),
-        )
+        .draw_text(title, &(FAMILY, 22).into_font().color(&BLACK), (16, 12))
         .map_err(e)?;
-    if !fig.subtitle.is_empty() {
+    if !subtitle.is_empty() {
         title_area
             .draw_text(
-                &fig.subtitle,
+                subtitle,
                 &(FAMILY, 16).into_font().color(&RGBColor(60, 60, 60)),
                 (16, 40),
             )
             .map_err(e)?;
     }
-    for (i, line) in fig.caption.iter().enumerate() {
+    for (i, line) in caption.iter().enumerate() {
         caption_area
             .draw_text(
                 line,
@@ -262,6 +268,15 @@ where
             )
             .map_err(e)?;
     }
+    Ok(plots)
+}
+
+fn draw<DB: DrawingBackend>(fig: &Figure, root: &DrawingArea<DB, Shift>) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let plots = draw_frame(root, &fig.title, &fig.subtitle, &fig.caption)?;
     let n = fig.panels.len().max(1);
     let areas = plots.split_evenly((n, 1));
     let x_bounds = bounds(
@@ -327,93 +342,7 @@ where
                 )))
                 .map_err(e)?;
         }
-        for s in &panel.series {
-            let color = rgb(s.color);
-            let legend_color = color;
-            let style = s.style;
-            let segments = clip_polyline(&s.points, y0, y1);
-            let legend = move |(x, y): (i32, i32)| -> DynElement<'static, DB, (i32, i32)> {
-                match style {
-                    Style::Markers => {
-                        Circle::new((x + 12, y), 4, legend_color.stroke_width(2)).into_dyn()
-                    }
-                    Style::Dashed => DashedPathElement::new(
-                        vec![(x, y), (x + 24, y)],
-                        6,
-                        4,
-                        legend_color.stroke_width(2),
-                    )
-                    .into_dyn(),
-                    Style::Dotted => DashedPathElement::new(
-                        vec![(x, y), (x + 24, y)],
-                        2,
-                        3,
-                        legend_color.stroke_width(2),
-                    )
-                    .into_dyn(),
-                    Style::Line | Style::LineMarkers => {
-                        PathElement::new(vec![(x, y), (x + 24, y)], legend_color.stroke_width(2))
-                            .into_dyn()
-                    }
-                }
-            };
-            let anno = match style {
-                Style::Markers => chart
-                    .draw_series(
-                        s.points
-                            .iter()
-                            .filter(|(x, y)| x.is_finite() && y.is_finite() && *y >= y0 && *y <= y1)
-                            .map(|&p| Circle::new(p, 4, color.stroke_width(2))),
-                    )
-                    .map_err(e)?,
-                Style::Line | Style::LineMarkers => {
-                    for seg in &segments {
-                        chart
-                            .draw_series(LineSeries::new(
-                                seg.iter().copied(),
-                                color.stroke_width(2),
-                            ))
-                            .map_err(e)?;
-                    }
-                    let marker_size = if style == Style::LineMarkers { 2 } else { 0 };
-                    chart
-                        .draw_series(
-                            s.points
-                                .iter()
-                                .filter(|(x, y)| {
-                                    marker_size > 0
-                                        && x.is_finite()
-                                        && y.is_finite()
-                                        && *y >= y0
-                                        && *y <= y1
-                                })
-                                .map(|&p| Circle::new(p, marker_size, color.filled())),
-                        )
-                        .map_err(e)?
-                }
-                Style::Dashed | Style::Dotted => {
-                    let (dash, gap) = if style == Style::Dashed {
-                        (8, 5)
-                    } else {
-                        (2, 4)
-                    };
-                    for seg in &segments {
-                        chart
-                            .draw_series(DashedLineSeries::new(
-                                seg.iter().copied(),
-                                dash,
-                                gap,
-                                color.stroke_width(2),
-                            ))
-                            .map_err(e)?;
-                    }
-                    chart
-                        .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-                        .map_err(e)?
-                }
-            };
-            anno.label(s.label.as_str()).legend(legend);
-        }
+        draw_series_set(&mut chart, &panel.series, (y0, y1))?;
         let pos = match panel.legend {
             Legend::UpperRight => SeriesLabelPosition::UpperRight,
             Legend::LowerRight => SeriesLabelPosition::LowerRight,
@@ -428,6 +357,110 @@ where
             .border_style(RGBColor(180, 180, 180))
             .draw()
             .map_err(e)?;
+    }
+    Ok(())
+}
+
+/// Draw series on a chart (lines, dashes, markers; clipped to `y ∈ [y0, y1]`) and register
+/// their legend entries (series with an empty label get none).
+fn draw_series_set<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    series: &[Series],
+    (y0, y1): (f64, f64),
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+
+    for s in series {
+        let color = rgb(s.color);
+        let legend_color = color;
+        let style = s.style;
+        let segments = clip_polyline(&s.points, y0, y1);
+        let legend = move |(x, y): (i32, i32)| -> DynElement<'static, DB, (i32, i32)> {
+            match style {
+                Style::Markers => {
+                    Circle::new((x + 12, y), 4, legend_color.stroke_width(2)).into_dyn()
+                }
+                Style::Dashed => DashedPathElement::new(
+                    vec![(x, y), (x + 24, y)],
+                    6,
+                    4,
+                    legend_color.stroke_width(2),
+                )
+                .into_dyn(),
+                Style::Dotted => DashedPathElement::new(
+                    vec![(x, y), (x + 24, y)],
+                    2,
+                    3,
+                    legend_color.stroke_width(2),
+                )
+                .into_dyn(),
+                Style::Line | Style::LineMarkers => {
+                    PathElement::new(vec![(x, y), (x + 24, y)], legend_color.stroke_width(2))
+                        .into_dyn()
+                }
+            }
+        };
+        let anno = match style {
+            Style::Markers => chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .filter(|(x, y)| x.is_finite() && y.is_finite() && *y >= y0 && *y <= y1)
+                        .map(|&p| Circle::new(p, 4, color.stroke_width(2))),
+                )
+                .map_err(e)?,
+            Style::Line | Style::LineMarkers => {
+                for seg in &segments {
+                    chart
+                        .draw_series(LineSeries::new(seg.iter().copied(), color.stroke_width(2)))
+                        .map_err(e)?;
+                }
+                let marker_size = if style == Style::LineMarkers { 2 } else { 0 };
+                chart
+                    .draw_series(
+                        s.points
+                            .iter()
+                            .filter(|(x, y)| {
+                                marker_size > 0
+                                    && x.is_finite()
+                                    && y.is_finite()
+                                    && *y >= y0
+                                    && *y <= y1
+                            })
+                            .map(|&p| Circle::new(p, marker_size, color.filled())),
+                    )
+                    .map_err(e)?
+            }
+            Style::Dashed | Style::Dotted => {
+                let (dash, gap) = if style == Style::Dashed {
+                    (8, 5)
+                } else {
+                    (2, 4)
+                };
+                for seg in &segments {
+                    chart
+                        .draw_series(DashedLineSeries::new(
+                            seg.iter().copied(),
+                            dash,
+                            gap,
+                            color.stroke_width(2),
+                        ))
+                        .map_err(e)?;
+                }
+                chart
+                    .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                    .map_err(e)?
+            }
+        };
+        if !s.label.is_empty() {
+            anno.label(s.label.as_str()).legend(legend);
+        }
     }
     Ok(())
 }
