@@ -70,9 +70,9 @@ def stick_rho(gamma):
 
 def stick_s(gamma, alpha):
     """S(alpha) = r / (r + rho), r = alpha/alpha_c2 - 1, S(inf) = 1."""
-    if math.isinf(alpha):
-        return 1.0
     r = alpha / alpha_c2(gamma) - 1.0
+    if math.isinf(r):  # alpha = inf, or so large that r overflows
+        return 1.0
     return r / (r + stick_rho(gamma))
 
 

@@ -262,6 +262,10 @@ fn main() -> ExitCode {
                 Some(PhysicsError::InvalidParameter { .. })
             ) || e.downcast_ref::<ConfigError>().is_some()
                 || e.downcast_ref::<table_cmds::UsageError>().is_some()
+                || matches!(
+                    e.downcast_ref::<oblique::sweep::SweepError>(),
+                    Some(oblique::sweep::SweepError::Unreachable { .. })
+                )
                 || e.downcast_ref::<oblique::nodestore::NodeFileError>()
                     .is_some()
                 || matches!(

@@ -90,11 +90,15 @@ impl W<'_> {
                 message: format!("{name}: {e}"),
             }
         })?;
-        g.new_dataset_builder()
-            .with_data(arr)
-            .create(name)
-            .map(|_| ())
-            .map_err(self.e(name))
+        // One chunk per dataset with a Fletcher-32 checksum: a corrupted value is an error on
+        // read, never a silently wrong number (HDF5 cannot chunk an empty dataset).
+        let builder = g.new_dataset_builder().with_data(arr);
+        let builder = if shape.iter().all(|&d| d > 0) {
+            builder.chunk(shape.to_vec()).fletcher32()
+        } else {
+            builder
+        };
+        builder.create(name).map(|_| ()).map_err(self.e(name))
     }
 }
 
@@ -114,7 +118,10 @@ pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), S
         .unwrap_or_else(|| "table.h5".into());
     remove_stale_temporaries(out, &file_name);
     let tmp: PathBuf = out.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
-    let result = write_to(&tmp, &path, built, prov);
+    // HDF5 finishes the file when its last handle closes (at the end of `write_to`); only then
+    // are its bytes final. Seal them and make sure they are on disk before the rename
+    // publishes the file.
+    let result = write_to(&tmp, &path, built, prov).and_then(|()| seal(&tmp).map_err(io));
     if let Err(e) = result {
         let _ = std::fs::remove_file(&tmp);
         return Err(e);
@@ -152,7 +159,15 @@ fn remove_stale_temporaries(out: &Path, file_name: &str) {
 
 fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<(), StorageError> {
     let w = W { path };
-    let file = hdf5::File::create(tmp).map_err(w.e("create file"))?;
+    // File format of HDF5 1.10: every metadata block carries a checksum, so a damaged file is
+    // refused by the library instead of being misread.
+    // A user block for the seal (`oblique_lookup::format::seal_of`), written after the file is
+    // closed.
+    let file = hdf5::File::with_options()
+        .with_fapl(|p| p.libver_v110())
+        .with_fcpl(|p| p.userblock(USERBLOCK as u64))
+        .create(tmp)
+        .map_err(w.e("create file"))?;
     let s = &built.surface;
     w.attr_str(&file, ATTR_FORMAT, FORMAT_NAME)?;
     w.attr_f64(&file, ATTR_SCHEMA, SCHEMA_VERSION as f64)?;
@@ -251,13 +266,16 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     let patch: Vec<i32> = ch.iter().map(|c| c.patch).collect();
     w.ints(&g, DS_PATCH, &patch, &[ch.len()])?;
     file.flush().map_err(w.e("flush"))?;
-    drop(file);
-    // Make sure the bytes are on disk before the rename publishes the file.
-    std::fs::File::open(tmp)
-        .and_then(|f| f.sync_all())
-        .map_err(|source| StorageError::Io {
-            path: path.to_string(),
-            source,
-        })?;
     Ok(())
+}
+
+/// Write the seal (`oblique_lookup::format::seal_of`) into the user block of the table file at
+/// `path`, and sync it to disk. Also for tools that edit a table on purpose (the schema tests).
+pub fn seal(path: &Path) -> std::io::Result<()> {
+    use std::io::{Seek, SeekFrom, Write};
+    let bytes = std::fs::read(path)?;
+    let mut f = std::fs::OpenOptions::new().write(true).open(path)?;
+    f.seek(SeekFrom::Start(0))?;
+    f.write_all(&seal_of(&bytes))?;
+    f.sync_all()
 }

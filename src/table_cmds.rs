@@ -121,6 +121,17 @@ pub fn run(args: RunArgs) -> Result<()> {
         cfg.run.threads = t;
     }
     check_writable(&cfg.output)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(cfg.run.threads)
+        .build()
+        .context("cannot start worker threads")?;
+    let pre = sweep::preflight(&cfg)?;
+    if !args.quiet {
+        eprintln!(
+            "preflight: tolerances reachable; the slowest node probed took {:.1} ms",
+            pre.slowest_node_s * 1e3
+        );
+    }
     let ckpt_path = checkpoint_path(&cfg.output);
     let header = Header {
         kind: Kind::Checkpoint,
@@ -149,10 +160,6 @@ pub fn run(args: RunArgs) -> Result<()> {
     } else {
         Checkpoint::create(&ckpt_path, header)?
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(cfg.run.threads)
-        .build()
-        .context("cannot start worker threads")?;
     // A second Ctrl-C (or a handler that cannot be installed) kills the process as usual; the
     // checkpoint is durable after every batch either way.
     let _ = ctrlc::set_handler(|| {

@@ -93,3 +93,47 @@ pub const DS_P_INTERPOLATED: &str = "P_interpolated";
 pub const DS_INTERP_ERROR: &str = "interpolation_error";
 /// Check dataset: patch index (0 stick_low, 1 partial_high, 2 stick_high).
 pub const DS_PATCH: &str = "patch";
+
+/// Size (bytes) of the HDF5 user block at the start of a table: HDF5 ignores it, and the writer
+/// puts the table's seal there.
+pub const USERBLOCK: usize = 512;
+
+/// First bytes of the seal.
+pub const SEAL_MAGIC: &[u8; 8] = b"OBLQSEAL";
+
+/// FNV-1a (64 bit) of a byte string: the seal's digest.
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// The seal of a table file's bytes: `SEAL_MAGIC`, then the file length and the FNV-1a 64 of
+/// every byte after the user block, both as little-endian u64 (24 bytes at offset 0).
+pub fn seal_of(file: &[u8]) -> [u8; 24] {
+    let mut s = [0u8; 24];
+    s[..8].copy_from_slice(SEAL_MAGIC);
+    s[8..16].copy_from_slice(&(file.len() as u64).to_le_bytes());
+    let digest = fnv1a64(file.get(USERBLOCK..).unwrap_or(&[]));
+    s[16..].copy_from_slice(&digest.to_le_bytes());
+    s
+}
+
+/// Check the seal of a table file before HDF5 parses it: the HDF5 library is not robust
+/// against damaged files (it can crash on them), so a sealed file whose bytes changed after it
+/// was written is refused here. A file without a seal (written by other software) is left to
+/// HDF5 and the format checks. `Err` holds the message.
+pub fn verify_seal(file: &[u8]) -> Result<(), String> {
+    if file.len() < USERBLOCK || &file[..8] != SEAL_MAGIC {
+        return Ok(());
+    }
+    if file[..24] != seal_of(file) {
+        return Err(
+            "damaged: its checksum does not match its contents (the file was truncated, \
+             corrupted or modified after it was written); rebuild it with `sweep run` or copy it \
+             again"
+                .into(),
+        );
+    }
+    Ok(())
+}

@@ -257,6 +257,12 @@ impl Table {
                 message: "no such file".into(),
             });
         }
+        let bytes = std::fs::read(path_ref).map_err(|e| LookupError::Io {
+            path: path_str.clone(),
+            message: e.to_string(),
+        })?;
+        crate::format::verify_seal(&bytes).map_err(|m| r.invalid(m))?;
+        drop(bytes);
         let file = hdf5::File::open(path_ref).map_err(|_| LookupError::Io {
             path: path_str.clone(),
             message: "not an HDF5 file, or truncated/corrupted".into(),

@@ -67,10 +67,11 @@ impl PatchKind {
             PatchKind::Stick => {
                 let rho = stick_scale(gamma);
                 let squash = |alpha: f64| {
-                    if alpha.is_infinite() {
+                    let r = alpha / alpha_c2(gamma) - 1.0;
+                    // r = ∞ also for finite α near f64::MAX (found by tests/fuzz.rs: NaN).
+                    if r.is_infinite() {
                         1.0
                     } else {
-                        let r = alpha / alpha_c2(gamma) - 1.0;
                         r / (r + rho)
                     }
                 };

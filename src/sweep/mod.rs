@@ -46,6 +46,28 @@ pub enum SweepError {
         /// Nodes placed so far.
         nodes: usize,
     },
+    /// The pre-flight probe found a tolerance the solver cannot reach in reasonable time.
+    #[error(
+        "{key} = {tol:e} cannot be reached: at gamma = {gamma}, alpha = {alpha} (the hardest \
+         point of the domain) the solver's error estimate is still {achieved:.1e} at {steps} time \
+         steps, where one impact already takes seconds; use {key} >= {suggest:.0e}"
+    )]
+    Unreachable {
+        /// Config key of the tolerance.
+        key: &'static str,
+        /// The tolerance.
+        tol: f64,
+        /// γ of the probe.
+        gamma: f64,
+        /// α of the probe.
+        alpha: f64,
+        /// Best error estimate reached.
+        achieved: f64,
+        /// Steps of the probe's finest level.
+        steps: usize,
+        /// A tolerance that is reachable (the estimate reached, rounded up).
+        suggest: f64,
+    },
     /// A cell at the deepest level still predicts more than the target: `P` is not smooth
     /// there at the scale the node tolerance resolves (node noise or a kink).
     #[error(
@@ -619,6 +641,81 @@ fn build_patch(
         unique_nodes: cache.len(),
         simulated,
     }))
+}
+
+/// Finest level a pre-flight probe may use (one impact at 32768 steps × 32768 springs takes
+/// about a second).
+const PROBE_MAX_STEPS: usize = 1 << 15;
+
+/// What the pre-flight probe measured.
+#[derive(Debug, Clone, Copy)]
+pub struct Preflight {
+    /// Wall time of the slowest probe (s): an upper estimate of one node's cost.
+    pub slowest_node_s: f64,
+}
+
+/// Check before the work starts that the node and check tolerances can be reached: solve the
+/// hardest points of the domain (largest γ in partial slip and at α = ∞, where `P` oscillates
+/// fastest) with the refinement capped at [`PROBE_MAX_STEPS`]. A tolerance that needs more would
+/// make every node take seconds to minutes: refused with the tolerance that is reachable.
+pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
+    let g = cfg.domain.gamma_max;
+    let mut probes = vec![(g, f64::INFINITY)];
+    if g > 1.0 {
+        let (a1, a2) = (
+            oblique_lookup::surface::alpha_c1(g),
+            oblique_lookup::surface::alpha_c2(g),
+        );
+        probes.push((g, (a1 * a2).sqrt()));
+    }
+    let limits = physics::impact::Limits {
+        max_steps: PROBE_MAX_STEPS,
+    };
+    let mut slowest = 0.0f64;
+    for (key, tol) in [
+        ("solver.tol", cfg.solver.tol),
+        ("checks.tol", cfg.check_tol()),
+    ] {
+        for &(gamma, alpha) in &probes {
+            let start = std::time::Instant::now();
+            let r = physics::impact::solve_with_limits(
+                gamma,
+                alpha,
+                Accuracy::Tolerance(tol),
+                Scheme::Accurate,
+                false,
+                limits,
+            );
+            slowest = slowest.max(start.elapsed().as_secs_f64());
+            match r {
+                Ok(_) => {}
+                Err(PhysicsError::ToleranceUnreachable {
+                    achieved, steps, ..
+                }) => {
+                    let suggest = 10f64.powf(achieved.log10().ceil());
+                    return Err(SweepError::Unreachable {
+                        key,
+                        tol,
+                        gamma,
+                        alpha,
+                        achieved,
+                        steps,
+                        suggest,
+                    });
+                }
+                Err(source) => {
+                    return Err(SweepError::Node {
+                        gamma,
+                        alpha,
+                        source,
+                    })
+                }
+            }
+        }
+    }
+    Ok(Preflight {
+        slowest_node_s: slowest,
+    })
 }
 
 /// Deterministic generator for check points (SplitMix64).
