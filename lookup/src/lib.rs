@@ -11,11 +11,13 @@
 //!   vectors, contact normal) answer sphere–wall and sphere–sphere impacts in SI units, with
 //!   `γ` from the materials ([`Stiffness::Materials`]) or given ([`Stiffness::Gamma`]);
 //!   [`rebound`] is the algebra from `P` to the post-impact state.
+//! - [`capi`] is the C ABI of the `cdylib` (header `lookup/include/oblique_lookup.h`).
 //!
 //! Symbols (as in `physics.md`): `γ = √((7/2) G*/E*)`, `α = μ v_z0/|u0|`, `P = u_after/u_before`,
 //! `α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`.
 
 mod batch;
+pub mod capi;
 pub mod format;
 pub mod impact;
 mod read;
