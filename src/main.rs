@@ -11,6 +11,7 @@ use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Resolution, Sche
 use oblique::sweep::config::ConfigError;
 
 mod progress;
+mod query_cmd;
 mod scene_cmd;
 mod table_cmds;
 
@@ -56,6 +57,17 @@ sweep scene configs/scenes/steel_on_steel.toml --table tables/full.h5 -o out/\n\
 Without --table, only the scene's own cases are simulated (closed forms never are).\n\
 Scene file keys: docs/scenes.md.")]
     Scene(scene_cmd::SceneArgs),
+    /// Answer P(gamma, alpha) from a table without simulating: one point, or a batch of lines.
+    #[command(after_help = "Examples:\n  \
+sweep query tables/full.h5 --gamma 1.754 --alpha 1\n  \
+sweep query tables/full.h5 --gamma 1.754 --alpha inf --json\n  \
+sweep query tables/full.h5 --batch points.csv > answers.csv\n  \
+printf '1.75,0.3\\n2,inf\\n' | sweep query tables/full.h5 --batch -\n\n\
+Batch lines are `gamma,alpha` (an optional first line `gamma,alpha` is a header); the output\n\
+lines are `gamma,alpha,P,e_t` in the same order, e_t = (2P + 5)/7 (solid sphere, no spin).\n\
+A malformed line or a point outside the table's domain stops with its line number (exit 2);\n\
+--clamp answers points outside the domain at the nearest gamma of the table instead.")]
+    Query(query_cmd::QueryArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -225,6 +237,7 @@ fn main() -> ExitCode {
         Command::Run(a) => table_cmds::run(a),
         Command::Inspect(a) => table_cmds::inspect(a),
         Command::Scene(a) => scene_cmd::run(a),
+        Command::Query(a) => query_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -234,6 +247,7 @@ fn main() -> ExitCode {
                 e.downcast_ref::<PhysicsError>(),
                 Some(PhysicsError::InvalidParameter { .. })
             ) || e.downcast_ref::<ConfigError>().is_some()
+                || e.downcast_ref::<query_cmd::QueryUsageError>().is_some()
                 || matches!(
                     e.downcast_ref::<oblique::scene::SceneError>(),
                     Some(
