@@ -367,9 +367,9 @@ fn c_rebound(gamma: f64, alpha: f64, r: &Rebound3) -> ObliqueRebound {
         tangential_impulse: r.tangential_impulse,
         normal_impulse: r.normal_impulse,
         e_t: r.e_t,
-        incidence_angle: r.incidence_angle,
-        rebound_angle_centre: r.rebound_angle_centre,
-        rebound_angle_contact: r.rebound_angle_contact,
+        incidence_angle: r.incidence_angle(),
+        rebound_angle_centre: r.rebound_angle_centre(),
+        rebound_angle_contact: r.rebound_angle_contact(),
         energy_lost: r.energy_lost,
     }
 }

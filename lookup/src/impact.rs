@@ -113,9 +113,9 @@ impl Table {
     }
 
     /// A 3-D impact (velocity and spin vectors, contact normal): reduced to its plane of impact
-    /// ([`Pair::plane`]), answered there, and applied back ([`Pair::lift`]). Components the
-    /// model has no force for (spin about the normal, velocity and spin across the plane) are
-    /// returned unchanged.
+    /// ([`Pair::plane`]), answered there, and applied back ([`Pair::rebound_3d`]). Components
+    /// the model has no force for (spin about the normal, velocity and spin across the plane)
+    /// are returned unchanged.
     pub fn rebound_3d(
         &self,
         pair: &Pair,
@@ -126,11 +126,10 @@ impl Table {
         let plane = pair.plane(s)?;
         let alpha = pair.alpha(&plane.incident, contact.friction)?;
         let p = self.p_for(pair, &plane.incident, gamma, alpha, contact)?;
-        let r = pair.rebound(&plane.incident, p)?;
         Ok(Answer {
             gamma,
             alpha,
-            rebound: pair.lift(s, &plane, &r),
+            rebound: pair.rebound_in_plane(s, &plane, p)?,
         })
     }
 }

@@ -97,7 +97,17 @@ impl Body {
         self.kappa * self.mass * self.radius * self.radius
     }
 
+    #[inline]
     fn validate(&self, which: &'static [&'static str; 3]) -> Result<(), LookupError> {
+        let ok = |v: f64| v.is_finite() && v > 0.0;
+        if ok(self.mass) && ok(self.radius) && ok(self.kappa) {
+            return Ok(());
+        }
+        self.invalid(which)
+    }
+
+    #[cold]
+    fn invalid(&self, which: &'static [&'static str; 3]) -> Result<(), LookupError> {
         for (name, v) in which.iter().zip([self.mass, self.radius, self.kappa]) {
             if !(v.is_finite() && v > 0.0) {
                 return Err(query(name, v, "a finite number > 0"));
@@ -256,6 +266,12 @@ impl Pair {
     /// `α = (2/7)(m*/m_t) μ v_z0/|u0|` for the friction coefficient `μ` (`∞` when `u0 = 0`).
     pub fn alpha(&self, s: &Incident, mu: f64) -> Result<f64, LookupError> {
         self.check_incident(s)?;
+        self.alpha_checked(s, mu)
+    }
+
+    /// [`Pair::alpha`] for an incident state already checked.
+    #[inline]
+    pub(crate) fn alpha_checked(&self, s: &Incident, mu: f64) -> Result<f64, LookupError> {
         if mu.is_nan() || mu < 0.0 {
             return Err(query("friction", mu, ">= 0 (or inf for no slip)"));
         }
@@ -264,8 +280,28 @@ impl Pair {
         Ok(if a.is_nan() { f64::INFINITY } else { a })
     }
 
+    #[inline]
     fn check_incident(&self, s: &Incident) -> Result<(), LookupError> {
         self.validate()?;
+        let finite = [
+            s.sphere.v_x,
+            s.sphere.v_z,
+            s.sphere.omega,
+            s.other.v_x,
+            s.other.v_z,
+            s.other.omega,
+        ]
+        .iter()
+        .all(|v| v.is_finite());
+        let still = self.other.is_some() || s.other == State::default();
+        if finite && still && self.approach_speed(s) > 0.0 {
+            return Ok(());
+        }
+        self.bad_incident(s)
+    }
+
+    #[cold]
+    fn bad_incident(&self, s: &Incident) -> Result<(), LookupError> {
         let fields = [
             ("v_x", s.sphere.v_x),
             ("v_z", s.sphere.v_z),
@@ -303,6 +339,33 @@ impl Pair {
     /// about the contact point; the normal velocity difference reverses.
     pub fn rebound(&self, s: &Incident, p: f64) -> Result<Rebound, LookupError> {
         self.check_incident(s)?;
+        let c = self.impulses(s, p)?;
+        let rel_x0 = s.sphere.v_x - s.other.v_x;
+        let rel_x1 = c.sphere.v_x - c.other.map_or(0.0, |o| o.v_x);
+        let v0 = c.approach_speed;
+        Ok(Rebound {
+            sphere: c.sphere,
+            other: c.other,
+            p: c.p,
+            slip_before: c.slip_before,
+            slip_after: c.slip_after,
+            tangential_impulse: c.tangential_impulse,
+            normal_impulse: c.normal_impulse,
+            e_t: if rel_x0 == 0.0 {
+                f64::NAN
+            } else {
+                rel_x1 / rel_x0
+            },
+            incidence_angle: rel_x0.atan2(v0),
+            rebound_angle_centre: rel_x1.atan2(v0),
+            rebound_angle_contact: c.slip_after.atan2(v0),
+            energy_lost: c.energy_lost,
+        })
+    }
+
+    /// The impulses and states after the impact for an incident state already checked.
+    #[inline]
+    fn impulses(&self, s: &Incident, p: f64) -> Result<Core, LookupError> {
         let u0 = self.slip_velocity(s);
         let p = if u0 == 0.0 { f64::NAN } else { p };
         if u0 != 0.0 && !p.is_finite() {
@@ -323,25 +386,15 @@ impl Pair {
             v_z: s.other.v_z + n / b2.mass,
             omega: s.other.omega - j * b2.radius / b2.inertia(),
         });
-        let rel_x0 = s.sphere.v_x - s.other.v_x;
-        let rel_x1 = sphere.v_x - other.map_or(0.0, |o| o.v_x);
-        let slip_after = if u0 == 0.0 { 0.0 } else { p * u0 };
-        Ok(Rebound {
+        Ok(Core {
             sphere,
             other,
             p,
             slip_before: u0,
-            slip_after,
+            slip_after: if u0 == 0.0 { 0.0 } else { p * u0 },
             tangential_impulse: j,
             normal_impulse: n,
-            e_t: if rel_x0 == 0.0 {
-                f64::NAN
-            } else {
-                rel_x1 / rel_x0
-            },
-            incidence_angle: rel_x0.atan2(v0),
-            rebound_angle_centre: rel_x1.atan2(v0),
-            rebound_angle_contact: slip_after.atan2(v0),
+            approach_speed: v0,
             energy_lost: if u0 == 0.0 {
                 0.0
             } else {
@@ -349,6 +402,19 @@ impl Pair {
             },
         })
     }
+}
+
+/// What [`Pair::rebound`] computes before the angles.
+struct Core {
+    sphere: State,
+    other: Option<State>,
+    p: f64,
+    slip_before: f64,
+    slip_after: f64,
+    tangential_impulse: f64,
+    normal_impulse: f64,
+    approach_speed: f64,
+    energy_lost: f64,
 }
 
 /// A 3-vector `[x, y, z]` in any right-handed frame (units of the quantity it holds).
@@ -435,17 +501,34 @@ pub struct Rebound3 {
     /// the tangential part of `v_1 − v_2` (the 2-D `e_t` when `w` lies along `t`); NaN when
     /// `w_before = 0`.
     pub e_t: f64,
-    /// Incidence angle of the relative centre velocity from the normal (rad),
-    /// `atan2(|w_before|, v_z0)`.
-    pub incidence_angle: f64,
-    /// Rebound angle of the relative centre velocity from the normal (rad),
-    /// `atan2(|w_after|, v_z0)`, in `[0, π/2)`.
-    pub rebound_angle_centre: f64,
-    /// Rebound angle of the contact-point velocity from the normal, in the plane of impact (rad),
-    /// `atan2(P |u0|, v_z0)`: negative when the slip reversed.
-    pub rebound_angle_contact: f64,
+    /// `|w_before|`, tangential speed of the relative centre velocity before (m/s).
+    pub centre_speed_before: f64,
+    /// `|w_after|`, tangential speed of the relative centre velocity after (m/s).
+    pub centre_speed_after: f64,
+    /// Approach speed `v_z0 = (v_1 − v_2)·n > 0` (m/s); the bodies separate at the same speed.
+    pub approach_speed: f64,
     /// Kinetic energy lost to friction, `(m_t/2) |u0|² (1 − P²)` (J).
     pub energy_lost: f64,
+}
+
+impl Rebound3 {
+    /// Incidence angle of the relative centre velocity from the normal (rad),
+    /// `atan2(|w_before|, v_z0)`.
+    pub fn incidence_angle(&self) -> f64 {
+        self.centre_speed_before.atan2(self.approach_speed)
+    }
+
+    /// Rebound angle of the relative centre velocity from the normal (rad),
+    /// `atan2(|w_after|, v_z0)`, in `[0, π/2)`.
+    pub fn rebound_angle_centre(&self) -> f64 {
+        self.centre_speed_after.atan2(self.approach_speed)
+    }
+
+    /// Rebound angle of the contact-point velocity from the normal, in the plane of impact
+    /// (rad), `atan2(P |u0|, v_z0)`: negative when the slip reversed.
+    pub fn rebound_angle_contact(&self) -> f64 {
+        self.slip_after.atan2(self.approach_speed)
+    }
 }
 
 /// A 3-D impact reduced to its plane of impact ([`Pair::plane`]).
@@ -534,12 +617,19 @@ impl Pair {
     /// `n` and about `b`; all other components unchanged.
     pub fn rebound_3d(&self, s: &Incident3, p: f64) -> Result<Rebound3, LookupError> {
         let plane = self.plane(s)?;
-        let r = self.rebound(&plane.incident, p)?;
-        Ok(self.lift(s, &plane, &r))
+        self.check_incident(&plane.incident)?;
+        self.rebound_in_plane(s, &plane, p)
     }
 
-    /// Apply a 2-D rebound computed in `plane` (from [`Pair::plane`] of `s`) to the 3-D states.
-    pub fn lift(&self, s: &Incident3, plane: &Plane, r: &Rebound) -> Rebound3 {
+    /// [`Pair::rebound_3d`] for a plane from [`Pair::plane`] whose incident state is checked.
+    #[inline]
+    pub(crate) fn rebound_in_plane(
+        &self,
+        s: &Incident3,
+        plane: &Plane,
+        p: f64,
+    ) -> Result<Rebound3, LookupError> {
+        let c = self.impulses(&plane.incident, p)?;
         let Frame {
             tangent: t,
             binormal: b,
@@ -553,8 +643,8 @@ impl Pair {
             ),
             spin: axpy(m.spin, after.omega - before.omega, b),
         };
-        let sphere = apply(&s.sphere, &plane.incident.sphere, &r.sphere);
-        let other = r
+        let sphere = apply(&s.sphere, &plane.incident.sphere, &c.sphere);
+        let other = c
             .other
             .as_ref()
             .map(|o| apply(&s.other, &plane.incident.other, o));
@@ -565,26 +655,25 @@ impl Pair {
         let w0 = rel(&s.sphere, &s.other);
         let w1 = rel(&sphere, other.as_ref().unwrap_or(&Motion3::default()));
         let w0w0 = dot(w0, w0);
-        let v0 = self.approach_speed(&plane.incident);
-        Rebound3 {
+        Ok(Rebound3 {
             sphere,
             other,
             frame: plane.frame,
-            p: r.p,
-            slip_before: r.slip_before,
-            slip_after: r.slip_after,
-            tangential_impulse: r.tangential_impulse,
-            normal_impulse: r.normal_impulse,
+            p: c.p,
+            slip_before: c.slip_before,
+            slip_after: c.slip_after,
+            tangential_impulse: c.tangential_impulse,
+            normal_impulse: c.normal_impulse,
             e_t: if w0w0 == 0.0 {
                 f64::NAN
             } else {
                 dot(w1, w0) / w0w0
             },
-            incidence_angle: w0w0.sqrt().atan2(v0),
-            rebound_angle_centre: dot(w1, w1).sqrt().atan2(v0),
-            rebound_angle_contact: r.rebound_angle_contact,
-            energy_lost: r.energy_lost,
-        }
+            centre_speed_before: w0w0.sqrt(),
+            centre_speed_after: dot(w1, w1).sqrt(),
+            approach_speed: c.approach_speed,
+            energy_lost: c.energy_lost,
+        })
     }
 }
 

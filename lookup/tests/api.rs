@@ -477,7 +477,8 @@ fn planar_3d_impacts_equal_the_2d_answer_in_any_orientation() {
         }
         assert!((r3.e_t - r2.e_t).abs() < 1e-12);
         assert!((r3.energy_lost - r2.energy_lost).abs() < 1e-12 * r2.energy_lost.abs() + 1e-18);
-        assert!((r3.rebound_angle_contact - r2.rebound_angle_contact).abs() < 1e-12);
+        assert!((r3.rebound_angle_contact() - r2.rebound_angle_contact).abs() < 1e-12);
+        assert!((r3.incidence_angle() - r2.incidence_angle.abs()).abs() < 1e-12);
     }
 }
 
