@@ -362,26 +362,6 @@ impl Region {
         }
     }
 
-    /// [`Region::of`] without divisions (the same up to rounding at the region edges, where
-    /// the regions' values agree): `α ≤ α_lin ⇔ 7α·max(2γ² − 1, 1) ≤ 2γ²` (`γ > 1` uses
-    /// `2γ² − 1`), `α < α_c2 ⇔ 7α < 2γ²`.
-    #[inline(always)]
-    fn of_fast(gamma: f64, alpha: f64) -> Self {
-        let g2 = 2.0 * gamma * gamma;
-        let a7 = 7.0 * alpha;
-        let high = gamma > 1.0;
-        let scale = if high { g2 - 1.0 } else { 1.0 };
-        if a7 * scale <= g2 {
-            Region::Line
-        } else if !high {
-            Region::StickLow
-        } else if a7 < g2 {
-            Region::PartialHigh
-        } else {
-            Region::StickHigh
-        }
-    }
-
     /// Index used in the `checks/patch` dataset (−1 for the line).
     pub fn index(self) -> i32 {
         match self {
@@ -433,7 +413,7 @@ impl Surface {
         if alpha.is_nan() || alpha < 0.0 {
             return Err(bad_alpha(alpha));
         }
-        let region = Region::of_fast(gamma, alpha);
+        let region = Region::of(gamma, alpha);
         if region == Region::Line {
             return Ok(1.0 - 7.0 * alpha);
         }
