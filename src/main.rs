@@ -12,6 +12,7 @@ use oblique::sweep::config::ConfigError;
 
 mod plot_cmd;
 mod progress;
+mod query_cmd;
 mod scene_cmd;
 mod table_cmds;
 
@@ -81,6 +82,17 @@ check_errors  interpolation error at the table's held-out checks, over its quadt
 The alpha axis is alpha/(1 + alpha), so alpha = inf (no slip) is on the plot. Each figure's\n\
 caption names the table, its provenance and the command. More: docs/figures.md.")]
     Plot(plot_cmd::PlotArgs),
+    /// Answer P(gamma, alpha) from a table without simulating: one point, or a batch of lines.
+    #[command(after_help = "Examples:\n  \
+sweep query tables/full.h5 --gamma 1.754 --alpha 1\n  \
+sweep query tables/full.h5 --gamma 1.754 --alpha inf --json\n  \
+sweep query tables/full.h5 --batch points.csv > answers.csv\n  \
+printf '1.75,0.3\\n2,inf\\n' | sweep query tables/full.h5 --batch -\n\n\
+Batch lines are `gamma,alpha` (an optional first line `gamma,alpha` is a header); the output\n\
+lines are `gamma,alpha,P,e_t` in the same order, e_t = (2P + 5)/7 (solid sphere, no spin).\n\
+A malformed line or a point outside the table's domain stops with its line number (exit 2);\n\
+--clamp answers points outside the domain at the nearest gamma of the table instead.")]
+    Query(query_cmd::QueryArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -252,6 +264,7 @@ fn main() -> ExitCode {
         Command::Merge(a) => table_cmds::merge(a),
         Command::Scene(a) => scene_cmd::run(a),
         Command::Plot(a) => plot_cmd::run(a),
+        Command::Query(a) => query_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -268,6 +281,7 @@ fn main() -> ExitCode {
                 )
                 || e.downcast_ref::<oblique::nodestore::NodeFileError>()
                     .is_some()
+                || e.downcast_ref::<query_cmd::QueryUsageError>().is_some()
                 || matches!(
                     e.downcast_ref::<oblique::scene::SceneError>(),
                     Some(

@@ -4,11 +4,42 @@
 //!
 //! For each impact: the groups (γ, α, m*, m_t, R*) agree; `rebound(P_physical)` reproduces the
 //! simulated states; and `rebound(P)` with `P` from the dimensionless `solve(γ, α)` agrees with
-//! them within the two error estimates.
+//! them within the two error estimates; `Table::rebound` (2-D) and `Table::rebound_3d` (the same
+//! impact embedded in a rotated 3-D frame, with extra spin about the normal) answered from
+//! `tables/full.h5` agree with the simulation within the table's stated error plus the
+//! simulation's.
 
 use oblique::physics::units::{Material, Motion, PhysicalImpact, Sphere, Target};
 use oblique::physics::{solve, Accuracy, Scheme};
-use oblique_lookup::rebound::{Body, Elastic, Incident, Pair, State};
+use std::sync::OnceLock;
+
+use oblique_lookup::rebound::{Body, Elastic, Incident, Incident3, Motion3, Pair, State, Vec3};
+use oblique_lookup::{Contact, Table};
+
+fn table() -> &'static Table {
+    static T: OnceLock<Table> = OnceLock::new();
+    T.get_or_init(|| {
+        Table::open(concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5")).expect("full.h5")
+    })
+}
+
+/// A right-handed frame `(x, y = z × x, z)` tilted away from the axes.
+fn frame() -> (Vec3, Vec3, Vec3) {
+    let unit = |v: Vec3| {
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        [v[0] / l, v[1] / l, v[2] / l]
+    };
+    let z = unit([0.3, -0.5, 0.81]);
+    let w = [1.0, 0.2, -0.1];
+    let wz = w[0] * z[0] + w[1] * z[1] + w[2] * z[2];
+    let x = unit([w[0] - wz * z[0], w[1] - wz * z[1], w[2] - wz * z[2]]);
+    let y = [
+        z[1] * x[2] - z[2] * x[1],
+        z[2] * x[0] - z[0] * x[2],
+        z[0] * x[1] - z[1] * x[0],
+    ];
+    (x, y, z)
+}
 
 const TOL: f64 = 1e-6;
 
@@ -138,6 +169,80 @@ fn check(imp: &PhysicalImpact) {
             sim.omega,
             dj * b.radius / b.inertia() + 1e-9 * scale_v / b.radius,
             "omega",
+        );
+    }
+
+    // 3. From the table, in 2-D and embedded in 3-D: within the table's error + the simulation's.
+    let t = table();
+    let contact = Contact::with_materials(
+        elastic(&imp.sphere.material),
+        elastic(&other_mat),
+        imp.friction,
+    );
+    let a = t.rebound(&pair, &contact, &inc).expect("table rebound");
+    close(a.gamma, g.gamma, 1e-12 * g.gamma, "gamma (table)");
+    close(a.alpha, g.alpha, 1e-12 * g.alpha, "alpha (table)");
+    let err = t.certified_error() + phys.error_estimate;
+    close(a.rebound.p, p_phys, err, "P (table vs physical)");
+    let (x, y, z) = frame();
+    let spin_n = [25.0, -60.0];
+    let lift = |s: &State, k: usize| Motion3 {
+        velocity: [
+            s.v_x * x[0] + s.v_z * z[0],
+            s.v_x * x[1] + s.v_z * z[1],
+            s.v_x * x[2] + s.v_z * z[2],
+        ],
+        spin: [
+            s.omega * y[0] + spin_n[k] * z[0],
+            s.omega * y[1] + spin_n[k] * z[1],
+            s.omega * y[2] + spin_n[k] * z[2],
+        ],
+    };
+    let inc3 = Incident3 {
+        sphere: lift(&inc.sphere, 0),
+        other: if pair.other.is_some() {
+            lift(&inc.other, 1)
+        } else {
+            Motion3::default()
+        },
+        normal: z,
+    };
+    let a3 = t
+        .rebound_3d(&pair, &contact, &inc3)
+        .expect("table rebound 3-D");
+    close(a3.rebound.p, a.rebound.p, 1e-9, "P (3-D vs 2-D)");
+    let dot = |a: Vec3, b: Vec3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let mut bodies3: Vec<(Motion3, Motion, Body, usize)> =
+        vec![(a3.rebound.sphere, phys.sphere, pair.sphere, 0)];
+    if let (Some(m), Some(sim), Some(b)) = (a3.rebound.other, phys.other, pair.other) {
+        bodies3.push((m, sim, b, 1));
+    }
+    let dj = m_t * err * u0;
+    for (mine, sim, b, k) in &bodies3 {
+        let (vx, vz, wy) = (
+            dot(mine.velocity, x),
+            dot(mine.velocity, z),
+            dot(mine.spin, y),
+        );
+        close(
+            vx,
+            sim.v_x,
+            dj / b.mass + 1e-9 * scale_v,
+            "v_x (table, 3-D)",
+        );
+        close(vz, sim.v_z, 1e-8 * scale_v, "v_z (table, 3-D)");
+        close(
+            wy,
+            sim.omega,
+            dj * b.radius / b.inertia() + 1e-9 * scale_v / b.radius,
+            "omega (table, 3-D)",
+        );
+        close(dot(mine.velocity, y), 0.0, 1e-12 * scale_v, "v_y (3-D)");
+        close(
+            dot(mine.spin, z),
+            spin_n[*k],
+            1e-9,
+            "spin about the normal (3-D)",
         );
     }
 }

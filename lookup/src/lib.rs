@@ -5,16 +5,28 @@
 //! the linear limit, otherwise local Lagrange interpolation on curve-aligned patches. No HDF5 call
 //! happens on the query path. This crate never depends on the simulator.
 //!
+//! - [`Table::open`] loads and validates a table; [`Table::p`] / [`Table::p_with`] answer one
+//!   `P(γ, α)`, [`Table::p_batch`] and [`Table::p_batch_par`] (feature `rayon`) many.
+//! - [`Table::rebound`] (2-D, the plane of impact) and [`Table::rebound_3d`] (velocity and spin
+//!   vectors, contact normal) answer sphere–wall and sphere–sphere impacts in SI units, with
+//!   `γ` from the materials ([`Stiffness::Materials`]) or given ([`Stiffness::Gamma`]);
+//!   [`rebound`] is the algebra from `P` to the post-impact state.
+//! - [`capi`] is the C ABI of the `cdylib` (header `lookup/include/oblique_lookup.h`).
+//!
 //! Symbols (as in `physics.md`): `γ = √((7/2) G*/E*)`, `α = μ v_z0/|u0|`, `P = u_after/u_before`,
 //! `α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`.
 
+mod batch;
+pub mod capi;
 pub mod format;
+pub mod impact;
 mod read;
 pub mod rebound;
 pub mod surface;
 
+pub use impact::{Answer, Contact, Stiffness};
 pub use read::{Check, Provenance, Table};
-pub use surface::{Patch, PatchKind, Surface};
+pub use surface::{OutOfDomain, Patch, PatchKind, Surface};
 
 use thiserror::Error;
 
@@ -46,5 +58,23 @@ pub enum LookupError {
         value: f64,
         /// The allowed range.
         allowed: String,
+    },
+    /// One query of a batch is invalid.
+    #[error("query {index} (0-based) of the batch: {source}")]
+    Batch {
+        /// Index of the first invalid query.
+        index: usize,
+        /// Why it is invalid.
+        source: Box<LookupError>,
+    },
+    /// The slices of a batch differ in length.
+    #[error("batch slice '{name}' has length {len}, expected {expected} (the length of gamma)")]
+    Length {
+        /// Name of the slice.
+        name: &'static str,
+        /// Its length.
+        len: usize,
+        /// The length of the `gamma` slice.
+        expected: usize,
     },
 }

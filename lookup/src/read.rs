@@ -5,7 +5,7 @@ use std::path::Path;
 use hdf5::types::VarLenUnicode;
 
 use crate::format::*;
-use crate::surface::{Patch, PatchKind, Surface};
+use crate::surface::{OutOfDomain, Patch, PatchKind, Surface};
 use crate::LookupError;
 
 /// Where a table came from (root attributes).
@@ -387,8 +387,31 @@ impl Table {
         })
     }
 
-    /// `P(γ, α)`; see [`Surface::eval`].
+    /// `P(γ, α)` (dimensionless), refusing points outside the table's domain; see
+    /// [`Surface::eval_with`].
+    #[inline]
     pub fn p(&self, gamma: f64, alpha: f64) -> Result<f64, LookupError> {
         self.surface.eval(gamma, alpha)
+    }
+
+    /// `P(γ, α)` with the caller's choice for points outside the domain
+    /// ([`OutOfDomain::Clamp`] answers at the nearest point of the domain); see
+    /// [`Surface::eval_with`].
+    #[inline]
+    pub fn p_with(&self, gamma: f64, alpha: f64, outside: OutOfDomain) -> Result<f64, LookupError> {
+        self.surface.eval_with(gamma, alpha, outside)
+    }
+
+    /// The error bound this table states for an interpolated `P` (absolute):
+    /// `max(largest held-out check error, target_error) + node_tol`. The held-out maximum alone
+    /// is measured at a few dozen points; the target error is what every leaf was refined for.
+    /// NaN when the file lacks these attributes.
+    pub fn certified_error(&self) -> f64 {
+        let held_out = self
+            .checks
+            .iter()
+            .map(|c| c.interpolation_error)
+            .fold(0.0, f64::max);
+        held_out.max(self.provenance.target_error) + self.provenance.node_tol
     }
 }

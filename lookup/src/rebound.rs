@@ -97,7 +97,17 @@ impl Body {
         self.kappa * self.mass * self.radius * self.radius
     }
 
+    #[inline]
     fn validate(&self, which: &'static [&'static str; 3]) -> Result<(), LookupError> {
+        let ok = |v: f64| v.is_finite() && v > 0.0;
+        if ok(self.mass) && ok(self.radius) && ok(self.kappa) {
+            return Ok(());
+        }
+        self.invalid(which)
+    }
+
+    #[cold]
+    fn invalid(&self, which: &'static [&'static str; 3]) -> Result<(), LookupError> {
         for (name, v) in which.iter().zip([self.mass, self.radius, self.kappa]) {
             if !(v.is_finite() && v > 0.0) {
                 return Err(query(name, v, "a finite number > 0"));
@@ -256,6 +266,12 @@ impl Pair {
     /// `α = (2/7)(m*/m_t) μ v_z0/|u0|` for the friction coefficient `μ` (`∞` when `u0 = 0`).
     pub fn alpha(&self, s: &Incident, mu: f64) -> Result<f64, LookupError> {
         self.check_incident(s)?;
+        self.alpha_checked(s, mu)
+    }
+
+    /// [`Pair::alpha`] for an incident state already checked.
+    #[inline]
+    pub(crate) fn alpha_checked(&self, s: &Incident, mu: f64) -> Result<f64, LookupError> {
         if mu.is_nan() || mu < 0.0 {
             return Err(query("friction", mu, ">= 0 (or inf for no slip)"));
         }
@@ -264,8 +280,28 @@ impl Pair {
         Ok(if a.is_nan() { f64::INFINITY } else { a })
     }
 
+    #[inline]
     fn check_incident(&self, s: &Incident) -> Result<(), LookupError> {
         self.validate()?;
+        let finite = [
+            s.sphere.v_x,
+            s.sphere.v_z,
+            s.sphere.omega,
+            s.other.v_x,
+            s.other.v_z,
+            s.other.omega,
+        ]
+        .iter()
+        .all(|v| v.is_finite());
+        let still = self.other.is_some() || s.other == State::default();
+        if finite && still && self.approach_speed(s) > 0.0 {
+            return Ok(());
+        }
+        self.bad_incident(s)
+    }
+
+    #[cold]
+    fn bad_incident(&self, s: &Incident) -> Result<(), LookupError> {
         let fields = [
             ("v_x", s.sphere.v_x),
             ("v_z", s.sphere.v_z),
@@ -303,6 +339,33 @@ impl Pair {
     /// about the contact point; the normal velocity difference reverses.
     pub fn rebound(&self, s: &Incident, p: f64) -> Result<Rebound, LookupError> {
         self.check_incident(s)?;
+        let c = self.impulses(s, p)?;
+        let rel_x0 = s.sphere.v_x - s.other.v_x;
+        let rel_x1 = c.sphere.v_x - c.other.map_or(0.0, |o| o.v_x);
+        let v0 = c.approach_speed;
+        Ok(Rebound {
+            sphere: c.sphere,
+            other: c.other,
+            p: c.p,
+            slip_before: c.slip_before,
+            slip_after: c.slip_after,
+            tangential_impulse: c.tangential_impulse,
+            normal_impulse: c.normal_impulse,
+            e_t: if rel_x0 == 0.0 {
+                f64::NAN
+            } else {
+                rel_x1 / rel_x0
+            },
+            incidence_angle: rel_x0.atan2(v0),
+            rebound_angle_centre: rel_x1.atan2(v0),
+            rebound_angle_contact: c.slip_after.atan2(v0),
+            energy_lost: c.energy_lost,
+        })
+    }
+
+    /// The impulses and states after the impact for an incident state already checked.
+    #[inline]
+    fn impulses(&self, s: &Incident, p: f64) -> Result<Core, LookupError> {
         let u0 = self.slip_velocity(s);
         let p = if u0 == 0.0 { f64::NAN } else { p };
         if u0 != 0.0 && !p.is_finite() {
@@ -323,25 +386,15 @@ impl Pair {
             v_z: s.other.v_z + n / b2.mass,
             omega: s.other.omega - j * b2.radius / b2.inertia(),
         });
-        let rel_x0 = s.sphere.v_x - s.other.v_x;
-        let rel_x1 = sphere.v_x - other.map_or(0.0, |o| o.v_x);
-        let slip_after = if u0 == 0.0 { 0.0 } else { p * u0 };
-        Ok(Rebound {
+        Ok(Core {
             sphere,
             other,
             p,
             slip_before: u0,
-            slip_after,
+            slip_after: if u0 == 0.0 { 0.0 } else { p * u0 },
             tangential_impulse: j,
             normal_impulse: n,
-            e_t: if rel_x0 == 0.0 {
-                f64::NAN
-            } else {
-                rel_x1 / rel_x0
-            },
-            incidence_angle: rel_x0.atan2(v0),
-            rebound_angle_centre: rel_x1.atan2(v0),
-            rebound_angle_contact: slip_after.atan2(v0),
+            approach_speed: v0,
             energy_lost: if u0 == 0.0 {
                 0.0
             } else {
@@ -349,6 +402,297 @@ impl Pair {
             },
         })
     }
+}
+
+/// What [`Pair::rebound`] computes before the angles.
+struct Core {
+    sphere: State,
+    other: Option<State>,
+    p: f64,
+    slip_before: f64,
+    slip_after: f64,
+    tangential_impulse: f64,
+    normal_impulse: f64,
+    approach_speed: f64,
+    energy_lost: f64,
+}
+
+/// A 3-vector `[x, y, z]` in any right-handed frame (units of the quantity it holds).
+pub type Vec3 = [f64; 3];
+
+#[inline]
+fn dot(a: Vec3, b: Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline]
+fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline]
+fn axpy(y: Vec3, a: f64, x: Vec3) -> Vec3 {
+    [y[0] + a * x[0], y[1] + a * x[1], y[2] + a * x[2]]
+}
+
+#[inline]
+fn sub(a: Vec3, b: Vec3) -> Vec3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// Translational and rotational state of one body in 3-D.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Motion3 {
+    /// Velocity of the centre `v` (m/s).
+    pub velocity: Vec3,
+    /// Angular velocity `ω` (rad/s), right-handed.
+    pub spin: Vec3,
+}
+
+/// Both bodies before a 3-D impact, and the contact normal.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Incident3 {
+    /// Sphere 1.
+    pub sphere: Motion3,
+    /// Sphere 2 (must be all zero for a wall).
+    pub other: Motion3,
+    /// Contact normal `n` pointing from sphere 1's centre into the other body (into the wall, or
+    /// towards sphere 2's centre). Any non-zero length; it is normalised.
+    pub normal: Vec3,
+}
+
+/// The plane of impact: orthonormal, right-handed (`b = n × t`), the 2-D `x, y, z` axes.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Frame {
+    /// `t` (the 2-D `x`): direction of the incident slip velocity `u0` of the contact point
+    /// (when `u0 = 0`, of the relative tangential centre velocity, else any tangent).
+    pub tangent: Vec3,
+    /// `b = n × t` (the 2-D `y`, the spin axis of the 2-D problem).
+    pub binormal: Vec3,
+    /// `n` (the 2-D `z`), unit.
+    pub normal: Vec3,
+}
+
+/// The outcome of one 3-D impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rebound3 {
+    /// Sphere 1 after the impact.
+    pub sphere: Motion3,
+    /// Sphere 2 after the impact (`None` for a wall).
+    pub other: Option<Motion3>,
+    /// The plane of impact used.
+    pub frame: Frame,
+    /// `P = u_after/u_before` used (NaN when `u0 = 0`: nothing tangential happens then).
+    pub p: f64,
+    /// Magnitude of the incident slip velocity of the contact point, `|u0| ≥ 0` (m/s), along
+    /// `frame.tangent`.
+    pub slip_before: f64,
+    /// Slip velocity after along `frame.tangent`, `P |u0|` (m/s; negative when it reversed).
+    pub slip_after: f64,
+    /// Friction impulse `J` on body 2 along `+t` (N s); body 1 receives `−J t`.
+    pub tangential_impulse: f64,
+    /// Normal impulse `2 m* v_z0` on body 2 along `+n` (N s); body 1 receives the opposite.
+    pub normal_impulse: f64,
+    /// Tangential restitution of the centres, `e_t = (w_after · w_before)/|w_before|²` with `w`
+    /// the tangential part of `v_1 − v_2` (the 2-D `e_t` when `w` lies along `t`); NaN when
+    /// `w_before = 0`.
+    pub e_t: f64,
+    /// `|w_before|`, tangential speed of the relative centre velocity before (m/s).
+    pub centre_speed_before: f64,
+    /// `|w_after|`, tangential speed of the relative centre velocity after (m/s).
+    pub centre_speed_after: f64,
+    /// Approach speed `v_z0 = (v_1 − v_2)·n > 0` (m/s); the bodies separate at the same speed.
+    pub approach_speed: f64,
+    /// Kinetic energy lost to friction, `(m_t/2) |u0|² (1 − P²)` (J).
+    pub energy_lost: f64,
+}
+
+impl Rebound3 {
+    /// Incidence angle of the relative centre velocity from the normal (rad),
+    /// `atan2(|w_before|, v_z0)`.
+    pub fn incidence_angle(&self) -> f64 {
+        self.centre_speed_before.atan2(self.approach_speed)
+    }
+
+    /// Rebound angle of the relative centre velocity from the normal (rad),
+    /// `atan2(|w_after|, v_z0)`, in `[0, π/2)`.
+    pub fn rebound_angle_centre(&self) -> f64 {
+        self.centre_speed_after.atan2(self.approach_speed)
+    }
+
+    /// Rebound angle of the contact-point velocity from the normal, in the plane of impact
+    /// (rad), `atan2(P |u0|, v_z0)`: negative when the slip reversed.
+    pub fn rebound_angle_contact(&self) -> f64 {
+        self.slip_after.atan2(self.approach_speed)
+    }
+}
+
+/// A 3-D impact reduced to its plane of impact ([`Pair::plane`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plane {
+    /// The frame.
+    pub frame: Frame,
+    /// The 2-D incident state in that frame (`v_x = v·t`, `v_z = v·n`, `ω = ω·b`).
+    pub incident: Incident,
+}
+
+impl Pair {
+    /// Reduce a 3-D impact to its plane of impact.
+    ///
+    /// The friction impulse acts along the incident slip of the contact point
+    /// `u = (v_1 + ω_1 × R_1 n) − (v_2 − ω_2 × R_2 n)`, tangential part `u0 = |u_t|`, direction
+    /// `t`, and only changes `v·t` and the spin about `b = n × t`; the normal impulse changes
+    /// `v·n`. Every other component (velocity along `b`, spin about `t` and about the normal `n`)
+    /// is left untouched: the model has no torsional (spin about the normal) friction.
+    pub fn plane(&self, s: &Incident3) -> Result<Plane, LookupError> {
+        let fields = [
+            ("sphere.velocity", s.sphere.velocity),
+            ("sphere.spin", s.sphere.spin),
+            ("other.velocity", s.other.velocity),
+            ("other.spin", s.other.spin),
+            ("normal", s.normal),
+        ];
+        for (name, v) in fields {
+            if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+                return Err(query(name, *x, "finite components"));
+            }
+        }
+        if self.other.is_none() && s.other != Motion3::default() {
+            return Err(query(
+                "other.velocity",
+                s.other.velocity[0],
+                "zero motion for a fixed wall (velocity = spin = 0)",
+            ));
+        }
+        let len = dot(s.normal, s.normal).sqrt();
+        if !(len > 0.0 && len.is_finite()) {
+            return Err(query("normal", len, "a vector of non-zero, finite length"));
+        }
+        let n = [s.normal[0] / len, s.normal[1] / len, s.normal[2] / len];
+        let r1 = self.sphere.radius;
+        let r2 = self.other.map_or(0.0, |o| o.radius);
+        // Contact-point velocities: sphere 1's at +R1 n, sphere 2's at −R2 n.
+        let c1 = axpy(s.sphere.velocity, r1, cross(s.sphere.spin, n));
+        let c2 = axpy(s.other.velocity, -r2, cross(s.other.spin, n));
+        let u = sub(c1, c2);
+        let u_t = axpy(u, -dot(u, n), n);
+        let slip = dot(u_t, u_t).sqrt();
+        let tangent = if slip > 0.0 {
+            [u_t[0] / slip, u_t[1] / slip, u_t[2] / slip]
+        } else {
+            any_tangent(sub(s.sphere.velocity, s.other.velocity), n)
+        };
+        let b = cross(n, tangent);
+        let in_plane = |m: &Motion3| State {
+            v_x: dot(m.velocity, tangent),
+            v_z: dot(m.velocity, n),
+            omega: dot(m.spin, b),
+        };
+        let frame = Frame {
+            tangent,
+            binormal: b,
+            normal: n,
+        };
+        let mut incident = Incident {
+            sphere: in_plane(&s.sphere),
+            other: in_plane(&s.other),
+        };
+        if slip == 0.0 {
+            // Make the in-plane slip exactly zero too (the projections could leave a rounding
+            // residue): nothing tangential happens, and only differences are applied back.
+            incident.sphere.omega = 0.0;
+            incident.other.omega = 0.0;
+            incident.sphere.v_x = 0.0;
+            incident.other.v_x = 0.0;
+        }
+        Ok(Plane { frame, incident })
+    }
+
+    /// The state after a 3-D impact for a given `P` (ignored when `u0 = 0`): the 2-D
+    /// [`Pair::rebound`] in the plane of impact ([`Pair::plane`]), its changes applied along `t`,
+    /// `n` and about `b`; all other components unchanged.
+    pub fn rebound_3d(&self, s: &Incident3, p: f64) -> Result<Rebound3, LookupError> {
+        let plane = self.plane(s)?;
+        self.check_incident(&plane.incident)?;
+        self.rebound_in_plane(s, &plane, p)
+    }
+
+    /// [`Pair::rebound_3d`] for a plane from [`Pair::plane`] whose incident state is checked.
+    #[inline]
+    pub(crate) fn rebound_in_plane(
+        &self,
+        s: &Incident3,
+        plane: &Plane,
+        p: f64,
+    ) -> Result<Rebound3, LookupError> {
+        let c = self.impulses(&plane.incident, p)?;
+        let Frame {
+            tangent: t,
+            binormal: b,
+            normal: n,
+        } = plane.frame;
+        let apply = |m: &Motion3, before: &State, after: &State| Motion3 {
+            velocity: axpy(
+                axpy(m.velocity, after.v_x - before.v_x, t),
+                after.v_z - before.v_z,
+                n,
+            ),
+            spin: axpy(m.spin, after.omega - before.omega, b),
+        };
+        let sphere = apply(&s.sphere, &plane.incident.sphere, &c.sphere);
+        let other = c
+            .other
+            .as_ref()
+            .map(|o| apply(&s.other, &plane.incident.other, o));
+        let rel = |a: &Motion3, b: &Motion3| {
+            let w = sub(a.velocity, b.velocity);
+            axpy(w, -dot(w, n), n)
+        };
+        let w0 = rel(&s.sphere, &s.other);
+        let w1 = rel(&sphere, other.as_ref().unwrap_or(&Motion3::default()));
+        let w0w0 = dot(w0, w0);
+        Ok(Rebound3 {
+            sphere,
+            other,
+            frame: plane.frame,
+            p: c.p,
+            slip_before: c.slip_before,
+            slip_after: c.slip_after,
+            tangential_impulse: c.tangential_impulse,
+            normal_impulse: c.normal_impulse,
+            e_t: if w0w0 == 0.0 {
+                f64::NAN
+            } else {
+                dot(w1, w0) / w0w0
+            },
+            centre_speed_before: w0w0.sqrt(),
+            centre_speed_after: dot(w1, w1).sqrt(),
+            approach_speed: c.approach_speed,
+            energy_lost: c.energy_lost,
+        })
+    }
+}
+
+/// A unit vector perpendicular to the unit `n`: along the tangential part of `w` if it is not
+/// zero, else along the axis least aligned with `n`.
+fn any_tangent(w: Vec3, n: Vec3) -> Vec3 {
+    let w_t = axpy(w, -dot(w, n), n);
+    let len = dot(w_t, w_t).sqrt();
+    if len > 0.0 {
+        return [w_t[0] / len, w_t[1] / len, w_t[2] / len];
+    }
+    let k = (0..3)
+        .min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+        .unwrap_or(0);
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let e_t = axpy(e, -n[k], n);
+    let len = dot(e_t, e_t).sqrt();
+    [e_t[0] / len, e_t[1] / len, e_t[2] / len]
 }
 
 #[cfg(test)]

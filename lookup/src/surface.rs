@@ -157,7 +157,9 @@ pub struct Patch {
 #[inline]
 pub fn stencil(u: f64, n: usize, k: usize, w: &mut [f64; 8]) -> (usize, usize) {
     let k = k.min(n).min(8);
-    let cell = (u.floor().max(0.0) as usize).min(n - 2);
+    // `as usize` truncates towards zero and saturates (NaN → 0): the floor for `u ≥ 0`, without
+    // a call to `floor` (not an instruction on baseline x86-64).
+    let cell = (u.max(0.0) as usize).min(n - 2);
     let start = (cell + 1).saturating_sub(k / 2).min(n - k);
     for (j, wj) in w.iter_mut().enumerate().take(k) {
         let mut prod = 1.0;
@@ -171,11 +173,38 @@ pub fn stencil(u: f64, n: usize, k: usize, w: &mut [f64; 8]) -> (usize, usize) {
     (start, k)
 }
 
+/// [`stencil`] for `k = 4` on `n ≥ 4` nodes (cubic Lagrange): start index and the four
+/// weights, from the closed forms of the cubic basis on nodes `0, 1, 2, 3` at `t = u − start`.
+#[inline(always)]
+fn stencil4(u: f64, n: usize) -> (usize, [f64; 4]) {
+    let cell = floor_index(u, n - 2);
+    let start = cell.saturating_sub(1).min(n - 4);
+    let a = u - start as f64;
+    let (b, c, d) = (a - 1.0, a - 2.0, a - 3.0);
+    let (ab, cd) = (a * b, c * d);
+    (
+        start,
+        [
+            -(b * cd) * (1.0 / 6.0),
+            a * cd * 0.5,
+            -(ab * d) * 0.5,
+            ab * c * (1.0 / 6.0),
+        ],
+    )
+}
+
+/// `min(floor(u), max)` for `u ≥ 0` (`0` for `u < 0` or NaN): `as i64` truncates with one
+/// instruction plus saturation, where `floor` is a library call on baseline x86-64.
+#[inline(always)]
+fn floor_index(u: f64, max: usize) -> usize {
+    ((u as i64).max(0) as usize).min(max)
+}
+
 /// Block index and position inside the block (in `[0, 1]`) of a patch coordinate `x ∈ [0, 1]`.
 #[inline]
 pub fn locate(x: f64, blocks: usize) -> (usize, f64) {
     let u = (x * blocks as f64).clamp(0.0, blocks as f64);
-    let a = (u.floor() as usize).min(blocks - 1);
+    let a = floor_index(u, blocks - 1);
     (a, u - a as f64)
 }
 
@@ -229,7 +258,22 @@ impl Patch {
     pub fn interpolate(&self, gamma: f64, c: f64, k: usize) -> f64 {
         let (leaf, fg, fc) = self.find_leaf(gamma, c);
         let n = self.leaf_intervals;
-        let vals = &self.p[leaf * (n + 1) * (n + 1)..];
+        let n1 = n + 1;
+        let size = n1 * n1;
+        if k == 4 && n >= 3 {
+            // The shipped case (cubic): closed-form weights, a 4 × 4 block of the leaf read
+            // through one bounds-checked slice.
+            let (sg, wg) = stencil4(fg * n as f64, n1);
+            let (sc, wc) = stencil4(fc * n as f64, n1);
+            let start = leaf * size + sg * n1 + sc;
+            let block = &self.p[start..start + 3 * n1 + 4];
+            let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
+            let (r0, rest) = block.split_at(n1);
+            let (r1, rest) = rest.split_at(n1);
+            let (r2, r3) = rest.split_at(n1);
+            return wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3);
+        }
+        let vals = &self.p[leaf * size..(leaf + 1) * size];
         let mut wg = [0.0; 8];
         let mut wc = [0.0; 8];
         let (sg, kg) = stencil(fg * n as f64, n + 1, k, &mut wg);
@@ -241,6 +285,35 @@ impl Patch {
             total += wi * inner;
         }
         total
+    }
+}
+
+/// What a query outside the table's domain does (the full-slip line is answered everywhere).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum OutOfDomain {
+    /// Refuse it with [`LookupError::Query`] naming the field and the domain (the default).
+    #[default]
+    Error,
+    /// Answer at the nearest point of the domain: `γ` clamped to `[gamma_min, gamma_max]`, `α`
+    /// to `alpha_max`. An extrapolation by a constant: the caller accepts the error it makes.
+    Clamp,
+}
+
+#[cold]
+fn bad_gamma(gamma: f64) -> LookupError {
+    LookupError::Query {
+        name: "gamma",
+        value: gamma,
+        allowed: "a finite number > 0".into(),
+    }
+}
+
+#[cold]
+fn bad_alpha(alpha: f64) -> LookupError {
+    LookupError::Query {
+        name: "alpha",
+        value: alpha,
+        allowed: ">= 0 (or inf)".into(),
     }
 }
 
@@ -312,58 +385,125 @@ impl Surface {
         }
     }
 
-    /// `P(γ, α)` by the documented rule. `α = ∞` is accepted. The full-slip line is exact and
-    /// answered for any `γ > 0`; elsewhere `γ` must lie in `[gamma_min, gamma_max]` and
-    /// `α ≤ alpha_max`.
+    /// `P(γ, α)` by the documented rule, refusing `γ` outside `[gamma_min, gamma_max]` (except
+    /// on the full-slip line) and `α > alpha_max`; the same as
+    /// [`Surface::eval_with`]`(γ, α, OutOfDomain::Error)`.
+    #[inline]
     pub fn eval(&self, gamma: f64, alpha: f64) -> Result<f64, LookupError> {
+        self.eval_with(gamma, alpha, OutOfDomain::Error)
+    }
+
+    /// `P(γ, α)` by the documented rule (dimensionless, `−1 ≤ P ≤ 1`). `γ` must be finite and
+    /// `> 0`, `α ≥ 0` (`α = ∞` is the no-slip limit). The full-slip line `P = 1 − 7α` is exact
+    /// and answered for any `γ > 0`. Elsewhere a point outside the table's domain
+    /// (`γ ∉ [gamma_min, gamma_max]` or `α > alpha_max`) is an error with
+    /// [`OutOfDomain::Error`]; with [`OutOfDomain::Clamp`] it is answered at the nearest point of
+    /// the domain, `P(clamp(γ), min(α, alpha_max))`.
+    ///
+    /// Touches only memory and does not allocate unless it returns an error.
+    #[inline]
+    pub fn eval_with(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
         if !(gamma.is_finite() && gamma > 0.0) {
-            return Err(LookupError::Query {
-                name: "gamma",
-                value: gamma,
-                allowed: "a finite number > 0".into(),
-            });
+            return Err(bad_gamma(gamma));
         }
         if alpha.is_nan() || alpha < 0.0 {
-            return Err(LookupError::Query {
-                name: "alpha",
-                value: alpha,
-                allowed: ">= 0 (or inf)".into(),
-            });
+            return Err(bad_alpha(alpha));
         }
         let region = Region::of(gamma, alpha);
         if region == Region::Line {
             return Ok(1.0 - 7.0 * alpha);
         }
-        if gamma < self.gamma_min || gamma > self.gamma_max {
-            return Err(LookupError::Query {
-                name: "gamma",
-                value: gamma,
-                allowed: format!(
-                    "in the table's domain [{}, {}] (or alpha <= alpha_lin(gamma))",
-                    self.gamma_min, self.gamma_max
-                ),
-            });
+        let inside = gamma >= self.gamma_min && gamma <= self.gamma_max;
+        if inside && alpha <= self.alpha_max {
+            return Ok(self.eval_in(region, gamma, alpha));
         }
-        if alpha > self.alpha_max {
-            return Err(LookupError::Query {
-                name: "alpha",
-                value: alpha,
-                allowed: format!("<= the table's alpha_max = {}", self.alpha_max),
-            });
+        match outside {
+            OutOfDomain::Error if !inside => Err(self.gamma_outside(gamma)),
+            OutOfDomain::Error => Err(self.alpha_outside(alpha)),
+            OutOfDomain::Clamp => {
+                let g = gamma.clamp(self.gamma_min, self.gamma_max);
+                let a = alpha.min(self.alpha_max);
+                match Region::of(g, a) {
+                    Region::Line => Ok(1.0 - 7.0 * a),
+                    r => Ok(self.eval_in(r, g, a)),
+                }
+            }
         }
-        Ok(self.eval_in(region, gamma, alpha))
     }
 
-    /// Evaluate in a known non-line region (no checks).
+    #[cold]
+    fn gamma_outside(&self, gamma: f64) -> LookupError {
+        LookupError::Query {
+            name: "gamma",
+            value: gamma,
+            allowed: format!(
+                "in the table's domain [{}, {}] (or alpha <= alpha_lin(gamma)); \
+                 or opt into clamping (OutOfDomain::Clamp; `sweep query --clamp`) to answer at the nearest gamma of the table",
+                self.gamma_min, self.gamma_max
+            ),
+        }
+    }
+
+    #[cold]
+    fn alpha_outside(&self, alpha: f64) -> LookupError {
+        LookupError::Query {
+            name: "alpha",
+            value: alpha,
+            allowed: format!(
+                "<= the table's alpha_max = {}; or opt into clamping (OutOfDomain::Clamp; `sweep query --clamp`) to answer at alpha_max",
+                self.alpha_max
+            ),
+        }
+    }
+
+    /// Evaluate in a known non-line region (no checks). The patch coordinate is computed with
+    /// fewer divisions than [`PatchKind::coord`] (same value up to rounding).
+    #[inline]
     fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
         match self.patch(region) {
             Some(patch) => {
-                let c = patch.kind.coord(gamma, alpha, self.alpha_max);
+                let c = match patch.kind {
+                    PatchKind::PartialSlip => partial_coord(gamma, alpha),
+                    PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
+                };
                 patch.interpolate(gamma, c.clamp(0.0, 1.0), self.stencil)
             }
             // A domain that touches γ = 1 only from one side: at γ = 1 exactly P = −1 on the
             // nonlinear part (α ≥ 2/7).
             None => -1.0,
         }
+    }
+}
+
+/// [`PatchKind::coord`] of the partial-slip patch: `α/α_c1 = 7α(2γ² − 1)/(2γ²)` and
+/// `α_c2/α_c1 = 2γ² − 1`.
+#[inline(always)]
+fn partial_coord(gamma: f64, alpha: f64) -> f64 {
+    let g2 = 2.0 * gamma * gamma;
+    let ratio = g2 - 1.0;
+    let l = (7.0 * alpha * ratio / g2).ln() / ratio.ln();
+    1.0 - (1.0 - l).max(0.0).sqrt()
+}
+
+/// [`PatchKind::coord`] of a stick patch: `S(α) = r/(r + ρ) = (α − α_c2)/(α − α_c2 + ρ α_c2)`.
+#[inline(always)]
+fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
+    if alpha.is_infinite() {
+        return 1.0;
+    }
+    let c2 = gamma * gamma * (2.0 / 7.0);
+    let rho = stick_scale(gamma);
+    let d = alpha - c2;
+    let s = d / (d + rho * c2);
+    if alpha_max.is_infinite() {
+        s
+    } else {
+        let dm = alpha_max - c2;
+        s / (dm / (dm + rho * c2))
     }
 }

@@ -1,0 +1,237 @@
+//! Query speed of `oblique-lookup` (issue 4): one `P(γ, α)`, one rebound, batches.
+//!
+//! - `p/<region>`: one `Table::p` at a fixed point of each region (full-slip line, partial
+//!   slip, stick, no slip, `γ < 1`), and `p/mixed`: cycling through 4096 points spread over the
+//!   whole domain (γ uniform, α log-uniform in [1e-3, 1e3] plus 10 % α = ∞), so that branch
+//!   prediction and cache see a realistic stream.
+//! - `rebound/<case>`: one `Table::rebound` (2-D sphere–wall) and `Table::rebound_3d`
+//!   (sphere–wall, sphere–sphere) from materials and μ.
+//! - `batch/serial`, `batch/rayon`: 2²⁰ mixed points through `p_batch` / `p_batch_par` (on all
+//!   cores of the rayon pool); throughput in queries/s.
+//!
+//! Table: `tables/full.h5` (override with `LOOKUP_BENCH_TABLE=path`).
+//! `LOOKUP_BENCH_CLOCK=cpu` measures the process CPU time (`CLOCK_PROCESS_CPUTIME_ID`) instead
+//! of elapsed time (groups suffixed `_cpu`): other processes on a shared machine do not inflate
+//! it (for `batch/rayon` it sums the CPU time of all workers).
+//!
+//! `cargo bench -p oblique-lookup --bench lookup` (all), `... -- 'p/'` (a subset).
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use criterion::{BenchmarkGroup, Criterion, Throughput};
+use oblique_lookup::rebound::{Body, Elastic, Incident, Incident3, Motion3, Pair, State};
+use oblique_lookup::{Contact, OutOfDomain, Table};
+
+#[derive(Clone, Copy)]
+enum Clock {
+    Wall,
+    ProcessCpu,
+}
+
+impl Clock {
+    fn from_env() -> Clock {
+        match std::env::var("LOOKUP_BENCH_CLOCK").as_deref() {
+            Ok("cpu") => Clock::ProcessCpu,
+            _ => Clock::Wall,
+        }
+    }
+
+    fn suffix(self) -> &'static str {
+        match self {
+            Clock::Wall => "",
+            Clock::ProcessCpu => "_cpu",
+        }
+    }
+
+    fn now(self) -> Duration {
+        match self {
+            Clock::Wall => {
+                thread_local!(static T0: Instant = Instant::now());
+                T0.with(|t| t.elapsed())
+            }
+            Clock::ProcessCpu => process_cpu_time(),
+        }
+    }
+}
+
+#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
+fn process_cpu_time() -> Duration {
+    #[repr(C)]
+    struct Timespec {
+        sec: i64,
+        nsec: i64,
+    }
+    extern "C" {
+        fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
+    }
+    const CLOCK_PROCESS_CPUTIME_ID: i32 = 2;
+    let mut ts = Timespec { sec: 0, nsec: 0 };
+    // SAFETY: clock_gettime writes one timespec to a valid pointer.
+    let rc = unsafe { clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+    assert_eq!(rc, 0, "clock_gettime(CLOCK_PROCESS_CPUTIME_ID) failed");
+    Duration::new(ts.sec as u64, ts.nsec as u32)
+}
+
+#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
+fn process_cpu_time() -> Duration {
+    panic!("LOOKUP_BENCH_CLOCK=cpu is only implemented for 64-bit Linux")
+}
+
+/// Time `f` per iteration with `clock`.
+fn timed<M: criterion::measurement::Measurement<Value = Duration>, O>(
+    g: &mut BenchmarkGroup<'_, M>,
+    name: &str,
+    clock: Clock,
+    mut f: impl FnMut() -> O,
+) {
+    g.bench_function(name, |b| {
+        b.iter_custom(|iters| {
+            let start = clock.now();
+            for _ in 0..iters {
+                black_box(f());
+            }
+            clock.now() - start
+        })
+    });
+}
+
+/// Deterministic points over the table's domain (xorshift; no external RNG).
+fn mixed_points(t: &Table, n: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut state = 0x9E37_79B9_7F4A_7C15_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let s = &t.surface;
+    (0..n)
+        .map(|_| {
+            let g = s.gamma_min + (s.gamma_max - s.gamma_min) * next();
+            let a = if next() < 0.1 {
+                f64::INFINITY
+            } else {
+                10f64.powf(-3.0 + 6.0 * next())
+            };
+            (g, a)
+        })
+        .unzip()
+}
+
+fn main() {
+    let path = std::env::var("LOOKUP_BENCH_TABLE")
+        .unwrap_or_else(|_| concat!(env!("CARGO_MANIFEST_DIR"), "/../tables/full.h5").to_string());
+    let table = Table::open(&path).unwrap_or_else(|e| panic!("{e}"));
+    let clock = Clock::from_env();
+    let mut c = Criterion::default()
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3))
+        .configure_from_args();
+
+    // One P.
+    let mut g = c.benchmark_group(format!("p{}", clock.suffix()));
+    let points = [
+        ("line", 1.754, 0.1),
+        ("partial", 1.754, 0.3),
+        ("stick", 1.754, 1.0),
+        ("no_slip", 1.754, f64::INFINITY),
+        ("low_gamma", 0.5, 1.0),
+        ("partial_g3", 3.0, 0.3),
+    ];
+    for (name, gamma, alpha) in points {
+        timed(&mut g, name, clock, || {
+            table.p(black_box(gamma), black_box(alpha))
+        });
+    }
+    let (mg, ma) = mixed_points(&table, 4096);
+    let mut i = 0usize;
+    timed(&mut g, "mixed", clock, || {
+        i = (i + 1) & 4095;
+        table.p(black_box(mg[i]), black_box(ma[i]))
+    });
+    g.finish();
+
+    // One rebound.
+    let mut g = c.benchmark_group(format!("rebound{}", clock.suffix()));
+    let alumina = Elastic {
+        youngs_modulus: 3.7e11,
+        poisson_ratio: 0.25,
+    };
+    let steel = Elastic {
+        youngs_modulus: 2.1e11,
+        poisson_ratio: 0.3,
+    };
+    let ball = Body {
+        mass: 2.4e-4,
+        radius: 2.5e-3,
+        kappa: 0.4,
+    };
+    let big = Body {
+        mass: 2.4e-3,
+        radius: 6e-3,
+        kappa: 0.4,
+    };
+    let contact = Contact::with_materials(alumina, steel, 0.15);
+    let wall = Pair {
+        sphere: ball,
+        other: None,
+    };
+    let spheres = Pair {
+        sphere: ball,
+        other: Some(big),
+    };
+    let inc2 = Incident {
+        sphere: State {
+            v_x: 1.0,
+            v_z: 2.0,
+            omega: 50.0,
+        },
+        ..Default::default()
+    };
+    let inc3_wall = Incident3 {
+        sphere: Motion3 {
+            velocity: [1.0, 0.4, 2.0],
+            spin: [10.0, -50.0, 30.0],
+        },
+        normal: [0.0, 0.0, 1.0],
+        ..Default::default()
+    };
+    let inc3 = Incident3 {
+        sphere: Motion3 {
+            velocity: [0.8, 0.3, 1.5],
+            spin: [20.0, 120.0, -40.0],
+        },
+        other: Motion3 {
+            velocity: [-0.2, 0.1, -0.4],
+            spin: [0.0, -50.0, 10.0],
+        },
+        normal: [0.1, -0.2, 0.97],
+    };
+    timed(&mut g, "wall_2d", clock, || {
+        table.rebound(black_box(&wall), black_box(&contact), black_box(&inc2))
+    });
+    timed(&mut g, "wall_3d", clock, || {
+        table.rebound_3d(black_box(&wall), black_box(&contact), black_box(&inc3_wall))
+    });
+    timed(&mut g, "spheres_3d", clock, || {
+        table.rebound_3d(black_box(&spheres), black_box(&contact), black_box(&inc3))
+    });
+    g.finish();
+
+    // Batches.
+    let n = 1 << 20;
+    let (bg, ba) = mixed_points(&table, n);
+    let mut out = vec![0.0; n];
+    let mut g = c.benchmark_group(format!("batch{}", clock.suffix()));
+    g.throughput(Throughput::Elements(n as u64));
+    g.sample_size(20);
+    timed(&mut g, "serial", clock, || {
+        table.p_batch(&bg, &ba, &mut out, OutOfDomain::Error)
+    });
+    timed(&mut g, "rayon", clock, || {
+        table.p_batch_par(&bg, &ba, &mut out, OutOfDomain::Error)
+    });
+    g.finish();
+    c.final_summary();
+}

@@ -1,0 +1,119 @@
+//! Instruction counts for `docs/benchmarks.md`: loads a table, then answers `N` queries of one
+//! kind in a loop. Run under `valgrind --tool=callgrind` with `N = 0` and `N > 0`; the difference
+//! of the instruction counts divided by `N` is the cost of one query, independent of the load of
+//! the machine.
+//!
+//! `cargo run --release -p oblique-lookup --example query_loop -- TABLE KIND N` with `KIND` one
+//! of `line`, `partial`, `stick`, `no_slip`, `low_gamma`, `mixed`, `spheres_3d`.
+
+use std::hint::black_box;
+use std::process::ExitCode;
+
+use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
+use oblique_lookup::{Contact, Table};
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().collect();
+    let usage = "usage: query_loop TABLE KIND N (KIND: line, partial, stick, no_slip, low_gamma, \
+                 mixed, spheres_3d)";
+    let (Some(path), Some(kind), Some(n)) = (args.get(1), args.get(2), args.get(3)) else {
+        eprintln!("{usage}");
+        return ExitCode::from(2);
+    };
+    let Ok(n) = n.parse::<usize>() else {
+        eprintln!("N = {n}: must be a non-negative integer\n{usage}");
+        return ExitCode::from(2);
+    };
+    let table = match Table::open(path) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let point = match kind.as_str() {
+        "line" => Some((1.754, 0.1)),
+        "partial" => Some((1.754, 0.3)),
+        "stick" => Some((1.754, 1.0)),
+        "no_slip" => Some((1.754, f64::INFINITY)),
+        "low_gamma" => Some((0.5, 1.0)),
+        "mixed" | "spheres_3d" => None,
+        _ => {
+            eprintln!("unknown KIND {kind}\n{usage}");
+            return ExitCode::from(2);
+        }
+    };
+    let mut sum = 0.0;
+    if let Some((g, a)) = point {
+        for _ in 0..n {
+            sum += table.p(black_box(g), black_box(a)).unwrap_or(f64::NAN);
+        }
+    } else if kind == "mixed" {
+        // The same stream as the criterion benchmark's `p/mixed` (xorshift).
+        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let s = &table.surface;
+        let pts: Vec<(f64, f64)> = (0..4096)
+            .map(|_| {
+                let g = s.gamma_min + (s.gamma_max - s.gamma_min) * next();
+                let a = if next() < 0.1 {
+                    f64::INFINITY
+                } else {
+                    10f64.powf(-3.0 + 6.0 * next())
+                };
+                (g, a)
+            })
+            .collect();
+        for i in 0..n {
+            let (g, a) = pts[i & 4095];
+            sum += table.p(black_box(g), black_box(a)).unwrap_or(f64::NAN);
+        }
+    } else {
+        let pair = Pair {
+            sphere: Body {
+                mass: 2.4e-4,
+                radius: 2.5e-3,
+                kappa: 0.4,
+            },
+            other: Some(Body {
+                mass: 2.4e-3,
+                radius: 6e-3,
+                kappa: 0.4,
+            }),
+        };
+        let contact = Contact::with_materials(
+            Elastic {
+                youngs_modulus: 3.7e11,
+                poisson_ratio: 0.25,
+            },
+            Elastic {
+                youngs_modulus: 2.1e11,
+                poisson_ratio: 0.3,
+            },
+            0.15,
+        );
+        let inc = Incident3 {
+            sphere: Motion3 {
+                velocity: [0.8, 0.3, 1.5],
+                spin: [20.0, 120.0, -40.0],
+            },
+            other: Motion3 {
+                velocity: [-0.2, 0.1, -0.4],
+                spin: [0.0, -50.0, 10.0],
+            },
+            normal: [0.1, -0.2, 0.97],
+        };
+        for _ in 0..n {
+            sum += table
+                .rebound_3d(black_box(&pair), black_box(&contact), black_box(&inc))
+                .map_or(f64::NAN, |a| a.rebound.energy_lost);
+        }
+    }
+    println!("{kind}: {n} queries, checksum {sum}");
+    ExitCode::SUCCESS
+}

@@ -1,0 +1,90 @@
+//! Many `P(γ, α)` queries at once, over slices: serially and (feature `rayon`, on by default)
+//! on the current rayon pool.
+
+use crate::surface::OutOfDomain;
+use crate::{LookupError, Table};
+
+/// Queries per parallel task: large enough to amortise scheduling, small enough to balance.
+#[cfg(feature = "rayon")]
+const CHUNK: usize = 4096;
+
+fn check_lengths(gamma: &[f64], alpha: &[f64], out: &[f64]) -> Result<(), LookupError> {
+    for (name, len) in [("alpha", alpha.len()), ("out", out.len())] {
+        if len != gamma.len() {
+            return Err(LookupError::Length {
+                name,
+                len,
+                expected: gamma.len(),
+            });
+        }
+    }
+    Ok(())
+}
+
+impl Table {
+    /// `out[i] = P(gamma[i], alpha[i])` for every `i`, in order ([`crate::Surface::eval_with`]).
+    ///
+    /// The three slices must have the same length. On the first invalid query the error
+    /// ([`LookupError::Batch`]) names its index; `out` before that index is filled, after it
+    /// untouched.
+    pub fn p_batch(
+        &self,
+        gamma: &[f64],
+        alpha: &[f64],
+        out: &mut [f64],
+        outside: OutOfDomain,
+    ) -> Result<(), LookupError> {
+        check_lengths(gamma, alpha, out)?;
+        self.p_slices(gamma, alpha, out, outside)
+            .map_err(|(index, e)| LookupError::Batch {
+                index,
+                source: Box::new(e),
+            })
+    }
+
+    fn p_slices(
+        &self,
+        gamma: &[f64],
+        alpha: &[f64],
+        out: &mut [f64],
+        outside: OutOfDomain,
+    ) -> Result<(), (usize, LookupError)> {
+        for (i, ((o, &g), &a)) in out.iter_mut().zip(gamma).zip(alpha).enumerate() {
+            *o = self.surface.eval_with(g, a, outside).map_err(|e| (i, e))?;
+        }
+        Ok(())
+    }
+
+    /// [`Table::p_batch`] in parallel on the current rayon pool (chunks of 4096 queries). If
+    /// some queries are invalid, the error names the lowest invalid index; `out` is then filled
+    /// only partly (every valid query of a chunk before its first invalid one).
+    #[cfg(feature = "rayon")]
+    pub fn p_batch_par(
+        &self,
+        gamma: &[f64],
+        alpha: &[f64],
+        out: &mut [f64],
+        outside: OutOfDomain,
+    ) -> Result<(), LookupError> {
+        use rayon::prelude::*;
+        check_lengths(gamma, alpha, out)?;
+        let first_error = out
+            .par_chunks_mut(CHUNK)
+            .zip(gamma.par_chunks(CHUNK))
+            .zip(alpha.par_chunks(CHUNK))
+            .enumerate()
+            .filter_map(|(k, ((o, g), a))| {
+                self.p_slices(g, a, o, outside)
+                    .err()
+                    .map(|(i, e)| (k * CHUNK + i, e))
+            })
+            .min_by_key(|(i, _)| *i);
+        match first_error {
+            None => Ok(()),
+            Some((index, e)) => Err(LookupError::Batch {
+                index,
+                source: Box::new(e),
+            }),
+        }
+    }
+}

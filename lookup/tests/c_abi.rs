@@ -1,0 +1,156 @@
+//! The C ABI: the committed header is what cbindgen generates from `src/capi.rs`, and the C
+//! example `examples/query.c` compiles against it with the system C compiler (`cc`, or `$CC`),
+//! links to the `cdylib` and runs, checking its results against the Rust API.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
+use oblique_lookup::{Contact, Table};
+
+fn crate_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn table_path() -> PathBuf {
+    crate_dir().join("../tables/quick.h5")
+}
+
+#[test]
+fn header_is_up_to_date() {
+    let dir = crate_dir();
+    let config = cbindgen::Config::from_file(dir.join("cbindgen.toml")).expect("cbindgen.toml");
+    let bindings = cbindgen::Builder::new()
+        .with_crate(&dir)
+        .with_config(config)
+        .generate()
+        .expect("cbindgen generates the header");
+    let mut generated = Vec::new();
+    bindings.write(&mut generated);
+    let generated = String::from_utf8(generated).expect("UTF-8 header");
+    let path = dir.join("include/oblique_lookup.h");
+    if std::env::var_os("UPDATE_HEADER").is_some() {
+        std::fs::write(&path, &generated).expect("write the header");
+    }
+    let committed = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        committed == generated,
+        "{} is out of date with src/capi.rs: regenerate it with \
+         `UPDATE_HEADER=1 cargo test -p oblique-lookup --test c_abi` and commit it",
+        path.display()
+    );
+    for name in [
+        "oblique_table_open",
+        "oblique_table_close",
+        "oblique_p",
+        "oblique_p_batch",
+        "oblique_rebound_wall",
+        "oblique_rebound_spheres",
+        "oblique_last_error",
+        "OBLIQUE_ERR_QUERY",
+    ] {
+        assert!(generated.contains(name), "header lacks {name}");
+    }
+}
+
+/// The directory holding `liboblique_lookup.so`: the profile directory of this test binary
+/// (`target/<profile>/deps/c_abi-…` → `target/<profile>`).
+fn lib_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("test executable path");
+    let profile = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("target/<profile>/deps");
+    for dir in [profile.to_path_buf(), profile.join("deps")] {
+        if dir.join("liboblique_lookup.so").is_file() {
+            return dir;
+        }
+    }
+    panic!(
+        "liboblique_lookup.so not found in {} (crate-type cdylib)",
+        profile.display()
+    );
+}
+
+#[test]
+fn c_example_compiles_and_runs() {
+    let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let exe = out_dir.join("query_c");
+    let lib = lib_dir();
+    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
+    let status = Command::new(&cc)
+        .args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-o"])
+        .arg(&exe)
+        .arg(crate_dir().join("examples/query.c"))
+        .arg("-I")
+        .arg(crate_dir().join("include"))
+        .arg("-L")
+        .arg(&lib)
+        .args(["-loblique_lookup", "-lm"])
+        .status()
+        .unwrap_or_else(|e| panic!("cannot run the C compiler `{cc}`: {e}"));
+    assert!(status.success(), "compiling examples/query.c failed");
+
+    let out = Command::new(&exe)
+        .arg(table_path())
+        .env("LD_LIBRARY_PATH", &lib)
+        .output()
+        .expect("run the C example");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "C example failed: {stdout}\n{stderr}");
+
+    // Compare its numbers with the Rust API: `key value` lines.
+    let value = |key: &str| -> f64 {
+        stdout
+            .lines()
+            .find_map(|l| l.strip_prefix(key).and_then(|r| r.trim().parse().ok()))
+            .unwrap_or_else(|| panic!("no `{key}` line in {stdout}"))
+    };
+    let t = Table::open(table_path()).unwrap();
+    assert_eq!(value("P(1.754,1)"), t.p(1.754, 1.0).unwrap());
+    assert_eq!(value("P(2,inf)"), t.p(2.0, f64::INFINITY).unwrap());
+    let pair = Pair {
+        sphere: Body {
+            mass: 2.4e-4,
+            radius: 2.5e-3,
+            kappa: 0.4,
+        },
+        other: Some(Body {
+            mass: 2.4e-3,
+            radius: 6e-3,
+            kappa: 0.4,
+        }),
+    };
+    let contact = Contact::with_materials(
+        Elastic {
+            youngs_modulus: 3.7e11,
+            poisson_ratio: 0.25,
+        },
+        Elastic {
+            youngs_modulus: 2.1e11,
+            poisson_ratio: 0.3,
+        },
+        0.15,
+    );
+    let inc = Incident3 {
+        sphere: Motion3 {
+            velocity: [0.8, 0.3, 1.5],
+            spin: [20.0, 120.0, -40.0],
+        },
+        other: Motion3 {
+            velocity: [-0.2, 0.1, -0.4],
+            spin: [0.0, -50.0, 10.0],
+        },
+        normal: [0.0, 0.0, 1.0],
+    };
+    let a = t.rebound_3d(&pair, &contact, &inc).unwrap();
+    assert_eq!(value("spheres.gamma"), a.gamma);
+    assert_eq!(value("spheres.p"), a.rebound.p);
+    assert_eq!(value("spheres.v1x"), a.rebound.sphere.velocity[0]);
+    assert_eq!(value("spheres.w2y"), a.rebound.other.unwrap().spin[1]);
+    assert_eq!(value("spheres.energy_lost"), a.rebound.energy_lost);
+    // The error paths the example exercises.
+    assert!(stdout.contains("bad gamma: code 4"), "{stdout}");
+    assert!(stdout.contains("missing file: code 2"), "{stdout}");
+}

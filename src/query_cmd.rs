@@ -1,0 +1,190 @@
+//! `sweep query`: answer `P(γ, α)` from a table (no simulation), one point or a batch.
+
+use std::io::{BufRead, BufWriter, Write};
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use serde_json::json;
+
+use oblique_lookup::surface::{Region, Surface};
+use oblique_lookup::{LookupError, OutOfDomain, Table};
+
+/// Queries evaluated (in parallel) per chunk of a batch; output is written chunk by chunk.
+const CHUNK_LINES: usize = 1 << 16;
+
+#[derive(Args)]
+pub struct QueryArgs {
+    /// Table file written by `sweep run` (HDF5, schema v2).
+    table: PathBuf,
+    /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
+    #[arg(long, value_parser = crate::parse_gamma, allow_hyphen_values = true,
+          required_unless_present = "batch", conflicts_with = "batch", requires = "alpha")]
+    gamma: Option<f64>,
+    /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
+    #[arg(long, value_parser = crate::parse_alpha, allow_hyphen_values = true,
+          required_unless_present = "batch", conflicts_with = "batch", requires = "gamma")]
+    alpha: Option<f64>,
+    /// Read lines `gamma,alpha` from FILE (`-` for stdin) and write lines `gamma,alpha,P,e_t`
+    /// in the same order.
+    #[arg(long, value_name = "FILE")]
+    batch: Option<PathBuf>,
+    /// Answer a gamma (alpha) outside the table's domain at the nearest gamma (alpha_max) of
+    /// the table instead of refusing it.
+    #[arg(long)]
+    clamp: bool,
+    /// Print one JSON object (single query only; alpha = inf is written as the string "inf").
+    #[arg(long, conflicts_with = "batch")]
+    json: bool,
+}
+
+/// A bad query or batch line: exit status 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct QueryUsageError(String);
+
+fn usage(e: LookupError) -> anyhow::Error {
+    match e {
+        LookupError::Query { .. } | LookupError::Batch { .. } | LookupError::Length { .. } => {
+            QueryUsageError(e.to_string()).into()
+        }
+        other => other.into(),
+    }
+}
+
+/// Tangential restitution of a solid sphere without initial spin, `e_t = (2P + 5)/7`.
+fn e_t(p: f64) -> f64 {
+    (2.0 * p + 5.0) / 7.0
+}
+
+fn region_name(surface: &Surface, gamma: f64, alpha: f64) -> &'static str {
+    let inside = gamma >= surface.gamma_min && gamma <= surface.gamma_max;
+    match Region::of(gamma, alpha) {
+        Region::Line => "full-slip line (closed form)",
+        _ if !inside || alpha > surface.alpha_max => "outside the table (clamped)",
+        Region::PartialHigh => "partial slip (interpolated)",
+        Region::StickLow | Region::StickHigh if alpha.is_infinite() => {
+            "no slip, alpha = inf (interpolated)"
+        }
+        Region::StickLow | Region::StickHigh => "stick (interpolated)",
+    }
+}
+
+pub fn run(args: QueryArgs) -> Result<()> {
+    let table = Table::open(&args.table)?;
+    let outside = if args.clamp {
+        OutOfDomain::Clamp
+    } else {
+        OutOfDomain::Error
+    };
+    if let Some(path) = &args.batch {
+        return batch(&table, path, outside);
+    }
+    let (Some(gamma), Some(alpha)) = (args.gamma, args.alpha) else {
+        return Err(QueryUsageError("give --gamma and --alpha, or --batch FILE".into()).into());
+    };
+    let p = table.p_with(gamma, alpha, outside).map_err(usage)?;
+    let region = region_name(&table.surface, gamma, alpha);
+    let error = if Region::of(gamma, alpha) == Region::Line {
+        0.0
+    } else {
+        table.certified_error()
+    };
+    if args.json {
+        let out = json!({
+            "gamma": gamma,
+            "alpha": crate::json_number(alpha),
+            "P": p,
+            "e_t": e_t(p),
+            "region": region,
+            "error_bound": error,
+            "table": args.table.display().to_string(),
+        });
+        println!("{out}");
+    } else {
+        println!("P(gamma = {gamma}, alpha = {alpha}) = {p:.9}  +/- {error:.1e}");
+        println!(
+            "e_t = (2P + 5)/7 = {:.9}   (solid sphere, no initial spin)",
+            e_t(p)
+        );
+        println!("{region}, from {}", args.table.display());
+    }
+    Ok(())
+}
+
+/// Parse one batch line `gamma,alpha` (1-based `number` for messages).
+fn parse_line(line: &str, number: usize) -> Result<(f64, f64), QueryUsageError> {
+    let bad = |what: String| {
+        QueryUsageError(format!(
+            "batch line {number}: {what}; expected `gamma,alpha` (e.g. `1.75,0.3`, alpha may be `inf`)"
+        ))
+    };
+    let mut fields = line.split(',');
+    let (Some(g), Some(a), None) = (fields.next(), fields.next(), fields.next()) else {
+        return Err(bad(format!(
+            "{} field(s) in {line:?}",
+            line.split(',').count()
+        )));
+    };
+    let g = crate::parse_f64(g).map_err(|e| bad(format!("gamma: {e}")))?;
+    let a = crate::parse_f64(a).map_err(|e| bad(format!("alpha: {e}")))?;
+    Ok((g, a))
+}
+
+fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
+    let input: Box<dyn BufRead> = if path.as_os_str() == "-" {
+        Box::new(std::io::stdin().lock())
+    } else {
+        let f = std::fs::File::open(path).map_err(|e| {
+            QueryUsageError(format!("--batch {}: cannot open: {e}", path.display()))
+        })?;
+        Box::new(std::io::BufReader::new(f))
+    };
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let (mut gammas, mut alphas, mut numbers) = (Vec::new(), Vec::new(), Vec::new());
+    let mut ps = Vec::new();
+    let mut flush = |g: &mut Vec<f64>,
+                     a: &mut Vec<f64>,
+                     n: &mut Vec<usize>,
+                     out: &mut BufWriter<std::io::StdoutLock>|
+     -> Result<()> {
+        ps.clear();
+        ps.resize(g.len(), 0.0);
+        if let Err(e) = table.p_batch_par(g, a, &mut ps, outside) {
+            return Err(match e {
+                LookupError::Batch { index, source } => {
+                    QueryUsageError(format!("batch line {}: {source}", n[index])).into()
+                }
+                other => usage(other),
+            });
+        }
+        for ((g, a), p) in g.iter().zip(a.iter()).zip(&ps) {
+            writeln!(out, "{g},{a},{p},{}", e_t(*p)).context("writing the output")?;
+        }
+        g.clear();
+        a.clear();
+        n.clear();
+        Ok(())
+    };
+    for (i, line) in input.lines().enumerate() {
+        let number = i + 1;
+        let line =
+            line.map_err(|e| QueryUsageError(format!("batch line {number}: cannot read: {e}")))?;
+        let text = line.trim();
+        if number == 1 && text.eq_ignore_ascii_case("gamma,alpha") {
+            writeln!(out, "gamma,alpha,P,e_t").context("writing the output")?;
+            continue;
+        }
+        let (g, a) = parse_line(text, number)?;
+        gammas.push(g);
+        alphas.push(a);
+        numbers.push(number);
+        if gammas.len() == CHUNK_LINES {
+            flush(&mut gammas, &mut alphas, &mut numbers, &mut out)?;
+        }
+    }
+    flush(&mut gammas, &mut alphas, &mut numbers, &mut out)?;
+    out.flush().context("writing the output")?;
+    Ok(())
+}
