@@ -22,6 +22,7 @@ import argparse
 import json
 import math
 import os
+import struct
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -208,6 +209,24 @@ def check_tree(tree, roots):
     return None, len(leaves)
 
 
+def check_seal(path):
+    """Refuse a sealed table whose bytes changed after it was written (docs/table-format.md,
+    "Integrity"): OBLQSEAL, file length, FNV-1a 64 of the bytes after the 512-byte user block."""
+    with open(path, "rb") as fh:
+        data = fh.read()
+    if len(data) < 512 or data[:8] != b"OBLQSEAL":
+        return  # not sealed (written by other software): left to HDF5
+    length, digest = struct.unpack("<QQ", data[8:24])
+    h = 0xCBF29CE484222325
+    if length == len(data):
+        for b in data[512:]:
+            h = ((h ^ b) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    if length != len(data) or h != digest:
+        raise TableError(
+            f"{path}: damaged: its checksum does not match its contents (truncated, corrupted "
+            "or modified after it was written)")
+
+
 class Table:
     """A P(gamma, alpha) table of schema v2, loaded into memory (no HDF5 call per query)."""
 
@@ -215,6 +234,7 @@ class Table:
         self.path = str(path)
         if not os.path.isfile(self.path):
             raise TableError(f"{self.path}: no such file")
+        check_seal(self.path)
         try:
             f = h5py.File(self.path, "r")
         except OSError as e:
