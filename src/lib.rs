@@ -2,9 +2,11 @@
 //!
 //! Layers: [`physics`] (one impact, no I/O), [`sweep`] (schedules many impacts and places the
 //! table's nodes), [`storage`] (owns writing the HDF5 table format), [`scene`] (a user's bodies
-//! and impact conditions to rebound curves) and [`plot`] (figures). The `sweep` binary is a thin
+//! and impact conditions to rebound curves), [`plot`] (figures) and [`accuracy`] (the
+//! accuracy-against-cost study). The `sweep` binary is a thin
 //! CLI over them; the `oblique-lookup` crate reads the tables.
 
+pub mod accuracy;
 pub mod physics;
 pub mod plot;
 pub mod scene;

@@ -432,6 +432,185 @@ where
     Ok(())
 }
 
+/// Draw a figure with logarithmic x and y axes (every panel) to `path` (`.png` or `.svg`).
+///
+/// Points with a non-positive or non-finite coordinate are left out. `Line`/`LineMarkers`
+/// series are drawn as lines (with markers), `Dashed`/`Dotted` as dashed lines, `Markers` as
+/// circles; a series with an empty label has no legend entry. `y_range` and `vlines` are
+/// ignored.
+pub fn render_log_log(fig: &Figure, path: &Path) -> Result<(), PlotError> {
+    let shown = path.display().to_string();
+    let draw_err = |message: String| PlotError::Draw {
+        path: shown.clone(),
+        message,
+    };
+    register_font().map_err(draw_err)?;
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("png") => {
+            let root = BitMapBackend::new(path, fig.size).into_drawing_area();
+            draw_log_log(fig, &root).map_err(draw_err)?;
+            root.present().map_err(|e| draw_err(e.to_string()))
+        }
+        Some("svg") => {
+            let root = SVGBackend::new(path, fig.size).into_drawing_area();
+            draw_log_log(fig, &root).map_err(draw_err)?;
+            root.present().map_err(|e| draw_err(e.to_string()))
+        }
+        _ => Err(PlotError::Format { path: shown }),
+    }
+}
+
+/// Decade-padded bounds of the positive finite values.
+fn log_bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = bounds(values.filter(|v| *v > 0.0)).unwrap_or((1.0, 10.0));
+    let (lo, hi) = (lo.log10().floor(), hi.log10().ceil());
+    let hi = if hi <= lo { lo + 1.0 } else { hi };
+    (10f64.powf(lo), 10f64.powf(hi))
+}
+
+fn draw_log_log<DB: DrawingBackend>(
+    fig: &Figure,
+    root: &DrawingArea<DB, Shift>,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let (_, h) = root.dim_in_pixel();
+    let title_h = if fig.subtitle.is_empty() { 44u32 } else { 66 };
+    let caption_h = 10 + 20 * fig.caption.len() as u32;
+    let (title_area, rest) = root.split_vertically(title_h);
+    let (plots, caption_area) = rest.split_vertically(h.saturating_sub(title_h + caption_h));
+    let grey = RGBColor(60, 60, 60);
+    title_area
+        .draw_text(
+            &fig.title,
+            &(FAMILY, 22).into_font().color(&BLACK),
+            (16, 12),
+        )
+        .map_err(e)?;
+    title_area
+        .draw_text(
+            &fig.subtitle,
+            &(FAMILY, 16).into_font().color(&grey),
+            (16, 40),
+        )
+        .map_err(e)?;
+    for (i, line) in fig.caption.iter().enumerate() {
+        caption_area
+            .draw_text(
+                line,
+                &(FAMILY, 14).into_font().color(&grey),
+                (16, 4 + 20 * i as i32),
+            )
+            .map_err(e)?;
+    }
+    let usable = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite() && p.0 > 0.0 && p.1 > 0.0;
+    let (x0, x1) = log_bounds(
+        fig.panels
+            .iter()
+            .flat_map(|p| p.series.iter())
+            .flat_map(|s| s.points.iter().filter(usable).map(|p| p.0)),
+    );
+    let areas = plots.split_evenly((fig.panels.len().max(1), 1));
+    for (panel, area) in fig.panels.iter().zip(areas.iter()) {
+        let (y0, y1) = log_bounds(
+            panel
+                .series
+                .iter()
+                .flat_map(|s| s.points.iter().filter(usable).map(|p| p.1)),
+        );
+        let mut chart = ChartBuilder::on(area)
+            .margin_left(12)
+            .margin_right(24)
+            .margin_top(8)
+            .margin_bottom(4)
+            .x_label_area_size(48)
+            .y_label_area_size(84)
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(e)?;
+        chart
+            .configure_mesh()
+            .x_desc(fig.x_label.as_str())
+            .y_desc(panel.y_label.as_str())
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style((FAMILY, 15))
+            .axis_desc_style((FAMILY, 17))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(210, 210, 210))
+            .draw()
+            .map_err(e)?;
+        for s in &panel.series {
+            let color = rgb(s.color);
+            let pts: Vec<(f64, f64)> = s.points.iter().filter(usable).copied().collect();
+            let anno = match s.style {
+                Style::Markers => chart
+                    .draw_series(
+                        pts.iter()
+                            .map(|&p| Circle::new(p, 4, color.stroke_width(2))),
+                    )
+                    .map_err(e)?,
+                Style::Line | Style::LineMarkers => {
+                    chart
+                        .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
+                        .map_err(e)?;
+                    let size = if s.style == Style::LineMarkers { 3 } else { 0 };
+                    chart
+                        .draw_series(
+                            pts.iter()
+                                .filter(|_| size > 0)
+                                .map(|&p| Circle::new(p, size, color.filled())),
+                        )
+                        .map_err(e)?
+                }
+                Style::Dashed | Style::Dotted => {
+                    let (dash, gap) = if s.style == Style::Dashed {
+                        (8, 5)
+                    } else {
+                        (2, 4)
+                    };
+                    chart
+                        .draw_series(DashedLineSeries::new(
+                            pts.iter().copied(),
+                            dash,
+                            gap,
+                            color.stroke_width(2),
+                        ))
+                        .map_err(e)?;
+                    chart
+                        .draw_series(pts.iter().map(|&p| Circle::new(p, 2, color.filled())))
+                        .map_err(e)?
+                }
+            };
+            if !s.label.is_empty() {
+                anno.label(s.label.as_str()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2))
+                });
+            }
+        }
+        let pos = match panel.legend {
+            Legend::UpperRight => SeriesLabelPosition::UpperRight,
+            Legend::LowerRight => SeriesLabelPosition::LowerRight,
+            Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+        };
+        chart
+            .configure_series_labels()
+            .position(pos)
+            .label_font((FAMILY, 14))
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .draw()
+            .map_err(e)?;
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
