@@ -2,9 +2,12 @@
 //!
 //! Layers: [`physics`] (one impact, no I/O), [`sweep`] (schedules many impacts and places the
 //! table's nodes), [`storage`] (owns writing the HDF5 table format), [`scene`] (a user's bodies
-//! and impact conditions to rebound curves), [`plot`] (drawing) and [`figures`] (the pictures of a
-//! table). The `sweep` binary is a thin CLI over them; the `oblique-lookup` crate reads the tables.
+//! and impact conditions to rebound curves), [`plot`] (drawing), [`figures`] (the pictures of a
+//! table) and [`accuracy`] (the accuracy-against-cost study); [`nodestore`] owns the checkpoint
+//! and shard-part files. The `sweep` binary is a thin CLI over them; the `oblique-lookup` crate
+//! reads the tables.
 
+pub mod accuracy;
 pub mod figures;
 pub mod nodestore;
 pub mod physics;

@@ -7,9 +7,10 @@ use anyhow::Result;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use serde_json::json;
 
-use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Resolution, Scheme};
+use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Preset, Resolution, Scheme};
 use oblique::sweep::config::ConfigError;
 
+mod accuracy_cmd;
 mod plot_cmd;
 mod progress;
 mod query_cmd;
@@ -40,7 +41,12 @@ enum Command {
     #[command(after_help = "Examples:\n  \
 sweep impact --gamma 1.754 --alpha 1\n  \
 sweep impact --gamma 1.754 --alpha inf --tol 1e-8 --json\n  \
-sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler")]
+sweep impact --gamma 1.754 --alpha 0.5 --preset fast\n  \
+sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler\n\n\
+Presets (measured error and cost: docs/accuracy.md): fast = tol 1e-4, standard = tol 1e-6 \
+(the default), reference = tol 1e-8.\n\
+A tolerance that cannot be reached within the work limit (2^34 spring-steps per run) is refused \
+before anything is simulated, or after the first cheap levels when their convergence shows it (exit code 2).")]
     Impact(ImpactArgs),
     /// Build a P(gamma, alpha) table from a TOML config and write it as HDF5.
     #[command(after_help = "Examples:\n  \
@@ -93,6 +99,16 @@ lines are `gamma,alpha,P,e_t` in the same order, e_t = (2P + 5)/7 (solid sphere,
 A malformed line or a point outside the table's domain stops with its line number (exit 2);\n\
 --clamp answers points outside the domain at the nearest gamma of the table instead.")]
     Query(query_cmd::QueryArgs),
+    /// Accuracy against cost: error of each scheme over a ladder of resolutions against a tight
+    /// reference, time per impact, CSV and log-log plot; optionally the table-level trade.
+    #[command(after_help = "Examples:\n  \
+sweep accuracy --out docs/accuracy\n  \
+sweep accuracy --out /tmp/acc --quick\n  \
+sweep accuracy --out docs/accuracy --tables      # also builds quick, full and a denser table (minutes)\n\n\
+Writes accuracy.csv, accuracy.png, presets.csv (and tables.csv with --tables) into --out and \
+prints a summary. Times are thread CPU time (Linux), which other processes do not inflate.\n\
+What the columns mean and the published results: docs/accuracy.md.")]
+    Accuracy(accuracy_cmd::AccuracyArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -114,6 +130,9 @@ struct ImpactArgs {
     /// Target absolute error of P; the resolution is doubled until the error estimate is below it.
     #[arg(long, value_parser = parse_tol, allow_hyphen_values = true, conflicts_with_all = ["springs", "steps"])]
     tol: Option<f64>,
+    /// Accuracy preset: fast (tol 1e-4), standard (1e-6, the default) or reference (1e-8).
+    #[arg(long, value_parser = parse_preset, conflicts_with_all = ["tol", "springs", "steps"])]
+    preset: Option<Preset>,
     /// Springs on the half-row [0, a_max] (>= 2); use with --steps instead of --tol.
     #[arg(long, requires = "steps", value_parser = parse_springs)]
     springs: Option<usize>,
@@ -131,7 +150,8 @@ struct ImpactArgs {
     json: bool,
 }
 
-/// Default tolerance of `sweep impact` when neither `--tol` nor `--springs/--steps` is given.
+/// Default tolerance of `sweep impact` when neither `--tol`, `--preset` nor `--springs/--steps`
+/// is given: the `standard` preset.
 const DEFAULT_TOL: f64 = 1e-6;
 
 fn parse_f64(s: &str) -> Result<f64, String> {
@@ -171,6 +191,10 @@ fn parse_tol(s: &str) -> Result<f64, String> {
     }
 }
 
+fn parse_preset(s: &str) -> Result<Preset, String> {
+    Preset::from_name(s).map_err(|e| e.to_string())
+}
+
 fn parse_count(s: &str, name: &str, min: usize) -> Result<usize, String> {
     match s.trim().parse::<usize>() {
         Ok(v) if v >= min => Ok(v),
@@ -201,7 +225,11 @@ fn impact(args: ImpactArgs) -> Result<()> {
     };
     let accuracy = match (args.springs, args.steps) {
         (Some(springs), Some(steps)) => Accuracy::Fixed(Resolution { springs, steps }),
-        _ => Accuracy::Tolerance(args.tol.unwrap_or(DEFAULT_TOL)),
+        _ => Accuracy::Tolerance(
+            args.tol
+                .or(args.preset.map(Preset::tolerance))
+                .unwrap_or(DEFAULT_TOL),
+        ),
     };
     let start = Instant::now();
     let sol = oblique::physics::solve(args.gamma, args.alpha, accuracy, scheme, args.simulate)?;
@@ -265,6 +293,7 @@ fn main() -> ExitCode {
         Command::Scene(a) => scene_cmd::run(a),
         Command::Plot(a) => plot_cmd::run(a),
         Command::Query(a) => query_cmd::run(a),
+        Command::Accuracy(a) => accuracy_cmd::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -272,7 +301,12 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             let usage = matches!(
                 e.downcast_ref::<PhysicsError>(),
-                Some(PhysicsError::InvalidParameter { .. })
+                Some(
+                    PhysicsError::InvalidParameter { .. }
+                        | PhysicsError::Infeasible { .. }
+                        | PhysicsError::TooLarge { .. }
+                        | PhysicsError::UnknownPreset { .. }
+                )
             ) || e.downcast_ref::<ConfigError>().is_some()
                 || e.downcast_ref::<table_cmds::UsageError>().is_some()
                 || matches!(

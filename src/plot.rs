@@ -128,6 +128,18 @@ fn register_font() -> Result<(), String> {
 
 /// Draw a figure to `path`; the format follows the extension (`.png` or `.svg`).
 pub fn render(fig: &Figure, path: &Path) -> Result<(), PlotError> {
+    render_with(fig, path, false)
+}
+
+/// Draw a figure with logarithmic x and y axes (every panel) to `path` (`.png` or `.svg`).
+///
+/// Points with a non-positive or non-finite coordinate are left out; `y_range` and `vlines` are
+/// ignored.
+pub fn render_log_log(fig: &Figure, path: &Path) -> Result<(), PlotError> {
+    render_with(fig, path, true)
+}
+
+fn render_with(fig: &Figure, path: &Path, log_log: bool) -> Result<(), PlotError> {
     let shown = path.display().to_string();
     let draw_err = |message: String| PlotError::Draw {
         path: shown.clone(),
@@ -140,12 +152,22 @@ pub fn render(fig: &Figure, path: &Path) -> Result<(), PlotError> {
     match ext.as_deref() {
         Some("png") => {
             let root = BitMapBackend::new(path, fig.size).into_drawing_area();
-            draw(fig, &root).map_err(draw_err)?;
+            if log_log {
+                draw_log_log(fig, &root)
+            } else {
+                draw(fig, &root)
+            }
+            .map_err(draw_err)?;
             root.present().map_err(|e| draw_err(e.to_string()))
         }
         Some("svg") => {
             let root = SVGBackend::new(path, fig.size).into_drawing_area();
-            draw(fig, &root).map_err(draw_err)?;
+            if log_log {
+                draw_log_log(fig, &root)
+            } else {
+                draw(fig, &root)
+            }
+            .map_err(draw_err)?;
             root.present().map_err(|e| draw_err(e.to_string()))
         }
         _ => Err(PlotError::Format { path: shown }),
@@ -343,22 +365,98 @@ where
                 .map_err(e)?;
         }
         draw_series_set(&mut chart, &panel.series, (y0, y1))?;
-        let pos = match panel.legend {
-            Legend::UpperRight => SeriesLabelPosition::UpperRight,
-            Legend::LowerRight => SeriesLabelPosition::LowerRight,
-            Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
-            Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
-        };
-        chart
-            .configure_series_labels()
-            .position(pos)
-            .label_font((FAMILY, 14))
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .draw()
-            .map_err(e)?;
+        draw_legend(&mut chart, panel.legend)?;
     }
     Ok(())
+}
+
+/// Decade-padded bounds of the positive finite values.
+fn log_bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = bounds(values.filter(|v| *v > 0.0)).unwrap_or((1.0, 10.0));
+    let (lo, hi) = (lo.log10().floor(), hi.log10().ceil());
+    let hi = if hi <= lo { lo + 1.0 } else { hi };
+    (10f64.powf(lo), 10f64.powf(hi))
+}
+
+fn draw_log_log<DB: DrawingBackend>(
+    fig: &Figure,
+    root: &DrawingArea<DB, Shift>,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    let plots = draw_frame(root, &fig.title, &fig.subtitle, &fig.caption)?;
+    let usable = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite() && p.0 > 0.0 && p.1 > 0.0;
+    let (x0, x1) = log_bounds(
+        fig.panels
+            .iter()
+            .flat_map(|p| p.series.iter())
+            .flat_map(|s| s.points.iter().filter(usable).map(|p| p.0)),
+    );
+    let areas = plots.split_evenly((fig.panels.len().max(1), 1));
+    for (panel, area) in fig.panels.iter().zip(areas.iter()) {
+        let series: Vec<Series> = panel
+            .series
+            .iter()
+            .map(|s| Series {
+                points: s.points.iter().filter(usable).copied().collect(),
+                ..s.clone()
+            })
+            .collect();
+        let (y0, y1) = log_bounds(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+        let mut chart = ChartBuilder::on(area)
+            .margin_left(12)
+            .margin_right(24)
+            .margin_top(8)
+            .margin_bottom(4)
+            .x_label_area_size(48)
+            .y_label_area_size(84)
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(e)?;
+        chart
+            .configure_mesh()
+            .x_desc(fig.x_label.as_str())
+            .y_desc(panel.y_label.as_str())
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style((FAMILY, 15))
+            .axis_desc_style((FAMILY, 17))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(210, 210, 210))
+            .draw()
+            .map_err(e)?;
+        draw_series_set(&mut chart, &series, (y0, y1))?;
+        draw_legend(&mut chart, panel.legend)?;
+    }
+    Ok(())
+}
+
+/// The legend box of a chart at the panel's corner.
+fn draw_legend<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    legend: Legend,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let pos = match legend {
+        Legend::UpperRight => SeriesLabelPosition::UpperRight,
+        Legend::LowerRight => SeriesLabelPosition::LowerRight,
+        Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+        Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+    };
+    chart
+        .configure_series_labels()
+        .position(pos)
+        .label_font((FAMILY, 14))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(180, 180, 180))
+        .draw()
+        .map_err(|err| err.to_string())
 }
 
 /// Draw series on a chart (lines, dashes, markers; clipped to `y ∈ [y0, y1]`) and register

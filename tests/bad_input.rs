@@ -111,7 +111,7 @@ fn absurd_resolution_is_refused_before_the_work_starts() {
             .replace("gamma_max = 1.6", "gamma_max = 3.5")
             .replace("target_error = 1e-3", "target_error = 1e-9")
             .replace("tol = 1e-4", "tol = 1e-10"),
-        &["solver.tol = 1e-10 cannot be reached", "use solver.tol >="],
+        &["solver.tol = 1e-10 cannot be reached", "loosen solver.tol"],
     );
     // A node budget that cannot hold the first refinement round.
     refused(

@@ -32,6 +32,104 @@ pub enum PhysicsError {
         /// Maximum number of steps allowed.
         max_steps: usize,
     },
+    /// The tolerance cannot be reached within the limits even in the most favourable case
+    /// (found before anything is simulated).
+    #[error(
+        "tolerance {tol:e} at gamma = {gamma} is out of reach for the {scheme} scheme: it needs \
+         about {springs} springs x {steps} steps ({work:.1e} spring-steps, {memory_mb:.0} MB), \
+         beyond the limits ({max_steps} steps, {max_work:.1e} spring-steps, {max_memory_mb:.0} \
+         MB); loosen --tol{hint}",
+        hint = if *scheme == "euler" { " or use the accurate scheme" } else { "" }
+    )]
+    Infeasible {
+        /// Requested tolerance.
+        tol: f64,
+        /// γ of the request.
+        gamma: f64,
+        /// Scheme name.
+        scheme: &'static str,
+        /// Springs the most favourable prediction needs.
+        springs: usize,
+        /// Steps the most favourable prediction needs.
+        steps: usize,
+        /// Spring-steps of that run.
+        work: f64,
+        /// Memory of that run (MB).
+        memory_mb: f64,
+        /// Step limit.
+        max_steps: usize,
+        /// Work limit (spring-steps).
+        max_work: f64,
+        /// Memory limit (MB).
+        max_memory_mb: f64,
+    },
+    /// An unknown preset name.
+    #[error("unknown preset `{name}`: must be {allowed}")]
+    UnknownPreset {
+        /// The name given.
+        name: String,
+        /// The allowed names.
+        allowed: &'static str,
+    },
+    /// A fixed resolution beyond the work or memory limit (refused before it runs).
+    #[error(
+        "resolution {springs} springs x {steps} steps is too large: {work:.1e} spring-steps and \
+         {memory_mb:.0} MB, limits {max_work:.1e} spring-steps and {max_memory_mb:.0} MB; use \
+         fewer --springs/--steps"
+    )]
+    TooLarge {
+        /// Springs requested.
+        springs: usize,
+        /// Steps requested.
+        steps: usize,
+        /// Spring-steps of the run.
+        work: f64,
+        /// Memory of the run (MB).
+        memory_mb: f64,
+        /// Work limit (spring-steps).
+        max_work: f64,
+        /// Memory limit (MB).
+        max_memory_mb: f64,
+    },
+}
+
+impl PhysicsError {
+    /// Fill in the `γ` of an [`PhysicsError::Infeasible`] raised where it was not known.
+    pub fn with_gamma(self, g: f64) -> Self {
+        match self {
+            PhysicsError::Infeasible { gamma, .. } if gamma.is_nan() => {
+                if let PhysicsError::Infeasible {
+                    tol,
+                    scheme,
+                    springs,
+                    steps,
+                    work,
+                    memory_mb,
+                    max_steps,
+                    max_work,
+                    max_memory_mb,
+                    ..
+                } = self
+                {
+                    PhysicsError::Infeasible {
+                        tol,
+                        gamma: g,
+                        scheme,
+                        springs,
+                        steps,
+                        work,
+                        memory_mb,
+                        max_steps,
+                        max_work,
+                        max_memory_mb,
+                    }
+                } else {
+                    self
+                }
+            }
+            other => other,
+        }
+    }
 }
 
 /// Check `value` is finite and `> 0`.

@@ -167,10 +167,12 @@ impl Stepper<'_> {
         // linear over the step. Near separation a ∝ √(t_c − t), where the plain trapezoid rule
         // would drop to order 1.5 (no slip keeps a finite mean displacement to the end).
         let mean_radius = mean_sqrt(d0, d1) * self.radius.sqrt();
-        bodies.kick(
-            h,
-            self.shear_modulus * mean_radius * (self.mean + step.mean),
-        );
+        let end_mean = if d1 <= 0.0 && self.limit.is_finite() {
+            separation_mean(self.mean, self.limit * d0)
+        } else {
+            step.mean
+        };
+        bodies.kick(h, self.shear_modulus * mean_radius * (self.mean + end_mean));
         self.force = 2.0 * self.shear_modulus * step.integral;
         self.mean = step.mean;
     }
@@ -228,6 +230,30 @@ pub fn run_contact<B: TangentialBodies>(
     }
 }
 
+/// The end value `m₁` that makes the product rule `∫ a dt · (m₀ + m₁)/2` exact over the step
+/// in which the contact vanishes (`d` linear from `d₀` to 0, `a = √(R* d)`), for a finite
+/// Coulomb limit `c` (`cd0 = c d₀`).
+///
+/// The mean displacement of the shrinking contact stays at its stuck value `m₀` until the
+/// Coulomb limit of the mean, `(2/3) c d(t)`, falls below it, then follows that limit to 0:
+/// `mean(t) = min(|m₀|, (2/3) c d(t))` (sign of `m₀`). With `q = d/d₀` and `q* = |m₀|/k`,
+/// `k = (2/3) c d₀`: `∫₀¹ √q · mean dq = (2/5) k q*^{5/2} + (2/3)|m₀| (1 − q*^{3/2})`, and
+/// `(2/3)(m₀ + m₁)` must equal twice that. Taking `m₁ = 0` instead (the Coulomb limit at the
+/// vanishing contact) loses up to half the last step's impulse when `c` is large, where the
+/// limit only takes over in the last instant: order 1.5 instead of 2 for large finite α
+/// (measured at γ = 0.5, α = 1e9: errors 2.8× smaller per doubling, against 4× at α = ∞).
+/// As `c → ∞` this tends to `m₁ = m₀`, the no-slip rule.
+fn separation_mean(m0: f64, cd0: f64) -> f64 {
+    let k = 2.0 / 3.0 * cd0;
+    let m = m0.abs();
+    if k.is_nan() || k <= 0.0 || m == 0.0 {
+        return 0.0;
+    }
+    let q = (m / k).min(1.0);
+    let integral = 0.4 * k * q * q * q.sqrt() + 2.0 / 3.0 * m * (1.0 - q * q.sqrt());
+    (3.0 * integral - m).copysign(m0)
+}
+
 /// Mean of `√d(t)` over a step on which `d` goes linearly from `d0` to `d1` (both ≥ 0).
 fn mean_sqrt(d0: f64, d1: f64) -> f64 {
     let (r0, r1) = (d0.sqrt(), d1.sqrt());
@@ -270,6 +296,17 @@ pub fn dimensionless_normal(steps: usize) -> Rc<NormalTrajectory> {
     })
 }
 
+/// Above this `α` an impact is simulated as no slip (`α = ∞`).
+///
+/// For a finite `μ` the Coulomb limit `c (d − x²/R*)` is compared with spring displacements of
+/// order `u0 t_c`; once `α = μ v_z0/|u0|` exceeds about 1e11 they differ by more than the
+/// rounding of `d − x²/R*`, and the clamp near the contact edge is decided by rounding: 5e-6
+/// errors at α = 3.9e11 and |P| ≈ 1e82 at α = 4e99 (u0 = 1e-100 m/s in physical units) were
+/// measured before this cut-off. The no-slip limit is what such an impact tends to: at γ = 0.5,
+/// `P(1e9)` and `P(∞)` agree to 1e-9 (8192 steps, `tests/extremes.rs`), and the gap shrinks
+/// as `α` grows (7e-4 at α = 390, 6e-6 at 3.9e5).
+pub const ALPHA_NO_SLIP: f64 = 1e10;
+
 /// Simulate one impact at a fixed resolution and return `P` (no closed-form shortcut).
 pub fn simulate(
     gamma: f64,
@@ -281,7 +318,11 @@ pub fn simulate(
     let alpha = check_alpha(alpha)?;
     let res = res.validate()?;
     let shear = 2.0 / 7.0 * gamma * gamma;
-    let limit = alpha / shear;
+    let limit = if alpha > ALPHA_NO_SLIP {
+        f64::INFINITY
+    } else {
+        alpha / shear
+    };
     Ok(match scheme {
         Scheme::Accurate => {
             let normal = dimensionless_normal(res.steps);
@@ -339,17 +380,118 @@ pub enum Method {
     Simulated,
 }
 
-/// Limits of the automatic refinement.
+/// Limits on the work and memory of one solve; a request beyond them is refused before any
+/// simulation starts ([`plan`]) or, for the automatic refinement, before the level that would
+/// exceed them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
     /// Largest number of time steps a refinement may use.
     pub max_steps: usize,
+    /// Largest work of one run, in spring-steps (`springs × steps`); about 2–6 ns each on one
+    /// core, so the default 2^34 ≈ 1.7e10 is about a minute.
+    pub max_work: f64,
+    /// Largest memory of one run (bytes), as [`memory_bytes`] counts it.
+    pub max_memory: f64,
 }
 
 impl Default for Limits {
     fn default() -> Self {
-        Self { max_steps: 1 << 20 }
+        Self {
+            max_steps: 1 << 20,
+            max_work: (1u64 << 34) as f64,
+            max_memory: (1u64 << 31) as f64,
+        }
     }
+}
+
+impl Limits {
+    /// Whether one run at `res` fits (steps, work and memory).
+    pub fn admits(&self, res: Resolution, scheme: Scheme) -> bool {
+        res.steps <= self.max_steps
+            && work(res) <= self.max_work
+            && memory_bytes(res, scheme) <= self.max_memory
+    }
+}
+
+/// Work of one run in spring-steps, `springs × steps`.
+pub fn work(res: Resolution) -> f64 {
+    res.springs as f64 * res.steps as f64
+}
+
+/// Memory of one run (bytes): the spring row (positions, weights, heights, displacements: 5
+/// arrays of `springs + 4` values) and the normal trajectory (3 arrays of `steps + 1` values,
+/// counted twice because the per-thread cache keeps the coarser levels of a refinement too).
+pub fn memory_bytes(res: Resolution, scheme: Scheme) -> f64 {
+    let row = 5.0 * 8.0 * (res.springs as f64 + 4.0);
+    let normal = match scheme {
+        Scheme::Accurate => 2.0 * 3.0 * 8.0 * (res.steps as f64 + 1.0),
+        Scheme::Euler => 0.0,
+    };
+    row + normal
+}
+
+/// What a refinement to `tol` is predicted to need, before anything is simulated.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Plan {
+    /// First level of the refinement ([`base_resolution`]).
+    pub base: Resolution,
+    /// Finest level a typical point needs (error model of `docs/accuracy.md`).
+    pub typical: Resolution,
+    /// Finest level the most favourable point needs (30× smaller error constant); a request is
+    /// refused only when even this exceeds the [`Limits`].
+    pub minimum: Resolution,
+}
+
+/// Predicted raw error of the base level of the refinement at `γ` (the difference between
+/// the first two levels, measured at α = ∞ and mid partial slip for γ = 0.01–64 by
+/// `cargo run --release --example errmodel`): about 1e-3 up to γ ≈ 2, growing like γ^1.2
+/// beyond (1e-2 at γ = 16, 2.3e-2 at γ = 64). Euler: `C/S` with `C ≈ 2` at the base `S`.
+fn base_error(gamma: f64, scheme: Scheme) -> f64 {
+    match scheme {
+        Scheme::Accurate => 1e-3 * (gamma / 2.0).max(1.0).powf(1.2),
+        Scheme::Euler => 2.0 / base_resolution(gamma, scheme).steps as f64,
+    }
+}
+
+/// Predict the finest resolution a refinement to `tol` reaches at `γ` and refuse, before any
+/// simulation, a request that cannot fit the limits even in the most favourable case
+/// ([`PhysicsError::Infeasible`]).
+pub fn plan(gamma: f64, tol: f64, scheme: Scheme, limits: Limits) -> Result<Plan, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let tol = positive("tol", tol)?;
+    let base = base_resolution(gamma, scheme);
+    let factor = 2f64.powi(scheme.order());
+    let levels = |e0: f64| -> u32 {
+        let k = ((e0 / tol).ln() / factor.ln()).ceil();
+        // At least three levels (two doublings); at most 40 doublings (no overflow below).
+        k.clamp(2.0, 40.0) as u32
+    };
+    let at = |k: u32| Resolution {
+        springs: base.springs.saturating_mul(1usize << k.min(40)),
+        steps: base.steps.saturating_mul(1usize << k.min(40)),
+    };
+    let e0 = base_error(gamma, scheme);
+    let typical = at(levels(e0));
+    let minimum = at(levels(e0 / 30.0));
+    if !limits.admits(minimum, scheme) {
+        return Err(PhysicsError::Infeasible {
+            tol,
+            gamma,
+            scheme: scheme.name(),
+            springs: minimum.springs,
+            steps: minimum.steps,
+            work: work(minimum),
+            memory_mb: memory_bytes(minimum, scheme) / 1e6,
+            max_steps: limits.max_steps,
+            max_work: limits.max_work,
+            max_memory_mb: limits.max_memory / 1e6,
+        });
+    }
+    Ok(Plan {
+        base,
+        typical,
+        minimum,
+    })
 }
 
 /// A value of `P` with its error estimate.
@@ -371,7 +513,9 @@ pub struct Solution {
 /// frequency grows like `γ`, so the number of steps does too; the spring count does not.
 pub fn base_resolution(gamma: f64, scheme: Scheme) -> Resolution {
     // Powers of two only, so that the per-thread cache of normal trajectories stays small.
-    let scale = gamma.clamp(1.0, 64.0).log2().ceil().exp2();
+    // Not clamped at large γ (only against overflow): fewer steps than ∝ γ would make the base
+    // level useless there, and [`plan`] refuses what does not fit the limits.
+    let scale = gamma.clamp(1.0, 1e12).log2().ceil().exp2();
     match scheme {
         // The spatial error (discretised traction, ≈ 2/N² for N springs) does not depend on γ;
         // the time error grows with γ (≈ 1.4/S² at γ = 1.9, ≈ 8/S² at γ = 3.2 for S steps,
@@ -481,7 +625,10 @@ pub fn refine(
     let mut best = (f64::INFINITY, base);
     for k in 0.. {
         let res = base.doubled(k);
-        if res.steps > limits.max_steps {
+        if res.steps > limits.max_steps
+            || work(res) > limits.max_work
+            || memory_bytes(res, Scheme::Accurate) > limits.max_memory
+        {
             return Err(PhysicsError::ToleranceUnreachable {
                 tol,
                 achieved: best.0,
@@ -500,6 +647,29 @@ pub fn refine(
             best = (est, res);
             if est <= tol && (!richardson || previous_estimate_agrees(&values, order, tol)) {
                 return Ok((value, est, res));
+            }
+            // Stop before the expensive levels when even an optimistic rate (the nominal order
+            // for a plain value, twice it for a Richardson value) cannot reach `tol` within the
+            // limits: the seed scheme at 1e-6 would otherwise run for an hour before failing.
+            let rate = 2f64.powi(if richardson { 2 * order } else { order });
+            let more = ((est / tol).ln() / rate.ln()).ceil().clamp(1.0, 40.0) as u32;
+            let target = Resolution {
+                springs: res.springs.saturating_mul(1usize << more),
+                steps: res.steps.saturating_mul(1usize << more),
+            };
+            if !limits.admits(target, Scheme::Accurate) {
+                return Err(PhysicsError::Infeasible {
+                    tol,
+                    gamma: f64::NAN,
+                    scheme: if order == 1 { "euler" } else { "accurate" },
+                    springs: target.springs,
+                    steps: target.steps,
+                    work: work(target),
+                    memory_mb: memory_bytes(target, Scheme::Accurate) / 1e6,
+                    max_steps: limits.max_steps,
+                    max_work: limits.max_work,
+                    max_memory_mb: limits.max_memory / 1e6,
+                });
             }
         }
     }
@@ -541,7 +711,7 @@ pub fn solve_with_limits(
             positive("tol", tol)?;
         }
         Accuracy::Fixed(res) => {
-            res.validate()?;
+            check_fixed(res.validate()?, scheme, limits)?;
         }
     }
     if !force_simulation {
@@ -558,6 +728,10 @@ pub fn solve_with_limits(
             });
         }
     }
+    if let Accuracy::Tolerance(tol) = accuracy {
+        // Refuse before simulating what cannot fit the limits even in the best case.
+        plan(gamma, tol, scheme, limits)?;
+    }
     let (p, error_estimate, resolution) = match accuracy {
         Accuracy::Tolerance(tol) => refine(
             ladder_start(gamma, scheme),
@@ -566,7 +740,8 @@ pub fn solve_with_limits(
             scheme == Scheme::Accurate,
             limits,
             |res| simulate(gamma, alpha, res, scheme),
-        )?,
+        )
+        .map_err(|e| e.with_gamma(gamma))?,
         Accuracy::Fixed(res) => {
             let res = res.validate()?;
             let fine = simulate(gamma, alpha, res, scheme)?;
@@ -579,10 +754,34 @@ pub fn solve_with_limits(
         }
     };
     Ok(Solution {
-        p,
+        // Friction only dissipates: |P| ≤ 1 exactly (7ΔE/(m u0²) = P² − 1). The discrete value
+        // or its Richardson extrapolation can overshoot by up to its error near P = ±1 (γ ≈ 1:
+        // −1 − 9e-7 at 128 steps). Projecting onto [−1, 1] never moves it away from the true
+        // value, so the error estimate (computed from the unprojected values) still holds.
+        p: p.clamp(-1.0, 1.0),
         error_estimate,
         resolution,
         scheme,
         method: Method::Simulated,
     })
+}
+
+/// Refuse a fixed resolution beyond the limits (work, memory) before running it.
+fn check_fixed(res: Resolution, scheme: Scheme, limits: Limits) -> Result<(), PhysicsError> {
+    let unbounded = Limits {
+        max_steps: usize::MAX,
+        ..limits
+    };
+    if unbounded.admits(res, scheme) {
+        Ok(())
+    } else {
+        Err(PhysicsError::TooLarge {
+            springs: res.springs,
+            steps: res.steps,
+            work: work(res),
+            memory_mb: memory_bytes(res, scheme) / 1e6,
+            max_work: limits.max_work,
+            max_memory_mb: limits.max_memory / 1e6,
+        })
+    }
 }

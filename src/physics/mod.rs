@@ -7,9 +7,11 @@
 pub mod error;
 pub mod hertz;
 pub mod impact;
+pub mod preset;
 pub mod regimes;
 pub mod springs;
 pub mod units;
 
 pub use error::PhysicsError;
 pub use impact::{simulate, solve, Accuracy, Method, Resolution, Scheme, Solution};
+pub use preset::Preset;

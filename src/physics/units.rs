@@ -293,7 +293,12 @@ impl PhysicalImpact {
             approach_speed: groups.approach_speed,
         }
         .trajectory(res.steps);
-        let limit = self.friction * groups.e_star / groups.g_star;
+        // Beyond ALPHA_NO_SLIP the finite-μ clamp is decided by rounding: simulate no slip.
+        let limit = if groups.alpha > super::impact::ALPHA_NO_SLIP {
+            f64::INFINITY
+        } else {
+            self.friction * groups.e_star / groups.g_star
+        };
         run_contact(
             &mut bodies,
             &normal,
@@ -338,13 +343,21 @@ impl PhysicalImpact {
         if groups.slip_velocity == 0.0 {
             return self.simulate(base);
         }
+        // Refuse before simulating what cannot fit the limits even in the best case.
+        super::impact::plan(
+            groups.gamma,
+            tol,
+            super::Scheme::Accurate,
+            Limits::default(),
+        )?;
         let mut last = None;
         let (_, est, _) = refine(base, 2, tol, false, Limits::default(), |res| {
             let out = self.simulate(res)?;
             let p = out.p.unwrap_or(0.0);
             last = Some(out);
             Ok(p)
-        })?;
+        })
+        .map_err(|e| e.with_gamma(groups.gamma))?;
         let mut out = last.expect("refine runs at least three levels");
         out.error_estimate = est;
         Ok(out)

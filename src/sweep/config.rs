@@ -122,12 +122,47 @@ fn default_max_nodes() -> usize {
     200_000
 }
 
-/// `[solver]`: accuracy of every node.
+/// `[solver]`: accuracy of every node: `tol`, or a named `preset` (`fast` = 1e-4,
+/// `standard` = 1e-6, `reference` = 1e-8; `docs/accuracy.md`), not both.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "RawSolver")]
 pub struct Solver {
     /// Absolute error tolerance of P at each node (the solver's error estimate ≤ tol).
     pub tol: f64,
+    /// The preset `tol` came from, if any.
+    pub preset: Option<String>,
+}
+
+/// `[solver]` as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSolver {
+    tol: Option<f64>,
+    preset: Option<String>,
+}
+
+impl TryFrom<RawSolver> for Solver {
+    type Error = String;
+
+    fn try_from(raw: RawSolver) -> Result<Self, String> {
+        match (raw.tol, raw.preset) {
+            (Some(tol), None) => Ok(Solver { tol, preset: None }),
+            (None, Some(name)) => {
+                let p = crate::physics::Preset::from_name(&name)
+                    .map_err(|e| format!("solver.preset: {e}"))?;
+                Ok(Solver {
+                    tol: p.tolerance(),
+                    preset: Some(p.name().to_string()),
+                })
+            }
+            (Some(_), Some(_)) => Err("give solver.tol or solver.preset, not both".to_string()),
+            (None, None) => Err(
+                "solver.tol (absolute error of P, e.g. 1e-6) or solver.preset \
+                 (fast, standard or reference) is required"
+                    .to_string(),
+            ),
+        }
+    }
 }
 
 /// `[checks]`: held-out points, simulated but not used for interpolation.
@@ -391,5 +426,33 @@ tol = 1e-6
         let bad = GOOD.replace("alpha_max = \"inf\"", "alpha_max = 0.5");
         let e = Config::parse(&bad, "x.toml").unwrap_err().to_string();
         assert!(e.contains("domain.alpha_max"), "{e}");
+    }
+
+    #[test]
+    fn solver_preset_sets_the_tolerance_and_excludes_tol() {
+        let fast = GOOD
+            .replace("tol = 1e-6", "preset = \"fast\"")
+            .replace("target_error = 1e-5", "target_error = 1e-3");
+        let c = Config::parse(&fast, "x.toml").expect("preset fast");
+        assert_eq!(
+            (c.solver.tol, c.solver.preset.as_deref()),
+            (1e-4, Some("fast"))
+        );
+        let c = Config::parse(
+            &GOOD.replace("tol = 1e-6", "preset = \"standard\""),
+            "x.toml",
+        )
+        .expect("preset standard");
+        assert_eq!(c.solver.tol, 1e-6);
+        for (text, needle) in [
+            ("preset = \"quick\"", "solver.preset"),
+            ("tol = 1e-6\npreset = \"fast\"", "not both"),
+            ("", "is required"),
+        ] {
+            let e = Config::parse(&GOOD.replace("tol = 1e-6", text), "x.toml")
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(needle), "{text}: {e}");
+        }
     }
 }

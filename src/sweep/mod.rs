@@ -48,9 +48,9 @@ pub enum SweepError {
     },
     /// The pre-flight probe found a tolerance the solver cannot reach in reasonable time.
     #[error(
-        "{key} = {tol:e} cannot be reached: at gamma = {gamma}, alpha = {alpha} (the hardest \
-         point of the domain) the solver's error estimate is still {achieved:.1e} at {steps} time \
-         steps, where one impact already takes seconds; use {key} >= {suggest:.0e}"
+        "{key} = {tol:e} cannot be reached at gamma = {gamma}, alpha = {alpha} (the hardest \
+         point of the domain), where every node would take seconds or more ({reason}); loosen \
+         {key}"
     )]
     Unreachable {
         /// Config key of the tolerance.
@@ -61,12 +61,8 @@ pub enum SweepError {
         gamma: f64,
         /// α of the probe.
         alpha: f64,
-        /// Best error estimate reached.
-        achieved: f64,
-        /// Steps of the probe's finest level.
-        steps: usize,
-        /// A tolerance that is reachable (the estimate reached, rounded up).
-        suggest: f64,
+        /// The solver's reason.
+        reason: String,
     },
     /// A cell at the deepest level still predicts more than the target: `P` is not smooth
     /// there at the scale the node tolerance resolves (node noise or a kink).
@@ -670,6 +666,7 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
     }
     let limits = physics::impact::Limits {
         max_steps: PROBE_MAX_STEPS,
+        ..physics::impact::Limits::default()
     };
     let mut slowest = 0.0f64;
     for (key, tol) in [
@@ -689,18 +686,16 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
             slowest = slowest.max(start.elapsed().as_secs_f64());
             match r {
                 Ok(_) => {}
-                Err(PhysicsError::ToleranceUnreachable {
-                    achieved, steps, ..
-                }) => {
-                    let suggest = 10f64.powf(achieved.log10().ceil());
+                Err(
+                    e @ (PhysicsError::ToleranceUnreachable { .. }
+                    | PhysicsError::Infeasible { .. }),
+                ) => {
                     return Err(SweepError::Unreachable {
                         key,
                         tol,
                         gamma,
                         alpha,
-                        achieved,
-                        steps,
-                        suggest,
+                        reason: e.to_string().replace("; loosen --tol", ""),
                     });
                 }
                 Err(source) => {
