@@ -7,10 +7,14 @@
 //! `cargo bench --bench speedup`; `LOOKUP_BENCH_CLOCK=cpu` measures the process CPU time instead
 //! of elapsed time (groups suffixed `_cpu`).
 
-use std::hint::black_box;
-use std::time::{Duration, Instant};
+#[path = "common/clock.rs"]
+mod clock;
 
-use criterion::{BenchmarkGroup, Criterion};
+use std::hint::black_box;
+use std::time::Duration;
+
+use clock::{timed, Clock};
+use criterion::Criterion;
 use oblique::physics::{solve, Accuracy, Scheme};
 use oblique_lookup::Table;
 
@@ -20,64 +24,6 @@ const POINTS: [(f64, f64); 4] = [
     (1.754, f64::INFINITY),
     (0.5, 1.0),
 ];
-
-#[derive(Clone, Copy)]
-enum Clock {
-    Wall,
-    ProcessCpu,
-}
-
-impl Clock {
-    fn now(self) -> Duration {
-        match self {
-            Clock::Wall => {
-                thread_local!(static T0: Instant = Instant::now());
-                T0.with(|t| t.elapsed())
-            }
-            Clock::ProcessCpu => process_cpu_time(),
-        }
-    }
-}
-
-#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
-fn process_cpu_time() -> Duration {
-    #[repr(C)]
-    struct Timespec {
-        sec: i64,
-        nsec: i64,
-    }
-    extern "C" {
-        fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-    }
-    const CLOCK_PROCESS_CPUTIME_ID: i32 = 2;
-    let mut ts = Timespec { sec: 0, nsec: 0 };
-    // SAFETY: clock_gettime writes one timespec to a valid pointer.
-    let rc = unsafe { clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
-    assert_eq!(rc, 0, "clock_gettime(CLOCK_PROCESS_CPUTIME_ID) failed");
-    Duration::new(ts.sec as u64, ts.nsec as u32)
-}
-
-#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
-fn process_cpu_time() -> Duration {
-    panic!("LOOKUP_BENCH_CLOCK=cpu is only implemented for 64-bit Linux")
-}
-
-fn timed<M: criterion::measurement::Measurement<Value = Duration>, O>(
-    g: &mut BenchmarkGroup<'_, M>,
-    name: &str,
-    clock: Clock,
-    mut f: impl FnMut() -> O,
-) {
-    g.bench_function(name, |b| {
-        b.iter_custom(|iters| {
-            let start = clock.now();
-            for _ in 0..iters {
-                black_box(f());
-            }
-            clock.now() - start
-        })
-    });
-}
 
 fn case(gamma: f64, alpha: f64) -> String {
     if alpha.is_infinite() {
@@ -95,14 +41,8 @@ fn median_ns(group: &str, case: &str) -> Option<f64> {
 }
 
 fn main() {
-    let clock = match std::env::var("LOOKUP_BENCH_CLOCK").as_deref() {
-        Ok("cpu") => Clock::ProcessCpu,
-        _ => Clock::Wall,
-    };
-    let suffix = match clock {
-        Clock::Wall => "",
-        Clock::ProcessCpu => "_cpu",
-    };
+    let clock = Clock::from_env();
+    let suffix = clock.suffix();
     let table = Table::open(concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5"))
         .unwrap_or_else(|e| panic!("{e}"));
     let mut c = Criterion::default()

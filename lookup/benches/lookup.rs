@@ -16,85 +16,16 @@
 //!
 //! `cargo bench -p oblique-lookup --bench lookup` (all), `... -- 'p/'` (a subset).
 
-use std::hint::black_box;
-use std::time::{Duration, Instant};
+#[path = "../../benches/common/clock.rs"]
+mod clock;
 
-use criterion::{BenchmarkGroup, Criterion, Throughput};
+use std::hint::black_box;
+use std::time::Duration;
+
+use clock::{timed, Clock};
+use criterion::{Criterion, Throughput};
 use oblique_lookup::rebound::{Body, Elastic, Incident, Incident3, Motion3, Pair, State};
 use oblique_lookup::{Contact, OutOfDomain, Table};
-
-#[derive(Clone, Copy)]
-enum Clock {
-    Wall,
-    ProcessCpu,
-}
-
-impl Clock {
-    fn from_env() -> Clock {
-        match std::env::var("LOOKUP_BENCH_CLOCK").as_deref() {
-            Ok("cpu") => Clock::ProcessCpu,
-            _ => Clock::Wall,
-        }
-    }
-
-    fn suffix(self) -> &'static str {
-        match self {
-            Clock::Wall => "",
-            Clock::ProcessCpu => "_cpu",
-        }
-    }
-
-    fn now(self) -> Duration {
-        match self {
-            Clock::Wall => {
-                thread_local!(static T0: Instant = Instant::now());
-                T0.with(|t| t.elapsed())
-            }
-            Clock::ProcessCpu => process_cpu_time(),
-        }
-    }
-}
-
-#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
-fn process_cpu_time() -> Duration {
-    #[repr(C)]
-    struct Timespec {
-        sec: i64,
-        nsec: i64,
-    }
-    extern "C" {
-        fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-    }
-    const CLOCK_PROCESS_CPUTIME_ID: i32 = 2;
-    let mut ts = Timespec { sec: 0, nsec: 0 };
-    // SAFETY: clock_gettime writes one timespec to a valid pointer.
-    let rc = unsafe { clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
-    assert_eq!(rc, 0, "clock_gettime(CLOCK_PROCESS_CPUTIME_ID) failed");
-    Duration::new(ts.sec as u64, ts.nsec as u32)
-}
-
-#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
-fn process_cpu_time() -> Duration {
-    panic!("LOOKUP_BENCH_CLOCK=cpu is only implemented for 64-bit Linux")
-}
-
-/// Time `f` per iteration with `clock`.
-fn timed<M: criterion::measurement::Measurement<Value = Duration>, O>(
-    g: &mut BenchmarkGroup<'_, M>,
-    name: &str,
-    clock: Clock,
-    mut f: impl FnMut() -> O,
-) {
-    g.bench_function(name, |b| {
-        b.iter_custom(|iters| {
-            let start = clock.now();
-            for _ in 0..iters {
-                black_box(f());
-            }
-            clock.now() - start
-        })
-    });
-}
 
 /// Deterministic points over the table's domain (xorshift; no external RNG).
 fn mixed_points(t: &Table, n: usize) -> (Vec<f64>, Vec<f64>) {
