@@ -283,7 +283,26 @@ fn impact(args: ImpactArgs) -> Result<()> {
     Ok(())
 }
 
+/// Die quietly when the reader of our output goes away (`sweep query ... | head`), like other
+/// Unix tools, instead of panicking in `println!` on a broken pipe.
+#[cfg(unix)]
+fn restore_sigpipe() {
+    extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    const SIGPIPE: i32 = 13;
+    const SIG_DFL: usize = 0;
+    // SAFETY: setting the default disposition of SIGPIPE at start-up, before any thread exists.
+    unsafe {
+        signal(SIGPIPE, SIG_DFL);
+    }
+}
+
+#[cfg(not(unix))]
+fn restore_sigpipe() {}
+
 fn main() -> ExitCode {
+    restore_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Impact(a) => impact(a),
