@@ -293,31 +293,11 @@ impl Clock {
     }
 }
 
-/// CPU time consumed by the calling thread.
-#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
+/// CPU time consumed by the calling thread (`oblique::accuracy::cpu_time`).
 fn thread_cpu_time() -> Duration {
-    #[repr(C)]
-    struct Timespec {
-        tv_sec: i64,
-        tv_nsec: i64,
-    }
-    extern "C" {
-        fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-    }
-    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
-    let mut ts = Timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid, writable `struct timespec` (two 64-bit fields on 64-bit Linux).
-    let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    assert_eq!(rc, 0, "clock_gettime(CLOCK_THREAD_CPUTIME_ID) failed");
-    Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32)
-}
-
-#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
-fn thread_cpu_time() -> Duration {
-    panic!("IMPACT_BENCH_CLOCK=cpu is only implemented for 64-bit Linux")
+    let secs = oblique::accuracy::cpu_time()
+        .expect("IMPACT_BENCH_CLOCK=cpu is only implemented for 64-bit Linux");
+    Duration::from_secs_f64(secs)
 }
 
 /// `solve(γ, α, Tolerance(tol), Accurate, force_simulation = true)` for every case.

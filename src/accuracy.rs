@@ -139,6 +139,16 @@ pub fn reference(gamma: f64, alpha: f64, steps: usize) -> Result<Reference, Phys
 /// Thread CPU time in seconds (`CLOCK_THREAD_CPUTIME_ID`, 64-bit Linux); `None` elsewhere.
 /// Other processes on the machine do not inflate it, unlike elapsed time.
 pub fn cpu_time() -> Option<f64> {
+    clock_seconds(3) // CLOCK_THREAD_CPUTIME_ID
+}
+
+/// Process CPU time in seconds (all threads; `CLOCK_PROCESS_CPUTIME_ID`, 64-bit Linux).
+pub fn process_cpu_time() -> Option<f64> {
+    clock_seconds(2) // CLOCK_PROCESS_CPUTIME_ID
+}
+
+/// `clock_gettime(clock)` in seconds; `None` where unavailable.
+fn clock_seconds(clock: i32) -> Option<f64> {
     #[cfg(all(target_os = "linux", target_pointer_width = "64"))]
     {
         #[repr(C)]
@@ -149,44 +159,17 @@ pub fn cpu_time() -> Option<f64> {
         extern "C" {
             fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
         }
-        const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
         let mut ts = Timespec {
             tv_sec: 0,
             tv_nsec: 0,
         };
         // SAFETY: `ts` is a valid, writable timespec with the C layout on 64-bit Linux.
-        let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+        let rc = unsafe { clock_gettime(clock, &mut ts) };
         (rc == 0).then_some(ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64)
     }
     #[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
     {
-        None
-    }
-}
-
-/// Process CPU time in seconds (all threads; `CLOCK_PROCESS_CPUTIME_ID`, 64-bit Linux).
-pub fn process_cpu_time() -> Option<f64> {
-    #[cfg(all(target_os = "linux", target_pointer_width = "64"))]
-    {
-        #[repr(C)]
-        struct Timespec {
-            tv_sec: i64,
-            tv_nsec: i64,
-        }
-        extern "C" {
-            fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-        }
-        const CLOCK_PROCESS_CPUTIME_ID: i32 = 2;
-        let mut ts = Timespec {
-            tv_sec: 0,
-            tv_nsec: 0,
-        };
-        // SAFETY: as in `cpu_time`.
-        let rc = unsafe { clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
-        (rc == 0).then_some(ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64)
-    }
-    #[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
-    {
+        let _ = clock;
         None
     }
 }

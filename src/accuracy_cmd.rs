@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 
 use oblique::accuracy::{self, Settings};
-use oblique::storage::{write_table, Provenance};
+use oblique::storage::{provenance, write_table};
 use oblique::sweep::{self, Config, Silent};
 
 #[derive(Args)]
@@ -191,21 +191,7 @@ fn build_one(name: &str, cfg: &Config, text: &str, dir: &Path) -> Result<TableRo
         (Some(a), Some(b)) => Some(b - a),
         _ => None,
     };
-    let prov = Provenance {
-        schema_version: oblique_lookup::format::SCHEMA_VERSION,
-        engine_version: oblique::VERSION.into(),
-        git_commit: oblique::GIT_COMMIT.into(),
-        config: text.to_string(),
-        solver: format!(
-            "scheme=accurate tol={:e} (automatic refinement, error estimate per node)",
-            cfg.solver.tol
-        ),
-        created: oblique::utc_now(),
-        wall_time_s: wall,
-        node_tol: cfg.solver.tol,
-        check_tol: cfg.check_tol(),
-        target_error: cfg.nodes.target_error,
-    };
+    let prov = provenance(cfg, text.to_string(), wall);
     write_table(&out, &built, &prov)?;
     let bytes = std::fs::metadata(&out).map(|m| m.len()).unwrap_or(0);
     let _ = std::fs::remove_file(&out);

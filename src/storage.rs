@@ -36,6 +36,26 @@ pub enum StorageError {
 /// here, the writer always writes [`SCHEMA_VERSION`]).
 pub use oblique_lookup::Provenance;
 
+/// The provenance of a table built now by this engine from `cfg` (whose text is `config_text`)
+/// in `wall_time_s` seconds.
+pub fn provenance(cfg: &crate::sweep::Config, config_text: String, wall_time_s: f64) -> Provenance {
+    Provenance {
+        schema_version: SCHEMA_VERSION,
+        engine_version: crate::VERSION.into(),
+        git_commit: crate::GIT_COMMIT.into(),
+        config: config_text,
+        solver: format!(
+            "scheme=accurate tol={:e} (automatic refinement, error estimate per node)",
+            cfg.solver.tol
+        ),
+        created: crate::utc_now(),
+        wall_time_s,
+        node_tol: cfg.solver.tol,
+        check_tol: cfg.check_tol(),
+        target_error: cfg.nodes.target_error,
+    }
+}
+
 struct W<'a> {
     path: &'a str,
 }

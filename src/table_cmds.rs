@@ -9,7 +9,7 @@ use clap::Args;
 use serde_json::json;
 
 use oblique::nodestore::{fingerprint, Checkpoint, Header, Kind, Merged};
-use oblique::storage::{write_table, Provenance};
+use oblique::storage::{provenance, write_table};
 use oblique::sweep::{self, Built, Config, RunError, RunOptions, Shard};
 use oblique_lookup::Table;
 
@@ -237,21 +237,7 @@ pub fn merge(args: MergeArgs) -> Result<()> {
 }
 
 fn write_built(cfg: &Config, text: String, built: &Built, wall: f64, quiet: bool) -> Result<()> {
-    let prov = Provenance {
-        schema_version: oblique_lookup::format::SCHEMA_VERSION,
-        engine_version: oblique::VERSION.into(),
-        git_commit: oblique::GIT_COMMIT.into(),
-        config: text,
-        solver: format!(
-            "scheme=accurate tol={:e} (automatic refinement, error estimate per node)",
-            cfg.solver.tol
-        ),
-        created: oblique::utc_now(),
-        wall_time_s: wall,
-        node_tol: cfg.solver.tol,
-        check_tol: cfg.check_tol(),
-        target_error: cfg.nodes.target_error,
-    };
+    let prov = provenance(cfg, text, wall);
     write_table(&cfg.output, built, &prov)?;
     if !quiet {
         let nodes: usize = built.patches.iter().map(|p| p.unique_nodes).sum();
