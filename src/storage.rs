@@ -1,4 +1,4 @@
-//! The storage layer: writes a built table as HDF5 (schema v1, `docs/table-format.md`), atomically
+//! The storage layer: writes a built table as HDF5 (schema v2, `docs/table-format.md`), atomically
 //! (temporary file in the same directory, then rename). Names come from `oblique_lookup::format`,
 //! which owns the format; the lookup crate reads what this writes.
 
