@@ -95,40 +95,13 @@ pub enum PhysicsError {
 
 impl PhysicsError {
     /// Fill in the `γ` of an [`PhysicsError::Infeasible`] raised where it was not known.
-    pub fn with_gamma(self, g: f64) -> Self {
-        match self {
-            PhysicsError::Infeasible { gamma, .. } if gamma.is_nan() => {
-                if let PhysicsError::Infeasible {
-                    tol,
-                    scheme,
-                    springs,
-                    steps,
-                    work,
-                    memory_mb,
-                    max_steps,
-                    max_work,
-                    max_memory_mb,
-                    ..
-                } = self
-                {
-                    PhysicsError::Infeasible {
-                        tol,
-                        gamma: g,
-                        scheme,
-                        springs,
-                        steps,
-                        work,
-                        memory_mb,
-                        max_steps,
-                        max_work,
-                        max_memory_mb,
-                    }
-                } else {
-                    self
-                }
+    pub fn with_gamma(mut self, g: f64) -> Self {
+        if let PhysicsError::Infeasible { gamma, .. } = &mut self {
+            if gamma.is_nan() {
+                *gamma = g;
             }
-            other => other,
         }
+        self
     }
 }
 
