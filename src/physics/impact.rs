@@ -13,7 +13,8 @@ use serde::Serialize;
 use super::error::{positive, PhysicsError};
 use super::hertz::{HertzClosedForm, NormalBodies, NormalTrajectory};
 use super::regimes;
-use super::springs::{SpringRow, StepMotion};
+use super::continuum::ContinuumRow;
+use super::springs::{SpringRow, StepMotion, StepResult};
 
 /// Numerical scheme of an impact simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
@@ -66,7 +67,7 @@ impl Resolution {
 
     /// Validate the counts (springs ≥ 2, steps ≥ 8).
     pub fn validate(self) -> Result<Self, PhysicsError> {
-        if self.springs < 2 {
+        if self.springs == 1 {
             return Err(PhysicsError::InvalidParameter {
                 name: "springs",
                 value: self.springs as f64,
@@ -134,9 +135,31 @@ impl TangentialBodies for ContactPoint {
     }
 }
 
+/// The tangential field of the accurate scheme: a row of springs, or its continuum limit.
+enum Row {
+    Springs(SpringRow),
+    Continuum(ContinuumRow),
+}
+
+impl Row {
+    fn at_limit(&self) -> (bool, bool) {
+        match self {
+            Row::Springs(r) => r.at_limit(),
+            Row::Continuum(r) => r.at_limit(),
+        }
+    }
+
+    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        match self {
+            Row::Springs(r) => r.step_accurate(m, d1, c),
+            Row::Continuum(r) => r.step_accurate(m, d1, c),
+        }
+    }
+}
+
 /// State of the accurate scheme between steps.
 struct Stepper<'a> {
-    row: SpringRow,
+    row: Row,
     normal: &'a NormalTrajectory,
     radius: f64,
     shear_modulus: f64,
@@ -217,7 +240,11 @@ pub fn run_contact<B: TangentialBodies>(
 ) {
     let a_max = (radius * normal.max_indentation).sqrt();
     let mut stepper = Stepper {
-        row: SpringRow::nodes(a_max, springs, radius),
+        row: if springs == 0 {
+            Row::Continuum(ContinuumRow::new(radius))
+        } else {
+            Row::Springs(SpringRow::nodes(a_max, springs, radius))
+        },
         normal,
         radius,
         shear_modulus,

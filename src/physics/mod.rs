@@ -4,6 +4,7 @@
 //! Symbols follow `physics.md`: `γ = √((7/2) G*/E*)` (generally `γ² = (m*/m_t) G*/E*`),
 //! `α = μ v_z0 / |u0|` (generally `α = (2/7)(m*/m_t) μ v_z0/|u0|`), `P = u_after/u_before`.
 
+pub mod continuum;
 pub mod error;
 pub mod hertz;
 pub mod impact;

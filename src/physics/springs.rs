@@ -37,7 +37,7 @@ impl StepMotion {
 
     /// The displacement a released spring misses in the end-of-step clip, `∫₀^τ (L̇ ∓ ẇ) dt`
     /// `= −A²/(2B)`, for the `+` and `−` limits (0 when there is no release in the step).
-    fn release_corrections(&self, c: f64) -> (f64, f64) {
+    pub(crate) fn release_corrections(&self, c: f64) -> (f64, f64) {
         let (v, a) = (self.slip_velocity, self.slip_accel);
         let (tp, tm) = self.release_times(c);
         let corr = |a0: f64, b0: f64, t: Option<f64>| t.map_or(0.0, |_| -a0 * a0 / (2.0 * b0));
