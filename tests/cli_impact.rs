@@ -36,12 +36,13 @@ fn count(map: &serde_json::Map<String, serde_json::Value>, key: &str) -> usize {
         .unwrap_or_else(|| panic!("key {key} missing or not an integer in {map:?}")) as usize
 }
 
-/// Check P against a run at 8x the reported resolution: within the reported error estimate.
+/// Check P against a run at 8x the reported resolution (springs 0: the continuum row, exact in
+/// space): within the reported error estimate.
 fn check_p(map: &serde_json::Map<String, serde_json::Value>, gamma: f64, alpha: f64) {
     let p = num(map, "P");
     let est = num(map, "error_estimate");
     let (springs, steps) = (count(map, "springs"), count(map, "steps"));
-    assert!(springs >= 2 && steps >= 8, "{map:?}");
+    assert!((springs == 0 || springs >= 2) && steps >= 8, "{map:?}");
     assert!(
         est > 0.0 && est <= 1e-6,
         "default tolerance is 1e-6: {map:?}"

@@ -19,13 +19,13 @@ gamma_max = 1.6
 alpha_max = "inf"
 
 [nodes]
-target_error = 1e-4
+target_error = 1e-5
 leaf_intervals = 8
 blocks_per_unit_gamma = 2.0
 blocks_coord = 3
 
 [solver]
-tol = 2e-5
+tol = 2e-6
 
 [checks]
 per_patch = 6
@@ -243,7 +243,7 @@ fn ctrl_c_stops_cleanly_and_says_how_to_resume() {
 #[test]
 fn resuming_with_another_config_is_refused() {
     let cfg = config("a.toml", CONFIG);
-    let other = config("b.toml", &CONFIG.replace("tol = 2e-5", "tol = 1e-5"));
+    let other = config("b.toml", &CONFIG.replace("tol = 2e-6", "tol = 1e-6"));
     let dir = subdir("other_config");
     let out = dir.join("t.h5");
     let mut child = spawn(&["run", s(&cfg), "-o", s(&out), "--quiet"]);

@@ -29,7 +29,8 @@ use super::springs::{StepMotion, StepResult};
 /// Which law a piece follows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Kind {
-    /// Stuck: `ũ = a + b z + q z²`, `z = y − y_ref`, moving rigidly with `w`.
+    /// Stuck: `ũ = W + a + b z + q z²`, `z = y − y_ref`, with `W` the row's accumulated
+    /// increment: it moves rigidly with `w`.
     Stuck,
     /// At the `+` Coulomb limit `ũ = c (d − y)`.
     Plus,
@@ -49,12 +50,16 @@ struct Piece {
     x1: f64,
     /// Reference height of the local coordinate `z = y − y_ref` (m).
     y_ref: f64,
-    /// Coefficients of a stuck piece `ũ = a + b z + q z²` (m, 1, 1/m); unused at a limit.
+    /// Coefficients of a stuck piece `ũ − W = a + b z + q z²` (m, 1, 1/m); unused at a limit.
     a: f64,
     b: f64,
     q: f64,
-    /// `∫ (b z + q z²) dx` over the piece (m²): the part of the integral that moves with it.
-    shape: f64,
+    /// `∫ (ũ − W) dx` over a stuck piece (m²).
+    rel_integral: f64,
+    /// `max (ũ − W + c y)` and `min (ũ − W − c y)` over a stuck piece (m): it stays inside the
+    /// limits `±c (d − y)` while `upper ≤ c d − W` and `lower ≥ −c d − W`.
+    upper: f64,
+    lower: f64,
 }
 
 /// Three-point Gauss–Legendre nodes on `[0, 1]` and weights: exact for `ũ(x)`, a polynomial
@@ -66,7 +71,9 @@ const GAUSS: [(f64, f64); 3] = [
 ];
 
 impl Piece {
-    fn stuck(y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), radius: f64) -> Self {
+    /// A stuck piece `ũ − W = a + b z + q z²` on `[y0, y1]`; `c` is the limit factor (for the
+    /// bounds).
+    fn stuck(y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64, radius: f64) -> Self {
         let mut p = Self {
             kind: Kind::Stuck,
             y0,
@@ -77,9 +84,11 @@ impl Piece {
             a: abq.0,
             b: abq.1,
             q: abq.2,
-            shape: 0.0,
+            rel_integral: 0.0,
+            upper: 0.0,
+            lower: 0.0,
         };
-        p.shape = p.shape_integral(radius);
+        p.refresh(c, radius);
         p
     }
 
@@ -94,49 +103,60 @@ impl Piece {
             a: 0.0,
             b: 0.0,
             q: 0.0,
-            shape: 0.0,
+            rel_integral: 0.0,
+            upper: 0.0,
+            lower: 0.0,
         }
     }
 
-    /// `∫ (b z + q z²) dx` by three-point Gauss–Legendre in `x` (exact).
-    fn shape_integral(&self, radius: f64) -> f64 {
+    /// Recompute the integral and the bounds of a stuck piece after its ends changed.
+    fn refresh(&mut self, c: f64, radius: f64) {
         let dx = self.x1 - self.x0;
-        if dx <= 0.0 {
-            return 0.0;
-        }
         let total: f64 = GAUSS
             .iter()
             .map(|&(t, w)| {
                 let x = self.x0 + t * dx;
-                let z = x * x / radius - self.y_ref;
-                w * z * (self.b + self.q * z)
+                w * self.value(x * x / radius)
             })
             .sum();
-        total * dx
-    }
-
-    /// `∫ ũ dx` over the piece at indentation `d` with limit factor `c` (m²).
-    fn integral(&self, c: f64, d: f64, radius: f64) -> f64 {
-        let dx = self.x1 - self.x0;
-        match self.kind {
-            Kind::Stuck => self.a * dx + self.shape,
-            Kind::Plus | Kind::Minus => {
-                // ±c ∫ (d − x²/R) dx, with x1³ − x0³ = dx (x0² + x0 x1 + x1²).
-                let cube = dx * (self.x0 * self.x0 + self.x0 * self.x1 + self.x1 * self.x1);
-                let v = c * (d * dx - cube / (3.0 * radius));
-                if self.kind == Kind::Plus {
-                    v
-                } else {
-                    -v
-                }
-            }
+        self.rel_integral = total * dx;
+        if c.is_finite() {
+            self.upper = self.extremum(c, true);
+            self.lower = self.extremum(-c, false);
         }
     }
 
-    /// `ũ` at height `y` for a stuck piece.
+    /// `max` (or `min`) of `ũ − W + s y` over the piece: at an end or at the vertex.
+    fn extremum(&self, s: f64, max: bool) -> f64 {
+        let f = |y: f64| self.value(y) + s * y;
+        let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
+        let mut best = pick(f(self.y0), f(self.y1));
+        if self.q != 0.0 {
+            let y = self.y_ref - (self.b + s) / (2.0 * self.q);
+            if y > self.y0 && y < self.y1 {
+                best = pick(best, f(y));
+            }
+        }
+        best
+    }
+
+    /// `ũ − W` at height `y` for a stuck piece.
     fn value(&self, y: f64) -> f64 {
         let z = y - self.y_ref;
         self.a + z * (self.b + self.q * z)
+    }
+
+    /// `∫ ũ dx` of a limit piece at indentation `d` with limit factor `c` (m²).
+    fn limit_integral(&self, c: f64, d: f64, radius: f64) -> f64 {
+        let dx = self.x1 - self.x0;
+        // ±c ∫ (d − x²/R) dx, with x1³ − x0³ = dx (x0² + x0 x1 + x1²).
+        let cube = dx * (self.x0 * self.x0 + self.x0 * self.x1 + self.x1 * self.x1);
+        let v = c * (d * dx - cube / (3.0 * radius));
+        if self.kind == Kind::Plus {
+            v
+        } else {
+            -v
+        }
     }
 }
 
@@ -168,14 +188,79 @@ fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut Vec<f64>) {
     }
 }
 
+/// Consecutive pieces with the sums the step needs, so that a chunk of stuck pieces that stays
+/// inside the limits costs O(1) per step.
+#[derive(Debug, Clone, Default)]
+struct Chunk {
+    pieces: Vec<Piece>,
+    /// Whether some piece is at a limit (those change every step).
+    has_limit: bool,
+    /// `Σ ∫ (ũ − W) dx` and `Σ Δx` over the stuck pieces (m², m).
+    rel_integral: f64,
+    stuck_length: f64,
+    /// `max upper` and `min lower` over the stuck pieces (m).
+    upper: f64,
+    lower: f64,
+}
+
+/// Pieces per chunk above which a chunk is split in two.
+const CHUNK_MAX: usize = 48;
+
+impl Chunk {
+    fn summarize(&mut self) {
+        self.has_limit = false;
+        self.rel_integral = 0.0;
+        self.stuck_length = 0.0;
+        self.upper = f64::NEG_INFINITY;
+        self.lower = f64::INFINITY;
+        for p in &self.pieces {
+            if p.kind == Kind::Stuck {
+                self.rel_integral += p.rel_integral;
+                self.stuck_length += p.x1 - p.x0;
+                self.upper = self.upper.max(p.upper);
+                self.lower = self.lower.min(p.lower);
+            } else {
+                self.has_limit = true;
+            }
+        }
+    }
+
+    /// `∫ ũ dx` over the chunk at indentation `d`, offset `W`.
+    fn integral(&self, w: f64, c: f64, d: f64, radius: f64) -> f64 {
+        let mut total = self.rel_integral + w * self.stuck_length;
+        if self.has_limit {
+            for p in &self.pieces {
+                if p.kind != Kind::Stuck {
+                    total += p.limit_integral(c, d, radius);
+                }
+            }
+        }
+        total
+    }
+}
+
 /// The exact (continuum) half-row of tangential springs.
 #[derive(Debug, Clone)]
 pub struct ContinuumRow {
     radius: f64,
-    pieces: Vec<Piece>,
+    chunks: Vec<Chunk>,
+    /// Accumulated increment `W = Σ Δw` (m), the common offset of the stuck pieces.
+    offset: f64,
     spare: Vec<Piece>,
     cuts: Vec<f64>,
     at_limit: (bool, bool),
+}
+
+/// What the step does to the pieces: the limit factor, the indentations, the increment and
+/// the release corrections.
+#[derive(Clone, Copy)]
+struct Update {
+    c: f64,
+    d0: f64,
+    d1: f64,
+    dw: f64,
+    plus: f64,
+    minus: f64,
 }
 
 impl ContinuumRow {
@@ -183,7 +268,8 @@ impl ContinuumRow {
     pub fn new(radius: f64) -> Self {
         Self {
             radius,
-            pieces: Vec::new(),
+            chunks: Vec::new(),
+            offset: 0.0,
             spare: Vec::new(),
             cuts: Vec::new(),
             at_limit: (false, false),
@@ -198,7 +284,17 @@ impl ContinuumRow {
 
     /// Number of pieces the field is made of now (diagnostics).
     pub fn pieces(&self) -> usize {
-        self.pieces.len()
+        self.chunks.iter().map(|c| c.pieces.len()).sum()
+    }
+
+    /// `ũ` at the centre `y = 0` at indentation `d`.
+    fn center(&self, c: f64, d: f64) -> f64 {
+        let first = self.chunks.first().and_then(|ch| ch.pieces.first());
+        first.map_or(0.0, |p| match p.kind {
+            Kind::Stuck => self.offset + p.value(0.0),
+            Kind::Plus => c * d,
+            Kind::Minus => -c * d,
+        })
     }
 
     /// The continuum form of [`super::springs::SpringRow::step_accurate`]: the same update for
@@ -208,92 +304,75 @@ impl ContinuumRow {
         let (d0, h, v, acc) = (m.d0, m.h, m.slip_velocity, m.slip_accel);
         let dw = h * v + 0.5 * h * h * acc;
         let radius = self.radius;
-        let center = self.pieces.first().map_or(0.0, |p| match p.kind {
-            Kind::Stuck => p.value(0.0),
-            Kind::Plus => c * d0,
-            Kind::Minus => -c * d0,
-        });
+        let center = self.center(c, d0);
         let finite = c.is_finite();
         let (plus, minus) = if finite {
             m.release_corrections(c)
         } else {
             (0.0, 0.0)
         };
-        let top = d1.max(0.0);
-        let mut out = std::mem::take(&mut self.spare);
-        out.clear();
-        let old = std::mem::take(&mut self.pieces);
-        for p in &old {
-            if p.y0 >= top {
-                break;
-            }
-            let mut p = *p;
-            if p.y1 > top {
-                p.y1 = top;
-                p.x1 = (radius * top).sqrt();
-                if p.kind == Kind::Stuck {
-                    p.shape = p.shape_integral(radius);
-                }
-            }
-            // The increment, and the release of a limit piece that sticks again in the step.
-            match p.kind {
-                Kind::Stuck => p.a += dw,
-                Kind::Plus => {
-                    if dw < c * (d1 - d0) {
-                        p = Piece::stuck(
-                            p.y0,
-                            p.y1,
-                            p.y0,
-                            (c * (d0 - p.y0) + dw + plus, -c, 0.0),
-                            radius,
-                        );
-                    } else {
-                        push_merged(&mut out, p, radius);
-                        continue;
-                    }
-                }
-                Kind::Minus => {
-                    if dw > -c * (d1 - d0) {
-                        p = Piece::stuck(
-                            p.y0,
-                            p.y1,
-                            p.y0,
-                            (-c * (d0 - p.y0) + dw + minus, c, 0.0),
-                            radius,
-                        );
-                    } else {
-                        push_merged(&mut out, p, radius);
-                        continue;
-                    }
-                }
-            }
-            self.clip(p, c, d1, &mut out);
+        let up = Update {
+            c,
+            d0,
+            d1,
+            dw,
+            plus,
+            minus,
+        };
+        self.offset += dw;
+        let w = self.offset;
+        self.truncate(d1.max(0.0), c);
+        // Thresholds of the stuck bounds: inside the limits iff upper ≤ c d1 − W and
+        // lower ≥ −c d1 − W (never violated without a limit).
+        let (t_plus, t_minus) = if finite {
+            (c * d1 - w, -c * d1 - w)
+        } else {
+            (f64::INFINITY, f64::NEG_INFINITY)
+        };
+        let mut k = 0;
+        while k < self.chunks.len() {
+            let ch = &self.chunks[k];
+            k += if ch.has_limit || ch.upper > t_plus || ch.lower < t_minus {
+                self.update_chunk(k, &up, t_plus, t_minus)
+            } else {
+                1
+            };
         }
         // Points entering contact: ũ = w(h) − w(θh), θ = (y − d0)/(d1 − d0), w quadratic in
-        // time; with s = 1 − θ: (K1 − K2) + (2K2 − K1) θ − K2 θ², K1 = h v + a h², K2 = a h²/2.
+        // time: (K1 − K2) + (2K2 − K1) θ − K2 θ², K1 = h v + a h², K2 = a h²/2.
         if d1 > d0 {
-            let y0 = d0.max(0.0);
             let span = d1 - d0;
             let k1 = h * v + acc * h * h;
             let k2 = 0.5 * acc * h * h;
             let entry = Piece::stuck(
-                y0,
+                d0.max(0.0),
                 d1,
                 d0,
-                (k1 - k2, (2.0 * k2 - k1) / span, -k2 / (span * span)),
+                (k1 - k2 - w, (2.0 * k2 - k1) / span, -k2 / (span * span)),
+                c,
                 radius,
             );
-            self.clip(entry, c, d1, &mut out);
+            if self.chunks.is_empty() {
+                self.chunks.push(Chunk::default());
+            }
+            let mut out = std::mem::take(&mut self.spare);
+            out.clear();
+            let last = self.chunks.len() - 1;
+            out.append(&mut self.chunks[last].pieces);
+            self.clip(entry, &up, &mut out);
+            let _ = self.install(last, out);
         }
-        self.spare = old;
-        self.pieces = out;
         let (mut any_plus, mut any_minus) = (false, false);
         let mut integral = 0.0;
-        for p in &self.pieces {
-            integral += p.integral(c, d1, radius);
-            let lim_positive = p.y0 < d1;
-            any_plus |= p.kind == Kind::Plus && lim_positive;
-            any_minus |= p.kind == Kind::Minus && lim_positive;
+        for ch in &self.chunks {
+            integral += ch.integral(w, c, d1, radius);
+            if ch.has_limit {
+                for p in &ch.pieces {
+                    let positive = p.y0 < d1;
+                    any_plus |= p.kind == Kind::Plus && positive;
+                    any_minus |= p.kind == Kind::Minus && positive;
+                }
+            }
         }
         self.at_limit = if finite {
             (any_plus, any_minus)
@@ -301,7 +380,7 @@ impl ContinuumRow {
             (false, false)
         };
         let a1 = (radius * d1.max(0.0)).sqrt();
-        let mean = if a1 > 0.0 && !self.pieces.is_empty() {
+        let mean = if a1 > 0.0 && self.pieces() > 0 {
             integral / a1
         } else if finite {
             // Contact vanished: the Coulomb limit at the last point in contact is zero.
@@ -313,26 +392,116 @@ impl ContinuumRow {
         StepResult { integral, mean }
     }
 
-    /// Clip a stuck piece (after its increment) against the limits `±c (d1 − y)` and append the
-    /// parts: stuck where inside, limit pieces where outside.
-    fn clip(&mut self, p: Piece, c: f64, d1: f64, out: &mut Vec<Piece>) {
+    /// Drop everything at `y ≥ top` (points leaving contact drop to zero).
+    fn truncate(&mut self, top: f64, c: f64) {
         let radius = self.radius;
-        if p.y1 <= p.y0 {
+        while let Some(ch) = self.chunks.last_mut() {
+            while ch.pieces.last().is_some_and(|p| p.y0 >= top) {
+                ch.pieces.pop();
+            }
+            if ch.pieces.is_empty() {
+                self.chunks.pop();
+                continue;
+            }
+            if let Some(p) = ch.pieces.last_mut() {
+                if p.y1 > top {
+                    p.y1 = top;
+                    p.x1 = (radius * top).sqrt();
+                    if p.kind == Kind::Stuck {
+                        p.refresh(c, radius);
+                    }
+                    ch.summarize();
+                }
+            }
+            break;
+        }
+    }
+
+    /// Apply the step to every piece of chunk `k` (after the offset moved by `dw`); returns the
+    /// number of chunks that now hold its pieces (0, 1 or 2).
+    fn update_chunk(&mut self, k: usize, up: &Update, t_plus: f64, t_minus: f64) -> usize {
+        let radius = self.radius;
+        let c = up.c;
+        let w = self.offset;
+        let mut out = std::mem::take(&mut self.spare);
+        out.clear();
+        let old = std::mem::take(&mut self.chunks[k].pieces);
+        for &p in &old {
+            match p.kind {
+                Kind::Stuck => {
+                    if p.upper > t_plus || p.lower < t_minus {
+                        self.clip(p, up, &mut out);
+                    } else {
+                        out.push(p);
+                    }
+                }
+                Kind::Plus | Kind::Minus => {
+                    let s = if p.kind == Kind::Plus { 1.0 } else { -1.0 };
+                    // At the limit s c (d0 − y) before the step; it sticks again when the
+                    // increment falls behind the limit's own change.
+                    if s * up.dw < c * (up.d1 - up.d0) {
+                        let corr = if s > 0.0 { up.plus } else { up.minus };
+                        let a = s * c * (up.d0 - p.y0) + up.dw + corr - w;
+                        let stuck = Piece::stuck(p.y0, p.y1, p.y0, (a, -s * c, 0.0), c, radius);
+                        self.clip(stuck, up, &mut out);
+                    } else {
+                        push_merged(&mut out, p, radius);
+                    }
+                }
+            }
+        }
+        self.spare = old;
+        self.install(k, out)
+    }
+
+    /// Put `pieces` into chunk `k`, splitting it when it grew too long; returns the number of
+    /// chunks they occupy (0 when empty: the chunk is removed).
+    fn install(&mut self, k: usize, mut pieces: Vec<Piece>) -> usize {
+        let mut count = 1;
+        if pieces.len() > CHUNK_MAX {
+            count = 2;
+            let tail = pieces.split_off(pieces.len() / 2);
+            let mut next = Chunk {
+                pieces: tail,
+                ..Chunk::default()
+            };
+            next.summarize();
+            self.chunks.insert(k + 1, next);
+        }
+        let ch = &mut self.chunks[k];
+        std::mem::swap(&mut ch.pieces, &mut pieces);
+        self.spare = pieces;
+        ch.summarize();
+        if ch.pieces.is_empty() {
+            self.chunks.remove(k);
+            count = 0;
+        }
+        count
+    }
+
+    /// Clip a stuck piece (after the increment) against the limits `±c (d1 − y)` and append the
+    /// parts: stuck where inside, limit pieces where outside.
+    fn clip(&mut self, p: Piece, up: &Update, out: &mut Vec<Piece>) {
+        let radius = self.radius;
+        let (c, d1) = (up.c, up.d1);
+        if p.x1 <= p.x0 {
             return;
         }
         if !c.is_finite() {
-            push_merged(out, p, radius);
+            out.push(p);
             return;
         }
-        // In z = y − y_ref: ũ − c(d1 − y) = (a − c(d1 − y_ref)) + (b + c) z + q z², and
-        // ũ + c(d1 − y) = (a + c(d1 − y_ref)) + (b − c) z + q z².
+        // In z = y − y_ref, with a' = a + W: ũ − c(d1 − y) = (a' − c(d1 − y_ref)) + (b + c) z
+        // + q z², and ũ + c(d1 − y) = (a' + c(d1 − y_ref)) + (b − c) z + q z².
+        let w = self.offset;
+        let abs_a = p.a + w;
         let lim_ref = c * (d1 - p.y_ref);
         let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
         self.cuts.clear();
-        roots_inside(p.a - lim_ref, p.b + c, p.q, z0, z1, &mut self.cuts);
-        roots_inside(p.a + lim_ref, p.b - c, p.q, z0, z1, &mut self.cuts);
+        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut self.cuts);
+        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut self.cuts);
         let classify = |y: f64| {
-            let u = p.value(y);
+            let u = w + p.value(y);
             let lim = c * (d1 - y);
             if u > lim {
                 Kind::Plus
@@ -342,15 +511,6 @@ impl ContinuumRow {
                 Kind::Stuck
             }
         };
-        if self.cuts.is_empty() {
-            let kind = classify(0.5 * (p.y0 + p.y1));
-            if kind == Kind::Stuck {
-                push_merged(out, p, radius);
-            } else {
-                push_merged(out, Piece::limit(kind, p.y0, p.y1, radius), radius);
-            }
-            return;
-        }
         self.cuts.sort_by(|a, b| a.total_cmp(b));
         let mut lo = p.y0;
         let ends = self.cuts.iter().map(|z| z + p.y_ref);
@@ -358,10 +518,12 @@ impl ContinuumRow {
             let hi = hi.clamp(lo, p.y1);
             if hi > lo {
                 let kind = classify(0.5 * (lo + hi));
-                let part = if kind == Kind::Stuck {
-                    Piece::stuck(lo, hi, p.y_ref, (p.a, p.b, p.q), radius)
-                } else {
+                let part = if kind != Kind::Stuck {
                     Piece::limit(kind, lo, hi, radius)
+                } else if lo == p.y0 && hi == p.y1 {
+                    p
+                } else {
+                    Piece::stuck(lo, hi, p.y_ref, (p.a, p.b, p.q), c, radius)
                 };
                 push_merged(out, part, radius);
             }

@@ -10,10 +10,10 @@ use std::rc::Rc;
 
 use serde::Serialize;
 
+use super::continuum::ContinuumRow;
 use super::error::{positive, PhysicsError};
 use super::hertz::{HertzClosedForm, NormalBodies, NormalTrajectory};
 use super::regimes;
-use super::continuum::ContinuumRow;
 use super::springs::{SpringRow, StepMotion, StepResult};
 
 /// Numerical scheme of an impact simulation.
@@ -50,7 +50,9 @@ impl Scheme {
 /// Spatial and temporal resolution of one simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Resolution {
-    /// Springs on the half-row `[0, a_max]`.
+    /// Springs on the half-row `[0, a_max]`; `0` selects the continuum limit of the row
+    /// ([`super::continuum::ContinuumRow`], exact in space: the default of the accurate
+    /// scheme's automatic refinement). The Euler scheme needs at least 2.
     pub springs: usize,
     /// Time steps per contact time.
     pub steps: usize,
@@ -65,13 +67,13 @@ impl Resolution {
         }
     }
 
-    /// Validate the counts (springs ≥ 2, steps ≥ 8).
+    /// Validate the counts (springs 0 (continuum) or ≥ 2, steps ≥ 8).
     pub fn validate(self) -> Result<Self, PhysicsError> {
         if self.springs == 1 {
             return Err(PhysicsError::InvalidParameter {
                 name: "springs",
                 value: self.springs as f64,
-                allowed: "an integer >= 2",
+                allowed: "0 (the continuum limit) or an integer >= 2",
             });
         }
         if self.steps < 8 {
@@ -226,6 +228,38 @@ impl Stepper<'_> {
     }
 }
 
+impl Stepper<'_> {
+    /// The last grid step (the contact vanishes at its end), in substeps halving towards the
+    /// separation: `[0, h/2], [h/2, 3h/4], …`, down to `2^-GRADED_LEVELS h`.
+    ///
+    /// With a finite Coulomb limit the mean displacement of the shrinking contact stays at its
+    /// stuck value until the limit of the mean, `(2/3) c d`, falls below it, a time `τ ≈ |m|/(c ḋ)`
+    /// before separation that shrinks like `1/α`. While `τ` is shorter than the step, the
+    /// impulse of that last phase is only captured by the separation rule
+    /// ([`separation_mean`]) when `d` is linear over the step, which it is not (`d` is
+    /// quadratic in time near separation for the Hertz motion); at large finite α the error
+    /// then fell only 2–3× per doubling (measured at γ = 1.667: α = 40, 400; γ = 0.5, α = 40).
+    /// Halving substeps resolve `τ` down to `2^-GRADED_LEVELS h` for a few dozen extra steps.
+    fn graded_last_step<B: TangentialBodies>(&mut self, bodies: &mut B, n: usize) {
+        let nt = self.normal;
+        let h = nt.dt;
+        let (mut t, mut d, mut rate) = (0.0, nt.indentation[n], nt.rate[n]);
+        for _ in 0..GRADED_LEVELS {
+            let t1 = t + 0.5 * (h - t);
+            let (d1, r1) = nt.within_step(n, t1);
+            if d1.is_nan() || d1 <= 0.0 {
+                break;
+            }
+            self.step(bodies, t1 - t, d, rate, d1);
+            (t, d, rate) = (t1, d1, r1);
+        }
+        self.step(bodies, h - t, d, rate, nt.indentation[n + 1]);
+    }
+}
+
+/// Halvings of the last step ([`Stepper::graded_last_step`]).
+const GRADED_LEVELS: usize = 24;
+
 /// Run the tangential contact of the accurate scheme on a given normal motion: velocity Verlet
 /// for the bodies, [`SpringRow::step_accurate`] for the springs.
 ///
@@ -252,8 +286,14 @@ pub fn run_contact<B: TangentialBodies>(
         force: 0.0,
         mean: 0.0,
     };
-    for n in 0..normal.indentation.len() - 1 {
+    let last = normal.indentation.len() - 2;
+    for n in 0..last {
         stepper.grid_step(bodies, n);
+    }
+    if limit.is_finite() {
+        stepper.graded_last_step(bodies, last);
+    } else {
+        stepper.grid_step(bodies, last);
     }
 }
 
@@ -357,6 +397,14 @@ pub fn simulate(
             run_contact(&mut cp, &normal, res.springs, 1.0, shear, limit);
             cp.u
         }
+        Scheme::Euler if res.springs == 0 => {
+            return Err(PhysicsError::InvalidParameter {
+                name: "springs",
+                value: 0.0,
+                allowed:
+                    "an integer >= 2 for the euler scheme (0, the continuum, is accurate only)",
+            })
+        }
         Scheme::Euler => simulate_euler(shear, limit, res),
     })
 }
@@ -440,16 +488,28 @@ impl Limits {
     }
 }
 
-/// Work of one run in spring-steps, `springs × steps`.
+/// Work of one run in spring-steps, `springs × steps`. The continuum row (`springs = 0`) holds
+/// about one piece per compression step, grouped in chunks that a step skips unless something
+/// in them slips; its work is counted as `steps²/16` spring-steps (measured: 4096 steps take
+/// 2–10 ms, like 1024 × 4096 spring-steps).
 pub fn work(res: Resolution) -> f64 {
-    res.springs as f64 * res.steps as f64
+    if res.springs == 0 {
+        res.steps as f64 * res.steps as f64 / 16.0
+    } else {
+        res.springs as f64 * res.steps as f64
+    }
 }
 
 /// Memory of one run (bytes): the spring row (positions, weights, heights, displacements: 5
 /// arrays of `springs + 4` values) and the normal trajectory (3 arrays of `steps + 1` values,
 /// counted twice because the per-thread cache keeps the coarser levels of a refinement too).
+/// The continuum row holds at most about two pieces of 96 bytes per step.
 pub fn memory_bytes(res: Resolution, scheme: Scheme) -> f64 {
-    let row = 5.0 * 8.0 * (res.springs as f64 + 4.0);
+    let row = if res.springs == 0 {
+        2.0 * 96.0 * res.steps as f64
+    } else {
+        5.0 * 8.0 * (res.springs as f64 + 4.0)
+    };
     let normal = match scheme {
         Scheme::Accurate => 2.0 * 3.0 * 8.0 * (res.steps as f64 + 1.0),
         Scheme::Euler => 0.0,
@@ -544,21 +604,16 @@ pub fn base_resolution(gamma: f64, scheme: Scheme) -> Resolution {
     // level useless there, and [`plan`] refuses what does not fit the limits.
     let scale = gamma.clamp(1.0, 1e12).log2().ceil().exp2();
     match scheme {
-        // The spatial error (discretised traction, ≈ 2/N² for N springs) does not depend on γ;
-        // the time error grows with γ (≈ 1.4/S² at γ = 1.9, ≈ 8/S² at γ = 3.2 for S steps,
-        // `examples/errsplit.rs`). One spring per step (at least 64) keeps the spatial part
-        // below the time part at every γ ≥ 1 and halves the cost of the former two per step.
-        // 64 springs whatever the γ would balance both better still, but then the two errors
-        // cancel by chance at some points (γ = 2.8) and the Richardson estimate under-estimates
-        // by up to 5×; with one per step it bounds the true error at all 32 points of
-        // `examples/estim.rs`.
-        Scheme::Accurate => {
-            let steps = (32.0 * scale).ceil() as usize;
-            Resolution {
-                springs: steps.max(64),
-                steps,
-            }
-        }
+        // The continuum row (springs = 0) has no spatial error, so only the time error is
+        // left; it grows with γ (≈ 1.4/S² at γ = 1.9, ≈ 8/S² at γ = 3.2 for S steps,
+        // `examples/errsplit.rs`). With springs (one per step, as this refinement used before
+        // the continuum row) the spatial error fell slowly and irregularly at large finite α
+        // (a slip ring thinner than the spacing): 8192 springs × 4096 steps for 1e-6 at
+        // γ = 2.8, α = 69, where the continuum needs 2048–4096 steps.
+        Scheme::Accurate => Resolution {
+            springs: 0,
+            steps: (32.0 * scale).ceil() as usize,
+        },
         Scheme::Euler => {
             let steps = (256.0 * scale).ceil() as usize;
             Resolution {
