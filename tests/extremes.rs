@@ -86,15 +86,9 @@ fn every_gamma_alpha_case_is_bounded_and_converges() {
                     (p - reference).abs()
                 })
                 .collect();
-            // OPEN PROBLEM (docs/accuracy.md, "Large finite α"): for α = 1e3 the slip annulus at
-            // the contact edge is thinner than the spring spacing at these resolutions; there
-            // the ladder does not converge regularly (γ = 3.5: errors 1.4e-3, 1.6e-5, 1.8e-4,
-            // 2.2e-4 against 32x the base) and the solver's estimate under-states the error by
-            // up to 35x. Bounded, finite and |P| ≤ 1 are asserted there; convergence and the
-            // estimate are not, until the scheme resolves that annulus.
-            if a.is_finite() && (100.0..=1e6).contains(&a) {
-                continue;
-            }
+            // Large finite α (1e3) is held to the same standard since the continuum row and
+            // the graded end (docs/accuracy.md, "Large finite α"); with the spring row its
+            // ladder did not converge regularly and the estimate under-stated the error 35x.
             // Three doublings must gain at least 8x (first order) unless already far below the
             // 1e-4 asked for (γ = 0.01, α = 1e9 sits at 1e-7 and gains only 4.6x there).
             assert!(

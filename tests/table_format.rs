@@ -57,7 +57,7 @@ target_error = 1e-7
 max_nodes = 200000
 
 [solver]
-tol = 1e-8
+tol = 1e-7
 
 [checks]
 per_patch = 1
