@@ -22,7 +22,7 @@ fn check_lengths(gamma: &[f64], alpha: &[f64], out: &[f64]) -> Result<(), Lookup
 }
 
 impl Table {
-    /// `out[i] = P(gamma[i], alpha[i])` for every `i`, in order ([`crate::Surface::eval_with`]).
+    /// `out[i] = P(gamma[i], alpha[i])` for every `i`, in order ([`Table::p_with`]).
     ///
     /// The three slices must have the same length. On the first invalid query the error
     /// ([`LookupError::Batch`]) names its index; `out` before that index is filled, after it
@@ -50,7 +50,7 @@ impl Table {
         outside: OutOfDomain,
     ) -> Result<(), (usize, LookupError)> {
         for (i, ((o, &g), &a)) in out.iter_mut().zip(gamma).zip(alpha).enumerate() {
-            *o = self.surface.eval_with(g, a, outside).map_err(|e| (i, e))?;
+            *o = self.p_with(g, a, outside).map_err(|e| (i, e))?;
         }
         Ok(())
     }

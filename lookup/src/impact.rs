@@ -91,7 +91,7 @@ impl Table {
             // u0 = 0: a pure normal impact, P is not needed.
             return Ok(f64::NAN);
         }
-        self.surface.eval_with(gamma, alpha, contact.outside)
+        self.p_with(gamma, alpha, contact.outside)
     }
 
     /// A 2-D impact in its plane (sphere–wall when `pair.other` is `None`, else

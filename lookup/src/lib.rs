@@ -18,6 +18,7 @@
 
 mod batch;
 pub mod capi;
+mod fast;
 pub mod format;
 pub mod impact;
 mod read;
