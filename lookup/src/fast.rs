@@ -18,10 +18,22 @@ use crate::surface::{partial_coord, stencil4, stick_coord};
 use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface};
 use crate::LookupError;
 
-/// Largest number of entries (4 bytes each) of one patch's fine index: 2²⁰ = 4 MiB, so at most
-/// 12 MiB for a table of three patches. A patch whose deepest leaves would need more gets an
-/// index at a smaller depth, from which the quadtree descent continues.
-pub(crate) const MAX_INDEX_ENTRIES: usize = 1 << 20;
+/// Largest number of entries (4 bytes each) of one patch's fine index: 2¹⁵ = 128 KiB, so that
+/// the indexes stay in the second-level cache next to the nodes. A patch whose deepest leaves
+/// would need more gets an index at a smaller depth, from which the quadtree descent continues
+/// (`tables/full.h5`: `partial_high` indexed at depth 5 of 7, the others at full depth). A
+/// full-depth index for `partial_high` (327 680 entries, 1.3 MB) answered a repeated point in the
+/// deepest leaves 10 % faster but a random stream of 2²⁰ queries 10–15 % slower (cache misses).
+pub(crate) const MAX_INDEX_ENTRIES: usize = 1 << 15;
+
+/// Queries per chunk of [`Accel::eval_batch`] (fits its `u16` query numbers).
+const BATCH: usize = 256;
+
+/// `α_c1 = 2γ²/(7(2γ² − 1))` from `γ²`, with the operations of [`crate::surface::alpha_c1`].
+#[inline(always)]
+fn alpha_c1_of(g2: f64) -> f64 {
+    2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
+}
 
 /// One cell of a patch's quadtree with its position, for the fine index.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -192,10 +204,10 @@ impl FastPatch {
         let (sc, wc) = stencil4(fc * self.m, n1);
         let start = leaf * self.size + sg * n1 + sc;
         let block = &self.p[start..start + 3 * n1 + 4];
-        let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
         let (r0, rest) = block.split_at(n1);
         let (r1, rest) = rest.split_at(n1);
         let (r2, r3) = rest.split_at(n1);
+        let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
         wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3)
     }
 }
@@ -289,6 +301,110 @@ impl Accel {
         }
     }
 
+    /// `out[i] = P(gamma[i], alpha[i])` ([`Accel::eval_with`] for each `i`, the same bits),
+    /// in chunks of [`BATCH`] queries sorted by region first: the full-slip line is answered in
+    /// the sorting pass, then each patch's queries in a loop of their own, so that the branches
+    /// on the region (random in a mixed stream) are not mispredicted per query. A chunk with an
+    /// invalid query, or one outside the domain without clamping, is answered query by query,
+    /// so the error is the first one's and `out` after it stays untouched.
+    pub(crate) fn eval_batch(
+        &self,
+        surface: &Surface,
+        gamma: &[f64],
+        alpha: &[f64],
+        out: &mut [f64],
+        outside: OutOfDomain,
+    ) -> Result<(), (usize, LookupError)> {
+        let mut code = [0u8; BATCH];
+        // Query numbers (within the chunk) per patch (stick_low, partial_high, stick_high)
+        // and for the clamped ones.
+        let mut lists = [[0u16; BATCH]; 4];
+        let clamp = outside == OutOfDomain::Clamp;
+        for (k, ((g, a), o)) in gamma
+            .chunks(BATCH)
+            .zip(alpha.chunks(BATCH))
+            .zip(out.chunks_mut(BATCH))
+            .enumerate()
+        {
+            let len = g.len().min(a.len()).min(o.len());
+            let (g, a, o) = (&g[..len], &a[..len], &mut o[..len]);
+            // Pass 1, branch-free: 0 line, 1–3 a patch, 4 outside (clamped), 5 refused.
+            let mut refused = false;
+            for ((c, &gi), &ai) in code.iter_mut().zip(g).zip(a) {
+                let valid = gi.is_finite() & (gi > 0.0) & (ai >= 0.0);
+                let g2 = gi * gi;
+                let c2 = 2.0 * g2 / 7.0;
+                let lin = if gi > 1.0 { alpha_c1_of(g2) } else { c2 };
+                let line = ai <= lin;
+                let patch = 1 + u8::from(gi > 1.0) * (1 + u8::from(ai >= c2));
+                let inside =
+                    (gi >= self.gamma_min) & (gi <= self.gamma_max) & (ai <= self.alpha_max);
+                let r = if line {
+                    0
+                } else if inside {
+                    patch
+                } else {
+                    4 + u8::from(!clamp)
+                };
+                let r = if valid { r } else { 5 };
+                refused |= r == 5;
+                *c = r;
+            }
+            if refused {
+                for (i, ((o, &gi), &ai)) in o.iter_mut().zip(g).zip(a).enumerate() {
+                    *o = self
+                        .eval_with(surface, gi, ai, outside)
+                        .map_err(|e| (k * BATCH + i, e))?;
+                }
+                continue;
+            }
+            // Pass 2: the line, and the lists.
+            let mut counts = [0usize; 4];
+            for (i, (&c, (o, &ai))) in code.iter().zip(o.iter_mut().zip(a)).enumerate() {
+                if c == 0 {
+                    *o = 1.0 - 7.0 * ai;
+                } else {
+                    let l = usize::from(c - 1).min(3);
+                    lists[l][counts[l]] = i as u16;
+                    counts[l] += 1;
+                }
+            }
+            // Pass 3: each patch's queries.
+            let patches = [&self.stick_low, &self.partial_high, &self.stick_high];
+            for (l, patch) in patches.into_iter().enumerate() {
+                let idx = &lists[l][..counts[l]];
+                match patch {
+                    Some(p) if p.kind == PatchKind::PartialSlip => {
+                        for &i in idx {
+                            let (gi, ai) = (g[i as usize], a[i as usize]);
+                            let c = partial_coord(gi, ai).clamp(0.0, 1.0);
+                            o[i as usize] = p.interpolate(gi, c);
+                        }
+                    }
+                    Some(p) => {
+                        for &i in idx {
+                            let (gi, ai) = (g[i as usize], a[i as usize]);
+                            let c = stick_coord(gi, ai, self.alpha_max).clamp(0.0, 1.0);
+                            o[i as usize] = p.interpolate(gi, c);
+                        }
+                    }
+                    None => {
+                        for &i in idx {
+                            o[i as usize] = -1.0;
+                        }
+                    }
+                }
+            }
+            for &i in &lists[3][..counts[3]] {
+                let i = i as usize;
+                o[i] = self
+                    .eval_with(surface, g[i], a[i], outside)
+                    .map_err(|e| (k * BATCH + i, e))?;
+            }
+        }
+        Ok(())
+    }
+
     #[inline(always)]
     fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
         let patch = match region {
@@ -363,7 +479,7 @@ mod tests {
             let t = table(name);
             let s = &t.surface;
             // Full depth, and capped depths from which the descent continues.
-            for budget in [MAX_INDEX_ENTRIES, 64, 1] {
+            for budget in [1 << 20, MAX_INDEX_ENTRIES, 64, 1] {
                 let accel = Accel::with_budget(s, budget).expect("cubic table");
                 for &(g, a) in &points(&t) {
                     for o in [OutOfDomain::Error, OutOfDomain::Clamp] {
@@ -377,13 +493,61 @@ mod tests {
     }
 
     #[test]
+    fn batches_sorted_by_region_give_the_bits_of_single_queries() {
+        let t = table("full.h5");
+        let s = &t.surface;
+        let accel = Accel::new(s).expect("cubic table");
+        let mut pts = points(&t);
+        // Outside the domain, on the line outside it, at γ = 1.
+        pts.extend([
+            (0.05, 0.001),
+            (0.05, 1.0),
+            (5.0, 0.1),
+            (5.0, 3.0),
+            (1.0, 0.5),
+        ]);
+        pts.extend([(1.0, f64::INFINITY), (2.0, 1e300), (s.gamma_max, 0.5)]);
+        let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
+        let mut out = vec![f64::NAN; g.len()];
+        accel
+            .eval_batch(s, &g, &a, &mut out, OutOfDomain::Clamp)
+            .expect("clamped");
+        for i in 0..g.len() {
+            let one = accel.eval_with(s, g[i], a[i], OutOfDomain::Clamp).unwrap();
+            assert_eq!(out[i].to_bits(), one.to_bits(), "({}, {})", g[i], a[i]);
+        }
+        // Without clamping: the first point outside is the error, out after it untouched.
+        let first = (0..g.len())
+            .find(|&i| accel.eval_with(s, g[i], a[i], OutOfDomain::Error).is_err())
+            .expect("a point outside");
+        let mut out = vec![f64::NAN; g.len()];
+        let (index, _) = accel
+            .eval_batch(s, &g, &a, &mut out, OutOfDomain::Error)
+            .expect_err("outside");
+        assert_eq!(index, first);
+        assert!(out[..first].iter().all(|p| !p.is_nan()));
+        assert!(out[first..].iter().all(|p| p.is_nan()));
+        // Invalid values.
+        let mut bad = a.clone();
+        bad[777] = f64::NAN;
+        let r = accel.eval_batch(s, &g, &bad, &mut out, OutOfDomain::Clamp);
+        assert_eq!(r.map_err(|(i, _)| i), Err(777));
+    }
+
+    #[test]
     fn the_index_of_the_full_table_is_small() {
         let t = table("full.h5");
         let bytes = t.index_bytes();
-        assert!(bytes > 0 && bytes <= 16 << 20, "{bytes} bytes");
+        assert!(
+            bytes > 0 && bytes <= 3 * (MAX_INDEX_ENTRIES * 4 + (64 << 10)),
+            "{bytes} bytes"
+        );
         let accel = Accel::new(&t.surface).expect("cubic table");
         let partial = accel.partial_high.as_ref().expect("partial_high");
-        // partial_high: 5 × 4 roots, leaves down to depth 7, indexed at depth 7.
-        assert_eq!((partial.rows, partial.cols), (5 << 7, 4 << 7));
+        // partial_high: 5 × 4 roots, leaves down to depth 7, indexed at depth 5 (the budget).
+        assert_eq!((partial.rows, partial.cols), (5 << 5, 4 << 5));
+        let stick = accel.stick_high.as_ref().expect("stick_high");
+        // stick_high: leaves down to depth 4, indexed at full depth.
+        assert_eq!((stick.rows, stick.cols), (5 << 4, 4 << 4));
     }
 }

@@ -403,6 +403,11 @@ impl Table {
         }
     }
 
+    /// The acceleration structure, if the table has one.
+    pub(crate) fn accel(&self) -> Option<&Accel> {
+        self.accel.as_ref()
+    }
+
     /// Rebuild the acceleration structure after `surface` was changed in place.
     pub fn reindex(&mut self) {
         self.accel = Accel::new(&self.surface);
