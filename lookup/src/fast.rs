@@ -264,8 +264,9 @@ impl Accel {
             .sum()
     }
 
-    /// [`Surface::eval_with`], bit for bit.
-    #[inline]
+    /// [`Surface::eval_with`], bit for bit. The checks and the full-slip line are inlined into
+    /// the caller; the patches are answered out of line ([`Accel::eval_off_line`]).
+    #[inline(always)]
     pub(crate) fn eval_with(
         &self,
         surface: &Surface,
@@ -283,6 +284,19 @@ impl Accel {
         if region == Region::Line {
             return Ok(1.0 - 7.0 * alpha);
         }
+        self.eval_off_line(surface, region, gamma, alpha, outside)
+    }
+
+    /// [`Accel::eval_with`] for a valid query above the full-slip line.
+    #[inline(never)]
+    fn eval_off_line(
+        &self,
+        surface: &Surface,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
         let inside = gamma >= self.gamma_min && gamma <= self.gamma_max;
         if inside && alpha <= self.alpha_max {
             return Ok(self.eval_in(region, gamma, alpha));

@@ -433,8 +433,19 @@ impl Table {
     pub fn p_with(&self, gamma: f64, alpha: f64, outside: OutOfDomain) -> Result<f64, LookupError> {
         match &self.accel {
             Some(a) => a.eval_with(&self.surface, gamma, alpha, outside),
-            None => self.surface.eval_with(gamma, alpha, outside),
+            None => self.p_by_descent(gamma, alpha, outside),
         }
+    }
+
+    /// [`Surface::eval_with`] out of line, for tables without an acceleration structure.
+    #[inline(never)]
+    fn p_by_descent(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        self.surface.eval_with(gamma, alpha, outside)
     }
 
     /// The error bound this table states for an interpolated `P` (absolute):
