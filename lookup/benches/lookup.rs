@@ -6,8 +6,12 @@
 //!   prediction and cache see a realistic stream.
 //! - `rebound/<case>`: one `Table::rebound` (2-D sphere–wall) and `Table::rebound_3d`
 //!   (sphere–wall, sphere–sphere) from materials and μ.
+//!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Prepared` (pair and
+//!   materials checked once, as a DEM code does per material pair).
 //! - `batch/serial`, `batch/rayon`: 2²⁰ mixed points through `p_batch` / `p_batch_par` (on all
 //!   cores of the rayon pool); throughput in queries/s.
+//! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
+//!   prepared pair through `rebound_3d_batch` / `rebound_3d_batch_par`.
 //!
 //! Table: `tables/full.h5` (override with `LOOKUP_BENCH_TABLE=path`).
 //! `LOOKUP_BENCH_CLOCK=cpu` measures the process CPU time (`CLOCK_PROCESS_CPUTIME_ID`) instead
@@ -25,7 +29,7 @@ use std::time::Duration;
 use clock::{timed, Clock};
 use criterion::{Criterion, Throughput};
 use oblique_lookup::rebound::{Body, Elastic, Incident, Incident3, Motion3, Pair, State};
-use oblique_lookup::{Contact, OutOfDomain, Table};
+use oblique_lookup::{Answer, Contact, OutOfDomain, Prepared, Table};
 
 /// Deterministic points over the table's domain (xorshift; no external RNG).
 fn mixed_points(t: &Table, n: usize) -> (Vec<f64>, Vec<f64>) {
@@ -48,6 +52,39 @@ fn mixed_points(t: &Table, n: usize) -> (Vec<f64>, Vec<f64>) {
             (g, a)
         })
         .unzip()
+}
+
+/// Sphere–sphere incident states with random velocities, spins and normals (the normal is
+/// turned so that the spheres approach).
+fn mixed_incidents(n: usize) -> Vec<Incident3> {
+    let mut state = 0x2545_F491_4F6C_DD1D_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    (0..n)
+        .map(|_| {
+            let mut v = || [next(), next(), next()];
+            let (v1, w1, v2, w2, mut normal) = (v(), v(), v(), v(), v());
+            let d: f64 = (0..3).map(|i| (v1[i] - v2[i]) * normal[i]).sum();
+            if d < 0.0 {
+                normal = normal.map(|x| -x);
+            }
+            Incident3 {
+                sphere: Motion3 {
+                    velocity: v1,
+                    spin: w1.map(|x| 400.0 * x),
+                },
+                other: Motion3 {
+                    velocity: v2,
+                    spin: w2.map(|x| 200.0 * x),
+                },
+                normal,
+            }
+        })
+        .collect()
 }
 
 fn main() {
@@ -148,6 +185,10 @@ fn main() {
     timed(&mut g, "spheres_3d", clock, || {
         table.rebound_3d(black_box(&spheres), black_box(&contact), black_box(&inc3))
     });
+    let prepared = Prepared::new(&spheres, &contact).unwrap_or_else(|e| panic!("{e}"));
+    timed(&mut g, "spheres_3d_prepared", clock, || {
+        table.rebound_3d_prepared(black_box(&prepared), black_box(&inc3))
+    });
     g.finish();
 
     // Batches.
@@ -162,6 +203,21 @@ fn main() {
     });
     timed(&mut g, "rayon", clock, || {
         table.p_batch_par(&bg, &ba, &mut out, OutOfDomain::Error)
+    });
+    g.finish();
+
+    // Batches of sphere-sphere rebounds of one prepared pair (random incident states).
+    let n3 = 1 << 16;
+    let incidents = mixed_incidents(n3);
+    let mut answers = vec![Answer::default(); n3];
+    let mut g = c.benchmark_group(format!("rebound_batch{}", clock.suffix()));
+    g.throughput(Throughput::Elements(n3 as u64));
+    g.sample_size(20);
+    timed(&mut g, "serial", clock, || {
+        table.rebound_3d_batch(&prepared, &incidents, &mut answers)
+    });
+    timed(&mut g, "rayon", clock, || {
+        table.rebound_3d_batch_par(&prepared, &incidents, &mut answers)
     });
     g.finish();
     c.final_summary();

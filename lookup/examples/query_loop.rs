@@ -4,18 +4,19 @@
 //! the machine.
 //!
 //! `cargo run --release -p oblique-lookup --example query_loop -- TABLE KIND N` with `KIND` one
-//! of `line`, `partial`, `stick`, `no_slip`, `low_gamma`, `mixed`, `spheres_3d`.
+//! of `line`, `partial`, `stick`, `no_slip`, `low_gamma`, `partial_g3`, `mixed`, `spheres_3d`,
+//! `spheres_3d_prepared` (the same rebound through [`Prepared`](oblique_lookup::Prepared)).
 
 use std::hint::black_box;
 use std::process::ExitCode;
 
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
-use oblique_lookup::{Contact, Table};
+use oblique_lookup::{Contact, Prepared, Table};
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
     let usage = "usage: query_loop TABLE KIND N (KIND: line, partial, stick, no_slip, low_gamma, \
-                 mixed, spheres_3d)";
+                 partial_g3, mixed, spheres_3d, spheres_3d_prepared)";
     let (Some(path), Some(kind), Some(n)) = (args.get(1), args.get(2), args.get(3)) else {
         eprintln!("{usage}");
         return ExitCode::from(2);
@@ -37,7 +38,8 @@ fn main() -> ExitCode {
         "stick" => Some((1.754, 1.0)),
         "no_slip" => Some((1.754, f64::INFINITY)),
         "low_gamma" => Some((0.5, 1.0)),
-        "mixed" | "spheres_3d" => None,
+        "partial_g3" => Some((3.0, 0.3)),
+        "mixed" | "spheres_3d" | "spheres_3d_prepared" => None,
         _ => {
             eprintln!("unknown KIND {kind}\n{usage}");
             return ExitCode::from(2);
@@ -108,10 +110,25 @@ fn main() -> ExitCode {
             },
             normal: [0.1, -0.2, 0.97],
         };
-        for _ in 0..n {
-            sum += table
-                .rebound_3d(black_box(&pair), black_box(&contact), black_box(&inc))
-                .map_or(f64::NAN, |a| a.rebound.energy_lost);
+        if kind == "spheres_3d" {
+            for _ in 0..n {
+                sum += table
+                    .rebound_3d(black_box(&pair), black_box(&contact), black_box(&inc))
+                    .map_or(f64::NAN, |a| a.rebound.energy_lost);
+            }
+        } else {
+            let prepared = match Prepared::new(&pair, &contact) {
+                Ok(p) => p,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            for _ in 0..n {
+                sum += table
+                    .rebound_3d_prepared(black_box(&prepared), black_box(&inc))
+                    .map_or(f64::NAN, |a| a.rebound.energy_lost);
+            }
         }
     }
     println!("{kind}: {n} queries, checksum {sum}");

@@ -4,7 +4,7 @@
 
 use crate::rebound::{Elastic, Incident, Incident3, Pair, Rebound, Rebound3};
 use crate::surface::OutOfDomain;
-use crate::{LookupError, Table};
+use crate::{LookupError, Prepared, Table};
 
 /// What fixes the material group `γ` of a contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,7 +67,7 @@ impl Contact {
 }
 
 /// `γ`, `α` and `P` of one impact, with the post-impact state.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Answer<R> {
     /// The material group `γ` used (dimensionless).
     pub gamma: f64,
@@ -91,7 +91,7 @@ impl Table {
             // u0 = 0: a pure normal impact, P is not needed.
             return Ok(f64::NAN);
         }
-        self.surface.eval_with(gamma, alpha, contact.outside)
+        self.p_with(gamma, alpha, contact.outside)
     }
 
     /// A 2-D impact in its plane (sphere–wall when `pair.other` is `None`, else
@@ -116,7 +116,26 @@ impl Table {
     /// ([`Pair::plane`]), answered there, and applied back ([`Pair::rebound_3d`]). Components
     /// the model has no force for (spin about the normal, velocity and spin across the plane)
     /// are returned unchanged.
+    ///
+    /// Checks `pair` and `contact` and computes `γ` on every call; for many impacts of one
+    /// pair, [`Prepared::new`] once and [`Table::rebound_3d_prepared`] are faster (the same
+    /// answer).
     pub fn rebound_3d(
+        &self,
+        pair: &Pair,
+        contact: &Contact,
+        s: &Incident3,
+    ) -> Result<Answer<Rebound3>, LookupError> {
+        match Prepared::new(pair, contact) {
+            Ok(k) => self.rebound_3d_prepared(&k, s),
+            // The step-by-step path reports the first invalid input in its order.
+            Err(_) => self.rebound_3d_steps(pair, contact, s),
+        }
+    }
+
+    /// [`Table::rebound_3d`] step by step: [`Pair::plane`], `α`, `P`, then
+    /// [`Pair::rebound_3d`]'s algebra.
+    pub(crate) fn rebound_3d_steps(
         &self,
         pair: &Pair,
         contact: &Contact,

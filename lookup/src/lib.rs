@@ -10,7 +10,9 @@
 //! - [`Table::rebound`] (2-D, the plane of impact) and [`Table::rebound_3d`] (velocity and spin
 //!   vectors, contact normal) answer sphere–wall and sphere–sphere impacts in SI units, with
 //!   `γ` from the materials ([`Stiffness::Materials`]) or given ([`Stiffness::Gamma`]);
-//!   [`rebound`] is the algebra from `P` to the post-impact state.
+//!   [`rebound`] is the algebra from `P` to the post-impact state. [`Prepared`] checks a pair
+//!   and contact once for many rebounds ([`Table::rebound_3d_prepared`],
+//!   [`Table::rebound_3d_batch`], [`Table::rebound_3d_batch_par`]).
 //! - [`capi`] is the C ABI of the `cdylib` (header `lookup/include/oblique_lookup.h`).
 //!
 //! Symbols (as in `physics.md`): `γ = √((7/2) G*/E*)`, `α = μ v_z0/|u0|`, `P = u_after/u_before`,
@@ -18,13 +20,16 @@
 
 mod batch;
 pub mod capi;
+mod fast;
 pub mod format;
 pub mod impact;
+mod prepared;
 mod read;
 pub mod rebound;
 pub mod surface;
 
 pub use impact::{Answer, Contact, Stiffness};
+pub use prepared::Prepared;
 pub use read::{Check, Provenance, Table};
 pub use surface::{OutOfDomain, Patch, PatchKind, Surface};
 
@@ -68,13 +73,13 @@ pub enum LookupError {
         source: Box<LookupError>,
     },
     /// The slices of a batch differ in length.
-    #[error("batch slice '{name}' has length {len}, expected {expected} (the length of gamma)")]
+    #[error("batch slice '{name}' has length {len}, expected {expected} (the length of the first input slice: gamma, or incidents)")]
     Length {
         /// Name of the slice.
         name: &'static str,
         /// Its length.
         len: usize,
-        /// The length of the `gamma` slice.
+        /// The length of the first input slice (`gamma`, or `incidents`).
         expected: usize,
     },
 }

@@ -4,6 +4,7 @@ use std::path::Path;
 
 use hdf5::types::VarLenUnicode;
 
+use crate::fast::Accel;
 use crate::format::*;
 use crate::surface::{OutOfDomain, Patch, PatchKind, Surface};
 use crate::LookupError;
@@ -52,6 +53,11 @@ pub struct Check {
 
 /// A loaded table: the surface, its provenance and its held-out checks. `Send + Sync`; queries
 /// touch only memory.
+///
+/// [`Table::p`] and the other queries answer from an acceleration structure built from
+/// `surface` at [`Table::open`] (a fine leaf index per patch, see [`Table::index_bytes`]); they
+/// return the same bits as [`Surface::eval_with`]. After changing `surface` in place, call
+/// [`Table::reindex`], or the queries keep answering from the table as loaded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
     /// The interpolated surface.
@@ -60,6 +66,8 @@ pub struct Table {
     pub provenance: Provenance,
     /// Held-out check points.
     pub checks: Vec<Check>,
+    /// The query path's acceleration structure (`None`: answered by `surface` directly).
+    accel: Option<Accel>,
 }
 
 struct Reader<'a> {
@@ -380,18 +388,42 @@ impl Table {
             }
             Err(_) => Vec::new(),
         };
-        Ok(Table {
+        Ok(Table::from_parts(surface, provenance, checks))
+    }
+
+    /// A table from its parts (as [`Table::open`] loads them), with the acceleration structure
+    /// of the query path built for `surface`.
+    pub fn from_parts(surface: Surface, provenance: Provenance, checks: Vec<Check>) -> Table {
+        let accel = Accel::new(&surface);
+        Table {
             surface,
             provenance,
             checks,
-        })
+            accel,
+        }
+    }
+
+    /// The acceleration structure, if the table has one.
+    pub(crate) fn accel(&self) -> Option<&Accel> {
+        self.accel.as_ref()
+    }
+
+    /// Rebuild the acceleration structure after `surface` was changed in place.
+    pub fn reindex(&mut self) {
+        self.accel = Accel::new(&self.surface);
+    }
+
+    /// Bytes of the acceleration structure's leaf indexes (0 when the table is answered by the
+    /// quadtree descent of [`Surface::eval_with`], as for stencils other than 4 points).
+    pub fn index_bytes(&self) -> usize {
+        self.accel.as_ref().map_or(0, Accel::index_bytes)
     }
 
     /// `P(γ, α)` (dimensionless), refusing points outside the table's domain; see
     /// [`Surface::eval_with`].
     #[inline]
     pub fn p(&self, gamma: f64, alpha: f64) -> Result<f64, LookupError> {
-        self.surface.eval(gamma, alpha)
+        self.p_with(gamma, alpha, OutOfDomain::Error)
     }
 
     /// `P(γ, α)` with the caller's choice for points outside the domain
@@ -399,6 +431,20 @@ impl Table {
     /// [`Surface::eval_with`].
     #[inline]
     pub fn p_with(&self, gamma: f64, alpha: f64, outside: OutOfDomain) -> Result<f64, LookupError> {
+        match &self.accel {
+            Some(a) => a.eval_with(&self.surface, gamma, alpha, outside),
+            None => self.p_by_descent(gamma, alpha, outside),
+        }
+    }
+
+    /// [`Surface::eval_with`] out of line, for tables without an acceleration structure.
+    #[inline(never)]
+    fn p_by_descent(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
         self.surface.eval_with(gamma, alpha, outside)
     }
 

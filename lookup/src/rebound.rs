@@ -477,8 +477,8 @@ pub struct Frame {
     pub normal: Vec3,
 }
 
-/// The outcome of one 3-D impact.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The outcome of one 3-D impact (`Default`: all zero, for pre-filling batch outputs).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Rebound3 {
     /// Sphere 1 after the impact.
     pub sphere: Motion3,

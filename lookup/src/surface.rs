@@ -176,7 +176,7 @@ pub fn stencil(u: f64, n: usize, k: usize, w: &mut [f64; 8]) -> (usize, usize) {
 /// [`stencil`] for `k = 4` on `n ≥ 4` nodes (cubic Lagrange): start index and the four
 /// weights, from the closed forms of the cubic basis on nodes `0, 1, 2, 3` at `t = u − start`.
 #[inline(always)]
-fn stencil4(u: f64, n: usize) -> (usize, [f64; 4]) {
+pub(crate) fn stencil4(u: f64, n: usize) -> (usize, [f64; 4]) {
     let cell = floor_index(u, n - 2);
     let start = cell.saturating_sub(1).min(n - 4);
     let a = u - start as f64;
@@ -300,7 +300,7 @@ pub enum OutOfDomain {
 }
 
 #[cold]
-fn bad_gamma(gamma: f64) -> LookupError {
+pub(crate) fn bad_gamma(gamma: f64) -> LookupError {
     LookupError::Query {
         name: "gamma",
         value: gamma,
@@ -309,7 +309,7 @@ fn bad_gamma(gamma: f64) -> LookupError {
 }
 
 #[cold]
-fn bad_alpha(alpha: f64) -> LookupError {
+pub(crate) fn bad_alpha(alpha: f64) -> LookupError {
     LookupError::Query {
         name: "alpha",
         value: alpha,
@@ -437,7 +437,7 @@ impl Surface {
     }
 
     #[cold]
-    fn gamma_outside(&self, gamma: f64) -> LookupError {
+    pub(crate) fn gamma_outside(&self, gamma: f64) -> LookupError {
         LookupError::Query {
             name: "gamma",
             value: gamma,
@@ -450,7 +450,7 @@ impl Surface {
     }
 
     #[cold]
-    fn alpha_outside(&self, alpha: f64) -> LookupError {
+    pub(crate) fn alpha_outside(&self, alpha: f64) -> LookupError {
         LookupError::Query {
             name: "alpha",
             value: alpha,
@@ -483,7 +483,7 @@ impl Surface {
 /// [`PatchKind::coord`] of the partial-slip patch: `α/α_c1 = 7α(2γ² − 1)/(2γ²)` and
 /// `α_c2/α_c1 = 2γ² − 1`.
 #[inline(always)]
-fn partial_coord(gamma: f64, alpha: f64) -> f64 {
+pub(crate) fn partial_coord(gamma: f64, alpha: f64) -> f64 {
     let g2 = 2.0 * gamma * gamma;
     let ratio = g2 - 1.0;
     let l = (7.0 * alpha * ratio / g2).ln() / ratio.ln();
@@ -492,7 +492,7 @@ fn partial_coord(gamma: f64, alpha: f64) -> f64 {
 
 /// [`PatchKind::coord`] of a stick patch: `S(α) = r/(r + ρ) = (α − α_c2)/(α − α_c2 + ρ α_c2)`.
 #[inline(always)]
-fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
+pub(crate) fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
     if alpha.is_infinite() {
         return 1.0;
     }

@@ -7,7 +7,7 @@ use oblique_lookup::rebound::{
     Body, Elastic, Incident, Incident3, Motion3, Pair, Rebound3, State, Vec3,
 };
 use oblique_lookup::surface::{stencil, Region};
-use oblique_lookup::{Contact, LookupError, OutOfDomain, Stiffness, Table};
+use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Prepared, Stiffness, Table};
 
 fn table() -> Table {
     Table::open(concat!(env!("CARGO_MANIFEST_DIR"), "/../tables/quick.h5")).expect("quick.h5")
@@ -569,4 +569,186 @@ fn bad_rebound_input_names_the_field() {
         ..Contact::with_gamma(50.0, 5.0)
     };
     assert!(t.rebound_3d(&pair, &c, &good).is_ok());
+}
+
+/// `|a − b|` relative to `scale` for every component of two 3-vectors.
+fn close3(a: Vec3, b: Vec3, scale: f64) -> bool {
+    (0..3).all(|k| (a[k] - b[k]).abs() <= 1e-13 * scale)
+}
+
+#[test]
+fn prepared_rebounds_equal_the_step_by_step_algebra() {
+    let t = table();
+    let mut next = rng(21);
+    for case in 0..2000 {
+        let wall = case % 3 == 0;
+        let pair = if wall {
+            Pair {
+                sphere: spheres().sphere,
+                other: None,
+            }
+        } else {
+            spheres()
+        };
+        let inc = random_incident(&mut next, wall);
+        let contact = if case % 2 == 0 {
+            Contact::with_materials(ALUMINA, STEEL, 0.02 + 0.5 * next())
+        } else {
+            Contact::with_gamma(1.2 + next(), 0.02 + 0.5 * next())
+        };
+        let prepared = Prepared::new(&pair, &contact).unwrap();
+        let fast = t.rebound_3d_prepared(&prepared, &inc).unwrap();
+        let slow = t.rebound_3d(&pair, &contact, &inc).unwrap();
+        assert_eq!(format!("{fast:?}"), format!("{slow:?}"));
+        // The reference: plane of impact, α, P from the table, then the 2-D algebra lifted.
+        let plane = pair.plane(&inc).unwrap();
+        let alpha = pair.alpha(&plane.incident, contact.friction).unwrap();
+        let gamma = contact.gamma(&pair).unwrap();
+        assert_eq!(fast.gamma, gamma);
+        // u0 = |u_t| directly here, the projection t·u in the reference: both round, and the
+        // reference's projection loses digits when |u0| is small against the velocities.
+        let cancel = (dot(inc.sphere.velocity, inc.sphere.velocity).sqrt()
+            + dot(inc.other.velocity, inc.other.velocity).sqrt()
+            + pair.sphere.radius * dot(inc.sphere.spin, inc.sphere.spin).sqrt()
+            + pair.other.map_or(0.0, |o| o.radius) * dot(inc.other.spin, inc.other.spin).sqrt())
+            / fast.rebound.slip_before;
+        assert!(
+            (fast.alpha - alpha).abs() <= 1e-14 * alpha * (1.0 + cancel),
+            "{case}: alpha {} vs {alpha}",
+            fast.alpha
+        );
+        let p = t.p(gamma, alpha).unwrap();
+        assert!((fast.rebound.p - p).abs() <= 1e-13, "{case}: P");
+        let reference = pair.rebound_3d(&inc, p).unwrap();
+        let (f, r) = (&fast.rebound, &reference);
+        let vscale = dot(inc.sphere.velocity, inc.sphere.velocity).sqrt()
+            + dot(inc.other.velocity, inc.other.velocity).sqrt()
+            + r.slip_before;
+        let wscale = dot(inc.sphere.spin, inc.sphere.spin).sqrt()
+            + dot(inc.other.spin, inc.other.spin).sqrt()
+            + r.slip_before / pair.sphere.radius;
+        assert!(
+            close3(f.sphere.velocity, r.sphere.velocity, vscale),
+            "{case}"
+        );
+        assert!(close3(f.sphere.spin, r.sphere.spin, wscale), "{case}");
+        if let (Some(a), Some(b)) = (f.other, r.other) {
+            assert!(close3(a.velocity, b.velocity, vscale), "{case}");
+            assert!(close3(a.spin, b.spin, wscale), "{case}");
+        }
+        assert_eq!(f.other.is_some(), r.other.is_some());
+        for (a, b) in [
+            (f.frame.tangent, r.frame.tangent),
+            (f.frame.binormal, r.frame.binormal),
+            (f.frame.normal, r.frame.normal),
+        ] {
+            assert!(close3(a, b, 1.0), "{case}: frame");
+        }
+        let near = |a: f64, b: f64, s: f64| (a - b).abs() <= 1e-13 * s;
+        assert!(near(f.slip_before, r.slip_before, vscale), "{case}");
+        assert!(near(f.slip_after, r.slip_after, vscale), "{case}");
+        assert!(near(f.approach_speed, r.approach_speed, vscale), "{case}");
+        assert!(near(f.e_t, r.e_t, 1.0 + r.e_t.abs()), "{case}: e_t");
+        let ks = pair.tangential_mass() * vscale * vscale;
+        assert!(near(f.energy_lost, r.energy_lost, ks), "{case}: energy");
+        let js = pair.tangential_mass() * vscale;
+        assert!(
+            near(f.tangential_impulse, r.tangential_impulse, js),
+            "{case}"
+        );
+        assert!(near(f.normal_impulse, r.normal_impulse, 4.0 * js), "{case}");
+        check_laws(&pair, &inc, f);
+    }
+}
+
+#[test]
+fn prepared_rebounds_refuse_bad_input_like_rebound_3d() {
+    let t = table();
+    let pair = spheres();
+    let contact = Contact::with_materials(ALUMINA, STEEL, 0.2);
+    let prepared = Prepared::new(&pair, &contact).unwrap();
+    let good = random_incident(&mut rng(9), false);
+    let mut bad = Vec::new();
+    let mut inc = good;
+    inc.normal = [0.0; 3];
+    bad.push(inc);
+    let mut inc = good;
+    inc.other.velocity[2] = f64::INFINITY;
+    bad.push(inc);
+    let mut inc = good;
+    inc.normal = [-inc.normal[0], -inc.normal[1], -inc.normal[2]];
+    bad.push(inc);
+    for inc in bad {
+        let a = t.rebound_3d_prepared(&prepared, &inc).unwrap_err();
+        let b = t.rebound_3d(&pair, &contact, &inc).unwrap_err();
+        assert_eq!(a.to_string(), b.to_string());
+    }
+    // No slip at the contact point: the step-by-step path answers.
+    let still = Incident3 {
+        sphere: Motion3 {
+            velocity: [0.0, 0.0, 1.0],
+            spin: [0.0, 0.0, 5.0],
+        },
+        other: Motion3::default(),
+        normal: [0.0, 0.0, 1.0],
+    };
+    let a = t.rebound_3d_prepared(&prepared, &still).unwrap();
+    assert!(a.rebound.p.is_nan() && a.alpha.is_infinite());
+    let b = t.rebound_3d(&pair, &contact, &still).unwrap();
+    assert_eq!(format!("{a:?}"), format!("{b:?}"));
+    // Pair and contact are checked once, by Prepared::new.
+    let c = Contact::with_materials(ALUMINA, STEEL, f64::NAN);
+    match Prepared::new(&pair, &c) {
+        Err(LookupError::Query { name, .. }) => assert_eq!(name, "friction"),
+        other => panic!("{other:?}"),
+    }
+    let mut p = pair;
+    p.sphere.mass = 0.0;
+    match Prepared::new(&p, &contact) {
+        Err(LookupError::Query { name, .. }) => assert_eq!(name, "mass"),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn rebound_batches_match_single_rebounds_and_name_the_first_bad_index() {
+    let t = table();
+    let pair = spheres();
+    let contact = Contact::with_materials(ALUMINA, STEEL, 0.15);
+    let prepared = Prepared::new(&pair, &contact).unwrap();
+    let mut next = rng(33);
+    let n = 10_000;
+    let mut incidents: Vec<Incident3> = (0..n).map(|_| random_incident(&mut next, false)).collect();
+    let mut serial = vec![Answer::default(); n];
+    let mut parallel = vec![Answer::default(); n];
+    t.rebound_3d_batch(&prepared, &incidents, &mut serial)
+        .unwrap();
+    t.rebound_3d_batch_par(&prepared, &incidents, &mut parallel)
+        .unwrap();
+    for i in 0..n {
+        let one = t.rebound_3d_prepared(&prepared, &incidents[i]).unwrap();
+        let one = format!("{one:?}");
+        assert_eq!(format!("{:?}", serial[i]), one, "serial {i}");
+        assert_eq!(format!("{:?}", parallel[i]), one, "parallel {i}");
+    }
+    incidents[9_000].normal = [0.0; 3];
+    incidents[5_000].sphere.spin[0] = f64::NAN;
+    for par in [false, true] {
+        let r = if par {
+            t.rebound_3d_batch_par(&prepared, &incidents, &mut parallel)
+        } else {
+            t.rebound_3d_batch(&prepared, &incidents, &mut serial)
+        };
+        match r {
+            Err(LookupError::Batch { index, source }) => {
+                assert_eq!(index, 5_000, "parallel {par}");
+                assert!(source.to_string().contains("sphere.spin"), "{source}");
+            }
+            other => panic!("parallel {par}: {other:?}"),
+        }
+    }
+    let e = t
+        .rebound_3d_batch(&prepared, &incidents, &mut serial[..10])
+        .unwrap_err();
+    assert!(e.to_string().contains("'out'"), "{e}");
 }

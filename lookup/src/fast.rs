@@ -1,0 +1,567 @@
+//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–8
+//! of `docs/table-format.md`) on an acceleration structure built once at [`crate::Table::open`].
+//!
+//! It returns the same bits as [`Surface::eval_with`] (the rule written step by step); only the
+//! way to the leaf differs. Instead of descending each patch's quadtree from its root, a query
+//! reads a **fine index**: a uniform grid at depth `D` (the deepest leaf's depth, or less if the
+//! grid would exceed [`MAX_INDEX_ENTRIES`]) over the patch, each entry naming the deepest cell
+//! of depth `≤ D` that contains it. That cell is a leaf unless `D` was capped, in which case the
+//! descent of the rule continues from it. The position inside a cell of depth `d` with integer
+//! origin `(A, B)` (in units of its own size) is `v·2^d − A`, where `v = x·blocks` is what the
+//! rule's first step computes: multiplying by a power of two and subtracting an integer below
+//! the value are exact in binary floating point, so this equals the rule's repeated
+//! `f ← 2f − q` bit for bit, and the leaf and the weights are the rule's.
+//!
+//! Only the shipped stencil (`k = 4`) takes this path; other stencils use [`Surface`] directly.
+
+use crate::surface::{partial_coord, stencil4, stick_coord};
+use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface};
+use crate::LookupError;
+
+/// Largest number of entries (4 bytes each) of one patch's fine index: 2¹⁵ = 128 KiB, so that
+/// the indexes stay in the second-level cache next to the nodes. A patch whose deepest leaves
+/// would need more gets an index at a smaller depth, from which the quadtree descent continues
+/// (`tables/full.h5`: `partial_high` indexed at depth 5 of 7, the others at full depth). A
+/// full-depth index for `partial_high` (327 680 entries, 1.3 MB) answered a repeated point in the
+/// deepest leaves 10 % faster but a random stream of 2²⁰ queries 10–15 % slower (cache misses).
+pub(crate) const MAX_INDEX_ENTRIES: usize = 1 << 15;
+
+/// Queries per chunk of [`Accel::eval_batch`] (fits its `u16` query numbers).
+const BATCH: usize = 256;
+
+/// `α_c1 = 2γ²/(7(2γ² − 1))` from `γ²`, with the operations of [`crate::surface::alpha_c1`].
+#[inline(always)]
+fn alpha_c1_of(g2: f64) -> f64 {
+    2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
+}
+
+/// One cell of a patch's quadtree with its position, for the fine index.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Cell {
+    /// `2^depth`.
+    scale: f64,
+    /// Integer origin along γ, in units of the cell's size (`floor(v_γ·2^depth)`).
+    og: f64,
+    /// Integer origin along `c`, in units of the cell's size.
+    oc: f64,
+    /// `tree[cell]`: `≥ 0` the first child, `< 0` leaf number `−link − 1`.
+    link: i32,
+}
+
+/// A patch with its fine index.
+#[derive(Clone, PartialEq)]
+struct FastPatch {
+    kind: PatchKind,
+    gamma_lo: f64,
+    width: f64,
+    /// `blocks_gamma`, `blocks_coord` as floats.
+    bg: f64,
+    bc: f64,
+    /// `2^D`.
+    fine: f64,
+    /// Fine cells along γ (`blocks_gamma·2^D`) and along `c` (`blocks_coord·2^D`).
+    rows: usize,
+    cols: usize,
+    /// `rows × cols` cell numbers, row-major (γ outer). Invariant (built by [`FastPatch::new`]):
+    /// every entry is `< cells.len()`.
+    index: Vec<u32>,
+    /// Every cell of the quadtree, in the order of `tree`.
+    cells: Vec<Cell>,
+    /// `m`, `m + 1`, `(m + 1)²`.
+    m: f64,
+    n1: usize,
+    size: usize,
+    /// `P` at the nodes, as in [`Patch::p`].
+    p: Vec<f64>,
+}
+
+impl std::fmt::Debug for FastPatch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FastPatch")
+            .field("kind", &self.kind)
+            .field("rows", &self.rows)
+            .field("cols", &self.cols)
+            .field("cells", &self.cells.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl FastPatch {
+    /// The fine index of a validated patch (a tree as `Reader::check_tree` accepts it), or
+    /// `None` when the patch's grid is too small for the cubic stencil.
+    fn new(patch: &Patch, max_entries: usize) -> Option<FastPatch> {
+        let (bg, bc, m) = (patch.blocks_gamma, patch.blocks_coord, patch.leaf_intervals);
+        let roots = bg * bc;
+        if m < 3 || roots == 0 || patch.tree.len() < roots || patch.tree.len() > u32::MAX as usize {
+            return None;
+        }
+        // Depth and integer origin of every cell (children come after their parents).
+        let mut cells = vec![
+            Cell {
+                scale: 1.0,
+                og: 0.0,
+                oc: 0.0,
+                link: 0,
+            };
+            patch.tree.len()
+        ];
+        let mut depth = vec![0u32; patch.tree.len()];
+        let mut origin = vec![(0usize, 0usize); patch.tree.len()];
+        for a in 0..bg {
+            for b in 0..bc {
+                origin[a * bc + b] = (a, b);
+            }
+        }
+        let mut max_depth = 0;
+        for i in 0..patch.tree.len() {
+            let t = patch.tree[i];
+            let (a, b) = origin[i];
+            cells[i] = Cell {
+                scale: f64::from(1u32 << depth[i].min(31)),
+                og: a as f64,
+                oc: b as f64,
+                link: t,
+            };
+            max_depth = max_depth.max(depth[i]);
+            if t >= 0 {
+                let first = t as usize;
+                if first <= i || first + 4 > patch.tree.len() || depth[i] >= 30 {
+                    return None;
+                }
+                for q in 0..4 {
+                    depth[first + q] = depth[i] + 1;
+                    origin[first + q] = (2 * a + q / 2, 2 * b + q % 2);
+                }
+            }
+        }
+        // The deepest index within the budget.
+        let mut d = max_depth;
+        while d > 0 && ((roots as u128) << (2 * d)) > max_entries as u128 {
+            d -= 1;
+        }
+        let (rows, cols) = (bg << d, bc << d);
+        let mut index = vec![u32::MAX; rows * cols];
+        for i in 0..patch.tree.len() {
+            let di = depth[i];
+            // Cells at depth ≤ d that are leaves or at depth d cover their part of the index;
+            // deeper cells are reached by the descent. Parents come first, so a later (deeper)
+            // cell overwrites its ancestor's entries.
+            if di > d {
+                continue;
+            }
+            let k = 1usize << (d - di);
+            let (a, b) = origin[i];
+            for r in a * k..(a + 1) * k {
+                index[r * cols + b * k..r * cols + (b + 1) * k].fill(i as u32);
+            }
+        }
+        if index.iter().any(|&e| e as usize >= cells.len()) {
+            return None;
+        }
+        Some(FastPatch {
+            kind: patch.kind,
+            gamma_lo: patch.gamma_lo,
+            width: patch.gamma_hi - patch.gamma_lo,
+            bg: bg as f64,
+            bc: bc as f64,
+            fine: f64::from(1u32 << d),
+            rows,
+            cols,
+            index,
+            cells,
+            m: m as f64,
+            n1: m + 1,
+            size: (m + 1) * (m + 1),
+            p: patch.p.clone(),
+        })
+    }
+
+    /// Interpolate at `(γ, c)`, `c ∈ [0, 1]`: [`Patch::interpolate`] with `k = 4`.
+    #[inline(always)]
+    fn interpolate(&self, gamma: f64, c: f64) -> f64 {
+        // Step 5 of the rule: v = x·blocks, clamped (as `surface::locate`).
+        let xg = (gamma - self.gamma_lo) / self.width;
+        let vg = (xg * self.bg).clamp(0.0, self.bg);
+        let vc = (c * self.bc).clamp(0.0, self.bc);
+        let ig = floor_index(vg * self.fine, self.rows - 1);
+        let ic = floor_index(vc * self.fine, self.cols - 1);
+        let mut cell = self.cells[self.index[ig * self.cols + ic] as usize];
+        let mut fg = vg * cell.scale - cell.og;
+        let mut fc = vc * cell.scale - cell.oc;
+        // Step 6, only when the index depth was capped below the deepest leaf.
+        while cell.link >= 0 {
+            fg *= 2.0;
+            fc *= 2.0;
+            let qg = usize::from(fg >= 1.0);
+            let qc = usize::from(fc >= 1.0);
+            fg -= qg as f64;
+            fc -= qc as f64;
+            cell = self.cells[cell.link as usize + 2 * qg + qc];
+        }
+        let leaf = (-(cell.link as i64) - 1) as usize;
+        let n1 = self.n1;
+        let (sg, wg) = stencil4(fg * self.m, n1);
+        let (sc, wc) = stencil4(fc * self.m, n1);
+        let start = leaf * self.size + sg * n1 + sc;
+        let block = &self.p[start..start + 3 * n1 + 4];
+        let (r0, rest) = block.split_at(n1);
+        let (r1, rest) = rest.split_at(n1);
+        let (r2, r3) = rest.split_at(n1);
+        let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
+        wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3)
+    }
+}
+
+/// `min(floor(u), max)` for `u ≥ 0` (as in [`crate::surface`]).
+#[inline(always)]
+fn floor_index(u: f64, max: usize) -> usize {
+    ((u as i64).max(0) as usize).min(max)
+}
+
+/// The acceleration structure of a table: its three patches with their fine indexes.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Accel {
+    gamma_min: f64,
+    gamma_max: f64,
+    alpha_max: f64,
+    stick_low: Option<FastPatch>,
+    partial_high: Option<FastPatch>,
+    stick_high: Option<FastPatch>,
+}
+
+impl Accel {
+    /// The structure for `surface`, or `None` when its stencil is not the cubic one (those
+    /// tables are answered by [`Surface::eval_with`]).
+    pub(crate) fn new(surface: &Surface) -> Option<Accel> {
+        Accel::with_budget(surface, MAX_INDEX_ENTRIES)
+    }
+
+    /// [`Accel::new`] with at most `max_entries` index entries per patch.
+    fn with_budget(surface: &Surface, max_entries: usize) -> Option<Accel> {
+        if surface.stencil != 4 {
+            return None;
+        }
+        let fast = |p: &Option<Patch>| match p {
+            None => Some(None),
+            Some(p) => FastPatch::new(p, max_entries).map(Some),
+        };
+        Some(Accel {
+            gamma_min: surface.gamma_min,
+            gamma_max: surface.gamma_max,
+            alpha_max: surface.alpha_max,
+            stick_low: fast(&surface.stick_low)?,
+            partial_high: fast(&surface.partial_high)?,
+            stick_high: fast(&surface.stick_high)?,
+        })
+    }
+
+    /// Bytes held by the fine indexes and cell lists (not counting the copy of `P`).
+    pub(crate) fn index_bytes(&self) -> usize {
+        [&self.stick_low, &self.partial_high, &self.stick_high]
+            .iter()
+            .filter_map(|p| p.as_ref())
+            .map(|p| p.index.len() * 4 + p.cells.len() * std::mem::size_of::<Cell>())
+            .sum()
+    }
+
+    /// [`Surface::eval_with`], bit for bit. The checks and the full-slip line are inlined into
+    /// the caller; the patches are answered out of line ([`Accel::eval_off_line`]).
+    #[inline(always)]
+    pub(crate) fn eval_with(
+        &self,
+        surface: &Surface,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        if !(gamma.is_finite() && gamma > 0.0) {
+            return Err(crate::surface::bad_gamma(gamma));
+        }
+        if alpha.is_nan() || alpha < 0.0 {
+            return Err(crate::surface::bad_alpha(alpha));
+        }
+        let region = Region::of(gamma, alpha);
+        if region == Region::Line {
+            return Ok(1.0 - 7.0 * alpha);
+        }
+        self.eval_off_line(surface, region, gamma, alpha, outside)
+    }
+
+    /// [`Accel::eval_with`] for a valid query above the full-slip line.
+    #[inline(never)]
+    fn eval_off_line(
+        &self,
+        surface: &Surface,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        let inside = gamma >= self.gamma_min && gamma <= self.gamma_max;
+        if inside && alpha <= self.alpha_max {
+            return Ok(self.eval_in(region, gamma, alpha));
+        }
+        match outside {
+            OutOfDomain::Error if !inside => Err(surface.gamma_outside(gamma)),
+            OutOfDomain::Error => Err(surface.alpha_outside(alpha)),
+            OutOfDomain::Clamp => {
+                let g = gamma.clamp(self.gamma_min, self.gamma_max);
+                let a = alpha.min(self.alpha_max);
+                match Region::of(g, a) {
+                    Region::Line => Ok(1.0 - 7.0 * a),
+                    r => Ok(self.eval_in(r, g, a)),
+                }
+            }
+        }
+    }
+
+    /// `out[i] = P(gamma[i], alpha[i])` ([`Accel::eval_with`] for each `i`, the same bits),
+    /// in chunks of [`BATCH`] queries sorted by region first: the full-slip line is answered in
+    /// the sorting pass, then each patch's queries in a loop of their own, so that the branches
+    /// on the region (random in a mixed stream) are not mispredicted per query. A chunk with an
+    /// invalid query, or one outside the domain without clamping, is answered query by query,
+    /// so the error is the first one's and `out` after it stays untouched.
+    pub(crate) fn eval_batch(
+        &self,
+        surface: &Surface,
+        gamma: &[f64],
+        alpha: &[f64],
+        out: &mut [f64],
+        outside: OutOfDomain,
+    ) -> Result<(), (usize, LookupError)> {
+        let mut code = [0u8; BATCH];
+        // Query numbers (within the chunk) per patch (stick_low, partial_high, stick_high)
+        // and for the clamped ones.
+        let mut lists = [[0u16; BATCH]; 4];
+        let clamp = outside == OutOfDomain::Clamp;
+        for (k, ((g, a), o)) in gamma
+            .chunks(BATCH)
+            .zip(alpha.chunks(BATCH))
+            .zip(out.chunks_mut(BATCH))
+            .enumerate()
+        {
+            let len = g.len().min(a.len()).min(o.len());
+            let (g, a, o) = (&g[..len], &a[..len], &mut o[..len]);
+            // Pass 1, branch-free: 0 line, 1–3 a patch, 4 outside (clamped), 5 refused.
+            let mut refused = false;
+            for ((c, &gi), &ai) in code.iter_mut().zip(g).zip(a) {
+                let valid = gi.is_finite() & (gi > 0.0) & (ai >= 0.0);
+                let g2 = gi * gi;
+                let c2 = 2.0 * g2 / 7.0;
+                let lin = if gi > 1.0 { alpha_c1_of(g2) } else { c2 };
+                let line = ai <= lin;
+                let patch = 1 + u8::from(gi > 1.0) * (1 + u8::from(ai >= c2));
+                let inside =
+                    (gi >= self.gamma_min) & (gi <= self.gamma_max) & (ai <= self.alpha_max);
+                let r = if line {
+                    0
+                } else if inside {
+                    patch
+                } else {
+                    4 + u8::from(!clamp)
+                };
+                let r = if valid { r } else { 5 };
+                refused |= r == 5;
+                *c = r;
+            }
+            if refused {
+                for (i, ((o, &gi), &ai)) in o.iter_mut().zip(g).zip(a).enumerate() {
+                    *o = self
+                        .eval_with(surface, gi, ai, outside)
+                        .map_err(|e| (k * BATCH + i, e))?;
+                }
+                continue;
+            }
+            // Pass 2: the line, and the lists.
+            let mut counts = [0usize; 4];
+            for (i, (&c, (o, &ai))) in code.iter().zip(o.iter_mut().zip(a)).enumerate() {
+                if c == 0 {
+                    *o = 1.0 - 7.0 * ai;
+                } else {
+                    let l = usize::from(c - 1).min(3);
+                    lists[l][counts[l]] = i as u16;
+                    counts[l] += 1;
+                }
+            }
+            // Pass 3: each patch's queries.
+            let patches = [&self.stick_low, &self.partial_high, &self.stick_high];
+            for (l, patch) in patches.into_iter().enumerate() {
+                let idx = &lists[l][..counts[l]];
+                match patch {
+                    Some(p) if p.kind == PatchKind::PartialSlip => {
+                        for &i in idx {
+                            let (gi, ai) = (g[i as usize], a[i as usize]);
+                            let c = partial_coord(gi, ai).clamp(0.0, 1.0);
+                            o[i as usize] = p.interpolate(gi, c);
+                        }
+                    }
+                    Some(p) => {
+                        for &i in idx {
+                            let (gi, ai) = (g[i as usize], a[i as usize]);
+                            let c = stick_coord(gi, ai, self.alpha_max).clamp(0.0, 1.0);
+                            o[i as usize] = p.interpolate(gi, c);
+                        }
+                    }
+                    None => {
+                        for &i in idx {
+                            o[i as usize] = -1.0;
+                        }
+                    }
+                }
+            }
+            for &i in &lists[3][..counts[3]] {
+                let i = i as usize;
+                o[i] = self
+                    .eval_with(surface, g[i], a[i], outside)
+                    .map_err(|e| (k * BATCH + i, e))?;
+            }
+        }
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
+        let patch = match region {
+            Region::Line => None,
+            Region::StickLow => self.stick_low.as_ref(),
+            Region::PartialHigh => self.partial_high.as_ref(),
+            Region::StickHigh => self.stick_high.as_ref(),
+        };
+        match patch {
+            Some(patch) => {
+                let c = match patch.kind {
+                    PatchKind::PartialSlip => partial_coord(gamma, alpha),
+                    PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
+                };
+                patch.interpolate(gamma, c.clamp(0.0, 1.0))
+            }
+            None => -1.0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Table;
+
+    fn table(name: &str) -> Table {
+        Table::open(format!("{}/../tables/{name}", env!("CARGO_MANIFEST_DIR"))).expect(name)
+    }
+
+    /// Points spread over the plane, plus points exactly on the edges of the finest cells
+    /// (where the rule sends a point to the upper cell).
+    fn points(t: &Table) -> Vec<(f64, f64)> {
+        let s = &t.surface;
+        let mut state = 0x1234_5678_9ABC_DEF1_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut pts = Vec::new();
+        for _ in 0..20_000 {
+            let g = s.gamma_min + (s.gamma_max - s.gamma_min) * next();
+            let a = if next() < 0.1 {
+                f64::INFINITY
+            } else {
+                10f64.powf(-3.0 + 6.0 * next())
+            };
+            pts.push((g, a));
+        }
+        for patch in [&s.stick_low, &s.partial_high, &s.stick_high]
+            .into_iter()
+            .flatten()
+        {
+            let steps = patch.blocks_gamma << 7;
+            for i in 0..=steps {
+                let g =
+                    patch.gamma_lo + (patch.gamma_hi - patch.gamma_lo) * i as f64 / steps as f64;
+                for j in 0..=(patch.blocks_coord << 5) {
+                    let c = j as f64 / (patch.blocks_coord << 5) as f64;
+                    pts.push((g, patch.kind.alpha(g, c, s.alpha_max)));
+                }
+            }
+        }
+        pts
+    }
+
+    #[test]
+    fn the_fine_index_gives_the_bits_of_the_descent() {
+        for name in ["quick.h5", "full.h5"] {
+            let t = table(name);
+            let s = &t.surface;
+            // Full depth, and capped depths from which the descent continues.
+            for budget in [1 << 20, MAX_INDEX_ENTRIES, 64, 1] {
+                let accel = Accel::with_budget(s, budget).expect("cubic table");
+                for &(g, a) in &points(&t) {
+                    for o in [OutOfDomain::Error, OutOfDomain::Clamp] {
+                        let fast = accel.eval_with(s, g, a, o).ok().map(f64::to_bits);
+                        let rule = s.eval_with(g, a, o).ok().map(f64::to_bits);
+                        assert_eq!(fast, rule, "{name}, budget {budget}: ({g}, {a})");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn batches_sorted_by_region_give_the_bits_of_single_queries() {
+        let t = table("full.h5");
+        let s = &t.surface;
+        let accel = Accel::new(s).expect("cubic table");
+        let mut pts = points(&t);
+        // Outside the domain, on the line outside it, at γ = 1.
+        pts.extend([
+            (0.05, 0.001),
+            (0.05, 1.0),
+            (5.0, 0.1),
+            (5.0, 3.0),
+            (1.0, 0.5),
+        ]);
+        pts.extend([(1.0, f64::INFINITY), (2.0, 1e300), (s.gamma_max, 0.5)]);
+        let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
+        let mut out = vec![f64::NAN; g.len()];
+        accel
+            .eval_batch(s, &g, &a, &mut out, OutOfDomain::Clamp)
+            .expect("clamped");
+        for i in 0..g.len() {
+            let one = accel.eval_with(s, g[i], a[i], OutOfDomain::Clamp).unwrap();
+            assert_eq!(out[i].to_bits(), one.to_bits(), "({}, {})", g[i], a[i]);
+        }
+        // Without clamping: the first point outside is the error, out after it untouched.
+        let first = (0..g.len())
+            .find(|&i| accel.eval_with(s, g[i], a[i], OutOfDomain::Error).is_err())
+            .expect("a point outside");
+        let mut out = vec![f64::NAN; g.len()];
+        let (index, _) = accel
+            .eval_batch(s, &g, &a, &mut out, OutOfDomain::Error)
+            .expect_err("outside");
+        assert_eq!(index, first);
+        assert!(out[..first].iter().all(|p| !p.is_nan()));
+        assert!(out[first..].iter().all(|p| p.is_nan()));
+        // Invalid values.
+        let mut bad = a.clone();
+        bad[777] = f64::NAN;
+        let r = accel.eval_batch(s, &g, &bad, &mut out, OutOfDomain::Clamp);
+        assert_eq!(r.map_err(|(i, _)| i), Err(777));
+    }
+
+    #[test]
+    fn the_index_of_the_full_table_is_small() {
+        let t = table("full.h5");
+        let bytes = t.index_bytes();
+        assert!(
+            bytes > 0 && bytes <= 3 * (MAX_INDEX_ENTRIES * 4 + (64 << 10)),
+            "{bytes} bytes"
+        );
+        let accel = Accel::new(&t.surface).expect("cubic table");
+        let partial = accel.partial_high.as_ref().expect("partial_high");
+        // partial_high: 5 × 4 roots, leaves down to depth 7, indexed at depth 5 (the budget).
+        assert_eq!((partial.rows, partial.cols), (5 << 5, 4 << 5));
+        let stick = accel.stick_high.as_ref().expect("stick_high");
+        // stick_high: leaves down to depth 4, indexed at full depth.
+        assert_eq!((stick.rows, stick.cols), (5 << 4, 4 << 4));
+    }
+}

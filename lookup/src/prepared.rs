@@ -1,0 +1,271 @@
+//! 3-D rebounds for a pair of bodies and a contact checked once: [`Prepared`].
+//!
+//! A DEM code meets the same pair of materials, radii and masses over and over; validating them
+//! and computing `γ` from the elastic constants (`E*`, `G*`, a square root) costs more than the
+//! table lookup. [`Prepared::new`] does that once; [`Table::rebound_3d_prepared`] then checks
+//! only the incident state and answers with as few divisions and square roots as the algebra
+//! allows (one square root and one division for the normal, one each for the slip direction,
+//! one division for `α`). It computes what [`Pair::plane`] and [`Pair::rebound_3d`] compute,
+//! rearranged: the slip `u0` is the length `|u_t|` of the tangential slip itself rather than its
+//! projection on `t`, and the changes of the velocities and spins are applied as `−J/m_1 t`
+//! etc. rather than as differences of 2-D states. The answers agree up to rounding (the tests
+//! compare them at 1e-13 of the velocity scale). Inputs the fast path does not handle itself
+//! (any invalid input, which then gets the error [`Table::rebound_3d`] gives, and a contact point
+//! that does not slip, `u0 = 0`) are passed to the step-by-step path.
+
+use crate::rebound::{Frame, Incident3, Motion3, Pair, Rebound3, Vec3};
+use crate::{Answer, Contact, LookupError, Table};
+
+/// A pair of bodies with its contact, validated and reduced once, for many 3-D rebounds
+/// ([`Table::rebound_3d_prepared`], [`Table::rebound_3d_batch`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Prepared {
+    pair: Pair,
+    contact: Contact,
+    gamma: f64,
+    /// `(2/7)(m*/m_t) μ`, so that `α = alpha_scale · v_z0/|u0|`.
+    alpha_scale: f64,
+    /// `m_t` (kg).
+    tangential_mass: f64,
+    /// `2 m*` (kg).
+    two_normal_mass: f64,
+    /// `1/m_1`, `R_1/I_1`, `R_1` and the same for sphere 2 (zero for a wall).
+    inv_m1: f64,
+    spin1: f64,
+    r1: f64,
+    inv_m2: f64,
+    spin2: f64,
+    r2: f64,
+}
+
+#[cold]
+fn friction_error(mu: f64) -> LookupError {
+    LookupError::Query {
+        name: "friction",
+        value: mu,
+        allowed: ">= 0 (or inf for no slip)".into(),
+    }
+}
+
+impl Prepared {
+    /// Check `pair` (masses, radii, inertia factors) and `contact` (`γ` or the materials,
+    /// `μ ≥ 0`) and precompute what every rebound of this pair needs (`γ`, the reduced masses).
+    pub fn new(pair: &Pair, contact: &Contact) -> Result<Prepared, LookupError> {
+        pair.validate()?;
+        let gamma = contact.gamma(pair)?;
+        let mu = contact.friction;
+        if mu.is_nan() || mu < 0.0 {
+            return Err(friction_error(mu));
+        }
+        // The same operations, in the same order, as `Pair::alpha_checked` and
+        // `Pair::impulses`, so that α, J and the normal impulse have the same bits.
+        let alpha_scale = 2.0 / 7.0 * pair.mass_ratio() * mu;
+        let b1 = &pair.sphere;
+        let (inv_m2, spin2, r2) = pair.other.as_ref().map_or((0.0, 0.0, 0.0), |b2| {
+            (1.0 / b2.mass, b2.radius / b2.inertia(), b2.radius)
+        });
+        Ok(Prepared {
+            pair: *pair,
+            contact: *contact,
+            gamma,
+            alpha_scale,
+            tangential_mass: pair.tangential_mass(),
+            two_normal_mass: 2.0 * pair.normal_mass(),
+            inv_m1: 1.0 / b1.mass,
+            spin1: b1.radius / b1.inertia(),
+            r1: b1.radius,
+            inv_m2,
+            spin2,
+            r2,
+        })
+    }
+
+    /// The pair of bodies.
+    pub fn pair(&self) -> &Pair {
+        &self.pair
+    }
+
+    /// The contact (stiffness, friction, out-of-domain choice).
+    pub fn contact(&self) -> &Contact {
+        &self.contact
+    }
+
+    /// `γ` of this pair (dimensionless).
+    pub fn gamma(&self) -> f64 {
+        self.gamma
+    }
+}
+
+#[inline(always)]
+fn dot(a: Vec3, b: Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// `y + a x`.
+#[inline(always)]
+fn axpy(y: Vec3, a: f64, x: Vec3) -> Vec3 {
+    [y[0] + a * x[0], y[1] + a * x[1], y[2] + a * x[2]]
+}
+
+#[inline(always)]
+fn scale(a: f64, x: Vec3) -> Vec3 {
+    [a * x[0], a * x[1], a * x[2]]
+}
+
+#[inline(always)]
+fn sub(a: Vec3, b: Vec3) -> Vec3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `true` when every component of the incident state is finite (one pass, no early exit).
+#[inline(always)]
+fn all_finite(s: &Incident3) -> bool {
+    let m = |m: &Motion3| {
+        m.velocity
+            .iter()
+            .chain(&m.spin)
+            .fold(true, |ok, x| ok & x.is_finite())
+    };
+    m(&s.sphere) & m(&s.other) & s.normal.iter().fold(true, |ok, x| ok & x.is_finite())
+}
+
+impl Table {
+    /// [`Table::rebound_3d`] for a [`Prepared`] pair and contact: only the incident state is
+    /// checked, and the algebra is shortened (the same answer up to rounding).
+    #[inline]
+    pub fn rebound_3d_prepared(
+        &self,
+        prepared: &Prepared,
+        s: &Incident3,
+    ) -> Result<Answer<Rebound3>, LookupError> {
+        let k = prepared;
+        let wall = k.pair.other.is_none();
+        if !all_finite(s) || (wall && s.other != Motion3::default()) {
+            return self.rebound_3d_reference(k, s);
+        }
+        let len = dot(s.normal, s.normal).sqrt();
+        if !(len > 0.0 && len.is_finite()) {
+            return self.rebound_3d_reference(k, s);
+        }
+        let n = scale(1.0 / len, s.normal);
+        // Slip of the contact point: sphere 1's at +R1 n, sphere 2's at −R2 n.
+        let (m1, m2) = (&s.sphere, &s.other);
+        let c1 = axpy(m1.velocity, k.r1, cross(m1.spin, n));
+        let c2 = axpy(m2.velocity, -k.r2, cross(m2.spin, n));
+        let u = sub(c1, c2);
+        let u_t = axpy(u, -dot(u, n), n);
+        let slip = dot(u_t, u_t).sqrt();
+        if !(slip > 0.0 && slip.is_finite()) {
+            // u0 = 0 (a pure normal impact; the tangent is chosen otherwise) or overflow.
+            return self.rebound_3d_reference(k, s);
+        }
+        let t = scale(1.0 / slip, u_t);
+        let b = cross(n, t);
+        // The approach speed and the slip (`u0 = |u_t| > 0` along `t`) in the plane of impact.
+        let v0 = if wall {
+            dot(m1.velocity, n)
+        } else {
+            dot(sub(m1.velocity, m2.velocity), n)
+        };
+        let u0 = slip;
+        if v0.is_nan() || v0 <= 0.0 {
+            return self.rebound_3d_reference(k, s);
+        }
+        let alpha = k.alpha_scale * v0 / u0;
+        let alpha = if alpha.is_nan() { f64::INFINITY } else { alpha };
+        let p = self.p_with(k.gamma, alpha, k.contact.outside)?;
+        // Impulses along +t and +n on body 2 (body 1 receives the opposite).
+        let j = k.tangential_mass * (1.0 - p) * u0;
+        let nn = k.two_normal_mass * v0;
+        let sphere = Motion3 {
+            velocity: axpy(axpy(m1.velocity, -j * k.inv_m1, t), -nn * k.inv_m1, n),
+            spin: axpy(m1.spin, -j * k.spin1, b),
+        };
+        let other = (!wall).then(|| Motion3 {
+            velocity: axpy(axpy(m2.velocity, j * k.inv_m2, t), nn * k.inv_m2, n),
+            spin: axpy(m2.spin, -j * k.spin2, b),
+        });
+        // Tangential relative centre velocity before and after (the normal impulse has no
+        // tangential part).
+        let d = sub(m1.velocity, m2.velocity);
+        let w_before = axpy(d, -dot(d, n), n);
+        let w_after = axpy(w_before, -j * (k.inv_m1 + k.inv_m2), t);
+        let w0w0 = dot(w_before, w_before);
+        Ok(Answer {
+            gamma: k.gamma,
+            alpha,
+            rebound: Rebound3 {
+                sphere,
+                other,
+                frame: Frame {
+                    tangent: t,
+                    binormal: b,
+                    normal: n,
+                },
+                p,
+                slip_before: u0,
+                slip_after: p * u0,
+                tangential_impulse: j,
+                normal_impulse: nn,
+                e_t: if w0w0 == 0.0 {
+                    f64::NAN
+                } else {
+                    dot(w_after, w_before) / w0w0
+                },
+                centre_speed_before: w0w0.sqrt(),
+                centre_speed_after: dot(w_after, w_after).sqrt(),
+                approach_speed: v0,
+                energy_lost: 0.5 * k.tangential_mass * u0 * u0 * (1.0 - p * p),
+            },
+        })
+    }
+
+    /// The step-by-step path ([`Pair::plane`], then [`Pair::rebound_3d`]'s algebra), for the
+    /// inputs the fast path leaves to it: invalid ones (it names the field) and `u0 = 0`.
+    #[cold]
+    #[inline(never)]
+    fn rebound_3d_reference(
+        &self,
+        k: &Prepared,
+        s: &Incident3,
+    ) -> Result<Answer<Rebound3>, LookupError> {
+        self.rebound_3d_steps(&k.pair, &k.contact, s)
+    }
+
+    /// [`Table::rebound_3d_prepared`] for every incident state of a slice, in order:
+    /// `out[i]` answers `incidents[i]`. The slices must have the same length; on the first
+    /// invalid state the error ([`LookupError::Batch`]) names its index, and `out` before that
+    /// index is filled, after it untouched.
+    pub fn rebound_3d_batch(
+        &self,
+        prepared: &Prepared,
+        incidents: &[Incident3],
+        out: &mut [Answer<Rebound3>],
+    ) -> Result<(), LookupError> {
+        crate::batch::check_length("out", out.len(), incidents.len())?;
+        crate::batch::serial(incidents, out, |s| self.rebound_3d_prepared(prepared, s))
+    }
+
+    /// [`Table::rebound_3d_batch`] in parallel on the current rayon pool (chunks of 4096). If
+    /// some states are invalid, the error names the lowest invalid index; `out` is then filled
+    /// only partly.
+    #[cfg(feature = "rayon")]
+    pub fn rebound_3d_batch_par(
+        &self,
+        prepared: &Prepared,
+        incidents: &[Incident3],
+        out: &mut [Answer<Rebound3>],
+    ) -> Result<(), LookupError> {
+        crate::batch::check_length("out", out.len(), incidents.len())?;
+        crate::batch::parallel(incidents, out, |s| self.rebound_3d_prepared(prepared, s))
+    }
+}
