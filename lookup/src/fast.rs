@@ -549,6 +549,20 @@ mod tests {
     }
 
     #[test]
+    fn reindex_follows_a_changed_surface() {
+        let mut t = table("quick.h5");
+        let before = t.p(1.754, 1.0).expect("stick_high");
+        if let Some(p) = t.surface.stick_high.as_mut() {
+            p.p.iter_mut().for_each(|v| *v = 0.5);
+        }
+        assert_eq!(t.p(1.754, 1.0).expect("stick_high"), before);
+        t.reindex();
+        let after = t.p(1.754, 1.0).expect("stick_high");
+        assert!((after - 0.5).abs() < 1e-15, "{after}");
+        assert_eq!(after, t.surface.eval(1.754, 1.0).expect("stick_high"));
+    }
+
+    #[test]
     fn the_index_of_the_full_table_is_small() {
         let t = table("full.h5");
         let bytes = t.index_bytes();
