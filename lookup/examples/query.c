@@ -1,5 +1,5 @@
-/* Example of the C ABI of oblique-lookup: open a table, evaluate P, one sphere-sphere rebound,
- * and two errors. Build (after `cargo build --release -p oblique-lookup`):
+/* Example of the C ABI of oblique-lookup: open a table, evaluate P, one sphere-sphere rebound
+ * (direct and through a prepared pair), and two errors. Build (after `cargo build --release -p oblique-lookup`):
  *
  *   cc -std=c99 -O2 -o query lookup/examples/query.c -I lookup/include \
  *      -L target/release -loblique_lookup -lm
@@ -54,6 +54,16 @@ int main(int argc, char **argv) {
     printf("spheres.v1x %.17g\nspheres.w2y %.17g\nspheres.e_t %.17g\n", r.sphere.velocity[0],
            r.other.spin[1], r.e_t);
     printf("spheres.energy_lost %.17g\n", r.energy_lost);
+
+    /* The same pair prepared once (bodies and materials checked, gamma computed), for many
+     * impacts. */
+    ObliquePrepared *prepared = NULL;
+    if ((rc = oblique_prepare(&ball, &big, &contact, &prepared)) != OBLIQUE_OK)
+        return fail("prepare", rc);
+    rc = oblique_rebound_prepared(table, prepared, &m1, &m2, normal, &r);
+    if (rc != OBLIQUE_OK) return fail("rebound_prepared", rc);
+    printf("prepared.p %.17g\nprepared.v1x %.17g\n", r.p, r.sphere.velocity[0]);
+    oblique_prepared_free(prepared);
 
     /* The same sphere on a steel wall (normal into the wall). */
     rc = oblique_rebound_wall(table, &ball, &contact, &m1, normal, &r);

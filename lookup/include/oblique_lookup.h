@@ -26,6 +26,10 @@
 // An internal error (a bug): please report it with the message.
 #define OBLIQUE_ERR_INTERNAL 5
 
+// A pair of bodies with its contact, checked once (opaque): create with `oblique_prepare`, use
+// with `oblique_rebound_prepared` for many impacts, free with `oblique_prepared_free`.
+typedef struct ObliquePrepared ObliquePrepared;
+
 // An opened table (opaque). Create with `oblique_table_open`, free with `oblique_table_close`.
 typedef struct ObliqueTable ObliqueTable;
 
@@ -189,6 +193,41 @@ int oblique_rebound_spheres(const struct ObliqueTable *table,
                             const struct ObliqueMotion *other_motion,
                             const double *normal,
                             struct ObliqueRebound *out);
+
+// Check a pair of bodies (`other` NULL: a fixed wall) and its contact once, and precompute what
+// every rebound of the pair needs (`γ`, the reduced masses). On success `*prepared` is a handle
+// for `oblique_rebound_prepared`, to free with `oblique_prepared_free`. It does not depend on a
+// table.
+//
+// # Safety
+// `sphere`, `contact` are NULL or valid for reads, `other` is NULL or valid for reads,
+// `prepared` is NULL or valid for writes.
+int oblique_prepare(const struct ObliqueBody *sphere,
+                    const struct ObliqueBody *other,
+                    const struct ObliqueContact *contact,
+                    struct ObliquePrepared **prepared);
+
+// Free a handle from `oblique_prepare` (NULL is ignored).
+//
+// # Safety
+// `prepared` is NULL or a handle from `oblique_prepare` not freed before, used by no other
+// thread during and after the call.
+void oblique_prepared_free(struct ObliquePrepared *prepared);
+
+// One impact of a prepared pair: `motion` of sphere 1, `other_motion` of sphere 2 (NULL: at
+// rest; for a wall it must be NULL or all zero), `normal` (3 doubles, any non-zero length) from sphere 1
+// into the other body. Writes the same `*out` as `oblique_rebound_spheres` /
+// `oblique_rebound_wall` (up to rounding), without checking the bodies and the materials again.
+//
+// # Safety
+// `table` is NULL or a live handle, `prepared` NULL or a live handle from `oblique_prepare`;
+// the other pointers are NULL or valid (`normal` for 3 reads, `out` for a write).
+int oblique_rebound_prepared(const struct ObliqueTable *table,
+                             const struct ObliquePrepared *prepared,
+                             const struct ObliqueMotion *motion,
+                             const struct ObliqueMotion *other_motion,
+                             const double *normal,
+                             struct ObliqueRebound *out);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -17,7 +17,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use crate::impact::{Contact, Stiffness};
 use crate::rebound::{Body, Elastic, Incident3, Motion3, Pair, Rebound3};
 use crate::surface::OutOfDomain;
-use crate::{LookupError, Table};
+use crate::{LookupError, Prepared, Table};
 
 /// Success.
 pub const OBLIQUE_OK: c_int = 0;
@@ -34,6 +34,10 @@ pub const OBLIQUE_ERR_INTERNAL: c_int = 5;
 
 /// An opened table (opaque). Create with `oblique_table_open`, free with `oblique_table_close`.
 pub struct ObliqueTable(Table);
+
+/// A pair of bodies with its contact, checked once (opaque): create with `oblique_prepare`, use
+/// with `oblique_rebound_prepared` for many impacts, free with `oblique_prepared_free`.
+pub struct ObliquePrepared(Prepared);
 
 /// Mass, radius and inertia factor of a sphere.
 #[repr(C)]
@@ -466,4 +470,83 @@ pub unsafe extern "C" fn oblique_rebound_spheres(
         normal,
         out,
     )
+}
+
+/// Check a pair of bodies (`other` NULL: a fixed wall) and its contact once, and precompute what
+/// every rebound of the pair needs (`γ`, the reduced masses). On success `*prepared` is a handle
+/// for `oblique_rebound_prepared`, to free with `oblique_prepared_free`. It does not depend on a
+/// table.
+///
+/// # Safety
+/// `sphere`, `contact` are NULL or valid for reads, `other` is NULL or valid for reads,
+/// `prepared` is NULL or valid for writes.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_prepare(
+    sphere: *const ObliqueBody,
+    other: *const ObliqueBody,
+    contact: *const ObliqueContact,
+    prepared: *mut *mut ObliquePrepared,
+) -> c_int {
+    guard(|| {
+        let pair = Pair {
+            sphere: body(&read(sphere, "sphere")?),
+            other: other.as_ref().map(body),
+        };
+        let c = self::contact(&read(contact, "contact")?);
+        if prepared.is_null() {
+            return Err(null("prepared"));
+        }
+        let k = Prepared::new(&pair, &c).map_err(lookup)?;
+        *prepared = Box::into_raw(Box::new(ObliquePrepared(k)));
+        Ok(())
+    })
+}
+
+/// Free a handle from `oblique_prepare` (NULL is ignored).
+///
+/// # Safety
+/// `prepared` is NULL or a handle from `oblique_prepare` not freed before, used by no other
+/// thread during and after the call.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_prepared_free(prepared: *mut ObliquePrepared) {
+    if !prepared.is_null() {
+        drop(Box::from_raw(prepared));
+    }
+}
+
+/// One impact of a prepared pair: `motion` of sphere 1, `other_motion` of sphere 2 (NULL: at
+/// rest; for a wall it must be NULL or all zero), `normal` (3 doubles, any non-zero length) from sphere 1
+/// into the other body. Writes the same `*out` as `oblique_rebound_spheres` /
+/// `oblique_rebound_wall` (up to rounding), without checking the bodies and the materials again.
+///
+/// # Safety
+/// `table` is NULL or a live handle, `prepared` NULL or a live handle from `oblique_prepare`;
+/// the other pointers are NULL or valid (`normal` for 3 reads, `out` for a write).
+#[no_mangle]
+pub unsafe extern "C" fn oblique_rebound_prepared(
+    table: *const ObliqueTable,
+    prepared: *const ObliquePrepared,
+    motion: *const ObliqueMotion,
+    other_motion: *const ObliqueMotion,
+    normal: *const f64,
+    out: *mut ObliqueRebound,
+) -> c_int {
+    guard(|| {
+        let t = table.as_ref().ok_or_else(|| null("table"))?;
+        let k = prepared.as_ref().ok_or_else(|| null("prepared"))?;
+        if normal.is_null() {
+            return Err(null("normal"));
+        }
+        if out.is_null() {
+            return Err(null("out"));
+        }
+        let s = Incident3 {
+            sphere: self::motion(&read(motion, "motion")?),
+            other: other_motion.as_ref().map(self::motion).unwrap_or_default(),
+            normal: [*normal, *normal.add(1), *normal.add(2)],
+        };
+        let a = t.0.rebound_3d_prepared(&k.0, &s).map_err(lookup)?;
+        *out = c_rebound(a.gamma, a.alpha, &a.rebound);
+        Ok(())
+    })
 }

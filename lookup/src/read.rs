@@ -55,9 +55,10 @@ pub struct Check {
 /// touch only memory.
 ///
 /// [`Table::p`] and the other queries answer from an acceleration structure built from
-/// `surface` at [`Table::open`] (a fine leaf index per patch, see [`Table::index_bytes`]); they
-/// return the same bits as [`Surface::eval_with`]. After changing `surface` in place, call
-/// [`Table::reindex`], or the queries keep answering from the table as loaded.
+/// `surface` at [`Table::open`] (a fine leaf index per patch, see [`Table::index_bytes`], and a
+/// copy of the node values); they return the same bits as [`Surface::eval_with`]. After
+/// changing `surface` in place, call [`Table::reindex`], or the queries keep answering from the
+/// table as loaded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
     /// The interpolated surface.

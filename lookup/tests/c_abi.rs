@@ -150,6 +150,9 @@ fn c_example_compiles_and_runs() {
     assert_eq!(value("spheres.v1x"), a.rebound.sphere.velocity[0]);
     assert_eq!(value("spheres.w2y"), a.rebound.other.unwrap().spin[1]);
     assert_eq!(value("spheres.energy_lost"), a.rebound.energy_lost);
+    // Table::rebound_3d goes through Prepared: the prepared C call gives the same bits.
+    assert_eq!(value("prepared.p"), a.rebound.p);
+    assert_eq!(value("prepared.v1x"), a.rebound.sphere.velocity[0]);
     // The error paths the example exercises.
     assert!(stdout.contains("bad gamma: code 4"), "{stdout}");
     assert!(stdout.contains("missing file: code 2"), "{stdout}");
