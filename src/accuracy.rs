@@ -210,8 +210,9 @@ pub struct Row {
     pub gamma: f64,
     /// `α`.
     pub alpha: f64,
-    /// `euler` or `accurate` at a fixed resolution, or `accurate-tol` (automatic refinement to
-    /// `tol`, the way the solver is used).
+    /// `euler` or `accurate` at a fixed resolution (for `accurate`, a level of the default
+    /// refinement: [`fixed_ladder`]), or `accurate-tol` (automatic refinement to `tol`, the way
+    /// the solver is used).
     pub series: &'static str,
     /// Tolerance asked for (`accurate-tol` only).
     pub tol: Option<f64>,
@@ -236,7 +237,7 @@ pub struct Row {
 /// Settings of a study run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
-    /// Finest steps of the accurate fixed ladder.
+    /// Finest steps of the accurate fixed ladder ([`fixed_ladder`]).
     pub accurate_max_steps: usize,
     /// Euler ladder: steps from `euler_min_steps` to `euler_max_steps`, doubling.
     pub euler_min_steps: usize,
@@ -281,6 +282,20 @@ impl Settings {
     }
 }
 
+/// The fixed resolutions of the `accurate` series at `γ`: the levels the default refinement
+/// (`solve(γ, α, Accuracy::Tolerance(tol), Scheme::Accurate, …)`) runs, from
+/// [`base_resolution`] up to `max_steps` steps, doubling. Those are the continuum row
+/// (`springs = 0`, exact in space) with the steps graded towards separation, so each row is
+/// one level of the shipped solver, not the spring row that the study measured up to commit
+/// `cd6398b` (`springs = max(steps, 64)`).
+pub fn fixed_ladder(gamma: f64, max_steps: usize) -> Vec<Resolution> {
+    let base = base_resolution(gamma, Scheme::Accurate);
+    (0..)
+        .map(|k| base.doubled(k))
+        .take_while(|res| res.steps <= max_steps)
+        .collect()
+}
+
 /// Run the study at one point: the reference, then every ladder.
 pub fn study_point(pt: &StudyPoint, set: &Settings) -> Result<(Reference, Vec<Row>), PhysicsError> {
     let reference = reference(pt.gamma, pt.alpha, set.reference_steps)?;
@@ -300,17 +315,13 @@ pub fn study_point(pt: &StudyPoint, set: &Settings) -> Result<(Reference, Vec<Ro
         time_s,
         calls,
     };
-    // Accurate scheme at fixed resolutions: its own ladder from the base resolution.
-    let base = base_resolution(pt.gamma, Scheme::Accurate);
-    let mut k = 0;
-    while base.doubled(k).steps <= set.accurate_max_steps {
-        let res = base.doubled(k);
+    // Accurate scheme at fixed resolutions: the levels of the default refinement.
+    for res in fixed_ladder(pt.gamma, set.accurate_max_steps) {
         dimensionless_normal(res.steps);
         let (p, t, n) = time_per_call(set.min_time, || {
             simulate(pt.gamma, pt.alpha, res, Scheme::Accurate)
         })?;
         rows.push(row("accurate", None, res, p, None, t, n));
-        k += 1;
     }
     // Automatic refinement (the solver as used): every level from the base, Richardson value.
     for &tol in &set.tolerances {
@@ -576,4 +587,69 @@ pub fn preset_summaries(rows: &[Row]) -> Vec<PresetSummary> {
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The `accurate` series is the shipped solver's ladder: continuum row, and the level at
+    /// which the default refinement stops is one of its rows.
+    #[test]
+    fn fixed_ladder_is_the_default_refinement() {
+        for gamma in [0.1, 1.754, 3.5] {
+            let ladder = fixed_ladder(gamma, 8192);
+            assert!(ladder.len() >= 5, "{gamma}: {ladder:?}");
+            assert!(ladder.iter().all(|r| r.springs == 0), "{ladder:?}");
+            assert!(ladder.windows(2).all(|w| w[1].steps == 2 * w[0].steps));
+            assert_eq!(ladder[0], base_resolution(gamma, Scheme::Accurate));
+            assert_eq!(ladder.last().map(|r| r.steps), Some(8192));
+            let alpha = 1.5 * alpha_c2(gamma);
+            let sol = solve(
+                gamma,
+                alpha,
+                Accuracy::Tolerance(1e-5),
+                Scheme::Accurate,
+                true,
+            )
+            .expect("solve");
+            assert!(ladder.contains(&sol.resolution), "{gamma}: {sol:?}");
+        }
+    }
+
+    /// A small study at one point: every series is there, the accurate rows converge at second
+    /// order against the reference, the refinement delivers its tolerance, and `reach` finds
+    /// where each scheme meets 1e-4.
+    #[test]
+    fn small_study_at_the_stick_point() {
+        let pt = study_points()[3];
+        let set = Settings {
+            accurate_max_steps: 512,
+            euler_min_steps: 1 << 10,
+            euler_max_steps: 1 << 11,
+            euler_ratio: 256,
+            tolerances: vec![1e-4],
+            reference_steps: 1 << 11,
+            min_time: 0.0,
+        };
+        let (reference, rows) = study_point(&pt, &set).expect("study");
+        assert!(reference.error_estimate < 1e-6, "{reference:?}");
+        let fixed: Vec<&Row> = rows.iter().filter(|r| r.series == "accurate").collect();
+        assert_eq!(fixed.len(), fixed_ladder(pt.gamma, 512).len());
+        assert!(fixed.iter().all(|r| r.springs == 0 && r.time_s >= 0.0));
+        let (coarse, fine) = (fixed[fixed.len() - 2], fixed[fixed.len() - 1]);
+        assert!(
+            fine.error.abs() < coarse.error.abs() / 2.5,
+            "{coarse:?} {fine:?}"
+        );
+        let tol = rows.iter().find(|r| r.series == "accurate-tol").unwrap();
+        assert!(tol.error.abs() <= 1e-4, "{tol:?}");
+        assert_eq!(rows.iter().filter(|r| r.series == "euler").count(), 2);
+        let reach = reach(&rows, 1e-4).expect("reach");
+        assert!(reach.accurate_tol_time.is_some() && reach.accurate_fixed_time.is_some());
+        assert!(
+            reach.euler_constant > 0.0 && reach.euler_time > 0.0,
+            "{reach:?}"
+        );
+    }
 }

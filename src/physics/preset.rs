@@ -12,14 +12,16 @@ use super::error::PhysicsError;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Preset {
-    /// Error estimate ≤ 1e-4 on `P`: three refinement levels almost everywhere, tens of µs to a
-    /// few ms per impact. For quick looks, DEM runs whose other inputs are uncertain to 1e-3.
+    /// Error estimate ≤ 1e-4 on `P`: the minimum four refinement levels almost everywhere,
+    /// 0.05–0.5 ms per impact at the study's points. For quick looks, DEM runs whose other
+    /// inputs are uncertain to 1e-3.
     Fast,
-    /// Error estimate ≤ 1e-6 (the default of `sweep impact`): 0.1–100 ms per impact.
+    /// Error estimate ≤ 1e-6 (the default of `sweep impact`): 0.05–5.4 ms per impact at the
+    /// study's points.
     #[default]
     Standard,
-    /// Error estimate ≤ 1e-8: for checking other codes and tables; up to seconds per impact at
-    /// large γ.
+    /// Error estimate ≤ 1e-8: for checking other codes and tables; 0.5–141 ms per impact at
+    /// the study's points, the most at large γ.
     Reference,
 }
 
