@@ -104,7 +104,7 @@ A malformed line or a point outside the table's domain stops with its line numbe
     #[command(after_help = "Examples:\n  \
 sweep accuracy --out docs/accuracy\n  \
 sweep accuracy --out /tmp/acc --quick\n  \
-sweep accuracy --out docs/accuracy --tables      # also builds quick, full and a denser table (minutes)\n\n\
+sweep accuracy --out docs/accuracy --tables      # also builds quick, isotropic, full and a denser full (minutes)\n\n\
 Writes accuracy.csv, accuracy.png, presets.csv (and tables.csv with --tables) into --out and \
 prints a summary. Times are thread CPU time (Linux), which other processes do not inflate.\n\
 What the columns mean and the published results: docs/accuracy.md.")]
