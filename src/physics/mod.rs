@@ -7,6 +7,7 @@
 pub mod continuum;
 pub mod error;
 pub mod hertz;
+pub mod history;
 pub mod impact;
 pub mod preset;
 pub mod regimes;
