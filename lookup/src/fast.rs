@@ -297,22 +297,9 @@ impl Accel {
         alpha: f64,
         outside: OutOfDomain,
     ) -> Result<f64, LookupError> {
-        let inside = gamma >= self.gamma_min && gamma <= self.gamma_max;
-        if inside && alpha <= self.alpha_max {
-            return Ok(self.eval_in(region, gamma, alpha));
-        }
-        match outside {
-            OutOfDomain::Error if !inside => Err(surface.gamma_outside(gamma)),
-            OutOfDomain::Error => Err(surface.alpha_outside(alpha)),
-            OutOfDomain::Clamp => {
-                let g = gamma.clamp(self.gamma_min, self.gamma_max);
-                let a = alpha.min(self.alpha_max);
-                match Region::of(g, a) {
-                    Region::Line => Ok(1.0 - 7.0 * a),
-                    r => Ok(self.eval_in(r, g, a)),
-                }
-            }
-        }
+        surface.apply_domain(region, gamma, alpha, outside, |r, g, a| {
+            self.eval_in(r, g, a)
+        })
     }
 
     /// `out[i] = P(gamma[i], alpha[i])` ([`Accel::eval_with`] for each `i`, the same bits),

@@ -418,9 +418,30 @@ impl Surface {
         if region == Region::Line {
             return Ok(1.0 - 7.0 * alpha);
         }
+        self.apply_domain(region, gamma, alpha, outside, |r, g, a| {
+            self.eval_in(r, g, a)
+        })
+    }
+
+    /// The domain policy of [`Surface::eval_with`] for a valid query above the full-slip line
+    /// (in `region`, not [`Region::Line`]): inside the table's domain `eval_in(region, γ, α)`;
+    /// outside it the error for [`OutOfDomain::Error`], or for [`OutOfDomain::Clamp`] the value
+    /// at `(clamp(γ), min(α, alpha_max))` (exactly `1 − 7α` if that point is on the line).
+    ///
+    /// The one place of this policy: the rule ([`Surface::eval_with`]) and the fast path
+    /// (`fast::Accel`, with its own evaluator of a known non-line region) both go through it.
+    #[inline(always)]
+    pub(crate) fn apply_domain(
+        &self,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+        eval_in: impl Fn(Region, f64, f64) -> f64,
+    ) -> Result<f64, LookupError> {
         let inside = gamma >= self.gamma_min && gamma <= self.gamma_max;
         if inside && alpha <= self.alpha_max {
-            return Ok(self.eval_in(region, gamma, alpha));
+            return Ok(eval_in(region, gamma, alpha));
         }
         match outside {
             OutOfDomain::Error if !inside => Err(self.gamma_outside(gamma)),
@@ -430,7 +451,7 @@ impl Surface {
                 let a = alpha.min(self.alpha_max);
                 match Region::of(g, a) {
                     Region::Line => Ok(1.0 - 7.0 * a),
-                    r => Ok(self.eval_in(r, g, a)),
+                    r => Ok(eval_in(r, g, a)),
                 }
             }
         }

@@ -549,17 +549,7 @@ fn push_merged(out: &mut Vec<Piece>, p: Piece, radius: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn motion(dw: f64, d0: f64) -> StepMotion {
-        StepMotion {
-            h: 1.0,
-            d0,
-            rate0: 0.0,
-            accel0: 0.0,
-            slip_velocity: dw,
-            slip_accel: 0.0,
-        }
-    }
+    use crate::physics::springs::motion;
 
     #[test]
     fn full_slip_integral_is_exact() {

@@ -2,6 +2,8 @@
 
 use thiserror::Error;
 
+use super::impact::Resolution;
+
 /// Errors returned by the physics core. Messages name the parameter and the allowed range.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum PhysicsError {
@@ -17,15 +19,16 @@ pub enum PhysicsError {
     },
     /// The requested tolerance needs more resolution than the configured limit allows.
     #[error(
-        "tolerance {tol:e} not reached: best error estimate {achieved:e} at {springs} springs x \
-         {steps} steps (limit {max_steps} steps); loosen --tol or raise the limit"
+        "tolerance {tol:e} not reached: best error estimate {achieved:e} at {res} (limit \
+         {max_steps} steps); loosen --tol or raise the limit",
+        res = Resolution { springs: *springs, steps: *steps }
     )]
     ToleranceUnreachable {
         /// Requested tolerance.
         tol: f64,
         /// Best error estimate reached.
         achieved: f64,
-        /// Springs at the last level.
+        /// Springs at the last level (0: the continuum row).
         springs: usize,
         /// Steps at the last level.
         steps: usize,
@@ -36,9 +39,10 @@ pub enum PhysicsError {
     /// (found before anything is simulated).
     #[error(
         "tolerance {tol:e} at gamma = {gamma} is out of reach for the {scheme} scheme: it needs \
-         about {springs} springs x {steps} steps ({work:.1e} spring-steps, {memory_mb:.0} MB), \
-         beyond the limits ({max_steps} steps, {max_work:.1e} spring-steps, {max_memory_mb:.0} \
-         MB); loosen --tol{hint}",
+         about {res} ({work:.1e} spring-steps, {memory_mb:.0} MB), beyond the limits \
+         ({max_steps} steps, {max_work:.1e} spring-steps, {max_memory_mb:.0} MB); loosen \
+         --tol{hint}",
+        res = Resolution { springs: *springs, steps: *steps },
         hint = if *scheme == "euler" { " or use the accurate scheme" } else { "" }
     )]
     Infeasible {
@@ -48,7 +52,7 @@ pub enum PhysicsError {
         gamma: f64,
         /// Scheme name.
         scheme: &'static str,
-        /// Springs the most favourable prediction needs.
+        /// Springs the most favourable prediction needs (0: the continuum row).
         springs: usize,
         /// Steps the most favourable prediction needs.
         steps: usize,
@@ -73,12 +77,12 @@ pub enum PhysicsError {
     },
     /// A fixed resolution beyond the work or memory limit (refused before it runs).
     #[error(
-        "resolution {springs} springs x {steps} steps is too large: {work:.1e} spring-steps and \
-         {memory_mb:.0} MB, limits {max_work:.1e} spring-steps and {max_memory_mb:.0} MB; use \
-         fewer --springs/--steps"
+        "resolution {res} is too large: {work:.1e} spring-steps and {memory_mb:.0} MB, limits \
+         {max_work:.1e} spring-steps and {max_memory_mb:.0} MB; use fewer --springs/--steps",
+        res = Resolution { springs: *springs, steps: *steps }
     )]
     TooLarge {
-        /// Springs requested.
+        /// Springs requested (0: the continuum row).
         springs: usize,
         /// Steps requested.
         steps: usize,
@@ -115,5 +119,60 @@ pub fn positive(name: &'static str, value: f64) -> Result<f64, PhysicsError> {
             value,
             allowed: "a finite number > 0",
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_name_the_continuum_row() {
+        let unreachable = |springs| PhysicsError::ToleranceUnreachable {
+            tol: 1e-9,
+            achieved: 3e-8,
+            springs,
+            steps: 4096,
+            max_steps: 1 << 20,
+        };
+        let infeasible = |springs| PhysicsError::Infeasible {
+            tol: 1e-12,
+            gamma: 2.0,
+            scheme: "accurate",
+            springs,
+            steps: 1 << 22,
+            work: 1e12,
+            memory_mb: 800.0,
+            max_steps: 1 << 20,
+            max_work: 1.7e10,
+            max_memory_mb: 2147.0,
+        };
+        let too_large = |springs| PhysicsError::TooLarge {
+            springs,
+            steps: 1 << 22,
+            work: 1e12,
+            memory_mb: 800.0,
+            max_work: 1.7e10,
+            max_memory_mb: 2147.0,
+        };
+        for (continuum, springs) in [
+            (unreachable(0), unreachable(1024)),
+            (infeasible(0), infeasible(1024)),
+            (too_large(0), too_large(1024)),
+        ] {
+            let (continuum, springs) = (continuum.to_string(), springs.to_string());
+            assert!(continuum.contains(" continuum row x "), "{continuum}");
+            assert!(!continuum.contains("springs x"), "{continuum}");
+            assert!(springs.contains(" 1024 springs x "), "{springs}");
+        }
+        assert!(unreachable(0)
+            .to_string()
+            .contains("at continuum row x 4096 steps (limit 1048576 steps)"));
+        assert!(infeasible(0)
+            .to_string()
+            .contains("needs about continuum row x 4194304 steps ("));
+        assert!(too_large(0)
+            .to_string()
+            .starts_with("resolution continuum row x 4194304 steps is too large"));
     }
 }

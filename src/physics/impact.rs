@@ -58,6 +58,18 @@ pub struct Resolution {
     pub steps: usize,
 }
 
+/// `"N springs x M steps"`, or `"continuum row x M steps"` for the continuum row
+/// (`springs = 0`); the wording of the error messages.
+impl std::fmt::Display for Resolution {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.springs == 0 {
+            write!(f, "continuum row x {} steps", self.steps)
+        } else {
+            write!(f, "{} springs x {} steps", self.springs, self.steps)
+        }
+    }
+}
+
 impl Resolution {
     /// Both counts multiplied by `2^k`.
     pub fn doubled(self, k: u32) -> Self {

@@ -332,21 +332,23 @@ fn clamped_line_integral(x0: f64, a: f64, u0: f64, s: f64, c: f64, d: f64, r: f6
     total
 }
 
+/// A unit step with increment `dw` (constant slip velocity) from indentation `d0`; for the
+/// unit tests of this module and of [`super::continuum`].
+#[cfg(test)]
+pub(crate) fn motion(dw: f64, d0: f64) -> StepMotion {
+    StepMotion {
+        h: 1.0,
+        d0,
+        rate0: 0.0,
+        accel0: 0.0,
+        slip_velocity: dw,
+        slip_accel: 0.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A unit step with increment `dw` (constant slip velocity) from indentation `d0`.
-    fn motion(dw: f64, d0: f64) -> StepMotion {
-        StepMotion {
-            h: 1.0,
-            d0,
-            rate0: 0.0,
-            accel0: 0.0,
-            slip_velocity: dw,
-            slip_accel: 0.0,
-        }
-    }
 
     #[test]
     fn trapezoid_integrates_linear_edge_profile_exactly() {
