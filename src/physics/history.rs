@@ -123,7 +123,7 @@ pub fn slip_history(gamma: f64, alpha: f64, steps: usize) -> Result<SlipHistory,
         // the impulse: μ F_N = (4/3) μ √d · d, averaged as mean(√d) · (d₀ + d₁)/2.
         let (d0, d1) = (indentation_at(&nt, t), indentation_at(&nt, t + h));
         let (r0, r1) = (d0.max(0.0).sqrt(), d1.max(0.0).sqrt());
-        if !(r0 + r1 > 0.0) {
+        if r0 + r1 <= 0.0 || (r0 + r1).is_nan() {
             continue;
         }
         let mean_sqrt = 2.0 / 3.0 * (r0 * r0 + r0 * r1 + r1 * r1) / (r0 + r1);
