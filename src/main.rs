@@ -272,10 +272,9 @@ fn impact(args: ImpactArgs) -> Result<()> {
         match sol.method {
             Method::ClosedForm => println!("closed form (exact; --simulate to simulate anyway)"),
             Method::Simulated => println!(
-                "{} scheme, {} springs x {} steps, {:.3} ms",
+                "{} scheme, {}, {:.3} ms",
                 sol.scheme.name(),
-                sol.resolution.springs,
-                sol.resolution.steps,
+                sol.resolution,
                 elapsed * 1e3
             ),
         }
