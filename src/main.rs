@@ -7,6 +7,8 @@ use anyhow::Result;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use serde_json::json;
 
+use oblique::physics::history::{slip_history, Episode, SlipSign};
+use oblique::physics::impact::ALPHA_NO_SLIP;
 use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Preset, Resolution, Scheme};
 use oblique::sweep::config::ConfigError;
 
@@ -42,6 +44,7 @@ enum Command {
 sweep impact --gamma 1.754 --alpha 1\n  \
 sweep impact --gamma 1.754 --alpha inf --tol 1e-8 --json\n  \
 sweep impact --gamma 1.754 --alpha 0.5 --preset fast\n  \
+sweep impact --gamma 3.2 --alpha 1.3 --history          # gross-slip episodes of the impact\n  \
 sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler\n\n\
 Presets (measured error and cost: docs/accuracy.md): fast = tol 1e-4, standard = tol 1e-6 \
 (the default), reference = tol 1e-8.\n\
@@ -148,6 +151,38 @@ struct ImpactArgs {
     /// Print one JSON object instead of a summary (alpha = inf is written as the string "inf").
     #[arg(long)]
     json: bool,
+    /// Also list the gross-slip episodes (the whole contact at the Coulomb limit, F_t = +/-mu F_N)
+    /// of one continuum-row run at the solver's number of steps (at least 1024), with start and
+    /// end as fractions of the contact time. Where such an episode vanishes inside the contact,
+    /// P(alpha) has a kink (docs/solver.md).
+    #[arg(long)]
+    history: bool,
+}
+
+/// Steps of the run behind `sweep impact --history` when the solver answered in closed form.
+const HISTORY_MIN_STEPS: usize = 1024;
+
+/// The gross-slip episodes for `--history`, or why there are none to compute.
+fn slip_episodes(
+    gamma: f64,
+    alpha: f64,
+    steps: usize,
+) -> Result<std::result::Result<Vec<Episode>, &'static str>> {
+    if alpha == 0.0 {
+        return Ok(Err("frictionless (alpha = 0): nothing resists the slip"));
+    }
+    if alpha > ALPHA_NO_SLIP {
+        return Ok(Err("no slip: the contact never reaches the Coulomb limit"));
+    }
+    let h = slip_history(gamma, alpha, steps.max(HISTORY_MIN_STEPS))?;
+    Ok(Ok(h.episodes))
+}
+
+fn sign_str(e: &Episode) -> &'static str {
+    match e.sign {
+        SlipSign::Plus => "+",
+        SlipSign::Minus => "-",
+    }
 }
 
 /// Default tolerance of `sweep impact` when neither `--tol`, `--preset` nor `--springs/--steps`
@@ -240,6 +275,11 @@ fn impact(args: ImpactArgs) -> Result<()> {
         Method::ClosedForm => "closed-form",
         Method::Simulated => "simulated",
     };
+    let episodes = if args.history {
+        Some(slip_episodes(args.gamma, args.alpha, sol.resolution.steps)?)
+    } else {
+        None
+    };
     if args.json {
         let out = json!({
             "gamma": args.gamma,
@@ -256,6 +296,16 @@ fn impact(args: ImpactArgs) -> Result<()> {
             "alpha_c2": regimes::alpha_c2(args.gamma),
             "elapsed_s": elapsed,
         });
+        let mut out = out;
+        if let Some(ep) = &episodes {
+            out["gross_slip"] = match ep {
+                Ok(list) => json!(list
+                    .iter()
+                    .map(|e| json!({"sign": sign_str(e), "start": e.start, "end": e.end}))
+                    .collect::<Vec<_>>()),
+                Err(why) => json!(why),
+            };
+        }
         println!("{out}");
     } else {
         println!(
@@ -277,6 +327,23 @@ fn impact(args: ImpactArgs) -> Result<()> {
                 sol.resolution,
                 elapsed * 1e3
             ),
+        }
+        match &episodes {
+            None => {}
+            Some(Err(why)) => println!("gross slip: {why}"),
+            Some(Ok(list)) if list.is_empty() => {
+                println!("gross slip: none (the contact never slips as a whole)")
+            }
+            Some(Ok(list)) => {
+                let parts: Vec<String> = list
+                    .iter()
+                    .map(|e| format!("{} {:.4}..{:.4}", sign_str(e), e.start, e.end))
+                    .collect();
+                println!(
+                    "gross slip (F_t = +/-mu F_N; start..end in units of t_c): {}",
+                    parts.join(", ")
+                );
+            }
         }
     }
     Ok(())

@@ -140,3 +140,67 @@ fn invalid_values_fail_with_a_message_naming_the_flag() {
         assert!(out.stdout.is_empty(), "{all:?} printed a result");
     }
 }
+
+/// The gross-slip episodes of `--history`, as (sign, start, end).
+fn episodes(args: &[&str]) -> Vec<(String, f64, f64)> {
+    let map = stdout_json(args);
+    let list = map
+        .get("gross_slip")
+        .and_then(serde_json::Value::as_array)
+        .unwrap_or_else(|| panic!("gross_slip missing or not a list in {map:?}"));
+    list.iter()
+        .map(|e| {
+            let sign = e["sign"].as_str().expect("sign").to_string();
+            (
+                sign,
+                e["start"].as_f64().expect("start"),
+                e["end"].as_f64().expect("end"),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn history_lists_the_gross_slip_episodes() {
+    // Full slip (α below α_c1 = 0.1706 at γ = 1.754): one + episode over the whole contact.
+    let full = episodes(&[
+        "impact",
+        "--gamma",
+        "1.754",
+        "--alpha",
+        "0.05",
+        "--history",
+        "--json",
+    ]);
+    assert_eq!(full.len(), 1, "{full:?}");
+    assert_eq!(full[0].0, "+");
+    assert!(full[0].1 < 0.01 && full[0].2 > 0.99, "{full:?}");
+    // Just below the fold F+ at γ = 3.2 (α ≈ 1.3431, docs/solver.md) a + episode sits inside the
+    // restitution phase; just above it, it is gone.
+    let inside = |e: &(String, f64, f64)| e.0 == "+" && e.1 > 0.6 && e.2 < 0.97;
+    let below = episodes(&[
+        "impact",
+        "--gamma",
+        "3.2",
+        "--alpha",
+        "1.30",
+        "--history",
+        "--json",
+    ]);
+    let above = episodes(&[
+        "impact",
+        "--gamma",
+        "3.2",
+        "--alpha",
+        "1.40",
+        "--history",
+        "--json",
+    ]);
+    assert!(below.iter().any(inside), "{below:?}");
+    assert!(!above.iter().any(inside), "{above:?}");
+    // No slip: there is nothing to list, and the summary says why.
+    let out = sweep(&["impact", "--gamma", "3.2", "--alpha", "inf", "--history"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("gross slip: no slip"), "{text}");
+}
