@@ -7,7 +7,7 @@ use anyhow::Result;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use serde_json::json;
 
-use oblique::physics::history::{slip_history, Episode, SlipSign};
+use oblique::physics::history::{fold_plus_curve, slip_history, Episode, SlipSign, FOLD_MIN_STEPS};
 use oblique::physics::impact::ALPHA_NO_SLIP;
 use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Preset, Resolution, Scheme};
 use oblique::sweep::config::ConfigError;
@@ -112,6 +112,22 @@ Writes accuracy.csv, accuracy.png, presets.csv (and tables.csv with --tables) in
 prints a summary. Times are thread CPU time (Linux), which other processes do not inflate.\n\
 What the columns mean and the published results: docs/accuracy.md.")]
     Accuracy(accuracy_cmd::AccuracyArgs),
+    /// The fold curve F+ of P(gamma, alpha): where a +mu F_N gross-slip episode in the
+    /// restitution phase vanishes as alpha grows, and P(alpha) has a kink.
+    #[command(after_help = "Examples:\n  \
+sweep kinks                                   # gamma from the birth point to 3.5, 16 points\n  \
+sweep kinks --gamma-max 3.2 --points 5 --steps 4096\n  \
+sweep kinks --json\n\n\
+Output: a comment line with the birth point (gamma_b, alpha_b), a comment line naming the\n\
+columns, then one CSV line per point: gamma,alpha_F,alpha_F/alpha_c2,slope_jump, gamma from\n\
+gamma_b to --gamma-max evenly spaced. alpha_F is the fold (located to 1e-10 relative at --steps\n\
+steps per contact time, continuum row; about 6e-6 from the converged value at 2048 steps);\n\
+slope_jump is the jump of dP/d ln(alpha) across it (one-sided slopes over 1e-4 in ln alpha).\n\
+gamma and alpha are dimensionless (physics.md). Below gamma_b there is no fold curve: a\n\
+--gamma-max below it prints that and exits 0. Just above gamma_b (up to gamma ~ 2.906) the\n\
+points are where the episode stops ending before 0.97 t_c, with no slope jump. About 1.3 s\n\
+for the birth and 0.05 s per point at 2048 steps. More: docs/solver.md, \"Kink curves\".")]
+    Kinks(KinksArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -157,6 +173,109 @@ struct ImpactArgs {
     /// P(alpha) has a kink (docs/solver.md).
     #[arg(long)]
     history: bool,
+}
+
+#[derive(Args)]
+struct KinksArgs {
+    /// Largest gamma of the curve, in (0, 3.6]; the curve starts at its birth point gamma_b ~ 2.90.
+    #[arg(long, default_value_t = 3.5, value_parser = parse_gamma_max, allow_hyphen_values = true)]
+    gamma_max: f64,
+    /// Number of points from gamma_b to --gamma-max (both included), 2 to 1000.
+    #[arg(long, default_value_t = 16, value_parser = parse_points, allow_hyphen_values = true)]
+    points: usize,
+    /// Time steps per contact time of every run (continuum row), 256 to 65536.
+    #[arg(long, default_value_t = 2048, value_parser = parse_kink_steps, allow_hyphen_values = true)]
+    steps: usize,
+    /// Print one JSON object instead of CSV.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Largest `--gamma-max` of `sweep kinks`: the continuation is tested up to 3.5.
+const KINKS_GAMMA_MAX: f64 = 3.6;
+
+fn parse_gamma_max(s: &str) -> Result<f64, String> {
+    match parse_f64(s) {
+        Ok(v) if v > 0.0 && v <= KINKS_GAMMA_MAX => Ok(v),
+        _ => Err(format!(
+            "gamma-max must be a number in (0, {KINKS_GAMMA_MAX}]"
+        )),
+    }
+}
+
+fn parse_range(s: &str, name: &str, min: usize, max: usize) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!("{name} must be an integer from {min} to {max}")),
+    }
+}
+
+fn parse_points(s: &str) -> Result<usize, String> {
+    parse_range(s, "points", 2, 1000)
+}
+
+fn parse_kink_steps(s: &str) -> Result<usize, String> {
+    parse_range(s, "steps", FOLD_MIN_STEPS, 65536)
+}
+
+fn kinks(args: KinksArgs) -> Result<()> {
+    let start = Instant::now();
+    let curve = fold_plus_curve(args.gamma_max, args.points, args.steps)?;
+    let elapsed = start.elapsed().as_secs_f64();
+    let (gb, ab) = curve.birth;
+    let below = format!(
+        "no fold curve F+ below its birth point gamma_b = {gb:.6} (--gamma-max {})",
+        args.gamma_max
+    );
+    if args.json {
+        let points: Vec<serde_json::Value> = curve
+            .points
+            .iter()
+            .map(|p| {
+                json!({
+                    "gamma": p.gamma,
+                    "alpha_F": p.alpha,
+                    "alpha_F_over_alpha_c2": p.alpha / regimes::alpha_c2(p.gamma),
+                    "slope_jump": p.slope_jump,
+                    "episode": p.episode.map(|e| json!({"start": e.start, "end": e.end})),
+                })
+            })
+            .collect();
+        let mut out = json!({
+            "curve": "F+",
+            "steps": curve.steps,
+            "birth": {"gamma": gb, "alpha": ab, "alpha_over_alpha_c2": ab / regimes::alpha_c2(gb)},
+            "gamma_max": args.gamma_max,
+            "points": points,
+            "elapsed_s": elapsed,
+        });
+        if curve.points.is_empty() {
+            out["note"] = json!(below);
+        }
+        println!("{out}");
+        return Ok(());
+    }
+    if curve.points.is_empty() {
+        println!("{below}");
+        return Ok(());
+    }
+    println!(
+        "# fold curve F+ ({} steps, continuum row): birth at gamma_b = {gb:.6}, alpha_b = {ab:.6} \
+         ({:.4} alpha_c2); {elapsed:.2} s",
+        curve.steps,
+        ab / regimes::alpha_c2(gb)
+    );
+    println!("# gamma,alpha_F,alpha_F/alpha_c2,slope_jump");
+    for p in &curve.points {
+        println!(
+            "{:.6},{:.9},{:.6},{:.4}",
+            p.gamma,
+            p.alpha,
+            p.alpha / regimes::alpha_c2(p.gamma),
+            p.slope_jump
+        );
+    }
+    Ok(())
 }
 
 /// Steps of the run behind `sweep impact --history` when the solver answered in closed form.
@@ -379,6 +498,7 @@ fn main() -> ExitCode {
         Command::Plot(a) => plot_cmd::run(a),
         Command::Query(a) => query_cmd::run(a),
         Command::Accuracy(a) => accuracy_cmd::run(a),
+        Command::Kinks(a) => kinks(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -391,6 +511,7 @@ fn main() -> ExitCode {
                         | PhysicsError::Infeasible { .. }
                         | PhysicsError::TooLarge { .. }
                         | PhysicsError::UnknownPreset { .. }
+                        | PhysicsError::NotFound { .. }
                 )
             ) || e.downcast_ref::<ConfigError>().is_some()
                 || e.downcast_ref::<table_cmds::UsageError>().is_some()

@@ -95,6 +95,16 @@ pub enum PhysicsError {
         /// Memory limit (MB).
         max_memory_mb: f64,
     },
+    /// A curve or point searched for at a fixed resolution was not found.
+    #[error("{what} not found{at} at {steps} steps; use more steps or a gamma range where it exists", at = if gamma.is_nan() { String::new() } else { format!(" at gamma = {gamma}") })]
+    NotFound {
+        /// What was searched for.
+        what: &'static str,
+        /// γ of the search (NaN: a search over γ).
+        gamma: f64,
+        /// Steps per contact time.
+        steps: usize,
+    },
 }
 
 impl PhysicsError {
