@@ -20,6 +20,7 @@ use oblique_lookup::surface::{alpha_c1, alpha_c2, linear_limit, Patch};
 use oblique_lookup::{LookupError, Table};
 use thiserror::Error;
 
+use crate::physics::history::fold_plus_curve;
 use crate::physics::regimes::no_slip_fit;
 use crate::plot::{
     Axis, Chart, ColorScale, Colormap, Contours, Grid, Legend, LegendPlace, Note, Region, Scale,
@@ -225,6 +226,33 @@ fn critical_curves(table: &Table) -> Vec<Series> {
         });
     }
     out
+}
+
+/// Largest γ up to which the regime diagram traces the fold curve F₊ (the continuation of
+/// [`fold_plus_curve`] is tested to 3.5).
+const FOLD_GAMMA_MAX: f64 = 3.6;
+
+/// The fold curve F₊ of `P` (`docs/solver.md`, "Kink curves"), where the table's γ range
+/// reaches it: 40 points traced at 2048 steps (about 3 s, the only simulation behind a figure).
+/// Points of the curve's threshold edge just above its birth, where `P` has no kink (slope
+/// jump below 0.01), are left out. `None` below the birth or if the tracing fails.
+fn fold_curve(table: &Table) -> Option<Series> {
+    let s = &table.surface;
+    let top = s.gamma_max.min(FOLD_GAMMA_MAX);
+    let curve = fold_plus_curve(top, 40, 2048).ok()?;
+    let points: Vec<(f64, f64)> = curve
+        .points
+        .iter()
+        .filter(|p| p.slope_jump.abs() > 0.01 && p.gamma >= s.gamma_min && p.alpha <= s.alpha_max)
+        .map(|p| (p.gamma, compact(p.alpha)))
+        .collect();
+    (points.len() >= 2).then(|| Series {
+        label: "fold F₊: P(α) has a kink (sweep kinks)".into(),
+        points,
+        style: Style::Line,
+        color: (200, 30, 30),
+        sets_range: false,
+    })
 }
 
 /// The isotropic band `1.52 < γ < 2.16` as two vertical dotted lines (where inside the domain).
@@ -620,7 +648,8 @@ pub const REGIME_LABELS: [&str; 3] = [
 /// Figure 3: the regime diagram over the table's domain: full slip (`α ≤ α_c1` for `γ > 1`,
 /// `α ≤ α_c2` for `γ ≤ 1`), partial slip (`γ > 1`, `α_c1 < α < α_c2`), stick (`α ≥ α_c2`), as
 /// filled polygons in `(γ, α/(1+α))` with the labels [`REGIME_LABELS`]; the boundaries are
-/// sampled on 401 values of `γ` (and `γ = 1`).
+/// sampled on 401 values of `γ` (and `γ = 1`). Where the domain reaches γ ≈ 2.9, the fold curve
+/// F₊ inside the partial-slip region is drawn too ([`fold_curve`]).
 pub fn regimes(table: &Table, src: &Source) -> Sheet {
     let s = &table.surface;
     let top = compact(s.alpha_max);
@@ -660,6 +689,7 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
         color: (199, 233, 192),
     });
     let mut series = critical_curves(table);
+    series.extend(fold_curve(table));
     series.extend(isotropic_lines(table, (0.0, top)));
     let mut notes = Vec::new();
     let note = |text: &str, at: (f64, f64)| Note {
