@@ -297,7 +297,7 @@ fn tables_figure(rows: &[TableRow]) -> Figure {
         }
         let label = members
             .iter()
-            .map(|r| format!("{} ({:.0e}/{:.0e})", r.name, r.target_error, r.tol))
+            .map(|r| format!("{} ({:e}/{:e})", r.name, r.target_error, r.tol))
             .collect::<Vec<_>>()
             .join(", ");
         for (series, value) in [
