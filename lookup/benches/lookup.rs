@@ -4,6 +4,8 @@
 //!   slip, stick, no slip, `γ < 1`), and `p/mixed`: cycling through 4096 points spread over the
 //!   whole domain (γ uniform, α log-uniform in [1e-3, 1e3] plus 10 % α = ∞), so that branch
 //!   prediction and cache see a realistic stream.
+//! - `curve/<region>`: the same points through `Table::curve` (built once per γ), and
+//!   `curve/mixed_alpha`: the α of `p/mixed` at γ = 1.754.
 //! - `rebound/<case>`: one `Table::rebound` (2-D sphere–wall) and `Table::rebound_3d`
 //!   (sphere–wall, sphere–sphere) from materials and μ.
 //!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Prepared` (pair and
@@ -117,6 +119,24 @@ fn main() {
     timed(&mut g, "mixed", clock, || {
         i = (i + 1) & 4095;
         table.p(black_box(mg[i]), black_box(ma[i]))
+    });
+    g.finish();
+
+    // One P at a fixed γ through a precomputed curve (the same points as `p/`).
+    let mut g = c.benchmark_group(format!("curve{}", clock.suffix()));
+    for (name, gamma, alpha) in points {
+        let curve = table
+            .curve(gamma, OutOfDomain::Error)
+            .unwrap_or_else(|e| panic!("{e}"));
+        timed(&mut g, name, clock, || curve.p(black_box(alpha)));
+    }
+    let curve = table
+        .curve(1.754, OutOfDomain::Error)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut i = 0usize;
+    timed(&mut g, "mixed_alpha", clock, || {
+        i = (i + 1) & 4095;
+        curve.p(black_box(ma[i]))
     });
     g.finish();
 

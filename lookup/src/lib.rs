@@ -13,6 +13,8 @@
 //!   [`rebound`] is the algebra from `P` to the post-impact state. [`Prepared`] checks a pair
 //!   and contact once for many rebounds ([`Table::rebound_3d_prepared`],
 //!   [`Table::rebound_3d_batch`], [`Table::rebound_3d_batch_par`]).
+//! - [`Table::curve`] precomputes `P(α)` at one fixed `γ` ([`Curve`]) for codes that meet one
+//!   pair of materials many times: the same values, fewer operations per query.
 //! - [`capi`] is the C ABI of the `cdylib` (header `lookup/include/oblique_lookup.h`).
 //!
 //! Symbols (as in `physics.md`): `γ = √((7/2) G*/E*)`, `α = μ v_z0/|u0|`, `P = u_after/u_before`,
@@ -20,6 +22,7 @@
 
 mod batch;
 pub mod capi;
+mod curve;
 mod fast;
 pub mod format;
 pub mod impact;
@@ -28,6 +31,7 @@ mod read;
 pub mod rebound;
 pub mod surface;
 
+pub use curve::Curve;
 pub use impact::{Answer, Contact, Stiffness};
 pub use prepared::Prepared;
 pub use read::{Check, Provenance, Table};
