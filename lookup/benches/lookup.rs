@@ -9,7 +9,8 @@
 //! - `rebound/<case>`: one `Table::rebound` (2-D sphere–wall) and `Table::rebound_3d`
 //!   (sphere–wall, sphere–sphere) from materials and μ.
 //!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Prepared` (pair and
-//!   materials checked once, as a DEM code does per material pair).
+//!   materials checked once, as a DEM code does per material pair); `rebound/spheres_3d_curve`:
+//!   the same with `P` from the pair's `Table::curve`.
 //! - `batch/serial`, `batch/rayon`: 2²⁰ mixed points through `p_batch` / `p_batch_par` (on all
 //!   cores of the rayon pool); throughput in queries/s.
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
@@ -208,6 +209,12 @@ fn main() {
     let prepared = Prepared::new(&spheres, &contact).unwrap_or_else(|e| panic!("{e}"));
     timed(&mut g, "spheres_3d_prepared", clock, || {
         table.rebound_3d_prepared(black_box(&prepared), black_box(&inc3))
+    });
+    let curve = table
+        .curve(prepared.gamma(), contact.outside)
+        .unwrap_or_else(|e| panic!("{e}"));
+    timed(&mut g, "spheres_3d_curve", clock, || {
+        table.rebound_3d_curve(black_box(&prepared), black_box(&curve), black_box(&inc3))
     });
     g.finish();
 

@@ -129,10 +129,15 @@ fn cubic_through(t: &[f64; 4], v: &[f64; 4]) -> [f64; 4] {
 /// 1e-15, in fewer operations.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Curve {
+    /// The `γ` asked for and the one used (clamped into the domain with
+    /// [`OutOfDomain::Clamp`]).
+    requested: f64,
     gamma: f64,
     outside: OutOfDomain,
     alpha_max: f64,
-    /// `1 − 7α` up to here.
+    /// `1 − 7α` up to here: at the requested `γ` (the rule's first test, for any `γ`) and at
+    /// the one used (its test after clamping).
+    alpha_lin_requested: f64,
     alpha_lin: f64,
     /// Partial slip below, stick above (`γ > 1`).
     alpha_c2: f64,
@@ -167,11 +172,12 @@ impl Curve {
             match outside {
                 OutOfDomain::Error => return Err(surface.gamma_outside(gamma)),
                 OutOfDomain::Clamp => {
-                    return Curve::new(
-                        surface,
-                        gamma.clamp(surface.gamma_min, surface.gamma_max),
-                        outside,
-                    )
+                    let clamped = gamma.clamp(surface.gamma_min, surface.gamma_max);
+                    return Ok(Curve {
+                        requested: gamma,
+                        alpha_lin_requested: linear_limit(gamma),
+                        ..Curve::new(surface, clamped, outside)?
+                    });
                 }
             }
         }
@@ -192,9 +198,11 @@ impl Curve {
             dm / (dm + rho_c2)
         });
         Ok(Curve {
+            requested: gamma,
             gamma,
             outside,
             alpha_max: surface.alpha_max,
+            alpha_lin_requested: linear_limit(gamma),
             alpha_lin: linear_limit(gamma),
             alpha_c2: alpha_c2(gamma),
             high,
@@ -215,6 +223,16 @@ impl Curve {
         self.gamma
     }
 
+    /// The `γ` the curve was asked for (before any clamping).
+    pub fn requested_gamma(&self) -> f64 {
+        self.requested
+    }
+
+    /// Whether this curve answers for `gamma` with the domain choice `outside` (built from them).
+    pub fn matches(&self, gamma: f64, outside: OutOfDomain) -> bool {
+        self.requested == gamma && self.outside == outside
+    }
+
     /// `P(γ, α)` (dimensionless) for `α ≥ 0` (`∞`: no slip). `α > alpha_max` is refused or
     /// clamped as the curve's [`OutOfDomain`] says; a NaN or negative `α` is an error.
     #[inline]
@@ -222,14 +240,21 @@ impl Curve {
         if alpha.is_nan() || alpha < 0.0 {
             return Err(bad_alpha(alpha));
         }
-        if alpha <= self.alpha_lin {
+        // The rule's order: the line at the requested point, then the domain, then (after
+        // clamping) the line again at the point used.
+        if alpha <= self.alpha_lin_requested {
             return Ok(1.0 - 7.0 * alpha);
         }
-        if alpha > self.alpha_max {
-            return match self.outside {
-                OutOfDomain::Error => Err(alpha_outside(self.alpha_max, alpha)),
-                OutOfDomain::Clamp => self.p(self.alpha_max),
-            };
+        let alpha = if alpha > self.alpha_max {
+            match self.outside {
+                OutOfDomain::Error => return Err(alpha_outside(self.alpha_max, alpha)),
+                OutOfDomain::Clamp => self.alpha_max,
+            }
+        } else {
+            alpha
+        };
+        if alpha <= self.alpha_lin {
+            return Ok(1.0 - 7.0 * alpha);
         }
         Ok(self.eval_above_line(alpha))
     }

@@ -14,7 +14,7 @@
 //! that does not slip, `u0 = 0`) are passed to the step-by-step path.
 
 use crate::rebound::{Frame, Incident3, Motion3, Pair, Rebound3, Vec3};
-use crate::{Answer, Contact, LookupError, Table};
+use crate::{Answer, Contact, Curve, LookupError, Table};
 
 /// A pair of bodies with its contact, validated and reduced once, for many 3-D rebounds
 /// ([`Table::rebound_3d_prepared`], [`Table::rebound_3d_batch`]).
@@ -96,6 +96,19 @@ impl Prepared {
     }
 }
 
+#[cold]
+fn curve_mismatch(curve: &Curve, prepared: &Prepared) -> LookupError {
+    LookupError::Query {
+        name: "curve gamma",
+        value: curve.requested_gamma(),
+        allowed: format!(
+            "the prepared pair's gamma = {} with its out-of-domain choice {:?}: build the curve \
+             with table.curve(prepared.gamma(), prepared.contact().outside)",
+            prepared.gamma, prepared.contact.outside
+        ),
+    }
+}
+
 #[inline(always)]
 fn dot(a: Vec3, b: Vec3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
@@ -147,6 +160,37 @@ impl Table {
         prepared: &Prepared,
         s: &Incident3,
     ) -> Result<Answer<Rebound3>, LookupError> {
+        self.rebound_3d_fast(prepared, s, |alpha| {
+            self.p_with(prepared.gamma, alpha, prepared.contact.outside)
+        })
+    }
+
+    /// [`Table::rebound_3d_prepared`] with `P` from `curve`, a [`Curve`] of this table built
+    /// at the pair's `γ` with the contact's out-of-domain choice
+    /// (`table.curve(prepared.gamma(), prepared.contact().outside)`): the same answer to about
+    /// 1e-15 in `P`, without the table's quadtree on the query path. A curve built for another
+    /// `γ` or domain choice is refused.
+    #[inline]
+    pub fn rebound_3d_curve(
+        &self,
+        prepared: &Prepared,
+        curve: &Curve,
+        s: &Incident3,
+    ) -> Result<Answer<Rebound3>, LookupError> {
+        if !curve.matches(prepared.gamma, prepared.contact.outside) {
+            return Err(curve_mismatch(curve, prepared));
+        }
+        self.rebound_3d_fast(prepared, s, |alpha| curve.p(alpha))
+    }
+
+    /// The shortened algebra of [`Table::rebound_3d_prepared`] with `P(α)` from `p_of`.
+    #[inline(always)]
+    fn rebound_3d_fast(
+        &self,
+        prepared: &Prepared,
+        s: &Incident3,
+        p_of: impl Fn(f64) -> Result<f64, LookupError>,
+    ) -> Result<Answer<Rebound3>, LookupError> {
         let k = prepared;
         let wall = k.pair.other.is_none();
         if !all_finite(s) || (wall && s.other != Motion3::default()) {
@@ -182,7 +226,7 @@ impl Table {
         }
         let alpha = k.alpha_scale * v0 / u0;
         let alpha = if alpha.is_nan() { f64::INFINITY } else { alpha };
-        let p = self.p_with(k.gamma, alpha, k.contact.outside)?;
+        let p = p_of(alpha)?;
         // Impulses along +t and +n on body 2 (body 1 receives the opposite).
         let j = k.tangential_mass * (1.0 - p) * u0;
         let nn = k.two_normal_mass * v0;

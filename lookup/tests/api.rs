@@ -577,6 +577,61 @@ fn close3(a: Vec3, b: Vec3, scale: f64) -> bool {
 }
 
 #[test]
+fn curve_rebounds_equal_the_prepared_ones() {
+    let t = table();
+    let mut next = rng(22);
+    for case in 0..600 {
+        let wall = case % 3 == 0;
+        let pair = if wall {
+            Pair {
+                sphere: spheres().sphere,
+                other: None,
+            }
+        } else {
+            spheres()
+        };
+        let contact = if case % 2 == 0 {
+            Contact::with_materials(ALUMINA, STEEL, 0.02 + 0.5 * next())
+        } else {
+            Contact::with_gamma(1.2 + next(), 0.02 + 0.5 * next())
+        };
+        let prepared = Prepared::new(&pair, &contact).unwrap();
+        let curve = t.curve(prepared.gamma(), contact.outside).unwrap();
+        for _ in 0..5 {
+            let inc = random_incident(&mut next, wall);
+            let a = t.rebound_3d_prepared(&prepared, &inc).unwrap();
+            let b = t.rebound_3d_curve(&prepared, &curve, &inc).unwrap();
+            assert_eq!((a.gamma, a.alpha), (b.gamma, b.alpha), "{case}");
+            assert!((a.rebound.p - b.rebound.p).abs() <= 1e-14, "{case}: P");
+            let scale = a.rebound.slip_before + a.rebound.approach_speed;
+            let (va, vb) = (a.rebound.sphere.velocity, b.rebound.sphere.velocity);
+            assert!(close3(va, vb, scale), "{case}: {va:?} {vb:?}");
+        }
+    }
+    // A curve of another γ, or of another out-of-domain choice, is refused, naming it.
+    let pair = spheres();
+    let contact = Contact::with_gamma(1.8, 0.3);
+    let prepared = Prepared::new(&pair, &contact).unwrap();
+    let inc = random_incident(&mut next, false);
+    for curve in [
+        t.curve(1.7, OutOfDomain::Error).unwrap(),
+        t.curve(1.8, OutOfDomain::Clamp).unwrap(),
+    ] {
+        let err = t.rebound_3d_curve(&prepared, &curve, &inc).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                LookupError::Query {
+                    name: "curve gamma",
+                    ..
+                }
+            ),
+            "{err}"
+        );
+    }
+}
+
+#[test]
 fn prepared_rebounds_equal_the_step_by_step_algebra() {
     let t = table();
     let mut next = rng(21);

@@ -112,6 +112,23 @@ fn the_curve_refuses_what_the_rule_refuses() {
     assert_eq!(clamped.gamma(), s.gamma_max);
     let edge = t.curve(s.gamma_max, OutOfDomain::Error).expect("edge");
     assert_eq!(clamped.p(1.0).unwrap(), edge.p(1.0).unwrap());
+    assert_eq!(clamped.requested_gamma(), s.gamma_max * 2.0);
+    // Outside the domain on either side, with clamping: the rule's line test at the requested
+    // γ first, then the value at the clamped γ.
+    for gamma in [s.gamma_min * 0.6, s.gamma_max * 1.4] {
+        let curve = t.curve(gamma, OutOfDomain::Clamp).expect("clamped");
+        for alpha in alphas(&t, gamma)
+            .into_iter()
+            .chain(alphas(&t, curve.gamma()))
+        {
+            let want = t.p_with(gamma, alpha, OutOfDomain::Clamp).expect("rule");
+            let got = curve.p(alpha).expect("curve");
+            assert!(
+                (got - want).abs() <= 1e-14,
+                "gamma {gamma} alpha {alpha}: {got} {want}"
+            );
+        }
+    }
     let curve = t.curve(1.754, OutOfDomain::Error).expect("curve");
     for bad in [f64::NAN, -1e-300, -1.0, f64::NEG_INFINITY] {
         let err = curve.p(bad).expect_err("refused");
