@@ -36,6 +36,13 @@ int main(int argc, char **argv) {
     if ((rc = oblique_p(table, 2.0, INFINITY, 0, &p)) != OBLIQUE_OK) return fail("P", rc);
     printf("P(2,inf) %.17g\n", p);
 
+    /* One pair of materials, many alphas: P(alpha) at gamma = 1.754, precomputed once. */
+    ObliqueCurve *curve = NULL;
+    if ((rc = oblique_curve_new(table, 1.754, 0, &curve)) != OBLIQUE_OK) return fail("curve", rc);
+    if ((rc = oblique_curve_p(curve, 1.0, &p)) != OBLIQUE_OK) return fail("curve P", rc);
+    printf("curve(1.754) P(1) %.17g\n", p);
+    oblique_curve_free(curve);
+
     double gammas[3] = {0.6, 1.5, 2.4}, alphas[3] = {0.05, 0.4, INFINITY}, ps[3];
     if ((rc = oblique_p_batch(table, gammas, alphas, 3, 0, ps)) != OBLIQUE_OK)
         return fail("batch", rc);

@@ -26,6 +26,10 @@
 // An internal error (a bug): please report it with the message.
 #define OBLIQUE_ERR_INTERNAL 5
 
+// `P(α)` of a table at one fixed `γ` (opaque; independent of the table once made): create with
+// `oblique_curve_new`, query with `oblique_curve_p`, free with `oblique_curve_free`.
+typedef struct ObliqueCurve ObliqueCurve;
+
 // A pair of bodies with its contact, checked once (opaque): create with `oblique_prepare`, use
 // with `oblique_rebound_prepared` for many impacts, free with `oblique_prepared_free`.
 typedef struct ObliquePrepared ObliquePrepared;
@@ -165,6 +169,32 @@ int oblique_p_batch(const struct ObliqueTable *table,
                     uintptr_t n,
                     int clamp,
                     double *p);
+
+// Precompute `P(α)` at one fixed `γ` from a table (for many queries of one pair of materials:
+// the same values as `oblique_p` to about 1e-15, in fewer operations). `clamp` = 0: `γ` outside
+// the table's domain is an error, and so will be `α > alpha_max` in `oblique_curve_p`; 1: both
+// are clamped into the domain. On success `*curve` is a handle to free with
+// `oblique_curve_free`; it does not refer to the table, which may be closed.
+//
+// # Safety
+// `table` is NULL or a live handle; `curve` is NULL or valid for writes.
+int oblique_curve_new(const struct ObliqueTable *table,
+                      double gamma,
+                      int clamp,
+                      struct ObliqueCurve **curve);
+
+// `*p = P(γ, α)` at the curve's `γ` (dimensionless); `alpha` may be `INFINITY` (no slip).
+//
+// # Safety
+// `curve` is NULL or a live handle; `p` is NULL or valid for writes.
+int oblique_curve_p(const struct ObliqueCurve *curve, double alpha, double *p);
+
+// Free a curve handle (NULL is ignored).
+//
+// # Safety
+// `curve` is NULL or a handle from `oblique_curve_new` not freed before, used by no other
+// thread during and after the call.
+void oblique_curve_free(struct ObliqueCurve *curve);
 
 // A sphere hitting a fixed wall: `normal` (3 doubles, any non-zero length) points from the
 // sphere into the wall. Writes the state after the impact and the impact's quantities to `*out`.

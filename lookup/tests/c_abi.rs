@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
-use oblique_lookup::{Contact, Table};
+use oblique_lookup::{Contact, OutOfDomain, Table};
 
 fn crate_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -44,6 +44,9 @@ fn header_is_up_to_date() {
         "oblique_table_close",
         "oblique_p",
         "oblique_p_batch",
+        "oblique_curve_new",
+        "oblique_curve_p",
+        "oblique_curve_free",
         "oblique_rebound_wall",
         "oblique_rebound_spheres",
         "oblique_last_error",
@@ -110,6 +113,9 @@ fn c_example_compiles_and_runs() {
     let t = Table::open(table_path()).unwrap();
     assert_eq!(value("P(1.754,1)"), t.p(1.754, 1.0).unwrap());
     assert_eq!(value("P(2,inf)"), t.p(2.0, f64::INFINITY).unwrap());
+    let curve = t.curve(1.754, OutOfDomain::Error).unwrap();
+    assert_eq!(value("curve(1.754) P(1)"), curve.p(1.0).unwrap());
+    assert!((value("curve(1.754) P(1)") - t.p(1.754, 1.0).unwrap()).abs() <= 1e-14);
     let pair = Pair {
         sphere: Body {
             mass: 2.4e-4,
