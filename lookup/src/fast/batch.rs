@@ -26,9 +26,9 @@ struct Lanes {
     /// Scratch for the partial-slip coordinate (the arguments of the two logarithms).
     x: [f64; BATCH],
     r: [f64; BATCH],
-    /// First node of each query's 4 × 4 block in `p` (an integer), and the stencil weights
-    /// (four along γ, then four along `c`).
-    start: [f64; BATCH],
+    /// First node of each query's 4 × 4 block in `p`, and the stencil weights (four along γ,
+    /// then four along `c`).
+    start: [i32; BATCH],
     w: [[f64; BATCH]; 8],
 }
 
@@ -42,7 +42,7 @@ impl Lanes {
             slot: [0; BATCH],
             x: [0.0; BATCH],
             r: [0.0; BATCH],
-            start: [0.0; BATCH],
+            start: [0; BATCH],
             w: [[0.0; BATCH]; 8],
         }
     }
@@ -177,13 +177,16 @@ impl FastPatch {
             [w0g[k], w1g[k], w2g[k], w3g[k]] = wg;
             [w0c[k], w1c[k], w2c[k], w3c[k]] = wc;
             // Exact for a block inside `p` (`p.len() < 2³¹`, `fits_u32`); a larger value is
-            // outside `p` however it rounds, and slicing `p` panics as on the single-query path.
-            lanes.start[k] = f64::from(leaf) * self.size as f64 + (sg * self.n1 as f64 + sc);
+            // outside `p` however it rounds or saturates (to `i32::MAX`), and slicing `p`
+            // panics as on the single-query path.
+            let start = f64::from(leaf) * self.size as f64 + (sg * self.n1 as f64 + sc);
+            lanes.start[k] = start as i32;
         }
         // Step 8: the tensor product.
         let stride = self.n1;
         let [w0g, w1g, w2g, w3g, w0c, w1c, w2c, w3c] = &lanes.w;
         for (k, (&start, &i)) in lanes.start[..n].iter().zip(list).enumerate() {
+            // (`start ≥ 0`: a sum of products of non-negative integers.)
             let start = start as usize;
             let block = &self.p[start..start + 3 * stride + 4];
             let (r0, rest) = block.split_at(stride);
