@@ -13,6 +13,11 @@
 //! `f ← 2f − q` bit for bit, and the leaf and the weights are the rule's.
 //!
 //! Only the shipped stencil (`k = 4`) takes this path; other stencils use [`Surface`] directly.
+//!
+//! Batches ([`Accel::eval_batch`], in `fast/batch.rs`) run the same operations in passes over
+//! arrays (classification, coordinates, index, stencils, tensor product) that the compiler
+//! vectorizes, in a baseline x86-64 build and an AVX2 build chosen at run time; both return the
+//! same bits as the single-query path (tested on both builds and all shipped tables).
 
 use crate::surface::{partial_coord, stencil4, stick_coord};
 use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface};

@@ -7,6 +7,13 @@
 //! same order on the same values, so the answers have the same bits: IEEE division, square
 //! root, `min`/`max` and the integer conversions do not depend on whether a value is in a
 //! vector lane or a scalar register, and no multiply–add is fused (Rust never contracts them).
+//! The few places where a vector unit needs a different formulation (32-bit conversions, the
+//! floor by truncation in floating point) are shown equal to the single-query path's, and tested.
+//!
+//! The passes are compiled twice: for baseline x86-64 (SSE2), and with AVX2 enabled
+//! (`#[target_feature]`, used when the processor reports AVX2 at run time), where the
+//! compiler's vectorization pays most (SSE4.1 truncation and blends, 4 lanes). No
+//! `-C target-cpu` is needed: binaries and tables run on any x86-64.
 
 use super::{alpha_c1_of, Accel, FastPatch, BATCH};
 use crate::surface::{OutOfDomain, PatchKind, Surface};
