@@ -35,7 +35,7 @@ struct Lanes {
     r: [f64; BATCH],
     /// First node of each query's 4 × 4 block in `p`, and the stencil weights (four along γ,
     /// then four along `c`).
-    start: [i32; BATCH],
+    start: [u32; BATCH],
     w: [[f64; BATCH]; 8],
 }
 
@@ -63,6 +63,23 @@ fn floor_index32(u: f64, max: u32) -> u32 {
     ((u as i32).max(0) as u32).min(max)
 }
 
+/// [`floor_index32`] in floating point (`max` an integer below 2³¹), for a vector unit that
+/// truncates (SSE4.1 `roundpd`): `max(u, 0)` is `0` for NaN and negative `u` (where the integer
+/// conversion gives a value `≤ 0`, then `0`), and for `u ≥ 0` truncating and taking the minimum
+/// with an integer commute.
+#[inline(always)]
+fn floor_f64(u: f64, max: f64) -> f64 {
+    u.max(0.0).min(max).trunc()
+}
+
+/// `x` as `u32`, for an integer `0 ≤ x < 2³²`: `2⁵² + x` is exact and its significand's low 32
+/// bits are `x` (a bit cast, which vector units do, where a saturating conversion is several
+/// instructions per value).
+#[inline(always)]
+fn exact_u32(x: f64) -> u32 {
+    (x + 4_503_599_627_370_496.0).to_bits() as u32
+}
+
 /// [`crate::surface::stencil4`] with [`floor_index32`] (`n ≤ 2³¹`): the same start and weights.
 #[inline(always)]
 fn stencil4_32(u: f64, n: u32) -> (u32, [f64; 4]) {
@@ -82,14 +99,11 @@ fn stencil4_32(u: f64, n: u32) -> (u32, [f64; 4]) {
     )
 }
 
-/// [`stencil4_32`] in floating point, for a vector unit that truncates (SSE4.1 `roundpd`):
-/// the same start (as a float) and weights. `max(u, 0)` is `0` for NaN and negative `u` (where
-/// the integer conversion saturates to a value `≤ 0`); below `n − 2` (an integer) truncating and
-/// taking the minimum commute; `start = min(max(cell − 1, 0), n − 4)` is the saturating
-/// subtraction.
+/// [`stencil4_32`] in floating point: the same start (as a float) and weights. The cell is
+/// [`floor_f64`]; `start = min(max(cell − 1, 0), n − 4)` is the saturating subtraction.
 #[inline(always)]
 fn stencil4_f64(u: f64, n: f64) -> (f64, [f64; 4]) {
-    let cell = u.max(0.0).min(n - 2.0).trunc();
+    let cell = floor_f64(u, n - 2.0);
     let start = (cell - 1.0).max(0.0).min(n - 4.0);
     let a = u - start;
     let (b, c, d) = (a - 1.0, a - 2.0, a - 3.0);
@@ -107,10 +121,25 @@ fn stencil4_f64(u: f64, n: f64) -> (f64, [f64; 4]) {
 
 impl FastPatch {
     /// Whether the batch path can use 32-bit positions for this patch (always for shipped
-    /// tables: the fine index, the node array and the leaf grid are far below 2³¹ entries).
+    /// tables: the fine index, the node array and the leaf grid are far below 2³¹ entries),
+    /// and every leaf the quadtree names has its whole node grid in `p`, so that the first
+    /// node of any 4 × 4 block is an integer below `p.len() < 2³¹` (see [`exact_u32`]).
     pub(super) fn fits_u32(&self) -> bool {
         let small = |n: usize| n < (1 << 31);
-        small(self.index.len()) && small(self.p.len()) && small(self.n1) && small(self.rows)
+        let leaves_end = self
+            .cells
+            .iter()
+            .filter(|c| c.link < 0)
+            .map(|c| (-(c.link as i64)) as usize)
+            .max()
+            .unwrap_or(0);
+        small(self.index.len())
+            && small(self.p.len())
+            && small(self.n1)
+            && small(self.rows)
+            && leaves_end
+                .checked_mul(self.size)
+                .is_some_and(|e| e <= self.p.len())
     }
 
     /// `out[list[k]] = self.interpolate(γ_k, c_k)` for the `n` queries gathered in `lanes`
@@ -136,9 +165,16 @@ impl FastPatch {
             let xg = (g - self.gamma_lo) / self.width;
             *vg = (xg * self.bg).clamp(0.0, self.bg);
             *vc = (c * self.bc).clamp(0.0, self.bc);
-            let ig = floor_index32(*vg * self.fine, rows1);
-            let ic = floor_index32(*vc * self.fine, cols1);
-            *slot = ig * cols + ic;
+            *slot = if AVX2 {
+                let ig = floor_f64(*vg * self.fine, f64::from(rows1));
+                let ic = floor_f64(*vc * self.fine, f64::from(cols1));
+                // An integer below `rows·cols = index.len() < 2³¹`.
+                exact_u32(ig * f64::from(cols) + ic)
+            } else {
+                let ig = floor_index32(*vg * self.fine, rows1);
+                let ic = floor_index32(*vc * self.fine, cols1);
+                ig * cols + ic
+            };
         }
         // Step 6: the cell from the index, the position in it, the rest of the descent.
         for ((vg, vc), slot) in lanes.vg[..n]
@@ -183,17 +219,14 @@ impl FastPatch {
             };
             [w0g[k], w1g[k], w2g[k], w3g[k]] = wg;
             [w0c[k], w1c[k], w2c[k], w3c[k]] = wc;
-            // Exact for a block inside `p` (`p.len() < 2³¹`, `fits_u32`); a larger value is
-            // outside `p` however it rounds or saturates (to `i32::MAX`), and slicing `p`
-            // panics as on the single-query path.
+            // An integer below `(leaf + 1)·size ≤ p.len() < 2³¹` (`fits_u32`).
             let start = f64::from(leaf) * self.size as f64 + (sg * self.n1 as f64 + sc);
-            lanes.start[k] = start as i32;
+            lanes.start[k] = exact_u32(start);
         }
         // Step 8: the tensor product.
         let stride = self.n1;
         let [w0g, w1g, w2g, w3g, w0c, w1c, w2c, w3c] = &lanes.w;
         for (k, (&start, &i)) in lanes.start[..n].iter().zip(list).enumerate() {
-            // (`start ≥ 0`: a sum of products of non-negative integers.)
             let start = start as usize;
             let block = &self.p[start..start + 3 * stride + 4];
             let (r0, rest) = block.split_at(stride);
@@ -569,6 +602,13 @@ mod tests {
     }
 
     #[test]
+    fn exact_u32_converts_integers() {
+        for x in [0u32, 1, 2, 255, 65_536, (1 << 31) - 1, 1 << 31, u32::MAX] {
+            assert_eq!(exact_u32(f64::from(x)), x);
+        }
+    }
+
+    #[test]
     fn the_vector_stencils_are_the_rules() {
         let mut us = vec![
             f64::NAN,
@@ -597,7 +637,14 @@ mod tests {
                     assert!(same(bits[0]) && same(bits[1]), "u = {u}, n = {n}: {bits:?}");
                 }
                 for max in [0u32, 1, 7, 1 << 20] {
-                    assert_eq!(floor_index32(u, max) as usize, floor_index(u, max as usize));
+                    let f = floor_index32(u, max);
+                    assert_eq!(f as usize, floor_index(u, max as usize));
+                    let f64_path = floor_f64(u, f64::from(max));
+                    assert_eq!(
+                        (f64_path, exact_u32(f64_path)),
+                        (f64::from(f), f),
+                        "u = {u}"
+                    );
                 }
             }
         }
