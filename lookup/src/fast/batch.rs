@@ -317,6 +317,8 @@ impl Accel {
         Ok(())
     }
 
+    /// The passes of [`Accel::eval_batch`] over each chunk; `AVX2`: the formulation for the
+    /// AVX2 build (only instantiated inside [`Accel::eval_chunks_avx2`]).
     #[inline(always)]
     fn eval_chunks<const AVX2: bool>(
         &self,
