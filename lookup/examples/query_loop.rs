@@ -5,7 +5,9 @@
 //!
 //! `cargo run --release -p oblique-lookup --example query_loop -- TABLE KIND N` with `KIND` one
 //! of `line`, `partial`, `stick`, `no_slip`, `low_gamma`, `partial_g3`, `mixed`, `spheres_3d`,
-//! `spheres_3d_prepared` (the same rebound through [`Prepared`](oblique_lookup::Prepared)).
+//! `spheres_3d_prepared` (the same rebound through [`Prepared`](oblique_lookup::Prepared)),
+//! `batch` (the `mixed` stream through `Table::p_batch`, 4096 queries per call; `N` is rounded
+//! down to a multiple of 4096).
 
 use std::hint::black_box;
 use std::process::ExitCode;
@@ -16,7 +18,7 @@ use oblique_lookup::{Contact, Prepared, Table};
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
     let usage = "usage: query_loop TABLE KIND N (KIND: line, partial, stick, no_slip, low_gamma, \
-                 partial_g3, mixed, spheres_3d, spheres_3d_prepared)";
+                 partial_g3, mixed, spheres_3d, spheres_3d_prepared, batch)";
     let (Some(path), Some(kind), Some(n)) = (args.get(1), args.get(2), args.get(3)) else {
         eprintln!("{usage}");
         return ExitCode::from(2);
@@ -39,7 +41,7 @@ fn main() -> ExitCode {
         "no_slip" => Some((1.754, f64::INFINITY)),
         "low_gamma" => Some((0.5, 1.0)),
         "partial_g3" => Some((3.0, 0.3)),
-        "mixed" | "spheres_3d" | "spheres_3d_prepared" => None,
+        "mixed" | "spheres_3d" | "spheres_3d_prepared" | "batch" => None,
         _ => {
             eprintln!("unknown KIND {kind}\n{usage}");
             return ExitCode::from(2);
@@ -50,7 +52,7 @@ fn main() -> ExitCode {
         for _ in 0..n {
             sum += table.p(black_box(g), black_box(a)).unwrap_or(f64::NAN);
         }
-    } else if kind == "mixed" {
+    } else if kind == "mixed" || kind == "batch" {
         // The same stream as the criterion benchmark's `p/mixed` (xorshift).
         let mut state = 0x9E37_79B9_7F4A_7C15_u64;
         let mut next = move || {
@@ -71,9 +73,18 @@ fn main() -> ExitCode {
                 (g, a)
             })
             .collect();
-        for i in 0..n {
-            let (g, a) = pts[i & 4095];
-            sum += table.p(black_box(g), black_box(a)).unwrap_or(f64::NAN);
+        if kind == "batch" {
+            let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
+            let mut out = vec![0.0; g.len()];
+            for _ in 0..n / 4096 {
+                let r = table.p_batch(black_box(&g), black_box(&a), &mut out, Default::default());
+                sum += r.map_or(f64::NAN, |()| out[0]);
+            }
+        } else {
+            for i in 0..n {
+                let (g, a) = pts[i & 4095];
+                sum += table.p(black_box(g), black_box(a)).unwrap_or(f64::NAN);
+            }
         }
     } else {
         let pair = Pair {

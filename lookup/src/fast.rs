@@ -13,10 +13,17 @@
 //! `f ← 2f − q` bit for bit, and the leaf and the weights are the rule's.
 //!
 //! Only the shipped stencil (`k = 4`) takes this path; other stencils use [`Surface`] directly.
+//!
+//! Batches ([`Accel::eval_batch`], in `fast/batch.rs`) run the same operations in passes over
+//! arrays (classification, coordinates, index, stencils, tensor product) that the compiler
+//! vectorizes, in a baseline x86-64 build and an AVX2 build chosen at run time; both return the
+//! same bits as the single-query path (tested on both builds and all shipped tables).
 
 use crate::surface::{partial_coord, stencil4, stick_coord};
 use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface};
 use crate::LookupError;
+
+mod batch;
 
 /// Largest number of entries (4 bytes each) of one patch's fine index: 2¹⁵ = 128 KiB, so that
 /// the indexes stay in the second-level cache next to the nodes. A patch whose deepest leaves
@@ -227,6 +234,8 @@ pub(crate) struct Accel {
     stick_low: Option<FastPatch>,
     partial_high: Option<FastPatch>,
     stick_high: Option<FastPatch>,
+    /// Every patch passes [`FastPatch::fits_u32`] (the batch path's 32-bit positions).
+    batch_u32: bool,
 }
 
 impl Accel {
@@ -245,13 +254,23 @@ impl Accel {
             None => Some(None),
             Some(p) => FastPatch::new(p, max_entries).map(Some),
         };
+        let (stick_low, partial_high, stick_high) = (
+            fast(&surface.stick_low)?,
+            fast(&surface.partial_high)?,
+            fast(&surface.stick_high)?,
+        );
+        let batch_u32 = [&stick_low, &partial_high, &stick_high]
+            .into_iter()
+            .flatten()
+            .all(FastPatch::fits_u32);
         Some(Accel {
             gamma_min: surface.gamma_min,
             gamma_max: surface.gamma_max,
             alpha_max: surface.alpha_max,
-            stick_low: fast(&surface.stick_low)?,
-            partial_high: fast(&surface.partial_high)?,
-            stick_high: fast(&surface.stick_high)?,
+            stick_low,
+            partial_high,
+            stick_high,
+            batch_u32,
         })
     }
 
@@ -302,110 +321,6 @@ impl Accel {
         })
     }
 
-    /// `out[i] = P(gamma[i], alpha[i])` ([`Accel::eval_with`] for each `i`, the same bits),
-    /// in chunks of [`BATCH`] queries sorted by region first: the full-slip line is answered in
-    /// the sorting pass, then each patch's queries in a loop of their own, so that the branches
-    /// on the region (random in a mixed stream) are not mispredicted per query. A chunk with an
-    /// invalid query, or one outside the domain without clamping, is answered query by query,
-    /// so the error is the first one's and `out` after it stays untouched.
-    pub(crate) fn eval_batch(
-        &self,
-        surface: &Surface,
-        gamma: &[f64],
-        alpha: &[f64],
-        out: &mut [f64],
-        outside: OutOfDomain,
-    ) -> Result<(), (usize, LookupError)> {
-        let mut code = [0u8; BATCH];
-        // Query numbers (within the chunk) per patch (stick_low, partial_high, stick_high)
-        // and for the clamped ones.
-        let mut lists = [[0u16; BATCH]; 4];
-        let clamp = outside == OutOfDomain::Clamp;
-        for (k, ((g, a), o)) in gamma
-            .chunks(BATCH)
-            .zip(alpha.chunks(BATCH))
-            .zip(out.chunks_mut(BATCH))
-            .enumerate()
-        {
-            let len = g.len().min(a.len()).min(o.len());
-            let (g, a, o) = (&g[..len], &a[..len], &mut o[..len]);
-            // Pass 1, branch-free: 0 line, 1–3 a patch, 4 outside (clamped), 5 refused.
-            let mut refused = false;
-            for ((c, &gi), &ai) in code.iter_mut().zip(g).zip(a) {
-                let valid = gi.is_finite() & (gi > 0.0) & (ai >= 0.0);
-                let g2 = gi * gi;
-                let c2 = 2.0 * g2 / 7.0;
-                let lin = if gi > 1.0 { alpha_c1_of(g2) } else { c2 };
-                let line = ai <= lin;
-                let patch = 1 + u8::from(gi > 1.0) * (1 + u8::from(ai >= c2));
-                let inside =
-                    (gi >= self.gamma_min) & (gi <= self.gamma_max) & (ai <= self.alpha_max);
-                let r = if line {
-                    0
-                } else if inside {
-                    patch
-                } else {
-                    4 + u8::from(!clamp)
-                };
-                let r = if valid { r } else { 5 };
-                refused |= r == 5;
-                *c = r;
-            }
-            if refused {
-                for (i, ((o, &gi), &ai)) in o.iter_mut().zip(g).zip(a).enumerate() {
-                    *o = self
-                        .eval_with(surface, gi, ai, outside)
-                        .map_err(|e| (k * BATCH + i, e))?;
-                }
-                continue;
-            }
-            // Pass 2: the line, and the lists.
-            let mut counts = [0usize; 4];
-            for (i, (&c, (o, &ai))) in code.iter().zip(o.iter_mut().zip(a)).enumerate() {
-                if c == 0 {
-                    *o = 1.0 - 7.0 * ai;
-                } else {
-                    let l = usize::from(c - 1).min(3);
-                    lists[l][counts[l]] = i as u16;
-                    counts[l] += 1;
-                }
-            }
-            // Pass 3: each patch's queries.
-            let patches = [&self.stick_low, &self.partial_high, &self.stick_high];
-            for (l, patch) in patches.into_iter().enumerate() {
-                let idx = &lists[l][..counts[l]];
-                match patch {
-                    Some(p) if p.kind == PatchKind::PartialSlip => {
-                        for &i in idx {
-                            let (gi, ai) = (g[i as usize], a[i as usize]);
-                            let c = partial_coord(gi, ai).clamp(0.0, 1.0);
-                            o[i as usize] = p.interpolate(gi, c);
-                        }
-                    }
-                    Some(p) => {
-                        for &i in idx {
-                            let (gi, ai) = (g[i as usize], a[i as usize]);
-                            let c = stick_coord(gi, ai, self.alpha_max).clamp(0.0, 1.0);
-                            o[i as usize] = p.interpolate(gi, c);
-                        }
-                    }
-                    None => {
-                        for &i in idx {
-                            o[i as usize] = -1.0;
-                        }
-                    }
-                }
-            }
-            for &i in &lists[3][..counts[3]] {
-                let i = i as usize;
-                o[i] = self
-                    .eval_with(surface, g[i], a[i], outside)
-                    .map_err(|e| (k * BATCH + i, e))?;
-            }
-        }
-        Ok(())
-    }
-
     #[inline(always)]
     fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
         let patch = match region {
@@ -432,13 +347,13 @@ mod tests {
     use super::*;
     use crate::Table;
 
-    fn table(name: &str) -> Table {
+    pub(super) fn table(name: &str) -> Table {
         Table::open(format!("{}/../tables/{name}", env!("CARGO_MANIFEST_DIR"))).expect(name)
     }
 
     /// Points spread over the plane, plus points exactly on the edges of the finest cells
     /// (where the rule sends a point to the upper cell).
-    fn points(t: &Table) -> Vec<(f64, f64)> {
+    pub(super) fn points(t: &Table) -> Vec<(f64, f64)> {
         let s = &t.surface;
         let mut state = 0x1234_5678_9ABC_DEF1_u64;
         let mut next = move || {
