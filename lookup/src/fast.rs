@@ -183,19 +183,14 @@ impl FastPatch {
         })
     }
 
-    /// Interpolate at `(γ, c)`, `c ∈ [0, 1]`: [`Patch::interpolate`] with `k = 4`.
+    /// The leaf and the position inside it of the point at `(vg, vc)` (in units of the root
+    /// cells) whose fine index entry is `entry`: the entry's cell, then step 6 of the rule, only
+    /// when the index depth was capped below the deepest leaf.
     #[inline(always)]
-    fn interpolate(&self, gamma: f64, c: f64) -> f64 {
-        // Step 5 of the rule: v = x·blocks, clamped (as `surface::locate`).
-        let xg = (gamma - self.gamma_lo) / self.width;
-        let vg = (xg * self.bg).clamp(0.0, self.bg);
-        let vc = (c * self.bc).clamp(0.0, self.bc);
-        let ig = floor_index(vg * self.fine, self.rows - 1);
-        let ic = floor_index(vc * self.fine, self.cols - 1);
-        let mut cell = self.cells[self.index[ig * self.cols + ic] as usize];
+    fn leaf_from(&self, entry: usize, vg: f64, vc: f64) -> (usize, f64, f64) {
+        let mut cell = self.cells[self.index[entry] as usize];
         let mut fg = vg * cell.scale - cell.og;
         let mut fc = vc * cell.scale - cell.oc;
-        // Step 6, only when the index depth was capped below the deepest leaf.
         while cell.link >= 0 {
             fg *= 2.0;
             fc *= 2.0;
@@ -205,7 +200,19 @@ impl FastPatch {
             fc -= qc as f64;
             cell = self.cells[cell.link as usize + 2 * qg + qc];
         }
-        let leaf = (-(cell.link as i64) - 1) as usize;
+        ((-(cell.link as i64) - 1) as usize, fg, fc)
+    }
+
+    /// Interpolate at `(γ, c)`, `c ∈ [0, 1]`: [`Patch::interpolate`] with `k = 4`.
+    #[inline(always)]
+    fn interpolate(&self, gamma: f64, c: f64) -> f64 {
+        // Step 5 of the rule: v = x·blocks, clamped (as `surface::locate`).
+        let xg = (gamma - self.gamma_lo) / self.width;
+        let vg = (xg * self.bg).clamp(0.0, self.bg);
+        let vc = (c * self.bc).clamp(0.0, self.bc);
+        let ig = floor_index(vg * self.fine, self.rows - 1);
+        let ic = floor_index(vc * self.fine, self.cols - 1);
+        let (leaf, fg, fc) = self.leaf_from(ig * self.cols + ic, vg, vc);
         let n1 = self.n1;
         let (sg, wg) = stencil4(fg * self.m, n1);
         let (sc, wc) = stencil4(fc * self.m, n1);

@@ -179,18 +179,21 @@ pub fn stencil(u: f64, n: usize, k: usize, w: &mut [f64; 8]) -> (usize, usize) {
 pub(crate) fn stencil4(u: f64, n: usize) -> (usize, [f64; 4]) {
     let cell = floor_index(u, n - 2);
     let start = cell.saturating_sub(1).min(n - 4);
-    let a = u - start as f64;
+    (start, cubic_weights(u - start as f64))
+}
+
+/// The cubic Lagrange weights on nodes `0, 1, 2, 3` at `a` (the one statement of these
+/// operations, shared by every path that must give the rule's bits).
+#[inline(always)]
+pub(crate) fn cubic_weights(a: f64) -> [f64; 4] {
     let (b, c, d) = (a - 1.0, a - 2.0, a - 3.0);
     let (ab, cd) = (a * b, c * d);
-    (
-        start,
-        [
-            -(b * cd) * (1.0 / 6.0),
-            a * cd * 0.5,
-            -(ab * d) * 0.5,
-            ab * c * (1.0 / 6.0),
-        ],
-    )
+    [
+        -(b * cd) * (1.0 / 6.0),
+        a * cd * 0.5,
+        -(ab * d) * 0.5,
+        ab * c * (1.0 / 6.0),
+    ]
 }
 
 /// `min(floor(u), max)` for `u ≥ 0` (`0` for `u < 0` or NaN): `as i64` truncates with one

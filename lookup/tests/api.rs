@@ -185,6 +185,18 @@ const STEEL: Elastic = Elastic {
     poisson_ratio: 0.3,
 };
 
+/// The sphere of [`spheres`] on a wall (`wall`), or the two spheres.
+fn pair_of(wall: bool) -> Pair {
+    if wall {
+        Pair {
+            sphere: spheres().sphere,
+            other: None,
+        }
+    } else {
+        spheres()
+    }
+}
+
 fn spheres() -> Pair {
     Pair {
         sphere: Body {
@@ -394,14 +406,7 @@ fn three_d_rebounds_obey_the_conservation_laws() {
     let mut next = rng(3);
     for case in 0..400 {
         let wall = case % 2 == 0;
-        let pair = if wall {
-            Pair {
-                sphere: spheres().sphere,
-                other: None,
-            }
-        } else {
-            spheres()
-        };
+        let pair = pair_of(wall);
         let inc = random_incident(&mut next, wall);
         let contact = Contact {
             stiffness: Stiffness::Materials(ALUMINA, STEEL),
@@ -582,14 +587,7 @@ fn curve_rebounds_equal_the_prepared_ones() {
     let mut next = rng(22);
     for case in 0..600 {
         let wall = case % 3 == 0;
-        let pair = if wall {
-            Pair {
-                sphere: spheres().sphere,
-                other: None,
-            }
-        } else {
-            spheres()
-        };
+        let pair = pair_of(wall);
         let contact = if case % 2 == 0 {
             Contact::with_materials(ALUMINA, STEEL, 0.02 + 0.5 * next())
         } else {
@@ -637,14 +635,7 @@ fn prepared_rebounds_equal_the_step_by_step_algebra() {
     let mut next = rng(21);
     for case in 0..2000 {
         let wall = case % 3 == 0;
-        let pair = if wall {
-            Pair {
-                sphere: spheres().sphere,
-                other: None,
-            }
-        } else {
-            spheres()
-        };
+        let pair = pair_of(wall);
         let inc = random_incident(&mut next, wall);
         let contact = if case % 2 == 0 {
             Contact::with_materials(ALUMINA, STEEL, 0.02 + 0.5 * next())

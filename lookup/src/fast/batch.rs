@@ -16,7 +16,7 @@
 //! `-C target-cpu` is needed: binaries and tables run on any x86-64.
 
 use super::{alpha_c1_of, Accel, FastPatch, BATCH};
-use crate::surface::{OutOfDomain, PatchKind, Surface};
+use crate::surface::{cubic_weights, OutOfDomain, PatchKind, Surface};
 use crate::LookupError;
 
 /// The per-patch arrays of one chunk (structure of arrays, `BATCH` entries each).
@@ -85,18 +85,7 @@ fn exact_u32(x: f64) -> u32 {
 fn stencil4_32(u: f64, n: u32) -> (u32, [f64; 4]) {
     let cell = floor_index32(u, n - 2);
     let start = cell.saturating_sub(1).min(n - 4);
-    let a = u - f64::from(start);
-    let (b, c, d) = (a - 1.0, a - 2.0, a - 3.0);
-    let (ab, cd) = (a * b, c * d);
-    (
-        start,
-        [
-            -(b * cd) * (1.0 / 6.0),
-            a * cd * 0.5,
-            -(ab * d) * 0.5,
-            ab * c * (1.0 / 6.0),
-        ],
-    )
+    (start, cubic_weights(u - f64::from(start)))
 }
 
 /// [`stencil4_32`] in floating point: the same start (as a float) and weights. The cell is
@@ -105,18 +94,7 @@ fn stencil4_32(u: f64, n: u32) -> (u32, [f64; 4]) {
 fn stencil4_f64(u: f64, n: f64) -> (f64, [f64; 4]) {
     let cell = floor_f64(u, n - 2.0);
     let start = (cell - 1.0).max(0.0).min(n - 4.0);
-    let a = u - start;
-    let (b, c, d) = (a - 1.0, a - 2.0, a - 3.0);
-    let (ab, cd) = (a * b, c * d);
-    (
-        start,
-        [
-            -(b * cd) * (1.0 / 6.0),
-            a * cd * 0.5,
-            -(ab * d) * 0.5,
-            ab * c * (1.0 / 6.0),
-        ],
-    )
+    (start, cubic_weights(u - start))
 }
 
 impl FastPatch {
@@ -182,22 +160,11 @@ impl FastPatch {
             .zip(&mut lanes.vc[..n])
             .zip(&mut lanes.slot[..n])
         {
-            let mut cell = self.cells[self.index[*slot as usize] as usize];
-            let mut fg = *vg * cell.scale - cell.og;
-            let mut fc = *vc * cell.scale - cell.oc;
-            while cell.link >= 0 {
-                fg *= 2.0;
-                fc *= 2.0;
-                let qg = usize::from(fg >= 1.0);
-                let qc = usize::from(fc >= 1.0);
-                fg -= qg as f64;
-                fc -= qc as f64;
-                cell = self.cells[cell.link as usize + 2 * qg + qc];
-            }
-            // `link < 0`: the leaf number `−link − 1` is below 2³¹.
+            let (leaf, fg, fc) = self.leaf_from(*slot as usize, *vg, *vc);
+            // The leaf number `−link − 1` of an `i32` link is below 2³¹.
             *vg = fg;
             *vc = fc;
-            *slot = (-(cell.link as i64) - 1) as u32;
+            *slot = leaf as u32;
         }
         // Step 7: the stencils (first node of the 4 × 4 block, weights), in a loop of their
         // own so that it is vectorized.
