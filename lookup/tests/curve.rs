@@ -4,6 +4,15 @@
 use oblique_lookup::surface::{alpha_c2, linear_limit};
 use oblique_lookup::{LookupError, OutOfDomain, PatchKind, Table};
 
+/// The neighbouring floats of a positive finite `x` (`f64::next_up` is newer than the MSRV).
+fn up(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() + 1)
+}
+
+fn down(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() - 1)
+}
+
 fn table(name: &str) -> Table {
     Table::open(format!("{}/../tables/{name}", env!("CARGO_MANIFEST_DIR"))).expect(name)
 }
@@ -17,13 +26,7 @@ fn alphas(t: &Table, gamma: f64) -> Vec<f64> {
         .collect();
     out.push(f64::INFINITY);
     for edge in [linear_limit(gamma), alpha_c2(gamma)] {
-        out.extend([
-            edge,
-            edge.next_up(),
-            edge.next_down(),
-            edge * 1.001,
-            edge / 1.001,
-        ]);
+        out.extend([edge, up(edge), down(edge), edge * 1.001, edge / 1.001]);
     }
     let kinds: &[PatchKind] = if gamma > 1.0 {
         &[PatchKind::PartialSlip, PatchKind::Stick]
@@ -43,7 +46,7 @@ fn gammas(t: &Table) -> Vec<f64> {
     let s = &t.surface;
     let mut g = vec![s.gamma_min, s.gamma_max, 0.5 * (s.gamma_min + s.gamma_max)];
     if s.gamma_min <= 1.0 && 1.0 <= s.gamma_max {
-        g.extend([1.0, 1.0f64.next_up(), 1.0f64.next_down()]);
+        g.extend([1.0, up(1.0), down(1.0)]);
     }
     // Root and leaf edges along γ (every 1/64 of each patch's root cells) and points between.
     for p in [&s.stick_low, &s.partial_high, &s.stick_high]
