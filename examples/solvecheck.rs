@@ -9,13 +9,7 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let tol: f64 = args.next().and_then(|s| s.parse().ok()).unwrap_or(2e-6);
     let n: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(200);
-    let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = oblique_lookup::testing::uniform(0x9E37_79B9_7F4A_7C15);
     let (mut over_tol, mut over_est, mut worst) = (0, 0, 0.0f64);
     for i in 0..n {
         let g = 0.1 + 3.4 * next();

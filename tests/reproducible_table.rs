@@ -84,13 +84,7 @@ fn shipped_tables_match_direct_simulation_at_random_points() {
 fn random_points(path: &str, claim: f64, count: usize) {
     let table = oblique_lookup::Table::open(path).expect("shipped table opens");
     let s = &table.surface;
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut uniform = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = oblique_lookup::testing::uniform(0x2545_f491_4f6c_dd1d);
     let mut worst = 0.0_f64;
     for _ in 0..count {
         let gamma = s.gamma_min + (s.gamma_max - s.gamma_min) * uniform();

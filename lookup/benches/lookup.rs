@@ -32,41 +32,20 @@ use std::time::Duration;
 use clock::{timed, Clock};
 use criterion::{Criterion, Throughput};
 use oblique_lookup::rebound::{Body, Elastic, Incident, Incident3, Motion3, Pair, State};
-use oblique_lookup::{Answer, Contact, OutOfDomain, Prepared, Table};
+use oblique_lookup::{testing, Answer, Contact, OutOfDomain, Prepared, Table};
 
-/// Deterministic points over the table's domain (xorshift; no external RNG).
+/// Deterministic points over the table's domain (`testing::domain_points`).
 fn mixed_points(t: &Table, n: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let s = &t.surface;
-    (0..n)
-        .map(|_| {
-            let g = s.gamma_min + (s.gamma_max - s.gamma_min) * next();
-            let a = if next() < 0.1 {
-                f64::INFINITY
-            } else {
-                10f64.powf(-3.0 + 6.0 * next())
-            };
-            (g, a)
-        })
+    testing::domain_points(&t.surface, n, 0x9E37_79B9_7F4A_7C15)
+        .into_iter()
         .unzip()
 }
 
 /// Sphere–sphere incident states with random velocities, spins and normals (the normal is
 /// turned so that the spheres approach).
 fn mixed_incidents(n: usize) -> Vec<Incident3> {
-    let mut state = 0x2545_F491_4F6C_DD1D_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut uniform = testing::uniform(0x2545_F491_4F6C_DD1D);
+    let mut next = move || uniform() - 0.5;
     (0..n)
         .map(|_| {
             let mut v = || [next(), next(), next()];

@@ -54,25 +54,8 @@ fn main() -> ExitCode {
         }
     } else if kind == "mixed" || kind == "batch" {
         // The same stream as the criterion benchmark's `p/mixed` (xorshift).
-        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let s = &table.surface;
-        let pts: Vec<(f64, f64)> = (0..4096)
-            .map(|_| {
-                let g = s.gamma_min + (s.gamma_max - s.gamma_min) * next();
-                let a = if next() < 0.1 {
-                    f64::INFINITY
-                } else {
-                    10f64.powf(-3.0 + 6.0 * next())
-                };
-                (g, a)
-            })
-            .collect();
+        let pts =
+            oblique_lookup::testing::domain_points(&table.surface, 4096, 0x9E37_79B9_7F4A_7C15);
         if kind == "batch" {
             let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
             let mut out = vec![0.0; g.len()];

@@ -362,23 +362,7 @@ mod tests {
     /// (where the rule sends a point to the upper cell).
     pub(super) fn points(t: &Table) -> Vec<(f64, f64)> {
         let s = &t.surface;
-        let mut state = 0x1234_5678_9ABC_DEF1_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let mut pts = Vec::new();
-        for _ in 0..20_000 {
-            let g = s.gamma_min + (s.gamma_max - s.gamma_min) * next();
-            let a = if next() < 0.1 {
-                f64::INFINITY
-            } else {
-                10f64.powf(-3.0 + 6.0 * next())
-            };
-            pts.push((g, a));
-        }
+        let mut pts = crate::testing::domain_points(s, 20_000, 0x1234_5678_9ABC_DEF1);
         for patch in [&s.stick_low, &s.partial_high, &s.stick_high]
             .into_iter()
             .flatten()

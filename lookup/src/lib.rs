@@ -30,6 +30,8 @@ mod prepared;
 mod read;
 pub mod rebound;
 pub mod surface;
+#[doc(hidden)]
+pub mod testing;
 
 pub use curve::Curve;
 pub use impact::{Answer, Contact, Stiffness};

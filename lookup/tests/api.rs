@@ -15,13 +15,7 @@ fn table() -> Table {
 
 /// Deterministic uniform numbers in [0, 1) (xorshift).
 fn rng(seed: u64) -> impl FnMut() -> f64 {
-    let mut s = seed;
-    move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    }
+    oblique_lookup::testing::uniform(seed)
 }
 
 /// Steps 1–8 of `docs/table-format.md` written out with the public pieces and the generic

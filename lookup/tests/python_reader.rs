@@ -61,24 +61,8 @@ fn rust_and_python_readers_agree() {
     for (name, n) in [("full.h5", 3000), ("quick.h5", 1000)] {
         let t = Table::open(repo().join("tables").join(name)).expect(name);
         let s = &t.surface;
-        let mut state = 0xA076_1D64_78BD_642F_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let mut points: Vec<(f64, f64)> = (0..n)
-            .map(|_| {
-                let g = s.gamma_min + (s.gamma_max - s.gamma_min) * next();
-                let a = if next() < 0.1 {
-                    f64::INFINITY
-                } else {
-                    10f64.powf(-3.0 + 6.0 * next())
-                };
-                (g, a)
-            })
-            .collect();
+        let mut next = oblique_lookup::testing::uniform(0xA076_1D64_78BD_642F);
+        let mut points = oblique_lookup::testing::domain_points_from(s, n, &mut next);
         // The partial-slip band at large γ, where the leaves are deepest.
         if s.gamma_max > 2.5 {
             for _ in 0..n / 2 {
