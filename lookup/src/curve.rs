@@ -9,7 +9,8 @@
 //! `D` the deepest leaf on the line, which contains every node position) and stores the cubic
 //! through them. A query then computes `c` exactly as the rule does (the `γ`-only parts of it
 //! precomputed from the same `γ₀`, so the same bits), finds its interval by one multiplication
-//! and evaluates three fused steps of Horner's scheme: no quadtree, no stencil weights.
+//! and evaluates three multiply-add steps of Horner's scheme: no quadtree, no stencil weights.
+//! Only tables with the cubic stencil (`stencil_points = 4`, the shipped one) have curves.
 //!
 //! The values agree with [`Table::p_with`] at `(γ₀, α)` up to the rounding of the cubic's
 //! coefficients (the tests require 1e-14; measured: at most 2.1e-15 over 7.3 million points
@@ -167,6 +168,14 @@ impl Curve {
     ) -> Result<Curve, LookupError> {
         if !(gamma.is_finite() && gamma > 0.0) {
             return Err(crate::surface::bad_gamma(gamma));
+        }
+        if surface.stencil != 4 {
+            // Along a line the rule is then a polynomial of another degree.
+            return Err(LookupError::Query {
+                name: "table stencil_points",
+                value: surface.stencil as f64,
+                allowed: "4 (cubic) for a curve; query this table with Table::p".into(),
+            });
         }
         if gamma < surface.gamma_min || gamma > surface.gamma_max {
             match outside {

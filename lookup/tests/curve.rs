@@ -132,6 +132,21 @@ fn the_curve_refuses_what_the_rule_refuses() {
             );
         }
     }
+    // Along a line a non-cubic stencil is not a cubic: such a table has no curves.
+    let mut six = table("quick.h5");
+    six.surface.stencil = 6;
+    six.reindex();
+    let err = six.curve(1.754, OutOfDomain::Error).expect_err("stencil 6");
+    assert!(
+        matches!(
+            err,
+            LookupError::Query {
+                name: "table stencil_points",
+                ..
+            }
+        ),
+        "{err}"
+    );
     let curve = t.curve(1.754, OutOfDomain::Error).expect("curve");
     for bad in [f64::NAN, -1e-300, -1.0, f64::NEG_INFINITY] {
         let err = curve.p(bad).expect_err("refused");
