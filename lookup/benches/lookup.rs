@@ -165,17 +165,7 @@ fn main() {
         normal: [0.0, 0.0, 1.0],
         ..Default::default()
     };
-    let inc3 = Incident3 {
-        sphere: Motion3 {
-            velocity: [0.8, 0.3, 1.5],
-            spin: [20.0, 120.0, -40.0],
-        },
-        other: Motion3 {
-            velocity: [-0.2, 0.1, -0.4],
-            spin: [0.0, -50.0, 10.0],
-        },
-        normal: [0.1, -0.2, 0.97],
-    };
+    let (_, _, inc3) = testing::reference_spheres();
     timed(&mut g, "wall_2d", clock, || {
         table.rebound(black_box(&wall), black_box(&contact), black_box(&inc2))
     });

@@ -12,8 +12,7 @@
 use std::hint::black_box;
 use std::process::ExitCode;
 
-use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
-use oblique_lookup::{Contact, Prepared, Table};
+use oblique_lookup::{Prepared, Table};
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
@@ -70,40 +69,7 @@ fn main() -> ExitCode {
             }
         }
     } else {
-        let pair = Pair {
-            sphere: Body {
-                mass: 2.4e-4,
-                radius: 2.5e-3,
-                kappa: 0.4,
-            },
-            other: Some(Body {
-                mass: 2.4e-3,
-                radius: 6e-3,
-                kappa: 0.4,
-            }),
-        };
-        let contact = Contact::with_materials(
-            Elastic {
-                youngs_modulus: 3.7e11,
-                poisson_ratio: 0.25,
-            },
-            Elastic {
-                youngs_modulus: 2.1e11,
-                poisson_ratio: 0.3,
-            },
-            0.15,
-        );
-        let inc = Incident3 {
-            sphere: Motion3 {
-                velocity: [0.8, 0.3, 1.5],
-                spin: [20.0, 120.0, -40.0],
-            },
-            other: Motion3 {
-                velocity: [-0.2, 0.1, -0.4],
-                spin: [0.0, -50.0, 10.0],
-            },
-            normal: [0.1, -0.2, 0.97],
-        };
+        let (pair, contact, inc) = oblique_lookup::testing::reference_spheres();
         if kind == "spheres_3d" {
             for _ in 0..n {
                 sum += table

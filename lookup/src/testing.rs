@@ -1,7 +1,8 @@
 //! Deterministic pseudo-random numbers and query points for the tests, benchmarks and examples
 //! of this workspace (not part of the API: hidden from the documentation, may change).
 
-use crate::Surface;
+use crate::rebound::{Body, Elastic, Incident3, Motion3, Pair};
+use crate::{Contact, Surface};
 
 /// Uniform numbers in `[0, 1)` from a xorshift64 generator seeded with `seed` (nonzero): the
 /// 53 high bits of each state. No external RNG, the same stream on every platform.
@@ -39,4 +40,46 @@ pub fn domain_points_from(
 /// [`domain_points_from`] with a fresh [`uniform`] stream.
 pub fn domain_points(surface: &Surface, n: usize, seed: u64) -> Vec<(f64, f64)> {
     domain_points_from(surface, n, &mut uniform(seed))
+}
+
+/// The sphere–sphere impact of the benchmarks: an alumina sphere (R 2.5 mm, 0.24 g) on a steel
+/// sphere (R 6 mm, 2.4 g), both solid (κ = 0.4), μ = 0.15, γ from the materials, with spins and
+/// a tilted normal (`lookup/examples/query.c` has the same with the normal along z).
+pub fn reference_spheres() -> (Pair, Contact, Incident3) {
+    let pair = Pair {
+        sphere: Body {
+            mass: 2.4e-4,
+            radius: 2.5e-3,
+            kappa: 0.4,
+        },
+        other: Some(Body {
+            mass: 2.4e-3,
+            radius: 6e-3,
+            kappa: 0.4,
+        }),
+    };
+    let alumina = Elastic {
+        youngs_modulus: 3.7e11,
+        poisson_ratio: 0.25,
+    };
+    let steel = Elastic {
+        youngs_modulus: 2.1e11,
+        poisson_ratio: 0.3,
+    };
+    let incident = Incident3 {
+        sphere: Motion3 {
+            velocity: [0.8, 0.3, 1.5],
+            spin: [20.0, 120.0, -40.0],
+        },
+        other: Motion3 {
+            velocity: [-0.2, 0.1, -0.4],
+            spin: [0.0, -50.0, 10.0],
+        },
+        normal: [0.1, -0.2, 0.97],
+    };
+    (
+        pair,
+        Contact::with_materials(alumina, steel, 0.15),
+        incident,
+    )
 }

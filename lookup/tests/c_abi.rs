@@ -5,8 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
-use oblique_lookup::{Contact, OutOfDomain, Table};
+use oblique_lookup::{OutOfDomain, Table};
 
 fn crate_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -116,40 +115,9 @@ fn c_example_compiles_and_runs() {
     let curve = t.curve(1.754, OutOfDomain::Error).unwrap();
     assert_eq!(value("curve(1.754) P(1)"), curve.p(1.0).unwrap());
     assert!((value("curve(1.754) P(1)") - t.p(1.754, 1.0).unwrap()).abs() <= 1e-14);
-    let pair = Pair {
-        sphere: Body {
-            mass: 2.4e-4,
-            radius: 2.5e-3,
-            kappa: 0.4,
-        },
-        other: Some(Body {
-            mass: 2.4e-3,
-            radius: 6e-3,
-            kappa: 0.4,
-        }),
-    };
-    let contact = Contact::with_materials(
-        Elastic {
-            youngs_modulus: 3.7e11,
-            poisson_ratio: 0.25,
-        },
-        Elastic {
-            youngs_modulus: 2.1e11,
-            poisson_ratio: 0.3,
-        },
-        0.15,
-    );
-    let inc = Incident3 {
-        sphere: Motion3 {
-            velocity: [0.8, 0.3, 1.5],
-            spin: [20.0, 120.0, -40.0],
-        },
-        other: Motion3 {
-            velocity: [-0.2, 0.1, -0.4],
-            spin: [0.0, -50.0, 10.0],
-        },
-        normal: [0.0, 0.0, 1.0],
-    };
+    // The impact of examples/query.c: the benchmarks' one with the normal along z.
+    let (pair, contact, mut inc) = oblique_lookup::testing::reference_spheres();
+    inc.normal = [0.0, 0.0, 1.0];
     let a = t.rebound_3d(&pair, &contact, &inc).unwrap();
     assert_eq!(value("spheres.gamma"), a.gamma);
     assert_eq!(value("spheres.p"), a.rebound.p);
