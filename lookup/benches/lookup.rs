@@ -31,8 +31,8 @@ use std::time::Duration;
 
 use clock::{timed, Clock};
 use criterion::{Criterion, Throughput};
-use oblique_lookup::rebound::{Body, Elastic, Incident, Incident3, Motion3, Pair, State};
-use oblique_lookup::{testing, Answer, Contact, OutOfDomain, Prepared, Table};
+use oblique_lookup::rebound::{Incident, Incident3, Motion3, Pair, State};
+use oblique_lookup::{testing, Answer, OutOfDomain, Prepared, Table};
 
 /// Deterministic points over the table's domain (`testing::domain_points`).
 fn mixed_points(t: &Table, n: usize) -> (Vec<f64>, Vec<f64>) {
@@ -122,32 +122,11 @@ fn main() {
 
     // One rebound.
     let mut g = c.benchmark_group(format!("rebound{}", clock.suffix()));
-    let alumina = Elastic {
-        youngs_modulus: 3.7e11,
-        poisson_ratio: 0.25,
-    };
-    let steel = Elastic {
-        youngs_modulus: 2.1e11,
-        poisson_ratio: 0.3,
-    };
-    let ball = Body {
-        mass: 2.4e-4,
-        radius: 2.5e-3,
-        kappa: 0.4,
-    };
-    let big = Body {
-        mass: 2.4e-3,
-        radius: 6e-3,
-        kappa: 0.4,
-    };
-    let contact = Contact::with_materials(alumina, steel, 0.15);
+    // An alumina sphere on a steel sphere (and on a wall), μ = 0.15, γ from the materials.
+    let (spheres, contact, inc3) = testing::reference_spheres();
     let wall = Pair {
-        sphere: ball,
+        sphere: spheres.sphere,
         other: None,
-    };
-    let spheres = Pair {
-        sphere: ball,
-        other: Some(big),
     };
     let inc2 = Incident {
         sphere: State {
@@ -165,7 +144,6 @@ fn main() {
         normal: [0.0, 0.0, 1.0],
         ..Default::default()
     };
-    let (_, _, inc3) = testing::reference_spheres();
     timed(&mut g, "wall_2d", clock, || {
         table.rebound(black_box(&wall), black_box(&contact), black_box(&inc2))
     });
