@@ -17,7 +17,7 @@
 //! on the three shipped tables, `lookup/tests/curve.rs`).
 
 use crate::surface::{alpha_c2, linear_limit, stick_scale, Patch};
-use crate::surface::{bad_alpha, OutOfDomain, Region, Surface};
+use crate::surface::{alpha_outside, bad_alpha, OutOfDomain, Surface};
 use crate::{LookupError, Table};
 
 /// Largest number of intervals of one patch's curve (`2²⁰`, 32 MiB of coefficients); a line
@@ -292,27 +292,11 @@ impl Curve {
         }
     }
 
-    /// `out[i] = P(γ, alpha[i])`; the first invalid `α` stops the batch with its index.
+    /// `out[i] = P(γ, alpha[i])`; the first invalid `α` stops the batch with its index
+    /// ([`LookupError::Batch`]), `out` after it untouched.
     pub fn p_batch(&self, alpha: &[f64], out: &mut [f64]) -> Result<(), LookupError> {
-        if out.len() != alpha.len() {
-            return Err(LookupError::Length {
-                name: "out",
-                len: out.len(),
-                expected: alpha.len(),
-            });
-        }
-        for (i, (o, &a)) in out.iter_mut().zip(alpha).enumerate() {
-            *o = self.p(a).map_err(|e| LookupError::Batch {
-                index: i,
-                source: Box::new(e),
-            })?;
-        }
-        Ok(())
-    }
-
-    /// Which region of the rule answers `α` (for tests and diagnostics).
-    pub fn region(&self, alpha: f64) -> Region {
-        Region::of(self.gamma, alpha)
+        crate::batch::check_length("out", out.len(), alpha.len())?;
+        crate::batch::serial(alpha, out, |&a| self.p(a))
     }
 
     /// Bytes of the precomputed cubics.
@@ -322,17 +306,6 @@ impl Curve {
             .filter_map(|p| p.as_ref())
             .map(|p| p.coef.len() * std::mem::size_of::<[f64; 4]>())
             .sum()
-    }
-}
-
-#[cold]
-fn alpha_outside(alpha_max: f64, alpha: f64) -> LookupError {
-    LookupError::Query {
-        name: "alpha",
-        value: alpha,
-        allowed: format!(
-            "<= the table's alpha_max = {alpha_max}; or build the curve with OutOfDomain::Clamp to answer at alpha_max"
-        ),
     }
 }
 

@@ -311,6 +311,18 @@ pub(crate) fn bad_gamma(gamma: f64) -> LookupError {
     }
 }
 
+/// `α` above a table's `alpha_max` without clamping.
+#[cold]
+pub(crate) fn alpha_outside(alpha_max: f64, alpha: f64) -> LookupError {
+    LookupError::Query {
+        name: "alpha",
+        value: alpha,
+        allowed: format!(
+            "<= the table's alpha_max = {alpha_max}; or opt into clamping (OutOfDomain::Clamp; `sweep query --clamp`) to answer at alpha_max"
+        ),
+    }
+}
+
 #[cold]
 pub(crate) fn bad_alpha(alpha: f64) -> LookupError {
     LookupError::Query {
@@ -475,14 +487,7 @@ impl Surface {
 
     #[cold]
     pub(crate) fn alpha_outside(&self, alpha: f64) -> LookupError {
-        LookupError::Query {
-            name: "alpha",
-            value: alpha,
-            allowed: format!(
-                "<= the table's alpha_max = {}; or opt into clamping (OutOfDomain::Clamp; `sweep query --clamp`) to answer at alpha_max",
-                self.alpha_max
-            ),
-        }
+        alpha_outside(self.alpha_max, alpha)
     }
 
     /// Evaluate in a known non-line region (no checks). The patch coordinate is computed with
