@@ -101,6 +101,11 @@ pub struct Nodes {
     /// Refuse to place more nodes than this in total.
     #[serde(default = "default_max_nodes")]
     pub max_nodes: usize,
+    /// Warp the partial-slip patch's coordinate so that the fold curve F₊ of `P` (γ > 3, a jump
+    /// of slope) lies on a root-cell boundary (schema v3, `docs/table-format.md`). Traces F₊
+    /// first (a few seconds); no effect when the domain stays below γ = 3.06.
+    #[serde(default)]
+    pub fold_warp: bool,
 }
 
 fn default_placement() -> String {

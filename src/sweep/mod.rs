@@ -7,17 +7,29 @@ pub mod config;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use oblique_lookup::surface::{stencil, Patch, PatchKind, Region, Surface};
+use oblique_lookup::surface::{stencil, Patch, PatchKind, Region, Surface, Warp};
 use oblique_lookup::Check;
 use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::physics::{self, Accuracy, PhysicsError, Scheme};
 pub use config::Config;
+pub mod warp;
 
 /// Errors of a sweep.
 #[derive(Debug, Error)]
 pub enum SweepError {
+    /// The fold curve F₊ could not be traced for the warp of the partial-slip patch.
+    #[error(
+        "fold curve F+ at gamma = {gamma}: {what} (set nodes.fold_warp = false to build without \
+         the warp)"
+    )]
+    Fold {
+        /// γ of the failed point.
+        gamma: f64,
+        /// What went wrong.
+        what: String,
+    },
     /// A node could not be computed.
     #[error("node gamma = {gamma}, alpha = {alpha}: {source}")]
     Node {
@@ -388,6 +400,8 @@ struct Layout<'a> {
     bc: usize,
     m: usize,
     alpha_max: f64,
+    /// Fold warp of the partial-slip patch: the lattice is in `c'`, α comes from `c`.
+    warp: Option<&'a Warp>,
 }
 
 /// A node on the finest lattice of a patch: `(γ index, c index)`.
@@ -418,7 +432,12 @@ impl Layout<'_> {
             self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * xg
         };
         let c = key.1 as f64 / nc as f64;
-        (gamma, c, self.spec.kind.alpha(gamma, c, self.alpha_max))
+        let unwarped = self.warp.map_or(c, |w| w.invert(gamma, c));
+        (
+            gamma,
+            c,
+            self.spec.kind.alpha(gamma, unwarped, self.alpha_max),
+        )
     }
 
     /// Lattice keys of a cell's `(m+1)²` nodes, row-major (`γ` outer).
@@ -494,12 +513,22 @@ fn build_patch(
     shard: Option<Shard>,
 ) -> Result<Option<BuiltPatch>, RunError> {
     let k = cfg.nodes.stencil;
+    let warp = if cfg.nodes.fold_warp && spec.kind == PatchKind::PartialSlip {
+        progress.phase(&format!(
+            "{}: tracing the fold curve F+ for the warp",
+            spec.name
+        ));
+        warp::fold_warp(spec.gamma_lo, spec.gamma_hi, cfg.nodes.blocks_coord)?
+    } else {
+        None
+    };
     let layout = Layout {
         spec,
         bg: roots_gamma(cfg, spec),
         bc: cfg.nodes.blocks_coord,
         m: cfg.nodes.leaf_intervals,
         alpha_max: cfg.domain.alpha_max,
+        warp: warp.as_ref(),
     };
     let m = layout.m;
     // All cells ever created, roots first; `child[i]` is the first child of a split cell.
@@ -628,6 +657,7 @@ fn build_patch(
             tree,
             p,
             error_estimate: err,
+            warp: warp.clone(),
         },
         gamma,
         coord,
