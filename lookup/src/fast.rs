@@ -1,4 +1,4 @@
-//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–8
+//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–9
 //! of `docs/table-format.md`) on an acceleration structure built once at [`crate::Table::open`].
 //!
 //! It returns the same bits as [`Surface::eval_with`] (the rule written step by step); only the
@@ -15,7 +15,7 @@
 //! Only the shipped stencil (`k = 4`) takes this path; other stencils use [`Surface`] directly.
 
 use crate::surface::{partial_coord, stencil4, stick_coord};
-use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface};
+use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
 use crate::LookupError;
 
 /// Largest number of entries (4 bytes each) of one patch's fine index: 2¹⁵ = 128 KiB, so that
@@ -73,6 +73,8 @@ struct FastPatch {
     size: usize,
     /// `P` at the nodes, as in [`Patch::p`].
     p: Vec<f64>,
+    /// The warp of the coordinate, as in [`Patch::warp`].
+    warp: Option<Warp>,
 }
 
 impl std::fmt::Debug for FastPatch {
@@ -173,13 +175,24 @@ impl FastPatch {
             n1: m + 1,
             size: (m + 1) * (m + 1),
             p: patch.p.clone(),
+            warp: patch.warp.clone(),
         })
+    }
+
+    /// Step 5 of the rule: the patch's warp of a clamped coordinate `c ∈ [0, 1]` (the same
+    /// [`Warp::apply`] as [`Surface::eval_with`], so the same bits).
+    #[inline(always)]
+    fn warped(&self, gamma: f64, c: f64) -> f64 {
+        match &self.warp {
+            Some(w) => w.apply(gamma, c),
+            None => c,
+        }
     }
 
     /// Interpolate at `(γ, c)`, `c ∈ [0, 1]`: [`Patch::interpolate`] with `k = 4`.
     #[inline(always)]
     fn interpolate(&self, gamma: f64, c: f64) -> f64 {
-        // Step 5 of the rule: v = x·blocks, clamped (as `surface::locate`).
+        // Step 6 of the rule: v = x·blocks, clamped (as `surface::locate`).
         let xg = (gamma - self.gamma_lo) / self.width;
         let vg = (xg * self.bg).clamp(0.0, self.bg);
         let vc = (c * self.bc).clamp(0.0, self.bc);
@@ -188,7 +201,7 @@ impl FastPatch {
         let mut cell = self.cells[self.index[ig * self.cols + ic] as usize];
         let mut fg = vg * cell.scale - cell.og;
         let mut fc = vc * cell.scale - cell.oc;
-        // Step 6, only when the index depth was capped below the deepest leaf.
+        // Step 7, only when the index depth was capped below the deepest leaf.
         while cell.link >= 0 {
             fg *= 2.0;
             fc *= 2.0;
@@ -378,7 +391,7 @@ impl Accel {
                     Some(p) if p.kind == PatchKind::PartialSlip => {
                         for &i in idx {
                             let (gi, ai) = (g[i as usize], a[i as usize]);
-                            let c = partial_coord(gi, ai).clamp(0.0, 1.0);
+                            let c = p.warped(gi, partial_coord(gi, ai).clamp(0.0, 1.0));
                             o[i as usize] = p.interpolate(gi, c);
                         }
                     }
@@ -420,7 +433,7 @@ impl Accel {
                     PatchKind::PartialSlip => partial_coord(gamma, alpha),
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
                 };
-                patch.interpolate(gamma, c.clamp(0.0, 1.0))
+                patch.interpolate(gamma, patch.warped(gamma, c.clamp(0.0, 1.0)))
             }
             None => -1.0,
         }

@@ -628,6 +628,7 @@ fn build_patch(
             tree,
             p,
             error_estimate: err,
+            warp: None,
         },
         gamma,
         coord,
