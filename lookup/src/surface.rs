@@ -612,3 +612,88 @@ pub(crate) fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
         s / (dm / (dm + rho * c2))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn warp() -> Warp {
+        Warp {
+            gamma_0: 2.9,
+            gamma_step: 0.05,
+            c_star: 0.5,
+            knot: (0..13)
+                .map(|i| 0.35 + 0.2 * (i as f64 * 0.4).sin() * (i as f64 / 12.0))
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn the_knot_rule_reproduces_the_knot_values_at_the_grid_points() {
+        let w = warp();
+        for (i, &k) in w.knot.iter().enumerate() {
+            let g = w.gamma_0 + i as f64 * w.gamma_step;
+            assert!((w.knot_at(g) - k).abs() <= 1e-14, "knot {i}");
+        }
+        // Clamped outside the grid.
+        assert_eq!(w.knot_at(1.0), w.knot[0]);
+        assert_eq!(w.knot_at(100.0), w.knot[w.knot.len() - 1]);
+        // Between grid points: a cubic reproduces a cubic exactly.
+        let cubic = |g: f64| 0.3 + 0.1 * (g - 3.0) - 0.2 * (g - 3.0).powi(2) + 0.3 * (g - 3.0).powi(3);
+        let wc = Warp {
+            knot: (0..13).map(|i| cubic(2.9 + 0.05 * i as f64)).collect(),
+            ..warp()
+        };
+        for j in 0..=96 {
+            let g = 2.9 + 0.6 * j as f64 / 96.0;
+            assert!((wc.knot_at(g) - cubic(g)).abs() <= 1e-13, "gamma {g}");
+        }
+    }
+
+    #[test]
+    fn apply_sends_the_knot_to_c_star_and_invert_undoes_it() {
+        let w = warp();
+        for j in 0..=200 {
+            let g = 2.5 + 1.0 * j as f64 / 200.0;
+            let k = w.knot_at(g);
+            if g >= w.gamma_0 {
+                assert!((w.apply(g, k) - w.c_star).abs() <= 1e-15, "gamma {g}");
+            }
+            assert_eq!(w.apply(g, 0.0), 0.0);
+            assert!((w.apply(g, 1.0) - 1.0).abs() <= 1e-15);
+            let mut prev = -1.0;
+            for i in 0..=100 {
+                let c = i as f64 / 100.0;
+                let cp = w.apply(g, c);
+                assert!(cp > prev && (0.0..=1.0).contains(&cp), "monotone in [0, 1]");
+                prev = cp;
+                assert!((w.invert(g, cp) - c).abs() <= 1e-15, "invert(apply) at {g}, {c}");
+                assert!((w.apply(g, w.invert(g, c)) - c).abs() <= 1e-15, "apply(invert)");
+            }
+        }
+        // Below gamma_0 the identity, bit for bit.
+        assert_eq!(w.apply(2.0, 0.123).to_bits(), 0.123f64.to_bits());
+        assert_eq!(w.invert(2.0, 0.123).to_bits(), 0.123f64.to_bits());
+    }
+
+    #[test]
+    fn a_warp_with_all_knots_at_c_star_is_the_identity() {
+        for c_star in [0.25, 0.5, 0.75] {
+            let w = Warp {
+                gamma_0: 1.0,
+                gamma_step: 0.5,
+                c_star,
+                knot: vec![c_star; 6],
+            };
+            for j in 0..=50 {
+                let g = 0.9 + 2.7 * j as f64 / 50.0;
+                assert!((w.knot_at(g) - c_star).abs() <= 1e-15, "gamma {g}");
+                for i in 0..=64 {
+                    let c = i as f64 / 64.0;
+                    assert!((w.apply(g, c) - c).abs() <= 1e-15, "({g}, {c})");
+                    assert!((w.invert(g, c) - c).abs() <= 1e-15, "({g}, {c})");
+                }
+            }
+        }
+    }
+}
