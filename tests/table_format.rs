@@ -889,7 +889,10 @@ fn check_warp(g: &hdf5::Group, pname: &str) -> Option<oblique_lookup::Warp> {
     let end = warp.gamma_0 + (warp.knot.len() - 1) as f64 * warp.gamma_step;
     assert!(warp.gamma_step > 0.0 && warp.c_star > 0.0 && warp.c_star < 1.0);
     assert!(warp.knot.len() >= 4 && warp.knot.iter().all(|&k| k > 0.0 && k < 1.0));
-    assert!(warp.gamma_0 < hi && end >= hi - 1e-12 * hi, "{pname}/warp: grid");
+    assert!(
+        warp.gamma_0 < hi && end >= hi - 1e-12 * hi,
+        "{pname}/warp: grid"
+    );
     Some(warp)
 }
 
@@ -1504,9 +1507,7 @@ fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique::sweep::
                     if gm == 1.0 {
                         2.0 / 7.0
                     } else {
-                        patch
-                            .kind
-                            .alpha(gm, warp.invert(gm, c), surface.alpha_max)
+                        patch.kind.alpha(gm, warp.invert(gm, c), surface.alpha_max)
                     }
                 })
                 .collect()
@@ -1554,11 +1555,16 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     // The file: the documented layout, with the warp group where documented.
     check_layout(&out, &Expect::small());
     let f = open(&out);
-    let w = f.group("patches/partial_high/warp").expect("the warp group");
+    let w = f
+        .group("patches/partial_high/warp")
+        .expect("the warp group");
     assert_eq!(attr_f64(&w, "c_star"), 0.5);
     assert_eq!(f64s(&w, "knot"), warp.knot);
     for other in ["stick_low", "stick_high"] {
-        assert!(!f.group(&format!("patches/{other}")).unwrap().link_exists("warp"));
+        assert!(!f
+            .group(&format!("patches/{other}"))
+            .unwrap()
+            .link_exists("warp"));
     }
     drop(f);
     // Read back: the same surface, and the same bits at random queries as the in-memory one.

@@ -223,9 +223,11 @@ impl Reader<'_> {
             .group(GROUP_WARP)
             .map_err(|_| self.invalid(format!("'{where_}' is not a group")))?;
         let attr = |a: &str, allowed: &str, ok: &dyn Fn(f64) -> bool| {
-            let v = self
-                .attr_f64(&w, a)
-                .map_err(|_| self.invalid(format!("'{where_}': missing or non-numeric attribute '{a}'")))?;
+            let v = self.attr_f64(&w, a).map_err(|_| {
+                self.invalid(format!(
+                    "'{where_}': missing or non-numeric attribute '{a}'"
+                ))
+            })?;
             if v.is_finite() && ok(v) {
                 Ok(v)
             } else {
@@ -409,7 +411,13 @@ impl Table {
             gamma_max,
             alpha_max,
             stencil,
-            stick_low: r.patch(&patches, PATCH_STICK_LOW, PatchKind::Stick, stencil, version)?,
+            stick_low: r.patch(
+                &patches,
+                PATCH_STICK_LOW,
+                PatchKind::Stick,
+                stencil,
+                version,
+            )?,
             partial_high: r.patch(
                 &patches,
                 PATCH_PARTIAL_HIGH,
@@ -417,7 +425,13 @@ impl Table {
                 stencil,
                 version,
             )?,
-            stick_high: r.patch(&patches, PATCH_STICK_HIGH, PatchKind::Stick, stencil, version)?,
+            stick_high: r.patch(
+                &patches,
+                PATCH_STICK_HIGH,
+                PatchKind::Stick,
+                stencil,
+                version,
+            )?,
         };
         if gamma_min < 1.0 && surface.stick_low.is_none() {
             return Err(r.invalid(format!("missing patch '{PATCH_STICK_LOW}'")));

@@ -639,7 +639,8 @@ mod tests {
         assert_eq!(w.knot_at(1.0), w.knot[0]);
         assert_eq!(w.knot_at(100.0), w.knot[w.knot.len() - 1]);
         // Between grid points: a cubic reproduces a cubic exactly.
-        let cubic = |g: f64| 0.3 + 0.1 * (g - 3.0) - 0.2 * (g - 3.0).powi(2) + 0.3 * (g - 3.0).powi(3);
+        let cubic =
+            |g: f64| 0.3 + 0.1 * (g - 3.0) - 0.2 * (g - 3.0).powi(2) + 0.3 * (g - 3.0).powi(3);
         let wc = Warp {
             knot: (0..13).map(|i| cubic(2.9 + 0.05 * i as f64)).collect(),
             ..warp()
@@ -667,8 +668,14 @@ mod tests {
                 let cp = w.apply(g, c);
                 assert!(cp > prev && (0.0..=1.0).contains(&cp), "monotone in [0, 1]");
                 prev = cp;
-                assert!((w.invert(g, cp) - c).abs() <= 1e-15, "invert(apply) at {g}, {c}");
-                assert!((w.apply(g, w.invert(g, c)) - c).abs() <= 1e-15, "apply(invert)");
+                assert!(
+                    (w.invert(g, cp) - c).abs() <= 1e-15,
+                    "invert(apply) at {g}, {c}"
+                );
+                assert!(
+                    (w.apply(g, w.invert(g, c)) - c).abs() <= 1e-15,
+                    "apply(invert)"
+                );
             }
         }
         // Below gamma_0 the identity, bit for bit.

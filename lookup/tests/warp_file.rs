@@ -123,7 +123,10 @@ fn python(path: &Path, points: &[(f64, f64)]) -> Result<Vec<f64>, String> {
         .stdout(Stdio::piped())
         .spawn()
         .expect("run python3");
-    let input: String = points.iter().map(|(g, a)| format!("{g:?},{a:?}\n")).collect();
+    let input: String = points
+        .iter()
+        .map(|(g, a)| format!("{g:?},{a:?}\n"))
+        .collect();
     let mut stdin = child.stdin.take().expect("stdin");
     let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
     let out = child.wait_with_output().expect("python3 output");
@@ -339,17 +342,17 @@ fn files_with_a_bad_warp_are_refused_naming_the_field() {
     let py = python_ok();
     for (name, spec, needles) in cases {
         let path = write(&format!("{name}.h5"), &spec);
-        let msg = Table::open(&path)
-            .map(|_| ())
-            .expect_err(name)
-            .to_string();
+        let msg = Table::open(&path).map(|_| ()).expect_err(name).to_string();
         for n in needles {
             assert!(msg.contains(n), "{name}: {msg:?} does not contain {n:?}");
         }
         if py {
             let e = python(&path, &[]).expect_err(&format!("Python accepted {name}"));
             for n in needles {
-                assert!(e.contains(n), "{name} (Python): {e:?} does not contain {n:?}");
+                assert!(
+                    e.contains(n),
+                    "{name} (Python): {e:?} does not contain {n:?}"
+                );
             }
         }
     }
@@ -374,6 +377,9 @@ fn schema_4_is_refused() {
             ..good()
         },
     );
-    let msg = Table::open(&path).map(|_| ()).expect_err("schema 4").to_string();
+    let msg = Table::open(&path)
+        .map(|_| ())
+        .expect_err("schema 4")
+        .to_string();
     assert!(msg.contains("schema version 4"), "{msg}");
 }
