@@ -127,7 +127,8 @@ const char *oblique_last_error(void);
 //
 // # Safety
 // `path` is NULL or a NUL-terminated string; `table` is NULL or valid for writes.
-int oblique_table_open(const char *path, struct ObliqueTable **table);
+int oblique_table_open(const char *path,
+                       struct ObliqueTable **table);
 
 // Free a table handle (NULL is ignored).
 //
