@@ -228,6 +228,15 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.ds(&g, DS_ERROR, &p.error_estimate, &n)?;
         // The optional warp of the coordinate (schema 3; only `partial_high` has one).
         if let Some(warp) = &p.warp {
+            // Never write a warp the readers refuse.
+            let refuse = |m: String| StorageError::Hdf5 {
+                path: path.to_string(),
+                message: format!("patch '{}': {GROUP_WARP}: {m}", bp.name),
+            };
+            if bp.name != PATCH_PARTIAL_HIGH {
+                return Err(refuse(format!("only '{PATCH_PARTIAL_HIGH}' may have one")));
+            }
+            warp.validate(p.gamma_hi).map_err(refuse)?;
             let wg = g
                 .create_group(GROUP_WARP)
                 .map_err(w.e(&format!("{}/{GROUP_WARP}", bp.name)))?;

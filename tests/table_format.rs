@@ -1593,4 +1593,23 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
         changed += usize::from(p != plain.p(g, a).unwrap());
     }
     assert!(changed > 100, "the warp changed only {changed} answers");
+
+    // The writer refuses a warp the readers would refuse, and leaves no file.
+    let bad_dir = subdir("warp_bad");
+    let mut bad = built_with_warp(&fx.table, &warp);
+    for bp in &mut bad.patches {
+        if let Some(w) = bp.patch.warp.as_mut() {
+            w.c_star = 1.5;
+        }
+    }
+    let e = oblique::storage::write_table(&bad_dir.join("c_star.h5"), &bad, &prov)
+        .expect_err("c_star = 1.5 written");
+    assert!(e.to_string().contains("c_star"), "{e}");
+    let mut bad = built_with_warp(&fx.table, &warp);
+    let stick = bad.patches.iter_mut().find(|b| b.name == "stick_high");
+    stick.expect("stick_high").patch.warp = Some(warp.clone());
+    let e = oblique::storage::write_table(&bad_dir.join("stick.h5"), &bad, &prov)
+        .expect_err("a warp on stick_high written");
+    assert!(e.to_string().contains("only 'partial_high'"), "{e}");
+    assert!(dir_names(&bad_dir).is_empty(), "{:?}", dir_names(&bad_dir));
 }

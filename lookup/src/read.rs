@@ -222,23 +222,18 @@ impl Reader<'_> {
         let w = g
             .group(GROUP_WARP)
             .map_err(|_| self.invalid(format!("'{where_}' is not a group")))?;
-        let attr = |a: &str, allowed: &str, ok: &dyn Fn(f64) -> bool| {
-            let v = self.attr_f64(&w, a).map_err(|_| {
+        let attr = |a: &str| {
+            self.attr_f64(&w, a).map_err(|_| {
                 self.invalid(format!(
                     "'{where_}': missing or non-numeric attribute '{a}'"
                 ))
-            })?;
-            if v.is_finite() && ok(v) {
-                Ok(v)
-            } else {
-                Err(self.invalid(format!(
-                    "'{where_}': attribute '{a}' = {v}: must be {allowed}"
-                )))
-            }
+            })
         };
-        let gamma_0 = attr(ATTR_WARP_GAMMA_0, "finite", &|_| true)?;
-        let gamma_step = attr(ATTR_WARP_GAMMA_STEP, "finite and > 0", &|v| v > 0.0)?;
-        let c_star = attr(ATTR_WARP_C_STAR, "in (0, 1)", &|v| v > 0.0 && v < 1.0)?;
+        let (gamma_0, gamma_step, c_star) = (
+            attr(ATTR_WARP_GAMMA_0)?,
+            attr(ATTR_WARP_GAMMA_STEP)?,
+            attr(ATTR_WARP_C_STAR)?,
+        );
         let knot = w
             .dataset(DS_WARP_KNOT)
             .ok()
@@ -249,33 +244,15 @@ impl Reader<'_> {
                     "'{where_}': dataset '{DS_WARP_KNOT}' missing or not a 1-D float64 array"
                 ))
             })?;
-        if knot.len() < 4 {
-            return Err(self.invalid(format!(
-                "'{where_}': dataset '{DS_WARP_KNOT}' has {} values: must have at least 4",
-                knot.len()
-            )));
-        }
-        if let Some(i) = knot.iter().position(|&k| !(k > 0.0 && k < 1.0)) {
-            return Err(self.invalid(format!(
-                "'{where_}': dataset '{DS_WARP_KNOT}'[{i}] = {}: must be in (0, 1)",
-                knot[i]
-            )));
-        }
-        let end = gamma_0 + (knot.len() - 1) as f64 * gamma_step;
-        if !(gamma_0 < gamma_hi && end >= gamma_hi - 1e-12 * gamma_hi.abs()) {
-            return Err(self.invalid(format!(
-                "'{where_}': the knot grid '{ATTR_WARP_GAMMA_0}' + i·'{ATTR_WARP_GAMMA_STEP}' \
-                 spans [{gamma_0}, {end}] ({} values of '{DS_WARP_KNOT}'): must start below and \
-                 reach the patch's gamma_hi = {gamma_hi}",
-                knot.len()
-            )));
-        }
-        Ok(Some(Warp {
+        let warp = Warp {
             gamma_0,
             gamma_step,
             c_star,
             knot,
-        }))
+        };
+        warp.validate(gamma_hi)
+            .map_err(|m| self.invalid(format!("'{where_}': {m}")))?;
+        Ok(Some(warp))
     }
 
     fn patch(

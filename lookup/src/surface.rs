@@ -197,6 +197,54 @@ impl Warp {
         total
     }
 
+    /// Check the documented rules of a warp of a patch whose upper γ edge is `gamma_hi` (what
+    /// the reader refuses otherwise): finite values, `gamma_step > 0`, `0 < c_star < 1`, at least
+    /// 4 knot values, each in `(0, 1)`, and `gamma_0 < gamma_hi ≤ gamma_0 + (n − 1)·gamma_step`
+    /// (within `1e-12` relative). `Err` names the attribute or dataset and the allowed range.
+    pub fn validate(&self, gamma_hi: f64) -> Result<(), String> {
+        let attrs = [
+            ("gamma_0", self.gamma_0, "finite", self.gamma_0.is_finite()),
+            (
+                "gamma_step",
+                self.gamma_step,
+                "finite and > 0",
+                self.gamma_step.is_finite() && self.gamma_step > 0.0,
+            ),
+            (
+                "c_star",
+                self.c_star,
+                "in (0, 1)",
+                self.c_star > 0.0 && self.c_star < 1.0,
+            ),
+        ];
+        for (name, v, allowed, ok) in attrs {
+            if !ok {
+                return Err(format!("attribute '{name}' = {v}: must be {allowed}"));
+            }
+        }
+        let n = self.knot.len();
+        if n < 4 {
+            return Err(format!(
+                "dataset 'knot' has {n} values: must have at least 4"
+            ));
+        }
+        if let Some(i) = self.knot.iter().position(|&k| !(k > 0.0 && k < 1.0)) {
+            return Err(format!(
+                "dataset 'knot'[{i}] = {}: must be in (0, 1)",
+                self.knot[i]
+            ));
+        }
+        let end = self.gamma_0 + (n - 1) as f64 * self.gamma_step;
+        if !(self.gamma_0 < gamma_hi && end >= gamma_hi - 1e-12 * gamma_hi.abs()) {
+            return Err(format!(
+                "the knot grid 'gamma_0' + i*'gamma_step' spans [{}, {end}] ({n} values of \
+                 'knot'): must start below and reach the patch's gamma_hi = {gamma_hi}",
+                self.gamma_0
+            ));
+        }
+        Ok(())
+    }
+
     /// `c → c'`: the identity for `γ < gamma_0`; else `c_star·c/K` for `c ≤ K` and
     /// `c_star + (1 − c_star)(c − K)/(1 − K)` above, with `K =` [`Warp::knot_at`]`(γ)`.
     #[inline]
