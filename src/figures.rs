@@ -740,7 +740,7 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
 }
 
 /// Outline of every leaf of a patch in `(γ, α/(1+α))`: bottom, right, top and left edge, the
-/// edges of constant patch coordinate `c` (curves in this plane) sampled at 64 points per patch
+/// edges of constant patch coordinate `c` (`c'` of a warp; curves in this plane) sampled at 64 points per patch
 /// width, at least 5 per leaf.
 pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
     let roots = patch.blocks_gamma * patch.blocks_coord;
@@ -756,8 +756,10 @@ pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
         .collect();
     let mut out = Vec::new();
     let gamma = |x: f64| patch.gamma_lo + (patch.gamma_hi - patch.gamma_lo) * x;
+    // The quadtree is over the warped c' where the patch has a warp (schema 3).
     let point = |x: f64, c: f64| {
         let g = gamma(x);
+        let c = patch.warp.as_ref().map_or(c, |w| w.invert(g, c));
         (g, compact(patch.kind.alpha(g, c, alpha_max)))
     };
     while let Some((cell, x0, c0, hx, hc)) = stack.pop() {

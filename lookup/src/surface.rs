@@ -1,4 +1,4 @@
-//! The interpolation rule of schema v2 (stated in `docs/table-format.md`).
+//! The interpolation rule of schema v3 (stated in `docs/table-format.md`).
 //!
 //! The nonlinear part of the `(γ, α)` plane is covered by up to three patches whose edges lie on
 //! the curves where `P` has curvature jumps, so that `P` is smooth inside each patch:
@@ -13,7 +13,8 @@
 //! patch is cut into equal root cells in `(γ, c)`, each refined as a quadtree where `P` needs it
 //! (the kink curves inside the partial-slip patch for `γ ≳ 2`); every leaf stores `P` on its own
 //! uniform grid. Inside a leaf `P` is the tensor product of 1-D Lagrange polynomials through `k`
-//! consecutive nodes of that leaf per axis (`k = stencil_points`).
+//! consecutive nodes of that leaf per axis (`k = stencil_points`). The partial-slip patch may
+//! carry a [`Warp`] of its coordinate (schema 3), applied before the leaf is located.
 
 use crate::LookupError;
 
@@ -149,6 +150,131 @@ pub struct Patch {
     pub p: Vec<f64>,
     /// Solver error estimate of each node, same layout.
     pub error_estimate: Vec<f64>,
+    /// Optional warp of the coordinate (only `partial_high`, schema 3): when present, the
+    /// quadtree is over `(x, c')` with `c' =` [`Warp::apply`]`(γ, c)` instead of `(x, c)`.
+    pub warp: Option<Warp>,
+}
+
+/// Warp of the partial-slip coordinate (group `/patches/partial_high/warp`, schema 3): a
+/// piecewise-linear map `c → c'` per γ that sends the knot `K(γ)` (the fold curve of `P`, where
+/// its slope jumps) to the fixed `c' = c_star`, so that the fold lies on a root-cell boundary of
+/// the quadtree and no leaf straddles it.
+///
+/// `K(γ)` is the table's `k`-point Lagrange rule with `k = 4` ([`stencil`]`(u, n, 4, ..)`, the
+/// start/weights convention of the leaf grids) at `u = (γ − gamma_0)/gamma_step` clamped to
+/// `[0, n − 1]`, over the values `knot[i]` at `γ = gamma_0 + i·gamma_step` (`n = knot.len()`).
+/// For `γ < gamma_0`, `c' = c`; for `γ ≥ gamma_0`:
+/// `c' = c_star·c/K` if `c ≤ K`, else `c' = c_star + (1 − c_star)(c − K)/(1 − K)`.
+///
+/// Valid warps (as the reader accepts them): finite values, `gamma_step > 0`,
+/// `0 < c_star < 1`, `n ≥ 4`, every knot in `(0, 1)`, and a grid that covers the patch:
+/// `gamma_0 < gamma_hi ≤ gamma_0 + (n − 1)·gamma_step` (the latter within `1e-12` relative).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warp {
+    /// γ of `knot[0]`.
+    pub gamma_0: f64,
+    /// γ spacing of the knots (`> 0`).
+    pub gamma_step: f64,
+    /// Where the knot is sent: `c' = c_star` at `c = K(γ)`, in `(0, 1)`.
+    pub c_star: f64,
+    /// `K` at `γ = gamma_0 + i·gamma_step`, every value in `(0, 1)`, at least 4 values.
+    pub knot: Vec<f64>,
+}
+
+impl Warp {
+    /// `K(γ)`: the 4-point Lagrange interpolant of `knot` at `u = (γ − gamma_0)/gamma_step`
+    /// clamped to `[0, n − 1]`.
+    #[inline]
+    pub fn knot_at(&self, gamma: f64) -> f64 {
+        let n = self.knot.len();
+        let u = ((gamma - self.gamma_0) / self.gamma_step).clamp(0.0, (n - 1) as f64);
+        let mut w = [0.0; 8];
+        let (start, k) = stencil(u, n, 4, &mut w);
+        let mut total = 0.0;
+        for (wj, kj) in w[..k].iter().zip(&self.knot[start..start + k]) {
+            total += wj * kj;
+        }
+        total
+    }
+
+    /// Check the documented rules of a warp of a patch whose upper γ edge is `gamma_hi` (what
+    /// the reader refuses otherwise): finite values, `gamma_step > 0`, `0 < c_star < 1`, at least
+    /// 4 knot values, each in `(0, 1)`, and `gamma_0 < gamma_hi ≤ gamma_0 + (n − 1)·gamma_step`
+    /// (within `1e-12` relative). `Err` names the attribute or dataset and the allowed range.
+    pub fn validate(&self, gamma_hi: f64) -> Result<(), String> {
+        let attrs = [
+            ("gamma_0", self.gamma_0, "finite", self.gamma_0.is_finite()),
+            (
+                "gamma_step",
+                self.gamma_step,
+                "finite and > 0",
+                self.gamma_step.is_finite() && self.gamma_step > 0.0,
+            ),
+            (
+                "c_star",
+                self.c_star,
+                "in (0, 1)",
+                self.c_star > 0.0 && self.c_star < 1.0,
+            ),
+        ];
+        for (name, v, allowed, ok) in attrs {
+            if !ok {
+                return Err(format!("attribute '{name}' = {v}: must be {allowed}"));
+            }
+        }
+        let n = self.knot.len();
+        if n < 4 {
+            return Err(format!(
+                "dataset 'knot' has {n} values: must have at least 4"
+            ));
+        }
+        if let Some(i) = self.knot.iter().position(|&k| !(k > 0.0 && k < 1.0)) {
+            return Err(format!(
+                "dataset 'knot'[{i}] = {}: must be in (0, 1)",
+                self.knot[i]
+            ));
+        }
+        let end = self.gamma_0 + (n - 1) as f64 * self.gamma_step;
+        if !(self.gamma_0 < gamma_hi && end >= gamma_hi - 1e-12 * gamma_hi.abs()) {
+            return Err(format!(
+                "the knot grid 'gamma_0' + i*'gamma_step' spans [{}, {end}] ({n} values of \
+                 'knot'): must start below and reach the patch's gamma_hi = {gamma_hi}",
+                self.gamma_0
+            ));
+        }
+        Ok(())
+    }
+
+    /// `c → c'`: the identity for `γ < gamma_0`; else `c_star·c/K` for `c ≤ K` and
+    /// `c_star + (1 − c_star)(c − K)/(1 − K)` above, with `K =` [`Warp::knot_at`]`(γ)`.
+    #[inline]
+    pub fn apply(&self, gamma: f64, c: f64) -> f64 {
+        if gamma < self.gamma_0 {
+            return c;
+        }
+        let k = self.knot_at(gamma);
+        if c <= k {
+            self.c_star * c / k
+        } else {
+            self.c_star + (1.0 - self.c_star) * (c - k) / (1.0 - k)
+        }
+    }
+
+    /// `c' → c`, the inverse of [`Warp::apply`] at the same γ (for laying out nodes at given
+    /// `c'`): the identity for `γ < gamma_0`; else `c'·K/c_star` for `c' ≤ c_star` and
+    /// `K + (c' − c_star)(1 − K)/(1 − c_star)` above.
+    #[inline]
+    pub fn invert(&self, gamma: f64, c_prime: f64) -> f64 {
+        if gamma < self.gamma_0 {
+            return c_prime;
+        }
+        let k = self.knot_at(gamma);
+        if c_prime <= self.c_star {
+            c_prime * k / self.c_star
+        } else {
+            k + (c_prime - self.c_star) * (1.0 - k) / (1.0 - self.c_star)
+        }
+    }
 }
 
 /// Start index and weights of the `k`-point Lagrange stencil at grid position `u` (in units of
@@ -492,7 +618,13 @@ impl Surface {
                     PatchKind::PartialSlip => partial_coord(gamma, alpha),
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
                 };
-                patch.interpolate(gamma, c.clamp(0.0, 1.0), self.stencil)
+                let c = c.clamp(0.0, 1.0);
+                // Step 5 of the rule: the warp of the coordinate, if the patch has one.
+                let c = match &patch.warp {
+                    Some(w) => w.apply(gamma, c),
+                    None => c,
+                };
+                patch.interpolate(gamma, c, self.stencil)
             }
             // A domain that touches γ = 1 only from one side: at γ = 1 exactly P = −1 on the
             // nonlinear part (α ≥ 2/7).
@@ -526,5 +658,97 @@ pub(crate) fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
     } else {
         let dm = alpha_max - c2;
         s / (dm / (dm + rho * c2))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn warp() -> Warp {
+        Warp {
+            gamma_0: 2.9,
+            gamma_step: 0.05,
+            c_star: 0.5,
+            knot: (0..13)
+                .map(|i| 0.35 + 0.2 * (i as f64 * 0.4).sin() * (i as f64 / 12.0))
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn the_knot_rule_reproduces_the_knot_values_at_the_grid_points() {
+        let w = warp();
+        for (i, &k) in w.knot.iter().enumerate() {
+            let g = w.gamma_0 + i as f64 * w.gamma_step;
+            assert!((w.knot_at(g) - k).abs() <= 1e-14, "knot {i}");
+        }
+        // Clamped outside the grid.
+        assert_eq!(w.knot_at(1.0), w.knot[0]);
+        assert_eq!(w.knot_at(100.0), w.knot[w.knot.len() - 1]);
+        // Between grid points: a cubic reproduces a cubic exactly.
+        let cubic =
+            |g: f64| 0.3 + 0.1 * (g - 3.0) - 0.2 * (g - 3.0).powi(2) + 0.3 * (g - 3.0).powi(3);
+        let wc = Warp {
+            knot: (0..13).map(|i| cubic(2.9 + 0.05 * i as f64)).collect(),
+            ..warp()
+        };
+        for j in 0..=96 {
+            let g = 2.9 + 0.6 * j as f64 / 96.0;
+            assert!((wc.knot_at(g) - cubic(g)).abs() <= 1e-13, "gamma {g}");
+        }
+    }
+
+    #[test]
+    fn apply_sends_the_knot_to_c_star_and_invert_undoes_it() {
+        let w = warp();
+        for j in 0..=200 {
+            let g = 2.5 + 1.0 * j as f64 / 200.0;
+            let k = w.knot_at(g);
+            if g >= w.gamma_0 {
+                assert!((w.apply(g, k) - w.c_star).abs() <= 1e-15, "gamma {g}");
+            }
+            assert_eq!(w.apply(g, 0.0), 0.0);
+            assert!((w.apply(g, 1.0) - 1.0).abs() <= 1e-15);
+            let mut prev = -1.0;
+            for i in 0..=100 {
+                let c = i as f64 / 100.0;
+                let cp = w.apply(g, c);
+                assert!(cp > prev && (0.0..=1.0).contains(&cp), "monotone in [0, 1]");
+                prev = cp;
+                assert!(
+                    (w.invert(g, cp) - c).abs() <= 1e-15,
+                    "invert(apply) at {g}, {c}"
+                );
+                assert!(
+                    (w.apply(g, w.invert(g, c)) - c).abs() <= 1e-15,
+                    "apply(invert)"
+                );
+            }
+        }
+        // Below gamma_0 the identity, bit for bit.
+        assert_eq!(w.apply(2.0, 0.123).to_bits(), 0.123f64.to_bits());
+        assert_eq!(w.invert(2.0, 0.123).to_bits(), 0.123f64.to_bits());
+    }
+
+    #[test]
+    fn a_warp_with_all_knots_at_c_star_is_the_identity() {
+        for c_star in [0.25, 0.5, 0.75] {
+            let w = Warp {
+                gamma_0: 1.0,
+                gamma_step: 0.5,
+                c_star,
+                knot: vec![c_star; 6],
+            };
+            for j in 0..=50 {
+                let g = 0.9 + 2.7 * j as f64 / 50.0;
+                assert!((w.knot_at(g) - c_star).abs() <= 1e-15, "gamma {g}");
+                for i in 0..=64 {
+                    let c = i as f64 / 64.0;
+                    assert!((w.apply(g, c) - c).abs() <= 1e-15, "({g}, {c})");
+                    assert!((w.invert(g, c) - c).abs() <= 1e-15, "({g}, {c})");
+                }
+            }
+        }
     }
 }

@@ -79,7 +79,7 @@ pub struct Domain {
 #[serde(deny_unknown_fields)]
 pub struct Nodes {
     /// Placement: "aligned" (patches bounded by α_c1, α_c2, α_max and γ = 1; the only placement
-    /// of schema v2).
+    /// of schemas v2 and v3).
     #[serde(default = "default_placement")]
     pub placement: String,
     /// Lagrange stencil points per axis: 4 (cubic) or 6 (quintic).
