@@ -7,13 +7,14 @@ use anyhow::{Context, Result};
 use clap::Args;
 
 use oblique::accuracy::{self, Settings};
+use oblique::plot::{Figure, Legend, Panel, Series, Style};
 use oblique::storage::{provenance, write_table};
 use oblique::sweep::{self, Config, Silent};
 
 #[derive(Args)]
 pub struct AccuracyArgs {
     /// Output directory (created if missing) for accuracy.csv, accuracy.png, presets.csv,
-    /// reach.csv and, with --tables, tables.csv.
+    /// reach.csv and, with --tables, tables.csv and tables.png.
     #[arg(long, short, default_value = "accuracy-out")]
     out: PathBuf,
     /// Smaller ladders and a coarser reference (seconds; for a quick look, not for publishing).
@@ -274,6 +275,70 @@ fn tables(args: &AccuracyArgs) -> Result<()> {
         ));
     }
     std::fs::write(args.out.join("tables.csv"), csv).context("cannot write tables.csv")?;
-    eprintln!("wrote {}/tables.csv", args.out.display());
+    oblique::plot::render_log_log(&tables_figure(&rows), &args.out.join("tables.png"))?;
+    eprintln!("wrote {0}/tables.csv, {0}/tables.png", args.out.display());
     Ok(())
+}
+
+/// The table-level trade as a picture: held-out error (max and rms) against build CPU time,
+/// one colour per domain; full.toml and its denser variant are joined (the same domain).
+fn tables_figure(rows: &[TableRow]) -> Figure {
+    const COLORS: [(u8, u8, u8); 3] = [(31, 119, 180), (214, 39, 40), (44, 160, 44)];
+    let cost = |r: &TableRow| r.cpu_s.unwrap_or(r.wall_s);
+    let mut max_series = Vec::new();
+    let mut rms_series = Vec::new();
+    for (i, domain) in ["quick", "isotropic", "full"].iter().enumerate() {
+        let members: Vec<&TableRow> = rows
+            .iter()
+            .filter(|r| r.name.split('-').next() == Some(domain))
+            .collect();
+        if members.is_empty() {
+            continue;
+        }
+        let label = members
+            .iter()
+            .map(|r| format!("{} ({:e}/{:e})", r.name, r.target_error, r.tol))
+            .collect::<Vec<_>>()
+            .join(", ");
+        for (series, value) in [
+            (
+                &mut max_series,
+                (|r: &TableRow| r.max_error) as fn(&TableRow) -> f64,
+            ),
+            (&mut rms_series, |r: &TableRow| r.rms_error),
+        ] {
+            series.push(Series {
+                label: label.clone(),
+                points: members.iter().map(|r| (cost(r), value(r))).collect(),
+                style: Style::LineMarkers,
+                color: COLORS[i],
+                sets_range: true,
+            });
+        }
+    }
+    Figure {
+        title: "Table error against build cost".into(),
+        subtitle: "held-out checks of each table; label: config (target_error/solver.tol)".into(),
+        x_label: "build CPU time, all threads (s)".into(),
+        panels: vec![
+            Panel {
+                y_label: "max |P_table − P_check|".into(),
+                series: max_series,
+                legend: Legend::UpperRight,
+                ..Panel::default()
+            },
+            Panel {
+                y_label: "rms |P_table − P_check|".into(),
+                series: rms_series,
+                legend: Legend::UpperRight,
+                ..Panel::default()
+            },
+        ],
+        caption: vec![
+            format!("command: {}", command_line()),
+            "checks: simulated at solver.tol/10, never used for interpolation (docs/table-format.md)"
+                .into(),
+        ],
+        size: (1000, 800),
+    }
 }

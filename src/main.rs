@@ -204,10 +204,16 @@ fn parse_gamma_max(s: &str) -> Result<f64, String> {
 }
 
 fn parse_range(s: &str, name: &str, min: usize, max: usize) -> Result<usize, String> {
-    match s.trim().parse::<usize>() {
-        Ok(v) if (min..=max).contains(&v) => Ok(v),
-        _ => Err(format!("{name} must be an integer from {min} to {max}")),
-    }
+    parse_integer(s, min, Some(max))
+        .ok_or_else(|| format!("{name} must be an integer from {min} to {max}"))
+}
+
+/// An integer `>= min` (and `<= max` if given), or `None`.
+fn parse_integer(s: &str, min: usize, max: Option<usize>) -> Option<usize> {
+    s.trim()
+        .parse::<usize>()
+        .ok()
+        .filter(|&v| v >= min && max.map_or(true, |m| v <= m))
 }
 
 fn parse_points(s: &str) -> Result<usize, String> {
@@ -350,10 +356,7 @@ fn parse_preset(s: &str) -> Result<Preset, String> {
 }
 
 fn parse_count(s: &str, name: &str, min: usize) -> Result<usize, String> {
-    match s.trim().parse::<usize>() {
-        Ok(v) if v >= min => Ok(v),
-        _ => Err(format!("{name} must be an integer >= {min}")),
-    }
+    parse_integer(s, min, None).ok_or_else(|| format!("{name} must be an integer >= {min}"))
 }
 
 fn parse_springs(s: &str) -> Result<usize, String> {

@@ -470,7 +470,12 @@ impl ContinuumRow {
         }
         let ch = &mut self.chunks[k];
         std::mem::swap(&mut ch.pieces, &mut pieces);
-        self.spare = pieces;
+        // Keep whichever buffer has room as the scratch of the next update: the chunk's old
+        // vector was often taken (left empty, without capacity), and dropping the spare instead
+        // made every chunk update allocate anew.
+        if pieces.capacity() > self.spare.capacity() {
+            self.spare = pieces;
+        }
         ch.summarize();
         if ch.pieces.is_empty() {
             self.chunks.remove(k);

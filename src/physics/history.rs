@@ -13,7 +13,8 @@
 use super::error::PhysicsError;
 use super::hertz::NormalTrajectory;
 use super::impact::{
-    check_alpha, check_gamma, dimensionless_normal, run_contact, TangentialBodies, ALPHA_NO_SLIP,
+    check_alpha, check_gamma, dimensionless_normal, mean_sqrt, run_contact, ContactPoint,
+    TangentialBodies, ALPHA_NO_SLIP,
 };
 
 /// Direction of the friction force during a gross-slip episode.
@@ -57,23 +58,21 @@ pub const SLIP_THRESHOLD: f64 = 1e-6;
 /// The contact point of [`crate::physics::impact::simulate`], recording the mean friction force
 /// of every step.
 struct Recorder {
-    u: f64,
+    point: ContactPoint,
     t: f64,
     /// `(start time, length, mean friction force)` of every step.
     log: Vec<(f64, f64, f64)>,
 }
 
-const INV_TANGENTIAL_MASS: f64 = 3.5;
-
 impl TangentialBodies for Recorder {
     fn slip_velocity(&self) -> f64 {
-        self.u
+        self.point.slip_velocity()
     }
     fn slip_acceleration(&self, f: f64) -> f64 {
-        -f * INV_TANGENTIAL_MASS
+        self.point.slip_acceleration(f)
     }
     fn kick(&mut self, h: f64, f: f64) {
-        self.u -= h * f * INV_TANGENTIAL_MASS;
+        self.point.kick(h, f);
         self.log.push((self.t, h, f));
         self.t += h;
     }
@@ -112,7 +111,7 @@ pub fn slip_history(gamma: f64, alpha: f64, steps: usize) -> Result<SlipHistory,
     let shear = 2.0 / 7.0 * gamma * gamma;
     let nt = dimensionless_normal(steps);
     let mut rec = Recorder {
-        u: 1.0,
+        point: ContactPoint { u: 1.0 },
         t: 0.0,
         log: Vec::with_capacity(steps + steps / 8),
     };
@@ -121,13 +120,13 @@ pub fn slip_history(gamma: f64, alpha: f64, steps: usize) -> Result<SlipHistory,
     for &(t, h, f) in &rec.log {
         // The Coulomb limit of the step's mean force, by the product rule the stepper uses for
         // the impulse: μ F_N = (4/3) μ √d · d, averaged as mean(√d) · (d₀ + d₁)/2.
-        let (d0, d1) = (indentation_at(&nt, t), indentation_at(&nt, t + h));
-        let (r0, r1) = (d0.max(0.0).sqrt(), d1.max(0.0).sqrt());
-        if r0 + r1 <= 0.0 || (r0 + r1).is_nan() {
+        let d0 = indentation_at(&nt, t).max(0.0);
+        let d1 = indentation_at(&nt, t + h).max(0.0);
+        let root_mean = mean_sqrt(d0, d1);
+        if root_mean <= 0.0 {
             continue;
         }
-        let mean_sqrt = 2.0 / 3.0 * (r0 * r0 + r0 * r1 + r1 * r1) / (r0 + r1);
-        let limit = alpha * 2.0 / 3.0 * mean_sqrt * (d0.max(0.0) + d1.max(0.0));
+        let limit = alpha * 2.0 / 3.0 * root_mean * (d0 + d1);
         let q = f / limit;
         let t = t + 0.5 * h;
         let sign = if q >= 1.0 - SLIP_THRESHOLD {
@@ -147,7 +146,10 @@ pub fn slip_history(gamma: f64, alpha: f64, steps: usize) -> Result<SlipHistory,
             }),
         }
     }
-    Ok(SlipHistory { episodes, p: rec.u })
+    Ok(SlipHistory {
+        episodes,
+        p: rec.point.u,
+    })
 }
 
 impl SlipHistory {

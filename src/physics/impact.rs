@@ -131,8 +131,9 @@ pub trait TangentialBodies {
 }
 
 /// The contact-point coordinate of one solid sphere in dimensionless units (`m_t = 2/7`).
-struct ContactPoint {
-    u: f64,
+pub(crate) struct ContactPoint {
+    /// Slip velocity `u` (`u0 = 1` at the start).
+    pub(crate) u: f64,
 }
 
 const INV_TANGENTIAL_MASS: f64 = 3.5;
@@ -366,7 +367,7 @@ fn separation_mean(m0: f64, cd0: f64) -> f64 {
 }
 
 /// Mean of `√d(t)` over a step on which `d` goes linearly from `d0` to `d1` (both ≥ 0).
-fn mean_sqrt(d0: f64, d1: f64) -> f64 {
+pub(crate) fn mean_sqrt(d0: f64, d1: f64) -> f64 {
     let (r0, r1) = (d0.sqrt(), d1.sqrt());
     // (2/3)(d1^{3/2} − d0^{3/2})/(d1 − d0), written without the cancelling difference.
     let s = r0 + r1;
