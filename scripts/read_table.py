@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Reference reader of the P(gamma, alpha) table (HDF5, schema v2), h5py + numpy only.
+"""Reference reader of the P(gamma, alpha) table (HDF5, schema v3 or v2), h5py + numpy only.
 
-Implements the interpolation rule of docs/table-format.md (steps 1-8) exactly, independently of
+Implements the interpolation rule of docs/table-format.md (steps 1-9) exactly, independently of
 the Rust code, so that it can cross-check both the `oblique-lookup` crate and the simulator.
 
     python3 scripts/read_table.py TABLE --gamma G --alpha A        # prints P (alpha may be inf)
@@ -35,13 +35,14 @@ except ImportError as e:  # pragma: no cover - depends on the machine
     sys.exit(2)
 
 FORMAT_NAME = "oblique-P-table"
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
+SCHEMA_VERSIONS = (2, 3)  # v2: v3 without the optional warp
 PATCH_NAMES = ("stick_low", "partial_high", "stick_high")
 PATCH_KINDS = {"stick_low": "stick", "partial_high": "partial-slip", "stick_high": "stick"}
 
 
 class TableError(Exception):
-    """The file is not a readable P table of schema v2."""
+    """The file is not a readable P table of schema v2 or v3."""
 
 
 class DomainError(ValueError):
@@ -99,7 +100,7 @@ def alpha_at(kind, gamma, c, alpha_max):
 
 
 def lagrange(u, n, k):
-    """Step 7: start index and the k Lagrange weights at grid position u on nodes 0..n."""
+    """Step 8: start index and the k Lagrange weights at grid position u on nodes 0..n."""
     cell = min(int(math.floor(u)), n - 1)
     start = min(max(cell + 1 - k // 2, 0), n + 1 - k)
     w = []
@@ -136,11 +137,41 @@ def _float_attr(attrs, name):
     return float(v.reshape(()))
 
 
+class Warp:
+    """The optional warp of the partial-slip coordinate (group /patches/partial_high/warp)."""
+
+    def __init__(self, start, gamma_0, gamma_step, c_star, knot):
+        self.start = start  # lattice position along gamma (root rows) where the warp starts
+        self.gamma_0 = gamma_0
+        self.gamma_step = gamma_step
+        self.c_star = c_star
+        self.knot = [float(k) for k in knot]
+
+    def knot_at(self, gamma):
+        """K(gamma): 4-point Lagrange rule (step 8) on the knot values at
+        u = (gamma - gamma_0)/gamma_step clamped to [0, n - 1]."""
+        n = len(self.knot)
+        u = min(max((gamma - self.gamma_0) / self.gamma_step, 0.0), float(n - 1))
+        start, w = lagrange(u, n - 1, 4)
+        total = 0.0
+        for j in range(4):
+            total += w[j] * self.knot[start + j]
+        return total
+
+    def apply(self, gamma, c):
+        """Step 5: c -> c' (for a point at or beyond `start`): graded below the knot K,
+        linear above it."""
+        k = self.knot_at(gamma)
+        if c <= k:
+            return self.c_star * (1.0 - math.sqrt(max(1.0 - c / k, 0.0)))
+        return self.c_star + (1.0 - self.c_star) * (c - k) / (1.0 - k)
+
+
 class Patch:
     """One patch held in memory: root cells, quadtree and node values."""
 
     def __init__(self, name, kind, gamma_lo, gamma_hi, blocks_gamma, blocks_coord,
-                 leaf_intervals, tree, p):
+                 leaf_intervals, tree, p, warp=None):
         self.name = name
         self.kind = kind
         self.gamma_lo = gamma_lo
@@ -150,9 +181,10 @@ class Patch:
         self.leaf_intervals = leaf_intervals
         self.tree = tree  # int list [cells]
         self.p = p  # float64 [leaves, m+1, m+1]
+        self.warp = warp  # Warp or None
 
     def find_leaf(self, x, c):
-        """Steps 5 and 6: leaf number and position (fx, fc) inside it, for x, c in [0, 1]."""
+        """Steps 6 and 7: leaf number and position (fx, fc) inside it, for x, c in [0, 1]."""
         bg, bc = self.blocks_gamma, self.blocks_coord
         a = min(int(math.floor(x * bg)), bg - 1)
         fx = x * bg - a
@@ -167,9 +199,12 @@ class Patch:
         return -self.tree[i] - 1, fx, fc
 
     def interpolate(self, gamma, c, k):
-        """Steps 4 (x, with c given) to 8."""
+        """Steps 4 (x, with c given) to 9."""
         x = _clamp01((gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo))
-        leaf, fx, fc = self.find_leaf(x, _clamp01(c))
+        c = _clamp01(c)
+        if self.warp is not None and x * self.blocks_gamma >= self.warp.start:
+            c = self.warp.apply(gamma, c)
+        leaf, fx, fc = self.find_leaf(x, c)
         m = self.leaf_intervals
         sg, wg = lagrange(fx * m, m, k)
         sc, wc = lagrange(fc * m, m, k)
@@ -228,7 +263,7 @@ def check_seal(path):
 
 
 class Table:
-    """A P(gamma, alpha) table of schema v2, loaded into memory (no HDF5 call per query)."""
+    """A P(gamma, alpha) table of schema v2 or v3, loaded into memory (no HDF5 call per query)."""
 
     def __init__(self, path):
         self.path = str(path)
@@ -258,9 +293,11 @@ class Table:
             version = _float_attr(f.attrs, "schema_version")
         except (KeyError, TypeError):
             raise self._invalid("missing or non-numeric attribute 'schema_version'") from None
-        if version != SCHEMA_VERSION:
+        if version not in SCHEMA_VERSIONS:
             raise self._invalid(
-                f"schema version {version:g}, this reader understands {SCHEMA_VERSION}")
+                f"schema version {version:g}, this reader understands "
+                f"{SCHEMA_VERSIONS[0]} to {SCHEMA_VERSIONS[-1]}")
+        self.schema_version = int(version)
 
         def num(attrs, name, where="root"):
             try:
@@ -341,7 +378,66 @@ class Table:
         p = d[()].astype(np.float64)
         if not np.all(np.isfinite(p)):
             raise self._invalid(f"{where}: non-finite value in 'P'")
-        return Patch(name, kind, lo, hi, bg, bc, m, tree, p)
+        warp = self._warp(g, name, lo, hi, bg, bc, tree, num) if "warp" in g else None
+        return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp)
+
+    def _warp(self, g, name, gamma_lo, gamma_hi, bg, bc, tree, num):
+        """The optional warp group of a patch, validated as docs/table-format.md states."""
+        where = f"'{name}/warp'"
+        if name != "partial_high":
+            raise self._invalid(
+                f"patch '{name}' has a group 'warp': only 'partial_high' may have one")
+        if self.schema_version < 3:
+            raise self._invalid(
+                f"group {where} in a schema-{self.schema_version} file: a warp needs schema "
+                "version 3")
+        w = g["warp"]
+        if not isinstance(w, h5py.Group):
+            raise self._invalid(f"{where} is not a group")
+
+        def attr(a, allowed, ok):
+            v = num(w.attrs, a, where)
+            if not (math.isfinite(v) and ok(v)):
+                raise self._invalid(f"{where}: attribute '{a}' = {v}: must be {allowed}")
+            return v
+
+        start = attr("start", f"in (0, {bg}) (root rows of the patch) and a multiple of 2^-20",
+                     lambda v: 0 < v < bg and (v * 1048576.0).is_integer())
+        gamma_0 = attr("gamma_0", "finite", lambda v: True)
+        gamma_step = attr("gamma_step", "finite and > 0", lambda v: v > 0)
+        c_star = attr("c_star", "in (0, 1)", lambda v: 0 < v < 1)
+        if "knot" not in w or not isinstance(w["knot"], h5py.Dataset) \
+                or w["knot"].ndim != 1 or w["knot"].dtype.kind != "f":
+            raise self._invalid(f"{where}: dataset 'knot' missing or not a 1-D float64 array")
+        knot = w["knot"][()].astype(np.float64)
+        if len(knot) < 4:
+            raise self._invalid(
+                f"{where}: dataset 'knot' has {len(knot)} values: must have at least 4")
+        for i, k in enumerate(knot):
+            if not 0 < k < 1:
+                raise self._invalid(f"{where}: dataset 'knot'[{i}] = {k}: must be in (0, 1)")
+        first = gamma_lo + (gamma_hi - gamma_lo) * start / bg
+        end = gamma_0 + (len(knot) - 1) * gamma_step
+        slack = 1e-12 * abs(gamma_hi)
+        if not (gamma_0 <= first + slack and end >= gamma_hi - slack):
+            raise self._invalid(
+                f"{where}: the knot grid 'gamma_0' + i*'gamma_step' spans [{gamma_0}, {end}] "
+                f"({len(knot)} values of 'knot'): must cover the warped gamma range "
+                f"[{first}, {gamma_hi}]")
+        # No leaf may straddle `start`: every leaf's rows [a/2^d, (a+1)/2^d] lie on one side.
+        stack = [(i, 0, i // bc) for i in range(bg * bc)]
+        while stack:
+            cell, d, a = stack.pop()
+            t = tree[cell]
+            if t < 0:
+                lo_row, hi_row = a / 2.0 ** d, (a + 1) / 2.0 ** d
+                if lo_row < start < hi_row:
+                    raise self._invalid(
+                        f"{where}: leaf {-t - 1} spans root rows [{lo_row}, {hi_row}] across "
+                        f"attribute 'start' = {start}: no leaf may straddle it")
+                continue
+            stack.extend((t + q, d + 1, 2 * a + q // 2) for q in range(4))
+        return Warp(start, gamma_0, gamma_step, c_star, knot)
 
     def region(self, gamma, alpha):
         """Patch name of a query (steps 1 and 3), or 'line' for the exact full-slip line."""
@@ -352,7 +448,7 @@ class Table:
         return "partial_high" if alpha < alpha_c2(gamma) else "stick_high"
 
     def p(self, gamma, alpha):
-        """P(gamma, alpha) by steps 1-8. Raises DomainError outside the answered domain."""
+        """P(gamma, alpha) by steps 1-9. Raises DomainError outside the answered domain."""
         gamma = float(gamma)
         alpha = float(alpha)
         if not (math.isfinite(gamma) and gamma > 0):
@@ -375,7 +471,7 @@ class Table:
         patch = self.patches.get(name)
         if patch is None:
             return -1.0
-        # 4-8.
+        # 4-9 (the warp of step 5 in Patch.interpolate).
         c = coordinate(patch.kind, gamma, alpha, self.alpha_max)
         return patch.interpolate(gamma, c, self.stencil)
 

@@ -740,7 +740,7 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
 }
 
 /// Outline of every leaf of a patch in `(γ, α/(1+α))`: bottom, right, top and left edge, the
-/// edges of constant patch coordinate `c` (curves in this plane) sampled at 64 points per patch
+/// edges of constant patch coordinate `c` (`c'` of a warp; curves in this plane) sampled at 64 points per patch
 /// width, at least 5 per leaf.
 pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
     let roots = patch.blocks_gamma * patch.blocks_coord;
@@ -756,10 +756,16 @@ pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
         .collect();
     let mut out = Vec::new();
     let gamma = |x: f64| patch.gamma_lo + (patch.gamma_hi - patch.gamma_lo) * x;
-    let point = |x: f64, c: f64| {
+    // The quadtree is over the warped c' from the warp's start on (schema 3).
+    let point = |x: f64, c: f64, warped: bool| {
         let g = gamma(x);
+        let c = match &patch.warp {
+            Some(w) if warped => w.invert(g, c),
+            _ => c,
+        };
         (g, compact(patch.kind.alpha(g, c, alpha_max)))
     };
+    let bg = patch.blocks_gamma as f64;
     while let Some((cell, x0, c0, hx, hc)) = stack.pop() {
         let Some(&t) = patch.tree.get(cell) else {
             continue;
@@ -779,10 +785,15 @@ pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
             }
             continue;
         }
+        // The leaf's first row in root-row units (exact up to the rounding of 1/blocks).
+        let warped = patch
+            .warp
+            .as_ref()
+            .is_some_and(|w| x0 * bg >= w.start - 1e-9);
         let xs = linspace(x0, x0 + hx, ((64.0 * hx).ceil() as usize).max(4) + 1);
-        let mut line: Vec<(f64, f64)> = xs.iter().map(|&x| point(x, c0)).collect();
-        line.extend(xs.iter().rev().map(|&x| point(x, c0 + hc)));
-        line.push(point(x0, c0));
+        let mut line: Vec<(f64, f64)> = xs.iter().map(|&x| point(x, c0, warped)).collect();
+        line.extend(xs.iter().rev().map(|&x| point(x, c0 + hc, warped)));
+        line.push(point(x0, c0, warped));
         out.push(line);
     }
     out

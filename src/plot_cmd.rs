@@ -43,7 +43,7 @@ impl From<FigureArg> for FigureKind {
 
 #[derive(Args)]
 pub struct PlotArgs {
-    /// Table file written by `sweep run` (HDF5, schema v2).
+    /// Table file written by `sweep run` (HDF5, schema v2 or v3).
     table: PathBuf,
     /// Output folder (created if missing).
     #[arg(short, long, default_value = ".")]

@@ -15,7 +15,7 @@ const CHUNK_LINES: usize = 1 << 16;
 
 #[derive(Args)]
 pub struct QueryArgs {
-    /// Table file written by `sweep run` (HDF5, schema v2).
+    /// Table file written by `sweep run` (HDF5, schema v2 or v3).
     table: PathBuf,
     /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
     #[arg(long, value_parser = crate::parse_gamma, allow_hyphen_values = true,

@@ -1,4 +1,4 @@
-//! The storage layer: writes a built table as HDF5 (schema v2, `docs/table-format.md`), atomically
+//! The storage layer: writes a built table as HDF5 (schema v3, `docs/table-format.md`), atomically
 //! (temporary file in the same directory, then rename). Names come from `oblique_lookup::format`,
 //! which owns the format; the lookup crate reads what this writes.
 
@@ -226,6 +226,26 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.ds(&g, DS_ALPHA, &bp.alpha, &n)?;
         w.ds(&g, DS_P, &p.p, &n)?;
         w.ds(&g, DS_ERROR, &p.error_estimate, &n)?;
+        // The optional warp of the coordinate (schema 3; only `partial_high` has one).
+        if let Some(warp) = &p.warp {
+            // Never write a warp the readers refuse.
+            let refuse = |m: String| StorageError::Hdf5 {
+                path: path.to_string(),
+                message: format!("patch '{}': {GROUP_WARP}: {m}", bp.name),
+            };
+            if bp.name != PATCH_PARTIAL_HIGH {
+                return Err(refuse(format!("only '{PATCH_PARTIAL_HIGH}' may have one")));
+            }
+            p.check_warp().map_err(refuse)?;
+            let wg = g
+                .create_group(GROUP_WARP)
+                .map_err(w.e(&format!("{}/{GROUP_WARP}", bp.name)))?;
+            w.attr_f64(&wg, ATTR_WARP_START, warp.start)?;
+            w.attr_f64(&wg, ATTR_WARP_GAMMA_0, warp.gamma_0)?;
+            w.attr_f64(&wg, ATTR_WARP_GAMMA_STEP, warp.gamma_step)?;
+            w.attr_f64(&wg, ATTR_WARP_C_STAR, warp.c_star)?;
+            w.ds(&wg, DS_WARP_KNOT, &warp.knot, &[warp.knot.len()])?;
+        }
     }
 
     // No-slip limit: the nodes at c = 1 of the stick patches (when α_max = ∞), by γ.

@@ -1,4 +1,4 @@
-//! Tests of the HDF5 table (schema v2) against its specification, `docs/table-format.md`:
+//! Tests of the HDF5 table (schema v3) against its specification, `docs/table-format.md`:
 //! the file layout (names, types, shapes) as documented, `oblique_lookup::Table` reproducing the
 //! held-out checks and the exact full-slip line, atomic writes under SIGKILL, unwritable outputs,
 //! thread-count independence, `sweep inspect --json`, and refusal of bad files.
@@ -202,6 +202,20 @@ const PATCH_DATASETS: &[(&str, Ty, PatchShape)] = &[
     ("leaf_depth", Ty::I32, PatchShape::Leaves),
     ("leaf_predicted_error", Ty::F64, PatchShape::Leaves),
 ];
+
+/// The optional sub-group of `partial_high` (schema 3): the warp of the coordinate.
+const WARP_GROUP: &str = "warp";
+/// Patches that may have a warp group.
+const WARP_PATCHES: &[&str] = &["partial_high"];
+/// Attributes of the warp group.
+const WARP_ATTRS: &[(&str, Ty)] = &[
+    ("start", Ty::F64),
+    ("gamma_0", Ty::F64),
+    ("gamma_step", Ty::F64),
+    ("c_star", Ty::F64),
+];
+/// Datasets of the warp group (1-D).
+const WARP_DATASETS: &[(&str, Ty)] = &[("knot", Ty::F64)];
 
 /// Datasets of the other groups; all of one group share one length (`None`: any, `Some(n)`: n).
 const OTHER_DATASETS: &[(&str, Ty, Option<usize>)] = &[
@@ -464,6 +478,9 @@ fn a_documented_names_match_the_explicit_lists() {
         .chain(PATCH_ATTRS.iter().map(|x| x.0))
         .chain(PATCH_DATASETS.iter().map(|x| x.0))
         .chain(OTHER_DATASETS.iter().map(|x| x.0))
+        .chain([WARP_GROUP])
+        .chain(WARP_ATTRS.iter().map(|x| x.0))
+        .chain(WARP_DATASETS.iter().map(|x| x.0))
         .map(String::from)
         .collect();
     for name in &explicit {
@@ -485,6 +502,8 @@ fn a_documented_names_match_the_explicit_lists() {
     assert!(doc.contains("| `tree` | dataset | int32 `[cells]`"));
     assert!(doc.contains("| `leaf_depth` | dataset | int32 `[leaves]`"));
     assert!(doc.contains("| `/checks/patch` | int32 `[K]`"));
+    assert!(doc.contains("| `warp` | group | optional |"));
+    assert!(doc.contains("| `knot` | dataset | float64 `[n]`"));
 }
 
 #[test]
@@ -508,7 +527,7 @@ fn check_layout(path: &Path, ex: &Expect) {
         "root attributes differ from the documented ones"
     );
     assert_eq!(attr_str(&f, "format"), "oblique-P-table");
-    assert_eq!(attr_f64(&f, "schema_version"), 2.0);
+    assert_eq!(attr_f64(&f, "schema_version"), 3.0);
     assert_eq!(attr_f64(&f, "stencil_points"), 4.0);
     assert_eq!(attr_f64(&f, "gamma_min"), gamma_min);
     assert_eq!(attr_f64(&f, "gamma_max"), gamma_max);
@@ -563,9 +582,15 @@ fn check_layout(path: &Path, ex: &Expect) {
             set(PATCH_ATTRS.iter().map(|x| x.0)),
             "{pname}: attributes differ from the documented ones"
         );
+        // The optional warp group: only where documented, with exactly the documented names.
+        let warp = check_warp(&g, pname);
+        let mut members: Vec<&str> = PATCH_DATASETS.iter().map(|x| x.0).collect();
+        if warp.is_some() {
+            members.push(WARP_GROUP);
+        }
         assert_eq!(
             set(g.member_names().unwrap()),
-            set(PATCH_DATASETS.iter().map(|x| x.0)),
+            set(members),
             "{pname}: datasets differ from the documented ones"
         );
         assert_eq!(attr_str(&g, "kind"), kind, "{pname}: kind");
@@ -671,6 +696,8 @@ fn check_layout(path: &Path, ex: &Expect) {
                     } else {
                         assert!(alpha[idx].is_finite(), "{pname}: node {idx} alpha");
                         let c = pk.coord(gam[idx], alpha[idx], alpha_max);
+                        // `coord` stores the warped c' where the patch has a warp.
+                        let c = warp.as_ref().map_or(c, |w| w.apply(gam[idx], c));
                         assert!(
                             (c - coord[idx]).abs() <= 1e-9,
                             "{pname}: node {idx}: alpha {} has coordinate {c}, stored {}",
@@ -823,6 +850,59 @@ fn check_layout(path: &Path, ex: &Expect) {
         let want = PATCHES.iter().position(|x| x.0 == name).unwrap() as i32;
         assert!(patch.contains(&want), "no check in patch {name} ({want})");
     }
+}
+
+/// The warp group of patch `pname` as documented (`None` when absent): only in the documented
+/// patches, exactly the documented attributes and datasets with their types, valid values.
+fn check_warp(g: &hdf5::Group, pname: &str) -> Option<oblique_lookup::Warp> {
+    if !g.link_exists(WARP_GROUP) {
+        return None;
+    }
+    assert!(
+        WARP_PATCHES.contains(&pname),
+        "{pname} has a warp group: documented only for {WARP_PATCHES:?}"
+    );
+    let w = g.group(WARP_GROUP).expect("warp is a group");
+    for &(name, ty) in WARP_ATTRS {
+        check_attr(&w, name, ty);
+    }
+    assert_eq!(
+        set(w.attr_names().unwrap()),
+        set(WARP_ATTRS.iter().map(|x| x.0)),
+        "{pname}/warp: attributes differ from the documented ones"
+    );
+    assert_eq!(
+        set(w.member_names().unwrap()),
+        set(WARP_DATASETS.iter().map(|x| x.0)),
+        "{pname}/warp: datasets differ from the documented ones"
+    );
+    let knot = f64s(&w, "knot");
+    for &(name, ty) in WARP_DATASETS {
+        check_dataset(&w, name, ty, &[knot.len()]);
+    }
+    let warp = oblique_lookup::Warp {
+        start: attr_f64(&w, "start"),
+        gamma_0: attr_f64(&w, "gamma_0"),
+        gamma_step: attr_f64(&w, "gamma_step"),
+        c_star: attr_f64(&w, "c_star"),
+        knot,
+    };
+    let (lo, hi) = (attr_f64(g, "gamma_lo"), attr_f64(g, "gamma_hi"));
+    let bg = count_attr(g, "blocks_gamma") as f64;
+    let end = warp.gamma_0 + (warp.knot.len() - 1) as f64 * warp.gamma_step;
+    assert!(warp.gamma_step > 0.0 && warp.c_star > 0.0 && warp.c_star < 1.0);
+    assert!(warp.knot.len() >= 4 && warp.knot.iter().all(|&k| k > 0.0 && k < 1.0));
+    assert!(
+        warp.start > 0.0 && warp.start < bg && (warp.start * 1048576.0).fract() == 0.0,
+        "{pname}/warp: start {}",
+        warp.start
+    );
+    let first = lo + (hi - lo) * warp.start / bg;
+    assert!(
+        warp.gamma_0 <= first + 1e-12 * hi && end >= hi - 1e-12 * hi,
+        "{pname}/warp: grid"
+    );
+    Some(warp)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1255,7 +1335,7 @@ fn e_inspect_json_reports_the_files_node_counts() {
         v["checks"]["max_interpolation_error"].as_f64(),
         Some(err.iter().copied().fold(0.0, f64::max))
     );
-    assert_eq!(v["schema_version"].as_u64(), Some(2));
+    assert_eq!(v["schema_version"].as_u64(), Some(3));
     assert_eq!(v["stencil_points"].as_u64(), Some(4));
     assert_eq!(v["alpha_max"].as_str(), Some("inf"));
     assert_eq!(v["gamma_min"].as_f64(), Some(GAMMA_MIN));
@@ -1374,7 +1454,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
     oblique::storage::seal(&wrong_format).unwrap();
     refused(&wrong_format, &["not a p table"]);
 
-    for (name, version) in [("schema1.h5", 1.0), ("schema3.h5", 3.0)] {
+    for (name, version) in [("schema1.h5", 1.0), ("schema4.h5", 4.0)] {
         let other = dir.join(name);
         std::fs::copy(&fx.table, &other).unwrap();
         {
@@ -1405,4 +1485,151 @@ fn f_bad_files_are_refused_with_clear_messages() {
         oblique::storage::seal(&bad).unwrap();
         refused(&bad, &["tree"]);
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// (g) the optional warp (schema 3) through the writer
+
+/// The fixture table as the writer's input (`Built`), read back from its file, with a warp on
+/// `partial_high`: the node α values are moved so that the stored `coord` is the warped c' of
+/// each node, as the sweep lays them out.
+fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique::sweep::Built {
+    let t = Table::open(path).expect("open the fixture");
+    let f = open(path);
+    let patches = f.group("patches").unwrap();
+    let mut surface = t.surface.clone();
+    surface.partial_high.as_mut().expect("partial_high").warp = Some(warp.clone());
+    let mut built_patches = Vec::new();
+    for (name, patch) in [
+        ("stick_low", &surface.stick_low),
+        ("partial_high", &surface.partial_high),
+        ("stick_high", &surface.stick_high),
+    ] {
+        let Some(patch) = patch else { continue };
+        let g = patches.group(name).unwrap();
+        let (gamma, coord) = (f64s(&g, "gamma"), f64s(&g, "coord"));
+        let alpha = if patch.warp.is_some() {
+            gamma
+                .iter()
+                .zip(&coord)
+                .map(|(&gm, &c)| {
+                    if gm == 1.0 {
+                        2.0 / 7.0
+                    } else {
+                        patch.kind.alpha(gm, warp.invert(gm, c), surface.alpha_max)
+                    }
+                })
+                .collect()
+        } else {
+            f64s(&g, "alpha")
+        };
+        let leaf_depth: Vec<i32> = ints(&g, "leaf_depth");
+        built_patches.push(oblique::sweep::BuiltPatch {
+            name: match name {
+                "stick_low" => "stick_low",
+                "partial_high" => "partial_high",
+                _ => "stick_high",
+            },
+            patch: patch.clone(),
+            gamma,
+            coord,
+            alpha,
+            leaf_error: f64s(&g, "leaf_predicted_error"),
+            leaf_depth: leaf_depth.iter().map(|&d| d as u32).collect(),
+            unique_nodes: 0,
+            simulated: 0,
+        });
+    }
+    oblique::sweep::Built {
+        surface,
+        patches: built_patches,
+        checks: t.checks.clone(),
+    }
+}
+
+#[test]
+fn g_a_table_with_a_warp_round_trips_through_the_writer() {
+    let fx = fixture();
+    // partial_high of the fixture spans γ ∈ [1, 1.6] in two root rows: the warp applies from
+    // the second (γ = 1.3).
+    let warp = oblique_lookup::Warp {
+        start: 1.0,
+        gamma_0: 1.2,
+        gamma_step: 0.1,
+        c_star: 0.5,
+        knot: vec![0.45, 0.5, 0.6, 0.55, 0.4],
+    };
+    let built = built_with_warp(&fx.table, &warp);
+    let prov = Table::open(&fx.table).unwrap().provenance;
+    let out = subdir("warp").join("warp.h5");
+    oblique::storage::write_table(&out, &built, &prov).expect("write the table");
+    // The file: the documented layout, with the warp group where documented.
+    check_layout(&out, &Expect::small());
+    let f = open(&out);
+    let w = f
+        .group("patches/partial_high/warp")
+        .expect("the warp group");
+    assert_eq!(attr_f64(&w, "c_star"), 0.5);
+    assert_eq!(f64s(&w, "knot"), warp.knot);
+    for other in ["stick_low", "stick_high"] {
+        assert!(!f
+            .group(&format!("patches/{other}"))
+            .unwrap()
+            .link_exists("warp"));
+    }
+    drop(f);
+    // Read back: the same surface, and the same bits at random queries as the in-memory one.
+    let t = Table::open(&out).expect("open the warped table");
+    assert_eq!(t.provenance.schema_version, 3);
+    assert_eq!(t.surface, built.surface, "surface after write -> read");
+    let mut state = 0x0123_4567_89AB_CDEF_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let plain = Table::open(&fx.table).unwrap();
+    let mut changed = 0;
+    for i in 0..4000 {
+        let g = GAMMA_MIN + (GAMMA_MAX - GAMMA_MIN) * next();
+        let a = if i % 2 == 0 && g > 1.0 {
+            alpha_c1(g) + (alpha_c2(g) - alpha_c1(g)) * next()
+        } else {
+            10f64.powf(-2.0 + 3.0 * next())
+        };
+        let p = t.p(g, a).expect("inside");
+        let mem = built.surface.eval(g, a).expect("inside");
+        assert_eq!(p.to_bits(), mem.to_bits(), "({g}, {a})");
+        changed += usize::from(p != plain.p(g, a).unwrap());
+    }
+    assert!(changed > 100, "the warp changed only {changed} answers");
+
+    // The writer refuses a warp the readers would refuse, and leaves no file.
+    let bad_dir = subdir("warp_bad");
+    let mut bad = built_with_warp(&fx.table, &warp);
+    for bp in &mut bad.patches {
+        if let Some(w) = bp.patch.warp.as_mut() {
+            w.c_star = 1.5;
+        }
+    }
+    let e = oblique::storage::write_table(&bad_dir.join("c_star.h5"), &bad, &prov)
+        .expect_err("c_star = 1.5 written");
+    assert!(e.to_string().contains("c_star"), "{e}");
+    let mut bad = built_with_warp(&fx.table, &warp);
+    for bp in &mut bad.patches {
+        if let Some(w) = bp.patch.warp.as_mut() {
+            w.start = 0.3;
+        }
+    }
+    let e = oblique::storage::write_table(&bad_dir.join("start.h5"), &bad, &prov)
+        .expect_err("start = 0.3 written");
+    assert!(e.to_string().contains("'start' = 0.3"), "{e}");
+    let mut bad = built_with_warp(&fx.table, &warp);
+    let stick = bad.patches.iter_mut().find(|b| b.name == "stick_high");
+    stick.expect("stick_high").patch.warp = Some(warp.clone());
+    let e = oblique::storage::write_table(&bad_dir.join("stick.h5"), &bad, &prov)
+        .expect_err("a warp on stick_high written");
+    assert!(e.to_string().contains("only 'partial_high'"), "{e}");
+    assert!(dir_names(&bad_dir).is_empty(), "{:?}", dir_names(&bad_dir));
 }

@@ -126,12 +126,13 @@ extern "C" {
 // Valid until the next failing call on this thread; do not free it.
 const char *oblique_last_error(void);
 
-// Open, validate and load a table file (HDF5, schema v2) into memory. On success `*table` is a
+// Open, validate and load a table file (HDF5, schema v2 or v3) into memory. On success `*table` is a
 // handle to free with `oblique_table_close`; no file access happens after this call.
 //
 // # Safety
 // `path` is NULL or a NUL-terminated string; `table` is NULL or valid for writes.
-int oblique_table_open(const char *path, struct ObliqueTable **table);
+int oblique_table_open(const char *path,
+                       struct ObliqueTable **table);
 
 // Free a table handle (NULL is ignored).
 //

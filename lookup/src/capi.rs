@@ -193,7 +193,7 @@ pub extern "C" fn oblique_last_error() -> *const c_char {
     LAST_ERROR.with(|e| e.borrow().as_ptr())
 }
 
-/// Open, validate and load a table file (HDF5, schema v2) into memory. On success `*table` is a
+/// Open, validate and load a table file (HDF5, schema v2 or v3) into memory. On success `*table` is a
 /// handle to free with `oblique_table_close`; no file access happens after this call.
 ///
 /// # Safety

@@ -1,4 +1,4 @@
-//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–8
+//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–9
 //! of `docs/table-format.md`) on an acceleration structure built once at [`crate::Table::open`].
 //!
 //! It returns the same bits as [`Surface::eval_with`] (the rule written step by step); only the
@@ -20,7 +20,7 @@
 //! same bits as the single-query path (tested on both builds and all shipped tables).
 
 use crate::surface::{partial_coord, stencil4, stick_coord};
-use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface};
+use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
 use crate::LookupError;
 
 mod batch;
@@ -80,6 +80,8 @@ struct FastPatch {
     size: usize,
     /// `P` at the nodes, as in [`Patch::p`].
     p: Vec<f64>,
+    /// The warp of the coordinate, as in [`Patch::warp`].
+    warp: Option<Warp>,
 }
 
 impl std::fmt::Debug for FastPatch {
@@ -180,6 +182,7 @@ impl FastPatch {
             n1: m + 1,
             size: (m + 1) * (m + 1),
             p: patch.p.clone(),
+            warp: patch.warp.clone(),
         })
     }
 
@@ -203,12 +206,18 @@ impl FastPatch {
         ((-(cell.link as i64) - 1) as usize, fg, fc)
     }
 
-    /// Interpolate at `(γ, c)`, `c ∈ [0, 1]`: [`Patch::interpolate`] with `k = 4`.
+    /// Interpolate at `(γ, c)`, `c ∈ [0, 1]` the unwarped coordinate: [`Patch::warped`], then
+    /// [`Patch::interpolate`] with `k = 4`.
     #[inline(always)]
     fn interpolate(&self, gamma: f64, c: f64) -> f64 {
         // Step 5 of the rule: v = x·blocks, clamped (as `surface::locate`).
         let xg = (gamma - self.gamma_lo) / self.width;
         let vg = (xg * self.bg).clamp(0.0, self.bg);
+        // The warp, from its start on ([`Patch::warped`], the same operations).
+        let c = match &self.warp {
+            Some(w) if vg >= w.start => w.apply(gamma, c),
+            _ => c,
+        };
         let vc = (c * self.bc).clamp(0.0, self.bc);
         let ig = floor_index(vg * self.fine, self.rows - 1);
         let ic = floor_index(vc * self.fine, self.cols - 1);
@@ -358,6 +367,35 @@ mod tests {
         Table::open(format!("{}/../tables/{name}", env!("CARGO_MANIFEST_DIR"))).expect(name)
     }
 
+    /// A warp of `partial_high` from the middle of its root rows on (the node values stay
+    /// those of the table: only the bits of the query paths are compared).
+    pub(super) fn warped(mut t: Table) -> Table {
+        let p = t.surface.partial_high.as_mut().expect("partial_high");
+        let start = (p.blocks_gamma as f64 * 8.0).floor() / 16.0;
+        let from = p.gamma_lo + (p.gamma_hi - p.gamma_lo) * start / p.blocks_gamma as f64;
+        p.warp = Some(Warp {
+            start,
+            gamma_0: from,
+            gamma_step: (p.gamma_hi - from) / 12.0,
+            c_star: 0.5,
+            knot: (0..13)
+                .map(|i| 0.4 + 0.25 * (i as f64 * 0.5).sin() * (i as f64 / 12.0))
+                .collect(),
+        });
+        t.reindex();
+        t
+    }
+
+    /// The shipped tables, and each with a warp of its partial-slip patch.
+    fn tables() -> Vec<(String, Table)> {
+        let mut v = Vec::new();
+        for name in ["quick.h5", "full.h5"] {
+            v.push((name.to_string(), table(name)));
+            v.push((format!("{name} warped"), warped(table(name))));
+        }
+        v
+    }
+
     /// Points spread over the plane, plus points exactly on the edges of the finest cells
     /// (where the rule sends a point to the upper cell).
     pub(super) fn points(t: &Table) -> Vec<(f64, f64)> {
@@ -374,6 +412,10 @@ mod tests {
                 for j in 0..=(patch.blocks_coord << 5) {
                     let c = j as f64 / (patch.blocks_coord << 5) as f64;
                     pts.push((g, patch.kind.alpha(g, c, s.alpha_max)));
+                    // The cell edges are at c' of the warp: c = invert(c').
+                    if let Some(w) = &patch.warp {
+                        pts.push((g, patch.kind.alpha(g, w.invert(g, c), s.alpha_max)));
+                    }
                 }
             }
         }
@@ -382,8 +424,7 @@ mod tests {
 
     #[test]
     fn the_fine_index_gives_the_bits_of_the_descent() {
-        for name in ["quick.h5", "full.h5"] {
-            let t = table(name);
+        for (name, t) in tables() {
             let s = &t.surface;
             // Full depth, and capped depths from which the descent continues.
             for budget in [1 << 20, MAX_INDEX_ENTRIES, 64, 1] {
@@ -401,10 +442,15 @@ mod tests {
 
     #[test]
     fn batches_sorted_by_region_give_the_bits_of_single_queries() {
-        let t = table("full.h5");
+        for t in [table("full.h5"), warped(table("full.h5"))] {
+            batches_give_the_bits_of_single_queries(&t);
+        }
+    }
+
+    fn batches_give_the_bits_of_single_queries(t: &Table) {
         let s = &t.surface;
         let accel = Accel::new(s).expect("cubic table");
-        let mut pts = points(&t);
+        let mut pts = points(t);
         // Outside the domain, on the line outside it, at γ = 1.
         pts.extend([
             (0.05, 0.001),
@@ -439,6 +485,37 @@ mod tests {
         bad[777] = f64::NAN;
         let r = accel.eval_batch(s, &g, &bad, &mut out, OutOfDomain::Clamp);
         assert_eq!(r.map_err(|(i, _)| i), Err(777));
+    }
+
+    #[test]
+    fn both_paths_apply_the_warp() {
+        let plain = table("full.h5");
+        let t = warped(table("full.h5"));
+        let w = t.surface.partial_high.as_ref().and_then(|p| p.warp.clone());
+        let w = w.expect("warp");
+        let (mut changed, mut same) = (0, 0);
+        for i in 0..200 {
+            let g = 2.0 + 1.5 * i as f64 / 199.0;
+            let (c1, c2) = (crate::surface::alpha_c1(g), crate::surface::alpha_c2(g));
+            let a = c1 + (c2 - c1) * 0.37;
+            let p = t.p(g, a).expect("inside");
+            assert_eq!(p.to_bits(), t.surface.eval(g, a).expect("inside").to_bits());
+            // By hand: the unwarped patch interpolated at c' = apply(γ, c).
+            let patch = t.surface.partial_high.as_ref().expect("partial_high");
+            let c = crate::surface::partial_coord(g, a).clamp(0.0, 1.0);
+            let by_hand = patch.interpolate(g, patch.warped(g, c), 4);
+            assert_eq!(p.to_bits(), by_hand.to_bits(), "({g}, {a})");
+            if p != plain.p(g, a).expect("inside") {
+                changed += 1;
+            } else {
+                same += 1;
+            }
+            let v = (g - patch.gamma_lo) / (patch.gamma_hi - patch.gamma_lo) * 5.0;
+            if v < w.start {
+                assert_eq!(p, plain.p(g, a).unwrap(), "({g}, {a})");
+            }
+        }
+        assert!(changed > 0 && same > 0, "{changed} changed, {same} same");
     }
 
     #[test]

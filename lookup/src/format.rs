@@ -1,7 +1,9 @@
-//! Names of the HDF5 objects of a table (schema v2). `docs/table-format.md` documents each.
+//! Names of the HDF5 objects of a table (schema v3). `docs/table-format.md` documents each.
 
-/// Schema version written and read by this crate.
-pub const SCHEMA_VERSION: u32 = 2;
+/// Schema version written by this crate (and the newest it reads).
+pub const SCHEMA_VERSION: u32 = 3;
+/// Oldest schema version this crate reads: v2 is v3 without the optional warp.
+pub const MIN_SCHEMA_VERSION: u32 = 2;
 
 /// Root attribute: schema version (an integer value stored as float64).
 pub const ATTR_SCHEMA: &str = "schema_version";
@@ -73,6 +75,21 @@ pub const DS_P: &str = "P";
 pub const DS_ERROR: &str = "error_estimate";
 /// Patch dataset (`[leaves]`): predicted interpolation error of every leaf.
 pub const DS_LEAF_ERROR: &str = "leaf_predicted_error";
+
+/// Optional sub-group of `partial_high` (schema 3): the warp of the coordinate
+/// ([`crate::surface::Warp`]).
+pub const GROUP_WARP: &str = "warp";
+/// Warp attribute: γ of the first knot.
+pub const ATTR_WARP_GAMMA_0: &str = "gamma_0";
+/// Attribute of the warp group: lattice position along γ (root-cell units) where the warp starts.
+pub const ATTR_WARP_START: &str = "start";
+/// Warp attribute: γ spacing of the knots (`> 0`).
+pub const ATTR_WARP_GAMMA_STEP: &str = "gamma_step";
+/// Warp attribute: `c'` the knot is sent to, in `(0, 1)`.
+pub const ATTR_WARP_C_STAR: &str = "c_star";
+/// Warp dataset (float64 `[n]`, `n ≥ 4`): the knot `K` at `γ = gamma_0 + i·gamma_step`, in
+/// `(0, 1)`.
+pub const DS_WARP_KNOT: &str = "knot";
 
 /// Group with the no-slip limit `P(γ, ∞)`: datasets `gamma`, `P`, `error_estimate`.
 pub const GROUP_NO_SLIP: &str = "no_slip";

@@ -1,6 +1,6 @@
 //! Interpolator for the universal tangential restitution `P(γ, α)` of oblique elastic impacts.
 //!
-//! Reads a table written by `sweep run` (HDF5, schema v2, see `docs/table-format.md`), keeps it in
+//! Reads a table written by `sweep run` (HDF5, schema v3 or v2, see `docs/table-format.md`), keeps it in
 //! memory and evaluates `P` by the documented rule: the exact full-slip line `P = 1 − 7α` below
 //! the linear limit, otherwise local Lagrange interpolation on curve-aligned patches. No HDF5 call
 //! happens on the query path. This crate never depends on the simulator.
@@ -37,7 +37,7 @@ pub use curve::Curve;
 pub use impact::{Answer, Contact, Stiffness};
 pub use prepared::Prepared;
 pub use read::{Check, Provenance, Table};
-pub use surface::{OutOfDomain, Patch, PatchKind, Surface};
+pub use surface::{OutOfDomain, Patch, PatchKind, Surface, Warp};
 
 use thiserror::Error;
 

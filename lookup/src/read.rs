@@ -6,7 +6,7 @@ use hdf5::types::VarLenUnicode;
 
 use crate::fast::Accel;
 use crate::format::*;
-use crate::surface::{OutOfDomain, Patch, PatchKind, Surface};
+use crate::surface::{OutOfDomain, Patch, PatchKind, Surface, Warp};
 use crate::LookupError;
 
 /// Where a table came from (root attributes).
@@ -196,12 +196,65 @@ impl Reader<'_> {
         Ok(v as usize)
     }
 
+    /// The optional warp of patch `name` (group `warp`): only `partial_high` of a schema-3
+    /// file may have one; every value is checked against the documented ranges.
+    fn warp(&self, g: &hdf5::Group, name: &str, version: u32) -> Result<Option<Warp>, LookupError> {
+        if !g.link_exists(GROUP_WARP) {
+            return Ok(None);
+        }
+        let where_ = format!("{name}/{GROUP_WARP}");
+        if name != PATCH_PARTIAL_HIGH {
+            return Err(self.invalid(format!(
+                "patch '{name}' has a group '{GROUP_WARP}': only '{PATCH_PARTIAL_HIGH}' may have one"
+            )));
+        }
+        if version < 3 {
+            return Err(self.invalid(format!(
+                "group '{where_}' in a schema-{version} file: a warp needs schema version 3"
+            )));
+        }
+        let w = g
+            .group(GROUP_WARP)
+            .map_err(|_| self.invalid(format!("'{where_}' is not a group")))?;
+        let attr = |a: &str| {
+            self.attr_f64(&w, a).map_err(|_| {
+                self.invalid(format!(
+                    "'{where_}': missing or non-numeric attribute '{a}'"
+                ))
+            })
+        };
+        let (start, gamma_0, gamma_step, c_star) = (
+            attr(ATTR_WARP_START)?,
+            attr(ATTR_WARP_GAMMA_0)?,
+            attr(ATTR_WARP_GAMMA_STEP)?,
+            attr(ATTR_WARP_C_STAR)?,
+        );
+        let knot = w
+            .dataset(DS_WARP_KNOT)
+            .ok()
+            .filter(|d| d.ndim() == 1)
+            .and_then(|d| d.read_raw::<f64>().ok())
+            .ok_or_else(|| {
+                self.invalid(format!(
+                    "'{where_}': dataset '{DS_WARP_KNOT}' missing or not a 1-D float64 array"
+                ))
+            })?;
+        Ok(Some(Warp {
+            start,
+            gamma_0,
+            gamma_step,
+            c_star,
+            knot,
+        }))
+    }
+
     fn patch(
         &self,
         root: &hdf5::Group,
         name: &str,
         kind: PatchKind,
         stencil: usize,
+        version: u32,
     ) -> Result<Option<Patch>, LookupError> {
         let Ok(g) = root.group(name) else {
             return Ok(None);
@@ -239,7 +292,8 @@ impl Reader<'_> {
         if let Some(i) = p.iter().position(|x| x.abs() > 1.0 + 1e-6) {
             return Err(self.invalid(format!("patch '{name}': |P| = {} > 1 at node {i}", p[i])));
         }
-        Ok(Some(Patch {
+        let warp = self.warp(&g, name, version)?;
+        let patch = Patch {
             kind,
             gamma_lo,
             gamma_hi,
@@ -249,7 +303,12 @@ impl Reader<'_> {
             tree,
             p,
             error_estimate: err,
-        }))
+            warp,
+        };
+        patch
+            .check_warp()
+            .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
+        Ok(Some(patch))
     }
 }
 
@@ -286,18 +345,20 @@ impl Table {
                 "not a P table (format '{format}', expected '{FORMAT_NAME}')"
             )));
         }
-        let version = r.attr_f64(&file, ATTR_SCHEMA)?;
-        if version != SCHEMA_VERSION as f64 {
+        let version_f = r.attr_f64(&file, ATTR_SCHEMA)?;
+        if !(MIN_SCHEMA_VERSION..=SCHEMA_VERSION).any(|v| v as f64 == version_f) {
+            let version = version_f;
             return Err(r.invalid(format!(
-                "schema version {version}, this reader understands {SCHEMA_VERSION}; \
-                 {}",
-                if version > SCHEMA_VERSION as f64 {
+                "schema version {version}, this reader understands {MIN_SCHEMA_VERSION} to \
+                 {SCHEMA_VERSION}; {}",
+                if version_f > SCHEMA_VERSION as f64 {
                     "upgrade oblique-lookup to read it"
                 } else {
                     "rebuild the table with `sweep run`"
                 }
             )));
         }
+        let version = version_f as u32;
         let stencil_f = r.attr_f64(&file, ATTR_STENCIL)?;
         let stencil = stencil_f as usize;
         if stencil as f64 != stencil_f || !(2..=8).contains(&stencil) || stencil % 2 != 0 {
@@ -324,14 +385,27 @@ impl Table {
             gamma_max,
             alpha_max,
             stencil,
-            stick_low: r.patch(&patches, PATCH_STICK_LOW, PatchKind::Stick, stencil)?,
+            stick_low: r.patch(
+                &patches,
+                PATCH_STICK_LOW,
+                PatchKind::Stick,
+                stencil,
+                version,
+            )?,
             partial_high: r.patch(
                 &patches,
                 PATCH_PARTIAL_HIGH,
                 PatchKind::PartialSlip,
                 stencil,
+                version,
             )?,
-            stick_high: r.patch(&patches, PATCH_STICK_HIGH, PatchKind::Stick, stencil)?,
+            stick_high: r.patch(
+                &patches,
+                PATCH_STICK_HIGH,
+                PatchKind::Stick,
+                stencil,
+                version,
+            )?,
         };
         if gamma_min < 1.0 && surface.stick_low.is_none() {
             return Err(r.invalid(format!("missing patch '{PATCH_STICK_LOW}'")));
@@ -343,7 +417,7 @@ impl Table {
         }
         let str_attr = |n: &str| r.attr_str(&file, n).unwrap_or_default();
         let provenance = Provenance {
-            schema_version: SCHEMA_VERSION,
+            schema_version: version,
             engine_version: str_attr(ATTR_ENGINE_VERSION),
             git_commit: str_attr(ATTR_GIT_COMMIT),
             config: str_attr(ATTR_CONFIG),

@@ -1,4 +1,4 @@
-//! The interpolation rule of schema v2 (stated in `docs/table-format.md`).
+//! The interpolation rule of schema v3 (stated in `docs/table-format.md`).
 //!
 //! The nonlinear part of the `(γ, α)` plane is covered by up to three patches whose edges lie on
 //! the curves where `P` has curvature jumps, so that `P` is smooth inside each patch:
@@ -13,7 +13,8 @@
 //! patch is cut into equal root cells in `(γ, c)`, each refined as a quadtree where `P` needs it
 //! (the kink curves inside the partial-slip patch for `γ ≳ 2`); every leaf stores `P` on its own
 //! uniform grid. Inside a leaf `P` is the tensor product of 1-D Lagrange polynomials through `k`
-//! consecutive nodes of that leaf per axis (`k = stencil_points`).
+//! consecutive nodes of that leaf per axis (`k = stencil_points`). The partial-slip patch may
+//! carry a [`Warp`] of its coordinate (schema 3), applied before the leaf is located.
 
 use crate::LookupError;
 
@@ -149,6 +150,166 @@ pub struct Patch {
     pub p: Vec<f64>,
     /// Solver error estimate of each node, same layout.
     pub error_estimate: Vec<f64>,
+    /// Optional warp of the coordinate (only `partial_high`, schema 3): when present, the
+    /// quadtree is over `(x, c')` with `c' =` [`Warp::apply`]`(γ, c)` instead of `(x, c)`.
+    pub warp: Option<Warp>,
+}
+
+/// Warp of the partial-slip coordinate (group `/patches/partial_high/warp`, schema 3): a map
+/// `c → c'` per γ that sends the knot `K(γ)` (the fold curve F₊ of `P`, where its slope jumps)
+/// to the fixed `c' = c_star`, a root-cell boundary of the quadtree, so that no leaf straddles
+/// the fold; below the knot the map is graded so that `P`, which goes like `(α_F − α)^{3/2}`
+/// there, is smooth in `c'` (`docs/solver.md`, "The fold edge").
+///
+/// It applies from the lattice position `start` along γ on (in units of the patch's root
+/// cells, `v = x·blocks_gamma` of the rule, clamped to `[0, blocks_gamma]`): for `v < start`,
+/// `c' = c`; for `v ≥ start`, with `K =` [`Warp::knot_at`]`(γ)`,
+/// `c' = c_star·(1 − √(1 − c/K))` if `c ≤ K`, else `c' = c_star + (1 − c_star)(c − K)/(1 − K)`.
+/// `start` is a dyadic fraction and no leaf of the patch straddles it, so every leaf lies wholly
+/// on one side.
+///
+/// `K(γ)` is the 4-point Lagrange rule of the leaf grids ([`stencil`]`(u, n, 4, ..)`) at
+/// `u = (γ − gamma_0)/gamma_step` clamped to `[0, n − 1]`, over the values `knot[i]` at
+/// `γ = gamma_0 + i·gamma_step` (`n = knot.len()`).
+///
+/// Valid warps (as the reader accepts them, [`Warp::validate`]): finite values,
+/// `gamma_step > 0`, `0 < c_star < 1`, `n ≥ 4`, every knot in `(0, 1)`,
+/// `0 < start < blocks_gamma` with `start·2²⁰` an integer, and a knot grid that covers the
+/// warped part of the patch: `gamma_0 ≤ γ(start)` and `gamma_0 + (n − 1)·gamma_step ≥ gamma_hi`
+/// (both within `1e-12` relative), where `γ(start) = gamma_lo + (gamma_hi − gamma_lo)·start/
+/// blocks_gamma`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warp {
+    /// Lattice position along γ (root-cell units) from which the warp applies.
+    pub start: f64,
+    /// γ of `knot[0]`.
+    pub gamma_0: f64,
+    /// γ spacing of the knots (`> 0`).
+    pub gamma_step: f64,
+    /// Where the knot is sent: `c' = c_star` at `c = K(γ)`, in `(0, 1)`.
+    pub c_star: f64,
+    /// `K` at `γ = gamma_0 + i·gamma_step`, every value in `(0, 1)`, at least 4 values.
+    pub knot: Vec<f64>,
+}
+
+impl Warp {
+    /// `K(γ)`: the 4-point Lagrange interpolant of `knot` at `u = (γ − gamma_0)/gamma_step`
+    /// clamped to `[0, n − 1]`.
+    #[inline]
+    pub fn knot_at(&self, gamma: f64) -> f64 {
+        let n = self.knot.len();
+        let u = ((gamma - self.gamma_0) / self.gamma_step).clamp(0.0, (n - 1) as f64);
+        let mut w = [0.0; 8];
+        let (start, k) = stencil(u, n, 4, &mut w);
+        let mut total = 0.0;
+        for (wj, kj) in w[..k].iter().zip(&self.knot[start..start + k]) {
+            total += wj * kj;
+        }
+        total
+    }
+
+    /// `γ` at the lattice position `start` of a patch over `[gamma_lo, gamma_hi]` with
+    /// `blocks_gamma` root rows.
+    pub fn start_gamma(&self, gamma_lo: f64, gamma_hi: f64, blocks_gamma: usize) -> f64 {
+        gamma_lo + (gamma_hi - gamma_lo) * self.start / blocks_gamma as f64
+    }
+
+    /// Check the documented rules of a warp of a patch over `[gamma_lo, gamma_hi]` with
+    /// `blocks_gamma` root rows (what the reader refuses otherwise; [`Warp`] lists them). `Err`
+    /// names the attribute or dataset and the allowed range.
+    pub fn validate(
+        &self,
+        gamma_lo: f64,
+        gamma_hi: f64,
+        blocks_gamma: usize,
+    ) -> Result<(), String> {
+        let bg = blocks_gamma as f64;
+        let attrs = [
+            (
+                "start",
+                self.start,
+                format!("in (0, {blocks_gamma}) (root rows of the patch) and a multiple of 2^-20"),
+                self.start > 0.0 && self.start < bg && (self.start * 1048576.0).fract() == 0.0,
+            ),
+            (
+                "gamma_0",
+                self.gamma_0,
+                "finite".into(),
+                self.gamma_0.is_finite(),
+            ),
+            (
+                "gamma_step",
+                self.gamma_step,
+                "finite and > 0".into(),
+                self.gamma_step.is_finite() && self.gamma_step > 0.0,
+            ),
+            (
+                "c_star",
+                self.c_star,
+                "in (0, 1)".into(),
+                self.c_star > 0.0 && self.c_star < 1.0,
+            ),
+        ];
+        for (name, v, allowed, ok) in attrs {
+            if !ok {
+                return Err(format!("attribute '{name}' = {v}: must be {allowed}"));
+            }
+        }
+        let n = self.knot.len();
+        if n < 4 {
+            return Err(format!(
+                "dataset 'knot' has {n} values: must have at least 4"
+            ));
+        }
+        if let Some(i) = self.knot.iter().position(|&k| !(k > 0.0 && k < 1.0)) {
+            return Err(format!(
+                "dataset 'knot'[{i}] = {}: must be in (0, 1)",
+                self.knot[i]
+            ));
+        }
+        let from = self.start_gamma(gamma_lo, gamma_hi, blocks_gamma);
+        let end = self.gamma_0 + (n - 1) as f64 * self.gamma_step;
+        let slack = 1e-12 * gamma_hi.abs();
+        if !(self.gamma_0 <= from + slack && end >= gamma_hi - slack) {
+            return Err(format!(
+                "the knot grid 'gamma_0' + i*'gamma_step' spans [{}, {end}] ({n} values of \
+                 'knot'): must cover the warped gamma range [{from}, {gamma_hi}]",
+                self.gamma_0
+            ));
+        }
+        Ok(())
+    }
+
+    /// `c → c'` for a point at or beyond `start`: `c_star·(1 − √(1 − c/K))` for `c ≤ K` and
+    /// `c_star + (1 − c_star)(c − K)/(1 − K)` above, with `K =` [`Warp::knot_at`]`(γ)`.
+    #[inline]
+    pub fn apply(&self, gamma: f64, c: f64) -> f64 {
+        self.apply_with(self.knot_at(gamma), c)
+    }
+
+    /// [`Warp::apply`] with `K` given (the same operations, for callers that hold `K(γ)`).
+    #[inline(always)]
+    pub fn apply_with(&self, k: f64, c: f64) -> f64 {
+        if c <= k {
+            self.c_star * (1.0 - (1.0 - c / k).max(0.0).sqrt())
+        } else {
+            self.c_star + (1.0 - self.c_star) * (c - k) / (1.0 - k)
+        }
+    }
+
+    /// `c' → c`, the inverse of [`Warp::apply`] at the same γ (for laying out nodes at given
+    /// `c'`): `K(1 − (1 − c'/c_star)²)` for `c' ≤ c_star` and `K + (c' − c_star)(1 − K)/(1 − c_star)`
+    /// above.
+    #[inline]
+    pub fn invert(&self, gamma: f64, c_prime: f64) -> f64 {
+        let k = self.knot_at(gamma);
+        if c_prime <= self.c_star {
+            let t = 1.0 - c_prime / self.c_star;
+            k * (1.0 - t * t)
+        } else {
+            k + (c_prime - self.c_star) * (1.0 - k) / (1.0 - self.c_star)
+        }
+    }
 }
 
 /// Start index and weights of the `k`-point Lagrange stencil at grid position `u` (in units of
@@ -253,6 +414,64 @@ impl Patch {
             fg -= qg as f64;
             fc -= qc as f64;
             cell = t as usize + 2 * qg + qc;
+        }
+    }
+
+    /// Check the patch's warp, if any: [`Warp::validate`], and no leaf straddles its `start`
+    /// (every leaf lies wholly before or wholly at/after it). `Err` names the attribute and
+    /// the allowed range, or the leaf.
+    pub fn check_warp(&self) -> Result<(), String> {
+        let Some(w) = &self.warp else {
+            return Ok(());
+        };
+        w.validate(self.gamma_lo, self.gamma_hi, self.blocks_gamma)?;
+        for (leaf, (lo, hi)) in self.leaf_gamma_spans().into_iter().enumerate() {
+            if lo < w.start && w.start < hi {
+                return Err(format!(
+                    "leaf {leaf} spans root rows [{lo}, {hi}] across attribute 'start' = {}: \
+                     no leaf may straddle it",
+                    w.start
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Each leaf's extent along γ in root-cell units, `[a/2^d, (a+1)/2^d]` for a leaf at depth
+    /// `d` with integer position `a` (exact dyadic values), leaf by leaf.
+    pub fn leaf_gamma_spans(&self) -> Vec<(f64, f64)> {
+        let mut spans = vec![(0.0, 0.0); self.leaves()];
+        let mut stack: Vec<(usize, u32, u64)> = (0..self.blocks_gamma * self.blocks_coord)
+            .map(|i| (i, 0, (i / self.blocks_coord) as u64))
+            .collect();
+        while let Some((cell, d, a)) = stack.pop() {
+            let t = self.tree[cell];
+            if t < 0 {
+                let scale = f64::from(d.min(1000) as i32).exp2();
+                spans[(-(t as i64) - 1) as usize] = (a as f64 / scale, (a + 1) as f64 / scale);
+            } else {
+                stack.extend((0..4).map(|q| (t as usize + q, d + 1, 2 * a + (q / 2) as u64)));
+            }
+        }
+        spans
+    }
+
+    /// Step 5 of the rule: the coordinate the quadtree is over at `(γ, c)` — `c` itself, or
+    /// [`Warp::apply`]`(γ, c)` when the patch has a warp and `v = x·blocks_gamma` (clamped, as
+    /// [`locate`] computes it) is at or beyond its `start`.
+    #[inline]
+    pub fn warped(&self, gamma: f64, c: f64) -> f64 {
+        match &self.warp {
+            Some(w) => {
+                let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
+                let v = (xg * self.blocks_gamma as f64).clamp(0.0, self.blocks_gamma as f64);
+                if v >= w.start {
+                    w.apply(gamma, c)
+                } else {
+                    c
+                }
+            }
+            None => c,
         }
     }
 
@@ -500,7 +719,8 @@ impl Surface {
                     PatchKind::PartialSlip => partial_coord(gamma, alpha),
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
                 };
-                patch.interpolate(gamma, c.clamp(0.0, 1.0), self.stencil)
+                let c = patch.warped(gamma, c.clamp(0.0, 1.0));
+                patch.interpolate(gamma, c, self.stencil)
             }
             // A domain that touches γ = 1 only from one side: at γ = 1 exactly P = −1 on the
             // nonlinear part (α ≥ 2/7).
@@ -534,5 +754,161 @@ pub(crate) fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
     } else {
         let dm = alpha_max - c2;
         s / (dm / (dm + rho * c2))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn warp() -> Warp {
+        Warp {
+            start: 1.0,
+            gamma_0: 2.9,
+            gamma_step: 0.05,
+            c_star: 0.5,
+            knot: (0..13)
+                .map(|i| 0.35 + 0.2 * (i as f64 * 0.4).sin() * (i as f64 / 12.0))
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn the_knot_rule_reproduces_the_knot_values_at_the_grid_points() {
+        let w = warp();
+        for (i, &k) in w.knot.iter().enumerate() {
+            let g = w.gamma_0 + i as f64 * w.gamma_step;
+            assert!((w.knot_at(g) - k).abs() <= 1e-14, "knot {i}");
+        }
+        // Clamped outside the grid.
+        assert_eq!(w.knot_at(1.0), w.knot[0]);
+        assert_eq!(w.knot_at(100.0), w.knot[w.knot.len() - 1]);
+        // Between grid points: a cubic reproduces a cubic exactly.
+        let cubic =
+            |g: f64| 0.3 + 0.1 * (g - 3.0) - 0.2 * (g - 3.0).powi(2) + 0.3 * (g - 3.0).powi(3);
+        let wc = Warp {
+            knot: (0..13).map(|i| cubic(2.9 + 0.05 * i as f64)).collect(),
+            ..warp()
+        };
+        for j in 0..=96 {
+            let g = 2.9 + 0.6 * j as f64 / 96.0;
+            assert!((wc.knot_at(g) - cubic(g)).abs() <= 1e-13, "gamma {g}");
+        }
+    }
+
+    #[test]
+    fn apply_sends_the_knot_to_c_star_and_invert_undoes_it() {
+        let w = warp();
+        for j in 0..=200 {
+            let g = 2.5 + 1.0 * j as f64 / 200.0;
+            let k = w.knot_at(g);
+            assert_eq!(w.apply(g, k), w.c_star, "gamma {g}");
+            assert_eq!(w.apply(g, 0.0), 0.0);
+            assert!((w.apply(g, 1.0) - 1.0).abs() <= 1e-15);
+            assert_eq!(w.apply(g, 0.3).to_bits(), w.apply_with(k, 0.3).to_bits());
+            let mut prev = -1.0;
+            for i in 0..=100 {
+                let c = i as f64 / 100.0;
+                let cp = w.apply(g, c);
+                assert!(cp > prev && (0.0..=1.0).contains(&cp), "monotone in [0, 1]");
+                prev = cp;
+                assert!(
+                    (w.invert(g, cp) - c).abs() <= 1e-15,
+                    "invert(apply) at {g}, {c}"
+                );
+                // The square root of the grading amplifies rounding next to the knot
+                // (c' − c* ∝ √(K − c)): 1e-16/(2·0.02) at the nearest grid point.
+                assert!(
+                    (w.apply(g, w.invert(g, c)) - c).abs() <= 1e-13,
+                    "apply(invert) at {g}, {c}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_grading_makes_the_fold_singularity_a_cubic() {
+        // Below the fold P ≈ smooth + C(α_F − α)^{3/2}; in c' the power is (1 − c'/c*)³ times
+        // K^{3/2}, a polynomial: a cubic through four points of it reproduces it.
+        let w = warp();
+        let g = 3.13;
+        let k = w.knot_at(g);
+        let f = |c_prime: f64| (k - w.invert(g, c_prime)).max(0.0).powf(1.5);
+        let nodes = [0.1, 0.2, 0.3, 0.4];
+        let vals = nodes.map(f);
+        for i in 0..=50 {
+            let x = 0.1 + 0.3 * i as f64 / 50.0;
+            let lagrange: f64 = (0..4)
+                .map(|j| {
+                    let mut l = vals[j];
+                    for m in (0..4).filter(|&m| m != j) {
+                        l *= (x - nodes[m]) / (nodes[j] - nodes[m]);
+                    }
+                    l
+                })
+                .sum();
+            assert!((lagrange - f(x)).abs() <= 1e-14, "c' = {x}");
+        }
+        // Linear in c the same power is not: the cubic through four c-points misses it.
+        let fc = |c: f64| (k - c).max(0.0).powf(1.5);
+        let cn = nodes.map(|x| k * x / w.c_star);
+        let mid = 0.5 * (cn[2] + cn[3]);
+        let lag: f64 = (0..4)
+            .map(|j| {
+                let mut l = fc(cn[j]);
+                for m in (0..4).filter(|&m| m != j) {
+                    l *= (mid - cn[m]) / (cn[j] - cn[m]);
+                }
+                l
+            })
+            .sum();
+        assert!((lag - fc(mid)).abs() > 1e-6, "{}", (lag - fc(mid)).abs());
+    }
+
+    #[test]
+    fn the_warp_applies_from_its_start_row_on() {
+        let patch = Patch {
+            kind: PatchKind::PartialSlip,
+            gamma_lo: 1.0,
+            gamma_hi: 3.5,
+            blocks_gamma: 5,
+            blocks_coord: 4,
+            leaf_intervals: 8,
+            tree: vec![-1; 20],
+            p: vec![0.0; 20 * 81],
+            error_estimate: vec![0.0; 20 * 81],
+            warp: Some(Warp {
+                start: 3.8125,
+                gamma_0: 2.90625,
+                gamma_step: 0.01,
+                c_star: 0.5,
+                knot: vec![0.6; 61],
+            }),
+        };
+        // γ(start) = 2.90625: unwarped below, warped from it on.
+        let w = patch.warp.as_ref().expect("warp");
+        assert_eq!(patch.warped(2.9, 0.3).to_bits(), 0.3f64.to_bits());
+        assert_eq!(patch.warped(2.90625, 0.3), w.apply(2.90625, 0.3));
+        assert_eq!(patch.warped(3.2, 0.3), w.apply(3.2, 0.3));
+        assert_ne!(patch.warped(3.2, 0.3), 0.3);
+        // Leaves at depth 0 straddle a start inside a root row: refused, naming 'start'.
+        let e = patch.check_warp().expect_err("root leaves straddle 3.8125");
+        assert!(e.contains("'start' = 3.8125"), "{e}");
+        // At a root boundary it is valid.
+        let mut ok = patch.clone();
+        if let Some(w) = ok.warp.as_mut() {
+            w.start = 4.0;
+            w.gamma_0 = 3.0;
+        }
+        assert_eq!(ok.check_warp(), Ok(()));
+        // A knot grid that starts after γ(start) is refused.
+        let mut late = ok.clone();
+        if let Some(w) = late.warp.as_mut() {
+            w.gamma_0 = 3.05;
+        }
+        assert!(late
+            .check_warp()
+            .expect_err("late grid")
+            .contains("gamma_0"));
     }
 }

@@ -79,7 +79,7 @@ pub struct Domain {
 #[serde(deny_unknown_fields)]
 pub struct Nodes {
     /// Placement: "aligned" (patches bounded by α_c1, α_c2, α_max and γ = 1; the only placement
-    /// of schema v2).
+    /// of schemas v2 and v3).
     #[serde(default = "default_placement")]
     pub placement: String,
     /// Lagrange stencil points per axis: 4 (cubic) or 6 (quintic).
@@ -101,6 +101,11 @@ pub struct Nodes {
     /// Refuse to place more nodes than this in total.
     #[serde(default = "default_max_nodes")]
     pub max_nodes: usize,
+    /// Warp the partial-slip patch's coordinate so that the fold curve F₊ of `P` (γ > 2.904, a jump
+    /// of slope) lies on a root-cell boundary, graded below it (schema v3). Traces F₊
+    /// first (a few seconds); no effect when the partial-slip patch ends below γ ≈ 2.95.
+    #[serde(default)]
+    pub fold_warp: bool,
 }
 
 fn default_placement() -> String {

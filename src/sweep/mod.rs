@@ -7,17 +7,29 @@ pub mod config;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use oblique_lookup::surface::{stencil, Patch, PatchKind, Region, Surface};
+use oblique_lookup::surface::{stencil, Patch, PatchKind, Region, Surface, Warp};
 use oblique_lookup::Check;
 use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::physics::{self, Accuracy, PhysicsError, Scheme};
 pub use config::Config;
+pub mod warp;
 
 /// Errors of a sweep.
 #[derive(Debug, Error)]
 pub enum SweepError {
+    /// The fold curve F₊ could not be traced for the warp of the partial-slip patch.
+    #[error(
+        "fold curve F+ at gamma = {gamma}: {what} (set nodes.fold_warp = false to build without \
+         the warp)"
+    )]
+    Fold {
+        /// γ of the failed point.
+        gamma: f64,
+        /// What went wrong.
+        what: String,
+    },
     /// A node could not be computed.
     #[error("node gamma = {gamma}, alpha = {alpha}: {source}")]
     Node {
@@ -388,10 +400,13 @@ struct Layout<'a> {
     bc: usize,
     m: usize,
     alpha_max: f64,
+    /// Fold warp of the partial-slip patch: the lattice is in `c'`, α comes from `c`.
+    warp: Option<&'a Warp>,
 }
 
-/// A node on the finest lattice of a patch: `(γ index, c index)`.
-type Key = (u64, u64);
+/// A node on the finest lattice of a patch: `(γ index, c index, warped)`. A node on the
+/// warp's `start` row exists twice: unwarped for the leaves below it, warped for those above.
+type Key = (u64, u64, bool);
 
 /// A quadtree cell: its depth and integer position at that depth.
 #[derive(Debug, Clone, Copy)]
@@ -418,16 +433,43 @@ impl Layout<'_> {
             self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * xg
         };
         let c = key.1 as f64 / nc as f64;
-        (gamma, c, self.spec.kind.alpha(gamma, c, self.alpha_max))
+        let unwarped = match self.warp {
+            Some(w) if key.2 => w.invert(gamma, c),
+            _ => c,
+        };
+        (
+            gamma,
+            c,
+            self.spec.kind.alpha(gamma, unwarped, self.alpha_max),
+        )
+    }
+
+    /// The cell's extent along γ in root-row units (exact dyadic values).
+    fn rows(cell: Cell) -> (f64, f64) {
+        let scale = f64::from(1u32 << cell.depth);
+        (cell.ig as f64 / scale, (cell.ig + 1) as f64 / scale)
+    }
+
+    /// Whether the cell lies at or beyond the warp's start (its nodes are warped).
+    fn warped(&self, cell: Cell) -> bool {
+        self.warp.is_some_and(|w| Self::rows(cell).0 >= w.start)
+    }
+
+    /// Whether the warp's start cuts through the cell: it is split without being evaluated, so
+    /// that every leaf lies on one side.
+    fn straddles(&self, cell: Cell) -> bool {
+        let (lo, hi) = Self::rows(cell);
+        self.warp.is_some_and(|w| lo < w.start && w.start < hi)
     }
 
     /// Lattice keys of a cell's `(m+1)²` nodes, row-major (`γ` outer).
     fn cell_keys(&self, cell: Cell) -> Vec<Key> {
         let step = 1u64 << (MAX_DEPTH - cell.depth);
         let m = self.m as u64;
+        let warped = self.warped(cell);
         (0..=m)
             .flat_map(|i| (0..=m).map(move |j| (i, j)))
-            .map(|(i, j)| ((cell.ig * m + i) * step, (cell.ic * m + j) * step))
+            .map(|(i, j)| ((cell.ig * m + i) * step, (cell.ic * m + j) * step, warped))
             .collect()
     }
 }
@@ -494,12 +536,27 @@ fn build_patch(
     shard: Option<Shard>,
 ) -> Result<Option<BuiltPatch>, RunError> {
     let k = cfg.nodes.stencil;
+    let warp = if cfg.nodes.fold_warp && spec.kind == PatchKind::PartialSlip {
+        progress.phase(&format!(
+            "{}: tracing the fold curve F+ for the warp",
+            spec.name
+        ));
+        warp::fold_warp(
+            spec.gamma_lo,
+            spec.gamma_hi,
+            roots_gamma(cfg, spec),
+            cfg.nodes.blocks_coord,
+        )?
+    } else {
+        None
+    };
     let layout = Layout {
         spec,
         bg: roots_gamma(cfg, spec),
         bc: cfg.nodes.blocks_coord,
         m: cfg.nodes.leaf_intervals,
         alpha_max: cfg.domain.alpha_max,
+        warp: warp.as_ref(),
     };
     let m = layout.m;
     // All cells ever created, roots first; `child[i]` is the first child of a split cell.
@@ -515,6 +572,7 @@ fn build_patch(
     for round in 0.. {
         let mut wanted: Vec<Key> = open
             .iter()
+            .filter(|&&c| !layout.straddles(cells[c]))
             .flat_map(|&c| layout.cell_keys(cells[c]))
             .filter(|key| !cache.contains_key(key))
             .collect();
@@ -548,6 +606,17 @@ fn build_patch(
         cache.extend(wanted.into_iter().zip(values));
         let mut next = Vec::new();
         for &c in &open {
+            if layout.straddles(cells[c]) {
+                // Split without evaluating: no leaf may straddle the warp's start.
+                child[c] = Some(cells.len());
+                for ch in cells[c].children() {
+                    next.push(cells.len());
+                    cells.push(ch);
+                    child.push(None);
+                    predicted.push(f64::NAN);
+                }
+                continue;
+            }
             let vals: Vec<f64> = layout
                 .cell_keys(cells[c])
                 .iter()
@@ -628,6 +697,7 @@ fn build_patch(
             tree,
             p,
             error_estimate: err,
+            warp: warp.clone(),
         },
         gamma,
         coord,

@@ -132,24 +132,42 @@ impl FastPatch {
     ) {
         let (rows1, cols1) = (self.rows as u32 - 1, self.cols as u32 - 1);
         let cols = self.cols as u32;
-        // Step 5: `v = x·blocks`, clamped; the fine index entry.
-        for (((vg, vc), slot), &g) in lanes.vg[..n]
+        // Step 5: `v = x·blocks`, clamped, and the clamped coordinate.
+        for ((vg, vc), &g) in lanes.vg[..n]
             .iter_mut()
             .zip(&mut lanes.vc[..n])
-            .zip(&mut lanes.slot[..n])
             .zip(&lanes.g[..n])
         {
-            let c = vc.clamp(0.0, 1.0);
             let xg = (g - self.gamma_lo) / self.width;
             *vg = (xg * self.bg).clamp(0.0, self.bg);
-            *vc = (c * self.bc).clamp(0.0, self.bc);
+            *vc = vc.clamp(0.0, 1.0);
+        }
+        // The warp from its start on (`Patch::warped`, the same operations).
+        if let Some(w) = &self.warp {
+            for ((&vg, vc), &g) in lanes.vg[..n]
+                .iter()
+                .zip(&mut lanes.vc[..n])
+                .zip(&lanes.g[..n])
+            {
+                if vg >= w.start {
+                    *vc = w.apply(g, *vc);
+                }
+            }
+        }
+        // The fine index entry.
+        for ((&vg, vc), slot) in lanes.vg[..n]
+            .iter()
+            .zip(&mut lanes.vc[..n])
+            .zip(&mut lanes.slot[..n])
+        {
+            *vc = (*vc * self.bc).clamp(0.0, self.bc);
             *slot = if AVX2 {
-                let ig = floor_f64(*vg * self.fine, f64::from(rows1));
+                let ig = floor_f64(vg * self.fine, f64::from(rows1));
                 let ic = floor_f64(*vc * self.fine, f64::from(cols1));
                 // An integer below `rows·cols = index.len() < 2³¹`.
                 exact_u32(ig * f64::from(cols) + ic)
             } else {
-                let ig = floor_index32(*vg * self.fine, rows1);
+                let ig = floor_index32(vg * self.fine, rows1);
                 let ic = floor_index32(*vc * self.fine, cols1);
                 ig * cols + ic
             };
