@@ -874,7 +874,7 @@ mod tests {
             blocks_gamma: 5,
             blocks_coord: 4,
             leaf_intervals: 8,
-            tree: vec![-1; 20],
+            tree: (0..20).map(|i| -(i + 1)).collect(),
             p: vec![0.0; 20 * 81],
             error_estimate: vec![0.0; 20 * 81],
             warp: Some(Warp {
