@@ -29,6 +29,8 @@ pub const START_DEPTH: u32 = 4;
 pub const STEP: f64 = 0.01;
 /// Steps per contact time of the coarser of the two tracings (Richardson with twice as many).
 pub const TRACE_STEPS: usize = 2048;
+/// The sequential continuation that supplies first guesses visits every this-many grid points.
+const GUESS_EVERY: usize = 5;
 
 /// `α_F/α_c2` of F₊ at a few γ (`docs/solver.md`), linearly interpolated: the first guess of
 /// the continuation, which must land between 0.76 α_c2 and F₊ (where the tracing predicate
@@ -88,16 +90,33 @@ pub fn fold_warp(
     // Grid points from γ₀ until one at or beyond γ_hi.
     let n = (((gamma_hi - gamma_0) / STEP).ceil() as usize + 1).max(4);
     let grid: Vec<f64> = (0..n).map(|i| gamma_0 + i as f64 * STEP).collect();
-    // Coarse continuation (1024 steps) for the guesses, then the Richardson pairs in parallel.
-    let mut guesses = Vec::with_capacity(n);
+    // Coarse continuation (1024 steps) on every GUESS_EVERY-th grid point (and the last), the
+    // guesses between interpolated in ln α; then the Richardson pairs in parallel, each
+    // searching from its guess.
+    let coarse: Vec<usize> = (0..n)
+        .filter(|&i| i % GUESS_EVERY == 0 || i == n - 1)
+        .collect();
+    let mut found = Vec::with_capacity(coarse.len());
     let mut guess = first_guess(grid[0]);
-    for &g in &grid {
+    for &i in &coarse {
+        let g = grid[i];
         let a = fold_plus_at(g, guess, 1024)
             .map_err(|e| fold_error(g, &e.to_string()))?
             .ok_or_else(|| fold_error(g, "not found near the previous point"))?;
-        guesses.push(a);
+        found.push(a.ln());
         guess = a;
     }
+    let guesses: Vec<f64> = (0..n)
+        .map(|i| {
+            let k = coarse.partition_point(|&j| j <= i) - 1;
+            if coarse[k] == i {
+                return found[k].exp();
+            }
+            let (i0, i1) = (coarse[k], coarse[k + 1]);
+            let t = (i - i0) as f64 / (i1 - i0) as f64;
+            (found[k] + t * (found[k + 1] - found[k])).exp()
+        })
+        .collect();
     let alphas = grid
         .par_iter()
         .zip(guesses.par_iter())
