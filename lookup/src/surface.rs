@@ -199,13 +199,15 @@ impl Warp {
     pub fn knot_at(&self, gamma: f64) -> f64 {
         let n = self.knot.len();
         let u = ((gamma - self.gamma_0) / self.gamma_step).clamp(0.0, (n - 1) as f64);
-        let mut w = [0.0; 8];
-        let (start, k) = stencil(u, n, 4, &mut w);
-        let mut total = 0.0;
-        for (wj, kj) in w[..k].iter().zip(&self.knot[start..start + k]) {
-            total += wj * kj;
+        // `n ≥ 4` for a valid warp ([`Warp::validate`]); the generic rule otherwise.
+        if n < 4 {
+            let mut w = [0.0; 8];
+            let (start, k) = stencil(u, n, 4, &mut w);
+            return (0..k).map(|j| w[j] * self.knot[start + j]).sum();
         }
-        total
+        let (start, w) = stencil4(u, n);
+        let k = &self.knot[start..start + 4];
+        w[0] * k[0] + w[1] * k[1] + w[2] * k[2] + w[3] * k[3]
     }
 
     /// `γ` at the lattice position `start` of a patch over `[gamma_lo, gamma_hi]` with
