@@ -11,7 +11,7 @@ use std::collections::{BTreeSet, HashMap};
 use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
-use std::sync::OnceLock;
+use std::sync::{Mutex, MutexGuard, OnceLock};
 use std::time::{Duration, Instant};
 
 use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
@@ -278,14 +278,33 @@ fn write_config(name: &str, text: &str) -> PathBuf {
     p
 }
 
+/// Held while a child process is started and while this process has an HDF5 file open for
+/// writing: a child inherits the parent's open descriptors, and with them HDF5's lock on a file
+/// being written (`flock`, kept until the child exits), so a later open of that file in this
+/// process would fail with "unable to lock file" (seen under load). Reads need no guard.
+fn fork_guard() -> MutexGuard<'static, ()> {
+    static GUARD: Mutex<()> = Mutex::new(());
+    GUARD.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// `Command::output` with the child started under [`fork_guard`].
+fn output_of(cmd: &mut Command) -> std::io::Result<Output> {
+    let child = {
+        let _g = fork_guard();
+        cmd.stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()?
+    };
+    child.wait_with_output()
+}
+
 fn sweep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run the sweep binary")
+    output_of(Command::new(env!("CARGO_BIN_EXE_sweep")).args(args)).expect("run the sweep binary")
 }
 
 fn spawn_run(config: &Path, out: &Path, threads: usize) -> Child {
+    let _g = fork_guard();
     Command::new(env!("CARGO_BIN_EXE_sweep"))
         .arg("run")
         .arg(config)
@@ -313,14 +332,15 @@ fn assert_no_panic(out: &Output, what: &str) {
 /// Build a table with `sweep run CONFIG -o OUT --threads T --quiet`; returns the wall time.
 fn build(config: &Path, out: &Path, threads: usize) -> Duration {
     let start = Instant::now();
-    let o = Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .arg("run")
-        .arg(config)
-        .arg("-o")
-        .arg(out)
-        .args(["--threads", &threads.to_string(), "--quiet"])
-        .output()
-        .expect("run sweep run");
+    let o = output_of(
+        Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .arg("run")
+            .arg(config)
+            .arg("-o")
+            .arg(out)
+            .args(["--threads", &threads.to_string(), "--quiet"]),
+    )
+    .expect("run sweep run");
     let wall = start.elapsed();
     assert_no_panic(&o, "sweep run");
     assert!(
@@ -1075,10 +1095,9 @@ fn b_lookup_reproduces_checks_and_full_slip_line() {
 // (c) atomic write, unwritable output
 
 fn kill9(child: &mut Child) -> std::process::ExitStatus {
-    let st = Command::new("kill")
-        .args(["-9", &child.id().to_string()])
-        .status()
-        .expect("run kill");
+    let st = output_of(Command::new("kill").args(["-9", &child.id().to_string()]))
+        .expect("run kill")
+        .status;
     if !st.success() {
         // The process may have exited just before; reap it below either way.
         let _ = child.kill();
@@ -1207,6 +1226,7 @@ fn c_unwritable_output_fails_early_naming_the_path() {
     ];
     for out in cases {
         let start = Instant::now();
+        let g = fork_guard();
         let mut child = Command::new(env!("CARGO_BIN_EXE_sweep"))
             .arg("run")
             .arg(&slow)
@@ -1217,6 +1237,7 @@ fn c_unwritable_output_fails_early_naming_the_path() {
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
+        drop(g);
         // The slow config would solve for minutes: the error must come before any solving.
         while child.try_wait().unwrap().is_none() {
             if start.elapsed() > Duration::from_secs(10) {
@@ -1439,6 +1460,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
 
     let no_format = dir.join("no_format.h5");
     {
+        let _g = fork_guard();
         let f = hdf5::File::create(&no_format).unwrap();
         f.new_attr::<f64>()
             .create("schema_version")
@@ -1452,6 +1474,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
     let wrong_format = dir.join("wrong_format.h5");
     std::fs::copy(&fx.table, &wrong_format).unwrap();
     {
+        let _g = fork_guard();
         let f = hdf5::File::open_rw(&wrong_format).unwrap();
         let s: VarLenUnicode = "something-else".parse().unwrap();
         f.attr("format").unwrap().write_scalar(&s).unwrap();
@@ -1464,6 +1487,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
         let other = dir.join(name);
         std::fs::copy(&fx.table, &other).unwrap();
         {
+            let _g = fork_guard();
             let f = hdf5::File::open_rw(&other).unwrap();
             f.attr("schema_version")
                 .unwrap()
@@ -1480,6 +1504,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
         let bad = dir.join(name);
         std::fs::copy(&fx.table, &bad).unwrap();
         {
+            let _g = fork_guard();
             let f = hdf5::File::open_rw(&bad).unwrap();
             let g = f.group("patches/partial_high").unwrap();
             let d = g.dataset("tree").unwrap();
@@ -1575,7 +1600,10 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     let built = built_with_warp(&fx.table, &warp);
     let prov = Table::open(&fx.table).unwrap().provenance;
     let out = subdir("warp").join("warp.h5");
-    oblique::storage::write_table(&out, &built, &prov).expect("write the table");
+    {
+        let _g = fork_guard();
+        oblique::storage::write_table(&out, &built, &prov).expect("write the table");
+    }
     // The file: the documented layout, with the warp group where documented.
     check_layout(&out, &Expect::small());
     let f = open(&out);
@@ -1595,13 +1623,7 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     let t = Table::open(&out).expect("open the warped table");
     assert_eq!(t.provenance.schema_version, 3);
     assert_eq!(t.surface, built.surface, "surface after write -> read");
-    let mut state = 0x0123_4567_89AB_CDEF_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = oblique_lookup::testing::uniform(0x0123_4567_89AB_CDEF_u64);
     let plain = Table::open(&fx.table).unwrap();
     let mut changed = 0;
     for i in 0..4000 {
@@ -1626,8 +1648,11 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
             w.c_star = 1.5;
         }
     }
-    let e = oblique::storage::write_table(&bad_dir.join("c_star.h5"), &bad, &prov)
-        .expect_err("c_star = 1.5 written");
+    let e = {
+        let _g = fork_guard();
+        oblique::storage::write_table(&bad_dir.join("c_star.h5"), &bad, &prov)
+    }
+    .expect_err("c_star = 1.5 written");
     assert!(e.to_string().contains("c_star"), "{e}");
     let mut bad = built_with_warp(&fx.table, &warp);
     for bp in &mut bad.patches {
@@ -1635,14 +1660,20 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
             w.start = 0.3;
         }
     }
-    let e = oblique::storage::write_table(&bad_dir.join("start.h5"), &bad, &prov)
-        .expect_err("start = 0.3 written");
+    let e = {
+        let _g = fork_guard();
+        oblique::storage::write_table(&bad_dir.join("start.h5"), &bad, &prov)
+    }
+    .expect_err("start = 0.3 written");
     assert!(e.to_string().contains("'start' = 0.3"), "{e}");
     let mut bad = built_with_warp(&fx.table, &warp);
     let stick = bad.patches.iter_mut().find(|b| b.name == "stick_high");
     stick.expect("stick_high").patch.warp = Some(warp.clone());
-    let e = oblique::storage::write_table(&bad_dir.join("stick.h5"), &bad, &prov)
-        .expect_err("a warp on stick_high written");
+    let e = {
+        let _g = fork_guard();
+        oblique::storage::write_table(&bad_dir.join("stick.h5"), &bad, &prov)
+    }
+    .expect_err("a warp on stick_high written");
     assert!(e.to_string().contains("only 'partial_high'"), "{e}");
     assert!(dir_names(&bad_dir).is_empty(), "{:?}", dir_names(&bad_dir));
 }

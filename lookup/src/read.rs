@@ -331,9 +331,9 @@ impl Table {
         })?;
         crate::format::verify_seal(&bytes).map_err(|m| r.invalid(m))?;
         drop(bytes);
-        let file = hdf5::File::open(path_ref).map_err(|_| LookupError::Io {
+        let file = hdf5::File::open(path_ref).map_err(|e| LookupError::Io {
             path: path_str.clone(),
-            message: "not an HDF5 file, or truncated/corrupted".into(),
+            message: format!("not an HDF5 file, or truncated/corrupted (HDF5: {e})"),
         })?;
         let format = r.attr_str(&file, ATTR_FORMAT).map_err(|_| {
             r.invalid(format!(

@@ -7,6 +7,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::{Mutex, MutexGuard};
 
 use oblique_lookup::format::seal_of;
 use oblique_lookup::{Table, Warp};
@@ -20,6 +21,14 @@ fn scratch(name: &str) -> PathBuf {
         .join(format!("warp_file-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("scratch directory");
     dir.join(name)
+}
+
+/// Held while a child process is started and while a file is open for writing: a child
+/// inherits the open descriptors, and with them HDF5's lock on a file being written (kept until
+/// the child exits), so a later open of that file here would fail with "unable to lock file".
+fn fork_guard() -> MutexGuard<'static, ()> {
+    static GUARD: Mutex<()> = Mutex::new(());
+    GUARD.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Seal a file edited on purpose (as `oblique::storage::seal`).
@@ -63,6 +72,7 @@ fn good() -> Spec {
 /// `tables/quick.h5` with a warp group as `spec` says, sealed again.
 fn write(name: &str, spec: &Spec) -> PathBuf {
     let path = scratch(name);
+    let _g = fork_guard();
     std::fs::copy(repo().join("tables/quick.h5"), &path).expect("copy quick.h5");
     {
         let f = hdf5::File::open_rw(&path).expect("open_rw");
@@ -101,10 +111,15 @@ fn write(name: &str, spec: &Spec) -> PathBuf {
 }
 
 fn python_ok() -> bool {
-    matches!(
-        Command::new("python3").args(["-c", "import h5py, numpy"]).output(),
-        Ok(ref o) if o.status.success()
-    )
+    let child = {
+        let _g = fork_guard();
+        Command::new("python3")
+            .args(["-c", "import h5py, numpy"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+    };
+    matches!(child.and_then(|mut c| c.wait()), Ok(st) if st.success())
 }
 
 /// Run `scripts/read_table.py` as a library on `path`: `P` at every point, or the error of
@@ -118,6 +133,7 @@ fn python(path: &Path, points: &[(f64, f64)]) -> Result<Vec<f64>, String> {
                   for line in sys.stdin:\n    \
                       g, a = (float(x) for x in line.split(','))\n    \
                       print(repr(t.p(g, a)))\n";
+    let guard = fork_guard();
     let mut child = Command::new("python3")
         .arg("-c")
         .arg(script)
@@ -127,6 +143,7 @@ fn python(path: &Path, points: &[(f64, f64)]) -> Result<Vec<f64>, String> {
         .stdout(Stdio::piped())
         .spawn()
         .expect("run python3");
+    drop(guard);
     let input: String = points
         .iter()
         .map(|(g, a)| format!("{g:?},{a:?}\n"))
@@ -147,13 +164,7 @@ fn python(path: &Path, points: &[(f64, f64)]) -> Result<Vec<f64>, String> {
 }
 
 fn points(n: usize) -> Vec<(f64, f64)> {
-    let mut state = 0x9E37_79B9_7F4A_7C15_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = oblique_lookup::testing::uniform(0x9E37_79B9_7F4A_7C15_u64);
     (0..n)
         .map(|i| {
             let g = 1.0 + 1.5 * next();

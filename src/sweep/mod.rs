@@ -606,42 +606,35 @@ fn build_patch(
         cache.extend(wanted.into_iter().zip(values));
         let mut next = Vec::new();
         for &c in &open {
-            if layout.straddles(cells[c]) {
-                // Split without evaluating: no leaf may straddle the warp's start.
-                child[c] = Some(cells.len());
-                for ch in cells[c].children() {
-                    next.push(cells.len());
-                    cells.push(ch);
-                    child.push(None);
-                    predicted.push(f64::NAN);
+            // A cell across the warp's start is split without being evaluated: no leaf may
+            // straddle it.
+            if !layout.straddles(cells[c]) {
+                let vals: Vec<f64> = layout
+                    .cell_keys(cells[c])
+                    .iter()
+                    .map(|key| cache[key].0)
+                    .collect();
+                let pred = surplus(&vals, m, k) / 4.0;
+                predicted[c] = pred;
+                if pred <= cfg.nodes.target_error {
+                    continue;
                 }
-                continue;
-            }
-            let vals: Vec<f64> = layout
-                .cell_keys(cells[c])
-                .iter()
-                .map(|key| cache[key].0)
-                .collect();
-            let pred = surplus(&vals, m, k) / 4.0;
-            predicted[c] = pred;
-            if pred <= cfg.nodes.target_error {
-                continue;
-            }
-            if cells[c].depth >= MAX_DEPTH {
-                let keys = layout.cell_keys(cells[c]);
-                let (g0, c0, _) = layout.point(keys[0]);
-                let (g1, c1, _) = layout.point(keys[keys.len() - 1]);
-                return Err(RunError::Sweep(SweepError::DepthLimit {
-                    patch: spec.name,
-                    depth: cells[c].depth,
-                    gamma_lo: g0,
-                    gamma_hi: g1,
-                    c_lo: c0,
-                    c_hi: c1,
-                    predicted: pred,
-                    target: cfg.nodes.target_error,
-                    node_error: keys.iter().map(|k| cache[k].1).fold(0.0, f64::max),
-                }));
+                if cells[c].depth >= MAX_DEPTH {
+                    let keys = layout.cell_keys(cells[c]);
+                    let (g0, c0, _) = layout.point(keys[0]);
+                    let (g1, c1, _) = layout.point(keys[keys.len() - 1]);
+                    return Err(RunError::Sweep(SweepError::DepthLimit {
+                        patch: spec.name,
+                        depth: cells[c].depth,
+                        gamma_lo: g0,
+                        gamma_hi: g1,
+                        c_lo: c0,
+                        c_hi: c1,
+                        predicted: pred,
+                        target: cfg.nodes.target_error,
+                        node_error: keys.iter().map(|k| cache[k].1).fold(0.0, f64::max),
+                    }));
+                }
             }
             child[c] = Some(cells.len());
             for ch in cells[c].children() {
