@@ -216,9 +216,7 @@ fn build_one(name: &str, cfg: &Config, text: &str, dir: &Path) -> Result<TableRo
 }
 
 /// The table-level trade: quick, isotropic, full and a denser full (`nodes.target_error / 2`,
-/// `solver.tol / 4`). Dividing the target by 4 as well makes the partial-slip patch chase the
-/// fold curves of `P` at γ > 2.9 (docs/solver.md) past 150 000 nodes; the variant here is the
-/// densest one that builds in minutes.
+/// `solver.tol / 4`, `nodes.max_nodes × 4`), the densest variant that builds in minutes.
 fn tables(args: &AccuracyArgs) -> Result<()> {
     let dir = std::env::temp_dir().join(format!("oblique-accuracy-{}", std::process::id()));
     std::fs::create_dir_all(&dir)
@@ -231,6 +229,7 @@ fn tables(args: &AccuracyArgs) -> Result<()> {
     let (mut dense, text) = Config::load(&args.configs.join("full.toml"))?;
     dense.nodes.target_error /= 2.0;
     dense.solver.tol /= 4.0;
+    dense.nodes.max_nodes = dense.nodes.max_nodes.saturating_mul(4);
     let dense_text = format!(
         "{text}\n# sweep accuracy --tables: denser variant, nodes.target_error = {:e}, solver.tol = {:e}\n",
         dense.nodes.target_error, dense.solver.tol
