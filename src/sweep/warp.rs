@@ -9,9 +9,9 @@
 //! warp may jump there. The knot `K(γ)` is F₊ in the partial-slip coordinate `c`, traced by
 //! [`fold_plus_at_extrapolated`] on a grid of [`STEP`] in γ.
 //!
-//! Measured (`configs/full.toml`: target 2e-5, tol 4e-6, 2 cores): 1 238 partial-slip leaves
-//! and a held-out maximum of 8.1e-6 in 59 s, where the unwarped build of the same target goes
-//! past 150 000 nodes (`docs/benchmarks.md`, "Table builds").
+//! Measured (`configs/full.toml`: target 2e-5, tol 5e-6, 2 idle cores): 1 238 partial-slip
+//! leaves and a held-out maximum of 8.5e-6 over 1 500 checks in 46.7 s, where the unwarped
+//! build of the same target goes past 150 000 nodes (`docs/benchmarks.md`, "Table builds").
 
 use oblique_lookup::surface::{PatchKind, Warp};
 use rayon::prelude::*;
