@@ -307,6 +307,12 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
                     "nodes": p.p.len(),
                     "nodes_note": "stored node values; leaves store their shared edges each",
                     "max_node_error_estimate": p.error_estimate.iter().copied().fold(0.0, f64::max),
+                    "warp": p.warp.as_ref().map(|w| json!({
+                        "start": w.start,
+                        "gamma_start": w.start_gamma(p.gamma_lo, p.gamma_hi, p.blocks_gamma),
+                        "c_star": w.c_star, "gamma_0": w.gamma_0, "gamma_step": w.gamma_step,
+                        "knots": w.knot.len(),
+                    })),
                 })
             })
             .collect();
@@ -348,6 +354,17 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
             p.p.len(),
             p.error_estimate.iter().copied().fold(0.0, f64::max)
         );
+        if let Some(w) = &p.warp {
+            println!(
+                "                fold edge: from gamma {} (root row {}) the fold F+ lies on c' = {} (graded below it; {} knots from gamma {}, step {})",
+                w.start_gamma(p.gamma_lo, p.gamma_hi, p.blocks_gamma),
+                w.start,
+                w.c_star,
+                w.knot.len(),
+                w.gamma_0,
+                w.gamma_step
+            );
+        }
     }
     println!("held-out checks: {nc} points, max interpolation error {cmax:.2e}, rms {crms:.2e}");
     println!(

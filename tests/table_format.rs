@@ -1622,6 +1622,22 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     // Read back: the same surface, and the same bits at random queries as the in-memory one.
     let t = Table::open(&out).expect("open the warped table");
     assert_eq!(t.provenance.schema_version, 3);
+    // `sweep inspect` reports the warp: where it starts (row 1 of [1, 1.6] = γ 1.3) and c*.
+    let o = sweep(&["inspect", out.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("fold edge: from gamma 1.3 (root row 1) the fold F+ lies on c' = 0.5"),
+        "{text}"
+    );
+    let o = sweep(&["inspect", out.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("inspect --json");
+    let w = &v["patches"][1]["warp"];
+    assert_eq!(v["patches"][1]["name"].as_str(), Some("partial_high"));
+    assert_eq!(
+        (w["start"].as_f64(), w["knots"].as_u64()),
+        (Some(1.0), Some(5))
+    );
+    assert!(v["patches"][0]["warp"].is_null() && v["patches"][2]["warp"].is_null());
     assert_eq!(t.surface, built.surface, "surface after write -> read");
     let mut next = oblique_lookup::testing::uniform(0x0123_4567_89AB_CDEF_u64);
     let plain = Table::open(&fx.table).unwrap();
