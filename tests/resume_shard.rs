@@ -332,6 +332,68 @@ fn shards_in_separate_processes_merge_to_the_single_run() {
     bad(&[s(&parts[0]), s(&parts[1]), s(&cfg)], "not a node file");
 }
 
+/// A table with the fold edge (schema-3 warp, `nodes.fold_warp`): the tracing of F₊ and the
+/// forced splits at the warp's start give the same table with one thread, with all threads, and
+/// from two shards merged.
+#[test]
+fn a_table_with_the_fold_edge_is_the_same_from_threads_and_shards() {
+    let cfg = config(
+        "fold.toml",
+        r#"output = "unused.h5"
+[domain]
+gamma_min = 2.85
+gamma_max = 3.0
+alpha_max = "inf"
+[nodes]
+target_error = 3e-3
+leaf_intervals = 8
+fold_warp = true
+[solver]
+tol = 1e-5
+[checks]
+per_patch = 5
+"#,
+    );
+    let dir = subdir("fold");
+    let all = dir.join("all.h5");
+    ok(
+        &sweep(&["run", s(&cfg), "-o", s(&all), "--quiet"]),
+        "fold run",
+    );
+    let want = datasets(&all);
+    let knot = want
+        .get("/patches/partial_high/warp/knot")
+        .expect("the table has the fold edge");
+    assert!(knot.len() >= 4, "{} knots", knot.len());
+    let one = dir.join("one.h5");
+    ok(
+        &sweep(&["run", s(&cfg), "-o", s(&one), "--threads", "1", "--quiet"]),
+        "fold run, one thread",
+    );
+    assert_eq!(datasets(&one), want, "one thread");
+    let parts: Vec<PathBuf> = (1..=2).map(|k| dir.join(format!("f{k}.part"))).collect();
+    for (k, part) in parts.iter().enumerate() {
+        let shard = format!("{}/2", k + 1);
+        ok(
+            &sweep(&["run", s(&cfg), "--shard", &shard, "-o", s(part), "--quiet"]),
+            "fold shard",
+        );
+    }
+    let merged = dir.join("merged.h5");
+    ok(
+        &sweep(&[
+            "merge",
+            s(&parts[0]),
+            s(&parts[1]),
+            "-o",
+            s(&merged),
+            "--quiet",
+        ]),
+        "fold merge",
+    );
+    assert_eq!(datasets(&merged), want, "merged shards");
+}
+
 #[test]
 fn bad_shard_arguments_are_usage_errors() {
     let cfg = config("shard_args.toml", CONFIG);
