@@ -11,11 +11,12 @@ use std::collections::{BTreeSet, HashMap};
 use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
-use std::sync::{Mutex, MutexGuard, OnceLock};
+use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
 use oblique_lookup::surface::{alpha_c1, alpha_c2, linear_limit};
+use oblique_lookup::testing::fork_guard;
 use oblique_lookup::{PatchKind, Table};
 
 /// Small table: all three patches (γ from 0.8 to 1.6), several root cells along γ, leaves at
@@ -276,15 +277,6 @@ fn write_config(name: &str, text: &str) -> PathBuf {
     let p = scratch().join(name);
     std::fs::write(&p, text).unwrap();
     p
-}
-
-/// Held while a child process is started and while this process has an HDF5 file open for
-/// writing: a child inherits the parent's open descriptors, and with them HDF5's lock on a file
-/// being written (`flock`, kept until the child exits), so a later open of that file in this
-/// process would fail with "unable to lock file" (seen under load). Reads need no guard.
-fn fork_guard() -> MutexGuard<'static, ()> {
-    static GUARD: Mutex<()> = Mutex::new(());
-    GUARD.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// `Command::output` with the child started under [`fork_guard`].
@@ -719,9 +711,10 @@ fn check_layout(path: &Path, ex: &Expect) {
                         // `coord` stores the warped c' in the leaves at or beyond the warp's
                         // start; compared in c (the grading's square root would amplify the
                         // rounding of α next to the knot).
-                        let bg = count_attr(&g, "blocks_gamma") as f64;
                         let stored = match &warp {
-                            Some(w) if x0 * bg >= w.start - 1e-9 => w.invert(gam[idx], coord[idx]),
+                            Some(w) if x0 * bg as f64 >= w.start - 1e-9 => {
+                                w.invert(gam[idx], coord[idx])
+                            }
                             _ => coord[idx],
                         };
                         assert!(

@@ -68,12 +68,8 @@ impl Piecewise {
                 cubic_through(&S, &v)
             })
             .collect();
-        // Whether the rule warps `c` on this line: `Patch::warped`'s test, the same operations.
-        let warp = patch.warp.as_ref().and_then(|w| {
-            let xg = (gamma - patch.gamma_lo) / (patch.gamma_hi - patch.gamma_lo);
-            let bg = patch.blocks_gamma as f64;
-            ((xg * bg).clamp(0.0, bg) >= w.start).then(|| (w.knot_at(gamma), w.clone()))
-        });
+        // Whether the rule warps `c` on this line, and `K(γ)` of the line.
+        let warp = patch.warp_at(gamma).map(|w| (w.knot_at(gamma), w.clone()));
         Ok(Piecewise {
             n: nf,
             last: n - 1,

@@ -458,21 +458,22 @@ impl Patch {
         spans
     }
 
+    /// The patch's warp if it applies at `γ`: the patch has one and `v = x·blocks_gamma`
+    /// (clamped, as [`locate`] computes it) is at or beyond its `start`.
+    #[inline]
+    pub fn warp_at(&self, gamma: f64) -> Option<&Warp> {
+        let w = self.warp.as_ref()?;
+        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
+        let bg = self.blocks_gamma as f64;
+        ((xg * bg).clamp(0.0, bg) >= w.start).then_some(w)
+    }
+
     /// Step 5 of the rule: the coordinate the quadtree is over at `(γ, c)` — `c` itself, or
-    /// [`Warp::apply`]`(γ, c)` when the patch has a warp and `v = x·blocks_gamma` (clamped, as
-    /// [`locate`] computes it) is at or beyond its `start`.
+    /// [`Warp::apply`]`(γ, c)` where [`Patch::warp_at`] gives the warp.
     #[inline]
     pub fn warped(&self, gamma: f64, c: f64) -> f64 {
-        match &self.warp {
-            Some(w) => {
-                let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
-                let v = (xg * self.blocks_gamma as f64).clamp(0.0, self.blocks_gamma as f64);
-                if v >= w.start {
-                    w.apply(gamma, c)
-                } else {
-                    c
-                }
-            }
+        match self.warp_at(gamma) {
+            Some(w) => w.apply(gamma, c),
             None => c,
         }
     }

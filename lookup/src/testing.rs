@@ -4,6 +4,15 @@
 use crate::rebound::{Body, Elastic, Incident3, Motion3, Pair};
 use crate::{Contact, Surface};
 
+/// Held while a test starts a child process and while it has an HDF5 file open for writing: a
+/// child inherits the parent's open descriptors, and with them HDF5's lock on a file being
+/// written (`flock`, kept until the child exits), so a later open of that file in the test
+/// process fails with "unable to lock file" (seen under load). Reads need no guard.
+pub fn fork_guard() -> std::sync::MutexGuard<'static, ()> {
+    static GUARD: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    GUARD.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// Uniform numbers in `[0, 1)` from a xorshift64 generator seeded with `seed` (nonzero): the
 /// 53 high bits of each state. No external RNG, the same stream on every platform.
 pub fn uniform(seed: u64) -> impl FnMut() -> f64 {

@@ -7,9 +7,9 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::sync::{Mutex, MutexGuard};
 
 use oblique_lookup::format::seal_of;
+use oblique_lookup::testing::fork_guard;
 use oblique_lookup::{Table, Warp};
 
 fn repo() -> PathBuf {
@@ -21,14 +21,6 @@ fn scratch(name: &str) -> PathBuf {
         .join(format!("warp_file-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("scratch directory");
     dir.join(name)
-}
-
-/// Held while a child process is started and while a file is open for writing: a child
-/// inherits the open descriptors, and with them HDF5's lock on a file being written (kept until
-/// the child exits), so a later open of that file here would fail with "unable to lock file".
-fn fork_guard() -> MutexGuard<'static, ()> {
-    static GUARD: Mutex<()> = Mutex::new(());
-    GUARD.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Seal a file edited on purpose (as `oblique::storage::seal`).

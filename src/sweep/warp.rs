@@ -60,15 +60,15 @@ fn first_guess(gamma: f64) -> f64 {
 }
 
 /// The lattice position (root-row units) where the warp of a patch over `[gamma_lo,
-/// gamma_hi]` with `blocks_gamma` root rows starts, or `None` when the patch does not reach far
-/// enough past [`FOLD_FROM`] (at least four knot intervals).
-pub fn start_row(gamma_lo: f64, gamma_hi: f64, blocks_gamma: usize) -> Option<f64> {
+/// gamma_hi]` with `blocks_gamma` root rows starts, and γ there; `None` when the patch does not
+/// reach far enough past [`FOLD_FROM`] (at least four knot intervals).
+pub fn start_row(gamma_lo: f64, gamma_hi: f64, blocks_gamma: usize) -> Option<(f64, f64)> {
     let bg = blocks_gamma as f64;
     let v = (FOLD_FROM - gamma_lo) / (gamma_hi - gamma_lo) * bg;
     let scale = f64::from(1u32 << START_DEPTH);
     let start = (v.max(0.0) * scale).ceil() / scale;
     let from = gamma_lo + (gamma_hi - gamma_lo) * start / bg;
-    (start > 0.0 && start < bg && from + 4.0 * STEP <= gamma_hi).then_some(start)
+    (start > 0.0 && start < bg && from + 4.0 * STEP <= gamma_hi).then_some((start, from))
 }
 
 /// The fold warp for a partial-slip patch over `[gamma_lo, gamma_hi]` with `blocks_gamma` ×
@@ -80,13 +80,12 @@ pub fn fold_warp(
     blocks_gamma: usize,
     blocks_coord: usize,
 ) -> Result<Option<Warp>, SweepError> {
-    let Some(start) = start_row(gamma_lo, gamma_hi, blocks_gamma) else {
+    let Some((start, gamma_0)) = start_row(gamma_lo, gamma_hi, blocks_gamma) else {
         return Ok(None);
     };
     if blocks_coord < 2 {
         return Ok(None);
     }
-    let gamma_0 = gamma_lo + (gamma_hi - gamma_lo) * start / blocks_gamma as f64;
     // Grid points from γ₀ until one at or beyond γ_hi.
     let n = (((gamma_hi - gamma_0) / STEP).ceil() as usize + 1).max(4);
     let grid: Vec<f64> = (0..n).map(|i| gamma_0 + i as f64 * STEP).collect();
@@ -168,9 +167,9 @@ mod tests {
     #[test]
     fn the_start_is_the_first_dyadic_row_above_the_birth() {
         // full.toml's partial-slip patch: [1, 3.5], 5 root rows of 0.5.
-        let s = start_row(1.0, 3.5, 5).expect("reaches past the fold");
+        let (s, g) = start_row(1.0, 3.5, 5).expect("reaches past the fold");
         assert_eq!(s, 3.8125);
-        let g = 1.0 + 2.5 * s / 5.0;
+        assert_eq!(g, 1.0 + 2.5 * s / 5.0);
         assert!((FOLD_FROM..FOLD_FROM + 0.5 / 16.0).contains(&g), "{g}");
         assert!(start_row(1.0, 2.9, 4).is_none());
         assert!(
