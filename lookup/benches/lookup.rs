@@ -16,6 +16,10 @@
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
 //!   prepared pair through `rebound_3d_batch` / `rebound_3d_batch_par`.
 //!
+//! - `cycle/dependent_add_x64`: 64 dependent `f64` additions, to read the times above in
+//!   processor cycles (an addition waits 3 cycles for the previous one on the x86-64 cores
+//!   this was measured on, so the cycle is this time / 192).
+//!
 //! Table: `tables/full.h5` (override with `LOOKUP_BENCH_TABLE=path`).
 //! `LOOKUP_BENCH_CLOCK=cpu` measures the process CPU time (`CLOCK_PROCESS_CPUTIME_ID`) instead
 //! of elapsed time (groups suffixed `_cpu`): other processes on a shared machine do not inflate
@@ -99,6 +103,18 @@ fn main() {
     timed(&mut g, "mixed", clock, || {
         i = (i + 1) & 4095;
         table.p(black_box(mg[i]), black_box(ma[i]))
+    });
+    g.finish();
+
+    // The processor's cycle: a chain of 64 dependent additions (no reassociation of floats).
+    let mut g = c.benchmark_group(format!("cycle{}", clock.suffix()));
+    // The chain runs on across iterations, so that consecutive iterations cannot overlap.
+    let (step, mut x) = (black_box(1e-300), black_box(1.0f64));
+    timed(&mut g, "dependent_add_x64", clock, || {
+        for _ in 0..64 {
+            x += step;
+        }
+        x
     });
     g.finish();
 
