@@ -55,15 +55,17 @@ fn header_is_up_to_date() {
     }
 }
 
-/// The directory holding `liboblique_lookup.so`: the profile directory of this test binary
-/// (`target/<profile>/deps/c_abi-…` → `target/<profile>`).
+/// The directory holding `liboblique_lookup.so`: the `deps` directory of this test binary
+/// (`target/<profile>/deps/c_abi-…`), where `cargo test` builds the library from the sources
+/// under test, else the profile directory. The copy in the profile directory is only refreshed
+/// by `cargo build`, so a build of other sources left there would otherwise be tested.
 fn lib_dir() -> PathBuf {
     let exe = std::env::current_exe().expect("test executable path");
     let profile = exe
         .parent()
         .and_then(Path::parent)
         .expect("target/<profile>/deps");
-    for dir in [profile.to_path_buf(), profile.join("deps")] {
+    for dir in [profile.join("deps"), profile.to_path_buf()] {
         if dir.join("liboblique_lookup.so").is_file() {
             return dir;
         }
