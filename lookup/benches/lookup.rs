@@ -15,7 +15,6 @@
 //!   cores of the rayon pool); throughput in queries/s.
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
 //!   prepared pair through `rebound_3d_batch` / `rebound_3d_batch_par`.
-//!
 //! - `cycle/dependent_add_x64`: 64 dependent `f64` additions, to read the times above in
 //!   processor cycles (an addition waits 3 cycles for the previous one on the x86-64 cores
 //!   this was measured on, so the cycle is this time / 192).
