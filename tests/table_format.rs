@@ -1651,38 +1651,33 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
 
     // The writer refuses a warp the readers would refuse, and leaves no file.
     let bad_dir = subdir("warp_bad");
-    let mut bad = built_with_warp(&fx.table, &warp);
-    for bp in &mut bad.patches {
-        if let Some(w) = bp.patch.warp.as_mut() {
-            w.c_star = 1.5;
+    // The error of writing the fixture with `change` made to its warped table, to `file`.
+    let refused = |file: &str, change: &dyn Fn(&mut oblique::sweep::Built)| {
+        let mut bad = built_with_warp(&fx.table, &warp);
+        change(&mut bad);
+        let e = {
+            let _g = fork_guard();
+            oblique::storage::write_table(&bad_dir.join(file), &bad, &prov)
+        };
+        e.expect_err(file).to_string()
+    };
+    let set_warp = |change: fn(&mut oblique_lookup::Warp)| {
+        move |bad: &mut oblique::sweep::Built| {
+            for bp in &mut bad.patches {
+                if let Some(w) = bp.patch.warp.as_mut() {
+                    change(w);
+                }
+            }
         }
-    }
-    let e = {
-        let _g = fork_guard();
-        oblique::storage::write_table(&bad_dir.join("c_star.h5"), &bad, &prov)
-    }
-    .expect_err("c_star = 1.5 written");
-    assert!(e.to_string().contains("c_star"), "{e}");
-    let mut bad = built_with_warp(&fx.table, &warp);
-    for bp in &mut bad.patches {
-        if let Some(w) = bp.patch.warp.as_mut() {
-            w.start = 0.3;
-        }
-    }
-    let e = {
-        let _g = fork_guard();
-        oblique::storage::write_table(&bad_dir.join("start.h5"), &bad, &prov)
-    }
-    .expect_err("start = 0.3 written");
-    assert!(e.to_string().contains("'start' = 0.3"), "{e}");
-    let mut bad = built_with_warp(&fx.table, &warp);
-    let stick = bad.patches.iter_mut().find(|b| b.name == "stick_high");
-    stick.expect("stick_high").patch.warp = Some(warp.clone());
-    let e = {
-        let _g = fork_guard();
-        oblique::storage::write_table(&bad_dir.join("stick.h5"), &bad, &prov)
-    }
-    .expect_err("a warp on stick_high written");
-    assert!(e.to_string().contains("only 'partial_high'"), "{e}");
+    };
+    let e = refused("c_star.h5", &set_warp(|w| w.c_star = 1.5));
+    assert!(e.contains("c_star"), "{e}");
+    let e = refused("start.h5", &set_warp(|w| w.start = 0.3));
+    assert!(e.contains("'start' = 0.3"), "{e}");
+    let e = refused("stick.h5", &|bad| {
+        let stick = bad.patches.iter_mut().find(|b| b.name == "stick_high");
+        stick.expect("stick_high").patch.warp = Some(warp.clone());
+    });
+    assert!(e.contains("only 'partial_high'"), "{e}");
     assert!(dir_names(&bad_dir).is_empty(), "{:?}", dir_names(&bad_dir));
 }

@@ -123,20 +123,22 @@ impl Reader<'_> {
         }
     }
 
-    /// A 1-D int32 dataset of a patch (any length).
-    fn int_dataset(
+    /// A 1-D dataset of any length whose values are `T` (named `type_name` in the error),
+    /// in group `g` of `owner` (how the error names the group, e.g. `patch 'stick_high'`).
+    fn vector<T: hdf5::H5Type>(
         &self,
         g: &hdf5::Group,
-        patch: &str,
+        owner: &str,
         name: &str,
-    ) -> Result<Vec<i32>, LookupError> {
+        type_name: &str,
+    ) -> Result<Vec<T>, LookupError> {
         g.dataset(name)
             .ok()
             .filter(|d| d.ndim() == 1)
-            .and_then(|d| d.read_raw::<i32>().ok())
+            .and_then(|d| d.read_raw::<T>().ok())
             .ok_or_else(|| {
                 self.invalid(format!(
-                    "patch '{patch}': dataset '{name}' missing or not a 1-D int32 array"
+                    "{owner}: dataset '{name}' missing or not a 1-D {type_name} array"
                 ))
             })
     }
@@ -229,16 +231,7 @@ impl Reader<'_> {
             attr(ATTR_WARP_GAMMA_STEP)?,
             attr(ATTR_WARP_C_STAR)?,
         );
-        let knot = w
-            .dataset(DS_WARP_KNOT)
-            .ok()
-            .filter(|d| d.ndim() == 1)
-            .and_then(|d| d.read_raw::<f64>().ok())
-            .ok_or_else(|| {
-                self.invalid(format!(
-                    "'{where_}': dataset '{DS_WARP_KNOT}' missing or not a 1-D float64 array"
-                ))
-            })?;
+        let knot = self.vector(&w, &format!("'{where_}'"), DS_WARP_KNOT, "float64")?;
         Ok(Some(Warp {
             start,
             gamma_0,
@@ -282,7 +275,7 @@ impl Reader<'_> {
                 "patch '{name}': leaf_intervals = {m} gives fewer nodes than stencil_points = {stencil}"
             )));
         }
-        let tree = self.int_dataset(&g, name, DS_TREE)?;
+        let tree = self.vector(&g, &format!("patch '{name}'"), DS_TREE, "int32")?;
         let leaves = self.check_tree(name, &tree, bg * bc)?;
         let shape = [leaves, m + 1, m + 1];
         let p = self.dataset(&g, DS_P, &shape)?;
