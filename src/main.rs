@@ -97,10 +97,15 @@ sweep query tables/full.h5 --gamma 1.754 --alpha 1\n  \
 sweep query tables/full.h5 --gamma 1.754 --alpha inf --json\n  \
 sweep query tables/full.h5 --batch points.csv > answers.csv\n  \
 printf '1.75,0.3\\n2,inf\\n' | sweep query tables/full.h5 --batch -\n\n\
-Batch lines are `gamma,alpha` (an optional first line `gamma,alpha` is a header); the output\n\
-lines are `gamma,alpha,P,e_t` in the same order, e_t = (2P + 5)/7 (solid sphere, no spin).\n\
-A malformed line or a point outside the table's domain stops with its line number (exit 2);\n\
---clamp answers points outside the domain at the nearest gamma of the table instead.")]
+Batch lines are `gamma,alpha`; the output lines are `gamma,alpha,P,e_t` in the same order,\n\
+e_t = (2P + 5)/7 (solid sphere, no spin). A header line `gamma,alpha` (before the first point)\n\
+becomes `gamma,alpha,P,e_t`; blank lines and lines starting with `#` are copied unchanged; a\n\
+UTF-8 byte-order mark is ignored. The whole input is read and checked before anything is\n\
+written (about 32 bytes of memory per line): a malformed line or a point outside the table's\n\
+domain stops the batch with its line number and no output at all (exit 2), whatever the size.\n\
+--clamp answers points outside the domain at the nearest gamma of the table instead.\n\
+Points on the full-slip line (alpha below alpha_c1, or alpha_c2 for gamma <= 1) are answered\n\
+in closed form, P = 1 - 7 alpha, for any gamma > 0, inside the table's domain or not.")]
     Query(query_cmd::QueryArgs),
     /// Accuracy against cost: error of each scheme over a ladder of resolutions against a tight
     /// reference, time per impact, CSV and log-log plot; optionally the table-level trade.
@@ -471,6 +476,23 @@ fn impact(args: ImpactArgs) -> Result<()> {
     Ok(())
 }
 
+/// The error and its causes on one line, each cause once: a library error whose message
+/// already quotes its source (`cannot read config X: No such file …`) is not followed by that
+/// source again.
+fn error_text(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let part = cause.to_string();
+        if text.is_empty() {
+            text = part;
+        } else if !text.contains(&part) {
+            text.push_str(": ");
+            text.push_str(&part);
+        }
+    }
+    text
+}
+
 /// Die quietly when the reader of our output goes away (`sweep query ... | head`), like other
 /// Unix tools, instead of panicking in `println!` on a broken pipe.
 #[cfg(unix)]
@@ -506,7 +528,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", error_text(&e));
             let usage = matches!(
                 e.downcast_ref::<PhysicsError>(),
                 Some(
@@ -526,9 +548,17 @@ fn main() -> ExitCode {
                     .is_some()
                 || e.downcast_ref::<query_cmd::QueryUsageError>().is_some()
                 || matches!(
+                    e.downcast_ref::<oblique_lookup::LookupError>(),
+                    Some(
+                        oblique_lookup::LookupError::Io { .. }
+                            | oblique_lookup::LookupError::Invalid { .. }
+                    )
+                )
+                || matches!(
                     e.downcast_ref::<oblique::scene::SceneError>(),
                     Some(
-                        oblique::scene::SceneError::Parse { .. }
+                        oblique::scene::SceneError::Io { .. }
+                            | oblique::scene::SceneError::Parse { .. }
                             | oblique::scene::SceneError::Invalid { .. }
                             | oblique::scene::SceneError::Measured { .. }
                     )

@@ -10,20 +10,17 @@ use serde_json::json;
 use oblique_lookup::surface::{Region, Surface};
 use oblique_lookup::{LookupError, OutOfDomain, Table};
 
-/// Queries evaluated (in parallel) per chunk of a batch; output is written chunk by chunk.
-const CHUNK_LINES: usize = 1 << 16;
-
 #[derive(Args)]
 pub struct QueryArgs {
     /// Table file written by `sweep run` (HDF5, schema v2 or v3).
     table: PathBuf,
     /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
     #[arg(long, value_parser = crate::parse_gamma, allow_hyphen_values = true,
-          required_unless_present = "batch", conflicts_with = "batch", requires = "alpha")]
+          conflicts_with = "batch", requires = "alpha")]
     gamma: Option<f64>,
     /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
     #[arg(long, value_parser = crate::parse_alpha, allow_hyphen_values = true,
-          required_unless_present = "batch", conflicts_with = "batch", requires = "gamma")]
+          conflicts_with = "batch", requires = "gamma")]
     alpha: Option<f64>,
     /// Read lines `gamma,alpha` from FILE (`-` for stdin) and write lines `gamma,alpha,P,e_t`
     /// in the same order.
@@ -81,7 +78,12 @@ pub fn run(args: QueryArgs) -> Result<()> {
         return batch(&table, path, outside);
     }
     let (Some(gamma), Some(alpha)) = (args.gamma, args.alpha) else {
-        return Err(QueryUsageError("give --gamma and --alpha, or --batch FILE".into()).into());
+        return Err(QueryUsageError(
+            "nothing to answer: give --gamma G --alpha A for one point, or --batch FILE for \
+             lines `gamma,alpha` (FILE `-` reads standard input)"
+                .into(),
+        )
+        .into());
     };
     let p = table.p_with(gamma, alpha, outside).map_err(usage)?;
     let region = region_name(&table.surface, gamma, alpha);
@@ -131,6 +133,16 @@ fn parse_line(line: &str, number: usize) -> Result<(f64, f64), QueryUsageError> 
     Ok((g, a))
 }
 
+/// One input line of a batch: a point to answer, or a line passed through unchanged.
+enum BatchLine {
+    /// `gamma,alpha`: index into the point vectors.
+    Point,
+    /// A blank line, a `#` comment or the header, copied to the output as it is.
+    Verbatim(String),
+}
+
+/// Read a whole batch: every line is checked before anything is answered, so a bad line anywhere
+/// (or a point outside the domain) stops the batch with no output at all, whatever its size.
 fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
     let input: Box<dyn BufRead> = if path.as_os_str() == "-" {
         Box::new(std::io::stdin().lock())
@@ -140,51 +152,59 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
         })?;
         Box::new(std::io::BufReader::new(f))
     };
-    let stdout = std::io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
     let (mut gammas, mut alphas, mut numbers) = (Vec::new(), Vec::new(), Vec::new());
-    let mut ps = Vec::new();
-    let mut flush = |g: &mut Vec<f64>,
-                     a: &mut Vec<f64>,
-                     n: &mut Vec<usize>,
-                     out: &mut BufWriter<std::io::StdoutLock>|
-     -> Result<()> {
-        ps.clear();
-        ps.resize(g.len(), 0.0);
-        if let Err(e) = table.p_batch_par(g, a, &mut ps, outside) {
-            return Err(match e {
-                LookupError::Batch { index, source } => {
-                    QueryUsageError(format!("batch line {}: {source}", n[index])).into()
-                }
-                other => usage(other),
-            });
-        }
-        for ((g, a), p) in g.iter().zip(a.iter()).zip(&ps) {
-            writeln!(out, "{g},{a},{p},{}", e_t(*p)).context("writing the output")?;
-        }
-        g.clear();
-        a.clear();
-        n.clear();
-        Ok(())
-    };
+    let mut lines = Vec::new();
+    let mut header_allowed = true;
     for (i, line) in input.lines().enumerate() {
         let number = i + 1;
         let line =
             line.map_err(|e| QueryUsageError(format!("batch line {number}: cannot read: {e}")))?;
+        let line = if number == 1 {
+            line.strip_prefix('\u{feff}')
+                .map(str::to_owned)
+                .unwrap_or(line)
+        } else {
+            line
+        };
         let text = line.trim();
-        if number == 1 && text.eq_ignore_ascii_case("gamma,alpha") {
-            writeln!(out, "gamma,alpha,P,e_t").context("writing the output")?;
+        if text.is_empty() || text.starts_with('#') {
+            lines.push(BatchLine::Verbatim(line.trim_end().to_owned()));
             continue;
         }
+        if header_allowed && text.replace(' ', "").eq_ignore_ascii_case("gamma,alpha") {
+            header_allowed = false;
+            lines.push(BatchLine::Verbatim("gamma,alpha,P,e_t".into()));
+            continue;
+        }
+        header_allowed = false;
         let (g, a) = parse_line(text, number)?;
         gammas.push(g);
         alphas.push(a);
         numbers.push(number);
-        if gammas.len() == CHUNK_LINES {
-            flush(&mut gammas, &mut alphas, &mut numbers, &mut out)?;
-        }
+        lines.push(BatchLine::Point);
     }
-    flush(&mut gammas, &mut alphas, &mut numbers, &mut out)?;
+    let mut ps = vec![0.0; gammas.len()];
+    table
+        .p_batch_par(&gammas, &alphas, &mut ps, outside)
+        .map_err(|e| match e {
+            LookupError::Batch { index, source } => {
+                QueryUsageError(format!("batch line {}: {source}", numbers[index])).into()
+            }
+            other => usage(other),
+        })?;
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let mut points = gammas.iter().zip(&alphas).zip(&ps);
+    for line in &lines {
+        match line {
+            BatchLine::Verbatim(text) => writeln!(out, "{text}"),
+            BatchLine::Point => match points.next() {
+                Some(((g, a), p)) => writeln!(out, "{g},{a},{p},{}", e_t(*p)),
+                None => Ok(()),
+            },
+        }
+        .context("writing the output")?;
+    }
     out.flush().context("writing the output")?;
     Ok(())
 }

@@ -153,7 +153,7 @@ fn bad_batch_lines_name_their_line_number() {
             vec!["line 3", "alpha", "abc"],
         ),
         ("1.5,0.3,7\n", vec!["line 1", "3 field"]),
-        ("1.5,0.3\n\n1.5,0.3\n", vec!["line 2"]),
+        ("1.5,0.3\n \t\n1.5\n", vec!["line 3"]),
         ("1.5,-0.5\n", vec!["line 1", "alpha"]),
         ("nan,0.5\n", vec!["line 1", "gamma"]),
     ] {
@@ -186,4 +186,93 @@ fn bad_arguments_and_files_fail_cleanly() {
         "{stderr}"
     );
     assert!(stderr.contains("/nonexistent/t.h5"), "{stderr}");
+}
+
+#[test]
+fn a_failing_batch_writes_nothing_whatever_its_size() {
+    // More lines than any internal chunk: a bad last line (or a point outside the domain in the
+    // middle) must still leave standard output empty.
+    let good = "1.5,0.3\n".repeat(100_000);
+    let hi = table().surface.gamma_max;
+    for (input, needles) in [
+        (format!("{good}1.5,oops\n"), vec!["line 100001".to_string()]),
+        (
+            format!("{good}{},1\n{good}", hi + 1.0),
+            vec!["line 100001".to_string(), "gamma".to_string()],
+        ),
+        (
+            "1.5,0.3\n1.5,0.3\n1.5,\n".to_string(),
+            vec!["line 3".to_string()],
+        ),
+    ] {
+        let out = sweep(&["query", TABLE, "--batch", "-"], Some(&input));
+        let needles: Vec<&str> = needles.iter().map(String::as_str).collect();
+        refused(&out, &needles);
+    }
+}
+
+#[test]
+fn batch_passes_blank_and_comment_lines_and_ignores_a_bom() {
+    let t = table();
+    let input = "\u{feff}# points of run 7\ngamma,alpha\n1.5,0.3\n\n  # a comment\n2,inf\r\n";
+    let out = sweep(&["query", TABLE, "--batch", "-"], Some(input));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let lines: Vec<&str> = text.lines().collect();
+    let answer = |g: f64, a: f64| {
+        let p = t.p(g, a).expect("inside");
+        format!("{g},{a},{p},{}", (2.0 * p + 5.0) / 7.0)
+    };
+    assert_eq!(
+        lines,
+        vec![
+            "# points of run 7".to_string(),
+            "gamma,alpha,P,e_t".to_string(),
+            answer(1.5, 0.3),
+            String::new(),
+            "  # a comment".to_string(),
+            answer(2.0, f64::INFINITY),
+        ]
+    );
+}
+
+#[test]
+fn a_query_without_a_point_names_both_ways_to_ask() {
+    let out = sweep(&["query", TABLE], None);
+    refused(&out, &["--gamma", "--alpha", "--batch"]);
+}
+
+#[test]
+fn things_that_are_not_tables_are_named() {
+    let dir = std::env::temp_dir().join(format!("oblique-notables-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let part = dir.join("part1.bin");
+    let mut bytes = b"OBLQNODE".to_vec();
+    bytes.extend_from_slice(&[0u8; 64]);
+    std::fs::write(&part, bytes).expect("write a node-file header");
+    let empty = dir.join("empty.h5");
+    std::fs::write(&empty, b"").expect("write an empty file");
+    let dir_s = dir.display().to_string();
+    let part_s = part.display().to_string();
+    let empty_s = empty.display().to_string();
+    for (path, needle) in [
+        (dir_s.as_str(), "a directory"),
+        ("/dev/null", "a character device"),
+        (part_s.as_str(), "shard part"),
+        (empty_s.as_str(), "empty file"),
+        ("/nonexistent/t.h5", "no such file"),
+    ] {
+        for cmd in [
+            vec!["query", path, "--gamma", "1.5", "--alpha", "1"],
+            vec!["inspect", path],
+        ] {
+            let out = sweep(&cmd, None);
+            refused(&out, &[path, needle]);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -305,6 +305,45 @@ impl Reader<'_> {
     }
 }
 
+/// The first bytes of the node files (shard parts, checkpoints) that a table build writes; a
+/// user who passes one of them as a table is told what it is.
+const NODE_FILE_MAGIC: &[u8] = b"OBLQNODE";
+
+/// What an existing path is, in words, for a path that is not a regular file.
+fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if meta.is_dir() {
+        "a directory"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// An I/O error in words, without the `(os error N)` suffix.
+fn io_reason(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        _ => e.to_string(),
+    }
+}
+
 impl Table {
     /// Open, validate and load a table. Errors name the problem: not HDF5 or truncated, not a
     /// P table, a newer schema, inconsistent shapes, non-finite values.
@@ -312,16 +351,28 @@ impl Table {
         let path_ref = path.as_ref();
         let path_str = path_ref.display().to_string();
         let r = Reader { path: &path_str };
-        if !path_ref.is_file() {
-            return Err(LookupError::Io {
-                path: path_str.clone(),
-                message: "no such file".into(),
-            });
-        }
-        let bytes = std::fs::read(path_ref).map_err(|e| LookupError::Io {
+        let io = |message: String| LookupError::Io {
             path: path_str.clone(),
-            message: e.to_string(),
-        })?;
+            message,
+        };
+        let meta = std::fs::metadata(path_ref).map_err(|e| io(io_reason(&e)))?;
+        if !meta.is_file() {
+            return Err(io(format!(
+                "{} (a table is a regular file written by a table build)",
+                file_kind(&meta)
+            )));
+        }
+        let bytes = std::fs::read(path_ref).map_err(|e| io(io_reason(&e)))?;
+        if bytes.is_empty() {
+            return Err(io("empty file (0 bytes), not a table".into()));
+        }
+        if bytes.starts_with(NODE_FILE_MAGIC) {
+            return Err(r.invalid(
+                "this is a node file (a shard part or a checkpoint of a table build), not a \
+                 table: merge the shard parts into a table first"
+                    .to_string(),
+            ));
+        }
         crate::format::verify_seal(&bytes).map_err(|m| r.invalid(m))?;
         drop(bytes);
         let file = hdf5::File::open(path_ref).map_err(|e| LookupError::Io {
