@@ -1,17 +1,26 @@
 #!/usr/bin/env bash
 # Install what the project needs beyond the Rust toolchain (Debian): the HDF5 C library and
-# pkg-config. Idempotent: does nothing when they are present.
+# pkg-config. Idempotent: does nothing when they are present. Sourced by scripts/sweep and
+# scripts/test.
 set -euo pipefail
 need=()
 dpkg -s libhdf5-dev >/dev/null 2>&1 || need+=(libhdf5-dev)
 command -v pkg-config >/dev/null 2>&1 || need+=(pkg-config)
 command -v h5dump >/dev/null 2>&1 || need+=(hdf5-tools)
 if [ ${#need[@]} -gt 0 ]; then
-  echo "setup: installing ${need[*]} (apt-get)" >&2
+  echo "setup: installing ${need[*]} with apt-get (once; about a minute)..." >&2
   SUDO=""
   if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need[@]}" >/dev/null
+  log="$(mktemp)"
+  if ! { $SUDO apt-get update -qq &&
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need[@]}"; } >"$log" 2>&1; then
+    cat "$log" >&2
+    echo "setup: apt-get failed (its output above); install ${need[*]} by hand" >&2
+    rm -f "$log"
+    exit 1
+  fi
+  rm -f "$log"
+  echo "setup: installed ${need[*]}" >&2
 fi
 # HDF5 on Debian lives under an architecture/serial directory; tell hdf5-metno's build script.
 if [ -z "${HDF5_DIR:-}" ] && [ -d /usr/lib/x86_64-linux-gnu/hdf5/serial ]; then
