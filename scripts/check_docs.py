@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""Re-run the examples of README.md and docs/*.md and compare what they print.
+
+An example is a ```text block whose lines starting with `$ ` are commands; the lines after a
+command, up to the next command or the end of the block, are what it prints (standard output and
+standard error together). Each command runs under bash in a scratch folder holding copies of
+`configs/` and `tables/` (so nothing in the checkout is written), with `target/release` first on
+PATH, so `sweep` is the binary under test.
+
+Times (`3.362 ms`, `52.9 s`), dates and commit hashes vary from run to run and are compared as
+placeholders; every other character must match.
+
+    python3 scripts/check_docs.py            # check; exit 1 and a diff on any difference
+    python3 scripts/check_docs.py --update   # rewrite the blocks with what the commands print
+"""
+
+import argparse
+import difflib
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+
+VOLATILE = [
+    (re.compile(r"\b\d+(\.\d+)?(e-?\d+)? ?(ms|µs|ns|s)\b"), "<time>"),
+    (re.compile(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ"), "<date>"),
+    (re.compile(r"\bcommit [0-9a-f]{7,40}(-dirty)?…?"), "commit <hash>"),
+]
+
+
+def normalise(text):
+    for pattern, placeholder in VOLATILE:
+        text = pattern.sub(placeholder, text)
+    return [line.rstrip() for line in text.rstrip("\n").split("\n")]
+
+
+def examples(path):
+    """(start, end, [(command, expected_lines)]) for each ```text block with commands."""
+    lines = path.read_text(encoding="utf-8").split("\n")
+    out, i = [], 0
+    while i < len(lines):
+        if lines[i].strip() == "```text":
+            j = i + 1
+            while j < len(lines) and lines[j].strip() != "```":
+                j += 1
+            body = lines[i + 1 : j]
+            runs = []
+            for line in body:
+                if line.startswith("$ "):
+                    runs.append((line[2:], []))
+                elif runs:
+                    runs[-1][1].append(line)
+            if runs:
+                out.append((i + 1, j, runs))
+            i = j
+        i += 1
+    return lines, out
+
+
+def run(command, scratch, env):
+    r = subprocess.run(
+        ["bash", "-o", "pipefail", "-c", command],
+        cwd=scratch,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        timeout=600,
+    )
+    return r.returncode, r.stdout
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--update", action="store_true", help="rewrite the blocks with the output")
+    args = ap.parse_args()
+    sweep = ROOT / "target" / "release" / "sweep"
+    if not sweep.exists():
+        sys.exit(f"check_docs: {sweep} not built (run scripts/sweep --version or scripts/test)")
+    env = dict(os.environ)
+    env["PATH"] = f"{sweep.parent}{os.pathsep}{env.get('PATH', '')}"
+    failures, count = 0, 0
+    with tempfile.TemporaryDirectory(prefix="check_docs-") as scratch:
+        for folder in ("configs", "tables"):
+            shutil.copytree(ROOT / folder, Path(scratch) / folder)
+        (Path(scratch) / "docs").mkdir()
+        for path in DOCS:
+            lines, blocks = examples(path)
+            changed = False
+            for start, end, runs in reversed(blocks):
+                new_body = []
+                for command, expected in runs:
+                    count += 1
+                    code, output = run(command, scratch, env)
+                    where = f"{path.relative_to(ROOT)}:{start}"
+                    if code != 0:
+                        print(f"check_docs: {where}: `{command}` exited {code}:\n{output}")
+                        failures += 1
+                    got = output.rstrip("\n").split("\n") if output.strip() else []
+                    if normalise("\n".join(expected)) != normalise("\n".join(got)):
+                        failures += not args.update
+                        if not args.update:
+                            diff = difflib.unified_diff(
+                                expected, got, "documented", "printed now", lineterm=""
+                            )
+                            print(f"check_docs: {where}: `{command}` prints otherwise:")
+                            print("\n".join(diff))
+                    new_body += [f"$ {command}", *(got if args.update else expected)]
+                if args.update and lines[start:end] != new_body:
+                    lines[start:end] = new_body
+                    changed = True
+            if changed:
+                path.write_text("\n".join(lines), encoding="utf-8")
+                print(f"check_docs: updated {path.relative_to(ROOT)}")
+    if failures:
+        sys.exit(f"check_docs: {failures} of {count} documented commands differ")
+    print(f"check_docs: {count} documented commands print what the docs show")
+
+
+if __name__ == "__main__":
+    main()
