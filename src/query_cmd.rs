@@ -49,6 +49,17 @@ fn usage(e: LookupError) -> anyhow::Error {
     }
 }
 
+/// A number for a CSV line: the shortest text that reads back to the same `f64`, in exponent
+/// form for magnitudes below 1e-5 or from 1e16 on (never hundreds of digits).
+fn number(v: f64) -> String {
+    let a = v.abs();
+    if v.is_finite() && a != 0.0 && !(1e-5..1e16).contains(&a) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// Tangential restitution of a solid sphere without initial spin, `e_t = (2P + 5)/7`.
 fn e_t(p: f64) -> f64 {
     (2.0 * p + 5.0) / 7.0
@@ -104,7 +115,11 @@ pub fn run(args: QueryArgs) -> Result<()> {
         });
         println!("{out}");
     } else {
-        println!("P(gamma = {gamma}, alpha = {alpha}) = {p:.9}  +/- {error:.1e}");
+        println!(
+            "P(gamma = {}, alpha = {}) = {p:.9}  +/- {error:.1e}",
+            number(gamma),
+            number(alpha)
+        );
         println!(
             "e_t = (2P + 5)/7 = {:.9}   (solid sphere, no initial spin)",
             e_t(p)
@@ -199,7 +214,14 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
         match line {
             BatchLine::Verbatim(text) => writeln!(out, "{text}"),
             BatchLine::Point => match points.next() {
-                Some(((g, a), p)) => writeln!(out, "{g},{a},{p},{}", e_t(*p)),
+                Some(((g, a), p)) => writeln!(
+                    out,
+                    "{},{},{},{}",
+                    number(*g),
+                    number(*a),
+                    number(*p),
+                    number(e_t(*p))
+                ),
                 None => Ok(()),
             },
         }

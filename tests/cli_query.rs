@@ -276,3 +276,29 @@ fn things_that_are_not_tables_are_named() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn extreme_numbers_are_printed_compactly() {
+    // 1e308 in a message, 1e-320 echoed on an output line: never hundreds of digits.
+    let out = sweep(&["query", TABLE, "--gamma", "1e308", "--alpha", "1"], None);
+    refused(&out, &["gamma = 1e308"]);
+    let out = sweep(&["query", TABLE, "--batch", "-"], Some("1e308,1\n"));
+    refused(&out, &["line 1", "1e308"]);
+    let out = sweep(&["query", TABLE, "--batch", "-"], Some("2,1e-320\n"));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    assert!(text.starts_with("2,1e-320,"), "{text}");
+    assert!(text.len() < 80, "{text}");
+    let out = sweep(
+        &[
+            "query", TABLE, "--gamma", "1e-300", "--alpha", "1", "--clamp",
+        ],
+        None,
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("gamma = 1e-300"), "{text}");
+}

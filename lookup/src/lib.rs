@@ -61,7 +61,7 @@ pub enum LookupError {
         message: String,
     },
     /// A query argument is outside the allowed range.
-    #[error("invalid {name} = {value}: must be {allowed}")]
+    #[error("invalid {name} = {value:?}: must be {allowed}")]
     Query {
         /// Argument name.
         name: &'static str,
