@@ -8,11 +8,12 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use serde_json::json;
 
 use oblique::physics::history::{fold_plus_curve, slip_history, Episode, SlipSign, FOLD_MIN_STEPS};
-use oblique::physics::impact::ALPHA_NO_SLIP;
+use oblique::physics::impact::{Limits, ALPHA_NO_SLIP};
 use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Preset, Resolution, Scheme};
 use oblique::sweep::config::ConfigError;
 
 mod accuracy_cmd;
+mod impact_progress;
 mod plot_cmd;
 mod progress;
 mod query_cmd;
@@ -46,6 +47,12 @@ sweep impact --gamma 1.754 --alpha inf --tol 1e-8 --json\n  \
 sweep impact --gamma 1.754 --alpha 0.5 --preset fast\n  \
 sweep impact --gamma 3.2 --alpha 1.3 --history          # gross-slip episodes of the impact\n  \
 sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler\n\n\
+gamma must lie in [0.01, 5], the range the solver is tested in (docs/accuracy.md, extremes).\n\
+At a fixed resolution (--springs/--steps) the error estimate compares runs at 1/2, 1/4 and 1/8 \
+of it and is printed only where they converge steadily (else \"no error estimate\" and why; \
+--json: error_estimate null with no_estimate_reason).\n\
+Progress (level, resolution, estimate against the tolerance) goes to stderr on a terminal \
+after 1 s, or always with --progress.\n\
 Presets (measured error and cost: docs/accuracy.md): fast = tol 1e-4, standard = tol 1e-6 \
 (the default), reference = tol 1e-8.\n\
 A tolerance that cannot be reached within the work limit (2^34 spring-steps per run) is refused \
@@ -145,7 +152,7 @@ enum SchemeArg {
 
 #[derive(Args)]
 struct ImpactArgs {
-    /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
+    /// Material group gamma = sqrt((7/2) G*/E*), from 0.01 to 5 (the tested range).
     #[arg(long, value_parser = parse_gamma, allow_hyphen_values = true)]
     gamma: f64,
     /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
@@ -157,10 +164,12 @@ struct ImpactArgs {
     /// Accuracy preset: fast (tol 1e-4), standard (1e-6, the default) or reference (1e-8).
     #[arg(long, value_parser = parse_preset, conflicts_with_all = ["tol", "springs", "steps"])]
     preset: Option<Preset>,
-    /// Springs on the half-row [0, a_max] (>= 2); use with --steps instead of --tol.
+    /// Springs on the half-row [0, a_max] (>= 2; an error estimate needs >= 16); use with --steps
+    /// instead of --tol.
     #[arg(long, requires = "steps", value_parser = parse_springs)]
     springs: Option<usize>,
-    /// Time steps per contact time (>= 8); use with --springs instead of --tol.
+    /// Time steps per contact time (>= 8; an error estimate needs >= 64); use with --springs
+    /// instead of --tol.
     #[arg(long, requires = "springs", value_parser = parse_steps)]
     steps: Option<usize>,
     /// Numerical scheme.
@@ -178,6 +187,10 @@ struct ImpactArgs {
     /// P(alpha) has a kink (docs/solver.md).
     #[arg(long)]
     history: bool,
+    /// Report every level of the automatic refinement on stderr (level, resolution, error
+    /// estimate against the tolerance); shown on a terminal anyway once a solve takes 1 s.
+    #[arg(long)]
+    progress: bool,
 }
 
 #[derive(Args)]
@@ -236,7 +249,7 @@ fn kinks(args: KinksArgs) -> Result<()> {
     let (gb, ab) = curve.birth;
     let below = format!(
         "no fold curve F+ below its birth point gamma_b = {gb:.6} (--gamma-max {})",
-        args.gamma_max
+        fmt_num(args.gamma_max)
     );
     if args.json {
         let points: Vec<serde_json::Value> = curve
@@ -329,12 +342,30 @@ fn parse_f64(s: &str) -> Result<f64, String> {
     }
 }
 
+/// Range of `sweep impact --gamma`: the γ range of the extremes suite (`tests/extremes.rs`,
+/// docs/accuracy.md), in which the solver is tested for boundedness and convergence.
+const IMPACT_GAMMA_RANGE: (f64, f64) = (0.01, 5.0);
+
 fn parse_gamma(s: &str) -> Result<f64, String> {
     let v = parse_f64(s)?;
-    if v.is_finite() && v > 0.0 {
+    let (lo, hi) = IMPACT_GAMMA_RANGE;
+    if (lo..=hi).contains(&v) {
         Ok(v)
     } else {
-        Err("gamma must be a finite number > 0".into())
+        Err(format!(
+            "gamma must be a number from {lo} to {hi}, the range the solver is tested in \
+             (docs/accuracy.md)"
+        ))
+    }
+}
+
+/// A number as written by a person: plain decimals from 1e-4 to 1e9, exponent notation
+/// outside (Rust's `{}` would print 1e308 with 309 digits).
+fn fmt_num(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
     }
 }
 
@@ -394,8 +425,35 @@ fn impact(args: ImpactArgs) -> Result<()> {
         ),
     };
     let start = Instant::now();
-    let sol = oblique::physics::solve(args.gamma, args.alpha, accuracy, scheme, args.simulate)?;
+    let mut progress = impact_progress::ImpactProgress::new(args.progress);
+    let sol = oblique::physics::solve_observed(
+        args.gamma,
+        args.alpha,
+        accuracy,
+        scheme,
+        args.simulate,
+        Limits::default(),
+        &mut |event| progress.report(event),
+    );
+    progress.finish();
+    let sol = sol?;
     let elapsed = start.elapsed().as_secs_f64();
+    // α_c1 marks the end of the full-slip line only for γ ≥ 1; below, the line ends at α_c2
+    // and the formula for α_c1 means nothing (negative for γ < 1/√2; physics.md).
+    let alpha_c1 = (args.gamma >= 1.0).then(|| regimes::alpha_c1(args.gamma));
+    let alpha_c2 = regimes::alpha_c2(args.gamma);
+    // The continuum row has no spring count; a closed form has no resolution at all.
+    let (springs, steps, row) = match sol.method {
+        Method::ClosedForm => (None, None, None),
+        Method::Simulated if sol.resolution.springs == 0 => {
+            (None, Some(sol.resolution.steps), Some("continuum"))
+        }
+        Method::Simulated => (
+            Some(sol.resolution.springs),
+            Some(sol.resolution.steps),
+            Some("springs"),
+        ),
+    };
     let e_t = regimes::tangential_restitution(sol.p);
     let regime = regimes::Regime::of(args.gamma, args.alpha);
     let method = match sol.method {
@@ -413,17 +471,21 @@ fn impact(args: ImpactArgs) -> Result<()> {
             "alpha": json_number(args.alpha),
             "P": sol.p,
             "e_t": e_t,
-            "error_estimate": sol.error_estimate,
-            "springs": sol.resolution.springs,
-            "steps": sol.resolution.steps,
+            "error_estimate": sol.estimate(),
+            "springs": springs,
+            "steps": steps,
+            "row": row,
             "scheme": sol.scheme.name(),
             "method": method,
             "regime": regime.name(),
-            "alpha_c1": regimes::alpha_c1(args.gamma),
-            "alpha_c2": regimes::alpha_c2(args.gamma),
+            "alpha_c1": alpha_c1,
+            "alpha_c2": alpha_c2,
             "elapsed_s": elapsed,
         });
         let mut out = out;
+        if let Some(why) = sol.no_estimate {
+            out["no_estimate_reason"] = json!(why.to_string());
+        }
         if let Some(ep) = &episodes {
             out["gross_slip"] = match ep {
                 Ok(list) => json!(list
@@ -435,17 +497,29 @@ fn impact(args: ImpactArgs) -> Result<()> {
         }
         println!("{out}");
     } else {
-        println!(
-            "P(gamma = {}, alpha = {}) = {:.9}  +/- {:.1e}",
-            args.gamma, args.alpha, sol.p, sol.error_estimate
+        let head = format!(
+            "P(gamma = {}, alpha = {}) = {:.9}",
+            fmt_num(args.gamma),
+            fmt_num(args.alpha),
+            sol.p
         );
+        match (sol.estimate(), sol.no_estimate) {
+            (Some(est), _) => println!("{head}  +/- {est:.1e}"),
+            (None, Some(why)) => println!("{head}  (no error estimate: {why})"),
+            (None, None) => println!("{head}  (no error estimate)"),
+        }
         println!("e_t = (2P + 5)/7 = {e_t:.9}   (solid sphere, no initial spin)");
-        println!(
-            "regime {} (alpha_c1 = {:.6}, alpha_c2 = {:.6})",
-            regime.name(),
-            regimes::alpha_c1(args.gamma),
-            regimes::alpha_c2(args.gamma)
-        );
+        match alpha_c1 {
+            Some(c1) => println!(
+                "regime {} (alpha_c1 = {c1:.6}, alpha_c2 = {alpha_c2:.6})",
+                regime.name()
+            ),
+            None => println!(
+                "regime {} (alpha_c2 = {alpha_c2:.6}; for gamma < 1 the full-slip line ends at \
+                 alpha_c2, alpha_c1 does not apply)",
+                regime.name()
+            ),
+        }
         match sol.method {
             Method::ClosedForm => println!("closed form (exact; --simulate to simulate anyway)"),
             Method::Simulated => println!(

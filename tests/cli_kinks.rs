@@ -118,3 +118,21 @@ fn bad_flags_are_refused_by_name() {
         assert!(out.stdout.is_empty(), "{args:?}");
     }
 }
+
+/// A tiny --gamma-max is echoed in exponent notation, not as 300 digits.
+#[test]
+fn tiny_gamma_max_prints_compactly() {
+    let out = sweep(&[
+        "kinks",
+        "--gamma-max",
+        "1e-300",
+        "--points",
+        "2",
+        "--steps",
+        "256",
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("(--gamma-max 1e-300)"), "{text}");
+    assert!(text.len() < 200, "{text}");
+}

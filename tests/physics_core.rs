@@ -1111,3 +1111,94 @@ fn error_estimate_is_not_fooled_by_a_pre_asymptotic_plateau() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// At a fixed resolution the error estimate is either absent or at least the true error, over
+/// a grid of resolutions (springs 2–1024 and the continuum row, 8–1024 steps, both schemes) at
+/// points in every regime, including the reproducers where the half-resolution difference used
+/// before under-stated the error 10³–10⁴× (γ = 1.7, α = 1: 2 springs × 1024 steps gave ±1.6e-5
+/// for an error of 0.44; 1024 × 8 gave ±2.9e-6 for 0.034; 2 × 8 gave ±0; Euler 8 × 32 gave
+/// ±7.4e-3 for 0.10). References: the automatic refinement to 1e-9.
+#[test]
+fn fixed_resolution_estimate_is_absent_or_bounds_the_true_error() {
+    let points = [
+        (1.7, 1.0),
+        (1.754, 0.5),
+        (0.8, 0.3),
+        (3.2, 1.3),
+        (2.5, f64::INFINITY),
+        (0.5, 1e3),
+        (1.2, 0.25),
+        (0.3, 0.05),
+        (1.0, 0.5),
+        (5.0, 1.0),
+        (0.1, 1e9),
+        (2.16, 0.35),
+    ];
+    let (mut given, mut absent) = (0, 0);
+    let mut failures = Vec::new();
+    let mut ratios = Vec::new();
+    for &(g, a) in &points {
+        let reference = solve(g, a, Accuracy::Tolerance(1e-9), ACC, false)
+            .unwrap()
+            .p;
+        for scheme in [Scheme::Accurate, Scheme::Euler] {
+            for springs in [0, 2, 8, 64, 1024] {
+                if springs == 0 && scheme == Scheme::Euler {
+                    continue;
+                }
+                for steps in [8, 32, 256, 1024] {
+                    let s = solve(g, a, Accuracy::Fixed(res(springs, steps)), scheme, true)
+                        .unwrap_or_else(|e| panic!("{g}, {a}, {springs} x {steps}: {e}"));
+                    let err = (s.p - reference).abs();
+                    match (s.estimate(), s.no_estimate) {
+                        (Some(est), None) => {
+                            given += 1;
+                            if err > 1e-12 {
+                                ratios.push(est / err);
+                            }
+                            assert!(est.is_finite() && s.error_estimate == est);
+                            if est < err {
+                                failures.push(format!(
+                                    "gamma = {g}, alpha = {a}, {} {springs} x {steps}: \
+                                     estimate {est:.2e} < error {err:.2e}",
+                                    scheme.name()
+                                ));
+                            }
+                        }
+                        (None, Some(why)) => {
+                            absent += 1;
+                            // No estimate reads as an infinite one: a tolerance check fails safe.
+                            assert_eq!(s.error_estimate, f64::INFINITY);
+                            assert!(!why.to_string().is_empty());
+                        }
+                        other => panic!("estimate and reason disagree: {other:?}"),
+                    }
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // Both outcomes occur: the check above is not vacuous.
+    assert!(
+        given >= 60 && absent >= 60,
+        "{given} estimates, {absent} without"
+    );
+    ratios.sort_by(f64::total_cmp);
+    eprintln!(
+        "{given} estimates given, {absent} refused; estimate/error from {:.2} (median {:.1}) to \
+         {:.0}",
+        ratios[0],
+        ratios[ratios.len() / 2],
+        ratios[ratios.len() - 1]
+    );
+    // The reproducers: none of them gets an estimate any more.
+    for (springs, steps, scheme) in [
+        (2, 1024, ACC),
+        (1024, 8, ACC),
+        (2, 8, ACC),
+        (8, 32, Scheme::Euler),
+    ] {
+        let s = solve(1.7, 1.0, Accuracy::Fixed(res(springs, steps)), scheme, true).unwrap();
+        assert_eq!(s.estimate(), None, "{springs} x {steps}: {s:?}");
+    }
+}

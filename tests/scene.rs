@@ -570,3 +570,216 @@ fn sweep_scene_writes_csv_and_plot() {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(stderr.contains("target"), "{stderr}");
 }
+
+/// Values outside the documented physical ranges are refused by `sweep scene` with the key and
+/// the range (exit code 2, nothing written): a speed of 1e200 m/s and E = 1e-300 Pa were
+/// accepted with an infinite energy, ω0 = ±1e300 rad/s gave a NaN energy.
+#[test]
+fn out_of_range_values_are_refused_naming_the_key() {
+    let base = r#"friction = 0.1
+[sphere]
+youngs_modulus = 2e11
+poisson_ratio = 0.3
+density = 7800
+radius = 0.005
+[target]
+kind = "wall"
+material = "steel"
+[cases]
+kind = "angles"
+speed = 1.0
+angles_deg = { from = 10, to = 80, count = 8 }
+"#;
+    let spin = r#"friction = 0.3
+[sphere]
+material = "nylon"
+radius = 0.01
+[target]
+kind = "wall"
+material = "steel"
+[cases]
+kind = "spin"
+normal_speed = 1.0
+omega0 = [-300, 300]
+"#;
+    let cases: &[(&str, &str, &str, &[&str])] = &[
+        (
+            base,
+            "speed = 1.0",
+            "speed = 1e200",
+            &["cases.speed = 1e200", "[1e-6, 1000] m/s"],
+        ),
+        (
+            base,
+            "youngs_modulus = 2e11",
+            "youngs_modulus = 1e-300",
+            &["sphere.youngs_modulus = 1e-300", "[1e3, 1e13] Pa"],
+        ),
+        (
+            base,
+            "youngs_modulus = 2e11",
+            "youngs_modulus = 1e20",
+            &["sphere.youngs_modulus", "[1e3, 1e13] Pa"],
+        ),
+        (
+            base,
+            "radius = 0.005",
+            "radius = 1e-300",
+            &["sphere.radius", "[1e-9, 1e3] m"],
+        ),
+        (
+            base,
+            "density = 7800",
+            "density = 1e-300",
+            &["sphere.density", "[1e0, 1e5]"],
+        ),
+        (
+            spin,
+            "omega0 = [-300, 300]",
+            "omega0 = [-1e300, 300]",
+            &["cases.omega0 = -1e300", "|omega| * radius <= 1000 m/s"],
+        ),
+        (
+            spin,
+            "omega0 = [-300, 300]",
+            "omega0 = [-300, 1e300]",
+            &["cases.omega0 = 1e300", "1e5 rad/s"],
+        ),
+        (
+            spin,
+            "normal_speed = 1.0",
+            "normal_speed = 1.0\ntangential_speed = -2e3",
+            &["cases.tangential_speed", "1000 m/s"],
+        ),
+        (
+            spin,
+            "normal_speed = 1.0",
+            "normal_speed = 1e-300",
+            &["cases.normal_speed = 1e-300", "[1e-6, 1000] m/s"],
+        ),
+        (
+            base,
+            "[target]\nkind = \"wall\"\nmaterial = \"steel\"",
+            "[target]\nkind = \"sphere\"\nmaterial = \"steel\"\nradius = 0.01\nv_z = 0.9999999999",
+            &[
+                "cases.angles_deg",
+                "approaches the target at >= 1e-6 m/s",
+                "m/s there",
+            ],
+        ),
+    ];
+    let dir = scratch("ranges");
+    for (text, from, to, want) in cases {
+        assert!(text.contains(from), "test case does not apply: {from}");
+        let file = dir.join("bad.toml");
+        std::fs::write(&file, text.replacen(from, to, 1)).unwrap();
+        let out_dir = dir.join("out");
+        let run = Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .arg("scene")
+            .arg(&file)
+            .arg("-o")
+            .arg(&out_dir)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{to}: {stderr}");
+        for w in *want {
+            assert!(stderr.contains(w), "error for {to:?} lacks {w:?}: {stderr}");
+        }
+        assert!(stderr.len() < 400, "{stderr}");
+        assert!(!out_dir.join("bad.csv").exists(), "{to}: a CSV was written");
+    }
+}
+
+/// The CSV of a scene at the corners of the allowed ranges: every field a finite number, except
+/// the documented empty fields (`e_t` columns where the incident relative `v_x0` is 0, `P` of a
+/// pure normal impact, the closed form where α = ∞) and `alpha` = `inf` for no slip. Every case
+/// of a spin sweep without tangential speed has an empty `e_t` (it was `NaN`).
+#[test]
+fn csv_fields_are_finite_or_documented_empty_at_the_range_corners() {
+    let template = r#"friction = FRICTION
+tol = 1e-3
+[sphere]
+youngs_modulus = E1
+poisson_ratio = 0.3
+density = RHO
+radius = R
+[target]
+kind = "wall"
+youngs_modulus = E2
+poisson_ratio = 0.2
+[cases]
+kind = "spin"
+normal_speed = VZ
+tangential_speed = VX
+omega0 = [-W, 0, W]
+"#;
+    let mut checked = 0;
+    for (e1, e2) in [("1e3", "1e13"), ("1e13", "inf"), ("1e3", "1e3")] {
+        for (rho, r) in [("1", "1e-9"), ("1e5", "1e3")] {
+            for (vz, vx) in [("1e3", "0"), ("1e-6", "1e3"), ("1", "-1e-3")] {
+                for friction in ["0.3", "inf"] {
+                    let radius: f64 = r.parse().unwrap();
+                    let w = format!("{:e}", 0.999e3 / radius);
+                    let text = template
+                        .replace("FRICTION", friction)
+                        .replace("E1", e1)
+                        .replace("E2", e2)
+                        .replace("RHO", rho)
+                        .replace("radius = R", &format!("radius = {r}"))
+                        .replace("VZ", vz)
+                        .replace("VX", vx)
+                        .replace("[-W, 0, W]", &format!("[-{w}, 0, {w}]"));
+                    let what = format!("E {e1}/{e2}, rho {rho}, R {r}, v {vz}/{vx}, mu {friction}");
+                    let s = Scene::parse(&text, Path::new("corner.toml"))
+                        .unwrap_or_else(|e| panic!("{what}: {e}"));
+                    let ev =
+                        evaluate(&s, PSource::Simulate).unwrap_or_else(|e| panic!("{what}: {e}"));
+                    let lines = scene::csv::lines(&ev, false);
+                    let header: Vec<&str> = lines[0].split(',').collect();
+                    for (line, row) in lines[1..].iter().zip(&ev.rows) {
+                        let rel_vx0 = row.incident.sphere.v_x;
+                        for (col, cell) in header.iter().zip(line.split(',')) {
+                            let ctx = format!("{what}: {col} = {cell:?} in {line}");
+                            match *col {
+                                "regime" | "method" => continue,
+                                _ if cell.is_empty() => {
+                                    let documented = match *col {
+                                        "e_t" | "e_t_rolling" => rel_vx0 == 0.0,
+                                        "e_t_closed_form" => {
+                                            rel_vx0 == 0.0 || row.alpha.is_infinite()
+                                        }
+                                        "omega_closed_form" => row.alpha.is_infinite(),
+                                        "P" => row.method == RowMethod::NormalImpact,
+                                        _ => false,
+                                    };
+                                    assert!(documented, "undocumented empty field: {ctx}");
+                                }
+                                "alpha" if cell == "inf" => {
+                                    assert!(
+                                        friction == "inf" || row.method == RowMethod::NormalImpact,
+                                        "{ctx}"
+                                    )
+                                }
+                                _ => {
+                                    let v: f64 = cell.parse().unwrap_or_else(|_| panic!("{ctx}"));
+                                    assert!(v.is_finite(), "{ctx}");
+                                }
+                            }
+                        }
+                        if rel_vx0 == 0.0 {
+                            assert!(line.split(',').nth(4) == Some(""), "{what}: {line}");
+                        }
+                        checked += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 3 * 2 * 3 * 2 * 3);
+    // The shipped spin scene: e_t empty in every row, never NaN anywhere.
+    let ev = evaluate(&shipped("nylon_spin_on_steel"), PSource::Simulate).unwrap();
+    let lines = scene::csv::lines(&ev, false);
+    assert!(!lines.iter().any(|l| l.contains("NaN")), "{lines:?}");
+    assert!(lines[1..].iter().all(|l| l.split(',').nth(4) == Some("")));
+}

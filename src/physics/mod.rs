@@ -15,5 +15,8 @@ pub mod springs;
 pub mod units;
 
 pub use error::PhysicsError;
-pub use impact::{simulate, solve, Accuracy, Method, Resolution, Scheme, Solution};
+pub use impact::{
+    simulate, solve, solve_observed, Accuracy, Method, NoEstimate, RefineEvent, Resolution, Scheme,
+    Solution,
+};
 pub use preset::Preset;

@@ -1,5 +1,17 @@
-//! The result table of a scene as CSV (one header line, one row per case, `NaN` where a value
-//! is undefined, e.g. `e_t` and `P` of a pure normal impact).
+//! The result table of a scene as CSV (one header line, one row per case). A value that is
+//! undefined for a case is an empty field, never `NaN`:
+//!
+//! - `e_t`, `e_t_closed_form`, `e_t_rolling` where the incident relative tangential velocity of
+//!   the centres `v_x0` is 0 (a ratio to it; every case of a spin sweep without tangential
+//!   speed, and normal incidence);
+//! - `P` for a pure normal impact (`u0 = 0`, `method` = `normal-impact`): nothing tangential
+//!   happens, and the other columns hold the unchanged tangential state;
+//! - `e_t_closed_form`, `omega_closed_form` where `α = ∞` (`friction = inf` or `u0 = 0`): the
+//!   full-slip approximation has no value there;
+//! - `e_t_measured`, `omega_measured` where the measured file has no value.
+//!
+//! Every other field is a finite number, except `alpha`, which is `inf` for no slip
+//! (`friction = inf`) and for a pure normal impact.
 //!
 //! Columns (SI units; angles in degrees from the normal; sphere 1 unless suffixed `_2`):
 //!
@@ -23,9 +35,10 @@
 
 use std::io::Write;
 
-use super::eval::{Evaluation, Row};
+use super::eval::{Evaluation, Row, RowMethod};
 
-/// Format a number so that it reads back exactly (`NaN`, `inf` spelled out).
+/// Format a number so that it reads back exactly (`NaN`, `inf` spelled out; the CSV itself
+/// writes undefined values as empty fields, [`defined`]).
 pub fn num(v: f64) -> String {
     if v.is_nan() {
         "NaN".into()
@@ -40,6 +53,15 @@ pub fn num(v: f64) -> String {
 
 fn opt(v: Option<f64>) -> String {
     v.map(num).unwrap_or_default()
+}
+
+/// `v` where `is_defined`, else an empty field.
+fn defined(is_defined: bool, v: f64) -> String {
+    if is_defined {
+        num(v)
+    } else {
+        String::new()
+    }
 }
 
 /// The header and rows as CSV text lines (without line ends).
@@ -83,26 +105,29 @@ pub fn lines(ev: &Evaluation, sphere_sphere: bool) -> Vec<String> {
 fn row(r: &Row, sphere_sphere: bool, has_measured: bool) -> Vec<String> {
     let m = &r.model;
     let cf = r.closed_form.as_ref();
+    // e_t is a ratio to the incident relative tangential velocity of the centres.
+    let has_e_t = r.incident.sphere.v_x - r.incident.other.v_x != 0.0;
+    let has_p = r.method != RowMethod::NormalImpact;
     let mut cells = vec![
         num(r.angle_deg),
         num(m.sphere.v_x),
         num(m.sphere.v_z),
         num(m.sphere.omega),
-        num(m.e_t),
+        defined(has_e_t, m.e_t),
         num(m.rebound_angle_centre.to_degrees()),
         num(m.rebound_angle_contact.to_degrees()),
-        num(r.p),
+        defined(has_p, r.p),
         r.regime.map_or("normal-impact", |g| g.name()).to_string(),
         num(m.energy_lost),
-        num(cf.map_or(f64::NAN, |c| c.e_t)),
-        num(r.rolling.e_t),
+        cf.map(|c| defined(has_e_t, c.e_t)).unwrap_or_default(),
+        defined(has_e_t, r.rolling.e_t),
         num(r.alpha),
         num(r.p_error),
         r.method.name().to_string(),
         num(r.incident.sphere.v_x),
         num(r.incident.sphere.v_z),
         num(r.incident.sphere.omega),
-        num(cf.map_or(f64::NAN, |c| c.sphere.omega)),
+        cf.map(|c| num(c.sphere.omega)).unwrap_or_default(),
         num(r.rolling.sphere.omega),
     ];
     if sphere_sphere {

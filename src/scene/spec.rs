@@ -19,6 +19,22 @@ pub const DEFAULT_TOL: f64 = 1e-6;
 /// Most cases one scene may ask for.
 pub const MAX_CASES: usize = 100_000;
 
+/// Largest speed a scene may give (m/s): every velocity component of either body, the speed of
+/// an `angles` sweep, and the contact-point speed `|ω| R` of a spin. Far above elastic impacts
+/// (metals yield at a few m/s), and small enough that every momentum and energy is finite.
+pub const MAX_SPEED: f64 = 1e3;
+/// Smallest relative normal approach speed of a case (m/s).
+pub const MIN_APPROACH_SPEED: f64 = 1e-6;
+/// Range of Young's modulus (Pa): soft gels to beyond diamond (1.2e12 Pa); `inf` (rigid) is
+/// allowed for a wall.
+pub const YOUNGS_MODULUS_RANGE: (f64, f64) = (1e3, 1e13);
+/// Range of a radius (m): 1 nm to 1 km.
+pub const RADIUS_RANGE: (f64, f64) = (1e-9, 1e3);
+/// Range of a density (kg/m³): below aerogels to above osmium (22 590).
+pub const DENSITY_RANGE: (f64, f64) = (1.0, 1e5);
+/// Range of a mass, given or computed from density and volume (kg).
+pub const MASS_RANGE: (f64, f64) = (1e-30, 1e20);
+
 /// A number, a list of numbers or an evenly spaced range `{ from, to, count }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Values(pub Vec<f64>);
@@ -405,11 +421,54 @@ impl Validator<'_> {
         }
     }
 
-    fn positive(&self, key: String, v: f64, unit: &str) -> Result<f64, SceneError> {
-        if v.is_finite() && v > 0.0 {
+    /// [`Self::invalid`] for a number, shown in exponent notation when very large or small (not
+    /// as hundreds of digits).
+    fn invalid_num(&self, key: impl Into<String>, v: f64, allowed: &str) -> SceneError {
+        self.invalid(key, super::csv::num(v), allowed)
+    }
+
+    /// `v` in `[lo, hi]` (unit `unit`), else an error naming the key and the range.
+    fn in_range(
+        &self,
+        key: String,
+        v: f64,
+        (lo, hi): (f64, f64),
+        unit: &str,
+    ) -> Result<f64, SceneError> {
+        if (lo..=hi).contains(&v) {
             Ok(v)
         } else {
-            Err(self.invalid(key, v, &format!("a finite number > 0 ({unit})")))
+            Err(self.invalid_num(key, v, &format!("a number > 0 in [{lo:e}, {hi:e}] {unit}")))
+        }
+    }
+
+    /// `|v| ≤ MAX_SPEED`.
+    fn speed(&self, key: impl Into<String>, v: f64) -> Result<f64, SceneError> {
+        if v.abs() <= MAX_SPEED {
+            Ok(v)
+        } else {
+            Err(self.invalid_num(
+                key,
+                v,
+                &format!("a finite speed with |v| <= {MAX_SPEED} m/s"),
+            ))
+        }
+    }
+
+    /// `|ω| radius ≤ MAX_SPEED`: the contact-point speed of the spin.
+    fn spin(&self, key: impl Into<String>, omega: f64, radius: f64) -> Result<f64, SceneError> {
+        if omega.abs() * radius <= MAX_SPEED {
+            Ok(omega)
+        } else {
+            Err(self.invalid_num(
+                key,
+                omega,
+                &format!(
+                    "a finite spin with |omega| * radius <= {MAX_SPEED} m/s (|omega| <= {:e} \
+                     rad/s for radius {radius:e} m)",
+                    MAX_SPEED / radius
+                ),
+            ))
         }
     }
 
@@ -436,11 +495,11 @@ impl Validator<'_> {
             ));
         }
         if f.friction.is_nan() || f.friction < 0.0 {
-            return Err(self.invalid("friction", f.friction, ">= 0 (inf for no slip)"));
+            return Err(self.invalid_num("friction", f.friction, ">= 0 (inf for no slip)"));
         }
         let tol = f.tol.unwrap_or(DEFAULT_TOL);
         if !(1e-10..=1e-2).contains(&tol) {
-            return Err(self.invalid("tol", tol, "in [1e-10, 1e-2] (absolute error of P)"));
+            return Err(self.invalid_num("tol", tol, "in [1e-10, 1e-2] (absolute error of P)"));
         }
         let s = &f.sphere;
         let (sphere, sphere_material) = self.body(&BodyFields {
@@ -463,6 +522,7 @@ impl Validator<'_> {
         }
         let target = self.target(&f.target)?;
         let cases = self.cases(&f.cases)?;
+        self.case_ranges(&cases, sphere.radius)?;
         let measured = match f.measured {
             None => None,
             Some(m) => {
@@ -497,13 +557,15 @@ impl Validator<'_> {
         for &x in &scene.cases.values {
             let inc = scene.incident(x);
             let v = pair.approach_speed(&inc);
-            if !v.is_finite() || v <= 0.0 {
-                return Err(self.invalid(
+            if v.is_nan() || v < MIN_APPROACH_SPEED {
+                return Err(self.invalid_num(
                     format!("cases.{}", x_key(scene.cases.kind)),
                     x,
                     &format!(
-                        "values for which sphere 1 approaches the target: the relative normal \
-                         speed is {v} m/s there (target.v_z must be < sphere 1's v_z)"
+                        "values for which sphere 1 approaches the target at >= \
+                         {MIN_APPROACH_SPEED:e} m/s: the relative normal speed is {} m/s there \
+                         (target.v_z must be < sphere 1's v_z)",
+                        super::csv::num(v)
                     ),
                 ));
             }
@@ -555,15 +617,16 @@ impl Validator<'_> {
                 "a catalogue name, or both youngs_modulus (Pa) and poisson_ratio",
             ));
         };
-        if e.is_nan() || e <= 0.0 {
-            return Err(self.invalid(
+        let (e_lo, e_hi) = YOUNGS_MODULUS_RANGE;
+        if !(e == f64::INFINITY || (e_lo..=e_hi).contains(&e)) {
+            return Err(self.invalid_num(
                 format!("{sec}.youngs_modulus"),
                 e,
-                "> 0 (Pa; inf for a rigid wall)",
+                &format!("in [{e_lo:e}, {e_hi:e}] Pa (inf for a rigid wall)"),
             ));
         }
         if !(-1.0..=0.5).contains(&nu) || nu == -1.0 {
-            return Err(self.invalid(format!("{sec}.poisson_ratio"), nu, "in (-1, 0.5]"));
+            return Err(self.invalid_num(format!("{sec}.poisson_ratio"), nu, "in (-1, 0.5]"));
         }
         Ok((
             MaterialUse {
@@ -581,12 +644,12 @@ impl Validator<'_> {
     fn body(&self, b: &BodyFields) -> Result<(Body, MaterialUse), SceneError> {
         let sec = b.section;
         let (material, density) = self.material(b)?;
-        let radius = self.positive(format!("{sec}.radius"), b.radius, "m")?;
+        let radius = self.in_range(format!("{sec}.radius"), b.radius, RADIUS_RANGE, "m")?;
         let inner = match b.inner_radius {
             None => 0.0,
             Some(r) if r >= 0.0 && r < radius => r,
             Some(r) => {
-                return Err(self.invalid(
+                return Err(self.invalid_num(
                     format!("{sec}.inner_radius"),
                     r,
                     "in [0, radius) (m): the cavity of a hollow sphere",
@@ -603,7 +666,7 @@ impl Validator<'_> {
             }
             (Some(k), None) => {
                 if !(0.0..=2.0 / 3.0).contains(&k) || k == 0.0 {
-                    return Err(self.invalid(
+                    return Err(self.invalid_num(
                         format!("{sec}.kappa"),
                         k,
                         "in (0, 2/3] (I = kappa m R^2; 0.4 solid, 2/3 thin shell)",
@@ -625,9 +688,11 @@ impl Validator<'_> {
                     "either mass (kg) or density (kg/m^3), not both",
                 ))
             }
-            (Some(m), None) => self.positive(format!("{sec}.mass"), m, "kg")?,
+            (Some(m), None) => self.in_range(format!("{sec}.mass"), m, MASS_RANGE, "kg")?,
             (None, _) => match density {
-                Some(d) => self.positive(format!("{sec}.density"), d, "kg/m^3")? * volume,
+                Some(d) => {
+                    self.in_range(format!("{sec}.density"), d, DENSITY_RANGE, "kg/m^3")? * volume
+                }
                 None => {
                     return Err(self.invalid(
                         format!("{sec}.density"),
@@ -637,8 +702,15 @@ impl Validator<'_> {
                 }
             },
         };
-        if !(mass.is_finite() && mass > 0.0) {
-            return Err(self.invalid(format!("{sec}.mass"), mass, "a finite mass > 0 (kg)"));
+        let (m_lo, m_hi) = MASS_RANGE;
+        if !(m_lo..=m_hi).contains(&mass) {
+            return Err(self.invalid_num(
+                format!("{sec}.mass"),
+                mass,
+                &format!(
+                    "in [{m_lo:e}, {m_hi:e}] kg (here computed from the density and the volume)"
+                ),
+            ));
         }
         Ok((
             Body {
@@ -717,10 +789,11 @@ impl Validator<'_> {
                     ("target.omega", t.omega, &mut motion.omega),
                 ] {
                     let v = given.unwrap_or(0.0);
-                    if !v.is_finite() {
-                        return Err(self.invalid(key, v, "a finite number (m/s or rad/s)"));
-                    }
-                    *slot = v;
+                    *slot = if key == "target.omega" {
+                        self.spin(key, v, body.radius)?
+                    } else {
+                        self.speed(key, v)?
+                    };
                 }
                 Ok(SceneTarget::Sphere {
                     body,
@@ -734,6 +807,35 @@ impl Validator<'_> {
                 "\"wall\" or \"sphere\"",
             )),
         }
+    }
+
+    /// The speeds and spins of the cases within [`MAX_SPEED`] (`radius`: sphere 1's).
+    fn case_ranges(&self, c: &Cases, radius: f64) -> Result<(), SceneError> {
+        let speed_key = match c.kind {
+            CaseKind::Angles => "cases.speed",
+            _ => "cases.normal_speed",
+        };
+        if !(MIN_APPROACH_SPEED..=MAX_SPEED).contains(&c.speed) {
+            return Err(self.invalid_num(
+                speed_key,
+                c.speed,
+                &format!("in [{MIN_APPROACH_SPEED:e}, {MAX_SPEED}] m/s"),
+            ));
+        }
+        self.speed("cases.tangential_speed", c.tangential_speed)?;
+        self.spin("cases.omega0", c.omega0, radius)?;
+        for &x in &c.values {
+            match c.kind {
+                CaseKind::Angles => {}
+                CaseKind::TangentialSpeed => {
+                    self.speed("cases.tangential_speed", x)?;
+                }
+                CaseKind::Spin => {
+                    self.spin("cases.omega0", x, radius)?;
+                }
+            }
+        }
+        Ok(())
     }
 
     fn single(&self, key: &str, v: &Option<Values>) -> Result<f64, SceneError> {
@@ -762,7 +864,9 @@ impl Validator<'_> {
         };
         let require = |key: &str, v: Option<f64>, kind: &str| match v {
             Some(v) if v.is_finite() && v > 0.0 => Ok(v),
-            Some(v) => Err(self.invalid(format!("cases.{key}"), v, "a finite number > 0 (m/s)")),
+            Some(v) => {
+                Err(self.invalid_num(format!("cases.{key}"), v, "a finite number > 0 (m/s)"))
+            }
             None => Err(self.invalid(
                 format!("cases.{key}"),
                 "(none)",
@@ -783,7 +887,7 @@ impl Validator<'_> {
                 .iter()
                 .find(|x| !(x.is_finite() && **x > range.0 && **x < range.1))
             {
-                return Err(self.invalid(format!("cases.{key}"), bad, what));
+                return Err(self.invalid_num(format!("cases.{key}"), *bad, what));
             }
             Ok(list.clone())
         };
