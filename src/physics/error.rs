@@ -8,7 +8,7 @@ use super::impact::Resolution;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum PhysicsError {
     /// A parameter is outside its allowed range (or NaN).
-    #[error("invalid {name} = {value}: must be {allowed}")]
+    #[error("invalid {name} = {value:?}: must be {allowed}")]
     InvalidParameter {
         /// Parameter name as the user knows it (CLI flag or field).
         name: &'static str,
