@@ -92,7 +92,7 @@ fn spinner_style() -> ProgressStyle {
 
 fn bar_style(eta_scope: &str) -> ProgressStyle {
     ProgressStyle::with_template(&format!(
-        "[{{prefix}}] {{msg}} [{{bar:30}}] {{pos}}/{{len}} impacts  {{per_sec}}  ETA {eta_scope} {{eta}}"
+        "[{{prefix}}] {{msg}} [{{bar:30}}] {{pos}}/{{len}} impacts  ETA {eta_scope} {{eta}}"
     ))
     .unwrap_or_else(|_| ProgressStyle::default_bar())
     .progress_chars("=> ")
@@ -154,8 +154,8 @@ impl Progress for CliProgress {
         let label = s.label();
         match &self.bar {
             Some(b) => {
-                b.reset();
                 b.set_style(spinner_style());
+                b.reset();
                 b.set_prefix(label);
                 b.set_message(detail.to_string());
             }
