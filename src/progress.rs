@@ -131,6 +131,15 @@ impl CliProgress {
         }
     }
 
+    /// Print a line of information (on a terminal: above the bar, which stays below it). Also
+    /// printed with `--quiet`'s sink, which callers skip themselves.
+    pub fn println(&self, msg: &str) {
+        match &self.bar {
+            Some(b) => b.println(msg),
+            None => eprintln!("{msg}"),
+        }
+    }
+
     /// Remove the bar.
     pub fn finish(&self) {
         if let Some(b) = &self.bar {

@@ -154,13 +154,14 @@ fn open_checkpoint(
     cfg: &Config,
     ckpt_path: &Path,
     header: Header,
+    progress: &CliProgress,
 ) -> Result<(Checkpoint, bool)> {
     let exists = std::fs::symlink_metadata(ckpt_path).is_ok();
     if exists && args.restart {
         std::fs::remove_file(ckpt_path)
             .with_context(|| format!("cannot discard the checkpoint {}", ckpt_path.display()))?;
         if !args.quiet {
-            eprintln!("discarded the checkpoint {}", ckpt_path.display());
+            progress.println(&format!("discarded the checkpoint {}", ckpt_path.display()));
         }
     } else if exists {
         let restart = run_command(args, &cfg.output, "--restart");
@@ -202,11 +203,11 @@ fn open_checkpoint(
         }
         let c = Checkpoint::resume(ckpt_path, header)?;
         if !args.quiet {
-            eprintln!(
+            progress.println(&format!(
                 "resuming from {}: {} nodes already computed",
                 ckpt_path.display(),
                 c.resumed_nodes()
-            );
+            ));
         }
         return Ok((c, false));
     }
@@ -245,16 +246,16 @@ pub fn run(args: RunArgs) -> Result<()> {
     progress.phase(STEP_PREFLIGHT, "probing the hardest points of the domain");
     let pre = sweep::preflight(&cfg)?;
     if !args.quiet {
-        eprintln!(
+        progress.println(&format!(
             "preflight: tolerances reachable; the slowest node probed took {:.1} ms",
             pre.slowest_node_s * 1e3
-        );
+        ));
         if pre.check_tol_loosened {
-            eprintln!(
+            progress.println(&format!(
                 "note: checks.tol is not set and solver.tol/10 is out of reach at gamma = {}: \
                  the held-out checks use checks.tol = {:e} (set checks.tol to choose)",
                 cfg.domain.gamma_max, pre.check_tol
-            );
+            ));
         }
     }
     cfg.derived_check_tol = Some(pre.check_tol);
@@ -264,7 +265,7 @@ pub fn run(args: RunArgs) -> Result<()> {
         fingerprint: fingerprint(&cfg),
         config: text.clone(),
     };
-    let (ckpt, created) = open_checkpoint(&args, &cfg, &ckpt_path, header)?;
+    let (ckpt, created) = open_checkpoint(&args, &cfg, &ckpt_path, header, &progress)?;
     // A second Ctrl-C (or a handler that cannot be installed) kills the process as usual; the
     // checkpoint is durable after every batch either way.
     let _ = ctrlc::set_handler(|| {
