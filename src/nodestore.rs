@@ -284,7 +284,7 @@ impl Checkpoint {
                 path: p,
                 message: "the checkpoint was written for a different config (domain, nodes, \
                           solver or checks differ, or another engine version); resume with the \
-                          config it was started with, or delete the checkpoint to start over"
+                          config it was started with"
                     .into(),
             });
         }
