@@ -65,7 +65,9 @@ sweep run configs/quick.toml -o /tmp/quick.h5 --threads 2 --quiet\n\n\
 The table is written atomically: a temporary file next to the output, renamed when complete.\n\
 Finished nodes are saved in OUTPUT.ckpt as the run goes; after Ctrl-C, kill -9 or power loss,\n\
 `sweep run CONFIG --resume` continues from there and writes the same table as an uninterrupted\n\
-run. `--shard K/N -o PART` computes 1/N of the work for `sweep merge` (see `sweep merge --help`).\n\
+run; `--restart` discards the checkpoint instead. A run locks OUTPUT.lock: a second run on the\n\
+same output is refused, naming the first. The output must be a regular file or not exist.\n\
+`--shard K/N -o PART` computes 1/N of the work for `sweep merge` (see `sweep merge --help`).\n\
 Config keys, defaults and ranges: docs/config.md. The file format: docs/table-format.md.")]
     Run(table_cmds::RunArgs),
     /// Print a table's domain, node counts, error statistics and provenance.
@@ -613,7 +615,7 @@ fn main() -> ExitCode {
                         | PhysicsError::NotFound { .. }
                 )
             ) || e.downcast_ref::<ConfigError>().is_some()
-                || e.downcast_ref::<table_cmds::UsageError>().is_some()
+                || table_cmds::is_usage(&e)
                 || matches!(
                     e.downcast_ref::<oblique::sweep::SweepError>(),
                     Some(oblique::sweep::SweepError::Unreachable { .. })

@@ -284,7 +284,7 @@ impl Checkpoint {
                 path: p,
                 message: "the checkpoint was written for a different config (domain, nodes, \
                           solver or checks differ, or another engine version); resume with the \
-                          config it was started with, or delete the checkpoint to start over"
+                          config it was started with"
                     .into(),
             });
         }
@@ -501,5 +501,152 @@ impl NodeStore for Merged {
 
     fn put(&self, _: &[NodeRecord]) -> Result<(), String> {
         Err("a merge computes nothing".into())
+    }
+}
+
+/// Errors of taking the lock of an output.
+#[derive(Debug, Error)]
+pub enum LockError {
+    /// Another process holds the lock: a run on the same output is going on.
+    #[error(
+        "{path} is locked by {holder}: another run is writing {output}; wait for it to finish \
+         or stop it"
+    )]
+    Held {
+        /// The lock file.
+        path: String,
+        /// The output it protects.
+        output: String,
+        /// Who holds it, as it wrote itself into the lock file ("pid 123, started …").
+        holder: String,
+    },
+    /// Something that is not a regular file is at the lock file's path.
+    #[error(transparent)]
+    Path(#[from] crate::storage::OutputPathError),
+    /// The lock file could not be created, read or written.
+    #[error("lock file {path}: {source}")]
+    Io {
+        /// The lock file.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+}
+
+/// An exclusive lock on an output for the duration of a run: an advisory `flock` on the file
+/// `OUTPUT.lock`, which holds the owner's pid and start time. The operating system releases
+/// it when the process ends in any way (also `kill -9`); dropping the lock removes the file.
+#[derive(Debug)]
+pub struct OutputLock {
+    path: PathBuf,
+    /// Held open: the lock lives as long as this descriptor.
+    _file: File,
+}
+
+/// The lock file of an output: `OUTPUT.lock`.
+pub fn lock_path(output: &Path) -> PathBuf {
+    let mut s = output.as_os_str().to_owned();
+    s.push(".lock");
+    PathBuf::from(s)
+}
+
+#[cfg(unix)]
+fn try_flock(file: &File) -> std::io::Result<bool> {
+    use std::os::unix::io::AsRawFd;
+    extern "C" {
+        fn flock(fd: i32, operation: i32) -> i32;
+    }
+    const LOCK_EX: i32 = 2;
+    const LOCK_NB: i32 = 4;
+    // SAFETY: flock on a descriptor this `File` owns; no memory is passed.
+    let rc = unsafe { flock(file.as_raw_fd(), LOCK_EX | LOCK_NB) };
+    if rc == 0 {
+        return Ok(true);
+    }
+    let e = std::io::Error::last_os_error();
+    if e.kind() == std::io::ErrorKind::WouldBlock {
+        Ok(false)
+    } else {
+        Err(e)
+    }
+}
+
+#[cfg(not(unix))]
+fn try_flock(_: &File) -> std::io::Result<bool> {
+    Ok(true)
+}
+
+#[cfg(unix)]
+fn same_inode(file: &File, path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (file.metadata(), std::fs::symlink_metadata(path)) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_inode(_: &File, _: &Path) -> bool {
+    true
+}
+
+impl OutputLock {
+    /// Take the lock of `output` without waiting; [`LockError::Held`] names the holder when
+    /// another process has it. `what` (e.g. "sweep run") is written into the lock file with the
+    /// pid and the start time.
+    pub fn acquire(output: &Path, what: &str) -> Result<OutputLock, LockError> {
+        let path = lock_path(output);
+        let shown = path.display().to_string();
+        let io = |source| LockError::Io {
+            path: shown.clone(),
+            source,
+        };
+        crate::storage::check_output(&path)?;
+        loop {
+            let mut file = OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create(true)
+                .truncate(false)
+                .open(&path)
+                .map_err(io)?;
+            if !try_flock(&file).map_err(io)? {
+                let mut holder = String::new();
+                let _ = file.read_to_string(&mut holder);
+                let holder = holder.trim();
+                return Err(LockError::Held {
+                    path: shown,
+                    output: output.display().to_string(),
+                    holder: if holder.is_empty() {
+                        "another process (it has not written its pid yet)".into()
+                    } else {
+                        holder.to_string()
+                    },
+                });
+            }
+            // The previous holder removes the file when it finishes: a lock taken on a file that
+            // is no longer at `path` protects nothing; take it again on the new one.
+            if !same_inode(&file, &path) {
+                continue;
+            }
+            let me = format!(
+                "pid {} ({what}, started {})\n",
+                std::process::id(),
+                crate::utc_now()
+            );
+            file.set_len(0).map_err(io)?;
+            file.seek(SeekFrom::Start(0)).map_err(io)?;
+            file.write_all(me.as_bytes()).map_err(io)?;
+            file.flush().map_err(io)?;
+            return Ok(OutputLock { path, _file: file });
+        }
+    }
+}
+
+impl Drop for OutputLock {
+    fn drop(&mut self) {
+        // Remove the file while still holding the lock; a process that opened it before sees
+        // that it is gone and takes the lock on a new file. The lock goes with the descriptor.
+        let _ = std::fs::remove_file(&self.path);
     }
 }

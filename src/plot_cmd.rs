@@ -147,9 +147,15 @@ pub fn run(args: PlotArgs) -> Result<()> {
         FormatArg::Png => "png",
         FormatArg::Svg => "svg",
     };
-    for (kind, sheet) in &sheets {
-        let path = args.output.join(format!("{}.{ext}", kind.stem()));
-        plot::render_sheet(sheet, &path)?;
+    let paths: Vec<PathBuf> = sheets
+        .iter()
+        .map(|(kind, _)| args.output.join(format!("{}.{ext}", kind.stem())))
+        .collect();
+    for path in &paths {
+        oblique::storage::check_output(path)?;
+    }
+    for ((kind, sheet), path) in sheets.iter().zip(&paths) {
+        plot::render_sheet(sheet, path)?;
         println!("wrote {}  ({})", path.display(), kind.describe());
     }
     println!(

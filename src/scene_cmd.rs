@@ -60,16 +60,23 @@ pub fn run(args: SceneArgs) -> Result<()> {
         .with_context(|| format!("cannot create output folder {}", args.output.display()))?;
     let sphere_sphere = matches!(scene.target, SceneTarget::Sphere { .. });
     let csv_path = args.output.join(format!("{}.csv", scene.name));
+    let png_path = args.output.join(format!("{}.png", scene.name));
+    let svg_path = args.output.join(format!("{}.svg", scene.name));
+    // Nothing is written unless every output can be.
+    for path in [&csv_path, &png_path]
+        .into_iter()
+        .chain(args.svg.then_some(&svg_path))
+    {
+        oblique::storage::check_output(path)?;
+    }
     write_file(&csv_path, |f| scene::csv::write(&ev, sphere_sphere, f))?;
     let fig = scene::figure::figure(&scene, &ev, &command_line(&args));
-    let png_path = args.output.join(format!("{}.png", scene.name));
     plot::render(&fig, &png_path)?;
     let mut written = vec![
         csv_path.display().to_string(),
         png_path.display().to_string(),
     ];
     if args.svg {
-        let svg_path = args.output.join(format!("{}.svg", scene.name));
         plot::render(&fig, &svg_path)?;
         written.push(svg_path.display().to_string());
     }

@@ -30,6 +30,124 @@ pub enum StorageError {
         /// Cause.
         source: std::io::Error,
     },
+    /// Something that is not a regular file is in the way of the output.
+    #[error(transparent)]
+    Output(#[from] OutputPathError),
+}
+
+/// An output path that must not be written: something other than a regular file is there, or
+/// it is one of the inputs.
+#[derive(Debug, Error)]
+pub enum OutputPathError {
+    /// The path exists and is not a regular file (writing would replace or write into it).
+    #[error("output {path} is {kind}, not a regular file; give the path of a file")]
+    NotAFile {
+        /// The path.
+        path: String,
+        /// What is there, e.g. "a directory", "a symbolic link (to /x)", "a FIFO".
+        kind: String,
+    },
+    /// The path is (through any name or hard link) one of the files being read.
+    #[error("output {path} is the input {input}; give another output path")]
+    IsInput {
+        /// The output path.
+        path: String,
+        /// The input it is the same file as.
+        input: String,
+    },
+    /// The path could not be examined.
+    #[error("output {path}: {source}")]
+    Io {
+        /// The path.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+}
+
+/// What is at `path` in words ("a directory", "a FIFO", …), when it is not a regular file;
+/// `None` for a regular file. A symbolic link is reported as one (with its target), never
+/// followed.
+fn non_file_kind(meta: &std::fs::Metadata, path: &Path) -> Option<String> {
+    let t = meta.file_type();
+    if t.is_file() {
+        return None;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return Some("a FIFO (named pipe)".into());
+        }
+        if t.is_char_device() {
+            return Some("a character device".into());
+        }
+        if t.is_block_device() {
+            return Some("a block device".into());
+        }
+        if t.is_socket() {
+            return Some("a socket".into());
+        }
+    }
+    Some(if t.is_dir() {
+        "a directory".into()
+    } else if t.is_symlink() {
+        match std::fs::read_link(path) {
+            Ok(target) => format!("a symbolic link (to {})", target.display()),
+            Err(_) => "a symbolic link".into(),
+        }
+    } else {
+        "not a regular file".into()
+    })
+}
+
+/// Check that `path` may be written as an output file: it does not exist, or it is a regular
+/// file (not a directory, symbolic link, FIFO, device or socket, which writing would replace or
+/// write into).
+pub fn check_output(path: &Path) -> Result<(), OutputPathError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(meta) => match non_file_kind(&meta, path) {
+            None => Ok(()),
+            Some(kind) => Err(OutputPathError::NotAFile {
+                path: path.display().to_string(),
+                kind,
+            }),
+        },
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(source) => Err(OutputPathError::Io {
+            path: path.display().to_string(),
+            source,
+        }),
+    }
+}
+
+/// [`check_output`], and that `path` is none of `inputs` (compared by device and inode, so
+/// another name or a hard link of an input is caught too).
+pub fn check_output_not_input(path: &Path, inputs: &[&Path]) -> Result<(), OutputPathError> {
+    check_output(path)?;
+    let Ok(out) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    for input in inputs {
+        if std::fs::metadata(input).is_ok_and(|m| same_file(&m, &out)) {
+            return Err(OutputPathError::IsInput {
+                path: path.display().to_string(),
+                input: input.display().to_string(),
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(unix)]
+fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    a.dev() == b.dev() && a.ino() == b.ino()
+}
+
+#[cfg(not(unix))]
+fn same_file(_: &std::fs::Metadata, _: &std::fs::Metadata) -> bool {
+    false
 }
 
 /// Provenance written as root attributes (the reader's type; its `schema_version` is ignored
@@ -129,6 +247,7 @@ pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), S
         path: path.clone(),
         source,
     };
+    check_output(out)?;
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(io)?;
     }
@@ -142,6 +261,8 @@ pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), S
     // are its bytes final. Seal them and make sure they are on disk before the rename
     // publishes the file.
     let result = write_to(&tmp, &path, built, prov).and_then(|()| seal(&tmp).map_err(io));
+    // Checked again just before the rename: the write may have taken a while.
+    let result = result.and_then(|()| check_output(out).map_err(StorageError::from));
     if let Err(e) = result {
         let _ = std::fs::remove_file(&tmp);
         return Err(e);

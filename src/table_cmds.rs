@@ -8,12 +8,16 @@ use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 
-use oblique::nodestore::{fingerprint, Checkpoint, Header, Kind, Merged};
-use oblique::storage::{provenance, write_table};
-use oblique::sweep::{self, Built, Config, RunError, RunOptions, Shard};
+use oblique::nodestore::{
+    fingerprint, Checkpoint, Header, Kind, LockError, Merged, NodeFile, OutputLock,
+};
+use oblique::storage::{
+    check_output, check_output_not_input, provenance, write_table, OutputPathError,
+};
+use oblique::sweep::{self, Built, Config, Progress, RunError, RunOptions, Shard, SweepError};
 use oblique_lookup::Table;
 
-use crate::progress::CliProgress;
+use crate::progress::{CliProgress, STEP_PREFLIGHT, STEP_WRITING};
 
 #[derive(Args)]
 pub struct RunArgs {
@@ -32,6 +36,9 @@ pub struct RunArgs {
     /// none. The config must be the one the checkpoint was written for.
     #[arg(long)]
     resume: bool,
+    /// Discard the checkpoint (OUTPUT.ckpt) of an earlier run, if any, and start afresh.
+    #[arg(long, conflicts_with = "resume")]
+    restart: bool,
     /// Compute shard K of N (1 <= K <= N) and write it as a part file (-o) for `sweep merge`.
     #[arg(long, value_name = "K/N", value_parser = parse_shard)]
     shard: Option<Shard>,
@@ -70,6 +77,30 @@ pub struct MergeArgs {
 #[error("{0}")]
 pub struct UsageError(pub String);
 
+/// Whether `e` is something the user can fix in the config or on the command line (exit code
+/// 2) among the errors of `sweep run`, `sweep merge` and the output paths of every command.
+pub fn is_usage(e: &anyhow::Error) -> bool {
+    e.downcast_ref::<UsageError>().is_some()
+        || e.downcast_ref::<OutputPathError>().is_some()
+        || matches!(e.downcast_ref::<LockError>(), Some(LockError::Held { .. }))
+        || e.downcast_ref::<RunError>().is_some_and(RunError::is_usage)
+        || e.downcast_ref::<SweepError>()
+            .is_some_and(SweepError::is_usage)
+}
+
+/// A path as a shell word: quoted when it holds anything but plain characters.
+fn shell_word(p: &Path) -> String {
+    let s = p.display().to_string();
+    let plain = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "/._-+,:=@%".contains(c));
+    if plain {
+        s
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
 /// Set by the Ctrl-C handler; the sweep stops after its current batch.
 static STOP: AtomicBool = AtomicBool::new(false);
 
@@ -100,16 +131,93 @@ fn check_writable(out: &std::path::Path) -> Result<()> {
     std::fs::write(&probe, b"")
         .with_context(|| format!("output {}: directory is not writable", out.display()))?;
     let _ = std::fs::remove_file(probe);
-    if out.is_dir() {
-        anyhow::bail!("output {} is a directory; give a file path", out.display());
-    }
     Ok(())
+}
+
+/// `sweep run CONFIG -o OUTPUT [--shard K/N] FLAG`, to quote in messages.
+fn run_command(args: &RunArgs, output: &Path, flag: &str) -> String {
+    let shard = args
+        .shard
+        .map(|s| format!(" --shard {}/{}", s.index + 1, s.count))
+        .unwrap_or_default();
+    format!(
+        "sweep run {} -o {}{shard} {flag}",
+        shell_word(&args.config),
+        shell_word(output)
+    )
+}
+
+/// Open the checkpoint of this run: continue it (`--resume`), discard it (`--restart`) or
+/// create it. Returns it and whether this run created it.
+fn open_checkpoint(
+    args: &RunArgs,
+    cfg: &Config,
+    ckpt_path: &Path,
+    header: Header,
+    progress: &CliProgress,
+) -> Result<(Checkpoint, bool)> {
+    let exists = std::fs::symlink_metadata(ckpt_path).is_ok();
+    if exists && args.restart {
+        std::fs::remove_file(ckpt_path)
+            .with_context(|| format!("cannot discard the checkpoint {}", ckpt_path.display()))?;
+        if !args.quiet {
+            progress.println(&format!("discarded the checkpoint {}", ckpt_path.display()));
+        }
+    } else if exists {
+        let restart = run_command(args, &cfg.output, "--restart");
+        let (nodes, fits) = match NodeFile::read(ckpt_path) {
+            Ok(f) => (
+                Some(f.records.len()),
+                f.header.kind == Kind::Checkpoint
+                    && f.header.fingerprint == header.fingerprint
+                    && f.header.shard == header.shard,
+            ),
+            Err(_) => (None, false),
+        };
+        let what = match nodes {
+            Some(n) => format!("the checkpoint of an interrupted run ({n} nodes)"),
+            None => "no readable checkpoint".to_string(),
+        };
+        if !fits {
+            let why = if nodes.is_some() {
+                "it was written for a different config or shard (domain, nodes, solver or \
+                 checks differ, or another engine version); resume with the config it was \
+                 started with, or"
+            } else {
+                "it cannot be resumed;"
+            };
+            return Err(UsageError(format!(
+                "{} holds {what}: {why} discard it and start afresh with\n  {restart}",
+                ckpt_path.display()
+            ))
+            .into());
+        }
+        if !args.resume {
+            return Err(UsageError(format!(
+                "{} holds {what} of this config: continue it with\n  {}\nor discard it and \
+                 start afresh with\n  {restart}",
+                ckpt_path.display(),
+                run_command(args, &cfg.output, "--resume")
+            ))
+            .into());
+        }
+        let c = Checkpoint::resume(ckpt_path, header)?;
+        if !args.quiet {
+            progress.println(&format!(
+                "resuming from {}: {} nodes already computed",
+                ckpt_path.display(),
+                c.resumed_nodes()
+            ));
+        }
+        return Ok((c, false));
+    }
+    Ok((Checkpoint::create(ckpt_path, header)?, true))
 }
 
 pub fn run(args: RunArgs) -> Result<()> {
     let (mut cfg, text) = Config::load(&args.config)?;
-    if let Some(o) = args.output {
-        cfg.output = o;
+    if let Some(o) = &args.output {
+        cfg.output = o.clone();
     }
     if let Some(t) = args.threads {
         if t > 1024 {
@@ -120,46 +228,44 @@ pub fn run(args: RunArgs) -> Result<()> {
         }
         cfg.run.threads = t;
     }
+    let ckpt_path = checkpoint_path(&cfg.output);
+    check_output_not_input(&cfg.output, &[&args.config])?;
+    check_output(&ckpt_path)?;
     check_writable(&cfg.output)?;
+    // Held until the run ends (the operating system releases it if the process dies).
+    let lock = OutputLock::acquire(&cfg.output, "sweep run")?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cfg.run.threads)
         .build()
         .context("cannot start worker threads")?;
+    let steps: Vec<String> = std::iter::once(STEP_PREFLIGHT.to_string())
+        .chain(sweep::stages(&cfg))
+        .chain(std::iter::once(STEP_WRITING.to_string()))
+        .collect();
+    let progress = CliProgress::new(args.quiet, steps);
+    progress.phase(STEP_PREFLIGHT, "probing the hardest points of the domain");
     let pre = sweep::preflight(&cfg)?;
     if !args.quiet {
-        eprintln!(
+        progress.println(&format!(
             "preflight: tolerances reachable; the slowest node probed took {:.1} ms",
             pre.slowest_node_s * 1e3
-        );
+        ));
+        if pre.check_tol_loosened {
+            progress.println(&format!(
+                "note: checks.tol is not set and solver.tol/10 is out of reach at gamma = {}: \
+                 the held-out checks use checks.tol = {:e} (set checks.tol to choose)",
+                cfg.domain.gamma_max, pre.check_tol
+            ));
+        }
     }
-    let ckpt_path = checkpoint_path(&cfg.output);
+    cfg.derived_check_tol = Some(pre.check_tol);
     let header = Header {
         kind: Kind::Checkpoint,
         shard: args.shard,
         fingerprint: fingerprint(&cfg),
         config: text.clone(),
     };
-    let ckpt = if ckpt_path.exists() {
-        if !args.resume {
-            return Err(UsageError(format!(
-                "{} holds the checkpoint of an interrupted run: add --resume to continue it, \
-                 or delete it to start over",
-                ckpt_path.display()
-            ))
-            .into());
-        }
-        let c = Checkpoint::resume(&ckpt_path, header)?;
-        if !args.quiet {
-            eprintln!(
-                "resuming from {}: {} nodes already computed",
-                ckpt_path.display(),
-                c.resumed_nodes()
-            );
-        }
-        c
-    } else {
-        Checkpoint::create(&ckpt_path, header)?
-    };
+    let (ckpt, created) = open_checkpoint(&args, &cfg, &ckpt_path, header, &progress)?;
     // A second Ctrl-C (or a handler that cannot be installed) kills the process as usual; the
     // checkpoint is durable after every batch either way.
     let _ = ctrlc::set_handler(|| {
@@ -172,32 +278,49 @@ pub fn run(args: RunArgs) -> Result<()> {
         strict: false,
         stop: Some(&STOP),
     };
-    let progress = CliProgress::new(args.quiet);
     let start = Instant::now();
     let result = pool.install(|| match args.shard {
         Some(shard) => sweep::build_shard(&cfg, &progress, opts, shard).map(|()| None),
         None => sweep::build_with(&cfg, &progress, opts).map(Some),
     });
-    progress.finish();
     let built = match result {
+        Ok(b) => b,
         Err(RunError::Interrupted) => {
-            let shard = args
-                .shard
-                .map(|s| format!(" --shard {}/{}", s.index + 1, s.count))
-                .unwrap_or_default();
+            progress.finish();
             eprintln!(
-                "interrupted: finished nodes are saved in {}; continue with\n  sweep run {}{shard} -o {} --resume",
+                "interrupted: finished nodes are saved in {}; continue with\n  {}",
                 ckpt_path.display(),
-                args.config.display(),
-                cfg.output.display()
+                run_command(&args, &cfg.output, "--resume")
             );
+            drop(lock);
             std::process::exit(130);
         }
-        other => other?,
+        Err(e) => {
+            progress.finish();
+            // A failure the config decides would only repeat on resume: the checkpoint this
+            // run created must not stand in the way of the next run. Other failures (a full
+            // disk) and the checkpoint of an earlier, interrupted run keep their nodes.
+            if created && matches!(e, RunError::Sweep(_)) {
+                if let Err(r) = ckpt.remove() {
+                    eprintln!("warning: cannot remove the checkpoint of this run: {r}");
+                }
+            } else {
+                eprintln!(
+                    "finished nodes are kept in {}; continue with\n  {}\nor discard them \
+                     with\n  {}",
+                    ckpt_path.display(),
+                    run_command(&args, &cfg.output, "--resume"),
+                    run_command(&args, &cfg.output, "--restart")
+                );
+            }
+            return Err(e.into());
+        }
     };
     let wall = start.elapsed().as_secs_f64();
+    progress.phase(STEP_WRITING, &cfg.output.display().to_string());
     let Some(built) = built else {
         ckpt.finish_part(&cfg.output)?;
+        progress.finish();
         if !args.quiet {
             eprintln!(
                 "wrote part {} ({wall:.1} s); merge all parts with `sweep merge PARTS... -o TABLE`",
@@ -206,20 +329,30 @@ pub fn run(args: RunArgs) -> Result<()> {
         }
         return Ok(());
     };
-    write_built(&cfg, text, &built, wall, args.quiet)?;
+    let written = write_table(&cfg.output, &built, &provenance(&cfg, text, wall));
+    progress.finish();
+    written?;
     ckpt.remove()?;
+    drop(lock);
+    if !args.quiet {
+        summary(&cfg, &built, wall);
+    }
     Ok(())
 }
 
 /// `sweep merge`: the table of a sharded run from its parts.
 pub fn merge(args: MergeArgs) -> Result<()> {
+    let inputs: Vec<&Path> = args.parts.iter().map(PathBuf::as_path).collect();
+    check_output_not_input(&args.output, &inputs)?;
     let merged = Merged::read(&args.parts)?;
     let (mut cfg, text) = (
         Config::parse(&merged.config, "config stored in the parts")?,
         merged.config.clone(),
     );
     cfg.output = args.output;
+    cfg.derived_check_tol = sweep::check_tol_in_store(&cfg, &merged);
     check_writable(&cfg.output)?;
+    let _lock = OutputLock::acquire(&cfg.output, "sweep merge")?;
     let opts = RunOptions {
         store: Some(&merged),
         strict: true,
@@ -227,23 +360,20 @@ pub fn merge(args: MergeArgs) -> Result<()> {
     };
     let start = Instant::now();
     let built = sweep::build_with(&cfg, &sweep::Silent, opts)?;
-    write_built(
-        &cfg,
-        text,
-        &built,
-        start.elapsed().as_secs_f64(),
-        args.quiet,
-    )
+    let wall = start.elapsed().as_secs_f64();
+    write_table(&cfg.output, &built, &provenance(&cfg, text, wall))?;
+    if !args.quiet {
+        summary(&cfg, &built, wall);
+    }
+    Ok(())
 }
 
-fn write_built(cfg: &Config, text: String, built: &Built, wall: f64, quiet: bool) -> Result<()> {
-    let prov = provenance(cfg, text, wall);
-    write_table(&cfg.output, built, &prov)?;
-    if !quiet {
-        let nodes: usize = built.patches.iter().map(|p| p.unique_nodes).sum();
-        let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
-        for p in &built.patches {
-            eprintln!(
+/// What was written: per patch, then the whole table.
+fn summary(cfg: &Config, built: &Built, wall: f64) {
+    let nodes: usize = built.patches.iter().map(|p| p.unique_nodes).sum();
+    let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
+    for p in &built.patches {
+        eprintln!(
                 "  {:13} {} x {} roots, {} leaves at depth {}..{}, {} nodes ({} simulated), max predicted error {:.1e}",
                 p.name,
                 p.patch.blocks_gamma,
@@ -255,19 +385,17 @@ fn write_built(cfg: &Config, text: String, built: &Built, wall: f64, quiet: bool
                 p.simulated,
                 p.leaf_error.iter().copied().fold(0.0, f64::max)
             );
-        }
-        let max_err = built
-            .checks
-            .iter()
-            .map(|c| c.interpolation_error)
-            .fold(0.0, f64::max);
-        eprintln!(
+    }
+    let max_err = built
+        .checks
+        .iter()
+        .map(|c| c.interpolation_error)
+        .fold(0.0, f64::max);
+    eprintln!(
             "wrote {}: {nodes} nodes ({simulated} simulated) + {} held-out checks, max check error {max_err:.2e}, {wall:.1} s",
             cfg.output.display(),
             built.checks.len()
         );
-    }
-    Ok(())
 }
 
 fn stats(v: impl Iterator<Item = f64>) -> (usize, f64, f64) {

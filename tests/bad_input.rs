@@ -1,6 +1,7 @@
 //! Bad sweep configs through the CLI (issue 7): each is refused before any work with a one-line
-//! message naming the key (or the problem) and the allowed range, exit code 2, no panic, and an
-//! existing table at the output path is left as it was.
+//! message naming the key (or the problem) and the allowed range (a TOML error: the parser's
+//! report with the line and a caret), exit code 2, no panic, and an existing table at the
+//! output path is left as it was.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -46,7 +47,15 @@ fn refused(name: &str, text: &str, needles: &[&str]) {
         o.status
     );
     assert!(!err.contains("panicked"), "{name}: {err}");
-    assert_eq!(err.trim().lines().count(), 1, "{name}: not one line: {err}");
+    // A TOML syntax or key error keeps the parser's report: the line, a caret under the error.
+    if err.contains("TOML parse error") {
+        assert!(
+            err.contains(" | ") && err.contains('^'),
+            "{name}: no caret: {err}"
+        );
+    } else {
+        assert_eq!(err.trim().lines().count(), 1, "{name}: not one line: {err}");
+    }
     for n in needles {
         assert!(err.contains(n), "{name}: message lacks '{n}': {err}");
     }

@@ -1128,8 +1128,12 @@ fn c_sigkill_leaves_the_old_table_untouched() {
         after.len()
     );
     // At most the checkpoint of the killed run (for `--resume`, tests/resume_shard.rs) appears
-    // (none if the kill came during the pre-flight probe, before the checkpoint is created).
-    let names = dir_names(&dir);
+    // (none if the kill came during the pre-flight probe, before the checkpoint is created),
+    // and its lock file (`t.h5.lock`, released by the kill; the next run takes it over).
+    let names: Vec<String> = dir_names(&dir)
+        .into_iter()
+        .filter(|n| n != "t.h5.lock")
+        .collect();
     assert!(
         names == ["t.h5"] || names == ["t.h5", "t.h5.ckpt"],
         "files appeared next to the output: {names:?}"
@@ -1159,7 +1163,10 @@ fn c_sigkill_during_the_write_leaves_old_or_complete_table() {
                 break st;
             }
             let appeared = dir_names(&dir).into_iter().any(|n| {
-                !existing.contains(&n) && !n.starts_with(".sweep-probe-") && !n.ends_with(".ckpt")
+                !existing.contains(&n)
+                    && !n.starts_with(".sweep-probe-")
+                    && !n.ends_with(".ckpt")
+                    && !n.ends_with(".lock")
             });
             if appeared {
                 break kill9(&mut child);
@@ -1193,11 +1200,15 @@ fn c_sigkill_during_the_write_leaves_old_or_complete_table() {
                 "a replaced table differs in its checks"
             );
         }
-        // Besides the table, only the writer's hidden temporary files (left by SIGKILL) and
-        // the killed run's checkpoint, removed here so that the next attempt starts afresh.
+        // Besides the table, only the writer's hidden temporary files (left by SIGKILL), the
+        // killed run's lock file and its checkpoint, removed here so that the next attempt
+        // starts afresh.
         for name in dir_names(&dir) {
             assert!(
-                name == "t.h5" || name.starts_with(".t.h5.tmp-") || name == "t.h5.ckpt",
+                name == "t.h5"
+                    || name.starts_with(".t.h5.tmp-")
+                    || name == "t.h5.ckpt"
+                    || name == "t.h5.lock",
                 "unexpected file {name} next to the output"
             );
         }

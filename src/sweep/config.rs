@@ -174,14 +174,15 @@ impl TryFrom<RawSolver> for Solver {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Checks {
-    /// Random check points per patch.
+    /// Random check points per patch, 1 to 100000.
     #[serde(default = "default_checks")]
     pub per_patch: usize,
     /// Seed of the deterministic generator that places them.
     #[serde(default = "default_seed")]
     pub seed: u64,
-    /// Solver tolerance of the check points (absolute error of P); default `solver.tol / 10`,
-    /// so that the measured interpolation error is that of the table, not of the check.
+    /// Solver tolerance of the check points (absolute error of P); default `solver.tol / 10`
+    /// (loosened up to `solver.tol` where the pre-flight finds that out of reach), so that the
+    /// measured interpolation error is that of the table, not of the check.
     #[serde(default)]
     pub tol: Option<f64>,
 }
@@ -230,14 +231,20 @@ pub struct Config {
     /// Execution.
     #[serde(default)]
     pub run: Run,
+    /// The default of `checks.tol` as the pre-flight found it reachable
+    /// (`crate::sweep::Preflight::check_tol`); not a key of the file.
+    #[serde(skip)]
+    pub derived_check_tol: Option<f64>,
 }
 
 impl Config {
     /// Parse and validate config text (`path` is used in messages).
     pub fn parse(text: &str, path: &str) -> Result<Self, ConfigError> {
+        // toml's report spans several lines (the line of the file, a caret under the error):
+        // kept as it is.
         let cfg: Config = toml::from_str(text).map_err(|e| ConfigError::Parse {
             path: path.to_string(),
-            message: e.to_string().trim().replace('\n', " "),
+            message: e.to_string().trim_end().to_string(),
         })?;
         cfg.validate(path)?;
         Ok(cfg)
@@ -253,11 +260,12 @@ impl Config {
         Ok((Self::parse(&text, &p)?, text))
     }
 
-    /// Solver tolerance of the held-out checks: `checks.tol`, or `solver.tol / 10` (at least
-    /// 1e-10).
+    /// Solver tolerance of the held-out checks: `checks.tol`; when it is not set, the value the
+    /// pre-flight chose ([`Config::derived_check_tol`]), else `solver.tol / 10` (at least 1e-10).
     pub fn check_tol(&self) -> f64 {
         self.checks
             .tol
+            .or(self.derived_check_tol)
             .unwrap_or((self.solver.tol / 10.0).max(1e-10))
     }
 
@@ -365,11 +373,12 @@ impl Config {
                 ));
             }
         }
-        if self.checks.per_patch > 100_000 {
+        // The held-out checks are what a table's stated error rests on: at least one per patch.
+        if self.checks.per_patch == 0 || self.checks.per_patch > 100_000 {
             return Err(err(
                 "checks.per_patch",
                 self.checks.per_patch.to_string(),
-                "<= 100000".into(),
+                "in [1, 100000] (the held-out checks measure the table's error)".into(),
             ));
         }
         if self.run.threads > 1024 {

@@ -42,9 +42,15 @@ pub enum SweepError {
     },
     /// The refinement would exceed `nodes.max_nodes`.
     #[error(
-        "patch {patch}: reaching target_error {target:e} needs more than nodes.max_nodes = {max} \
-         nodes (predicted error {predicted:e} at {nodes} nodes); raise nodes.max_nodes or \
-         loosen nodes.target_error"
+        "patch {patch}: refinement round {round} needs {more} more nodes, {needed} in all, more \
+         than nodes.max_nodes = {max}{worst}; raise nodes.max_nodes or loosen \
+         nodes.target_error",
+        worst = match predicted {
+            Some(p) => format!(
+                " (the cells being refined predict errors up to {p:.1e} > target_error {target:e})"
+            ),
+            None => String::new(),
+        }
     )]
     TooManyNodes {
         /// Patch name.
@@ -53,16 +59,20 @@ pub enum SweepError {
         target: f64,
         /// The limit.
         max: usize,
-        /// Predicted error reached.
-        predicted: f64,
-        /// Nodes placed so far.
-        nodes: usize,
+        /// Refinement round of the patch (1: its root cells).
+        round: usize,
+        /// New nodes the round needs.
+        more: usize,
+        /// Nodes of the whole build with those of the round.
+        needed: usize,
+        /// Largest predicted error of the cells the round refines (`None` in round 0, where no
+        /// cell has been evaluated yet).
+        predicted: Option<f64>,
     },
     /// The pre-flight probe found a tolerance the solver cannot reach in reasonable time.
     #[error(
         "{key} = {tol:e} cannot be reached at gamma = {gamma}, alpha = {alpha} (the hardest \
-         point of the domain), where every node would take seconds or more ({reason}); loosen \
-         {key}"
+         point of the domain), where every node would take seconds or more ({reason}); {advice}"
     )]
     Unreachable {
         /// Config key of the tolerance.
@@ -75,6 +85,8 @@ pub enum SweepError {
         alpha: f64,
         /// The solver's reason.
         reason: String,
+        /// What to change in the config.
+        advice: String,
     },
     /// A cell at the deepest level still predicts more than the target: `P` is not smooth
     /// there at the scale the node tolerance resolves (node noise or a kink).
@@ -132,6 +144,36 @@ pub enum RunError {
     /// A node or the refinement failed.
     #[error(transparent)]
     Sweep(#[from] SweepError),
+}
+
+impl RunError {
+    /// Whether the user can fix the cause in the config or on the command line (a limit, a
+    /// tolerance, the parts given to a merge), as opposed to an interruption or a failed write.
+    pub fn is_usage(&self) -> bool {
+        match self {
+            RunError::Sweep(e) => e.is_usage(),
+            RunError::Missing { .. } => true,
+            RunError::Interrupted | RunError::Store(_) => false,
+        }
+    }
+}
+
+impl SweepError {
+    /// Whether a config key decides the failure (every variant names the key to change).
+    pub fn is_usage(&self) -> bool {
+        match self {
+            SweepError::Node { source, .. } => matches!(
+                source,
+                PhysicsError::ToleranceUnreachable { .. }
+                    | PhysicsError::Infeasible { .. }
+                    | PhysicsError::TooLarge { .. }
+            ),
+            SweepError::Fold { .. }
+            | SweepError::TooManyNodes { .. }
+            | SweepError::Unreachable { .. }
+            | SweepError::DepthLimit { .. } => true,
+        }
+    }
 }
 
 /// One computed node: `P(γ, α)` at solver tolerance `tol`, with its error estimate.
@@ -200,22 +242,52 @@ impl Shard {
 const BATCH: usize = 256;
 
 /// Progress reporting for long runs (implemented by the CLI).
+///
+/// A build goes through the stages of [`stages`] in order; each begins with [`Progress::phase`].
+/// A stage that simulates (a refinement round, the checks) then announces how many impacts it
+/// runs with [`Progress::total`] (known from the moment its nodes are placed; the number of
+/// rounds of a refinement is not known in advance) and reports them with [`Progress::inc`].
 pub trait Progress: Sync {
-    /// `n` more impacts are scheduled.
-    fn add(&self, n: u64);
+    /// `stage` (one of [`stages`]) begins or goes on, `detail` says with what (e.g. the round).
+    fn phase(&self, stage: &str, detail: &str);
+    /// The current phase simulates `n` impacts (nodes found in a checkpoint are not counted).
+    fn total(&self, n: u64);
     /// `n` impacts finished.
     fn inc(&self, n: u64);
-    /// A phase begins.
-    fn phase(&self, msg: &str);
 }
 
 /// A progress sink that reports nothing.
 pub struct Silent;
 
 impl Progress for Silent {
-    fn add(&self, _: u64) {}
+    fn phase(&self, _: &str, _: &str) {}
+    fn total(&self, _: u64) {}
     fn inc(&self, _: u64) {}
-    fn phase(&self, _: &str) {}
+}
+
+/// Name of the stage that traces the fold curve F₊ (before the partial-slip patch).
+pub const STAGE_FOLD: &str = "fold tracing";
+/// Name of the held-out checks' stage (the last of a build).
+pub const STAGE_CHECKS: &str = "held-out checks";
+
+/// The stage of a patch's refinement rounds.
+fn stage_refine(patch: &str) -> String {
+    format!("{patch} refinement")
+}
+
+/// The stages of a build (or of one shard) of `cfg`, in the order [`Progress::phase`] reports
+/// them: each patch's refinement (preceded by [`STAGE_FOLD`] when the partial-slip patch is
+/// warped), then [`STAGE_CHECKS`].
+pub fn stages(cfg: &Config) -> Vec<String> {
+    let mut out = Vec::new();
+    for spec in patch_specs(cfg) {
+        if cfg.nodes.fold_warp && spec.kind == PatchKind::PartialSlip {
+            out.push(STAGE_FOLD.to_string());
+        }
+        out.push(stage_refine(spec.name));
+    }
+    out.push(STAGE_CHECKS.to_string());
+    out
 }
 
 /// One patch as built, with the coordinates of every node (same flat layout as `patch.p`).
@@ -312,7 +384,7 @@ pub fn solve_points_with(
             });
         }
     }
-    progress.add(todo.len() as u64);
+    progress.total(todo.len() as u64);
     let stopped = || opts.stop.is_some_and(|s| s.load(Ordering::Relaxed));
     for batch in todo.chunks(BATCH) {
         if stopped() {
@@ -537,10 +609,10 @@ fn build_patch(
 ) -> Result<Option<BuiltPatch>, RunError> {
     let k = cfg.nodes.stencil;
     let warp = if cfg.nodes.fold_warp && spec.kind == PatchKind::PartialSlip {
-        progress.phase(&format!(
-            "{}: tracing the fold curve F+ for the warp",
-            spec.name
-        ));
+        progress.phase(
+            STAGE_FOLD,
+            &format!("the fold curve F+ for the warp of {}", spec.name),
+        );
         warp::fold_warp(
             spec.gamma_lo,
             spec.gamma_hi,
@@ -579,21 +651,30 @@ fn build_patch(
         wanted.sort_unstable();
         wanted.dedup();
         if *total_nodes + wanted.len() > cfg.nodes.max_nodes {
-            let worst = predicted.iter().copied().fold(0.0, f64::max);
+            // The cells this round refines are the children of cells that predicted too much.
+            let worst = (0..cells.len())
+                .filter(|&c| child[c].is_some() && predicted[c].is_finite())
+                .map(|c| predicted[c])
+                .reduce(f64::max);
             return Err(RunError::Sweep(SweepError::TooManyNodes {
                 patch: spec.name,
                 target: cfg.nodes.target_error,
                 max: cfg.nodes.max_nodes,
+                round: round + 1,
+                more: wanted.len(),
+                needed: *total_nodes + wanted.len(),
                 predicted: worst,
-                nodes: *total_nodes,
             }));
         }
-        progress.phase(&format!(
-            "{} round {round}: {} open cells, {} new nodes",
-            spec.name,
-            open.len(),
-            wanted.len()
-        ));
+        progress.phase(
+            &stage_refine(spec.name),
+            &format!(
+                "round {}: {} open cells, {} new nodes",
+                round + 1,
+                open.len(),
+                wanted.len()
+            ),
+        );
         let points: Vec<(f64, f64)> = wanted
             .iter()
             .map(|&key| {
@@ -706,17 +787,100 @@ fn build_patch(
 /// about a second).
 const PROBE_MAX_STEPS: usize = 1 << 15;
 
+/// The refinement limits of a pre-flight probe (and of the default of `checks.tol`).
+pub fn probe_limits() -> physics::impact::Limits {
+    physics::impact::Limits {
+        max_steps: PROBE_MAX_STEPS,
+        ..physics::impact::Limits::default()
+    }
+}
+
 /// What the pre-flight probe measured.
 #[derive(Debug, Clone, Copy)]
 pub struct Preflight {
     /// Wall time of the slowest probe (s): an upper estimate of one node's cost.
     pub slowest_node_s: f64,
+    /// Tolerance of the held-out checks: `checks.tol` when set, else the tightest of
+    /// [`default_check_tols`] that the probes reached (`solver.tol` at worst).
+    pub check_tol: f64,
+    /// `checks.tol` is not set and `solver.tol / 10` was out of reach: `check_tol` is looser.
+    pub check_tol_loosened: bool,
+}
+
+/// The candidates for the default of `checks.tol`, tightest first: `solver.tol` / 10, / 5, / 2,
+/// / 1 (at least 1e-10). The pre-flight takes the first it can reach.
+pub fn default_check_tols(cfg: &Config) -> [f64; 4] {
+    let tol = cfg.solver.tol;
+    [tol / 10.0, tol / 5.0, tol / 2.0, tol].map(|t| t.max(1e-10))
+}
+
+/// The default check tolerance a sharded run used, found in its merged parts: the candidate
+/// of [`default_check_tols`] at which the parts hold the first held-out check (`None` when
+/// `checks.tol` is set, or when no candidate fits).
+pub fn check_tol_in_store(cfg: &Config, store: &dyn NodeStore) -> Option<f64> {
+    if cfg.checks.tol.is_some() {
+        return None;
+    }
+    let &(gamma, alpha) = check_points(cfg).first()?;
+    default_check_tols(cfg).into_iter().find(|&tol| {
+        let key = NodeRecord {
+            gamma,
+            alpha,
+            tol,
+            p: f64::NAN,
+            error: f64::NAN,
+        }
+        .key();
+        store.get(key).is_some()
+    })
+}
+
+/// Why a probe failed, naming only the limits that were exceeded.
+fn unreachable_reason(e: &PhysicsError) -> String {
+    match e {
+        PhysicsError::Infeasible {
+            springs,
+            steps,
+            work,
+            memory_mb,
+            max_steps,
+            max_work,
+            max_memory_mb,
+            ..
+        } => {
+            let mut over = Vec::new();
+            if steps > max_steps {
+                over.push(format!("{steps} steps, more than the {max_steps} allowed"));
+            }
+            if work > max_work {
+                over.push(format!(
+                    "{work:.1e} spring-steps, more than the {max_work:.1e} allowed"
+                ));
+            }
+            if memory_mb > max_memory_mb {
+                over.push(format!(
+                    "{memory_mb:.0} MB, more than the {max_memory_mb:.0} MB allowed"
+                ));
+            }
+            let res = physics::Resolution {
+                springs: *springs,
+                steps: *steps,
+            };
+            format!("even at best it needs {res}: {}", over.join(", "))
+        }
+        other => {
+            let text = other.to_string();
+            text.split("; loosen").next().unwrap_or(&text).to_string()
+        }
+    }
 }
 
 /// Check before the work starts that the node and check tolerances can be reached: solve the
 /// hardest points of the domain (largest γ in partial slip and at α = ∞, where `P` oscillates
 /// fastest) with the refinement capped at [`PROBE_MAX_STEPS`]. A tolerance that needs more would
-/// make every node take seconds to minutes: refused with the tolerance that is reachable.
+/// make every node take seconds to minutes: refused, naming the key to change. When `checks.tol`
+/// is not set, its default is the tightest of [`default_check_tols`] that is reached: a default
+/// never refuses a run.
 pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
     let g = cfg.domain.gamma_max;
     let mut probes = vec![(g, f64::INFINITY)];
@@ -727,15 +891,10 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
         );
         probes.push((g, (a1 * a2).sqrt()));
     }
-    let limits = physics::impact::Limits {
-        max_steps: PROBE_MAX_STEPS,
-        ..physics::impact::Limits::default()
-    };
+    let limits = probe_limits();
     let mut slowest = 0.0f64;
-    for (key, tol) in [
-        ("solver.tol", cfg.solver.tol),
-        ("checks.tol", cfg.check_tol()),
-    ] {
+    // Solve every probe point at `tol`: the first failure, as the refusal of `key`.
+    let mut probe = |key: &'static str, tol: f64, advice: &str| -> Result<(), SweepError> {
         for &(gamma, alpha) in &probes {
             let start = std::time::Instant::now();
             let r = physics::impact::solve_with_limits(
@@ -758,7 +917,8 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
                         tol,
                         gamma,
                         alpha,
-                        reason: e.to_string().replace("; loosen --tol", ""),
+                        reason: unreachable_reason(&e),
+                        advice: advice.to_string(),
                     });
                 }
                 Err(source) => {
@@ -770,9 +930,35 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
                 }
             }
         }
-    }
+        Ok(())
+    };
+    probe("solver.tol", cfg.solver.tol, "loosen solver.tol")?;
+    let (check_tol, check_tol_loosened) = match cfg.checks.tol {
+        Some(t) => {
+            probe(
+                "checks.tol",
+                t,
+                &format!(
+                    "loosen checks.tol (at most solver.tol = {:e})",
+                    cfg.solver.tol
+                ),
+            )?;
+            (t, false)
+        }
+        None => {
+            let candidates = default_check_tols(cfg);
+            let last = candidates.len() - 1;
+            // `solver.tol` itself (the last candidate) was reached just above.
+            let i = (0..last)
+                .find(|&i| probe("checks.tol", candidates[i], "").is_ok())
+                .unwrap_or(last);
+            (candidates[i], i > 0)
+        }
+    };
     Ok(Preflight {
         slowest_node_s: slowest,
+        check_tol,
+        check_tol_loosened,
     })
 }
 
@@ -829,7 +1015,7 @@ pub fn build_with(
         stick_high: find(oblique_lookup::format::PATCH_STICK_HIGH),
     };
     let points = check_points(cfg);
-    progress.phase(&format!("held-out checks: {} points", points.len()));
+    progress.phase(STAGE_CHECKS, &format!("{} points", points.len()));
     let sims = solve_points_with(&points, cfg.check_tol(), progress, opts)?;
     let checks = points
         .iter()
@@ -882,7 +1068,7 @@ pub fn build_shard(
         .filter(|(i, _)| shard.owns(*i))
         .map(|(_, pt)| pt)
         .collect();
-    progress.phase(&format!("held-out checks: {} points", points.len()));
+    progress.phase(STAGE_CHECKS, &format!("{} points", points.len()));
     solve_points_with(&points, cfg.check_tol(), progress, opts)?;
     Ok(())
 }
