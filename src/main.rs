@@ -361,6 +361,17 @@ fn parse_gamma(s: &str) -> Result<f64, String> {
     }
 }
 
+/// γ of a table query: any finite number > 0 (the table's domain is checked by the lookup; the
+/// full-slip closed form holds for every γ).
+fn parse_table_gamma(s: &str) -> Result<f64, String> {
+    let v = parse_f64(s)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err("gamma must be a finite number > 0".into())
+    }
+}
+
 /// A number as written by a person: plain decimals from 1e-4 to 1e9, exponent notation
 /// outside (Rust's `{}` would print 1e308 with 309 digits).
 fn fmt_num(v: f64) -> String {

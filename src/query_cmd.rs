@@ -15,7 +15,7 @@ pub struct QueryArgs {
     /// Table file written by `sweep run` (HDF5, schema v2 or v3).
     table: PathBuf,
     /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
-    #[arg(long, value_parser = crate::parse_gamma, allow_hyphen_values = true,
+    #[arg(long, value_parser = crate::parse_table_gamma, allow_hyphen_values = true,
           conflicts_with = "batch", requires = "alpha")]
     gamma: Option<f64>,
     /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
@@ -46,17 +46,6 @@ fn usage(e: LookupError) -> anyhow::Error {
             QueryUsageError(e.to_string()).into()
         }
         other => other.into(),
-    }
-}
-
-/// A number for a CSV line: the shortest text that reads back to the same `f64`, in exponent
-/// form for magnitudes below 1e-5 or from 1e16 on (never hundreds of digits).
-fn number(v: f64) -> String {
-    let a = v.abs();
-    if v.is_finite() && a != 0.0 && !(1e-5..1e16).contains(&a) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
     }
 }
 
@@ -117,8 +106,8 @@ pub fn run(args: QueryArgs) -> Result<()> {
     } else {
         println!(
             "P(gamma = {}, alpha = {}) = {p:.9}  +/- {error:.1e}",
-            number(gamma),
-            number(alpha)
+            crate::fmt_num(gamma),
+            crate::fmt_num(alpha)
         );
         println!(
             "e_t = (2P + 5)/7 = {:.9}   (solid sphere, no initial spin)",
@@ -217,10 +206,10 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
                 Some(((g, a), p)) => writeln!(
                     out,
                     "{},{},{},{}",
-                    number(*g),
-                    number(*a),
-                    number(*p),
-                    number(e_t(*p))
+                    crate::fmt_num(*g),
+                    crate::fmt_num(*a),
+                    crate::fmt_num(*p),
+                    crate::fmt_num(e_t(*p))
                 ),
                 None => Ok(()),
             },
