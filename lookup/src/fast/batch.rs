@@ -16,7 +16,7 @@
 //! `-C target-cpu` is needed: binaries and tables run on any x86-64.
 
 use super::{alpha_c1_of, Accel, FastPatch, BATCH};
-use crate::surface::{cubic_weights, OutOfDomain, PatchKind, Surface};
+use crate::surface::{bound_p, cubic_weights, OutOfDomain, PatchKind, Surface};
 use crate::LookupError;
 
 /// The per-patch arrays of one chunk (structure of arrays, `BATCH` entries each).
@@ -219,8 +219,9 @@ impl FastPatch {
             let (r2, r3) = rest.split_at(stride);
             let (wc0, wc1, wc2, wc3) = (w0c[k], w1c[k], w2c[k], w3c[k]);
             let row = |r: &[f64]| r[0] * wc0 + r[1] * wc1 + r[2] * wc2 + r[3] * wc3;
-            out[i as usize] =
-                w0g[k] * row(r0) + w1g[k] * row(r1) + w2g[k] * row(r2) + w3g[k] * row(r3);
+            out[i as usize] = bound_p(
+                w0g[k] * row(r0) + w1g[k] * row(r1) + w2g[k] * row(r2) + w3g[k] * row(r3),
+            );
         }
     }
 }
