@@ -207,7 +207,10 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         .copied()
         .max_by(|a, b| a.error().total_cmp(&b.error()))
         .context("no points")?;
-    let exceeding = outcomes.iter().filter(|o| !(o.error() <= bound)).count();
+    let exceeding = outcomes
+        .iter()
+        .filter(|o| o.error().is_nan() || o.error() > bound)
+        .count();
     let max_sim_error = outcomes.iter().map(|o| o.sim_error).fold(0.0, f64::max);
     println!("table        {}", args.table.display());
     println!(

@@ -100,7 +100,7 @@ pub fn surface_bound(surface: &Surface, leaf_predicted: [Option<&[f64]>; 3]) -> 
 pub fn contradicting_check(checks: &[Check], bound: f64) -> Option<&Check> {
     checks
         .iter()
-        .find(|c| bound.is_nan() || !(c.interpolation_error <= bound))
+        .find(|c| bound.is_nan() || c.interpolation_error.is_nan() || c.interpolation_error > bound)
 }
 
 #[cfg(test)]

@@ -77,10 +77,12 @@ fn query_path_reproduces_the_documented_rule() {
         );
     }
     eprintln!("max |fast - reference| = {worst:e}");
-    // Stored interpolated values of the held-out checks (computed by the writer).
+    // Stored interpolated values of the held-out checks (computed by the writer; quick.h5 was
+    // written before step 10 bounded P to [−1, 1], so its stored values are bounded here).
     for c in &t.checks {
         let p = t.p(c.gamma, c.alpha).unwrap();
-        assert!((p - c.p_interpolated).abs() <= 1e-12, "{c:?}: {p}");
+        let stored = c.p_interpolated.clamp(-1.0, 1.0);
+        assert!((p - stored).abs() <= 1e-12, "{c:?}: {p}");
     }
 }
 
