@@ -483,7 +483,7 @@ class Table:
         return "partial_high" if alpha < alpha_c2(gamma) else "stick_high"
 
     def p(self, gamma, alpha):
-        """P(gamma, alpha) by steps 1-9. Raises DomainError outside the answered domain."""
+        """P(gamma, alpha) by steps 1-10. Raises DomainError outside the answered domain."""
         gamma = float(gamma)
         alpha = float(alpha)
         if not (math.isfinite(gamma) and gamma > 0):
@@ -506,7 +506,7 @@ class Table:
         patch = self.patches.get(name)
         if patch is None:
             return -1.0
-        # 4-9 (the warp of step 5 in Patch.interpolate).
+        # 4-10 (the warp of step 5 in Patch.interpolate).
         c = coordinate(patch.kind, gamma, alpha, self.alpha_max)
         return patch.interpolate(gamma, c, self.stencil)
 

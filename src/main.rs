@@ -116,8 +116,8 @@ What the columns mean and the published results: docs/accuracy.md.")]
     /// Check a table against direct simulation at random points: max and rms error, the worst
     /// point, and whether the table holds the error bound it states.
     #[command(after_help = "Examples:\n  \
-sweep verify tables/full.h5 --points 300                 # a sample (about a minute on 2 cores)\n  \
-sweep verify tables/full.h5 --points 20000 --seed 1      # the published measurement\n  \
+sweep verify tables/full.h5 --points 300                 # a sample (about 10 s on 2 cores)\n  \
+sweep verify tables/full.h5 --points 20000 --seed 1      # the published measurement (15 min)\n  \
 sweep verify tables/quick.h5 --points 100 --tol 1e-9\n\n\
 Points: gamma uniform over the table's domain, alpha/(1 + alpha) uniform in [0, 1) (so alpha from 0\n\
 to infinity, half of them below 1); when the table includes no slip, every 100th point is at\n\

@@ -30,12 +30,12 @@ pub struct VerifyArgs {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Solver tolerance of the reference simulations (absolute error of P); in (0, 1e-8].
-    #[arg(long, default_value_t = 1e-8)]
+    #[arg(long, default_value = "1e-8")]
     tol: f64,
     /// Worker threads for the simulations (0 = one per core).
     #[arg(long, default_value_t = 0)]
     threads: usize,
-    /// No progress lines.
+    /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
 }

@@ -1,4 +1,4 @@
-//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–9
+//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–10
 //! of `docs/table-format.md`) on an acceleration structure built once at [`crate::Table::open`].
 //!
 //! It returns the same bits as [`Surface::eval_with`] (the rule written step by step); only the
