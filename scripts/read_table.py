@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Reference reader of the P(gamma, alpha) table (HDF5, schema v3 or v2), h5py + numpy only.
 
-Implements the interpolation rule of docs/table-format.md (steps 1-9) exactly, independently of
+Implements the interpolation rule of docs/table-format.md (steps 1-10) exactly, independently of
 the Rust code, so that it can cross-check both the `oblique-lookup` crate and the simulator.
 
     python3 scripts/read_table.py TABLE --gamma G --alpha A        # prints P (alpha may be inf)
     python3 scripts/read_table.py TABLE --check-stored             # vs /checks/P_interpolated
+    python3 scripts/read_table.py TABLE --error-bound              # the stated error bound
     python3 scripts/read_table.py TABLE --check-against-sweep 12 --max-error 1e-5
 
 Exit status: 0 success, 1 a check failed, 2 usage error / unreadable table / query outside
@@ -113,6 +114,23 @@ def lagrange(u, n, k):
     return start, w
 
 
+def lebesgue(k, per=4096):
+    """Lebesgue constant of the k-point Lagrange basis on the equispaced nodes 0..k-1: the
+    maximum over u in [0, k-1] (sampled on `per` points per interval) of sum_j |l_j(u)|."""
+    worst = 1.0
+    for s in range(per * (k - 1) + 1):
+        u = s / per
+        total = 0.0
+        for j in range(k):
+            prod = 1.0
+            for n in range(k):
+                if n != j:
+                    prod *= (u - n) / (j - n)
+            total += abs(prod)
+        worst = max(worst, total)
+    return worst
+
+
 def _clamp01(v):
     return min(max(v, 0.0), 1.0)
 
@@ -199,7 +217,7 @@ class Patch:
         return -self.tree[i] - 1, fx, fc
 
     def interpolate(self, gamma, c, k):
-        """Steps 4 (x, with c given) to 9."""
+        """Steps 4 (x, with c given) to 10."""
         x = _clamp01((gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo))
         c = _clamp01(c)
         if self.warp is not None and x * self.blocks_gamma >= self.warp.start:
@@ -215,7 +233,8 @@ class Patch:
             for j in range(k):
                 inner += float(vals[sg + i, sc + j]) * wc[j]
             total += wg[i] * inner
-        return total
+        # 10. The bound: |P| <= 1.
+        return min(max(total, -1.0), 1.0)
 
 
 def check_tree(tree, roots):
@@ -322,6 +341,7 @@ class Table:
         if "patches" not in f or not isinstance(f["patches"], h5py.Group):
             raise self._invalid("missing group '/patches'")
         self.patches = {}
+        self.bounds = {}
         for name in PATCH_NAMES:
             if name in f["patches"]:
                 self.patches[name] = self._patch(f["patches"][name], name, num)
@@ -329,6 +349,10 @@ class Table:
             raise self._invalid("missing patch 'stick_low' (gamma_min < 1)")
         if self.gamma_max > 1.0 and not {"partial_high", "stick_high"} <= set(self.patches):
             raise self._invalid("missing patch 'partial_high' or 'stick_high' (gamma_max > 1)")
+        # The stated error bound: the largest over the patches (NaN: the file states none).
+        self.error_bound = max(self.bounds.values(), default=0.0)
+        if any(math.isnan(b) for b in self.bounds.values()):
+            self.error_bound = math.nan
         self.checks = None
         if "checks" in f:
             g = f["checks"]
@@ -379,6 +403,17 @@ class Table:
         if not np.all(np.isfinite(p)):
             raise self._invalid(f"{where}: non-finite value in 'P'")
         warp = self._warp(g, name, lo, hi, bg, bc, tree, num) if "warp" in g else None
+        # The stated error bound of the patch (docs/table-format.md, "The stated error bound"):
+        # max over leaves of leaf_predicted_error + Lambda_k^2 * max node error_estimate.
+        bound = math.nan
+        if "leaf_predicted_error" in g and "error_estimate" in g:
+            pred = g["leaf_predicted_error"][()].astype(np.float64)
+            est = g["error_estimate"][()].astype(np.float64)
+            if pred.shape == (leaves,) and est.shape == shape:
+                factor = lebesgue(self.stencil) ** 2
+                per_leaf = pred + factor * est.reshape(leaves, -1).max(axis=1, initial=0.0)
+                bound = float(per_leaf.max(initial=0.0))
+        self.bounds[name] = bound
         return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp)
 
     def _warp(self, g, name, gamma_lo, gamma_hi, bg, bc, tree, num):
@@ -448,7 +483,7 @@ class Table:
         return "partial_high" if alpha < alpha_c2(gamma) else "stick_high"
 
     def p(self, gamma, alpha):
-        """P(gamma, alpha) by steps 1-9. Raises DomainError outside the answered domain."""
+        """P(gamma, alpha) by steps 1-10. Raises DomainError outside the answered domain."""
         gamma = float(gamma)
         alpha = float(alpha)
         if not (math.isfinite(gamma) and gamma > 0):
@@ -471,7 +506,7 @@ class Table:
         patch = self.patches.get(name)
         if patch is None:
             return -1.0
-        # 4-9 (the warp of step 5 in Patch.interpolate).
+        # 4-10 (the warp of step 5 in Patch.interpolate).
         c = coordinate(patch.kind, gamma, alpha, self.alpha_max)
         return patch.interpolate(gamma, c, self.stencil)
 
@@ -632,6 +667,8 @@ def main(argv=None):
     ap.add_argument("table", help="HDF5 table written by `sweep run`")
     ap.add_argument("--gamma", type=parse_number, help="gamma > 0")
     ap.add_argument("--alpha", type=parse_number, help="alpha >= 0, or inf")
+    ap.add_argument("--error-bound", action="store_true",
+                    help="print the table's stated error bound (docs/table-format.md)")
     ap.add_argument("--check-stored", action="store_true",
                     help="compare with /checks/P_interpolated (1e-12)")
     ap.add_argument("--check-against-sweep", type=int, metavar="N",
@@ -649,8 +686,10 @@ def main(argv=None):
     query = args.gamma is not None or args.alpha is not None
     if query and (args.gamma is None or args.alpha is None):
         ap.error("--gamma and --alpha go together")
-    if not (query or args.check_stored or args.check_against_sweep is not None):
-        ap.error("nothing to do: give --gamma/--alpha, --check-stored or --check-against-sweep N")
+    if not (query or args.error_bound or args.check_stored
+            or args.check_against_sweep is not None):
+        ap.error("nothing to do: give --gamma/--alpha, --error-bound, --check-stored or "
+                 "--check-against-sweep N")
     if args.check_against_sweep is not None and args.check_against_sweep < 1:
         ap.error("--check-against-sweep N needs N >= 1")
     try:
@@ -665,6 +704,8 @@ def main(argv=None):
         except DomainError as e:
             print(f"error: {e}", file=sys.stderr)
             return 2
+    if args.error_bound:
+        print(repr(table.error_bound))
     if args.check_stored:
         status = max(status, check_stored(table))
     if args.check_against_sweep is not None:

@@ -90,7 +90,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
     let error = if Region::of(gamma, alpha) == Region::Line {
         0.0
     } else {
-        table.certified_error()
+        table.error_bound()
     };
     if args.json {
         let out = json!({

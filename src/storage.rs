@@ -22,6 +22,26 @@ pub enum StorageError {
         /// What failed.
         message: String,
     },
+    /// A held-out check is off by more than the error bound the table would state: the file
+    /// is not written.
+    #[error(
+        "refusing to write {path}: the held-out check at gamma = {gamma}, alpha = {alpha} is off \
+         by {error:.3e}, more than the error bound the table states, {bound:.3e} (largest leaf \
+         prediction + 2.66 x node error estimate, docs/table-format.md); the refinement's \
+         prediction does not hold there: lower nodes.target_error or solver.tol"
+    )]
+    BoundContradicted {
+        /// Output path.
+        path: String,
+        /// The stated bound ([`error_bound`]).
+        bound: f64,
+        /// The check's measured error.
+        error: f64,
+        /// γ of the check.
+        gamma: f64,
+        /// α of the check.
+        alpha: f64,
+    },
     /// Filesystem error (directory, rename).
     #[error("writing {path}: {source}")]
     Io {
@@ -240,9 +260,41 @@ impl W<'_> {
     }
 }
 
+/// The error bound the table of `built` states: [`oblique_lookup::bound::surface_bound`] of its
+/// leaves' predicted errors (what `Table::error_bound` derives from the written file).
+pub fn error_bound(built: &Built) -> f64 {
+    let pred = |name: &str| {
+        built
+            .patches
+            .iter()
+            .find(|p| p.name == name)
+            .map(|p| p.leaf_error.as_slice())
+    };
+    oblique_lookup::bound::surface_bound(
+        &built.surface,
+        [
+            pred(PATCH_STICK_LOW),
+            pred(PATCH_PARTIAL_HIGH),
+            pred(PATCH_STICK_HIGH),
+        ],
+    )
+}
+
 /// Write `built` to `out` atomically: an interrupted write never leaves a partial file at `out`.
+/// Refused ([`StorageError::BoundContradicted`], nothing written) when a held-out check exceeds
+/// the error bound the table states ([`error_bound`]).
 pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), StorageError> {
     let path = out.display().to_string();
+    let bound = error_bound(built);
+    if let Some(c) = oblique_lookup::bound::contradicting_check(&built.checks, bound) {
+        return Err(StorageError::BoundContradicted {
+            path,
+            bound,
+            error: c.interpolation_error,
+            gamma: c.gamma,
+            alpha: c.alpha,
+        });
+    }
     let io = |source| StorageError::Io {
         path: path.clone(),
         source,

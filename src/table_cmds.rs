@@ -453,6 +453,7 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
             "nodes": patches.iter().map(|(_, p)| p.p.len()).sum::<usize>(),
             "patches": ps,
             "checks": { "count": nc, "max_interpolation_error": cmax, "rms_interpolation_error": crms },
+            "error_bound": if t.error_bound().is_nan() { json!(null) } else { json!(t.error_bound()) },
             "provenance": {
                 "engine_version": pv.engine_version, "git_commit": pv.git_commit,
                 "created": pv.created, "wall_time_s": pv.wall_time_s, "solver": pv.solver,
@@ -495,6 +496,10 @@ pub fn inspect(args: InspectArgs) -> Result<()> {
         }
     }
     println!("held-out checks: {nc} points, max interpolation error {cmax:.2e}, rms {crms:.2e}");
+    println!(
+        "stated error bound: {:.2e} (largest leaf prediction + 2.66 x node error estimate; docs/table-format.md)",
+        t.error_bound()
+    );
     println!(
         "built {} in {:.1} s by engine {} (commit {}); {}",
         pv.created, pv.wall_time_s, pv.engine_version, pv.git_commit, pv.solver

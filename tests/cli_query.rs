@@ -302,3 +302,60 @@ fn extreme_numbers_are_printed_compactly() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("gamma = 1e-300"), "{text}");
 }
+
+/// `|P| ≤ 1` from the CLI (step 10 of the rule): the point where `tables/full.h5` answered
+/// P = −1.000008644, alone and first in a batch of 1e6 random lines (γ ∈ [0.1, 3.5],
+/// α ∈ [0, 20]).
+#[test]
+fn query_answers_no_p_beyond_one() {
+    let full = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5");
+    let (g0, a0) = ("2.829218718427729", "5.60402202817959");
+    let out = sweep(
+        &["query", full, "--gamma", g0, "--alpha", a0, "--json"],
+        None,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let p = v["P"].as_f64().expect("P");
+    assert!(p.abs() <= 1.0, "P = {p}");
+    let mut next = oblique_lookup::testing::uniform(0xC11_0001);
+    let mut input = format!("{g0},{a0}\n");
+    for _ in 0..1_000_000 {
+        let (g, a) = (0.1 + 3.4 * next(), 20.0 * next());
+        input.push_str(&format!("{g:?},{a:?}\n"));
+    }
+    // Large input: written from a thread while the output is read (the pipes would fill).
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(["query", full, "--batch", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run the sweep binary");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let out = child.wait_with_output().expect("wait for sweep");
+    writer.join().expect("writer").expect("write the batch");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("UTF-8");
+    let mut lines = 0;
+    for line in text.lines() {
+        let p: f64 = line
+            .split(',')
+            .nth(2)
+            .expect("P column")
+            .parse()
+            .expect("P");
+        assert!(p.abs() <= 1.0, "|P| > 1: {line}");
+        lines += 1;
+    }
+    assert_eq!(lines, 1_000_001);
+}

@@ -182,7 +182,7 @@ fn check(imp: &PhysicalImpact) {
     let a = t.rebound(&pair, &contact, &inc).expect("table rebound");
     close(a.gamma, g.gamma, 1e-12 * g.gamma, "gamma (table)");
     close(a.alpha, g.alpha, 1e-12 * g.alpha, "alpha (table)");
-    let err = t.certified_error() + phys.error_estimate;
+    let err = t.error_bound() + phys.error_estimate;
     close(a.rebound.p, p_phys, err, "P (table vs physical)");
     let (x, y, z) = frame();
     let spin_n = [25.0, -60.0];

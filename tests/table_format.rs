@@ -1366,6 +1366,29 @@ fn e_inspect_json_reports_the_files_node_counts() {
         v["checks"]["max_interpolation_error"].as_f64(),
         Some(err.iter().copied().fold(0.0, f64::max))
     );
+    // The stated bound: largest leaf prediction + Λ₄² × the leaf's largest node estimate.
+    let factor = oblique_lookup::bound::node_error_factor(4);
+    let mut bound = 0.0_f64;
+    for name in ["stick_low", "partial_high", "stick_high"] {
+        let g = patches.group(name).unwrap();
+        let pred = f64s(&g, "leaf_predicted_error");
+        let est = f64s(&g, "error_estimate");
+        let per_leaf = est.len() / pred.len();
+        for (l, p) in pred.iter().enumerate() {
+            let worst = est[l * per_leaf..(l + 1) * per_leaf]
+                .iter()
+                .copied()
+                .fold(0.0, f64::max);
+            bound = bound.max(p + factor * worst);
+        }
+    }
+    let stated = v["error_bound"].as_f64().expect("error_bound");
+    assert!(
+        (stated - bound).abs() <= 1e-15 * bound,
+        "{stated} vs {bound}"
+    );
+    assert_eq!(Table::open(&fx.table).unwrap().error_bound(), stated);
+    assert!(err.iter().all(|&e| e <= stated), "a check above the bound");
     assert_eq!(v["schema_version"].as_u64(), Some(3));
     assert_eq!(v["stencil_points"].as_u64(), Some(4));
     assert_eq!(v["alpha_max"].as_str(), Some("inf"));
@@ -1691,4 +1714,77 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     });
     assert!(e.contains("only 'partial_high'"), "{e}");
     assert!(dir_names(&bad_dir).is_empty(), "{:?}", dir_names(&bad_dir));
+}
+
+/// `sweep run` (the writer) refuses a table whose held-out checks exceed the bound it states,
+/// writing nothing; and `sweep verify` exits 1 on a table that does not hold its bound.
+#[test]
+fn h_a_table_is_not_written_or_verified_against_a_bound_it_breaks() {
+    let fx = fixture();
+    let warp = oblique_lookup::Warp {
+        start: 1.0,
+        gamma_0: 1.2,
+        gamma_step: 0.1,
+        c_star: 0.5,
+        knot: vec![0.45, 0.5, 0.6, 0.55, 0.4],
+    };
+    let mut built = built_with_warp(&fx.table, &warp);
+    let prov = Table::open(&fx.table).unwrap().provenance;
+    let bound = oblique::storage::error_bound(&built);
+    assert_eq!(bound, Table::open(&fx.table).unwrap().error_bound());
+    let dir = subdir("bound");
+    let out = dir.join("contradicted.h5");
+    built.checks[3].interpolation_error = 1.5 * bound;
+    let e = {
+        let _g = fork_guard();
+        oblique::storage::write_table(&out, &built, &prov).expect_err("a check above the bound")
+    };
+    let msg = e.to_string();
+    assert!(
+        matches!(e, oblique::storage::StorageError::BoundContradicted { .. }),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("refusing to write") && msg.contains("error bound the table states"),
+        "{msg}"
+    );
+    assert!(!out.exists(), "nothing written");
+    assert_eq!(dir_names(&dir), Vec::<String>::new(), "no temporary left");
+    // A table whose stated bound is 0 (no predicted or node error): written without checks,
+    // `sweep verify` finds points above it and exits 1.
+    built.checks.clear();
+    for p in &mut built.patches {
+        p.leaf_error.iter_mut().for_each(|e| *e = 0.0);
+        p.patch.error_estimate.iter_mut().for_each(|e| *e = 0.0);
+    }
+    for p in [
+        &mut built.surface.stick_low,
+        &mut built.surface.partial_high,
+        &mut built.surface.stick_high,
+    ]
+    .into_iter()
+    .flatten()
+    {
+        p.error_estimate.iter_mut().for_each(|e| *e = 0.0);
+    }
+    let zero = dir.join("zero.h5");
+    {
+        let _g = fork_guard();
+        oblique::storage::write_table(&zero, &built, &prov).expect("no checks to contradict");
+    }
+    assert_eq!(Table::open(&zero).unwrap().error_bound(), 0.0);
+    let o = sweep(&[
+        "verify",
+        zero.to_str().unwrap(),
+        "--points",
+        "20",
+        "--quiet",
+    ]);
+    assert_no_panic(&o, "sweep verify");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("exceed the table's stated error bound"),
+        "{err}"
+    );
 }

@@ -1,4 +1,4 @@
-//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–9
+//! The query path of [`crate::Table`]: the interpolation rule of [`crate::surface`] (steps 1–10
 //! of `docs/table-format.md`) on an acceleration structure built once at [`crate::Table::open`].
 //!
 //! It returns the same bits as [`Surface::eval_with`] (the rule written step by step); only the
@@ -19,7 +19,7 @@
 //! vectorizes, in a baseline x86-64 build and an AVX2 build chosen at run time; both return the
 //! same bits as the single-query path (tested on both builds and all shipped tables).
 
-use crate::surface::{partial_coord, stencil4, stick_coord};
+use crate::surface::{bound_p, partial_coord, stencil4, stick_coord};
 use crate::surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
 use crate::LookupError;
 
@@ -231,7 +231,7 @@ impl FastPatch {
         let (r1, rest) = rest.split_at(n1);
         let (r2, r3) = rest.split_at(n1);
         let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
-        wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3)
+        bound_p(wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3))
     }
 }
 

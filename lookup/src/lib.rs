@@ -21,6 +21,7 @@
 //! `α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`.
 
 mod batch;
+pub mod bound;
 pub mod capi;
 mod curve;
 mod fast;

@@ -67,6 +67,8 @@ pub struct Table {
     pub provenance: Provenance,
     /// Held-out check points.
     pub checks: Vec<Check>,
+    /// The stated error bound ([`Table::error_bound`]).
+    error_bound: f64,
     /// The query path's acceleration structure (`None`: answered by `surface` directly).
     accel: Option<Accel>,
 }
@@ -459,6 +461,29 @@ impl Table {
                 "missing patch '{PATCH_PARTIAL_HIGH}' or '{PATCH_STICK_HIGH}'"
             )));
         }
+        // The predicted error of every leaf, for the stated bound (`None`: not in the file).
+        let leaf_predicted = [
+            (PATCH_STICK_LOW, &surface.stick_low),
+            (PATCH_PARTIAL_HIGH, &surface.partial_high),
+            (PATCH_STICK_HIGH, &surface.stick_high),
+        ]
+        .map(|(name, patch)| match (patch, patches.group(name)) {
+            (Some(p), Ok(g)) if g.link_exists(DS_LEAF_ERROR) => {
+                let v = r.dataset(&g, DS_LEAF_ERROR, &[p.leaves()])?;
+                match v.iter().position(|x| !(x.is_finite() && *x >= 0.0)) {
+                    Some(i) => Err(r.invalid(format!(
+                        "patch '{name}': {DS_LEAF_ERROR}[{i}] = {}: must be finite and >= 0",
+                        v[i]
+                    ))),
+                    None => Ok(Some(v)),
+                }
+            }
+            _ => Ok(None),
+        });
+        let [a, b, c] = leaf_predicted;
+        let (a, b, c) = (a?, b?, c?);
+        let error_bound =
+            crate::bound::surface_bound(&surface, [a.as_deref(), b.as_deref(), c.as_deref()]);
         let str_attr = |n: &str| r.attr_str(&file, n).unwrap_or_default();
         let provenance = Provenance {
             schema_version: version,
@@ -507,17 +532,24 @@ impl Table {
             }
             Err(_) => Vec::new(),
         };
-        Ok(Table::from_parts(surface, provenance, checks))
+        Ok(Table::from_parts(surface, provenance, checks, error_bound))
     }
 
     /// A table from its parts (as [`Table::open`] loads them), with the acceleration structure
-    /// of the query path built for `surface`.
-    pub fn from_parts(surface: Surface, provenance: Provenance, checks: Vec<Check>) -> Table {
+    /// of the query path built for `surface`; `error_bound` is what [`Table::error_bound`]
+    /// returns ([`crate::bound::surface_bound`] of the leaves' predicted errors).
+    pub fn from_parts(
+        surface: Surface,
+        provenance: Provenance,
+        checks: Vec<Check>,
+        error_bound: f64,
+    ) -> Table {
         let accel = Accel::new(&surface);
         Table {
             surface,
             provenance,
             checks,
+            error_bound,
             accel,
         }
     }
@@ -567,16 +599,20 @@ impl Table {
         self.surface.eval_with(gamma, alpha, outside)
     }
 
-    /// The error bound this table states for an interpolated `P` (absolute):
-    /// `max(largest held-out check error, target_error) + node_tol`. The held-out maximum alone
-    /// is measured at a few dozen points; the target error is what every leaf was refined for.
-    /// NaN when the file lacks these attributes.
-    pub fn certified_error(&self) -> f64 {
-        let held_out = self
-            .checks
-            .iter()
-            .map(|c| c.interpolation_error)
-            .fold(0.0, f64::max);
-        held_out.max(self.provenance.target_error) + self.provenance.node_tol
+    /// The error bound this table states for any `P` it answers (absolute, dimensionless):
+    /// the largest, over all leaves, of the leaf's predicted interpolation error plus
+    /// `Λ_k² ≈ 2.66` (cubic stencil) times the largest solver error estimate of its nodes
+    /// ([`crate::bound`]; `docs/table-format.md`, "The stated error bound"). Derived from the
+    /// file's `leaf_predicted_error` and `error_estimate` datasets, so it is the same for every
+    /// table written by `sweep run`; NaN for a file without `leaf_predicted_error` (it states
+    /// no bound).
+    pub fn error_bound(&self) -> f64 {
+        self.error_bound
+    }
+
+    /// The first held-out check whose measured error exceeds the stated bound, if any (a
+    /// table whose own checks contradict its bound; `sweep run` refuses to write one).
+    pub fn contradicting_check(&self) -> Option<&Check> {
+        crate::bound::contradicting_check(&self.checks, self.error_bound)
     }
 }

@@ -314,6 +314,15 @@ impl Warp {
     }
 }
 
+/// Step 10 of the rule: the interpolated `P` limited to `[−1, 1]` (`|P| ≤ 1`: a rebound never
+/// gains energy). Every read path applies it to the tensor product, so that near `P = −1` (where
+/// the interpolant can overshoot by up to the table's error) no path answers `|P| > 1`; a NaN
+/// stays NaN.
+#[inline(always)]
+pub fn bound_p(p: f64) -> f64 {
+    p.clamp(-1.0, 1.0)
+}
+
 /// Start index and weights of the `k`-point Lagrange stencil at grid position `u` (in units of
 /// the node spacing, node `i` at `u = i`) on `n` nodes. Weights are written to `w[..k']` where
 /// `k' = min(k, n)` is returned with the start.
@@ -478,9 +487,17 @@ impl Patch {
         }
     }
 
-    /// Interpolate `P` at `(γ, c)` with a `k`-point stencil per axis.
+    /// `P` at `(γ, c)` by steps 6 to 10 of the rule: [`Patch::tensor`] limited to `[−1, 1]`
+    /// ([`bound_p`]).
     #[inline]
     pub fn interpolate(&self, gamma: f64, c: f64, k: usize) -> f64 {
+        bound_p(self.tensor(gamma, c, k))
+    }
+
+    /// The tensor product of steps 6 to 9 at `(γ, c)` with a `k`-point stencil per axis, before
+    /// the bound of step 10 (a polynomial inside each interval of the leaf's grid).
+    #[inline]
+    pub fn tensor(&self, gamma: f64, c: f64, k: usize) -> f64 {
         let (leaf, fg, fc) = self.find_leaf(gamma, c);
         let n = self.leaf_intervals;
         let n1 = n + 1;

@@ -91,3 +91,124 @@ fn rust_and_python_readers_agree() {
         );
     }
 }
+
+/// `P` and the stated bound from `read_table.py` with the node values of every patch replaced
+/// by noise next to ±1 (the same on both sides: `seed`-driven, see `noisy` below) when `noisy`.
+fn python_bounded(table: &str, points: &[(f64, f64)], noisy: bool) -> Option<(f64, Vec<f64>)> {
+    let script = "import sys\n\
+                  sys.path.insert(0, sys.argv[1])\n\
+                  from read_table import Table\n\
+                  t = Table(sys.argv[2])\n\
+                  if sys.argv[3] == '1':\n    \
+                      for p in t.patches.values():\n        \
+                          flat = p.p.reshape(-1)\n        \
+                          size = p.p.shape[1] * p.p.shape[2]\n        \
+                          for i in range(flat.size):\n            \
+                              sign = -1.0 if (i // size) % 2 == 0 else 1.0\n            \
+                              flat[i] = sign * (1.0 - (0.0 if i % 3 == 0 else 0.1 * ((i * 7919) % 1000) / 1000))\n\
+                  print(repr(t.error_bound))\n\
+                  for line in sys.stdin:\n    \
+                      g, a = (float(x) for x in line.split(','))\n    \
+                      print(repr(t.p(g, a)))\n";
+    let probe = Command::new("python3")
+        .args(["-c", "import h5py, numpy"])
+        .output();
+    if !matches!(probe, Ok(ref o) if o.status.success()) {
+        eprintln!("skipped: python3 with h5py and numpy is not available");
+        return None;
+    }
+    let mut child = Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .arg(repo().join("scripts"))
+        .arg(repo().join("tables").join(table))
+        .arg(if noisy { "1" } else { "0" })
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("run python3");
+    let mut input = String::new();
+    for (g, a) in points {
+        input.push_str(&format!("{g:?},{a:?}\n"));
+    }
+    let mut stdin = child.stdin.take().expect("stdin");
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let out = child.wait_with_output().expect("python3 output");
+    writer.join().expect("writer").expect("write points");
+    assert!(out.status.success(), "read_table.py failed");
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let mut values = text
+        .lines()
+        .map(|l| l.trim().parse::<f64>().expect("a number"));
+    let bound = values.next().expect("the bound");
+    Some((bound, values.collect()))
+}
+
+/// The Python reader applies step 10 (`|P| ≤ 1`) and derives the same stated bound: at the
+/// point where `full.h5` answered −1.000008644 and near the minima P = −1 (γ ≈ 2.83, γ ≈ 1),
+/// and on a noisy copy whose tensor product overshoots ±1 (the same bits as Rust's rule).
+#[test]
+fn python_reader_bounds_p_and_states_the_same_bound() {
+    let mut t = Table::open(repo().join("tables").join("full.h5")).expect("full.h5");
+    let mut next = oblique_lookup::testing::uniform(0x0DD_BA11);
+    let mut points = vec![(2.829218718427729, 5.60402202817959)];
+    for _ in 0..3000 {
+        let g = if next() < 0.5 {
+            2.80 + 0.06 * next()
+        } else {
+            0.97 + 0.06 * next()
+        };
+        let c2 = oblique_lookup::surface::alpha_c2(g);
+        points.push((g, c2 + 40.0 * next() * next()));
+    }
+    let Some((bound, reference)) = python_bounded("full.h5", &points, false) else {
+        return;
+    };
+    assert!(
+        (bound - t.error_bound()).abs() <= 1e-12 * t.error_bound(),
+        "Python bound {bound}, Rust {}",
+        t.error_bound()
+    );
+    for (&(g, a), &r) in points.iter().zip(&reference) {
+        assert!(r.abs() <= 1.0, "read_table.py: P({g}, {a}) = {r}");
+        let p = t.p(g, a).expect("inside");
+        assert!((p - r).abs() <= 1e-12, "({g}, {a}): Rust {p}, Python {r}");
+    }
+    // The noisy copy, the same noise on both sides.
+    for p in [
+        &mut t.surface.stick_low,
+        &mut t.surface.partial_high,
+        &mut t.surface.stick_high,
+    ]
+    .into_iter()
+    .flatten()
+    {
+        let size = (p.leaf_intervals + 1).pow(2);
+        for (i, v) in p.p.iter_mut().enumerate() {
+            let sign = if (i / size) % 2 == 0 { -1.0 } else { 1.0 };
+            let off = if i % 3 == 0 {
+                0.0
+            } else {
+                0.1 * ((i * 7919) % 1000) as f64 / 1000.0
+            };
+            *v = sign * (1.0 - off);
+        }
+    }
+    t.reindex();
+    let points = oblique_lookup::testing::domain_points(&t.surface, 3000, 31);
+    let (_, reference) = python_bounded("full.h5", &points, true).expect("ran above");
+    let mut at_one = 0;
+    for (&(g, a), &r) in points.iter().zip(&reference) {
+        assert!(r.abs() <= 1.0, "read_table.py (noisy): P({g}, {a}) = {r}");
+        let p = t.p(g, a).expect("inside");
+        assert!(
+            (p - r).abs() <= 1e-12,
+            "noisy ({g}, {a}): Rust {p}, Python {r}"
+        );
+        at_one += usize::from(r.abs() == 1.0);
+    }
+    assert!(
+        at_one > 20,
+        "only {at_one} points bounded: the test has no teeth"
+    );
+}

@@ -155,20 +155,10 @@ impl Evaluation {
     }
 }
 
-/// The error a table certifies for interpolated `P`:
-/// `max(largest held-out interpolation error, target_error) + node_tol`.
-///
-/// The held-out maximum alone is not enough: it is measured at a few dozen points, and a scene
-/// slice can hit a worse one (measured: the quick table, γ = 1.75, α = 0.181 just above α_c1,
-/// error 5.9e-4 against a held-out maximum of 3.9e-4 and a target of 1e-3). The target error is
-/// what the node placement refined every block for, so it is part of the statement too.
+/// The error a table certifies for interpolated `P`: its stated bound,
+/// [`Table::error_bound`] (the one definition; `docs/table-format.md`, "The stated error bound").
 pub fn certified_error(table: &Table) -> f64 {
-    let held_out = table
-        .checks
-        .iter()
-        .map(|c| c.interpolation_error)
-        .fold(0.0, f64::max);
-    held_out.max(table.provenance.target_error) + table.provenance.node_tol
+    table.error_bound()
 }
 
 fn rebound(scene: &Scene, x: f64, inc: &Incident, p: f64) -> Result<Rebound, SceneError> {

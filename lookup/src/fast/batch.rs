@@ -16,7 +16,7 @@
 //! `-C target-cpu` is needed: binaries and tables run on any x86-64.
 
 use super::{alpha_c1_of, Accel, FastPatch, BATCH};
-use crate::surface::{cubic_weights, OutOfDomain, PatchKind, Surface};
+use crate::surface::{bound_p, cubic_weights, OutOfDomain, PatchKind, Surface};
 use crate::LookupError;
 
 /// The per-patch arrays of one chunk (structure of arrays, `BATCH` entries each).
@@ -220,7 +220,7 @@ impl FastPatch {
             let (wc0, wc1, wc2, wc3) = (w0c[k], w1c[k], w2c[k], w3c[k]);
             let row = |r: &[f64]| r[0] * wc0 + r[1] * wc1 + r[2] * wc2 + r[3] * wc3;
             out[i as usize] =
-                w0g[k] * row(r0) + w1g[k] * row(r1) + w2g[k] * row(r2) + w3g[k] * row(r3);
+                bound_p(w0g[k] * row(r0) + w1g[k] * row(r1) + w2g[k] * row(r2) + w3g[k] * row(r3));
         }
     }
 }
@@ -584,6 +584,48 @@ mod tests {
                         }
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn both_builds_bound_p_where_the_tensor_product_overshoots() {
+        // Node values of full.h5 replaced by noise next to −1 (even leaves) and +1 (odd): the
+        // tensor product overshoots ±1 at most points, step 10 bounds it on both builds.
+        let mut t = table("full.h5");
+        let mut next = crate::testing::uniform(5);
+        for p in [
+            &mut t.surface.stick_low,
+            &mut t.surface.partial_high,
+            &mut t.surface.stick_high,
+        ]
+        .into_iter()
+        .flatten()
+        {
+            let size = (p.leaf_intervals + 1).pow(2);
+            for (i, v) in p.p.iter_mut().enumerate() {
+                let sign = if (i / size) % 2 == 0 { -1.0 } else { 1.0 };
+                *v = sign * (1.0 - if i % 3 == 0 { 0.0 } else { 0.1 * next() });
+            }
+        }
+        t.reindex();
+        let s = &t.surface;
+        let pts = crate::testing::domain_points(s, 100_000, 17);
+        let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
+        let accel = Accel::new(s).expect("cubic table");
+        for avx2 in [false, true] {
+            let (out, err) = run(&accel, s, avx2, &g, &a, OutOfDomain::Error);
+            assert_eq!(err, None);
+            for i in 0..g.len() {
+                assert!(
+                    out[i].abs() <= 1.0,
+                    "avx2 {avx2}: ({}, {}): {}",
+                    g[i],
+                    a[i],
+                    out[i]
+                );
+                let rule = s.eval(g[i], a[i]).map(f64::to_bits).ok();
+                assert_eq!(Some(out[i].to_bits()), rule, "({}, {})", g[i], a[i]);
             }
         }
     }

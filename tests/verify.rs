@@ -1,0 +1,92 @@
+//! The error bound a table states holds, and `sweep verify` checks it: the point of
+//! `tables/full.h5` that was off by 1.32e-5 while the table stated 8.5e-6 (`inspect`) or
+//! 2.5e-5 (`query`), a sample of random points, and bad arguments.
+
+use std::process::{Command, Output};
+
+const FULL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5");
+
+fn sweep(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(args)
+        .output()
+        .expect("run the sweep binary")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = sweep(args);
+    assert!(
+        out.status.success(),
+        "sweep {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON")
+}
+
+/// The shipped table states one bound (`inspect` and `query` agree), at most 1e-5, and it
+/// holds where the table was worst (against a simulation at tol 1e-9).
+#[test]
+fn full_table_holds_its_stated_bound_where_it_was_worst() {
+    let (g, a) = ("2.816329", "5.97606");
+    let inspect = json(&["inspect", FULL, "--json"]);
+    let bound = inspect["error_bound"]
+        .as_f64()
+        .expect("inspect --json: error_bound");
+    assert!(bound <= 1e-5, "stated bound {bound} > 1e-5");
+    let query = json(&["query", FULL, "--gamma", g, "--alpha", a, "--json"]);
+    assert_eq!(query["error_bound"].as_f64(), Some(bound), "query's +/-");
+    let sim = json(&[
+        "impact", "--gamma", g, "--alpha", a, "--tol", "1e-9", "--json",
+    ]);
+    let p_table = query["P"].as_f64().expect("P");
+    let p_sim = sim["P"].as_f64().expect("P");
+    let err = (p_table - p_sim).abs();
+    assert!(
+        err <= bound,
+        "table {p_table}, simulation {p_sim}: off by {err:e} > stated {bound:e}"
+    );
+    // The text of inspect states the same number.
+    let text = String::from_utf8(sweep(&["inspect", FULL]).stdout).expect("UTF-8");
+    assert!(
+        text.contains(&format!("stated error bound: {bound:.2e}")),
+        "{text}"
+    );
+}
+
+#[test]
+fn verify_a_sample_of_the_full_table() {
+    let out = sweep(&["verify", FULL, "--points", "60", "--seed", "7", "--quiet"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for needle in [
+        "points       60 (seed 7)",
+        "max |error|",
+        "worst point",
+        "points above it: 0",
+    ] {
+        assert!(text.contains(needle), "no '{needle}' in {text}");
+    }
+}
+
+#[test]
+fn verify_refuses_bad_arguments() {
+    for (args, needle) in [
+        (vec!["--tol", "1e-7"], "--tol 1e-7: must be in (0, 1e-8]"),
+        (vec!["--tol", "0"], "--tol 0e0: must be in (0, 1e-8]"),
+        (vec!["--points", "0"], "--points 0: must be >= 1"),
+    ] {
+        let mut all = vec!["verify", FULL];
+        all.extend(args);
+        let out = sweep(&all);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{all:?}: {err}");
+        assert!(err.contains(needle), "{all:?}: {err}");
+    }
+    let out = sweep(&["verify", "/nonexistent/table.h5"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/table.h5"));
+}
