@@ -26,7 +26,7 @@ pub const FOLD_FROM: f64 = 2.906;
 /// `start` is a multiple of `2^-START_DEPTH` root rows (cells deeper than this are not forced).
 pub const START_DEPTH: u32 = 4;
 /// Spacing of the knot grid in γ.
-pub const STEP: f64 = 0.01;
+pub const STEP: f64 = 0.0025;
 /// Steps per contact time of the coarser of the two tracings (Richardson with twice as many).
 pub const TRACE_STEPS: usize = 2048;
 /// The sequential continuation that supplies first guesses visits every this-many grid points.
