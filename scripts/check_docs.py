@@ -32,6 +32,7 @@ VOLATILE = [
     (re.compile(r"\b\d+(\.\d+)?(e-?\d+)? ?(ms|µs|ns|s)\b"), "<time>"),
     (re.compile(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ"), "<date>"),
     (re.compile(r"\bcommit [0-9a-f]{7,40}(-dirty)?…?"), "commit <hash>"),
+    (re.compile(r"\bon \d+ threads\b"), "on <n> threads"),
 ]
 
 
