@@ -58,20 +58,6 @@ pub struct BoundExceeded {
     worst: f64,
 }
 
-/// Deterministic uniform numbers in `[0, 1)` (SplitMix64).
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The `n` points: γ uniform in `[gamma_min, gamma_max]`, `s = α/(1 + α)` uniform in
 /// `[0, s_max)` with `s_max = alpha_max/(1 + alpha_max)` (1 for `alpha_max = inf`), and, when
 /// the table includes no slip, every [`NO_SLIP_EVERY`]-th point at `α = inf` instead.
@@ -82,7 +68,7 @@ fn sample(table: &Table, n: usize, seed: u64) -> Vec<(f64, f64)> {
     } else {
         s.alpha_max / (1.0 + s.alpha_max)
     };
-    let mut rng = SplitMix(seed);
+    let mut rng = oblique::sweep::SplitMix(seed);
     (0..n)
         .map(|i| {
             let gamma = s.gamma_min + (s.gamma_max - s.gamma_min) * rng.uniform();

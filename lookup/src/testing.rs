@@ -2,7 +2,7 @@
 //! of this workspace (not part of the API: hidden from the documentation, may change).
 
 use crate::rebound::{Body, Elastic, Incident3, Motion3, Pair};
-use crate::{Contact, Surface};
+use crate::{Contact, Surface, Table};
 
 /// Held while a test starts a child process and while it has an HDF5 file open for writing: a
 /// child inherits the parent's open descriptors, and with them HDF5's lock on a file being
@@ -11,6 +11,29 @@ use crate::{Contact, Surface};
 pub fn fork_guard() -> std::sync::MutexGuard<'static, ()> {
     static GUARD: std::sync::Mutex<()> = std::sync::Mutex::new(());
     GUARD.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// `t` with every node value replaced by one next to ±1: `−(1 − off(i))` in leaves of even
+/// number, `1 − off(i)` in odd ones, exactly ±1 at every third node (`off` is not called
+/// there). Its tensor product overshoots ±1 at most points: the test table for step 10 of the
+/// rule (`|P| ≤ 1`).
+pub fn overshooting(mut t: Table, mut off: impl FnMut(usize) -> f64) -> Table {
+    for p in [
+        &mut t.surface.stick_low,
+        &mut t.surface.partial_high,
+        &mut t.surface.stick_high,
+    ]
+    .into_iter()
+    .flatten()
+    {
+        let size = (p.leaf_intervals + 1).pow(2);
+        for (i, v) in p.p.iter_mut().enumerate() {
+            let sign = if (i / size) % 2 == 0 { -1.0 } else { 1.0 };
+            *v = sign * (1.0 - if i % 3 == 0 { 0.0 } else { off(i) });
+        }
+    }
+    t.reindex();
+    t
 }
 
 /// Uniform numbers in `[0, 1)` from a xorshift64 generator seeded with `seed` (nonzero): the

@@ -32,25 +32,9 @@ fn queries(n: usize, seed: u64) -> (Vec<f64>, Vec<f64>) {
 
 /// The table with every node value replaced by noise in `[−1, −0.9]` (leaves of even number)
 /// or `[0.9, 1]` (odd), with exact ±1 at every third node: its tensor product overshoots ±1.
-fn noisy(mut t: Table) -> Table {
+fn noisy(t: Table) -> Table {
     let mut next = oblique_lookup::testing::uniform(99);
-    for p in [
-        &mut t.surface.stick_low,
-        &mut t.surface.partial_high,
-        &mut t.surface.stick_high,
-    ]
-    .into_iter()
-    .flatten()
-    {
-        let size = (p.leaf_intervals + 1).pow(2);
-        for (i, v) in p.p.iter_mut().enumerate() {
-            let sign = if (i / size) % 2 == 0 { -1.0 } else { 1.0 };
-            let off = if i % 3 == 0 { 0.0 } else { 0.1 * next() };
-            *v = sign * (1.0 - off);
-        }
-    }
-    t.reindex();
-    t
+    oblique_lookup::testing::overshooting(t, |_| 0.1 * next())
 }
 
 fn assert_bounded(what: &str, g: &[f64], a: &[f64], p: &[f64]) {

@@ -962,11 +962,13 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
     })
 }
 
-/// Deterministic generator for check points (SplitMix64).
-struct SplitMix(u64);
+/// Deterministic uniform numbers in `[0, 1)` (SplitMix64) for the held-out check points and
+/// `sweep verify`'s sample: the same stream for a seed on every platform.
+pub struct SplitMix(pub u64);
 
 impl SplitMix {
-    fn uniform(&mut self) -> f64 {
+    /// The next number in `[0, 1)` (53 random bits).
+    pub fn uniform(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);

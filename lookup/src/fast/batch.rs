@@ -592,23 +592,8 @@ mod tests {
     fn both_builds_bound_p_where_the_tensor_product_overshoots() {
         // Node values of full.h5 replaced by noise next to −1 (even leaves) and +1 (odd): the
         // tensor product overshoots ±1 at most points, step 10 bounds it on both builds.
-        let mut t = table("full.h5");
         let mut next = crate::testing::uniform(5);
-        for p in [
-            &mut t.surface.stick_low,
-            &mut t.surface.partial_high,
-            &mut t.surface.stick_high,
-        ]
-        .into_iter()
-        .flatten()
-        {
-            let size = (p.leaf_intervals + 1).pow(2);
-            for (i, v) in p.p.iter_mut().enumerate() {
-                let sign = if (i / size) % 2 == 0 { -1.0 } else { 1.0 };
-                *v = sign * (1.0 - if i % 3 == 0 { 0.0 } else { 0.1 * next() });
-            }
-        }
-        t.reindex();
+        let t = crate::testing::overshooting(table("full.h5"), |_| 0.1 * next());
         let s = &t.surface;
         let pts = crate::testing::domain_points(s, 100_000, 17);
         let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
