@@ -473,13 +473,13 @@ fn sweep_plot_fails_cleanly_on_bad_input() {
     let o = out.to_str().unwrap();
     // Missing table.
     let run = sweep(&["plot", "no/such/table.h5", "-o", o]);
-    assert_clean_failure(&run, 1, "no such file");
+    assert_clean_failure(&run, 2, "no such file");
     assert_eq!(String::from_utf8_lossy(&run.stderr).lines().count(), 1);
     // Not a table.
     let junk = out.join("junk.h5");
     std::fs::write(&junk, b"not hdf5").unwrap();
     let run = sweep(&["plot", junk.to_str().unwrap(), "-o", o]);
-    assert_clean_failure(&run, 1, "not an HDF5 file");
+    assert_clean_failure(&run, 2, "not an HDF5 file");
     // Output folder below a file.
     let run = sweep(&[
         "plot",

@@ -366,7 +366,7 @@ impl Table {
         }
         let bytes = std::fs::read(path_ref).map_err(|e| io(io_reason(&e)))?;
         if bytes.is_empty() {
-            return Err(io("empty file (0 bytes), not a table".into()));
+            return Err(io("empty file (0 bytes), not an HDF5 table".into()));
         }
         if bytes.starts_with(NODE_FILE_MAGIC) {
             return Err(r.invalid(
