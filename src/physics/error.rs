@@ -39,10 +39,14 @@ pub enum PhysicsError {
     /// (found before anything is simulated).
     #[error(
         "tolerance {tol:e} at gamma = {gamma} is out of reach for the {scheme} scheme: it needs \
-         about {res} ({work:.1e} spring-steps, {memory_mb:.0} MB), beyond the limits \
-         ({max_steps} steps, {max_work:.1e} spring-steps, {max_memory_mb:.0} MB); loosen \
+         about {res} ({work:.1e} spring-steps, {memory_mb:.0} MB), {beyond}; loosen \
          --tol{hint}",
         res = Resolution { springs: *springs, steps: *steps },
+        beyond = exceeded(
+            (*steps as f64, *max_steps as f64, "steps"),
+            (*work, *max_work, "spring-steps"),
+            (*memory_mb, *max_memory_mb, "MB"),
+        ),
         hint = if *scheme == "euler" { " or use the accurate scheme" } else { "" }
     )]
     Infeasible {
@@ -119,6 +123,32 @@ impl PhysicsError {
     }
 }
 
+/// The limits a predicted run exceeds, in words: only those it exceeds (each `(needed, limit,
+/// unit)`), or all of them where rounding hides which.
+fn exceeded(steps: (f64, f64, &str), work: (f64, f64, &str), memory: (f64, f64, &str)) -> String {
+    let over: Vec<String> = [steps, work, memory]
+        .into_iter()
+        .filter(|(need, limit, _)| need > limit)
+        .map(|(_, limit, unit)| {
+            if unit == "steps" {
+                format!("the limit of {limit} {unit}")
+            } else if unit == "MB" {
+                format!("the limit of {limit:.0} {unit}")
+            } else {
+                format!("the limit of {limit:.1e} {unit}")
+            }
+        })
+        .collect();
+    if over.is_empty() {
+        format!(
+            "beyond the limits ({} steps, {:.1e} spring-steps, {:.0} MB)",
+            steps.1, work.1, memory.1
+        )
+    } else {
+        format!("beyond {}", over.join(" and "))
+    }
+}
+
 /// Check `value` is finite and `> 0`.
 pub fn positive(name: &'static str, value: f64) -> Result<f64, PhysicsError> {
     if value.is_finite() && value > 0.0 {
@@ -181,6 +211,13 @@ mod tests {
         assert!(infeasible(0)
             .to_string()
             .contains("needs about continuum row x 4194304 steps ("));
+        // Only the limits the run exceeds: steps and work, not memory (800 of 2147 MB).
+        let e = infeasible(0).to_string();
+        assert!(
+            e.contains("beyond the limit of 1048576 steps and the limit of 1.7e10 spring-steps;"),
+            "{e}"
+        );
+        assert!(!e.contains("2147"), "{e}");
         assert!(too_large(0)
             .to_string()
             .starts_with("resolution continuum row x 4194304 steps is too large"));
