@@ -9,31 +9,15 @@ use std::sync::OnceLock;
 
 use oblique::sweep::{self, Config};
 
+mod common;
+use common::{scratch, subdir};
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
 fn quick_text() -> String {
     std::fs::read_to_string(root().join("configs/quick.toml")).expect("read configs/quick.toml")
-}
-
-fn scratch() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-            .join(format!("cli_run-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create scratch directory");
-        dir
-    })
-}
-
-/// A fresh, empty directory for one test.
-fn subdir(name: &str) -> PathBuf {
-    let d = scratch().join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("create test directory");
-    d
 }
 
 fn write(path: &Path, text: &str) -> PathBuf {

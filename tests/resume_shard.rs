@@ -10,6 +10,9 @@ use std::process::{Child, Command, Output, Stdio};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
+mod common;
+use common::{scratch, subdir};
+
 const CONFIG: &str = r#"# tests/resume_shard.rs
 output = "unused.h5"
 
@@ -31,24 +34,6 @@ tol = 2e-6
 per_patch = 6
 seed = 3
 "#;
-
-fn scratch() -> &'static Path {
-    static DIR: OnceLock<PathBuf> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-            .join(format!("resume_shard-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create scratch directory");
-        dir
-    })
-}
-
-fn subdir(name: &str) -> PathBuf {
-    let d = scratch().join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("create test directory");
-    d
-}
 
 fn config(name: &str, text: &str) -> PathBuf {
     let p = scratch().join(name);
