@@ -28,8 +28,9 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{Bencher, BenchmarkId, Criterion, SamplingMode};
-use oblique::physics::hertz::NormalBodies;
-use oblique::physics::{regimes, simulate, solve, Accuracy, Resolution, Scheme};
+use oblique_physics::regimes;
+use oblique_solver::hertz::NormalBodies;
+use oblique_solver::{simulate, solve, Accuracy, Resolution, Scheme};
 
 const GAMMAS: [f64; 3] = [0.5, 1.754, 3.0];
 const ALPHAS: [f64; 3] = [0.3, 1.0, f64::INFINITY];
@@ -293,9 +294,9 @@ impl Clock {
     }
 }
 
-/// CPU time consumed by the calling thread (`oblique::accuracy::cpu_time`).
+/// CPU time consumed by the calling thread (`oblique_study::accuracy::cpu_time`).
 fn thread_cpu_time() -> Duration {
-    let secs = oblique::accuracy::cpu_time()
+    let secs = oblique_study::accuracy::cpu_time()
         .expect("IMPACT_BENCH_CLOCK=cpu is only implemented for 64-bit Linux");
     Duration::from_secs_f64(secs)
 }

@@ -15,8 +15,8 @@ use std::time::Duration;
 
 use clock::{timed, Clock};
 use criterion::Criterion;
-use oblique::physics::{solve, Accuracy, Scheme};
 use oblique_lookup::Table;
+use oblique_solver::{solve, Accuracy, Scheme};
 
 const POINTS: [(f64, f64); 4] = [
     (1.754, 0.3),

@@ -1,7 +1,7 @@
 //! Convergence of the continuum row in the number of steps: `cargo run --release --example contconv -- 2.8,69.4 3,inf`
 //! (pairs `gamma,alpha`). Prints P, the difference to the previous level, the ratio of
 //! successive differences (4 for clean second order), the Richardson value and the time.
-use oblique::physics::*;
+use oblique_solver::*;
 use std::time::Instant;
 fn main() {
     for arg in std::env::args().skip(1) {

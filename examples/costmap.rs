@@ -1,6 +1,6 @@
 //! Cost map of the automatic refinement over the (γ, α) plane (a scratch tool):
 //! `cargo run --release --example costmap -- TOL`.
-use oblique::physics::*;
+use oblique_solver::*;
 use std::time::Instant;
 
 fn main() {

@@ -3,7 +3,7 @@
 //! allowed). For each point it prints, per step count (rows) and spring count (columns), the
 //! error against a 32768 × 32768 reference and the time of one impact. The base resolution of
 //! the automatic refinement (`impact::base_resolution`) was chosen from these tables.
-use oblique::physics::*;
+use oblique_solver::*;
 
 fn parse(arg: &str) -> Option<(f64, f64)> {
     let (g, a) = arg.split_once(',')?;

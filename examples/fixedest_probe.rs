@@ -5,9 +5,9 @@
 //!
 //! `cargo run --release --example fixedest_probe` (about 2 s).
 
-use oblique::physics::{simulate, solve, Accuracy, Resolution, Scheme};
+use oblique_solver::{simulate, solve, Accuracy, Resolution, Scheme};
 
-fn main() -> Result<(), oblique::physics::PhysicsError> {
+fn main() -> Result<(), oblique_solver::PhysicsError> {
     let points = [
         (1.7, 1.0),
         (1.754, 0.5),

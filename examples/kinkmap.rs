@@ -4,12 +4,12 @@
 //!
 //! For each γ, the α range [α_c1, 1.5 α_c2] is scanned on a 300-point log grid; at every α one
 //! impact is run (continuum row, STEPS steps, default 4096) and its *signature* is recorded:
-//! the signs of its gross-slip episodes (`oblique::physics::history`), each marked as touching
+//! the signs of its gross-slip episodes (`oblique_solver::history`), each marked as touching
 //! the start (`<`) or the separation (`>`) when it does. Where the signature changes between two
 //! grid points, the change is located by bisection and printed with the one-sided slopes
 //! `dP/d ln α` on both sides (over 1e-4) and the episodes on both sides. An episode vanishing
 //! strictly inside the contact is a fold, where P has a slope jump (docs/solver.md).
-use oblique::physics::history::{locate_change, slip_history, Episode, SlipHistory, SlipSign};
+use oblique_solver::history::{locate_change, slip_history, Episode, SlipHistory, SlipSign};
 
 fn mark(e: &Episode) -> String {
     let s = if e.sign == SlipSign::Plus { '+' } else { '-' };
@@ -49,8 +49,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             break;
         }
         k += 1;
-        let c1 = oblique::physics::regimes::alpha_c1(g).max(1e-3);
-        let c2 = oblique::physics::regimes::alpha_c2(g);
+        let c1 = oblique_physics::regimes::alpha_c1(g).max(1e-3);
+        let c2 = oblique_physics::regimes::alpha_c2(g);
         let (lo, hi) = (c1 * 1.0001, c2 * 1.5);
         let xs: Vec<f64> = (0..=n)
             .map(|i| (lo.ln() + (hi / lo).ln() * i as f64 / n as f64).exp())

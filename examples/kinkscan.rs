@@ -1,7 +1,7 @@
 //! Scan P(α) at fixed γ (tol 1e-7) and print P, its slope and the change of slope on a log grid:
 //! `cargo run --release --example kinkscan -- GAMMA [N] [LO HI]` (LO, HI as fractions of α_c2;
 //! default α_c1 to 3 α_c2). See docs/solver.md, "Kink curves".
-use oblique::physics::*;
+use oblique_solver::*;
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let g: f64 = args[0].parse().unwrap();

@@ -3,7 +3,7 @@
 //! in [0.1, 3.5], α log-uniform from the linear limit to 1e4 times α_c2, plus α = ∞ (1 in 10).
 //! Reference: the Richardson value of continuum runs at 16 and 32 times the accepted steps
 //! (at least 16384). Prints every point whose true error exceeds the tolerance or the estimate.
-use oblique::physics::*;
+use oblique_solver::*;
 
 fn main() {
     let mut args = std::env::args().skip(1);

@@ -9,7 +9,7 @@
 use std::io::{IsTerminal, Write};
 use std::time::{Duration, Instant};
 
-use oblique::physics::RefineEvent;
+use oblique_solver::RefineEvent;
 
 /// Time after which a terminal shows the progress line (fast solves print nothing extra).
 const TERMINAL_DELAY: Duration = Duration::from_secs(1);

@@ -7,19 +7,18 @@ use anyhow::Result;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use serde_json::json;
 
-use oblique::physics::history::{fold_plus_curve, slip_history, Episode, SlipSign, FOLD_MIN_STEPS};
-use oblique::physics::impact::{Limits, ALPHA_NO_SLIP};
-use oblique::physics::{regimes, Accuracy, Method, PhysicsError, Preset, Resolution, Scheme};
-use oblique::sweep::config::ConfigError;
+use oblique_physics::regimes;
+use oblique_solver::history::{fold_plus_curve, slip_history, Episode, SlipSign, FOLD_MIN_STEPS};
+use oblique_solver::impact::{Limits, ALPHA_NO_SLIP};
+use oblique_solver::{Accuracy, Method, PhysicsError, Preset, Resolution, Scheme};
+use oblique_sweep::config::ConfigError;
 
-mod accuracy_cmd;
+mod cmd;
 mod impact_progress;
-mod plot_cmd;
 mod progress;
-mod query_cmd;
-mod scene_cmd;
-mod table_cmds;
-mod verify_cmd;
+
+use cmd::{accuracy as accuracy_cmd, plot as plot_cmd, query as query_cmd, scene as scene_cmd};
+use cmd::{table as table_cmds, verify as verify_cmd};
 
 #[derive(Parser)]
 #[command(
@@ -453,7 +452,7 @@ fn impact(args: ImpactArgs) -> Result<()> {
     };
     let start = Instant::now();
     let mut progress = impact_progress::ImpactProgress::new(args.progress);
-    let sol = oblique::physics::solve_observed(
+    let sol = oblique_solver::solve_observed(
         args.gamma,
         args.alpha,
         accuracy,
@@ -643,10 +642,10 @@ fn main() -> ExitCode {
             ) || e.downcast_ref::<ConfigError>().is_some()
                 || table_cmds::is_usage(&e)
                 || matches!(
-                    e.downcast_ref::<oblique::sweep::SweepError>(),
-                    Some(oblique::sweep::SweepError::Unreachable { .. })
+                    e.downcast_ref::<oblique_sweep::SweepError>(),
+                    Some(oblique_sweep::SweepError::Unreachable { .. })
                 )
-                || e.downcast_ref::<oblique::nodestore::NodeFileError>()
+                || e.downcast_ref::<oblique_sweep::nodestore::NodeFileError>()
                     .is_some()
                 || e.downcast_ref::<query_cmd::QueryUsageError>().is_some()
                 || e.downcast_ref::<verify_cmd::VerifyUsageError>().is_some()
@@ -658,17 +657,17 @@ fn main() -> ExitCode {
                     )
                 )
                 || matches!(
-                    e.downcast_ref::<oblique::scene::SceneError>(),
+                    e.downcast_ref::<oblique_study::scene::SceneError>(),
                     Some(
-                        oblique::scene::SceneError::Io { .. }
-                            | oblique::scene::SceneError::Parse { .. }
-                            | oblique::scene::SceneError::Invalid { .. }
-                            | oblique::scene::SceneError::Measured { .. }
+                        oblique_study::scene::SceneError::Io { .. }
+                            | oblique_study::scene::SceneError::Parse { .. }
+                            | oblique_study::scene::SceneError::Invalid { .. }
+                            | oblique_study::scene::SceneError::Measured { .. }
                     )
                 )
                 || matches!(
-                    e.downcast_ref::<oblique::figures::FigureError>(),
-                    Some(oblique::figures::FigureError::Invalid { .. })
+                    e.downcast_ref::<oblique_plot::figures::FigureError>(),
+                    Some(oblique_plot::figures::FigureError::Invalid { .. })
                 );
             if usage {
                 ExitCode::from(2)

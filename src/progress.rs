@@ -1,7 +1,7 @@
 //! Progress display of `sweep run`: an indicatif bar on a terminal, plain lines otherwise,
 //! nothing with `--quiet`.
 //!
-//! A run is a known list of steps (pre-flight, the stages of `oblique::sweep::stages`, writing),
+//! A run is a known list of steps (pre-flight, the stages of `oblique_sweep::stages`, writing),
 //! shown as "step K/N NAME". Counts and an ETA are shown only where the total is known: within
 //! one refinement round (its new nodes are placed before it starts) and for the held-out
 //! checks. How many rounds a patch needs is not known in advance, so no ETA is claimed for the
@@ -12,7 +12,7 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
-use oblique::sweep::{Progress, STAGE_CHECKS};
+use oblique_sweep::{Progress, STAGE_CHECKS};
 
 /// The step before the build.
 pub const STEP_PREFLIGHT: &str = "preflight";

@@ -2,7 +2,7 @@
 
 use std::process::{Command, Output};
 
-use oblique::physics::{simulate, Resolution, Scheme};
+use oblique_solver::{simulate, Resolution, Scheme};
 
 fn sweep(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_sweep"))

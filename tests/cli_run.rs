@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::sync::OnceLock;
 
-use oblique::sweep::{self, Config};
+use oblique_sweep::{self, Config};
 
 mod common;
 use common::{scratch, subdir};
@@ -388,7 +388,8 @@ fn an_unset_check_tolerance_never_refuses_a_run() {
         "quick-reference.toml",
     )
     .expect("valid config");
-    let pre = sweep::preflight(&quick).expect("preset reference on quick.toml passes preflight");
+    let pre =
+        oblique_sweep::preflight(&quick).expect("preset reference on quick.toml passes preflight");
     assert!(pre.check_tol_loosened && pre.check_tol <= quick.solver.tol);
     let full = std::fs::read_to_string(root().join("configs/full.toml")).expect("read full.toml");
     for tol in ["1e-7", "5e-8", "2e-8"] {
@@ -397,7 +398,7 @@ fn an_unset_check_tolerance_never_refuses_a_run() {
             "full.toml",
         )
         .expect("valid config");
-        let pre = sweep::preflight(&cfg)
+        let pre = oblique_sweep::preflight(&cfg)
             .unwrap_or_else(|e| panic!("full.toml with solver.tol = {tol}: {e}"));
         assert!(pre.check_tol >= cfg.solver.tol / 10.0 && pre.check_tol <= cfg.solver.tol);
     }

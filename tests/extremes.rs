@@ -9,10 +9,10 @@
 //! or runs of the same solver at 32× the resolution under test. Tolerances are 1e-4 and
 //! resolutions modest so that the suite stays well under a minute on two cores.
 
-use oblique::physics::impact::{base_resolution, dimensionless_normal, plan, Limits};
-use oblique::physics::regimes::{alpha_c1, alpha_c2};
-use oblique::physics::units::{Material, Motion, PhysicalImpact, Sphere, Target};
-use oblique::physics::{simulate, solve, Accuracy, PhysicsError, Resolution, Scheme};
+use oblique_physics::regimes::{alpha_c1, alpha_c2};
+use oblique_solver::impact::{base_resolution, dimensionless_normal, plan, Limits};
+use oblique_solver::units::{Material, Motion, PhysicalImpact, Sphere, Target};
+use oblique_solver::{simulate, solve, Accuracy, PhysicsError, Resolution, Scheme};
 
 const ACC: Scheme = Scheme::Accurate;
 const GAMMAS: [f64; 9] = [0.01, 0.1, 0.5, 0.99, 1.0, 1.01, 2.16, 3.5, 5.0];

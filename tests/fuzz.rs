@@ -6,8 +6,8 @@
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-use oblique::sweep::Config;
 use oblique_lookup::Table;
+use oblique_sweep::Config;
 use proptest::prelude::*;
 use proptest::test_runner::{Config as PtConfig, TestRunner};
 
@@ -138,7 +138,7 @@ fn queries_with_arbitrary_floats_never_panic_and_stay_physical() {
                     prop_assert!(
                         inside
                             || (a >= 0.0
-                                && a <= oblique_lookup::surface::linear_limit(g)
+                                && a <= oblique_table::surface::linear_limit(g)
                                 && p == 1.0 - 7.0 * a),
                         "P({g}, {a}) = {p} outside the table"
                     );

@@ -5,11 +5,11 @@
 //! of a given `P`) or simulations at a much higher resolution than the run under test. Nothing is
 //! copied from the program's own output.
 
-use oblique::physics::hertz::{HertzClosedForm, NormalBodies};
-use oblique::physics::impact::base_resolution;
-use oblique::physics::regimes::{self, alpha_c1, alpha_c2, closed_form, linear_limit, Regime};
-use oblique::physics::units::{Material, Motion, PhysicalImpact, PhysicalOutcome, Sphere, Target};
-use oblique::physics::{simulate, solve, Accuracy, Method, PhysicsError, Resolution, Scheme};
+use oblique_physics::regimes::{self, alpha_c1, alpha_c2, closed_form, linear_limit, Regime};
+use oblique_solver::hertz::{HertzClosedForm, NormalBodies};
+use oblique_solver::impact::base_resolution;
+use oblique_solver::units::{Material, Motion, PhysicalImpact, PhysicalOutcome, Sphere, Target};
+use oblique_solver::{simulate, solve, Accuracy, Method, PhysicsError, Resolution, Scheme};
 
 const ACC: Scheme = Scheme::Accurate;
 

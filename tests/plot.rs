@@ -1,4 +1,4 @@
-//! Figures of a table (`oblique::figures`, `sweep plot`): every plotted grid, curve, region and
+//! Figures of a table (`oblique_plot::figures`, `sweep plot`): every plotted grid, curve, region and
 //! point is checked against independent queries of the table (`Table::p`, its held-out checks,
 //! the critical values), then the command is checked to write valid PNG and SVG files and to
 //! fail cleanly on bad input.
@@ -7,11 +7,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::OnceLock;
 
-use oblique::figures::{self, alpha_at, compact, FigureKind, Source, REGIME_LABELS};
-use oblique::physics::regimes::{no_slip_fit, Regime};
-use oblique::plot::{Series, Style};
-use oblique_lookup::surface::{alpha_c1, alpha_c2, linear_limit};
 use oblique_lookup::Table;
+use oblique_physics::regimes::{no_slip_fit, Regime};
+use oblique_plot::figures::{self, alpha_at, compact, FigureKind, Source, REGIME_LABELS};
+use oblique_plot::{Series, Style};
+use oblique_table::surface::{alpha_c1, alpha_c2, linear_limit};
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -142,7 +142,7 @@ fn surface_map_is_the_table_on_its_grid_up_to_alpha_infinity() {
     // Labelled axes, α = ∞ at the end of the α axis.
     assert!(chart.x.label.contains('γ') && chart.y.label.contains('α'));
     match &chart.y.ticks {
-        oblique::plot::Ticks::Fixed(ticks) => {
+        oblique_plot::Ticks::Fixed(ticks) => {
             assert_eq!(ticks.last().unwrap(), &(1.0, "∞".to_string()));
         }
         other => panic!("α axis needs fixed ticks with ∞, got {other:?}"),

@@ -9,8 +9,8 @@
 //! `tables/full.h5` agree with the simulation within the table's stated error plus the
 //! simulation's.
 
-use oblique::physics::units::{Material, Motion, PhysicalImpact, Sphere, Target};
-use oblique::physics::{solve, Accuracy, Scheme};
+use oblique_solver::units::{Material, Motion, PhysicalImpact, Sphere, Target};
+use oblique_solver::{solve, Accuracy, Scheme};
 use std::sync::OnceLock;
 
 use oblique_lookup::rebound::{Body, Elastic, Incident, Incident3, Motion3, Pair, State, Vec3};

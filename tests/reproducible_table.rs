@@ -1,8 +1,8 @@
 //! The shipped table is reproducible: a sample of its simulated nodes, recomputed from the config
 //! stored in the file, agrees with the stored values within their error estimates.
 
-use oblique::physics::{solve, Accuracy, Scheme};
-use oblique::sweep::Config;
+use oblique_solver::{solve, Accuracy, Scheme};
+use oblique_sweep::Config;
 
 const FULL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5");
 const ISOTROPIC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/isotropic.h5");

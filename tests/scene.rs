@@ -1,4 +1,4 @@
-//! Scenes (`oblique::scene`, `sweep scene`): the shipped scene files, agreement of the simulated
+//! Scenes (`oblique_study::scene`, `sweep scene`): the shipped scene files, agreement of the simulated
 //! slice with table lookup and with a direct physical-units simulation, conservation laws of
 //! sphere–sphere scenes, the measured-data overlay (on synthetic data), clear errors for bad
 //! scene files, and the command itself.
@@ -8,10 +8,10 @@ use std::process::Command;
 use std::sync::OnceLock;
 use std::time::Instant;
 
-use oblique::physics::regimes::Regime;
-use oblique::physics::units::{Material, Motion, PhysicalImpact, Sphere, Target};
-use oblique::scene::{self, evaluate, PSource, RowMethod, Scene, SceneTarget};
 use oblique_lookup::Table;
+use oblique_physics::regimes::Regime;
+use oblique_solver::units::{Material, Motion, PhysicalImpact, Sphere, Target};
+use oblique_study::scene::{self, evaluate, PSource, RowMethod, Scene, SceneTarget};
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use oblique::sweep::Config;
+use oblique_sweep::Config;
 
 #[test]
 fn shipped_configs_write_outside_the_tracked_tables() {

@@ -18,9 +18,9 @@ use common::{scratch, subdir};
 use std::time::{Duration, Instant};
 
 use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
-use oblique_lookup::surface::{alpha_c1, alpha_c2, linear_limit};
 use oblique_lookup::testing::fork_guard;
 use oblique_lookup::{PatchKind, Table};
+use oblique_table::surface::{alpha_c1, alpha_c2, linear_limit};
 
 /// Small table: all three patches (γ from 0.8 to 1.6), several root cells along γ, leaves at
 /// mixed depths, α up to ∞.
@@ -1338,7 +1338,7 @@ fn e_inspect_json_reports_the_files_node_counts() {
         Some(err.iter().copied().fold(0.0, f64::max))
     );
     // The stated bound: largest leaf prediction + Λ₄² × the leaf's largest node estimate.
-    let factor = oblique_lookup::bound::node_error_factor(4);
+    let factor = oblique_table::bound::node_error_factor(4);
     let mut bound = 0.0_f64;
     for name in ["stick_low", "partial_high", "stick_high"] {
         let g = patches.group(name).unwrap();
@@ -1478,7 +1478,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
         f.attr("format").unwrap().write_scalar(&s).unwrap();
     }
     // Edited on purpose: seal it again so the reader gets to the check under test.
-    oblique::storage::seal(&wrong_format).unwrap();
+    oblique_table::write::seal(&wrong_format).unwrap();
     refused(&wrong_format, &["not a p table"]);
 
     for (name, version) in [("schema1.h5", 1.0), ("schema4.h5", 4.0)] {
@@ -1493,7 +1493,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
                 .unwrap();
         }
         // Edited on purpose: seal it again so the reader gets to the check under test.
-        oblique::storage::seal(&other).unwrap();
+        oblique_table::write::seal(&other).unwrap();
         refused(&other, &["schema version"]);
     }
 
@@ -1511,7 +1511,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
             d.write_raw(&tree).unwrap();
         }
         // Edited on purpose: seal it again so the reader gets to the check under test.
-        oblique::storage::seal(&bad).unwrap();
+        oblique_table::write::seal(&bad).unwrap();
         refused(&bad, &["tree"]);
     }
 }
@@ -1522,7 +1522,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
 /// The fixture table as the writer's input (`Built`), read back from its file, with a warp on
 /// `partial_high`: the node α values are moved so that the stored `coord` is the warped c' of
 /// each node, as the sweep lays them out.
-fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique::sweep::Built {
+fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique_sweep::Built {
     let t = Table::open(path).expect("open the fixture");
     let f = open(path);
     let patches = f.group("patches").unwrap();
@@ -1560,7 +1560,7 @@ fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique::sweep::
             f64s(&g, "alpha")
         };
         let leaf_depth: Vec<i32> = ints(&g, "leaf_depth");
-        built_patches.push(oblique::sweep::BuiltPatch {
+        built_patches.push(oblique_sweep::BuiltPatch {
             name: match name {
                 "stick_low" => "stick_low",
                 "partial_high" => "partial_high",
@@ -1576,7 +1576,7 @@ fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique::sweep::
             simulated: 0,
         });
     }
-    oblique::sweep::Built {
+    oblique_sweep::Built {
         surface,
         patches: built_patches,
         checks: t.checks.clone(),
@@ -1600,7 +1600,7 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     let out = subdir("warp").join("warp.h5");
     {
         let _g = fork_guard();
-        oblique::storage::write_table(&out, &built, &prov).expect("write the table");
+        oblique_table::write::write_table(&out, &built, &prov).expect("write the table");
     }
     // The file: the documented layout, with the warp group where documented.
     check_layout(&out, &Expect::small());
@@ -1657,17 +1657,17 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     // The writer refuses a warp the readers would refuse, and leaves no file.
     let bad_dir = subdir("warp_bad");
     // The error of writing the fixture with `change` made to its warped table, to `file`.
-    let refused = |file: &str, change: &dyn Fn(&mut oblique::sweep::Built)| {
+    let refused = |file: &str, change: &dyn Fn(&mut oblique_sweep::Built)| {
         let mut bad = built_with_warp(&fx.table, &warp);
         change(&mut bad);
         let e = {
             let _g = fork_guard();
-            oblique::storage::write_table(&bad_dir.join(file), &bad, &prov)
+            oblique_table::write::write_table(&bad_dir.join(file), &bad, &prov)
         };
         e.expect_err(file).to_string()
     };
     let set_warp = |change: fn(&mut oblique_lookup::Warp)| {
-        move |bad: &mut oblique::sweep::Built| {
+        move |bad: &mut oblique_sweep::Built| {
             for bp in &mut bad.patches {
                 if let Some(w) = bp.patch.warp.as_mut() {
                     change(w);
@@ -1701,18 +1701,21 @@ fn h_a_table_is_not_written_or_verified_against_a_bound_it_breaks() {
     };
     let mut built = built_with_warp(&fx.table, &warp);
     let prov = Table::open(&fx.table).unwrap().provenance;
-    let bound = oblique::storage::error_bound(&built);
+    let bound = oblique_table::write::error_bound(&built);
     assert_eq!(bound, Table::open(&fx.table).unwrap().error_bound());
     let dir = subdir("bound");
     let out = dir.join("contradicted.h5");
     built.checks[3].interpolation_error = 1.5 * bound;
     let e = {
         let _g = fork_guard();
-        oblique::storage::write_table(&out, &built, &prov).expect_err("a check above the bound")
+        oblique_table::write::write_table(&out, &built, &prov).expect_err("a check above the bound")
     };
     let msg = e.to_string();
     assert!(
-        matches!(e, oblique::storage::StorageError::BoundContradicted { .. }),
+        matches!(
+            e,
+            oblique_table::write::StorageError::BoundContradicted { .. }
+        ),
         "{msg}"
     );
     assert!(
@@ -1741,7 +1744,7 @@ fn h_a_table_is_not_written_or_verified_against_a_bound_it_breaks() {
     let zero = dir.join("zero.h5");
     {
         let _g = fork_guard();
-        oblique::storage::write_table(&zero, &built, &prov).expect("no checks to contradict");
+        oblique_table::write::write_table(&zero, &built, &prov).expect("no checks to contradict");
     }
     assert_eq!(Table::open(&zero).unwrap().error_bound(), 0.0);
     let o = sweep(&[

@@ -1,5 +1,5 @@
 //! Clocks shared by the criterion benchmarks of both crates (`benches/speedup.rs`,
-//! `lookup/benches/lookup.rs`): `LOOKUP_BENCH_CLOCK=cpu` selects the process CPU time.
+//! `crates/lookup/benches/lookup.rs`): `LOOKUP_BENCH_CLOCK=cpu` selects the process CPU time.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};

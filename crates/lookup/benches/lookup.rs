@@ -1,0 +1,214 @@
+//! Query speed of `oblique-lookup` (issue 4): one `P(γ, α)`, one rebound, batches.
+//!
+//! - `p/<region>`: one `Table::p` at a fixed point of each region (full-slip line, partial
+//!   slip, stick, no slip, `γ < 1`), and `p/mixed`: cycling through 4096 points spread over the
+//!   whole domain (γ uniform, α log-uniform in [1e-3, 1e3] plus 10 % α = ∞), so that branch
+//!   prediction and cache see a realistic stream.
+//! - `curve/<region>`: the same points through `Table::curve` (built once per γ), and
+//!   `curve/mixed_alpha`: the α of `p/mixed` at γ = 1.754.
+//! - `rebound/<case>`: one `Table::rebound` (2-D sphere–wall) and `Table::rebound_3d`
+//!   (sphere–wall, sphere–sphere) from materials and μ.
+//!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Prepared` (pair and
+//!   materials checked once, as a DEM code does per material pair); `rebound/spheres_3d_curve`:
+//!   the same with `P` from the pair's `Table::curve`.
+//! - `batch/serial`, `batch/rayon`: 2²⁰ mixed points through `p_batch` / `p_batch_par` (on all
+//!   cores of the rayon pool); throughput in queries/s.
+//! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
+//!   prepared pair through `rebound_3d_batch` / `rebound_3d_batch_par`.
+//! - `cycle/dependent_add_x64`: 64 dependent `f64` additions, to read the times above in
+//!   processor cycles (an addition waits 3 cycles for the previous one on the x86-64 cores
+//!   this was measured on, so the cycle is this time / 192).
+//!
+//! Table: `tables/full.h5` (override with `LOOKUP_BENCH_TABLE=path`).
+//! `LOOKUP_BENCH_CLOCK=cpu` measures the process CPU time (`CLOCK_PROCESS_CPUTIME_ID`) instead
+//! of elapsed time (groups suffixed `_cpu`): other processes on a shared machine do not inflate
+//! it (for `batch/rayon` it sums the CPU time of all workers).
+//!
+//! `cargo bench -p oblique-lookup --bench lookup` (all), `... -- 'p/'` (a subset).
+
+#[path = "../../../benches/common/clock.rs"]
+mod clock;
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use clock::{timed, Clock};
+use criterion::{Criterion, Throughput};
+use oblique_lookup::rebound::{Incident, Incident3, Motion3, Pair, State};
+use oblique_lookup::{testing, Answer, OutOfDomain, Prepared, Table};
+
+/// Deterministic points over the table's domain (`testing::domain_points`).
+fn mixed_points(t: &Table, n: usize) -> (Vec<f64>, Vec<f64>) {
+    testing::domain_points(&t.surface, n, 0x9E37_79B9_7F4A_7C15)
+        .into_iter()
+        .unzip()
+}
+
+/// Sphere–sphere incident states with random velocities, spins and normals (the normal is
+/// turned so that the spheres approach).
+fn mixed_incidents(n: usize) -> Vec<Incident3> {
+    let mut uniform = testing::uniform(0x2545_F491_4F6C_DD1D);
+    let mut next = move || uniform() - 0.5;
+    (0..n)
+        .map(|_| {
+            let mut v = || [next(), next(), next()];
+            let (v1, w1, v2, w2, mut normal) = (v(), v(), v(), v(), v());
+            let d: f64 = (0..3).map(|i| (v1[i] - v2[i]) * normal[i]).sum();
+            if d < 0.0 {
+                normal = normal.map(|x| -x);
+            }
+            Incident3 {
+                sphere: Motion3 {
+                    velocity: v1,
+                    spin: w1.map(|x| 400.0 * x),
+                },
+                other: Motion3 {
+                    velocity: v2,
+                    spin: w2.map(|x| 200.0 * x),
+                },
+                normal,
+            }
+        })
+        .collect()
+}
+
+fn main() {
+    let path = std::env::var("LOOKUP_BENCH_TABLE").unwrap_or_else(|_| {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../tables/full.h5").to_string()
+    });
+    let table = Table::open(&path).unwrap_or_else(|e| panic!("{e}"));
+    let clock = Clock::from_env();
+    let mut c = Criterion::default()
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3))
+        .configure_from_args();
+
+    // One P.
+    let mut g = c.benchmark_group(format!("p{}", clock.suffix()));
+    let points = [
+        ("line", 1.754, 0.1),
+        ("partial", 1.754, 0.3),
+        ("stick", 1.754, 1.0),
+        ("no_slip", 1.754, f64::INFINITY),
+        ("low_gamma", 0.5, 1.0),
+        ("partial_g3", 3.0, 0.3),
+    ];
+    for (name, gamma, alpha) in points {
+        timed(&mut g, name, clock, || {
+            table.p(black_box(gamma), black_box(alpha))
+        });
+    }
+    let (mg, ma) = mixed_points(&table, 4096);
+    let mut i = 0usize;
+    timed(&mut g, "mixed", clock, || {
+        i = (i + 1) & 4095;
+        table.p(black_box(mg[i]), black_box(ma[i]))
+    });
+    g.finish();
+
+    // The processor's cycle: a chain of 64 dependent additions (no reassociation of floats).
+    let mut g = c.benchmark_group(format!("cycle{}", clock.suffix()));
+    // The chain runs on across iterations, so that consecutive iterations cannot overlap.
+    let (step, mut x) = (black_box(1e-300), black_box(1.0f64));
+    timed(&mut g, "dependent_add_x64", clock, || {
+        for _ in 0..64 {
+            x += step;
+        }
+        x
+    });
+    g.finish();
+
+    // One P at a fixed γ through a precomputed curve (the same points as `p/`).
+    let mut g = c.benchmark_group(format!("curve{}", clock.suffix()));
+    for (name, gamma, alpha) in points {
+        let curve = table
+            .curve(gamma, OutOfDomain::Error)
+            .unwrap_or_else(|e| panic!("{e}"));
+        timed(&mut g, name, clock, || curve.p(black_box(alpha)));
+    }
+    let curve = table
+        .curve(1.754, OutOfDomain::Error)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut i = 0usize;
+    timed(&mut g, "mixed_alpha", clock, || {
+        i = (i + 1) & 4095;
+        curve.p(black_box(ma[i]))
+    });
+    g.finish();
+
+    // One rebound.
+    let mut g = c.benchmark_group(format!("rebound{}", clock.suffix()));
+    // An alumina sphere on a steel sphere (and on a wall), μ = 0.15, γ from the materials.
+    let (spheres, contact, inc3) = testing::reference_spheres();
+    let wall = Pair {
+        sphere: spheres.sphere,
+        other: None,
+    };
+    let inc2 = Incident {
+        sphere: State {
+            v_x: 1.0,
+            v_z: 2.0,
+            omega: 50.0,
+        },
+        ..Default::default()
+    };
+    let inc3_wall = Incident3 {
+        sphere: Motion3 {
+            velocity: [1.0, 0.4, 2.0],
+            spin: [10.0, -50.0, 30.0],
+        },
+        normal: [0.0, 0.0, 1.0],
+        ..Default::default()
+    };
+    timed(&mut g, "wall_2d", clock, || {
+        table.rebound(black_box(&wall), black_box(&contact), black_box(&inc2))
+    });
+    timed(&mut g, "wall_3d", clock, || {
+        table.rebound_3d(black_box(&wall), black_box(&contact), black_box(&inc3_wall))
+    });
+    timed(&mut g, "spheres_3d", clock, || {
+        table.rebound_3d(black_box(&spheres), black_box(&contact), black_box(&inc3))
+    });
+    let prepared = Prepared::new(&spheres, &contact).unwrap_or_else(|e| panic!("{e}"));
+    timed(&mut g, "spheres_3d_prepared", clock, || {
+        table.rebound_3d_prepared(black_box(&prepared), black_box(&inc3))
+    });
+    let curve = table
+        .curve(prepared.gamma(), contact.outside)
+        .unwrap_or_else(|e| panic!("{e}"));
+    timed(&mut g, "spheres_3d_curve", clock, || {
+        table.rebound_3d_curve(black_box(&prepared), black_box(&curve), black_box(&inc3))
+    });
+    g.finish();
+
+    // Batches.
+    let n = 1 << 20;
+    let (bg, ba) = mixed_points(&table, n);
+    let mut out = vec![0.0; n];
+    let mut g = c.benchmark_group(format!("batch{}", clock.suffix()));
+    g.throughput(Throughput::Elements(n as u64));
+    g.sample_size(20);
+    timed(&mut g, "serial", clock, || {
+        table.p_batch(&bg, &ba, &mut out, OutOfDomain::Error)
+    });
+    timed(&mut g, "rayon", clock, || {
+        table.p_batch_par(&bg, &ba, &mut out, OutOfDomain::Error)
+    });
+    g.finish();
+
+    // Batches of sphere-sphere rebounds of one prepared pair (random incident states).
+    let n3 = 1 << 16;
+    let incidents = mixed_incidents(n3);
+    let mut answers = vec![Answer::default(); n3];
+    let mut g = c.benchmark_group(format!("rebound_batch{}", clock.suffix()));
+    g.throughput(Throughput::Elements(n3 as u64));
+    g.sample_size(20);
+    timed(&mut g, "serial", clock, || {
+        table.rebound_3d_batch(&prepared, &incidents, &mut answers)
+    });
+    timed(&mut g, "rayon", clock, || {
+        table.rebound_3d_batch_par(&prepared, &incidents, &mut answers)
+    });
+    g.finish();
+    c.final_summary();
+}

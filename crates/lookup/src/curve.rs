@@ -1,0 +1,347 @@
+//! `P(α)` at one fixed `γ`: [`Curve`], for codes that meet one pair of materials (one `γ`) over
+//! and over.
+//!
+//! Along a line `γ = γ₀` the rule of `docs/table-format.md` is a cubic polynomial in the patch
+//! coordinate `c` on every interval between two node positions of the leaves the line crosses:
+//! the descent along γ and the γ weights do not depend on `c`, and inside one interval of a
+//! leaf's grid the `c` stencil is fixed. [`Table::curve`] evaluates the rule at four points
+//! inside each such interval (a uniform grid of `blocks_coord · 2^D · m` intervals per patch,
+//! `D` the deepest leaf on the line, which contains every node position) and stores the cubic
+//! through them. A query then computes `c` exactly as the rule does (the `γ`-only parts of it
+//! precomputed from the same `γ₀`, so the same bits), finds its interval by one multiplication
+//! and evaluates three multiply-add steps of Horner's scheme: no quadtree, no stencil weights.
+//! Only tables with the cubic stencil (`stencil_points = 4`, the shipped one) have curves.
+//!
+//! The values agree with [`Table::p_with`] at `(γ₀, α)` up to the rounding of the cubic's
+//! coefficients (the tests require 1e-14; measured: at most 2.1e-15 over 7.3 million points
+//! on the three shipped tables, `crates/lookup/tests/curve.rs`).
+
+use crate::{LookupError, Table};
+use oblique_table::surface::{alpha_c2, bound_p, linear_limit, stick_scale, Patch, Warp};
+use oblique_table::surface::{alpha_outside, bad_alpha, OutOfDomain, Surface};
+
+/// Largest number of intervals of one patch's curve (`2²⁰`, 32 MiB of coefficients); a line
+/// through leaves so deep that the uniform grid would need more is refused.
+const MAX_INTERVALS: usize = 1 << 20;
+
+/// One patch along the line: the cubic of every interval, in the centred local coordinate
+/// `s = c·n − i − 1/2 ∈ [−1/2, 1/2]` of interval `i` (better conditioned than `[0, 1]`).
+#[derive(Debug, Clone, PartialEq)]
+struct Piecewise {
+    /// Number of intervals `n` (as a float, for `c·n`) and its last index.
+    n: f64,
+    last: usize,
+    /// `[a0, a1, a2, a3]` of `a0 + a1 s + a2 s² + a3 s³`, per interval.
+    coef: Vec<[f64; 4]>,
+    /// The patch's warp when the line is at or beyond its start, with `K(γ)` of the line: the
+    /// intervals are then in the warped coordinate `c'` ([`Patch::warped`]).
+    warp: Option<(f64, Warp)>,
+}
+
+impl Piecewise {
+    /// The restriction of `patch`'s interpolant to `γ = gamma` (inside the patch's γ range).
+    fn new(patch: &Patch, gamma: f64) -> Result<Piecewise, LookupError> {
+        let m = patch.leaf_intervals;
+        let depth = line_depth(patch, gamma);
+        let n = patch
+            .blocks_coord
+            .checked_mul(m)
+            .and_then(|v| v.checked_shl(depth))
+            .filter(|&v| v > 0 && v <= MAX_INTERVALS)
+            .ok_or_else(|| LookupError::Query {
+                name: "gamma",
+                value: gamma,
+                allowed: format!(
+                    "a line through leaves of depth <= {} for a curve (this one reaches depth \
+                     {depth}); use Table::p instead",
+                    (MAX_INTERVALS / (patch.blocks_coord * m).max(1)).ilog2()
+                ),
+            })?;
+        // Four sample points inside each interval, s = −3/8, −1/8, 1/8, 3/8 (t = s + 1/2 all
+        // inside, so all in the same leaf and stencil).
+        const S: [f64; 4] = [-0.375, -0.125, 0.125, 0.375];
+        let k = 4;
+        let nf = n as f64;
+        let coef = (0..n)
+            .map(|i| {
+                let v = S.map(|s| patch.tensor(gamma, (i as f64 + 0.5 + s) / nf, k));
+                cubic_through(&S, &v)
+            })
+            .collect();
+        // Whether the rule warps `c` on this line, and `K(γ)` of the line.
+        let warp = patch.warp_at(gamma).map(|w| (w.knot_at(gamma), w.clone()));
+        Ok(Piecewise {
+            n: nf,
+            last: n - 1,
+            coef,
+            warp,
+        })
+    }
+
+    /// The value at (unwarped) patch coordinate `c ∈ [0, 1]`.
+    #[inline(always)]
+    fn eval(&self, c: f64) -> f64 {
+        let c = match &self.warp {
+            Some((k, w)) => w.apply_with(*k, c),
+            None => c,
+        };
+        let u = c * self.n;
+        let i = ((u as i64).max(0) as usize).min(self.last);
+        let s = u - i as f64 - 0.5;
+        let [a0, a1, a2, a3] = self.coef[i];
+        // The cubic of the tensor product, then the rule's bound (step 10).
+        bound_p(((a3 * s + a2) * s + a1) * s + a0)
+    }
+}
+
+/// Depth of the deepest leaf of `patch` crossed by the line `γ = gamma`, following the rule's
+/// descent along γ (which does not depend on `c`).
+fn line_depth(patch: &Patch, gamma: f64) -> u32 {
+    let xg = (gamma - patch.gamma_lo) / (patch.gamma_hi - patch.gamma_lo);
+    let (a, fg) = oblique_table::surface::locate(xg, patch.blocks_gamma);
+    let mut stack: Vec<(usize, f64, u32)> = (0..patch.blocks_coord)
+        .map(|b| (a * patch.blocks_coord + b, fg, 0))
+        .collect();
+    let mut deepest = 0;
+    while let Some((cell, fg, d)) = stack.pop() {
+        let t = patch.tree[cell];
+        if t < 0 {
+            deepest = deepest.max(d);
+            continue;
+        }
+        let f = 2.0 * fg;
+        let qg = usize::from(f >= 1.0);
+        let f = f - qg as f64;
+        stack.push((t as usize + 2 * qg, f, d + 1));
+        stack.push((t as usize + 2 * qg + 1, f, d + 1));
+    }
+    deepest
+}
+
+/// Coefficients `[a0, a1, a2, a3]` of the cubic through `(t[j], v[j])`.
+fn cubic_through(t: &[f64; 4], v: &[f64; 4]) -> [f64; 4] {
+    // Lagrange basis polynomials expanded into monomials.
+    let mut out = [0.0; 4];
+    for j in 0..4 {
+        let others: Vec<f64> = (0..4).filter(|&i| i != j).map(|i| t[i]).collect();
+        let denom: f64 = others.iter().map(|&x| t[j] - x).product();
+        let (p, q, r) = (others[0], others[1], others[2]);
+        // (t − p)(t − q)(t − r) = t³ − (p+q+r) t² + (pq+pr+qr) t − pqr
+        let basis = [-p * q * r, p * q + p * r + q * r, -(p + q + r), 1.0];
+        for (o, b) in out.iter_mut().zip(basis) {
+            *o += v[j] * b / denom;
+        }
+    }
+    out
+}
+
+/// `P(α)` of a table at one fixed `γ` ([`Table::curve`]): the table's interpolant restricted to
+/// that line, precomputed as one cubic per node interval, for codes that query one `γ` (one
+/// pair of materials) many times. Answers what [`Table::p_with`] answers at `(γ, α)`, to about
+/// 1e-15, in fewer operations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curve {
+    /// The `γ` asked for and the one used (clamped into the domain with
+    /// [`OutOfDomain::Clamp`]).
+    requested: f64,
+    gamma: f64,
+    outside: OutOfDomain,
+    alpha_max: f64,
+    /// `1 − 7α` up to here: at the requested `γ` (the rule's first test, for any `γ`) and at
+    /// the one used (its test after clamping).
+    alpha_lin_requested: f64,
+    alpha_lin: f64,
+    /// Partial slip below, stick above (`γ > 1`).
+    alpha_c2: f64,
+    /// `γ > 1`: the line crosses `partial_high` and `stick_high`; else `stick_low`.
+    high: bool,
+    /// The rule's `2γ²`, `2γ² − 1` and `ln(2γ² − 1)` (partial-slip coordinate).
+    g2: f64,
+    ratio: f64,
+    ln_ratio: f64,
+    /// The rule's `α_c2`, `ρ α_c2` (stick coordinate) and `S(α_max)` (`None` for `α_max = ∞`).
+    stick_c2: f64,
+    rho_c2: f64,
+    s_max: Option<f64>,
+    /// The patches along the line (`None` where the table has no such patch: `P = −1` there,
+    /// as in the rule).
+    partial: Option<Piecewise>,
+    stick: Option<Piecewise>,
+}
+
+impl Curve {
+    /// The curve of `surface` at `gamma`; `outside` is the domain policy of the queries (and of
+    /// `gamma` itself: clamped into the domain, or refused, as [`Surface::eval_with`] does).
+    pub(crate) fn new(
+        surface: &Surface,
+        gamma: f64,
+        outside: OutOfDomain,
+    ) -> Result<Curve, LookupError> {
+        if !(gamma.is_finite() && gamma > 0.0) {
+            return Err(oblique_table::surface::bad_gamma(gamma));
+        }
+        if surface.stencil != 4 {
+            // Along a line the rule is then a polynomial of another degree.
+            return Err(LookupError::Query {
+                name: "table stencil_points",
+                value: surface.stencil as f64,
+                allowed: "4 (cubic) for a curve; query this table with Table::p".into(),
+            });
+        }
+        if gamma < surface.gamma_min || gamma > surface.gamma_max {
+            match outside {
+                OutOfDomain::Error => return Err(surface.gamma_outside(gamma)),
+                OutOfDomain::Clamp => {
+                    let clamped = gamma.clamp(surface.gamma_min, surface.gamma_max);
+                    return Ok(Curve {
+                        requested: gamma,
+                        alpha_lin_requested: linear_limit(gamma),
+                        ..Curve::new(surface, clamped, outside)?
+                    });
+                }
+            }
+        }
+        let high = gamma > 1.0;
+        let (partial, stick) = if high {
+            (surface.partial_high.as_ref(), surface.stick_high.as_ref())
+        } else {
+            (None, surface.stick_low.as_ref())
+        };
+        let piecewise = |p: Option<&Patch>| p.map(|p| Piecewise::new(p, gamma)).transpose();
+        // The same operations as `surface::partial_coord` and `surface::stick_coord`.
+        let g2 = 2.0 * gamma * gamma;
+        let ratio = g2 - 1.0;
+        let stick_c2 = gamma * gamma * (2.0 / 7.0);
+        let rho_c2 = stick_scale(gamma) * stick_c2;
+        let s_max = surface.alpha_max.is_finite().then(|| {
+            let dm = surface.alpha_max - stick_c2;
+            dm / (dm + rho_c2)
+        });
+        Ok(Curve {
+            requested: gamma,
+            gamma,
+            outside,
+            alpha_max: surface.alpha_max,
+            alpha_lin_requested: linear_limit(gamma),
+            alpha_lin: linear_limit(gamma),
+            alpha_c2: alpha_c2(gamma),
+            high,
+            g2,
+            ratio,
+            ln_ratio: ratio.ln(),
+            stick_c2,
+            rho_c2,
+            s_max,
+            partial: piecewise(partial)?,
+            stick: piecewise(stick)?,
+        })
+    }
+
+    /// The `γ` of this curve (clamped into the table's domain if it was built with
+    /// [`OutOfDomain::Clamp`]).
+    pub fn gamma(&self) -> f64 {
+        self.gamma
+    }
+
+    /// The `γ` the curve was asked for (before any clamping).
+    pub fn requested_gamma(&self) -> f64 {
+        self.requested
+    }
+
+    /// Whether this curve answers for `gamma` with the domain choice `outside` (built from them).
+    pub fn matches(&self, gamma: f64, outside: OutOfDomain) -> bool {
+        self.requested == gamma && self.outside == outside
+    }
+
+    /// `P(γ, α)` (dimensionless) for `α ≥ 0` (`∞`: no slip). `α > alpha_max` is refused or
+    /// clamped as the curve's [`OutOfDomain`] says; a NaN or negative `α` is an error.
+    #[inline]
+    pub fn p(&self, alpha: f64) -> Result<f64, LookupError> {
+        if alpha.is_nan() || alpha < 0.0 {
+            return Err(bad_alpha(alpha));
+        }
+        // The rule's order: the line at the requested point, then the domain, then (after
+        // clamping) the line again at the point used.
+        if alpha <= self.alpha_lin_requested {
+            return Ok(1.0 - 7.0 * alpha);
+        }
+        let alpha = if alpha > self.alpha_max {
+            match self.outside {
+                OutOfDomain::Error => return Err(alpha_outside(self.alpha_max, alpha)),
+                OutOfDomain::Clamp => self.alpha_max,
+            }
+        } else {
+            alpha
+        };
+        if alpha <= self.alpha_lin {
+            return Ok(1.0 - 7.0 * alpha);
+        }
+        Ok(self.eval_above_line(alpha))
+    }
+
+    /// [`Curve::p`] for a valid `α` above the full-slip line, inside the domain.
+    #[inline(always)]
+    fn eval_above_line(&self, alpha: f64) -> f64 {
+        if self.high && alpha < self.alpha_c2 {
+            let Some(p) = &self.partial else { return -1.0 };
+            let l = (7.0 * alpha * self.ratio / self.g2).ln() / self.ln_ratio;
+            let c = 1.0 - (1.0 - l).max(0.0).sqrt();
+            p.eval(c.clamp(0.0, 1.0))
+        } else {
+            let Some(p) = &self.stick else { return -1.0 };
+            let c = if alpha.is_infinite() {
+                1.0
+            } else {
+                let d = alpha - self.stick_c2;
+                let s = d / (d + self.rho_c2);
+                match self.s_max {
+                    None => s,
+                    Some(m) => s / m,
+                }
+            };
+            p.eval(c.clamp(0.0, 1.0))
+        }
+    }
+
+    /// `out[i] = P(γ, alpha[i])`; the first invalid `α` stops the batch with its index
+    /// ([`LookupError::Batch`]), `out` after it untouched.
+    pub fn p_batch(&self, alpha: &[f64], out: &mut [f64]) -> Result<(), LookupError> {
+        crate::batch::check_length("out", out.len(), alpha.len())?;
+        crate::batch::serial(alpha, out, |&a| self.p(a))
+    }
+
+    /// Bytes of the precomputed cubics.
+    pub fn bytes(&self) -> usize {
+        [&self.partial, &self.stick]
+            .iter()
+            .filter_map(|p| p.as_ref())
+            .map(|p| p.coef.len() * std::mem::size_of::<[f64; 4]>())
+            .sum()
+    }
+}
+
+impl Table {
+    /// `P(α)` at one fixed `γ`, precomputed from this table for many queries of one pair of
+    /// materials ([`Curve`]). `γ` outside the table's domain is an error with
+    /// [`OutOfDomain::Error`] and is clamped into it with [`OutOfDomain::Clamp`], which also
+    /// sets what the curve's queries do with `α > alpha_max`. Costs one evaluation of the rule
+    /// per node interval on the line (milliseconds) and up to a few MB.
+    pub fn curve(&self, gamma: f64, outside: OutOfDomain) -> Result<Curve, LookupError> {
+        Curve::new(&self.surface, gamma, outside)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cubic_through_four_points_reproduces_a_cubic() {
+        let f = |t: f64| 0.3 - 1.7 * t + 2.5 * t * t - 0.75 * t * t * t;
+        let t = [-0.375, -0.125, 0.125, 0.375];
+        let c = cubic_through(&t, &t.map(f));
+        for (got, want) in c.iter().zip([0.3, -1.7, 2.5, -0.75]) {
+            assert!((got - want).abs() < 1e-14, "{c:?}");
+        }
+    }
+}

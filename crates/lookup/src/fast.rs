@@ -1,0 +1,575 @@
+//! The query path of [`crate::Table`]: the interpolation rule of [`oblique_table::surface`] (steps 1–10
+//! of `docs/table-format.md`) on an acceleration structure built once at [`crate::Table::open`].
+//!
+//! It returns the same bits as [`Surface::eval_with`] (the rule written step by step); only the
+//! way to the leaf differs. Instead of descending each patch's quadtree from its root, a query
+//! reads a **fine index**: a uniform grid at depth `D` (the deepest leaf's depth, or less if the
+//! grid would exceed [`MAX_INDEX_ENTRIES`]) over the patch, each entry naming the deepest cell
+//! of depth `≤ D` that contains it. That cell is a leaf unless `D` was capped, in which case the
+//! descent of the rule continues from it. The position inside a cell of depth `d` with integer
+//! origin `(A, B)` (in units of its own size) is `v·2^d − A`, where `v = x·blocks` is what the
+//! rule's first step computes: multiplying by a power of two and subtracting an integer below
+//! the value are exact in binary floating point, so this equals the rule's repeated
+//! `f ← 2f − q` bit for bit, and the leaf and the weights are the rule's.
+//!
+//! Only the shipped stencil (`k = 4`) takes this path; other stencils use [`Surface`] directly.
+//!
+//! Batches ([`Accel::eval_batch`], in `fast/batch.rs`) run the same operations in passes over
+//! arrays (classification, coordinates, index, stencils, tensor product) that the compiler
+//! vectorizes, in a baseline x86-64 build and an AVX2 build chosen at run time; both return the
+//! same bits as the single-query path (tested on both builds and all shipped tables).
+
+use crate::LookupError;
+use oblique_table::surface::{bound_p, partial_coord, stencil4, stick_coord};
+use oblique_table::surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
+
+mod batch;
+
+/// Largest number of entries (4 bytes each) of one patch's fine index: 2¹⁵ = 128 KiB, so that
+/// the indexes stay in the second-level cache next to the nodes. A patch whose deepest leaves
+/// would need more gets an index at a smaller depth, from which the quadtree descent continues
+/// (`tables/full.h5`: `partial_high` indexed at depth 5 of 7, the others at full depth). A
+/// full-depth index for `partial_high` (327 680 entries, 1.3 MB) answered a repeated point in the
+/// deepest leaves 10 % faster but a random stream of 2²⁰ queries 10–15 % slower (cache misses).
+pub(crate) const MAX_INDEX_ENTRIES: usize = 1 << 15;
+
+/// Queries per chunk of [`Accel::eval_batch`] (fits its `u16` query numbers).
+const BATCH: usize = 256;
+
+/// `α_c1 = 2γ²/(7(2γ² − 1))` from `γ²`, with the operations of [`oblique_table::surface::alpha_c1`].
+#[inline(always)]
+fn alpha_c1_of(g2: f64) -> f64 {
+    2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
+}
+
+/// One cell of a patch's quadtree with its position, for the fine index.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Cell {
+    /// `2^depth`.
+    scale: f64,
+    /// Integer origin along γ, in units of the cell's size (`floor(v_γ·2^depth)`).
+    og: f64,
+    /// Integer origin along `c`, in units of the cell's size.
+    oc: f64,
+    /// `tree[cell]`: `≥ 0` the first child, `< 0` leaf number `−link − 1`.
+    link: i32,
+}
+
+/// A patch with its fine index.
+#[derive(Clone, PartialEq)]
+struct FastPatch {
+    kind: PatchKind,
+    gamma_lo: f64,
+    width: f64,
+    /// `blocks_gamma`, `blocks_coord` as floats.
+    bg: f64,
+    bc: f64,
+    /// `2^D`.
+    fine: f64,
+    /// Fine cells along γ (`blocks_gamma·2^D`) and along `c` (`blocks_coord·2^D`).
+    rows: usize,
+    cols: usize,
+    /// `rows × cols` cell numbers, row-major (γ outer). Invariant (built by [`FastPatch::new`]):
+    /// every entry is `< cells.len()`.
+    index: Vec<u32>,
+    /// Every cell of the quadtree, in the order of `tree`.
+    cells: Vec<Cell>,
+    /// `m`, `m + 1`, `(m + 1)²`.
+    m: f64,
+    n1: usize,
+    size: usize,
+    /// `P` at the nodes, as in [`Patch::p`].
+    p: Vec<f64>,
+    /// The warp of the coordinate, as in [`Patch::warp`].
+    warp: Option<Warp>,
+}
+
+impl std::fmt::Debug for FastPatch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FastPatch")
+            .field("kind", &self.kind)
+            .field("rows", &self.rows)
+            .field("cols", &self.cols)
+            .field("cells", &self.cells.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl FastPatch {
+    /// The fine index of a validated patch (a tree as `Reader::check_tree` accepts it), or
+    /// `None` when the patch's grid is too small for the cubic stencil.
+    fn new(patch: &Patch, max_entries: usize) -> Option<FastPatch> {
+        let (bg, bc, m) = (patch.blocks_gamma, patch.blocks_coord, patch.leaf_intervals);
+        let roots = bg * bc;
+        if m < 3 || roots == 0 || patch.tree.len() < roots || patch.tree.len() > u32::MAX as usize {
+            return None;
+        }
+        // Depth and integer origin of every cell (children come after their parents).
+        let mut cells = vec![
+            Cell {
+                scale: 1.0,
+                og: 0.0,
+                oc: 0.0,
+                link: 0,
+            };
+            patch.tree.len()
+        ];
+        let mut depth = vec![0u32; patch.tree.len()];
+        let mut origin = vec![(0usize, 0usize); patch.tree.len()];
+        for a in 0..bg {
+            for b in 0..bc {
+                origin[a * bc + b] = (a, b);
+            }
+        }
+        let mut max_depth = 0;
+        for i in 0..patch.tree.len() {
+            let t = patch.tree[i];
+            let (a, b) = origin[i];
+            cells[i] = Cell {
+                scale: f64::from(1u32 << depth[i].min(31)),
+                og: a as f64,
+                oc: b as f64,
+                link: t,
+            };
+            max_depth = max_depth.max(depth[i]);
+            if t >= 0 {
+                let first = t as usize;
+                if first <= i || first + 4 > patch.tree.len() || depth[i] >= 30 {
+                    return None;
+                }
+                for q in 0..4 {
+                    depth[first + q] = depth[i] + 1;
+                    origin[first + q] = (2 * a + q / 2, 2 * b + q % 2);
+                }
+            }
+        }
+        // The deepest index within the budget.
+        let mut d = max_depth;
+        while d > 0 && ((roots as u128) << (2 * d)) > max_entries as u128 {
+            d -= 1;
+        }
+        let (rows, cols) = (bg << d, bc << d);
+        let mut index = vec![u32::MAX; rows * cols];
+        for i in 0..patch.tree.len() {
+            let di = depth[i];
+            // Cells at depth ≤ d that are leaves or at depth d cover their part of the index;
+            // deeper cells are reached by the descent. Parents come first, so a later (deeper)
+            // cell overwrites its ancestor's entries.
+            if di > d {
+                continue;
+            }
+            let k = 1usize << (d - di);
+            let (a, b) = origin[i];
+            for r in a * k..(a + 1) * k {
+                index[r * cols + b * k..r * cols + (b + 1) * k].fill(i as u32);
+            }
+        }
+        if index.iter().any(|&e| e as usize >= cells.len()) {
+            return None;
+        }
+        Some(FastPatch {
+            kind: patch.kind,
+            gamma_lo: patch.gamma_lo,
+            width: patch.gamma_hi - patch.gamma_lo,
+            bg: bg as f64,
+            bc: bc as f64,
+            fine: f64::from(1u32 << d),
+            rows,
+            cols,
+            index,
+            cells,
+            m: m as f64,
+            n1: m + 1,
+            size: (m + 1) * (m + 1),
+            p: patch.p.clone(),
+            warp: patch.warp.clone(),
+        })
+    }
+
+    /// The leaf and the position inside it of the point at `(vg, vc)` (in units of the root
+    /// cells) whose fine index entry is `entry`: the entry's cell, then step 6 of the rule, only
+    /// when the index depth was capped below the deepest leaf.
+    #[inline(always)]
+    fn leaf_from(&self, entry: usize, vg: f64, vc: f64) -> (usize, f64, f64) {
+        let mut cell = self.cells[self.index[entry] as usize];
+        let mut fg = vg * cell.scale - cell.og;
+        let mut fc = vc * cell.scale - cell.oc;
+        while cell.link >= 0 {
+            fg *= 2.0;
+            fc *= 2.0;
+            let qg = usize::from(fg >= 1.0);
+            let qc = usize::from(fc >= 1.0);
+            fg -= qg as f64;
+            fc -= qc as f64;
+            cell = self.cells[cell.link as usize + 2 * qg + qc];
+        }
+        ((-(cell.link as i64) - 1) as usize, fg, fc)
+    }
+
+    /// Interpolate at `(γ, c)`, `c ∈ [0, 1]` the unwarped coordinate: [`Patch::warped`], then
+    /// [`Patch::interpolate`] with `k = 4`.
+    #[inline(always)]
+    fn interpolate(&self, gamma: f64, c: f64) -> f64 {
+        // Step 5 of the rule: v = x·blocks, clamped (as `surface::locate`).
+        let xg = (gamma - self.gamma_lo) / self.width;
+        let vg = (xg * self.bg).clamp(0.0, self.bg);
+        // The warp, from its start on ([`Patch::warped`], the same operations).
+        let c = match &self.warp {
+            Some(w) if vg >= w.start => w.apply(gamma, c),
+            _ => c,
+        };
+        let vc = (c * self.bc).clamp(0.0, self.bc);
+        let ig = floor_index(vg * self.fine, self.rows - 1);
+        let ic = floor_index(vc * self.fine, self.cols - 1);
+        let (leaf, fg, fc) = self.leaf_from(ig * self.cols + ic, vg, vc);
+        let n1 = self.n1;
+        let (sg, wg) = stencil4(fg * self.m, n1);
+        let (sc, wc) = stencil4(fc * self.m, n1);
+        let start = leaf * self.size + sg * n1 + sc;
+        let block = &self.p[start..start + 3 * n1 + 4];
+        let (r0, rest) = block.split_at(n1);
+        let (r1, rest) = rest.split_at(n1);
+        let (r2, r3) = rest.split_at(n1);
+        let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
+        bound_p(wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3))
+    }
+}
+
+/// `min(floor(u), max)` for `u ≥ 0` (as in [`oblique_table::surface`]).
+#[inline(always)]
+fn floor_index(u: f64, max: usize) -> usize {
+    ((u as i64).max(0) as usize).min(max)
+}
+
+/// The acceleration structure of a table: its three patches with their fine indexes.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Accel {
+    gamma_min: f64,
+    gamma_max: f64,
+    alpha_max: f64,
+    stick_low: Option<FastPatch>,
+    partial_high: Option<FastPatch>,
+    stick_high: Option<FastPatch>,
+    /// Every patch passes [`FastPatch::fits_u32`] (the batch path's 32-bit positions).
+    batch_u32: bool,
+}
+
+impl Accel {
+    /// The structure for `surface`, or `None` when its stencil is not the cubic one (those
+    /// tables are answered by [`Surface::eval_with`]).
+    pub(crate) fn new(surface: &Surface) -> Option<Accel> {
+        Accel::with_budget(surface, MAX_INDEX_ENTRIES)
+    }
+
+    /// [`Accel::new`] with at most `max_entries` index entries per patch.
+    fn with_budget(surface: &Surface, max_entries: usize) -> Option<Accel> {
+        if surface.stencil != 4 {
+            return None;
+        }
+        let fast = |p: &Option<Patch>| match p {
+            None => Some(None),
+            Some(p) => FastPatch::new(p, max_entries).map(Some),
+        };
+        let (stick_low, partial_high, stick_high) = (
+            fast(&surface.stick_low)?,
+            fast(&surface.partial_high)?,
+            fast(&surface.stick_high)?,
+        );
+        let batch_u32 = [&stick_low, &partial_high, &stick_high]
+            .into_iter()
+            .flatten()
+            .all(FastPatch::fits_u32);
+        Some(Accel {
+            gamma_min: surface.gamma_min,
+            gamma_max: surface.gamma_max,
+            alpha_max: surface.alpha_max,
+            stick_low,
+            partial_high,
+            stick_high,
+            batch_u32,
+        })
+    }
+
+    /// Bytes held by the fine indexes and cell lists (not counting the copy of `P`).
+    pub(crate) fn index_bytes(&self) -> usize {
+        [&self.stick_low, &self.partial_high, &self.stick_high]
+            .iter()
+            .filter_map(|p| p.as_ref())
+            .map(|p| p.index.len() * 4 + p.cells.len() * std::mem::size_of::<Cell>())
+            .sum()
+    }
+
+    /// [`Surface::eval_with`], bit for bit. The checks and the full-slip line are inlined into
+    /// the caller; the patches are answered out of line ([`Accel::eval_off_line`]).
+    #[inline(always)]
+    pub(crate) fn eval_with(
+        &self,
+        surface: &Surface,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        if !(gamma.is_finite() && gamma > 0.0) {
+            return Err(oblique_table::surface::bad_gamma(gamma));
+        }
+        if alpha.is_nan() || alpha < 0.0 {
+            return Err(oblique_table::surface::bad_alpha(alpha));
+        }
+        let region = Region::of(gamma, alpha);
+        if region == Region::Line {
+            return Ok(1.0 - 7.0 * alpha);
+        }
+        self.eval_off_line(surface, region, gamma, alpha, outside)
+    }
+
+    /// [`Accel::eval_with`] for a valid query above the full-slip line.
+    #[inline(never)]
+    fn eval_off_line(
+        &self,
+        surface: &Surface,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        surface.apply_domain(region, gamma, alpha, outside, |r, g, a| {
+            self.eval_in(r, g, a)
+        })
+    }
+
+    #[inline(always)]
+    fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
+        let patch = match region {
+            Region::Line => None,
+            Region::StickLow => self.stick_low.as_ref(),
+            Region::PartialHigh => self.partial_high.as_ref(),
+            Region::StickHigh => self.stick_high.as_ref(),
+        };
+        match patch {
+            Some(patch) => {
+                let c = match patch.kind {
+                    PatchKind::PartialSlip => partial_coord(gamma, alpha),
+                    PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
+                };
+                patch.interpolate(gamma, c.clamp(0.0, 1.0))
+            }
+            None => -1.0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Table;
+
+    pub(super) fn table(name: &str) -> Table {
+        Table::open(format!(
+            "{}/../../tables/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .expect(name)
+    }
+
+    /// A warp of `partial_high` from the middle of its root rows on (the node values stay
+    /// those of the table: only the bits of the query paths are compared).
+    pub(super) fn warped(mut t: Table) -> Table {
+        let p = t.surface.partial_high.as_mut().expect("partial_high");
+        let start = (p.blocks_gamma as f64 * 8.0).floor() / 16.0;
+        let from = p.gamma_lo + (p.gamma_hi - p.gamma_lo) * start / p.blocks_gamma as f64;
+        p.warp = Some(Warp {
+            start,
+            gamma_0: from,
+            gamma_step: (p.gamma_hi - from) / 12.0,
+            c_star: 0.5,
+            knot: (0..13)
+                .map(|i| 0.4 + 0.25 * (i as f64 * 0.5).sin() * (i as f64 / 12.0))
+                .collect(),
+        });
+        t.reindex();
+        t
+    }
+
+    /// The shipped tables, and each with a warp of its partial-slip patch.
+    fn tables() -> Vec<(String, Table)> {
+        let mut v = Vec::new();
+        for name in ["quick.h5", "full.h5"] {
+            v.push((name.to_string(), table(name)));
+            v.push((format!("{name} warped"), warped(table(name))));
+        }
+        v
+    }
+
+    /// Points spread over the plane, plus points exactly on the edges of the finest cells
+    /// (where the rule sends a point to the upper cell).
+    pub(super) fn points(t: &Table) -> Vec<(f64, f64)> {
+        let s = &t.surface;
+        let mut pts = crate::testing::domain_points(s, 20_000, 0x1234_5678_9ABC_DEF1);
+        for patch in [&s.stick_low, &s.partial_high, &s.stick_high]
+            .into_iter()
+            .flatten()
+        {
+            let steps = patch.blocks_gamma << 7;
+            for i in 0..=steps {
+                let g =
+                    patch.gamma_lo + (patch.gamma_hi - patch.gamma_lo) * i as f64 / steps as f64;
+                for j in 0..=(patch.blocks_coord << 5) {
+                    let c = j as f64 / (patch.blocks_coord << 5) as f64;
+                    pts.push((g, patch.kind.alpha(g, c, s.alpha_max)));
+                    // The cell edges are at c' of the warp: c = invert(c').
+                    if let Some(w) = &patch.warp {
+                        pts.push((g, patch.kind.alpha(g, w.invert(g, c), s.alpha_max)));
+                    }
+                }
+            }
+        }
+        pts
+    }
+
+    #[test]
+    fn the_fine_index_gives_the_bits_of_the_descent() {
+        for (name, t) in tables() {
+            let s = &t.surface;
+            // Full depth, and capped depths from which the descent continues.
+            for budget in [1 << 20, MAX_INDEX_ENTRIES, 64, 1] {
+                let accel = Accel::with_budget(s, budget).expect("cubic table");
+                for &(g, a) in &points(&t) {
+                    for o in [OutOfDomain::Error, OutOfDomain::Clamp] {
+                        let fast = accel.eval_with(s, g, a, o).ok().map(f64::to_bits);
+                        let rule = s.eval_with(g, a, o).ok().map(f64::to_bits);
+                        assert_eq!(fast, rule, "{name}, budget {budget}: ({g}, {a})");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn batches_sorted_by_region_give_the_bits_of_single_queries() {
+        for t in [table("full.h5"), warped(table("full.h5"))] {
+            batches_give_the_bits_of_single_queries(&t);
+        }
+    }
+
+    fn batches_give_the_bits_of_single_queries(t: &Table) {
+        let s = &t.surface;
+        let accel = Accel::new(s).expect("cubic table");
+        let mut pts = points(t);
+        // Outside the domain, on the line outside it, at γ = 1.
+        pts.extend([
+            (0.05, 0.001),
+            (0.05, 1.0),
+            (5.0, 0.1),
+            (5.0, 3.0),
+            (1.0, 0.5),
+        ]);
+        pts.extend([(1.0, f64::INFINITY), (2.0, 1e300), (s.gamma_max, 0.5)]);
+        let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
+        let mut out = vec![f64::NAN; g.len()];
+        accel
+            .eval_batch(s, &g, &a, &mut out, OutOfDomain::Clamp)
+            .expect("clamped");
+        for i in 0..g.len() {
+            let one = accel.eval_with(s, g[i], a[i], OutOfDomain::Clamp).unwrap();
+            assert_eq!(out[i].to_bits(), one.to_bits(), "({}, {})", g[i], a[i]);
+        }
+        // Without clamping: the first point outside is the error, out after it untouched.
+        let first = (0..g.len())
+            .find(|&i| accel.eval_with(s, g[i], a[i], OutOfDomain::Error).is_err())
+            .expect("a point outside");
+        let mut out = vec![f64::NAN; g.len()];
+        let (index, _) = accel
+            .eval_batch(s, &g, &a, &mut out, OutOfDomain::Error)
+            .expect_err("outside");
+        assert_eq!(index, first);
+        assert!(out[..first].iter().all(|p| !p.is_nan()));
+        assert!(out[first..].iter().all(|p| p.is_nan()));
+        // Invalid values.
+        let mut bad = a.clone();
+        bad[777] = f64::NAN;
+        let r = accel.eval_batch(s, &g, &bad, &mut out, OutOfDomain::Clamp);
+        assert_eq!(r.map_err(|(i, _)| i), Err(777));
+    }
+
+    #[test]
+    fn both_paths_apply_the_warp() {
+        let plain = table("full.h5");
+        let t = warped(table("full.h5"));
+        let w = t.surface.partial_high.as_ref().and_then(|p| p.warp.clone());
+        let w = w.expect("warp");
+        let (mut changed, mut same) = (0, 0);
+        for i in 0..200 {
+            let g = 2.0 + 1.5 * i as f64 / 199.0;
+            let (c1, c2) = (
+                oblique_table::surface::alpha_c1(g),
+                oblique_table::surface::alpha_c2(g),
+            );
+            let a = c1 + (c2 - c1) * 0.37;
+            let p = t.p(g, a).expect("inside");
+            assert_eq!(p.to_bits(), t.surface.eval(g, a).expect("inside").to_bits());
+            // By hand: the unwarped patch interpolated at c' = apply(γ, c).
+            let patch = t.surface.partial_high.as_ref().expect("partial_high");
+            let c = oblique_table::surface::partial_coord(g, a).clamp(0.0, 1.0);
+            let by_hand = patch.interpolate(g, patch.warped(g, c), 4);
+            assert_eq!(p.to_bits(), by_hand.to_bits(), "({g}, {a})");
+            if p != plain.p(g, a).expect("inside") {
+                changed += 1;
+            } else {
+                same += 1;
+            }
+            let v = (g - patch.gamma_lo) / (patch.gamma_hi - patch.gamma_lo) * 5.0;
+            if v < w.start {
+                assert_eq!(p, plain.p(g, a).unwrap(), "({g}, {a})");
+            }
+        }
+        assert!(changed > 0 && same > 0, "{changed} changed, {same} same");
+    }
+
+    #[test]
+    fn reindex_follows_a_changed_surface() {
+        let mut t = table("quick.h5");
+        let before = t.p(1.754, 1.0).expect("stick_high");
+        if let Some(p) = t.surface.stick_high.as_mut() {
+            p.p.iter_mut().for_each(|v| *v = 0.5);
+        }
+        assert_eq!(t.p(1.754, 1.0).expect("stick_high"), before);
+        t.reindex();
+        let after = t.p(1.754, 1.0).expect("stick_high");
+        assert!((after - 0.5).abs() < 1e-15, "{after}");
+        assert_eq!(after, t.surface.eval(1.754, 1.0).expect("stick_high"));
+    }
+
+    #[test]
+    fn the_index_of_the_full_table_is_small() {
+        let t = table("full.h5");
+        let bytes = t.index_bytes();
+        // At most 3 × 128 KiB of index plus 32 bytes per quadtree cell; far below 16 MiB.
+        assert!(bytes > 0 && bytes <= 16 << 20, "{bytes} bytes");
+        let accel = Accel::new(&t.surface).expect("cubic table");
+        let s = &t.surface;
+        for (patch, fast) in [
+            (&s.stick_low, &accel.stick_low),
+            (&s.partial_high, &accel.partial_high),
+            (&s.stick_high, &accel.stick_high),
+        ] {
+            let (Some(patch), Some(fast)) = (patch, fast) else {
+                continue;
+            };
+            // The index depth: the deepest leaf's, or the deepest within the budget.
+            let roots = patch.blocks_gamma * patch.blocks_coord;
+            let deepest = patch.leaf_depths().into_iter().max().unwrap_or(0);
+            let d = (0..=deepest)
+                .rev()
+                .find(|&d| roots << (2 * d) <= MAX_INDEX_ENTRIES)
+                .unwrap_or(0);
+            assert_eq!(
+                (fast.rows, fast.cols),
+                (patch.blocks_gamma << d, patch.blocks_coord << d)
+            );
+        }
+        // partial_high of tables/full.h5 has leaves down to depth 7: its index is capped.
+        let partial = s.partial_high.as_ref().expect("partial_high");
+        assert!(partial.leaf_depths().into_iter().max() > Some(5));
+        assert!(accel.partial_high.as_ref().map(|p| p.rows) < Some(partial.blocks_gamma << 7));
+    }
+}

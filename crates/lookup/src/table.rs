@@ -1,0 +1,129 @@
+//! The loaded table: its contents ([`oblique_table::read::Contents`]) and the acceleration
+//! structure of the query path.
+
+use std::path::Path;
+
+use oblique_table::read::Contents;
+use oblique_table::surface::{OutOfDomain, Surface};
+use oblique_table::{Check, Provenance};
+
+use crate::fast::Accel;
+use crate::LookupError;
+
+/// A loaded table: the surface, its provenance and its held-out checks. `Send + Sync`; queries
+/// touch only memory.
+///
+/// [`Table::p`] and the other queries answer from an acceleration structure built from
+/// `surface` at [`Table::open`] (a fine leaf index per patch, see [`Table::index_bytes`], and a
+/// copy of the node values); they return the same bits as [`Surface::eval_with`]. After
+/// changing `surface` in place, call [`Table::reindex`], or the queries keep answering from the
+/// table as loaded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    /// The interpolated surface.
+    pub surface: Surface,
+    /// Provenance attributes.
+    pub provenance: Provenance,
+    /// Held-out check points.
+    pub checks: Vec<Check>,
+    /// The stated error bound ([`Table::error_bound`]).
+    error_bound: f64,
+    /// The query path's acceleration structure (`None`: answered by `surface` directly).
+    accel: Option<Accel>,
+}
+
+impl Table {
+    /// Open, validate and load a table ([`oblique_table::read::read`]). Errors name the
+    /// problem: not HDF5 or truncated, not a P table, a newer schema, inconsistent shapes,
+    /// non-finite values.
+    pub fn open(path: impl AsRef<Path>) -> Result<Table, LookupError> {
+        let c: Contents = oblique_table::read::read(path)?;
+        Ok(Table::from_parts(
+            c.surface,
+            c.provenance,
+            c.checks,
+            c.error_bound,
+        ))
+    }
+
+    /// A table from its parts (as [`Table::open`] loads them), with the acceleration structure
+    /// of the query path built for `surface`; `error_bound` is what [`Table::error_bound`]
+    /// returns ([`oblique_table::bound::surface_bound`] of the leaves' predicted errors).
+    pub fn from_parts(
+        surface: Surface,
+        provenance: Provenance,
+        checks: Vec<Check>,
+        error_bound: f64,
+    ) -> Table {
+        let accel = Accel::new(&surface);
+        Table {
+            surface,
+            provenance,
+            checks,
+            error_bound,
+            accel,
+        }
+    }
+
+    /// The acceleration structure, if the table has one.
+    pub(crate) fn accel(&self) -> Option<&Accel> {
+        self.accel.as_ref()
+    }
+
+    /// Rebuild the acceleration structure after `surface` was changed in place.
+    pub fn reindex(&mut self) {
+        self.accel = Accel::new(&self.surface);
+    }
+
+    /// Bytes of the acceleration structure's leaf indexes (0 when the table is answered by the
+    /// quadtree descent of [`Surface::eval_with`], as for stencils other than 4 points).
+    pub fn index_bytes(&self) -> usize {
+        self.accel.as_ref().map_or(0, Accel::index_bytes)
+    }
+
+    /// `P(γ, α)` (dimensionless), refusing points outside the table's domain; see
+    /// [`Surface::eval_with`].
+    #[inline]
+    pub fn p(&self, gamma: f64, alpha: f64) -> Result<f64, LookupError> {
+        self.p_with(gamma, alpha, OutOfDomain::Error)
+    }
+
+    /// `P(γ, α)` with the caller's choice for points outside the domain
+    /// ([`OutOfDomain::Clamp`] answers at the nearest point of the domain); see
+    /// [`Surface::eval_with`].
+    #[inline]
+    pub fn p_with(&self, gamma: f64, alpha: f64, outside: OutOfDomain) -> Result<f64, LookupError> {
+        match &self.accel {
+            Some(a) => a.eval_with(&self.surface, gamma, alpha, outside),
+            None => self.p_by_descent(gamma, alpha, outside),
+        }
+    }
+
+    /// [`Surface::eval_with`] out of line, for tables without an acceleration structure.
+    #[inline(never)]
+    fn p_by_descent(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        self.surface.eval_with(gamma, alpha, outside)
+    }
+
+    /// The error bound this table states for any `P` it answers (absolute, dimensionless):
+    /// the largest, over all leaves, of the leaf's predicted interpolation error plus
+    /// `Λ_k² ≈ 2.66` (cubic stencil) times the largest solver error estimate of its nodes
+    /// ([`crate::bound`]; `docs/table-format.md`, "The stated error bound"). Derived from the
+    /// file's `leaf_predicted_error` and `error_estimate` datasets, so it is the same for every
+    /// table written by `sweep run`; NaN for a file without `leaf_predicted_error` (it states
+    /// no bound).
+    pub fn error_bound(&self) -> f64 {
+        self.error_bound
+    }
+
+    /// The first held-out check whose measured error exceeds the stated bound, if any (a
+    /// table whose own checks contradict its bound; `sweep run` refuses to write one).
+    pub fn contradicting_check(&self) -> Option<&Check> {
+        oblique_table::bound::contradicting_check(&self.checks, self.error_bound)
+    }
+}

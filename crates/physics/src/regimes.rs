@@ -1,0 +1,106 @@
+//! Critical values of α (`α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`), friction regimes and the
+//! closed forms of `P(γ, α)`.
+
+use serde::Serialize;
+
+/// `α_c1 = 2γ²/(7(2γ² − 1))`.
+pub fn alpha_c1(gamma: f64) -> f64 {
+    let g2 = gamma * gamma;
+    2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
+}
+
+/// `α_c2 = 2γ²/7`.
+pub fn alpha_c2(gamma: f64) -> f64 {
+    2.0 * gamma * gamma / 7.0
+}
+
+/// Upper end of the exact line `P = 1 − 7α`: `α_c1` for `γ > 1`, `α_c2` for `γ ≤ 1`.
+pub fn linear_limit(gamma: f64) -> f64 {
+    if gamma > 1.0 {
+        alpha_c1(gamma)
+    } else {
+        alpha_c2(gamma)
+    }
+}
+
+/// Friction regime of an impact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Regime {
+    /// The whole contact slips throughout: `P = 1 − 7α`.
+    FullSlip,
+    /// Part of the contact sticks (between the critical curves).
+    PartialSlip,
+    /// No slip during compression (`α ≥ α_c2`), including `α = ∞`.
+    Stick,
+}
+
+impl Regime {
+    /// Classify `(γ, α)`.
+    pub fn of(gamma: f64, alpha: f64) -> Self {
+        if alpha <= linear_limit(gamma) {
+            Regime::FullSlip
+        } else if alpha < alpha_c2(gamma) {
+            Regime::PartialSlip
+        } else {
+            Regime::Stick
+        }
+    }
+
+    /// Lower-case name as printed by the CLI.
+    pub fn name(self) -> &'static str {
+        match self {
+            Regime::FullSlip => "full-slip",
+            Regime::PartialSlip => "partial-slip",
+            Regime::Stick => "stick",
+        }
+    }
+}
+
+/// `P(γ, α)` where it is known exactly without simulation: the full-slip line `1 − 7α` for
+/// `α ≤` [`linear_limit`] and the `γ = 1` plateau `P = −1` for `α ≥ 2/7`.
+pub fn closed_form(gamma: f64, alpha: f64) -> Option<f64> {
+    if alpha <= linear_limit(gamma) {
+        Some(1.0 - 7.0 * alpha)
+    } else if gamma == 1.0 && alpha >= 2.0 / 7.0 {
+        Some(-1.0)
+    } else {
+        None
+    }
+}
+
+/// Tangential restitution `e_t = v_x/v_x0 = (2P + 5)/7` of a solid sphere hitting without spin.
+pub fn tangential_restitution(p: f64) -> f64 {
+    (2.0 * p + 5.0) / 7.0
+}
+
+/// Seed 001's fit (29) of the no-slip limit: `−1 + 2 e^{−0.195γ} cos²(1.685(γ − 0.061))`.
+/// A fit, off by about 0.01 in places; for comparison only.
+pub fn no_slip_fit(gamma: f64) -> f64 {
+    let c = (1.685 * (gamma - 0.061)).cos();
+    -1.0 + 2.0 * (-0.195 * gamma).exp() * c * c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn critical_values_coincide_at_gamma_one() {
+        assert!((alpha_c1(1.0) - 2.0 / 7.0).abs() < 1e-15);
+        assert!((alpha_c2(1.0) - 2.0 / 7.0).abs() < 1e-15);
+        assert!(alpha_c1(2.0) < alpha_c2(2.0));
+    }
+
+    #[test]
+    fn regimes_follow_the_critical_curves() {
+        let g = 1.754;
+        assert_eq!(Regime::of(g, 0.5 * alpha_c1(g)), Regime::FullSlip);
+        assert_eq!(
+            Regime::of(g, 0.5 * (alpha_c1(g) + alpha_c2(g))),
+            Regime::PartialSlip
+        );
+        assert_eq!(Regime::of(g, f64::INFINITY), Regime::Stick);
+        assert_eq!(Regime::of(0.8, 0.9 * alpha_c2(0.8)), Regime::FullSlip);
+    }
+}

@@ -1,0 +1,601 @@
+//! The continuum limit of the MDR row of tangential springs: the displacement field `ũ_x(x)`
+//! over the whole contact, exact in space.
+//!
+//! The spring row ([`super::springs::SpringRow`]) samples `ũ_x` at `N` points, and its error at
+//! a thin slip ring (large α, where only the outermost springs ever slip) falls slowly and
+//! irregularly with `N`. In the limit `N → ∞` of the same time-stepping rule, every update maps
+//! a field that is piecewise quadratic in the profile height `y = g(x) = x²/R*` to another one:
+//!
+//! - every point in contact receives the same increment `Δw` (a constant);
+//! - the Coulomb limits `±c (d − y)` are linear in `y`, so clipping a quadratic piece against
+//!   them cuts it at the roots of two quadratics, and a clipped part is the linear limit itself;
+//! - a point that enters contact during the step receives `w(h) − w(θ h)` with `θ` linear in
+//!   `y` and `w` quadratic in time: a quadratic in `y`;
+//! - the release correction of a point at a limit (`super::springs::StepMotion`) is the same
+//!   for every point at that limit: a constant.
+//!
+//! So the field is held exactly as an ordered list of pieces, each a quadratic in `y` (or one of
+//! the two limits), and `∫₀^a ũ_x dx` is integrated exactly. The number of pieces grows by at
+//! most a few per step (one entry piece per compression step, one cut per moving slip front);
+//! adjacent pieces at the same limit merge. The time discretisation is that of the spring row,
+//! so this row is the spring row's limit for infinitely many springs: only the time error is
+//! left.
+//!
+//! By symmetry only the half-row `x ≥ 0` is held; integrals are over `[0, a]` and the caller
+//! doubles them.
+
+use super::springs::{StepMotion, StepResult};
+
+/// Which law a piece follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    /// Stuck: `ũ = W + a + b z + q z²`, `z = y − y_ref`, with `W` the row's accumulated
+    /// increment: it moves rigidly with `w`.
+    Stuck,
+    /// At the `+` Coulomb limit `ũ = c (d − y)`.
+    Plus,
+    /// At the `−` Coulomb limit `ũ = −c (d − y)`.
+    Minus,
+}
+
+/// One piece of the field on `y0 ≤ y ≤ y1`.
+#[derive(Debug, Clone, Copy)]
+struct Piece {
+    kind: Kind,
+    /// Lower and upper profile height (m).
+    y0: f64,
+    y1: f64,
+    /// The matching positions `x = √(R* y)` (m).
+    x0: f64,
+    x1: f64,
+    /// Reference height of the local coordinate `z = y − y_ref` (m).
+    y_ref: f64,
+    /// Coefficients of a stuck piece `ũ − W = a + b z + q z²` (m, 1, 1/m); unused at a limit.
+    a: f64,
+    b: f64,
+    q: f64,
+    /// `∫ (ũ − W) dx` over a stuck piece (m²).
+    rel_integral: f64,
+    /// `max (ũ − W + c y)` and `min (ũ − W − c y)` over a stuck piece (m): it stays inside the
+    /// limits `±c (d − y)` while `upper ≤ c d − W` and `lower ≥ −c d − W`.
+    upper: f64,
+    lower: f64,
+}
+
+/// Three-point Gauss–Legendre nodes on `[0, 1]` and weights: exact for `ũ(x)`, a polynomial
+/// of degree 4 in `x`.
+const GAUSS: [(f64, f64); 3] = [
+    (0.112_701_665_379_258_31, 5.0 / 18.0),
+    (0.5, 8.0 / 18.0),
+    (0.887_298_334_620_741_7, 5.0 / 18.0),
+];
+
+impl Piece {
+    /// A stuck piece `ũ − W = a + b z + q z²` on `[y0, y1]`; `c` is the limit factor (for the
+    /// bounds).
+    fn stuck(y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64, radius: f64) -> Self {
+        let mut p = Self {
+            kind: Kind::Stuck,
+            y0,
+            y1,
+            x0: (radius * y0).sqrt(),
+            x1: (radius * y1).sqrt(),
+            y_ref,
+            a: abq.0,
+            b: abq.1,
+            q: abq.2,
+            rel_integral: 0.0,
+            upper: 0.0,
+            lower: 0.0,
+        };
+        p.refresh(c, radius);
+        p
+    }
+
+    fn limit(kind: Kind, y0: f64, y1: f64, radius: f64) -> Self {
+        Self {
+            kind,
+            y0,
+            y1,
+            x0: (radius * y0).sqrt(),
+            x1: (radius * y1).sqrt(),
+            y_ref: y0,
+            a: 0.0,
+            b: 0.0,
+            q: 0.0,
+            rel_integral: 0.0,
+            upper: 0.0,
+            lower: 0.0,
+        }
+    }
+
+    /// Recompute the integral and the bounds of a stuck piece after its ends changed.
+    fn refresh(&mut self, c: f64, radius: f64) {
+        let dx = self.x1 - self.x0;
+        let total: f64 = GAUSS
+            .iter()
+            .map(|&(t, w)| {
+                let x = self.x0 + t * dx;
+                w * self.value(x * x / radius)
+            })
+            .sum();
+        self.rel_integral = total * dx;
+        if c.is_finite() {
+            self.upper = self.extremum(c, true);
+            self.lower = self.extremum(-c, false);
+        }
+    }
+
+    /// `max` (or `min`) of `ũ − W + s y` over the piece: at an end or at the vertex.
+    fn extremum(&self, s: f64, max: bool) -> f64 {
+        let f = |y: f64| self.value(y) + s * y;
+        let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
+        let mut best = pick(f(self.y0), f(self.y1));
+        if self.q != 0.0 {
+            let y = self.y_ref - (self.b + s) / (2.0 * self.q);
+            if y > self.y0 && y < self.y1 {
+                best = pick(best, f(y));
+            }
+        }
+        best
+    }
+
+    /// `ũ − W` at height `y` for a stuck piece.
+    fn value(&self, y: f64) -> f64 {
+        let z = y - self.y_ref;
+        self.a + z * (self.b + self.q * z)
+    }
+
+    /// `∫ ũ dx` of a limit piece at indentation `d` with limit factor `c` (m²).
+    fn limit_integral(&self, c: f64, d: f64, radius: f64) -> f64 {
+        let dx = self.x1 - self.x0;
+        // ±c ∫ (d − x²/R) dx, with x1³ − x0³ = dx (x0² + x0 x1 + x1²).
+        let cube = dx * (self.x0 * self.x0 + self.x0 * self.x1 + self.x1 * self.x1);
+        let v = c * (d * dx - cube / (3.0 * radius));
+        if self.kind == Kind::Plus {
+            v
+        } else {
+            -v
+        }
+    }
+}
+
+/// Roots of `A + B z + Q z² = 0` strictly inside `(lo, hi)`, appended to `out`.
+fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut Vec<f64>) {
+    let mut push = |r: f64| {
+        if r > lo && r < hi {
+            out.push(r);
+        }
+    };
+    if q == 0.0 {
+        if b != 0.0 {
+            push(-a / b);
+        }
+        return;
+    }
+    let disc = b * b - 4.0 * q * a;
+    if disc < 0.0 {
+        return;
+    }
+    // Stable form: one root from the quadratic formula without cancellation, the other from
+    // the product of the roots (a tiny `q` then gives −a/b and a far-away root).
+    let s = -0.5 * (b + disc.sqrt().copysign(b));
+    if s != 0.0 {
+        push(s / q);
+        push(a / s);
+    } else {
+        push(0.0);
+    }
+}
+
+/// Consecutive pieces with the sums the step needs, so that a chunk of stuck pieces that stays
+/// inside the limits costs O(1) per step.
+#[derive(Debug, Clone, Default)]
+struct Chunk {
+    pieces: Vec<Piece>,
+    /// Whether some piece is at a limit (those change every step).
+    has_limit: bool,
+    /// `Σ ∫ (ũ − W) dx` and `Σ Δx` over the stuck pieces (m², m).
+    rel_integral: f64,
+    stuck_length: f64,
+    /// `max upper` and `min lower` over the stuck pieces (m).
+    upper: f64,
+    lower: f64,
+}
+
+/// Pieces per chunk above which a chunk is split in two.
+const CHUNK_MAX: usize = 48;
+
+impl Chunk {
+    fn summarize(&mut self) {
+        self.has_limit = false;
+        self.rel_integral = 0.0;
+        self.stuck_length = 0.0;
+        self.upper = f64::NEG_INFINITY;
+        self.lower = f64::INFINITY;
+        for p in &self.pieces {
+            if p.kind == Kind::Stuck {
+                self.rel_integral += p.rel_integral;
+                self.stuck_length += p.x1 - p.x0;
+                self.upper = self.upper.max(p.upper);
+                self.lower = self.lower.min(p.lower);
+            } else {
+                self.has_limit = true;
+            }
+        }
+    }
+
+    /// `∫ ũ dx` over the chunk at indentation `d`, offset `W`.
+    fn integral(&self, w: f64, c: f64, d: f64, radius: f64) -> f64 {
+        let mut total = self.rel_integral + w * self.stuck_length;
+        if self.has_limit {
+            for p in &self.pieces {
+                if p.kind != Kind::Stuck {
+                    total += p.limit_integral(c, d, radius);
+                }
+            }
+        }
+        total
+    }
+}
+
+/// The exact (continuum) half-row of tangential springs.
+#[derive(Debug, Clone)]
+pub struct ContinuumRow {
+    radius: f64,
+    chunks: Vec<Chunk>,
+    /// Accumulated increment `W = Σ Δw` (m), the common offset of the stuck pieces.
+    offset: f64,
+    spare: Vec<Piece>,
+    cuts: Vec<f64>,
+    at_limit: (bool, bool),
+}
+
+/// What the step does to the pieces: the limit factor, the indentations, the increment and
+/// the release corrections.
+#[derive(Clone, Copy)]
+struct Update {
+    c: f64,
+    d0: f64,
+    d1: f64,
+    dw: f64,
+    plus: f64,
+    minus: f64,
+}
+
+impl ContinuumRow {
+    /// An unloaded row for effective radius `R*` (m).
+    pub fn new(radius: f64) -> Self {
+        Self {
+            radius,
+            chunks: Vec::new(),
+            offset: 0.0,
+            spare: Vec::new(),
+            cuts: Vec::new(),
+            at_limit: (false, false),
+        }
+    }
+
+    /// Whether some part of the contact sits at the `+` / `−` Coulomb limit (after the last
+    /// step).
+    pub fn at_limit(&self) -> (bool, bool) {
+        self.at_limit
+    }
+
+    /// Number of pieces the field is made of now (diagnostics).
+    pub fn pieces(&self) -> usize {
+        self.chunks.iter().map(|c| c.pieces.len()).sum()
+    }
+
+    /// `ũ` at the centre `y = 0` at indentation `d`.
+    fn center(&self, c: f64, d: f64) -> f64 {
+        let first = self.chunks.first().and_then(|ch| ch.pieces.first());
+        first.map_or(0.0, |p| match p.kind {
+            Kind::Stuck => self.offset + p.value(0.0),
+            Kind::Plus => c * d,
+            Kind::Minus => -c * d,
+        })
+    }
+
+    /// The continuum form of [`super::springs::SpringRow::step_accurate`]: the same update for
+    /// every point of the contact, applied to the whole field at once. Returns `∫₀^a ũ_x dx`
+    /// (m²), exact for the field, and the mean displacement over the contact.
+    pub fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        let (d0, h, v, acc) = (m.d0, m.h, m.slip_velocity, m.slip_accel);
+        let dw = h * v + 0.5 * h * h * acc;
+        let radius = self.radius;
+        let center = self.center(c, d0);
+        let finite = c.is_finite();
+        let (plus, minus) = if finite {
+            m.release_corrections(c)
+        } else {
+            (0.0, 0.0)
+        };
+        let up = Update {
+            c,
+            d0,
+            d1,
+            dw,
+            plus,
+            minus,
+        };
+        self.offset += dw;
+        let w = self.offset;
+        self.truncate(d1.max(0.0), c);
+        // Thresholds of the stuck bounds: inside the limits iff upper ≤ c d1 − W and
+        // lower ≥ −c d1 − W (never violated without a limit).
+        let (t_plus, t_minus) = if finite {
+            (c * d1 - w, -c * d1 - w)
+        } else {
+            (f64::INFINITY, f64::NEG_INFINITY)
+        };
+        let mut k = 0;
+        while k < self.chunks.len() {
+            let ch = &self.chunks[k];
+            k += if ch.has_limit || ch.upper > t_plus || ch.lower < t_minus {
+                self.update_chunk(k, &up, t_plus, t_minus)
+            } else {
+                1
+            };
+        }
+        // Points entering contact: ũ = w(h) − w(θh), θ = (y − d0)/(d1 − d0), w quadratic in
+        // time: (K1 − K2) + (2K2 − K1) θ − K2 θ², K1 = h v + a h², K2 = a h²/2.
+        if d1 > d0 {
+            let span = d1 - d0;
+            let k1 = h * v + acc * h * h;
+            let k2 = 0.5 * acc * h * h;
+            let entry = Piece::stuck(
+                d0.max(0.0),
+                d1,
+                d0,
+                (k1 - k2 - w, (2.0 * k2 - k1) / span, -k2 / (span * span)),
+                c,
+                radius,
+            );
+            if self.chunks.is_empty() {
+                self.chunks.push(Chunk::default());
+            }
+            let mut out = std::mem::take(&mut self.spare);
+            out.clear();
+            let last = self.chunks.len() - 1;
+            out.append(&mut self.chunks[last].pieces);
+            self.clip(entry, &up, &mut out);
+            let _ = self.install(last, out);
+        }
+        let (mut any_plus, mut any_minus) = (false, false);
+        let mut integral = 0.0;
+        for ch in &self.chunks {
+            integral += ch.integral(w, c, d1, radius);
+            if ch.has_limit {
+                for p in &ch.pieces {
+                    let positive = p.y0 < d1;
+                    any_plus |= p.kind == Kind::Plus && positive;
+                    any_minus |= p.kind == Kind::Minus && positive;
+                }
+            }
+        }
+        self.at_limit = if finite {
+            (any_plus, any_minus)
+        } else {
+            (false, false)
+        };
+        let a1 = (radius * d1.max(0.0)).sqrt();
+        let mean = if a1 > 0.0 && self.pieces() > 0 {
+            integral / a1
+        } else if finite {
+            // Contact vanished: the Coulomb limit at the last point in contact is zero.
+            0.0
+        } else {
+            // No slip: the last point carries its displacement to the end.
+            center + dw
+        };
+        StepResult { integral, mean }
+    }
+
+    /// Drop everything at `y ≥ top` (points leaving contact drop to zero).
+    fn truncate(&mut self, top: f64, c: f64) {
+        let radius = self.radius;
+        while let Some(ch) = self.chunks.last_mut() {
+            while ch.pieces.last().is_some_and(|p| p.y0 >= top) {
+                ch.pieces.pop();
+            }
+            if ch.pieces.is_empty() {
+                self.chunks.pop();
+                continue;
+            }
+            if let Some(p) = ch.pieces.last_mut() {
+                if p.y1 > top {
+                    p.y1 = top;
+                    p.x1 = (radius * top).sqrt();
+                    if p.kind == Kind::Stuck {
+                        p.refresh(c, radius);
+                    }
+                    ch.summarize();
+                }
+            }
+            break;
+        }
+    }
+
+    /// Apply the step to every piece of chunk `k` (after the offset moved by `dw`); returns the
+    /// number of chunks that now hold its pieces (0, 1 or 2).
+    fn update_chunk(&mut self, k: usize, up: &Update, t_plus: f64, t_minus: f64) -> usize {
+        let radius = self.radius;
+        let c = up.c;
+        let w = self.offset;
+        let mut out = std::mem::take(&mut self.spare);
+        out.clear();
+        let old = std::mem::take(&mut self.chunks[k].pieces);
+        for &p in &old {
+            match p.kind {
+                Kind::Stuck => {
+                    if p.upper > t_plus || p.lower < t_minus {
+                        self.clip(p, up, &mut out);
+                    } else {
+                        out.push(p);
+                    }
+                }
+                Kind::Plus | Kind::Minus => {
+                    let s = if p.kind == Kind::Plus { 1.0 } else { -1.0 };
+                    // At the limit s c (d0 − y) before the step; it sticks again when the
+                    // increment falls behind the limit's own change.
+                    if s * up.dw < c * (up.d1 - up.d0) {
+                        let corr = if s > 0.0 { up.plus } else { up.minus };
+                        let a = s * c * (up.d0 - p.y0) + up.dw + corr - w;
+                        let stuck = Piece::stuck(p.y0, p.y1, p.y0, (a, -s * c, 0.0), c, radius);
+                        self.clip(stuck, up, &mut out);
+                    } else {
+                        push_merged(&mut out, p, radius);
+                    }
+                }
+            }
+        }
+        self.spare = old;
+        self.install(k, out)
+    }
+
+    /// Put `pieces` into chunk `k`, splitting it when it grew too long; returns the number of
+    /// chunks they occupy (0 when empty: the chunk is removed).
+    fn install(&mut self, k: usize, mut pieces: Vec<Piece>) -> usize {
+        let mut count = 1;
+        if pieces.len() > CHUNK_MAX {
+            count = 2;
+            let tail = pieces.split_off(pieces.len() / 2);
+            let mut next = Chunk {
+                pieces: tail,
+                ..Chunk::default()
+            };
+            next.summarize();
+            self.chunks.insert(k + 1, next);
+        }
+        let ch = &mut self.chunks[k];
+        std::mem::swap(&mut ch.pieces, &mut pieces);
+        // Keep whichever buffer has room as the scratch of the next update: the chunk's old
+        // vector was often taken (left empty, without capacity), and dropping the spare instead
+        // made every chunk update allocate anew.
+        if pieces.capacity() > self.spare.capacity() {
+            self.spare = pieces;
+        }
+        ch.summarize();
+        if ch.pieces.is_empty() {
+            self.chunks.remove(k);
+            count = 0;
+        }
+        count
+    }
+
+    /// Clip a stuck piece (after the increment) against the limits `±c (d1 − y)` and append the
+    /// parts: stuck where inside, limit pieces where outside.
+    fn clip(&mut self, p: Piece, up: &Update, out: &mut Vec<Piece>) {
+        let radius = self.radius;
+        let (c, d1) = (up.c, up.d1);
+        if p.x1 <= p.x0 {
+            return;
+        }
+        if !c.is_finite() {
+            out.push(p);
+            return;
+        }
+        // In z = y − y_ref, with a' = a + W: ũ − c(d1 − y) = (a' − c(d1 − y_ref)) + (b + c) z
+        // + q z², and ũ + c(d1 − y) = (a' + c(d1 − y_ref)) + (b − c) z + q z².
+        let w = self.offset;
+        let abs_a = p.a + w;
+        let lim_ref = c * (d1 - p.y_ref);
+        let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
+        self.cuts.clear();
+        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut self.cuts);
+        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut self.cuts);
+        let classify = |y: f64| {
+            let u = w + p.value(y);
+            let lim = c * (d1 - y);
+            if u > lim {
+                Kind::Plus
+            } else if u < -lim {
+                Kind::Minus
+            } else {
+                Kind::Stuck
+            }
+        };
+        self.cuts.sort_by(|a, b| a.total_cmp(b));
+        let mut lo = p.y0;
+        let ends = self.cuts.iter().map(|z| z + p.y_ref);
+        for hi in ends.chain(std::iter::once(p.y1)) {
+            let hi = hi.clamp(lo, p.y1);
+            if hi > lo {
+                let kind = classify(0.5 * (lo + hi));
+                let part = if kind != Kind::Stuck {
+                    Piece::limit(kind, lo, hi, radius)
+                } else if lo == p.y0 && hi == p.y1 {
+                    p
+                } else {
+                    Piece::stuck(lo, hi, p.y_ref, (p.a, p.b, p.q), c, radius)
+                };
+                push_merged(out, part, radius);
+            }
+            lo = hi;
+        }
+    }
+}
+
+/// Append a piece, merging it into the last one when both sit at the same limit.
+fn push_merged(out: &mut Vec<Piece>, p: Piece, radius: f64) {
+    if p.x1 <= p.x0 {
+        return;
+    }
+    if let Some(last) = out.last_mut() {
+        if p.kind != Kind::Stuck && last.kind == p.kind {
+            *last = Piece::limit(p.kind, last.y0, p.y1, radius);
+            return;
+        }
+    }
+    out.push(p);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::springs::motion;
+
+    #[test]
+    fn full_slip_integral_is_exact() {
+        // Slip everywhere: ũ = c (d − x²), whose integral over [0, √d] is (2/3) c d^{3/2}.
+        let mut row = ContinuumRow::new(1.0);
+        let d = 0.49;
+        let got = row.step_accurate(&motion(10.0, 0.0), d, 1.0).integral;
+        let exact = 2.0 / 3.0 * d.powf(1.5);
+        assert!((got - exact).abs() < 1e-15, "{got} vs {exact}");
+        assert_eq!(row.pieces(), 1);
+    }
+
+    #[test]
+    fn stuck_entry_integral_is_exact() {
+        // No slip, one step from d0 = 0 with constant velocity: ũ = dw (1 − y/d1), whose
+        // integral over x ∈ [0, √d1] is dw √d1 (1 − 1/3).
+        let mut row = ContinuumRow::new(1.0);
+        let d = 0.36;
+        let got = row
+            .step_accurate(&motion(0.2, 0.0), d, f64::INFINITY)
+            .integral;
+        let exact = 0.2 * 0.6 * (2.0 / 3.0);
+        assert!((got - exact).abs() < 1e-15, "{got} vs {exact}");
+    }
+
+    #[test]
+    fn clipping_cuts_a_piece_at_the_limit() {
+        // Stuck entry with ũ = dw (1 − y/d1) against c (d1 − y) with c d1 < dw: everything at
+        // the + limit.
+        let mut row = ContinuumRow::new(1.0);
+        row.step_accurate(&motion(1.0, 0.0), 0.25, 1.0);
+        assert_eq!(row.pieces(), 1);
+        assert_eq!(row.at_limit(), (true, false));
+        // Reverse: the centre part sticks (ũ = c(d − y) − δ), the edge slips to −c(d − y).
+        let r = row.step_accurate(&motion(-0.2, 0.25), 0.25, 1.0);
+        assert_eq!(row.pieces(), 2);
+        // Stuck where c(d − y) − 0.2 ≥ −c(d − y), i.e. y ≤ d − 0.1 = 0.15.
+        let (ys, a1) = (0.15f64, 0.5f64);
+        let xs = ys.sqrt();
+        let stuck = 0.25 * xs - xs.powi(3) / 3.0 - 0.2 * xs;
+        let slip = -(0.25 * (a1 - xs) - (a1.powi(3) - xs.powi(3)) / 3.0);
+        assert!((r.integral - (stuck + slip)).abs() < 1e-14);
+    }
+}

@@ -1,0 +1,22 @@
+//! The simulator: one oblique elastic impact with Coulomb friction by the method of
+//! dimensionality reduction (MDR), with error control. Pure: no I/O, no files, no terminal.
+//! The closed forms it shares with the table and the lookup are in `oblique-physics`.
+//!
+//! Symbols follow `physics.md`: `γ = √((7/2) G*/E*)` (generally `γ² = (m*/m_t) G*/E*`),
+//! `α = μ v_z0 / |u0|` (generally `α = (2/7)(m*/m_t) μ v_z0/|u0|`), `P = u_after/u_before`.
+
+pub mod continuum;
+pub mod error;
+pub mod hertz;
+pub mod history;
+pub mod impact;
+pub mod preset;
+pub mod springs;
+pub mod units;
+
+pub use error::PhysicsError;
+pub use impact::{
+    simulate, solve, solve_observed, Accuracy, Method, NoEstimate, RefineEvent, Resolution, Scheme,
+    Solution,
+};
+pub use preset::Preset;

@@ -1,0 +1,6 @@
+//! Studies built on the engine: a user's scene ([`scene`]: bodies and impact conditions to
+//! rebound curves, from a table or by simulation, with figures and measured data) and the
+//! solver's accuracy against its cost ([`accuracy`]).
+
+pub mod accuracy;
+pub mod scene;

@@ -1,0 +1,472 @@
+//! The TOML config of `sweep run`: domain, node placement, solver accuracy, checks, threads,
+//! output. Unknown keys are rejected; every error names the key, the value and the allowed range.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Deserializer};
+use thiserror::Error;
+
+/// A config error: which file, which key, what is wrong.
+#[derive(Debug, Error)]
+pub enum ConfigError {
+    /// The file could not be read.
+    #[error("cannot read config {path}: {source}")]
+    Read {
+        /// Path.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// TOML syntax error, unknown key or wrong type (the message names the key and line).
+    #[error("config {path}: {message}")]
+    Parse {
+        /// Path.
+        path: String,
+        /// The TOML parser's message.
+        message: String,
+    },
+    /// A value is outside its allowed range.
+    #[error("config {path}: `{key}` = {value}: must be {allowed}")]
+    Range {
+        /// Path.
+        path: String,
+        /// Dotted key.
+        key: &'static str,
+        /// The value given.
+        value: String,
+        /// Allowed range.
+        allowed: String,
+    },
+}
+
+fn alpha_max_de<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum V {
+        N(f64),
+        S(String),
+    }
+    match V::deserialize(d)? {
+        V::N(x) => Ok(x),
+        V::S(s) if matches!(s.trim().to_ascii_lowercase().as_str(), "inf" | "infinity") => {
+            Ok(f64::INFINITY)
+        }
+        V::S(s) => Err(serde::de::Error::custom(format!(
+            "alpha_max = \"{s}\": must be a number or \"inf\""
+        ))),
+    }
+}
+
+fn default_alpha_max() -> f64 {
+    f64::INFINITY
+}
+
+/// `[domain]`: the part of the `(γ, α)` plane the table covers. `α` always starts at 0.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Domain {
+    /// Lower end of γ (> 0).
+    pub gamma_min: f64,
+    /// Upper end of γ (> gamma_min, ≤ 64).
+    pub gamma_max: f64,
+    /// Upper end of α: a number > α_c2(gamma_max), or "inf" (default) to include no slip.
+    #[serde(default = "default_alpha_max", deserialize_with = "alpha_max_de")]
+    pub alpha_max: f64,
+}
+
+/// `[nodes]`: how nodes are placed.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Nodes {
+    /// Placement: "aligned" (patches bounded by α_c1, α_c2, α_max and γ = 1; the only placement
+    /// of schemas v2 and v3).
+    #[serde(default = "default_placement")]
+    pub placement: String,
+    /// Lagrange stencil points per axis: 4 (cubic) or 6 (quintic).
+    #[serde(default = "default_stencil")]
+    pub stencil: usize,
+    /// Target maximum interpolation error of P; a quadtree cell is split into four until the
+    /// predicted error of every leaf is below it.
+    pub target_error: f64,
+    /// Intervals per axis of every leaf's node grid: even, ≥ 2(stencil − 1) so that the half grid
+    /// used to measure the error still holds a full stencil.
+    #[serde(default = "default_leaf_intervals")]
+    pub leaf_intervals: usize,
+    /// Root cells per unit of γ along the γ axis of a patch.
+    #[serde(default = "default_blocks_gamma")]
+    pub blocks_per_unit_gamma: f64,
+    /// Root cells along the patch coordinate.
+    #[serde(default = "default_blocks_coord")]
+    pub blocks_coord: usize,
+    /// Refuse to place more nodes than this in total.
+    #[serde(default = "default_max_nodes")]
+    pub max_nodes: usize,
+    /// Warp the partial-slip patch's coordinate so that the fold curve F₊ of `P` (γ > 2.904, a jump
+    /// of slope) lies on a root-cell boundary, graded below it (schema v3). Traces F₊
+    /// first (a few seconds); no effect when the partial-slip patch ends below γ ≈ 2.95.
+    #[serde(default)]
+    pub fold_warp: bool,
+}
+
+fn default_placement() -> String {
+    "aligned".into()
+}
+fn default_stencil() -> usize {
+    4
+}
+fn default_leaf_intervals() -> usize {
+    8
+}
+fn default_blocks_gamma() -> f64 {
+    2.0
+}
+fn default_blocks_coord() -> usize {
+    4
+}
+fn default_max_nodes() -> usize {
+    200_000
+}
+
+/// `[solver]`: accuracy of every node: `tol`, or a named `preset` (`fast` = 1e-4,
+/// `standard` = 1e-6, `reference` = 1e-8; `docs/accuracy.md`), not both.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(try_from = "RawSolver")]
+pub struct Solver {
+    /// Absolute error tolerance of P at each node (the solver's error estimate ≤ tol).
+    pub tol: f64,
+    /// The preset `tol` came from, if any.
+    pub preset: Option<String>,
+}
+
+/// `[solver]` as written.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSolver {
+    tol: Option<f64>,
+    preset: Option<String>,
+}
+
+impl TryFrom<RawSolver> for Solver {
+    type Error = String;
+
+    fn try_from(raw: RawSolver) -> Result<Self, String> {
+        match (raw.tol, raw.preset) {
+            (Some(tol), None) => Ok(Solver { tol, preset: None }),
+            (None, Some(name)) => {
+                let p = oblique_solver::Preset::from_name(&name)
+                    .map_err(|e| format!("solver.preset: {e}"))?;
+                Ok(Solver {
+                    tol: p.tolerance(),
+                    preset: Some(p.name().to_string()),
+                })
+            }
+            (Some(_), Some(_)) => Err("give solver.tol or solver.preset, not both".to_string()),
+            (None, None) => Err(
+                "solver.tol (absolute error of P, e.g. 1e-6) or solver.preset \
+                 (fast, standard or reference) is required"
+                    .to_string(),
+            ),
+        }
+    }
+}
+
+/// `[checks]`: held-out points, simulated but not used for interpolation.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Checks {
+    /// Random check points per patch, 1 to 100000.
+    #[serde(default = "default_checks")]
+    pub per_patch: usize,
+    /// Seed of the deterministic generator that places them.
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// Solver tolerance of the check points (absolute error of P); default `solver.tol / 10`
+    /// (loosened up to `solver.tol` where the pre-flight finds that out of reach), so that the
+    /// measured interpolation error is that of the table, not of the check.
+    #[serde(default)]
+    pub tol: Option<f64>,
+}
+
+fn default_checks() -> usize {
+    100
+}
+fn default_seed() -> u64 {
+    1
+}
+
+impl Default for Checks {
+    fn default() -> Self {
+        Self {
+            per_patch: default_checks(),
+            seed: default_seed(),
+            tol: None,
+        }
+    }
+}
+
+/// `[run]`: execution.
+#[derive(Debug, Clone, PartialEq, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct Run {
+    /// Worker threads (0 = one per core).
+    #[serde(default)]
+    pub threads: usize,
+}
+
+/// A whole config file.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Config {
+    /// Output table path (relative to the working directory).
+    pub output: PathBuf,
+    /// Domain.
+    pub domain: Domain,
+    /// Node placement.
+    pub nodes: Nodes,
+    /// Node accuracy.
+    pub solver: Solver,
+    /// Held-out checks.
+    #[serde(default)]
+    pub checks: Checks,
+    /// Execution.
+    #[serde(default)]
+    pub run: Run,
+    /// The default of `checks.tol` as the pre-flight found it reachable
+    /// (`crate::Preflight::check_tol`); not a key of the file.
+    #[serde(skip)]
+    pub derived_check_tol: Option<f64>,
+}
+
+impl Config {
+    /// Parse and validate config text (`path` is used in messages).
+    pub fn parse(text: &str, path: &str) -> Result<Self, ConfigError> {
+        // toml's report spans several lines (the line of the file, a caret under the error):
+        // kept as it is.
+        let cfg: Config = toml::from_str(text).map_err(|e| ConfigError::Parse {
+            path: path.to_string(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        cfg.validate(path)?;
+        Ok(cfg)
+    }
+
+    /// Read, parse and validate a config file.
+    pub fn load(path: &Path) -> Result<(Self, String), ConfigError> {
+        let p = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
+            path: p.clone(),
+            source,
+        })?;
+        Ok((Self::parse(&text, &p)?, text))
+    }
+
+    /// Solver tolerance of the held-out checks: `checks.tol`; when it is not set, the value the
+    /// pre-flight chose ([`Config::derived_check_tol`]), else `solver.tol / 10` (at least 1e-10).
+    pub fn check_tol(&self) -> f64 {
+        self.checks
+            .tol
+            .or(self.derived_check_tol)
+            .unwrap_or((self.solver.tol / 10.0).max(1e-10))
+    }
+
+    fn validate(&self, path: &str) -> Result<(), ConfigError> {
+        let err = |key: &'static str, value: String, allowed: String| ConfigError::Range {
+            path: path.to_string(),
+            key,
+            value,
+            allowed,
+        };
+        let d = &self.domain;
+        if !(d.gamma_min.is_finite() && d.gamma_min > 0.0) {
+            return Err(err(
+                "domain.gamma_min",
+                d.gamma_min.to_string(),
+                "a finite number > 0".into(),
+            ));
+        }
+        if !(d.gamma_max.is_finite() && d.gamma_max > d.gamma_min && d.gamma_max <= 64.0) {
+            return Err(err(
+                "domain.gamma_max",
+                d.gamma_max.to_string(),
+                format!("in (gamma_min = {}, 64]", d.gamma_min),
+            ));
+        }
+        let c2 = 2.0 * d.gamma_max * d.gamma_max / 7.0;
+        if d.alpha_max.is_nan() || d.alpha_max <= c2 {
+            return Err(err(
+                "domain.alpha_max",
+                d.alpha_max.to_string(),
+                format!("\"inf\" or a number > alpha_c2(gamma_max) = {c2}"),
+            ));
+        }
+        let n = &self.nodes;
+        if n.placement != "aligned" {
+            return Err(err(
+                "nodes.placement",
+                format!("\"{}\"", n.placement),
+                "\"aligned\"".into(),
+            ));
+        }
+        if n.stencil != 4 && n.stencil != 6 {
+            return Err(err("nodes.stencil", n.stencil.to_string(), "4 or 6".into()));
+        }
+        if !(n.target_error.is_finite() && n.target_error > 0.0 && n.target_error < 0.1) {
+            return Err(err(
+                "nodes.target_error",
+                n.target_error.to_string(),
+                "in (0, 0.1)".into(),
+            ));
+        }
+        let min_leaf = 2 * (n.stencil - 1);
+        if n.leaf_intervals < min_leaf || n.leaf_intervals > 64 || n.leaf_intervals % 2 != 0 {
+            return Err(err(
+                "nodes.leaf_intervals",
+                n.leaf_intervals.to_string(),
+                format!("an even number in [2(stencil - 1) = {min_leaf}, 64]"),
+            ));
+        }
+        if !(n.blocks_per_unit_gamma.is_finite()
+            && n.blocks_per_unit_gamma >= 0.1
+            && n.blocks_per_unit_gamma <= 1024.0)
+        {
+            return Err(err(
+                "nodes.blocks_per_unit_gamma",
+                n.blocks_per_unit_gamma.to_string(),
+                "in [0.1, 1024]".into(),
+            ));
+        }
+        if n.blocks_coord == 0 || n.blocks_coord > 1024 {
+            return Err(err(
+                "nodes.blocks_coord",
+                n.blocks_coord.to_string(),
+                "in [1, 1024]".into(),
+            ));
+        }
+        if n.max_nodes < 100 {
+            return Err(err(
+                "nodes.max_nodes",
+                n.max_nodes.to_string(),
+                ">= 100".into(),
+            ));
+        }
+        let s = &self.solver;
+        if !(s.tol.is_finite() && s.tol >= 1e-10 && s.tol < 0.01) {
+            return Err(err(
+                "solver.tol",
+                s.tol.to_string(),
+                "in [1e-10, 0.01)".into(),
+            ));
+        }
+        if s.tol > n.target_error {
+            return Err(err(
+                "solver.tol",
+                s.tol.to_string(),
+                format!("<= nodes.target_error = {} (nodes must be more accurate than the interpolation)", n.target_error),
+            ));
+        }
+        if let Some(t) = self.checks.tol {
+            if !(t.is_finite() && t >= 1e-10 && t <= s.tol) {
+                return Err(err(
+                    "checks.tol",
+                    t.to_string(),
+                    format!("in [1e-10, solver.tol = {}]", s.tol),
+                ));
+            }
+        }
+        // The held-out checks are what a table's stated error rests on: at least one per patch.
+        if self.checks.per_patch == 0 || self.checks.per_patch > 100_000 {
+            return Err(err(
+                "checks.per_patch",
+                self.checks.per_patch.to_string(),
+                "in [1, 100000] (the held-out checks measure the table's error)".into(),
+            ));
+        }
+        if self.run.threads > 1024 {
+            return Err(err(
+                "run.threads",
+                self.run.threads.to_string(),
+                "in [0, 1024] (0 = one per core)".into(),
+            ));
+        }
+        if self.output.as_os_str().is_empty() {
+            return Err(err("output", "\"\"".into(), "a file path".into()));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+output = "t.h5"
+[domain]
+gamma_min = 0.1
+gamma_max = 3.5
+alpha_max = "inf"
+[nodes]
+target_error = 1e-5
+[solver]
+tol = 1e-6
+"#;
+
+    #[test]
+    fn parses_good_config_with_defaults() {
+        let c = Config::parse(GOOD, "x.toml").expect("valid");
+        assert!(c.domain.alpha_max.is_infinite());
+        assert_eq!(c.nodes.stencil, 4);
+        assert_eq!(c.run.threads, 0);
+    }
+
+    #[test]
+    fn rejects_unknown_key_naming_it() {
+        let bad = GOOD.replace("tol = 1e-6", "tol = 1e-6\ntolerance = 2");
+        let e = Config::parse(&bad, "x.toml").unwrap_err().to_string();
+        assert!(e.contains("tolerance"), "{e}");
+    }
+
+    #[test]
+    fn rejects_out_of_range_naming_key_and_range() {
+        let bad = GOOD.replace("gamma_min = 0.1", "gamma_min = -1");
+        let e = Config::parse(&bad, "x.toml").unwrap_err().to_string();
+        assert!(e.contains("domain.gamma_min") && e.contains("> 0"), "{e}");
+        let bad = GOOD.replace("gamma_max = 3.5", "gamma_max = 0.05");
+        let e = Config::parse(&bad, "x.toml").unwrap_err().to_string();
+        assert!(e.contains("domain.gamma_max"), "{e}");
+        let bad = GOOD.replace("tol = 1e-6", "tol = nan");
+        let e = Config::parse(&bad, "x.toml").unwrap_err().to_string();
+        assert!(e.contains("solver.tol"), "{e}");
+        let bad = GOOD.replace("alpha_max = \"inf\"", "alpha_max = 0.5");
+        let e = Config::parse(&bad, "x.toml").unwrap_err().to_string();
+        assert!(e.contains("domain.alpha_max"), "{e}");
+    }
+
+    #[test]
+    fn solver_preset_sets_the_tolerance_and_excludes_tol() {
+        let fast = GOOD
+            .replace("tol = 1e-6", "preset = \"fast\"")
+            .replace("target_error = 1e-5", "target_error = 1e-3");
+        let c = Config::parse(&fast, "x.toml").expect("preset fast");
+        assert_eq!(
+            (c.solver.tol, c.solver.preset.as_deref()),
+            (1e-4, Some("fast"))
+        );
+        let c = Config::parse(
+            &GOOD.replace("tol = 1e-6", "preset = \"standard\""),
+            "x.toml",
+        )
+        .expect("preset standard");
+        assert_eq!(c.solver.tol, 1e-6);
+        for (text, needle) in [
+            ("preset = \"quick\"", "solver.preset"),
+            ("tol = 1e-6\npreset = \"fast\"", "not both"),
+            ("", "is required"),
+        ] {
+            let e = Config::parse(&GOOD.replace("tol = 1e-6", text), "x.toml")
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(needle), "{text}: {e}");
+        }
+    }
+}

@@ -1,0 +1,1114 @@
+//! Builds a `P(γ, α)` table: places nodes on curve-aligned patches, refines them until the
+//! predicted interpolation error meets the target, runs independent impacts in parallel (rayon)
+//! and measures the interpolation error at held-out points. [`nodestore`] owns the checkpoint
+//! and shard-part files; the table file itself is written by `oblique_table::write`.
+
+pub mod config;
+pub mod nodestore;
+
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use oblique_table::surface::{stencil, Patch, PatchKind, Region, Surface, Warp};
+pub use oblique_table::write::{Built, BuiltPatch};
+use oblique_table::Check;
+use rayon::prelude::*;
+use thiserror::Error;
+
+pub use config::Config;
+use oblique_solver::{Accuracy, PhysicsError, Scheme};
+pub mod warp;
+
+/// Engine version.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+/// Git commit the engine was built from (`-dirty` when the work tree had changes).
+pub const GIT_COMMIT: &str = env!("OBLIQUE_GIT_COMMIT");
+
+/// Current UTC time as RFC 3339 (`YYYY-MM-DDTHH:MM:SSZ`).
+pub fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs() as i64)
+        .unwrap_or(0);
+    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem / 60 % 60,
+        rem % 60
+    )
+}
+
+/// The provenance of a table built now by this engine from `cfg` (whose text is `config_text`)
+/// in `wall_time_s` seconds.
+pub fn provenance(
+    cfg: &Config,
+    config_text: String,
+    wall_time_s: f64,
+) -> oblique_table::Provenance {
+    oblique_table::Provenance {
+        schema_version: oblique_table::format::SCHEMA_VERSION,
+        engine_version: VERSION.into(),
+        git_commit: GIT_COMMIT.into(),
+        config: config_text,
+        solver: format!(
+            "scheme=accurate tol={:e} (automatic refinement, error estimate per node)",
+            cfg.solver.tol
+        ),
+        created: crate::utc_now(),
+        wall_time_s,
+        node_tol: cfg.solver.tol,
+        check_tol: cfg.check_tol(),
+        target_error: cfg.nodes.target_error,
+    }
+}
+
+/// Errors of a sweep.
+#[derive(Debug, Error)]
+pub enum SweepError {
+    /// The fold curve F₊ could not be traced for the warp of the partial-slip patch.
+    #[error(
+        "fold curve F+ at gamma = {gamma}: {what} (set nodes.fold_warp = false to build without \
+         the warp)"
+    )]
+    Fold {
+        /// γ of the failed point.
+        gamma: f64,
+        /// What went wrong.
+        what: String,
+    },
+    /// A node could not be computed.
+    #[error("node gamma = {gamma}, alpha = {alpha}: {source}")]
+    Node {
+        /// γ of the node.
+        gamma: f64,
+        /// α of the node.
+        alpha: f64,
+        /// The solver's error.
+        source: PhysicsError,
+    },
+    /// The refinement would exceed `nodes.max_nodes`.
+    #[error(
+        "patch {patch}: refinement round {round} needs {more} more nodes, {needed} in all, more \
+         than nodes.max_nodes = {max}{worst}; raise nodes.max_nodes or loosen \
+         nodes.target_error",
+        worst = match predicted {
+            Some(p) => format!(
+                " (the cells being refined predict errors up to {p:.1e} > target_error {target:e})"
+            ),
+            None => String::new(),
+        }
+    )]
+    TooManyNodes {
+        /// Patch name.
+        patch: &'static str,
+        /// Target error.
+        target: f64,
+        /// The limit.
+        max: usize,
+        /// Refinement round of the patch (1: its root cells).
+        round: usize,
+        /// New nodes the round needs.
+        more: usize,
+        /// Nodes of the whole build with those of the round.
+        needed: usize,
+        /// Largest predicted error of the cells the round refines (`None` in round 0, where no
+        /// cell has been evaluated yet).
+        predicted: Option<f64>,
+    },
+    /// The pre-flight probe found a tolerance the solver cannot reach in reasonable time.
+    #[error(
+        "{key} = {tol:e} cannot be reached at gamma = {gamma}, alpha = {alpha} (the hardest \
+         point of the domain), where every node would take seconds or more ({reason}); {advice}"
+    )]
+    Unreachable {
+        /// Config key of the tolerance.
+        key: &'static str,
+        /// The tolerance.
+        tol: f64,
+        /// γ of the probe.
+        gamma: f64,
+        /// α of the probe.
+        alpha: f64,
+        /// The solver's reason.
+        reason: String,
+        /// What to change in the config.
+        advice: String,
+    },
+    /// A cell at the deepest level still predicts more than the target: `P` is not smooth
+    /// there at the scale the node tolerance resolves (node noise or a kink).
+    #[error(
+        "patch {patch}: a cell of depth {depth} (gamma {gamma_lo:.6}..{gamma_hi:.6}, coordinate \
+         {c_lo:.6}..{c_hi:.6}) still predicts an interpolation error of {predicted:.2e} > \
+         target_error {target:e}, with node error estimates up to {node_error:.1e}; loosen \
+         nodes.target_error or tighten solver.tol"
+    )]
+    DepthLimit {
+        /// Patch name.
+        patch: &'static str,
+        /// Depth of the cell.
+        depth: u32,
+        /// γ range of the cell.
+        gamma_lo: f64,
+        /// Upper γ of the cell.
+        gamma_hi: f64,
+        /// Patch coordinate range of the cell.
+        c_lo: f64,
+        /// Upper coordinate of the cell.
+        c_hi: f64,
+        /// Predicted interpolation error.
+        predicted: f64,
+        /// Target error.
+        target: f64,
+        /// Largest node error estimate of the cell.
+        node_error: f64,
+    },
+}
+
+/// Errors of a sweep beyond the node computations: interruption and stored results.
+#[derive(Debug, Error)]
+pub enum RunError {
+    /// The run was stopped (Ctrl-C); the node store holds what was finished.
+    #[error("interrupted")]
+    Interrupted,
+    /// The node store could not take results.
+    #[error("cannot save results: {0}")]
+    Store(String),
+    /// A merge needs a node that none of the parts holds.
+    #[error(
+        "{count} node(s) needed by the table are in none of the parts (first: gamma = {gamma}, \
+         alpha = {alpha}); the parts are incomplete or come from different builds: rerun the \
+         missing shards"
+    )]
+    Missing {
+        /// Number of missing nodes in the first batch that had any.
+        count: usize,
+        /// γ of the first missing node.
+        gamma: f64,
+        /// α of the first missing node.
+        alpha: f64,
+    },
+    /// A node or the refinement failed.
+    #[error(transparent)]
+    Sweep(#[from] SweepError),
+}
+
+impl RunError {
+    /// Whether the user can fix the cause in the config or on the command line (a limit, a
+    /// tolerance, the parts given to a merge), as opposed to an interruption or a failed write.
+    pub fn is_usage(&self) -> bool {
+        match self {
+            RunError::Sweep(e) => e.is_usage(),
+            RunError::Missing { .. } => true,
+            RunError::Interrupted | RunError::Store(_) => false,
+        }
+    }
+}
+
+impl SweepError {
+    /// Whether a config key decides the failure (every variant names the key to change).
+    pub fn is_usage(&self) -> bool {
+        match self {
+            SweepError::Node { source, .. } => matches!(
+                source,
+                PhysicsError::ToleranceUnreachable { .. }
+                    | PhysicsError::Infeasible { .. }
+                    | PhysicsError::TooLarge { .. }
+            ),
+            SweepError::Fold { .. }
+            | SweepError::TooManyNodes { .. }
+            | SweepError::Unreachable { .. }
+            | SweepError::DepthLimit { .. } => true,
+        }
+    }
+}
+
+/// One computed node: `P(γ, α)` at solver tolerance `tol`, with its error estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeRecord {
+    /// γ.
+    pub gamma: f64,
+    /// α (`∞` allowed).
+    pub alpha: f64,
+    /// Solver tolerance the value was computed with.
+    pub tol: f64,
+    /// `P`.
+    pub p: f64,
+    /// Solver error estimate of `P`.
+    pub error: f64,
+}
+
+impl NodeRecord {
+    /// The exact key of a node: bit patterns of `(γ, α, tol)`.
+    pub fn key(&self) -> (u64, u64, u64) {
+        (
+            self.gamma.to_bits(),
+            self.alpha.to_bits(),
+            self.tol.to_bits(),
+        )
+    }
+}
+
+/// Where a sweep finds values computed before (a checkpoint, shard parts) and saves new ones.
+/// The storage layer implements it; the sweep does no I/O itself.
+pub trait NodeStore: Sync {
+    /// A value computed before, by its exact key.
+    fn get(&self, key: (u64, u64, u64)) -> Option<(f64, f64)>;
+    /// Save newly computed values durably (called after every batch of a few hundred).
+    fn put(&self, records: &[NodeRecord]) -> Result<(), String>;
+}
+
+/// How a sweep runs beyond its config: stored values, sharding, interruption.
+#[derive(Default, Clone, Copy)]
+pub struct RunOptions<'a> {
+    /// Values computed before and the place to save new ones.
+    pub store: Option<&'a dyn NodeStore>,
+    /// Every node must come from the store (a merge): a missing one is an error.
+    pub strict: bool,
+    /// Set (e.g. by a Ctrl-C handler) to stop after the current batch.
+    pub stop: Option<&'a AtomicBool>,
+}
+
+/// Which part of the work a shard does: root cells and check points whose global index `i`
+/// has `i mod count == index` (`index` in `0..count`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, `0 ≤ index < count`.
+    pub index: usize,
+    /// Number of shards.
+    pub count: usize,
+}
+
+impl Shard {
+    fn owns(&self, i: usize) -> bool {
+        i % self.count == self.index
+    }
+}
+
+/// Points per batch between saves and interruption checks.
+const BATCH: usize = 256;
+
+/// Progress reporting for long runs (implemented by the CLI).
+///
+/// A build goes through the stages of [`stages`] in order; each begins with [`Progress::phase`].
+/// A stage that simulates (a refinement round, the checks) then announces how many impacts it
+/// runs with [`Progress::total`] (known from the moment its nodes are placed; the number of
+/// rounds of a refinement is not known in advance) and reports them with [`Progress::inc`].
+pub trait Progress: Sync {
+    /// `stage` (one of [`stages`]) begins or goes on, `detail` says with what (e.g. the round).
+    fn phase(&self, stage: &str, detail: &str);
+    /// The current phase simulates `n` impacts (nodes found in a checkpoint are not counted).
+    fn total(&self, n: u64);
+    /// `n` impacts finished.
+    fn inc(&self, n: u64);
+}
+
+/// A progress sink that reports nothing.
+pub struct Silent;
+
+impl Progress for Silent {
+    fn phase(&self, _: &str, _: &str) {}
+    fn total(&self, _: u64) {}
+    fn inc(&self, _: u64) {}
+}
+
+/// Name of the stage that traces the fold curve F₊ (before the partial-slip patch).
+pub const STAGE_FOLD: &str = "fold tracing";
+/// Name of the held-out checks' stage (the last of a build).
+pub const STAGE_CHECKS: &str = "held-out checks";
+
+/// The stage of a patch's refinement rounds.
+fn stage_refine(patch: &str) -> String {
+    format!("{patch} refinement")
+}
+
+/// The stages of a build (or of one shard) of `cfg`, in the order [`Progress::phase`] reports
+/// them: each patch's refinement (preceded by [`STAGE_FOLD`] when the partial-slip patch is
+/// warped), then [`STAGE_CHECKS`].
+pub fn stages(cfg: &Config) -> Vec<String> {
+    let mut out = Vec::new();
+    for spec in patch_specs(cfg) {
+        if cfg.nodes.fold_warp && spec.kind == PatchKind::PartialSlip {
+            out.push(STAGE_FOLD.to_string());
+        }
+        out.push(stage_refine(spec.name));
+    }
+    out.push(STAGE_CHECKS.to_string());
+    out
+}
+
+/// Deepest quadtree level (a leaf at this depth has `2^-MAX_DEPTH` of its root's size).
+const MAX_DEPTH: u32 = 12;
+
+/// Compute P at many points in parallel, in order (deterministic whatever the thread count).
+pub fn solve_points(
+    points: &[(f64, f64)],
+    tol: f64,
+    progress: &dyn Progress,
+) -> Result<Vec<(f64, f64)>, SweepError> {
+    solve_points_with(points, tol, progress, RunOptions::default()).map_err(|e| match e {
+        RunError::Sweep(e) => e,
+        // No store and no stop flag: nothing else can happen.
+        other => unreachable!("solve_points without options: {other}"),
+    })
+}
+
+fn solve_one(gamma: f64, alpha: f64, tol: f64) -> Result<(f64, f64), SweepError> {
+    oblique_solver::solve(
+        gamma,
+        alpha,
+        Accuracy::Tolerance(tol),
+        Scheme::Accurate,
+        false,
+    )
+    .map(|s| (s.p, s.error_estimate))
+    .map_err(|source| SweepError::Node {
+        gamma,
+        alpha,
+        source,
+    })
+}
+
+/// [`solve_points`] with stored values, saving in batches and stopping when asked.
+pub fn solve_points_with(
+    points: &[(f64, f64)],
+    tol: f64,
+    progress: &dyn Progress,
+    opts: RunOptions,
+) -> Result<Vec<(f64, f64)>, RunError> {
+    let rec = |&(gamma, alpha): &(f64, f64)| NodeRecord {
+        gamma,
+        alpha,
+        tol,
+        p: f64::NAN,
+        error: f64::NAN,
+    };
+    let mut out: Vec<Option<(f64, f64)>> = points
+        .iter()
+        .map(|pt| opts.store.and_then(|s| s.get(rec(pt).key())))
+        .collect();
+    let todo: Vec<usize> = (0..points.len()).filter(|&i| out[i].is_none()).collect();
+    if opts.strict {
+        if let Some(&i) = todo.first() {
+            return Err(RunError::Missing {
+                count: todo.len(),
+                gamma: points[i].0,
+                alpha: points[i].1,
+            });
+        }
+    }
+    progress.total(todo.len() as u64);
+    let stopped = || opts.stop.is_some_and(|s| s.load(Ordering::Relaxed));
+    for batch in todo.chunks(BATCH) {
+        if stopped() {
+            return Err(RunError::Interrupted);
+        }
+        let values: Vec<(f64, f64)> = batch
+            .par_iter()
+            .map(|&i| {
+                let r = solve_one(points[i].0, points[i].1, tol);
+                progress.inc(1);
+                r
+            })
+            .collect::<Result<_, _>>()?;
+        if let Some(store) = opts.store {
+            let records: Vec<NodeRecord> = batch
+                .iter()
+                .zip(&values)
+                .map(|(&i, &(p, error))| NodeRecord {
+                    p,
+                    error,
+                    ..rec(&points[i])
+                })
+                .collect();
+            store.put(&records).map_err(RunError::Store)?;
+        }
+        for (&i, v) in batch.iter().zip(values) {
+            out[i] = Some(v);
+        }
+    }
+    Ok(out.into_iter().flatten().collect())
+}
+
+struct PatchSpec {
+    name: &'static str,
+    kind: PatchKind,
+    gamma_lo: f64,
+    gamma_hi: f64,
+}
+
+fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
+    let d = &cfg.domain;
+    let mut specs = Vec::new();
+    if d.gamma_min < 1.0 {
+        specs.push(PatchSpec {
+            name: oblique_table::format::PATCH_STICK_LOW,
+            kind: PatchKind::Stick,
+            gamma_lo: d.gamma_min,
+            gamma_hi: d.gamma_max.min(1.0),
+        });
+    }
+    if d.gamma_max > 1.0 {
+        let lo = d.gamma_min.max(1.0);
+        specs.push(PatchSpec {
+            name: oblique_table::format::PATCH_PARTIAL_HIGH,
+            kind: PatchKind::PartialSlip,
+            gamma_lo: lo,
+            gamma_hi: d.gamma_max,
+        });
+        specs.push(PatchSpec {
+            name: oblique_table::format::PATCH_STICK_HIGH,
+            kind: PatchKind::Stick,
+            gamma_lo: lo,
+            gamma_hi: d.gamma_max,
+        });
+    }
+    specs
+}
+
+/// Root cells of a patch along γ.
+fn roots_gamma(cfg: &Config, spec: &PatchSpec) -> usize {
+    ((spec.gamma_hi - spec.gamma_lo) * cfg.nodes.blocks_per_unit_gamma)
+        .ceil()
+        .max(1.0) as usize
+}
+
+/// Root cells of a patch.
+fn root_count(cfg: &Config, spec: &PatchSpec) -> usize {
+    roots_gamma(cfg, spec) * cfg.nodes.blocks_coord
+}
+
+/// The root grid of a patch being built and the exact lattice its nodes live on.
+struct Layout<'a> {
+    spec: &'a PatchSpec,
+    bg: usize,
+    bc: usize,
+    m: usize,
+    alpha_max: f64,
+    /// Fold warp of the partial-slip patch: the lattice is in `c'`, α comes from `c`.
+    warp: Option<&'a Warp>,
+}
+
+/// A node on the finest lattice of a patch: `(γ index, c index, warped)`. A node on the
+/// warp's `start` row exists twice: unwarped for the leaves below it, warped for those above.
+type Key = (u64, u64, bool);
+
+/// A quadtree cell: its depth and integer position at that depth.
+#[derive(Debug, Clone, Copy)]
+struct Cell {
+    depth: u32,
+    ig: u64,
+    ic: u64,
+}
+
+impl Layout<'_> {
+    /// Lattice units per root cell per axis.
+    fn fine(&self) -> u64 {
+        (self.m as u64) << MAX_DEPTH
+    }
+
+    /// `(γ, c, α)` of a lattice node (computed from the key alone, so shared nodes agree).
+    fn point(&self, key: Key) -> (f64, f64, f64) {
+        let ng = self.bg as u64 * self.fine();
+        let nc = self.bc as u64 * self.fine();
+        let xg = key.0 as f64 / ng as f64;
+        let gamma = if key.0 == ng {
+            self.spec.gamma_hi
+        } else {
+            self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * xg
+        };
+        let c = key.1 as f64 / nc as f64;
+        let unwarped = match self.warp {
+            Some(w) if key.2 => w.invert(gamma, c),
+            _ => c,
+        };
+        (
+            gamma,
+            c,
+            self.spec.kind.alpha(gamma, unwarped, self.alpha_max),
+        )
+    }
+
+    /// The cell's extent along γ in root-row units (exact dyadic values).
+    fn rows(cell: Cell) -> (f64, f64) {
+        let scale = f64::from(1u32 << cell.depth);
+        (cell.ig as f64 / scale, (cell.ig + 1) as f64 / scale)
+    }
+
+    /// Whether the cell lies at or beyond the warp's start (its nodes are warped).
+    fn warped(&self, cell: Cell) -> bool {
+        self.warp.is_some_and(|w| Self::rows(cell).0 >= w.start)
+    }
+
+    /// Whether the warp's start cuts through the cell: it is split without being evaluated, so
+    /// that every leaf lies on one side.
+    fn straddles(&self, cell: Cell) -> bool {
+        let (lo, hi) = Self::rows(cell);
+        self.warp.is_some_and(|w| lo < w.start && w.start < hi)
+    }
+
+    /// Lattice keys of a cell's `(m+1)²` nodes, row-major (`γ` outer).
+    fn cell_keys(&self, cell: Cell) -> Vec<Key> {
+        let step = 1u64 << (MAX_DEPTH - cell.depth);
+        let m = self.m as u64;
+        let warped = self.warped(cell);
+        (0..=m)
+            .flat_map(|i| (0..=m).map(move |j| (i, j)))
+            .map(|(i, j)| ((cell.ig * m + i) * step, (cell.ic * m + j) * step, warped))
+            .collect()
+    }
+}
+
+impl Cell {
+    fn children(self) -> [Cell; 4] {
+        let child = |qg: u64, qc: u64| Cell {
+            depth: self.depth + 1,
+            ig: 2 * self.ig + qg,
+            ic: 2 * self.ic + qc,
+        };
+        // Order fixed by the format: child `2·q_γ + q_c`.
+        [child(0, 0), child(0, 1), child(1, 0), child(1, 1)]
+    }
+}
+
+/// Largest deviation, over the nodes of an `n`-interval grid that are not on its `n/2`-interval
+/// sub-grid, between the value and the `k`-point tensor interpolation from the sub-grid.
+fn surplus(values: &[f64], n: usize, k: usize) -> f64 {
+    let coarse_n = n / 2;
+    let at = |i: usize, j: usize| values[i * (n + 1) + j];
+    let mut wg = [0.0; 8];
+    let mut wc = [0.0; 8];
+    let mut worst = 0.0_f64;
+    for i in 0..=n {
+        for j in 0..=n {
+            if i % 2 == 0 && j % 2 == 0 {
+                continue;
+            }
+            let (sg, kg) = stencil(i as f64 / 2.0, coarse_n + 1, k, &mut wg);
+            let (sc, kc) = stencil(j as f64 / 2.0, coarse_n + 1, k, &mut wc);
+            let mut v = 0.0;
+            for (x, wx) in wg.iter().enumerate().take(kg) {
+                for (y, wy) in wc.iter().enumerate().take(kc) {
+                    v += wx * wy * at(2 * (sg + x), 2 * (sc + y));
+                }
+            }
+            worst = worst.max((v - at(i, j)).abs());
+        }
+    }
+    worst
+}
+
+/// Build one patch by adaptive quadtree refinement.
+///
+/// Every open cell gets its `(m+1)²` nodes (nodes shared with cells already done are reused).
+/// Its surplus `s` (the error of interpolating from its own half grid) measures the error of a
+/// grid twice as coarse; the cell's own error is predicted as `s/4`, the second-order rate that
+/// holds where a kink curve (curvature jump) crosses the cell (smooth cells converge faster, so
+/// the prediction is conservative there). A cell whose prediction exceeds the target is split
+/// into four children, which reuse a quarter of its nodes.
+///
+/// With a `shard`, only the root cells whose global index (`first_root` + index in the patch)
+/// the shard owns are refined, their nodes go to the store, and nothing is assembled (`None`).
+/// Each root's tree depends only on its own nodes, so the shards together compute every node of
+/// the whole run.
+fn build_patch(
+    cfg: &Config,
+    spec: &PatchSpec,
+    progress: &dyn Progress,
+    total_nodes: &mut usize,
+    opts: RunOptions,
+    first_root: usize,
+    shard: Option<Shard>,
+) -> Result<Option<BuiltPatch>, RunError> {
+    let k = cfg.nodes.stencil;
+    let warp = if cfg.nodes.fold_warp && spec.kind == PatchKind::PartialSlip {
+        progress.phase(
+            STAGE_FOLD,
+            &format!("the fold curve F+ for the warp of {}", spec.name),
+        );
+        warp::fold_warp(
+            spec.gamma_lo,
+            spec.gamma_hi,
+            roots_gamma(cfg, spec),
+            cfg.nodes.blocks_coord,
+        )?
+    } else {
+        None
+    };
+    let layout = Layout {
+        spec,
+        bg: roots_gamma(cfg, spec),
+        bc: cfg.nodes.blocks_coord,
+        m: cfg.nodes.leaf_intervals,
+        alpha_max: cfg.domain.alpha_max,
+        warp: warp.as_ref(),
+    };
+    let m = layout.m;
+    // All cells ever created, roots first; `child[i]` is the first child of a split cell.
+    let mut cells: Vec<Cell> = (0..layout.bg as u64)
+        .flat_map(|ig| (0..layout.bc as u64).map(move |ic| Cell { depth: 0, ig, ic }))
+        .collect();
+    let mut child: Vec<Option<usize>> = vec![None; cells.len()];
+    let mut predicted = vec![f64::NAN; cells.len()];
+    let mut open: Vec<usize> = (0..cells.len())
+        .filter(|&i| shard.map_or(true, |sh| sh.owns(first_root + i)))
+        .collect();
+    let mut cache: HashMap<Key, (f64, f64)> = HashMap::new();
+    for round in 0.. {
+        let mut wanted: Vec<Key> = open
+            .iter()
+            .filter(|&&c| !layout.straddles(cells[c]))
+            .flat_map(|&c| layout.cell_keys(cells[c]))
+            .filter(|key| !cache.contains_key(key))
+            .collect();
+        wanted.sort_unstable();
+        wanted.dedup();
+        if *total_nodes + wanted.len() > cfg.nodes.max_nodes {
+            // The cells this round refines are the children of cells that predicted too much.
+            let worst = (0..cells.len())
+                .filter(|&c| child[c].is_some() && predicted[c].is_finite())
+                .map(|c| predicted[c])
+                .reduce(f64::max);
+            return Err(RunError::Sweep(SweepError::TooManyNodes {
+                patch: spec.name,
+                target: cfg.nodes.target_error,
+                max: cfg.nodes.max_nodes,
+                round: round + 1,
+                more: wanted.len(),
+                needed: *total_nodes + wanted.len(),
+                predicted: worst,
+            }));
+        }
+        progress.phase(
+            &stage_refine(spec.name),
+            &format!(
+                "round {}: {} open cells, {} new nodes",
+                round + 1,
+                open.len(),
+                wanted.len()
+            ),
+        );
+        let points: Vec<(f64, f64)> = wanted
+            .iter()
+            .map(|&key| {
+                let (g, _, a) = layout.point(key);
+                (g, a)
+            })
+            .collect();
+        let values = solve_points_with(&points, cfg.solver.tol, progress, opts)?;
+        *total_nodes += wanted.len();
+        cache.extend(wanted.into_iter().zip(values));
+        let mut next = Vec::new();
+        for &c in &open {
+            // A cell across the warp's start is split without being evaluated: no leaf may
+            // straddle it.
+            if !layout.straddles(cells[c]) {
+                let vals: Vec<f64> = layout
+                    .cell_keys(cells[c])
+                    .iter()
+                    .map(|key| cache[key].0)
+                    .collect();
+                let pred = surplus(&vals, m, k) / 4.0;
+                predicted[c] = pred;
+                if pred <= cfg.nodes.target_error {
+                    continue;
+                }
+                if cells[c].depth >= MAX_DEPTH {
+                    let keys = layout.cell_keys(cells[c]);
+                    let (g0, c0, _) = layout.point(keys[0]);
+                    let (g1, c1, _) = layout.point(keys[keys.len() - 1]);
+                    return Err(RunError::Sweep(SweepError::DepthLimit {
+                        patch: spec.name,
+                        depth: cells[c].depth,
+                        gamma_lo: g0,
+                        gamma_hi: g1,
+                        c_lo: c0,
+                        c_hi: c1,
+                        predicted: pred,
+                        target: cfg.nodes.target_error,
+                        node_error: keys.iter().map(|k| cache[k].1).fold(0.0, f64::max),
+                    }));
+                }
+            }
+            child[c] = Some(cells.len());
+            for ch in cells[c].children() {
+                next.push(cells.len());
+                cells.push(ch);
+                child.push(None);
+                predicted.push(f64::NAN);
+            }
+        }
+        if next.is_empty() {
+            break;
+        }
+        open = next;
+    }
+    if shard.is_some() {
+        return Ok(None);
+    }
+    // Leaves are numbered in cell order.
+    let mut tree = Vec::with_capacity(cells.len());
+    let mut leaf_error = Vec::new();
+    let mut leaf_depth = Vec::new();
+    let (mut p, mut err, mut gamma, mut coord, mut alpha) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (c, cell) in cells.iter().enumerate() {
+        match child[c] {
+            Some(first) => tree.push(first as i32),
+            None => {
+                tree.push(-(leaf_error.len() as i32) - 1);
+                leaf_error.push(predicted[c]);
+                leaf_depth.push(cell.depth);
+                for key in layout.cell_keys(*cell) {
+                    let (g, cc, a) = layout.point(key);
+                    let (v, e) = cache[&key];
+                    p.push(v);
+                    err.push(e);
+                    gamma.push(g);
+                    coord.push(cc);
+                    alpha.push(a);
+                }
+            }
+        }
+    }
+    let simulated = cache.values().filter(|(_, e)| *e > 0.0).count();
+    Ok(Some(BuiltPatch {
+        name: spec.name,
+        patch: Patch {
+            kind: spec.kind,
+            gamma_lo: spec.gamma_lo,
+            gamma_hi: spec.gamma_hi,
+            blocks_gamma: layout.bg,
+            blocks_coord: layout.bc,
+            leaf_intervals: m,
+            tree,
+            p,
+            error_estimate: err,
+            warp: warp.clone(),
+        },
+        gamma,
+        coord,
+        alpha,
+        leaf_error,
+        leaf_depth,
+        unique_nodes: cache.len(),
+        simulated,
+    }))
+}
+
+/// Finest level a pre-flight probe may use (one impact at 32768 steps × 32768 springs takes
+/// about a second).
+const PROBE_MAX_STEPS: usize = 1 << 15;
+
+/// The refinement limits of a pre-flight probe (and of the default of `checks.tol`).
+pub fn probe_limits() -> oblique_solver::impact::Limits {
+    oblique_solver::impact::Limits {
+        max_steps: PROBE_MAX_STEPS,
+        ..oblique_solver::impact::Limits::default()
+    }
+}
+
+/// What the pre-flight probe measured.
+#[derive(Debug, Clone, Copy)]
+pub struct Preflight {
+    /// Wall time of the slowest probe (s): an upper estimate of one node's cost.
+    pub slowest_node_s: f64,
+    /// Tolerance of the held-out checks: `checks.tol` when set, else the tightest of
+    /// [`default_check_tols`] that the probes reached (`solver.tol` at worst).
+    pub check_tol: f64,
+    /// `checks.tol` is not set and `solver.tol / 10` was out of reach: `check_tol` is looser.
+    pub check_tol_loosened: bool,
+}
+
+/// The candidates for the default of `checks.tol`, tightest first: `solver.tol` / 10, / 5, / 2,
+/// / 1 (at least 1e-10). The pre-flight takes the first it can reach.
+pub fn default_check_tols(cfg: &Config) -> [f64; 4] {
+    let tol = cfg.solver.tol;
+    [tol / 10.0, tol / 5.0, tol / 2.0, tol].map(|t| t.max(1e-10))
+}
+
+/// The default check tolerance a sharded run used, found in its merged parts: the candidate
+/// of [`default_check_tols`] at which the parts hold the first held-out check (`None` when
+/// `checks.tol` is set, or when no candidate fits).
+pub fn check_tol_in_store(cfg: &Config, store: &dyn NodeStore) -> Option<f64> {
+    if cfg.checks.tol.is_some() {
+        return None;
+    }
+    let &(gamma, alpha) = check_points(cfg).first()?;
+    default_check_tols(cfg).into_iter().find(|&tol| {
+        let key = NodeRecord {
+            gamma,
+            alpha,
+            tol,
+            p: f64::NAN,
+            error: f64::NAN,
+        }
+        .key();
+        store.get(key).is_some()
+    })
+}
+
+/// Why a probe failed, naming only the limits that were exceeded.
+fn unreachable_reason(e: &PhysicsError) -> String {
+    match e {
+        PhysicsError::Infeasible {
+            springs,
+            steps,
+            work,
+            memory_mb,
+            max_steps,
+            max_work,
+            max_memory_mb,
+            ..
+        } => {
+            let mut over = Vec::new();
+            if steps > max_steps {
+                over.push(format!("{steps} steps, more than the {max_steps} allowed"));
+            }
+            if work > max_work {
+                over.push(format!(
+                    "{work:.1e} spring-steps, more than the {max_work:.1e} allowed"
+                ));
+            }
+            if memory_mb > max_memory_mb {
+                over.push(format!(
+                    "{memory_mb:.0} MB, more than the {max_memory_mb:.0} MB allowed"
+                ));
+            }
+            let res = oblique_solver::Resolution {
+                springs: *springs,
+                steps: *steps,
+            };
+            format!("even at best it needs {res}: {}", over.join(", "))
+        }
+        other => {
+            let text = other.to_string();
+            text.split("; loosen").next().unwrap_or(&text).to_string()
+        }
+    }
+}
+
+/// Check before the work starts that the node and check tolerances can be reached: solve the
+/// hardest points of the domain (largest γ in partial slip and at α = ∞, where `P` oscillates
+/// fastest) with the refinement capped at [`PROBE_MAX_STEPS`]. A tolerance that needs more would
+/// make every node take seconds to minutes: refused, naming the key to change. When `checks.tol`
+/// is not set, its default is the tightest of [`default_check_tols`] that is reached: a default
+/// never refuses a run.
+pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
+    let g = cfg.domain.gamma_max;
+    let mut probes = vec![(g, f64::INFINITY)];
+    if g > 1.0 {
+        let (a1, a2) = (
+            oblique_table::surface::alpha_c1(g),
+            oblique_table::surface::alpha_c2(g),
+        );
+        probes.push((g, (a1 * a2).sqrt()));
+    }
+    let limits = probe_limits();
+    let mut slowest = 0.0f64;
+    // Solve every probe point at `tol`: the first failure, as the refusal of `key`.
+    let mut probe = |key: &'static str, tol: f64, advice: &str| -> Result<(), SweepError> {
+        for &(gamma, alpha) in &probes {
+            let start = std::time::Instant::now();
+            let r = oblique_solver::impact::solve_with_limits(
+                gamma,
+                alpha,
+                Accuracy::Tolerance(tol),
+                Scheme::Accurate,
+                false,
+                limits,
+            );
+            slowest = slowest.max(start.elapsed().as_secs_f64());
+            match r {
+                Ok(_) => {}
+                Err(
+                    e @ (PhysicsError::ToleranceUnreachable { .. }
+                    | PhysicsError::Infeasible { .. }),
+                ) => {
+                    return Err(SweepError::Unreachable {
+                        key,
+                        tol,
+                        gamma,
+                        alpha,
+                        reason: unreachable_reason(&e),
+                        advice: advice.to_string(),
+                    });
+                }
+                Err(source) => {
+                    return Err(SweepError::Node {
+                        gamma,
+                        alpha,
+                        source,
+                    })
+                }
+            }
+        }
+        Ok(())
+    };
+    probe("solver.tol", cfg.solver.tol, "loosen solver.tol")?;
+    let (check_tol, check_tol_loosened) = match cfg.checks.tol {
+        Some(t) => {
+            probe(
+                "checks.tol",
+                t,
+                &format!(
+                    "loosen checks.tol (at most solver.tol = {:e})",
+                    cfg.solver.tol
+                ),
+            )?;
+            (t, false)
+        }
+        None => {
+            let candidates = default_check_tols(cfg);
+            let last = candidates.len() - 1;
+            // `solver.tol` itself (the last candidate) was reached just above.
+            let i = (0..last)
+                .find(|&i| probe("checks.tol", candidates[i], "").is_ok())
+                .unwrap_or(last);
+            (candidates[i], i > 0)
+        }
+    };
+    Ok(Preflight {
+        slowest_node_s: slowest,
+        check_tol,
+        check_tol_loosened,
+    })
+}
+
+/// Deterministic uniform numbers in `[0, 1)` (SplitMix64) for the held-out check points and
+/// `sweep verify`'s sample: the same stream for a seed on every platform.
+pub struct SplitMix(pub u64);
+
+impl SplitMix {
+    /// The next number in `[0, 1)` (53 random bits).
+    pub fn uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Run a whole sweep: build every patch, then simulate and compare the held-out checks.
+pub fn build(cfg: &Config, progress: &dyn Progress) -> Result<Built, SweepError> {
+    build_with(cfg, progress, RunOptions::default()).map_err(|e| match e {
+        RunError::Sweep(e) => e,
+        other => unreachable!("build without options: {other}"),
+    })
+}
+
+/// [`build`] with stored values, saving and interruption ([`RunOptions`]). With a store that
+/// holds every node (a finished checkpoint, merged shard parts) nothing is simulated, and the
+/// table is the same, bit for bit, as that of an uninterrupted single run.
+pub fn build_with(
+    cfg: &Config,
+    progress: &dyn Progress,
+    opts: RunOptions,
+) -> Result<Built, RunError> {
+    let mut total = 0usize;
+    let mut patches = Vec::new();
+    for spec in patch_specs(cfg) {
+        patches.extend(build_patch(
+            cfg, &spec, progress, &mut total, opts, 0, None,
+        )?);
+    }
+    let find = |name: &str| {
+        patches
+            .iter()
+            .find(|p| p.name == name)
+            .map(|p| p.patch.clone())
+    };
+    let surface = Surface {
+        gamma_min: cfg.domain.gamma_min,
+        gamma_max: cfg.domain.gamma_max,
+        alpha_max: cfg.domain.alpha_max,
+        stencil: cfg.nodes.stencil,
+        stick_low: find(oblique_table::format::PATCH_STICK_LOW),
+        partial_high: find(oblique_table::format::PATCH_PARTIAL_HIGH),
+        stick_high: find(oblique_table::format::PATCH_STICK_HIGH),
+    };
+    let points = check_points(cfg);
+    progress.phase(STAGE_CHECKS, &format!("{} points", points.len()));
+    let sims = solve_points_with(&points, cfg.check_tol(), progress, opts)?;
+    let checks = points
+        .iter()
+        .zip(&sims)
+        .map(|(&(gamma, alpha), &(p_sim, _))| {
+            let p_int = surface.eval(gamma, alpha).unwrap_or(f64::NAN);
+            Check {
+                gamma,
+                alpha,
+                p_simulated: p_sim,
+                p_interpolated: p_int,
+                interpolation_error: (p_int - p_sim).abs(),
+                patch: Region::of(gamma, alpha).index(),
+            }
+        })
+        .collect();
+    Ok(Built {
+        surface,
+        patches,
+        checks,
+    })
+}
+
+/// Compute one shard's share of a sweep into `opts.store`: the root cells and held-out checks
+/// whose global index `i` has `i mod count == index`. Merging the stores of all shards and
+/// running [`build_with`] on them (strictly) gives the single run's table.
+pub fn build_shard(
+    cfg: &Config,
+    progress: &dyn Progress,
+    opts: RunOptions,
+    shard: Shard,
+) -> Result<(), RunError> {
+    let mut total = 0usize;
+    let mut first_root = 0;
+    for spec in patch_specs(cfg) {
+        build_patch(
+            cfg,
+            &spec,
+            progress,
+            &mut total,
+            opts,
+            first_root,
+            Some(shard),
+        )?;
+        first_root += root_count(cfg, &spec);
+    }
+    let points: Vec<(f64, f64)> = check_points(cfg)
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| shard.owns(*i))
+        .map(|(_, pt)| pt)
+        .collect();
+    progress.phase(STAGE_CHECKS, &format!("{} points", points.len()));
+    solve_points_with(&points, cfg.check_tol(), progress, opts)?;
+    Ok(())
+}
+
+/// Held-out points: uniform in each patch's (γ, c), strictly inside (c < 1 keeps α finite).
+fn check_points(cfg: &Config) -> Vec<(f64, f64)> {
+    let mut rng = SplitMix(cfg.checks.seed);
+    let mut points = Vec::new();
+    for p in patch_specs(cfg) {
+        for _ in 0..cfg.checks.per_patch {
+            let gamma = p.gamma_lo + (p.gamma_hi - p.gamma_lo) * rng.uniform();
+            let c = rng.uniform();
+            let alpha = p.kind.alpha(gamma, c, cfg.domain.alpha_max);
+            points.push((gamma, alpha));
+        }
+    }
+    points
+}

@@ -1,0 +1,69 @@
+//! The `P(γ, α)` table format, and its only owner: the names of the HDF5 objects and the schema
+//! version ([`format`]), the file's seal, the model of the interpolated surface ([`surface`]:
+//! patches, quadtrees, the warp), the interpolation rule of `docs/table-format.md`
+//! ([`Surface::eval_with`]), the stated error bound ([`bound`]), the reader ([`read`]) and the
+//! writer ([`write`]). Faster evaluators of the same rule live in `oblique-lookup`, pinned to
+//! this one by tests.
+//!
+//! Symbols (as in `physics.md`): `γ = √((7/2) G*/E*)`, `α = μ v_z0/|u0|`, `P = u_after/u_before`,
+//! `α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`.
+
+pub mod bound;
+pub mod format;
+pub mod read;
+pub mod surface;
+pub mod write;
+
+pub use read::{Check, Contents, Provenance};
+pub use surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
+
+use thiserror::Error;
+
+/// Errors of table loading and queries.
+#[derive(Debug, Error)]
+pub enum TableError {
+    /// The file could not be opened or read as HDF5.
+    #[error("cannot read table {path}: {message}")]
+    Io {
+        /// File path.
+        path: String,
+        /// What went wrong.
+        message: String,
+    },
+    /// The file is HDF5 but not a valid table of a schema this crate reads.
+    #[error("invalid table {path}: {message}")]
+    Invalid {
+        /// File path.
+        path: String,
+        /// What is wrong and how to fix it.
+        message: String,
+    },
+    /// A query argument is outside the allowed range.
+    #[error("invalid {name} = {value:?}: must be {allowed}")]
+    Query {
+        /// Argument name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// The allowed range.
+        allowed: String,
+    },
+    /// One query of a batch is invalid.
+    #[error("query {index} (0-based) of the batch: {source}")]
+    Batch {
+        /// Index of the first invalid query.
+        index: usize,
+        /// Why it is invalid.
+        source: Box<TableError>,
+    },
+    /// The slices of a batch differ in length.
+    #[error("batch slice '{name}' has length {len}, expected {expected} (the length of the first input slice: gamma, or incidents)")]
+    Length {
+        /// Name of the slice.
+        name: &'static str,
+        /// Its length.
+        len: usize,
+        /// The length of the first input slice (`gamma`, or `incidents`).
+        expected: usize,
+    },
+}

@@ -1,0 +1,530 @@
+//! Loading and validating a table file.
+
+use std::path::Path;
+
+use hdf5::types::VarLenUnicode;
+
+use crate::format::*;
+use crate::surface::{Patch, PatchKind, Surface, Warp};
+use crate::TableError;
+
+/// Where a table came from (root attributes).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Provenance {
+    /// Schema version of the file.
+    pub schema_version: u32,
+    /// Engine version that wrote it.
+    pub engine_version: String,
+    /// Git commit of the engine.
+    pub git_commit: String,
+    /// The TOML config text.
+    pub config: String,
+    /// Solver settings.
+    pub solver: String,
+    /// Creation time (UTC).
+    pub created: String,
+    /// Build wall time (s).
+    pub wall_time_s: f64,
+    /// Node solver tolerance.
+    pub node_tol: f64,
+    /// Solver tolerance of the held-out check points.
+    pub check_tol: f64,
+    /// Target interpolation error.
+    pub target_error: f64,
+}
+
+/// One held-out check point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Check {
+    /// γ.
+    pub gamma: f64,
+    /// α.
+    pub alpha: f64,
+    /// P simulated at the check tolerance (`check_tol`).
+    pub p_simulated: f64,
+    /// P interpolated from the table.
+    pub p_interpolated: f64,
+    /// |P_interpolated − P_simulated|.
+    pub interpolation_error: f64,
+    /// Patch index (0 stick_low, 1 partial_high, 2 stick_high).
+    pub patch: i32,
+}
+
+/// Everything a table file holds, loaded and validated: the surface of the interpolation
+/// rule, the provenance, the held-out checks and the error bound the table states.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Contents {
+    /// The interpolated surface.
+    pub surface: Surface,
+    /// Provenance attributes.
+    pub provenance: Provenance,
+    /// Held-out check points.
+    pub checks: Vec<Check>,
+    /// The stated error bound ([`crate::bound::surface_bound`] of the leaves' predicted errors;
+    /// NaN for a file without `leaf_predicted_error`).
+    pub error_bound: f64,
+}
+
+struct Reader<'a> {
+    path: &'a str,
+}
+
+impl Reader<'_> {
+    fn invalid(&self, message: impl Into<String>) -> TableError {
+        TableError::Invalid {
+            path: self.path.to_string(),
+            message: message.into(),
+        }
+    }
+
+    fn attr_f64(&self, loc: &hdf5::Location, name: &str) -> Result<f64, TableError> {
+        loc.attr(name)
+            .and_then(|a| a.read_scalar::<f64>())
+            .map_err(|_| self.invalid(format!("missing or non-numeric attribute '{name}'")))
+    }
+
+    fn attr_str(&self, loc: &hdf5::Location, name: &str) -> Result<String, TableError> {
+        loc.attr(name)
+            .and_then(|a| a.read_scalar::<VarLenUnicode>())
+            .map(|s| s.as_str().to_string())
+            .map_err(|_| self.invalid(format!("missing or non-string attribute '{name}'")))
+    }
+
+    fn dataset(
+        &self,
+        group: &hdf5::Group,
+        name: &str,
+        shape: &[usize],
+    ) -> Result<Vec<f64>, TableError> {
+        let where_ = format!("{}/{name}", group.name());
+        let ds = group
+            .dataset(name)
+            .map_err(|_| self.invalid(format!("missing dataset '{where_}'")))?;
+        if ds.shape() != shape {
+            return Err(self.invalid(format!(
+                "dataset '{where_}' has shape {:?}, expected {shape:?}",
+                ds.shape()
+            )));
+        }
+        ds.read_raw::<f64>()
+            .map_err(|e| self.invalid(format!("cannot read dataset '{where_}': {e}")))
+    }
+
+    fn finite(&self, what: &str, v: &[f64]) -> Result<(), TableError> {
+        match v.iter().position(|x| !x.is_finite()) {
+            Some(i) => Err(self.invalid(format!("non-finite value {} in {what}[{i}]", v[i]))),
+            None => Ok(()),
+        }
+    }
+
+    /// A 1-D dataset of any length whose values are `T` (named `type_name` in the error),
+    /// in group `g` of `owner` (how the error names the group, e.g. `patch 'stick_high'`).
+    fn vector<T: hdf5::H5Type>(
+        &self,
+        g: &hdf5::Group,
+        owner: &str,
+        name: &str,
+        type_name: &str,
+    ) -> Result<Vec<T>, TableError> {
+        g.dataset(name)
+            .ok()
+            .filter(|d| d.ndim() == 1)
+            .and_then(|d| d.read_raw::<T>().ok())
+            .ok_or_else(|| {
+                self.invalid(format!(
+                    "{owner}: dataset '{name}' missing or not a 1-D {type_name} array"
+                ))
+            })
+    }
+
+    /// Check that `tree` is a valid quadtree over `roots` root cells whose leaves are numbered
+    /// `0..leaves` each exactly once; returns the number of leaves.
+    fn check_tree(&self, patch: &str, tree: &[i32], roots: usize) -> Result<usize, TableError> {
+        let bad = |m: String| self.invalid(format!("patch '{patch}': dataset 'tree' {m}"));
+        if tree.len() < roots || (tree.len() - roots) % 4 != 0 {
+            return Err(bad(format!(
+                "has {} cells: expected {roots} roots plus groups of 4 children",
+                tree.len()
+            )));
+        }
+        let mut referenced = vec![false; tree.len()];
+        let mut leaves = Vec::new();
+        for (i, &t) in tree.iter().enumerate() {
+            if t < 0 {
+                leaves.push((-(t as i64) - 1) as usize);
+                continue;
+            }
+            let first = t as usize;
+            // Children come after their parent (no cycles) and after the roots.
+            if first <= i || first < roots || first + 4 > tree.len() {
+                return Err(bad(format!(
+                    "cell {i} points to children at {t}: out of range"
+                )));
+            }
+            for r in &mut referenced[first..first + 4] {
+                if *r {
+                    return Err(bad(format!(
+                        "cell {i}: children at {t} shared with another cell"
+                    )));
+                }
+                *r = true;
+            }
+        }
+        if let Some(i) = (roots..tree.len()).find(|&i| !referenced[i]) {
+            return Err(bad(format!("cell {i} is not reachable from a root")));
+        }
+        leaves.sort_unstable();
+        if leaves.iter().enumerate().any(|(k, &l)| k != l) {
+            return Err(bad(
+                "does not number its leaves 0, 1, 2, ... exactly once".into()
+            ));
+        }
+        Ok(leaves.len())
+    }
+
+    fn count_attr(&self, g: &hdf5::Group, name: &str, max: usize) -> Result<usize, TableError> {
+        let v = self.attr_f64(g, name)?;
+        if v.fract() != 0.0 || v < 1.0 || v > max as f64 {
+            return Err(self.invalid(format!(
+                "patch attribute '{name}' = {v}: must be an integer in [1, {max}]"
+            )));
+        }
+        Ok(v as usize)
+    }
+
+    /// The optional warp of patch `name` (group `warp`): only `partial_high` of a schema-3
+    /// file may have one; every value is checked against the documented ranges.
+    fn warp(&self, g: &hdf5::Group, name: &str, version: u32) -> Result<Option<Warp>, TableError> {
+        if !g.link_exists(GROUP_WARP) {
+            return Ok(None);
+        }
+        let where_ = format!("{name}/{GROUP_WARP}");
+        if name != PATCH_PARTIAL_HIGH {
+            return Err(self.invalid(format!(
+                "patch '{name}' has a group '{GROUP_WARP}': only '{PATCH_PARTIAL_HIGH}' may have one"
+            )));
+        }
+        if version < 3 {
+            return Err(self.invalid(format!(
+                "group '{where_}' in a schema-{version} file: a warp needs schema version 3"
+            )));
+        }
+        let w = g
+            .group(GROUP_WARP)
+            .map_err(|_| self.invalid(format!("'{where_}' is not a group")))?;
+        let attr = |a: &str| {
+            self.attr_f64(&w, a).map_err(|_| {
+                self.invalid(format!(
+                    "'{where_}': missing or non-numeric attribute '{a}'"
+                ))
+            })
+        };
+        let (start, gamma_0, gamma_step, c_star) = (
+            attr(ATTR_WARP_START)?,
+            attr(ATTR_WARP_GAMMA_0)?,
+            attr(ATTR_WARP_GAMMA_STEP)?,
+            attr(ATTR_WARP_C_STAR)?,
+        );
+        let knot = self.vector(&w, &format!("'{where_}'"), DS_WARP_KNOT, "float64")?;
+        Ok(Some(Warp {
+            start,
+            gamma_0,
+            gamma_step,
+            c_star,
+            knot,
+        }))
+    }
+
+    fn patch(
+        &self,
+        root: &hdf5::Group,
+        name: &str,
+        kind: PatchKind,
+        stencil: usize,
+        version: u32,
+    ) -> Result<Option<Patch>, TableError> {
+        let Ok(g) = root.group(name) else {
+            return Ok(None);
+        };
+        let stored_kind = self.attr_str(&g, ATTR_KIND)?;
+        if stored_kind != kind.name() {
+            return Err(self.invalid(format!(
+                "patch '{name}' has kind '{stored_kind}', expected '{}'",
+                kind.name()
+            )));
+        }
+        let gamma_lo = self.attr_f64(&g, ATTR_GAMMA_LO)?;
+        let gamma_hi = self.attr_f64(&g, ATTR_GAMMA_HI)?;
+        if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi > gamma_lo)
+        {
+            return Err(self.invalid(format!(
+                "patch '{name}': gamma edges [{gamma_lo}, {gamma_hi}] must be finite, > 0, increasing"
+            )));
+        }
+        let bg = self.count_attr(&g, ATTR_BLOCKS_GAMMA, 1 << 16)?;
+        let bc = self.count_attr(&g, ATTR_BLOCKS_COORD, 1 << 16)?;
+        let m = self.count_attr(&g, ATTR_LEAF_INTERVALS, 1 << 12)?;
+        if m + 1 < stencil {
+            return Err(self.invalid(format!(
+                "patch '{name}': leaf_intervals = {m} gives fewer nodes than stencil_points = {stencil}"
+            )));
+        }
+        let tree = self.vector(&g, &format!("patch '{name}'"), DS_TREE, "int32")?;
+        let leaves = self.check_tree(name, &tree, bg * bc)?;
+        let shape = [leaves, m + 1, m + 1];
+        let p = self.dataset(&g, DS_P, &shape)?;
+        let err = self.dataset(&g, DS_ERROR, &shape)?;
+        self.finite(&format!("{name}/{DS_P}"), &p)?;
+        self.finite(&format!("{name}/{DS_ERROR}"), &err)?;
+        if let Some(i) = p.iter().position(|x| x.abs() > 1.0 + 1e-6) {
+            return Err(self.invalid(format!("patch '{name}': |P| = {} > 1 at node {i}", p[i])));
+        }
+        let warp = self.warp(&g, name, version)?;
+        let patch = Patch {
+            kind,
+            gamma_lo,
+            gamma_hi,
+            blocks_gamma: bg,
+            blocks_coord: bc,
+            leaf_intervals: m,
+            tree,
+            p,
+            error_estimate: err,
+            warp,
+        };
+        patch
+            .check_warp()
+            .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
+        Ok(Some(patch))
+    }
+}
+
+/// The first bytes of the node files (shard parts, checkpoints) that a table build writes; a
+/// user who passes one of them as a table is told what it is.
+const NODE_FILE_MAGIC: &[u8] = b"OBLQNODE";
+
+/// What an existing path is, in words, for a path that is not a regular file.
+fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if meta.is_dir() {
+        "a directory"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// An I/O error in words, without the `(os error N)` suffix.
+fn io_reason(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file".into(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".into(),
+        _ => e.to_string(),
+    }
+}
+
+/// Open, validate and load a table. Errors name the problem: not HDF5 or truncated, not a
+/// P table, a newer schema, inconsistent shapes, non-finite values.
+pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
+    let path_ref = path.as_ref();
+    let path_str = path_ref.display().to_string();
+    let r = Reader { path: &path_str };
+    let io = |message: String| TableError::Io {
+        path: path_str.clone(),
+        message,
+    };
+    let meta = std::fs::metadata(path_ref).map_err(|e| io(io_reason(&e)))?;
+    if !meta.is_file() {
+        return Err(io(format!(
+            "{} (a table is a regular file written by a table build)",
+            file_kind(&meta)
+        )));
+    }
+    let bytes = std::fs::read(path_ref).map_err(|e| io(io_reason(&e)))?;
+    if bytes.is_empty() {
+        return Err(io("empty file (0 bytes), not an HDF5 table".into()));
+    }
+    if bytes.starts_with(NODE_FILE_MAGIC) {
+        return Err(r.invalid(
+            "this is a node file (a shard part or a checkpoint of a table build), not a \
+             table: merge the shard parts into a table first"
+                .to_string(),
+        ));
+    }
+    crate::format::verify_seal(&bytes).map_err(|m| r.invalid(m))?;
+    drop(bytes);
+    let file = hdf5::File::open(path_ref).map_err(|e| TableError::Io {
+        path: path_str.clone(),
+        message: format!("not an HDF5 file, or truncated/corrupted (HDF5: {e})"),
+    })?;
+    let format = r.attr_str(&file, ATTR_FORMAT).map_err(|_| {
+        r.invalid(format!(
+            "not a P table (root attribute '{ATTR_FORMAT}' = '{FORMAT_NAME}' missing)"
+        ))
+    })?;
+    if format != FORMAT_NAME {
+        return Err(r.invalid(format!(
+            "not a P table (format '{format}', expected '{FORMAT_NAME}')"
+        )));
+    }
+    let version_f = r.attr_f64(&file, ATTR_SCHEMA)?;
+    if !(MIN_SCHEMA_VERSION..=SCHEMA_VERSION).any(|v| v as f64 == version_f) {
+        let version = version_f;
+        return Err(r.invalid(format!(
+            "schema version {version}, this reader understands {MIN_SCHEMA_VERSION} to \
+             {SCHEMA_VERSION}; {}",
+            if version_f > SCHEMA_VERSION as f64 {
+                "upgrade oblique-lookup to read it"
+            } else {
+                "rebuild the table with `sweep run`"
+            }
+        )));
+    }
+    let version = version_f as u32;
+    let stencil_f = r.attr_f64(&file, ATTR_STENCIL)?;
+    let stencil = stencil_f as usize;
+    if stencil as f64 != stencil_f || !(2..=8).contains(&stencil) || stencil % 2 != 0 {
+        return Err(r.invalid(format!(
+            "stencil_points = {stencil_f}: must be an even integer in [2, 8]"
+        )));
+    }
+    let gamma_min = r.attr_f64(&file, ATTR_GAMMA_MIN)?;
+    let gamma_max = r.attr_f64(&file, ATTR_GAMMA_MAX)?;
+    let alpha_max = r.attr_f64(&file, ATTR_ALPHA_MAX)?;
+    if !(gamma_min > 0.0 && gamma_max > gamma_min && gamma_max.is_finite()) {
+        return Err(r.invalid(format!(
+            "gamma domain [{gamma_min}, {gamma_max}] must satisfy 0 < min < max < inf"
+        )));
+    }
+    if alpha_max.is_nan() || alpha_max <= 0.0 {
+        return Err(r.invalid(format!("alpha_max = {alpha_max} must be > 0 or inf")));
+    }
+    let patches = file
+        .group(GROUP_PATCHES)
+        .map_err(|_| r.invalid(format!("missing group '{GROUP_PATCHES}'")))?;
+    let surface = Surface {
+        gamma_min,
+        gamma_max,
+        alpha_max,
+        stencil,
+        stick_low: r.patch(
+            &patches,
+            PATCH_STICK_LOW,
+            PatchKind::Stick,
+            stencil,
+            version,
+        )?,
+        partial_high: r.patch(
+            &patches,
+            PATCH_PARTIAL_HIGH,
+            PatchKind::PartialSlip,
+            stencil,
+            version,
+        )?,
+        stick_high: r.patch(
+            &patches,
+            PATCH_STICK_HIGH,
+            PatchKind::Stick,
+            stencil,
+            version,
+        )?,
+    };
+    if gamma_min < 1.0 && surface.stick_low.is_none() {
+        return Err(r.invalid(format!("missing patch '{PATCH_STICK_LOW}'")));
+    }
+    if gamma_max > 1.0 && (surface.partial_high.is_none() || surface.stick_high.is_none()) {
+        return Err(r.invalid(format!(
+            "missing patch '{PATCH_PARTIAL_HIGH}' or '{PATCH_STICK_HIGH}'"
+        )));
+    }
+    // The predicted error of every leaf, for the stated bound (`None`: not in the file).
+    let leaf_predicted = [
+        (PATCH_STICK_LOW, &surface.stick_low),
+        (PATCH_PARTIAL_HIGH, &surface.partial_high),
+        (PATCH_STICK_HIGH, &surface.stick_high),
+    ]
+    .map(|(name, patch)| match (patch, patches.group(name)) {
+        (Some(p), Ok(g)) if g.link_exists(DS_LEAF_ERROR) => {
+            let v = r.dataset(&g, DS_LEAF_ERROR, &[p.leaves()])?;
+            match v.iter().position(|x| !(x.is_finite() && *x >= 0.0)) {
+                Some(i) => Err(r.invalid(format!(
+                    "patch '{name}': {DS_LEAF_ERROR}[{i}] = {}: must be finite and >= 0",
+                    v[i]
+                ))),
+                None => Ok(Some(v)),
+            }
+        }
+        _ => Ok(None),
+    });
+    let [a, b, c] = leaf_predicted;
+    let (a, b, c) = (a?, b?, c?);
+    let error_bound =
+        crate::bound::surface_bound(&surface, [a.as_deref(), b.as_deref(), c.as_deref()]);
+    let str_attr = |n: &str| r.attr_str(&file, n).unwrap_or_default();
+    let provenance = Provenance {
+        schema_version: version,
+        engine_version: str_attr(ATTR_ENGINE_VERSION),
+        git_commit: str_attr(ATTR_GIT_COMMIT),
+        config: str_attr(ATTR_CONFIG),
+        solver: str_attr(ATTR_SOLVER),
+        created: str_attr(ATTR_CREATED),
+        wall_time_s: r.attr_f64(&file, ATTR_WALL_TIME).unwrap_or(f64::NAN),
+        node_tol: r.attr_f64(&file, ATTR_NODE_TOL).unwrap_or(f64::NAN),
+        check_tol: r.attr_f64(&file, ATTR_CHECK_TOL).unwrap_or(f64::NAN),
+        target_error: r.attr_f64(&file, ATTR_TARGET_ERROR).unwrap_or(f64::NAN),
+    };
+    let checks = match file.group(GROUP_CHECKS) {
+        Ok(g) => {
+            let n = g
+                .dataset(DS_GAMMA)
+                .map(|d| d.shape().first().copied().unwrap_or(0))
+                .unwrap_or(0);
+            let col = |name: &str| r.dataset(&g, name, &[n]);
+            let (gm, al) = (col(DS_GAMMA)?, col(DS_ALPHA)?);
+            let (ps, pi, er) = (
+                col(DS_P_SIMULATED)?,
+                col(DS_P_INTERPOLATED)?,
+                col(DS_INTERP_ERROR)?,
+            );
+            let patch = g
+                .dataset(DS_PATCH)
+                .and_then(|d| d.read_raw::<i32>())
+                .map_err(|_| r.invalid(format!("missing dataset '{GROUP_CHECKS}/{DS_PATCH}'")))?;
+            if patch.len() != n {
+                return Err(r.invalid("checks/patch has the wrong length"));
+            }
+            (0..n)
+                .map(|i| Check {
+                    gamma: gm[i],
+                    alpha: al[i],
+                    p_simulated: ps[i],
+                    p_interpolated: pi[i],
+                    interpolation_error: er[i],
+                    patch: patch[i],
+                })
+                .collect()
+        }
+        Err(_) => Vec::new(),
+    };
+    Ok(Contents {
+        surface,
+        provenance,
+        checks,
+        error_bound,
+    })
+}

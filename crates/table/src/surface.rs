@@ -1,0 +1,916 @@
+//! The interpolation rule of schema v3 (stated in `docs/table-format.md`).
+//!
+//! The nonlinear part of the `(γ, α)` plane is covered by up to three patches whose edges lie on
+//! the curves where `P` has curvature jumps, so that `P` is smooth inside each patch:
+//!
+//! | patch          | γ range        | α range          | coordinate `c ∈ [0, 1]`                        |
+//! |----------------|----------------|------------------|------------------------------------------------|
+//! | `stick_low`    | `γ_min ≤ γ ≤ 1` | `α_c2 … α_max`  | `S(α)/S(α_max)`, `S = r/(r + ρ)`               |
+//! | `partial_high` | `1 ≤ γ ≤ γ_max` | `α_c1 … α_c2`   | `1 − √(1 − ℓ)`, `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)` |
+//! | `stick_high`   | `1 ≤ γ ≤ γ_max` | `α_c2 … α_max`  | `S(α)/S(α_max)`, `S = r/(r + ρ)`               |
+//!
+//! with `r = α/α_c2 − 1`, `ρ = 2(1 − γ²)` for `γ < 1` and `ρ = 1` for `γ ≥ 1`, `S(∞) = 1`. Each
+//! patch is cut into equal root cells in `(γ, c)`, each refined as a quadtree where `P` needs it
+//! (the kink curves inside the partial-slip patch for `γ ≳ 2`); every leaf stores `P` on its own
+//! uniform grid. Inside a leaf `P` is the tensor product of 1-D Lagrange polynomials through `k`
+//! consecutive nodes of that leaf per axis (`k = stencil_points`). The partial-slip patch may
+//! carry a [`Warp`] of its coordinate (schema 3), applied before the leaf is located.
+
+use crate::TableError;
+
+pub use oblique_physics::regimes::{alpha_c1, alpha_c2, linear_limit};
+
+/// Which part of the plane a patch covers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PatchKind {
+    /// `α_c1 ≤ α ≤ α_c2`, `γ ≥ 1`; coordinate `1 − √(1 − ℓ)`, `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)`.
+    PartialSlip,
+    /// `α_c2 ≤ α ≤ α_max`; coordinate `S(α)/S(α_max)`, `S = r/(r + ρ)`, `r = α/α_c2 − 1`,
+    /// `ρ =` [`stick_scale`]`(γ)`.
+    Stick,
+}
+
+impl PatchKind {
+    /// Name stored in the patch's `kind` attribute.
+    pub fn name(self) -> &'static str {
+        match self {
+            PatchKind::PartialSlip => "partial-slip",
+            PatchKind::Stick => "stick",
+        }
+    }
+
+    /// Patch coordinate `c` of `(γ, α)`.
+    pub fn coord(self, gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
+        match self {
+            PatchKind::PartialSlip => {
+                let c1 = alpha_c1(gamma);
+                let l = (alpha / c1).ln() / (alpha_c2(gamma) / c1).ln();
+                1.0 - (1.0 - l).max(0.0).sqrt()
+            }
+            PatchKind::Stick => {
+                let rho = stick_scale(gamma);
+                let squash = |alpha: f64| {
+                    let r = alpha / alpha_c2(gamma) - 1.0;
+                    // r = ∞ also for finite α near f64::MAX (found by tests/fuzz.rs: NaN).
+                    if r.is_infinite() {
+                        1.0
+                    } else {
+                        r / (r + rho)
+                    }
+                };
+                squash(alpha) / squash(alpha_max)
+            }
+        }
+    }
+
+    /// `α` at patch coordinate `c` (inverse of [`PatchKind::coord`]); `∞` at `c = 1` for a stick
+    /// patch with `α_max = ∞`.
+    pub fn alpha(self, gamma: f64, c: f64, alpha_max: f64) -> f64 {
+        match self {
+            PatchKind::PartialSlip => {
+                let c1 = alpha_c1(gamma);
+                let q = 1.0 - c;
+                c1 * (alpha_c2(gamma) / c1).powf(1.0 - q * q)
+            }
+            PatchKind::Stick => {
+                if c >= 1.0 {
+                    return alpha_max;
+                }
+                let c2 = alpha_c2(gamma);
+                let rho = stick_scale(gamma);
+                let top = if alpha_max.is_infinite() {
+                    1.0
+                } else {
+                    let r = alpha_max / c2 - 1.0;
+                    r / (r + rho)
+                };
+                let q = c * top;
+                c2 * (1.0 + rho * q / (1.0 - q))
+            }
+        }
+    }
+}
+
+/// Width `ρ(γ)` of the stick coordinate, in units of `r = α/α_c2 − 1`: `2(1 − γ²)` for `γ < 1`
+/// (the boundary layer below γ = 1 has width `α_c1/α_c2 − 1 = r₁`, and `r₁/(1 + r₁) = 2(1 − γ²)`),
+/// `1` for `γ ≥ 1`.
+pub fn stick_scale(gamma: f64) -> f64 {
+    if gamma < 1.0 {
+        2.0 * (1.0 - gamma * gamma)
+    } else {
+        1.0
+    }
+}
+
+/// One patch: `blocks_gamma × blocks_coord` equal root cells in `(γ, c)`, each the root of a
+/// quadtree. A cell is either split into four children of half its size or is a leaf; every leaf
+/// carries a uniform grid of `(m + 1) × (m + 1)` nodes (`m = leaf_intervals`) over its own square,
+/// so the node spacing halves with each depth, only where `P` needs it.
+///
+/// `tree[i]` describes cell `i`. Cells `0 .. blocks_gamma·blocks_coord` are the roots, row-major
+/// (`γ` outer). `tree[i] ≥ 0`: the cell is split and its children are the cells
+/// `tree[i] + 2·q_γ + q_c`, where `q_γ, q_c ∈ {0, 1}` select the upper half along γ and `c`.
+/// `tree[i] < 0`: the cell is leaf number `−tree[i] − 1`, whose nodes are
+/// `p[leaf·(m+1)² + i_γ·(m+1) + i_c]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Patch {
+    /// Region and coordinate.
+    pub kind: PatchKind,
+    /// Lower γ edge.
+    pub gamma_lo: f64,
+    /// Upper γ edge.
+    pub gamma_hi: f64,
+    /// Root cells along γ.
+    pub blocks_gamma: usize,
+    /// Root cells along `c`.
+    pub blocks_coord: usize,
+    /// Intervals per axis of every leaf's grid (`m`).
+    pub leaf_intervals: usize,
+    /// The quadtree, see the type's documentation.
+    pub tree: Vec<i32>,
+    /// `P` at the nodes, leaf by leaf, `[leaves, m + 1, m + 1]` row-major.
+    pub p: Vec<f64>,
+    /// Solver error estimate of each node, same layout.
+    pub error_estimate: Vec<f64>,
+    /// Optional warp of the coordinate (only `partial_high`, schema 3): when present, the
+    /// quadtree is over `(x, c')` with `c' =` [`Warp::apply`]`(γ, c)` instead of `(x, c)`.
+    pub warp: Option<Warp>,
+}
+
+/// Warp of the partial-slip coordinate (group `/patches/partial_high/warp`, schema 3): a map
+/// `c → c'` per γ that sends the knot `K(γ)` (the fold curve F₊ of `P`, where its slope jumps)
+/// to the fixed `c' = c_star`, a root-cell boundary of the quadtree, so that no leaf straddles
+/// the fold; below the knot the map is graded so that `P`, which goes like `(α_F − α)^{3/2}`
+/// there, is smooth in `c'` (`docs/solver.md`, "The fold edge").
+///
+/// It applies from the lattice position `start` along γ on (in units of the patch's root
+/// cells, `v = x·blocks_gamma` of the rule, clamped to `[0, blocks_gamma]`): for `v < start`,
+/// `c' = c`; for `v ≥ start`, with `K =` [`Warp::knot_at`]`(γ)`,
+/// `c' = c_star·(1 − √(1 − c/K))` if `c ≤ K`, else `c' = c_star + (1 − c_star)(c − K)/(1 − K)`.
+/// `start` is a dyadic fraction and no leaf of the patch straddles it, so every leaf lies wholly
+/// on one side.
+///
+/// `K(γ)` is the 4-point Lagrange rule of the leaf grids ([`stencil`]`(u, n, 4, ..)`) at
+/// `u = (γ − gamma_0)/gamma_step` clamped to `[0, n − 1]`, over the values `knot[i]` at
+/// `γ = gamma_0 + i·gamma_step` (`n = knot.len()`).
+///
+/// Valid warps (as the reader accepts them, [`Warp::validate`]): finite values,
+/// `gamma_step > 0`, `0 < c_star < 1`, `n ≥ 4`, every knot in `(0, 1)`,
+/// `0 < start < blocks_gamma` with `start·2²⁰` an integer, and a knot grid that covers the
+/// warped part of the patch: `gamma_0 ≤ γ(start)` and `gamma_0 + (n − 1)·gamma_step ≥ gamma_hi`
+/// (both within `1e-12` relative), where `γ(start) = gamma_lo + (gamma_hi − gamma_lo)·start/
+/// blocks_gamma`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warp {
+    /// Lattice position along γ (root-cell units) from which the warp applies.
+    pub start: f64,
+    /// γ of `knot[0]`.
+    pub gamma_0: f64,
+    /// γ spacing of the knots (`> 0`).
+    pub gamma_step: f64,
+    /// Where the knot is sent: `c' = c_star` at `c = K(γ)`, in `(0, 1)`.
+    pub c_star: f64,
+    /// `K` at `γ = gamma_0 + i·gamma_step`, every value in `(0, 1)`, at least 4 values.
+    pub knot: Vec<f64>,
+}
+
+impl Warp {
+    /// `K(γ)`: the 4-point Lagrange interpolant of `knot` at `u = (γ − gamma_0)/gamma_step`
+    /// clamped to `[0, n − 1]`.
+    #[inline]
+    pub fn knot_at(&self, gamma: f64) -> f64 {
+        let n = self.knot.len();
+        let u = ((gamma - self.gamma_0) / self.gamma_step).clamp(0.0, (n - 1) as f64);
+        // `n ≥ 4` for a valid warp ([`Warp::validate`]); the generic rule otherwise.
+        if n < 4 {
+            let mut w = [0.0; 8];
+            let (start, k) = stencil(u, n, 4, &mut w);
+            return (0..k).map(|j| w[j] * self.knot[start + j]).sum();
+        }
+        let (start, w) = stencil4(u, n);
+        let k = &self.knot[start..start + 4];
+        w[0] * k[0] + w[1] * k[1] + w[2] * k[2] + w[3] * k[3]
+    }
+
+    /// `γ` at the lattice position `start` of a patch over `[gamma_lo, gamma_hi]` with
+    /// `blocks_gamma` root rows.
+    pub fn start_gamma(&self, gamma_lo: f64, gamma_hi: f64, blocks_gamma: usize) -> f64 {
+        gamma_lo + (gamma_hi - gamma_lo) * self.start / blocks_gamma as f64
+    }
+
+    /// Check the documented rules of a warp of a patch over `[gamma_lo, gamma_hi]` with
+    /// `blocks_gamma` root rows (what the reader refuses otherwise; [`Warp`] lists them). `Err`
+    /// names the attribute or dataset and the allowed range.
+    pub fn validate(
+        &self,
+        gamma_lo: f64,
+        gamma_hi: f64,
+        blocks_gamma: usize,
+    ) -> Result<(), String> {
+        let bg = blocks_gamma as f64;
+        let attrs = [
+            (
+                "start",
+                self.start,
+                format!("in (0, {blocks_gamma}) (root rows of the patch) and a multiple of 2^-20"),
+                self.start > 0.0 && self.start < bg && (self.start * 1048576.0).fract() == 0.0,
+            ),
+            (
+                "gamma_0",
+                self.gamma_0,
+                "finite".into(),
+                self.gamma_0.is_finite(),
+            ),
+            (
+                "gamma_step",
+                self.gamma_step,
+                "finite and > 0".into(),
+                self.gamma_step.is_finite() && self.gamma_step > 0.0,
+            ),
+            (
+                "c_star",
+                self.c_star,
+                "in (0, 1)".into(),
+                self.c_star > 0.0 && self.c_star < 1.0,
+            ),
+        ];
+        for (name, v, allowed, ok) in attrs {
+            if !ok {
+                return Err(format!("attribute '{name}' = {v}: must be {allowed}"));
+            }
+        }
+        let n = self.knot.len();
+        if n < 4 {
+            return Err(format!(
+                "dataset 'knot' has {n} values: must have at least 4"
+            ));
+        }
+        if let Some(i) = self.knot.iter().position(|&k| !(k > 0.0 && k < 1.0)) {
+            return Err(format!(
+                "dataset 'knot'[{i}] = {}: must be in (0, 1)",
+                self.knot[i]
+            ));
+        }
+        let from = self.start_gamma(gamma_lo, gamma_hi, blocks_gamma);
+        let end = self.gamma_0 + (n - 1) as f64 * self.gamma_step;
+        let slack = 1e-12 * gamma_hi.abs();
+        if !(self.gamma_0 <= from + slack && end >= gamma_hi - slack) {
+            return Err(format!(
+                "the knot grid 'gamma_0' + i*'gamma_step' spans [{}, {end}] ({n} values of \
+                 'knot'): must cover the warped gamma range [{from}, {gamma_hi}]",
+                self.gamma_0
+            ));
+        }
+        Ok(())
+    }
+
+    /// `c → c'` for a point at or beyond `start`: `c_star·(1 − √(1 − c/K))` for `c ≤ K` and
+    /// `c_star + (1 − c_star)(c − K)/(1 − K)` above, with `K =` [`Warp::knot_at`]`(γ)`.
+    #[inline]
+    pub fn apply(&self, gamma: f64, c: f64) -> f64 {
+        self.apply_with(self.knot_at(gamma), c)
+    }
+
+    /// [`Warp::apply`] with `K` given (the same operations, for callers that hold `K(γ)`).
+    #[inline(always)]
+    pub fn apply_with(&self, k: f64, c: f64) -> f64 {
+        if c <= k {
+            self.c_star * (1.0 - (1.0 - c / k).max(0.0).sqrt())
+        } else {
+            self.c_star + (1.0 - self.c_star) * (c - k) / (1.0 - k)
+        }
+    }
+
+    /// `c' → c`, the inverse of [`Warp::apply`] at the same γ (for laying out nodes at given
+    /// `c'`): `K(1 − (1 − c'/c_star)²)` for `c' ≤ c_star` and `K + (c' − c_star)(1 − K)/(1 − c_star)`
+    /// above.
+    #[inline]
+    pub fn invert(&self, gamma: f64, c_prime: f64) -> f64 {
+        let k = self.knot_at(gamma);
+        if c_prime <= self.c_star {
+            let t = 1.0 - c_prime / self.c_star;
+            k * (1.0 - t * t)
+        } else {
+            k + (c_prime - self.c_star) * (1.0 - k) / (1.0 - self.c_star)
+        }
+    }
+}
+
+/// Step 10 of the rule: the interpolated `P` limited to `[−1, 1]` (`|P| ≤ 1`: a rebound never
+/// gains energy). Every read path applies it to the tensor product, so that near `P = −1` (where
+/// the interpolant can overshoot by up to the table's error) no path answers `|P| > 1`; a NaN
+/// stays NaN.
+#[inline(always)]
+pub fn bound_p(p: f64) -> f64 {
+    p.clamp(-1.0, 1.0)
+}
+
+/// Start index and weights of the `k`-point Lagrange stencil at grid position `u` (in units of
+/// the node spacing, node `i` at `u = i`) on `n` nodes. Weights are written to `w[..k']` where
+/// `k' = min(k, n)` is returned with the start.
+#[inline]
+pub fn stencil(u: f64, n: usize, k: usize, w: &mut [f64; 8]) -> (usize, usize) {
+    let k = k.min(n).min(8);
+    // `as usize` truncates towards zero and saturates (NaN → 0): the floor for `u ≥ 0`, without
+    // a call to `floor` (not an instruction on baseline x86-64).
+    let cell = (u.max(0.0) as usize).min(n - 2);
+    let start = (cell + 1).saturating_sub(k / 2).min(n - k);
+    for (j, wj) in w.iter_mut().enumerate().take(k) {
+        let mut prod = 1.0;
+        for m in 0..k {
+            if m != j {
+                prod *= (u - (start + m) as f64) / (j as f64 - m as f64);
+            }
+        }
+        *wj = prod;
+    }
+    (start, k)
+}
+
+/// [`stencil`] for `k = 4` on `n ≥ 4` nodes (cubic Lagrange): start index and the four
+/// weights, from the closed forms of the cubic basis on nodes `0, 1, 2, 3` at `t = u − start`.
+#[inline(always)]
+pub fn stencil4(u: f64, n: usize) -> (usize, [f64; 4]) {
+    let cell = floor_index(u, n - 2);
+    let start = cell.saturating_sub(1).min(n - 4);
+    (start, cubic_weights(u - start as f64))
+}
+
+/// The cubic Lagrange weights on nodes `0, 1, 2, 3` at `a` (the one statement of these
+/// operations, shared by every path that must give the rule's bits).
+#[inline(always)]
+pub fn cubic_weights(a: f64) -> [f64; 4] {
+    let (b, c, d) = (a - 1.0, a - 2.0, a - 3.0);
+    let (ab, cd) = (a * b, c * d);
+    [
+        -(b * cd) * (1.0 / 6.0),
+        a * cd * 0.5,
+        -(ab * d) * 0.5,
+        ab * c * (1.0 / 6.0),
+    ]
+}
+
+/// `min(floor(u), max)` for `u ≥ 0` (`0` for `u < 0` or NaN): `as i64` truncates with one
+/// instruction plus saturation, where `floor` is a library call on baseline x86-64.
+#[inline(always)]
+fn floor_index(u: f64, max: usize) -> usize {
+    ((u as i64).max(0) as usize).min(max)
+}
+
+/// Block index and position inside the block (in `[0, 1]`) of a patch coordinate `x ∈ [0, 1]`.
+#[inline]
+pub fn locate(x: f64, blocks: usize) -> (usize, f64) {
+    let u = (x * blocks as f64).clamp(0.0, blocks as f64);
+    let a = floor_index(u, blocks - 1);
+    (a, u - a as f64)
+}
+
+impl Patch {
+    /// Number of leaves.
+    pub fn leaves(&self) -> usize {
+        self.p.len() / (self.leaf_intervals + 1).pow(2)
+    }
+
+    /// Depth of every leaf (roots have depth 0), in leaf order.
+    pub fn leaf_depths(&self) -> Vec<u32> {
+        let mut depth = vec![0u32; self.leaves()];
+        let mut stack: Vec<(usize, u32)> = (0..self.blocks_gamma * self.blocks_coord)
+            .map(|i| (i, 0))
+            .collect();
+        while let Some((cell, d)) = stack.pop() {
+            let t = self.tree[cell];
+            if t < 0 {
+                depth[(-(t as i64) - 1) as usize] = d;
+            } else {
+                stack.extend((0..4).map(|q| (t as usize + q, d + 1)));
+            }
+        }
+        depth
+    }
+
+    /// The leaf containing `(γ, c)` and the position inside it, both components in `[0, 1]`.
+    #[inline]
+    pub fn find_leaf(&self, gamma: f64, c: f64) -> (usize, f64, f64) {
+        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
+        let (a, mut fg) = locate(xg, self.blocks_gamma);
+        let (b, mut fc) = locate(c, self.blocks_coord);
+        let mut cell = a * self.blocks_coord + b;
+        loop {
+            let t = self.tree[cell];
+            if t < 0 {
+                return ((-(t as i64) - 1) as usize, fg, fc);
+            }
+            fg *= 2.0;
+            fc *= 2.0;
+            let qg = usize::from(fg >= 1.0);
+            let qc = usize::from(fc >= 1.0);
+            fg -= qg as f64;
+            fc -= qc as f64;
+            cell = t as usize + 2 * qg + qc;
+        }
+    }
+
+    /// Check the patch's warp, if any: [`Warp::validate`], and no leaf straddles its `start`
+    /// (every leaf lies wholly before or wholly at/after it). `Err` names the attribute and
+    /// the allowed range, or the leaf.
+    pub fn check_warp(&self) -> Result<(), String> {
+        let Some(w) = &self.warp else {
+            return Ok(());
+        };
+        w.validate(self.gamma_lo, self.gamma_hi, self.blocks_gamma)?;
+        for (leaf, (lo, hi)) in self.leaf_gamma_spans().into_iter().enumerate() {
+            if lo < w.start && w.start < hi {
+                return Err(format!(
+                    "leaf {leaf} spans root rows [{lo}, {hi}] across attribute 'start' = {}: \
+                     no leaf may straddle it",
+                    w.start
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Each leaf's extent along γ in root-cell units, `[a/2^d, (a+1)/2^d]` for a leaf at depth
+    /// `d` with integer position `a` (exact dyadic values), leaf by leaf.
+    pub fn leaf_gamma_spans(&self) -> Vec<(f64, f64)> {
+        let mut spans = vec![(0.0, 0.0); self.leaves()];
+        let mut stack: Vec<(usize, u32, u64)> = (0..self.blocks_gamma * self.blocks_coord)
+            .map(|i| (i, 0, (i / self.blocks_coord) as u64))
+            .collect();
+        while let Some((cell, d, a)) = stack.pop() {
+            let t = self.tree[cell];
+            if t < 0 {
+                let scale = f64::from(d.min(1000) as i32).exp2();
+                spans[(-(t as i64) - 1) as usize] = (a as f64 / scale, (a + 1) as f64 / scale);
+            } else {
+                stack.extend((0..4).map(|q| (t as usize + q, d + 1, 2 * a + (q / 2) as u64)));
+            }
+        }
+        spans
+    }
+
+    /// The patch's warp if it applies at `γ`: the patch has one and `v = x·blocks_gamma`
+    /// (clamped, as [`locate`] computes it) is at or beyond its `start`.
+    #[inline]
+    pub fn warp_at(&self, gamma: f64) -> Option<&Warp> {
+        let w = self.warp.as_ref()?;
+        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
+        let bg = self.blocks_gamma as f64;
+        ((xg * bg).clamp(0.0, bg) >= w.start).then_some(w)
+    }
+
+    /// Step 5 of the rule: the coordinate the quadtree is over at `(γ, c)` — `c` itself, or
+    /// [`Warp::apply`]`(γ, c)` where [`Patch::warp_at`] gives the warp.
+    #[inline]
+    pub fn warped(&self, gamma: f64, c: f64) -> f64 {
+        match self.warp_at(gamma) {
+            Some(w) => w.apply(gamma, c),
+            None => c,
+        }
+    }
+
+    /// `P` at `(γ, c)` by steps 6 to 10 of the rule: [`Patch::tensor`] limited to `[−1, 1]`
+    /// ([`bound_p`]).
+    #[inline]
+    pub fn interpolate(&self, gamma: f64, c: f64, k: usize) -> f64 {
+        bound_p(self.tensor(gamma, c, k))
+    }
+
+    /// The tensor product of steps 6 to 9 at `(γ, c)` with a `k`-point stencil per axis, before
+    /// the bound of step 10 (a polynomial inside each interval of the leaf's grid).
+    #[inline]
+    pub fn tensor(&self, gamma: f64, c: f64, k: usize) -> f64 {
+        let (leaf, fg, fc) = self.find_leaf(gamma, c);
+        let n = self.leaf_intervals;
+        let n1 = n + 1;
+        let size = n1 * n1;
+        if k == 4 && n >= 3 {
+            // The shipped case (cubic): closed-form weights, a 4 × 4 block of the leaf read
+            // through one bounds-checked slice.
+            let (sg, wg) = stencil4(fg * n as f64, n1);
+            let (sc, wc) = stencil4(fc * n as f64, n1);
+            let start = leaf * size + sg * n1 + sc;
+            let block = &self.p[start..start + 3 * n1 + 4];
+            let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
+            let (r0, rest) = block.split_at(n1);
+            let (r1, rest) = rest.split_at(n1);
+            let (r2, r3) = rest.split_at(n1);
+            return wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3);
+        }
+        let vals = &self.p[leaf * size..(leaf + 1) * size];
+        let mut wg = [0.0; 8];
+        let mut wc = [0.0; 8];
+        let (sg, kg) = stencil(fg * n as f64, n + 1, k, &mut wg);
+        let (sc, kc) = stencil(fc * n as f64, n + 1, k, &mut wc);
+        let mut total = 0.0;
+        for (i, wi) in wg.iter().enumerate().take(kg) {
+            let row = &vals[(sg + i) * (n + 1) + sc..][..kc];
+            let inner: f64 = row.iter().zip(&wc[..kc]).map(|(p, w)| p * w).sum();
+            total += wi * inner;
+        }
+        total
+    }
+}
+
+/// What a query outside the table's domain does (the full-slip line is answered everywhere).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum OutOfDomain {
+    /// Refuse it with [`TableError::Query`] naming the field and the domain (the default).
+    #[default]
+    Error,
+    /// Answer at the nearest point of the domain: `γ` clamped to `[gamma_min, gamma_max]`, `α`
+    /// to `alpha_max`. An extrapolation by a constant: the caller accepts the error it makes.
+    Clamp,
+}
+
+#[cold]
+pub fn bad_gamma(gamma: f64) -> TableError {
+    TableError::Query {
+        name: "gamma",
+        value: gamma,
+        allowed: "a finite number > 0".into(),
+    }
+}
+
+/// `α` above a table's `alpha_max` without clamping.
+#[cold]
+pub fn alpha_outside(alpha_max: f64, alpha: f64) -> TableError {
+    TableError::Query {
+        name: "alpha",
+        value: alpha,
+        allowed: format!(
+            "<= the table's alpha_max = {alpha_max}; or opt into clamping (OutOfDomain::Clamp; `sweep query --clamp`) to answer at alpha_max"
+        ),
+    }
+}
+
+#[cold]
+pub fn bad_alpha(alpha: f64) -> TableError {
+    TableError::Query {
+        name: "alpha",
+        value: alpha,
+        allowed: ">= 0 (or inf)".into(),
+    }
+}
+
+/// The whole interpolated surface: the patches and the domain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Surface {
+    /// Lower end of the γ domain.
+    pub gamma_min: f64,
+    /// Upper end of the γ domain.
+    pub gamma_max: f64,
+    /// Upper end of the α domain (`∞` allowed).
+    pub alpha_max: f64,
+    /// Lagrange stencil points per axis.
+    pub stencil: usize,
+    /// `stick_low` (present when `γ_min < 1`).
+    pub stick_low: Option<Patch>,
+    /// `partial_high` (present when `γ_max > 1`).
+    pub partial_high: Option<Patch>,
+    /// `stick_high` (present when `γ_max > 1`).
+    pub stick_high: Option<Patch>,
+}
+
+/// Which patch answers a query (or none: closed form).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Region {
+    /// `α ≤` linear limit: `P = 1 − 7α` exactly.
+    Line,
+    /// Patch `stick_low`.
+    StickLow,
+    /// Patch `partial_high`.
+    PartialHigh,
+    /// Patch `stick_high`.
+    StickHigh,
+}
+
+impl Region {
+    /// Region of `(γ, α)` (assumed valid).
+    pub fn of(gamma: f64, alpha: f64) -> Self {
+        if alpha <= linear_limit(gamma) {
+            Region::Line
+        } else if gamma <= 1.0 {
+            Region::StickLow
+        } else if alpha < alpha_c2(gamma) {
+            Region::PartialHigh
+        } else {
+            Region::StickHigh
+        }
+    }
+
+    /// Index used in the `checks/patch` dataset (−1 for the line).
+    pub fn index(self) -> i32 {
+        match self {
+            Region::Line => -1,
+            Region::StickLow => 0,
+            Region::PartialHigh => 1,
+            Region::StickHigh => 2,
+        }
+    }
+}
+
+impl Surface {
+    /// The patch of a region, if the table has it.
+    pub fn patch(&self, region: Region) -> Option<&Patch> {
+        match region {
+            Region::Line => None,
+            Region::StickLow => self.stick_low.as_ref(),
+            Region::PartialHigh => self.partial_high.as_ref(),
+            Region::StickHigh => self.stick_high.as_ref(),
+        }
+    }
+
+    /// `P(γ, α)` by the documented rule, refusing `γ` outside `[gamma_min, gamma_max]` (except
+    /// on the full-slip line) and `α > alpha_max`; the same as
+    /// [`Surface::eval_with`]`(γ, α, OutOfDomain::Error)`.
+    #[inline]
+    pub fn eval(&self, gamma: f64, alpha: f64) -> Result<f64, TableError> {
+        self.eval_with(gamma, alpha, OutOfDomain::Error)
+    }
+
+    /// `P(γ, α)` by the documented rule (dimensionless, `−1 ≤ P ≤ 1`). `γ` must be finite and
+    /// `> 0`, `α ≥ 0` (`α = ∞` is the no-slip limit). The full-slip line `P = 1 − 7α` is exact
+    /// and answered for any `γ > 0`. Elsewhere a point outside the table's domain
+    /// (`γ ∉ [gamma_min, gamma_max]` or `α > alpha_max`) is an error with
+    /// [`OutOfDomain::Error`]; with [`OutOfDomain::Clamp`] it is answered at the nearest point of
+    /// the domain, `P(clamp(γ), min(α, alpha_max))`.
+    ///
+    /// Touches only memory and does not allocate unless it returns an error.
+    #[inline]
+    pub fn eval_with(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, TableError> {
+        if !(gamma.is_finite() && gamma > 0.0) {
+            return Err(bad_gamma(gamma));
+        }
+        if alpha.is_nan() || alpha < 0.0 {
+            return Err(bad_alpha(alpha));
+        }
+        let region = Region::of(gamma, alpha);
+        if region == Region::Line {
+            return Ok(1.0 - 7.0 * alpha);
+        }
+        self.apply_domain(region, gamma, alpha, outside, |r, g, a| {
+            self.eval_in(r, g, a)
+        })
+    }
+
+    /// The domain policy of [`Surface::eval_with`] for a valid query above the full-slip line
+    /// (in `region`, not [`Region::Line`]): inside the table's domain `eval_in(region, γ, α)`;
+    /// outside it the error for [`OutOfDomain::Error`], or for [`OutOfDomain::Clamp`] the value
+    /// at `(clamp(γ), min(α, alpha_max))` (exactly `1 − 7α` if that point is on the line).
+    ///
+    /// The one place of this policy: the rule ([`Surface::eval_with`]) and the fast path
+    /// (`fast::Accel`, with its own evaluator of a known non-line region) both go through it.
+    #[inline(always)]
+    pub fn apply_domain(
+        &self,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        outside: OutOfDomain,
+        eval_in: impl Fn(Region, f64, f64) -> f64,
+    ) -> Result<f64, TableError> {
+        let inside = gamma >= self.gamma_min && gamma <= self.gamma_max;
+        if inside && alpha <= self.alpha_max {
+            return Ok(eval_in(region, gamma, alpha));
+        }
+        match outside {
+            OutOfDomain::Error if !inside => Err(self.gamma_outside(gamma)),
+            OutOfDomain::Error => Err(self.alpha_outside(alpha)),
+            OutOfDomain::Clamp => {
+                let g = gamma.clamp(self.gamma_min, self.gamma_max);
+                let a = alpha.min(self.alpha_max);
+                match Region::of(g, a) {
+                    Region::Line => Ok(1.0 - 7.0 * a),
+                    r => Ok(eval_in(r, g, a)),
+                }
+            }
+        }
+    }
+
+    #[cold]
+    pub fn gamma_outside(&self, gamma: f64) -> TableError {
+        TableError::Query {
+            name: "gamma",
+            value: gamma,
+            allowed: format!(
+                "in the table's domain [{}, {}] (or alpha <= alpha_lin(gamma)); \
+                 or opt into clamping (OutOfDomain::Clamp; `sweep query --clamp`) to answer at the nearest gamma of the table",
+                self.gamma_min, self.gamma_max
+            ),
+        }
+    }
+
+    #[cold]
+    pub fn alpha_outside(&self, alpha: f64) -> TableError {
+        alpha_outside(self.alpha_max, alpha)
+    }
+
+    /// Evaluate in a known non-line region (no checks). The patch coordinate is computed with
+    /// fewer divisions than [`PatchKind::coord`] (same value up to rounding).
+    #[inline]
+    fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
+        match self.patch(region) {
+            Some(patch) => {
+                let c = match patch.kind {
+                    PatchKind::PartialSlip => partial_coord(gamma, alpha),
+                    PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
+                };
+                let c = patch.warped(gamma, c.clamp(0.0, 1.0));
+                patch.interpolate(gamma, c, self.stencil)
+            }
+            // A domain that touches γ = 1 only from one side: at γ = 1 exactly P = −1 on the
+            // nonlinear part (α ≥ 2/7).
+            None => -1.0,
+        }
+    }
+}
+
+/// [`PatchKind::coord`] of the partial-slip patch: `α/α_c1 = 7α(2γ² − 1)/(2γ²)` and
+/// `α_c2/α_c1 = 2γ² − 1`.
+#[inline(always)]
+pub fn partial_coord(gamma: f64, alpha: f64) -> f64 {
+    let g2 = 2.0 * gamma * gamma;
+    let ratio = g2 - 1.0;
+    let l = (7.0 * alpha * ratio / g2).ln() / ratio.ln();
+    1.0 - (1.0 - l).max(0.0).sqrt()
+}
+
+/// [`PatchKind::coord`] of a stick patch: `S(α) = r/(r + ρ) = (α − α_c2)/(α − α_c2 + ρ α_c2)`.
+#[inline(always)]
+pub fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
+    if alpha.is_infinite() {
+        return 1.0;
+    }
+    let c2 = gamma * gamma * (2.0 / 7.0);
+    let rho = stick_scale(gamma);
+    let d = alpha - c2;
+    let s = d / (d + rho * c2);
+    if alpha_max.is_infinite() {
+        s
+    } else {
+        let dm = alpha_max - c2;
+        s / (dm / (dm + rho * c2))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn warp() -> Warp {
+        Warp {
+            start: 1.0,
+            gamma_0: 2.9,
+            gamma_step: 0.05,
+            c_star: 0.5,
+            knot: (0..13)
+                .map(|i| 0.35 + 0.2 * (i as f64 * 0.4).sin() * (i as f64 / 12.0))
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn the_knot_rule_reproduces_the_knot_values_at_the_grid_points() {
+        let w = warp();
+        for (i, &k) in w.knot.iter().enumerate() {
+            let g = w.gamma_0 + i as f64 * w.gamma_step;
+            assert!((w.knot_at(g) - k).abs() <= 1e-14, "knot {i}");
+        }
+        // Clamped outside the grid.
+        assert_eq!(w.knot_at(1.0), w.knot[0]);
+        assert_eq!(w.knot_at(100.0), w.knot[w.knot.len() - 1]);
+        // Between grid points: a cubic reproduces a cubic exactly.
+        let cubic =
+            |g: f64| 0.3 + 0.1 * (g - 3.0) - 0.2 * (g - 3.0).powi(2) + 0.3 * (g - 3.0).powi(3);
+        let wc = Warp {
+            knot: (0..13).map(|i| cubic(2.9 + 0.05 * i as f64)).collect(),
+            ..warp()
+        };
+        for j in 0..=96 {
+            let g = 2.9 + 0.6 * j as f64 / 96.0;
+            assert!((wc.knot_at(g) - cubic(g)).abs() <= 1e-13, "gamma {g}");
+        }
+    }
+
+    #[test]
+    fn apply_sends_the_knot_to_c_star_and_invert_undoes_it() {
+        let w = warp();
+        for j in 0..=200 {
+            let g = 2.5 + 1.0 * j as f64 / 200.0;
+            let k = w.knot_at(g);
+            assert_eq!(w.apply(g, k), w.c_star, "gamma {g}");
+            assert_eq!(w.apply(g, 0.0), 0.0);
+            assert!((w.apply(g, 1.0) - 1.0).abs() <= 1e-15);
+            assert_eq!(w.apply(g, 0.3).to_bits(), w.apply_with(k, 0.3).to_bits());
+            let mut prev = -1.0;
+            for i in 0..=100 {
+                let c = i as f64 / 100.0;
+                let cp = w.apply(g, c);
+                assert!(cp > prev && (0.0..=1.0).contains(&cp), "monotone in [0, 1]");
+                prev = cp;
+                assert!(
+                    (w.invert(g, cp) - c).abs() <= 1e-15,
+                    "invert(apply) at {g}, {c}"
+                );
+                // The square root of the grading amplifies rounding next to the knot
+                // (c' − c* ∝ √(K − c)): 1e-16/(2·0.02) at the nearest grid point.
+                assert!(
+                    (w.apply(g, w.invert(g, c)) - c).abs() <= 1e-13,
+                    "apply(invert) at {g}, {c}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_grading_makes_the_fold_singularity_a_cubic() {
+        // Below the fold P ≈ smooth + C(α_F − α)^{3/2}; in c' the power is (1 − c'/c*)³ times
+        // K^{3/2}, a polynomial: a cubic through four points of it reproduces it.
+        let w = warp();
+        let g = 3.13;
+        let k = w.knot_at(g);
+        let f = |c_prime: f64| (k - w.invert(g, c_prime)).max(0.0).powf(1.5);
+        let nodes = [0.1, 0.2, 0.3, 0.4];
+        let vals = nodes.map(f);
+        for i in 0..=50 {
+            let x = 0.1 + 0.3 * i as f64 / 50.0;
+            let lagrange: f64 = (0..4)
+                .map(|j| {
+                    let mut l = vals[j];
+                    for m in (0..4).filter(|&m| m != j) {
+                        l *= (x - nodes[m]) / (nodes[j] - nodes[m]);
+                    }
+                    l
+                })
+                .sum();
+            assert!((lagrange - f(x)).abs() <= 1e-14, "c' = {x}");
+        }
+        // Linear in c the same power is not: the cubic through four c-points misses it.
+        let fc = |c: f64| (k - c).max(0.0).powf(1.5);
+        let cn = nodes.map(|x| k * x / w.c_star);
+        let mid = 0.5 * (cn[2] + cn[3]);
+        let lag: f64 = (0..4)
+            .map(|j| {
+                let mut l = fc(cn[j]);
+                for m in (0..4).filter(|&m| m != j) {
+                    l *= (mid - cn[m]) / (cn[j] - cn[m]);
+                }
+                l
+            })
+            .sum();
+        assert!((lag - fc(mid)).abs() > 1e-6, "{}", (lag - fc(mid)).abs());
+    }
+
+    #[test]
+    fn the_warp_applies_from_its_start_row_on() {
+        let patch = Patch {
+            kind: PatchKind::PartialSlip,
+            gamma_lo: 1.0,
+            gamma_hi: 3.5,
+            blocks_gamma: 5,
+            blocks_coord: 4,
+            leaf_intervals: 8,
+            tree: (0..20).map(|i| -(i + 1)).collect(),
+            p: vec![0.0; 20 * 81],
+            error_estimate: vec![0.0; 20 * 81],
+            warp: Some(Warp {
+                start: 3.8125,
+                gamma_0: 2.90625,
+                gamma_step: 0.01,
+                c_star: 0.5,
+                knot: vec![0.6; 61],
+            }),
+        };
+        // γ(start) = 2.90625: unwarped below, warped from it on.
+        let w = patch.warp.as_ref().expect("warp");
+        assert_eq!(patch.warped(2.9, 0.3).to_bits(), 0.3f64.to_bits());
+        assert_eq!(patch.warped(2.90625, 0.3), w.apply(2.90625, 0.3));
+        assert_eq!(patch.warped(3.2, 0.3), w.apply(3.2, 0.3));
+        assert_ne!(patch.warped(3.2, 0.3), 0.3);
+        // Leaves at depth 0 straddle a start inside a root row: refused, naming 'start'.
+        let e = patch.check_warp().expect_err("root leaves straddle 3.8125");
+        assert!(e.contains("'start' = 3.8125"), "{e}");
+        // At a root boundary it is valid.
+        let mut ok = patch.clone();
+        if let Some(w) = ok.warp.as_mut() {
+            w.start = 4.0;
+            w.gamma_0 = 3.0;
+        }
+        assert_eq!(ok.check_warp(), Ok(()));
+        // A knot grid that starts after γ(start) is refused.
+        let mut late = ok.clone();
+        if let Some(w) = late.warp.as_mut() {
+            w.gamma_0 = 3.05;
+        }
+        assert!(late
+            .check_warp()
+            .expect_err("late grid")
+            .contains("gamma_0"));
+    }
+}

@@ -1,0 +1,506 @@
+//! The storage layer: writes a built table as HDF5 (schema v3, `docs/table-format.md`), atomically
+//! (temporary file in the same directory, then rename). Names come from `crate::format`,
+//! which owns the format; the lookup crate reads what this writes.
+
+use std::path::{Path, PathBuf};
+
+use hdf5::types::VarLenUnicode;
+use oblique_physics::regimes::{alpha_c1, alpha_c2};
+
+use crate::format::*;
+use crate::read::{Check, Provenance};
+use crate::surface::{Patch, PatchKind, Surface};
+use thiserror::Error;
+
+/// One patch as built, with the coordinates of every node (same flat layout as `patch.p`).
+#[derive(Debug, Clone)]
+pub struct BuiltPatch {
+    /// Patch name in the file.
+    pub name: &'static str,
+    /// The patch.
+    pub patch: Patch,
+    /// γ of every node.
+    pub gamma: Vec<f64>,
+    /// Patch coordinate `c` of every node.
+    pub coord: Vec<f64>,
+    /// α of every node (`∞` allowed).
+    pub alpha: Vec<f64>,
+    /// Predicted interpolation error of every leaf.
+    pub leaf_error: Vec<f64>,
+    /// Depth of every leaf.
+    pub leaf_depth: Vec<u32>,
+    /// Distinct nodes (leaves share their edges).
+    pub unique_nodes: usize,
+    /// Distinct nodes that were simulated (the others are closed forms).
+    pub simulated: usize,
+}
+
+/// A table as built, what [`write_table`] writes: the surface, the patches with the
+/// coordinates of their nodes, the held-out checks.
+#[derive(Debug, Clone)]
+pub struct Built {
+    /// Surface (patches and domain) as the reader loads it.
+    pub surface: Surface,
+    /// The patches with their node α values, in file order.
+    pub patches: Vec<BuiltPatch>,
+    /// Held-out checks.
+    pub checks: Vec<Check>,
+}
+
+/// Errors of writing a table.
+#[derive(Debug, Error)]
+pub enum StorageError {
+    /// HDF5 refused an operation.
+    #[error("writing {path}: {message}")]
+    Hdf5 {
+        /// Output path.
+        path: String,
+        /// What failed.
+        message: String,
+    },
+    /// A held-out check is off by more than the error bound the table would state: the file
+    /// is not written.
+    #[error(
+        "refusing to write {path}: the held-out check at gamma = {gamma}, alpha = {alpha} is off \
+         by {error:.3e}, more than the error bound the table states, {bound:.3e} (largest leaf \
+         prediction + 2.66 x node error estimate, docs/table-format.md); the refinement's \
+         prediction does not hold there: lower nodes.target_error or solver.tol"
+    )]
+    BoundContradicted {
+        /// Output path.
+        path: String,
+        /// The stated bound ([`error_bound`]).
+        bound: f64,
+        /// The check's measured error.
+        error: f64,
+        /// γ of the check.
+        gamma: f64,
+        /// α of the check.
+        alpha: f64,
+    },
+    /// Filesystem error (directory, rename).
+    #[error("writing {path}: {source}")]
+    Io {
+        /// Output path.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// Something that is not a regular file is in the way of the output.
+    #[error(transparent)]
+    Output(#[from] OutputPathError),
+}
+
+/// An output path that must not be written: something other than a regular file is there, or
+/// it is one of the inputs.
+#[derive(Debug, Error)]
+pub enum OutputPathError {
+    /// The path exists and is not a regular file (writing would replace or write into it).
+    #[error("output {path} is {kind}, not a regular file; give the path of a file")]
+    NotAFile {
+        /// The path.
+        path: String,
+        /// What is there, e.g. "a directory", "a symbolic link (to /x)", "a FIFO".
+        kind: String,
+    },
+    /// The path is (through any name or hard link) one of the files being read.
+    #[error("output {path} is the input {input}; give another output path")]
+    IsInput {
+        /// The output path.
+        path: String,
+        /// The input it is the same file as.
+        input: String,
+    },
+    /// The path could not be examined.
+    #[error("output {path}: {source}")]
+    Io {
+        /// The path.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+}
+
+/// What is at `path` in words ("a directory", "a FIFO", …), when it is not a regular file;
+/// `None` for a regular file. A symbolic link is reported as one (with its target), never
+/// followed.
+fn non_file_kind(meta: &std::fs::Metadata, path: &Path) -> Option<String> {
+    let t = meta.file_type();
+    if t.is_file() {
+        return None;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return Some("a FIFO (named pipe)".into());
+        }
+        if t.is_char_device() {
+            return Some("a character device".into());
+        }
+        if t.is_block_device() {
+            return Some("a block device".into());
+        }
+        if t.is_socket() {
+            return Some("a socket".into());
+        }
+    }
+    Some(if t.is_dir() {
+        "a directory".into()
+    } else if t.is_symlink() {
+        match std::fs::read_link(path) {
+            Ok(target) => format!("a symbolic link (to {})", target.display()),
+            Err(_) => "a symbolic link".into(),
+        }
+    } else {
+        "not a regular file".into()
+    })
+}
+
+/// Check that `path` may be written as an output file: it does not exist, or it is a regular
+/// file (not a directory, symbolic link, FIFO, device or socket, which writing would replace or
+/// write into).
+pub fn check_output(path: &Path) -> Result<(), OutputPathError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(meta) => match non_file_kind(&meta, path) {
+            None => Ok(()),
+            Some(kind) => Err(OutputPathError::NotAFile {
+                path: path.display().to_string(),
+                kind,
+            }),
+        },
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(source) => Err(OutputPathError::Io {
+            path: path.display().to_string(),
+            source,
+        }),
+    }
+}
+
+/// [`check_output`], and that `path` is none of `inputs` (compared by device and inode, so
+/// another name or a hard link of an input is caught too).
+pub fn check_output_not_input(path: &Path, inputs: &[&Path]) -> Result<(), OutputPathError> {
+    check_output(path)?;
+    let Ok(out) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    for input in inputs {
+        if std::fs::metadata(input).is_ok_and(|m| same_file(&m, &out)) {
+            return Err(OutputPathError::IsInput {
+                path: path.display().to_string(),
+                input: input.display().to_string(),
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(unix)]
+fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    a.dev() == b.dev() && a.ino() == b.ino()
+}
+
+#[cfg(not(unix))]
+fn same_file(_: &std::fs::Metadata, _: &std::fs::Metadata) -> bool {
+    false
+}
+
+struct W<'a> {
+    path: &'a str,
+}
+
+impl W<'_> {
+    fn e(&self, what: &str) -> impl Fn(hdf5::Error) -> StorageError + '_ {
+        let what = what.to_string();
+        move |err| StorageError::Hdf5 {
+            path: self.path.to_string(),
+            message: format!("{what}: {err}"),
+        }
+    }
+
+    fn attr_f64(&self, loc: &hdf5::Location, name: &str, v: f64) -> Result<(), StorageError> {
+        loc.new_attr::<f64>()
+            .create(name)
+            .and_then(|a| a.write_scalar(&v))
+            .map_err(self.e(name))
+    }
+
+    fn attr_str(&self, loc: &hdf5::Location, name: &str, v: &str) -> Result<(), StorageError> {
+        let s: VarLenUnicode = v.parse().map_err(|_| StorageError::Hdf5 {
+            path: self.path.to_string(),
+            message: format!("attribute {name}: string contains a NUL byte"),
+        })?;
+        loc.new_attr::<VarLenUnicode>()
+            .create(name)
+            .and_then(|a| a.write_scalar(&s))
+            .map_err(self.e(name))
+    }
+
+    fn ds(
+        &self,
+        g: &hdf5::Group,
+        name: &str,
+        data: &[f64],
+        shape: &[usize],
+    ) -> Result<(), StorageError> {
+        self.ints(g, name, data, shape)
+    }
+
+    fn ints<T: hdf5::H5Type>(
+        &self,
+        g: &hdf5::Group,
+        name: &str,
+        data: &[T],
+        shape: &[usize],
+    ) -> Result<(), StorageError> {
+        let arr = ndarray::ArrayView::from_shape(ndarray::IxDyn(shape), data).map_err(|e| {
+            StorageError::Hdf5 {
+                path: self.path.to_string(),
+                message: format!("{name}: {e}"),
+            }
+        })?;
+        // One chunk per dataset with a Fletcher-32 checksum: a corrupted value is an error on
+        // read, never a silently wrong number (HDF5 cannot chunk an empty dataset).
+        let builder = g.new_dataset_builder().with_data(arr);
+        let builder = if shape.iter().all(|&d| d > 0) {
+            builder.chunk(shape.to_vec()).fletcher32()
+        } else {
+            builder
+        };
+        builder.create(name).map(|_| ()).map_err(self.e(name))
+    }
+}
+
+/// The error bound the table of `built` states: [`crate::bound::surface_bound`] of its
+/// leaves' predicted errors (what `Table::error_bound` derives from the written file).
+pub fn error_bound(built: &Built) -> f64 {
+    let pred = |name: &str| {
+        built
+            .patches
+            .iter()
+            .find(|p| p.name == name)
+            .map(|p| p.leaf_error.as_slice())
+    };
+    crate::bound::surface_bound(
+        &built.surface,
+        [
+            pred(PATCH_STICK_LOW),
+            pred(PATCH_PARTIAL_HIGH),
+            pred(PATCH_STICK_HIGH),
+        ],
+    )
+}
+
+/// Write `built` to `out` atomically: an interrupted write never leaves a partial file at `out`.
+/// Refused ([`StorageError::BoundContradicted`], nothing written) when a held-out check exceeds
+/// the error bound the table states ([`error_bound`]).
+pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), StorageError> {
+    let path = out.display().to_string();
+    let bound = error_bound(built);
+    if let Some(c) = crate::bound::contradicting_check(&built.checks, bound) {
+        return Err(StorageError::BoundContradicted {
+            path,
+            bound,
+            error: c.interpolation_error,
+            gamma: c.gamma,
+            alpha: c.alpha,
+        });
+    }
+    let io = |source| StorageError::Io {
+        path: path.clone(),
+        source,
+    };
+    check_output(out)?;
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(io)?;
+    }
+    let file_name = out
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_else(|| "table.h5".into());
+    remove_stale_temporaries(out, &file_name);
+    let tmp: PathBuf = out.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
+    // HDF5 finishes the file when its last handle closes (at the end of `write_to`); only then
+    // are its bytes final. Seal them and make sure they are on disk before the rename
+    // publishes the file.
+    let result = write_to(&tmp, &path, built, prov).and_then(|()| seal(&tmp).map_err(io));
+    // Checked again just before the rename: the write may have taken a while.
+    let result = result.and_then(|()| check_output(out).map_err(StorageError::from));
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, out).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io(e)
+    })
+}
+
+/// Remove `.NAME.tmp-PID` files left next to `out` by writers that were killed (their process no
+/// longer exists). Best effort: errors are ignored.
+fn remove_stale_temporaries(out: &Path, file_name: &str) {
+    let dir = match out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(d) => d.to_path_buf(),
+        None => PathBuf::from("."),
+    };
+    let prefix = format!(".{file_name}.tmp-");
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().to_string();
+        let Some(pid) = name.strip_prefix(&prefix) else {
+            continue;
+        };
+        let alive = pid
+            .parse::<u32>()
+            .is_ok_and(|p| p == std::process::id() || Path::new(&format!("/proc/{p}")).exists());
+        if !alive {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
+fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<(), StorageError> {
+    let w = W { path };
+    // File format of HDF5 1.10: every metadata block carries a checksum, so a damaged file is
+    // refused by the library instead of being misread.
+    // A user block for the seal (`crate::format::seal_of`), written after the file is
+    // closed.
+    let file = hdf5::File::with_options()
+        .with_fapl(|p| p.libver_v110())
+        .with_fcpl(|p| p.userblock(USERBLOCK as u64))
+        .create(tmp)
+        .map_err(w.e("create file"))?;
+    let s = &built.surface;
+    w.attr_str(&file, ATTR_FORMAT, FORMAT_NAME)?;
+    w.attr_f64(&file, ATTR_SCHEMA, SCHEMA_VERSION as f64)?;
+    w.attr_f64(&file, ATTR_STENCIL, s.stencil as f64)?;
+    w.attr_f64(&file, ATTR_GAMMA_MIN, s.gamma_min)?;
+    w.attr_f64(&file, ATTR_GAMMA_MAX, s.gamma_max)?;
+    w.attr_f64(&file, ATTR_ALPHA_MAX, s.alpha_max)?;
+    w.attr_str(&file, ATTR_ENGINE_VERSION, &prov.engine_version)?;
+    w.attr_str(&file, ATTR_GIT_COMMIT, &prov.git_commit)?;
+    w.attr_str(&file, ATTR_CONFIG, &prov.config)?;
+    w.attr_str(&file, ATTR_SOLVER, &prov.solver)?;
+    w.attr_str(&file, ATTR_CREATED, &prov.created)?;
+    w.attr_f64(&file, ATTR_WALL_TIME, prov.wall_time_s)?;
+    w.attr_f64(&file, ATTR_NODE_TOL, prov.node_tol)?;
+    w.attr_f64(&file, ATTR_CHECK_TOL, prov.check_tol)?;
+    w.attr_f64(&file, ATTR_TARGET_ERROR, prov.target_error)?;
+
+    let patches = file.create_group(GROUP_PATCHES).map_err(w.e("patches"))?;
+    for bp in &built.patches {
+        let p = &bp.patch;
+        let g = patches.create_group(bp.name).map_err(w.e(bp.name))?;
+        w.attr_str(&g, ATTR_KIND, p.kind.name())?;
+        w.attr_f64(&g, ATTR_GAMMA_LO, p.gamma_lo)?;
+        w.attr_f64(&g, ATTR_GAMMA_HI, p.gamma_hi)?;
+        w.attr_f64(&g, ATTR_BLOCKS_GAMMA, p.blocks_gamma as f64)?;
+        w.attr_f64(&g, ATTR_BLOCKS_COORD, p.blocks_coord as f64)?;
+        w.attr_f64(&g, ATTR_LEAF_INTERVALS, p.leaf_intervals as f64)?;
+        let leaves = [bp.leaf_error.len()];
+        w.ints(&g, DS_TREE, &p.tree, &[p.tree.len()])?;
+        let depth: Vec<i32> = bp.leaf_depth.iter().map(|&d| d as i32).collect();
+        w.ints(&g, DS_LEAF_DEPTH, &depth, &leaves)?;
+        w.ds(&g, DS_LEAF_ERROR, &bp.leaf_error, &leaves)?;
+        let n = [leaves[0], p.leaf_intervals + 1, p.leaf_intervals + 1];
+        w.ds(&g, DS_GAMMA, &bp.gamma, &n)?;
+        w.ds(&g, DS_COORD, &bp.coord, &n)?;
+        w.ds(&g, DS_ALPHA, &bp.alpha, &n)?;
+        w.ds(&g, DS_P, &p.p, &n)?;
+        w.ds(&g, DS_ERROR, &p.error_estimate, &n)?;
+        // The optional warp of the coordinate (schema 3; only `partial_high` has one).
+        if let Some(warp) = &p.warp {
+            // Never write a warp the readers refuse.
+            let refuse = |m: String| StorageError::Hdf5 {
+                path: path.to_string(),
+                message: format!("patch '{}': {GROUP_WARP}: {m}", bp.name),
+            };
+            if bp.name != PATCH_PARTIAL_HIGH {
+                return Err(refuse(format!("only '{PATCH_PARTIAL_HIGH}' may have one")));
+            }
+            p.check_warp().map_err(refuse)?;
+            let wg = g
+                .create_group(GROUP_WARP)
+                .map_err(w.e(&format!("{}/{GROUP_WARP}", bp.name)))?;
+            w.attr_f64(&wg, ATTR_WARP_START, warp.start)?;
+            w.attr_f64(&wg, ATTR_WARP_GAMMA_0, warp.gamma_0)?;
+            w.attr_f64(&wg, ATTR_WARP_GAMMA_STEP, warp.gamma_step)?;
+            w.attr_f64(&wg, ATTR_WARP_C_STAR, warp.c_star)?;
+            w.ds(&wg, DS_WARP_KNOT, &warp.knot, &[warp.knot.len()])?;
+        }
+    }
+
+    // No-slip limit: the nodes at c = 1 of the stick patches (when α_max = ∞), by γ.
+    if s.alpha_max.is_infinite() {
+        let mut rows: Vec<(f64, f64, f64)> = built
+            .patches
+            .iter()
+            .filter(|b| b.patch.kind == PatchKind::Stick)
+            .flat_map(|b| {
+                (0..b.coord.len())
+                    .filter(|&i| b.coord[i] == 1.0)
+                    .map(|i| (b.gamma[i], b.patch.p[i], b.patch.error_estimate[i]))
+            })
+            .collect();
+        rows.sort_by(|x, y| x.0.total_cmp(&y.0));
+        rows.dedup_by(|x, y| x.0 == y.0);
+        let g = file.create_group(GROUP_NO_SLIP).map_err(w.e("no_slip"))?;
+        let col = |f: fn(&(f64, f64, f64)) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
+        w.ds(&g, DS_GAMMA, &col(|r| r.0), &[rows.len()])?;
+        w.ds(&g, DS_P, &col(|r| r.1), &[rows.len()])?;
+        w.ds(&g, DS_ERROR, &col(|r| r.2), &[rows.len()])?;
+    }
+
+    // Critical curves sampled on 401 points of the γ domain (α_c1 is NaN below γ = 1, where it
+    // marks nothing).
+    let n = 401;
+    let gamma: Vec<f64> = (0..n)
+        .map(|i| s.gamma_min + (s.gamma_max - s.gamma_min) * i as f64 / (n - 1) as f64)
+        .collect();
+    let c1: Vec<f64> = gamma
+        .iter()
+        .map(|&g| if g >= 1.0 { alpha_c1(g) } else { f64::NAN })
+        .collect();
+    let c2: Vec<f64> = gamma.iter().map(|&g| alpha_c2(g)).collect();
+    let g = file.create_group(GROUP_CRITICAL).map_err(w.e("critical"))?;
+    w.ds(&g, DS_GAMMA, &gamma, &[n])?;
+    w.ds(&g, DS_ALPHA_C1, &c1, &[n])?;
+    w.ds(&g, DS_ALPHA_C2, &c2, &[n])?;
+
+    let ch = &built.checks;
+    let g = file.create_group(GROUP_CHECKS).map_err(w.e("checks"))?;
+    let col = |f: fn(&Check) -> f64| ch.iter().map(f).collect::<Vec<f64>>();
+    w.ds(&g, DS_GAMMA, &col(|c| c.gamma), &[ch.len()])?;
+    w.ds(&g, DS_ALPHA, &col(|c| c.alpha), &[ch.len()])?;
+    w.ds(&g, DS_P_SIMULATED, &col(|c| c.p_simulated), &[ch.len()])?;
+    w.ds(
+        &g,
+        DS_P_INTERPOLATED,
+        &col(|c| c.p_interpolated),
+        &[ch.len()],
+    )?;
+    w.ds(
+        &g,
+        DS_INTERP_ERROR,
+        &col(|c| c.interpolation_error),
+        &[ch.len()],
+    )?;
+    let patch: Vec<i32> = ch.iter().map(|c| c.patch).collect();
+    w.ints(&g, DS_PATCH, &patch, &[ch.len()])?;
+    file.flush().map_err(w.e("flush"))?;
+    Ok(())
+}
+
+/// Write the seal (`crate::format::seal_of`) into the user block of the table file at
+/// `path`, and sync it to disk. Also for tools that edit a table on purpose (the schema tests).
+pub fn seal(path: &Path) -> std::io::Result<()> {
+    use std::io::{Seek, SeekFrom, Write};
+    let bytes = std::fs::read(path)?;
+    let mut f = std::fs::OpenOptions::new().write(true).open(path)?;
+    f.seek(SeekFrom::Start(0))?;
+    f.write_all(&seal_of(&bytes))?;
+    f.sync_all()
+}

@@ -1,0 +1,167 @@
+//! `sweep plot`: the figures of a table (`oblique_plot::figures`), written as PNG or SVG.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::{Args, ValueEnum};
+
+use oblique_lookup::Table;
+use oblique_plot::figures::{self, FigureKind, Source};
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FormatArg {
+    /// Bitmap (default).
+    Png,
+    /// Vector.
+    Svg,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FigureArg {
+    /// p_surface: P(gamma, alpha) colour map with contours, alpha_c1, alpha_c2, isotropic band.
+    Surface,
+    /// p_slices: P against alpha for fixed gamma; P against gamma for fixed alpha, with fit (29).
+    Slices,
+    /// regimes: full slip / partial slip / stick in the (gamma, alpha) plane.
+    Regimes,
+    /// check_errors: interpolation error at the held-out checks.
+    Quality,
+}
+
+impl From<FigureArg> for FigureKind {
+    fn from(f: FigureArg) -> Self {
+        match f {
+            FigureArg::Surface => FigureKind::Surface,
+            FigureArg::Slices => FigureKind::Slices,
+            FigureArg::Regimes => FigureKind::Regimes,
+            FigureArg::Quality => FigureKind::Quality,
+        }
+    }
+}
+
+#[derive(Args)]
+pub struct PlotArgs {
+    /// Table file written by `sweep run` (HDF5, schema v2 or v3).
+    table: PathBuf,
+    /// Output folder (created if missing).
+    #[arg(short, long, default_value = ".")]
+    output: PathBuf,
+    /// Image format.
+    #[arg(long, value_enum, default_value = "png")]
+    format: FormatArg,
+    /// Only this figure (repeat for several); all four by default.
+    #[arg(long = "figure", value_enum)]
+    figures: Vec<FigureArg>,
+    /// gamma values of the P-against-alpha panel, comma-separated (default: round values in the
+    /// table's domain).
+    #[arg(long, value_delimiter = ',', value_parser = parse_number, allow_hyphen_values = true)]
+    gammas: Vec<f64>,
+    /// alpha values of the P-against-gamma panel, comma-separated; `inf` is the no-slip limit
+    /// (default: 0.3,0.5,0.7,1,2,4,12,inf).
+    #[arg(long, value_delimiter = ',', value_parser = parse_number, allow_hyphen_values = true)]
+    alphas: Vec<f64>,
+}
+
+fn parse_number(s: &str) -> Result<f64, String> {
+    let t = s.trim().to_ascii_lowercase();
+    match t.as_str() {
+        "inf" | "infinity" | "+inf" | "∞" => Ok(f64::INFINITY),
+        _ => match t.parse::<f64>() {
+            Ok(v) if !v.is_nan() => Ok(v),
+            _ => Err(format!("`{s}` is not a number")),
+        },
+    }
+}
+
+fn command_line(args: &PlotArgs) -> String {
+    let mut c = format!("sweep plot {}", args.table.display());
+    c.push_str(&format!(" -o {}", args.output.display()));
+    if args.format == FormatArg::Svg {
+        c.push_str(" --format svg");
+    }
+    for f in &args.figures {
+        if let Some(v) = f.to_possible_value() {
+            c.push_str(&format!(" --figure {}", v.get_name()));
+        }
+    }
+    let list = |v: &[f64]| {
+        v.iter()
+            .map(|x| {
+                if x.is_infinite() {
+                    "inf".to_string()
+                } else {
+                    x.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    if !args.gammas.is_empty() {
+        c.push_str(&format!(" --gammas {}", list(&args.gammas)));
+    }
+    if !args.alphas.is_empty() {
+        c.push_str(&format!(" --alphas {}", list(&args.alphas)));
+    }
+    c
+}
+
+pub fn run(args: PlotArgs) -> Result<()> {
+    let start = Instant::now();
+    let table = Table::open(&args.table)?;
+    let src = Source {
+        table: args.table.display().to_string(),
+        command: command_line(&args),
+    };
+    let kinds: Vec<FigureKind> = if args.figures.is_empty() {
+        FigureKind::ALL.to_vec()
+    } else {
+        let mut k: Vec<FigureKind> = Vec::new();
+        for f in &args.figures {
+            let f = FigureKind::from(*f);
+            if !k.contains(&f) {
+                k.push(f);
+            }
+        }
+        k
+    };
+    let gammas = if args.gammas.is_empty() {
+        figures::default_gammas(&table)
+    } else {
+        args.gammas.clone()
+    };
+    let alphas = if args.alphas.is_empty() {
+        figures::default_alphas(&table)
+    } else {
+        args.alphas.clone()
+    };
+    // Build every figure first: a bad option fails before anything is written.
+    let sheets = kinds
+        .iter()
+        .map(|&k| Ok((k, figures::build(k, &table, &src, &gammas, &alphas)?)))
+        .collect::<Result<Vec<_>>>()?;
+    std::fs::create_dir_all(&args.output)
+        .with_context(|| format!("cannot create output folder {}", args.output.display()))?;
+    let ext = match args.format {
+        FormatArg::Png => "png",
+        FormatArg::Svg => "svg",
+    };
+    let paths: Vec<PathBuf> = sheets
+        .iter()
+        .map(|(kind, _)| args.output.join(format!("{}.{ext}", kind.stem())))
+        .collect();
+    for path in &paths {
+        oblique_table::write::check_output(path)?;
+    }
+    for ((kind, sheet), path) in sheets.iter().zip(&paths) {
+        oblique_plot::render_sheet(sheet, path)?;
+        println!("wrote {}  ({})", path.display(), kind.describe());
+    }
+    println!(
+        "{} figure(s) of {} in {:.2} s",
+        sheets.len(),
+        args.table.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}

@@ -1,0 +1,221 @@
+//! `sweep query`: answer `P(γ, α)` from a table (no simulation), one point or a batch.
+
+use std::io::{BufRead, BufWriter, Write};
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use serde_json::json;
+
+use oblique_lookup::{LookupError, OutOfDomain, Table};
+use oblique_table::surface::{Region, Surface};
+
+#[derive(Args)]
+pub struct QueryArgs {
+    /// Table file written by `sweep run` (HDF5, schema v2 or v3).
+    table: PathBuf,
+    /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
+    #[arg(long, value_parser = crate::parse_table_gamma, allow_hyphen_values = true,
+          conflicts_with = "batch", requires = "alpha")]
+    gamma: Option<f64>,
+    /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
+    #[arg(long, value_parser = crate::parse_alpha, allow_hyphen_values = true,
+          conflicts_with = "batch", requires = "gamma")]
+    alpha: Option<f64>,
+    /// Read lines `gamma,alpha` from FILE (`-` for stdin) and write lines `gamma,alpha,P,e_t`
+    /// in the same order.
+    #[arg(long, value_name = "FILE")]
+    batch: Option<PathBuf>,
+    /// Answer a gamma (alpha) outside the table's domain at the nearest gamma (alpha_max) of
+    /// the table instead of refusing it.
+    #[arg(long)]
+    clamp: bool,
+    /// Print one JSON object (single query only; alpha = inf is written as the string "inf").
+    #[arg(long, conflicts_with = "batch")]
+    json: bool,
+}
+
+/// A bad query or batch line: exit status 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct QueryUsageError(String);
+
+fn usage(e: LookupError) -> anyhow::Error {
+    match e {
+        LookupError::Query { .. } | LookupError::Batch { .. } | LookupError::Length { .. } => {
+            QueryUsageError(e.to_string()).into()
+        }
+        other => other.into(),
+    }
+}
+
+/// Tangential restitution of a solid sphere without initial spin, `e_t = (2P + 5)/7`.
+fn e_t(p: f64) -> f64 {
+    (2.0 * p + 5.0) / 7.0
+}
+
+fn region_name(surface: &Surface, gamma: f64, alpha: f64) -> &'static str {
+    let inside = gamma >= surface.gamma_min && gamma <= surface.gamma_max;
+    match Region::of(gamma, alpha) {
+        Region::Line => "full-slip line (closed form)",
+        _ if !inside || alpha > surface.alpha_max => "outside the table (clamped)",
+        Region::PartialHigh => "partial slip (interpolated)",
+        Region::StickLow | Region::StickHigh if alpha.is_infinite() => {
+            "no slip, alpha = inf (interpolated)"
+        }
+        Region::StickLow | Region::StickHigh => "stick (interpolated)",
+    }
+}
+
+pub fn run(args: QueryArgs) -> Result<()> {
+    let table = Table::open(&args.table)?;
+    let outside = if args.clamp {
+        OutOfDomain::Clamp
+    } else {
+        OutOfDomain::Error
+    };
+    if let Some(path) = &args.batch {
+        return batch(&table, path, outside);
+    }
+    let (Some(gamma), Some(alpha)) = (args.gamma, args.alpha) else {
+        return Err(QueryUsageError(
+            "nothing to answer: give --gamma G --alpha A for one point, or --batch FILE for \
+             lines `gamma,alpha` (FILE `-` reads standard input)"
+                .into(),
+        )
+        .into());
+    };
+    let p = table.p_with(gamma, alpha, outside).map_err(usage)?;
+    let region = region_name(&table.surface, gamma, alpha);
+    let error = if Region::of(gamma, alpha) == Region::Line {
+        0.0
+    } else {
+        table.error_bound()
+    };
+    if args.json {
+        let out = json!({
+            "gamma": gamma,
+            "alpha": crate::json_number(alpha),
+            "P": p,
+            "e_t": e_t(p),
+            "region": region,
+            "error_bound": error,
+            "table": args.table.display().to_string(),
+        });
+        println!("{out}");
+    } else {
+        println!(
+            "P(gamma = {}, alpha = {}) = {p:.9}  +/- {error:.1e}",
+            crate::fmt_num(gamma),
+            crate::fmt_num(alpha)
+        );
+        println!(
+            "e_t = (2P + 5)/7 = {:.9}   (solid sphere, no initial spin)",
+            e_t(p)
+        );
+        println!("{region}, from {}", args.table.display());
+    }
+    Ok(())
+}
+
+/// Parse one batch line `gamma,alpha` (1-based `number` for messages).
+fn parse_line(line: &str, number: usize) -> Result<(f64, f64), QueryUsageError> {
+    let bad = |what: String| {
+        QueryUsageError(format!(
+            "batch line {number}: {what}; expected `gamma,alpha` (e.g. `1.75,0.3`, alpha may be `inf`)"
+        ))
+    };
+    let mut fields = line.split(',');
+    let (Some(g), Some(a), None) = (fields.next(), fields.next(), fields.next()) else {
+        return Err(bad(format!(
+            "{} field(s) in {line:?}",
+            line.split(',').count()
+        )));
+    };
+    let g = crate::parse_f64(g).map_err(|e| bad(format!("gamma: {e}")))?;
+    let a = crate::parse_f64(a).map_err(|e| bad(format!("alpha: {e}")))?;
+    Ok((g, a))
+}
+
+/// One input line of a batch: a point to answer, or a line passed through unchanged.
+enum BatchLine {
+    /// `gamma,alpha`: index into the point vectors.
+    Point,
+    /// A blank line, a `#` comment or the header, copied to the output as it is.
+    Verbatim(String),
+}
+
+/// Read a whole batch: every line is checked before anything is answered, so a bad line anywhere
+/// (or a point outside the domain) stops the batch with no output at all, whatever its size.
+fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
+    let input: Box<dyn BufRead> = if path.as_os_str() == "-" {
+        Box::new(std::io::stdin().lock())
+    } else {
+        let f = std::fs::File::open(path).map_err(|e| {
+            QueryUsageError(format!("--batch {}: cannot open: {e}", path.display()))
+        })?;
+        Box::new(std::io::BufReader::new(f))
+    };
+    let (mut gammas, mut alphas, mut numbers) = (Vec::new(), Vec::new(), Vec::new());
+    let mut lines = Vec::new();
+    let mut header_allowed = true;
+    for (i, line) in input.lines().enumerate() {
+        let number = i + 1;
+        let line =
+            line.map_err(|e| QueryUsageError(format!("batch line {number}: cannot read: {e}")))?;
+        let line = if number == 1 {
+            line.strip_prefix('\u{feff}')
+                .map(str::to_owned)
+                .unwrap_or(line)
+        } else {
+            line
+        };
+        let text = line.trim();
+        if text.is_empty() || text.starts_with('#') {
+            lines.push(BatchLine::Verbatim(line.trim_end().to_owned()));
+            continue;
+        }
+        if header_allowed && text.replace(' ', "").eq_ignore_ascii_case("gamma,alpha") {
+            header_allowed = false;
+            lines.push(BatchLine::Verbatim("gamma,alpha,P,e_t".into()));
+            continue;
+        }
+        header_allowed = false;
+        let (g, a) = parse_line(text, number)?;
+        gammas.push(g);
+        alphas.push(a);
+        numbers.push(number);
+        lines.push(BatchLine::Point);
+    }
+    let mut ps = vec![0.0; gammas.len()];
+    table
+        .p_batch_par(&gammas, &alphas, &mut ps, outside)
+        .map_err(|e| match e {
+            LookupError::Batch { index, source } => {
+                QueryUsageError(format!("batch line {}: {source}", numbers[index])).into()
+            }
+            other => usage(other),
+        })?;
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let mut points = gammas.iter().zip(&alphas).zip(&ps);
+    for line in &lines {
+        match line {
+            BatchLine::Verbatim(text) => writeln!(out, "{text}"),
+            BatchLine::Point => match points.next() {
+                Some(((g, a), p)) => writeln!(
+                    out,
+                    "{},{},{},{}",
+                    crate::fmt_num(*g),
+                    crate::fmt_num(*a),
+                    crate::fmt_num(*p),
+                    crate::fmt_num(e_t(*p))
+                ),
+                None => Ok(()),
+            },
+        }
+        .context("writing the output")?;
+    }
+    out.flush().context("writing the output")?;
+    Ok(())
+}

@@ -1,0 +1,150 @@
+//! `sweep scene`: evaluate a scene file, write its CSV and plot, print a summary.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::Args;
+
+use oblique_lookup::Table;
+use oblique_physics::regimes::Regime;
+use oblique_study::scene::{self, PSource, RowMethod, Scene, SceneTarget};
+
+#[derive(Args)]
+pub struct SceneArgs {
+    /// Scene file (TOML; see configs/scenes/ and docs/scenes.md).
+    scene: PathBuf,
+    /// Look P up in this table (written by `sweep run`) instead of simulating each case.
+    #[arg(long)]
+    table: Option<PathBuf>,
+    /// Output folder for NAME.csv and NAME.png, NAME being the scene's name (created if missing).
+    #[arg(short, long, default_value = ".")]
+    output: PathBuf,
+    /// Also write the plot as NAME.svg.
+    #[arg(long)]
+    svg: bool,
+}
+
+fn command_line(args: &SceneArgs) -> String {
+    let mut c = format!("sweep scene {}", args.scene.display());
+    if let Some(t) = &args.table {
+        c.push_str(&format!(" --table {}", t.display()));
+    }
+    c.push_str(&format!(" -o {}", args.output.display()));
+    c
+}
+
+fn write_file(
+    path: &Path,
+    write: impl FnOnce(&mut std::fs::File) -> std::io::Result<()>,
+) -> Result<()> {
+    let mut f =
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    write(&mut f).with_context(|| format!("cannot write {}", path.display()))
+}
+
+pub fn run(args: SceneArgs) -> Result<()> {
+    let start = Instant::now();
+    let scene = Scene::load(&args.scene)?;
+    let table = match &args.table {
+        Some(p) => Some(Table::open(p)?),
+        None => None,
+    };
+    let source = match &table {
+        Some(t) => PSource::Table(t),
+        None => PSource::Simulate,
+    };
+    let ev = scene::evaluate(&scene, source)?;
+    std::fs::create_dir_all(&args.output)
+        .with_context(|| format!("cannot create output folder {}", args.output.display()))?;
+    let sphere_sphere = matches!(scene.target, SceneTarget::Sphere { .. });
+    let csv_path = args.output.join(format!("{}.csv", scene.name));
+    let png_path = args.output.join(format!("{}.png", scene.name));
+    let svg_path = args.output.join(format!("{}.svg", scene.name));
+    // Nothing is written unless every output can be.
+    for path in [&csv_path, &png_path]
+        .into_iter()
+        .chain(args.svg.then_some(&svg_path))
+    {
+        oblique_table::write::check_output(path)?;
+    }
+    write_file(&csv_path, |f| scene::csv::write(&ev, sphere_sphere, f))?;
+    let fig = scene::figure::figure(&scene, &ev, &command_line(&args));
+    oblique_plot::render(&fig, &png_path)?;
+    let mut written = vec![
+        csv_path.display().to_string(),
+        png_path.display().to_string(),
+    ];
+    if args.svg {
+        oblique_plot::render(&fig, &svg_path)?;
+        written.push(svg_path.display().to_string());
+    }
+
+    println!("scene {} ({})", scene.name, args.scene.display());
+    if !scene.description.is_empty() {
+        println!("  {}", scene.description);
+    }
+    let target = match &scene.target {
+        SceneTarget::Wall { material } => format!("the {} wall", material.describe()),
+        SceneTarget::Sphere { body, material, .. } => format!(
+            "the {} sphere (R = {:.4e} m, m = {:.4e} kg, kappa = {:.4})",
+            material.describe(),
+            body.radius,
+            body.mass,
+            body.kappa
+        ),
+    };
+    println!(
+        "  {} sphere (R = {:.4e} m, m = {:.4e} kg, kappa = {:.4}) on {target}, mu = {}",
+        scene.sphere_material.describe(),
+        scene.sphere.radius,
+        scene.sphere.mass,
+        scene.sphere.kappa,
+        scene.friction
+    );
+    println!(
+        "  gamma = {:.6}  (E* = {:.4e} Pa, G* = {:.4e} Pa, m* = {:.4e} kg, m_t = {:.4e} kg, R* = {:.4e} m)",
+        ev.gamma, ev.e_star, ev.g_star, ev.normal_mass, ev.tangential_mass, ev.effective_radius
+    );
+    let cases = ev.rows.iter().filter(|r| r.in_scene).count();
+    match ev.alpha_range() {
+        Some((lo, hi)) => println!(
+            "  alpha {lo:.4e} .. {hi:.4e} (alpha_c1 = {:.6}, alpha_c2 = {:.6}): {} full-slip, {} partial-slip, {} stick, {} normal",
+            ev.alpha_c1,
+            ev.alpha_c2,
+            ev.count_regime(Regime::FullSlip),
+            ev.count_regime(Regime::PartialSlip),
+            ev.count_regime(Regime::Stick),
+            ev.count(RowMethod::NormalImpact)
+        ),
+        None => println!("  alpha = inf for every case"),
+    }
+    println!(
+        "  {cases} cases: {} simulated, {} interpolated, {} closed form, {} pure normal; max error of P {:.1e}",
+        ev.count(RowMethod::Simulated),
+        ev.count(RowMethod::Table),
+        ev.count(RowMethod::ClosedForm),
+        ev.count(RowMethod::NormalImpact),
+        ev.max_p_error()
+    );
+    println!("  P: {}", ev.source);
+    println!(
+        "  evaluated in {:.3} s ({:.3} s in all)",
+        ev.elapsed_s,
+        start.elapsed().as_secs_f64()
+    );
+    if let (Some(rms), Some(m)) = (&ev.rms, &scene.measured) {
+        let part = |v: Option<(f64, usize)>, unit: &str| match v {
+            Some((r, n)) => format!("{r:.4}{unit} (n = {n})"),
+            None => "-".into(),
+        };
+        println!(
+            "  RMS model - measured: e_t {}, omega {}  [{}]",
+            part(rms.e_t, ""),
+            part(rms.omega, " rad/s"),
+            m.source
+        );
+    }
+    println!("wrote {}", written.join(", "));
+    Ok(())
+}

@@ -1,0 +1,507 @@
+//! `sweep run` and `sweep inspect`.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use serde_json::json;
+
+use oblique_lookup::Table;
+use oblique_sweep::nodestore::{
+    fingerprint, Checkpoint, Header, Kind, LockError, Merged, NodeFile, OutputLock,
+};
+use oblique_sweep::provenance;
+use oblique_sweep::{Built, Config, Progress, RunError, RunOptions, Shard, SweepError};
+use oblique_table::write::{check_output, check_output_not_input, write_table, OutputPathError};
+
+use crate::progress::{CliProgress, STEP_PREFLIGHT, STEP_WRITING};
+
+#[derive(Args)]
+pub struct RunArgs {
+    /// TOML config (see configs/ and docs/config.md).
+    config: PathBuf,
+    /// Output table (or, with --shard, the shard's part file); overrides the config's `output`.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Worker threads (0 = one per core); overrides `run.threads`.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// No progress output.
+    #[arg(long)]
+    quiet: bool,
+    /// Continue an interrupted run from its checkpoint (OUTPUT.ckpt); starts afresh if there is
+    /// none. The config must be the one the checkpoint was written for.
+    #[arg(long)]
+    resume: bool,
+    /// Discard the checkpoint (OUTPUT.ckpt) of an earlier run, if any, and start afresh.
+    #[arg(long, conflicts_with = "resume")]
+    restart: bool,
+    /// Compute shard K of N (1 <= K <= N) and write it as a part file (-o) for `sweep merge`.
+    #[arg(long, value_name = "K/N", value_parser = parse_shard)]
+    shard: Option<Shard>,
+}
+
+/// Parse `K/N` (1-based) into a 0-based shard.
+fn parse_shard(s: &str) -> std::result::Result<Shard, String> {
+    let bad = || format!("'{s}': expected K/N with integers 1 <= K <= N <= 100000, e.g. 3/8");
+    let (k, n) = s.split_once('/').ok_or_else(bad)?;
+    let k: usize = k.trim().parse().map_err(|_| bad())?;
+    let n: usize = n.trim().parse().map_err(|_| bad())?;
+    if k == 0 || k > n || n > 100_000 {
+        return Err(bad());
+    }
+    Ok(Shard {
+        index: k - 1,
+        count: n,
+    })
+}
+
+#[derive(Args)]
+pub struct MergeArgs {
+    /// Part files written by `sweep run CONFIG --shard K/N -o PART`, one per shard.
+    #[arg(required = true)]
+    parts: Vec<PathBuf>,
+    /// Output table.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// No summary output.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// A usage error of `sweep run`/`sweep merge` (exit code 2).
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct UsageError(pub String);
+
+/// Whether `e` is something the user can fix in the config or on the command line (exit code
+/// 2) among the errors of `sweep run`, `sweep merge` and the output paths of every command.
+pub fn is_usage(e: &anyhow::Error) -> bool {
+    e.downcast_ref::<UsageError>().is_some()
+        || e.downcast_ref::<OutputPathError>().is_some()
+        || matches!(e.downcast_ref::<LockError>(), Some(LockError::Held { .. }))
+        || e.downcast_ref::<RunError>().is_some_and(RunError::is_usage)
+        || e.downcast_ref::<SweepError>()
+            .is_some_and(SweepError::is_usage)
+}
+
+/// A path as a shell word: quoted when it holds anything but plain characters.
+fn shell_word(p: &Path) -> String {
+    let s = p.display().to_string();
+    let plain = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "/._-+,:=@%".contains(c));
+    if plain {
+        s
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+/// Set by the Ctrl-C handler; the sweep stops after its current batch.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+fn checkpoint_path(out: &Path) -> PathBuf {
+    let mut s = out.as_os_str().to_owned();
+    s.push(".ckpt");
+    PathBuf::from(s)
+}
+
+#[derive(Args)]
+pub struct InspectArgs {
+    /// Table file written by `sweep run`.
+    table: PathBuf,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Fail early (before hours of work) if the output directory cannot take a file.
+fn check_writable(out: &std::path::Path) -> Result<()> {
+    let dir = out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("output {}: cannot create directory", out.display()))?;
+    let probe = dir.join(format!(".sweep-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .with_context(|| format!("output {}: directory is not writable", out.display()))?;
+    let _ = std::fs::remove_file(probe);
+    Ok(())
+}
+
+/// `sweep run CONFIG -o OUTPUT [--shard K/N] FLAG`, to quote in messages.
+fn run_command(args: &RunArgs, output: &Path, flag: &str) -> String {
+    let shard = args
+        .shard
+        .map(|s| format!(" --shard {}/{}", s.index + 1, s.count))
+        .unwrap_or_default();
+    format!(
+        "sweep run {} -o {}{shard} {flag}",
+        shell_word(&args.config),
+        shell_word(output)
+    )
+}
+
+/// Open the checkpoint of this run: continue it (`--resume`), discard it (`--restart`) or
+/// create it. Returns it and whether this run created it.
+fn open_checkpoint(
+    args: &RunArgs,
+    cfg: &Config,
+    ckpt_path: &Path,
+    header: Header,
+    progress: &CliProgress,
+) -> Result<(Checkpoint, bool)> {
+    let exists = std::fs::symlink_metadata(ckpt_path).is_ok();
+    if exists && args.restart {
+        std::fs::remove_file(ckpt_path)
+            .with_context(|| format!("cannot discard the checkpoint {}", ckpt_path.display()))?;
+        if !args.quiet {
+            progress.println(&format!("discarded the checkpoint {}", ckpt_path.display()));
+        }
+    } else if exists {
+        let restart = run_command(args, &cfg.output, "--restart");
+        let (nodes, fits) = match NodeFile::read(ckpt_path) {
+            Ok(f) => (
+                Some(f.records.len()),
+                f.header.kind == Kind::Checkpoint
+                    && f.header.fingerprint == header.fingerprint
+                    && f.header.shard == header.shard,
+            ),
+            Err(_) => (None, false),
+        };
+        let what = match nodes {
+            Some(n) => format!("the checkpoint of an interrupted run ({n} nodes)"),
+            None => "no readable checkpoint".to_string(),
+        };
+        if !fits {
+            let why = if nodes.is_some() {
+                "it was written for a different config or shard (domain, nodes, solver or \
+                 checks differ, or another engine version); resume with the config it was \
+                 started with, or"
+            } else {
+                "it cannot be resumed;"
+            };
+            return Err(UsageError(format!(
+                "{} holds {what}: {why} discard it and start afresh with\n  {restart}",
+                ckpt_path.display()
+            ))
+            .into());
+        }
+        if !args.resume {
+            return Err(UsageError(format!(
+                "{} holds {what} of this config: continue it with\n  {}\nor discard it and \
+                 start afresh with\n  {restart}",
+                ckpt_path.display(),
+                run_command(args, &cfg.output, "--resume")
+            ))
+            .into());
+        }
+        let c = Checkpoint::resume(ckpt_path, header)?;
+        if !args.quiet {
+            progress.println(&format!(
+                "resuming from {}: {} nodes already computed",
+                ckpt_path.display(),
+                c.resumed_nodes()
+            ));
+        }
+        return Ok((c, false));
+    }
+    Ok((Checkpoint::create(ckpt_path, header)?, true))
+}
+
+pub fn run(args: RunArgs) -> Result<()> {
+    let (mut cfg, text) = Config::load(&args.config)?;
+    if let Some(o) = &args.output {
+        cfg.output = o.clone();
+    }
+    if let Some(t) = args.threads {
+        if t > 1024 {
+            return Err(UsageError(format!(
+                "--threads {t}: must be in [0, 1024] (0 = one per core)"
+            ))
+            .into());
+        }
+        cfg.run.threads = t;
+    }
+    let ckpt_path = checkpoint_path(&cfg.output);
+    check_output_not_input(&cfg.output, &[&args.config])?;
+    check_output(&ckpt_path)?;
+    check_writable(&cfg.output)?;
+    // Held until the run ends (the operating system releases it if the process dies).
+    let lock = OutputLock::acquire(&cfg.output, "sweep run")?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(cfg.run.threads)
+        .build()
+        .context("cannot start worker threads")?;
+    let steps: Vec<String> = std::iter::once(STEP_PREFLIGHT.to_string())
+        .chain(oblique_sweep::stages(&cfg))
+        .chain(std::iter::once(STEP_WRITING.to_string()))
+        .collect();
+    let progress = CliProgress::new(args.quiet, steps);
+    progress.phase(STEP_PREFLIGHT, "probing the hardest points of the domain");
+    let pre = oblique_sweep::preflight(&cfg)?;
+    if !args.quiet {
+        progress.println(&format!(
+            "preflight: tolerances reachable; the slowest node probed took {:.1} ms",
+            pre.slowest_node_s * 1e3
+        ));
+        if pre.check_tol_loosened {
+            progress.println(&format!(
+                "note: checks.tol is not set and solver.tol/10 is out of reach at gamma = {}: \
+                 the held-out checks use checks.tol = {:e} (set checks.tol to choose)",
+                cfg.domain.gamma_max, pre.check_tol
+            ));
+        }
+    }
+    cfg.derived_check_tol = Some(pre.check_tol);
+    let header = Header {
+        kind: Kind::Checkpoint,
+        shard: args.shard,
+        fingerprint: fingerprint(&cfg),
+        config: text.clone(),
+    };
+    let (ckpt, created) = open_checkpoint(&args, &cfg, &ckpt_path, header, &progress)?;
+    // A second Ctrl-C (or a handler that cannot be installed) kills the process as usual; the
+    // checkpoint is durable after every batch either way.
+    let _ = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+    });
+    let opts = RunOptions {
+        store: Some(&ckpt),
+        strict: false,
+        stop: Some(&STOP),
+    };
+    let start = Instant::now();
+    let result = pool.install(|| match args.shard {
+        Some(shard) => oblique_sweep::build_shard(&cfg, &progress, opts, shard).map(|()| None),
+        None => oblique_sweep::build_with(&cfg, &progress, opts).map(Some),
+    });
+    let built = match result {
+        Ok(b) => b,
+        Err(RunError::Interrupted) => {
+            progress.finish();
+            eprintln!(
+                "interrupted: finished nodes are saved in {}; continue with\n  {}",
+                ckpt_path.display(),
+                run_command(&args, &cfg.output, "--resume")
+            );
+            drop(lock);
+            std::process::exit(130);
+        }
+        Err(e) => {
+            progress.finish();
+            // A failure the config decides would only repeat on resume: the checkpoint this
+            // run created must not stand in the way of the next run. Other failures (a full
+            // disk) and the checkpoint of an earlier, interrupted run keep their nodes.
+            if created && matches!(e, RunError::Sweep(_)) {
+                if let Err(r) = ckpt.remove() {
+                    eprintln!("warning: cannot remove the checkpoint of this run: {r}");
+                }
+            } else {
+                eprintln!(
+                    "finished nodes are kept in {}; continue with\n  {}\nor discard them \
+                     with\n  {}",
+                    ckpt_path.display(),
+                    run_command(&args, &cfg.output, "--resume"),
+                    run_command(&args, &cfg.output, "--restart")
+                );
+            }
+            return Err(e.into());
+        }
+    };
+    let wall = start.elapsed().as_secs_f64();
+    progress.phase(STEP_WRITING, &cfg.output.display().to_string());
+    let Some(built) = built else {
+        ckpt.finish_part(&cfg.output)?;
+        progress.finish();
+        if !args.quiet {
+            eprintln!(
+                "wrote part {} ({wall:.1} s); merge all parts with `sweep merge PARTS... -o TABLE`",
+                cfg.output.display()
+            );
+        }
+        return Ok(());
+    };
+    let written = write_table(&cfg.output, &built, &provenance(&cfg, text, wall));
+    progress.finish();
+    written?;
+    ckpt.remove()?;
+    drop(lock);
+    if !args.quiet {
+        summary(&cfg, &built, wall);
+    }
+    Ok(())
+}
+
+/// `sweep merge`: the table of a sharded run from its parts.
+pub fn merge(args: MergeArgs) -> Result<()> {
+    let inputs: Vec<&Path> = args.parts.iter().map(PathBuf::as_path).collect();
+    check_output_not_input(&args.output, &inputs)?;
+    let merged = Merged::read(&args.parts)?;
+    let (mut cfg, text) = (
+        Config::parse(&merged.config, "config stored in the parts")?,
+        merged.config.clone(),
+    );
+    cfg.output = args.output;
+    cfg.derived_check_tol = oblique_sweep::check_tol_in_store(&cfg, &merged);
+    check_writable(&cfg.output)?;
+    let _lock = OutputLock::acquire(&cfg.output, "sweep merge")?;
+    let opts = RunOptions {
+        store: Some(&merged),
+        strict: true,
+        stop: None,
+    };
+    let start = Instant::now();
+    let built = oblique_sweep::build_with(&cfg, &oblique_sweep::Silent, opts)?;
+    let wall = start.elapsed().as_secs_f64();
+    write_table(&cfg.output, &built, &provenance(&cfg, text, wall))?;
+    if !args.quiet {
+        summary(&cfg, &built, wall);
+    }
+    Ok(())
+}
+
+/// What was written: per patch, then the whole table.
+fn summary(cfg: &Config, built: &Built, wall: f64) {
+    let nodes: usize = built.patches.iter().map(|p| p.unique_nodes).sum();
+    let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
+    for p in &built.patches {
+        eprintln!(
+                "  {:13} {} x {} roots, {} leaves at depth {}..{}, {} nodes ({} simulated), max predicted error {:.1e}",
+                p.name,
+                p.patch.blocks_gamma,
+                p.patch.blocks_coord,
+                p.leaf_depth.len(),
+                p.leaf_depth.iter().min().unwrap_or(&0),
+                p.leaf_depth.iter().max().unwrap_or(&0),
+                p.unique_nodes,
+                p.simulated,
+                p.leaf_error.iter().copied().fold(0.0, f64::max)
+            );
+    }
+    let max_err = built
+        .checks
+        .iter()
+        .map(|c| c.interpolation_error)
+        .fold(0.0, f64::max);
+    eprintln!(
+            "wrote {}: {nodes} nodes ({simulated} simulated) + {} held-out checks, max check error {max_err:.2e}, {wall:.1} s",
+            cfg.output.display(),
+            built.checks.len()
+        );
+}
+
+fn stats(v: impl Iterator<Item = f64>) -> (usize, f64, f64) {
+    let (mut n, mut max, mut sq) = (0usize, 0.0_f64, 0.0);
+    for x in v {
+        n += 1;
+        max = max.max(x);
+        sq += x * x;
+    }
+    (n, max, if n > 0 { (sq / n as f64).sqrt() } else { 0.0 })
+}
+
+pub fn inspect(args: InspectArgs) -> Result<()> {
+    let t = Table::open(&args.table)?;
+    let s = &t.surface;
+    let patches: Vec<_> = [
+        ("stick_low", &s.stick_low),
+        ("partial_high", &s.partial_high),
+        ("stick_high", &s.stick_high),
+    ]
+    .into_iter()
+    .filter_map(|(n, p)| p.as_ref().map(|p| (n, p)))
+    .collect();
+    let (nc, cmax, crms) = stats(t.checks.iter().map(|c| c.interpolation_error));
+    let pv = &t.provenance;
+    if args.json {
+        let ps: Vec<_> = patches
+            .iter()
+            .map(|(n, p)| {
+                let depth = p.leaf_depths();
+                json!({
+                    "name": n, "kind": p.kind.name(), "gamma_lo": p.gamma_lo, "gamma_hi": p.gamma_hi,
+                    "blocks_gamma": p.blocks_gamma, "blocks_coord": p.blocks_coord,
+                    "leaf_intervals": p.leaf_intervals,
+                    "leaves": p.leaves(),
+                    "depth_min": depth.iter().min(), "depth_max": depth.iter().max(),
+                    "nodes": p.p.len(),
+                    "nodes_note": "stored node values; leaves store their shared edges each",
+                    "max_node_error_estimate": p.error_estimate.iter().copied().fold(0.0, f64::max),
+                    "warp": p.warp.as_ref().map(|w| json!({
+                        "start": w.start,
+                        "gamma_start": w.start_gamma(p.gamma_lo, p.gamma_hi, p.blocks_gamma),
+                        "c_star": w.c_star, "gamma_0": w.gamma_0, "gamma_step": w.gamma_step,
+                        "knots": w.knot.len(),
+                    })),
+                })
+            })
+            .collect();
+        let out = json!({
+            "path": args.table.display().to_string(),
+            "schema_version": pv.schema_version,
+            "gamma_min": s.gamma_min, "gamma_max": s.gamma_max,
+            "alpha_max": if s.alpha_max.is_finite() { json!(s.alpha_max) } else { json!("inf") },
+            "stencil_points": s.stencil,
+            "nodes": patches.iter().map(|(_, p)| p.p.len()).sum::<usize>(),
+            "patches": ps,
+            "checks": { "count": nc, "max_interpolation_error": cmax, "rms_interpolation_error": crms },
+            "error_bound": if t.error_bound().is_nan() { json!(null) } else { json!(t.error_bound()) },
+            "provenance": {
+                "engine_version": pv.engine_version, "git_commit": pv.git_commit,
+                "created": pv.created, "wall_time_s": pv.wall_time_s, "solver": pv.solver,
+                "node_tol": pv.node_tol, "check_tol": pv.check_tol, "target_error": pv.target_error, "config": pv.config,
+            }
+        });
+        println!("{out}");
+        return Ok(());
+    }
+    println!("table {}", args.table.display());
+    println!(
+        "domain gamma in [{}, {}], alpha in [0, {}]; stencil {} points per axis (schema v{})",
+        s.gamma_min, s.gamma_max, s.alpha_max, s.stencil, pv.schema_version
+    );
+    for (n, p) in &patches {
+        let depth = p.leaf_depths();
+        println!(
+            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} roots, {} leaves at depth {}..{}, {} nodes stored (shared leaf edges once per leaf), max node error estimate {:.1e}",
+            p.kind.name(),
+            p.gamma_lo,
+            p.gamma_hi,
+            p.blocks_gamma,
+            p.blocks_coord,
+            p.leaves(),
+            depth.iter().min().unwrap_or(&0),
+            depth.iter().max().unwrap_or(&0),
+            p.p.len(),
+            p.error_estimate.iter().copied().fold(0.0, f64::max)
+        );
+        if let Some(w) = &p.warp {
+            println!(
+                "                fold edge: from gamma {} (root row {}) the fold F+ lies on c' = {} (graded below it; {} knots from gamma {}, step {})",
+                w.start_gamma(p.gamma_lo, p.gamma_hi, p.blocks_gamma),
+                w.start,
+                w.c_star,
+                w.knot.len(),
+                w.gamma_0,
+                w.gamma_step
+            );
+        }
+    }
+    println!("held-out checks: {nc} points, max interpolation error {cmax:.2e}, rms {crms:.2e}");
+    println!(
+        "stated error bound: {:.2e} (largest leaf prediction + 2.66 x node error estimate; docs/table-format.md)",
+        t.error_bound()
+    );
+    println!(
+        "built {} in {:.1} s by engine {} (commit {}); {}",
+        pv.created, pv.wall_time_s, pv.engine_version, pv.git_commit, pv.solver
+    );
+    Ok(())
+}

@@ -1,0 +1,249 @@
+//! `sweep verify`: check a table against direct simulation at random points, against the error
+//! bound the table states (`Table::error_bound`, docs/table-format.md "The stated error bound").
+
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use rayon::prelude::*;
+
+use oblique_lookup::Table;
+use oblique_solver::{Accuracy, Scheme};
+
+/// Loosest simulation tolerance `--tol` accepts: the reference must be far more accurate than
+/// the table's bound (1e-5 for the shipped table).
+const MAX_TOL: f64 = 1e-8;
+
+/// Every this many points, one is at `alpha = inf` (when the table includes no slip).
+const NO_SLIP_EVERY: usize = 100;
+
+#[derive(Args)]
+pub struct VerifyArgs {
+    /// Table to verify (HDF5, written by `sweep run`).
+    table: PathBuf,
+    /// Number of random points (>= 1).
+    #[arg(long, default_value_t = 1000)]
+    points: usize,
+    /// Seed of the random points (the same seed gives the same points for a given domain).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Solver tolerance of the reference simulations (absolute error of P); in (0, 1e-8].
+    #[arg(long, default_value = "1e-8")]
+    tol: f64,
+    /// Worker threads for the simulations (0 = one per core).
+    #[arg(long, default_value_t = 0)]
+    threads: usize,
+    /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// A bad argument of `sweep verify` (exit status 2).
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct VerifyUsageError(String);
+
+/// Some points exceed the table's stated bound (exit status 1).
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "{count} of {points} points exceed the table's stated error bound {bound:.2e} (worst \
+     {worst:.3e}): the table does not hold its bound"
+)]
+pub struct BoundExceeded {
+    count: usize,
+    points: usize,
+    bound: f64,
+    worst: f64,
+}
+
+/// The `n` points: γ uniform in `[gamma_min, gamma_max]`, `s = α/(1 + α)` uniform in
+/// `[0, s_max)` with `s_max = alpha_max/(1 + alpha_max)` (1 for `alpha_max = inf`), and, when
+/// the table includes no slip, every [`NO_SLIP_EVERY`]-th point at `α = inf` instead.
+fn sample(table: &Table, n: usize, seed: u64) -> Vec<(f64, f64)> {
+    let s = &table.surface;
+    let s_max = if s.alpha_max.is_infinite() {
+        1.0
+    } else {
+        s.alpha_max / (1.0 + s.alpha_max)
+    };
+    let mut rng = oblique_sweep::SplitMix(seed);
+    (0..n)
+        .map(|i| {
+            let gamma = s.gamma_min + (s.gamma_max - s.gamma_min) * rng.uniform();
+            let u = s_max * rng.uniform();
+            let alpha = if s.alpha_max.is_infinite() && i % NO_SLIP_EVERY == NO_SLIP_EVERY - 1 {
+                f64::INFINITY
+            } else {
+                (u / (1.0 - u)).min(s.alpha_max)
+            };
+            (gamma.min(s.gamma_max), alpha)
+        })
+        .collect()
+}
+
+/// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
+#[derive(Clone, Copy)]
+struct Outcome {
+    gamma: f64,
+    alpha: f64,
+    p_table: f64,
+    p_sim: f64,
+    sim_error: f64,
+}
+
+impl Outcome {
+    fn error(&self) -> f64 {
+        (self.p_table - self.p_sim).abs()
+    }
+}
+
+fn fmt_alpha(a: f64) -> String {
+    if a.is_infinite() {
+        "inf".into()
+    } else {
+        format!("{a}")
+    }
+}
+
+pub fn run(args: VerifyArgs) -> Result<()> {
+    if !(args.tol > 0.0 && args.tol <= MAX_TOL) {
+        return Err(VerifyUsageError(format!(
+            "--tol {:e}: must be in (0, {MAX_TOL:e}] (the reference must be far more accurate \
+             than the table)",
+            args.tol
+        ))
+        .into());
+    }
+    if args.points == 0 {
+        return Err(VerifyUsageError("--points 0: must be >= 1".into()).into());
+    }
+    let table = Table::open(&args.table)?;
+    let bound = table.error_bound();
+    if bound.is_nan() {
+        anyhow::bail!(
+            "{}: the table states no error bound (no leaf_predicted_error datasets); nothing to \
+             verify against",
+            args.table.display()
+        );
+    }
+    let points = sample(&table, args.points, args.seed);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()
+        .context("starting the worker threads")?;
+    eprintln!(
+        "verify {}: {} points (gamma uniform in [{}, {}], alpha/(1+alpha) uniform{}), \
+         simulated at tol {:e} on {} threads; stated bound {bound:.2e}",
+        args.table.display(),
+        points.len(),
+        table.surface.gamma_min,
+        table.surface.gamma_max,
+        if table.surface.alpha_max.is_infinite() {
+            format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
+        } else {
+            String::new()
+        },
+        args.tol,
+        pool.current_num_threads()
+    );
+    let start = Instant::now();
+    let done = AtomicUsize::new(0);
+    let finished = AtomicBool::new(false);
+    let outcomes: Vec<Result<Outcome>> = std::thread::scope(|scope| {
+        if !args.quiet {
+            scope.spawn(|| report(&done, &finished, points.len(), start));
+        }
+        let out = pool.install(|| {
+            points
+                .par_iter()
+                .map(|&(gamma, alpha)| {
+                    let p_table = table.p(gamma, alpha)?;
+                    let sim = oblique_solver::solve(
+                        gamma,
+                        alpha,
+                        Accuracy::Tolerance(args.tol),
+                        Scheme::Accurate,
+                        false,
+                    )
+                    .with_context(|| {
+                        format!("simulating gamma = {gamma}, alpha = {}", fmt_alpha(alpha))
+                    })?;
+                    done.fetch_add(1, Ordering::Relaxed);
+                    Ok(Outcome {
+                        gamma,
+                        alpha,
+                        p_table,
+                        p_sim: sim.p,
+                        sim_error: sim.error_estimate,
+                    })
+                })
+                .collect()
+        });
+        finished.store(true, Ordering::Relaxed);
+        out
+    });
+    let outcomes = outcomes.into_iter().collect::<Result<Vec<_>>>()?;
+    let wall = start.elapsed().as_secs_f64();
+    let n = outcomes.len();
+    let sq: f64 = outcomes.iter().map(|o| o.error() * o.error()).sum();
+    let worst = outcomes
+        .iter()
+        .copied()
+        .max_by(|a, b| a.error().total_cmp(&b.error()))
+        .context("no points")?;
+    let exceeding = outcomes
+        .iter()
+        .filter(|o| o.error().is_nan() || o.error() > bound)
+        .count();
+    let max_sim_error = outcomes.iter().map(|o| o.sim_error).fold(0.0, f64::max);
+    println!("table        {}", args.table.display());
+    println!(
+        "points       {n} (seed {}), simulated at tol {:e} (largest estimate {max_sim_error:.1e}) in {wall:.1} s",
+        args.seed, args.tol
+    );
+    println!("max |error|  {:.3e}", worst.error());
+    println!("rms error    {:.3e}", (sq / n as f64).sqrt());
+    println!(
+        "worst point  gamma = {}, alpha = {}: table {:.9}, simulation {:.9}",
+        worst.gamma,
+        fmt_alpha(worst.alpha),
+        worst.p_table,
+        worst.p_sim
+    );
+    println!("stated bound {bound:.3e}; points above it: {exceeding}");
+    if exceeding > 0 {
+        return Err(BoundExceeded {
+            count: exceeding,
+            points: n,
+            bound,
+            worst: worst.error(),
+        }
+        .into());
+    }
+    Ok(())
+}
+
+/// Progress lines on stderr every 10 s until `finished`: points done, rate, ETA.
+fn report(done: &AtomicUsize, finished: &AtomicBool, total: usize, start: Instant) {
+    let mut last = Instant::now();
+    while !finished.load(Ordering::Relaxed) {
+        std::thread::sleep(Duration::from_millis(100));
+        if last.elapsed() < Duration::from_secs(10) {
+            continue;
+        }
+        last = Instant::now();
+        let k = done.load(Ordering::Relaxed);
+        let t = start.elapsed().as_secs_f64();
+        let eta = if k > 0 {
+            format!("{:.0} s", t * (total - k) as f64 / k as f64)
+        } else {
+            "unknown".into()
+        };
+        eprintln!(
+            "verify: {k}/{total} points, elapsed {t:.0} s, {:.1} points/s, ETA {eta}",
+            k as f64 / t.max(1e-9)
+        );
+    }
+}
