@@ -8,5 +8,6 @@
 //! `α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`.
 
 pub mod regimes;
+pub mod sample;
 
 pub use regimes::{alpha_c1, alpha_c2, linear_limit, Regime};

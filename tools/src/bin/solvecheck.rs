@@ -1,15 +1,16 @@
 //! Checks the error estimate of `solve` against the truth at random points:
-//! `cargo run --release --example solvecheck -- TOL N` (defaults 2e-6, 200). Points: γ uniform
+//! `cargo run --release -p oblique-tools --bin solvecheck -- TOL N` (defaults 2e-6, 200). Points: γ uniform
 //! in [0.1, 3.5], α log-uniform from the linear limit to 1e4 times α_c2, plus α = ∞ (1 in 10).
 //! Reference: the Richardson value of continuum runs at 16 and 32 times the accepted steps
 //! (at least 16384). Prints every point whose true error exceeds the tolerance or the estimate.
+use oblique_physics::regimes;
 use oblique_solver::*;
 
-fn main() {
-    let mut args = std::env::args().skip(1);
-    let tol: f64 = args.next().and_then(|s| s.parse().ok()).unwrap_or(2e-6);
-    let n: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(200);
-    let mut next = oblique_lookup::testing::uniform(0x9E37_79B9_7F4A_7C15);
+fn main() -> anyhow::Result<()> {
+    let args = oblique_tools::args();
+    let tol: f64 = oblique_tools::arg_or(&args, 0, "TOL", 2e-6)?;
+    let n: usize = oblique_tools::arg_or(&args, 1, "N", 200)?;
+    let mut next = oblique_physics::sample::uniform(0x9E37_79B9_7F4A_7C15);
     let (mut over_tol, mut over_est, mut worst) = (0, 0, 0.0f64);
     for i in 0..n {
         let g = 0.1 + 3.4 * next();
@@ -20,7 +21,7 @@ fn main() {
         } else {
             lo * (hi / lo).powf(next())
         };
-        let s = solve(g, a, Accuracy::Tolerance(tol), Scheme::Accurate, false).expect("solve");
+        let s = solve(g, a, Accuracy::Tolerance(tol), Scheme::Accurate, false)?;
         if s.method == Method::ClosedForm {
             continue;
         }
@@ -36,7 +37,7 @@ fn main() {
                 Scheme::Accurate,
             )
         };
-        let (c, f) = (run(steps).expect("ref"), run(2 * steps).expect("ref"));
+        let (c, f) = (run(steps)?, run(2 * steps)?);
         let reference = f + (f - c) / 3.0;
         let err = (s.p - reference).abs();
         worst = worst.max(err / tol);
@@ -53,4 +54,5 @@ fn main() {
         }
     }
     println!("tol {tol:e}, {n} points: {over_tol} over tol, {over_est} over estimate, worst err/tol {worst:.2}");
+    Ok(())
 }

@@ -1,5 +1,5 @@
 //! Map the kink curves of P(γ, α) in the slip regions from the gross-slip history:
-//! `cargo run --release --example kinkmap -- GAMMA_FROM GAMMA_TO GAMMA_STEP [STEPS]`
+//! `cargo run --release -p oblique-tools --bin kinkmap -- GAMMA_FROM GAMMA_TO GAMMA_STEP [STEPS]`
 //! (e.g. `-- 1.8 3.5 0.1 4096`, 40 s).
 //!
 //! For each γ, the α range [α_c1, 1.5 α_c2] is scanned on a 300-point log grid; at every α one

@@ -3,7 +3,7 @@
 //! error against the automatic refinement to 1e-9 and the differences `P(h) − P(2h)`,
 //! `P(2h) − P(4h)`, `P(4h) − P(8h)` behind the estimate (`impact::fixed_estimate`).
 //!
-//! `cargo run --release --example fixedest_probe` (about 2 s).
+//! `cargo run --release -p oblique-tools --bin fixedest_probe` (about 2 s).
 
 use oblique_solver::{simulate, solve, Accuracy, Resolution, Scheme};
 

@@ -1,13 +1,10 @@
 //! Cost map of the automatic refinement over the (γ, α) plane (a scratch tool):
-//! `cargo run --release --example costmap -- TOL`.
+//! `cargo run --release -p oblique-tools --bin costmap -- TOL`.
 use oblique_solver::*;
 use std::time::Instant;
 
-fn main() {
-    let tol: f64 = std::env::args()
-        .nth(1)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1e-5);
+fn main() -> anyhow::Result<()> {
+    let tol: f64 = oblique_tools::arg_or(&oblique_tools::args(), 0, "TOL", 1e-5)?;
     let gammas: [f64; 9] = [0.3, 0.8, 1.2, 1.6, 2.0, 2.4, 2.8, 3.2, 3.5];
     for &g in &gammas {
         let c1 = if g > 1.0 {
@@ -30,11 +27,12 @@ fn main() {
         let mut tot = 0.0;
         for &a in &alphas {
             let t = Instant::now();
-            let s = solve(g, a, Accuracy::Tolerance(tol), Scheme::Accurate, false).unwrap();
+            let s = solve(g, a, Accuracy::Tolerance(tol), Scheme::Accurate, false)?;
             let ms = t.elapsed().as_secs_f64() * 1e3;
             tot += ms;
             line += &format!(" {:.0}:{:.1}ms", s.resolution.steps, ms);
         }
         println!("{line}  total {tot:.0} ms");
     }
+    Ok(())
 }

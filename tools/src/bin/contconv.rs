@@ -1,19 +1,18 @@
-//! Convergence of the continuum row in the number of steps: `cargo run --release --example contconv -- 2.8,69.4 3,inf`
+//! Convergence of the continuum row in the number of steps: `cargo run --release -p oblique-tools --bin contconv -- 2.8,69.4 3,inf`
 //! (pairs `gamma,alpha`). Prints P, the difference to the previous level, the ratio of
 //! successive differences (4 for clean second order), the Richardson value and the time.
 use oblique_solver::*;
 use std::time::Instant;
-fn main() {
-    for arg in std::env::args().skip(1) {
-        let (g, a) = arg.split_once(',').unwrap();
-        let (g, a): (f64, f64) = (g.parse().unwrap(), a.parse().unwrap());
+fn main() -> anyhow::Result<()> {
+    for arg in oblique_tools::args() {
+        let (g, a) = oblique_tools::point(&arg)?;
         let mut prev = f64::NAN;
         let mut pd = f64::NAN;
         println!("g={g} a={a}");
         for k in 0..8 {
             let steps = 128usize << k;
             let t = Instant::now();
-            let p = simulate(g, a, Resolution { springs: 0, steps }, Scheme::Accurate).unwrap();
+            let p = simulate(g, a, Resolution { springs: 0, steps }, Scheme::Accurate)?;
             let ms = t.elapsed().as_secs_f64() * 1e3;
             let d = p - prev;
             println!(
@@ -25,4 +24,5 @@ fn main() {
             pd = d;
         }
     }
+    Ok(())
 }

@@ -1,5 +1,5 @@
 //! Splits the error of the accurate scheme into its spatial (springs) and temporal (steps) parts:
-//! `cargo run --release --example errsplit -- 1.9,0.5 3.2,1.0` (pairs `gamma,alpha`; `inf`
+//! `cargo run --release -p oblique-tools --bin errsplit -- 1.9,0.5 3.2,1.0` (pairs `gamma,alpha`; `inf`
 //! allowed). For each point it prints, per step count (rows) and spring count (columns), the
 //! error against a 32768 × 32768 reference and the time of one impact. The base resolution of
 //! the automatic refinement (`impact::base_resolution`) was chosen from these tables.

@@ -1,6 +1,7 @@
 //! Measures how well the error estimates of the accurate scheme bracket the true error:
-//! `cargo run --release --example estim` (about 3 minutes). Prints, per point and level, the true
+//! `cargo run --release -p oblique-tools --bin estim` (about 3 minutes). Prints, per point and level, the true
 //! error / estimate of the plain finest value (P) and of the Richardson value (R).
+use oblique_physics::regimes;
 use oblique_solver::{impact::base_resolution, *};
 fn main() {
     let gammas = [0.3, 0.7, 0.95, 1.2, 1.754, 2.2, 2.8, 3.5];

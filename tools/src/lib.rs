@@ -1,0 +1,44 @@
+//! Shared argument handling of the developer probes in `src/bin/` (each prints numbers that
+//! `docs/` cites; run one with `cargo run --release -p oblique-tools --bin NAME -- ARGS`).
+
+use anyhow::{bail, Context, Result};
+
+/// Argument `i` (0-based, after the program name) parsed as `T`, or `default` when absent.
+pub fn arg_or<T: std::str::FromStr>(args: &[String], i: usize, name: &str, default: T) -> Result<T>
+where
+    T::Err: std::error::Error + Send + Sync + 'static,
+{
+    match args.get(i) {
+        Some(s) => s
+            .parse()
+            .with_context(|| format!("argument {name} = '{s}'")),
+        None => Ok(default),
+    }
+}
+
+/// A required argument `i` parsed as `T`.
+pub fn arg<T: std::str::FromStr>(args: &[String], i: usize, name: &str) -> Result<T>
+where
+    T::Err: std::error::Error + Send + Sync + 'static,
+{
+    let Some(s) = args.get(i) else {
+        bail!("missing argument {name}")
+    };
+    s.parse()
+        .with_context(|| format!("argument {name} = '{s}'"))
+}
+
+/// A point `gamma,alpha` (`inf` allowed for α).
+pub fn point(s: &str) -> Result<(f64, f64)> {
+    let (g, a) = s
+        .split_once(',')
+        .with_context(|| format!("'{s}': expected gamma,alpha"))?;
+    let g: f64 = g.parse().with_context(|| format!("gamma in '{s}'"))?;
+    let a: f64 = a.parse().with_context(|| format!("alpha in '{s}'"))?;
+    Ok((g, a))
+}
+
+/// The command-line arguments after the program name.
+pub fn args() -> Vec<String> {
+    std::env::args().skip(1).collect()
+}
