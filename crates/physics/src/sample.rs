@@ -44,6 +44,9 @@ mod tests {
         // SplitMix64 of seed 0: the first output is 0xE220A8397B1DCDAF (the reference
         // implementation's published value).
         let mut z = SplitMix(0);
-        assert_eq!(z.uniform(), (0xE220_A839_7B1D_CDAFu64 >> 11) as f64 / (1u64 << 53) as f64);
+        assert_eq!(
+            z.uniform(),
+            (0xE220_A839_7B1D_CDAFu64 >> 11) as f64 / (1u64 << 53) as f64
+        );
     }
 }

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Deserializer};
+use serde::{Deserialize, Deserializer, Serialize};
 use thiserror::Error;
 
 /// A config error: which file, which key, what is wrong.
@@ -62,7 +62,7 @@ fn default_alpha_max() -> f64 {
 }
 
 /// `[domain]`: the part of the `(γ, α)` plane the table covers. `α` always starts at 0.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Domain {
     /// Lower end of γ (> 0).
@@ -75,7 +75,7 @@ pub struct Domain {
 }
 
 /// `[nodes]`: how nodes are placed.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Nodes {
     /// Placement: "aligned" (patches bounded by α_c1, α_c2, α_max and γ = 1; the only placement
@@ -129,7 +129,7 @@ fn default_max_nodes() -> usize {
 
 /// `[solver]`: accuracy of every node: `tol`, or a named `preset` (`fast` = 1e-4,
 /// `standard` = 1e-6, `reference` = 1e-8; `docs/accuracy.md`), not both.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(try_from = "RawSolver")]
 pub struct Solver {
     /// Absolute error tolerance of P at each node (the solver's error estimate ≤ tol).
@@ -171,7 +171,7 @@ impl TryFrom<RawSolver> for Solver {
 }
 
 /// `[checks]`: held-out points, simulated but not used for interpolation.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Checks {
     /// Random check points per patch, 1 to 100000.

@@ -23,6 +23,7 @@ use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
+use oblique_table::format::fnv1a64;
 use thiserror::Error;
 
 use crate::{Config, NodeRecord, NodeStore, Shard};
@@ -61,25 +62,28 @@ pub enum NodeFileError {
     },
 }
 
-/// FNV-1a, 64 bit.
-fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
-}
-
 /// Fingerprint of what decides the node values and their placement: domain, nodes, solver and
-/// checks (not the output path or the thread count), and the engine version.
+/// checks (not the output path or the thread count), and the engine version: FNV-1a 64 of
+/// those sections written as TOML (every field, floats so that they read back exactly).
 pub fn fingerprint(cfg: &Config) -> u64 {
-    let text = format!(
-        "{} {:?} {:?} {:?} {:?}",
-        crate::VERSION,
-        cfg.domain,
-        cfg.nodes,
-        cfg.solver,
-        cfg.checks
-    );
-    fnv1a(text.as_bytes())
+    #[derive(serde::Serialize)]
+    struct Decisive<'a> {
+        engine_version: &'a str,
+        domain: &'a crate::config::Domain,
+        nodes: &'a crate::config::Nodes,
+        solver: &'a crate::config::Solver,
+        checks: &'a crate::config::Checks,
+    }
+    let decisive = Decisive {
+        engine_version: crate::VERSION,
+        domain: &cfg.domain,
+        nodes: &cfg.nodes,
+        solver: &cfg.solver,
+        checks: &cfg.checks,
+    };
+    // Plain structs of numbers, strings and options: TOML can write every value of them.
+    let text = toml::to_string(&decisive).unwrap_or_else(|e| format!("unserialisable: {e}"));
+    fnv1a64(text.as_bytes())
 }
 
 /// The header of a node file.
@@ -122,14 +126,14 @@ fn record_bytes(r: &NodeRecord) -> [u8; RECORD] {
     for (i, v) in [r.gamma, r.alpha, r.tol, r.p, r.error].iter().enumerate() {
         b[8 * i..8 * i + 8].copy_from_slice(&v.to_le_bytes());
     }
-    let sum = fnv1a(&b[..40]);
+    let sum = fnv1a64(&b[..40]);
     b[40..].copy_from_slice(&sum.to_le_bytes());
     b
 }
 
 fn parse_record(b: &[u8]) -> Option<NodeRecord> {
     let sum = u64::from_le_bytes(b[40..48].try_into().ok()?);
-    if sum != fnv1a(&b[..40]) {
+    if sum != fnv1a64(&b[..40]) {
         return None;
     }
     let f = |i: usize| -> Option<f64> {
@@ -648,5 +652,45 @@ impl Drop for OutputLock {
         // Remove the file while still holding the lock; a process that opened it before sees
         // that it is gone and takes the lock on a new file. The lock goes with the descriptor.
         let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const CONFIG: &str = r#"
+output = "t.h5"
+[domain]
+gamma_min = 0.1
+gamma_max = 3.5
+alpha_max = "inf"
+[nodes]
+target_error = 1e-5
+[solver]
+tol = 1e-6
+"#;
+
+    fn fp(text: &str) -> u64 {
+        fingerprint(&Config::parse(text, "x.toml").expect("valid config"))
+    }
+
+    #[test]
+    fn the_fingerprint_follows_what_decides_the_nodes_and_nothing_else() {
+        let base = fp(CONFIG);
+        assert_eq!(base, fp(CONFIG), "repeatable");
+        // Output and threads decide no node value.
+        assert_eq!(base, fp(&CONFIG.replace("t.h5", "other.h5")));
+        assert_eq!(base, fp(&format!("{CONFIG}[run]\nthreads = 3\n")));
+        // Every decisive section does, down to the last bit of a float.
+        for changed in [
+            CONFIG.replace("gamma_max = 3.5", "gamma_max = 3.5000000000000004"),
+            CONFIG.replace("alpha_max = \"inf\"", "alpha_max = 20"),
+            CONFIG.replace("target_error = 1e-5", "target_error = 2e-5"),
+            CONFIG.replace("tol = 1e-6", "tol = 1.0000000000000002e-6"),
+            format!("{CONFIG}[checks]\nseed = 7\n"),
+        ] {
+            assert_ne!(base, fp(&changed), "{changed}");
+        }
     }
 }
