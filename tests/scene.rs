@@ -149,7 +149,7 @@ fn table() -> &'static Table {
 #[test]
 fn simulated_slice_agrees_with_table_lookup_within_its_certified_error() {
     let t = table();
-    let certified = scene::certified_error(t);
+    let certified = t.error_bound();
     println!("table certified error (max(held-out max, target) + node tol): {certified}");
     for name in SHIPPED {
         let s = shipped(name);

@@ -18,7 +18,7 @@ pub mod materials;
 pub mod measured;
 mod spec;
 
-pub use eval::{certified_error, evaluate, Evaluation, PSource, Rms, Row, RowMethod};
+pub use eval::{evaluate, Evaluation, PSource, Rms, Row, RowMethod};
 pub use measured::MeasuredPoint;
 pub use spec::{
     CaseKind, Cases, MaterialUse, MeasuredRef, Scene, SceneTarget, Values, DEFAULT_TOL, MAX_CASES,

@@ -985,21 +985,8 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
     })
 }
 
-/// Deterministic uniform numbers in `[0, 1)` (SplitMix64) for the held-out check points and
-/// `sweep verify`'s sample: the same stream for a seed on every platform.
-pub struct SplitMix(pub u64);
-
-impl SplitMix {
-    /// The next number in `[0, 1)` (53 random bits).
-    pub fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+/// The generator of the held-out check points and of `sweep verify`'s sample.
+pub use oblique_physics::sample::SplitMix;
 
 /// Run a whole sweep: build every patch, then simulate and compare the held-out checks.
 pub fn build(cfg: &Config, progress: &dyn Progress) -> Result<Built, SweepError> {

@@ -61,8 +61,8 @@ pub struct Row {
     pub alpha: f64,
     /// `P` (NaN for a pure normal impact).
     pub p: f64,
-    /// Error bound of `P`: the solver's estimate, the table's certified error (see
-    /// [`certified_error`]), or 0 for closed forms.
+    /// Error bound of `P`: the solver's estimate, the table's stated bound
+    /// ([`Table::error_bound`]), or 0 for closed forms.
     pub p_error: f64,
     /// How `P` was obtained.
     pub method: RowMethod,
@@ -153,12 +153,6 @@ impl Evaluation {
     pub fn max_p_error(&self) -> f64 {
         self.rows.iter().map(|r| r.p_error).fold(0.0, f64::max)
     }
-}
-
-/// The error a table certifies for interpolated `P`: its stated bound,
-/// [`Table::error_bound`] (the one definition; `docs/table-format.md`, "The stated error bound").
-pub fn certified_error(table: &Table) -> f64 {
-    table.error_bound()
 }
 
 fn rebound(scene: &Scene, x: f64, inc: &Incident, p: f64) -> Result<Rebound, SceneError> {
@@ -295,7 +289,7 @@ pub fn evaluate(scene: &Scene, source: PSource) -> Result<Evaluation, SceneError
     }
     jobs.sort_by(|a, b| a.0.total_cmp(&b.0));
     let table_error = match source {
-        PSource::Table(t) => certified_error(t),
+        PSource::Table(t) => t.error_bound(),
         PSource::Simulate => 0.0,
     };
     let rows = jobs
