@@ -1,8 +1,12 @@
 //! One module per command of the `sweep` binary.
 
 pub mod accuracy;
+pub mod impact;
+pub mod inspect;
+pub mod kinks;
+pub mod merge;
 pub mod plot;
 pub mod query;
+pub mod run;
 pub mod scene;
-pub mod table;
 pub mod verify;

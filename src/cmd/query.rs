@@ -15,11 +15,11 @@ pub struct QueryArgs {
     /// Table file written by `sweep run` (HDF5, schema v2 or v3).
     table: PathBuf,
     /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
-    #[arg(long, value_parser = crate::parse_table_gamma, allow_hyphen_values = true,
+    #[arg(long, value_parser = crate::args::parse_table_gamma, allow_hyphen_values = true,
           conflicts_with = "batch", requires = "alpha")]
     gamma: Option<f64>,
     /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
-    #[arg(long, value_parser = crate::parse_alpha, allow_hyphen_values = true,
+    #[arg(long, value_parser = crate::args::parse_alpha, allow_hyphen_values = true,
           conflicts_with = "batch", requires = "gamma")]
     alpha: Option<f64>,
     /// Read lines `gamma,alpha` from FILE (`-` for stdin) and write lines `gamma,alpha,P,e_t`
@@ -95,7 +95,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
     if args.json {
         let out = json!({
             "gamma": gamma,
-            "alpha": crate::json_number(alpha),
+            "alpha": crate::args::json_number(alpha),
             "P": p,
             "e_t": e_t(p),
             "region": region,
@@ -106,8 +106,8 @@ pub fn run(args: QueryArgs) -> Result<()> {
     } else {
         println!(
             "P(gamma = {}, alpha = {}) = {p:.9}  +/- {error:.1e}",
-            crate::fmt_num(gamma),
-            crate::fmt_num(alpha)
+            crate::args::fmt_num(gamma),
+            crate::args::fmt_num(alpha)
         );
         println!(
             "e_t = (2P + 5)/7 = {:.9}   (solid sphere, no initial spin)",
@@ -132,8 +132,8 @@ fn parse_line(line: &str, number: usize) -> Result<(f64, f64), QueryUsageError> 
             line.split(',').count()
         )));
     };
-    let g = crate::parse_f64(g).map_err(|e| bad(format!("gamma: {e}")))?;
-    let a = crate::parse_f64(a).map_err(|e| bad(format!("alpha: {e}")))?;
+    let g = crate::args::parse_f64(g).map_err(|e| bad(format!("gamma: {e}")))?;
+    let a = crate::args::parse_f64(a).map_err(|e| bad(format!("alpha: {e}")))?;
     Ok((g, a))
 }
 
@@ -206,10 +206,10 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
                 Some(((g, a), p)) => writeln!(
                     out,
                     "{},{},{},{}",
-                    crate::fmt_num(*g),
-                    crate::fmt_num(*a),
-                    crate::fmt_num(*p),
-                    crate::fmt_num(e_t(*p))
+                    crate::args::fmt_num(*g),
+                    crate::args::fmt_num(*a),
+                    crate::args::fmt_num(*p),
+                    crate::args::fmt_num(e_t(*p))
                 ),
                 None => Ok(()),
             },

@@ -1,4 +1,4 @@
-//! `sweep run` and `sweep inspect`.
+//! `sweep run`: build a table from a config, with checkpoints, resume and shards.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -6,11 +6,9 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use serde_json::json;
 
-use oblique_lookup::Table;
 use oblique_sweep::nodestore::{
-    fingerprint, Checkpoint, Header, Kind, LockError, Merged, NodeFile, OutputLock,
+    fingerprint, Checkpoint, Header, Kind, LockError, NodeFile, OutputLock,
 };
 use oblique_sweep::provenance;
 use oblique_sweep::{Built, Config, Progress, RunError, RunOptions, Shard, SweepError};
@@ -58,19 +56,6 @@ fn parse_shard(s: &str) -> std::result::Result<Shard, String> {
     })
 }
 
-#[derive(Args)]
-pub struct MergeArgs {
-    /// Part files written by `sweep run CONFIG --shard K/N -o PART`, one per shard.
-    #[arg(required = true)]
-    parts: Vec<PathBuf>,
-    /// Output table.
-    #[arg(short, long)]
-    output: PathBuf,
-    /// No summary output.
-    #[arg(long)]
-    quiet: bool,
-}
-
 /// A usage error of `sweep run`/`sweep merge` (exit code 2).
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]
@@ -109,17 +94,8 @@ fn checkpoint_path(out: &Path) -> PathBuf {
     PathBuf::from(s)
 }
 
-#[derive(Args)]
-pub struct InspectArgs {
-    /// Table file written by `sweep run`.
-    table: PathBuf,
-    /// Print one JSON object.
-    #[arg(long)]
-    json: bool,
-}
-
 /// Fail early (before hours of work) if the output directory cannot take a file.
-fn check_writable(out: &std::path::Path) -> Result<()> {
+pub(crate) fn check_writable(out: &std::path::Path) -> Result<()> {
     let dir = out
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
@@ -339,36 +315,8 @@ pub fn run(args: RunArgs) -> Result<()> {
     Ok(())
 }
 
-/// `sweep merge`: the table of a sharded run from its parts.
-pub fn merge(args: MergeArgs) -> Result<()> {
-    let inputs: Vec<&Path> = args.parts.iter().map(PathBuf::as_path).collect();
-    check_output_not_input(&args.output, &inputs)?;
-    let merged = Merged::read(&args.parts)?;
-    let (mut cfg, text) = (
-        Config::parse(&merged.config, "config stored in the parts")?,
-        merged.config.clone(),
-    );
-    cfg.output = args.output;
-    cfg.derived_check_tol = oblique_sweep::check_tol_in_store(&cfg, &merged);
-    check_writable(&cfg.output)?;
-    let _lock = OutputLock::acquire(&cfg.output, "sweep merge")?;
-    let opts = RunOptions {
-        store: Some(&merged),
-        strict: true,
-        stop: None,
-    };
-    let start = Instant::now();
-    let built = oblique_sweep::build_with(&cfg, &oblique_sweep::Silent, opts)?;
-    let wall = start.elapsed().as_secs_f64();
-    write_table(&cfg.output, &built, &provenance(&cfg, text, wall))?;
-    if !args.quiet {
-        summary(&cfg, &built, wall);
-    }
-    Ok(())
-}
-
 /// What was written: per patch, then the whole table.
-fn summary(cfg: &Config, built: &Built, wall: f64) {
+pub(crate) fn summary(cfg: &Config, built: &Built, wall: f64) {
     let nodes: usize = built.patches.iter().map(|p| p.unique_nodes).sum();
     let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
     for p in &built.patches {
@@ -395,113 +343,4 @@ fn summary(cfg: &Config, built: &Built, wall: f64) {
             cfg.output.display(),
             built.checks.len()
         );
-}
-
-fn stats(v: impl Iterator<Item = f64>) -> (usize, f64, f64) {
-    let (mut n, mut max, mut sq) = (0usize, 0.0_f64, 0.0);
-    for x in v {
-        n += 1;
-        max = max.max(x);
-        sq += x * x;
-    }
-    (n, max, if n > 0 { (sq / n as f64).sqrt() } else { 0.0 })
-}
-
-pub fn inspect(args: InspectArgs) -> Result<()> {
-    let t = Table::open(&args.table)?;
-    let s = &t.surface;
-    let patches: Vec<_> = [
-        ("stick_low", &s.stick_low),
-        ("partial_high", &s.partial_high),
-        ("stick_high", &s.stick_high),
-    ]
-    .into_iter()
-    .filter_map(|(n, p)| p.as_ref().map(|p| (n, p)))
-    .collect();
-    let (nc, cmax, crms) = stats(t.checks.iter().map(|c| c.interpolation_error));
-    let pv = &t.provenance;
-    if args.json {
-        let ps: Vec<_> = patches
-            .iter()
-            .map(|(n, p)| {
-                let depth = p.leaf_depths();
-                json!({
-                    "name": n, "kind": p.kind.name(), "gamma_lo": p.gamma_lo, "gamma_hi": p.gamma_hi,
-                    "blocks_gamma": p.blocks_gamma, "blocks_coord": p.blocks_coord,
-                    "leaf_intervals": p.leaf_intervals,
-                    "leaves": p.leaves(),
-                    "depth_min": depth.iter().min(), "depth_max": depth.iter().max(),
-                    "nodes": p.p.len(),
-                    "nodes_note": "stored node values; leaves store their shared edges each",
-                    "max_node_error_estimate": p.error_estimate.iter().copied().fold(0.0, f64::max),
-                    "warp": p.warp.as_ref().map(|w| json!({
-                        "start": w.start,
-                        "gamma_start": w.start_gamma(p.gamma_lo, p.gamma_hi, p.blocks_gamma),
-                        "c_star": w.c_star, "gamma_0": w.gamma_0, "gamma_step": w.gamma_step,
-                        "knots": w.knot.len(),
-                    })),
-                })
-            })
-            .collect();
-        let out = json!({
-            "path": args.table.display().to_string(),
-            "schema_version": pv.schema_version,
-            "gamma_min": s.gamma_min, "gamma_max": s.gamma_max,
-            "alpha_max": if s.alpha_max.is_finite() { json!(s.alpha_max) } else { json!("inf") },
-            "stencil_points": s.stencil,
-            "nodes": patches.iter().map(|(_, p)| p.p.len()).sum::<usize>(),
-            "patches": ps,
-            "checks": { "count": nc, "max_interpolation_error": cmax, "rms_interpolation_error": crms },
-            "error_bound": if t.error_bound().is_nan() { json!(null) } else { json!(t.error_bound()) },
-            "provenance": {
-                "engine_version": pv.engine_version, "git_commit": pv.git_commit,
-                "created": pv.created, "wall_time_s": pv.wall_time_s, "solver": pv.solver,
-                "node_tol": pv.node_tol, "check_tol": pv.check_tol, "target_error": pv.target_error, "config": pv.config,
-            }
-        });
-        println!("{out}");
-        return Ok(());
-    }
-    println!("table {}", args.table.display());
-    println!(
-        "domain gamma in [{}, {}], alpha in [0, {}]; stencil {} points per axis (schema v{})",
-        s.gamma_min, s.gamma_max, s.alpha_max, s.stencil, pv.schema_version
-    );
-    for (n, p) in &patches {
-        let depth = p.leaf_depths();
-        println!(
-            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} roots, {} leaves at depth {}..{}, {} nodes stored (shared leaf edges once per leaf), max node error estimate {:.1e}",
-            p.kind.name(),
-            p.gamma_lo,
-            p.gamma_hi,
-            p.blocks_gamma,
-            p.blocks_coord,
-            p.leaves(),
-            depth.iter().min().unwrap_or(&0),
-            depth.iter().max().unwrap_or(&0),
-            p.p.len(),
-            p.error_estimate.iter().copied().fold(0.0, f64::max)
-        );
-        if let Some(w) = &p.warp {
-            println!(
-                "                fold edge: from gamma {} (root row {}) the fold F+ lies on c' = {} (graded below it; {} knots from gamma {}, step {})",
-                w.start_gamma(p.gamma_lo, p.gamma_hi, p.blocks_gamma),
-                w.start,
-                w.c_star,
-                w.knot.len(),
-                w.gamma_0,
-                w.gamma_step
-            );
-        }
-    }
-    println!("held-out checks: {nc} points, max interpolation error {cmax:.2e}, rms {crms:.2e}");
-    println!(
-        "stated error bound: {:.2e} (largest leaf prediction + 2.66 x node error estimate; docs/table-format.md)",
-        t.error_bound()
-    );
-    println!(
-        "built {} in {:.1} s by engine {} (commit {}); {}",
-        pv.created, pv.wall_time_s, pv.engine_version, pv.git_commit, pv.solver
-    );
-    Ok(())
 }
