@@ -4,11 +4,9 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use oblique_solver::PhysicsError;
-use oblique_sweep::config::ConfigError;
-
 mod args;
 mod cmd;
+mod failure;
 mod impact_progress;
 mod progress;
 
@@ -152,23 +150,6 @@ for the birth and 0.05 s per point at 2048 steps. More: docs/solver.md, \"Kink c
     Kinks(cmd::kinks::KinksArgs),
 }
 
-/// The error and its causes on one line, each cause once: a library error whose message
-/// already quotes its source (`cannot read config X: No such file …`) is not followed by that
-/// source again.
-fn error_text(e: &anyhow::Error) -> String {
-    let mut text = String::new();
-    for cause in e.chain() {
-        let part = cause.to_string();
-        if text.is_empty() {
-            text = part;
-        } else if !text.contains(&part) {
-            text.push_str(": ");
-            text.push_str(&part);
-        }
-    }
-    text
-}
-
 /// Die quietly when the reader of our output goes away (`sweep query ... | head`), like other
 /// Unix tools, instead of panicking in `println!` on a broken pipe.
 #[cfg(unix)]
@@ -205,51 +186,8 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", error_text(&e));
-            let usage = matches!(
-                e.downcast_ref::<PhysicsError>(),
-                Some(
-                    PhysicsError::InvalidParameter { .. }
-                        | PhysicsError::Infeasible { .. }
-                        | PhysicsError::TooLarge { .. }
-                        | PhysicsError::UnknownPreset { .. }
-                        | PhysicsError::NotFound { .. }
-                )
-            ) || e.downcast_ref::<ConfigError>().is_some()
-                || cmd::run::is_usage(&e)
-                || matches!(
-                    e.downcast_ref::<oblique_sweep::SweepError>(),
-                    Some(oblique_sweep::SweepError::Unreachable { .. })
-                )
-                || e.downcast_ref::<oblique_sweep::nodestore::NodeFileError>()
-                    .is_some()
-                || e.downcast_ref::<query_cmd::QueryUsageError>().is_some()
-                || e.downcast_ref::<verify_cmd::VerifyUsageError>().is_some()
-                || matches!(
-                    e.downcast_ref::<oblique_lookup::LookupError>(),
-                    Some(
-                        oblique_lookup::LookupError::Io { .. }
-                            | oblique_lookup::LookupError::Invalid { .. }
-                    )
-                )
-                || matches!(
-                    e.downcast_ref::<oblique_study::scene::SceneError>(),
-                    Some(
-                        oblique_study::scene::SceneError::Io { .. }
-                            | oblique_study::scene::SceneError::Parse { .. }
-                            | oblique_study::scene::SceneError::Invalid { .. }
-                            | oblique_study::scene::SceneError::Measured { .. }
-                    )
-                )
-                || matches!(
-                    e.downcast_ref::<oblique_plot::figures::FigureError>(),
-                    Some(oblique_plot::figures::FigureError::Invalid { .. })
-                );
-            if usage {
-                ExitCode::from(2)
-            } else {
-                ExitCode::FAILURE
-            }
+            eprintln!("error: {}", failure::error_text(e.error()));
+            e.exit_code()
         }
     }
 }

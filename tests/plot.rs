@@ -252,12 +252,12 @@ fn default_families_and_bad_families() {
     assert!(a.last().unwrap().is_infinite());
     assert!(figures::slices(t, &src(), &g, &a).is_ok());
     for (gs, al, what) in [
-        (vec![0.2], a.clone(), "--gammas"),
-        (vec![2.6], a.clone(), "--gammas"),
-        (vec![], a.clone(), "--gammas"),
-        (g.clone(), vec![-0.1], "--alphas"),
-        (g.clone(), vec![f64::NAN], "--alphas"),
-        (g.clone(), vec![1.0; 17], "--alphas"),
+        (vec![0.2], a.clone(), "gammas"),
+        (vec![2.6], a.clone(), "gammas"),
+        (vec![], a.clone(), "gammas"),
+        (g.clone(), vec![-0.1], "alphas"),
+        (g.clone(), vec![f64::NAN], "alphas"),
+        (g.clone(), vec![1.0; 17], "alphas"),
     ] {
         let err = figures::slices(t, &src(), &gs, &al).unwrap_err();
         assert!(

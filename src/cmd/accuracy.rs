@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, Result};
+use crate::failure::{Context, Result};
 use clap::Args;
 
 use oblique_plot::{Figure, Legend, Panel, Series, Style};

@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use anyhow::Result;
+use crate::failure::Result;
 use clap::{Args, ValueEnum};
 use serde_json::json;
 

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::Result;
+use crate::failure::Result;
 use clap::Args;
 
 use oblique_sweep::nodestore::{Merged, OutputLock};

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context, Result};
+use crate::failure::{Context, Failure, Result};
 use clap::{Args, ValueEnum};
 
 use oblique_lookup::Table;
@@ -138,7 +138,16 @@ pub fn run(args: PlotArgs) -> Result<()> {
     // Build every figure first: a bad option fails before anything is written.
     let sheets = kinds
         .iter()
-        .map(|&k| Ok((k, figures::build(k, &table, &src, &gammas, &alphas)?)))
+        .map(|&k| {
+            let sheet = figures::build(k, &table, &src, &gammas, &alphas).map_err(|e| match e {
+                // The library names the option; on the command line it is the flag.
+                figures::FigureError::Invalid { name, message } => {
+                    Failure::usage(format!("invalid --{name}: {message}"))
+                }
+                other => other.into(),
+            })?;
+            Ok((k, sheet))
+        })
         .collect::<Result<Vec<_>>>()?;
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create output folder {}", args.output.display()))?;

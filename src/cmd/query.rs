@@ -3,7 +3,9 @@
 use std::io::{BufRead, BufWriter, Write};
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use oblique_physics::regimes::tangential_restitution;
+
+use crate::failure::{Context, Failure, Result};
 use clap::Args;
 use serde_json::json;
 
@@ -35,23 +37,16 @@ pub struct QueryArgs {
     json: bool,
 }
 
-/// A bad query or batch line: exit status 2.
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct QueryUsageError(String);
-
-fn usage(e: LookupError) -> anyhow::Error {
+/// A bad query or batch line: exit status 2 (as for a table that cannot be read). The
+/// arguments were checked when they were parsed, so a query the table refuses lies outside its
+/// domain, and the message names the flag that answers there anyway.
+fn usage(e: LookupError) -> Failure {
     match e {
-        LookupError::Query { .. } | LookupError::Batch { .. } | LookupError::Length { .. } => {
-            QueryUsageError(e.to_string()).into()
+        LookupError::Query { .. } | LookupError::Batch { .. } => {
+            Failure::usage(format!("{e} (--clamp)"))
         }
         other => other.into(),
     }
-}
-
-/// Tangential restitution of a solid sphere without initial spin, `e_t = (2P + 5)/7`.
-fn e_t(p: f64) -> f64 {
-    (2.0 * p + 5.0) / 7.0
 }
 
 fn region_name(surface: &Surface, gamma: f64, alpha: f64) -> &'static str {
@@ -78,12 +73,11 @@ pub fn run(args: QueryArgs) -> Result<()> {
         return batch(&table, path, outside);
     }
     let (Some(gamma), Some(alpha)) = (args.gamma, args.alpha) else {
-        return Err(QueryUsageError(
+        return Err(Failure::usage(
             "nothing to answer: give --gamma G --alpha A for one point, or --batch FILE for \
              lines `gamma,alpha` (FILE `-` reads standard input)"
                 .into(),
-        )
-        .into());
+        ));
     };
     let p = table.p_with(gamma, alpha, outside).map_err(usage)?;
     let region = region_name(&table.surface, gamma, alpha);
@@ -97,7 +91,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
             "gamma": gamma,
             "alpha": crate::args::json_number(alpha),
             "P": p,
-            "e_t": e_t(p),
+            "e_t": tangential_restitution(p),
             "region": region,
             "error_bound": error,
             "table": args.table.display().to_string(),
@@ -111,7 +105,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
         );
         println!(
             "e_t = (2P + 5)/7 = {:.9}   (solid sphere, no initial spin)",
-            e_t(p)
+            tangential_restitution(p)
         );
         println!("{region}, from {}", args.table.display());
     }
@@ -119,9 +113,9 @@ pub fn run(args: QueryArgs) -> Result<()> {
 }
 
 /// Parse one batch line `gamma,alpha` (1-based `number` for messages).
-fn parse_line(line: &str, number: usize) -> Result<(f64, f64), QueryUsageError> {
+fn parse_line(line: &str, number: usize) -> Result<(f64, f64)> {
     let bad = |what: String| {
-        QueryUsageError(format!(
+        Failure::usage(format!(
             "batch line {number}: {what}; expected `gamma,alpha` (e.g. `1.75,0.3`, alpha may be `inf`)"
         ))
     };
@@ -151,9 +145,8 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
     let input: Box<dyn BufRead> = if path.as_os_str() == "-" {
         Box::new(std::io::stdin().lock())
     } else {
-        let f = std::fs::File::open(path).map_err(|e| {
-            QueryUsageError(format!("--batch {}: cannot open: {e}", path.display()))
-        })?;
+        let f = std::fs::File::open(path)
+            .map_err(|e| Failure::usage(format!("--batch {}: cannot open: {e}", path.display())))?;
         Box::new(std::io::BufReader::new(f))
     };
     let (mut gammas, mut alphas, mut numbers) = (Vec::new(), Vec::new(), Vec::new());
@@ -162,7 +155,7 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
     for (i, line) in input.lines().enumerate() {
         let number = i + 1;
         let line =
-            line.map_err(|e| QueryUsageError(format!("batch line {number}: cannot read: {e}")))?;
+            line.map_err(|e| Failure::usage(format!("batch line {number}: cannot read: {e}")))?;
         let line = if number == 1 {
             line.strip_prefix('\u{feff}')
                 .map(str::to_owned)
@@ -192,7 +185,7 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
         .p_batch_par(&gammas, &alphas, &mut ps, outside)
         .map_err(|e| match e {
             LookupError::Batch { index, source } => {
-                QueryUsageError(format!("batch line {}: {source}", numbers[index])).into()
+                Failure::usage(format!("batch line {}: {source} (--clamp)", numbers[index]))
             }
             other => usage(other),
         })?;
@@ -209,7 +202,7 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
                     crate::args::fmt_num(*g),
                     crate::args::fmt_num(*a),
                     crate::args::fmt_num(*p),
-                    crate::args::fmt_num(e_t(*p))
+                    crate::args::fmt_num(tangential_restitution(*p))
                 ),
                 None => Ok(()),
             },

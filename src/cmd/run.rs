@@ -4,15 +4,13 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use anyhow::{Context, Result};
+use crate::failure::{Context, Failure, Result};
 use clap::Args;
 
-use oblique_sweep::nodestore::{
-    fingerprint, Checkpoint, Header, Kind, LockError, NodeFile, OutputLock,
-};
+use oblique_sweep::nodestore::{fingerprint, Checkpoint, Header, Kind, NodeFile, OutputLock};
 use oblique_sweep::provenance;
-use oblique_sweep::{Built, Config, Progress, RunError, RunOptions, Shard, SweepError};
-use oblique_table::write::{check_output, check_output_not_input, write_table, OutputPathError};
+use oblique_sweep::{Built, Config, Progress, RunError, RunOptions, Shard};
+use oblique_table::write::{check_output, check_output_not_input, write_table};
 
 use crate::progress::{CliProgress, STEP_PREFLIGHT, STEP_WRITING};
 
@@ -54,22 +52,6 @@ fn parse_shard(s: &str) -> std::result::Result<Shard, String> {
         index: k - 1,
         count: n,
     })
-}
-
-/// A usage error of `sweep run`/`sweep merge` (exit code 2).
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct UsageError(pub String);
-
-/// Whether `e` is something the user can fix in the config or on the command line (exit code
-/// 2) among the errors of `sweep run`, `sweep merge` and the output paths of every command.
-pub fn is_usage(e: &anyhow::Error) -> bool {
-    e.downcast_ref::<UsageError>().is_some()
-        || e.downcast_ref::<OutputPathError>().is_some()
-        || matches!(e.downcast_ref::<LockError>(), Some(LockError::Held { .. }))
-        || e.downcast_ref::<RunError>().is_some_and(RunError::is_usage)
-        || e.downcast_ref::<SweepError>()
-            .is_some_and(SweepError::is_usage)
 }
 
 /// A path as a shell word: quoted when it holds anything but plain characters.
@@ -161,20 +143,18 @@ fn open_checkpoint(
             } else {
                 "it cannot be resumed;"
             };
-            return Err(UsageError(format!(
+            return Err(Failure::usage(format!(
                 "{} holds {what}: {why} discard it and start afresh with\n  {restart}",
                 ckpt_path.display()
-            ))
-            .into());
+            )));
         }
         if !args.resume {
-            return Err(UsageError(format!(
+            return Err(Failure::usage(format!(
                 "{} holds {what} of this config: continue it with\n  {}\nor discard it and \
                  start afresh with\n  {restart}",
                 ckpt_path.display(),
                 run_command(args, &cfg.output, "--resume")
-            ))
-            .into());
+            )));
         }
         let c = Checkpoint::resume(ckpt_path, header)?;
         if !args.quiet {
@@ -196,10 +176,9 @@ pub fn run(args: RunArgs) -> Result<()> {
     }
     if let Some(t) = args.threads {
         if t > 1024 {
-            return Err(UsageError(format!(
+            return Err(Failure::usage(format!(
                 "--threads {t}: must be in [0, 1024] (0 = one per core)"
-            ))
-            .into());
+            )));
         }
         cfg.run.threads = t;
     }

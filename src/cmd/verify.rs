@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-use anyhow::{Context, Result};
+use crate::failure::{Context, Failure, Result};
 use clap::Args;
 use rayon::prelude::*;
 
@@ -39,11 +39,6 @@ pub struct VerifyArgs {
     #[arg(long)]
     quiet: bool,
 }
-
-/// A bad argument of `sweep verify` (exit status 2).
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct VerifyUsageError(String);
 
 /// Some points exceed the table's stated bound (exit status 1).
 #[derive(Debug, thiserror::Error)]
@@ -109,24 +104,24 @@ fn fmt_alpha(a: f64) -> String {
 
 pub fn run(args: VerifyArgs) -> Result<()> {
     if !(args.tol > 0.0 && args.tol <= MAX_TOL) {
-        return Err(VerifyUsageError(format!(
+        return Err(Failure::usage(format!(
             "--tol {:e}: must be in (0, {MAX_TOL:e}] (the reference must be far more accurate \
              than the table)",
             args.tol
-        ))
-        .into());
+        )));
     }
     if args.points == 0 {
-        return Err(VerifyUsageError("--points 0: must be >= 1".into()).into());
+        return Err(Failure::usage("--points 0: must be >= 1".into()));
     }
     let table = Table::open(&args.table)?;
     let bound = table.error_bound();
     if bound.is_nan() {
-        anyhow::bail!(
+        return Err(anyhow::anyhow!(
             "{}: the table states no error bound (no leaf_predicted_error datasets); nothing to \
              verify against",
             args.table.display()
-        );
+        )
+        .into());
     }
     let points = sample(&table, args.points, args.seed);
     let pool = rayon::ThreadPoolBuilder::new()
@@ -214,12 +209,12 @@ pub fn run(args: VerifyArgs) -> Result<()> {
     );
     println!("stated bound {bound:.3e}; points above it: {exceeding}");
     if exceeding > 0 {
-        return Err(BoundExceeded {
+        return Err(anyhow::Error::new(BoundExceeded {
             count: exceeding,
             points: n,
             bound,
             worst: worst.error(),
-        }
+        })
         .into());
     }
     Ok(())

@@ -37,7 +37,7 @@ pub const MAX_FAMILY: usize = 16;
 /// Errors of figure building.
 #[derive(Debug, Error)]
 pub enum FigureError {
-    /// A figure option is invalid (a usage error).
+    /// A figure option is invalid: `name` is the option (`gammas`, `alphas`).
     #[error("invalid {name}: {message}")]
     Invalid {
         /// Option name.
@@ -48,6 +48,17 @@ pub enum FigureError {
     /// The table refused a query (a table inconsistent with its own domain).
     #[error(transparent)]
     Lookup(#[from] LookupError),
+}
+
+impl FigureError {
+    /// Whether the caller can fix it: an invalid figure request, or a table that cannot be read
+    /// or queried.
+    pub fn user_can_fix(&self) -> bool {
+        match self {
+            FigureError::Invalid { .. } => true,
+            FigureError::Lookup(e) => e.user_can_fix(),
+        }
+    }
 }
 
 /// The four figures.
@@ -485,7 +496,7 @@ pub fn slices(
         s.gamma_min, s.gamma_max
     );
     check_family(
-        "--gammas",
+        "gammas",
         gammas,
         |g| g >= s.gamma_min && g <= s.gamma_max,
         &allowed,
@@ -494,12 +505,7 @@ pub fn slices(
         "an alpha in [0, {}] (the table's alpha_max; inf allowed if it is inf)",
         s.alpha_max
     );
-    check_family(
-        "--alphas",
-        alphas,
-        |a| a >= 0.0 && a <= s.alpha_max,
-        &allowed,
-    )?;
+    check_family("alphas", alphas, |a| a >= 0.0 && a <= s.alpha_max, &allowed)?;
     let top = compact(s.alpha_max);
     let p_axis = Axis {
         label: P_LABEL.into(),

@@ -41,6 +41,13 @@ pub enum PlotError {
     },
 }
 
+impl PlotError {
+    /// Whether the caller can fix it: an unknown output format (not: a failed drawing).
+    pub fn user_can_fix(&self) -> bool {
+        matches!(self, PlotError::Format { .. })
+    }
+}
+
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Style {

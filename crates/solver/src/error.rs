@@ -20,7 +20,7 @@ pub enum PhysicsError {
     /// The requested tolerance needs more resolution than the configured limit allows.
     #[error(
         "tolerance {tol:e} not reached: best error estimate {achieved:e} at {res} (limit \
-         {max_steps} steps); loosen --tol or raise the limit",
+         {max_steps} steps); loosen the tolerance or raise the limit",
         res = Resolution { springs: *springs, steps: *steps }
     )]
     ToleranceUnreachable {
@@ -40,7 +40,7 @@ pub enum PhysicsError {
     #[error(
         "tolerance {tol:e} at gamma = {gamma} is out of reach for the {scheme} scheme: it needs \
          about {res} ({work:.1e} spring-steps, {memory_mb:.0} MB), {beyond}; loosen \
-         --tol{hint}",
+         the tolerance{hint}",
         res = Resolution { springs: *springs, steps: *steps },
         beyond = exceeded(
             (*steps as f64, *max_steps as f64, "steps"),
@@ -82,7 +82,7 @@ pub enum PhysicsError {
     /// A fixed resolution beyond the work or memory limit (refused before it runs).
     #[error(
         "resolution {res} is too large: {work:.1e} spring-steps and {memory_mb:.0} MB, limits \
-         {max_work:.1e} spring-steps and {max_memory_mb:.0} MB; use fewer --springs/--steps",
+         {max_work:.1e} spring-steps and {max_memory_mb:.0} MB; use fewer springs or steps",
         res = Resolution { springs: *springs, steps: *steps }
     )]
     TooLarge {
@@ -109,6 +109,15 @@ pub enum PhysicsError {
         /// Steps per contact time.
         steps: usize,
     },
+}
+
+impl PhysicsError {
+    /// Whether the caller can fix the cause by changing an input: a parameter outside its range,
+    /// an unknown preset, a resolution or tolerance beyond the work limit, a missing file. The
+    /// remaining variant (a tolerance the refinement did not reach) is a limit of the solver.
+    pub fn user_can_fix(&self) -> bool {
+        !matches!(self, PhysicsError::ToleranceUnreachable { .. })
+    }
 }
 
 impl PhysicsError {

@@ -91,11 +91,15 @@ pub enum SceneError {
 }
 
 impl SceneError {
-    /// Whether the error is the user's input (a bad scene or data file) rather than a failure.
-    pub fn is_usage(&self) -> bool {
+    /// Whether the error is the user's input (a missing, unreadable or bad scene or data file)
+    /// rather than a failure of the physics or the lookup.
+    pub fn user_can_fix(&self) -> bool {
         matches!(
             self,
-            SceneError::Parse { .. } | SceneError::Invalid { .. } | SceneError::Measured { .. }
+            SceneError::Io { .. }
+                | SceneError::Parse { .. }
+                | SceneError::Invalid { .. }
+                | SceneError::Measured { .. }
         )
     }
 }

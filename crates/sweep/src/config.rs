@@ -39,6 +39,13 @@ pub enum ConfigError {
     },
 }
 
+impl ConfigError {
+    /// Always true: every variant names the file or key to change.
+    pub fn user_can_fix(&self) -> bool {
+        true
+    }
+}
+
 fn alpha_max_de<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     #[derive(Deserialize)]
     #[serde(untagged)]

@@ -206,9 +206,9 @@ pub enum RunError {
 impl RunError {
     /// Whether the user can fix the cause in the config or on the command line (a limit, a
     /// tolerance, the parts given to a merge), as opposed to an interruption or a failed write.
-    pub fn is_usage(&self) -> bool {
+    pub fn user_can_fix(&self) -> bool {
         match self {
-            RunError::Sweep(e) => e.is_usage(),
+            RunError::Sweep(e) => e.user_can_fix(),
             RunError::Missing { .. } => true,
             RunError::Interrupted | RunError::Store(_) => false,
         }
@@ -217,7 +217,7 @@ impl RunError {
 
 impl SweepError {
     /// Whether a config key decides the failure (every variant names the key to change).
-    pub fn is_usage(&self) -> bool {
+    pub fn user_can_fix(&self) -> bool {
         match self {
             SweepError::Node { source, .. } => matches!(
                 source,

@@ -62,6 +62,13 @@ pub enum NodeFileError {
     },
 }
 
+impl NodeFileError {
+    /// Always true: the file named is missing, unreadable, damaged or from another config.
+    pub fn user_can_fix(&self) -> bool {
+        true
+    }
+}
+
 /// Fingerprint of what decides the node values and their placement: domain, nodes, solver and
 /// checks (not the output path or the thread count), and the engine version: FNV-1a 64 of
 /// those sections written as TOML (every field, floats so that they read back exactly).
@@ -178,7 +185,7 @@ impl NodeFile {
             .map_err(io)?;
         if bytes.len() < 40 || &bytes[..8] != MAGIC {
             return Err(invalid(
-                "not a node file of `sweep run` (checkpoint or shard part)".into(),
+                "not a node file (a checkpoint or a shard part of a table build)".into(),
             ));
         }
         let u32_at =
@@ -415,8 +422,8 @@ impl Merged {
             if f.header.kind != Kind::Part {
                 return Err(invalid(
                     path,
-                    "is a checkpoint of an unfinished run, not a finished part; finish it with \
-                     `sweep run CONFIG --shard K/N -o PART --resume`"
+                    "is a checkpoint of an unfinished run, not a finished part; resume that \
+                     shard's run to finish it"
                         .into(),
                 ));
             }
@@ -535,6 +542,14 @@ pub enum LockError {
         /// Cause.
         source: std::io::Error,
     },
+}
+
+impl LockError {
+    /// Whether the caller can fix it: another run holds the output, or the output path is not
+    /// a regular file (not: an I/O failure on the lock file).
+    pub fn user_can_fix(&self) -> bool {
+        matches!(self, LockError::Held { .. } | LockError::Path(_))
+    }
 }
 
 /// An exclusive lock on an output for the duration of a run: an advisory `flock` on the file

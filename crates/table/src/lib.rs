@@ -67,3 +67,12 @@ pub enum TableError {
         expected: usize,
     },
 }
+
+impl TableError {
+    /// Whether the caller can fix it: a file that cannot be read or is not a valid table, a
+    /// query argument outside its range (the batch's failing query included); not a
+    /// programming error such as slices of different lengths.
+    pub fn user_can_fix(&self) -> bool {
+        !matches!(self, TableError::Length { .. })
+    }
+}

@@ -391,7 +391,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
             if version_f > SCHEMA_VERSION as f64 {
                 "upgrade oblique-lookup to read it"
             } else {
-                "rebuild the table with `sweep run`"
+                "rebuild the table with this engine"
             }
         )));
     }

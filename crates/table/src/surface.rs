@@ -539,7 +539,7 @@ pub fn alpha_outside(alpha_max: f64, alpha: f64) -> TableError {
         name: "alpha",
         value: alpha,
         allowed: format!(
-            "<= the table's alpha_max = {alpha_max}; or opt into clamping (OutOfDomain::Clamp; `sweep query --clamp`) to answer at alpha_max"
+            "<= the table's alpha_max = {alpha_max}; or opt into clamping to answer at alpha_max"
         ),
     }
 }
@@ -700,7 +700,7 @@ impl Surface {
             value: gamma,
             allowed: format!(
                 "in the table's domain [{}, {}] (or alpha <= alpha_lin(gamma)); \
-                 or opt into clamping (OutOfDomain::Clamp; `sweep query --clamp`) to answer at the nearest gamma of the table",
+                 or opt into clamping to answer at the nearest gamma of the table",
                 self.gamma_min, self.gamma_max
             ),
         }

@@ -91,6 +91,14 @@ pub enum StorageError {
     Output(#[from] OutputPathError),
 }
 
+impl StorageError {
+    /// Whether the caller can fix it: the output path is in the way (not: a failed write, or a
+    /// build whose checks contradict its bound).
+    pub fn user_can_fix(&self) -> bool {
+        matches!(self, StorageError::Output(_))
+    }
+}
+
 /// An output path that must not be written: something other than a regular file is there, or
 /// it is one of the inputs.
 #[derive(Debug, Error)]
@@ -119,6 +127,13 @@ pub enum OutputPathError {
         /// Cause.
         source: std::io::Error,
     },
+}
+
+impl OutputPathError {
+    /// Always true: the caller chose the path.
+    pub fn user_can_fix(&self) -> bool {
+        true
+    }
 }
 
 /// What is at `path` in words ("a directory", "a FIFO", …), when it is not a regular file;
