@@ -124,7 +124,7 @@ fn batch_keeps_order_and_matches_the_library() {
 #[test]
 fn outside_the_domain_is_refused_unless_clamped() {
     let t = table();
-    let hi = t.surface.gamma_max;
+    let hi = t.surface().gamma_max();
     let g = (hi + 1.0).to_string();
     let out = sweep(&["query", TABLE, "--gamma", &g, "--alpha", "1"], None);
     refused(&out, &["gamma", &hi.to_string(), "--clamp"]);
@@ -145,7 +145,7 @@ fn outside_the_domain_is_refused_unless_clamped() {
 
 #[test]
 fn bad_batch_lines_name_their_line_number() {
-    let hi = table().surface.gamma_max;
+    let hi = table().surface().gamma_max();
     for (input, needles) in [
         ("1.5,0.3\n2.0\n", vec!["line 2", "1 field"]),
         (
@@ -193,7 +193,7 @@ fn a_failing_batch_writes_nothing_whatever_its_size() {
     // More lines than any internal chunk: a bad last line (or a point outside the domain in the
     // middle) must still leave standard output empty.
     let good = "1.5,0.3\n".repeat(100_000);
-    let hi = table().surface.gamma_max;
+    let hi = table().surface().gamma_max();
     for (input, needles) in [
         (format!("{good}1.5,oops\n"), vec!["line 100001".to_string()]),
         (

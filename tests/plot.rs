@@ -76,7 +76,7 @@ fn check_overlays(all: &[Series], t: &Table) {
         );
         assert!((alpha_at(y) - alpha_c1(g)).abs() < 1e-12);
     }
-    let (lo, hi) = (t.surface.gamma_min, t.surface.gamma_max);
+    let (lo, hi) = (t.surface().gamma_min(), t.surface().gamma_max());
     assert_eq!(c2.points.first().unwrap().0, lo);
     assert_eq!(c2.points.last().unwrap().0, hi);
     let band: Vec<f64> = all
@@ -101,8 +101,8 @@ fn surface_map_is_the_table_on_its_grid_up_to_alpha_infinity() {
     assert!(nx >= 200 && ny >= 200, "{nx} x {ny}");
     assert_eq!(grid.values.len(), nx * ny);
     // The grid spans the whole domain; the top row is α = ∞.
-    assert_eq!(grid.xs[0], t.surface.gamma_min);
-    assert_eq!(grid.xs[nx - 1], t.surface.gamma_max);
+    assert_eq!(grid.xs[0], t.surface().gamma_min());
+    assert_eq!(grid.xs[nx - 1], t.surface().gamma_max());
     assert_eq!(grid.ys[0], 0.0);
     assert_eq!(grid.ys[ny - 1], 1.0);
     assert!(alpha_at(grid.ys[ny - 1]).is_infinite());
@@ -149,7 +149,7 @@ fn surface_map_is_the_table_on_its_grid_up_to_alpha_infinity() {
     }
     // Provenance caption.
     assert!(sheet.caption[0].contains("tables/full.h5"));
-    assert!(sheet.caption[0].contains(&t.provenance.created));
+    assert!(sheet.caption[0].contains(&t.provenance().created));
     assert!(sheet.caption[1].contains("sweep plot tables/full.h5"));
 }
 
@@ -208,8 +208,8 @@ fn slices_are_the_table_along_fixed_gamma_and_fixed_alpha() {
         } else {
             assert_eq!(s.label, format!("α = {al}"));
         }
-        assert_eq!(s.points.first().unwrap().0, t.surface.gamma_min);
-        assert_eq!(s.points.last().unwrap().0, t.surface.gamma_max);
+        assert_eq!(s.points.first().unwrap().0, t.surface().gamma_min());
+        assert_eq!(s.points.last().unwrap().0, t.surface().gamma_max());
         for &(g, p) in &s.points {
             assert_eq!(p, t.p(g, al).unwrap(), "α = {al}, γ = {g}");
         }
@@ -246,7 +246,7 @@ fn default_families_and_bad_families() {
     assert!(g.len() >= 4);
     assert!(g
         .iter()
-        .all(|&x| x >= t.surface.gamma_min && x <= t.surface.gamma_max));
+        .all(|&x| x >= t.surface().gamma_min() && x <= t.surface().gamma_max()));
     assert!(g.contains(&1.52) && g.contains(&2.16));
     let a = figures::default_alphas(t);
     assert!(a.last().unwrap().is_infinite());
@@ -289,7 +289,7 @@ fn regime_diagram_classifies_the_plane_like_the_physics() {
     let labels: Vec<&str> = chart.regions.iter().map(|r| r.label.as_str()).collect();
     assert_eq!(labels, REGIME_LABELS.to_vec());
     let regime_of_region = [Regime::FullSlip, Regime::PartialSlip, Regime::Stick];
-    let (lo, hi) = (t.surface.gamma_min, t.surface.gamma_max);
+    let (lo, hi) = (t.surface().gamma_min(), t.surface().gamma_max());
     let mut checked = [0usize; 3];
     for i in 0..=70 {
         let g = lo + (hi - lo) * (i as f64 + 0.5) / 71.0;
@@ -330,9 +330,9 @@ fn quality_map_shows_every_held_out_check_with_its_true_error() {
     let sheet = figures::quality(t, &src());
     let chart = &sheet.charts[0];
     let sc = chart.scatter.as_ref().expect("held-out points");
-    assert_eq!(sc.points.len(), t.checks.len());
-    assert!(t.checks.len() >= 100);
-    for (&(g, y, err), c) in sc.points.iter().zip(&t.checks) {
+    assert_eq!(sc.points.len(), t.checks().len());
+    assert!(t.checks().len() >= 100);
+    for (&(g, y, err), c) in sc.points.iter().zip(t.checks()) {
         assert_eq!(g, c.gamma);
         assert_eq!(y, compact(c.alpha));
         assert_eq!(err, c.interpolation_error);
@@ -348,24 +348,20 @@ fn quality_map_shows_every_held_out_check_with_its_true_error() {
     // The colour bar covers every error.
     let scale = chart.color_scale.as_ref().unwrap();
     let max = t
-        .checks
+        .checks()
         .iter()
         .map(|c| c.interpolation_error)
         .fold(0.0, f64::max);
     assert!(scale.range.0 <= max && max <= scale.range.1);
     assert!(sheet.subtitle.contains(&format!("max {max:.1e}")));
     // One closed outline per quadtree leaf, inside the domain.
-    let s = &t.surface;
-    let leaves: usize = [&s.stick_low, &s.partial_high, &s.stick_high]
-        .into_iter()
-        .flatten()
-        .map(|p| p.leaves())
-        .sum();
+    let s = &t.surface();
+    let leaves: usize = s.patches().map(|(_, p)| p).map(|p| p.leaves()).sum();
     assert_eq!(chart.outlines.len(), leaves);
     for o in &chart.outlines {
         assert_eq!(o.first(), o.last());
         for &(g, y) in o {
-            assert!(g >= s.gamma_min - 1e-12 && g <= s.gamma_max + 1e-12);
+            assert!(g >= s.gamma_min() - 1e-12 && g <= s.gamma_max() + 1e-12);
             assert!((0.0..=1.0).contains(&y));
         }
     }

@@ -82,11 +82,11 @@ fn shipped_tables_match_direct_simulation_at_random_points() {
 
 fn random_points(path: &str, claim: f64, count: usize) {
     let table = oblique_lookup::Table::open(path).expect("shipped table opens");
-    let s = &table.surface;
+    let s = &table.surface();
     let mut uniform = oblique_lookup::testing::uniform(0x2545_f491_4f6c_dd1d);
     let mut worst = 0.0_f64;
     for _ in 0..count {
-        let gamma = s.gamma_min + (s.gamma_max - s.gamma_min) * uniform();
+        let gamma = s.gamma_min() + (s.gamma_max() - s.gamma_min()) * uniform();
         // α log-uniform from 0.01 to 100, plus the no-slip limit once in a while.
         let alpha = if uniform() < 0.15 {
             f64::INFINITY

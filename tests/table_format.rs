@@ -19,8 +19,9 @@ use std::time::{Duration, Instant};
 
 use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
 use oblique_lookup::testing::fork_guard;
-use oblique_lookup::{PatchKind, Table};
+use oblique_lookup::Table;
 use oblique_table::surface::{alpha_c1, alpha_c2, linear_limit};
+use oblique_table::surface::{PatchId, PatchKind, Warp};
 
 /// Small table: all three patches (γ from 0.8 to 1.6), several root cells along γ, leaves at
 /// mixed depths, α up to ∞.
@@ -683,7 +684,7 @@ fn check_layout(path: &Path, ex: &Expect) {
                         // start; compared in c (the grading's square root would amplify the
                         // rounding of α next to the knot).
                         let stored = match &warp {
-                            Some(w) if x0 * bg as f64 >= w.start - 1e-9 => {
+                            Some(w) if x0 * bg as f64 >= w.start() - 1e-9 => {
                                 w.invert(gam[idx], coord[idx])
                             }
                             _ => coord[idx],
@@ -844,7 +845,7 @@ fn check_layout(path: &Path, ex: &Expect) {
 
 /// The warp group of patch `pname` as documented (`None` when absent): only in the documented
 /// patches, exactly the documented attributes and datasets with their types, valid values.
-fn check_warp(g: &hdf5::Group, pname: &str) -> Option<oblique_lookup::Warp> {
+fn check_warp(g: &hdf5::Group, pname: &str) -> Option<Warp> {
     if !g.link_exists(WARP_GROUP) {
         return None;
     }
@@ -870,26 +871,27 @@ fn check_warp(g: &hdf5::Group, pname: &str) -> Option<oblique_lookup::Warp> {
     for &(name, ty) in WARP_DATASETS {
         check_dataset(&w, name, ty, &[knot.len()]);
     }
-    let warp = oblique_lookup::Warp {
-        start: attr_f64(&w, "start"),
-        gamma_0: attr_f64(&w, "gamma_0"),
-        gamma_step: attr_f64(&w, "gamma_step"),
-        c_star: attr_f64(&w, "c_star"),
+    let warp = Warp::new(
+        attr_f64(&w, "start"),
+        attr_f64(&w, "gamma_0"),
+        attr_f64(&w, "gamma_step"),
+        attr_f64(&w, "c_star"),
         knot,
-    };
+    )
+    .unwrap_or_else(|e| panic!("{pname}/warp: {e}"));
     let (lo, hi) = (attr_f64(g, "gamma_lo"), attr_f64(g, "gamma_hi"));
     let bg = count_attr(g, "blocks_gamma") as f64;
-    let end = warp.gamma_0 + (warp.knot.len() - 1) as f64 * warp.gamma_step;
-    assert!(warp.gamma_step > 0.0 && warp.c_star > 0.0 && warp.c_star < 1.0);
-    assert!(warp.knot.len() >= 4 && warp.knot.iter().all(|&k| k > 0.0 && k < 1.0));
+    let end = warp.gamma_0() + (warp.knot().len() - 1) as f64 * warp.gamma_step();
+    assert!(warp.gamma_step() > 0.0 && warp.c_star() > 0.0 && warp.c_star() < 1.0);
+    assert!(warp.knot().len() >= 4 && warp.knot().iter().all(|&k| k > 0.0 && k < 1.0));
     assert!(
-        warp.start > 0.0 && warp.start < bg && (warp.start * 1048576.0).fract() == 0.0,
+        warp.start() > 0.0 && warp.start() < bg && (warp.start() * 1048576.0).fract() == 0.0,
         "{pname}/warp: start {}",
-        warp.start
+        warp.start()
     );
-    let first = lo + (hi - lo) * warp.start / bg;
+    let first = lo + (hi - lo) * warp.start() / bg;
     assert!(
-        warp.gamma_0 <= first + 1e-12 * hi && end >= hi - 1e-12 * hi,
+        warp.gamma_0() <= first + 1e-12 * hi && end >= hi - 1e-12 * hi,
         "{pname}/warp: grid"
     );
     Some(warp)
@@ -916,7 +918,7 @@ fn a_domain_variants_follow_the_documented_layout() {
         check_layout(&out, ex);
 
         let t = Table::open(&out).expect("open the table");
-        for c in &t.checks {
+        for c in t.checks() {
             let p = t.p(c.gamma, c.alpha).unwrap();
             assert!(
                 (p - c.p_interpolated).abs() <= 1e-12,
@@ -966,7 +968,7 @@ fn b_lookup_reproduces_checks_and_full_slip_line() {
         f64s(&ch, "alpha"),
         f64s(&ch, "P_interpolated"),
     );
-    assert_eq!(t.checks.len(), g.len());
+    assert_eq!(t.checks().len(), g.len());
     let mut worst = 0.0_f64;
     for i in 0..g.len() {
         let p = t.p(g[i], a[i]).expect("check point inside the domain");
@@ -979,7 +981,7 @@ fn b_lookup_reproduces_checks_and_full_slip_line() {
             a[i],
             pi[i]
         );
-        assert_eq!(t.checks[i].p_interpolated.to_bits(), pi[i].to_bits());
+        assert_eq!(t.checks()[i].p_interpolated.to_bits(), pi[i].to_bits());
     }
     eprintln!(
         "lookup vs stored P_interpolated: max |diff| {worst:e} over {} checks",
@@ -1122,7 +1124,7 @@ fn c_sigkill_during_the_write_leaves_old_or_complete_table() {
     let dir = subdir("atomic_write");
     let out = dir.join("t.h5");
     std::fs::copy(&fx.table, &out).unwrap();
-    let checks = Table::open(&fx.table).unwrap().checks;
+    let checks = Table::open(&fx.table).unwrap().checks().to_vec();
     let (mut mid_write, mut finished, mut replaced) = (0, 0, 0);
     for attempt in 0..4 {
         let before = std::fs::read(&out).unwrap();
@@ -1167,7 +1169,8 @@ fn c_sigkill_during_the_write_leaves_old_or_complete_table() {
                 )
             });
             assert_eq!(
-                table.checks, checks,
+                table.checks(),
+                checks,
                 "a replaced table differs in its checks"
             );
         }
@@ -1522,37 +1525,40 @@ fn f_bad_files_are_refused_with_clear_messages() {
 /// The fixture table as the writer's input (`Built`), read back from its file, with a warp on
 /// `partial_high`: the node α values are moved so that the stored `coord` is the warped c' of
 /// each node, as the sweep lays them out.
-fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique_sweep::Built {
+fn built_with_warp(path: &Path, warp: &Warp) -> oblique_sweep::Built {
     let t = Table::open(path).expect("open the fixture");
     let f = open(path);
     let patches = f.group("patches").unwrap();
-    let mut surface = t.surface.clone();
-    surface.partial_high.as_mut().expect("partial_high").warp = Some(warp.clone());
+    let surface = t
+        .surface()
+        .map_patches(|id, p| match id {
+            PatchId::PartialHigh => p.with_warp(Some(warp.clone())),
+            _ => Ok(p.clone()),
+        })
+        .expect("a valid warp");
     let mut built_patches = Vec::new();
-    for (name, patch) in [
-        ("stick_low", &surface.stick_low),
-        ("partial_high", &surface.partial_high),
-        ("stick_high", &surface.stick_high),
-    ] {
-        let Some(patch) = patch else { continue };
+    for (id, patch) in surface.patches() {
+        let name = id.name();
         let g = patches.group(name).unwrap();
         let (gamma, coord) = (f64s(&g, "gamma"), f64s(&g, "coord"));
-        let alpha = if patch.warp.is_some() {
+        let alpha = if patch.warp().is_some() {
             // Nodes of the leaves at or beyond the warp's start sit at c' = coord.
             let spans = patch.leaf_gamma_spans();
-            let per_leaf = (patch.leaf_intervals + 1).pow(2);
+            let per_leaf = (patch.leaf_intervals() + 1).pow(2);
             gamma
                 .iter()
                 .zip(&coord)
                 .enumerate()
                 .map(|(i, (&gm, &c))| {
-                    let warped = spans[i / per_leaf].0 >= warp.start;
+                    let warped = spans[i / per_leaf].0 >= warp.start();
                     if gm == 1.0 {
                         2.0 / 7.0
                     } else if !warped {
-                        patch.kind.alpha(gm, c, surface.alpha_max)
+                        patch.kind().alpha(gm, c, surface.alpha_max())
                     } else {
-                        patch.kind.alpha(gm, warp.invert(gm, c), surface.alpha_max)
+                        patch
+                            .kind()
+                            .alpha(gm, warp.invert(gm, c), surface.alpha_max())
                     }
                 })
                 .collect()
@@ -1561,11 +1567,7 @@ fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique_sweep::B
         };
         let leaf_depth: Vec<i32> = ints(&g, "leaf_depth");
         built_patches.push(oblique_sweep::BuiltPatch {
-            name: match name {
-                "stick_low" => "stick_low",
-                "partial_high" => "partial_high",
-                _ => "stick_high",
-            },
+            name,
             patch: patch.clone(),
             gamma,
             coord,
@@ -1579,7 +1581,7 @@ fn built_with_warp(path: &Path, warp: &oblique_lookup::Warp) -> oblique_sweep::B
     oblique_sweep::Built {
         surface,
         patches: built_patches,
-        checks: t.checks.clone(),
+        checks: t.checks().to_vec(),
     }
 }
 
@@ -1588,15 +1590,9 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     let fx = fixture();
     // partial_high of the fixture spans γ ∈ [1, 1.6] in two root rows: the warp applies from
     // the second (γ = 1.3).
-    let warp = oblique_lookup::Warp {
-        start: 1.0,
-        gamma_0: 1.2,
-        gamma_step: 0.1,
-        c_star: 0.5,
-        knot: vec![0.45, 0.5, 0.6, 0.55, 0.4],
-    };
+    let warp = Warp::new(1.0, 1.2, 0.1, 0.5, vec![0.45, 0.5, 0.6, 0.55, 0.4]).expect("valid");
     let built = built_with_warp(&fx.table, &warp);
-    let prov = Table::open(&fx.table).unwrap().provenance;
+    let prov = Table::open(&fx.table).unwrap().provenance().clone();
     let out = subdir("warp").join("warp.h5");
     {
         let _g = fork_guard();
@@ -1609,7 +1605,7 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
         .group("patches/partial_high/warp")
         .expect("the warp group");
     assert_eq!(attr_f64(&w, "c_star"), 0.5);
-    assert_eq!(f64s(&w, "knot"), warp.knot);
+    assert_eq!(f64s(&w, "knot"), warp.knot());
     for other in ["stick_low", "stick_high"] {
         assert!(!f
             .group(&format!("patches/{other}"))
@@ -1619,7 +1615,7 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
     drop(f);
     // Read back: the same surface, and the same bits at random queries as the in-memory one.
     let t = Table::open(&out).expect("open the warped table");
-    assert_eq!(t.provenance.schema_version, 3);
+    assert_eq!(t.provenance().schema_version, 3);
     // `sweep inspect` reports the warp: where it starts (row 1 of [1, 1.6] = γ 1.3) and c*.
     let o = sweep(&["inspect", out.to_str().unwrap()]);
     let text = String::from_utf8_lossy(&o.stdout);
@@ -1636,7 +1632,7 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
         (Some(1.0), Some(5))
     );
     assert!(v["patches"][0]["warp"].is_null() && v["patches"][2]["warp"].is_null());
-    assert_eq!(t.surface, built.surface, "surface after write -> read");
+    assert_eq!(t.surface(), &built.surface, "surface after write -> read");
     let mut next = oblique_lookup::testing::uniform(0x0123_4567_89AB_CDEF_u64);
     let plain = Table::open(&fx.table).unwrap();
     let mut changed = 0;
@@ -1666,22 +1662,34 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
         };
         e.expect_err(file).to_string()
     };
-    let set_warp = |change: fn(&mut oblique_lookup::Warp)| {
-        move |bad: &mut oblique_sweep::Built| {
-            for bp in &mut bad.patches {
-                if let Some(w) = bp.patch.warp.as_mut() {
-                    change(w);
-                }
-            }
-        }
-    };
-    let e = refused("c_star.h5", &set_warp(|w| w.c_star = 1.5));
+    // A warp the readers would refuse cannot be built: the model refuses it, naming the value
+    // (so the writer, which takes only models, never sees one).
+    let knots = vec![0.45, 0.5, 0.6, 0.55, 0.4];
+    let e = Warp::new(1.0, 1.2, 0.1, 1.5, knots.clone()).expect_err("c_star 1.5");
     assert!(e.contains("c_star"), "{e}");
-    let e = refused("start.h5", &set_warp(|w| w.start = 0.3));
+    let partial = built
+        .surface
+        .patch_by_id(PatchId::PartialHigh)
+        .expect("partial_high");
+    let early = Warp::new(0.3, 1.2, 0.1, 0.5, knots).expect("valid on its own");
+    let e = partial.with_warp(Some(early)).expect_err("start 0.3");
     assert!(e.contains("'start' = 0.3"), "{e}");
+    let e = built
+        .surface
+        .map_patches(|id, p| match id {
+            PatchId::StickHigh => p.with_warp(Some(warp.clone())),
+            _ => Ok(p.clone()),
+        })
+        .expect_err("a warp on stick_high");
+    assert!(e.contains("only 'partial_high'"), "{e}");
+    // The writer refuses a warp on another patch than partial_high in its input too.
     let e = refused("stick.h5", &|bad| {
         let stick = bad.patches.iter_mut().find(|b| b.name == "stick_high");
-        stick.expect("stick_high").patch.warp = Some(warp.clone());
+        let stick = stick.expect("stick_high");
+        stick.patch = stick
+            .patch
+            .with_warp(Some(warp.clone()))
+            .expect("a patch on its own");
     });
     assert!(e.contains("only 'partial_high'"), "{e}");
     assert!(dir_names(&bad_dir).is_empty(), "{:?}", dir_names(&bad_dir));
@@ -1692,15 +1700,9 @@ fn g_a_table_with_a_warp_round_trips_through_the_writer() {
 #[test]
 fn h_a_table_is_not_written_or_verified_against_a_bound_it_breaks() {
     let fx = fixture();
-    let warp = oblique_lookup::Warp {
-        start: 1.0,
-        gamma_0: 1.2,
-        gamma_step: 0.1,
-        c_star: 0.5,
-        knot: vec![0.45, 0.5, 0.6, 0.55, 0.4],
-    };
+    let warp = Warp::new(1.0, 1.2, 0.1, 0.5, vec![0.45, 0.5, 0.6, 0.55, 0.4]).expect("valid");
     let mut built = built_with_warp(&fx.table, &warp);
-    let prov = Table::open(&fx.table).unwrap().provenance;
+    let prov = Table::open(&fx.table).unwrap().provenance().clone();
     let bound = oblique_table::write::error_bound(&built);
     assert_eq!(bound, Table::open(&fx.table).unwrap().error_bound());
     let dir = subdir("bound");
@@ -1729,18 +1731,12 @@ fn h_a_table_is_not_written_or_verified_against_a_bound_it_breaks() {
     built.checks.clear();
     for p in &mut built.patches {
         p.leaf_error.iter_mut().for_each(|e| *e = 0.0);
-        p.patch.error_estimate.iter_mut().for_each(|e| *e = 0.0);
+        p.patch = p.patch.map_error_estimate(|_, _| 0.0).expect("zero errors");
     }
-    for p in [
-        &mut built.surface.stick_low,
-        &mut built.surface.partial_high,
-        &mut built.surface.stick_high,
-    ]
-    .into_iter()
-    .flatten()
-    {
-        p.error_estimate.iter_mut().for_each(|e| *e = 0.0);
-    }
+    built.surface = built
+        .surface
+        .map_patches(|_, p| p.map_error_estimate(|_, _| 0.0))
+        .expect("zero errors");
     let zero = dir.join("zero.h5");
     {
         let _g = fork_guard();

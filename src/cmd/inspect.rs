@@ -31,36 +31,29 @@ fn stats(v: impl Iterator<Item = f64>) -> (usize, f64, f64) {
 /// Run `sweep inspect`.
 pub fn run(args: InspectArgs) -> Result<()> {
     let t = Table::open(&args.table)?;
-    let s = &t.surface;
-    let patches: Vec<_> = [
-        ("stick_low", &s.stick_low),
-        ("partial_high", &s.partial_high),
-        ("stick_high", &s.stick_high),
-    ]
-    .into_iter()
-    .filter_map(|(n, p)| p.as_ref().map(|p| (n, p)))
-    .collect();
-    let (nc, cmax, crms) = stats(t.checks.iter().map(|c| c.interpolation_error));
-    let pv = &t.provenance;
+    let s = t.surface();
+    let patches: Vec<_> = s.patches().map(|(id, p)| (id.name(), p)).collect();
+    let (nc, cmax, crms) = stats(t.checks().iter().map(|c| c.interpolation_error));
+    let pv = t.provenance();
     if args.json {
         let ps: Vec<_> = patches
             .iter()
             .map(|(n, p)| {
                 let depth = p.leaf_depths();
                 json!({
-                    "name": n, "kind": p.kind.name(), "gamma_lo": p.gamma_lo, "gamma_hi": p.gamma_hi,
-                    "blocks_gamma": p.blocks_gamma, "blocks_coord": p.blocks_coord,
-                    "leaf_intervals": p.leaf_intervals,
+                    "name": n, "kind": p.kind().name(), "gamma_lo": p.gamma_lo(), "gamma_hi": p.gamma_hi(),
+                    "blocks_gamma": p.blocks_gamma(), "blocks_coord": p.blocks_coord(),
+                    "leaf_intervals": p.leaf_intervals(),
                     "leaves": p.leaves(),
                     "depth_min": depth.iter().min(), "depth_max": depth.iter().max(),
-                    "nodes": p.p.len(),
+                    "nodes": p.p().len(),
                     "nodes_note": "stored node values; leaves store their shared edges each",
-                    "max_node_error_estimate": p.error_estimate.iter().copied().fold(0.0, f64::max),
-                    "warp": p.warp.as_ref().map(|w| json!({
-                        "start": w.start,
-                        "gamma_start": w.start_gamma(p.gamma_lo, p.gamma_hi, p.blocks_gamma),
-                        "c_star": w.c_star, "gamma_0": w.gamma_0, "gamma_step": w.gamma_step,
-                        "knots": w.knot.len(),
+                    "max_node_error_estimate": p.error_estimate().iter().copied().fold(0.0, f64::max),
+                    "warp": p.warp().as_ref().map(|w| json!({
+                        "start": w.start(),
+                        "gamma_start": w.start_gamma(p.gamma_lo(), p.gamma_hi(), p.blocks_gamma()),
+                        "c_star": w.c_star(), "gamma_0": w.gamma_0(), "gamma_step": w.gamma_step(),
+                        "knots": w.knot().len(),
                     })),
                 })
             })
@@ -68,10 +61,10 @@ pub fn run(args: InspectArgs) -> Result<()> {
         let out = json!({
             "path": args.table.display().to_string(),
             "schema_version": pv.schema_version,
-            "gamma_min": s.gamma_min, "gamma_max": s.gamma_max,
-            "alpha_max": if s.alpha_max.is_finite() { json!(s.alpha_max) } else { json!("inf") },
-            "stencil_points": s.stencil,
-            "nodes": patches.iter().map(|(_, p)| p.p.len()).sum::<usize>(),
+            "gamma_min": s.gamma_min(), "gamma_max": s.gamma_max(),
+            "alpha_max": if s.alpha_max().is_finite() { json!(s.alpha_max()) } else { json!("inf") },
+            "stencil_points": s.stencil(),
+            "nodes": patches.iter().map(|(_, p)| p.p().len()).sum::<usize>(),
             "patches": ps,
             "checks": { "count": nc, "max_interpolation_error": cmax, "rms_interpolation_error": crms },
             "error_bound": if t.error_bound().is_nan() { json!(null) } else { json!(t.error_bound()) },
@@ -87,32 +80,36 @@ pub fn run(args: InspectArgs) -> Result<()> {
     println!("table {}", args.table.display());
     println!(
         "domain gamma in [{}, {}], alpha in [0, {}]; stencil {} points per axis (schema v{})",
-        s.gamma_min, s.gamma_max, s.alpha_max, s.stencil, pv.schema_version
+        s.gamma_min(),
+        s.gamma_max(),
+        s.alpha_max(),
+        s.stencil(),
+        pv.schema_version
     );
     for (n, p) in &patches {
         let depth = p.leaf_depths();
         println!(
             "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} roots, {} leaves at depth {}..{}, {} nodes stored (shared leaf edges once per leaf), max node error estimate {:.1e}",
-            p.kind.name(),
-            p.gamma_lo,
-            p.gamma_hi,
-            p.blocks_gamma,
-            p.blocks_coord,
+            p.kind().name(),
+            p.gamma_lo(),
+            p.gamma_hi(),
+            p.blocks_gamma(),
+            p.blocks_coord(),
             p.leaves(),
             depth.iter().min().unwrap_or(&0),
             depth.iter().max().unwrap_or(&0),
-            p.p.len(),
-            p.error_estimate.iter().copied().fold(0.0, f64::max)
+            p.p().len(),
+            p.error_estimate().iter().copied().fold(0.0, f64::max)
         );
-        if let Some(w) = &p.warp {
+        if let Some(w) = &p.warp() {
             println!(
                 "                fold edge: from gamma {} (root row {}) the fold F+ lies on c' = {} (graded below it; {} knots from gamma {}, step {})",
-                w.start_gamma(p.gamma_lo, p.gamma_hi, p.blocks_gamma),
-                w.start,
-                w.c_star,
-                w.knot.len(),
-                w.gamma_0,
-                w.gamma_step
+                w.start_gamma(p.gamma_lo(), p.gamma_hi(), p.blocks_gamma()),
+                w.start(),
+                w.c_star(),
+                w.knot().len(),
+                w.gamma_0(),
+                w.gamma_step()
             );
         }
     }

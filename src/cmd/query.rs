@@ -50,10 +50,10 @@ fn usage(e: LookupError) -> Failure {
 }
 
 fn region_name(surface: &Surface, gamma: f64, alpha: f64) -> &'static str {
-    let inside = gamma >= surface.gamma_min && gamma <= surface.gamma_max;
+    let inside = gamma >= surface.gamma_min() && gamma <= surface.gamma_max();
     match Region::of(gamma, alpha) {
         Region::Line => "full-slip line (closed form)",
-        _ if !inside || alpha > surface.alpha_max => "outside the table (clamped)",
+        _ if !inside || alpha > surface.alpha_max() => "outside the table (clamped)",
         Region::PartialHigh => "partial slip (interpolated)",
         Region::StickLow | Region::StickHigh if alpha.is_infinite() => {
             "no slip, alpha = inf (interpolated)"
@@ -80,7 +80,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
         ));
     };
     let p = table.p_with(gamma, alpha, outside).map_err(usage)?;
-    let region = region_name(&table.surface, gamma, alpha);
+    let region = region_name(table.surface(), gamma, alpha);
     let error = if Region::of(gamma, alpha) == Region::Line {
         0.0
     } else {

@@ -302,8 +302,8 @@ pub(crate) fn summary(cfg: &Config, built: &Built, wall: f64) {
         eprintln!(
                 "  {:13} {} x {} roots, {} leaves at depth {}..{}, {} nodes ({} simulated), max predicted error {:.1e}",
                 p.name,
-                p.patch.blocks_gamma,
-                p.patch.blocks_coord,
+                p.patch.blocks_gamma(),
+                p.patch.blocks_coord(),
                 p.leaf_depth.len(),
                 p.leaf_depth.iter().min().unwrap_or(&0),
                 p.leaf_depth.iter().max().unwrap_or(&0),

@@ -57,23 +57,23 @@ pub struct BoundExceeded {
 /// `[0, s_max)` with `s_max = alpha_max/(1 + alpha_max)` (1 for `alpha_max = inf`), and, when
 /// the table includes no slip, every [`NO_SLIP_EVERY`]-th point at `α = inf` instead.
 fn sample(table: &Table, n: usize, seed: u64) -> Vec<(f64, f64)> {
-    let s = &table.surface;
-    let s_max = if s.alpha_max.is_infinite() {
+    let s = &table.surface();
+    let s_max = if s.alpha_max().is_infinite() {
         1.0
     } else {
-        s.alpha_max / (1.0 + s.alpha_max)
+        s.alpha_max() / (1.0 + s.alpha_max())
     };
     let mut rng = oblique_sweep::SplitMix(seed);
     (0..n)
         .map(|i| {
-            let gamma = s.gamma_min + (s.gamma_max - s.gamma_min) * rng.uniform();
+            let gamma = s.gamma_min() + (s.gamma_max() - s.gamma_min()) * rng.uniform();
             let u = s_max * rng.uniform();
-            let alpha = if s.alpha_max.is_infinite() && i % NO_SLIP_EVERY == NO_SLIP_EVERY - 1 {
+            let alpha = if s.alpha_max().is_infinite() && i % NO_SLIP_EVERY == NO_SLIP_EVERY - 1 {
                 f64::INFINITY
             } else {
-                (u / (1.0 - u)).min(s.alpha_max)
+                (u / (1.0 - u)).min(s.alpha_max())
             };
-            (gamma.min(s.gamma_max), alpha)
+            (gamma.min(s.gamma_max()), alpha)
         })
         .collect()
 }
@@ -133,9 +133,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
          simulated at tol {:e} on {} threads; stated bound {bound:.2e}",
         args.table.display(),
         points.len(),
-        table.surface.gamma_min,
-        table.surface.gamma_max,
-        if table.surface.alpha_max.is_infinite() {
+        table.surface().gamma_min(),
+        table.surface().gamma_max(),
+        if table.surface().alpha_max().is_infinite() {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {
             String::new()

@@ -248,11 +248,11 @@ pub unsafe extern "C" fn oblique_table_domain(
 ) -> c_int {
     guard(|| {
         let t = table.as_ref().ok_or_else(|| null("table"))?;
-        let s = &t.0.surface;
+        let s = &t.0.surface();
         for (p, v) in [
-            (gamma_min, s.gamma_min),
-            (gamma_max, s.gamma_max),
-            (alpha_max, s.alpha_max),
+            (gamma_min, s.gamma_min()),
+            (gamma_max, s.gamma_max()),
+            (alpha_max, s.alpha_max()),
         ] {
             if !p.is_null() {
                 *p = v;

@@ -39,7 +39,7 @@ use oblique_lookup::{testing, Answer, OutOfDomain, Prepared, Table};
 
 /// Deterministic points over the table's domain (`testing::domain_points`).
 fn mixed_points(t: &Table, n: usize) -> (Vec<f64>, Vec<f64>) {
-    testing::domain_points(&t.surface, n, 0x9E37_79B9_7F4A_7C15)
+    testing::domain_points(t.surface(), n, 0x9E37_79B9_7F4A_7C15)
         .into_iter()
         .unzip()
 }

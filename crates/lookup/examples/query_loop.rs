@@ -54,7 +54,7 @@ fn main() -> ExitCode {
     } else if kind == "mixed" || kind == "batch" {
         // The same stream as the criterion benchmark's `p/mixed` (xorshift).
         let pts =
-            oblique_lookup::testing::domain_points(&table.surface, 4096, 0x9E37_79B9_7F4A_7C15);
+            oblique_lookup::testing::domain_points(table.surface(), 4096, 0x9E37_79B9_7F4A_7C15);
         if kind == "batch" {
             let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
             let mut out = vec![0.0; g.len()];

@@ -108,7 +108,7 @@ impl Table {
         outside: OutOfDomain,
     ) -> Result<(), (usize, LookupError)> {
         if let Some(accel) = self.accel() {
-            return accel.eval_batch(&self.surface, gamma, alpha, out, outside);
+            return accel.eval_batch(self.surface(), gamma, alpha, out, outside);
         }
         for (i, ((o, &g), &a)) in out.iter_mut().zip(gamma).zip(alpha).enumerate() {
             *o = self.p_with(g, a, outside).map_err(|e| (i, e))?;

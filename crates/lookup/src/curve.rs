@@ -18,7 +18,7 @@
 
 use crate::{LookupError, Table};
 use oblique_table::surface::{alpha_c2, bound_p, linear_limit, stick_scale, Patch, Warp};
-use oblique_table::surface::{alpha_outside, bad_alpha, OutOfDomain, Surface};
+use oblique_table::surface::{alpha_outside, bad_alpha, OutOfDomain, PatchId, Surface};
 
 /// Largest number of intervals of one patch's curve (`2²⁰`, 32 MiB of coefficients); a line
 /// through leaves so deep that the uniform grid would need more is refused.
@@ -41,10 +41,10 @@ struct Piecewise {
 impl Piecewise {
     /// The restriction of `patch`'s interpolant to `γ = gamma` (inside the patch's γ range).
     fn new(patch: &Patch, gamma: f64) -> Result<Piecewise, LookupError> {
-        let m = patch.leaf_intervals;
+        let m = patch.leaf_intervals();
         let depth = line_depth(patch, gamma);
         let n = patch
-            .blocks_coord
+            .blocks_coord()
             .checked_mul(m)
             .and_then(|v| v.checked_shl(depth))
             .filter(|&v| v > 0 && v <= MAX_INTERVALS)
@@ -54,7 +54,7 @@ impl Piecewise {
                 allowed: format!(
                     "a line through leaves of depth <= {} for a curve (this one reaches depth \
                      {depth}); use Table::p instead",
-                    (MAX_INTERVALS / (patch.blocks_coord * m).max(1)).ilog2()
+                    (MAX_INTERVALS / (patch.blocks_coord() * m).max(1)).ilog2()
                 ),
             })?;
         // Four sample points inside each interval, s = −3/8, −1/8, 1/8, 3/8 (t = s + 1/2 all
@@ -97,14 +97,14 @@ impl Piecewise {
 /// Depth of the deepest leaf of `patch` crossed by the line `γ = gamma`, following the rule's
 /// descent along γ (which does not depend on `c`).
 fn line_depth(patch: &Patch, gamma: f64) -> u32 {
-    let xg = (gamma - patch.gamma_lo) / (patch.gamma_hi - patch.gamma_lo);
-    let (a, fg) = oblique_table::surface::locate(xg, patch.blocks_gamma);
-    let mut stack: Vec<(usize, f64, u32)> = (0..patch.blocks_coord)
-        .map(|b| (a * patch.blocks_coord + b, fg, 0))
+    let xg = (gamma - patch.gamma_lo()) / (patch.gamma_hi() - patch.gamma_lo());
+    let (a, fg) = oblique_table::surface::locate(xg, patch.blocks_gamma());
+    let mut stack: Vec<(usize, f64, u32)> = (0..patch.blocks_coord())
+        .map(|b| (a * patch.blocks_coord() + b, fg, 0))
         .collect();
     let mut deepest = 0;
     while let Some((cell, fg, d)) = stack.pop() {
-        let t = patch.tree[cell];
+        let t = patch.tree()[cell];
         if t < 0 {
             deepest = deepest.max(d);
             continue;
@@ -180,19 +180,19 @@ impl Curve {
         if !(gamma.is_finite() && gamma > 0.0) {
             return Err(oblique_table::surface::bad_gamma(gamma));
         }
-        if surface.stencil != 4 {
+        if surface.stencil() != 4 {
             // Along a line the rule is then a polynomial of another degree.
             return Err(LookupError::Query {
                 name: "table stencil_points",
-                value: surface.stencil as f64,
+                value: surface.stencil() as f64,
                 allowed: "4 (cubic) for a curve; query this table with Table::p".into(),
             });
         }
-        if gamma < surface.gamma_min || gamma > surface.gamma_max {
+        if gamma < surface.gamma_min() || gamma > surface.gamma_max() {
             match outside {
                 OutOfDomain::Error => return Err(surface.gamma_outside(gamma)),
                 OutOfDomain::Clamp => {
-                    let clamped = gamma.clamp(surface.gamma_min, surface.gamma_max);
+                    let clamped = gamma.clamp(surface.gamma_min(), surface.gamma_max());
                     return Ok(Curve {
                         requested: gamma,
                         alpha_lin_requested: linear_limit(gamma),
@@ -203,9 +203,12 @@ impl Curve {
         }
         let high = gamma > 1.0;
         let (partial, stick) = if high {
-            (surface.partial_high.as_ref(), surface.stick_high.as_ref())
+            (
+                surface.patch_by_id(PatchId::PartialHigh),
+                surface.patch_by_id(PatchId::StickHigh),
+            )
         } else {
-            (None, surface.stick_low.as_ref())
+            (None, surface.patch_by_id(PatchId::StickLow))
         };
         let piecewise = |p: Option<&Patch>| p.map(|p| Piecewise::new(p, gamma)).transpose();
         // The same operations as `surface::partial_coord` and `surface::stick_coord`.
@@ -213,15 +216,15 @@ impl Curve {
         let ratio = g2 - 1.0;
         let stick_c2 = gamma * gamma * (2.0 / 7.0);
         let rho_c2 = stick_scale(gamma) * stick_c2;
-        let s_max = surface.alpha_max.is_finite().then(|| {
-            let dm = surface.alpha_max - stick_c2;
+        let s_max = surface.alpha_max().is_finite().then(|| {
+            let dm = surface.alpha_max() - stick_c2;
             dm / (dm + rho_c2)
         });
         Ok(Curve {
             requested: gamma,
             gamma,
             outside,
-            alpha_max: surface.alpha_max,
+            alpha_max: surface.alpha_max(),
             alpha_lin_requested: linear_limit(gamma),
             alpha_lin: linear_limit(gamma),
             alpha_c2: alpha_c2(gamma),
@@ -327,7 +330,7 @@ impl Table {
     /// sets what the curve's queries do with `α > alpha_max`. Costs one evaluation of the rule
     /// per node interval on the line (milliseconds) and up to a few MB.
     pub fn curve(&self, gamma: f64, outside: OutOfDomain) -> Result<Curve, LookupError> {
-        Curve::new(&self.surface, gamma, outside)
+        Curve::new(self.surface(), gamma, outside)
     }
 }
 

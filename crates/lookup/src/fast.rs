@@ -99,9 +99,17 @@ impl FastPatch {
     /// The fine index of a validated patch (a tree as `Reader::check_tree` accepts it), or
     /// `None` when the patch's grid is too small for the cubic stencil.
     fn new(patch: &Patch, max_entries: usize) -> Option<FastPatch> {
-        let (bg, bc, m) = (patch.blocks_gamma, patch.blocks_coord, patch.leaf_intervals);
+        let (bg, bc, m) = (
+            patch.blocks_gamma(),
+            patch.blocks_coord(),
+            patch.leaf_intervals(),
+        );
         let roots = bg * bc;
-        if m < 3 || roots == 0 || patch.tree.len() < roots || patch.tree.len() > u32::MAX as usize {
+        if m < 3
+            || roots == 0
+            || patch.tree().len() < roots
+            || patch.tree().len() > u32::MAX as usize
+        {
             return None;
         }
         // Depth and integer origin of every cell (children come after their parents).
@@ -112,18 +120,18 @@ impl FastPatch {
                 oc: 0.0,
                 link: 0,
             };
-            patch.tree.len()
+            patch.tree().len()
         ];
-        let mut depth = vec![0u32; patch.tree.len()];
-        let mut origin = vec![(0usize, 0usize); patch.tree.len()];
+        let mut depth = vec![0u32; patch.tree().len()];
+        let mut origin = vec![(0usize, 0usize); patch.tree().len()];
         for a in 0..bg {
             for b in 0..bc {
                 origin[a * bc + b] = (a, b);
             }
         }
         let mut max_depth = 0;
-        for i in 0..patch.tree.len() {
-            let t = patch.tree[i];
+        for i in 0..patch.tree().len() {
+            let t = patch.tree()[i];
             let (a, b) = origin[i];
             cells[i] = Cell {
                 scale: f64::from(1u32 << depth[i].min(31)),
@@ -134,7 +142,7 @@ impl FastPatch {
             max_depth = max_depth.max(depth[i]);
             if t >= 0 {
                 let first = t as usize;
-                if first <= i || first + 4 > patch.tree.len() || depth[i] >= 30 {
+                if first <= i || first + 4 > patch.tree().len() || depth[i] >= 30 {
                     return None;
                 }
                 for q in 0..4 {
@@ -150,7 +158,7 @@ impl FastPatch {
         }
         let (rows, cols) = (bg << d, bc << d);
         let mut index = vec![u32::MAX; rows * cols];
-        for i in 0..patch.tree.len() {
+        for i in 0..patch.tree().len() {
             let di = depth[i];
             // Cells at depth ≤ d that are leaves or at depth d cover their part of the index;
             // deeper cells are reached by the descent. Parents come first, so a later (deeper)
@@ -168,9 +176,9 @@ impl FastPatch {
             return None;
         }
         Some(FastPatch {
-            kind: patch.kind,
-            gamma_lo: patch.gamma_lo,
-            width: patch.gamma_hi - patch.gamma_lo,
+            kind: patch.kind(),
+            gamma_lo: patch.gamma_lo(),
+            width: patch.gamma_hi() - patch.gamma_lo(),
             bg: bg as f64,
             bc: bc as f64,
             fine: f64::from(1u32 << d),
@@ -181,8 +189,8 @@ impl FastPatch {
             m: m as f64,
             n1: m + 1,
             size: (m + 1) * (m + 1),
-            p: patch.p.clone(),
-            warp: patch.warp.clone(),
+            p: patch.p().to_vec(),
+            warp: patch.warp().cloned(),
         })
     }
 
@@ -215,7 +223,7 @@ impl FastPatch {
         let vg = (xg * self.bg).clamp(0.0, self.bg);
         // The warp, from its start on ([`Patch::warped`], the same operations).
         let c = match &self.warp {
-            Some(w) if vg >= w.start => w.apply(gamma, c),
+            Some(w) if vg >= w.start() => w.apply(gamma, c),
             _ => c,
         };
         let vc = (c * self.bc).clamp(0.0, self.bc);
@@ -247,9 +255,8 @@ pub(crate) struct Accel {
     gamma_min: f64,
     gamma_max: f64,
     alpha_max: f64,
-    stick_low: Option<FastPatch>,
-    partial_high: Option<FastPatch>,
-    stick_high: Option<FastPatch>,
+    /// The patches with their indexes, indexed by [`PatchId::index`].
+    patches: [Option<FastPatch>; 3],
     /// Every patch passes [`FastPatch::fits_u32`] (the batch path's 32-bit positions).
     batch_u32: bool,
 }
@@ -263,38 +270,28 @@ impl Accel {
 
     /// [`Accel::new`] with at most `max_entries` index entries per patch.
     fn with_budget(surface: &Surface, max_entries: usize) -> Option<Accel> {
-        if surface.stencil != 4 {
+        if surface.stencil() != 4 {
             return None;
         }
-        let fast = |p: &Option<Patch>| match p {
-            None => Some(None),
-            Some(p) => FastPatch::new(p, max_entries).map(Some),
-        };
-        let (stick_low, partial_high, stick_high) = (
-            fast(&surface.stick_low)?,
-            fast(&surface.partial_high)?,
-            fast(&surface.stick_high)?,
-        );
-        let batch_u32 = [&stick_low, &partial_high, &stick_high]
-            .into_iter()
-            .flatten()
-            .all(FastPatch::fits_u32);
+        let mut patches: [Option<FastPatch>; 3] = [None, None, None];
+        for (id, p) in surface.patches() {
+            patches[id.index()] = Some(FastPatch::new(p, max_entries)?);
+        }
+        let batch_u32 = patches.iter().flatten().all(FastPatch::fits_u32);
         Some(Accel {
-            gamma_min: surface.gamma_min,
-            gamma_max: surface.gamma_max,
-            alpha_max: surface.alpha_max,
-            stick_low,
-            partial_high,
-            stick_high,
+            gamma_min: surface.gamma_min(),
+            gamma_max: surface.gamma_max(),
+            alpha_max: surface.alpha_max(),
+            patches,
             batch_u32,
         })
     }
 
     /// Bytes held by the fine indexes and cell lists (not counting the copy of `P`).
     pub(crate) fn index_bytes(&self) -> usize {
-        [&self.stick_low, &self.partial_high, &self.stick_high]
+        self.patches
             .iter()
-            .filter_map(|p| p.as_ref())
+            .flatten()
             .map(|p| p.index.len() * 4 + p.cells.len() * std::mem::size_of::<Cell>())
             .sum()
     }
@@ -341,9 +338,9 @@ impl Accel {
     fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
         let patch = match region {
             Region::Line => None,
-            Region::StickLow => self.stick_low.as_ref(),
-            Region::PartialHigh => self.partial_high.as_ref(),
-            Region::StickHigh => self.stick_high.as_ref(),
+            Region::StickLow => self.patches[0].as_ref(),
+            Region::PartialHigh => self.patches[1].as_ref(),
+            Region::StickHigh => self.patches[2].as_ref(),
         };
         match patch {
             Some(patch) => {
@@ -362,6 +359,7 @@ impl Accel {
 mod tests {
     use super::*;
     use crate::Table;
+    use oblique_table::surface::PatchId;
 
     pub(super) fn table(name: &str) -> Table {
         Table::open(format!(
@@ -371,23 +369,32 @@ mod tests {
         .expect(name)
     }
 
-    /// A warp of `partial_high` from the middle of its root rows on (the node values stay
-    /// those of the table: only the bits of the query paths are compared).
-    pub(super) fn warped(mut t: Table) -> Table {
-        let p = t.surface.partial_high.as_mut().expect("partial_high");
-        let start = (p.blocks_gamma as f64 * 8.0).floor() / 16.0;
-        let from = p.gamma_lo + (p.gamma_hi - p.gamma_lo) * start / p.blocks_gamma as f64;
-        p.warp = Some(Warp {
-            start,
-            gamma_0: from,
-            gamma_step: (p.gamma_hi - from) / 12.0,
-            c_star: 0.5,
-            knot: (0..13)
-                .map(|i| 0.4 + 0.25 * (i as f64 * 0.5).sin() * (i as f64 / 12.0))
-                .collect(),
-        });
-        t.reindex();
-        t
+    /// A warp of `partial_high` from its middle root row boundary on (the node values stay
+    /// those of the table: only the bits of the query paths are compared). A root boundary is
+    /// a valid start whatever the quadtree: no leaf straddles it.
+    pub(super) fn warped(t: Table) -> Table {
+        let surface = t
+            .surface()
+            .map_patches(|id, p| {
+                if id != PatchId::PartialHigh {
+                    return Ok(p.clone());
+                }
+                let start = p.blocks_gamma().div_ceil(2) as f64;
+                let from =
+                    p.gamma_lo() + (p.gamma_hi() - p.gamma_lo()) * start / p.blocks_gamma() as f64;
+                let knot = (0..13)
+                    .map(|i| 0.4 + 0.25 * (i as f64 * 0.5).sin() * (i as f64 / 12.0))
+                    .collect();
+                let gamma_step = (p.gamma_hi() - from) / 12.0;
+                p.with_warp(Some(Warp::new(start, from, gamma_step, 0.5, knot)?))
+            })
+            .expect("a valid warp");
+        Table::from_parts(
+            surface,
+            t.provenance().clone(),
+            t.checks().to_vec(),
+            t.error_bound(),
+        )
     }
 
     /// The shipped tables, and each with a warp of its partial-slip patch.
@@ -403,22 +410,19 @@ mod tests {
     /// Points spread over the plane, plus points exactly on the edges of the finest cells
     /// (where the rule sends a point to the upper cell).
     pub(super) fn points(t: &Table) -> Vec<(f64, f64)> {
-        let s = &t.surface;
+        let s = &t.surface();
         let mut pts = crate::testing::domain_points(s, 20_000, 0x1234_5678_9ABC_DEF1);
-        for patch in [&s.stick_low, &s.partial_high, &s.stick_high]
-            .into_iter()
-            .flatten()
-        {
-            let steps = patch.blocks_gamma << 7;
+        for patch in s.patches().map(|(_, p)| p) {
+            let steps = patch.blocks_gamma() << 7;
             for i in 0..=steps {
-                let g =
-                    patch.gamma_lo + (patch.gamma_hi - patch.gamma_lo) * i as f64 / steps as f64;
-                for j in 0..=(patch.blocks_coord << 5) {
-                    let c = j as f64 / (patch.blocks_coord << 5) as f64;
-                    pts.push((g, patch.kind.alpha(g, c, s.alpha_max)));
+                let g = patch.gamma_lo()
+                    + (patch.gamma_hi() - patch.gamma_lo()) * i as f64 / steps as f64;
+                for j in 0..=(patch.blocks_coord() << 5) {
+                    let c = j as f64 / (patch.blocks_coord() << 5) as f64;
+                    pts.push((g, patch.kind().alpha(g, c, s.alpha_max())));
                     // The cell edges are at c' of the warp: c = invert(c').
-                    if let Some(w) = &patch.warp {
-                        pts.push((g, patch.kind.alpha(g, w.invert(g, c), s.alpha_max)));
+                    if let Some(w) = &patch.warp() {
+                        pts.push((g, patch.kind().alpha(g, w.invert(g, c), s.alpha_max())));
                     }
                 }
             }
@@ -429,7 +433,7 @@ mod tests {
     #[test]
     fn the_fine_index_gives_the_bits_of_the_descent() {
         for (name, t) in tables() {
-            let s = &t.surface;
+            let s = &t.surface();
             // Full depth, and capped depths from which the descent continues.
             for budget in [1 << 20, MAX_INDEX_ENTRIES, 64, 1] {
                 let accel = Accel::with_budget(s, budget).expect("cubic table");
@@ -452,7 +456,7 @@ mod tests {
     }
 
     fn batches_give_the_bits_of_single_queries(t: &Table) {
-        let s = &t.surface;
+        let s = &t.surface();
         let accel = Accel::new(s).expect("cubic table");
         let mut pts = points(t);
         // Outside the domain, on the line outside it, at γ = 1.
@@ -463,7 +467,7 @@ mod tests {
             (5.0, 3.0),
             (1.0, 0.5),
         ]);
-        pts.extend([(1.0, f64::INFINITY), (2.0, 1e300), (s.gamma_max, 0.5)]);
+        pts.extend([(1.0, f64::INFINITY), (2.0, 1e300), (s.gamma_max(), 0.5)]);
         let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
         let mut out = vec![f64::NAN; g.len()];
         accel
@@ -495,7 +499,10 @@ mod tests {
     fn both_paths_apply_the_warp() {
         let plain = table("full.h5");
         let t = warped(table("full.h5"));
-        let w = t.surface.partial_high.as_ref().and_then(|p| p.warp.clone());
+        let w = t
+            .surface()
+            .patch_by_id(PatchId::PartialHigh)
+            .and_then(|p| p.warp().cloned());
         let w = w.expect("warp");
         let (mut changed, mut same) = (0, 0);
         for i in 0..200 {
@@ -506,9 +513,15 @@ mod tests {
             );
             let a = c1 + (c2 - c1) * 0.37;
             let p = t.p(g, a).expect("inside");
-            assert_eq!(p.to_bits(), t.surface.eval(g, a).expect("inside").to_bits());
+            assert_eq!(
+                p.to_bits(),
+                t.surface().eval(g, a).expect("inside").to_bits()
+            );
             // By hand: the unwarped patch interpolated at c' = apply(γ, c).
-            let patch = t.surface.partial_high.as_ref().expect("partial_high");
+            let patch = t
+                .surface()
+                .patch_by_id(PatchId::PartialHigh)
+                .expect("partial_high");
             let c = oblique_table::surface::partial_coord(g, a).clamp(0.0, 1.0);
             let by_hand = patch.interpolate(g, patch.warped(g, c), 4);
             assert_eq!(p.to_bits(), by_hand.to_bits(), "({g}, {a})");
@@ -517,8 +530,8 @@ mod tests {
             } else {
                 same += 1;
             }
-            let v = (g - patch.gamma_lo) / (patch.gamma_hi - patch.gamma_lo) * 5.0;
-            if v < w.start {
+            let v = (g - patch.gamma_lo()) / (patch.gamma_hi() - patch.gamma_lo()) * 5.0;
+            if v < w.start() {
                 assert_eq!(p, plain.p(g, a).unwrap(), "({g}, {a})");
             }
         }
@@ -526,17 +539,28 @@ mod tests {
     }
 
     #[test]
-    fn reindex_follows_a_changed_surface() {
-        let mut t = table("quick.h5");
+    fn a_table_made_from_a_changed_surface_answers_from_it() {
+        let t = table("quick.h5");
         let before = t.p(1.754, 1.0).expect("stick_high");
-        if let Some(p) = t.surface.stick_high.as_mut() {
-            p.p.iter_mut().for_each(|v| *v = 0.5);
-        }
-        assert_eq!(t.p(1.754, 1.0).expect("stick_high"), before);
-        t.reindex();
-        let after = t.p(1.754, 1.0).expect("stick_high");
+        let changed = t
+            .surface()
+            .map_patches(|id, p| {
+                if id == PatchId::StickHigh {
+                    p.map_values(|_, _| 0.5)
+                } else {
+                    Ok(p.clone())
+                }
+            })
+            .expect("valid values");
+        let t2 = Table::from_parts(changed, t.provenance().clone(), t.checks().to_vec(), 0.0);
+        assert_eq!(
+            t.p(1.754, 1.0).expect("stick_high"),
+            before,
+            "the original is immutable"
+        );
+        let after = t2.p(1.754, 1.0).expect("stick_high");
         assert!((after - 0.5).abs() < 1e-15, "{after}");
-        assert_eq!(after, t.surface.eval(1.754, 1.0).expect("stick_high"));
+        assert_eq!(after, t2.surface().eval(1.754, 1.0).expect("stick_high"));
     }
 
     #[test]
@@ -545,18 +569,14 @@ mod tests {
         let bytes = t.index_bytes();
         // At most 3 × 128 KiB of index plus 32 bytes per quadtree cell; far below 16 MiB.
         assert!(bytes > 0 && bytes <= 16 << 20, "{bytes} bytes");
-        let accel = Accel::new(&t.surface).expect("cubic table");
-        let s = &t.surface;
-        for (patch, fast) in [
-            (&s.stick_low, &accel.stick_low),
-            (&s.partial_high, &accel.partial_high),
-            (&s.stick_high, &accel.stick_high),
-        ] {
-            let (Some(patch), Some(fast)) = (patch, fast) else {
+        let accel = Accel::new(t.surface()).expect("cubic table");
+        let s = &t.surface();
+        for id in PatchId::ALL {
+            let (Some(patch), Some(fast)) = (s.patch_by_id(id), &accel.patches[id.index()]) else {
                 continue;
             };
             // The index depth: the deepest leaf's, or the deepest within the budget.
-            let roots = patch.blocks_gamma * patch.blocks_coord;
+            let roots = patch.blocks_gamma() * patch.blocks_coord();
             let deepest = patch.leaf_depths().into_iter().max().unwrap_or(0);
             let d = (0..=deepest)
                 .rev()
@@ -564,12 +584,12 @@ mod tests {
                 .unwrap_or(0);
             assert_eq!(
                 (fast.rows, fast.cols),
-                (patch.blocks_gamma << d, patch.blocks_coord << d)
+                (patch.blocks_gamma() << d, patch.blocks_coord() << d)
             );
         }
         // partial_high of tables/full.h5 has leaves down to depth 7: its index is capped.
-        let partial = s.partial_high.as_ref().expect("partial_high");
+        let partial = s.patch_by_id(PatchId::PartialHigh).expect("partial_high");
         assert!(partial.leaf_depths().into_iter().max() > Some(5));
-        assert!(accel.partial_high.as_ref().map(|p| p.rows) < Some(partial.blocks_gamma << 7));
+        assert!(accel.patches[1].as_ref().map(|p| p.rows) < Some(partial.blocks_gamma() << 7));
     }
 }

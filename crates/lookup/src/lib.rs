@@ -32,7 +32,7 @@ pub mod testing;
 
 pub use curve::Curve;
 pub use impact::{Answer, Contact, Stiffness};
-pub use oblique_table::{Check, OutOfDomain, Patch, PatchKind, Provenance, Surface, Warp};
+pub use oblique_table::{Check, OutOfDomain, Provenance};
 pub use prepared::Prepared;
 pub use table::Table;
 

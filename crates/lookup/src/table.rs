@@ -10,22 +10,20 @@ use oblique_table::{Check, Provenance};
 use crate::fast::Accel;
 use crate::LookupError;
 
-/// A loaded table: the surface, its provenance and its held-out checks. `Send + Sync`; queries
-/// touch only memory.
+/// A loaded table: the surface, its provenance and its held-out checks. Immutable,
+/// `Send + Sync`; queries touch only memory.
 ///
-/// [`Table::p`] and the other queries answer from an acceleration structure built from
-/// `surface` at [`Table::open`] (a fine leaf index per patch, see [`Table::index_bytes`], and a
-/// copy of the node values); they return the same bits as [`Surface::eval_with`]. After
-/// changing `surface` in place, call [`Table::reindex`], or the queries keep answering from the
-/// table as loaded.
+/// [`Table::p`] and the other queries answer from an acceleration structure built from the
+/// surface when the table is made (a fine leaf index per patch, see [`Table::index_bytes`], and
+/// a copy of the node values); they return the same bits as [`Surface::eval_with`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
     /// The interpolated surface.
-    pub surface: Surface,
+    surface: Surface,
     /// Provenance attributes.
-    pub provenance: Provenance,
+    provenance: Provenance,
     /// Held-out check points.
-    pub checks: Vec<Check>,
+    checks: Vec<Check>,
     /// The stated error bound ([`Table::error_bound`]).
     error_bound: f64,
     /// The query path's acceleration structure (`None`: answered by `surface` directly).
@@ -70,9 +68,19 @@ impl Table {
         self.accel.as_ref()
     }
 
-    /// Rebuild the acceleration structure after `surface` was changed in place.
-    pub fn reindex(&mut self) {
-        self.accel = Accel::new(&self.surface);
+    /// The interpolated surface (the model of `oblique_table`, read-only).
+    pub fn surface(&self) -> &Surface {
+        &self.surface
+    }
+
+    /// Where the table came from.
+    pub fn provenance(&self) -> &Provenance {
+        &self.provenance
+    }
+
+    /// The held-out check points.
+    pub fn checks(&self) -> &[Check] {
+        &self.checks
     }
 
     /// Bytes of the acceleration structure's leaf indexes (0 when the table is answered by the

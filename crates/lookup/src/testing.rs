@@ -2,7 +2,8 @@
 //! of this workspace (not part of the API: hidden from the documentation, may change).
 
 use crate::rebound::{Body, Elastic, Incident3, Motion3, Pair};
-use crate::{Contact, Surface, Table};
+use crate::{Contact, Table};
+use oblique_table::Surface;
 
 /// Held while a test starts a child process and while it has an HDF5 file open for writing: a
 /// child inherits the parent's open descriptors, and with them HDF5's lock on a file being
@@ -17,23 +18,23 @@ pub fn fork_guard() -> std::sync::MutexGuard<'static, ()> {
 /// number, `1 − off(i)` in odd ones, exactly ±1 at every third node (`off` is not called
 /// there). Its tensor product overshoots ±1 at most points: the test table for step 10 of the
 /// rule (`|P| ≤ 1`).
-pub fn overshooting(mut t: Table, mut off: impl FnMut(usize) -> f64) -> Table {
-    for p in [
-        &mut t.surface.stick_low,
-        &mut t.surface.partial_high,
-        &mut t.surface.stick_high,
-    ]
-    .into_iter()
-    .flatten()
-    {
-        let size = (p.leaf_intervals + 1).pow(2);
-        for (i, v) in p.p.iter_mut().enumerate() {
-            let sign = if (i / size) % 2 == 0 { -1.0 } else { 1.0 };
-            *v = sign * (1.0 - if i % 3 == 0 { 0.0 } else { off(i) });
-        }
-    }
-    t.reindex();
-    t
+pub fn overshooting(t: Table, mut off: impl FnMut(usize) -> f64) -> Table {
+    let surface = t
+        .surface()
+        .map_patches(|_, p| {
+            let size = (p.leaf_intervals() + 1).pow(2);
+            p.map_values(|i, _| {
+                let sign = if (i / size) % 2 == 0 { -1.0 } else { 1.0 };
+                sign * (1.0 - if i % 3 == 0 { 0.0 } else { off(i) })
+            })
+        })
+        .expect("values within [-1, 1] keep the patches valid");
+    Table::from_parts(
+        surface,
+        t.provenance().clone(),
+        t.checks().to_vec(),
+        t.error_bound(),
+    )
 }
 
 /// Uniform numbers in `[0, 1)` from a xorshift64 generator seeded with `seed` (nonzero): the
@@ -58,7 +59,7 @@ pub fn domain_points_from(
 ) -> Vec<(f64, f64)> {
     (0..n)
         .map(|_| {
-            let g = surface.gamma_min + (surface.gamma_max - surface.gamma_min) * next();
+            let g = surface.gamma_min() + (surface.gamma_max() - surface.gamma_min()) * next();
             let a = if next() < 0.1 {
                 f64::INFINITY
             } else {

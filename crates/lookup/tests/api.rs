@@ -25,22 +25,25 @@ fn rng(seed: u64) -> impl FnMut() -> f64 {
 /// Steps 1–10 of `docs/table-format.md` written out with the public pieces and the generic
 /// stencil: the reference the optimised query path must reproduce.
 fn reference_p(t: &Table, gamma: f64, alpha: f64) -> f64 {
-    let s = &t.surface;
+    let s = &t.surface();
     let region = Region::of(gamma, alpha);
     let Some(patch) = s.patch(region) else {
         return 1.0 - 7.0 * alpha;
     };
-    let c = patch.kind.coord(gamma, alpha, s.alpha_max).clamp(0.0, 1.0);
+    let c = patch
+        .kind()
+        .coord(gamma, alpha, s.alpha_max())
+        .clamp(0.0, 1.0);
     let (leaf, fg, fc) = patch.find_leaf(gamma, c);
-    let m = patch.leaf_intervals;
+    let m = patch.leaf_intervals();
     let (mut wg, mut wc) = ([0.0; 8], [0.0; 8]);
-    let (sg, kg) = stencil(fg * m as f64, m + 1, s.stencil, &mut wg);
-    let (sc, kc) = stencil(fc * m as f64, m + 1, s.stencil, &mut wc);
+    let (sg, kg) = stencil(fg * m as f64, m + 1, s.stencil(), &mut wg);
+    let (sc, kc) = stencil(fc * m as f64, m + 1, s.stencil(), &mut wc);
     let mut total = 0.0;
     for i in 0..kg {
         for j in 0..kc {
             total +=
-                wg[i] * wc[j] * patch.p[leaf * (m + 1) * (m + 1) + (sg + i) * (m + 1) + sc + j];
+                wg[i] * wc[j] * patch.p()[leaf * (m + 1) * (m + 1) + (sg + i) * (m + 1) + sc + j];
         }
     }
     // Step 10: |P| <= 1.
@@ -56,11 +59,11 @@ fn table_is_send_and_sync() {
 #[test]
 fn query_path_reproduces_the_documented_rule() {
     let t = table();
-    let s = &t.surface;
+    let s = &t.surface();
     let mut next = rng(7);
     let mut worst = 0.0_f64;
     for _ in 0..20_000 {
-        let gamma = s.gamma_min + (s.gamma_max - s.gamma_min) * next();
+        let gamma = s.gamma_min() + (s.gamma_max() - s.gamma_min()) * next();
         let alpha = if next() < 0.1 {
             f64::INFINITY
         } else {
@@ -83,7 +86,7 @@ fn query_path_reproduces_the_documented_rule() {
     eprintln!("max |fast - reference| = {worst:e}");
     // Stored interpolated values of the held-out checks (computed by the writer; quick.h5 was
     // written before step 10 bounded P to [−1, 1], so its stored values are bounded here).
-    for c in &t.checks {
+    for c in t.checks() {
         let p = t.p(c.gamma, c.alpha).unwrap();
         let stored = c.p_interpolated.clamp(-1.0, 1.0);
         assert!((p - stored).abs() <= 1e-12, "{c:?}: {p}");
@@ -102,7 +105,7 @@ fn closed_forms_need_no_table() {
 #[test]
 fn gamma_outside_the_domain_is_an_error_unless_clamped() {
     let t = table();
-    let (lo, hi) = (t.surface.gamma_min, t.surface.gamma_max);
+    let (lo, hi) = (t.surface().gamma_min(), t.surface().gamma_max());
     let e = t.p(hi + 0.5, 1.0).unwrap_err().to_string();
     assert!(e.contains("gamma") && e.contains(&hi.to_string()), "{e}");
     assert!(t.p(lo * 0.5, 1.0).is_err());
@@ -131,11 +134,11 @@ fn gamma_outside_the_domain_is_an_error_unless_clamped() {
 #[test]
 fn batches_match_single_queries_and_name_the_first_bad_index() {
     let t = table();
-    let s = &t.surface;
+    let s = &t.surface();
     let mut next = rng(11);
     let n = 50_000;
     let gamma: Vec<f64> = (0..n)
-        .map(|_| s.gamma_min + (s.gamma_max - s.gamma_min) * next())
+        .map(|_| s.gamma_min() + (s.gamma_max() - s.gamma_min()) * next())
         .collect();
     let alpha: Vec<f64> = (0..n).map(|_| 10f64.powf(-3.0 + 5.0 * next())).collect();
     let mut serial = vec![0.0; n];

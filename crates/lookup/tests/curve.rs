@@ -1,8 +1,9 @@
 //! `Table::curve`: `P(α)` at a fixed γ agrees with the rule (`Table::p_with`) everywhere on the
 //! line, and refuses what the rule refuses.
 
-use oblique_lookup::{LookupError, OutOfDomain, PatchKind, Table};
+use oblique_lookup::{LookupError, OutOfDomain, Table};
 use oblique_table::surface::{alpha_c2, linear_limit};
+use oblique_table::surface::{PatchId, PatchKind, Surface};
 
 /// The neighbouring floats of a positive finite `x` (`f64::next_up` is newer than the MSRV).
 fn up(x: f64) -> f64 {
@@ -24,7 +25,7 @@ fn table(name: &str) -> Table {
 /// α values along the line γ: log-spread, ∞, the region edges and their neighbours, and the
 /// α of every node position of a fine uniform grid in each patch's coordinate (leaf edges).
 fn alphas(t: &Table, gamma: f64) -> Vec<f64> {
-    let s = &t.surface;
+    let s = &t.surface();
     let mut out: Vec<f64> = (0..400)
         .map(|i| 10f64.powf(-3.0 + 6.0 * i as f64 / 399.0))
         .collect();
@@ -39,33 +40,34 @@ fn alphas(t: &Table, gamma: f64) -> Vec<f64> {
     };
     for &kind in kinds {
         for j in 0..=2048 {
-            out.push(kind.alpha(gamma, j as f64 / 2048.0, s.alpha_max));
+            out.push(kind.alpha(gamma, j as f64 / 2048.0, s.alpha_max()));
         }
     }
-    out.retain(|a| *a <= s.alpha_max);
+    out.retain(|a| *a <= s.alpha_max());
     out
 }
 
 fn gammas(t: &Table) -> Vec<f64> {
-    let s = &t.surface;
-    let mut g = vec![s.gamma_min, s.gamma_max, 0.5 * (s.gamma_min + s.gamma_max)];
-    if s.gamma_min <= 1.0 && 1.0 <= s.gamma_max {
+    let s = &t.surface();
+    let mut g = vec![
+        s.gamma_min(),
+        s.gamma_max(),
+        0.5 * (s.gamma_min() + s.gamma_max()),
+    ];
+    if s.gamma_min() <= 1.0 && 1.0 <= s.gamma_max() {
         g.extend([1.0, up(1.0), down(1.0)]);
     }
     // Root and leaf edges along γ (every 1/64 of each patch's root cells) and points between.
-    for p in [&s.stick_low, &s.partial_high, &s.stick_high]
-        .into_iter()
-        .flatten()
-    {
-        let steps = p.blocks_gamma * 64;
+    for p in s.patches().map(|(_, p)| p) {
+        let steps = p.blocks_gamma() * 64;
         for i in 0..=steps {
-            g.push(p.gamma_lo + (p.gamma_hi - p.gamma_lo) * i as f64 / steps as f64);
+            g.push(p.gamma_lo() + (p.gamma_hi() - p.gamma_lo()) * i as f64 / steps as f64);
         }
         for i in 0..13 {
-            g.push(p.gamma_lo + (p.gamma_hi - p.gamma_lo) * (i as f64 + 0.37) / 13.0);
+            g.push(p.gamma_lo() + (p.gamma_hi() - p.gamma_lo()) * (i as f64 + 0.37) / 13.0);
         }
     }
-    g.retain(|x| *x >= s.gamma_min && *x <= s.gamma_max);
+    g.retain(|x| *x >= s.gamma_min() && *x <= s.gamma_max());
     g
 }
 
@@ -97,14 +99,14 @@ fn the_curve_answers_what_the_rule_answers() {
 #[test]
 fn the_curve_refuses_what_the_rule_refuses() {
     let t = table("quick.h5");
-    let s = &t.surface;
+    let s = &t.surface();
     for bad in [
         f64::NAN,
         -1.0,
         0.0,
         f64::INFINITY,
-        s.gamma_max * 1.01,
-        s.gamma_min * 0.99,
+        s.gamma_max() * 1.01,
+        s.gamma_min() * 0.99,
     ] {
         let err = t.curve(bad, OutOfDomain::Error).expect_err("refused");
         assert!(
@@ -114,15 +116,15 @@ fn the_curve_refuses_what_the_rule_refuses() {
     }
     // Clamping: the curve sits at the domain's edge and answers what the rule answers there.
     let clamped = t
-        .curve(s.gamma_max * 2.0, OutOfDomain::Clamp)
+        .curve(s.gamma_max() * 2.0, OutOfDomain::Clamp)
         .expect("clamped");
-    assert_eq!(clamped.gamma(), s.gamma_max);
-    let edge = t.curve(s.gamma_max, OutOfDomain::Error).expect("edge");
+    assert_eq!(clamped.gamma(), s.gamma_max());
+    let edge = t.curve(s.gamma_max(), OutOfDomain::Error).expect("edge");
     assert_eq!(clamped.p(1.0).unwrap(), edge.p(1.0).unwrap());
-    assert_eq!(clamped.requested_gamma(), s.gamma_max * 2.0);
+    assert_eq!(clamped.requested_gamma(), s.gamma_max() * 2.0);
     // Outside the domain on either side, with clamping: the rule's line test at the requested
     // γ first, then the value at the clamped γ.
-    for gamma in [s.gamma_min * 0.6, s.gamma_max * 1.4] {
+    for gamma in [s.gamma_min() * 0.6, s.gamma_max() * 1.4] {
         let curve = t.curve(gamma, OutOfDomain::Clamp).expect("clamped");
         for alpha in alphas(&t, gamma)
             .into_iter()
@@ -137,9 +139,17 @@ fn the_curve_refuses_what_the_rule_refuses() {
         }
     }
     // Along a line a non-cubic stencil is not a cubic: such a table has no curves.
-    let mut six = table("quick.h5");
-    six.surface.stencil = 6;
-    six.reindex();
+    let quick = table("quick.h5");
+    let s = quick.surface();
+    let patches = PatchId::ALL.map(|id| s.patch_by_id(id).cloned());
+    let six_points = Surface::new(s.gamma_min(), s.gamma_max(), s.alpha_max(), 6, patches)
+        .expect("a 6-point stencil fits the leaf grids of quick.h5");
+    let six = Table::from_parts(
+        six_points,
+        quick.provenance().clone(),
+        quick.checks().to_vec(),
+        quick.error_bound(),
+    );
     let err = six.curve(1.754, OutOfDomain::Error).expect_err("stencil 6");
     assert!(
         matches!(

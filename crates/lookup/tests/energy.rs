@@ -46,7 +46,7 @@ fn every_rust_path(what: &str, t: &Table) {
     let rule: Vec<f64> = g
         .iter()
         .zip(&a)
-        .map(|(&g, &a)| t.surface.eval(g, a).expect("inside"))
+        .map(|(&g, &a)| t.surface().eval(g, a).expect("inside"))
         .collect();
     assert_bounded(&format!("{what}: rule"), &g, &a, &rule);
     let fast: Vec<f64> = g
@@ -117,12 +117,15 @@ fn the_bound_holds_where_the_tensor_product_overshoots() {
         .zip(&a)
         .filter(|&(&g, &a)| {
             let region = oblique_table::surface::Region::of(g, a);
-            let Some(patch) = t.surface.patch(region) else {
+            let Some(patch) = t.surface().patch(region) else {
                 return false;
             };
-            let c = patch.kind.coord(g, a, t.surface.alpha_max).clamp(0.0, 1.0);
+            let c = patch
+                .kind()
+                .coord(g, a, t.surface().alpha_max())
+                .clamp(0.0, 1.0);
             let c = patch.warped(g, c);
-            patch.tensor(g, c, t.surface.stencil).abs() > 1.0
+            patch.tensor(g, c, t.surface().stencil()).abs() > 1.0
         })
         .count();
     assert!(over > 1_000, "only {over} overshooting points");

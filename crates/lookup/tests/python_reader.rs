@@ -60,13 +60,13 @@ fn python_p(table: &str, points: &[(f64, f64)]) -> Vec<f64> {
 fn rust_and_python_readers_agree() {
     for (name, n) in [("full.h5", 3000), ("quick.h5", 1000)] {
         let t = Table::open(repo().join("tables").join(name)).expect(name);
-        let s = &t.surface;
+        let s = &t.surface();
         let mut next = oblique_lookup::testing::uniform(0xA076_1D64_78BD_642F);
         let mut points = oblique_lookup::testing::domain_points_from(s, n, &mut next);
         // The partial-slip band at large γ, where the leaves are deepest.
-        if s.gamma_max > 2.5 {
+        if s.gamma_max() > 2.5 {
             for _ in 0..n / 2 {
-                let g = 2.5 + (s.gamma_max - 2.5) * next();
+                let g = 2.5 + (s.gamma_max() - 2.5) * next();
                 let c1 = oblique_table::surface::alpha_c1(g);
                 let c2 = oblique_table::surface::alpha_c2(g);
                 points.push((g, c1 + (c2 - c1) * next()));
@@ -143,7 +143,7 @@ fn python_reader_bounds_p_and_states_the_same_bound() {
     }
     // The noisy copy, the same noise on both sides.
     let t = oblique_lookup::testing::overshooting(t, |i| 0.1 * ((i * 7919) % 1000) as f64 / 1000.0);
-    let points = oblique_lookup::testing::domain_points(&t.surface, 3000, 31);
+    let points = oblique_lookup::testing::domain_points(t.surface(), 3000, 31);
     let (_, reference) = python_bounded("full.h5", &points, true);
     let mut at_one = 0;
     for (&(g, a), &r) in points.iter().zip(&reference) {

@@ -9,8 +9,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 use oblique_lookup::testing::fork_guard;
-use oblique_lookup::{Table, Warp};
+use oblique_lookup::Table;
 use oblique_table::format::seal_of;
+use oblique_table::surface::{PatchId, Warp};
 
 fn repo() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
@@ -179,29 +180,36 @@ fn a_file_with_a_warp_is_read_and_applied() {
     let spec = good();
     let path = write("good.h5", &spec);
     let t = Table::open(&path).expect("a valid warp");
-    assert_eq!(t.provenance.schema_version, 3);
-    let warp = t.surface.partial_high.as_ref().and_then(|p| p.warp.clone());
+    assert_eq!(t.provenance().schema_version, 3);
+    let warp = t
+        .surface()
+        .patch_by_id(PatchId::PartialHigh)
+        .and_then(|p| p.warp().cloned());
     assert_eq!(
         warp,
-        Some(Warp {
-            start: 2.0,
-            gamma_0: 1.9,
-            gamma_step: 0.05,
-            c_star: 0.5,
-            knot: spec.knot.clone().unwrap(),
-        })
+        Some(Warp::new(2.0, 1.9, 0.05, 0.5, spec.knot.clone().unwrap()).unwrap())
     );
-    assert!(t.surface.stick_high.as_ref().unwrap().warp.is_none());
+    assert!(t
+        .surface()
+        .patch_by_id(PatchId::StickHigh)
+        .unwrap()
+        .warp()
+        .is_none());
     let plain = Table::open(repo().join("tables/quick.h5")).expect("quick.h5");
-    assert_eq!(plain.provenance.schema_version, 2);
-    assert!(plain.surface.partial_high.as_ref().unwrap().warp.is_none());
+    assert_eq!(plain.provenance().schema_version, 2);
+    assert!(plain
+        .surface()
+        .patch_by_id(PatchId::PartialHigh)
+        .unwrap()
+        .warp()
+        .is_none());
     let pts = points(3000);
     let mut changed = 0;
     for &(g, a) in &pts {
         let p = t.p(g, a).expect("inside");
         assert_eq!(
             p.to_bits(),
-            t.surface.eval(g, a).unwrap().to_bits(),
+            t.surface().eval(g, a).unwrap().to_bits(),
             "({g}, {a})"
         );
         changed += usize::from(p != plain.p(g, a).unwrap());

@@ -204,31 +204,31 @@ const P_LABEL: &str = "P = u_after / u_before";
 fn gamma_axis(table: &Table) -> Axis {
     Axis {
         label: GAMMA_LABEL.into(),
-        range: (table.surface.gamma_min, table.surface.gamma_max),
+        range: (table.surface().gamma_min(), table.surface().gamma_max()),
         ticks: Ticks::Auto,
     }
 }
 
 /// `α_c2` over the whole domain and `α_c1` where `γ > 1`, as curves `(γ, α/(1+α))`.
 fn critical_curves(table: &Table) -> Vec<Series> {
-    let s = &table.surface;
+    let s = &table.surface();
     let mut out = vec![Series {
         label: "α_c2 = 2γ²/7".into(),
-        points: linspace(s.gamma_min, s.gamma_max, 400)
+        points: linspace(s.gamma_min(), s.gamma_max(), 400)
             .into_iter()
-            .filter(|&g| alpha_c2(g) <= s.alpha_max)
+            .filter(|&g| alpha_c2(g) <= s.alpha_max())
             .map(|g| (g, compact(alpha_c2(g))))
             .collect(),
         style: Style::Line,
         color: BLACK,
         sets_range: false,
     }];
-    if s.gamma_max > 1.0 {
+    if s.gamma_max() > 1.0 {
         out.push(Series {
             label: "α_c1 = 2γ²/(7(2γ² − 1)), γ > 1".into(),
-            points: linspace(s.gamma_min.max(1.0), s.gamma_max, 400)
+            points: linspace(s.gamma_min().max(1.0), s.gamma_max(), 400)
                 .into_iter()
-                .filter(|&g| alpha_c1(g) <= s.alpha_max)
+                .filter(|&g| alpha_c1(g) <= s.alpha_max())
                 .map(|g| (g, compact(alpha_c1(g))))
                 .collect(),
             style: Style::Dashed,
@@ -248,13 +248,15 @@ const FOLD_GAMMA_MAX: f64 = 3.6;
 /// Points of the curve's threshold edge just above its birth, where `P` has no kink (slope
 /// jump below 0.01), are left out. `None` below the birth or if the tracing fails.
 fn fold_curve(table: &Table) -> Option<Series> {
-    let s = &table.surface;
-    let top = s.gamma_max.min(FOLD_GAMMA_MAX);
+    let s = &table.surface();
+    let top = s.gamma_max().min(FOLD_GAMMA_MAX);
     let curve = fold_plus_curve(top, 40, 2048).ok()?;
     let points: Vec<(f64, f64)> = curve
         .points
         .iter()
-        .filter(|p| p.slope_jump.abs() > 0.01 && p.gamma >= s.gamma_min && p.alpha <= s.alpha_max)
+        .filter(|p| {
+            p.slope_jump.abs() > 0.01 && p.gamma >= s.gamma_min() && p.alpha <= s.alpha_max()
+        })
         .map(|p| (p.gamma, compact(p.alpha)))
         .collect();
     (points.len() >= 2).then(|| Series {
@@ -268,11 +270,11 @@ fn fold_curve(table: &Table) -> Option<Series> {
 
 /// The isotropic band `1.52 < γ < 2.16` as two vertical dotted lines (where inside the domain).
 fn isotropic_lines(table: &Table, y: (f64, f64)) -> Vec<Series> {
-    let s = &table.surface;
+    let s = &table.surface();
     let mut first = true;
     [ISOTROPIC_GAMMA.0, ISOTROPIC_GAMMA.1]
         .into_iter()
-        .filter(|&g| g > s.gamma_min && g < s.gamma_max)
+        .filter(|&g| g > s.gamma_min() && g < s.gamma_max())
         .map(|g| {
             let label = if first {
                 format!(
@@ -296,11 +298,11 @@ fn isotropic_lines(table: &Table, y: (f64, f64)) -> Vec<Series> {
 
 /// Caption lines: the table's provenance and the command.
 pub fn caption(table: &Table, src: &Source) -> Vec<String> {
-    let pv = &table.provenance;
-    let s = &table.surface;
+    let pv = &table.provenance();
+    let s = &table.surface();
     let commit: String = pv.git_commit.chars().take(10).collect();
     let max_err = table
-        .checks
+        .checks()
         .iter()
         .map(|c| c.interpolation_error)
         .fold(0.0, f64::max);
@@ -309,15 +311,15 @@ pub fn caption(table: &Table, src: &Source) -> Vec<String> {
             "table {} (schema v{}): γ {}–{}, α ≤ {}; built {} by engine {} (commit {}); node tol {:.0e}; held-out max error {:.1e} ({} points)",
             src.table,
             pv.schema_version,
-            fmt_num(s.gamma_min),
-            fmt_num(s.gamma_max),
-            fmt_num(s.alpha_max),
+            fmt_num(s.gamma_min()),
+            fmt_num(s.gamma_max()),
+            fmt_num(s.alpha_max()),
             pv.created,
             pv.engine_version,
             commit,
             pv.node_tol,
             max_err,
-            table.checks.len()
+            table.checks().len()
         ),
         format!("figure: {}", src.command),
     ]
@@ -333,9 +335,9 @@ pub const SURFACE_GRID: (usize, usize) = (301, 241);
 ///
 /// The map is `charts[0].map`: node `(i, j)` is `P(xs[i], alpha_at(ys[j]))` by [`Table::p`].
 pub fn surface(table: &Table, src: &Source) -> Result<Sheet, FigureError> {
-    let s = &table.surface;
-    let top = compact(s.alpha_max);
-    let xs = linspace(s.gamma_min, s.gamma_max, SURFACE_GRID.0);
+    let s = &table.surface();
+    let top = compact(s.alpha_max());
+    let xs = linspace(s.gamma_min(), s.gamma_max(), SURFACE_GRID.0);
     let ys = linspace(0.0, top, SURFACE_GRID.1);
     let mut values = Vec::with_capacity(xs.len() * ys.len());
     for &g in &xs {
@@ -350,8 +352,8 @@ pub fn surface(table: &Table, src: &Source) -> Result<Sheet, FigureError> {
         .map(|k| k as f64 * 0.2)
         .collect();
     let mut notes = Vec::new();
-    if s.gamma_max > 1.2 {
-        let g = 0.5 * (s.gamma_max + s.gamma_min.max(1.0));
+    if s.gamma_max() > 1.2 {
+        let g = 0.5 * (s.gamma_max() + s.gamma_min().max(1.0));
         notes.push(Note {
             text: "full slip: P = 1 − 7α".into(),
             at: (g, 0.5 * compact(alpha_c1(g).min(alpha_c2(g)))),
@@ -363,7 +365,7 @@ pub fn surface(table: &Table, src: &Source) -> Result<Sheet, FigureError> {
     let chart = Chart {
         title: String::new(),
         x: gamma_axis(table),
-        y: alpha_axis(s.alpha_max, ALPHA_LABEL),
+        y: alpha_axis(s.alpha_max(), ALPHA_LABEL),
         regions: Vec::new(),
         map: Some(Grid { xs, ys, values }),
         contours: Some(Contours {
@@ -400,15 +402,15 @@ pub fn surface(table: &Table, src: &Source) -> Result<Sheet, FigureError> {
 /// Default family of `γ` for [`slices`]: round values in the table's domain (the isotropic
 /// band's ends among them), or six equally spaced values if fewer than four fall inside.
 pub fn default_gammas(table: &Table) -> Vec<f64> {
-    let s = &table.surface;
+    let s = &table.surface();
     let inside: Vec<f64> = [0.5, 0.8, 1.0, 1.2, 1.52, 1.84, 2.16, 2.5, 3.0, 3.5]
         .into_iter()
-        .filter(|&g| g >= s.gamma_min && g <= s.gamma_max)
+        .filter(|&g| g >= s.gamma_min() && g <= s.gamma_max())
         .collect();
     if inside.len() >= 4 {
         inside
     } else {
-        linspace(s.gamma_min, s.gamma_max, 6)
+        linspace(s.gamma_min(), s.gamma_max(), 6)
     }
 }
 
@@ -417,7 +419,7 @@ pub fn default_gammas(table: &Table) -> Vec<f64> {
 pub fn default_alphas(table: &Table) -> Vec<f64> {
     [0.3, 0.5, 0.7, 1.0, 2.0, 4.0, 12.0, f64::INFINITY]
         .into_iter()
-        .filter(|&a| a <= table.surface.alpha_max)
+        .filter(|&a| a <= table.surface().alpha_max())
         .collect()
 }
 
@@ -490,23 +492,29 @@ pub fn slices(
     gammas: &[f64],
     alphas: &[f64],
 ) -> Result<Sheet, FigureError> {
-    let s = &table.surface;
+    let s = &table.surface();
     let allowed = format!(
         "a gamma in the table's domain [{}, {}]",
-        s.gamma_min, s.gamma_max
+        s.gamma_min(),
+        s.gamma_max()
     );
     check_family(
         "gammas",
         gammas,
-        |g| g >= s.gamma_min && g <= s.gamma_max,
+        |g| g >= s.gamma_min() && g <= s.gamma_max(),
         &allowed,
     )?;
     let allowed = format!(
         "an alpha in [0, {}] (the table's alpha_max; inf allowed if it is inf)",
-        s.alpha_max
+        s.alpha_max()
     );
-    check_family("alphas", alphas, |a| a >= 0.0 && a <= s.alpha_max, &allowed)?;
-    let top = compact(s.alpha_max);
+    check_family(
+        "alphas",
+        alphas,
+        |a| a >= 0.0 && a <= s.alpha_max(),
+        &allowed,
+    )?;
+    let top = compact(s.alpha_max());
     let p_axis = Axis {
         label: P_LABEL.into(),
         range: (-1.05, 1.05),
@@ -523,7 +531,7 @@ pub fn slices(
         } else {
             vec![alpha_c2(g)]
         };
-        let crit: Vec<f64> = crit.into_iter().filter(|&a| a <= s.alpha_max).collect();
+        let crit: Vec<f64> = crit.into_iter().filter(|&a| a <= s.alpha_max()).collect();
         let mut ys: Vec<f64> = base.clone();
         ys.extend(crit.iter().map(|&a| compact(a)));
         ys.sort_by(f64::total_cmp);
@@ -569,7 +577,7 @@ pub fn slices(
     });
     let chart_a = Chart {
         title: "(a) P against α for fixed γ".into(),
-        x: alpha_axis(s.alpha_max, ALPHA_LABEL),
+        x: alpha_axis(s.alpha_max(), ALPHA_LABEL),
         y: p_axis.clone(),
         regions: Vec::new(),
         map: None,
@@ -585,12 +593,12 @@ pub fn slices(
     // (b) P against γ.
     let mut series_b = Vec::new();
     for (k, &a) in alphas.iter().enumerate() {
-        let mut gs = linspace(s.gamma_min, s.gamma_max, 341);
+        let mut gs = linspace(s.gamma_min(), s.gamma_max(), 341);
         gs.extend(
             critical_gammas(a)
                 .into_iter()
                 .chain([1.0])
-                .filter(|&g| g > s.gamma_min && g < s.gamma_max),
+                .filter(|&g| g > s.gamma_min() && g < s.gamma_max()),
         );
         gs.sort_by(f64::total_cmp);
         gs.dedup();
@@ -612,7 +620,7 @@ pub fn slices(
     }
     series_b.push(Series {
         label: "seed 001 fit (29) of P(γ, ∞)".into(),
-        points: linspace(s.gamma_min, s.gamma_max, 341)
+        points: linspace(s.gamma_min(), s.gamma_max(), 341)
             .into_iter()
             .map(|g| (g, no_slip_fit(g)))
             .collect(),
@@ -657,23 +665,23 @@ pub const REGIME_LABELS: [&str; 3] = [
 /// sampled on 401 values of `γ` (and `γ = 1`). Where the domain reaches γ ≈ 2.9, the fold curve
 /// F₊ inside the partial-slip region is drawn too ([`fold_curve`]).
 pub fn regimes(table: &Table, src: &Source) -> Sheet {
-    let s = &table.surface;
-    let top = compact(s.alpha_max);
-    let mut gs = linspace(s.gamma_min, s.gamma_max, 401);
-    if s.gamma_min < 1.0 && s.gamma_max > 1.0 {
+    let s = &table.surface();
+    let top = compact(s.alpha_max());
+    let mut gs = linspace(s.gamma_min(), s.gamma_max(), 401);
+    if s.gamma_min() < 1.0 && s.gamma_max() > 1.0 {
         gs.push(1.0);
         gs.sort_by(f64::total_cmp);
         gs.dedup();
     }
-    let y_of = |a: f64| compact(a.min(s.alpha_max));
+    let y_of = |a: f64| compact(a.min(s.alpha_max()));
     // Full slip: below the linear limit.
     let mut full: Vec<(f64, f64)> = gs.iter().map(|&g| (g, y_of(linear_limit(g)))).collect();
-    full.push((s.gamma_max, 0.0));
-    full.push((s.gamma_min, 0.0));
+    full.push((s.gamma_max(), 0.0));
+    full.push((s.gamma_min(), 0.0));
     // Stick: above α_c2.
     let mut stick: Vec<(f64, f64)> = gs.iter().map(|&g| (g, y_of(alpha_c2(g)))).collect();
-    stick.push((s.gamma_max, top));
-    stick.push((s.gamma_min, top));
+    stick.push((s.gamma_max(), top));
+    stick.push((s.gamma_min(), top));
     let mut regions = vec![Region {
         label: REGIME_LABELS[0].into(),
         polygon: full,
@@ -705,15 +713,15 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
         size: 16,
         boxed: false,
     };
-    let gm = 0.5 * (s.gamma_min + s.gamma_max);
+    let gm = 0.5 * (s.gamma_min() + s.gamma_max());
     notes.push(note("I  stick", (gm, 0.5 * (top + y_of(alpha_c2(gm))))));
-    if s.gamma_max > 1.3 {
-        let g = s.gamma_min.max(1.0) + 0.75 * (s.gamma_max - s.gamma_min.max(1.0));
+    if s.gamma_max() > 1.3 {
+        let g = s.gamma_min().max(1.0) + 0.75 * (s.gamma_max() - s.gamma_min().max(1.0));
         let mid = 0.5 * (y_of(alpha_c1(g)) + y_of(alpha_c2(g)));
         notes.push(note("II  partial slip", (g, mid)));
         notes.push(note("III  full slip", (g, 0.5 * y_of(alpha_c1(g)))));
     }
-    if s.gamma_min < 1.0 && s.gamma_max > 1.0 {
+    if s.gamma_min() < 1.0 && s.gamma_max() > 1.0 {
         notes.push(Note {
             text: "γ = 1: α_c1 = α_c2 = 2/7".into(),
             at: (1.0, y_of(2.0 / 7.0) + 0.04),
@@ -725,7 +733,7 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
     let chart = Chart {
         title: String::new(),
         x: gamma_axis(table),
-        y: alpha_axis(s.alpha_max, ALPHA_LABEL),
+        y: alpha_axis(s.alpha_max(), ALPHA_LABEL),
         regions,
         map: None,
         contours: None,
@@ -749,31 +757,31 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
 /// edges of constant patch coordinate `c` (`c'` of a warp; curves in this plane) sampled at 64 points per patch
 /// width, at least 5 per leaf.
 pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
-    let roots = patch.blocks_gamma * patch.blocks_coord;
+    let roots = patch.blocks_gamma() * patch.blocks_coord();
     let mut stack: Vec<(usize, f64, f64, f64, f64)> = (0..roots)
         .map(|i| {
-            let (a, b) = (i / patch.blocks_coord, i % patch.blocks_coord);
+            let (a, b) = (i / patch.blocks_coord(), i % patch.blocks_coord());
             let (hx, hc) = (
-                1.0 / patch.blocks_gamma as f64,
-                1.0 / patch.blocks_coord as f64,
+                1.0 / patch.blocks_gamma() as f64,
+                1.0 / patch.blocks_coord() as f64,
             );
             (i, a as f64 * hx, b as f64 * hc, hx, hc)
         })
         .collect();
     let mut out = Vec::new();
-    let gamma = |x: f64| patch.gamma_lo + (patch.gamma_hi - patch.gamma_lo) * x;
+    let gamma = |x: f64| patch.gamma_lo() + (patch.gamma_hi() - patch.gamma_lo()) * x;
     // The quadtree is over the warped c' from the warp's start on (schema 3).
     let point = |x: f64, c: f64, warped: bool| {
         let g = gamma(x);
-        let c = match &patch.warp {
+        let c = match &patch.warp() {
             Some(w) if warped => w.invert(g, c),
             _ => c,
         };
-        (g, compact(patch.kind.alpha(g, c, alpha_max)))
+        (g, compact(patch.kind().alpha(g, c, alpha_max)))
     };
-    let bg = patch.blocks_gamma as f64;
+    let bg = patch.blocks_gamma() as f64;
     while let Some((cell, x0, c0, hx, hc)) = stack.pop() {
-        let Some(&t) = patch.tree.get(cell) else {
+        let Some(&t) = patch.tree().get(cell) else {
             continue;
         };
         if t >= 0 {
@@ -793,9 +801,9 @@ pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
         }
         // The leaf's first row in root-row units (exact up to the rounding of 1/blocks).
         let warped = patch
-            .warp
+            .warp()
             .as_ref()
-            .is_some_and(|w| x0 * bg >= w.start - 1e-9);
+            .is_some_and(|w| x0 * bg >= w.start() - 1e-9);
         let xs = linspace(x0, x0 + hx, ((64.0 * hx).ceil() as usize).max(4) + 1);
         let mut line: Vec<(f64, f64)> = xs.iter().map(|&x| point(x, c0, warped)).collect();
         line.extend(xs.iter().rev().map(|&x| point(x, c0 + hc, warped)));
@@ -813,14 +821,18 @@ pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
 /// Data layout: `charts[0].scatter.points[k] = (γ, α/(1+α), error)` of `table.checks[k]`;
 /// `charts[0].outlines` has one closed outline per leaf.
 pub fn quality(table: &Table, src: &Source) -> Sheet {
-    let s = &table.surface;
-    let top = compact(s.alpha_max);
-    let errors: Vec<f64> = table.checks.iter().map(|c| c.interpolation_error).collect();
+    let s = &table.surface();
+    let top = compact(s.alpha_max());
+    let errors: Vec<f64> = table
+        .checks()
+        .iter()
+        .map(|c| c.interpolation_error)
+        .collect();
     let positive = errors.iter().copied().filter(|&e| e > 0.0 && e.is_finite());
     let lo = positive.clone().fold(f64::INFINITY, f64::min);
     let hi = positive
         .fold(0.0, f64::max)
-        .max(table.provenance.target_error);
+        .max(table.provenance().target_error);
     let (dlo, dhi) = if lo.is_finite() && hi > 0.0 {
         (lo.log10().floor(), hi.log10().ceil())
     } else {
@@ -830,10 +842,10 @@ pub fn quality(table: &Table, src: &Source) -> Sheet {
     let ticks = (dlo as i32..=dhi as i32)
         .map(|d| (10f64.powi(d), format!("1e{d}").replace('-', "−")))
         .collect();
-    let outlines: Vec<Vec<(f64, f64)>> = [&s.stick_low, &s.partial_high, &s.stick_high]
-        .into_iter()
-        .flatten()
-        .flat_map(|p| leaf_outlines(p, s.alpha_max))
+    let outlines: Vec<Vec<(f64, f64)>> = s
+        .patches()
+        .map(|(_, p)| p)
+        .flat_map(|p| leaf_outlines(p, s.alpha_max()))
         .collect();
     let leaves = outlines.len();
     let mut series = critical_curves(table);
@@ -851,7 +863,7 @@ pub fn quality(table: &Table, src: &Source) -> Sheet {
     let chart = Chart {
         title: String::new(),
         x: gamma_axis(table),
-        y: alpha_axis(s.alpha_max, ALPHA_LABEL),
+        y: alpha_axis(s.alpha_max(), ALPHA_LABEL),
         regions: Vec::new(),
         map: None,
         contours: None,
@@ -860,7 +872,7 @@ pub fn quality(table: &Table, src: &Source) -> Sheet {
         scatter: Some(Scatter {
             label: format!("held-out check ({n}), colour: its error"),
             points: table
-                .checks
+                .checks()
                 .iter()
                 .map(|c| (c.gamma, compact(c.alpha), c.interpolation_error))
                 .collect(),
@@ -882,7 +894,7 @@ pub fn quality(table: &Table, src: &Source) -> Sheet {
         title: "Interpolation error of the table at its held-out checks".into(),
         subtitle: format!(
             "max {max:.1e}, rms {rms:.1e} over {n} points (target_error {:.0e}, check_tol {:.0e}); grey: the {leaves} quadtree leaves",
-            table.provenance.target_error, table.provenance.check_tol
+            table.provenance().target_error, table.provenance().check_tol
         ),
         charts: vec![chart],
         caption: caption(table, src),

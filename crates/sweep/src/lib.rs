@@ -9,7 +9,7 @@ pub mod nodestore;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use oblique_table::surface::{stencil, Patch, PatchKind, Region, Surface, Warp};
+use oblique_table::surface::{stencil, Patch, PatchId, PatchKind, Region, Surface, Warp};
 pub use oblique_table::write::{Built, BuiltPatch};
 use oblique_table::Check;
 use rayon::prelude::*;
@@ -76,6 +76,10 @@ pub fn provenance(
 /// Errors of a sweep.
 #[derive(Debug, Error)]
 pub enum SweepError {
+    /// The table model refused what the build assembled (a defect of the build, not of the
+    /// config).
+    #[error("the built table is inconsistent: {0}")]
+    Model(String),
     /// The fold curve F₊ could not be traced for the warp of the partial-slip patch.
     #[error(
         "fold curve F+ at gamma = {gamma}: {what} (set nodes.fold_warp = false to build without \
@@ -225,6 +229,7 @@ impl SweepError {
                     | PhysicsError::Infeasible { .. }
                     | PhysicsError::TooLarge { .. }
             ),
+            SweepError::Model(_) => false,
             SweepError::Fold { .. }
             | SweepError::TooManyNodes { .. }
             | SweepError::Unreachable { .. }
@@ -452,7 +457,7 @@ fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
     let mut specs = Vec::new();
     if d.gamma_min < 1.0 {
         specs.push(PatchSpec {
-            name: oblique_table::format::PATCH_STICK_LOW,
+            name: PatchId::StickLow.name(),
             kind: PatchKind::Stick,
             gamma_lo: d.gamma_min,
             gamma_hi: d.gamma_max.min(1.0),
@@ -461,13 +466,13 @@ fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
     if d.gamma_max > 1.0 {
         let lo = d.gamma_min.max(1.0);
         specs.push(PatchSpec {
-            name: oblique_table::format::PATCH_PARTIAL_HIGH,
+            name: PatchId::PartialHigh.name(),
             kind: PatchKind::PartialSlip,
             gamma_lo: lo,
             gamma_hi: d.gamma_max,
         });
         specs.push(PatchSpec {
-            name: oblique_table::format::PATCH_STICK_HIGH,
+            name: PatchId::StickHigh.name(),
             kind: PatchKind::Stick,
             gamma_lo: lo,
             gamma_hi: d.gamma_max,
@@ -547,14 +552,14 @@ impl Layout<'_> {
 
     /// Whether the cell lies at or beyond the warp's start (its nodes are warped).
     fn warped(&self, cell: Cell) -> bool {
-        self.warp.is_some_and(|w| Self::rows(cell).0 >= w.start)
+        self.warp.is_some_and(|w| Self::rows(cell).0 >= w.start())
     }
 
     /// Whether the warp's start cuts through the cell: it is split without being evaluated, so
     /// that every leaf lies on one side.
     fn straddles(&self, cell: Cell) -> bool {
         let (lo, hi) = Self::rows(cell);
-        self.warp.is_some_and(|w| lo < w.start && w.start < hi)
+        self.warp.is_some_and(|w| lo < w.start() && w.start() < hi)
     }
 
     /// Lattice keys of a cell's `(m+1)²` nodes, row-major (`γ` outer).
@@ -784,18 +789,19 @@ fn build_patch(
     let simulated = cache.values().filter(|(_, e)| *e > 0.0).count();
     Ok(Some(BuiltPatch {
         name: spec.name,
-        patch: Patch {
-            kind: spec.kind,
-            gamma_lo: spec.gamma_lo,
-            gamma_hi: spec.gamma_hi,
-            blocks_gamma: layout.bg,
-            blocks_coord: layout.bc,
-            leaf_intervals: m,
+        patch: Patch::new(
+            spec.kind,
+            spec.gamma_lo,
+            spec.gamma_hi,
+            layout.bg,
+            layout.bc,
+            m,
             tree,
             p,
-            error_estimate: err,
-            warp: warp.clone(),
-        },
+            err,
+            warp.clone(),
+        )
+        .map_err(|m| SweepError::Model(format!("patch '{}': {m}", spec.name)))?,
         gamma,
         coord,
         alpha,
@@ -1011,21 +1017,20 @@ pub fn build_with(
             cfg, &spec, progress, &mut total, opts, 0, None,
         )?);
     }
-    let find = |name: &str| {
+    let find = |id: PatchId| {
         patches
             .iter()
-            .find(|p| p.name == name)
+            .find(|p| p.name == id.name())
             .map(|p| p.patch.clone())
     };
-    let surface = Surface {
-        gamma_min: cfg.domain.gamma_min,
-        gamma_max: cfg.domain.gamma_max,
-        alpha_max: cfg.domain.alpha_max,
-        stencil: cfg.nodes.stencil,
-        stick_low: find(oblique_table::format::PATCH_STICK_LOW),
-        partial_high: find(oblique_table::format::PATCH_PARTIAL_HIGH),
-        stick_high: find(oblique_table::format::PATCH_STICK_HIGH),
-    };
+    let surface = Surface::new(
+        cfg.domain.gamma_min,
+        cfg.domain.gamma_max,
+        cfg.domain.alpha_max,
+        cfg.nodes.stencil,
+        PatchId::ALL.map(find),
+    )
+    .map_err(SweepError::Model)?;
     let points = check_points(cfg);
     progress.phase(STAGE_CHECKS, &format!("{} points", points.len()));
     let sims = solve_points_with(&points, cfg.check_tol(), progress, opts)?;

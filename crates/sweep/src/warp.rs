@@ -144,13 +144,9 @@ pub fn fold_warp(
             &format!("its patch coordinate {k} is too close to the patch edge for a warp"),
         ));
     }
-    Ok(Some(Warp {
-        start,
-        gamma_0,
-        gamma_step: STEP,
-        c_star,
-        knot,
-    }))
+    Warp::new(start, gamma_0, STEP, c_star, knot)
+        .map(Some)
+        .map_err(|m| fold_error(gamma_0, &format!("the warp is invalid: {m}")))
 }
 
 fn fold_error(gamma: f64, what: &str) -> SweepError {
@@ -186,7 +182,7 @@ mod tests {
         let w = fold_warp(1.0, 3.3, 5, 4)
             .unwrap()
             .expect("a warp up to 3.3");
-        assert_eq!(w.c_star, 0.5);
+        assert_eq!(w.c_star(), 0.5);
         // Midway between the knot grid points (0.0025 apart), the fold maps to c* to the precision of
         // the cubic rule for the knot and of the grading (c' − c* ∝ √(K − c_F) below it).
         let mut worst = 0.0_f64;

@@ -12,7 +12,7 @@
 //! largest of these over all leaves of all patches. The full-slip line (exact) and the bound
 //! `|P| ≤ 1` of the rule (step 10) only make the error smaller.
 
-use crate::surface::{Patch, Surface};
+use crate::surface::{Patch, PatchId, Surface};
 use crate::Check;
 
 /// The Lebesgue constant `Λ_k = max_{u ∈ [0, k−1]} Σ_j |ℓ_j(u)|` of the `k`-point Lagrange
@@ -60,11 +60,11 @@ pub fn patch_bound(patch: &Patch, leaf_predicted: &[f64], k: usize) -> f64 {
     if leaf_predicted.len() != leaves {
         return f64::NAN;
     }
-    let size = (patch.leaf_intervals + 1).pow(2);
+    let size = (patch.leaf_intervals() + 1).pow(2);
     let factor = node_error_factor(k);
     leaf_predicted
         .iter()
-        .zip(patch.error_estimate.chunks_exact(size))
+        .zip(patch.error_estimate().chunks_exact(size))
         .map(|(&pred, errs)| leaf_bound(pred, errs, factor))
         .fold(0.0, |m, b| if b.is_nan() { f64::NAN } else { m.max(b) })
 }
@@ -75,16 +75,13 @@ pub fn patch_bound(patch: &Patch, leaf_predicted: &[f64], k: usize) -> f64 {
 /// a present patch makes the bound NaN: the file states none). 0 when no patch is present
 /// (every answer is exact).
 pub fn surface_bound(surface: &Surface, leaf_predicted: [Option<&[f64]>; 3]) -> f64 {
-    let patches = [
-        &surface.stick_low,
-        &surface.partial_high,
-        &surface.stick_high,
-    ];
     let mut worst = 0.0_f64;
-    for (patch, pred) in patches.into_iter().zip(leaf_predicted) {
-        let Some(patch) = patch else { continue };
+    for (id, pred) in PatchId::ALL.into_iter().zip(leaf_predicted) {
+        let Some(patch) = surface.patch_by_id(id) else {
+            continue;
+        };
         let b = match pred {
-            Some(pred) => patch_bound(patch, pred, surface.stencil),
+            Some(pred) => patch_bound(patch, pred, surface.stencil()),
             None => f64::NAN,
         };
         if b.is_nan() {

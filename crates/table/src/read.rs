@@ -5,7 +5,7 @@ use std::path::Path;
 use hdf5::types::VarLenUnicode;
 
 use crate::format::*;
-use crate::surface::{Patch, PatchKind, Surface, Warp};
+use crate::surface::{Patch, PatchId, PatchKind, Surface, Warp};
 use crate::TableError;
 
 /// Where a table came from (root attributes).
@@ -226,13 +226,9 @@ impl Reader<'_> {
             attr(ATTR_WARP_C_STAR)?,
         );
         let knot = self.vector(&w, &format!("'{where_}'"), DS_WARP_KNOT, "float64")?;
-        Ok(Some(Warp {
-            start,
-            gamma_0,
-            gamma_step,
-            c_star,
-            knot,
-        }))
+        Warp::new(start, gamma_0, gamma_step, c_star, knot)
+            .map(Some)
+            .map_err(|m| self.invalid(format!("'{where_}': {m}")))
     }
 
     fn patch(
@@ -280,20 +276,9 @@ impl Reader<'_> {
             return Err(self.invalid(format!("patch '{name}': |P| = {} > 1 at node {i}", p[i])));
         }
         let warp = self.warp(&g, name, version)?;
-        let patch = Patch {
-            kind,
-            gamma_lo,
-            gamma_hi,
-            blocks_gamma: bg,
-            blocks_coord: bc,
-            leaf_intervals: m,
-            tree,
-            p,
-            error_estimate: err,
-            warp,
-        };
-        patch
-            .check_warp()
+        // The checks above name the datasets as the file has them; what remains (the warp's
+        // rules against the patch) is the model's own check.
+        let patch = Patch::new(kind, gamma_lo, gamma_hi, bg, bc, m, tree, p, err, warp)
             .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
         Ok(Some(patch))
     }
@@ -417,59 +402,28 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
     let patches = file
         .group(GROUP_PATCHES)
         .map_err(|_| r.invalid(format!("missing group '{GROUP_PATCHES}'")))?;
-    let surface = Surface {
-        gamma_min,
-        gamma_max,
-        alpha_max,
-        stencil,
-        stick_low: r.patch(
-            &patches,
-            PATCH_STICK_LOW,
-            PatchKind::Stick,
-            stencil,
-            version,
-        )?,
-        partial_high: r.patch(
-            &patches,
-            PATCH_PARTIAL_HIGH,
-            PatchKind::PartialSlip,
-            stencil,
-            version,
-        )?,
-        stick_high: r.patch(
-            &patches,
-            PATCH_STICK_HIGH,
-            PatchKind::Stick,
-            stencil,
-            version,
-        )?,
-    };
-    if gamma_min < 1.0 && surface.stick_low.is_none() {
-        return Err(r.invalid(format!("missing patch '{PATCH_STICK_LOW}'")));
+    let mut read_patches: [Option<Patch>; 3] = [None, None, None];
+    for id in PatchId::ALL {
+        read_patches[id.index()] = r.patch(&patches, id.name(), id.kind(), stencil, version)?;
     }
-    if gamma_max > 1.0 && (surface.partial_high.is_none() || surface.stick_high.is_none()) {
-        return Err(r.invalid(format!(
-            "missing patch '{PATCH_PARTIAL_HIGH}' or '{PATCH_STICK_HIGH}'"
-        )));
-    }
+    let surface = Surface::new(gamma_min, gamma_max, alpha_max, stencil, read_patches)
+        .map_err(|m| r.invalid(m))?;
     // The predicted error of every leaf, for the stated bound (`None`: not in the file).
-    let leaf_predicted = [
-        (PATCH_STICK_LOW, &surface.stick_low),
-        (PATCH_PARTIAL_HIGH, &surface.partial_high),
-        (PATCH_STICK_HIGH, &surface.stick_high),
-    ]
-    .map(|(name, patch)| match (patch, patches.group(name)) {
-        (Some(p), Ok(g)) if g.link_exists(DS_LEAF_ERROR) => {
-            let v = r.dataset(&g, DS_LEAF_ERROR, &[p.leaves()])?;
-            match v.iter().position(|x| !(x.is_finite() && *x >= 0.0)) {
-                Some(i) => Err(r.invalid(format!(
-                    "patch '{name}': {DS_LEAF_ERROR}[{i}] = {}: must be finite and >= 0",
-                    v[i]
-                ))),
-                None => Ok(Some(v)),
+    let leaf_predicted = PatchId::ALL.map(|id| {
+        let name = id.name();
+        match (surface.patch_by_id(id), patches.group(name)) {
+            (Some(p), Ok(g)) if g.link_exists(DS_LEAF_ERROR) => {
+                let v = r.dataset(&g, DS_LEAF_ERROR, &[p.leaves()])?;
+                match v.iter().position(|x| !(x.is_finite() && *x >= 0.0)) {
+                    Some(i) => Err(r.invalid(format!(
+                        "patch '{name}': {DS_LEAF_ERROR}[{i}] = {}: must be finite and >= 0",
+                        v[i]
+                    ))),
+                    None => Ok(Some(v)),
+                }
             }
+            _ => Ok(None),
         }
-        _ => Ok(None),
     });
     let [a, b, c] = leaf_predicted;
     let (a, b, c) = (a?, b?, c?);

@@ -115,26 +115,26 @@ pub fn stick_scale(gamma: f64) -> f64 {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Patch {
     /// Region and coordinate.
-    pub kind: PatchKind,
+    kind: PatchKind,
     /// Lower γ edge.
-    pub gamma_lo: f64,
+    gamma_lo: f64,
     /// Upper γ edge.
-    pub gamma_hi: f64,
+    gamma_hi: f64,
     /// Root cells along γ.
-    pub blocks_gamma: usize,
+    blocks_gamma: usize,
     /// Root cells along `c`.
-    pub blocks_coord: usize,
+    blocks_coord: usize,
     /// Intervals per axis of every leaf's grid (`m`).
-    pub leaf_intervals: usize,
+    leaf_intervals: usize,
     /// The quadtree, see the type's documentation.
-    pub tree: Vec<i32>,
+    tree: Vec<i32>,
     /// `P` at the nodes, leaf by leaf, `[leaves, m + 1, m + 1]` row-major.
-    pub p: Vec<f64>,
+    p: Vec<f64>,
     /// Solver error estimate of each node, same layout.
-    pub error_estimate: Vec<f64>,
+    error_estimate: Vec<f64>,
     /// Optional warp of the coordinate (only `partial_high`, schema 3): when present, the
     /// quadtree is over `(x, c')` with `c' =` [`Warp::apply`]`(γ, c)` instead of `(x, c)`.
-    pub warp: Option<Warp>,
+    warp: Option<Warp>,
 }
 
 /// Warp of the partial-slip coordinate (group `/patches/partial_high/warp`, schema 3): a map
@@ -163,18 +163,96 @@ pub struct Patch {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Warp {
     /// Lattice position along γ (root-cell units) from which the warp applies.
-    pub start: f64,
+    start: f64,
     /// γ of `knot[0]`.
-    pub gamma_0: f64,
+    gamma_0: f64,
     /// γ spacing of the knots (`> 0`).
-    pub gamma_step: f64,
+    gamma_step: f64,
     /// Where the knot is sent: `c' = c_star` at `c = K(γ)`, in `(0, 1)`.
-    pub c_star: f64,
+    c_star: f64,
     /// `K` at `γ = gamma_0 + i·gamma_step`, every value in `(0, 1)`, at least 4 values.
-    pub knot: Vec<f64>,
+    knot: Vec<f64>,
 }
 
 impl Warp {
+    /// A warp from its stored values. Each value must be finite, `gamma_step > 0`,
+    /// `0 < c_star < 1`, at least 4 knots, each in `(0, 1)`; the rules that involve the patch
+    /// (`start`, the knot grid's span) are checked by [`Patch::new`]. `Err` names the attribute
+    /// or dataset and the allowed range.
+    pub fn new(
+        start: f64,
+        gamma_0: f64,
+        gamma_step: f64,
+        c_star: f64,
+        knot: Vec<f64>,
+    ) -> Result<Warp, String> {
+        let w = Warp {
+            start,
+            gamma_0,
+            gamma_step,
+            c_star,
+            knot,
+        };
+        let fields = [
+            ("start", w.start, w.start.is_finite()),
+            ("gamma_0", w.gamma_0, w.gamma_0.is_finite()),
+            (
+                "gamma_step",
+                w.gamma_step,
+                w.gamma_step.is_finite() && w.gamma_step > 0.0,
+            ),
+            ("c_star", w.c_star, w.c_star > 0.0 && w.c_star < 1.0),
+        ];
+        for (name, v, ok) in fields {
+            if !ok {
+                let allowed = match name {
+                    "gamma_step" => "finite and > 0",
+                    "c_star" => "in (0, 1)",
+                    _ => "finite",
+                };
+                return Err(format!("attribute '{name}' = {v}: must be {allowed}"));
+            }
+        }
+        let n = w.knot.len();
+        if n < 4 {
+            return Err(format!(
+                "dataset 'knot' has {n} values: must have at least 4"
+            ));
+        }
+        if let Some(i) = w.knot.iter().position(|&k| !(k > 0.0 && k < 1.0)) {
+            return Err(format!(
+                "dataset 'knot'[{i}] = {}: must be in (0, 1)",
+                w.knot[i]
+            ));
+        }
+        Ok(w)
+    }
+
+    /// Lattice position along γ (root-cell units) from which the warp applies.
+    pub fn start(&self) -> f64 {
+        self.start
+    }
+
+    /// γ of the first knot.
+    pub fn gamma_0(&self) -> f64 {
+        self.gamma_0
+    }
+
+    /// γ spacing of the knots (`> 0`).
+    pub fn gamma_step(&self) -> f64 {
+        self.gamma_step
+    }
+
+    /// Where the knot is sent, in `(0, 1)`.
+    pub fn c_star(&self) -> f64 {
+        self.c_star
+    }
+
+    /// The knot values `K` at `γ = gamma_0 + i·gamma_step`.
+    pub fn knot(&self) -> &[f64] {
+        &self.knot
+    }
+
     /// `K(γ)`: the 4-point Lagrange interpolant of `knot` at `u = (γ − gamma_0)/gamma_step`
     /// clamped to `[0, n − 1]`.
     #[inline]
@@ -365,7 +443,223 @@ pub fn locate(x: f64, blocks: usize) -> (usize, f64) {
     (a, u - a as f64)
 }
 
+/// Check that `tree` is a valid quadtree over `roots` root cells whose leaves are numbered
+/// `0..leaves` each exactly once; returns the number of leaves. `Err` says what is wrong with
+/// the dataset `tree`.
+pub fn check_tree(tree: &[i32], roots: usize) -> Result<usize, String> {
+    if tree.len() < roots || (tree.len() - roots) % 4 != 0 {
+        return Err(format!(
+            "has {} cells: expected {roots} roots plus groups of 4 children",
+            tree.len()
+        ));
+    }
+    let mut referenced = vec![false; tree.len()];
+    let mut leaves = Vec::new();
+    for (i, &t) in tree.iter().enumerate() {
+        if t < 0 {
+            leaves.push((-(t as i64) - 1) as usize);
+            continue;
+        }
+        let first = t as usize;
+        // Children come after their parent (no cycles) and after the roots.
+        if first <= i || first < roots || first + 4 > tree.len() {
+            return Err(format!("cell {i} points to children at {t}: out of range"));
+        }
+        for r in &mut referenced[first..first + 4] {
+            if *r {
+                return Err(format!(
+                    "cell {i}: children at {t} shared with another cell"
+                ));
+            }
+            *r = true;
+        }
+    }
+    if let Some(i) = (roots..tree.len()).find(|&i| !referenced[i]) {
+        return Err(format!("cell {i} is not reachable from a root"));
+    }
+    leaves.sort_unstable();
+    if leaves.iter().enumerate().any(|(k, &l)| k != l) {
+        return Err("does not number its leaves 0, 1, 2, ... exactly once".into());
+    }
+    Ok(leaves.len())
+}
+
 impl Patch {
+    /// A patch from its stored values, checked: finite increasing γ edges `> 0`, at least one
+    /// root cell per axis, `m ≥ 1`, a valid quadtree ([`check_tree`]), `(m + 1)²` finite node
+    /// values of `P` (each `|P| ≤ 1 + 1e-6`) and of the error estimate per leaf, and a valid
+    /// warp ([`Patch::check_warp`]). `Err` names the value and the rule.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        kind: PatchKind,
+        gamma_lo: f64,
+        gamma_hi: f64,
+        blocks_gamma: usize,
+        blocks_coord: usize,
+        leaf_intervals: usize,
+        tree: Vec<i32>,
+        p: Vec<f64>,
+        error_estimate: Vec<f64>,
+        warp: Option<Warp>,
+    ) -> Result<Patch, String> {
+        if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi > gamma_lo)
+        {
+            return Err(format!(
+                "gamma edges [{gamma_lo}, {gamma_hi}] must be finite, > 0, increasing"
+            ));
+        }
+        if blocks_gamma == 0 || blocks_coord == 0 || leaf_intervals == 0 {
+            return Err(format!(
+                "blocks_gamma = {blocks_gamma}, blocks_coord = {blocks_coord}, \
+                 leaf_intervals = {leaf_intervals}: each must be >= 1"
+            ));
+        }
+        let leaves = check_tree(&tree, blocks_gamma * blocks_coord)
+            .map_err(|m| format!("dataset 'tree' {m}"))?;
+        let size = leaves * (leaf_intervals + 1).pow(2);
+        for (name, v) in [("P", &p), ("error_estimate", &error_estimate)] {
+            if v.len() != size {
+                return Err(format!(
+                    "dataset '{name}' has {} values: expected {size} ({leaves} leaves of \
+                     {n1} x {n1} nodes)",
+                    v.len(),
+                    n1 = leaf_intervals + 1
+                ));
+            }
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Err(format!("dataset '{name}'[{i}] = {}: must be finite", v[i]));
+            }
+        }
+        if let Some(i) = p.iter().position(|x| x.abs() > 1.0 + 1e-6) {
+            return Err(format!("|P| = {} > 1 at node {i}", p[i]));
+        }
+        let patch = Patch {
+            kind,
+            gamma_lo,
+            gamma_hi,
+            blocks_gamma,
+            blocks_coord,
+            leaf_intervals,
+            tree,
+            p,
+            error_estimate,
+            warp,
+        };
+        patch.check_warp()?;
+        Ok(patch)
+    }
+
+    /// The same patch with other node values of `P` (`f(i, P_i)` at node `i`), checked as by
+    /// [`Patch::new`].
+    pub fn map_values(&self, f: impl FnMut(usize, f64) -> f64) -> Result<Patch, String> {
+        let mut f = f;
+        let p = self.p.iter().enumerate().map(|(i, &v)| f(i, v)).collect();
+        Patch::new(
+            self.kind,
+            self.gamma_lo,
+            self.gamma_hi,
+            self.blocks_gamma,
+            self.blocks_coord,
+            self.leaf_intervals,
+            self.tree.clone(),
+            p,
+            self.error_estimate.clone(),
+            self.warp.clone(),
+        )
+    }
+
+    /// The same patch with other error estimates (`f(i, e_i)` at node `i`), checked as by
+    /// [`Patch::new`].
+    pub fn map_error_estimate(
+        &self,
+        mut f: impl FnMut(usize, f64) -> f64,
+    ) -> Result<Patch, String> {
+        let error_estimate = self
+            .error_estimate
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| f(i, v))
+            .collect();
+        Patch::new(
+            self.kind,
+            self.gamma_lo,
+            self.gamma_hi,
+            self.blocks_gamma,
+            self.blocks_coord,
+            self.leaf_intervals,
+            self.tree.clone(),
+            self.p.clone(),
+            error_estimate,
+            self.warp.clone(),
+        )
+    }
+
+    /// The same patch with another warp (or none), checked as by [`Patch::new`].
+    pub fn with_warp(&self, warp: Option<Warp>) -> Result<Patch, String> {
+        Patch::new(
+            self.kind,
+            self.gamma_lo,
+            self.gamma_hi,
+            self.blocks_gamma,
+            self.blocks_coord,
+            self.leaf_intervals,
+            self.tree.clone(),
+            self.p.clone(),
+            self.error_estimate.clone(),
+            warp,
+        )
+    }
+
+    /// Region and coordinate.
+    pub fn kind(&self) -> PatchKind {
+        self.kind
+    }
+
+    /// Lower γ edge.
+    pub fn gamma_lo(&self) -> f64 {
+        self.gamma_lo
+    }
+
+    /// Upper γ edge.
+    pub fn gamma_hi(&self) -> f64 {
+        self.gamma_hi
+    }
+
+    /// Root cells along γ.
+    pub fn blocks_gamma(&self) -> usize {
+        self.blocks_gamma
+    }
+
+    /// Root cells along `c`.
+    pub fn blocks_coord(&self) -> usize {
+        self.blocks_coord
+    }
+
+    /// Intervals per axis of every leaf's grid (`m`).
+    pub fn leaf_intervals(&self) -> usize {
+        self.leaf_intervals
+    }
+
+    /// The quadtree (see the type's documentation).
+    pub fn tree(&self) -> &[i32] {
+        &self.tree
+    }
+
+    /// `P` at the nodes, leaf by leaf, `[leaves, m + 1, m + 1]` row-major.
+    pub fn p(&self) -> &[f64] {
+        &self.p
+    }
+
+    /// Solver error estimate of each node, same layout as [`Patch::p`].
+    pub fn error_estimate(&self) -> &[f64] {
+        &self.error_estimate
+    }
+
+    /// The warp of the coordinate, if any.
+    pub fn warp(&self) -> Option<&Warp> {
+        self.warp.as_ref()
+    }
+
     /// Number of leaves.
     pub fn leaves(&self) -> usize {
         self.p.len() / (self.leaf_intervals + 1).pow(2)
@@ -553,23 +847,185 @@ pub fn bad_alpha(alpha: f64) -> TableError {
     }
 }
 
-/// The whole interpolated surface: the patches and the domain.
+/// The three patches of a table, indexed by region (file order: `stick_low`, `partial_high`,
+/// `stick_high`; the index is the one of the `checks/patch` dataset).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PatchId {
+    /// `γ ≤ 1`, `α_c2 ≤ α ≤ α_max`: a stick patch.
+    StickLow,
+    /// `γ ≥ 1`, `α_c1 ≤ α ≤ α_c2`: the partial-slip patch (the only one that may be warped).
+    PartialHigh,
+    /// `γ ≥ 1`, `α_c2 ≤ α ≤ α_max`: a stick patch.
+    StickHigh,
+}
+
+impl PatchId {
+    /// Every patch, in file and index order.
+    pub const ALL: [PatchId; 3] = [PatchId::StickLow, PatchId::PartialHigh, PatchId::StickHigh];
+
+    /// Index `0, 1, 2` (the `checks/patch` dataset's value).
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// The patch's group name in the file.
+    pub fn name(self) -> &'static str {
+        match self {
+            PatchId::StickLow => crate::format::PATCH_STICK_LOW,
+            PatchId::PartialHigh => crate::format::PATCH_PARTIAL_HIGH,
+            PatchId::StickHigh => crate::format::PATCH_STICK_HIGH,
+        }
+    }
+
+    /// Region and coordinate of the patch.
+    pub fn kind(self) -> PatchKind {
+        match self {
+            PatchId::PartialHigh => PatchKind::PartialSlip,
+            PatchId::StickLow | PatchId::StickHigh => PatchKind::Stick,
+        }
+    }
+}
+
+/// The whole interpolated surface: the domain, the stencil and the patches. Built only by
+/// [`Surface::new`], so every surface is one the rule can evaluate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Surface {
     /// Lower end of the γ domain.
-    pub gamma_min: f64,
+    gamma_min: f64,
     /// Upper end of the γ domain.
-    pub gamma_max: f64,
+    gamma_max: f64,
     /// Upper end of the α domain (`∞` allowed).
-    pub alpha_max: f64,
+    alpha_max: f64,
     /// Lagrange stencil points per axis.
-    pub stencil: usize,
-    /// `stick_low` (present when `γ_min < 1`).
-    pub stick_low: Option<Patch>,
-    /// `partial_high` (present when `γ_max > 1`).
-    pub partial_high: Option<Patch>,
-    /// `stick_high` (present when `γ_max > 1`).
-    pub stick_high: Option<Patch>,
+    stencil: usize,
+    /// The patches, indexed by [`PatchId::index`].
+    patches: [Option<Patch>; 3],
+}
+
+impl Surface {
+    /// A surface from its parts, checked: `0 < gamma_min < gamma_max < ∞`, `alpha_max > 0`
+    /// (or `∞`), an even stencil in `[2, 8]` that every leaf grid can hold, each patch of the
+    /// kind its place says (`patches` indexed by [`PatchId::index`]), `stick_low` present when
+    /// `gamma_min < 1`, `partial_high` and `stick_high` when `gamma_max > 1`, a warp only on
+    /// `partial_high`. `Err` names the value and the rule.
+    pub fn new(
+        gamma_min: f64,
+        gamma_max: f64,
+        alpha_max: f64,
+        stencil: usize,
+        patches: [Option<Patch>; 3],
+    ) -> Result<Surface, String> {
+        if !(gamma_min > 0.0 && gamma_max > gamma_min && gamma_max.is_finite()) {
+            return Err(format!(
+                "gamma domain [{gamma_min}, {gamma_max}] must satisfy 0 < min < max < inf"
+            ));
+        }
+        if alpha_max.is_nan() || alpha_max <= 0.0 {
+            return Err(format!("alpha_max = {alpha_max} must be > 0 or inf"));
+        }
+        if !(2..=8).contains(&stencil) || stencil % 2 != 0 {
+            return Err(format!(
+                "stencil_points = {stencil}: must be an even integer in [2, 8]"
+            ));
+        }
+        for id in PatchId::ALL {
+            let Some(p) = &patches[id.index()] else {
+                continue;
+            };
+            let name = id.name();
+            if p.kind() != id.kind() {
+                return Err(format!(
+                    "patch '{name}' has kind '{}', expected '{}'",
+                    p.kind().name(),
+                    id.kind().name()
+                ));
+            }
+            if p.leaf_intervals() + 1 < stencil {
+                return Err(format!(
+                    "patch '{name}': leaf_intervals = {} gives fewer nodes than stencil_points \
+                     = {stencil}",
+                    p.leaf_intervals()
+                ));
+            }
+            if p.warp().is_some() && id != PatchId::PartialHigh {
+                return Err(format!(
+                    "patch '{name}' has a warp: only '{}' may have one",
+                    PatchId::PartialHigh.name()
+                ));
+            }
+        }
+        let [low, partial, high] = &patches;
+        if gamma_min < 1.0 && low.is_none() {
+            return Err(format!("missing patch '{}'", PatchId::StickLow.name()));
+        }
+        if gamma_max > 1.0 && (partial.is_none() || high.is_none()) {
+            return Err(format!(
+                "missing patch '{}' or '{}'",
+                PatchId::PartialHigh.name(),
+                PatchId::StickHigh.name()
+            ));
+        }
+        Ok(Surface {
+            gamma_min,
+            gamma_max,
+            alpha_max,
+            stencil,
+            patches,
+        })
+    }
+
+    /// The same surface with every patch replaced by `f(id, patch)`, checked as by
+    /// [`Surface::new`].
+    pub fn map_patches(
+        &self,
+        mut f: impl FnMut(PatchId, &Patch) -> Result<Patch, String>,
+    ) -> Result<Surface, String> {
+        let mut patches: [Option<Patch>; 3] = [None, None, None];
+        for id in PatchId::ALL {
+            if let Some(p) = &self.patches[id.index()] {
+                patches[id.index()] = Some(f(id, p)?);
+            }
+        }
+        Surface::new(
+            self.gamma_min,
+            self.gamma_max,
+            self.alpha_max,
+            self.stencil,
+            patches,
+        )
+    }
+
+    /// Lower end of the γ domain.
+    pub fn gamma_min(&self) -> f64 {
+        self.gamma_min
+    }
+
+    /// Upper end of the γ domain.
+    pub fn gamma_max(&self) -> f64 {
+        self.gamma_max
+    }
+
+    /// Upper end of the α domain (`∞` allowed).
+    pub fn alpha_max(&self) -> f64 {
+        self.alpha_max
+    }
+
+    /// Lagrange stencil points per axis.
+    pub fn stencil(&self) -> usize {
+        self.stencil
+    }
+
+    /// The patch `id`, if the table has it.
+    pub fn patch_by_id(&self, id: PatchId) -> Option<&Patch> {
+        self.patches[id.index()].as_ref()
+    }
+
+    /// The patches the table has, in file order.
+    pub fn patches(&self) -> impl Iterator<Item = (PatchId, &Patch)> {
+        PatchId::ALL
+            .into_iter()
+            .filter_map(|id| self.patch_by_id(id).map(|p| (id, p)))
+    }
 }
 
 /// Which patch answers a query (or none: closed form).
@@ -599,6 +1055,16 @@ impl Region {
         }
     }
 
+    /// The patch that answers in this region (`None` on the line).
+    pub fn patch_id(self) -> Option<PatchId> {
+        match self {
+            Region::Line => None,
+            Region::StickLow => Some(PatchId::StickLow),
+            Region::PartialHigh => Some(PatchId::PartialHigh),
+            Region::StickHigh => Some(PatchId::StickHigh),
+        }
+    }
+
     /// Index used in the `checks/patch` dataset (−1 for the line).
     pub fn index(self) -> i32 {
         match self {
@@ -613,12 +1079,7 @@ impl Region {
 impl Surface {
     /// The patch of a region, if the table has it.
     pub fn patch(&self, region: Region) -> Option<&Patch> {
-        match region {
-            Region::Line => None,
-            Region::StickLow => self.stick_low.as_ref(),
-            Region::PartialHigh => self.partial_high.as_ref(),
-            Region::StickHigh => self.stick_high.as_ref(),
-        }
+        self.patch_by_id(region.patch_id()?)
     }
 
     /// `P(γ, α)` by the documented rule, refusing `γ` outside `[gamma_min, gamma_max]` (except

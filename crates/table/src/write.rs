@@ -391,10 +391,10 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     let s = &built.surface;
     w.attr_str(&file, ATTR_FORMAT, FORMAT_NAME)?;
     w.attr_f64(&file, ATTR_SCHEMA, SCHEMA_VERSION as f64)?;
-    w.attr_f64(&file, ATTR_STENCIL, s.stencil as f64)?;
-    w.attr_f64(&file, ATTR_GAMMA_MIN, s.gamma_min)?;
-    w.attr_f64(&file, ATTR_GAMMA_MAX, s.gamma_max)?;
-    w.attr_f64(&file, ATTR_ALPHA_MAX, s.alpha_max)?;
+    w.attr_f64(&file, ATTR_STENCIL, s.stencil() as f64)?;
+    w.attr_f64(&file, ATTR_GAMMA_MIN, s.gamma_min())?;
+    w.attr_f64(&file, ATTR_GAMMA_MAX, s.gamma_max())?;
+    w.attr_f64(&file, ATTR_ALPHA_MAX, s.alpha_max())?;
     w.attr_str(&file, ATTR_ENGINE_VERSION, &prov.engine_version)?;
     w.attr_str(&file, ATTR_GIT_COMMIT, &prov.git_commit)?;
     w.attr_str(&file, ATTR_CONFIG, &prov.config)?;
@@ -409,25 +409,25 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     for bp in &built.patches {
         let p = &bp.patch;
         let g = patches.create_group(bp.name).map_err(w.e(bp.name))?;
-        w.attr_str(&g, ATTR_KIND, p.kind.name())?;
-        w.attr_f64(&g, ATTR_GAMMA_LO, p.gamma_lo)?;
-        w.attr_f64(&g, ATTR_GAMMA_HI, p.gamma_hi)?;
-        w.attr_f64(&g, ATTR_BLOCKS_GAMMA, p.blocks_gamma as f64)?;
-        w.attr_f64(&g, ATTR_BLOCKS_COORD, p.blocks_coord as f64)?;
-        w.attr_f64(&g, ATTR_LEAF_INTERVALS, p.leaf_intervals as f64)?;
+        w.attr_str(&g, ATTR_KIND, p.kind().name())?;
+        w.attr_f64(&g, ATTR_GAMMA_LO, p.gamma_lo())?;
+        w.attr_f64(&g, ATTR_GAMMA_HI, p.gamma_hi())?;
+        w.attr_f64(&g, ATTR_BLOCKS_GAMMA, p.blocks_gamma() as f64)?;
+        w.attr_f64(&g, ATTR_BLOCKS_COORD, p.blocks_coord() as f64)?;
+        w.attr_f64(&g, ATTR_LEAF_INTERVALS, p.leaf_intervals() as f64)?;
         let leaves = [bp.leaf_error.len()];
-        w.ints(&g, DS_TREE, &p.tree, &[p.tree.len()])?;
+        w.ints(&g, DS_TREE, p.tree(), &[p.tree().len()])?;
         let depth: Vec<i32> = bp.leaf_depth.iter().map(|&d| d as i32).collect();
         w.ints(&g, DS_LEAF_DEPTH, &depth, &leaves)?;
         w.ds(&g, DS_LEAF_ERROR, &bp.leaf_error, &leaves)?;
-        let n = [leaves[0], p.leaf_intervals + 1, p.leaf_intervals + 1];
+        let n = [leaves[0], p.leaf_intervals() + 1, p.leaf_intervals() + 1];
         w.ds(&g, DS_GAMMA, &bp.gamma, &n)?;
         w.ds(&g, DS_COORD, &bp.coord, &n)?;
         w.ds(&g, DS_ALPHA, &bp.alpha, &n)?;
-        w.ds(&g, DS_P, &p.p, &n)?;
-        w.ds(&g, DS_ERROR, &p.error_estimate, &n)?;
+        w.ds(&g, DS_P, p.p(), &n)?;
+        w.ds(&g, DS_ERROR, p.error_estimate(), &n)?;
         // The optional warp of the coordinate (schema 3; only `partial_high` has one).
-        if let Some(warp) = &p.warp {
+        if let Some(warp) = &p.warp() {
             // Never write a warp the readers refuse.
             let refuse = |m: String| StorageError::Hdf5 {
                 path: path.to_string(),
@@ -440,24 +440,24 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
             let wg = g
                 .create_group(GROUP_WARP)
                 .map_err(w.e(&format!("{}/{GROUP_WARP}", bp.name)))?;
-            w.attr_f64(&wg, ATTR_WARP_START, warp.start)?;
-            w.attr_f64(&wg, ATTR_WARP_GAMMA_0, warp.gamma_0)?;
-            w.attr_f64(&wg, ATTR_WARP_GAMMA_STEP, warp.gamma_step)?;
-            w.attr_f64(&wg, ATTR_WARP_C_STAR, warp.c_star)?;
-            w.ds(&wg, DS_WARP_KNOT, &warp.knot, &[warp.knot.len()])?;
+            w.attr_f64(&wg, ATTR_WARP_START, warp.start())?;
+            w.attr_f64(&wg, ATTR_WARP_GAMMA_0, warp.gamma_0())?;
+            w.attr_f64(&wg, ATTR_WARP_GAMMA_STEP, warp.gamma_step())?;
+            w.attr_f64(&wg, ATTR_WARP_C_STAR, warp.c_star())?;
+            w.ds(&wg, DS_WARP_KNOT, warp.knot(), &[warp.knot().len()])?;
         }
     }
 
     // No-slip limit: the nodes at c = 1 of the stick patches (when α_max = ∞), by γ.
-    if s.alpha_max.is_infinite() {
+    if s.alpha_max().is_infinite() {
         let mut rows: Vec<(f64, f64, f64)> = built
             .patches
             .iter()
-            .filter(|b| b.patch.kind == PatchKind::Stick)
+            .filter(|b| b.patch.kind() == PatchKind::Stick)
             .flat_map(|b| {
                 (0..b.coord.len())
                     .filter(|&i| b.coord[i] == 1.0)
-                    .map(|i| (b.gamma[i], b.patch.p[i], b.patch.error_estimate[i]))
+                    .map(|i| (b.gamma[i], b.patch.p()[i], b.patch.error_estimate()[i]))
             })
             .collect();
         rows.sort_by(|x, y| x.0.total_cmp(&y.0));
@@ -473,7 +473,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     // marks nothing).
     let n = 401;
     let gamma: Vec<f64> = (0..n)
-        .map(|i| s.gamma_min + (s.gamma_max - s.gamma_min) * i as f64 / (n - 1) as f64)
+        .map(|i| s.gamma_min() + (s.gamma_max() - s.gamma_min()) * i as f64 / (n - 1) as f64)
         .collect();
     let c1: Vec<f64> = gamma
         .iter()

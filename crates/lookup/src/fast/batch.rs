@@ -149,7 +149,7 @@ impl FastPatch {
                 .zip(&mut lanes.vc[..n])
                 .zip(&lanes.g[..n])
             {
-                if vg >= w.start {
+                if vg >= w.start() {
                     *vc = w.apply(g, *vc);
                 }
             }
@@ -359,8 +359,7 @@ impl Accel {
                 counts[l] += 1;
             }
             // Pass 3: each patch's queries.
-            let patches = [&self.stick_low, &self.partial_high, &self.stick_high];
-            for (l, patch) in patches.into_iter().enumerate() {
+            for (l, patch) in self.patches.iter().enumerate() {
                 let n = counts[l + 1];
                 let list = &lists[l + 1][..n];
                 let Some(p) = patch else {
@@ -455,25 +454,23 @@ mod tests {
     /// α_c2 (the patch boundaries), α = 0, tiny, huge, `alpha_max`, ∞; and points outside the
     /// domain (refused, or clamped).
     fn edge_points(t: &Table) -> Vec<(f64, f64)> {
-        let s = &t.surface;
+        let s = &t.surface();
         let mut gammas = vec![
             1.0,
             1f64.next_up(),
             1f64.next_down(),
-            s.gamma_min,
-            s.gamma_max,
-            s.gamma_min.next_down(),
-            s.gamma_max.next_up(),
-            0.5 * s.gamma_min,
-            2.0 * s.gamma_max,
+            s.gamma_min(),
+            s.gamma_max(),
+            s.gamma_min().next_down(),
+            s.gamma_max().next_up(),
+            0.5 * s.gamma_min(),
+            2.0 * s.gamma_max(),
         ];
-        for patch in [&s.stick_low, &s.partial_high, &s.stick_high]
-            .into_iter()
-            .flatten()
-        {
-            for i in 0..=patch.blocks_gamma {
-                let g = patch.gamma_lo
-                    + (patch.gamma_hi - patch.gamma_lo) * i as f64 / patch.blocks_gamma as f64;
+        for patch in s.patches().map(|(_, p)| p) {
+            for i in 0..=patch.blocks_gamma() {
+                let g = patch.gamma_lo()
+                    + (patch.gamma_hi() - patch.gamma_lo()) * i as f64
+                        / patch.blocks_gamma() as f64;
                 gammas.extend([g, g.next_up(), g.next_down()]);
             }
         }
@@ -494,7 +491,7 @@ mod tests {
                 1.0,
                 1e300,
                 f64::MAX,
-                s.alpha_max,
+                s.alpha_max(),
                 f64::INFINITY,
             ] {
                 // (α_c1 < 0 for γ < 1/√2: not a query.)
@@ -529,7 +526,7 @@ mod tests {
         }
         for name in ["quick.h5", "isotropic.h5", "full.h5"] {
             let t = table(name);
-            let s = &t.surface;
+            let s = &t.surface();
             let pts = edge_points(&t);
             let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
             // Full index depth, and a capped one from which the descent continues.
@@ -567,7 +564,7 @@ mod tests {
                         let rule = s.eval(gi[i], ai[i]).map(f64::to_bits).ok();
                         assert_eq!(Some(out[i].to_bits()), rule, "({}, {})", gi[i], ai[i]);
                     }
-                    let refused = [(2.0 * s.gamma_max, 1.0), (1.5, f64::NAN), (-1.0, 1.0)];
+                    let refused = [(2.0 * s.gamma_max(), 1.0), (1.5, f64::NAN), (-1.0, 1.0)];
                     for (at, bad) in [0, 777, gi.len() - 1].into_iter().zip(refused) {
                         let (mut gb, mut ab) = (gi.clone(), ai.clone());
                         (gb[at], ab[at]) = bad;
@@ -594,7 +591,7 @@ mod tests {
         // tensor product overshoots ±1 at most points, step 10 bounds it on both builds.
         let mut next = crate::testing::uniform(5);
         let t = crate::testing::overshooting(table("full.h5"), |_| 0.1 * next());
-        let s = &t.surface;
+        let s = &t.surface();
         let pts = crate::testing::domain_points(s, 100_000, 17);
         let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
         let accel = Accel::new(s).expect("cubic table");

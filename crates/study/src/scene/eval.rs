@@ -310,7 +310,8 @@ pub fn evaluate(scene: &Scene, source: PSource) -> Result<Evaluation, SceneError
         PSource::Simulate => format!("simulated at tol {:e} (closed forms exact)", scene.tol),
         PSource::Table(t) => format!(
             "table lookup (certified error {:.1e}; built {})",
-            table_error, t.provenance.created
+            table_error,
+            t.provenance().created
         ),
     };
     Ok(Evaluation {
