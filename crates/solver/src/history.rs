@@ -115,7 +115,7 @@ pub fn slip_history(gamma: f64, alpha: f64, steps: usize) -> Result<SlipHistory,
         t: 0.0,
         log: Vec::with_capacity(steps + steps / 8),
     };
-    run_contact(&mut rec, &nt, 0, 1.0, shear, alpha / shear);
+    run_contact(&mut rec, &*nt, 0, 1.0, shear, alpha / shear);
     let mut episodes: Vec<Episode> = Vec::new();
     for &(t, h, f) in &rec.log {
         // The Coulomb limit of the step's mean force, by the product rule the stepper uses for

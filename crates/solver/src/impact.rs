@@ -13,7 +13,8 @@ use serde::Serialize;
 use super::continuum::ContinuumRow;
 use super::error::{positive, PhysicsError};
 use super::hertz::{HertzClosedForm, NormalBodies, NormalTrajectory};
-use super::springs::{SpringRow, StepMotion, StepResult};
+use super::model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
+use super::springs::{SpringRow, StepMotion};
 use oblique_physics::regimes;
 
 /// Numerical scheme of an impact simulation.
@@ -30,19 +31,20 @@ pub enum Scheme {
 }
 
 impl Scheme {
-    /// Name as used on the command line.
+    /// Name as used on the command line ([`Integrator::NAME`] of the scheme's integrator).
     pub fn name(self) -> &'static str {
         match self {
-            Scheme::Accurate => "accurate",
-            Scheme::Euler => "euler",
+            Scheme::Accurate => VelocityVerlet::NAME,
+            Scheme::Euler => ExplicitEuler::NAME,
         }
     }
 
-    /// Order of convergence in the resolution `h ∝ 1/steps ∝ 1/springs`.
+    /// Order of convergence in the resolution `h ∝ 1/steps ∝ 1/springs`
+    /// ([`Integrator::ORDER`]).
     pub fn order(self) -> i32 {
         match self {
-            Scheme::Accurate => 2,
-            Scheme::Euler => 1,
+            Scheme::Accurate => VelocityVerlet::ORDER,
+            Scheme::Euler => ExplicitEuler::ORDER,
         }
     }
 }
@@ -150,32 +152,10 @@ impl TangentialBodies for ContactPoint {
     }
 }
 
-/// The tangential field of the accurate scheme: a row of springs, or its continuum limit.
-enum Row {
-    Springs(SpringRow),
-    Continuum(ContinuumRow),
-}
-
-impl Row {
-    fn at_limit(&self) -> (bool, bool) {
-        match self {
-            Row::Springs(r) => r.at_limit(),
-            Row::Continuum(r) => r.at_limit(),
-        }
-    }
-
-    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
-        match self {
-            Row::Springs(r) => r.step_accurate(m, d1, c),
-            Row::Continuum(r) => r.step_accurate(m, d1, c),
-        }
-    }
-}
-
-/// State of the accurate scheme between steps.
-struct Stepper<'a> {
-    row: Row,
-    normal: &'a NormalTrajectory,
+/// State of the accurate scheme ([`VelocityVerlet`]) between steps.
+struct Stepper<'a, N: NormalModel, T: TangentialModel> {
+    row: T,
+    normal: &'a N,
     radius: f64,
     shear_modulus: f64,
     limit: f64,
@@ -185,13 +165,13 @@ struct Stepper<'a> {
     mean: f64,
 }
 
-impl Stepper<'_> {
+impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
     fn motion<B: TangentialBodies>(&self, bodies: &B, h: f64, d0: f64, rate0: f64) -> StepMotion {
         StepMotion {
             h,
             d0,
             rate0,
-            accel0: -self.normal.accel_factor * d0 * d0.max(0.0).sqrt(),
+            accel0: self.normal.acceleration(d0, rate0),
             slip_velocity: bodies.slip_velocity(),
             slip_accel: bodies.slip_acceleration(self.force),
         }
@@ -220,11 +200,10 @@ impl Stepper<'_> {
     /// order locally.
     fn grid_step<B: TangentialBodies>(&mut self, bodies: &mut B, n: usize) {
         let nt = self.normal;
-        let (h, d) = (nt.dt, &nt.indentation);
+        let h = nt.dt();
+        let (d0, d1, rate0) = (nt.indentation(n), nt.indentation(n + 1), nt.rate(n));
         let (at_plus, at_minus) = self.row.at_limit();
-        let (tp, tm) = self
-            .motion(bodies, h, d[n], nt.rate[n])
-            .release_times(self.limit);
+        let (tp, tm) = self.motion(bodies, h, d0, rate0).release_times(self.limit);
         let split = [tp.filter(|_| at_plus), tm.filter(|_| at_minus)]
             .into_iter()
             .flatten()
@@ -233,15 +212,15 @@ impl Stepper<'_> {
         match split {
             Some(t) => {
                 let (dm, rm) = nt.within_step(n, t);
-                self.step(bodies, t, d[n], nt.rate[n], dm);
-                self.step(bodies, h - t, dm, rm, d[n + 1]);
+                self.step(bodies, t, d0, rate0, dm);
+                self.step(bodies, h - t, dm, rm, d1);
             }
-            None => self.step(bodies, h, d[n], nt.rate[n], d[n + 1]),
+            None => self.step(bodies, h, d0, rate0, d1),
         }
     }
 }
 
-impl Stepper<'_> {
+impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
     /// The grid steps from `first` to the separation, in substeps of length `h R/R₀` where `R`
     /// is the time left to the separation and `R₀ = GRADED_SPAN t_c` (at most `h`), down to
     /// `R = GRADED_FLOOR h`, then one last substep to the separation.
@@ -258,12 +237,12 @@ impl Stepper<'_> {
     /// substeps, in a contact that is small by then.
     fn graded_end<B: TangentialBodies>(&mut self, bodies: &mut B, first: usize) {
         let nt = self.normal;
-        let h = nt.dt;
-        let steps = nt.indentation.len() - 1;
-        let span = (GRADED_SPAN * nt.contact_time).max(h);
+        let h = nt.dt();
+        let steps = nt.steps();
+        let span = (GRADED_SPAN * nt.contact_time()).max(h);
         // Grid step `n`, time `s` into it; `d`, `rate` at that instant.
         let (mut n, mut s) = (first, 0.0);
-        let (mut d, mut rate) = (nt.indentation[first], nt.rate[first]);
+        let (mut d, mut rate) = (nt.indentation(first), nt.rate(first));
         loop {
             let left = (steps - n) as f64 * h - s;
             let sub = (h * left / span).min(h);
@@ -272,7 +251,7 @@ impl Stepper<'_> {
             }
             // Substeps never straddle a grid node: stop at the node and continue from it.
             let (s1, d1, r1) = if s + sub >= h * (1.0 - 1e-12) {
-                (h, nt.indentation[n + 1], nt.rate[n + 1])
+                (h, nt.indentation(n + 1), nt.rate(n + 1))
             } else {
                 let (d1, r1) = nt.within_step(n, s + sub);
                 (s + sub, d1, r1)
@@ -289,7 +268,7 @@ impl Stepper<'_> {
             }
         }
         let end = h - s;
-        self.step(bodies, end, d, rate, nt.indentation[steps]);
+        self.step(bodies, end, d, rate, nt.indentation(steps));
     }
 }
 
@@ -302,24 +281,41 @@ const GRADED_SPAN: f64 = 1.0 / 32.0;
 const GRADED_FLOOR: f64 = 1e-7;
 
 /// Run the tangential contact of the accurate scheme on a given normal motion: velocity Verlet
-/// for the bodies, [`SpringRow::step_accurate`] for the springs.
+/// for the bodies, [`SpringRow::step_accurate`] for the springs (`springs ≥ 2`) or
+/// [`ContinuumRow::step_accurate`] for the continuum row (`springs = 0`).
 ///
 /// `shear_modulus` is `G*` (Pa), `limit` is `c = μ E*/G*` (`∞` for no slip), `radius` is `R*` (m).
-pub fn run_contact<B: TangentialBodies>(
+pub fn run_contact<B: TangentialBodies, N: NormalModel>(
     bodies: &mut B,
-    normal: &NormalTrajectory,
+    normal: &N,
     springs: usize,
     radius: f64,
     shear_modulus: f64,
     limit: f64,
 ) {
-    let a_max = (radius * normal.max_indentation).sqrt();
+    if springs == 0 {
+        let row = ContinuumRow::new(radius);
+        run_contact_with(bodies, normal, row, radius, shear_modulus, limit);
+    } else {
+        let a_max = (radius * normal.max_indentation()).sqrt();
+        let row = SpringRow::nodes(a_max, springs, radius);
+        run_contact_with(bodies, normal, row, radius, shear_modulus, limit);
+    }
+}
+
+/// [`run_contact`] with any normal and tangential model ([`NormalModel`], [`TangentialModel`]),
+/// integrated by the accurate scheme ([`VelocityVerlet`]); monomorphised, so a model costs
+/// nothing for being behind a trait.
+pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>(
+    bodies: &mut B,
+    normal: &N,
+    row: T,
+    radius: f64,
+    shear_modulus: f64,
+    limit: f64,
+) {
     let mut stepper = Stepper {
-        row: if springs == 0 {
-            Row::Continuum(ContinuumRow::new(radius))
-        } else {
-            Row::Springs(SpringRow::nodes(a_max, springs, radius))
-        },
+        row,
         normal,
         radius,
         shear_modulus,
@@ -327,7 +323,7 @@ pub fn run_contact<B: TangentialBodies>(
         force: 0.0,
         mean: 0.0,
     };
-    let steps = normal.indentation.len() - 1;
+    let steps = normal.steps();
     // Grid steps that end within GRADED_SPAN of the separation are graded (finite limit only).
     let graded = if limit.is_finite() {
         ((steps as f64 * GRADED_SPAN).ceil() as usize).clamp(1, steps)
@@ -436,12 +432,7 @@ pub fn simulate(
         alpha / shear
     };
     Ok(match scheme {
-        Scheme::Accurate => {
-            let normal = dimensionless_normal(res.steps);
-            let mut cp = ContactPoint { u: 1.0 };
-            run_contact(&mut cp, &normal, res.springs, 1.0, shear, limit);
-            cp.u
-        }
+        Scheme::Accurate => VelocityVerlet::dimensionless_p(shear, limit, res),
         Scheme::Euler if res.springs == 0 => {
             return Err(PhysicsError::InvalidParameter {
                 name: "springs",
@@ -450,8 +441,33 @@ pub fn simulate(
                     "an integer >= 2 for the euler scheme (0, the continuum, is accurate only)",
             })
         }
-        Scheme::Euler => simulate_euler(shear, limit, res),
+        Scheme::Euler => ExplicitEuler::dimensionless_p(shear, limit, res),
     })
+}
+
+impl Integrator for VelocityVerlet {
+    const NAME: &'static str = "accurate";
+    const ORDER: i32 = 2;
+
+    /// Hertz normal motion on `res.steps` steps ([`dimensionless_normal`]), the continuum row
+    /// (`res.springs = 0`) or `res.springs` springs, [`run_contact`].
+    fn dimensionless_p(shear: f64, limit: f64, res: Resolution) -> f64 {
+        let normal = dimensionless_normal(res.steps);
+        let mut cp = ContactPoint { u: 1.0 };
+        run_contact(&mut cp, &*normal, res.springs, 1.0, shear, limit);
+        cp.u
+    }
+}
+
+impl Integrator for ExplicitEuler {
+    const NAME: &'static str = "euler";
+    const ORDER: i32 = 1;
+
+    /// The seed's scheme: explicit Euler for the normal and tangential motion together, springs
+    /// at the cell midpoints ([`SpringRow::midpoints`], `res.springs ≥ 2`).
+    fn dimensionless_p(shear: f64, limit: f64, res: Resolution) -> f64 {
+        simulate_euler(shear, limit, res)
+    }
 }
 
 /// The seed's explicit Euler scheme in dimensionless units.

@@ -10,6 +10,7 @@ pub mod error;
 pub mod hertz;
 pub mod history;
 pub mod impact;
+pub mod model;
 pub mod preset;
 pub mod springs;
 pub mod units;
@@ -19,4 +20,5 @@ pub use impact::{
     simulate, solve, solve_observed, Accuracy, Method, NoEstimate, RefineEvent, Resolution, Scheme,
     Solution,
 };
+pub use model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
 pub use preset::Preset;

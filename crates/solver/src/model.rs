@@ -1,0 +1,207 @@
+//! The seams of the impact model, after LAMMPS GRANULAR's split of a contact into sub-models:
+//! a normal model (the motion along the common normal), a tangential model (the field of
+//! tangential displacements in the contact and the force it exerts) and an integrator (the
+//! time scheme). [`crate::impact::run_contact`] composes them; the error-controlled driver
+//! ([`crate::impact::refine`], [`crate::impact::solve`]) sits on top.
+//!
+//! Today's models: Hertz normal contact, elastic (`e_n = 1`), tabulated on the contact's time
+//! grid ([`crate::hertz::NormalTrajectory`]); the MDR continuum row
+//! ([`crate::continuum::ContinuumRow`], exact in space) and the seed's row of springs
+//! ([`crate::springs::SpringRow`]); the accurate scheme ([`VelocityVerlet`]) and the seed's
+//! explicit Euler scheme ([`ExplicitEuler`]). A dissipative normal model, another tangential
+//! profile or another scheme is one more implementation of a trait, not a change of the loop.
+
+use crate::springs::{StepMotion, StepResult};
+
+/// The normal motion of one impact on the uniform time grid of the contact: node 0 is first
+/// touch, node [`NormalModel::steps`] is separation.
+pub trait NormalModel {
+    /// Number of grid steps over the contact.
+    fn steps(&self) -> usize;
+    /// Time step `dt = t_c / steps` (s).
+    fn dt(&self) -> f64;
+    /// Contact time `t_c` (s).
+    fn contact_time(&self) -> f64;
+    /// Maximum indentation `d_max` (m).
+    fn max_indentation(&self) -> f64;
+    /// Indentation `d_n` (m) at node `n`.
+    fn indentation(&self, n: usize) -> f64;
+    /// Indentation rate `ḋ_n` (m/s) at node `n`.
+    fn rate(&self, n: usize) -> f64;
+    /// Indentation acceleration `d̈` (m/s²) at indentation `d` (m) and rate `ḋ` (m/s): the
+    /// normal force's, `−F_N(d, ḋ) (1/m1 + 1/m2)`. An elastic model ignores `ḋ`.
+    fn acceleration(&self, d: f64, rate: f64) -> f64;
+    /// Indentation and its rate at time `t ∈ [0, dt]` into step `n`.
+    fn within_step(&self, n: usize, t: f64) -> (f64, f64);
+}
+
+/// The field of tangential displacements in the contact: advanced over one time step of the
+/// normal motion under the Coulomb limit, it returns the mean displacement and the integral
+/// that give the friction force.
+pub trait TangentialModel {
+    /// Whether some part of the contact is at the `+` and at the `−` Coulomb limit.
+    fn at_limit(&self) -> (bool, bool);
+    /// Advance the field over one step of motion `m` to indentation `d1` with Coulomb limit
+    /// `c = μ E*/G*` (`∞` for no slip).
+    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult;
+}
+
+/// A time scheme: how the equations of the bodies and of the tangential field are advanced.
+pub trait Integrator {
+    /// The scheme's name as the CLI and the tables print it.
+    const NAME: &'static str;
+    /// Order of convergence in the time step.
+    const ORDER: i32;
+    /// `P` of the dimensionless impact of one solid sphere (`m* = R* = E* = v_z0 = 1`,
+    /// `u0 = 1`) at resolution `res`, with `G* = shear = (2/7)γ²` and Coulomb limit
+    /// `c = limit` (`∞` for no slip). `res` is valid for the scheme.
+    fn dimensionless_p(shear: f64, limit: f64, res: crate::impact::Resolution) -> f64;
+}
+
+/// The accurate scheme: velocity Verlet for the bodies, product integration of the friction
+/// impulse, exact release instants, graded steps before separation (`docs/solver.md`).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct VelocityVerlet;
+
+/// The seed paper's explicit Euler scheme (first order), kept for comparison: it integrates its
+/// own normal motion on a row of springs at the midpoints.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ExplicitEuler;
+
+impl TangentialModel for crate::continuum::ContinuumRow {
+    #[inline(always)]
+    fn at_limit(&self) -> (bool, bool) {
+        crate::continuum::ContinuumRow::at_limit(self)
+    }
+    #[inline(always)]
+    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        crate::continuum::ContinuumRow::step_accurate(self, m, d1, c)
+    }
+}
+
+impl TangentialModel for crate::springs::SpringRow {
+    #[inline(always)]
+    fn at_limit(&self) -> (bool, bool) {
+        crate::springs::SpringRow::at_limit(self)
+    }
+    #[inline(always)]
+    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        crate::springs::SpringRow::step_accurate(self, m, d1, c)
+    }
+}
+
+/// Hertz, elastic: `d̈ = −k (1/m1 + 1/m2) d^{3/2}`, tabulated on the contact's grid.
+impl NormalModel for crate::hertz::NormalTrajectory {
+    #[inline(always)]
+    fn steps(&self) -> usize {
+        self.indentation.len() - 1
+    }
+    #[inline(always)]
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+    #[inline(always)]
+    fn contact_time(&self) -> f64 {
+        self.contact_time
+    }
+    #[inline(always)]
+    fn max_indentation(&self) -> f64 {
+        self.max_indentation
+    }
+    #[inline(always)]
+    fn indentation(&self, n: usize) -> f64 {
+        self.indentation[n]
+    }
+    #[inline(always)]
+    fn rate(&self, n: usize) -> f64 {
+        self.rate[n]
+    }
+    #[inline(always)]
+    fn acceleration(&self, d: f64, _rate: f64) -> f64 {
+        -self.accel_factor * d * d.max(0.0).sqrt()
+    }
+    #[inline(always)]
+    fn within_step(&self, n: usize, t: f64) -> (f64, f64) {
+        crate::hertz::NormalTrajectory::within_step(self, n, t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::continuum::ContinuumRow;
+    use crate::impact::{
+        dimensionless_normal, run_contact_with, simulate, ContactPoint, Resolution, Scheme,
+    };
+    use crate::springs::SpringRow;
+
+    /// A tangential model that never holds a displacement: no friction force at all.
+    struct Frictionless;
+
+    impl TangentialModel for Frictionless {
+        fn at_limit(&self) -> (bool, bool) {
+            (false, false)
+        }
+        fn step_accurate(&mut self, _: &StepMotion, _: f64, _: f64) -> StepResult {
+            StepResult {
+                integral: 0.0,
+                mean: 0.0,
+            }
+        }
+    }
+
+    /// `P` of the dimensionless impact at γ, α through the generic loop with tangential model
+    /// `row`.
+    fn p_with<T: TangentialModel>(gamma: f64, alpha: f64, steps: usize, row: T) -> f64 {
+        let shear = 2.0 / 7.0 * gamma * gamma;
+        let normal = dimensionless_normal(steps);
+        let mut cp = ContactPoint { u: 1.0 };
+        run_contact_with(&mut cp, &*normal, row, 1.0, shear, alpha / shear);
+        cp.u
+    }
+
+    #[test]
+    fn the_composed_models_are_the_accurate_scheme_to_the_bit() {
+        for (g, a) in [(0.5, 2.0), (1.754, 1.0), (3.2, 1.3)] {
+            let continuum = simulate(
+                g,
+                a,
+                Resolution {
+                    springs: 0,
+                    steps: 512,
+                },
+                Scheme::Accurate,
+            );
+            let row = ContinuumRow::new(1.0);
+            assert_eq!(
+                p_with(g, a, 512, row).to_bits(),
+                continuum.unwrap().to_bits()
+            );
+            let res = Resolution {
+                springs: 64,
+                steps: 256,
+            };
+            let springs = simulate(g, a, res, Scheme::Accurate).unwrap();
+            let a_max = dimensionless_normal(256).max_indentation.sqrt();
+            let row = SpringRow::nodes(a_max, 64, 1.0);
+            assert_eq!(p_with(g, a, 256, row).to_bits(), springs.to_bits());
+        }
+    }
+
+    #[test]
+    fn a_new_tangential_model_plugs_into_the_loop() {
+        // Without friction the contact point keeps its tangential velocity: P = 1 exactly,
+        // whatever γ and α (the normal motion alone exerts no tangential impulse).
+        for (g, a) in [(0.5, 2.0), (1.754, 1.0), (3.2, f64::INFINITY)] {
+            assert_eq!(p_with(g, a, 256, Frictionless), 1.0);
+        }
+        // With the MDR row the same loop loses tangential velocity: P < 1.
+        assert!(p_with(1.754, 1.0, 256, ContinuumRow::new(1.0)) < 0.5);
+    }
+
+    #[test]
+    fn the_schemes_name_their_integrators() {
+        assert_eq!(Scheme::Accurate.name(), VelocityVerlet::NAME);
+        assert_eq!(Scheme::Euler.order(), ExplicitEuler::ORDER);
+    }
+}
