@@ -36,11 +36,8 @@ pub(crate) const MAX_INDEX_ENTRIES: usize = 1 << 15;
 /// Queries per chunk of [`Accel::eval_batch`] (fits its `u16` query numbers).
 const BATCH: usize = 256;
 
-/// `α_c1 = 2γ²/(7(2γ² − 1))` from `γ²`, with the operations of [`oblique_table::surface::alpha_c1`].
-#[inline(always)]
-fn alpha_c1_of(g2: f64) -> f64 {
-    2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
-}
+/// `α_c1 = 2γ²/(7(2γ² − 1))` from `γ²`.
+pub(crate) use oblique_physics::regimes::alpha_c1_of_squared as alpha_c1_of;
 
 /// One cell of a patch's quadtree with its position, for the fine index.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -96,7 +93,7 @@ impl std::fmt::Debug for FastPatch {
 }
 
 impl FastPatch {
-    /// The fine index of a validated patch (a tree as `Reader::check_tree` accepts it), or
+    /// The fine index of a validated patch (a tree as `surface::check_tree` accepts it), or
     /// `None` when the patch's grid is too small for the cubic stencil.
     fn new(patch: &Patch, max_entries: usize) -> Option<FastPatch> {
         let (bg, bc, m) = (

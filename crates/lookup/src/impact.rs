@@ -61,7 +61,7 @@ impl Contact {
                     })
                 }
             }
-            Stiffness::Materials(a, b) => pair.gamma_from_materials(&a, &b),
+            Stiffness::Materials(a, b) => Ok(pair.gamma_from_materials(&a, &b)?),
         }
     }
 }

@@ -25,7 +25,6 @@ mod curve;
 mod fast;
 pub mod impact;
 mod prepared;
-pub mod rebound;
 mod table;
 #[doc(hidden)]
 pub mod testing;
@@ -35,6 +34,10 @@ pub use impact::{Answer, Contact, Stiffness};
 pub use oblique_table::{Check, OutOfDomain, Provenance};
 pub use prepared::Prepared;
 pub use table::Table;
+
+/// The rebound algebra and the bodies, from `oblique-physics` (one vocabulary with the
+/// simulator).
+pub use oblique_physics::rebound;
 
 /// Errors of table loading and queries (the table format's error type).
 pub use oblique_table::TableError as LookupError;

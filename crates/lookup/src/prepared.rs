@@ -13,8 +13,9 @@
 //! (any invalid input, which then gets the error [`Table::rebound_3d`] gives, and a contact point
 //! that does not slip, `u0 = 0`) are passed to the step-by-step path.
 
-use crate::rebound::{Frame, Incident3, Motion3, Pair, Rebound3, Vec3};
+use crate::rebound::{Frame, Incident3, Motion3, Pair, Rebound3};
 use crate::{Answer, Contact, Curve, LookupError, Table};
+use oblique_physics::vec3::{axpy, cross, dot, scale, sub};
 
 /// A pair of bodies with its contact, validated and reduced once, for many 3-D rebounds
 /// ([`Table::rebound_3d_prepared`], [`Table::rebound_3d_batch`]).
@@ -107,36 +108,6 @@ fn curve_mismatch(curve: &Curve, prepared: &Prepared) -> LookupError {
             prepared.gamma, prepared.contact.outside
         ),
     }
-}
-
-#[inline(always)]
-fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline(always)]
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// `y + a x`.
-#[inline(always)]
-fn axpy(y: Vec3, a: f64, x: Vec3) -> Vec3 {
-    [y[0] + a * x[0], y[1] + a * x[1], y[2] + a * x[2]]
-}
-
-#[inline(always)]
-fn scale(a: f64, x: Vec3) -> Vec3 {
-    [a * x[0], a * x[1], a * x[2]]
-}
-
-#[inline(always)]
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// `true` when every component of the incident state is finite (one pass, no early exit).

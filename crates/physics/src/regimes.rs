@@ -4,8 +4,15 @@
 use serde::Serialize;
 
 /// `α_c1 = 2γ²/(7(2γ² − 1))`.
+#[inline]
 pub fn alpha_c1(gamma: f64) -> f64 {
-    let g2 = gamma * gamma;
+    alpha_c1_of_squared(gamma * gamma)
+}
+
+/// `α_c1` from `γ²` (for callers that hold `γ²` already; the same operations as
+/// [`alpha_c1`]).
+#[inline(always)]
+pub fn alpha_c1_of_squared(g2: f64) -> f64 {
     2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
 }
 

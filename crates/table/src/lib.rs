@@ -76,3 +76,14 @@ impl TableError {
         !matches!(self, TableError::Length { .. })
     }
 }
+
+/// A physical input of a rebound outside its range is a query error of the lookup.
+impl From<oblique_physics::InvalidInput> for TableError {
+    fn from(e: oblique_physics::InvalidInput) -> Self {
+        TableError::Query {
+            name: e.name,
+            value: e.value,
+            allowed: e.allowed,
+        }
+    }
+}

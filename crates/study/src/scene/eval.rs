@@ -162,7 +162,7 @@ fn rebound(scene: &Scene, x: f64, inc: &Incident, p: f64) -> Result<Rebound, Sce
         .map_err(|source| SceneError::Lookup {
             x_name: scene.cases.kind.x_column(),
             x,
-            source,
+            source: source.into(),
         })
 }
 
@@ -180,7 +180,11 @@ fn evaluate_row(
     let inc = scene.incident(x);
     let alpha = pair
         .alpha(&inc, scene.friction)
-        .map_err(|source| SceneError::Lookup { x_name, x, source })?;
+        .map_err(|source| SceneError::Lookup {
+            x_name,
+            x,
+            source: source.into(),
+        })?;
     let u0 = pair.slip_velocity(&inc);
     let (p, p_error, method) = if u0 == 0.0 {
         (f64::NAN, 0.0, RowMethod::NormalImpact)
@@ -262,7 +266,7 @@ pub fn evaluate(scene: &Scene, source: PSource) -> Result<Evaluation, SceneError
         .map_err(|source| SceneError::Lookup {
             x_name: scene.cases.kind.x_column(),
             x: f64::NAN,
-            source,
+            source: source.into(),
         })?;
     let (e_star, g_star) = effective_moduli(&mat_a, &mat_b);
     let measured = match &scene.measured {

@@ -22,7 +22,19 @@
 //! The groups that decide `P` (`physics.md`): `γ² = (m*/m_t) G*/E*` and
 //! `α = (2/7)(m*/m_t) μ v_z0/|u0|`; for one solid sphere on a wall `m*/m_t = 7/2`.
 
-use crate::LookupError;
+use thiserror::Error;
+
+/// A physical input outside its range: names the field, the value and the allowed range.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("invalid {name} = {value:?}: must be {allowed}")]
+pub struct InvalidInput {
+    /// Field name.
+    pub name: &'static str,
+    /// The value given.
+    pub value: f64,
+    /// The allowed range, in words.
+    pub allowed: String,
+}
 
 /// Elastic constants of an isotropic material.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,7 +53,7 @@ impl Elastic {
     };
 
     /// Check `E > 0` (`∞` allowed) and `−1 < ν ≤ 0.5`.
-    pub fn validate(&self) -> Result<(), LookupError> {
+    pub fn validate(&self) -> Result<(), InvalidInput> {
         if self.youngs_modulus.is_nan() || self.youngs_modulus <= 0.0 {
             return Err(query(
                 "youngs_modulus",
@@ -98,7 +110,7 @@ impl Body {
     }
 
     #[inline]
-    fn validate(&self, which: &'static [&'static str; 3]) -> Result<(), LookupError> {
+    fn validate(&self, which: &'static [&'static str; 3]) -> Result<(), InvalidInput> {
         let ok = |v: f64| v.is_finite() && v > 0.0;
         if ok(self.mass) && ok(self.radius) && ok(self.kappa) {
             return Ok(());
@@ -107,7 +119,7 @@ impl Body {
     }
 
     #[cold]
-    fn invalid(&self, which: &'static [&'static str; 3]) -> Result<(), LookupError> {
+    fn invalid(&self, which: &'static [&'static str; 3]) -> Result<(), InvalidInput> {
         for (name, v) in which.iter().zip([self.mass, self.radius, self.kappa]) {
             if !(v.is_finite() && v > 0.0) {
                 return Err(query(name, v, "a finite number > 0"));
@@ -118,7 +130,7 @@ impl Body {
 }
 
 /// Translational and rotational state of one body in the plane of the impact.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct State {
     /// Tangential velocity `v_x` (m/s).
     pub v_x: f64,
@@ -179,8 +191,8 @@ pub struct Rebound {
     pub energy_lost: f64,
 }
 
-fn query(name: &'static str, value: f64, allowed: &str) -> LookupError {
-    LookupError::Query {
+fn query(name: &'static str, value: f64, allowed: &str) -> InvalidInput {
+    InvalidInput {
         name,
         value,
         allowed: allowed.into(),
@@ -189,7 +201,7 @@ fn query(name: &'static str, value: f64, allowed: &str) -> LookupError {
 
 impl Pair {
     /// Check masses, radii and inertia factors.
-    pub fn validate(&self) -> Result<(), LookupError> {
+    pub fn validate(&self) -> Result<(), InvalidInput> {
         self.sphere.validate(&["mass", "radius", "kappa"])?;
         if let Some(o) = &self.other {
             o.validate(&["other.mass", "other.radius", "other.kappa"])?;
@@ -230,7 +242,7 @@ impl Pair {
     }
 
     /// `γ` from the two materials (sphere 1, then the wall or sphere 2).
-    pub fn gamma_from_materials(&self, a: &Elastic, b: &Elastic) -> Result<f64, LookupError> {
+    pub fn gamma_from_materials(&self, a: &Elastic, b: &Elastic) -> Result<f64, InvalidInput> {
         self.validate()?;
         a.validate()?;
         b.validate()?;
@@ -264,14 +276,14 @@ impl Pair {
     }
 
     /// `α = (2/7)(m*/m_t) μ v_z0/|u0|` for the friction coefficient `μ` (`∞` when `u0 = 0`).
-    pub fn alpha(&self, s: &Incident, mu: f64) -> Result<f64, LookupError> {
+    pub fn alpha(&self, s: &Incident, mu: f64) -> Result<f64, InvalidInput> {
         self.check_incident(s)?;
         self.alpha_checked(s, mu)
     }
 
     /// [`Pair::alpha`] for an incident state already checked.
     #[inline]
-    pub(crate) fn alpha_checked(&self, s: &Incident, mu: f64) -> Result<f64, LookupError> {
+    pub(crate) fn alpha_checked(&self, s: &Incident, mu: f64) -> Result<f64, InvalidInput> {
         if mu.is_nan() || mu < 0.0 {
             return Err(query("friction", mu, ">= 0 (or inf for no slip)"));
         }
@@ -281,7 +293,7 @@ impl Pair {
     }
 
     #[inline]
-    fn check_incident(&self, s: &Incident) -> Result<(), LookupError> {
+    fn check_incident(&self, s: &Incident) -> Result<(), InvalidInput> {
         self.validate()?;
         let finite = [
             s.sphere.v_x,
@@ -294,14 +306,15 @@ impl Pair {
         .iter()
         .all(|v| v.is_finite());
         let still = self.other.is_some() || s.other == State::default();
-        if finite && still && self.approach_speed(s) > 0.0 {
+        let v = self.approach_speed(s);
+        if finite && still && v > 0.0 && v < f64::INFINITY {
             return Ok(());
         }
         self.bad_incident(s)
     }
 
     #[cold]
-    fn bad_incident(&self, s: &Incident) -> Result<(), LookupError> {
+    fn bad_incident(&self, s: &Incident) -> Result<(), InvalidInput> {
         let fields = [
             ("v_x", s.sphere.v_x),
             ("v_z", s.sphere.v_z),
@@ -323,11 +336,11 @@ impl Pair {
             ));
         }
         let v = self.approach_speed(s);
-        if v.is_nan() || v <= 0.0 {
+        if !(v > 0.0 && v < f64::INFINITY) {
             return Err(query(
                 "v_z",
                 v,
-                "an approach speed v_z0 > 0 (the bodies must move towards each other)",
+                "a finite approach speed v_z0 > 0 (the bodies must move towards each other)",
             ));
         }
         Ok(())
@@ -337,7 +350,7 @@ impl Pair {
     ///
     /// Linear momentum is conserved exactly (sphere–sphere), and so is the angular momentum
     /// about the contact point; the normal velocity difference reverses.
-    pub fn rebound(&self, s: &Incident, p: f64) -> Result<Rebound, LookupError> {
+    pub fn rebound(&self, s: &Incident, p: f64) -> Result<Rebound, InvalidInput> {
         self.check_incident(s)?;
         let c = self.impulses(s, p)?;
         let rel_x0 = s.sphere.v_x - s.other.v_x;
@@ -365,7 +378,7 @@ impl Pair {
 
     /// The impulses and states after the impact for an incident state already checked.
     #[inline]
-    fn impulses(&self, s: &Incident, p: f64) -> Result<Core, LookupError> {
+    fn impulses(&self, s: &Incident, p: f64) -> Result<Core, InvalidInput> {
         let u0 = self.slip_velocity(s);
         let p = if u0 == 0.0 { f64::NAN } else { p };
         if u0 != 0.0 && !p.is_finite() {
@@ -417,32 +430,8 @@ struct Core {
     energy_lost: f64,
 }
 
-/// A 3-vector `[x, y, z]` in any right-handed frame (units of the quantity it holds).
-pub type Vec3 = [f64; 3];
-
-#[inline]
-fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline]
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-#[inline]
-fn axpy(y: Vec3, a: f64, x: Vec3) -> Vec3 {
-    [y[0] + a * x[0], y[1] + a * x[1], y[2] + a * x[2]]
-}
-
-#[inline]
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
+pub use crate::vec3::Vec3;
+use crate::vec3::{axpy, cross, dot, sub};
 
 /// Translational and rotational state of one body in 3-D.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -548,7 +537,7 @@ impl Pair {
     /// `t`, and only changes `v·t` and the spin about `b = n × t`; the normal impulse changes
     /// `v·n`. Every other component (velocity along `b`, spin about `t` and about the normal `n`)
     /// is left untouched: the model has no torsional (spin about the normal) friction.
-    pub fn plane(&self, s: &Incident3) -> Result<Plane, LookupError> {
+    pub fn plane(&self, s: &Incident3) -> Result<Plane, InvalidInput> {
         let fields = [
             ("sphere.velocity", s.sphere.velocity),
             ("sphere.spin", s.sphere.spin),
@@ -615,20 +604,22 @@ impl Pair {
     /// The state after a 3-D impact for a given `P` (ignored when `u0 = 0`): the 2-D
     /// [`Pair::rebound`] in the plane of impact ([`Pair::plane`]), its changes applied along `t`,
     /// `n` and about `b`; all other components unchanged.
-    pub fn rebound_3d(&self, s: &Incident3, p: f64) -> Result<Rebound3, LookupError> {
+    pub fn rebound_3d(&self, s: &Incident3, p: f64) -> Result<Rebound3, InvalidInput> {
         let plane = self.plane(s)?;
         self.check_incident(&plane.incident)?;
         self.rebound_in_plane(s, &plane, p)
     }
 
-    /// [`Pair::rebound_3d`] for a plane from [`Pair::plane`] whose incident state is checked.
+    /// [`Pair::rebound_3d`] for a plane already found by [`Pair::plane`] (`s` is the state the
+    /// plane was found from): skips finding the plane again. The plane's incident state is
+    /// checked by [`Pair::alpha`]; call that first, as the lookup does.
     #[inline]
-    pub(crate) fn rebound_in_plane(
+    pub fn rebound_in_plane(
         &self,
         s: &Incident3,
         plane: &Plane,
         p: f64,
-    ) -> Result<Rebound3, LookupError> {
+    ) -> Result<Rebound3, InvalidInput> {
         let c = self.impulses(&plane.incident, p)?;
         let Frame {
             tangent: t,
@@ -733,6 +724,37 @@ mod tests {
         assert!((gamma - 1.754).abs() < 5e-3, "gamma = {gamma}");
         assert!((gamma - 1.749_786).abs() < 1e-6, "gamma = {gamma}");
         assert!((pair.mass_ratio() - 3.5).abs() < 1e-14);
+    }
+
+    #[test]
+    fn an_approach_speed_that_overflows_is_refused() {
+        // Each velocity is finite, their difference is not: v_z0 = 1e308 − (−1e308) = ∞.
+        let pair = Pair {
+            sphere: solid(0.01, 0.02),
+            other: Some(solid(0.01, 0.02)),
+        };
+        let state = |v_z| State {
+            v_x: 1.0,
+            v_z,
+            omega: 0.0,
+        };
+        let s = Incident {
+            sphere: state(1e308),
+            other: state(-1e308),
+        };
+        for e in [
+            pair.alpha(&s, 0.3).unwrap_err(),
+            pair.rebound(&s, 0.5).unwrap_err(),
+        ] {
+            assert_eq!(e.name, "v_z");
+            assert!(e.value.is_infinite(), "{e}");
+            assert!(e.to_string().contains("finite approach speed"), "{e}");
+        }
+        let ok = Incident {
+            sphere: state(1e307),
+            other: state(-1e307),
+        };
+        assert!(pair.alpha(&ok, 0.3).is_ok());
     }
 
     #[test]
