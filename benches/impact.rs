@@ -27,7 +27,8 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use criterion::{Bencher, BenchmarkId, Criterion, SamplingMode};
+use criterion::{BenchmarkId, Criterion, SamplingMode};
+use oblique_clock::Clock;
 use oblique_physics::regimes;
 use oblique_solver::hertz::NormalBodies;
 use oblique_solver::{simulate, solve, Accuracy, Resolution, Scheme};
@@ -247,7 +248,7 @@ fn search() {
                     "  ratio {ratio:>5} -> springs {} steps {} err {err:+.3e}",
                     r.springs, r.steps
                 );
-                if best.map_or(true, |(.., b_secs)| secs < b_secs) {
+                if best.is_none_or(|(.., b_secs)| secs < b_secs) {
                     best = Some((r, ratio, err, secs));
                 }
             }
@@ -260,45 +261,6 @@ fn search() {
             }
         }
     }
-}
-
-/// What a benchmark measures.
-#[derive(Debug, Clone, Copy)]
-enum Clock {
-    /// Elapsed time (criterion's default).
-    Wall,
-    /// CPU time of the benchmarking thread (`CLOCK_THREAD_CPUTIME_ID`): not inflated by other
-    /// processes taking the core; the groups get the suffix `_cpu`.
-    ThreadCpu,
-}
-
-impl Clock {
-    fn suffix(self) -> &'static str {
-        match self {
-            Clock::Wall => "",
-            Clock::ThreadCpu => "_cpu",
-        }
-    }
-
-    fn iter<R>(self, b: &mut Bencher<'_>, mut f: impl FnMut() -> R) {
-        match self {
-            Clock::Wall => b.iter(f),
-            Clock::ThreadCpu => b.iter_custom(|iters| {
-                let start = thread_cpu_time();
-                for _ in 0..iters {
-                    black_box(f());
-                }
-                thread_cpu_time() - start
-            }),
-        }
-    }
-}
-
-/// CPU time consumed by the calling thread (`oblique_study::accuracy::cpu_time`).
-fn thread_cpu_time() -> Duration {
-    let secs = oblique_study::accuracy::cpu_time()
-        .expect("IMPACT_BENCH_CLOCK=cpu is only implemented for 64-bit Linux");
-    Duration::from_secs_f64(secs)
 }
 
 /// `solve(γ, α, Tolerance(tol), Accurate, force_simulation = true)` for every case.
@@ -390,11 +352,8 @@ fn main() {
     {
         check();
     }
-    let clock = match std::env::var("IMPACT_BENCH_CLOCK").as_deref() {
-        Ok("cpu") => Clock::ThreadCpu,
-        Ok("wall") | Err(_) => Clock::Wall,
-        Ok(other) => panic!("IMPACT_BENCH_CLOCK={other}: expected wall or cpu"),
-    };
+    let clock =
+        Clock::from_env("IMPACT_BENCH_CLOCK", Clock::ThreadCpu).unwrap_or_else(|e| panic!("{e}"));
     bench_accurate(&mut c, clock, "accurate_1e-6", ACCURATE_TOL);
     bench_accurate(&mut c, clock, "accurate_1e-5", EULER_TARGET);
     bench_euler(&mut c, clock);

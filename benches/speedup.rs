@@ -7,14 +7,11 @@
 //! `cargo bench --bench speedup`; `LOOKUP_BENCH_CLOCK=cpu` measures the process CPU time instead
 //! of elapsed time (groups suffixed `_cpu`).
 
-#[path = "common/clock.rs"]
-mod clock;
-
 use std::hint::black_box;
 use std::time::Duration;
 
-use clock::{timed, Clock};
 use criterion::Criterion;
+use oblique_clock::{timed, Clock};
 use oblique_lookup::Table;
 use oblique_solver::{solve, Accuracy, Scheme};
 
@@ -41,7 +38,8 @@ fn median_ns(group: &str, case: &str) -> Option<f64> {
 }
 
 fn main() {
-    let clock = Clock::from_env();
+    let clock =
+        Clock::from_env("LOOKUP_BENCH_CLOCK", Clock::ProcessCpu).unwrap_or_else(|e| panic!("{e}"));
     let suffix = clock.suffix();
     let table = Table::open(concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5"))
         .unwrap_or_else(|e| panic!("{e}"));

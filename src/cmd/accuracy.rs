@@ -182,7 +182,7 @@ struct TableRow {
 
 fn build_one(name: &str, cfg: &Config, text: &str, dir: &Path) -> Result<TableRow> {
     let out = dir.join(format!("{name}.h5"));
-    let cpu0 = accuracy::process_cpu_time();
+    let cpu0 = oblique_clock::process_cpu_time();
     let start = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cfg.run.threads)
@@ -190,8 +190,8 @@ fn build_one(name: &str, cfg: &Config, text: &str, dir: &Path) -> Result<TableRo
         .context("cannot start worker threads")?;
     let built = pool.install(|| oblique_sweep::build(cfg, &Silent))?;
     let wall = start.elapsed().as_secs_f64();
-    let cpu = match (cpu0, accuracy::process_cpu_time()) {
-        (Some(a), Some(b)) => Some(b - a),
+    let cpu = match (cpu0, oblique_clock::process_cpu_time()) {
+        (Some(a), Some(b)) => Some((b - a).as_secs_f64()),
         _ => None,
     };
     let prov = provenance(cfg, text.to_string(), wall);

@@ -26,14 +26,11 @@
 //!
 //! `cargo bench -p oblique-lookup --bench lookup` (all), `... -- 'p/'` (a subset).
 
-#[path = "../../../benches/common/clock.rs"]
-mod clock;
-
 use std::hint::black_box;
 use std::time::Duration;
 
-use clock::{timed, Clock};
 use criterion::{Criterion, Throughput};
+use oblique_clock::{timed, Clock};
 use oblique_lookup::rebound::{Incident, Incident3, Motion3, Pair, State};
 use oblique_lookup::{testing, Answer, OutOfDomain, Prepared, Table};
 
@@ -77,7 +74,8 @@ fn main() {
         concat!(env!("CARGO_MANIFEST_DIR"), "/../../tables/full.h5").to_string()
     });
     let table = Table::open(&path).unwrap_or_else(|e| panic!("{e}"));
-    let clock = Clock::from_env();
+    let clock =
+        Clock::from_env("LOOKUP_BENCH_CLOCK", Clock::ProcessCpu).unwrap_or_else(|e| panic!("{e}"));
     let mut c = Criterion::default()
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(3))

@@ -3,10 +3,8 @@
 //! For a fixed set of `(γ, α)` points spanning the regimes, every scheme is run over a ladder
 //! of resolutions; each result is compared with a reference computed at a much finer
 //! resolution (Richardson-extrapolated accurate scheme), and each run is timed (thread CPU
-//! time where available, see [`cpu_time`]). The CLI (`sweep accuracy`) writes the rows as CSV
+//! time where available, see [`oblique_clock::thread_cpu_time`]). The CLI (`sweep accuracy`) writes the rows as CSV
 //! and draws error against time per impact on log–log axes. No file I/O here.
-
-use std::time::Instant;
 
 use serde::Serialize;
 
@@ -136,44 +134,6 @@ pub fn reference(gamma: f64, alpha: f64, steps: usize) -> Result<Reference, Phys
     })
 }
 
-/// Thread CPU time in seconds (`CLOCK_THREAD_CPUTIME_ID`, 64-bit Linux); `None` elsewhere.
-/// Other processes on the machine do not inflate it, unlike elapsed time.
-pub fn cpu_time() -> Option<f64> {
-    clock_seconds(3) // CLOCK_THREAD_CPUTIME_ID
-}
-
-/// Process CPU time in seconds (all threads; `CLOCK_PROCESS_CPUTIME_ID`, 64-bit Linux).
-pub fn process_cpu_time() -> Option<f64> {
-    clock_seconds(2) // CLOCK_PROCESS_CPUTIME_ID
-}
-
-/// `clock_gettime(clock)` in seconds; `None` where unavailable.
-fn clock_seconds(clock: i32) -> Option<f64> {
-    #[cfg(all(target_os = "linux", target_pointer_width = "64"))]
-    {
-        #[repr(C)]
-        struct Timespec {
-            tv_sec: i64,
-            tv_nsec: i64,
-        }
-        extern "C" {
-            fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-        }
-        let mut ts = Timespec {
-            tv_sec: 0,
-            tv_nsec: 0,
-        };
-        // SAFETY: `ts` is a valid, writable timespec with the C layout on 64-bit Linux.
-        let rc = unsafe { clock_gettime(clock, &mut ts) };
-        (rc == 0).then_some(ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64)
-    }
-    #[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
-    {
-        let _ = clock;
-        None
-    }
-}
-
 /// Time per call of `f` (seconds of thread CPU time, or elapsed time where that is not
 /// available): one warm-up call, then repeated until at least `min_total` seconds have passed
 /// (at most 1000 calls). Returns the last value, the time per call and the number of calls.
@@ -182,7 +142,7 @@ pub fn time_per_call<T>(
     mut f: impl FnMut() -> Result<T, PhysicsError>,
 ) -> Result<(T, f64, usize), PhysicsError> {
     f()?;
-    let clock = || cpu_time().unwrap_or_else(elapsed_since_start);
+    let clock = || oblique_clock::Clock::ThreadCpu.now().as_secs_f64();
     let start = clock();
     let mut n = 0;
     loop {
@@ -193,12 +153,6 @@ pub fn time_per_call<T>(
             return Ok((v, spent / n as f64, n));
         }
     }
-}
-
-fn elapsed_since_start() -> f64 {
-    use std::sync::OnceLock;
-    static START: OnceLock<Instant> = OnceLock::new();
-    START.get_or_init(Instant::now).elapsed().as_secs_f64()
 }
 
 /// What one row of the study measured.
