@@ -9,9 +9,10 @@
 //! or runs of the same solver at 32× the resolution under test. Tolerances are 1e-4 and
 //! resolutions modest so that the suite stays well under a minute on two cores.
 
+use oblique_physics::rebound::{Body, Elastic, Incident, Pair, State};
 use oblique_physics::regimes::{alpha_c1, alpha_c2};
 use oblique_solver::impact::{base_resolution, dimensionless_normal, plan, Limits};
-use oblique_solver::units::{Material, Motion, PhysicalImpact, Sphere, Target};
+use oblique_solver::units::PhysicalImpact;
 use oblique_solver::{simulate, solve, Accuracy, PhysicsError, Resolution, Scheme};
 
 const ACC: Scheme = Scheme::Accurate;
@@ -155,15 +156,38 @@ fn large_finite_alpha_tends_to_no_slip() {
     }
 }
 
-fn sphere(radius: f64, youngs: f64, nu: f64, density: f64) -> Sphere {
-    Sphere {
+/// A solid sphere and its material.
+fn sphere(radius: f64, youngs: f64, nu: f64, density: f64) -> (Body, Elastic) {
+    let body = Body {
         radius,
         mass: density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
         kappa: 0.4,
-        material: Material {
-            youngs_modulus: youngs,
-            poisson_ratio: nu,
+    };
+    let material = Elastic {
+        youngs_modulus: youngs,
+        poisson_ratio: nu,
+    };
+    (body, material)
+}
+
+/// A sphere (with its material) on a wall of material `wall`.
+fn on_wall(
+    (body, material): (Body, Elastic),
+    wall: Elastic,
+    motion: State,
+    mu: f64,
+) -> PhysicalImpact {
+    PhysicalImpact {
+        pair: Pair {
+            sphere: body,
+            other: None,
         },
+        materials: [material, wall],
+        incident: Incident {
+            sphere: motion,
+            other: State::default(),
+        },
+        friction: mu,
     }
 }
 
@@ -178,19 +202,19 @@ fn corner_cases() -> Vec<(String, PhysicalImpact)> {
                     for &mu in &[1e-4, 10.0] {
                         // Tangential speed: equal to v_z, and 1000x smaller, alternately.
                         let vx = if mu > 1.0 { v } else { 1e-3 * v };
-                        let imp = PhysicalImpact {
-                            sphere: sphere(r, e_sphere, 0.25, 7800.0),
-                            motion: Motion {
+                        let imp = on_wall(
+                            sphere(r, e_sphere, 0.25, 7800.0),
+                            Elastic {
+                                youngs_modulus: e_wall,
+                                poisson_ratio: 0.45,
+                            },
+                            State {
                                 v_x: vx,
                                 v_z: v,
                                 omega: 0.0,
                             },
-                            target: Target::Wall(Material {
-                                youngs_modulus: e_wall,
-                                poisson_ratio: 0.45,
-                            }),
-                            friction: mu,
-                        };
+                            mu,
+                        );
                         out.push((
                             format!(
                                 "R = {r} m, E = {e_sphere:e}/{e_wall:e} Pa, v = {v} m/s, mu = {mu}"
@@ -205,21 +229,26 @@ fn corner_cases() -> Vec<(String, PhysicalImpact)> {
     // Sphere-sphere at the same corners of radius and speed (head-on, one spinning).
     for &r in &[1e-6, 1.0] {
         for &v in &[1e-3, 100.0] {
+            let (b1, m1) = sphere(r, 1e12, 0.2, 2500.0);
+            let (b2, m2) = sphere(0.3 * r, 1e6, 0.49, 1100.0);
             let imp = PhysicalImpact {
-                sphere: sphere(r, 1e12, 0.2, 2500.0),
-                motion: Motion {
-                    v_x: 0.5 * v,
-                    v_z: v,
-                    omega: 0.0,
+                pair: Pair {
+                    sphere: b1,
+                    other: Some(b2),
                 },
-                target: Target::Sphere(
-                    sphere(0.3 * r, 1e6, 0.49, 1100.0),
-                    Motion {
+                materials: [m1, m2],
+                incident: Incident {
+                    sphere: State {
+                        v_x: 0.5 * v,
+                        v_z: v,
+                        omega: 0.0,
+                    },
+                    other: State {
                         v_x: 0.0,
                         v_z: -v,
                         omega: v / r,
                     },
-                ),
+                },
                 friction: 0.5,
             };
             out.push((format!("sphere-sphere R = {r} m, v = {v} m/s"), imp));
@@ -237,9 +266,9 @@ fn physical_units_corners_match_the_dimensionless_solver() {
         let p = out.p.expect("u0 != 0");
         check_bounded(p, 1e-9, &what);
         // Normal restitution: the relative normal speed reverses.
-        let rel_after = match (imp.target, out.other) {
-            (Target::Wall(_), None) => out.sphere.v_z,
-            (Target::Sphere(..), Some(o)) => out.sphere.v_z - o.v_z,
+        let rel_after = match (imp.pair.other, out.other) {
+            (None, None) => out.sphere.v_z,
+            (Some(_), Some(o)) => out.sphere.v_z - o.v_z,
             _ => panic!("{what}: outcome does not match the target"),
         };
         let v0 = groups.approach_speed;
@@ -264,19 +293,19 @@ fn physical_units_corners_match_the_dimensionless_solver() {
 }
 
 fn steel_on_glass(v_x: f64) -> PhysicalImpact {
-    PhysicalImpact {
-        sphere: sphere(2.5e-3, 210e9, 0.29, 7800.0),
-        motion: Motion {
+    on_wall(
+        sphere(2.5e-3, 210e9, 0.29, 7800.0),
+        Elastic {
+            youngs_modulus: 70e9,
+            poisson_ratio: 0.22,
+        },
+        State {
             v_x,
             v_z: 3.9,
             omega: 0.0,
         },
-        target: Target::Wall(Material {
-            youngs_modulus: 70e9,
-            poisson_ratio: 0.22,
-        }),
-        friction: 0.1,
-    }
+        0.1,
+    )
 }
 
 #[test]

@@ -5,10 +5,11 @@
 //! of a given `P`) or simulations at a much higher resolution than the run under test. Nothing is
 //! copied from the program's own output.
 
+use oblique_physics::rebound::{Body, Elastic, Incident, Pair, State};
 use oblique_physics::regimes::{self, alpha_c1, alpha_c2, closed_form, linear_limit, Regime};
 use oblique_solver::hertz::{HertzClosedForm, NormalBodies};
 use oblique_solver::impact::base_resolution;
-use oblique_solver::units::{Material, Motion, PhysicalImpact, PhysicalOutcome, Sphere, Target};
+use oblique_solver::units::{PhysicalImpact, PhysicalOutcome};
 use oblique_solver::{simulate, solve, Accuracy, Method, PhysicsError, Resolution, Scheme};
 
 const ACC: Scheme = Scheme::Accurate;
@@ -64,26 +65,27 @@ impl XorShift {
     }
 }
 
-fn random_material(rng: &mut XorShift) -> Material {
-    Material {
+fn random_material(rng: &mut XorShift) -> Elastic {
+    Elastic {
         youngs_modulus: rng.log_uniform(1e6, 1e12),
         poisson_ratio: rng.uniform(-0.9, 0.5),
     }
 }
 
-fn random_sphere(rng: &mut XorShift) -> Sphere {
+/// A random sphere and its material (drawn in this order: radius, density, κ, material).
+fn random_sphere(rng: &mut XorShift) -> (Body, Elastic) {
     let radius = rng.log_uniform(1e-6, 1.0);
     let density = rng.uniform(1000.0, 20000.0);
-    Sphere {
+    let body = Body {
         radius,
         mass: density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
         kappa: rng.uniform(0.2, 0.7),
-        material: random_material(rng),
-    }
+    };
+    (body, random_material(rng))
 }
 
-fn random_motion(rng: &mut XorShift, radius: f64, v_z: f64, spin: bool) -> Motion {
-    Motion {
+fn random_motion(rng: &mut XorShift, radius: f64, v_z: f64, spin: bool) -> State {
+    State {
         v_x: rng.sign() * rng.log_uniform(1e-3, 100.0),
         v_z,
         omega: if spin {
@@ -97,58 +99,107 @@ fn random_motion(rng: &mut XorShift, radius: f64, v_z: f64, spin: bool) -> Motio
 /// Random impact number `i`: even `i` hits a wall, odd `i` a second sphere; spin on every other
 /// pair.
 fn random_impact(rng: &mut XorShift, i: usize) -> PhysicalImpact {
-    let sphere = random_sphere(rng);
+    let (sphere, material) = random_sphere(rng);
     let spin = i % 4 >= 2;
     let v_z = rng.log_uniform(1e-3, 100.0);
     let motion = random_motion(rng, sphere.radius, v_z, spin);
-    let target = if i % 2 == 0 {
-        Target::Wall(random_material(rng))
+    let (other, other_material, other_motion) = if i.is_multiple_of(2) {
+        (None, random_material(rng), State::default())
     } else {
-        let other = random_sphere(rng);
+        let (other, other_material) = random_sphere(rng);
         // Either head-on (moving towards sphere 1) or chased (slower in the same direction).
         let v_z2 = if rng.coin() {
             -rng.log_uniform(1e-3, 100.0)
         } else {
             v_z * rng.uniform(0.0, 0.9)
         };
-        Target::Sphere(other, random_motion(rng, other.radius, v_z2, spin))
+        let other_motion = random_motion(rng, other.radius, v_z2, spin);
+        (Some(other), other_material, other_motion)
     };
     PhysicalImpact {
-        sphere,
-        motion,
-        target,
+        pair: Pair { sphere, other },
+        materials: [material, other_material],
+        incident: Incident {
+            sphere: motion,
+            other: other_motion,
+        },
         friction: rng.uniform(0.01, 2.0),
+    }
+}
+
+/// Sphere 1 (with its material) on a wall of material `wall`.
+fn on_wall(
+    (sphere, material): (Body, Elastic),
+    wall: Elastic,
+    motion: State,
+    mu: f64,
+) -> PhysicalImpact {
+    PhysicalImpact {
+        pair: Pair {
+            sphere,
+            other: None,
+        },
+        materials: [material, wall],
+        incident: Incident {
+            sphere: motion,
+            other: State::default(),
+        },
+        friction: mu,
+    }
+}
+
+/// Sphere 1 on sphere 2, each with its material and incident motion.
+fn on_sphere(
+    (sphere, material): (Body, Elastic),
+    motion: State,
+    (other, other_material): (Body, Elastic),
+    other_motion: State,
+    mu: f64,
+) -> PhysicalImpact {
+    PhysicalImpact {
+        pair: Pair {
+            sphere,
+            other: Some(other),
+        },
+        materials: [material, other_material],
+        incident: Incident {
+            sphere: motion,
+            other: other_motion,
+        },
+        friction: mu,
     }
 }
 
 /// Effective quantities computed here from the textbook formulas (not from `groups()`):
 /// `(E*, R*, m*, v_z0)`.
 fn hertz_inputs(imp: &PhysicalImpact) -> (f64, f64, f64, f64) {
-    let s = &imp.sphere;
-    let compliance = |m: &Material| (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus;
-    match &imp.target {
-        Target::Wall(w) => (
-            1.0 / (compliance(&s.material) + compliance(w)),
+    let s = &imp.pair.sphere;
+    let [m1, m2] = &imp.materials;
+    let (a, b) = (&imp.incident.sphere, &imp.incident.other);
+    let compliance = |m: &Elastic| (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus;
+    match &imp.pair.other {
+        None => (
+            1.0 / (compliance(m1) + compliance(m2)),
             s.radius,
             s.mass,
-            imp.motion.v_z,
+            a.v_z,
         ),
-        Target::Sphere(o, m) => (
-            1.0 / (compliance(&s.material) + compliance(&o.material)),
+        Some(o) => (
+            1.0 / (compliance(m1) + compliance(m2)),
             s.radius * o.radius / (s.radius + o.radius),
             s.mass * o.mass / (s.mass + o.mass),
-            imp.motion.v_z - m.v_z,
+            a.v_z - b.v_z,
         ),
     }
 }
 
 /// Slip velocity of the contact points, `u = (v1x + R1 ω1) − (v2x − R2 ω2)`, and a scale for
 /// rounding (sum of the magnitudes of its terms).
-fn slip(imp: &PhysicalImpact, s1: &Motion, s2: Option<&Motion>) -> (f64, f64) {
-    let r1 = imp.sphere.radius;
+fn slip(imp: &PhysicalImpact, s1: &State, s2: Option<&State>) -> (f64, f64) {
+    let r1 = imp.pair.sphere.radius;
     let mut u = s1.v_x + r1 * s1.omega;
     let mut scale = s1.v_x.abs() + (r1 * s1.omega).abs();
-    if let (Target::Sphere(o, _), Some(m2)) = (&imp.target, s2) {
+    if let (Some(o), Some(m2)) = (&imp.pair.other, s2) {
         u -= m2.v_x - o.radius * m2.omega;
         scale += m2.v_x.abs() + (o.radius * m2.omega).abs();
     }
@@ -167,8 +218,8 @@ fn assert_rel(got: f64, want: f64, scale: f64, tol: f64, what: &str) {
 /// maximum indentation.
 fn check_normal(imp: &PhysicalImpact, out: &PhysicalOutcome, label: &str) {
     let (e_star, r_star, m_star, v0) = hertz_inputs(imp);
-    match (&imp.target, out.other) {
-        (Target::Wall(_), None) => {
+    match (&imp.pair.other, out.other) {
+        (None, None) => {
             assert_rel(
                 out.sphere.v_z,
                 -v0,
@@ -177,9 +228,9 @@ fn check_normal(imp: &PhysicalImpact, out: &PhysicalOutcome, label: &str) {
                 &format!("{label}: rebound v_z"),
             );
         }
-        (Target::Sphere(o, m2), Some(after2)) => {
-            let (m1, m2m) = (imp.sphere.mass, o.mass);
-            let (v1, v2) = (imp.motion.v_z, m2.v_z);
+        (Some(o), Some(after2)) => {
+            let (m1, m2m) = (imp.pair.sphere.mass, o.mass);
+            let (v1, v2) = (imp.incident.sphere.v_z, imp.incident.other.v_z);
             let want1 = ((m1 - m2m) * v1 + 2.0 * m2m * v2) / (m1 + m2m);
             let want2 = ((m2m - m1) * v2 + 2.0 * m1 * v1) / (m1 + m2m);
             assert_rel(out.sphere.v_z, want1, v0, 1e-8, &format!("{label}: v_z1"));
@@ -218,17 +269,18 @@ fn check_normal(imp: &PhysicalImpact, out: &PhysicalOutcome, label: &str) {
 /// Momentum conservation (normal and tangential linear momentum; angular momentum of each body
 /// about the contact point, which the tangential force cannot change).
 fn check_momentum(imp: &PhysicalImpact, out: &PhysicalOutcome, label: &str) {
-    let s = &imp.sphere;
+    let s = &imp.pair.sphere;
     let (m1, r1, i1) = (s.mass, s.radius, s.inertia());
-    let (a, b) = (imp.motion, out.sphere);
+    let (a, b) = (imp.incident.sphere, out.sphere);
     // Body 1 about its contact point: I ω − m R v_x.
-    let l1 = |m: &Motion| i1 * m.omega - m1 * r1 * m.v_x;
+    let l1 = |m: &State| i1 * m.omega - m1 * r1 * m.v_x;
     let scale1 = (i1 * a.omega).abs() + (m1 * r1 * a.v_x).abs() + (m1 * r1 * (b.v_x - a.v_x)).abs();
     assert_rel(l1(&b), l1(&a), scale1, 1e-12, &format!("{label}: L1"));
-    if let (Target::Sphere(o, c), Some(d)) = (&imp.target, out.other) {
+    if let (Some(o), Some(d)) = (&imp.pair.other, out.other) {
+        let c = &imp.incident.other;
         let (m2, r2, i2) = (o.mass, o.radius, o.inertia());
-        let px = |p: &Motion, q: &Motion| m1 * p.v_x + m2 * q.v_x;
-        let pz = |p: &Motion, q: &Motion| m1 * p.v_z + m2 * q.v_z;
+        let px = |p: &State, q: &State| m1 * p.v_x + m2 * q.v_x;
+        let pz = |p: &State, q: &State| m1 * p.v_z + m2 * q.v_z;
         let jx = (m1 * (b.v_x - a.v_x)).abs();
         let jz = (m1 * (b.v_z - a.v_z)).abs();
         let sx = (m1 * a.v_x).abs() + (m2 * c.v_x).abs() + jx;
@@ -236,7 +288,7 @@ fn check_momentum(imp: &PhysicalImpact, out: &PhysicalOutcome, label: &str) {
         assert_rel(px(&b, &d), px(&a, c), sx, 1e-12, &format!("{label}: p_x"));
         assert_rel(pz(&b, &d), pz(&a, c), sz, 1e-12, &format!("{label}: p_z"));
         // Body 2 about its contact point: I ω + m R v_x.
-        let l2 = |m: &Motion| i2 * m.omega + m2 * r2 * m.v_x;
+        let l2 = |m: &State| i2 * m.omega + m2 * r2 * m.v_x;
         let scale2 =
             (i2 * c.omega).abs() + (m2 * r2 * c.v_x).abs() + (m2 * r2 * (d.v_x - c.v_x)).abs();
         assert_rel(l2(&d), l2(c), scale2, 1e-12, &format!("{label}: L2"));
@@ -308,70 +360,70 @@ fn gamma_one_plateau_is_minus_one() {
 // 3. Normal restitution and Hertz.
 // ---------------------------------------------------------------------------------------------
 
-fn steel(radius: f64) -> Sphere {
-    Sphere {
+fn steel(radius: f64) -> (Body, Elastic) {
+    let body = Body {
         radius,
         mass: 7800.0 * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
         kappa: 0.4,
-        material: Material {
-            youngs_modulus: 210e9,
-            poisson_ratio: 0.3,
-        },
-    }
+    };
+    let material = Elastic {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.3,
+    };
+    (body, material)
 }
 
-fn glass(radius: f64) -> Sphere {
-    Sphere {
+fn glass(radius: f64) -> (Body, Elastic) {
+    let body = Body {
         radius,
         mass: 2500.0 * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
         kappa: 0.4,
-        material: Material {
-            youngs_modulus: 63e9,
-            poisson_ratio: 0.22,
-        },
-    }
+    };
+    let material = Elastic {
+        youngs_modulus: 63e9,
+        poisson_ratio: 0.22,
+    };
+    (body, material)
 }
 
 #[test]
 fn normal_restitution_and_hertz_closed_forms() {
-    let aluminium = Material {
+    let aluminium = Elastic {
         youngs_modulus: 70e9,
         poisson_ratio: 0.33,
     };
     let mut cases = vec![
-        PhysicalImpact {
-            sphere: steel(0.01),
-            motion: Motion {
+        on_wall(
+            steel(0.01),
+            aluminium,
+            State {
                 v_x: 0.7,
                 v_z: 2.0,
                 omega: 0.0,
             },
-            target: Target::Wall(aluminium),
-            friction: 0.2,
-        },
-        PhysicalImpact {
-            sphere: glass(0.02),
-            motion: Motion {
+            0.2,
+        ),
+        on_sphere(
+            glass(0.02),
+            State {
                 v_x: -0.4,
                 v_z: 1.5,
                 omega: 10.0,
             },
-            target: Target::Sphere(
-                steel(0.005),
-                Motion {
-                    v_x: 0.3,
-                    v_z: -0.5,
-                    omega: -30.0,
-                },
-            ),
-            friction: 0.3,
-        },
+            steel(0.005),
+            State {
+                v_x: 0.3,
+                v_z: -0.5,
+                omega: -30.0,
+            },
+            0.3,
+        ),
     ];
     let mut rng = XorShift(0x2545_F491_4F6C_DD1D);
     cases.extend((0..6).map(|i| random_impact(&mut rng, i)));
     for (i, imp) in cases.iter().enumerate() {
         let out = imp.simulate(res2(1024)).unwrap();
-        let label = format!("case {i} ({:?})", imp.target);
+        let label = format!("case {i} ({:?})", imp.pair.other);
         check_normal(imp, &out, &label);
         check_momentum(imp, &out, &label);
     }
@@ -727,9 +779,9 @@ fn universality_of_random_physical_impacts() {
         if groups.slip_velocity == 0.0 {
             continue;
         }
-        match imp.target {
-            Target::Wall(_) => walls += 1,
-            Target::Sphere(..) => pairs += 1,
+        match imp.pair.other {
+            None => walls += 1,
+            Some(_) => pairs += 1,
         }
         let label = format!(
             "case {i} (gamma = {}, alpha = {:e}, {:?})",
@@ -756,7 +808,7 @@ fn universality_of_random_physical_impacts() {
              estimate {fixed_est:e}"
         );
         // P is the restitution of the reported slip velocities.
-        let (u0, s0) = slip(&imp, &imp.motion, imp_other_motion(&imp).as_ref());
+        let (u0, s0) = slip(&imp, &imp.incident.sphere, imp_other_motion(&imp).as_ref());
         let (u1, s1) = slip(&imp, &out.sphere, out.other.as_ref());
         assert_rel(u0, groups.slip_velocity, s0, 1e-14, &format!("{label}: u0"));
         assert_rel(p_phys * u0, u1, s0.max(s1), 1e-12, &format!("{label}: u1"));
@@ -787,11 +839,8 @@ fn universality_of_random_physical_impacts() {
     assert!(walls >= 10 && pairs >= 10, "{walls} walls, {pairs} pairs");
 }
 
-fn imp_other_motion(imp: &PhysicalImpact) -> Option<Motion> {
-    match imp.target {
-        Target::Wall(_) => None,
-        Target::Sphere(_, m) => Some(m),
-    }
+fn imp_other_motion(imp: &PhysicalImpact) -> Option<State> {
+    imp.pair.other.map(|_| imp.incident.other)
 }
 
 /// The rigid-body consequences of a given P for one sphere on a wall (physics.md): with
@@ -800,26 +849,26 @@ fn imp_other_motion(imp: &PhysicalImpact) -> Option<Motion> {
 /// point; and `ΔE = (m_t/2) u0² (P² − 1)` with `m_t = m κ/(1+κ)`.
 #[test]
 fn rigid_body_kinematics_of_p_on_a_wall() {
-    let wall = Material {
+    let wall = Elastic {
         youngs_modulus: 70e9,
         poisson_ratio: 0.33,
     };
     for &(kappa, omega0) in &[(0.4, 0.0), (0.4, 25.0), (2.0 / 3.0, -40.0)] {
-        let mut s = steel(0.01);
+        let (mut s, steel_material) = steel(0.01);
         s.kappa = kappa;
         let (m, r) = (s.mass, s.radius);
         let i = s.inertia();
         let v_x0 = 0.8;
-        let imp = PhysicalImpact {
-            sphere: s,
-            motion: Motion {
+        let imp = on_wall(
+            (s, steel_material),
+            wall,
+            State {
                 v_x: v_x0,
                 v_z: 1.0,
                 omega: omega0,
             },
-            target: Target::Wall(wall),
-            friction: 0.25,
-        };
+            0.25,
+        );
         let out = imp.simulate(res2(512)).unwrap();
         let p = out.p.unwrap();
         let u0 = v_x0 + r * omega0;
@@ -857,13 +906,13 @@ fn rigid_body_kinematics_of_p_on_a_wall() {
             assert_rel(out.sphere.omega, w7, (v_x0 / r).abs(), 1e-12, &what);
         }
         // Tangential kinetic energy: ΔE = (m_t/2) u0² (P² − 1), m_t = m κ/(1+κ).
-        let e = |mo: &Motion| 0.5 * m * mo.v_x * mo.v_x + 0.5 * i * mo.omega * mo.omega;
+        let e = |mo: &State| 0.5 * m * mo.v_x * mo.v_x + 0.5 * i * mo.omega * mo.omega;
         let m_t = m * kappa / (1.0 + kappa);
-        let de = e(&out.sphere) - e(&imp.motion);
+        let de = e(&out.sphere) - e(&imp.incident.sphere);
         assert_rel(
             de,
             0.5 * m_t * u0 * u0 * (p * p - 1.0),
-            e(&imp.motion),
+            e(&imp.incident.sphere),
             1e-12,
             &what,
         );
@@ -876,39 +925,37 @@ fn rigid_body_kinematics_of_p_on_a_wall() {
 
 fn u0_zero_cases() -> Vec<PhysicalImpact> {
     let mut s1 = steel(0.5);
-    s1.mass = 3.0;
+    s1.0.mass = 3.0;
     let mut s2 = glass(0.25);
-    s2.mass = 0.75;
+    s2.0.mass = 0.75;
     vec![
-        PhysicalImpact {
-            sphere: s1,
+        on_wall(
+            s1,
+            glass(1.0).1,
             // u = 1 + 0.5 (−2) = 0 exactly.
-            motion: Motion {
+            State {
                 v_x: 1.0,
                 v_z: 2.0,
                 omega: -2.0,
             },
-            target: Target::Wall(glass(1.0).material),
-            friction: 0.4,
-        },
-        PhysicalImpact {
-            sphere: s1,
-            motion: Motion {
+            0.4,
+        ),
+        on_sphere(
+            s1,
+            State {
                 v_x: 1.0,
                 v_z: 2.0,
                 omega: -2.0,
             },
             // Sphere 2's contact point moves at v_x − R ω = 0.25 − 0.25 = 0 as well.
-            target: Target::Sphere(
-                s2,
-                Motion {
-                    v_x: 0.25,
-                    v_z: -1.0,
-                    omega: 1.0,
-                },
-            ),
-            friction: 0.4,
-        },
+            s2,
+            State {
+                v_x: 0.25,
+                v_z: -1.0,
+                omega: 1.0,
+            },
+            0.4,
+        ),
     ]
 }
 
@@ -920,9 +967,16 @@ fn pure_normal_impact_leaves_tangential_motion_unchanged() {
         for out in [imp.simulate(res2(512)).unwrap(), imp.solve(1e-6).unwrap()] {
             assert_eq!(out.p, None);
             assert_eq!(out.error_estimate, 0.0);
-            assert_rel(out.sphere.v_x, imp.motion.v_x, 1.0, 1e-12, "v_x");
-            assert_rel(out.sphere.omega, imp.motion.omega, 2.0, 1e-12, "omega");
-            if let (Target::Sphere(_, m), Some(o)) = (&imp.target, out.other) {
+            assert_rel(out.sphere.v_x, imp.incident.sphere.v_x, 1.0, 1e-12, "v_x");
+            assert_rel(
+                out.sphere.omega,
+                imp.incident.sphere.omega,
+                2.0,
+                1e-12,
+                "omega",
+            );
+            if let (Some(_), Some(o)) = (&imp.pair.other, out.other) {
+                let m = &imp.incident.other;
                 assert_rel(o.v_x, m.v_x, m.v_x.abs(), 1e-12, "v_x2");
                 assert_rel(o.omega, m.omega, m.omega.abs(), 1e-12, "omega2");
             }
@@ -931,8 +985,8 @@ fn pure_normal_impact_leaves_tangential_motion_unchanged() {
     }
 }
 
-fn mirror(m: &Motion) -> Motion {
-    Motion {
+fn mirror(m: &State) -> State {
+    State {
         v_x: -m.v_x,
         v_z: m.v_z,
         omega: -m.omega,
@@ -945,10 +999,12 @@ fn negative_slip_mirrors_positive_slip() {
     for i in 0..8 {
         let imp = random_impact(&mut rng, i);
         let mirrored = PhysicalImpact {
-            motion: mirror(&imp.motion),
-            target: match imp.target {
-                Target::Wall(w) => Target::Wall(w),
-                Target::Sphere(s, m) => Target::Sphere(s, mirror(&m)),
+            incident: Incident {
+                sphere: mirror(&imp.incident.sphere),
+                other: match imp.pair.other {
+                    None => imp.incident.other,
+                    Some(_) => mirror(&imp.incident.other),
+                },
             },
             ..imp
         };
@@ -962,14 +1018,14 @@ fn negative_slip_mirrors_positive_slip() {
         let what = format!("case {i}");
         let pa = a.p.unwrap();
         assert_rel(b.p.unwrap(), pa, pa.abs().max(1e-3), 1e-12, &what);
-        let (_, scale) = slip(&imp, &imp.motion, imp_other_motion(&imp).as_ref());
-        let check = |x: &Motion, y: &Motion, r: f64| {
+        let (_, scale) = slip(&imp, &imp.incident.sphere, imp_other_motion(&imp).as_ref());
+        let check = |x: &State, y: &State, r: f64| {
             assert_rel(y.v_x, -x.v_x, scale, 1e-12, &what);
             assert_rel(y.omega * r, -x.omega * r, scale, 1e-12, &what);
             assert_rel(y.v_z, x.v_z, x.v_z.abs(), 1e-12, &what);
         };
-        check(&a.sphere, &b.sphere, imp.sphere.radius);
-        if let (Target::Sphere(o, _), Some(x), Some(y)) = (&imp.target, a.other, b.other) {
+        check(&a.sphere, &b.sphere, imp.pair.sphere.radius);
+        if let (Some(o), Some(x), Some(y)) = (&imp.pair.other, a.other, b.other) {
             check(&x, &y, o.radius);
         }
     }
@@ -983,6 +1039,14 @@ fn invalid_name<T: std::fmt::Debug>(r: Result<T, PhysicsError>) -> &'static str 
     match r {
         Err(PhysicsError::InvalidParameter { name, .. }) => name,
         other => panic!("expected InvalidParameter, got {other:?}"),
+    }
+}
+
+/// The field named by a physical input refused by the rebound algebra's check.
+fn invalid_input_name<T: std::fmt::Debug>(r: Result<T, PhysicsError>) -> &'static str {
+    match r {
+        Err(PhysicsError::Input(e)) => e.name,
+        other => panic!("expected Input, got {other:?}"),
     }
 }
 
@@ -1039,28 +1103,28 @@ fn invalid_parameters_are_rejected_with_their_name() {
         );
     }
     // Physical inputs.
-    let base = PhysicalImpact {
-        sphere: steel(0.01),
-        motion: Motion {
+    let base = on_wall(
+        steel(0.01),
+        glass(1.0).1,
+        State {
             v_x: 0.5,
             v_z: 1.0,
             omega: 0.0,
         },
-        target: Target::Wall(glass(1.0).material),
-        friction: 0.3,
-    };
+        0.3,
+    );
     let mut bad = base;
-    bad.sphere.radius = 0.0;
-    assert_eq!(invalid_name(bad.groups()), "radius");
+    bad.pair.sphere.radius = 0.0;
+    assert_eq!(invalid_input_name(bad.groups()), "radius");
     let mut bad = base;
     bad.friction = f64::NAN;
-    assert_eq!(invalid_name(bad.simulate(ok)), "friction");
+    assert_eq!(invalid_input_name(bad.simulate(ok)), "friction");
     let mut bad = base;
-    bad.motion.v_z = -1.0;
-    assert_eq!(invalid_name(bad.solve(1e-6)), "v_z");
+    bad.incident.sphere.v_z = -1.0;
+    assert_eq!(invalid_input_name(bad.solve(1e-6)), "v_z");
     let mut bad = base;
-    bad.sphere.material.poisson_ratio = 0.7;
-    assert_eq!(invalid_name(bad.groups()), "poisson_ratio");
+    bad.materials[0].poisson_ratio = 0.7;
+    assert_eq!(invalid_input_name(bad.groups()), "poisson_ratio");
     assert_eq!(invalid_name(base.solve(0.0)), "tol");
     assert_eq!(invalid_name(base.simulate(res(1, 64))), "springs");
 }

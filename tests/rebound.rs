@@ -9,7 +9,7 @@
 //! `tables/full.h5` agree with the simulation within the table's stated error plus the
 //! simulation's.
 
-use oblique_solver::units::{Material, Motion, PhysicalImpact, Sphere, Target};
+use oblique_solver::units::PhysicalImpact;
 use oblique_solver::{solve, Accuracy, Scheme};
 use std::sync::OnceLock;
 
@@ -43,29 +43,6 @@ fn frame() -> (Vec3, Vec3, Vec3) {
 
 const TOL: f64 = 1e-6;
 
-fn elastic(m: &Material) -> Elastic {
-    Elastic {
-        youngs_modulus: m.youngs_modulus,
-        poisson_ratio: m.poisson_ratio,
-    }
-}
-
-fn body(s: &Sphere) -> Body {
-    Body {
-        mass: s.mass,
-        radius: s.radius,
-        kappa: s.kappa,
-    }
-}
-
-fn state(m: &Motion) -> State {
-    State {
-        v_x: m.v_x,
-        v_z: m.v_z,
-        omega: m.omega,
-    }
-}
-
 fn close(a: f64, b: f64, abs: f64, what: &str) {
     assert!(
         (a - b).abs() <= abs,
@@ -77,57 +54,55 @@ fn close(a: f64, b: f64, abs: f64, what: &str) {
 fn check(imp: &PhysicalImpact) {
     let phys = imp.solve(TOL).expect("physical simulation");
     let g = phys.groups;
-    let (pair, other_mat, other_state) = match &imp.target {
-        Target::Wall(m) => (
-            Pair {
-                sphere: body(&imp.sphere),
-                other: None,
-            },
-            *m,
-            State::default(),
+    let (pair, inc) = (imp.pair, imp.incident);
+    let [sphere_mat, other_mat] = imp.materials;
+    // The groups, by the formulas of physics.md written out here (not the library's code):
+    // 1/E* = Σ (1 − ν²)/E, 1/G* = Σ (2 − ν)/(4G), m* = m1 m2/(m1 + m2),
+    // 1/m_t = Σ (1/m + R²/I), γ² = (m*/m_t) G*/E*, α = (2/7)(m*/m_t) μ v_z0/|u0|.
+    let e_inv = |m: &Elastic| (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus;
+    let g_inv = |m: &Elastic| {
+        (2.0 - m.poisson_ratio) * 2.0 * (1.0 + m.poisson_ratio) / (4.0 * m.youngs_modulus)
+    };
+    let e_star = 1.0 / (e_inv(&sphere_mat) + e_inv(&other_mat));
+    let g_star = 1.0 / (g_inv(&sphere_mat) + g_inv(&other_mat));
+    let b1 = pair.sphere;
+    let t_inv = |b: &Body| 1.0 / b.mass + 1.0 / (b.kappa * b.mass);
+    let (m_star, m_t, r_star, v_z0, u0) = match pair.other {
+        None => (
+            b1.mass,
+            1.0 / t_inv(&b1),
+            b1.radius,
+            inc.sphere.v_z,
+            inc.sphere.v_x + b1.radius * inc.sphere.omega,
         ),
-        Target::Sphere(s, m) => (
-            Pair {
-                sphere: body(&imp.sphere),
-                other: Some(body(s)),
-            },
-            s.material,
-            state(m),
+        Some(b2) => (
+            b1.mass * b2.mass / (b1.mass + b2.mass),
+            1.0 / (t_inv(&b1) + t_inv(&b2)),
+            b1.radius * b2.radius / (b1.radius + b2.radius),
+            inc.sphere.v_z - inc.other.v_z,
+            (inc.sphere.v_x + b1.radius * inc.sphere.omega)
+                - (inc.other.v_x - b2.radius * inc.other.omega),
         ),
     };
-    let inc = Incident {
-        sphere: state(&imp.motion),
-        other: other_state,
-    };
-    // Same groups.
-    let gamma = pair
-        .gamma_from_materials(&elastic(&imp.sphere.material), &elastic(&other_mat))
-        .unwrap();
-    let alpha = pair.alpha(&inc, imp.friction).unwrap();
+    let gamma = (m_star / m_t * g_star / e_star).sqrt();
+    let alpha = 2.0 / 7.0 * m_star / m_t * imp.friction * v_z0 / u0.abs();
     close(gamma, g.gamma, 1e-12 * g.gamma, "gamma");
     close(alpha, g.alpha, 1e-12 * g.alpha, "alpha");
-    close(
-        pair.normal_mass(),
-        g.normal_mass,
-        1e-12 * g.normal_mass,
-        "m*",
-    );
-    close(
-        pair.tangential_mass(),
-        g.tangential_mass,
-        1e-12 * g.tangential_mass,
-        "m_t",
-    );
-    close(pair.effective_radius(), g.radius, 1e-15, "R*");
-    close(pair.slip_velocity(&inc), g.slip_velocity, 1e-12, "u0");
+    close(e_star, g.e_star, 1e-12 * g.e_star, "E*");
+    close(g_star, g.g_star, 1e-12 * g.g_star, "G*");
+    close(m_star, g.normal_mass, 1e-12 * g.normal_mass, "m*");
+    close(m_t, g.tangential_mass, 1e-12 * g.tangential_mass, "m_t");
+    close(r_star, g.radius, 1e-15, "R*");
+    close(v_z0, g.approach_speed, 1e-12 * v_z0, "v_z0");
+    close(u0, g.slip_velocity, 1e-12 * u0.abs(), "u0");
 
     let p_phys = phys.p.expect("u0 != 0");
     let u0 = g.slip_velocity.abs();
-    let scale_v = u0 + imp.motion.v_z.abs();
+    let scale_v = u0 + imp.incident.sphere.v_z.abs();
 
     // 1. rebound(P of the physical run) reproduces its states (same impulses).
     let r = pair.rebound(&inc, p_phys).unwrap();
-    let bodies: Vec<(State, Motion, Body)> = match (&r.other, &phys.other, &pair.other) {
+    let bodies: Vec<(State, State, Body)> = match (&r.other, &phys.other, &pair.other) {
         (Some(a), Some(b), Some(c)) => vec![(r.sphere, phys.sphere, pair.sphere), (*a, *b, *c)],
         _ => vec![(r.sphere, phys.sphere, pair.sphere)],
     };
@@ -155,7 +130,7 @@ fn check(imp: &PhysicalImpact) {
     close(sol.p, p_phys, err + 1e-12, "P (dimensionless vs physical)");
     let r = pair.rebound(&inc, sol.p).unwrap();
     let m_t = pair.tangential_mass();
-    let bodies: Vec<(State, Motion, Body)> = match (&r.other, &phys.other, &pair.other) {
+    let bodies: Vec<(State, State, Body)> = match (&r.other, &phys.other, &pair.other) {
         (Some(a), Some(b), Some(c)) => vec![(r.sphere, phys.sphere, pair.sphere), (*a, *b, *c)],
         _ => vec![(r.sphere, phys.sphere, pair.sphere)],
     };
@@ -174,11 +149,7 @@ fn check(imp: &PhysicalImpact) {
 
     // 3. From the table, in 2-D and embedded in 3-D: within the table's error + the simulation's.
     let t = table();
-    let contact = Contact::with_materials(
-        elastic(&imp.sphere.material),
-        elastic(&other_mat),
-        imp.friction,
-    );
+    let contact = Contact::with_materials(sphere_mat, other_mat, imp.friction);
     let a = t.rebound(&pair, &contact, &inc).expect("table rebound");
     close(a.gamma, g.gamma, 1e-12 * g.gamma, "gamma (table)");
     close(a.alpha, g.alpha, 1e-12 * g.alpha, "alpha (table)");
@@ -212,7 +183,7 @@ fn check(imp: &PhysicalImpact) {
         .expect("table rebound 3-D");
     close(a3.rebound.p, a.rebound.p, 1e-9, "P (3-D vs 2-D)");
     let dot = |a: Vec3, b: Vec3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let mut bodies3: Vec<(Motion3, Motion, Body, usize)> =
+    let mut bodies3: Vec<(Motion3, State, Body, usize)> =
         vec![(a3.rebound.sphere, phys.sphere, pair.sphere, 0)];
     if let (Some(m), Some(sim), Some(b)) = (a3.rebound.other, phys.other, pair.other) {
         bodies3.push((m, sim, b, 1));
@@ -247,30 +218,30 @@ fn check(imp: &PhysicalImpact) {
     }
 }
 
-const GLASS: Material = Material {
+const GLASS: Elastic = Elastic {
     youngs_modulus: 73e9,
     poisson_ratio: 0.217,
 };
-const ALUMINA: Material = Material {
+const ALUMINA: Elastic = Elastic {
     youngs_modulus: 370e9,
     poisson_ratio: 0.25,
 };
-const STEEL: Material = Material {
+const STEEL: Elastic = Elastic {
     youngs_modulus: 210e9,
     poisson_ratio: 0.3,
 };
-const NYLON: Material = Material {
+const NYLON: Elastic = Elastic {
     youngs_modulus: 2.9e9,
     poisson_ratio: 0.39,
 };
 
-fn alumina_sphere() -> Sphere {
+/// An alumina sphere (its material is [`ALUMINA`]).
+fn alumina_sphere() -> Body {
     let r: f64 = 2.5e-3;
-    Sphere {
+    Body {
         radius: r,
         mass: 3720.0 * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3),
         kappa: 0.4,
-        material: ALUMINA,
     }
 }
 
@@ -279,13 +250,19 @@ fn seed_000_sphere_on_glass_at_several_angles() {
     for deg in [8.0_f64, 20.0, 40.0] {
         let t = deg.to_radians();
         check(&PhysicalImpact {
-            sphere: alumina_sphere(),
-            motion: Motion {
-                v_x: 3.9 * t.sin(),
-                v_z: 3.9 * t.cos(),
-                omega: 0.0,
+            pair: Pair {
+                sphere: alumina_sphere(),
+                other: None,
             },
-            target: Target::Wall(GLASS),
+            materials: [ALUMINA, GLASS],
+            incident: Incident {
+                sphere: State {
+                    v_x: 3.9 * t.sin(),
+                    v_z: 3.9 * t.cos(),
+                    omega: 0.0,
+                },
+                other: State::default(),
+            },
             friction: 0.092,
         });
     }
@@ -294,18 +271,23 @@ fn seed_000_sphere_on_glass_at_several_angles() {
 #[test]
 fn hollow_spinning_sphere_on_a_wall() {
     check(&PhysicalImpact {
-        sphere: Sphere {
-            radius: 0.01,
-            mass: 0.002,
-            kappa: 0.55,
-            material: NYLON,
+        pair: Pair {
+            sphere: Body {
+                radius: 0.01,
+                mass: 0.002,
+                kappa: 0.55,
+            },
+            other: None,
         },
-        motion: Motion {
-            v_x: 0.3,
-            v_z: 1.0,
-            omega: -80.0,
+        materials: [NYLON, STEEL],
+        incident: Incident {
+            sphere: State {
+                v_x: 0.3,
+                v_z: 1.0,
+                omega: -80.0,
+            },
+            other: State::default(),
         },
-        target: Target::Wall(STEEL),
         friction: 0.3,
     });
 }
@@ -313,25 +295,27 @@ fn hollow_spinning_sphere_on_a_wall() {
 #[test]
 fn two_spheres_of_different_size_material_and_spin() {
     check(&PhysicalImpact {
-        sphere: alumina_sphere(),
-        motion: Motion {
-            v_x: 0.8,
-            v_z: 1.5,
-            omega: 120.0,
-        },
-        target: Target::Sphere(
-            Sphere {
+        pair: Pair {
+            sphere: alumina_sphere(),
+            other: Some(Body {
                 radius: 6e-3,
                 mass: 2.4e-3,
                 kappa: 0.4,
-                material: STEEL,
+            }),
+        },
+        materials: [ALUMINA, STEEL],
+        incident: Incident {
+            sphere: State {
+                v_x: 0.8,
+                v_z: 1.5,
+                omega: 120.0,
             },
-            Motion {
+            other: State {
                 v_x: -0.2,
                 v_z: -0.4,
                 omega: -50.0,
             },
-        ),
+        },
         friction: 0.15,
     });
 }

@@ -8,9 +8,10 @@ use std::process::Command;
 use std::sync::OnceLock;
 use std::time::Instant;
 
+use oblique_lookup::rebound::{Incident, Pair, State};
 use oblique_lookup::Table;
 use oblique_physics::regimes::Regime;
-use oblique_solver::units::{Material, Motion, PhysicalImpact, Sphere, Target};
+use oblique_solver::units::PhysicalImpact;
 use oblique_study::scene::{self, evaluate, PSource, RowMethod, Scene, SceneTarget};
 
 fn root() -> PathBuf {
@@ -184,17 +185,6 @@ fn simulated_slice_agrees_with_table_lookup_within_its_certified_error() {
     }
 }
 
-fn material(m: &scene::MaterialUse) -> Material {
-    Material {
-        youngs_modulus: if m.elastic.youngs_modulus.is_finite() {
-            m.elastic.youngs_modulus
-        } else {
-            1e30 // the simulator takes a finite modulus; 1e30 Pa is rigid to 1e-19
-        },
-        poisson_ratio: m.elastic.poisson_ratio,
-    }
-}
-
 #[test]
 fn scene_cases_agree_with_a_direct_physical_units_simulation() {
     for name in [
@@ -204,12 +194,6 @@ fn scene_cases_agree_with_a_direct_physical_units_simulation() {
     ] {
         let s = shipped(name);
         let ev = evaluate(&s, PSource::Simulate).unwrap();
-        let sphere = Sphere {
-            radius: s.sphere.radius,
-            mass: s.sphere.mass,
-            kappa: s.sphere.kappa,
-            material: material(&s.sphere_material),
-        };
         // A few cases per scene, spread over the regimes.
         let n = ev.rows.len();
         for r in [
@@ -221,29 +205,22 @@ fn scene_cases_agree_with_a_direct_physical_units_simulation() {
             if r.method == RowMethod::NormalImpact {
                 continue;
             }
-            let motion = |st: &oblique_lookup::rebound::State| Motion {
-                v_x: st.v_x,
-                v_z: st.v_z,
-                omega: st.omega,
-            };
-            let target = match &s.target {
-                SceneTarget::Wall { material: m } => Target::Wall(material(m)),
+            let (other, other_material, other_motion) = match &s.target {
+                SceneTarget::Wall { material: m } => (None, m.elastic, State::default()),
                 SceneTarget::Sphere {
                     body, material: m, ..
-                } => Target::Sphere(
-                    Sphere {
-                        radius: body.radius,
-                        mass: body.mass,
-                        kappa: body.kappa,
-                        material: material(m),
-                    },
-                    motion(&r.incident.other),
-                ),
+                } => (Some(*body), m.elastic, r.incident.other),
             };
             let imp = PhysicalImpact {
-                sphere,
-                motion: motion(&r.incident.sphere),
-                target,
+                pair: Pair {
+                    sphere: s.sphere,
+                    other,
+                },
+                materials: [s.sphere_material.elastic, other_material],
+                incident: Incident {
+                    sphere: r.incident.sphere,
+                    other: other_motion,
+                },
                 friction: s.friction,
             };
             let phys = imp.solve(1e-6).unwrap();

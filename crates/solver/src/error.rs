@@ -17,6 +17,9 @@ pub enum PhysicsError {
         /// The allowed range, in words.
         allowed: &'static str,
     },
+    /// A body, material or incident state outside its range (the rebound algebra's check).
+    #[error(transparent)]
+    Input(#[from] oblique_physics::InvalidInput),
     /// The requested tolerance needs more resolution than the configured limit allows.
     #[error(
         "tolerance {tol:e} not reached: best error estimate {achieved:e} at {res} (limit \

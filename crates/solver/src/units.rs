@@ -7,108 +7,26 @@
 //! moves at `v_x − R ω`. The slip velocity is `u = (v_1x + R_1 ω_1) − (v_2x − R_2 ω_2)` and for a
 //! wall `u = v_x + R ω` (the seed's convention).
 
+use oblique_physics::rebound::{effective_moduli, Elastic, Incident, Pair, State};
 use serde::Serialize;
 
-use super::error::{positive, PhysicsError};
+use super::error::PhysicsError;
 use super::hertz::NormalBodies;
 use super::impact::{refine, run_contact, Limits, Resolution, TangentialBodies};
 
-/// An isotropic elastic material.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Material {
-    /// Young's modulus `E` (Pa), > 0.
-    pub youngs_modulus: f64,
-    /// Poisson's ratio `ν`, in (−1, 0.5].
-    pub poisson_ratio: f64,
-}
-
-impl Material {
-    /// Validate `E > 0` and `−1 < ν ≤ 0.5`.
-    pub fn validate(&self) -> Result<(), PhysicsError> {
-        positive("youngs_modulus", self.youngs_modulus)?;
-        let nu = self.poisson_ratio;
-        if !(nu > -1.0 && nu <= 0.5) {
-            return Err(PhysicsError::InvalidParameter {
-                name: "poisson_ratio",
-                value: nu,
-                allowed: "in (-1, 0.5]",
-            });
-        }
-        Ok(())
-    }
-
-    /// Shear modulus `G = E / (2(1 + ν))` (Pa).
-    pub fn shear_modulus(&self) -> f64 {
-        self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
-    }
-}
-
-/// Effective moduli of a pair: `1/E* = Σ (1−ν²)/E`, `1/G* = Σ (2−ν)/(4G)`. Returns `(E*, G*)` (Pa).
-pub fn effective_moduli(a: &Material, b: &Material) -> (f64, f64) {
-    let e_inv = (1.0 - a.poisson_ratio.powi(2)) / a.youngs_modulus
-        + (1.0 - b.poisson_ratio.powi(2)) / b.youngs_modulus;
-    let g_inv = (2.0 - a.poisson_ratio) / (4.0 * a.shear_modulus())
-        + (2.0 - b.poisson_ratio) / (4.0 * b.shear_modulus());
-    (1.0 / e_inv, 1.0 / g_inv)
-}
-
-/// A sphere: geometry, inertia and material.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Sphere {
-    /// Radius `R` (m).
-    pub radius: f64,
-    /// Mass `m` (kg).
-    pub mass: f64,
-    /// Inertia factor `κ` in `I = κ m R²` (2/5 solid, 2/3 thin shell).
-    pub kappa: f64,
-    /// Material.
-    pub material: Material,
-}
-
-impl Sphere {
-    /// Validate every field.
-    pub fn validate(&self) -> Result<(), PhysicsError> {
-        positive("radius", self.radius)?;
-        positive("mass", self.mass)?;
-        positive("kappa", self.kappa)?;
-        self.material.validate()
-    }
-
-    /// Moment of inertia `I = κ m R²` (kg m²).
-    pub fn inertia(&self) -> f64 {
-        self.kappa * self.mass * self.radius * self.radius
-    }
-}
-
-/// Translational and rotational state in the impact plane.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
-pub struct Motion {
-    /// Tangential velocity `v_x` (m/s).
-    pub v_x: f64,
-    /// Normal velocity `v_z` (m/s), along the normal from sphere 1 into the other body.
-    pub v_z: f64,
-    /// Spin `ω` (rad/s), signed as in the module documentation.
-    pub omega: f64,
-}
-
-/// What sphere 1 hits.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Target {
-    /// A fixed elastic half-space (infinite mass, flat).
-    Wall(Material),
-    /// A second free sphere with its own incident motion.
-    Sphere(Sphere, Motion),
-}
-
-/// One impact in physical units.
+/// One impact in physical units, in the vocabulary of the lookup ([`oblique_physics::rebound`]):
+/// the same [`Pair`], materials and [`Incident`] state that a table query takes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhysicalImpact {
-    /// The incident sphere.
-    pub sphere: Sphere,
-    /// Its incident motion (`v_z > 0` towards the target).
-    pub motion: Motion,
-    /// Wall or second sphere.
-    pub target: Target,
+    /// Sphere 1 and what it hits: a fixed wall (`other = None`) or sphere 2 (masses in kg, radii
+    /// in m, inertia factors κ).
+    pub pair: Pair,
+    /// Elastic constants of sphere 1 and of the wall or sphere 2 (`E` in Pa, `ν`; `E = ∞` for a
+    /// rigid body, not both).
+    pub materials: [Elastic; 2],
+    /// Both bodies' motion before the impact (m/s, rad/s; `other` all zero for a wall). The
+    /// approach speed `v_z0 = v_1z − v_2z` must be > 0.
+    pub incident: Incident,
     /// Coulomb friction coefficient `μ` (≥ 0; `∞` for no slip).
     pub friction: f64,
 }
@@ -141,9 +59,9 @@ pub struct Groups {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PhysicalOutcome {
     /// Sphere 1 after the impact.
-    pub sphere: Motion,
+    pub sphere: State,
     /// Sphere 2 after the impact (`None` for a wall).
-    pub other: Option<Motion>,
+    pub other: Option<State>,
     /// `P = u_after/u0` (`None` when `u0 = 0`).
     pub p: Option<f64>,
     /// Error estimate of `P` (0 when `u0 = 0`).
@@ -194,50 +112,21 @@ impl TangentialBodies for TwoBodies {
 }
 
 impl PhysicalImpact {
-    fn validate(&self) -> Result<(), PhysicsError> {
-        self.sphere.validate()?;
-        if let Target::Sphere(s, m) = &self.target {
-            s.validate()?;
-            check_motion(m)?;
-        }
-        if let Target::Wall(w) = &self.target {
-            w.validate()?;
-        }
-        check_motion(&self.motion)?;
-        if self.friction.is_nan() || self.friction < 0.0 {
-            return Err(PhysicsError::InvalidParameter {
-                name: "friction",
-                value: self.friction,
-                allowed: ">= 0 (or inf for no slip)",
-            });
-        }
-        let approach = self.approach_speed();
-        if approach.is_nan() || approach <= 0.0 || !approach.is_finite() {
-            return Err(PhysicsError::InvalidParameter {
-                name: "v_z",
-                value: approach,
-                allowed: "an approach speed > 0 (the bodies must move towards each other)",
-            });
-        }
-        Ok(())
-    }
-
-    fn approach_speed(&self) -> f64 {
-        match &self.target {
-            Target::Wall(_) => self.motion.v_z,
-            Target::Sphere(_, m) => self.motion.v_z - m.v_z,
-        }
-    }
-
     fn bodies(&self) -> TwoBodies {
-        let s = &self.sphere;
-        let (v2, w2, inv_m2, r2, inv_i2) = match &self.target {
-            Target::Wall(_) => (0.0, 0.0, 0.0, 0.0, 0.0),
-            Target::Sphere(o, m) => (m.v_x, m.omega, 1.0 / o.mass, o.radius, 1.0 / o.inertia()),
+        let (s, inc) = (&self.pair.sphere, &self.incident);
+        let (v2, w2, inv_m2, r2, inv_i2) = match &self.pair.other {
+            None => (0.0, 0.0, 0.0, 0.0, 0.0),
+            Some(o) => (
+                inc.other.v_x,
+                inc.other.omega,
+                1.0 / o.mass,
+                o.radius,
+                1.0 / o.inertia(),
+            ),
         };
         TwoBodies {
-            v1: self.motion.v_x,
-            w1: self.motion.omega,
+            v1: inc.sphere.v_x,
+            w1: inc.sphere.omega,
             inv_m1: 1.0 / s.mass,
             r1: s.radius,
             inv_i1: 1.0 / s.inertia(),
@@ -249,35 +138,24 @@ impl PhysicalImpact {
         }
     }
 
-    /// The dimensionless groups `γ`, `α` and the effective quantities behind them.
+    /// The dimensionless groups `γ`, `α` and the effective quantities behind them, by the
+    /// rebound algebra's own definitions ([`Pair`]). Checks every input.
     pub fn groups(&self) -> Result<Groups, PhysicsError> {
-        self.validate()?;
-        let b = self.bodies();
-        let (other_mat, radius) = match &self.target {
-            Target::Wall(m) => (*m, self.sphere.radius),
-            Target::Sphere(o, _) => (
-                o.material,
-                self.sphere.radius * o.radius / (self.sphere.radius + o.radius),
-            ),
-        };
-        let (e_star, g_star) = effective_moduli(&self.sphere.material, &other_mat);
-        let normal_mass = 1.0 / (b.inv_m1 + b.inv_m2);
-        let tangential_mass =
-            1.0 / (b.inv_m1 + b.r1 * b.r1 * b.inv_i1 + b.inv_m2 + b.r2 * b.r2 * b.inv_i2);
-        let ratio = normal_mass / tangential_mass;
-        let u0 = b.slip_velocity();
-        let v = self.approach_speed();
-        let alpha = 2.0 / 7.0 * ratio * self.friction * v / u0.abs();
+        let (pair, inc) = (&self.pair, &self.incident);
+        let [a, b] = &self.materials;
+        let gamma = pair.gamma_from_materials(a, b)?;
+        let alpha = pair.alpha(inc, self.friction)?;
+        let (e_star, g_star) = effective_moduli(a, b);
         Ok(Groups {
-            gamma: (ratio * g_star / e_star).sqrt(),
-            alpha: if alpha.is_nan() { f64::INFINITY } else { alpha },
+            gamma,
+            alpha,
             e_star,
             g_star,
-            normal_mass,
-            tangential_mass,
-            radius,
-            approach_speed: v,
-            slip_velocity: u0,
+            normal_mass: pair.normal_mass(),
+            tangential_mass: pair.tangential_mass(),
+            radius: pair.effective_radius(),
+            approach_speed: pair.approach_speed(inc),
+            slip_velocity: pair.slip_velocity(inc),
         })
     }
 
@@ -309,19 +187,16 @@ impl PhysicalImpact {
         );
         let u0 = groups.slip_velocity;
         let p = (u0 != 0.0).then(|| bodies.slip_velocity() / u0);
-        let sphere = Motion {
+        let sphere = State {
             v_x: bodies.v1,
-            v_z: self.motion.v_z + normal.delta_v1,
+            v_z: self.incident.sphere.v_z + normal.delta_v1,
             omega: bodies.w1,
         };
-        let other = match &self.target {
-            Target::Wall(_) => None,
-            Target::Sphere(_, m) => Some(Motion {
-                v_x: bodies.v2,
-                v_z: m.v_z + normal.delta_v2,
-                omega: bodies.w2,
-            }),
-        };
+        let other = self.pair.other.map(|_| State {
+            v_x: bodies.v2,
+            v_z: self.incident.other.v_z + normal.delta_v2,
+            omega: bodies.w2,
+        });
         Ok(PhysicalOutcome {
             sphere,
             other,
@@ -362,17 +237,4 @@ impl PhysicalImpact {
         out.error_estimate = est;
         Ok(out)
     }
-}
-
-fn check_motion(m: &Motion) -> Result<(), PhysicsError> {
-    for (name, v) in [("v_x", m.v_x), ("v_z", m.v_z), ("omega", m.omega)] {
-        if !v.is_finite() {
-            return Err(PhysicsError::InvalidParameter {
-                name,
-                value: v,
-                allowed: "a finite number",
-            });
-        }
-    }
-    Ok(())
 }
