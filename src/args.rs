@@ -104,5 +104,5 @@ pub(crate) fn parse_integer(s: &str, min: usize, max: Option<usize>) -> Option<u
     s.trim()
         .parse::<usize>()
         .ok()
-        .filter(|&v| v >= min && max.map_or(true, |m| v <= m))
+        .filter(|&v| v >= min && max.is_none_or(|m| v <= m))
 }

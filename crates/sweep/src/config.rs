@@ -325,7 +325,10 @@ impl Config {
             ));
         }
         let min_leaf = 2 * (n.stencil - 1);
-        if n.leaf_intervals < min_leaf || n.leaf_intervals > 64 || n.leaf_intervals % 2 != 0 {
+        if n.leaf_intervals < min_leaf
+            || n.leaf_intervals > 64
+            || !n.leaf_intervals.is_multiple_of(2)
+        {
             return Err(err(
                 "nodes.leaf_intervals",
                 n.leaf_intervals.to_string(),

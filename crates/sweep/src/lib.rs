@@ -666,7 +666,7 @@ fn build_patch(
     let mut child: Vec<Option<usize>> = vec![None; cells.len()];
     let mut predicted = vec![f64::NAN; cells.len()];
     let mut open: Vec<usize> = (0..cells.len())
-        .filter(|&i| shard.map_or(true, |sh| sh.owns(first_root + i)))
+        .filter(|&i| shard.is_none_or(|sh| sh.owns(first_root + i)))
         .collect();
     let mut cache: HashMap<Key, (f64, f64)> = HashMap::new();
     for round in 0.. {

@@ -137,49 +137,10 @@ impl Reader<'_> {
             })
     }
 
-    /// Check that `tree` is a valid quadtree over `roots` root cells whose leaves are numbered
-    /// `0..leaves` each exactly once; returns the number of leaves.
+    /// [`crate::surface::check_tree`], its message naming the patch and the dataset.
     fn check_tree(&self, patch: &str, tree: &[i32], roots: usize) -> Result<usize, TableError> {
-        let bad = |m: String| self.invalid(format!("patch '{patch}': dataset 'tree' {m}"));
-        if tree.len() < roots || (tree.len() - roots) % 4 != 0 {
-            return Err(bad(format!(
-                "has {} cells: expected {roots} roots plus groups of 4 children",
-                tree.len()
-            )));
-        }
-        let mut referenced = vec![false; tree.len()];
-        let mut leaves = Vec::new();
-        for (i, &t) in tree.iter().enumerate() {
-            if t < 0 {
-                leaves.push((-(t as i64) - 1) as usize);
-                continue;
-            }
-            let first = t as usize;
-            // Children come after their parent (no cycles) and after the roots.
-            if first <= i || first < roots || first + 4 > tree.len() {
-                return Err(bad(format!(
-                    "cell {i} points to children at {t}: out of range"
-                )));
-            }
-            for r in &mut referenced[first..first + 4] {
-                if *r {
-                    return Err(bad(format!(
-                        "cell {i}: children at {t} shared with another cell"
-                    )));
-                }
-                *r = true;
-            }
-        }
-        if let Some(i) = (roots..tree.len()).find(|&i| !referenced[i]) {
-            return Err(bad(format!("cell {i} is not reachable from a root")));
-        }
-        leaves.sort_unstable();
-        if leaves.iter().enumerate().any(|(k, &l)| k != l) {
-            return Err(bad(
-                "does not number its leaves 0, 1, 2, ... exactly once".into()
-            ));
-        }
-        Ok(leaves.len())
+        crate::surface::check_tree(tree, roots)
+            .map_err(|m| self.invalid(format!("patch '{patch}': dataset 'tree' {m}")))
     }
 
     fn count_attr(&self, g: &hdf5::Group, name: &str, max: usize) -> Result<usize, TableError> {
@@ -383,7 +344,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
     let version = version_f as u32;
     let stencil_f = r.attr_f64(&file, ATTR_STENCIL)?;
     let stencil = stencil_f as usize;
-    if stencil as f64 != stencil_f || !(2..=8).contains(&stencil) || stencil % 2 != 0 {
+    if stencil as f64 != stencil_f || !(2..=8).contains(&stencil) || !stencil.is_multiple_of(2) {
         return Err(r.invalid(format!(
             "stencil_points = {stencil_f}: must be an even integer in [2, 8]"
         )));

@@ -447,7 +447,7 @@ pub fn locate(x: f64, blocks: usize) -> (usize, f64) {
 /// `0..leaves` each exactly once; returns the number of leaves. `Err` says what is wrong with
 /// the dataset `tree`.
 pub fn check_tree(tree: &[i32], roots: usize) -> Result<usize, String> {
-    if tree.len() < roots || (tree.len() - roots) % 4 != 0 {
+    if tree.len() < roots || !(tree.len() - roots).is_multiple_of(4) {
         return Err(format!(
             "has {} cells: expected {roots} roots plus groups of 4 children",
             tree.len()
@@ -923,7 +923,7 @@ impl Surface {
         if alpha_max.is_nan() || alpha_max <= 0.0 {
             return Err(format!("alpha_max = {alpha_max} must be > 0 or inf"));
         }
-        if !(2..=8).contains(&stencil) || stencil % 2 != 0 {
+        if !(2..=8).contains(&stencil) || !stencil.is_multiple_of(2) {
             return Err(format!(
                 "stencil_points = {stencil}: must be an even integer in [2, 8]"
             ));
