@@ -52,6 +52,7 @@ impl Elastic {
         poisson_ratio: 0.0,
     };
 
+    #[inline]
     /// Check `E > 0` (`∞` allowed) and `−1 < ν ≤ 0.5`.
     pub fn validate(&self) -> Result<(), InvalidInput> {
         if self.youngs_modulus.is_nan() || self.youngs_modulus <= 0.0 {
@@ -68,12 +69,14 @@ impl Elastic {
         Ok(())
     }
 
+    #[inline]
     /// Shear modulus `G = E/(2(1 + ν))` (Pa).
     pub fn shear_modulus(&self) -> f64 {
         self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
     }
 }
 
+#[inline]
 /// Effective moduli of a pair, `(E*, G*)` in Pa:
 /// `1/E* = Σ (1 − ν²)/E`, `1/G* = Σ (2 − ν)/(4G)`. A rigid body contributes nothing.
 pub fn effective_moduli(a: &Elastic, b: &Elastic) -> (f64, f64) {
@@ -104,6 +107,7 @@ pub struct Body {
 }
 
 impl Body {
+    #[inline]
     /// Moment of inertia `I = κ m R²` (kg m²).
     pub fn inertia(&self) -> f64 {
         self.kappa * self.mass * self.radius * self.radius
@@ -200,6 +204,7 @@ fn query(name: &'static str, value: f64, allowed: &str) -> InvalidInput {
 }
 
 impl Pair {
+    #[inline]
     /// Check masses, radii and inertia factors.
     pub fn validate(&self) -> Result<(), InvalidInput> {
         self.sphere.validate(&["mass", "radius", "kappa"])?;
@@ -209,6 +214,7 @@ impl Pair {
         Ok(())
     }
 
+    #[inline]
     /// Normal reduced mass `m* = m_1 m_2/(m_1 + m_2)` (kg); `m_1` for a wall.
     pub fn normal_mass(&self) -> f64 {
         match &self.other {
@@ -217,17 +223,20 @@ impl Pair {
         }
     }
 
+    #[inline]
     /// Tangential reduced mass `m_t`, `1/m_t = Σ (1/m + R²/I)` (kg); `κ m/(1 + κ)` for one sphere.
     pub fn tangential_mass(&self) -> f64 {
         let inv = |b: &Body| 1.0 / b.mass + b.radius * b.radius / b.inertia();
         1.0 / (inv(&self.sphere) + self.other.as_ref().map_or(0.0, inv))
     }
 
+    #[inline]
     /// `m*/m_t` (dimensionless); `(1 + κ)/κ` for one sphere on a wall (7/2 for a solid sphere).
     pub fn mass_ratio(&self) -> f64 {
         self.normal_mass() / self.tangential_mass()
     }
 
+    #[inline]
     /// Effective radius `R* = R_1 R_2/(R_1 + R_2)` (m); `R_1` for a flat wall.
     pub fn effective_radius(&self) -> f64 {
         match &self.other {
@@ -236,11 +245,13 @@ impl Pair {
         }
     }
 
+    #[inline]
     /// `γ = √((m*/m_t) G*/E*)` from the effective moduli (Pa).
     pub fn gamma(&self, e_star: f64, g_star: f64) -> f64 {
         (self.mass_ratio() * g_star / e_star).sqrt()
     }
 
+    #[inline]
     /// `γ` from the two materials (sphere 1, then the wall or sphere 2).
     pub fn gamma_from_materials(&self, a: &Elastic, b: &Elastic) -> Result<f64, InvalidInput> {
         self.validate()?;
@@ -258,6 +269,7 @@ impl Pair {
         Ok(self.gamma(e, g))
     }
 
+    #[inline]
     /// Relative approach speed `v_z0 = v_1z − v_2z` (m/s; `v_1z` for a wall).
     pub fn approach_speed(&self, s: &Incident) -> f64 {
         match &self.other {
@@ -266,6 +278,7 @@ impl Pair {
         }
     }
 
+    #[inline]
     /// Slip velocity `u = (v_1x + R_1 ω_1) − (v_2x − R_2 ω_2)` (m/s).
     pub fn slip_velocity(&self, s: &Incident) -> f64 {
         let u1 = s.sphere.v_x + self.sphere.radius * s.sphere.omega;
@@ -275,6 +288,7 @@ impl Pair {
         }
     }
 
+    #[inline]
     /// `α = (2/7)(m*/m_t) μ v_z0/|u0|` for the friction coefficient `μ` (`∞` when `u0 = 0`).
     pub fn alpha(&self, s: &Incident, mu: f64) -> Result<f64, InvalidInput> {
         self.check_incident(s)?;
@@ -530,6 +544,7 @@ pub struct Plane {
 }
 
 impl Pair {
+    #[inline]
     /// Reduce a 3-D impact to its plane of impact.
     ///
     /// The friction impulse acts along the incident slip of the contact point

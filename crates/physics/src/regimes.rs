@@ -17,11 +17,13 @@ pub fn alpha_c1_of_squared(g2: f64) -> f64 {
 }
 
 /// `α_c2 = 2γ²/7`.
+#[inline]
 pub fn alpha_c2(gamma: f64) -> f64 {
     2.0 * gamma * gamma / 7.0
 }
 
 /// Upper end of the exact line `P = 1 − 7α`: `α_c1` for `γ > 1`, `α_c2` for `γ ≤ 1`.
+#[inline]
 pub fn linear_limit(gamma: f64) -> f64 {
     if gamma > 1.0 {
         alpha_c1(gamma)

@@ -94,6 +94,7 @@ impl PatchKind {
 /// Width `ρ(γ)` of the stick coordinate, in units of `r = α/α_c2 − 1`: `2(1 − γ²)` for `γ < 1`
 /// (the boundary layer below γ = 1 has width `α_c1/α_c2 − 1 = r₁`, and `r₁/(1 + r₁) = 2(1 − γ²)`),
 /// `1` for `γ ≥ 1`.
+#[inline]
 pub fn stick_scale(gamma: f64) -> f64 {
     if gamma < 1.0 {
         2.0 * (1.0 - gamma * gamma)
@@ -1043,6 +1044,7 @@ pub enum Region {
 
 impl Region {
     /// Region of `(γ, α)` (assumed valid).
+    #[inline]
     pub fn of(gamma: f64, alpha: f64) -> Self {
         if alpha <= linear_limit(gamma) {
             Region::Line
