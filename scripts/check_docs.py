@@ -4,8 +4,9 @@
 An example is a ```text block whose lines starting with `$ ` are commands; the lines after a
 command, up to the next command or the end of the block, are what it prints (standard output and
 standard error together). Each command runs under bash in a scratch folder holding copies of
-`configs/` and `tables/` (so nothing in the checkout is written), with `target/release` first on
-PATH, so `sweep` is the binary under test.
+`configs/` and `tables/` (so nothing in the checkout is written), with `target/release` and
+`target/release/examples` first on PATH, so `sweep` and the Rust examples are the binaries under
+test.
 
 Times (`3.362 ms`, `52.9 s`), dates and commit hashes vary from run to run and are compared as
 placeholders; progress lines (those with an `ETA`) depend on the machine's speed and are left
@@ -47,7 +48,7 @@ def normalise(text):
 
 
 def examples(path):
-    """(start, end, [(command, expected_lines)]) for each ```text block with commands."""
+    """(start, end, indent, [(command, expected_lines)]) for each ```text block with commands."""
     lines = path.read_text(encoding="utf-8").split("\n")
     out, i = [], 0
     while i < len(lines):
@@ -55,7 +56,9 @@ def examples(path):
             j = i + 1
             while j < len(lines) and lines[j].strip() != "```":
                 j += 1
-            body = lines[i + 1 : j]
+            # A block indented under a list item: its lines carry the fence's indentation.
+            indent = lines[i][: len(lines[i]) - len(lines[i].lstrip())]
+            body = [line[len(indent) :] if line.startswith(indent) else line for line in lines[i + 1 : j]]
             runs = []
             for line in body:
                 if line.startswith("$ "):
@@ -63,7 +66,7 @@ def examples(path):
                 elif runs:
                     runs[-1][1].append(line)
             if runs:
-                out.append((i + 1, j, runs))
+                out.append((i + 1, j, indent, runs))
             i = j
         i += 1
     return lines, out
@@ -90,7 +93,7 @@ def main():
     if not sweep.exists():
         sys.exit(f"check_docs: {sweep} not built (run scripts/sweep --version or scripts/test)")
     env = dict(os.environ)
-    env["PATH"] = f"{sweep.parent}{os.pathsep}{env.get('PATH', '')}"
+    env["PATH"] = os.pathsep.join([str(sweep.parent), str(sweep.parent / "examples"), env.get("PATH", "")])
     failures, count = 0, 0
     with tempfile.TemporaryDirectory(prefix="check_docs-") as scratch:
         for folder in ("configs", "tables"):
@@ -99,7 +102,7 @@ def main():
         for path in DOCS:
             lines, blocks = examples(path)
             changed = False
-            for start, end, runs in reversed(blocks):
+            for start, end, indent, runs in reversed(blocks):
                 new_body = []
                 for command, expected in runs:
                     count += 1
@@ -119,6 +122,7 @@ def main():
                             print(f"check_docs: {where}: `{command}` prints otherwise:")
                             print("\n".join(diff))
                     new_body += [f"$ {command}", *(got if args.update else expected)]
+                new_body = [(indent + line).rstrip() if line else line for line in new_body]
                 if args.update and lines[start:end] != new_body:
                     lines[start:end] = new_body
                     changed = True
