@@ -170,27 +170,6 @@ fn sphere(radius: f64, youngs: f64, nu: f64, density: f64) -> (Body, Elastic) {
     (body, material)
 }
 
-/// A sphere (with its material) on a wall of material `wall`.
-fn on_wall(
-    (body, material): (Body, Elastic),
-    wall: Elastic,
-    motion: State,
-    mu: f64,
-) -> PhysicalImpact {
-    PhysicalImpact {
-        pair: Pair {
-            sphere: body,
-            other: None,
-        },
-        materials: [material, wall],
-        incident: Incident {
-            sphere: motion,
-            other: State::default(),
-        },
-        friction: mu,
-    }
-}
-
 /// Physical-units corners: R in {1 µm, 1 m}, E in {1 MPa, 1 TPa} (sphere and wall separately),
 /// speeds in {1 mm/s, 100 m/s}, μ in {1e-4, 10}.
 fn corner_cases() -> Vec<(String, PhysicalImpact)> {
@@ -202,7 +181,7 @@ fn corner_cases() -> Vec<(String, PhysicalImpact)> {
                     for &mu in &[1e-4, 10.0] {
                         // Tangential speed: equal to v_z, and 1000x smaller, alternately.
                         let vx = if mu > 1.0 { v } else { 1e-3 * v };
-                        let imp = on_wall(
+                        let imp = PhysicalImpact::sphere_on_wall(
                             sphere(r, e_sphere, 0.25, 7800.0),
                             Elastic {
                                 youngs_modulus: e_wall,
@@ -293,7 +272,7 @@ fn physical_units_corners_match_the_dimensionless_solver() {
 }
 
 fn steel_on_glass(v_x: f64) -> PhysicalImpact {
-    on_wall(
+    PhysicalImpact::sphere_on_wall(
         sphere(2.5e-3, 210e9, 0.29, 7800.0),
         Elastic {
             youngs_modulus: 70e9,

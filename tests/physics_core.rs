@@ -127,49 +127,6 @@ fn random_impact(rng: &mut XorShift, i: usize) -> PhysicalImpact {
     }
 }
 
-/// Sphere 1 (with its material) on a wall of material `wall`.
-fn on_wall(
-    (sphere, material): (Body, Elastic),
-    wall: Elastic,
-    motion: State,
-    mu: f64,
-) -> PhysicalImpact {
-    PhysicalImpact {
-        pair: Pair {
-            sphere,
-            other: None,
-        },
-        materials: [material, wall],
-        incident: Incident {
-            sphere: motion,
-            other: State::default(),
-        },
-        friction: mu,
-    }
-}
-
-/// Sphere 1 on sphere 2, each with its material and incident motion.
-fn on_sphere(
-    (sphere, material): (Body, Elastic),
-    motion: State,
-    (other, other_material): (Body, Elastic),
-    other_motion: State,
-    mu: f64,
-) -> PhysicalImpact {
-    PhysicalImpact {
-        pair: Pair {
-            sphere,
-            other: Some(other),
-        },
-        materials: [material, other_material],
-        incident: Incident {
-            sphere: motion,
-            other: other_motion,
-        },
-        friction: mu,
-    }
-}
-
 /// Effective quantities computed here from the textbook formulas (not from `groups()`):
 /// `(E*, R*, m*, v_z0)`.
 fn hertz_inputs(imp: &PhysicalImpact) -> (f64, f64, f64, f64) {
@@ -393,7 +350,7 @@ fn normal_restitution_and_hertz_closed_forms() {
         poisson_ratio: 0.33,
     };
     let mut cases = vec![
-        on_wall(
+        PhysicalImpact::sphere_on_wall(
             steel(0.01),
             aluminium,
             State {
@@ -403,7 +360,7 @@ fn normal_restitution_and_hertz_closed_forms() {
             },
             0.2,
         ),
-        on_sphere(
+        PhysicalImpact::sphere_on_sphere(
             glass(0.02),
             State {
                 v_x: -0.4,
@@ -859,7 +816,7 @@ fn rigid_body_kinematics_of_p_on_a_wall() {
         let (m, r) = (s.mass, s.radius);
         let i = s.inertia();
         let v_x0 = 0.8;
-        let imp = on_wall(
+        let imp = PhysicalImpact::sphere_on_wall(
             (s, steel_material),
             wall,
             State {
@@ -929,7 +886,7 @@ fn u0_zero_cases() -> Vec<PhysicalImpact> {
     let mut s2 = glass(0.25);
     s2.0.mass = 0.75;
     vec![
-        on_wall(
+        PhysicalImpact::sphere_on_wall(
             s1,
             glass(1.0).1,
             // u = 1 + 0.5 (−2) = 0 exactly.
@@ -940,7 +897,7 @@ fn u0_zero_cases() -> Vec<PhysicalImpact> {
             },
             0.4,
         ),
-        on_sphere(
+        PhysicalImpact::sphere_on_sphere(
             s1,
             State {
                 v_x: 1.0,
@@ -1103,7 +1060,7 @@ fn invalid_parameters_are_rejected_with_their_name() {
         );
     }
     // Physical inputs.
-    let base = on_wall(
+    let base = PhysicalImpact::sphere_on_wall(
         steel(0.01),
         glass(1.0).1,
         State {

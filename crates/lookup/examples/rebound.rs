@@ -29,6 +29,13 @@ const STEEL: Elastic = Elastic {
     poisson_ratio: 0.3,
 };
 
+/// `v = [..] m/s, spin = [..] rad/s` of one body after the impact.
+fn motion(m: &Motion3) -> String {
+    let [vx, vy, vz] = m.velocity;
+    let [wx, wy, wz] = m.spin;
+    format!("v = [{vx:.6}, {vy:.6}, {vz:.6}] m/s, spin = [{wx:.3}, {wy:.3}, {wz:.3}] rad/s")
+}
+
 /// A solid sphere (κ = 2/5) of radius `r` (m) and density `rho` (kg/m³).
 fn solid(r: f64, rho: f64) -> Body {
     Body {
@@ -69,15 +76,7 @@ fn run(path: &str) -> Result<(), LookupError> {
         "alumina on glass, 30 deg: gamma = {:.6}, alpha = {:.6}, P = {:.6}",
         answer.gamma, answer.alpha, r.p
     );
-    println!(
-        "  v = [{:.6}, {:.6}, {:.6}] m/s, spin = [{:.3}, {:.3}, {:.3}] rad/s",
-        r.sphere.velocity[0],
-        r.sphere.velocity[1],
-        r.sphere.velocity[2],
-        r.sphere.spin[0],
-        r.sphere.spin[1],
-        r.sphere.spin[2]
-    );
+    println!("  {}", motion(&r.sphere));
     println!(
         "  e_t = {:.6}, rebound angle {:.3} deg, energy lost {:.4e} J",
         r.e_t,
@@ -111,24 +110,8 @@ fn run(path: &str) -> Result<(), LookupError> {
         "steel on steel: gamma = {:.6}, alpha = {:.6}, P = {:.6}",
         answer.gamma, answer.alpha, r.p
     );
-    println!(
-        "  sphere 1: v = [{:.6}, {:.6}, {:.6}] m/s, spin = [{:.3}, {:.3}, {:.3}] rad/s",
-        r.sphere.velocity[0],
-        r.sphere.velocity[1],
-        r.sphere.velocity[2],
-        r.sphere.spin[0],
-        r.sphere.spin[1],
-        r.sphere.spin[2]
-    );
-    println!(
-        "  sphere 2: v = [{:.6}, {:.6}, {:.6}] m/s, spin = [{:.3}, {:.3}, {:.3}] rad/s",
-        other.velocity[0],
-        other.velocity[1],
-        other.velocity[2],
-        other.spin[0],
-        other.spin[1],
-        other.spin[2]
-    );
+    println!("  sphere 1: {}", motion(&r.sphere));
+    println!("  sphere 2: {}", motion(&other));
     println!("  energy lost {:.4e} J", r.energy_lost);
     Ok(())
 }

@@ -7,7 +7,7 @@
 //! moves at `v_x − R ω`. The slip velocity is `u = (v_1x + R_1 ω_1) − (v_2x − R_2 ω_2)` and for a
 //! wall `u = v_x + R ω` (the seed's convention).
 
-use oblique_physics::rebound::{effective_moduli, Elastic, Incident, Pair, State};
+use oblique_physics::rebound::{effective_moduli, Body, Elastic, Incident, Pair, State};
 use serde::Serialize;
 
 use super::error::PhysicsError;
@@ -112,6 +112,51 @@ impl TangentialBodies for TwoBodies {
 }
 
 impl PhysicalImpact {
+    /// A sphere (`sphere`: m in kg, R in m, κ; `material`: E in Pa, ν) moving at `motion`
+    /// (m/s, rad/s; `v_z > 0` towards the wall) onto a fixed wall of `wall`, friction `μ`.
+    pub fn sphere_on_wall(
+        (sphere, material): (Body, Elastic),
+        wall: Elastic,
+        motion: State,
+        friction: f64,
+    ) -> PhysicalImpact {
+        PhysicalImpact {
+            pair: Pair {
+                sphere,
+                other: None,
+            },
+            materials: [material, wall],
+            incident: Incident {
+                sphere: motion,
+                other: State::default(),
+            },
+            friction,
+        }
+    }
+
+    /// Sphere 1 on sphere 2, each with its body, material and incident motion (units as in
+    /// [`PhysicalImpact::sphere_on_wall`]; `z` points from sphere 1 towards sphere 2).
+    pub fn sphere_on_sphere(
+        (sphere, material): (Body, Elastic),
+        motion: State,
+        (other, other_material): (Body, Elastic),
+        other_motion: State,
+        friction: f64,
+    ) -> PhysicalImpact {
+        PhysicalImpact {
+            pair: Pair {
+                sphere,
+                other: Some(other),
+            },
+            materials: [material, other_material],
+            incident: Incident {
+                sphere: motion,
+                other: other_motion,
+            },
+            friction,
+        }
+    }
+
     fn bodies(&self) -> TwoBodies {
         let (s, inc) = (&self.pair.sphere, &self.incident);
         let (v2, w2, inv_m2, r2, inv_i2) = match &self.pair.other {
