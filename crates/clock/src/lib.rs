@@ -64,11 +64,27 @@ pub enum Clock {
 
 impl Clock {
     /// The clock the environment variable `var` names: unset or `wall` gives [`Clock::Wall`],
-    /// `cpu` gives `cpu`; anything else is an error that names the variable and the choices.
+    /// `cpu` gives `cpu` where this platform has that CPU-time clock; anything else is an error
+    /// that names the variable and the choices (a benchmark never reports elapsed time under a
+    /// CPU-time name).
     pub fn from_env(var: &str, cpu: Clock) -> Result<Clock, String> {
         match std::env::var(var).as_deref() {
             Err(_) | Ok("wall") => Ok(Clock::Wall),
-            Ok("cpu") => Ok(cpu),
+            Ok("cpu") => {
+                let available = match cpu {
+                    Clock::Wall => true,
+                    Clock::ThreadCpu => thread_cpu_time().is_some(),
+                    Clock::ProcessCpu => process_cpu_time().is_some(),
+                };
+                if available {
+                    Ok(cpu)
+                } else {
+                    Err(format!(
+                        "{var}=cpu: this platform has no CPU-time clock (64-bit Linux only); \
+                         use wall"
+                    ))
+                }
+            }
             Ok(other) => Err(format!("{var}={other}: expected wall or cpu")),
         }
     }
