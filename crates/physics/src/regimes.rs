@@ -83,6 +83,28 @@ pub fn tangential_restitution(p: f64) -> f64 {
     (2.0 * p + 5.0) / 7.0
 }
 
+/// Tangential restitution of the centre, `e_t = v_x/v_x0 = 1 − (κ/(1 + κ))(1 − P)`, of a sphere
+/// with inertia factor `κ` (`I = κ m R²`) hitting a wall without spin (then `u0 = v_x0` and the
+/// friction impulse is `m_t (1 − P) u0` with `m_t = κ m/(1 + κ)`). For `κ = 2/5` it is
+/// [`tangential_restitution`].
+pub fn centre_restitution(p: f64, kappa: f64) -> Result<f64, crate::InvalidInput> {
+    if !(p.is_finite() && (-1.0..=1.0).contains(&p)) {
+        return Err(crate::InvalidInput {
+            name: "P",
+            value: p,
+            allowed: "in [-1, 1]".into(),
+        });
+    }
+    if !(kappa.is_finite() && kappa > 0.0) {
+        return Err(crate::InvalidInput {
+            name: "kappa",
+            value: kappa,
+            allowed: "a finite number > 0".into(),
+        });
+    }
+    Ok(1.0 - kappa / (1.0 + kappa) * (1.0 - p))
+}
+
 /// Seed 001's fit (29) of the no-slip limit: `−1 + 2 e^{−0.195γ} cos²(1.685(γ − 0.061))`.
 /// A fit, off by about 0.01 in places; for comparison only.
 pub fn no_slip_fit(gamma: f64) -> f64 {
@@ -99,6 +121,18 @@ mod tests {
         assert!((alpha_c1(1.0) - 2.0 / 7.0).abs() < 1e-15);
         assert!((alpha_c2(1.0) - 2.0 / 7.0).abs() < 1e-15);
         assert!(alpha_c1(2.0) < alpha_c2(2.0));
+    }
+
+    #[test]
+    fn centre_restitution_of_a_solid_sphere_is_the_seven_sevenths_rule() {
+        for p in [-1.0, -0.3, 0.0, 0.25, 1.0] {
+            let e = centre_restitution(p, 0.4).unwrap();
+            assert!((e - tangential_restitution(p)).abs() < 1e-15, "{p}: {e}");
+        }
+        assert_eq!(centre_restitution(1.0, 2.0 / 3.0).unwrap(), 1.0);
+        assert!(centre_restitution(1.5, 0.4).is_err());
+        assert!(centre_restitution(0.5, 0.0).is_err());
+        assert!(centre_restitution(f64::NAN, 0.4).is_err());
     }
 
     #[test]

@@ -1,0 +1,781 @@
+"""Oblique elastic impacts with friction: the tangential restitution P(γ, α), rebounds and the
+MDR impact solver, from NumPy.
+
+A sphere hits a wall or another sphere, elastically (normal restitution 1), with Coulomb
+friction μ. What happens tangentially depends on two numbers (see ``physics.md``):
+
+- ``γ = √((m*/m_t) G*/E*)``, the elastic group (``√((7/2) G*/E*)`` for a solid sphere on a wall);
+- ``α = (2/7)(m*/m_t) μ v_z0/|u0|``, the friction group (``μ v_z0/|u0|`` for a solid sphere on a
+  wall), with ``v_z0`` the approach speed and ``u0`` the incident slip of the contact point;
+
+and the answer is ``P = u_after/u_before``, the tangential restitution of the contact point.
+
+- :class:`Table` answers ``P`` from a table written by ``sweep run`` (``tables/full.h5`` ships
+  with the project), with the error bound the table states, in nanoseconds per point; and
+  rebounds (:meth:`Table.rebound`, :meth:`Table.rebound_2d`) in SI units.
+- :func:`impact` simulates ``P(γ, α)`` directly to a tolerance; :func:`simulate` simulates one
+  impact in physical units; :func:`groups` gives ``γ`` and ``α`` of an impact;
+  :func:`critical` the critical friction groups ``α_c1``, ``α_c2``; :func:`regime` the regime.
+
+Every function takes NumPy arrays or scalars and broadcasts them by NumPy's rules; arrays are
+converted to float64 (integers are accepted; complex, strings, objects and booleans are not).
+Invalid values raise ``ValueError`` naming the argument, its value, the allowed range and, for
+arrays, the index; a file that is not a valid table raises :class:`TableError`.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from typing import Any, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _native
+from ._native import TableError
+
+__all__ = [
+    "Table",
+    "Curve",
+    "TableError",
+    "Material",
+    "Sphere",
+    "RIGID",
+    "Rebound",
+    "Rebound2D",
+    "Groups",
+    "Impact",
+    "Simulation",
+    "impact",
+    "simulate",
+    "groups",
+    "critical",
+    "regime",
+    "REGIMES",
+]
+
+__version__: str = _native.VERSION
+
+#: Names of the friction regimes, indexed by the codes the native layer returns.
+REGIMES: Tuple[str, str, str] = ("full-slip", "partial-slip", "stick")
+_REGIME_NAMES = np.array(REGIMES)
+
+Float = Union[float, NDArray[np.float64]]
+
+
+class Material(NamedTuple):
+    """Elastic constants of an isotropic material (either may be an array)."""
+
+    youngs_modulus: ArrayLike
+    """Young's modulus E (Pa), > 0; ``math.inf`` for a rigid body."""
+    poisson_ratio: ArrayLike
+    """Poisson's ratio ν, in (−1, 0.5]."""
+
+
+#: A rigid body: E = ∞ (it adds no compliance; at most one of the two bodies).
+RIGID = Material(math.inf, 0.0)
+
+
+class Sphere(NamedTuple):
+    """Mass, radius and inertia factor of a sphere (each may be an array)."""
+
+    mass: ArrayLike
+    """Mass m (kg), > 0."""
+    radius: ArrayLike
+    """Radius R (m), > 0."""
+    kappa: ArrayLike = 0.4
+    """Inertia factor κ in I = κ m R² (0.4 a solid sphere, 2/3 a thin shell), > 0."""
+
+
+# ---------------------------------------------------------------------------------------------
+# Conversion and broadcasting
+
+
+def _f64(x: Any, name: str) -> NDArray[np.float64]:
+    """``x`` as a float64 array, refusing what is not a real number."""
+    try:
+        a = np.asarray(x)
+    except Exception as e:  # ragged lists and the like
+        raise TypeError(f"{name}: expected real numbers, got {type(x).__name__} ({e})") from None
+    if a.dtype.kind not in "fiu":
+        raise TypeError(
+            f"{name}: expected real numbers (float or int), got dtype {a.dtype}"
+            + (" (complex numbers are not accepted)" if a.dtype.kind == "c" else "")
+        )
+    return a.astype(np.float64, copy=False)
+
+
+def _vector(x: Any, name: str) -> NDArray[np.float64]:
+    a = _f64(x, name)
+    if a.ndim == 0 or a.shape[-1] != 3:
+        raise ValueError(f"{name}: expected shape (..., 3) (x, y, z components), got {a.shape}")
+    return a
+
+
+def _shape(args: Sequence[Tuple[str, Tuple[int, ...]]]) -> Tuple[int, ...]:
+    """The broadcast shape of named shapes, or a ValueError naming them."""
+    try:
+        return tuple(np.broadcast_shapes(*(s for _, s in args)))
+    except ValueError:
+        listed = ", ".join(f"{n} {s}" for n, s in args)
+        raise ValueError(f"shapes do not broadcast together: {listed}") from None
+
+
+def _column(a: NDArray[np.float64], shape: Tuple[int, ...], width: int = 1) -> NDArray[np.float64]:
+    """A contiguous 1-D column: the value(s) once when shared by every row, else one per row."""
+    if a.size == width:
+        return np.ascontiguousarray(a).reshape(-1)
+    full = shape + ((width,) if width > 1 else ())
+    return np.ascontiguousarray(np.broadcast_to(a, full)).reshape(-1)
+
+
+def _full(a: NDArray[np.float64], shape: Tuple[int, ...]) -> NDArray[np.float64]:
+    """A contiguous 1-D array of one value per element of ``shape``."""
+    if a.shape == shape and a.flags.c_contiguous:
+        return a.reshape(-1)
+    return np.ascontiguousarray(np.broadcast_to(a, shape)).reshape(-1)
+
+
+def _output(out: Optional[np.ndarray], shape: Tuple[int, ...]) -> np.ndarray:
+    if out is None:
+        return np.empty(shape, dtype=np.float64)
+    if not isinstance(out, np.ndarray):
+        raise TypeError(f"out: expected a numpy.ndarray, got {type(out).__name__}")
+    if out.dtype != np.float64:
+        raise TypeError(f"out: expected dtype float64, got {out.dtype}")
+    if out.shape != shape:
+        raise ValueError(f"out: expected shape {shape} (the broadcast shape), got {out.shape}")
+    if not out.flags.writeable:
+        raise ValueError("out: the array is read-only")
+    return out
+
+
+def _into(out: np.ndarray, fill: Any) -> None:
+    """Call ``fill(flat)`` with a contiguous 1-D view of ``out`` (or a scratch copy)."""
+    if out.flags.c_contiguous:
+        fill(out.reshape(-1))
+    else:
+        scratch = np.empty(out.shape, dtype=np.float64)
+        fill(scratch.reshape(-1))
+        out[...] = scratch
+
+
+def _result(out: np.ndarray, given: Optional[np.ndarray]) -> Float:
+    if given is not None:
+        return given
+    return float(out) if out.ndim == 0 else out
+
+
+def _scalars(*xs: Any) -> bool:
+    return all(type(x) in (float, int) for x in xs)
+
+
+def _stiffness(
+    materials: Optional[Tuple[Material, Material]], gamma: Optional[ArrayLike], need: bool = False
+) -> Tuple[Optional[NDArray[np.float64]], list]:
+    if (materials is None) == (gamma is None):
+        if need and gamma is not None:
+            raise TypeError("materials: required here (gamma alone does not fix E* and G*)")
+        raise TypeError("give exactly one of materials=(Material, Material) and gamma=")
+    if gamma is not None:
+        return _f64(gamma, "gamma"), []
+    assert materials is not None
+    try:
+        (e1, n1), (e2, n2) = materials
+    except (TypeError, ValueError):
+        raise TypeError(
+            "materials: expected a pair (sphere's Material, wall's or other sphere's Material)"
+        ) from None
+    names = ["youngs_modulus", "poisson_ratio", "other youngs_modulus", "other poisson_ratio"]
+    return None, [_f64(x, n) for x, n in zip((e1, n1, e2, n2), names)]
+
+
+def _body(s: Any, name: str) -> list:
+    if not isinstance(s, Sphere):
+        try:
+            s = Sphere(*s)
+        except TypeError:
+            raise TypeError(f"{name}: expected oblique.Sphere(mass, radius, kappa)") from None
+    prefix = "" if name == "sphere" else "other "
+    return [_f64(x, prefix + n) for x, n in zip(s, ("mass", "radius", "kappa"))]
+
+
+# ---------------------------------------------------------------------------------------------
+# Results
+
+
+@dataclass(frozen=True)
+class Rebound:
+    """Outcome of 3-D impacts (:meth:`Table.rebound`), one entry per impact of the broadcast
+    shape ``S``; vectors have shape ``S + (3,)``. SI units. The model has no torsional friction:
+    spin about the normal, and velocity and spin across the plane of impact, pass unchanged."""
+
+    velocity: NDArray[np.float64]
+    """Velocity of sphere 1's centre after the impact (m/s)."""
+    spin: NDArray[np.float64]
+    """Angular velocity of sphere 1 after the impact (rad/s)."""
+    other_velocity: Optional[NDArray[np.float64]]
+    """Velocity of sphere 2 after (m/s); ``None`` for a wall."""
+    other_spin: Optional[NDArray[np.float64]]
+    """Angular velocity of sphere 2 after (rad/s); ``None`` for a wall."""
+    gamma: Float
+    """Elastic group γ used."""
+    alpha: Float
+    """Friction group α = (2/7)(m*/m_t) μ v_z0/|u0| (∞ when u0 = 0)."""
+    p: Float
+    """P = u_after/u_before from the table: the contact-point restitution (β of event-driven
+    codes). NaN when u0 = 0 (nothing tangential happens)."""
+    e_t: Float
+    """Tangential restitution of the centres, (w_after · w_before)/|w_before|² with w the
+    tangential part of v_1 − v_2 (v_x/v_x0 for a wall); NaN when w_before = 0."""
+    slip_before: Float
+    """|u0|, the incident slip speed of the contact point (m/s), along ``tangent``."""
+    slip_after: Float
+    """P |u0|, the slip after along ``tangent`` (m/s; negative when it reversed)."""
+    tangential_impulse: Float
+    """Friction impulse J on body 2 along +tangent (N s); body 1 receives −J."""
+    normal_impulse: Float
+    """Normal impulse 2 m* v_z0 on body 2 along +normal (N s)."""
+    approach_speed: Float
+    """v_z0 = (v_1 − v_2)·n > 0 (m/s); the bodies separate at the same speed."""
+    centre_speed_before: Float
+    """|w_before|, tangential speed of the relative centre velocity before (m/s)."""
+    centre_speed_after: Float
+    """|w_after| (m/s)."""
+    energy_lost: Float
+    """Kinetic energy lost to friction, (m_t/2) u0² (1 − P²) (J), ≥ 0."""
+    tangent: NDArray[np.float64]
+    """Unit tangent t of the plane of impact: the direction of the incident slip u0."""
+    incidence_angle: Float
+    """Angle of the incident relative centre velocity from the normal (rad)."""
+    rebound_angle_centre: Float
+    """Angle of the relative centre velocity after, from the normal (rad), in [0, π/2)."""
+    rebound_angle_contact: Float
+    """Angle of the contact-point velocity after, from the normal, in the plane of impact (rad):
+    negative when the slip reversed."""
+
+    @property
+    def e_t_contact(self) -> Float:
+        """Contact-point tangential restitution u_after/u_before: P itself."""
+        return self.p
+
+
+@dataclass(frozen=True)
+class Rebound2D:
+    """Outcome of impacts in the plane of impact (:meth:`Table.rebound_2d`). ``z`` is the normal
+    from sphere 1 into the other body, ``x`` the tangent; a spin ω is signed so that sphere 1's
+    contact point moves at v_x + R ω (sphere 2's at v_x − R ω). SI units."""
+
+    v_x: Float
+    """Tangential velocity of sphere 1 after (m/s)."""
+    v_z: Float
+    """Normal velocity of sphere 1 after (m/s)."""
+    omega: Float
+    """Spin of sphere 1 after (rad/s)."""
+    other_v_x: Optional[Float]
+    """Tangential velocity of sphere 2 after (m/s); ``None`` for a wall."""
+    other_v_z: Optional[Float]
+    """Normal velocity of sphere 2 after (m/s); ``None`` for a wall."""
+    other_omega: Optional[Float]
+    """Spin of sphere 2 after (rad/s); ``None`` for a wall."""
+    gamma: Float
+    """Elastic group γ used."""
+    alpha: Float
+    """Friction group α (∞ when u0 = 0)."""
+    p: Float
+    """P = u_after/u_before, the contact-point restitution (NaN when u0 = 0)."""
+    e_t: Float
+    """Tangential restitution of the centres, (v_1x − v_2x)_after/(v_1x − v_2x)_before
+    (v_x/v_x0 for a wall); NaN when the incident relative v_x is 0."""
+    slip_before: Float
+    """Incident slip velocity u0 = (v_1x + R_1 ω_1) − (v_2x − R_2 ω_2) (m/s)."""
+    slip_after: Float
+    """P u0 (m/s)."""
+    tangential_impulse: Float
+    """Friction impulse J on body 2 along +x (N s); body 1 receives −J."""
+    normal_impulse: Float
+    """Normal impulse 2 m* v_z0 on body 2 along +z (N s)."""
+    incidence_angle: Float
+    """atan2(v_x0,rel, v_z0) (rad)."""
+    rebound_angle_centre: Float
+    """atan2(v_x,rel after, v_z0) (rad), positive on the side of +x."""
+    rebound_angle_contact: Float
+    """atan2(P u0, v_z0) (rad): negative when the contact point's motion reversed."""
+    energy_lost: Float
+    """Kinetic energy lost to friction, (m_t/2) u0² (1 − P²) (J)."""
+
+    @property
+    def e_t_contact(self) -> Float:
+        """Contact-point tangential restitution u_after/u_before: P itself."""
+        return self.p
+
+
+class Groups(NamedTuple):
+    """Dimensionless groups of impacts and the effective quantities behind them (SI)."""
+
+    gamma: Float
+    """γ = √((m*/m_t) G*/E*)."""
+    alpha: Float
+    """α = (2/7)(m*/m_t) μ v_z0/|u0| (∞ when u0 = 0 or μ = ∞)."""
+    e_star: Float
+    """E* (Pa), 1/E* = Σ (1 − ν²)/E."""
+    g_star: Float
+    """G* (Pa), 1/G* = Σ (2 − ν)/(4G)."""
+    normal_mass: Float
+    """m* = m_1 m_2/(m_1 + m_2) (kg; m_1 for a wall)."""
+    tangential_mass: Float
+    """m_t, 1/m_t = Σ (1/m + R²/I) (kg)."""
+    radius: Float
+    """R* = R_1 R_2/(R_1 + R_2) (m; R_1 for a wall)."""
+    approach_speed: Float
+    """v_z0 (m/s)."""
+    slip_velocity: Float
+    """u0 (m/s)."""
+
+
+class Impact(NamedTuple):
+    """``P(γ, α)`` simulated (:func:`impact`)."""
+
+    p: Float
+    """P = u_after/u_before."""
+    error_estimate: Float
+    """Estimated absolute error of P (0 for the closed forms), ≤ tol."""
+    closed_form: Union[bool, NDArray[np.bool_]]
+    """Whether P came from an exact closed form (nothing simulated)."""
+    springs: Union[int, NDArray[np.int64]]
+    """Springs on the half-row of the finest run (0: closed form or the continuum row)."""
+    steps: Union[int, NDArray[np.int64]]
+    """Time steps per contact of the finest run (0 for closed forms)."""
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """One impact simulated in physical units (:func:`simulate`). SI units; 2-D conventions as
+    in :class:`Rebound2D`."""
+
+    v_x: float
+    v_z: float
+    omega: float
+    other_v_x: Optional[float]
+    other_v_z: Optional[float]
+    other_omega: Optional[float]
+    p: float
+    """P = u_after/u0 (NaN when u0 = 0)."""
+    error_estimate: float
+    """Estimated absolute error of P, ≤ tol (0 when u0 = 0)."""
+    contact_time: float
+    """Measured contact time (s)."""
+    peak_force: float
+    """Measured peak normal force (N)."""
+    max_indentation: float
+    """Measured maximum indentation (m)."""
+    springs: int
+    steps: int
+    groups: Groups
+    """γ, α and the effective quantities of the impact."""
+
+
+def _views(raw: np.ndarray, shape: Tuple[int, ...], names: Sequence[str]) -> dict:
+    cols = raw.reshape(shape + (len(names),))
+    return {n: cols[..., k] if shape else float(cols[k]) for k, n in enumerate(names)}
+
+
+def _vec(v: dict, prefix: str) -> NDArray[np.float64]:
+    return np.stack([v[prefix + "_x"], v[prefix + "_y"], v[prefix + "_z"]], axis=-1)
+
+
+# ---------------------------------------------------------------------------------------------
+# The table
+
+
+class Curve:
+    """``P(α)`` at one fixed γ (:meth:`Table.curve`): the same values as :meth:`Table.p` to about
+    2e-15, with fewer operations per query. For codes that meet one pair of materials many
+    times."""
+
+    __slots__ = ("_c",)
+
+    def __init__(self, native: Any) -> None:
+        self._c = native
+
+    @property
+    def gamma(self) -> float:
+        """γ the curve answers (the requested γ, clamped into the domain if asked)."""
+        return self._c.gamma
+
+    @property
+    def requested_gamma(self) -> float:
+        """γ asked for."""
+        return self._c.requested_gamma
+
+    @property
+    def nbytes(self) -> int:
+        """Memory the curve holds (bytes)."""
+        return self._c.nbytes
+
+    def p(self, alpha: ArrayLike, out: Optional[np.ndarray] = None) -> Float:
+        """P(γ, α) for α ≥ 0 (``inf``: no slip), any shape."""
+        if out is None and _scalars(alpha):
+            return self._c.p(float(alpha))
+        a = _f64(alpha, "alpha")
+        shape = a.shape
+        o = _output(out, shape)
+        flat = _full(a, shape)
+        _into(o, lambda f: self._c.p_into(flat, f, list(shape)))
+        return _result(o, out)
+
+    def __repr__(self) -> str:
+        return f"<oblique.Curve gamma={self.gamma!r}, {self.nbytes} bytes>"
+
+
+class Table:
+    """A table of P(γ, α) written by ``sweep run`` (HDF5), loaded into memory and checked.
+
+    ``clamp=False`` (the default) refuses a γ or α outside the table's domain (:attr:`info`)
+    with ``ValueError``; ``clamp=True`` answers there at the nearest point of the domain (an
+    extrapolation by a constant; the error it makes is yours). The full-slip line
+    ``P = 1 − 7α`` (α up to α_c1 for γ > 1, α_c2 for γ ≤ 1) is exact and answered for any γ > 0.
+
+    Immutable; one table may be used by many threads. Raises ``FileNotFoundError`` (and the other
+    ``OSError`` subclasses) when the file cannot be opened, :class:`TableError` when it is not a
+    valid table.
+    """
+
+    __slots__ = ("_t", "_clamp", "_info")
+
+    def __init__(self, path: Union[str, os.PathLike], clamp: bool = False) -> None:
+        path = os.fspath(path)
+        # The operating system's own error for a path that cannot be read (FileNotFoundError,
+        # IsADirectoryError, PermissionError), before the format is looked at.
+        with open(path, "rb"):
+            pass
+        self._t = _native.Table(path)
+        self._clamp = bool(clamp)
+        self._info: Optional[dict] = None
+
+    @property
+    def clamp(self) -> bool:
+        """Whether points outside the domain are answered at its nearest point."""
+        return self._clamp
+
+    @property
+    def info(self) -> dict:
+        """Domain (``gamma_min``, ``gamma_max``, ``alpha_max``), the stated ``error_bound`` (the
+        largest absolute error of any P the table answers), the held-out checks (``checks``,
+        ``checks_max_error``) and the provenance (``schema_version``, ``engine_version``,
+        ``git_commit``, ``created``, ``config``, ``solver``, ``node_tol``, ``check_tol``,
+        ``target_error``, ``wall_time_s``, ``path``)."""
+        if self._info is None:
+            self._info = self._t.info()
+        return dict(self._info)
+
+    @property
+    def error_bound(self) -> float:
+        """The absolute error bound the table states for every P it answers."""
+        return self.info["error_bound"]
+
+    def p(self, gamma: ArrayLike, alpha: ArrayLike, out: Optional[np.ndarray] = None) -> Float:
+        """P(γ, α), the tangential restitution of the contact point, by the table's
+        interpolation rule. γ finite > 0, α ≥ 0 (``inf``: no slip). Broadcasts; returns a float
+        for scalar arguments. |P| ≤ 1 everywhere."""
+        if out is None and _scalars(gamma, alpha):
+            return self._t.p(float(gamma), float(alpha), self._clamp)
+        g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
+        shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
+        o = _output(out, shape)
+        gf, af = _full(g, shape), _full(a, shape)
+        _into(o, lambda f: self._t.p_into(gf, af, f, self._clamp, list(shape)))
+        return _result(o, out)
+
+    def e_t(
+        self,
+        gamma: ArrayLike,
+        alpha: ArrayLike,
+        kappa: ArrayLike = 0.4,
+        out: Optional[np.ndarray] = None,
+    ) -> Float:
+        """Tangential restitution of the centre, e_t = v_x/v_x0 = 1 − (κ/(1 + κ))(1 − P), of a
+        sphere (inertia factor κ) hitting a wall without spin; (2P + 5)/7 for a solid sphere.
+        Broadcasts over γ, α and κ."""
+        g, a, k = _f64(gamma, "gamma"), _f64(alpha, "alpha"), _f64(kappa, "kappa")
+        shape = _shape([("gamma", g.shape), ("alpha", a.shape), ("kappa", k.shape)])
+        p = np.asarray(self.p(np.broadcast_to(g, shape), np.broadcast_to(a, shape)))
+        o = _output(out, shape)
+        pf, kf = _full(p, shape), _column(k, shape)
+        _into(o, lambda f: _native.e_t_into(pf, kf, f, list(shape)))
+        return _result(o, out)
+
+    def regime(self, gamma: ArrayLike, alpha: ArrayLike) -> Union[str, NDArray[np.str_]]:
+        """The friction regime of (γ, α): ``'full-slip'``, ``'partial-slip'`` or ``'stick'``
+        (:func:`regime`; exact, from the critical curves, for any γ > 0)."""
+        return regime(gamma, alpha)
+
+    def curve(self, gamma: float) -> Curve:
+        """P(α) at one γ, precomputed (≤ 1.4 ms, ≤ 68 KB for ``tables/full.h5``)."""
+        return Curve(self._t.curve(float(_f64(gamma, "gamma")), self._clamp))
+
+    def rebound(
+        self,
+        sphere: Sphere,
+        velocity: ArrayLike,
+        spin: ArrayLike = (0.0, 0.0, 0.0),
+        *,
+        friction: ArrayLike,
+        normal: ArrayLike = (0.0, 0.0, 1.0),
+        materials: Optional[Tuple[Material, Material]] = None,
+        gamma: Optional[ArrayLike] = None,
+        other: Optional[Sphere] = None,
+        other_velocity: ArrayLike = (0.0, 0.0, 0.0),
+        other_spin: ArrayLike = (0.0, 0.0, 0.0),
+    ) -> Rebound:
+        """3-D impacts of sphere 1 on a fixed wall (``other=None``) or on sphere 2.
+
+        ``velocity``, ``spin`` (m/s, rad/s; shape ``(..., 3)``) are sphere 1's before the
+        impact; ``normal`` (``(..., 3)``, any non-zero length) points from sphere 1's centre
+        into the wall or towards sphere 2's centre, and the bodies must approach along it.
+        ``friction`` is μ ≥ 0 (``inf``: no slip). γ comes from ``materials=(sphere's Material,
+        wall's or sphere 2's Material)`` with the pair's masses and κ, or is given as
+        ``gamma=``. Every argument (the fields of :class:`Sphere` and :class:`Material`
+        included) broadcasts against the others; the leading shape of the vectors is the
+        batch shape. When the bodies, materials and μ are the same for every impact they are
+        checked once (the faster path)."""
+        g, mats = _stiffness(materials, gamma)
+        vecs = [
+            ("velocity", _vector(velocity, "velocity")),
+            ("spin", _vector(spin, "spin")),
+            ("other_velocity", _vector(other_velocity, "other_velocity")),
+            ("other_spin", _vector(other_spin, "other_spin")),
+            ("normal", _vector(normal, "normal")),
+        ]
+        s1 = _body(sphere, "sphere")
+        s2 = [] if other is None else _body(other, "other")
+        mu = _f64(friction, "friction")
+        scal = [("friction", mu)] + list(zip(("mass", "radius", "kappa"), s1))
+        scal += list(zip(("other mass", "other radius", "other kappa"), s2))
+        scal += [("gamma", g)] if g is not None else list(zip(("materials",) * 4, mats))
+        shape = _shape([(n, v.shape[:-1]) for n, v in vecs] + [(n, x.shape) for n, x in scal])
+        rows = math.prod(shape)
+        c = [_column(v, shape, 3) for _, v in vecs]
+        raw = _native.rebound_3d(
+            self._t,
+            rows,
+            list(shape),
+            c[0],
+            c[1],
+            c[2],
+            c[3],
+            c[4],
+            [_column(x, shape) for x in s1],
+            [_column(x, shape) for x in s2],
+            None if g is None else _column(g, shape),
+            [_column(x, shape) for x in mats],
+            _column(mu, shape),
+            self._clamp,
+        )
+        v = _views(raw, shape, _native.REBOUND3)
+        wall = other is None
+        return Rebound(
+            velocity=_vec(v, "velocity"),
+            spin=_vec(v, "spin"),
+            other_velocity=None if wall else _vec(v, "other_velocity"),
+            other_spin=None if wall else _vec(v, "other_spin"),
+            tangent=_vec(v, "tangent"),
+            **{
+                k: v[k]
+                for k in _native.REBOUND3
+                if not k.startswith(("velocity_", "spin_", "other_", "tangent_"))
+            },
+        )
+
+    def rebound_2d(
+        self,
+        sphere: Sphere,
+        v_x: ArrayLike,
+        v_z: ArrayLike,
+        omega: ArrayLike = 0.0,
+        *,
+        friction: ArrayLike,
+        materials: Optional[Tuple[Material, Material]] = None,
+        gamma: Optional[ArrayLike] = None,
+        other: Optional[Sphere] = None,
+        other_v_x: ArrayLike = 0.0,
+        other_v_z: ArrayLike = 0.0,
+        other_omega: ArrayLike = 0.0,
+    ) -> Rebound2D:
+        """Impacts in the plane of impact: ``z`` the normal from sphere 1 into the wall or sphere
+        2 (``v_z > 0`` approaches), ``x`` the tangent, ω signed so that sphere 1's contact point
+        moves at v_x + R ω (sphere 2's at v_x − R ω). Arguments as in :meth:`rebound`; all
+        broadcast."""
+        g, mats = _stiffness(materials, gamma)
+        motion, s1, s2, mu, shape = _planar(
+            sphere, v_x, v_z, omega, friction, other, other_v_x, other_v_z, other_omega, g, mats
+        )
+        raw = _native.rebound_2d(
+            self._t,
+            math.prod(shape),
+            list(shape),
+            motion,
+            s1,
+            s2,
+            None if g is None else _column(g, shape),
+            [_column(x, shape) for x in mats],
+            mu,
+            self._clamp,
+        )
+        v = _views(raw, shape, _native.REBOUND2)
+        if other is None:
+            v.update(other_v_x=None, other_v_z=None, other_omega=None)
+        return Rebound2D(**v)
+
+    def __repr__(self) -> str:
+        i = self.info
+        return (
+            f"<oblique.Table {i['path']!r}: gamma in [{i['gamma_min']}, {i['gamma_max']}], "
+            f"alpha <= {i['alpha_max']}, error bound {i['error_bound']:.2g}"
+            + (", clamped" if self._clamp else "")
+            + ">"
+        )
+
+
+def _planar(sphere, v_x, v_z, omega, friction, other, ov_x, ov_z, oomega, g, mats):
+    """Columns of a 2-D batch: motion (six), bodies, μ, and the broadcast shape."""
+    names = ("v_x", "v_z", "omega", "other_v_x", "other_v_z", "other_omega")
+    motion = [_f64(x, n) for x, n in zip((v_x, v_z, omega, ov_x, ov_z, oomega), names)]
+    s1 = _body(sphere, "sphere")
+    s2 = [] if other is None else _body(other, "other")
+    mu = _f64(friction, "friction")
+    named = list(zip(names, motion)) + [("friction", mu)]
+    named += list(zip(("mass", "radius", "kappa"), s1))
+    named += list(zip(("other mass", "other radius", "other kappa"), s2))
+    named += [("gamma", g)] if g is not None else list(zip(("materials",) * 4, mats))
+    shape = _shape([(n, x.shape) for n, x in named])
+    col = lambda xs: [_column(x, shape) for x in xs]  # noqa: E731
+    return col(motion), col(s1), col(s2), _column(mu, shape), shape
+
+
+# ---------------------------------------------------------------------------------------------
+# Without a table
+
+
+def regime(gamma: ArrayLike, alpha: ArrayLike) -> Union[str, NDArray[np.str_]]:
+    """The friction regime of (γ, α), exact for any γ > 0, α ≥ 0: ``'full-slip'`` for
+    α ≤ α_c1 (γ > 1) or α ≤ α_c2 (γ ≤ 1), ``'stick'`` for α ≥ α_c2, ``'partial-slip'`` between.
+    Broadcasts; a str for scalar arguments, else an array of str."""
+    g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
+    shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
+    codes = np.empty(shape, dtype=np.float64)
+    gc, ac = _column(g, shape), _column(a, shape)
+    _native.regime_into(gc, ac, codes.reshape(-1), list(shape))
+    names = _REGIME_NAMES[codes.astype(np.intp)]
+    return str(names) if names.ndim == 0 else names
+
+
+def critical(gamma: ArrayLike) -> Tuple[Float, Float]:
+    """The critical friction groups ``(α_c1, α_c2)`` at γ > 0 (physics.md):
+    α_c1 = 2γ²/(7(2γ² − 1)) (the end of full slip for γ > 1; negative for γ < 1/√2, where it
+    marks nothing), α_c2 = 2γ²/7 (the start of stick). Broadcasts."""
+    g = _f64(gamma, "gamma")
+    shape = g.shape
+    out = np.empty(shape + (2,), dtype=np.float64)
+    _native.critical_into(_column(g, shape), out.reshape(-1), list(shape))
+    if not shape:
+        return float(out[0]), float(out[1])
+    return out[..., 0], out[..., 1]
+
+
+def impact(
+    gamma: ArrayLike, alpha: ArrayLike, tol: float = 1e-6, simulate: bool = False
+) -> Impact:
+    """P(γ, α) by simulating the impact (MDR, error-controlled) until the error estimate is
+    ≤ ``tol`` (absolute); where P is known in closed form (the full-slip line, γ = 1 with
+    α ≥ 2/7, α = 0) that is returned unless ``simulate=True``. For points a table does not
+    cover. One point takes 0.05–5 ms at tol 1e-6; arrays run in parallel. Broadcasts."""
+    g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
+    shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
+    raw = _native.impact(
+        _column(g, shape),
+        _column(a, shape),
+        math.prod(shape),
+        list(shape),
+        float(tol),
+        bool(simulate),
+    )
+    v = _views(raw, shape, _native.IMPACT)
+    if shape:
+        return Impact(
+            v["p"],
+            v["error_estimate"],
+            v["closed_form"] != 0,
+            v["springs"].astype(np.int64),
+            v["steps"].astype(np.int64),
+        )
+    return Impact(
+        v["p"], v["error_estimate"], v["closed_form"] != 0, int(v["springs"]), int(v["steps"])
+    )
+
+
+def groups(
+    sphere: Sphere,
+    v_x: ArrayLike,
+    v_z: ArrayLike,
+    omega: ArrayLike = 0.0,
+    *,
+    friction: ArrayLike,
+    materials: Tuple[Material, Material],
+    other: Optional[Sphere] = None,
+    other_v_x: ArrayLike = 0.0,
+    other_v_z: ArrayLike = 0.0,
+    other_omega: ArrayLike = 0.0,
+) -> Groups:
+    """γ and α of impacts given in physical units (arguments and conventions as in
+    :meth:`Table.rebound_2d`), with E*, G*, m*, m_t, R*, v_z0 and u0. Broadcasts."""
+    _, mats = _stiffness(materials, None, need=True)
+    motion, s1, s2, mu, shape = _planar(
+        sphere, v_x, v_z, omega, friction, other, other_v_x, other_v_z, other_omega, None, mats
+    )
+    raw = _native.groups(
+        math.prod(shape), list(shape), motion, s1, s2, [_column(x, shape) for x in mats], mu
+    )
+    return Groups(**_views(raw, shape, _native.GROUPS))
+
+
+def simulate(
+    sphere: Sphere,
+    v_x: float,
+    v_z: float,
+    omega: float = 0.0,
+    *,
+    friction: float,
+    materials: Tuple[Material, Material],
+    other: Optional[Sphere] = None,
+    other_v_x: float = 0.0,
+    other_v_z: float = 0.0,
+    other_omega: float = 0.0,
+    tol: float = 1e-6,
+) -> Simulation:
+    """One impact in physical units, simulated directly (the two bodies' equations of motion,
+    Hertz normal contact, MDR tangential springs) until the error estimate of P is ≤ ``tol``:
+    the reference a table answer can be checked against. Arguments and conventions as in
+    :meth:`Table.rebound_2d`, scalars only."""
+    _, mats = _stiffness(materials, None, need=True)
+    motion, s1, s2, mu, shape = _planar(
+        sphere, v_x, v_z, omega, friction, other, other_v_x, other_v_z, other_omega, None, mats
+    )
+    if shape:
+        raise ValueError(f"simulate: scalar arguments only, got the broadcast shape {shape}")
+    d = _native.simulate(motion, s1, s2, [_column(x, ()) for x in mats], mu, float(tol))
+    o = d["other"] or (None, None, None)
+    return Simulation(
+        *d["sphere"],
+        *o,
+        p=d["p"],
+        error_estimate=d["error_estimate"],
+        contact_time=d["contact_time"],
+        peak_force=d["peak_force"],
+        max_indentation=d["max_indentation"],
+        springs=d["springs"],
+        steps=d["steps"],
+        groups=Groups(*d["groups"]),
+    )
