@@ -8,6 +8,10 @@ standard error together). Each command runs under bash in a scratch folder holdi
 `target/release/examples` first on PATH, so `sweep` and the Rust examples are the binaries under
 test.
 
+A code block whose opening fence is preceded by a line `<!-- file: PATH -->` shows the file PATH
+(relative to the repository root) and must equal it, so that the code shown is the code that
+runs.
+
 Times (`3.362 ms`, `52.9 s`), dates and commit hashes vary from run to run and are compared as
 placeholders; progress lines (those with an `ETA`) depend on the machine's speed and are left
 out; every other character must match.
@@ -72,6 +76,40 @@ def examples(path):
     return lines, out
 
 
+SHOWN = re.compile(r"^\s*<!-- file: (\S+) -->\s*$")
+
+
+def shown_files(path, update):
+    """Check (or with `update` rewrite) the code blocks that show a file; the number of
+    differences."""
+    lines = path.read_text(encoding="utf-8").split("\n")
+    failures, changed, i = 0, False, 0
+    while i < len(lines):
+        m = SHOWN.match(lines[i])
+        if m and i + 1 < len(lines) and lines[i + 1].lstrip().startswith("```"):
+            j = i + 2
+            while j < len(lines) and lines[j].strip() != "```":
+                j += 1
+            source = ROOT / m.group(1)
+            want = source.read_text(encoding="utf-8").rstrip("\n").split("\n")
+            if lines[i + 2 : j] != want:
+                where = f"{path.relative_to(ROOT)}:{i + 2}"
+                if update:
+                    lines[i + 2 : j] = want
+                    changed = True
+                    j = i + 2 + len(want)
+                else:
+                    failures += 1
+                    print(f"check_docs: {where}: the block differs from {m.group(1)}:")
+                    print("\n".join(difflib.unified_diff(lines[i + 2 : j], want, "shown", m.group(1), lineterm="")))
+            i = j
+        i += 1
+    if changed:
+        path.write_text("\n".join(lines), encoding="utf-8")
+        print(f"check_docs: updated {path.relative_to(ROOT)} from the files it shows")
+    return failures
+
+
 def run(command, scratch, env):
     r = subprocess.run(
         ["bash", "-o", "pipefail", "-c", command],
@@ -96,10 +134,11 @@ def main():
     env["PATH"] = os.pathsep.join([str(sweep.parent), str(sweep.parent / "examples"), env.get("PATH", "")])
     failures, count = 0, 0
     with tempfile.TemporaryDirectory(prefix="check_docs-") as scratch:
-        for folder in ("configs", "tables"):
+        for folder in ("configs", "tables", "python/examples"):
             shutil.copytree(ROOT / folder, Path(scratch) / folder)
         (Path(scratch) / "docs").mkdir()
         for path in DOCS:
+            failures += shown_files(path, args.update)
             lines, blocks = examples(path)
             changed = False
             for start, end, indent, runs in reversed(blocks):

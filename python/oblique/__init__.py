@@ -168,8 +168,8 @@ def _result(out: np.ndarray, given: Optional[np.ndarray]) -> Float:
     return float(out) if out.ndim == 0 else out
 
 
-def _scalars(*xs: Any) -> bool:
-    return all(type(x) in (float, int) for x in xs)
+#: Types answered by the scalar fast path (a plain Python number, no array made).
+_NUMBER = (float, int)
 
 
 def _stiffness(
@@ -382,8 +382,10 @@ def _views(raw: np.ndarray, shape: Tuple[int, ...], names: Sequence[str]) -> dic
     return {n: cols[..., k] if shape else float(cols[k]) for k, n in enumerate(names)}
 
 
-def _vec(v: dict, prefix: str) -> NDArray[np.float64]:
-    return np.stack([v[prefix + "_x"], v[prefix + "_y"], v[prefix + "_z"]], axis=-1)
+def _vec(raw: np.ndarray, shape: Tuple[int, ...], names: Sequence[str], prefix: str) -> Any:
+    """The vector ``prefix`` (columns ``prefix_x``, ``_y``, ``_z``, adjacent): a view."""
+    k = list(names).index(prefix + "_x")
+    return raw.reshape(shape + (len(names),))[..., k : k + 3]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -417,8 +419,8 @@ class Curve:
 
     def p(self, alpha: ArrayLike, out: Optional[np.ndarray] = None) -> Float:
         """P(γ, α) for α ≥ 0 (``inf``: no slip), any shape."""
-        if out is None and _scalars(alpha):
-            return self._c.p(float(alpha))
+        if out is None and type(alpha) in _NUMBER:
+            return self._c.p(alpha)
         a = _f64(alpha, "alpha")
         shape = a.shape
         o = _output(out, shape)
@@ -480,8 +482,8 @@ class Table:
         """P(γ, α), the tangential restitution of the contact point, by the table's
         interpolation rule. γ finite > 0, α ≥ 0 (``inf``: no slip). Broadcasts; returns a float
         for scalar arguments. |P| ≤ 1 everywhere."""
-        if out is None and _scalars(gamma, alpha):
-            return self._t.p(float(gamma), float(alpha), self._clamp)
+        if out is None and type(gamma) in _NUMBER and type(alpha) in _NUMBER:
+            return self._t.p(gamma, alpha, self._clamp)
         g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
         shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
         o = _output(out, shape)
@@ -574,14 +576,15 @@ class Table:
             _column(mu, shape),
             self._clamp,
         )
-        v = _views(raw, shape, _native.REBOUND3)
+        names = _native.REBOUND3
+        v = _views(raw, shape, names)
         wall = other is None
         return Rebound(
-            velocity=_vec(v, "velocity"),
-            spin=_vec(v, "spin"),
-            other_velocity=None if wall else _vec(v, "other_velocity"),
-            other_spin=None if wall else _vec(v, "other_spin"),
-            tangent=_vec(v, "tangent"),
+            velocity=_vec(raw, shape, names, "velocity"),
+            spin=_vec(raw, shape, names, "spin"),
+            other_velocity=None if wall else _vec(raw, shape, names, "other_velocity"),
+            other_spin=None if wall else _vec(raw, shape, names, "other_spin"),
+            tangent=_vec(raw, shape, names, "tangent"),
             **{
                 k: v[k]
                 for k in _native.REBOUND3
