@@ -90,8 +90,11 @@ def shown_files(path, update):
             j = i + 2
             while j < len(lines) and lines[j].strip() != "```":
                 j += 1
+            fence = lines[i + 1]
+            indent = fence[: len(fence) - len(fence.lstrip())]
             source = ROOT / m.group(1)
             want = source.read_text(encoding="utf-8").rstrip("\n").split("\n")
+            want = [(indent + line) if line else line for line in want]
             if lines[i + 2 : j] != want:
                 where = f"{path.relative_to(ROOT)}:{i + 2}"
                 if update:
@@ -101,7 +104,8 @@ def shown_files(path, update):
                 else:
                     failures += 1
                     print(f"check_docs: {where}: the block differs from {m.group(1)}:")
-                    print("\n".join(difflib.unified_diff(lines[i + 2 : j], want, "shown", m.group(1), lineterm="")))
+                    diff = difflib.unified_diff(lines[i + 2 : j], want, "shown", m.group(1), lineterm="")
+                    print("\n".join(diff))
             i = j
         i += 1
     if changed:
@@ -152,7 +156,8 @@ def main():
                         failures += 1
                     got = output.rstrip("\n").split("\n") if output.strip() else []
                     got = [line for line in got if not PROGRESS.search(line)]
-                    if normalise("\n".join(expected)) != normalise("\n".join(got)):
+                    differs = normalise("\n".join(expected)) != normalise("\n".join(got))
+                    if differs:
                         failures += not args.update
                         if not args.update:
                             diff = difflib.unified_diff(
@@ -160,7 +165,8 @@ def main():
                             )
                             print(f"check_docs: {where}: `{command}` prints otherwise:")
                             print("\n".join(diff))
-                    new_body += [f"$ {command}", *(got if args.update else expected)]
+                    # --update keeps a block whose only differences are times and dates.
+                    new_body += [f"$ {command}", *(got if args.update and differs else expected)]
                 new_body = [(indent + line).rstrip() if line else line for line in new_body]
                 if args.update and lines[start:end] != new_body:
                     lines[start:end] = new_body
