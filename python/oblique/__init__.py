@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass
-from typing import Any, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import Any, NamedTuple, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -62,7 +62,9 @@ __version__: str = _native.VERSION
 REGIMES: Tuple[str, str, str] = ("full-slip", "partial-slip", "stick")
 _REGIME_NAMES = np.array(REGIMES)
 
-Float = Union[float, NDArray[np.float64]]
+#: A result that is a ``float`` for scalar arguments and an ``NDArray[np.float64]`` of the
+#: broadcast shape otherwise (typed ``Any`` so that both uses check without narrowing).
+Float = Any
 
 
 class Material(NamedTuple):
@@ -417,10 +419,14 @@ class Curve:
         """Memory the curve holds (bytes)."""
         return self._c.nbytes
 
+    @overload
+    def p(self, alpha: float, out: None = None) -> float: ...
+    @overload
+    def p(self, alpha: ArrayLike, out: Optional[np.ndarray] = None) -> NDArray[np.float64]: ...
     def p(self, alpha: ArrayLike, out: Optional[np.ndarray] = None) -> Float:
         """P(γ, α) for α ≥ 0 (``inf``: no slip), any shape."""
         if out is None and type(alpha) in _NUMBER:
-            return self._c.p(alpha)
+            return self._c.p(alpha)  # type: ignore[arg-type]  # checked above
         a = _f64(alpha, "alpha")
         shape = a.shape
         o = _output(out, shape)
@@ -478,12 +484,18 @@ class Table:
         """The absolute error bound the table states for every P it answers."""
         return self.info["error_bound"]
 
+    @overload
+    def p(self, gamma: float, alpha: float, out: None = None) -> float: ...
+    @overload
+    def p(
+        self, gamma: ArrayLike, alpha: ArrayLike, out: Optional[np.ndarray] = None
+    ) -> NDArray[np.float64]: ...
     def p(self, gamma: ArrayLike, alpha: ArrayLike, out: Optional[np.ndarray] = None) -> Float:
         """P(γ, α), the tangential restitution of the contact point, by the table's
         interpolation rule. γ finite > 0, α ≥ 0 (``inf``: no slip). Broadcasts; returns a float
         for scalar arguments. |P| ≤ 1 everywhere."""
         if out is None and type(gamma) in _NUMBER and type(alpha) in _NUMBER:
-            return self._t.p(gamma, alpha, self._clamp)
+            return self._t.p(gamma, alpha, self._clamp)  # type: ignore[arg-type]  # checked above
         g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
         shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
         o = _output(out, shape)
@@ -491,6 +503,18 @@ class Table:
         _into(o, lambda f: self._t.p_into(gf, af, f, self._clamp, list(shape)))
         return _result(o, out)
 
+    @overload
+    def e_t(
+        self, gamma: float, alpha: float, kappa: float = 0.4, out: None = None
+    ) -> float: ...
+    @overload
+    def e_t(
+        self,
+        gamma: ArrayLike,
+        alpha: ArrayLike,
+        kappa: ArrayLike = 0.4,
+        out: Optional[np.ndarray] = None,
+    ) -> NDArray[np.float64]: ...
     def e_t(
         self,
         gamma: ArrayLike,
@@ -769,10 +793,15 @@ def simulate(
     if shape:
         raise ValueError(f"simulate: scalar arguments only, got the broadcast shape {shape}")
     d = _native.simulate(motion, s1, s2, [_column(x, ()) for x in mats], mu, float(tol))
-    o = d["other"] or (None, None, None)
+    v_x, v_z, omega = d["sphere"]
+    o_x, o_z, o_omega = d["other"] or (None, None, None)
     return Simulation(
-        *d["sphere"],
-        *o,
+        v_x=v_x,
+        v_z=v_z,
+        omega=omega,
+        other_v_x=o_x,
+        other_v_z=o_z,
+        other_omega=o_omega,
         p=d["p"],
         error_estimate=d["error_estimate"],
         contact_time=d["contact_time"],
