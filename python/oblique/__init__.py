@@ -154,9 +154,11 @@ def _output(out: Optional[np.ndarray], shape: Tuple[int, ...]) -> np.ndarray:
     return out
 
 
-def _into(out: np.ndarray, fill: Any) -> None:
-    """Call ``fill(flat)`` with a contiguous 1-D view of ``out`` (or a scratch copy)."""
-    if out.flags.c_contiguous:
+def _into(out: np.ndarray, fill: Any, *inputs: np.ndarray) -> None:
+    """Call ``fill(flat)`` with a contiguous 1-D view of ``out``, or with a scratch array that
+    is then copied into ``out`` when ``out`` is not contiguous or shares memory with one of the
+    ``inputs`` (``out=`` may be an input, as in NumPy)."""
+    if out.flags.c_contiguous and not any(np.may_share_memory(out, x) for x in inputs):
         fill(out.reshape(-1))
     else:
         scratch = np.empty(out.shape, dtype=np.float64)
@@ -431,7 +433,7 @@ class Curve:
         shape = a.shape
         o = _output(out, shape)
         flat = _full(a, shape)
-        _into(o, lambda f: self._c.p_into(flat, f, list(shape)))
+        _into(o, lambda f: self._c.p_into(flat, f, list(shape)), flat)
         return _result(o, out)
 
     def __repr__(self) -> str:
@@ -500,7 +502,7 @@ class Table:
         shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
         o = _output(out, shape)
         gf, af = _full(g, shape), _full(a, shape)
-        _into(o, lambda f: self._t.p_into(gf, af, f, self._clamp, list(shape)))
+        _into(o, lambda f: self._t.p_into(gf, af, f, self._clamp, list(shape)), gf, af)
         return _result(o, out)
 
     @overload
@@ -530,7 +532,7 @@ class Table:
         p = np.asarray(self.p(np.broadcast_to(g, shape), np.broadcast_to(a, shape)))
         o = _output(out, shape)
         pf, kf = _full(p, shape), _column(k, shape)
-        _into(o, lambda f: _native.e_t_into(pf, kf, f, list(shape)))
+        _into(o, lambda f: _native.e_t_into(pf, kf, f, list(shape)), pf, kf)
         return _result(o, out)
 
     def regime(self, gamma: ArrayLike, alpha: ArrayLike) -> Union[str, NDArray[np.str_]]:

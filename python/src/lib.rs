@@ -904,14 +904,13 @@ fn impact<'py>(
         errors.into_iter().min_by_key(|(i, _)| *i)
     });
     if let Some((i, e)) = result {
-        let err = physics_error(e);
-        return Err(if shape.is_empty() {
-            err
-        } else {
-            let message = err.to_string();
-            let kind = err.get_type(py);
-            let text = format!("{message} (at index {})", unravel(i, &shape));
-            PyErr::from_type(kind, text)
+        if shape.is_empty() {
+            return Err(physics_error(e));
+        }
+        let text = format!("{e} (at index {})", unravel(i, &shape));
+        return Err(match e {
+            PhysicsError::ToleranceUnreachable { .. } => PyRuntimeError::new_err(text),
+            _ => PyValueError::new_err(text),
         });
     }
     drop(rw);

@@ -343,9 +343,17 @@ impl Pair {
             }
         }
         if self.other.is_none() && s.other != State::default() {
+            let (name, value) = [
+                ("other.v_x", s.other.v_x),
+                ("other.v_z", s.other.v_z),
+                ("other.omega", s.other.omega),
+            ]
+            .into_iter()
+            .find(|(_, v)| *v != 0.0)
+            .unwrap_or(("other.v_x", s.other.v_x));
             return Err(query(
-                "other.v_x",
-                s.other.v_x,
+                name,
+                value,
                 "zero motion for a fixed wall (v_x = v_z = omega = 0)",
             ));
         }
@@ -566,9 +574,14 @@ impl Pair {
             }
         }
         if self.other.is_none() && s.other != Motion3::default() {
+            let named = |name: &'static str, v: Vec3| v.into_iter().map(move |x| (name, x));
+            let (name, value) = named("other.velocity", s.other.velocity)
+                .chain(named("other.spin", s.other.spin))
+                .find(|(_, x)| *x != 0.0)
+                .unwrap_or(("other.velocity", s.other.velocity[0]));
             return Err(query(
-                "other.velocity",
-                s.other.velocity[0],
+                name,
+                value,
                 "zero motion for a fixed wall (velocity = spin = 0)",
             ));
         }
