@@ -1,6 +1,7 @@
 //! One module per command of the `sweep` binary.
 
 pub mod accuracy;
+pub mod export;
 pub mod impact;
 pub mod inspect;
 pub mod kinks;

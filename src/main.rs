@@ -148,6 +148,18 @@ gamma and alpha are dimensionless (physics.md). Below gamma_b there is no fold c
 points are where the episode stops ending before 0.97 t_c, with no slope jump. About 1.3 s\n\
 for the birth and 0.05 s per point at 2048 steps. More: docs/solver.md, \"Kink curves\".")]
     Kinks(cmd::kinks::KinksArgs),
+    /// Write a table (or the curves of a few gamma) for the dependency-free C/C++/Fortran
+    /// evaluator include/oblique_eval.h: a binary file or a C source.
+    #[command(after_help = "Examples:\n  \
+sweep export tables/full.h5 -o full.oblq                           # the whole table\n  \
+sweep export tables/full.h5 -o pairs.oblq --gamma 1.7498 --gamma 1.6977 --curves-only\n  \
+sweep export tables/full.h5 -o table_data.c --name oblique_table   # a C source to compile in\n\n\
+The evaluator reads the file in place (read or mmap it, then oblq_open) and answers P(gamma,\n\
+alpha), the per-gamma curves, e_t and rebounds with no library but libm. The layout (little-\n\
+endian, versioned, FNV-1a checksum) is documented in docs/export-format.md. A curve answers the\n\
+same P as the whole table to about 1e-15 in a few KB; gamma of a pair of materials:\n\
+sqrt((m*/m_t) G*/E*) (sweep --help).")]
+    Export(cmd::export::ExportArgs),
 }
 
 /// Die quietly when the reader of our output goes away (`sweep query ... | head`), like other
@@ -182,6 +194,7 @@ fn main() -> ExitCode {
         Command::Accuracy(a) => accuracy_cmd::run(a),
         Command::Verify(a) => verify_cmd::run(a),
         Command::Kinks(a) => cmd::kinks::run(a),
+        Command::Export(a) => cmd::export::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -17,6 +17,7 @@
 //! on the three shipped tables, `crates/lookup/tests/curve.rs`).
 
 use crate::{LookupError, Table};
+use oblique_table::export::{CurveData, CurvePiece};
 use oblique_table::surface::{alpha_c2, bound_p, linear_limit, stick_scale, Patch, Warp};
 use oblique_table::surface::{alpha_outside, bad_alpha, OutOfDomain, PatchId, Surface};
 
@@ -311,6 +312,36 @@ impl Curve {
     pub fn p_batch(&self, alpha: &[f64], out: &mut [f64]) -> Result<(), LookupError> {
         crate::batch::check_length("out", out.len(), alpha.len())?;
         crate::batch::serial(alpha, out, |&a| self.p(a))
+    }
+
+    /// What the export format stores of this curve ([`oblique_table::export::CurveData`]);
+    /// `None` for a curve whose `γ` was clamped into the domain (the export holds curves of
+    /// `γ` inside it).
+    pub fn export_data(&self) -> Option<CurveData> {
+        if self.requested != self.gamma {
+            return None;
+        }
+        let piece = |p: &Option<Piecewise>| {
+            p.as_ref().map(|p| CurvePiece {
+                coef: p.coef.clone(),
+                warp: p.warp.as_ref().map(|(k, w)| (*k, w.c_star())),
+            })
+        };
+        Some(CurveData {
+            gamma: self.gamma,
+            alpha_lin: self.alpha_lin,
+            alpha_c2: self.alpha_c2,
+            g2: self.g2,
+            ratio: self.ratio,
+            ln_ratio: self.ln_ratio,
+            stick_c2: self.stick_c2,
+            rho_c2: self.rho_c2,
+            s_max: self.s_max,
+            alpha_max: self.alpha_max,
+            high: self.high,
+            partial: piece(&self.partial),
+            stick: piece(&self.stick),
+        })
     }
 
     /// Bytes of the precomputed cubics.

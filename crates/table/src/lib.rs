@@ -9,6 +9,7 @@
 //! `α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`.
 
 pub mod bound;
+pub mod export;
 pub mod format;
 pub mod read;
 pub mod surface;

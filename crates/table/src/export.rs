@@ -1,0 +1,228 @@
+//! The export format: a table (and optionally per-γ curves) as one flat little-endian byte
+//! string that a dependency-free evaluator reads in place (memory-mapped, or compiled in as a C
+//! array): `include/oblique_eval.h`. The layout is documented in `docs/export-format.md`; this
+//! module is its only writer, next to the HDF5 schema of [`crate::format`].
+//!
+//! Every offset is in bytes from the start of the export; every array starts at a multiple of
+//! 8. Integers are unsigned little-endian (`u32`, `u64`), reals IEEE binary64, the tree `i32`.
+
+use crate::format::fnv1a64;
+use crate::surface::{PatchId, PatchKind, Surface};
+
+/// The first 8 bytes of an export.
+pub const MAGIC: &[u8; 8] = b"OBLQEVAL";
+/// Layout version written (readers refuse others).
+pub const VERSION: u32 = 1;
+/// Bytes of the header.
+pub const HEADER_BYTES: usize = 96;
+/// Bytes of one patch record (three follow the header when the export holds the surface).
+pub const PATCH_BYTES: usize = 128;
+/// Bytes of one curve record.
+pub const CURVE_BYTES: usize = 168;
+/// Offset of the checksum field; the checksum covers every byte after it.
+pub const CHECKSUM_AT: usize = 24;
+
+/// One patch of a curve: the cubic `a0 + a1 s + a2 s² + a3 s³` of each of `n` intervals of the
+/// patch coordinate, and the warp of the line (its `K(γ)` and `c_star`) if the rule warps it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurvePiece {
+    /// `[a0, a1, a2, a3]` per interval, in the local coordinate `s = c·n − i − 1/2`.
+    pub coef: Vec<[f64; 4]>,
+    /// `(K, c_star)` when the coordinate is warped on this line.
+    pub warp: Option<(f64, f64)>,
+}
+
+/// The precomputed `P(α)` of one `γ` (what `oblique_lookup::Curve` holds), inside the table's
+/// domain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveData {
+    /// `γ`.
+    pub gamma: f64,
+    /// End of the full-slip line, `α_c1` (`γ > 1`) or `α_c2`.
+    pub alpha_lin: f64,
+    /// `α_c2 = 2γ²/7`: partial slip below (for `γ > 1`), stick above.
+    pub alpha_c2: f64,
+    /// `2γ²`, `2γ² − 1` and `ln(2γ² − 1)` of the partial-slip coordinate.
+    pub g2: f64,
+    /// `2γ² − 1`.
+    pub ratio: f64,
+    /// `ln(2γ² − 1)`.
+    pub ln_ratio: f64,
+    /// `α_c2` as the stick coordinate computes it (`γ²·(2/7)`).
+    pub stick_c2: f64,
+    /// `ρ α_c2`.
+    pub rho_c2: f64,
+    /// `S(α_max)` (`None` for `α_max = ∞`).
+    pub s_max: Option<f64>,
+    /// The table's `α_max`.
+    pub alpha_max: f64,
+    /// `γ > 1`.
+    pub high: bool,
+    /// The line through `partial_high` (`γ > 1`, if the table has it).
+    pub partial: Option<CurvePiece>,
+    /// The line through the stick patch of its side.
+    pub stick: Option<CurvePiece>,
+}
+
+fn align8(v: &mut Vec<u8>) {
+    while v.len() % 8 != 0 {
+        v.push(0);
+    }
+}
+
+fn put_u32(v: &mut [u8], at: usize, x: u32) {
+    v[at..at + 4].copy_from_slice(&x.to_le_bytes());
+}
+
+fn put_u64(v: &mut [u8], at: usize, x: u64) {
+    v[at..at + 8].copy_from_slice(&x.to_le_bytes());
+}
+
+fn put_f64(v: &mut [u8], at: usize, x: f64) {
+    v[at..at + 8].copy_from_slice(&x.to_le_bytes());
+}
+
+/// Append `values` (8-byte aligned) and return their offset.
+fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
+    align8(v);
+    let at = v.len() as u64;
+    for x in values {
+        v.extend_from_slice(&x.to_le_bytes());
+    }
+    at
+}
+
+/// The export of `surface` (with `error_bound`, the table's stated bound) when `with_surface`,
+/// and of `curves`, as bytes. An export without the surface answers only its curves.
+pub fn export(
+    surface: &Surface,
+    error_bound: f64,
+    with_surface: bool,
+    curves: &[CurveData],
+) -> Vec<u8> {
+    let mut v = vec![0u8; HEADER_BYTES];
+    v[..8].copy_from_slice(MAGIC);
+    put_u32(&mut v, 8, VERSION);
+    put_u32(&mut v, 12, HEADER_BYTES as u32);
+    put_f64(&mut v, 32, surface.gamma_min());
+    put_f64(&mut v, 40, surface.gamma_max());
+    put_f64(&mut v, 48, surface.alpha_max());
+    put_f64(&mut v, 56, error_bound);
+    put_u32(&mut v, 64, surface.stencil() as u32);
+    put_u32(&mut v, 80, curves.len() as u32);
+    if with_surface {
+        let dir = v.len();
+        put_u64(&mut v, 72, dir as u64);
+        v.resize(dir + 3 * PATCH_BYTES, 0);
+        for (k, id) in [PatchId::StickLow, PatchId::PartialHigh, PatchId::StickHigh]
+            .into_iter()
+            .enumerate()
+        {
+            let Some(p) = surface.patch_by_id(id) else {
+                continue;
+            };
+            let r = dir + k * PATCH_BYTES;
+            put_u32(&mut v, r, 1);
+            put_u32(&mut v, r + 4, u32::from(p.kind() == PatchKind::PartialSlip));
+            put_f64(&mut v, r + 8, p.gamma_lo());
+            put_f64(&mut v, r + 16, p.gamma_hi());
+            put_u32(&mut v, r + 24, p.blocks_gamma() as u32);
+            put_u32(&mut v, r + 28, p.blocks_coord() as u32);
+            put_u32(&mut v, r + 32, p.leaf_intervals() as u32);
+            put_u32(&mut v, r + 36, p.tree().len() as u32);
+            put_u32(&mut v, r + 40, p.leaves() as u32);
+            align8(&mut v);
+            let tree_at = v.len() as u64;
+            for t in p.tree() {
+                v.extend_from_slice(&t.to_le_bytes());
+            }
+            put_u64(&mut v, r + 48, tree_at);
+            let p_at = push_f64s(&mut v, p.p().iter().copied());
+            put_u64(&mut v, r + 56, p_at);
+            if let Some(w) = p.warp() {
+                put_u32(&mut v, r + 44, 1);
+                put_f64(&mut v, r + 64, w.start());
+                put_f64(&mut v, r + 72, w.gamma_0());
+                put_f64(&mut v, r + 80, w.gamma_step());
+                put_f64(&mut v, r + 88, w.c_star());
+                put_u32(&mut v, r + 96, w.knot().len() as u32);
+                let k_at = push_f64s(&mut v, w.knot().iter().copied());
+                put_u64(&mut v, r + 104, k_at);
+            }
+        }
+    }
+    if !curves.is_empty() {
+        align8(&mut v);
+        let dir = v.len();
+        put_u64(&mut v, 88, dir as u64);
+        v.resize(dir + curves.len() * CURVE_BYTES, 0);
+        for (k, c) in curves.iter().enumerate() {
+            let r = dir + k * CURVE_BYTES;
+            for (i, x) in [
+                c.gamma,
+                c.alpha_lin,
+                c.alpha_c2,
+                c.g2,
+                c.ratio,
+                c.ln_ratio,
+                c.stick_c2,
+                c.rho_c2,
+                c.s_max.unwrap_or(f64::NAN),
+                c.alpha_max,
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                put_f64(&mut v, r + 8 * i, x);
+            }
+            put_u32(&mut v, r + 80, u32::from(c.high));
+            for (slot, piece) in [(88, &c.partial), (128, &c.stick)] {
+                let Some(piece) = piece else { continue };
+                let at = r + slot;
+                put_u32(&mut v, at, 1);
+                put_u32(&mut v, at + 4, piece.coef.len() as u32);
+                let coef_at = push_f64s(&mut v, piece.coef.iter().flatten().copied());
+                put_u64(&mut v, at + 8, coef_at);
+                if let Some((k, c_star)) = piece.warp {
+                    put_u32(&mut v, at + 16, 1);
+                    put_f64(&mut v, at + 24, k);
+                    put_f64(&mut v, at + 32, c_star);
+                }
+            }
+        }
+    }
+    align8(&mut v);
+    let len = v.len() as u64;
+    put_u64(&mut v, 16, len);
+    let sum = fnv1a64(&v[CHECKSUM_AT + 8..]);
+    put_u64(&mut v, CHECKSUM_AT, sum);
+    v
+}
+
+/// The export as a C source file: the bytes as an array of `unsigned long long` words (8-byte
+/// aligned, in the byte order of a little-endian machine) named `name`, and its length in bytes
+/// as `name_size`, for codes that compile the table in (`oblq_open(&t, name, name_size)`).
+pub fn c_source(bytes: &[u8], name: &str, what: &str) -> String {
+    use std::fmt::Write;
+    let mut s = String::with_capacity(bytes.len() * 3 + 512);
+    let words = bytes.len().div_ceil(8);
+    let _ = writeln!(
+        s,
+        "/* {what}\n * Generated by `sweep export`; layout: docs/export-format.md. Little-endian \
+         machines only.\n * Read with oblq_open(&table, {name}, {name}_size) from oblique_eval.h. */\n\
+         #include <stddef.h>\n\n\
+         const size_t {name}_size = {};\n\
+         const unsigned long long {name}[{words}] = {{",
+        bytes.len()
+    );
+    for (i, chunk) in bytes.chunks(8).enumerate() {
+        let mut w = [0u8; 8];
+        w[..chunk.len()].copy_from_slice(chunk);
+        if i % 4 == 0 {
+            s.push_str("\n   ");
+        }
+        let _ = write!(s, " 0x{:016x}ULL,", u64::from_le_bytes(w));
+    }
+    s.push_str("\n};\n");
+    s
+}

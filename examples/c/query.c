@@ -1,0 +1,105 @@
+/* P(gamma, alpha) for lines "gamma,alpha" on standard input, from an export of a table
+   (`sweep export TABLE -o FILE`); prints "gamma,alpha,P" lines (P with %.17g, which reads back
+   to the same double), like `sweep query TABLE --batch -`. Needs only the header and libm:
+
+       cc -std=c99 -O2 -I include -o query examples/c/query.c -lm
+       printf '1.75,0.3\n2,inf\n' | ./query full.oblq
+
+   Exit status: 0, 1 when the file cannot be read, 2 for a malformed line or a point outside the
+   table (the message names the line). */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "oblique_eval.h"
+
+/* The whole file in an 8-byte aligned buffer (malloc's alignment). */
+static void *read_file(const char *path, size_t *size) {
+    FILE *f = fopen(path, "rb");
+    char *buf = NULL;
+    size_t cap = 0, len = 0, n;
+    if (!f) return NULL;
+    for (;;) {
+        if (len == cap) {
+            char *bigger;
+            cap = cap ? 2 * cap : 1 << 20;
+            bigger = (char *)realloc(buf, cap);
+            if (!bigger) {
+                free(buf);
+                fclose(f);
+                errno = ENOMEM;
+                return NULL;
+            }
+            buf = bigger;
+        }
+        n = fread(buf + len, 1, cap - len, f);
+        len += n;
+        if (n == 0) break;
+    }
+    if (ferror(f)) {
+        free(buf);
+        fclose(f);
+        return NULL;
+    }
+    fclose(f);
+    *size = len;
+    return buf;
+}
+
+/* A number as sweep query reads it: strtod, plus "inf". */
+static int parse(const char *s, char **end, double *x) {
+    errno = 0;
+    *x = strtod(s, end);
+    return *end != s && errno != ERANGE;
+}
+
+int main(int argc, char **argv) {
+    oblq_table table;
+    size_t size = 0;
+    void *data;
+    char line[512];
+    long lineno = 0;
+    int rc;
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s EXPORT < points.csv   (lines gamma,alpha)\n", argv[0]);
+        return 2;
+    }
+    data = read_file(argv[1], &size);
+    if (!data) {
+        fprintf(stderr, "error: cannot read %s: %s\n", argv[1], strerror(errno));
+        return 1;
+    }
+    rc = oblq_open(&table, data, size);
+    if (rc != OBLQ_OK) {
+        fprintf(stderr, "error: %s: %s\n", argv[1], oblq_error_message(rc));
+        free(data);
+        return 2;
+    }
+    while (fgets(line, sizeof line, stdin)) {
+        char *end, *text = line;
+        double gamma, alpha, p;
+        size_t len = strlen(line);
+        lineno++;
+        while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r')) line[--len] = '\0';
+        if (len == 0 || line[0] == '#') {
+            printf("%s\n", line);
+            continue;
+        }
+        if (!parse(text, &end, &gamma) || *end != ',' || !parse(end + 1, &end, &alpha) ||
+            *end != '\0') {
+            fprintf(stderr, "error: line %ld: expected gamma,alpha, got \"%s\"\n", lineno, line);
+            free(data);
+            return 2;
+        }
+        rc = oblq_p(&table, gamma, alpha, 0, &p);
+        if (rc != OBLQ_OK) {
+            fprintf(stderr, "error: line %ld (%s): %s\n", lineno, line, oblq_error_message(rc));
+            free(data);
+            return 2;
+        }
+        printf("%s,%.17g\n", line, p);
+    }
+    free(data);
+    return 0;
+}

@@ -1,0 +1,977 @@
+/*
+ * oblique_eval.h: the tangential restitution P(gamma, alpha) of oblique elastic impacts with
+ * friction, and the rebounds of spheres on walls and on spheres, evaluated from an export of a
+ * table (`sweep export TABLE -o FILE`) held in memory. One header, no library but libm, no
+ * allocation: C99 and later, C++11 and later. Little-endian machines only (x86-64, AArch64).
+ *
+ *   #include "oblique_eval.h"
+ *   oblq_table t;
+ *   int rc = oblq_open(&t, bytes, size);          // checks the export once (layout, checksum)
+ *   double p;
+ *   rc = oblq_p(&t, 1.754, 0.3, 0, &p);           // P(gamma, alpha); rc = OBLQ_OK or an error
+ *
+ * Symbols and units (SI) as in the project's physics.md: gamma = sqrt((m* / m_t) G* / E*),
+ * alpha = (2/7)(m* / m_t) mu v_z0/|u0|, P = u_after/u_before (the tangential restitution of the
+ * contact point), -1 <= P <= 1. The rule is the one of docs/table-format.md; the layout of an
+ * export is docs/export-format.md.
+ *
+ * Every function returns an int status: OBLQ_OK (0) or a positive OBLQ_E_* code, never reads
+ * outside the export it was given, and writes its outputs only on OBLQ_OK.
+ * oblq_error_message(code) names the argument and the allowed range. The data an oblq_table
+ * points to must stay alive and unchanged while it is used; an oblq_table, oblq_curve and
+ * oblq_pair are read-only after they are made and may be shared by threads.
+ *
+ * Answers agree with the Rust library (oblique-lookup) to the last bit when compiled without
+ * value-changing optimisations (no -ffast-math; on machines with fused multiply-add, also
+ * -ffp-contract=off, which ISO modes such as -std=c99 select in GCC): the same operations in
+ * the same order. Otherwise they differ by rounding only (a few units in the last place).
+ *
+ * GPU codes: define OBLQ_FN before including (e.g. `#define OBLQ_FN __host__ __device__ static
+ * inline`) to mark every function.
+ */
+#ifndef OBLIQUE_EVAL_H
+#define OBLIQUE_EVAL_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#ifndef OBLQ_FN
+#define OBLQ_FN static inline
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Layout version this header reads. */
+#define OBLQ_EXPORT_VERSION 1u
+
+/* Status codes. */
+enum {
+    OBLQ_OK = 0,
+    OBLQ_E_NULL = 1,          /* a pointer argument is NULL */
+    OBLQ_E_TRUNCATED = 2,     /* the data is shorter than its header says (truncated) */
+    OBLQ_E_FORMAT = 3,        /* not an export: wrong magic bytes */
+    OBLQ_E_VERSION = 4,       /* an export of another layout version */
+    OBLQ_E_CHECKSUM = 5,      /* damaged: the checksum does not match the contents */
+    OBLQ_E_CORRUPT = 6,       /* inconsistent contents (offsets, sizes, values) */
+    OBLQ_E_GAMMA = 7,         /* gamma not finite or <= 0 */
+    OBLQ_E_ALPHA = 8,         /* alpha NaN or < 0 */
+    OBLQ_E_GAMMA_DOMAIN = 9,  /* gamma outside the table's domain (and not on the line) */
+    OBLQ_E_ALPHA_DOMAIN = 10, /* alpha above the table's alpha_max */
+    OBLQ_E_NO_SURFACE = 11,   /* a curves-only export asked for P at any gamma */
+    OBLQ_E_NO_CURVE = 12,     /* no curve of that gamma (or index) in the export */
+    OBLQ_E_MASS = 13,         /* a mass not finite or <= 0 */
+    OBLQ_E_RADIUS = 14,       /* a radius not finite or <= 0 */
+    OBLQ_E_KAPPA = 15,        /* an inertia factor not finite or <= 0 */
+    OBLQ_E_FRICTION = 16,     /* friction NaN or < 0 */
+    OBLQ_E_MODULUS = 17,      /* Young's modulus NaN or <= 0, or both bodies rigid */
+    OBLQ_E_POISSON = 18,      /* Poisson's ratio outside (-1, 0.5] */
+    OBLQ_E_MOTION = 19,       /* a velocity, spin or normal component not finite */
+    OBLQ_E_NORMAL = 20,       /* a zero (or overflowing) normal */
+    OBLQ_E_APPROACH = 21,     /* the bodies do not approach along the normal (v_z0 <= 0) */
+    OBLQ_E_WALL_MOTION = 22,  /* a wall (other = NULL) given a non-zero motion */
+    OBLQ_E_KAPPA_P = 23       /* P outside [-1, 1] given to oblq_e_t */
+};
+
+/* One patch of the surface (pointers into the export). */
+typedef struct {
+    int present;
+    int partial;                /* 1: the partial-slip patch, 0: a stick patch */
+    double gamma_lo, gamma_hi;
+    size_t blocks_gamma, blocks_coord, m, cells, leaves;
+    const unsigned char *tree; /* int32 little-endian [cells] */
+    const double *p;           /* [leaves][m+1][m+1] */
+    int warp;
+    double w_start, w_gamma_0, w_gamma_step, w_c_star;
+    size_t w_n;
+    const double *knot;
+} oblq_patch;
+
+/* A checked export: the table's domain and stated error bound, its patches, its curves. */
+typedef struct {
+    double gamma_min, gamma_max, alpha_max;
+    double error_bound; /* absolute error bound of every P the table answers */
+    int has_surface;    /* 0 for a curves-only export */
+    oblq_patch patch[3]; /* stick_low, partial_high, stick_high */
+    size_t n_curves;
+    const unsigned char *data; /* the export */
+    uint64_t size;
+    uint64_t curves; /* offset of the curve records */
+} oblq_table;
+
+/* One patch of a curve. */
+typedef struct {
+    int present;
+    size_t n;             /* intervals */
+    const double *coef;   /* [n][4] */
+    int warp;
+    double k, c_star;
+} oblq_piece;
+
+/* P(alpha) at one gamma, precomputed (a curve of the export). */
+typedef struct {
+    double gamma, alpha_lin, alpha_c2, g2, ratio, ln_ratio, stick_c2, rho_c2, s_max, alpha_max;
+    int high;
+    oblq_piece partial, stick;
+} oblq_curve;
+
+/* ---------------------------------------------------------------------------------------- */
+/* Reading the export                                                                         */
+
+OBLQ_FN uint32_t oblq__u32(const unsigned char *b) {
+    return (uint32_t)b[0] | ((uint32_t)b[1] << 8) | ((uint32_t)b[2] << 16) |
+           ((uint32_t)b[3] << 24);
+}
+
+OBLQ_FN uint64_t oblq__u64(const unsigned char *b) {
+    return (uint64_t)oblq__u32(b) | ((uint64_t)oblq__u32(b + 4) << 32);
+}
+
+OBLQ_FN double oblq__f64(const unsigned char *b) {
+    double d;
+    uint64_t u = oblq__u64(b);
+    memcpy(&d, &u, sizeof d);
+    return d;
+}
+
+OBLQ_FN int32_t oblq__i32(const unsigned char *b) {
+    uint32_t u = oblq__u32(b);
+    int32_t i;
+    memcpy(&i, &u, sizeof i);
+    return i;
+}
+
+/* Whether [off, off + count*size) lies inside [0, len), 8-byte aligned (no overflow). */
+OBLQ_FN int oblq__span(uint64_t off, uint64_t count, uint64_t size, uint64_t len) {
+    if (off % 8 != 0 || off > len) return 0;
+    if (size != 0 && count > (len - off) / size) return 0;
+    return 1;
+}
+
+OBLQ_FN int oblq__finite_array(const double *v, size_t n) {
+    size_t i;
+    for (i = 0; i < n; i++)
+        if (!isfinite(v[i])) return 0;
+    return 1;
+}
+
+OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len, const unsigned char *r) {
+    uint64_t cells, leaves, m, bg, bc, roots, i, nodes, off;
+    memset(p, 0, sizeof *p);
+    if (oblq__u32(r) == 0) return OBLQ_OK;
+    if (oblq__u32(r) != 1 || oblq__u32(r + 4) > 1) return OBLQ_E_CORRUPT;
+    p->present = 1;
+    p->partial = (int)oblq__u32(r + 4);
+    p->gamma_lo = oblq__f64(r + 8);
+    p->gamma_hi = oblq__f64(r + 16);
+    bg = oblq__u32(r + 24);
+    bc = oblq__u32(r + 28);
+    m = oblq__u32(r + 32);
+    cells = oblq__u32(r + 36);
+    leaves = oblq__u32(r + 40);
+    if (!(isfinite(p->gamma_lo) && isfinite(p->gamma_hi) && p->gamma_lo > 0.0 &&
+          p->gamma_lo < p->gamma_hi))
+        return OBLQ_E_CORRUPT;
+    if (bg < 1 || bc < 1 || m < 3 || m > 64 || leaves < 1) return OBLQ_E_CORRUPT;
+    roots = bg * bc;
+    if (cells < roots || (cells - roots) % 4 != 0) return OBLQ_E_CORRUPT;
+    off = oblq__u64(r + 48);
+    if (!oblq__span(off, cells, 4, len)) return OBLQ_E_CORRUPT;
+    p->tree = d + off;
+    /* Safe descent: a split cell's children exist and come after it (so every descent ends),
+       a leaf number is in range. */
+    for (i = 0; i < cells; i++) {
+        int32_t t = oblq__i32(p->tree + 4 * i);
+        if (t >= 0) {
+            if ((uint64_t)t <= i || (uint64_t)t + 3 >= cells) return OBLQ_E_CORRUPT;
+        } else if ((uint64_t)(-(int64_t)t - 1) >= leaves) {
+            return OBLQ_E_CORRUPT;
+        }
+    }
+    nodes = leaves * (m + 1) * (m + 1);
+    off = oblq__u64(r + 56);
+    if (!oblq__span(off, nodes, 8, len)) return OBLQ_E_CORRUPT;
+    p->p = (const double *)(const void *)(d + off);
+    if (!oblq__finite_array(p->p, (size_t)nodes)) return OBLQ_E_CORRUPT;
+    p->blocks_gamma = (size_t)bg;
+    p->blocks_coord = (size_t)bc;
+    p->m = (size_t)m;
+    p->cells = (size_t)cells;
+    p->leaves = (size_t)leaves;
+    if (oblq__u32(r + 44) > 1) return OBLQ_E_CORRUPT;
+    p->warp = (int)oblq__u32(r + 44);
+    if (p->warp) {
+        p->w_start = oblq__f64(r + 64);
+        p->w_gamma_0 = oblq__f64(r + 72);
+        p->w_gamma_step = oblq__f64(r + 80);
+        p->w_c_star = oblq__f64(r + 88);
+        p->w_n = oblq__u32(r + 96);
+        off = oblq__u64(r + 104);
+        if (!p->partial || p->w_n < 4 || !oblq__span(off, p->w_n, 8, len)) return OBLQ_E_CORRUPT;
+        p->knot = (const double *)(const void *)(d + off);
+        if (!(isfinite(p->w_start) && isfinite(p->w_gamma_0) && p->w_gamma_step > 0.0 &&
+              isfinite(p->w_gamma_step) && p->w_c_star > 0.0 && p->w_c_star < 1.0))
+            return OBLQ_E_CORRUPT;
+        for (i = 0; i < p->w_n; i++)
+            if (!(p->knot[i] > 0.0 && p->knot[i] < 1.0)) return OBLQ_E_CORRUPT;
+    }
+    return OBLQ_OK;
+}
+
+OBLQ_FN int oblq__piece(oblq_piece *c, const unsigned char *d, uint64_t len, const unsigned char *r) {
+    uint64_t off;
+    memset(c, 0, sizeof *c);
+    if (oblq__u32(r) == 0) return OBLQ_OK;
+    if (oblq__u32(r) != 1 || oblq__u32(r + 16) > 1) return OBLQ_E_CORRUPT;
+    c->present = 1;
+    c->n = oblq__u32(r + 4);
+    off = oblq__u64(r + 8);
+    if (c->n < 1 || !oblq__span(off, (uint64_t)c->n, 32, len)) return OBLQ_E_CORRUPT;
+    c->coef = (const double *)(const void *)(d + off);
+    if (!oblq__finite_array(c->coef, 4 * c->n)) return OBLQ_E_CORRUPT;
+    c->warp = (int)oblq__u32(r + 16);
+    if (c->warp) {
+        c->k = oblq__f64(r + 24);
+        c->c_star = oblq__f64(r + 32);
+        if (!(c->k > 0.0 && c->k < 1.0 && c->c_star > 0.0 && c->c_star < 1.0))
+            return OBLQ_E_CORRUPT;
+    }
+    return OBLQ_OK;
+}
+
+OBLQ_FN int oblq__curve_at(const oblq_table *t, size_t i, oblq_curve *c) {
+    const unsigned char *r = t->data + t->curves + 168 * i;
+    double v[10];
+    size_t k;
+    int rc;
+    for (k = 0; k < 10; k++) v[k] = oblq__f64(r + 8 * k);
+    c->gamma = v[0];
+    c->alpha_lin = v[1];
+    c->alpha_c2 = v[2];
+    c->g2 = v[3];
+    c->ratio = v[4];
+    c->ln_ratio = v[5];
+    c->stick_c2 = v[6];
+    c->rho_c2 = v[7];
+    c->s_max = v[8];
+    c->alpha_max = v[9];
+    if (oblq__u32(r + 80) > 1) return OBLQ_E_CORRUPT;
+    c->high = (int)oblq__u32(r + 80);
+    for (k = 0; k < 8; k++)
+        if (!isfinite(v[k])) return OBLQ_E_CORRUPT;
+    if (!(c->gamma > 0.0) || !(c->alpha_max >= 0.0)) return OBLQ_E_CORRUPT;
+    if (isinf(c->alpha_max) != isnan(c->s_max) || (!isnan(c->s_max) && !(c->s_max > 0.0)))
+        return OBLQ_E_CORRUPT;
+    if (c->high != (c->gamma > 1.0)) return OBLQ_E_CORRUPT;
+    if (c->high && !(c->ln_ratio > 0.0 && c->g2 > 0.0)) return OBLQ_E_CORRUPT;
+    rc = oblq__piece(&c->partial, t->data, t->size, r + 88);
+    if (rc != OBLQ_OK) return rc;
+    return oblq__piece(&c->stick, t->data, t->size, r + 128);
+}
+
+/* Check an export of `size` bytes at `data` (8-byte aligned: a malloc'ed or mmap'ed buffer,
+   or the array of a generated C source) and make `t` refer to it. Reads every byte once (the
+   checksum); no allocation. */
+OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
+    const unsigned char *d = (const unsigned char *)data;
+    uint64_t len, sum, off, i;
+    size_t k;
+    int rc;
+    oblq_table out;
+    oblq_curve c;
+    if (!t || !data) return OBLQ_E_NULL;
+    if (size < 8) return OBLQ_E_TRUNCATED;
+    if (memcmp(d, "OBLQEVAL", 8) != 0) return OBLQ_E_FORMAT;
+    if (size < 96) return OBLQ_E_TRUNCATED;
+    if (oblq__u32(d + 8) != OBLQ_EXPORT_VERSION) return OBLQ_E_VERSION;
+    if (oblq__u32(d + 12) != 96) return OBLQ_E_CORRUPT;
+    if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
+    len = oblq__u64(d + 16);
+    if (len > (uint64_t)size) return OBLQ_E_TRUNCATED;
+    if (len < 96 || len % 8 != 0) return OBLQ_E_CORRUPT;
+    sum = 0xcbf29ce484222325ULL;
+    for (i = 32; i < len; i++) sum = (sum ^ d[i]) * 0x100000001b3ULL;
+    if (sum != oblq__u64(d + 24)) return OBLQ_E_CHECKSUM;
+    memset(&out, 0, sizeof out);
+    out.data = d;
+    out.size = len;
+    out.gamma_min = oblq__f64(d + 32);
+    out.gamma_max = oblq__f64(d + 40);
+    out.alpha_max = oblq__f64(d + 48);
+    out.error_bound = oblq__f64(d + 56);
+    if (!(isfinite(out.gamma_min) && isfinite(out.gamma_max) && out.gamma_min > 0.0 &&
+          out.gamma_min < out.gamma_max && out.alpha_max >= 0.0 && !isnan(out.error_bound)))
+        return OBLQ_E_CORRUPT;
+    if (oblq__u32(d + 64) != 4) return OBLQ_E_CORRUPT; /* the cubic stencil */
+    off = oblq__u64(d + 72);
+    if (off != 0) {
+        if (!oblq__span(off, 3, 128, len) || off < 96) return OBLQ_E_CORRUPT;
+        out.has_surface = 1;
+        for (k = 0; k < 3; k++) {
+            rc = oblq__patch(&out.patch[k], d, len, d + off + 128 * k);
+            if (rc != OBLQ_OK) return rc;
+        }
+        if (out.patch[1].present && !out.patch[1].partial) return OBLQ_E_CORRUPT;
+        if ((out.patch[0].present && out.patch[0].partial) ||
+            (out.patch[2].present && out.patch[2].partial))
+            return OBLQ_E_CORRUPT;
+    }
+    out.n_curves = oblq__u32(d + 80);
+    off = oblq__u64(d + 88);
+    if (out.n_curves > 0) {
+        if (!oblq__span(off, out.n_curves, 168, len) || off < 96) return OBLQ_E_CORRUPT;
+        out.curves = off;
+        for (k = 0; k < out.n_curves; k++) {
+            rc = oblq__curve_at(&out, k, &c);
+            if (rc != OBLQ_OK) return rc;
+        }
+    } else if (off != 0) {
+        return OBLQ_E_CORRUPT;
+    }
+    if (!out.has_surface && out.n_curves == 0) return OBLQ_E_CORRUPT;
+    *t = out;
+    return OBLQ_OK;
+}
+
+/* What a status code means: the argument and the allowed range. */
+OBLQ_FN const char *oblq_error_message(int code) {
+    switch (code) {
+    case OBLQ_OK: return "ok";
+    case OBLQ_E_NULL: return "a pointer argument is NULL";
+    case OBLQ_E_TRUNCATED: return "the export is truncated: shorter than its header says";
+    case OBLQ_E_FORMAT: return "not an export of oblique (`sweep export`): wrong magic bytes";
+    case OBLQ_E_VERSION: return "an export of another layout version: re-export with the sweep matching this header";
+    case OBLQ_E_CHECKSUM: return "the export is damaged: its checksum does not match its contents";
+    case OBLQ_E_CORRUPT: return "the export is inconsistent (offsets, sizes or values out of range) or not 8-byte aligned in memory";
+    case OBLQ_E_GAMMA: return "invalid gamma: must be a finite number > 0";
+    case OBLQ_E_ALPHA: return "invalid alpha: must be >= 0 (or inf for no slip)";
+    case OBLQ_E_GAMMA_DOMAIN: return "gamma outside the table's domain [gamma_min, gamma_max] (and alpha above the full-slip line); or opt into clamping";
+    case OBLQ_E_ALPHA_DOMAIN: return "alpha above the table's alpha_max; or opt into clamping";
+    case OBLQ_E_NO_SURFACE: return "this export holds only curves: query a curve, or export the whole table";
+    case OBLQ_E_NO_CURVE: return "no curve of that gamma (or index) in the export: export it with sweep export --gamma";
+    case OBLQ_E_MASS: return "invalid mass: must be a finite number > 0 (kg)";
+    case OBLQ_E_RADIUS: return "invalid radius: must be a finite number > 0 (m)";
+    case OBLQ_E_KAPPA: return "invalid kappa (I = kappa m R^2): must be a finite number > 0";
+    case OBLQ_E_FRICTION: return "invalid friction: must be >= 0 (or inf for no slip)";
+    case OBLQ_E_MODULUS: return "invalid youngs_modulus: must be > 0 Pa (inf for a rigid body), finite for at least one body";
+    case OBLQ_E_POISSON: return "invalid poisson_ratio: must be in (-1, 0.5]";
+    case OBLQ_E_MOTION: return "invalid velocity, spin or normal: components must be finite";
+    case OBLQ_E_NORMAL: return "invalid normal: must be a vector of non-zero, finite length";
+    case OBLQ_E_APPROACH: return "invalid v_z: the approach speed v_z0 along the normal must be finite and > 0 (the bodies must move towards each other)";
+    case OBLQ_E_WALL_MOTION: return "invalid other motion: must be zero for a fixed wall";
+    case OBLQ_E_KAPPA_P: return "invalid P: must be in [-1, 1]";
+    default: return "unknown status code";
+    }
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* The rule (docs/table-format.md, steps 1-10)                                               */
+
+/* alpha_c1 = 2 gamma^2/(7(2 gamma^2 - 1)): the end of full slip for gamma > 1. */
+OBLQ_FN double oblq_alpha_c1(double gamma) {
+    double g2 = gamma * gamma;
+    return 2.0 * g2 / (7.0 * (2.0 * g2 - 1.0));
+}
+
+/* alpha_c2 = 2 gamma^2/7: the start of stick. */
+OBLQ_FN double oblq_alpha_c2(double gamma) { return 2.0 * gamma * gamma / 7.0; }
+
+/* End of the exact full-slip line P = 1 - 7 alpha: alpha_c1 for gamma > 1, else alpha_c2. */
+OBLQ_FN double oblq_linear_limit(double gamma) {
+    return gamma > 1.0 ? oblq_alpha_c1(gamma) : oblq_alpha_c2(gamma);
+}
+
+OBLQ_FN double oblq__clamp(double x, double lo, double hi) {
+    return x < lo ? lo : (x > hi ? hi : x);
+}
+
+/* min(floor(u), max) for u >= 0; 0 for u < 0 or NaN (no undefined conversion). */
+OBLQ_FN size_t oblq__floor_index(double u, size_t max) {
+    if (!(u >= 0.0)) return 0;
+    if (u >= (double)max) return max;
+    return (size_t)u;
+}
+
+OBLQ_FN void oblq__cubic_weights(double a, double w[4]) {
+    double b = a - 1.0, c = a - 2.0, d = a - 3.0;
+    double ab = a * b, cd = c * d;
+    w[0] = -(b * cd) * (1.0 / 6.0);
+    w[1] = a * cd * 0.5;
+    w[2] = -(ab * d) * 0.5;
+    w[3] = ab * c * (1.0 / 6.0);
+}
+
+/* The 4-point stencil at grid position u on n >= 4 nodes: start index and weights. */
+OBLQ_FN size_t oblq__stencil4(double u, size_t n, double w[4]) {
+    size_t cell = oblq__floor_index(u, n - 2);
+    size_t start = cell >= 1 ? cell - 1 : 0;
+    if (start > n - 4) start = n - 4;
+    oblq__cubic_weights(u - (double)start, w);
+    return start;
+}
+
+OBLQ_FN size_t oblq__locate(double x, size_t blocks, double *f) {
+    double u = oblq__clamp(x * (double)blocks, 0.0, (double)blocks);
+    size_t a = oblq__floor_index(u, blocks - 1);
+    *f = u - (double)a;
+    return a;
+}
+
+OBLQ_FN double oblq__stick_scale(double gamma) {
+    return gamma < 1.0 ? 2.0 * (1.0 - gamma * gamma) : 1.0;
+}
+
+OBLQ_FN double oblq__max0(double x) { return x > 0.0 ? x : 0.0; }
+
+OBLQ_FN double oblq__partial_coord(double gamma, double alpha) {
+    double g2 = 2.0 * gamma * gamma;
+    double ratio = g2 - 1.0;
+    double l = log(7.0 * alpha * ratio / g2) / log(ratio);
+    return 1.0 - sqrt(oblq__max0(1.0 - l));
+}
+
+OBLQ_FN double oblq__stick_coord(double gamma, double alpha, double alpha_max) {
+    double c2, rho, d, s, dm;
+    if (isinf(alpha)) return 1.0;
+    c2 = gamma * gamma * (2.0 / 7.0);
+    rho = oblq__stick_scale(gamma);
+    d = alpha - c2;
+    s = d / (d + rho * c2);
+    if (isinf(alpha_max)) return s;
+    dm = alpha_max - c2;
+    return s / (dm / (dm + rho * c2));
+}
+
+OBLQ_FN double oblq__warp_apply(double k, double c_star, double c) {
+    if (c <= k) return c_star * (1.0 - sqrt(oblq__max0(1.0 - c / k)));
+    return c_star + (1.0 - c_star) * (c - k) / (1.0 - k);
+}
+
+OBLQ_FN double oblq__knot_at(const oblq_patch *p, double gamma) {
+    double w[4];
+    double u = oblq__clamp((gamma - p->w_gamma_0) / p->w_gamma_step, 0.0, (double)(p->w_n - 1));
+    size_t s = oblq__stencil4(u, p->w_n, w);
+    const double *k = p->knot + s;
+    return w[0] * k[0] + w[1] * k[1] + w[2] * k[2] + w[3] * k[3];
+}
+
+OBLQ_FN double oblq__tensor(const oblq_patch *p, double gamma, double c) {
+    double fg, fc, wg[4], wc[4], r[4];
+    double xg = (gamma - p->gamma_lo) / (p->gamma_hi - p->gamma_lo);
+    size_t a = oblq__locate(xg, p->blocks_gamma, &fg);
+    size_t b = oblq__locate(c, p->blocks_coord, &fc);
+    size_t cell = a * p->blocks_coord + b, leaf, n1, sg, sc, i;
+    const double *v;
+    for (;;) {
+        int32_t t = oblq__i32(p->tree + 4 * cell);
+        size_t qg, qc;
+        if (t < 0) {
+            leaf = (size_t)(-(int64_t)t - 1);
+            break;
+        }
+        fg *= 2.0;
+        fc *= 2.0;
+        qg = fg >= 1.0;
+        qc = fc >= 1.0;
+        fg -= (double)qg;
+        fc -= (double)qc;
+        cell = (size_t)t + 2 * qg + qc;
+    }
+    n1 = p->m + 1;
+    sg = oblq__stencil4(fg * (double)p->m, n1, wg);
+    sc = oblq__stencil4(fc * (double)p->m, n1, wc);
+    v = p->p + leaf * n1 * n1 + sg * n1 + sc;
+    for (i = 0; i < 4; i++) {
+        const double *row = v + i * n1;
+        r[i] = row[0] * wc[0] + row[1] * wc[1] + row[2] * wc[2] + row[3] * wc[3];
+    }
+    return wg[0] * r[0] + wg[1] * r[1] + wg[2] * r[2] + wg[3] * r[3];
+}
+
+/* The rule in a region above the line (patch index 0, 1, 2), inside the domain. */
+OBLQ_FN double oblq__eval_in(const oblq_table *t, int region, double gamma, double alpha) {
+    const oblq_patch *p = &t->patch[region];
+    double c, bg;
+    if (!p->present) return -1.0; /* a domain that touches gamma = 1 from one side only */
+    c = p->partial ? oblq__partial_coord(gamma, alpha)
+                   : oblq__stick_coord(gamma, alpha, t->alpha_max);
+    c = oblq__clamp(c, 0.0, 1.0);
+    if (p->warp) {
+        double xg = (gamma - p->gamma_lo) / (p->gamma_hi - p->gamma_lo);
+        bg = (double)p->blocks_gamma;
+        if (oblq__clamp(xg * bg, 0.0, bg) >= p->w_start)
+            c = oblq__warp_apply(oblq__knot_at(p, gamma), p->w_c_star, c);
+    }
+    return oblq__clamp(oblq__tensor(p, gamma, c), -1.0, 1.0);
+}
+
+OBLQ_FN int oblq__region(double gamma, double alpha) {
+    if (alpha <= oblq_linear_limit(gamma)) return -1;
+    if (gamma <= 1.0) return 0;
+    if (alpha < oblq_alpha_c2(gamma)) return 1;
+    return 2;
+}
+
+/* P(gamma, alpha) (dimensionless, -1 <= P <= 1) by the table's rule. gamma finite > 0,
+   alpha >= 0 (INFINITY: no slip). On the full-slip line P = 1 - 7 alpha for any gamma > 0;
+   elsewhere outside the table's domain: OBLQ_E_GAMMA_DOMAIN / OBLQ_E_ALPHA_DOMAIN, or with
+   clamp != 0 the answer at the nearest point of the domain. */
+OBLQ_FN int oblq_p(const oblq_table *t, double gamma, double alpha, int clamp, double *p) {
+    int region, inside;
+    if (!t || !p) return OBLQ_E_NULL;
+    if (!(isfinite(gamma) && gamma > 0.0)) return OBLQ_E_GAMMA;
+    if (isnan(alpha) || alpha < 0.0) return OBLQ_E_ALPHA;
+    region = oblq__region(gamma, alpha);
+    if (region < 0) {
+        *p = 1.0 - 7.0 * alpha;
+        return OBLQ_OK;
+    }
+    if (!t->has_surface) return OBLQ_E_NO_SURFACE;
+    inside = gamma >= t->gamma_min && gamma <= t->gamma_max;
+    if (!(inside && alpha <= t->alpha_max)) {
+        if (!clamp) return inside ? OBLQ_E_ALPHA_DOMAIN : OBLQ_E_GAMMA_DOMAIN;
+        gamma = oblq__clamp(gamma, t->gamma_min, t->gamma_max);
+        alpha = alpha < t->alpha_max ? alpha : t->alpha_max;
+        region = oblq__region(gamma, alpha);
+        if (region < 0) {
+            *p = 1.0 - 7.0 * alpha;
+            return OBLQ_OK;
+        }
+    }
+    *p = oblq__eval_in(t, region, gamma, alpha);
+    return OBLQ_OK;
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* Curves: P(alpha) at one gamma                                                              */
+
+/* The i-th curve of the export (0 <= i < t->n_curves). */
+OBLQ_FN int oblq_curve_get(const oblq_table *t, size_t i, oblq_curve *c) {
+    oblq_curve out;
+    int rc;
+    if (!t || !c) return OBLQ_E_NULL;
+    if (i >= t->n_curves) return OBLQ_E_NO_CURVE;
+    rc = oblq__curve_at(t, i, &out);
+    if (rc == OBLQ_OK) *c = out;
+    return rc;
+}
+
+/* The curve of the export whose gamma is nearest to `gamma`, if within `rel_tol` relative
+   (0: the exact value exported). */
+OBLQ_FN int oblq_curve_find(const oblq_table *t, double gamma, double rel_tol, oblq_curve *c) {
+    size_t i, best = 0;
+    double dbest = INFINITY;
+    if (!t || !c) return OBLQ_E_NULL;
+    if (!(isfinite(gamma) && gamma > 0.0)) return OBLQ_E_GAMMA;
+    for (i = 0; i < t->n_curves; i++) {
+        double g = oblq__f64(t->data + t->curves + 168 * i);
+        double dist = fabs(g - gamma);
+        if (dist < dbest) {
+            dbest = dist;
+            best = i;
+        }
+    }
+    if (!(dbest <= rel_tol * gamma)) return OBLQ_E_NO_CURVE;
+    return oblq_curve_get(t, best, c);
+}
+
+OBLQ_FN double oblq__piece_eval(const oblq_piece *pc, double c) {
+    double u, s;
+    size_t i;
+    const double *a;
+    if (pc->warp) c = oblq__warp_apply(pc->k, pc->c_star, c);
+    u = c * (double)pc->n;
+    i = oblq__floor_index(u, pc->n - 1);
+    s = u - (double)i - 0.5;
+    a = pc->coef + 4 * i;
+    return oblq__clamp(((a[3] * s + a[2]) * s + a[1]) * s + a[0], -1.0, 1.0);
+}
+
+/* P(gamma, alpha) of the curve's gamma, for alpha >= 0: the table's answer to about 1e-15.
+   alpha above the table's alpha_max: OBLQ_E_ALPHA_DOMAIN, or with clamp != 0 at alpha_max. */
+OBLQ_FN int oblq_curve_p(const oblq_curve *cv, double alpha, int clamp, double *p) {
+    double c;
+    if (!cv || !p) return OBLQ_E_NULL;
+    if (isnan(alpha) || alpha < 0.0) return OBLQ_E_ALPHA;
+    if (alpha <= cv->alpha_lin) {
+        *p = 1.0 - 7.0 * alpha;
+        return OBLQ_OK;
+    }
+    if (alpha > cv->alpha_max) {
+        if (!clamp) return OBLQ_E_ALPHA_DOMAIN;
+        alpha = cv->alpha_max;
+        if (alpha <= cv->alpha_lin) {
+            *p = 1.0 - 7.0 * alpha;
+            return OBLQ_OK;
+        }
+    }
+    if (cv->high && alpha < cv->alpha_c2) {
+        double l;
+        if (!cv->partial.present) {
+            *p = -1.0;
+            return OBLQ_OK;
+        }
+        l = log(7.0 * alpha * cv->ratio / cv->g2) / cv->ln_ratio;
+        c = 1.0 - sqrt(oblq__max0(1.0 - l));
+        *p = oblq__piece_eval(&cv->partial, oblq__clamp(c, 0.0, 1.0));
+        return OBLQ_OK;
+    }
+    if (!cv->stick.present) {
+        *p = -1.0;
+        return OBLQ_OK;
+    }
+    if (isinf(alpha)) {
+        c = 1.0;
+    } else {
+        double d = alpha - cv->stick_c2;
+        c = d / (d + cv->rho_c2);
+        if (!isnan(cv->s_max)) c = c / cv->s_max;
+    }
+    *p = oblq__piece_eval(&cv->stick, oblq__clamp(c, 0.0, 1.0));
+    return OBLQ_OK;
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* Closed forms                                                                               */
+
+/* Tangential restitution of the centre, e_t = v_x/v_x0 = 1 - (kappa/(1 + kappa))(1 - P), of a
+   sphere (I = kappa m R^2) hitting a wall without spin; (2P + 5)/7 for kappa = 0.4. */
+OBLQ_FN int oblq_e_t(double p, double kappa, double *e_t) {
+    if (!e_t) return OBLQ_E_NULL;
+    if (!(isfinite(p) && p >= -1.0 && p <= 1.0)) return OBLQ_E_KAPPA_P;
+    if (!(isfinite(kappa) && kappa > 0.0)) return OBLQ_E_KAPPA;
+    *e_t = 1.0 - kappa / (1.0 + kappa) * (1.0 - p);
+    return OBLQ_OK;
+}
+
+/* Friction regime of (gamma, alpha): 0 full slip, 1 partial slip, 2 stick. */
+OBLQ_FN int oblq_regime(double gamma, double alpha, int *regime) {
+    if (!regime) return OBLQ_E_NULL;
+    if (!(isfinite(gamma) && gamma > 0.0)) return OBLQ_E_GAMMA;
+    if (isnan(alpha) || alpha < 0.0) return OBLQ_E_ALPHA;
+    *regime = alpha <= oblq_linear_limit(gamma) ? 0 : (alpha < oblq_alpha_c2(gamma) ? 1 : 2);
+    return OBLQ_OK;
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* Bodies, materials and rebounds (SI units)                                                  */
+
+/* A sphere: mass m (kg), radius R (m), inertia factor kappa in I = kappa m R^2 (0.4 solid). */
+typedef struct {
+    double mass, radius, kappa;
+} oblq_body;
+
+/* Elastic constants: Young's modulus E (Pa; INFINITY for a rigid body), Poisson's ratio nu. */
+typedef struct {
+    double youngs_modulus, poisson_ratio;
+} oblq_material;
+
+/* A pair of bodies with its contact, checked and reduced once (oblq_pair_init). */
+typedef struct {
+    int wall; /* 1: sphere 1 on a fixed wall */
+    double gamma, friction;
+    double alpha_scale, tangential_mass, two_normal_mass;
+    double inv_m1, spin1, r1, inv_m2, spin2, r2;
+} oblq_pair;
+
+/* Velocity v (m/s) and angular velocity w (rad/s) of one body. */
+typedef struct {
+    double v[3], w[3];
+} oblq_motion3;
+
+/* Both bodies before a 3-D impact, and the contact normal n from sphere 1's centre into the
+   wall or towards sphere 2's centre (any non-zero length). A wall's motion must be zero. */
+typedef struct {
+    oblq_motion3 sphere, other;
+    double normal[3];
+} oblq_incident3;
+
+/* The outcome of a 3-D impact. */
+typedef struct {
+    oblq_motion3 sphere, other;  /* after (other: unchanged zero for a wall) */
+    double tangent[3];           /* t: direction of the incident slip of the contact point */
+    double gamma, alpha;         /* the groups used */
+    double p;                    /* P = u_after/u_before (NaN when u0 = 0) */
+    double e_t;                  /* tangential restitution of the centres (NaN: none) */
+    double slip_before, slip_after;      /* |u0| and P |u0| along t (m/s) */
+    double tangential_impulse;   /* J on body 2 along +t (N s) */
+    double normal_impulse;       /* 2 m* v_z0 on body 2 along +n (N s) */
+    double approach_speed;       /* v_z0 (m/s) */
+    double energy_lost;          /* (m_t/2) u0^2 (1 - P^2) (J) */
+} oblq_rebound3;
+
+OBLQ_FN int oblq__body_ok(const oblq_body *b) {
+    if (!(isfinite(b->mass) && b->mass > 0.0)) return OBLQ_E_MASS;
+    if (!(isfinite(b->radius) && b->radius > 0.0)) return OBLQ_E_RADIUS;
+    if (!(isfinite(b->kappa) && b->kappa > 0.0)) return OBLQ_E_KAPPA;
+    return OBLQ_OK;
+}
+
+OBLQ_FN double oblq__inv_mt(const oblq_body *b) {
+    double inertia = b->kappa * b->mass * b->radius * b->radius;
+    return 1.0 / b->mass + b->radius * b->radius / inertia;
+}
+
+/* gamma = sqrt((m* / m_t) G* / E*) of sphere 1 (material a) on a wall (other = NULL) or on
+   sphere 2 (material b is the wall's or sphere 2's). */
+OBLQ_FN int oblq_gamma_of(const oblq_body *sphere, const oblq_body *other,
+                          const oblq_material *a, const oblq_material *b, double *gamma) {
+    const oblq_material *m[2];
+    double ce[2], cg[2], e_star, g_star, inv_mt, normal_mass;
+    int k, rc;
+    if (!sphere || !a || !b || !gamma) return OBLQ_E_NULL;
+    if ((rc = oblq__body_ok(sphere)) != OBLQ_OK) return rc;
+    if (other && (rc = oblq__body_ok(other)) != OBLQ_OK) return rc;
+    m[0] = a;
+    m[1] = b;
+    for (k = 0; k < 2; k++) {
+        double e = m[k]->youngs_modulus, nu = m[k]->poisson_ratio;
+        if (isnan(e) || e <= 0.0) return OBLQ_E_MODULUS;
+        if (!(nu > -1.0 && nu <= 0.5)) return OBLQ_E_POISSON;
+    }
+    if (isinf(a->youngs_modulus) && isinf(b->youngs_modulus)) return OBLQ_E_MODULUS;
+    for (k = 0; k < 2; k++) {
+        double e = m[k]->youngs_modulus, nu = m[k]->poisson_ratio;
+        if (isinf(e)) {
+            ce[k] = 0.0;
+            cg[k] = 0.0;
+        } else {
+            double g = e / (2.0 * (1.0 + nu));
+            ce[k] = (1.0 - nu * nu) / e;
+            cg[k] = (2.0 - nu) / (4.0 * g);
+        }
+    }
+    e_star = 1.0 / (ce[0] + ce[1]);
+    g_star = 1.0 / (cg[0] + cg[1]);
+    normal_mass = other ? 1.0 / (1.0 / sphere->mass + 1.0 / other->mass) : sphere->mass;
+    inv_mt = oblq__inv_mt(sphere) + (other ? oblq__inv_mt(other) : 0.0);
+    *gamma = sqrt(normal_mass / (1.0 / inv_mt) * g_star / e_star);
+    return OBLQ_OK;
+}
+
+/* Check a pair (sphere 1 on a wall when other = NULL, else on sphere 2), its gamma (from
+   oblq_gamma_of, or given) and friction mu >= 0 (INFINITY: no slip), once for many impacts. */
+OBLQ_FN int oblq_pair_init(oblq_pair *k, const oblq_body *sphere, const oblq_body *other,
+                           double gamma, double friction) {
+    double inv_mt, normal_mass, mt;
+    int rc;
+    if (!k || !sphere) return OBLQ_E_NULL;
+    if ((rc = oblq__body_ok(sphere)) != OBLQ_OK) return rc;
+    if (other && (rc = oblq__body_ok(other)) != OBLQ_OK) return rc;
+    if (!(isfinite(gamma) && gamma > 0.0)) return OBLQ_E_GAMMA;
+    if (isnan(friction) || friction < 0.0) return OBLQ_E_FRICTION;
+    normal_mass = other ? 1.0 / (1.0 / sphere->mass + 1.0 / other->mass) : sphere->mass;
+    inv_mt = oblq__inv_mt(sphere) + (other ? oblq__inv_mt(other) : 0.0);
+    mt = 1.0 / inv_mt;
+    k->wall = other == NULL;
+    k->gamma = gamma;
+    k->friction = friction;
+    k->alpha_scale = 2.0 / 7.0 * (normal_mass / mt) * friction;
+    k->tangential_mass = mt;
+    k->two_normal_mass = 2.0 * normal_mass;
+    k->inv_m1 = 1.0 / sphere->mass;
+    k->spin1 = sphere->radius / (sphere->kappa * sphere->mass * sphere->radius * sphere->radius);
+    k->r1 = sphere->radius;
+    if (other) {
+        k->inv_m2 = 1.0 / other->mass;
+        k->spin2 = other->radius / (other->kappa * other->mass * other->radius * other->radius);
+        k->r2 = other->radius;
+    } else {
+        k->inv_m2 = 0.0;
+        k->spin2 = 0.0;
+        k->r2 = 0.0;
+    }
+    return OBLQ_OK;
+}
+
+OBLQ_FN double oblq__dot(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+OBLQ_FN void oblq__cross(const double a[3], const double b[3], double o[3]) {
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* o = y + a x */
+OBLQ_FN void oblq__axpy(const double y[3], double a, const double x[3], double o[3]) {
+    o[0] = y[0] + a * x[0];
+    o[1] = y[1] + a * x[1];
+    o[2] = y[2] + a * x[2];
+}
+
+/* The 3-D rebound with P from the table (curve = NULL) or from a curve of the pair's gamma. */
+OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const oblq_pair *k,
+                           const oblq_incident3 *s, int clamp, oblq_rebound3 *out) {
+    double len, n[3], c1[3], c2[3], u[3], u_t[3], tmp[3], slip, tg[3], b[3], v0, u0, alpha, p;
+    double j, nn, d[3], w0[3], w1[3], w0w0;
+    oblq_rebound3 r;
+    const oblq_motion3 *m1, *m2;
+    int i, rc;
+    if (!k || !s || !out || (!t && !cv)) return OBLQ_E_NULL;
+    for (i = 0; i < 3; i++)
+        if (!(isfinite(s->sphere.v[i]) && isfinite(s->sphere.w[i]) && isfinite(s->other.v[i]) &&
+              isfinite(s->other.w[i]) && isfinite(s->normal[i])))
+            return OBLQ_E_MOTION;
+    if (k->wall)
+        for (i = 0; i < 3; i++)
+            if (s->other.v[i] != 0.0 || s->other.w[i] != 0.0) return OBLQ_E_WALL_MOTION;
+    len = sqrt(oblq__dot(s->normal, s->normal));
+    if (!(len > 0.0 && isfinite(len))) return OBLQ_E_NORMAL;
+    for (i = 0; i < 3; i++) n[i] = (1.0 / len) * s->normal[i];
+    m1 = &s->sphere;
+    m2 = &s->other;
+    oblq__cross(m1->w, n, tmp);
+    oblq__axpy(m1->v, k->r1, tmp, c1);
+    oblq__cross(m2->w, n, tmp);
+    oblq__axpy(m2->v, -k->r2, tmp, c2);
+    for (i = 0; i < 3; i++) u[i] = c1[i] - c2[i];
+    oblq__axpy(u, -oblq__dot(u, n), n, u_t);
+    slip = sqrt(oblq__dot(u_t, u_t));
+    if (k->wall) {
+        v0 = oblq__dot(m1->v, n);
+    } else {
+        for (i = 0; i < 3; i++) d[i] = m1->v[i] - m2->v[i];
+        v0 = oblq__dot(d, n);
+    }
+    if (!(v0 > 0.0 && isfinite(v0))) return OBLQ_E_APPROACH;
+    if (!isfinite(slip)) return OBLQ_E_MOTION;
+    for (i = 0; i < 3; i++) d[i] = m1->v[i] - m2->v[i];
+    oblq__axpy(d, -oblq__dot(d, n), n, w0);
+    if (slip > 0.0) {
+        for (i = 0; i < 3; i++) tg[i] = (1.0 / slip) * u_t[i];
+        u0 = slip;
+        alpha = k->alpha_scale * v0 / u0;
+        if (isnan(alpha)) alpha = INFINITY;
+        rc = cv ? oblq_curve_p(cv, alpha, clamp, &p) : oblq_p(t, k->gamma, alpha, clamp, &p);
+        if (rc != OBLQ_OK) return rc;
+        j = k->tangential_mass * (1.0 - p) * u0;
+    } else {
+        /* u0 = 0: a pure normal impact; the tangent along the centres' tangential motion, or
+           the axis least aligned with n. */
+        double wl = sqrt(oblq__dot(w0, w0));
+        if (wl > 0.0) {
+            for (i = 0; i < 3; i++) tg[i] = w0[i] / wl;
+        } else {
+            int a = 0;
+            double e[3] = {0.0, 0.0, 0.0}, el;
+            if (fabs(n[1]) < fabs(n[a])) a = 1;
+            if (fabs(n[2]) < fabs(n[a])) a = 2;
+            e[a] = 1.0;
+            oblq__axpy(e, -n[a], n, tmp);
+            el = sqrt(oblq__dot(tmp, tmp));
+            for (i = 0; i < 3; i++) tg[i] = tmp[i] / el;
+        }
+        u0 = 0.0;
+        alpha = INFINITY;
+        p = NAN;
+        j = 0.0;
+    }
+    oblq__cross(n, tg, b);
+    nn = k->two_normal_mass * v0;
+    oblq__axpy(m1->v, -j * k->inv_m1, tg, tmp);
+    oblq__axpy(tmp, -nn * k->inv_m1, n, r.sphere.v);
+    oblq__axpy(m1->w, -j * k->spin1, b, r.sphere.w);
+    if (k->wall) {
+        r.other = *m2;
+    } else {
+        oblq__axpy(m2->v, j * k->inv_m2, tg, tmp);
+        oblq__axpy(tmp, nn * k->inv_m2, n, r.other.v);
+        oblq__axpy(m2->w, -j * k->spin2, b, r.other.w);
+    }
+    oblq__axpy(w0, -j * (k->inv_m1 + k->inv_m2), tg, w1);
+    w0w0 = oblq__dot(w0, w0);
+    for (i = 0; i < 3; i++) r.tangent[i] = tg[i];
+    r.gamma = k->gamma;
+    r.alpha = alpha;
+    r.p = p;
+    r.e_t = w0w0 == 0.0 ? NAN : oblq__dot(w1, w0) / w0w0;
+    r.slip_before = u0;
+    r.slip_after = u0 == 0.0 ? 0.0 : p * u0;
+    r.tangential_impulse = j;
+    r.normal_impulse = nn;
+    r.approach_speed = v0;
+    r.energy_lost = u0 == 0.0 ? 0.0 : 0.5 * k->tangential_mass * u0 * u0 * (1.0 - p * p);
+    *out = r;
+    return OBLQ_OK;
+}
+
+/* A 3-D impact of a pair, P from the table. */
+OBLQ_FN int oblq_rebound_3d(const oblq_table *t, const oblq_pair *k, const oblq_incident3 *s,
+                          int clamp, oblq_rebound3 *out) {
+    if (!t) return OBLQ_E_NULL;
+    return oblq__rebound_3d(t, NULL, k, s, clamp, out);
+}
+
+/* A 3-D impact of a pair, P from a curve of the export at the pair's gamma (the same answer
+   to about 1e-15 in P, fewer operations). */
+OBLQ_FN int oblq_rebound_3d_curve(const oblq_curve *c, const oblq_pair *k,
+                                const oblq_incident3 *s, int clamp, oblq_rebound3 *out) {
+    if (!c) return OBLQ_E_NULL;
+    return oblq__rebound_3d(NULL, c, k, s, clamp, out);
+}
+
+/* A 2-D impact in its plane: z the normal from sphere 1 into the other body (v_z > 0
+   approaches), x the tangent; a spin omega is signed so that sphere 1's contact point moves at
+   v_x + R omega (sphere 2's at v_x - R omega). Fields: v_x, v_z (m/s), omega (rad/s). */
+typedef struct {
+    double v_x, v_z, omega;
+} oblq_state;
+
+typedef struct {
+    oblq_state sphere, other; /* after (other unchanged for a wall) */
+    double gamma, alpha, p, e_t, slip_before, slip_after, tangential_impulse, normal_impulse,
+        energy_lost;
+} oblq_rebound2;
+
+/* A 2-D impact (sphere and other states before), P from the table or a curve (one of them may
+   be NULL). Uses only the pair's masses, radii and inertia through oblq_pair. */
+OBLQ_FN int oblq_rebound_2d(const oblq_table *t, const oblq_curve *cv, const oblq_pair *k,
+                          const oblq_state *s1, const oblq_state *s2, int clamp,
+                          oblq_rebound2 *out) {
+    oblq_incident3 in;
+    oblq_rebound3 r;
+    int rc;
+    if (!k || !s1 || !out || (!t && !cv) || (!k->wall && !s2)) return OBLQ_E_NULL;
+    /* The plane of impact as a 3-D impact: x the tangent, y = z x x the spin axis, z normal. */
+    memset(&in, 0, sizeof in);
+    in.sphere.v[0] = s1->v_x;
+    in.sphere.v[2] = s1->v_z;
+    in.sphere.w[1] = s1->omega;
+    if (!k->wall) {
+        in.other.v[0] = s2->v_x;
+        in.other.v[2] = s2->v_z;
+        in.other.w[1] = s2->omega;
+    } else if (s2 && (s2->v_x != 0.0 || s2->v_z != 0.0 || s2->omega != 0.0)) {
+        return OBLQ_E_WALL_MOTION;
+    }
+    in.normal[2] = 1.0;
+    rc = oblq__rebound_3d(t, cv, k, &in, clamp, &r);
+    if (rc != OBLQ_OK) return rc;
+    out->sphere.v_x = r.sphere.v[0];
+    out->sphere.v_z = r.sphere.v[2];
+    out->sphere.omega = r.sphere.w[1];
+    out->other.v_x = r.other.v[0];
+    out->other.v_z = r.other.v[2];
+    out->other.omega = r.other.w[1];
+    out->gamma = r.gamma;
+    out->alpha = r.alpha;
+    out->p = r.p;
+    out->e_t = r.e_t;
+    /* Signed along +x, as in the 2-D algebra. */
+    out->slip_before = r.slip_before * r.tangent[0];
+    out->slip_after = r.slip_after * r.tangent[0];
+    out->tangential_impulse = r.tangential_impulse * r.tangent[0];
+    out->normal_impulse = r.normal_impulse;
+    out->energy_lost = r.energy_lost;
+    return OBLQ_OK;
+}
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* OBLIQUE_EVAL_H */

@@ -1,0 +1,153 @@
+//! `sweep export`: a table (or the curves of a few γ) in the flat little-endian layout that the
+//! dependency-free evaluator `include/oblique_eval.h` reads, as a binary file or a C source.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use clap::{Args, ValueEnum};
+
+use crate::failure::{Failure, Result};
+use oblique_lookup::{OutOfDomain, Table};
+use oblique_table::export;
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// The export's bytes (memory-map or read them, then `oblq_open`).
+    Binary,
+    /// A C source file defining the bytes as an array (compile the table in).
+    C,
+}
+
+#[derive(Args)]
+pub struct ExportArgs {
+    /// Table file written by `sweep run`.
+    table: PathBuf,
+    /// Output file (written atomically: a temporary file next to it, then renamed).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Also store the precomputed curve P(alpha) of this gamma (repeat for several pairs of
+    /// materials; each inside the table's gamma domain).
+    #[arg(long = "gamma", value_name = "GAMMA", allow_hyphen_values = true)]
+    gammas: Vec<f64>,
+    /// Store only the curves of --gamma, not the whole table (a few KB instead of MB).
+    #[arg(long, requires = "gammas")]
+    curves_only: bool,
+    /// Binary or C source [default: c when the output ends in .c or .h, else binary].
+    #[arg(long, value_enum)]
+    format: Option<Format>,
+    /// Name of the array in a C source (a C identifier).
+    #[arg(long, default_value = "oblique_table")]
+    name: String,
+}
+
+fn write_atomic(out: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = out.file_name().map(|n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(
+        ".{}.tmp{}",
+        name.unwrap_or_else(|| "export".into()),
+        std::process::id()
+    ));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, out)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+fn is_identifier(s: &str) -> bool {
+    let mut chars = s.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// Run `sweep export`.
+pub fn run(args: ExportArgs) -> Result<()> {
+    if !is_identifier(&args.name) {
+        return Err(Failure::usage(format!(
+            "--name {:?}: must be a C identifier (letters, digits, _; not starting with a digit)",
+            args.name
+        )));
+    }
+    if args.output.is_dir() {
+        return Err(Failure::usage(format!(
+            "--output {}: is a directory; give a file name",
+            args.output.display()
+        )));
+    }
+    let table = Table::open(&args.table)?;
+    let mut curves = Vec::with_capacity(args.gammas.len());
+    for &g in &args.gammas {
+        let curve = table.curve(g, OutOfDomain::Error)?;
+        let data = curve
+            .export_data()
+            .ok_or_else(|| Failure::usage(format!("--gamma {g}: outside the table's domain")))?;
+        curves.push(data);
+    }
+    let bytes = export::export(
+        table.surface(),
+        table.error_bound(),
+        !args.curves_only,
+        &curves,
+    );
+    let c_by_name = args
+        .output
+        .extension()
+        .is_some_and(|e| e == "c" || e == "h");
+    let format = args
+        .format
+        .unwrap_or(if c_by_name { Format::C } else { Format::Binary });
+    let what = format!(
+        "P(gamma, alpha) from {}{}",
+        args.table.display(),
+        if args.gammas.is_empty() {
+            String::new()
+        } else {
+            format!(
+                ", curves at gamma = {}",
+                args.gammas
+                    .iter()
+                    .map(|g| g.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+    );
+    let content = match format {
+        Format::Binary => bytes.clone(),
+        Format::C => export::c_source(&bytes, &args.name, &what).into_bytes(),
+    };
+    write_atomic(&args.output, &content).map_err(|e| {
+        Failure::from(anyhow::anyhow!(
+            "cannot write {}: {e}",
+            args.output.display()
+        ))
+    })?;
+    println!(
+        "wrote {} ({} bytes{}): {}{} curve{}, stated error bound {:.2e}",
+        args.output.display(),
+        content.len(),
+        if format == Format::C {
+            format!(", a C source of {} export bytes", bytes.len())
+        } else {
+            String::new()
+        },
+        if args.curves_only {
+            ""
+        } else {
+            "the table and "
+        },
+        curves.len(),
+        if curves.len() == 1 { "" } else { "s" },
+        table.error_bound()
+    );
+    Ok(())
+}

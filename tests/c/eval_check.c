@@ -1,0 +1,279 @@
+/* Test driver of include/oblique_eval.h for tests/c_evaluator.rs (also compiled as C++).
+
+     eval_check open FILE                        status code and message of oblq_open
+     eval_check p EXPORT CLAMP                   stdin "gamma alpha" -> P or "error CODE"
+     eval_check curve EXPORT INDEX CLAMP         stdin "alpha" -> P of curve INDEX
+     eval_check rebound EXPORT SOURCE m1 R1 k1 m2 R2 k2 GAMMA MU
+                                                 SOURCE: table or curve (the curve of GAMMA);
+                                                 m2 = 0: a wall. stdin: v1 w1 v2 w2 n (15
+                                                 numbers) -> v1' w1' v2' w2' p e_t energy_lost
+                                                 alpha slip_before
+     eval_check rebound2 EXPORT m1 R1 k1 m2 R2 k2 GAMMA MU
+                                                 stdin: v_x v_z omega (x2) -> the 2-D answer
+     eval_check fuzz EXPORT N SEED               N mutated copies through oblq_open and queries
+
+   Numbers are printed with %.17g (they read back to the same double). */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "oblique_eval.h"
+
+static unsigned char *read_all(const char *path, size_t *size) {
+    FILE *f = fopen(path, "rb");
+    unsigned char *buf;
+    long len;
+    if (!f) return NULL;
+    if (fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        return NULL;
+    }
+    buf = (unsigned char *)malloc((size_t)len + 8);
+    if (!buf || fread(buf, 1, (size_t)len, f) != (size_t)len) {
+        free(buf);
+        fclose(f);
+        return NULL;
+    }
+    fclose(f);
+    *size = (size_t)len;
+    return buf;
+}
+
+static void g17(double x) { printf("%.17g", x); }
+
+static int open_or_die(oblq_table *t, unsigned char *d, size_t n) {
+    int rc = oblq_open(t, d, n);
+    if (rc != OBLQ_OK) {
+        fprintf(stderr, "eval_check: %s\n", oblq_error_message(rc));
+        exit(3);
+    }
+    return rc;
+}
+
+static unsigned long long rng_state;
+static unsigned long long next_u64(void) {
+    unsigned long long z = (rng_state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+static void reseal(unsigned char *d, size_t n) {
+    unsigned long long sum = 0xcbf29ce484222325ULL, len;
+    size_t i;
+    if (n < 96) return;
+    len = oblq__u64(d + 16);
+    if (len > n) len = n;
+    for (i = 32; i < len; i++) sum = (sum ^ d[i]) * 0x100000001b3ULL;
+    for (i = 0; i < 8; i++) d[24 + i] = (unsigned char)(sum >> (8 * i));
+}
+
+/* Mutate copies of the export (bytes, words, lengths), half of them with the checksum
+   recomputed so that the structural checks are exercised; every one that opens is queried. */
+static int fuzz(const unsigned char *orig, size_t n, long count) {
+    unsigned char *d = (unsigned char *)malloc(n + 8);
+    long k, opened = 0, refused = 0;
+    static const double gs[] = {0.05, 0.1, 0.5, 0.99, 1.0, 1.01, 1.5, 2.2, 2.9, 3.2, 3.5, 4.0};
+    static const double as[] = {0.0, 0.01, 0.1, 0.2, 0.3, 0.5, 0.8, 1.0, 2.0, 10.0, 1e300};
+    if (!d) return 1;
+    for (k = 0; k < count; k++) {
+        size_t len = n, i, edits;
+        oblq_table t;
+        int rc;
+        memcpy(d, orig, n);
+        edits = 1 + next_u64() % 8;
+        for (i = 0; i < edits; i++) {
+            unsigned long long r = next_u64();
+            size_t at = (size_t)(next_u64() % n);
+            switch (r % 5) {
+            case 0: d[at] ^= (unsigned char)(1u << (r >> 8) % 8); break;
+            case 1: d[at] = (unsigned char)(r >> 16); break;
+            case 2: /* a header or directory word */
+                at = (size_t)(next_u64() % (n < 1024 ? n : 1024)) & ~(size_t)3;
+                if (at + 4 <= n) memcpy(d + at, &r, 4);
+                break;
+            case 3: len = (size_t)(next_u64() % (n + 1)); break;
+            default: /* a double somewhere: NaN, inf, huge, negative */
+                at &= ~(size_t)7;
+                if (at + 8 <= n) {
+                    static const double bad[] = {0.0 / 1.0, -1.0, 1e308, 1e-310, 2.0};
+                    double v = bad[(r >> 20) % 5];
+                    if ((r >> 24) % 3 == 0) v = INFINITY;
+                    if ((r >> 24) % 3 == 1) v = NAN;
+                    memcpy(d + at, &v, 8);
+                }
+            }
+        }
+        if (k % 2 == 0) reseal(d, len);
+        rc = oblq_open(&t, d, len);
+        if (rc != OBLQ_OK) {
+            refused++;
+            if (strlen(oblq_error_message(rc)) == 0) return 1;
+            continue;
+        }
+        opened++;
+        for (i = 0; i < sizeof gs / sizeof gs[0]; i++) {
+            size_t j;
+            for (j = 0; j < sizeof as / sizeof as[0]; j++) {
+                double p = 0.0;
+                if (oblq_p(&t, gs[i], as[j], (int)(j % 2), &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0))
+                    return 1;
+            }
+        }
+        for (i = 0; i < t.n_curves; i++) {
+            oblq_curve c;
+            size_t j;
+            if (oblq_curve_get(&t, i, &c) != OBLQ_OK) continue;
+            for (j = 0; j < sizeof as / sizeof as[0]; j++) {
+                double p = 0.0;
+                if (oblq_curve_p(&c, as[j], 1, &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0))
+                    return 1;
+            }
+        }
+    }
+    printf("fuzz: %ld mutations, %ld refused, %ld opened and queried\n", count, refused, opened);
+    free(d);
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    size_t n = 0;
+    unsigned char *d;
+    oblq_table t;
+    if (argc < 3) {
+        fprintf(stderr, "usage: eval_check MODE FILE ...\n");
+        return 2;
+    }
+    d = read_all(argv[2], &n);
+    if (!d) {
+        fprintf(stderr, "eval_check: cannot read %s: %s\n", argv[2], strerror(errno));
+        return 1;
+    }
+    if (!strcmp(argv[1], "open")) {
+        int rc = oblq_open(&t, d, n);
+        printf("%d %s\n", rc, oblq_error_message(rc));
+    } else if (!strcmp(argv[1], "p") && argc == 4) {
+        double g, a, p;
+        int clamp = atoi(argv[3]);
+        open_or_die(&t, d, n);
+        while (scanf("%lf %lf", &g, &a) == 2) {
+            int rc = oblq_p(&t, g, a, clamp, &p);
+            if (rc == OBLQ_OK) g17(p);
+            else printf("error %d", rc);
+            printf("\n");
+        }
+    } else if (!strcmp(argv[1], "curve") && argc == 5) {
+        oblq_curve c;
+        double a, p;
+        int rc, clamp = atoi(argv[4]);
+        open_or_die(&t, d, n);
+        rc = oblq_curve_get(&t, (size_t)atol(argv[3]), &c);
+        if (rc != OBLQ_OK) {
+            fprintf(stderr, "eval_check: %s\n", oblq_error_message(rc));
+            return 3;
+        }
+        while (scanf("%lf", &a) == 1) {
+            rc = oblq_curve_p(&c, a, clamp, &p);
+            if (rc == OBLQ_OK) g17(p);
+            else printf("error %d", rc);
+            printf("\n");
+        }
+    } else if ((!strcmp(argv[1], "rebound") && argc == 12) ||
+               (!strcmp(argv[1], "rebound2") && argc == 11)) {
+        int two = !strcmp(argv[1], "rebound2");
+        const char **a = (const char **)argv + (two ? 3 : 4);
+        int use_curve = !two && !strcmp(argv[3], "curve");
+        oblq_body b1, b2;
+        oblq_pair k;
+        oblq_curve c;
+        double gamma, mu;
+        int rc;
+        open_or_die(&t, d, n);
+        b1.mass = atof(a[0]);
+        b1.radius = atof(a[1]);
+        b1.kappa = atof(a[2]);
+        b2.mass = atof(a[3]);
+        b2.radius = atof(a[4]);
+        b2.kappa = atof(a[5]);
+        gamma = atof(a[6]);
+        mu = atof(a[7]);
+        rc = oblq_pair_init(&k, &b1, b2.mass > 0.0 ? &b2 : NULL, gamma, mu);
+        if (rc == OBLQ_OK && use_curve) rc = oblq_curve_find(&t, gamma, 0.0, &c);
+        if (rc != OBLQ_OK) {
+            printf("error %d\n", rc);
+            return 0;
+        }
+        if (two) {
+            oblq_state s1, s2;
+            oblq_rebound2 r;
+            while (scanf("%lf %lf %lf %lf %lf %lf", &s1.v_x, &s1.v_z, &s1.omega, &s2.v_x, &s2.v_z,
+                         &s2.omega) == 6) {
+                double v[11];
+                int i;
+                rc = oblq_rebound_2d(&t, NULL, &k, &s1, &s2, 0, &r);
+                if (rc != OBLQ_OK) {
+                    printf("error %d\n", rc);
+                    continue;
+                }
+                v[0] = r.sphere.v_x; v[1] = r.sphere.v_z; v[2] = r.sphere.omega;
+                v[3] = r.other.v_x; v[4] = r.other.v_z; v[5] = r.other.omega;
+                v[6] = r.p; v[7] = r.e_t; v[8] = r.energy_lost; v[9] = r.alpha;
+                v[10] = r.tangential_impulse;
+                for (i = 0; i < 11; i++) {
+                    if (i) printf(" ");
+                    g17(v[i]);
+                }
+                printf("\n");
+            }
+        } else {
+            oblq_incident3 s;
+            oblq_rebound3 r;
+            double *in[15];
+            int i;
+            for (i = 0; i < 3; i++) {
+                in[i] = &s.sphere.v[i];
+                in[3 + i] = &s.sphere.w[i];
+                in[6 + i] = &s.other.v[i];
+                in[9 + i] = &s.other.w[i];
+                in[12 + i] = &s.normal[i];
+            }
+            for (;;) {
+                double v[21];
+                for (i = 0; i < 15; i++)
+                    if (scanf("%lf", in[i]) != 1) break;
+                if (i < 15) break;
+                rc = use_curve ? oblq_rebound_3d_curve(&c, &k, &s, 0, &r)
+                               : oblq_rebound_3d(&t, &k, &s, 0, &r);
+                if (rc != OBLQ_OK) {
+                    printf("error %d\n", rc);
+                    continue;
+                }
+                for (i = 0; i < 3; i++) {
+                    v[i] = r.sphere.v[i];
+                    v[3 + i] = r.sphere.w[i];
+                    v[6 + i] = r.other.v[i];
+                    v[9 + i] = r.other.w[i];
+                }
+                v[12] = r.p; v[13] = r.e_t; v[14] = r.energy_lost; v[15] = r.alpha;
+                v[16] = r.slip_before;
+                for (i = 0; i < 17; i++) {
+                    if (i) printf(" ");
+                    g17(v[i]);
+                }
+                printf("\n");
+            }
+        }
+    } else if (!strcmp(argv[1], "fuzz") && argc == 5) {
+        int rc;
+        rng_state = strtoull(argv[4], NULL, 10);
+        rc = fuzz(d, n, atol(argv[3]));
+        free(d);
+        return rc;
+    } else {
+        fprintf(stderr, "eval_check: bad arguments (see the comment at the top)\n");
+        return 2;
+    }
+    free(d);
+    return 0;
+}
