@@ -242,6 +242,10 @@ OBLQ_FN int oblq__piece(oblq_piece *c, const unsigned char *d, uint64_t len, con
     return OBLQ_OK;
 }
 
+OBLQ_FN double oblq_linear_limit(double gamma);
+OBLQ_FN double oblq_alpha_c2(double gamma);
+OBLQ_FN double oblq__stick_scale(double gamma);
+
 OBLQ_FN int oblq__curve_at(const oblq_table *t, size_t i, oblq_curve *c) {
     const unsigned char *r = t->data + t->curves + 168 * i;
     double v[10];
@@ -260,13 +264,22 @@ OBLQ_FN int oblq__curve_at(const oblq_table *t, size_t i, oblq_curve *c) {
     c->alpha_max = v[9];
     if (oblq__u32(r + 80) > 1) return OBLQ_E_CORRUPT;
     c->high = (int)oblq__u32(r + 80);
-    for (k = 0; k < 8; k++)
-        if (!isfinite(v[k])) return OBLQ_E_CORRUPT;
-    if (!(c->gamma > 0.0) || !(c->alpha_max >= 0.0)) return OBLQ_E_CORRUPT;
-    if (isinf(c->alpha_max) != isnan(c->s_max) || (!isnan(c->s_max) && !(c->s_max > 0.0)))
-        return OBLQ_E_CORRUPT;
+    for (k = 0; k < 8; k++) /* ln(2 gamma^2 - 1) is NaN below gamma = 1/sqrt(2): unused there */
+        if (!isfinite(v[k]) && k != 5) return OBLQ_E_CORRUPT;
+    if (!(c->gamma > 0.0) || c->alpha_max != t->alpha_max) return OBLQ_E_CORRUPT;
     if (c->high != (c->gamma > 1.0)) return OBLQ_E_CORRUPT;
-    if (c->high && !(c->ln_ratio > 0.0 && c->g2 > 0.0)) return OBLQ_E_CORRUPT;
+    /* Everything but the cubics follows from gamma and alpha_max: it must be what the rule
+       computes (so that a damaged but resealed record cannot move the full-slip line). */
+    {
+        double g2 = 2.0 * c->gamma * c->gamma, sc2 = c->gamma * c->gamma * (2.0 / 7.0);
+        double rc2 = oblq__stick_scale(c->gamma) * sc2, dm = c->alpha_max - sc2;
+        if (c->alpha_lin != oblq_linear_limit(c->gamma) || c->alpha_c2 != oblq_alpha_c2(c->gamma) ||
+            c->g2 != g2 || c->ratio != g2 - 1.0 || c->stick_c2 != sc2 || c->rho_c2 != rc2)
+            return OBLQ_E_CORRUPT;
+        if (c->high && c->ln_ratio != log(g2 - 1.0)) return OBLQ_E_CORRUPT;
+        if (isinf(c->alpha_max) ? !isnan(c->s_max) : c->s_max != dm / (dm + rc2))
+            return OBLQ_E_CORRUPT;
+    }
     rc = oblq__piece(&c->partial, t->data, t->size, r + 88);
     if (rc != OBLQ_OK) return rc;
     return oblq__piece(&c->stick, t->data, t->size, r + 128);

@@ -7,6 +7,10 @@ need=()
 dpkg -s libhdf5-dev >/dev/null 2>&1 || need+=(libhdf5-dev)
 command -v pkg-config >/dev/null 2>&1 || need+=(pkg-config)
 command -v h5dump >/dev/null 2>&1 || need+=(hdf5-tools)
+# Extra packages a caller needs (scripts/test: the compilers of the C/C++/Fortran checks).
+for pkg in ${OBLIQUE_SETUP_EXTRA:-}; do
+  dpkg -s "$pkg" >/dev/null 2>&1 || need+=("$pkg")
+done
 if [ ${#need[@]} -gt 0 ]; then
   echo "setup: installing ${need[*]} with apt-get (once; about a minute)..." >&2
   SUDO=""

@@ -109,7 +109,10 @@ static int fuzz(const unsigned char *orig, size_t n, long count) {
         rc = oblq_open(&t, d, len);
         if (rc != OBLQ_OK) {
             refused++;
-            if (strlen(oblq_error_message(rc)) == 0) return 1;
+            if (strlen(oblq_error_message(rc)) == 0) {
+                free(d);
+                return 1;
+            }
             continue;
         }
         opened++;
@@ -117,8 +120,11 @@ static int fuzz(const unsigned char *orig, size_t n, long count) {
             size_t j;
             for (j = 0; j < sizeof as / sizeof as[0]; j++) {
                 double p = 0.0;
-                if (oblq_p(&t, gs[i], as[j], (int)(j % 2), &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0))
+                if (oblq_p(&t, gs[i], as[j], (int)(j % 2), &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0)) {
+                    fprintf(stderr, "fuzz: mutation %ld: P(%g, %g) = %g\n", k, gs[i], as[j], p);
+                    free(d);
                     return 1;
+                }
             }
         }
         for (i = 0; i < t.n_curves; i++) {
@@ -127,8 +133,12 @@ static int fuzz(const unsigned char *orig, size_t n, long count) {
             if (oblq_curve_get(&t, i, &c) != OBLQ_OK) continue;
             for (j = 0; j < sizeof as / sizeof as[0]; j++) {
                 double p = 0.0;
-                if (oblq_curve_p(&c, as[j], 1, &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0))
+                if (oblq_curve_p(&c, as[j], 1, &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0)) {
+                    fprintf(stderr, "fuzz: mutation %ld: curve %lu P(%g) = %g\n", k,
+                            (unsigned long)i, as[j], p);
+                    free(d);
                     return 1;
+                }
             }
         }
     }

@@ -1,0 +1,625 @@
+//! The dependency-free evaluator `include/oblique_eval.h` against the Rust library: the same P
+//! on a million points, the same curves and rebounds, the conservation laws, every refusal, and
+//! mutated exports under AddressSanitizer and UndefinedBehaviorSanitizer. The C side is
+//! `examples/c/query.c` and the driver `tests/c/eval_check.c`, compiled here with gcc, g++ and
+//! clang (scripts/setup.sh installs clang; a missing compiler fails the test).
+
+mod common;
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::OnceLock;
+
+use oblique_lookup::rebound::{Body, Incident, Incident3, Motion3, Pair, State};
+use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
+use oblique_physics::regimes::{alpha_c1, alpha_c2};
+use oblique_physics::sample::SplitMix;
+use oblique_table::export;
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+const WARNINGS: [&str; 5] = ["-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"];
+
+fn root(p: &str) -> PathBuf {
+    Path::new(ROOT).join(p)
+}
+
+/// This process's scratch folder for compiled programs and exports (made once).
+fn dir() -> &'static Path {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| common::subdir("c_evaluator"))
+}
+
+/// Compile `src` with `compiler` and `flags` into `out` (in the scratch folder).
+fn compile(compiler: &str, flags: &[&str], src: &str, out: &str) -> PathBuf {
+    let exe = dir().join(out);
+    let inc = root("include");
+    let r = Command::new(compiler)
+        .args(flags)
+        .arg("-I")
+        .arg(&inc)
+        .arg("-o")
+        .arg(&exe)
+        .arg(root(src))
+        .arg("-lm")
+        .output()
+        .unwrap_or_else(|e| {
+            panic!("cannot run {compiler} ({e}): install it (scripts/setup.sh does)")
+        });
+    assert!(
+        r.status.success(),
+        "{compiler} {flags:?} {src} failed:\n{}",
+        String::from_utf8_lossy(&r.stderr)
+    );
+    exe
+}
+
+fn gcc_driver() -> &'static Path {
+    static EXE: OnceLock<PathBuf> = OnceLock::new();
+    EXE.get_or_init(|| {
+        let mut f = vec!["-std=c99"];
+        f.extend(WARNINGS);
+        compile("gcc", &f, "tests/c/eval_check.c", "eval_check")
+    })
+}
+
+fn table(name: &str) -> &'static Table {
+    static FULL: OnceLock<Table> = OnceLock::new();
+    static QUICK: OnceLock<Table> = OnceLock::new();
+    let cell = if name == "full" { &FULL } else { &QUICK };
+    cell.get_or_init(|| Table::open(root(&format!("tables/{name}.h5"))).expect("shipped table"))
+}
+
+/// Curves of the export tests: γ ≤ 1, γ = 1 and above, an isotropic material, the warped range.
+const GAMMAS: [f64; 6] = [0.3, 0.95, 1.0, 1.749_785_860_077_429_9, 2.6, 3.2];
+
+/// The export of `name` with the curves of those `GAMMAS` inside its domain, written once per
+/// process; its path.
+fn export_file(name: &str, curves_only: bool) -> PathBuf {
+    static MADE: OnceLock<std::sync::Mutex<Vec<String>>> = OnceLock::new();
+    let file = format!("{name}{}.oblq", if curves_only { "_curves" } else { "" });
+    let path = dir().join(&file);
+    let mut made = MADE.get_or_init(Default::default).lock().expect("lock");
+    if made.contains(&file) {
+        return path;
+    }
+    let t = table(name);
+    let s = t.surface();
+    let curves: Vec<_> = GAMMAS
+        .iter()
+        .filter(|&&g| g >= s.gamma_min() && g <= s.gamma_max())
+        .map(|&g| {
+            t.curve(g, OutOfDomain::Error)
+                .expect("curve")
+                .export_data()
+                .expect("inside the domain")
+        })
+        .collect();
+    let bytes = export::export(s, t.error_bound(), !curves_only, &curves);
+    std::fs::write(&path, bytes).expect("write export");
+    made.push(file);
+    path
+}
+
+fn run_with_input(exe: &Path, args: &[&str], input: &str) -> String {
+    let mut child = Command::new(exe)
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let input = input.to_owned();
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let out = child.wait_with_output().expect("wait");
+    let written = writer.join().expect("writer");
+    assert!(
+        out.status.success(),
+        "{} {args:?}: {}\n{}",
+        exe.display(),
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    written.expect("write stdin");
+    String::from_utf8(out.stdout).expect("utf-8")
+}
+
+/// Random points over the domain, with α = 0, ∞ and the critical curves in the mix.
+fn points(n: usize, seed: u64, g_lo: f64, g_hi: f64) -> Vec<(f64, f64)> {
+    let mut r = SplitMix(seed);
+    (0..n)
+        .map(|i| {
+            let g = g_lo + (g_hi - g_lo) * r.uniform();
+            let a = match i % 50 {
+                0 => f64::INFINITY,
+                1 => 0.0,
+                2 => alpha_c2(g),
+                3 if g > 1.0 => alpha_c1(g),
+                _ => 3.0 * r.uniform() * r.uniform(),
+            };
+            (g, a)
+        })
+        .collect()
+}
+
+fn parse_line(line: &str) -> Vec<f64> {
+    line.split([' ', ','])
+        .map(|x| {
+            x.parse::<f64>()
+                .unwrap_or_else(|_| panic!("not a number: {line}"))
+        })
+        .collect()
+}
+
+#[test]
+fn header_compiles_without_warnings_as_c99_cxx11_and_with_clang() {
+    for (compiler, std, lang) in [
+        ("gcc", "-std=c99", "c"),
+        ("gcc", "-std=c11", "c"),
+        ("g++", "-std=c++11", "c++"),
+        ("g++", "-std=c++17", "c++"),
+        ("clang", "-std=c99", "c"),
+        ("clang++", "-std=c++11", "c++"),
+    ] {
+        let mut f = vec!["-x", lang, std];
+        f.extend(WARNINGS);
+        let out = format!("eval_check_{compiler}_{}", std.trim_start_matches("-std="));
+        compile(compiler, &f, "tests/c/eval_check.c", &out);
+        let mut f = vec!["-x", lang, std];
+        f.extend(WARNINGS);
+        compile(compiler, &f, "examples/c/query.c", &format!("query_{out}"));
+    }
+}
+
+#[test]
+fn query_example_gives_the_bits_of_the_rust_rule_on_a_million_points() {
+    let mut f = vec!["-std=c99"];
+    f.extend(WARNINGS);
+    let query = compile("gcc", &f, "examples/c/query.c", "query");
+    // ldd: libm and libc only (and the loader).
+    let ldd = Command::new("ldd").arg(&query).output().expect("ldd");
+    let libs = String::from_utf8_lossy(&ldd.stdout).to_string();
+    for line in libs.lines() {
+        let lib = line.trim();
+        assert!(
+            ["linux-vdso", "libm.so", "libc.so", "ld-linux"]
+                .iter()
+                .any(|ok| lib.starts_with(ok) || lib.contains(&format!("/{ok}"))),
+            "query links {lib}:\n{libs}"
+        );
+    }
+    for (name, n) in [("full", 1_000_000), ("quick", 100_000)] {
+        let t = table(name);
+        let s = t.surface();
+        let pts = points(n, 7, s.gamma_min(), s.gamma_max());
+        let input: String = pts.iter().map(|(g, a)| format!("{g:?},{a:?}\n")).collect();
+        let path = export_file(name, false);
+        let out = run_with_input(&query, &[path.to_str().expect("path")], &input);
+        let mut differ = 0;
+        let mut lines = 0;
+        for ((g, a), line) in pts.iter().zip(out.lines()) {
+            lines += 1;
+            let c: f64 = line.rsplit(',').next().expect("P").parse().expect("P");
+            let r = t.p(*g, *a).expect("inside");
+            if c.to_bits() != r.to_bits() {
+                differ += 1;
+                if differ < 5 {
+                    eprintln!("{name}: gamma {g:?} alpha {a:?}: C {c:?}, Rust {r:?}");
+                }
+            }
+        }
+        assert_eq!(lines, n, "{name}: every point answered");
+        assert_eq!(
+            differ, 0,
+            "{name}: {differ} of {n} points differ in some bit"
+        );
+    }
+}
+
+#[test]
+fn clamp_and_refusals_of_queries_match_the_rust_rule() {
+    let path = export_file("quick", false);
+    let t = table("quick");
+    let s = t.surface();
+    let pts = points(20_000, 9, 0.5 * s.gamma_min(), 1.2 * s.gamma_max());
+    let input: String = pts.iter().map(|(g, a)| format!("{g:?} {a:?}\n")).collect();
+    for clamp in [0, 1] {
+        let out = run_with_input(
+            gcc_driver(),
+            &["p", path.to_str().expect("path"), &clamp.to_string()],
+            &input,
+        );
+        let outside = if clamp == 1 {
+            OutOfDomain::Clamp
+        } else {
+            OutOfDomain::Error
+        };
+        let mut refused = 0;
+        for ((g, a), line) in pts.iter().zip(out.lines()) {
+            match t.p_with(*g, *a, outside) {
+                Ok(r) => {
+                    let c: f64 = line.parse().expect("P");
+                    assert_eq!(
+                        c.to_bits(),
+                        r.to_bits(),
+                        "gamma {g:?} alpha {a:?} clamp {clamp}"
+                    );
+                }
+                Err(_) => {
+                    refused += 1;
+                    assert_eq!(line, "error 9", "gamma {g} alpha {a}: {line}");
+                }
+            }
+        }
+        assert_eq!(
+            refused > 1000,
+            clamp == 0,
+            "clamp {clamp}: {refused} refused"
+        );
+    }
+    // Invalid arguments, each with its code.
+    let out = run_with_input(
+        gcc_driver(),
+        &["p", path.to_str().expect("path"), "0"],
+        "nan 0.5\n-1 0.5\ninf 0.5\n0 0.5\n1.5 -0.1\n1.5 nan\n",
+    );
+    assert_eq!(
+        out.lines().collect::<Vec<_>>(),
+        ["error 7", "error 7", "error 7", "error 7", "error 8", "error 8"]
+    );
+}
+
+#[test]
+fn curves_give_the_bits_of_the_rust_curves() {
+    let t = table("full");
+    for curves_only in [false, true] {
+        let path = export_file("full", curves_only);
+        for (i, &g) in GAMMAS.iter().enumerate() {
+            let curve = t.curve(g, OutOfDomain::Error).expect("curve");
+            let mut r = SplitMix(i as u64 + 3);
+            let alphas: Vec<f64> = (0..10_000)
+                .map(|k| match k % 40 {
+                    0 => f64::INFINITY,
+                    1 => alpha_c2(g),
+                    _ => 4.0 * r.uniform() * r.uniform(),
+                })
+                .collect();
+            let input: String = alphas.iter().map(|a| format!("{a:?}\n")).collect();
+            let out = run_with_input(
+                gcc_driver(),
+                &["curve", path.to_str().expect("path"), &i.to_string(), "0"],
+                &input,
+            );
+            for (a, line) in alphas.iter().zip(out.lines()) {
+                let c: f64 = line.parse().expect("P");
+                let want = curve.p(*a).expect("valid");
+                assert_eq!(c.to_bits(), want.to_bits(), "gamma {g} alpha {a:?}");
+                // And within 1e-13 of the table's rule itself.
+                assert!((c - t.p(g, *a).expect("inside")).abs() < 1e-13);
+            }
+        }
+        // A curves-only export refuses P at any gamma above the line.
+        if curves_only {
+            let out = run_with_input(
+                gcc_driver(),
+                &["p", path.to_str().expect("path"), "0"],
+                "1.5 1\n1.5 0.01\n",
+            );
+            assert_eq!(
+                out.lines().collect::<Vec<_>>(),
+                ["error 11", "0.92999999999999994"]
+            );
+        }
+    }
+}
+
+fn body(r: &mut SplitMix) -> Body {
+    Body {
+        mass: 1e-4 + 1e-2 * r.uniform(),
+        radius: 1e-3 + 1e-2 * r.uniform(),
+        kappa: 0.2 + 0.6 * r.uniform(),
+    }
+}
+
+fn vec3(r: &mut SplitMix, scale: f64) -> [f64; 3] {
+    [
+        scale * (2.0 * r.uniform() - 1.0),
+        scale * (2.0 * r.uniform() - 1.0),
+        scale * (2.0 * r.uniform() - 1.0),
+    ]
+}
+
+#[test]
+fn rebounds_agree_with_the_rust_library_and_conserve_momentum_and_energy() {
+    let t = table("full");
+    let path = export_file("full", false);
+    let mut r = SplitMix(21);
+    for case in 0..24 {
+        let wall = case % 3 == 0;
+        let use_curve = case % 2 == 1;
+        let b1 = body(&mut r);
+        let b2 = body(&mut r);
+        let pair = Pair {
+            sphere: b1,
+            other: (!wall).then_some(b2),
+        };
+        let gamma = GAMMAS[case % GAMMAS.len()];
+        let mu = if case == 5 {
+            f64::INFINITY
+        } else {
+            0.05 + r.uniform()
+        };
+        let contact = Contact::with_gamma(gamma, mu);
+        let prepared = Prepared::new(&pair, &contact).expect("valid pair");
+        let curve = t.curve(gamma, OutOfDomain::Error).expect("curve");
+        let mut incidents = Vec::new();
+        while incidents.len() < 500 {
+            let n = vec3(&mut r, 1.0);
+            let s = Incident3 {
+                sphere: Motion3 {
+                    velocity: vec3(&mut r, 3.0),
+                    spin: vec3(&mut r, 500.0),
+                },
+                other: if wall {
+                    Motion3::default()
+                } else {
+                    Motion3 {
+                        velocity: vec3(&mut r, 3.0),
+                        spin: vec3(&mut r, 500.0),
+                    }
+                },
+                normal: n,
+            };
+            let d: Vec<f64> = (0..3)
+                .map(|k| s.sphere.velocity[k] - s.other.velocity[k])
+                .collect();
+            if d[0] * n[0] + d[1] * n[1] + d[2] * n[2] > 1e-3 {
+                incidents.push(s);
+            }
+        }
+        let input: String = incidents
+            .iter()
+            .map(|s| {
+                let v: Vec<String> = [
+                    s.sphere.velocity,
+                    s.sphere.spin,
+                    s.other.velocity,
+                    s.other.spin,
+                    s.normal,
+                ]
+                .iter()
+                .flatten()
+                .map(|x| format!("{x:?}"))
+                .collect();
+                v.join(" ") + "\n"
+            })
+            .collect();
+        let m2 = if wall { 0.0 } else { b2.mass };
+        let args: Vec<String> = [
+            "rebound".to_string(),
+            path.display().to_string(),
+            (if use_curve { "curve" } else { "table" }).to_string(),
+            format!("{:?}", b1.mass),
+            format!("{:?}", b1.radius),
+            format!("{:?}", b1.kappa),
+            format!("{m2:?}"),
+            format!("{:?}", b2.radius),
+            format!("{:?}", b2.kappa),
+            format!("{gamma:?}"),
+            format!("{mu:?}"),
+        ]
+        .to_vec();
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = run_with_input(gcc_driver(), &args, &input);
+        for (s, line) in incidents.iter().zip(out.lines()) {
+            let c = parse_line(line);
+            let a = if use_curve {
+                t.rebound_3d_curve(&prepared, &curve, s)
+            } else {
+                t.rebound_3d_prepared(&prepared, s)
+            }
+            .expect("valid impact");
+            let b = &a.rebound;
+            let o = b.other.unwrap_or_default();
+            let want: Vec<f64> = [b.sphere.velocity, b.sphere.spin, o.velocity, o.spin]
+                .iter()
+                .flatten()
+                .copied()
+                .chain([b.p, b.e_t, b.energy_lost, a.alpha, b.slip_before])
+                .collect();
+            for (k, (x, y)) in c.iter().zip(&want).enumerate() {
+                assert!(
+                    x.to_bits() == y.to_bits() || (x - y).abs() <= 1e-13 * (1.0 + y.abs()),
+                    "case {case} field {k}: C {x:?}, Rust {y:?}"
+                );
+            }
+            // Conservation, on the C answer: momentum (spheres), energy balance.
+            let (v1, w1, v2, w2) = (&c[0..3], &c[3..6], &c[6..9], &c[9..12]);
+            let ke = |v: &[f64], w: &[f64], b: &Body| {
+                0.5 * b.mass * v.iter().map(|x| x * x).sum::<f64>()
+                    + 0.5 * b.inertia() * w.iter().map(|x| x * x).sum::<f64>()
+            };
+            let before = ke(&s.sphere.velocity, &s.sphere.spin, &b1)
+                + if wall {
+                    0.0
+                } else {
+                    ke(&s.other.velocity, &s.other.spin, &b2)
+                };
+            let after = ke(v1, w1, &b1) + if wall { 0.0 } else { ke(v2, w2, &b2) };
+            let lost = c[14];
+            assert!(lost >= 0.0 && c[12].abs() <= 1.0);
+            assert!(
+                (before - after - lost).abs() <= 1e-11 * before,
+                "case {case}: energy {before} -> {after}, lost {lost}"
+            );
+            if !wall {
+                for k in 0..3 {
+                    let p0 = b1.mass * s.sphere.velocity[k] + b2.mass * s.other.velocity[k];
+                    let p1 = b1.mass * v1[k] + b2.mass * v2[k];
+                    assert!((p0 - p1).abs() <= 1e-12 * (b1.mass + b2.mass) * 10.0);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn rebound_2d_agrees_with_the_rust_algebra() {
+    let t = table("full");
+    let path = export_file("full", false);
+    let mut r = SplitMix(5);
+    for wall in [true, false] {
+        let b1 = body(&mut r);
+        let b2 = body(&mut r);
+        let pair = Pair {
+            sphere: b1,
+            other: (!wall).then_some(b2),
+        };
+        let contact = Contact::with_gamma(1.6, 0.3);
+        let mut states = Vec::new();
+        while states.len() < 2000 {
+            let s = Incident {
+                sphere: State {
+                    v_x: 3.0 * (2.0 * r.uniform() - 1.0),
+                    v_z: 3.0 * r.uniform() + 0.1,
+                    omega: 400.0 * (2.0 * r.uniform() - 1.0),
+                },
+                other: if wall {
+                    State::default()
+                } else {
+                    State {
+                        v_x: 2.0 * r.uniform() - 1.0,
+                        v_z: -r.uniform(),
+                        omega: 400.0 * (2.0 * r.uniform() - 1.0),
+                    }
+                },
+            };
+            states.push(s);
+        }
+        let input: String = states
+            .iter()
+            .map(|s| {
+                format!(
+                    "{:?} {:?} {:?} {:?} {:?} {:?}\n",
+                    s.sphere.v_x,
+                    s.sphere.v_z,
+                    s.sphere.omega,
+                    s.other.v_x,
+                    s.other.v_z,
+                    s.other.omega
+                )
+            })
+            .collect();
+        let m2 = if wall { 0.0 } else { b2.mass };
+        let args = [
+            "rebound2".to_string(),
+            path.display().to_string(),
+            format!("{:?}", b1.mass),
+            format!("{:?}", b1.radius),
+            format!("{:?}", b1.kappa),
+            format!("{m2:?}"),
+            format!("{:?}", b2.radius),
+            format!("{:?}", b2.kappa),
+            "1.6".into(),
+            "0.3".into(),
+        ];
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = run_with_input(gcc_driver(), &args, &input);
+        for (s, line) in states.iter().zip(out.lines()) {
+            let c = parse_line(line);
+            let a = t.rebound(&pair, &contact, s).expect("valid");
+            let b = &a.rebound;
+            let o = b.other.unwrap_or_default();
+            let want = [
+                b.sphere.v_x,
+                b.sphere.v_z,
+                b.sphere.omega,
+                o.v_x,
+                o.v_z,
+                o.omega,
+                b.p,
+                b.e_t,
+                b.energy_lost,
+                a.alpha,
+                b.tangential_impulse,
+            ];
+            for (k, (x, y)) in c.iter().zip(want).enumerate() {
+                let scale = 1.0 + y.abs() + if k < 6 { 400.0 * b1.radius } else { 0.0 };
+                assert!(
+                    (x - y).abs() <= 1e-12 * scale || (x.is_nan() && y.is_nan()),
+                    "wall {wall} field {k}: C {x:?}, Rust {y:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn damaged_truncated_and_foreign_files_are_refused_with_their_code() {
+    let path = export_file("quick", false);
+    let good = std::fs::read(&path).expect("export");
+    let case = |name: &str, bytes: &[u8]| -> String {
+        let p = dir().join(name);
+        std::fs::write(&p, bytes).expect("write");
+        let out = Command::new(gcc_driver())
+            .args(["open", p.to_str().expect("path")])
+            .output()
+            .expect("run");
+        assert!(out.status.success(), "{name}: {}", out.status);
+        String::from_utf8(out.stdout).expect("utf-8")
+    };
+    assert!(case("good", &good).starts_with("0 ok"));
+    assert!(case("empty", &[]).starts_with("2 "));
+    assert!(case("truncated", &good[..good.len() / 2]).starts_with("2 the export is truncated"));
+    let mut flipped = good.clone();
+    flipped[good.len() / 3] ^= 0x10;
+    assert!(case("flipped", &flipped).starts_with("5 the export is damaged"));
+    let hdf5 = std::fs::read(root("tables/quick.h5")).expect("table");
+    assert!(case("hdf5", &hdf5).starts_with("3 not an export"));
+    let mut newer = good.clone();
+    newer[8] = 2;
+    assert!(case("newer", &newer).starts_with("4 "));
+    // A consistent checksum over inconsistent contents: an offset beyond the end.
+    let mut bad = good.clone();
+    bad[72..80].copy_from_slice(&(good.len() as u64 + 8).to_le_bytes());
+    let sum = oblique_table::format::fnv1a64(&bad[32..]);
+    bad[24..32].copy_from_slice(&sum.to_le_bytes());
+    assert!(case("offset", &bad).starts_with("6 the export is inconsistent"));
+}
+
+#[test]
+fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
+    let mut f = vec![
+        "-std=c99",
+        "-g",
+        "-fsanitize=address,undefined",
+        "-fno-sanitize-recover=all",
+    ];
+    f.extend(WARNINGS);
+    let exe = compile("gcc", &f, "tests/c/eval_check.c", "eval_check_asan");
+    for (path, n) in [
+        (export_file("quick", false), "2000"),
+        (export_file("full", true), "3000"),
+    ] {
+        let out = Command::new(&exe)
+            .args(["fuzz", path.to_str().expect("path"), n, "17"])
+            .output()
+            .expect("run");
+        assert!(
+            out.status.success(),
+            "fuzz {}: {}\n{}",
+            path.display(),
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("refused"), "{text}");
+    }
+    // The million-point comparison once more, under the sanitizers, on a sample.
+    let path = export_file("full", false);
+    let pts = points(20_000, 4, 0.1, 3.5);
+    let input: String = pts.iter().map(|(g, a)| format!("{g:?} {a:?}\n")).collect();
+    let out = run_with_input(&exe, &["p", path.to_str().expect("path"), "0"], &input);
+    assert_eq!(out.lines().count(), pts.len());
+}
