@@ -535,8 +535,8 @@ OBLQ_FN int oblq__region(double gamma, double alpha) {
 OBLQ_FN int oblq_p(const oblq_table *t, double gamma, double alpha, int clamp, double *p) {
     int region, inside;
     if (!t || !p) return OBLQ_E_NULL;
-    if (!(isfinite(gamma) && gamma > 0.0)) return OBLQ_E_GAMMA;
-    if (isnan(alpha) || alpha < 0.0) return OBLQ_E_ALPHA;
+    if (!(gamma > 0.0 && gamma < INFINITY)) return OBLQ_E_GAMMA;
+    if (!(alpha >= 0.0)) return OBLQ_E_ALPHA; /* NaN or negative */
     region = oblq__region(gamma, alpha);
     if (region < 0) {
         *p = 1.0 - 7.0 * alpha;
@@ -608,7 +608,7 @@ OBLQ_FN double oblq__piece_eval(const oblq_piece *pc, double c) {
 OBLQ_FN int oblq_curve_p(const oblq_curve *cv, double alpha, int clamp, double *p) {
     double c;
     if (!cv || !p) return OBLQ_E_NULL;
-    if (isnan(alpha) || alpha < 0.0) return OBLQ_E_ALPHA;
+    if (!(alpha >= 0.0)) return OBLQ_E_ALPHA; /* NaN or negative */
     if (alpha <= cv->alpha_lin) {
         *p = 1.0 - 7.0 * alpha;
         return OBLQ_OK;
@@ -636,12 +636,12 @@ OBLQ_FN int oblq_curve_p(const oblq_curve *cv, double alpha, int clamp, double *
         *p = -1.0;
         return OBLQ_OK;
     }
-    if (isinf(alpha)) {
+    if (alpha == INFINITY) {
         c = 1.0;
     } else {
         double d = alpha - cv->stick_c2;
         c = d / (d + cv->rho_c2);
-        if (!isnan(cv->s_max)) c = c / cv->s_max;
+        if (cv->s_max == cv->s_max) c = c / cv->s_max; /* s_max is NaN for alpha_max = inf */
     }
     *p = oblq__piece_eval(&cv->stick, oblq__clamp(c, 0.0, 1.0));
     return OBLQ_OK;
@@ -826,15 +826,19 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
     const oblq_motion3 *m1, *m2;
     int i, rc;
     if (!k || !s || !out || (!t && !cv)) return OBLQ_E_NULL;
-    for (i = 0; i < 3; i++)
-        if (!(isfinite(s->sphere.v[i]) && isfinite(s->sphere.w[i]) && isfinite(s->other.v[i]) &&
-              isfinite(s->other.w[i]) && isfinite(s->normal[i])))
-            return OBLQ_E_MOTION;
+    {
+        /* Every component finite: x * 0 is (+-)0 for a finite x and NaN otherwise. */
+        double z = 0.0;
+        for (i = 0; i < 3; i++)
+            z += s->sphere.v[i] * 0.0 + s->sphere.w[i] * 0.0 + s->other.v[i] * 0.0 +
+                 s->other.w[i] * 0.0 + s->normal[i] * 0.0;
+        if (z != 0.0) return OBLQ_E_MOTION;
+    }
     if (k->wall)
         for (i = 0; i < 3; i++)
             if (s->other.v[i] != 0.0 || s->other.w[i] != 0.0) return OBLQ_E_WALL_MOTION;
     len = sqrt(oblq__dot(s->normal, s->normal));
-    if (!(len > 0.0 && isfinite(len))) return OBLQ_E_NORMAL;
+    if (!(len > 0.0 && len < INFINITY)) return OBLQ_E_NORMAL;
     for (i = 0; i < 3; i++) n[i] = (1.0 / len) * s->normal[i];
     m1 = &s->sphere;
     m2 = &s->other;
@@ -851,15 +855,15 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
         for (i = 0; i < 3; i++) d[i] = m1->v[i] - m2->v[i];
         v0 = oblq__dot(d, n);
     }
-    if (!(v0 > 0.0 && isfinite(v0))) return OBLQ_E_APPROACH;
-    if (!isfinite(slip)) return OBLQ_E_MOTION;
+    if (!(v0 > 0.0 && v0 < INFINITY)) return OBLQ_E_APPROACH;
+    if (!(slip < INFINITY)) return OBLQ_E_MOTION;
     for (i = 0; i < 3; i++) d[i] = m1->v[i] - m2->v[i];
     oblq__axpy(d, -oblq__dot(d, n), n, w0);
     if (slip > 0.0) {
         for (i = 0; i < 3; i++) tg[i] = (1.0 / slip) * u_t[i];
         u0 = slip;
         alpha = k->alpha_scale * v0 / u0;
-        if (isnan(alpha)) alpha = INFINITY;
+        if (alpha != alpha) alpha = INFINITY; /* 0 * inf (no friction, no slip speed) */
         rc = cv ? oblq_curve_p(cv, alpha, clamp, &p) : oblq_p(t, k->gamma, alpha, clamp, &p);
         if (rc != OBLQ_OK) return rc;
         j = k->tangential_mass * (1.0 - p) * u0;

@@ -4,7 +4,7 @@
 An example is a ```text block whose lines starting with `$ ` are commands; the lines after a
 command, up to the next command or the end of the block, are what it prints (standard output and
 standard error together). Each command runs under bash in a scratch folder holding copies of
-`configs/` and `tables/` (so nothing in the checkout is written), with `target/release` and
+`configs/`, `tables/`, `include/`, `examples/` and `python/examples/` (so nothing in the checkout is written), with `target/release` and
 `target/release/examples` first on PATH, so `sweep` and the Rust examples are the binaries under
 test.
 
@@ -138,7 +138,7 @@ def main():
     env["PATH"] = os.pathsep.join([str(sweep.parent), str(sweep.parent / "examples"), env.get("PATH", "")])
     failures, count = 0, 0
     with tempfile.TemporaryDirectory(prefix="check_docs-") as scratch:
-        for folder in ("configs", "tables", "python/examples"):
+        for folder in ("configs", "tables", "python/examples", "include", "examples"):
             shutil.copytree(ROOT / folder, Path(scratch) / folder)
         (Path(scratch) / "docs").mkdir()
         for path in DOCS:

@@ -623,3 +623,79 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
     let out = run_with_input(&exe, &["p", path.to_str().expect("path"), "0"], &input);
     assert_eq!(out.lines().count(), pts.len());
 }
+
+#[test]
+fn cpp_collision_operator_agrees_with_the_rust_rebound() {
+    let mut f = vec!["-std=c++11"];
+    f.extend(WARNINGS);
+    let exe = compile("g++", &f, "examples/cpp/collision.cpp", "collision");
+    compile("clang++", &f, "examples/cpp/collision.cpp", "collision_clang");
+    let path = export_file("full", false);
+    let out = Command::new(&exe).arg(&path).output().expect("run");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let get = |key: &str| -> Vec<f64> {
+        let line = text
+            .lines()
+            .find(|l| l.starts_with(&format!("{key},")))
+            .unwrap_or_else(|| panic!("no {key} in:\n{text}"));
+        parse_line(&line[key.len() + 1..])
+    };
+    // The same collision through the Rust library.
+    use oblique_lookup::rebound::Elastic;
+    let pi = std::f64::consts::PI;
+    let (r1, r2) = (5e-3, 3e-3);
+    let pair = Pair {
+        sphere: Body {
+            mass: 7850.0 * 4.0 / 3.0 * pi * r1 * r1 * r1,
+            radius: r1,
+            kappa: 0.4,
+        },
+        other: Some(Body {
+            mass: 2500.0 * 4.0 / 3.0 * pi * r2 * r2 * r2,
+            radius: r2,
+            kappa: 0.4,
+        }),
+    };
+    let steel = Elastic {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.29,
+    };
+    let glass = Elastic {
+        youngs_modulus: 73e9,
+        poisson_ratio: 0.217,
+    };
+    let s = Incident3 {
+        sphere: Motion3 {
+            velocity: [1.0, 0.2, 2.0],
+            spin: [0.0, 50.0, 0.0],
+        },
+        other: Motion3 {
+            velocity: [0.0, 0.0, -1.0],
+            spin: [0.0, 0.0, 10.0],
+        },
+        normal: [0.0, 0.0, r1 + r2],
+    };
+    let t = table("full");
+    let a = t
+        .rebound_3d(&pair, &Contact::with_materials(steel, glass, 0.3), &s)
+        .expect("valid");
+    assert_eq!(get("gamma")[0].to_bits(), a.gamma.to_bits());
+    assert_eq!(get("alpha")[0].to_bits(), a.alpha.to_bits());
+    // P of the pair: the table's rule to the bit.
+    assert_eq!(get("P")[0].to_bits(), t.p(a.gamma, a.alpha).expect("inside").to_bits());
+    let b = &a.rebound;
+    let o = b.other.expect("sphere");
+    for (key, want) in [
+        ("a.v", b.sphere.velocity),
+        ("a.w", b.sphere.spin),
+        ("b.v", o.velocity),
+        ("b.w", o.spin),
+    ] {
+        for (x, y) in get(key).iter().zip(want) {
+            assert!((x - y).abs() <= 1e-12 * (1.0 + y.abs()), "{key}: C++ {x}, Rust {y}");
+        }
+    }
+    assert!(get("energy_balance")[0].abs() < 1e-13, "{text}");
+    assert!(text.contains("refused,invalid v_z"), "{text}");
+}

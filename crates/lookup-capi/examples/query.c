@@ -1,9 +1,11 @@
 /* Example of the C ABI of oblique-lookup: open a table, evaluate P, one sphere-sphere rebound
- * (direct and through a prepared pair), and two errors. Build (after `cargo build --release -p oblique-lookup-capi`):
+ * (direct and through a prepared pair), and two errors. Build against an installed library
+ * (README, "From C, C++ and Fortran"):
  *
- *   cc -std=c99 -O2 -o query crates/lookup-capi/examples/query.c -I crates/lookup-capi/include \
- *      -L target/release -loblique -lm
- *   LD_LIBRARY_PATH=target/release ./query tables/quick.h5
+ *   scripts/install-capi.sh "$HOME/.local"
+ *   export PKG_CONFIG_PATH="$HOME/.local/lib/pkgconfig"
+ *   cc -std=c99 -O2 -o query crates/lookup-capi/examples/query.c $(pkg-config --cflags --libs oblique)
+ *   LD_LIBRARY_PATH="$HOME/.local/lib" ./query tables/quick.h5
  *
  * Prints `key value` lines (values with 17 significant digits: they round-trip), which
  * crates/lookup-capi/tests/c_abi.rs compares with the Rust API. */

@@ -8,6 +8,33 @@
 #include <stddef.h>
 #include <stdint.h>
 
+// Version of the ABI this header declares, also returned by `oblique_abi_version()`. It
+// changes with every incompatible change of a declaration below, and so does the number in the
+// shared library's SONAME (`liboblique.so.0` for ABI version 1). A program can check at
+// start-up that the library it loaded matches the header it was compiled with:
+// `oblique_abi_version() == OBLIQUE_ABI_VERSION`. `oblique_version()` gives the library's
+// release as a string such as `"0.1.0"`.
+//
+// Language: this header is C99 and later, or C++11 and later (under C++ the functions are
+// `extern "C"`). It is not C89/C90: it uses `//` comments and `<stdint.h>`.
+//
+// Units: SI throughout: masses in kg, lengths in m, velocities in m/s, angular velocities in
+// rad/s (vectors, right-handed), moduli in Pa, impulses in N s, energies in J, angles in rad.
+// `γ`, `α`, `P`, `e_t`, `κ`, `ν` and the friction coefficient `μ` are dimensionless.
+//
+// Threads: an `ObliqueTable` is immutable once `oblique_table_open` returns; any number of
+// threads may use one handle at the same time, without locking, in `oblique_table_domain`,
+// `oblique_p`, `oblique_p_batch`, `oblique_curve_new`, `oblique_rebound_wall`,
+// `oblique_rebound_spheres` and `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
+// (`oblique_curve_p`) and an `ObliquePrepared` (`oblique_rebound_prepared`) are immutable and
+// may be shared. `oblique_table_open` and `oblique_prepare` may be called by several threads
+// at once (the library serialises its calls into HDF5). Only the functions that free a handle
+// (`oblique_table_close`, `oblique_curve_free`, `oblique_prepared_free`) need it to be used by
+// no other thread, during and after the call. `oblique_last_error()` reports the last failure
+// of the calling thread only. `oblique_version()` and `oblique_abi_version()` may be called at
+// any time from any thread.
+#define OBLIQUE_ABI_VERSION 1
+
 // Success.
 #define OBLIQUE_OK 0
 
@@ -35,6 +62,8 @@ typedef struct ObliqueCurve ObliqueCurve;
 typedef struct ObliquePrepared ObliquePrepared;
 
 // An opened table (opaque). Create with `oblique_table_open`, free with `oblique_table_close`.
+// Immutable: one handle may be used by any number of threads at once, without locking, in
+// every function but `oblique_table_close` (see `OBLIQUE_ABI_VERSION`).
 typedef struct ObliqueTable ObliqueTable;
 
 // Mass, radius and inertia factor of a sphere.
@@ -119,6 +148,14 @@ typedef struct ObliqueRebound {
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
+
+// The library's release (the version of the crate oblique-lookup-capi): a static
+// NUL-terminated string such as `"0.1.0"`; do not free it. Thread-safe.
+const char *oblique_version(void);
+
+// The ABI version of the library, to compare with `OBLIQUE_ABI_VERSION` of the header the
+// caller was compiled with. Thread-safe.
+int oblique_abi_version(void);
 
 // Message of the last failed call on the calling thread (UTF-8, NUL-terminated; empty if none).
 // Valid until the next failing call on this thread; do not free it.

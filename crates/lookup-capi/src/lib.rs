@@ -1,14 +1,17 @@
-//! C ABI of the `cdylib` (`liboblique.so`). The header `include/oblique_lookup.h` is
-//! generated from this file by cbindgen (`cbindgen.toml`); `tests/c_abi.rs` regenerates
-//! it and fails when the committed one differs (`UPDATE_HEADER=1` rewrites it), then compiles
-//! `examples/query.c` with the system C compiler and runs it.
+//! C ABI of the `cdylib` (`liboblique.so`, SONAME `liboblique.so.0`, set by `build.rs`) and
+//! the `staticlib` (`liboblique.a`). The header `include/oblique_lookup.h` is generated from
+//! this file by cbindgen (`cbindgen.toml`); `tests/c_abi.rs` regenerates it and fails when the
+//! committed one differs (`UPDATE_HEADER=1` rewrites it), then compiles `examples/query.c` with
+//! the system C compiler and runs it. `scripts/install-capi.sh PREFIX` installs the libraries,
+//! the header and `lib/pkgconfig/oblique.pc`; `tests/install.rs` checks the installed tree.
 //!
 //! Every function returns an integer status (`OBLIQUE_OK` = 0 or an `OBLIQUE_ERR_*` code);
 //! `oblique_last_error()` gives the message of the last failure on the calling thread. Results
 //! are written through out-pointers, only on success. Nothing panics across the boundary. A
-//! table handle may be shared by threads (queries only read it). SI units and conventions of
-//! `rebound`: the normal points from sphere 1 into the other body; spins are vectors
-//! (right-handed, rad/s).
+//! table handle is immutable and may be shared by threads (queries only read it; the doc of
+//! `OBLIQUE_ABI_VERSION`, at the top of the header, says which calls are thread-safe). SI units
+//! and conventions of `rebound`: the normal points from sphere 1 into the other body; spins are
+//! vectors (right-handed, rad/s).
 
 use std::cell::RefCell;
 use std::ffi::{c_char, c_int, CStr, CString};
@@ -18,6 +21,33 @@ use oblique_lookup::impact::{Contact, Stiffness};
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair, Rebound3};
 use oblique_lookup::OutOfDomain;
 use oblique_lookup::{Curve, LookupError, Prepared, Table};
+
+/// Version of the ABI this header declares, also returned by `oblique_abi_version()`. It
+/// changes with every incompatible change of a declaration below, and so does the number in the
+/// shared library's SONAME (`liboblique.so.0` for ABI version 1). A program can check at
+/// start-up that the library it loaded matches the header it was compiled with:
+/// `oblique_abi_version() == OBLIQUE_ABI_VERSION`. `oblique_version()` gives the library's
+/// release as a string such as `"0.1.0"`.
+///
+/// Language: this header is C99 and later, or C++11 and later (under C++ the functions are
+/// `extern "C"`). It is not C89/C90: it uses `//` comments and `<stdint.h>`.
+///
+/// Units: SI throughout: masses in kg, lengths in m, velocities in m/s, angular velocities in
+/// rad/s (vectors, right-handed), moduli in Pa, impulses in N s, energies in J, angles in rad.
+/// `γ`, `α`, `P`, `e_t`, `κ`, `ν` and the friction coefficient `μ` are dimensionless.
+///
+/// Threads: an `ObliqueTable` is immutable once `oblique_table_open` returns; any number of
+/// threads may use one handle at the same time, without locking, in `oblique_table_domain`,
+/// `oblique_p`, `oblique_p_batch`, `oblique_curve_new`, `oblique_rebound_wall`,
+/// `oblique_rebound_spheres` and `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
+/// (`oblique_curve_p`) and an `ObliquePrepared` (`oblique_rebound_prepared`) are immutable and
+/// may be shared. `oblique_table_open` and `oblique_prepare` may be called by several threads
+/// at once (the library serialises its calls into HDF5). Only the functions that free a handle
+/// (`oblique_table_close`, `oblique_curve_free`, `oblique_prepared_free`) need it to be used by
+/// no other thread, during and after the call. `oblique_last_error()` reports the last failure
+/// of the calling thread only. `oblique_version()` and `oblique_abi_version()` may be called at
+/// any time from any thread.
+pub const OBLIQUE_ABI_VERSION: c_int = 1;
 
 /// Success.
 pub const OBLIQUE_OK: c_int = 0;
@@ -33,6 +63,8 @@ pub const OBLIQUE_ERR_QUERY: c_int = 4;
 pub const OBLIQUE_ERR_INTERNAL: c_int = 5;
 
 /// An opened table (opaque). Create with `oblique_table_open`, free with `oblique_table_close`.
+/// Immutable: one handle may be used by any number of threads at once, without locking, in
+/// every function but `oblique_table_close` (see `OBLIQUE_ABI_VERSION`).
 pub struct ObliqueTable(Table);
 
 /// A pair of bodies with its contact, checked once (opaque): create with `oblique_prepare`, use
@@ -132,6 +164,21 @@ pub struct ObliqueRebound {
     pub energy_lost: f64,
 }
 
+/// The crate's version, NUL-terminated, for `oblique_version`.
+const VERSION: &CStr =
+    match CStr::from_bytes_with_nul(concat!(env!("CARGO_PKG_VERSION"), "\0").as_bytes()) {
+        Ok(v) => v,
+        Err(_) => panic!("the crate version contains a NUL byte"),
+    };
+
+// The handles are shared by threads, as the header promises: they must stay `Send + Sync`.
+const _: fn() = || {
+    fn shared<T: Send + Sync>() {}
+    shared::<ObliqueTable>();
+    shared::<ObliqueCurve>();
+    shared::<ObliquePrepared>();
+};
+
 thread_local! {
     static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
 }
@@ -184,6 +231,20 @@ unsafe fn read<T: Copy>(p: *const T, name: &str) -> Result<T, (c_int, String)> {
     } else {
         Ok(*p)
     }
+}
+
+/// The library's release (the version of the crate oblique-lookup-capi): a static
+/// NUL-terminated string such as `"0.1.0"`; do not free it. Thread-safe.
+#[no_mangle]
+pub extern "C" fn oblique_version() -> *const c_char {
+    VERSION.as_ptr()
+}
+
+/// The ABI version of the library, to compare with `OBLIQUE_ABI_VERSION` of the header the
+/// caller was compiled with. Thread-safe.
+#[no_mangle]
+pub extern "C" fn oblique_abi_version() -> c_int {
+    OBLIQUE_ABI_VERSION
 }
 
 /// Message of the last failed call on the calling thread (UTF-8, NUL-terminated; empty if none).

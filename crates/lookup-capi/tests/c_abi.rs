@@ -49,7 +49,10 @@ fn header_is_up_to_date() {
         "oblique_rebound_wall",
         "oblique_rebound_spheres",
         "oblique_last_error",
+        "oblique_version",
+        "oblique_abi_version",
         "OBLIQUE_ERR_QUERY",
+        "#define OBLIQUE_ABI_VERSION 1",
     ] {
         assert!(generated.contains(name), "header lacks {name}");
     }
@@ -95,9 +98,16 @@ fn c_example_compiles_and_runs() {
         .unwrap_or_else(|e| panic!("cannot run the C compiler `{cc}`: {e}"));
     assert!(status.success(), "compiling examples/query.c failed");
 
+    // The library's SONAME is liboblique.so.0 (build.rs), the name the executable asks the
+    // loader for: give it that name, in a folder of this test's own.
+    let run_dir = out_dir.join("c_abi_lib");
+    std::fs::create_dir_all(&run_dir).expect("create the library folder");
+    let soname = run_dir.join("liboblique.so.0");
+    let _ = std::fs::remove_file(&soname);
+    std::os::unix::fs::symlink(lib.join("liboblique.so"), &soname).expect("link liboblique.so.0");
     let out = Command::new(&exe)
         .arg(table_path())
-        .env("LD_LIBRARY_PATH", &lib)
+        .env("LD_LIBRARY_PATH", &run_dir)
         .output()
         .expect("run the C example");
     let stdout = String::from_utf8_lossy(&out.stdout);
