@@ -822,7 +822,7 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
                            const oblq_incident3 *s, int clamp, oblq_rebound3 *out) {
     double len, n[3], c1[3], c2[3], u[3], u_t[3], tmp[3], slip, tg[3], b[3], v0, u0, alpha, p;
     double j, nn, d[3], w0[3], w1[3], w0w0;
-    oblq_rebound3 r;
+    oblq_rebound3 *r = out; /* written only after the last check */
     const oblq_motion3 *m1, *m2;
     int i, rc;
     if (!k || !s || !out || (!t && !cv)) return OBLQ_E_NULL;
@@ -891,29 +891,28 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
     oblq__cross(n, tg, b);
     nn = k->two_normal_mass * v0;
     oblq__axpy(m1->v, -j * k->inv_m1, tg, tmp);
-    oblq__axpy(tmp, -nn * k->inv_m1, n, r.sphere.v);
-    oblq__axpy(m1->w, -j * k->spin1, b, r.sphere.w);
+    oblq__axpy(tmp, -nn * k->inv_m1, n, r->sphere.v);
+    oblq__axpy(m1->w, -j * k->spin1, b, r->sphere.w);
     if (k->wall) {
-        r.other = *m2;
+        r->other = *m2;
     } else {
         oblq__axpy(m2->v, j * k->inv_m2, tg, tmp);
-        oblq__axpy(tmp, nn * k->inv_m2, n, r.other.v);
-        oblq__axpy(m2->w, -j * k->spin2, b, r.other.w);
+        oblq__axpy(tmp, nn * k->inv_m2, n, r->other.v);
+        oblq__axpy(m2->w, -j * k->spin2, b, r->other.w);
     }
     oblq__axpy(w0, -j * (k->inv_m1 + k->inv_m2), tg, w1);
     w0w0 = oblq__dot(w0, w0);
-    for (i = 0; i < 3; i++) r.tangent[i] = tg[i];
-    r.gamma = k->gamma;
-    r.alpha = alpha;
-    r.p = p;
-    r.e_t = w0w0 == 0.0 ? NAN : oblq__dot(w1, w0) / w0w0;
-    r.slip_before = u0;
-    r.slip_after = u0 == 0.0 ? 0.0 : p * u0;
-    r.tangential_impulse = j;
-    r.normal_impulse = nn;
-    r.approach_speed = v0;
-    r.energy_lost = u0 == 0.0 ? 0.0 : 0.5 * k->tangential_mass * u0 * u0 * (1.0 - p * p);
-    *out = r;
+    for (i = 0; i < 3; i++) r->tangent[i] = tg[i];
+    r->gamma = k->gamma;
+    r->alpha = alpha;
+    r->p = p;
+    r->e_t = w0w0 == 0.0 ? NAN : oblq__dot(w1, w0) / w0w0;
+    r->slip_before = u0;
+    r->slip_after = u0 == 0.0 ? 0.0 : p * u0;
+    r->tangential_impulse = j;
+    r->normal_impulse = nn;
+    r->approach_speed = v0;
+    r->energy_lost = u0 == 0.0 ? 0.0 : 0.5 * k->tangential_mass * u0 * u0 * (1.0 - p * p);
     return OBLQ_OK;
 }
 
