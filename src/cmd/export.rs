@@ -83,6 +83,15 @@ pub fn run(args: ExportArgs) -> Result<()> {
             args.output.display()
         )));
     }
+    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if !dir.is_dir() {
+            return Err(Failure::usage(format!(
+                "--output {}: the folder {} does not exist",
+                args.output.display(),
+                dir.display()
+            )));
+        }
+    }
     let table = Table::open(&args.table)?;
     let mut curves = Vec::with_capacity(args.gammas.len());
     for &g in &args.gammas {

@@ -1,0 +1,97 @@
+//! `sweep export`: the file it writes is the format crate's export of the table, the C source
+//! holds the same bytes, and bad arguments are refused with exit status 2.
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use oblique_lookup::{OutOfDomain, Table};
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+fn sweep(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(args)
+        .output()
+        .expect("run sweep")
+}
+
+#[test]
+fn export_writes_the_format_crates_bytes_and_a_c_source_of_them() {
+    let dir = common::subdir("cli_export");
+    let table = Path::new(ROOT).join("tables/quick.h5");
+    let out = dir.join("q.oblq");
+    let r = sweep(&[
+        "export",
+        table.to_str().expect("path"),
+        "-o",
+        out.to_str().expect("path"),
+        "--gamma",
+        "1.2",
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let t = Table::open(&table).expect("table");
+    let curve = t.curve(1.2, OutOfDomain::Error).expect("curve");
+    let want = oblique_table::export::export(
+        t.surface(),
+        t.error_bound(),
+        true,
+        &[curve.export_data().expect("inside")],
+    );
+    assert_eq!(std::fs::read(&out).expect("export"), want);
+    let text = String::from_utf8_lossy(&r.stdout);
+    assert!(text.contains("the table and 1 curve"), "{text}");
+
+    let c = dir.join("q.c");
+    let r = sweep(&[
+        "export",
+        table.to_str().expect("path"),
+        "-o",
+        c.to_str().expect("path"),
+        "--gamma",
+        "1.2",
+        "--name",
+        "quick_table",
+    ]);
+    assert!(r.status.success());
+    let src = std::fs::read_to_string(&c).expect("source");
+    assert!(src.contains(&format!("const size_t quick_table_size = {};", want.len())));
+    let words: Vec<u64> = src
+        .split("0x")
+        .skip(1)
+        .map(|w| u64::from_str_radix(&w[..16], 16).expect("hex word"))
+        .collect();
+    let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+    assert_eq!(&bytes[..want.len()], &want[..]);
+}
+
+#[test]
+fn export_refuses_bad_arguments_with_status_2() {
+    let dir = common::subdir("cli_export_bad");
+    let table = Path::new(ROOT).join("tables/quick.h5");
+    let t = table.to_str().expect("path");
+    let o = dir.join("x.oblq");
+    let o = o.to_str().expect("path");
+    for (args, says) in [
+        (vec!["export", t, "-o", o, "--gamma", "9"], "gamma"),
+        (vec!["export", t, "-o", o, "--gamma", "nan"], "gamma"),
+        (vec!["export", t, "-o", o, "--curves-only"], "--gamma"),
+        (
+            vec!["export", t, "-o", "/nonexistent-dir/x.oblq"],
+            "does not exist",
+        ),
+        (
+            vec!["export", t, "-o", dir.to_str().expect("path")],
+            "is a directory",
+        ),
+        (vec!["export", t, "-o", o, "--name", "9x"], "C identifier"),
+        (vec!["export", "/nonexistent.h5", "-o", o], "no such file"),
+    ] {
+        let r = sweep(&args);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(!Path::new(o).exists(), "{args:?} wrote a file");
+    }
+}
