@@ -629,10 +629,19 @@ fn cpp_collision_operator_agrees_with_the_rust_rebound() {
     let mut f = vec!["-std=c++11"];
     f.extend(WARNINGS);
     let exe = compile("g++", &f, "examples/cpp/collision.cpp", "collision");
-    compile("clang++", &f, "examples/cpp/collision.cpp", "collision_clang");
+    compile(
+        "clang++",
+        &f,
+        "examples/cpp/collision.cpp",
+        "collision_clang",
+    );
     let path = export_file("full", false);
     let out = Command::new(&exe).arg(&path).output().expect("run");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8(out.stdout).expect("utf-8");
     let get = |key: &str| -> Vec<f64> {
         let line = text
@@ -683,7 +692,10 @@ fn cpp_collision_operator_agrees_with_the_rust_rebound() {
     assert_eq!(get("gamma")[0].to_bits(), a.gamma.to_bits());
     assert_eq!(get("alpha")[0].to_bits(), a.alpha.to_bits());
     // P of the pair: the table's rule to the bit.
-    assert_eq!(get("P")[0].to_bits(), t.p(a.gamma, a.alpha).expect("inside").to_bits());
+    assert_eq!(
+        get("P")[0].to_bits(),
+        t.p(a.gamma, a.alpha).expect("inside").to_bits()
+    );
     let b = &a.rebound;
     let o = b.other.expect("sphere");
     for (key, want) in [
@@ -693,7 +705,10 @@ fn cpp_collision_operator_agrees_with_the_rust_rebound() {
         ("b.w", o.spin),
     ] {
         for (x, y) in get(key).iter().zip(want) {
-            assert!((x - y).abs() <= 1e-12 * (1.0 + y.abs()), "{key}: C++ {x}, Rust {y}");
+            assert!(
+                (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                "{key}: C++ {x}, Rust {y}"
+            );
         }
     }
     assert!(get("energy_balance")[0].abs() < 1e-13, "{text}");
