@@ -5,6 +5,7 @@
 TABLE defaults to tables/full.h5, FIGURE to seed000_alumina_on_glass.png. Needs matplotlib.
 """
 
+import os
 import sys
 
 import matplotlib
@@ -60,5 +61,6 @@ left.legend()
 right.plot(deg, r.omega)
 right.set(xlabel="incidence angle from the normal (deg)", ylabel="spin after $\\omega$ (rad/s)")
 fig.suptitle("alumina sphere (R = 2.5 mm, 3.9 m/s) on soda-lime glass, $\\mu$ = 0.092")
+os.makedirs(os.path.dirname(figure_path) or ".", exist_ok=True)
 fig.savefig(figure_path, dpi=120)
 print(f"wrote {figure_path}")
