@@ -88,6 +88,12 @@ typedef struct {
     double w_start, w_gamma_0, w_gamma_step, w_c_star;
     size_t w_n;
     const double *knot;
+    /* The fine index (NULL: descend from the roots): rows x cols cell numbers at depth
+       log2(fine), and every cell's 2^depth and origin. */
+    const unsigned char *index; /* uint32 little-endian [rows][cols] */
+    const double *origin;       /* [cells][3]: scale, og, oc */
+    size_t rows, cols;
+    double fine;
 } oblq_patch;
 
 /* A checked export: the table's domain and stated error bound, its patches, its curves. */
@@ -218,6 +224,56 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len, con
         for (i = 0; i < p->w_n; i++)
             if (!(p->knot[i] > 0.0 && p->knot[i] < 1.0)) return OBLQ_E_CORRUPT;
     }
+    off = oblq__u64(r + 120);
+    if (off != 0) {
+        uint64_t depth = oblq__u32(r + 112), coff = oblq__u64(r + 128), rows, cols, e;
+        double fine;
+        if (depth > 30) return OBLQ_E_CORRUPT;
+        rows = bg << depth;
+        cols = bc << depth;
+        if (rows > (uint64_t)1 << 40 || cols > ((uint64_t)1 << 40) / rows) return OBLQ_E_CORRUPT;
+        if (!oblq__span(off, rows * cols, 4, len) || !oblq__span(coff, cells, 24, len))
+            return OBLQ_E_CORRUPT;
+        p->index = d + off;
+        p->origin = (const double *)(const void *)(d + coff);
+        p->rows = (size_t)rows;
+        p->cols = (size_t)cols;
+        fine = (double)((uint64_t)1 << depth);
+        p->fine = fine;
+        /* Every cell's depth and origin follow from its parent's (roots: 1, a, b). */
+        for (i = 0; i < roots; i++) {
+            const double *c = p->origin + 3 * i;
+            if (c[0] != 1.0 || c[1] != (double)(i / bc) || c[2] != (double)(i % bc))
+                return OBLQ_E_CORRUPT;
+        }
+        for (i = 0; i < cells; i++) {
+            int32_t t = oblq__i32(p->tree + 4 * i);
+            const double *c = p->origin + 3 * i;
+            uint64_t q;
+            if (!(c[0] >= 1.0 && c[0] <= 1073741824.0)) return OBLQ_E_CORRUPT;
+            if (t < 0) continue;
+            for (q = 0; q < 4; q++) {
+                const double *k = p->origin + 3 * ((uint64_t)t + q);
+                if (k[0] != 2.0 * c[0] || k[1] != 2.0 * c[1] + (double)(q / 2) ||
+                    k[2] != 2.0 * c[2] + (double)(q % 2))
+                    return OBLQ_E_CORRUPT;
+            }
+        }
+        /* Every entry names a cell that contains it and is a leaf or at the index's depth:
+           the leaf of the descent from the roots. */
+        for (e = 0; e < rows * cols; e++) {
+            uint64_t cell = oblq__u32(p->index + 4 * e);
+            const double *c;
+            double k;
+            if (cell >= cells) return OBLQ_E_CORRUPT;
+            c = p->origin + 3 * cell;
+            if (c[0] > fine) return OBLQ_E_CORRUPT;
+            k = fine / c[0];
+            if (c[1] != floor((double)(e / cols) / k) || c[2] != floor((double)(e % cols) / k))
+                return OBLQ_E_CORRUPT;
+            if (oblq__i32(p->tree + 4 * cell) >= 0 && c[0] != fine) return OBLQ_E_CORRUPT;
+        }
+    }
     return OBLQ_OK;
 }
 
@@ -321,10 +377,10 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     if (oblq__u32(d + 64) != 4) return OBLQ_E_CORRUPT; /* the cubic stencil */
     off = oblq__u64(d + 72);
     if (off != 0) {
-        if (!oblq__span(off, 3, 128, len) || off < 96) return OBLQ_E_CORRUPT;
+        if (!oblq__span(off, 3, 160, len) || off < 96) return OBLQ_E_CORRUPT;
         out.has_surface = 1;
         for (k = 0; k < 3; k++) {
-            rc = oblq__patch(&out.patch[k], d, len, d + off + 128 * k);
+            rc = oblq__patch(&out.patch[k], d, len, d + off + 160 * k);
             if (rc != OBLQ_OK) return rc;
         }
         if (out.patch[1].present && !out.patch[1].partial) return OBLQ_E_CORRUPT;
@@ -474,10 +530,25 @@ OBLQ_FN double oblq__knot_at(const oblq_patch *p, double gamma) {
 OBLQ_FN double oblq__tensor(const oblq_patch *p, double gamma, double c) {
     double fg, fc, wg[4], wc[4], r[4];
     double xg = (gamma - p->gamma_lo) / (p->gamma_hi - p->gamma_lo);
-    size_t a = oblq__locate(xg, p->blocks_gamma, &fg);
-    size_t b = oblq__locate(c, p->blocks_coord, &fc);
-    size_t cell = a * p->blocks_coord + b, leaf, n1, sg, sc, i;
+    size_t cell, leaf, n1, sg, sc, i;
     const double *v;
+    if (p->index) {
+        /* The fine index: the entry's cell, the position inside it (v 2^d - origin, the rule's
+           repeated f <- 2f - q bit for bit), then the descent only below the index's depth. */
+        double bg = (double)p->blocks_gamma, bc = (double)p->blocks_coord;
+        double vg = oblq__clamp(xg * bg, 0.0, bg), vc = oblq__clamp(c * bc, 0.0, bc);
+        size_t ig = oblq__floor_index(vg * p->fine, p->rows - 1);
+        size_t ic = oblq__floor_index(vc * p->fine, p->cols - 1);
+        const double *co;
+        cell = oblq__u32(p->index + 4 * (ig * p->cols + ic));
+        co = p->origin + 3 * cell;
+        fg = vg * co[0] - co[1];
+        fc = vc * co[0] - co[2];
+    } else {
+        size_t a = oblq__locate(xg, p->blocks_gamma, &fg);
+        size_t b = oblq__locate(c, p->blocks_coord, &fc);
+        cell = a * p->blocks_coord + b;
+    }
     for (;;) {
         int32_t t = oblq__i32(p->tree + 4 * cell);
         size_t qg, qc;

@@ -25,13 +25,11 @@ use oblique_table::surface::{OutOfDomain, Patch, PatchKind, Region, Surface, War
 
 mod batch;
 
-/// Largest number of entries (4 bytes each) of one patch's fine index: 2¹⁵ = 128 KiB, so that
-/// the indexes stay in the second-level cache next to the nodes. A patch whose deepest leaves
-/// would need more gets an index at a smaller depth, from which the quadtree descent continues
-/// (`tables/full.h5`: `partial_high` indexed at depth 5 of 7, the others at full depth). A
-/// full-depth index for `partial_high` (327 680 entries, 1.3 MB) answered a repeated point in the
-/// deepest leaves 10 % faster but a random stream of 2²⁰ queries 10–15 % slower (cache misses).
-pub(crate) const MAX_INDEX_ENTRIES: usize = 1 << 15;
+/// Largest number of entries of one patch's fine index ([`Patch::fine_index`]). A full-depth
+/// index for `partial_high` of `tables/full.h5` (327 680 entries, 1.3 MB) answered a repeated
+/// point in the deepest leaves 10 % faster but a random stream of 2²⁰ queries 10–15 % slower
+/// (cache misses).
+pub(crate) use oblique_table::surface::MAX_INDEX_ENTRIES;
 
 /// Queries per chunk of [`Accel::eval_batch`] (fits its `u16` query numbers).
 const BATCH: usize = 256;
@@ -96,82 +94,24 @@ impl FastPatch {
     /// The fine index of a validated patch (a tree as `surface::check_tree` accepts it), or
     /// `None` when the patch's grid is too small for the cubic stencil.
     fn new(patch: &Patch, max_entries: usize) -> Option<FastPatch> {
+        let fine = patch.fine_index(max_entries)?;
+        let cells = fine
+            .cells
+            .iter()
+            .zip(patch.tree())
+            .map(|(c, &link)| Cell {
+                scale: c.scale,
+                og: c.og,
+                oc: c.oc,
+                link,
+            })
+            .collect();
         let (bg, bc, m) = (
             patch.blocks_gamma(),
             patch.blocks_coord(),
             patch.leaf_intervals(),
         );
-        let roots = bg * bc;
-        if m < 3
-            || roots == 0
-            || patch.tree().len() < roots
-            || patch.tree().len() > u32::MAX as usize
-        {
-            return None;
-        }
-        // Depth and integer origin of every cell (children come after their parents).
-        let mut cells = vec![
-            Cell {
-                scale: 1.0,
-                og: 0.0,
-                oc: 0.0,
-                link: 0,
-            };
-            patch.tree().len()
-        ];
-        let mut depth = vec![0u32; patch.tree().len()];
-        let mut origin = vec![(0usize, 0usize); patch.tree().len()];
-        for a in 0..bg {
-            for b in 0..bc {
-                origin[a * bc + b] = (a, b);
-            }
-        }
-        let mut max_depth = 0;
-        for i in 0..patch.tree().len() {
-            let t = patch.tree()[i];
-            let (a, b) = origin[i];
-            cells[i] = Cell {
-                scale: f64::from(1u32 << depth[i].min(31)),
-                og: a as f64,
-                oc: b as f64,
-                link: t,
-            };
-            max_depth = max_depth.max(depth[i]);
-            if t >= 0 {
-                let first = t as usize;
-                if first <= i || first + 4 > patch.tree().len() || depth[i] >= 30 {
-                    return None;
-                }
-                for q in 0..4 {
-                    depth[first + q] = depth[i] + 1;
-                    origin[first + q] = (2 * a + q / 2, 2 * b + q % 2);
-                }
-            }
-        }
-        // The deepest index within the budget.
-        let mut d = max_depth;
-        while d > 0 && ((roots as u128) << (2 * d)) > max_entries as u128 {
-            d -= 1;
-        }
-        let (rows, cols) = (bg << d, bc << d);
-        let mut index = vec![u32::MAX; rows * cols];
-        for i in 0..patch.tree().len() {
-            let di = depth[i];
-            // Cells at depth ≤ d that are leaves or at depth d cover their part of the index;
-            // deeper cells are reached by the descent. Parents come first, so a later (deeper)
-            // cell overwrites its ancestor's entries.
-            if di > d {
-                continue;
-            }
-            let k = 1usize << (d - di);
-            let (a, b) = origin[i];
-            for r in a * k..(a + 1) * k {
-                index[r * cols + b * k..r * cols + (b + 1) * k].fill(i as u32);
-            }
-        }
-        if index.iter().any(|&e| e as usize >= cells.len()) {
-            return None;
-        }
+        let (d, rows, cols, index) = (fine.depth, fine.rows, fine.cols, fine.index);
         Some(FastPatch {
             kind: patch.kind(),
             gamma_lo: patch.gamma_lo(),

@@ -7,7 +7,7 @@
 //! 8. Integers are unsigned little-endian (`u32`, `u64`), reals IEEE binary64, the tree `i32`.
 
 use crate::format::fnv1a64;
-use crate::surface::{PatchId, PatchKind, Surface};
+use crate::surface::{PatchId, PatchKind, Surface, MAX_INDEX_ENTRIES};
 
 /// The first 8 bytes of an export.
 pub const MAGIC: &[u8; 8] = b"OBLQEVAL";
@@ -16,7 +16,7 @@ pub const VERSION: u32 = 1;
 /// Bytes of the header.
 pub const HEADER_BYTES: usize = 96;
 /// Bytes of one patch record (three follow the header when the export holds the surface).
-pub const PATCH_BYTES: usize = 128;
+pub const PATCH_BYTES: usize = 160;
 /// Bytes of one curve record.
 pub const CURVE_BYTES: usize = 168;
 /// Offset of the checksum field; the checksum covers every byte after it.
@@ -139,6 +139,20 @@ pub fn export(
             put_u64(&mut v, r + 48, tree_at);
             let p_at = push_f64s(&mut v, p.p().iter().copied());
             put_u64(&mut v, r + 56, p_at);
+            if let Some(fine) = p.fine_index(MAX_INDEX_ENTRIES) {
+                put_u32(&mut v, r + 112, fine.depth);
+                align8(&mut v);
+                let at = v.len() as u64;
+                for e in &fine.index {
+                    v.extend_from_slice(&e.to_le_bytes());
+                }
+                put_u64(&mut v, r + 120, at);
+                let cells_at = push_f64s(
+                    &mut v,
+                    fine.cells.iter().flat_map(|c| [c.scale, c.og, c.oc]),
+                );
+                put_u64(&mut v, r + 128, cells_at);
+            }
             if let Some(w) = p.warp() {
                 put_u32(&mut v, r + 44, 1);
                 put_f64(&mut v, r + 64, w.start());

@@ -103,6 +103,46 @@ pub fn stick_scale(gamma: f64) -> f64 {
     }
 }
 
+/// Largest number of entries (4 bytes each) of one patch's fine index: 2¹⁵ = 128 KiB, so that
+/// an index stays in the second-level cache next to the nodes. A patch whose deepest leaves
+/// would need more gets an index at a smaller depth, from which the quadtree descent continues
+/// (`tables/full.h5`: `partial_high` indexed at depth 5 of 9, the others at full depth).
+pub const MAX_INDEX_ENTRIES: usize = 1 << 15;
+
+/// Depth `d` and integer origin of a quadtree cell: `scale = 2^d`, and the cell covers
+/// `[og, og + 1) × [oc, oc + 1)` in units of its own size (root cells have `scale = 1` and the
+/// origin `(a, b)` of step 6 of the rule).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CellOrigin {
+    /// `2^depth`.
+    pub scale: f64,
+    /// Origin along γ, `floor(v_γ·2^depth)` for the points it covers.
+    pub og: f64,
+    /// Origin along `c`.
+    pub oc: f64,
+}
+
+/// A uniform grid at depth `depth` over a patch (`rows = blocks_gamma·2^depth` along γ,
+/// `cols = blocks_coord·2^depth` along `c`), each entry the deepest cell of depth `≤ depth`
+/// that contains it, and every cell's depth and origin. A query at `v = x·blocks` (step 6 of
+/// the rule) reads the entry of `floor(v·2^depth)`; inside a cell the position is
+/// `v·scale − origin`, which equals the rule's repeated `f ← 2f − q` bit for bit (scaling by a
+/// power of two and subtracting an integer below the value are exact), and the rule's descent
+/// continues from there when the cell is split.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FineIndex {
+    /// Depth of the grid.
+    pub depth: u32,
+    /// Entries along γ.
+    pub rows: usize,
+    /// Entries along `c`.
+    pub cols: usize,
+    /// `rows × cols` cell numbers, row-major (γ outer), each `< cells.len()`.
+    pub index: Vec<u32>,
+    /// Every cell of the quadtree, in the order of the tree.
+    pub cells: Vec<CellOrigin>,
+}
+
 /// One patch: `blocks_gamma × blocks_coord` equal root cells in `(γ, c)`, each the root of a
 /// quadtree. A cell is either split into four children of half its size or is a leaf; every leaf
 /// carries a uniform grid of `(m + 1) × (m + 1)` nodes (`m = leaf_intervals`) over its own square,
@@ -664,6 +704,85 @@ impl Patch {
     /// Number of leaves.
     pub fn leaves(&self) -> usize {
         self.p.len() / (self.leaf_intervals + 1).pow(2)
+    }
+
+    /// The fine index of this patch ([`FineIndex`]) with at most `max_entries` entries, or
+    /// `None` for a grid too small for the cubic stencil (`m < 3`) or a tree deeper than 30.
+    pub fn fine_index(&self, max_entries: usize) -> Option<FineIndex> {
+        let (bg, bc, m) = (self.blocks_gamma, self.blocks_coord, self.leaf_intervals);
+        let roots = bg * bc;
+        let n = self.tree.len();
+        if m < 3 || roots == 0 || n < roots || n > u32::MAX as usize {
+            return None;
+        }
+        // Depth and integer origin of every cell (children come after their parents).
+        let mut cells = vec![
+            CellOrigin {
+                scale: 1.0,
+                og: 0.0,
+                oc: 0.0,
+            };
+            n
+        ];
+        let mut depth = vec![0u32; n];
+        let mut origin = vec![(0usize, 0usize); n];
+        for a in 0..bg {
+            for b in 0..bc {
+                origin[a * bc + b] = (a, b);
+            }
+        }
+        let mut max_depth = 0;
+        for i in 0..n {
+            let t = self.tree[i];
+            let (a, b) = origin[i];
+            cells[i] = CellOrigin {
+                scale: f64::from(1u32 << depth[i].min(31)),
+                og: a as f64,
+                oc: b as f64,
+            };
+            max_depth = max_depth.max(depth[i]);
+            if t >= 0 {
+                let first = t as usize;
+                if first <= i || first + 4 > n || depth[i] >= 30 {
+                    return None;
+                }
+                for q in 0..4 {
+                    depth[first + q] = depth[i] + 1;
+                    origin[first + q] = (2 * a + q / 2, 2 * b + q % 2);
+                }
+            }
+        }
+        // The deepest index within the budget.
+        let mut d = max_depth;
+        while d > 0 && ((roots as u128) << (2 * d)) > max_entries as u128 {
+            d -= 1;
+        }
+        let (rows, cols) = (bg << d, bc << d);
+        let mut index = vec![u32::MAX; rows * cols];
+        for i in 0..n {
+            let di = depth[i];
+            // Cells at depth ≤ d cover their part of the index; deeper cells are reached by
+            // the descent. Parents come first, so a later (deeper) cell overwrites its
+            // ancestor's entries.
+            if di > d {
+                continue;
+            }
+            let k = 1usize << (d - di);
+            let (a, b) = origin[i];
+            for r in a * k..(a + 1) * k {
+                index[r * cols + b * k..r * cols + (b + 1) * k].fill(i as u32);
+            }
+        }
+        if index.iter().any(|&e| e as usize >= n) {
+            return None;
+        }
+        Some(FineIndex {
+            depth: d,
+            rows,
+            cols,
+            index,
+            cells,
+        })
     }
 
     /// Depth of every leaf (roots have depth 0), in leaf order.
