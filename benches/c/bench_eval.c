@@ -5,7 +5,7 @@
 
        sweep export tables/full.h5 -o full.oblq --gamma 1.754 --gamma 1.7101671300973298
        cc -std=c99 -O2 -I include -o bench_eval benches/c/bench_eval.c -lm
-       ./bench_eval full.oblq
+       ./bench_eval full.oblq [points.bin]
 
    (1.7101671300973298: gamma of the alumina-on-steel pair of the rebound benchmarks.) Each
    line: name, ns per query (median of 7 runs of CPU time of this thread). Arguments are read
@@ -79,6 +79,7 @@ static unsigned char *read_all(const char *path, size_t *size) {
 int main(int argc, char **argv) {
     enum { MIXED = 4096, RANDOM = 1000000 };
     static double mg[MIXED], ma[MIXED];
+    static oblq_incident3 stream[MIXED];
     double *rg, *ra, p = 0.0;
     size_t size = 0, k;
     unsigned char *data;
@@ -93,8 +94,9 @@ int main(int argc, char **argv) {
     oblq_rebound3 r;
     double gamma;
     int rc;
-    if (argc != 2) {
-        fprintf(stderr, "usage: bench_eval EXPORT (with the curve of gamma = 1.754)\n");
+    if (argc != 2 && argc != 3) {
+        fprintf(stderr, "usage: bench_eval EXPORT [POINTS]  (EXPORT with the curve of gamma = 1.754;\n"
+                        "POINTS: gamma, alpha pairs as little-endian doubles)\n");
         return 2;
     }
     data = read_all(argv[1], &size);
@@ -119,6 +121,19 @@ int main(int argc, char **argv) {
         rg[k] = t.gamma_min + (t.gamma_max - t.gamma_min) * uniform();
         ra[k] = 2.0 * uniform();
     }
+    if (argc == 3) {
+        /* The first 10^5 points of a file of (gamma, alpha) pairs: the same points as the Rust
+           loop p_single of target/release/examples/batch_timing. */
+        size_t np = 0, m;
+        double *pts = (double *)(void *)read_all(argv[2], &np);
+        m = np / 16 < 100000 ? np / 16 : 100000;
+        if (!pts || m == 0) {
+            fprintf(stderr, "bench_eval: %s: no points\n", argv[2]);
+            return 2;
+        }
+        MEASURE("p/points_file", m, oblq_p(&t, pts[2 * i], pts[2 * i + 1], 0, &p); sink = p);
+        free(pts);
+    }
     MEASURE("p/line", 2000000, oblq_p(&t, g_v, a_line, 0, &p); sink = p);
     MEASURE("p/partial", 2000000, oblq_p(&t, g_v, a_partial, 0, &p); sink = p);
     MEASURE("p/stick", 2000000, oblq_p(&t, g_v, a_stick, 0, &p); sink = p);
@@ -135,6 +150,26 @@ int main(int argc, char **argv) {
         printf("rebound: export the curve of gamma = %.17g for the rebound benchmarks\n", gamma);
         return 0;
     }
+    /* 4096 random sphere-sphere incident states of the Rust batch benchmarks
+       (mixed_incidents in crates/lookup/benches/lookup.rs), cycled. */
+    xs_state = 0x2545F4914F6CDD1DULL;
+    for (k = 0; k < MIXED; k++) {
+        double v[15], dn = 0.0;
+        int j;
+        for (j = 0; j < 15; j++) v[j] = uniform() - 0.5;
+        for (j = 0; j < 3; j++) dn += (v[j] - v[6 + j]) * v[12 + j];
+        for (j = 0; j < 3; j++) {
+            stream[k].sphere.v[j] = v[j];
+            stream[k].sphere.w[j] = 400.0 * v[3 + j];
+            stream[k].other.v[j] = v[6 + j];
+            stream[k].other.w[j] = 200.0 * v[9 + j];
+            stream[k].normal[j] = dn < 0.0 ? -v[12 + j] : v[12 + j];
+        }
+    }
+    MEASURE("rebound/stream_prepared", 2000000,
+            oblq_rebound_3d(&t, &pair, &stream[i % MIXED], 0, &r); sink = r.p);
+    MEASURE("rebound/stream_curve", 2000000,
+            oblq_rebound_3d_curve(&c, &pair, &stream[i % MIXED], 0, &r); sink = r.p);
     MEASURE("rebound/spheres_3d_prepared", 2000000,
             s.sphere.v[0] = g_v * 0.5; oblq_rebound_3d(&t, &pair, &s, 0, &r); sink = r.p);
     MEASURE("rebound/spheres_3d_curve", 2000000,
