@@ -714,3 +714,53 @@ fn cpp_collision_operator_agrees_with_the_rust_rebound() {
     assert!(get("energy_balance")[0].abs() < 1e-13, "{text}");
     assert!(text.contains("refused,invalid v_z"), "{text}");
 }
+
+#[test]
+fn c_rebound_example_agrees_with_the_rust_library() {
+    let mut f = vec!["-std=c99"];
+    f.extend(WARNINGS);
+    let exe = compile("gcc", &f, "examples/c/rebound.c", "rebound");
+    let path = export_file("full", false);
+    let out = Command::new(&exe).arg(&path).output().expect("run");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let t = table("full");
+    let p: f64 = text
+        .split("P(1.754, 0.3) = ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .expect("P line");
+    assert_eq!(p.to_bits(), t.p(1.754, 0.3).expect("inside").to_bits());
+    // The reference impact of the benchmarks, through the Rust library.
+    let (pair, contact, s) = oblique_lookup::testing::reference_spheres();
+    let a = t.rebound_3d(&pair, &contact, &s).expect("valid");
+    let b = &a.rebound;
+    let o = b.other.expect("sphere");
+    let want = format!(
+        "sphere 1: v = [{:.9}, {:.9}, {:.9}] m/s, w = [{:.6}, {:.6}, {:.6}] rad/s",
+        b.sphere.velocity[0],
+        b.sphere.velocity[1],
+        b.sphere.velocity[2],
+        b.sphere.spin[0],
+        b.sphere.spin[1],
+        b.sphere.spin[2]
+    );
+    assert!(text.contains(&want), "{text}\nwant: {want}");
+    let want2 = format!(
+        "sphere 2: v = [{:.9}, {:.9}, {:.9}] m/s",
+        o.velocity[0], o.velocity[1], o.velocity[2]
+    );
+    assert!(text.contains(&want2), "{text}\nwant: {want2}");
+    let c: f64 = text
+        .split(", P = ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .expect("rebound P");
+    assert!((c - b.p).abs() < 1e-13, "C {c}, Rust {}", b.p);
+}
