@@ -21,7 +21,7 @@ use oblique_lookup::rebound::{
 };
 use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Prepared, Stiffness};
 use oblique_physics::regimes::{self, Regime};
-use oblique_solver::units::PhysicalImpact;
+use oblique_solver::units::{Groups, PhysicalImpact};
 use oblique_solver::{Accuracy, Method, PhysicsError, Scheme};
 
 create_exception!(
@@ -76,18 +76,26 @@ fn lookup_error(e: LookupError, shape: &[usize]) -> PyErr {
     }
 }
 
-fn row_error(index: usize, shape: &[usize], message: &str) -> PyErr {
+/// `message`, naming the failing row by its index in `shape` (nothing for a scalar call).
+fn at_index(message: String, index: usize, shape: &[usize]) -> String {
     if shape.is_empty() {
-        PyValueError::new_err(message.to_string())
+        message
     } else {
-        PyValueError::new_err(format!("{message} (at index {})", unravel(index, shape)))
+        format!("{message} (at index {})", unravel(index, shape))
     }
 }
 
-fn physics_error(e: PhysicsError) -> PyErr {
+fn row_error(index: usize, shape: &[usize], message: &str) -> PyErr {
+    PyValueError::new_err(at_index(message.to_string(), index, shape))
+}
+
+/// A solver error as a Python exception (a tolerance not reached is a `RuntimeError`, bad input
+/// a `ValueError`), naming the failing row by its index in `shape`.
+fn physics_error(e: PhysicsError, index: usize, shape: &[usize]) -> PyErr {
+    let text = at_index(e.to_string(), index, shape);
     match e {
-        PhysicsError::ToleranceUnreachable { .. } => PyRuntimeError::new_err(e.to_string()),
-        other => PyValueError::new_err(other.to_string()),
+        PhysicsError::ToleranceUnreachable { .. } => PyRuntimeError::new_err(text),
+        _ => PyValueError::new_err(text),
     }
 }
 
@@ -139,28 +147,30 @@ impl<'a> Col<'a> {
     }
 }
 
-/// Fill `out` (rows of `width` values) by `row(i, chunk_of_one_row)` for every row, in
-/// parallel for large inputs, GIL released; the error of the lowest failing row.
+/// Fill `out` (rows of `width` values) by `row(i, that_row)` for every row, `chunk` rows per
+/// parallel task (on the calling thread below two tasks), GIL released; the error of the lowest
+/// failing row.
 fn fill_rows<E: Send>(
     py: Python<'_>,
     out: &mut [f64],
     width: usize,
+    chunk: usize,
     row: impl Fn(usize, &mut [f64]) -> Result<(), E> + Sync + Send,
 ) -> Result<(), (usize, E)> {
     let rows = out.len() / width.max(1);
     py.detach(|| {
         let run = |(k, block): (usize, &mut [f64])| -> Result<(), (usize, E)> {
             for (j, r) in block.chunks_mut(width).enumerate() {
-                let i = k * CHUNK + j;
+                let i = k * chunk + j;
                 row(i, r).map_err(|e| (i, e))?;
             }
             Ok(())
         };
-        if rows < 2 * CHUNK {
-            out.chunks_mut(CHUNK * width).enumerate().try_for_each(run)
+        if rows < 2 * chunk {
+            out.chunks_mut(chunk * width).enumerate().try_for_each(run)
         } else {
             let errors: Vec<(usize, E)> = out
-                .par_chunks_mut(CHUNK * width)
+                .par_chunks_mut(chunk * width)
                 .enumerate()
                 .filter_map(|x| run(x).err())
                 .collect();
@@ -170,6 +180,27 @@ fn fill_rows<E: Send>(
             }
         }
     })
+}
+
+/// A new `(rows, width)` array filled by [`fill_rows`]; the lowest failing row's error as
+/// `error(row, e)`.
+fn new_rows<'py, E: Send>(
+    py: Python<'py>,
+    rows: usize,
+    width: usize,
+    chunk: usize,
+    row: impl Fn(usize, &mut [f64]) -> Result<(), E> + Sync + Send,
+    error: impl FnOnce(usize, E) -> PyErr,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
+    {
+        let mut rw = out.readwrite();
+        let o = rw
+            .as_slice_mut()
+            .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
+        fill_rows(py, o, width, chunk, row).map_err(|(i, e)| error(i, e))?;
+    }
+    Ok(out)
 }
 
 fn slice_mut<'a>(name: &str, a: &'a mut PyReadwriteArray1<'_, f64>) -> PyResult<&'a mut [f64]> {
@@ -327,7 +358,7 @@ impl PyCurve {
         let o = slice_mut("out", &mut out)?;
         same_length("out", o.len(), a.len())?;
         let c = &self.inner;
-        fill_rows(py, o, 1, |i, r| {
+        fill_rows(py, o, 1, CHUNK, |i, r| {
             r[0] = c.p(a[i])?;
             Ok::<(), LookupError>(())
         })
@@ -357,7 +388,7 @@ fn regime_into(
         Col::new("alpha", &alpha, 1, n)?,
     );
     let o = slice_mut("out", &mut out)?;
-    fill_rows(py, o, 1, |i, r| {
+    fill_rows(py, o, 1, CHUNK, |i, r| {
         let (gi, ai) = (g.at(i), a.at(i));
         check_groups(gi, ai)?;
         r[0] = match Regime::of(gi, ai) {
@@ -381,7 +412,7 @@ fn critical_into(
     let n = out.len() / 2;
     let g = Col::new("gamma", &gamma, 1, n)?;
     let o = slice_mut("out", &mut out)?;
-    fill_rows(py, o, 2, |i, r| {
+    fill_rows(py, o, 2, CHUNK, |i, r| {
         let gi = oblique_solver::impact::check_gamma(g.at(i))?;
         r[0] = regimes::alpha_c1(gi);
         r[1] = regimes::alpha_c2(gi);
@@ -402,7 +433,7 @@ fn e_t_into(
     let n = out.len();
     let (p, k) = (Col::new("p", &p, 1, n)?, Col::new("kappa", &kappa, 1, n)?);
     let o = slice_mut("out", &mut out)?;
-    fill_rows(py, o, 1, |i, r| {
+    fill_rows(py, o, 1, CHUNK, |i, r| {
         r[0] = regimes::centre_restitution(p.at(i), k.at(i))?;
         Ok::<(), oblique_physics::InvalidInput>(())
     })
@@ -632,30 +663,28 @@ fn rebound_3d<'py>(
         },
         normal: n.vec(i),
     };
-    let width = REBOUND3.len();
-    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
-    let mut rw = out.readwrite();
-    let o = rw
-        .as_slice_mut()
-        .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
     let t = &table.inner;
-    let result = if s.shared() {
-        // One pair and contact for every row: check them once.
-        let prepared =
-            Prepared::new(&s.pair(0), &s.contact(0)).map_err(|e| lookup_error(e, &[]))?;
-        fill_rows(py, o, width, |i, r| {
-            write3(&t.rebound_3d_prepared(&prepared, &incident(i))?, r);
-            Ok::<(), LookupError>(())
-        })
+    // One pair and contact for every row: check them once.
+    let prepared = if s.shared() {
+        Some(Prepared::new(&s.pair(0), &s.contact(0)).map_err(|e| lookup_error(e, &[]))?)
     } else {
-        fill_rows(py, o, width, |i, r| {
-            write3(&t.rebound_3d(&s.pair(i), &s.contact(i), &incident(i))?, r);
-            Ok::<(), LookupError>(())
-        })
+        None
     };
-    result.map_err(|(i, e)| row_error(i, &shape, &e.to_string()))?;
-    drop(rw);
-    Ok(out)
+    new_rows(
+        py,
+        rows,
+        REBOUND3.len(),
+        CHUNK,
+        |i, r| {
+            let answer = match &prepared {
+                Some(k) => t.rebound_3d_prepared(k, &incident(i))?,
+                None => t.rebound_3d(&s.pair(i), &s.contact(i), &incident(i))?,
+            };
+            write3(&answer, r);
+            Ok::<(), LookupError>(())
+        },
+        |i, e| row_error(i, &shape, &e.to_string()),
+    )
 }
 
 /// Columns of a 2-D rebound row.
@@ -763,20 +792,18 @@ fn rebound_2d<'py>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let s = setup(rows, &sphere, &other, &gamma, &materials, &friction, clamp)?;
     let incident = states(rows, &motion)?;
-    let width = REBOUND2.len();
-    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
-    let mut rw = out.readwrite();
-    let o = rw
-        .as_slice_mut()
-        .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
     let t = &table.inner;
-    fill_rows(py, o, width, |i, r| {
-        write2(&t.rebound(&s.pair(i), &s.contact(i), &incident(i))?, r);
-        Ok::<(), LookupError>(())
-    })
-    .map_err(|(i, e)| row_error(i, &shape, &e.to_string()))?;
-    drop(rw);
-    Ok(out)
+    new_rows(
+        py,
+        rows,
+        REBOUND2.len(),
+        CHUNK,
+        |i, r| {
+            write2(&t.rebound(&s.pair(i), &s.contact(i), &incident(i))?, r);
+            Ok::<(), LookupError>(())
+        },
+        |i, e| row_error(i, &shape, &e.to_string()),
+    )
 }
 
 /// Columns of a groups row.
@@ -791,6 +818,21 @@ const GROUPS: [&str; 9] = [
     "approach_speed",
     "slip_velocity",
 ];
+
+/// A row of [`GROUPS`].
+fn groups_row(g: &Groups) -> [f64; 9] {
+    [
+        g.gamma,
+        g.alpha,
+        g.e_star,
+        g.g_star,
+        g.normal_mass,
+        g.tangential_mass,
+        g.radius,
+        g.approach_speed,
+        g.slip_velocity,
+    ]
+}
 
 /// The impact in physical units of row `i`.
 fn physical(s: &Setup<'_>, incident: &Incident, i: usize) -> PhysicalImpact {
@@ -823,30 +865,17 @@ fn groups<'py>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let s = setup(rows, &sphere, &other, &None, &materials, &friction, false)?;
     let incident = states(rows, &motion)?;
-    let width = GROUPS.len();
-    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
-    let mut rw = out.readwrite();
-    let o = rw
-        .as_slice_mut()
-        .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
-    fill_rows(py, o, width, |i, r| {
-        let g = physical(&s, &incident(i), i).groups()?;
-        r.copy_from_slice(&[
-            g.gamma,
-            g.alpha,
-            g.e_star,
-            g.g_star,
-            g.normal_mass,
-            g.tangential_mass,
-            g.radius,
-            g.approach_speed,
-            g.slip_velocity,
-        ]);
-        Ok::<(), PhysicsError>(())
-    })
-    .map_err(|(i, e)| row_error(i, &shape, &e.to_string()))?;
-    drop(rw);
-    Ok(out)
+    new_rows(
+        py,
+        rows,
+        GROUPS.len(),
+        CHUNK,
+        |i, r| {
+            r.copy_from_slice(&groups_row(&physical(&s, &incident(i), i).groups()?));
+            Ok::<(), PhysicsError>(())
+        },
+        |i, e| physics_error(e, i, &shape),
+    )
 }
 
 /// Columns of an impact row.
@@ -867,54 +896,31 @@ fn impact<'py>(
         Col::new("gamma", &gamma, 1, rows)?,
         Col::new("alpha", &alpha, 1, rows)?,
     );
-    let width = IMPACT.len();
-    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
-    let mut rw = out.readwrite();
-    let o = rw
-        .as_slice_mut()
-        .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
     // One simulation takes 0.05-5 ms: parallel over single rows.
-    let result = py.detach(|| {
-        let errors: Vec<(usize, PhysicsError)> = o
-            .par_chunks_mut(width)
-            .enumerate()
-            .filter_map(|(i, r)| {
-                let sol = oblique_solver::solve(
-                    g.at(i),
-                    a.at(i),
-                    Accuracy::Tolerance(tol),
-                    Scheme::Accurate,
-                    simulate,
-                );
-                match sol {
-                    Ok(s) => {
-                        r.copy_from_slice(&[
-                            s.p,
-                            s.error_estimate,
-                            f64::from(u8::from(s.method == Method::ClosedForm)),
-                            s.resolution.springs as f64,
-                            s.resolution.steps as f64,
-                        ]);
-                        None
-                    }
-                    Err(e) => Some((i, e)),
-                }
-            })
-            .collect();
-        errors.into_iter().min_by_key(|(i, _)| *i)
-    });
-    if let Some((i, e)) = result {
-        if shape.is_empty() {
-            return Err(physics_error(e));
-        }
-        let text = format!("{e} (at index {})", unravel(i, &shape));
-        return Err(match e {
-            PhysicsError::ToleranceUnreachable { .. } => PyRuntimeError::new_err(text),
-            _ => PyValueError::new_err(text),
-        });
-    }
-    drop(rw);
-    Ok(out)
+    new_rows(
+        py,
+        rows,
+        IMPACT.len(),
+        1,
+        |i, r| {
+            let s = oblique_solver::solve(
+                g.at(i),
+                a.at(i),
+                Accuracy::Tolerance(tol),
+                Scheme::Accurate,
+                simulate,
+            )?;
+            r.copy_from_slice(&[
+                s.p,
+                s.error_estimate,
+                f64::from(u8::from(s.method == Method::ClosedForm)),
+                s.resolution.springs as f64,
+                s.resolution.steps as f64,
+            ]);
+            Ok::<(), PhysicsError>(())
+        },
+        |i, e| physics_error(e, i, &shape),
+    )
 }
 
 /// One impact in physical units, simulated to `tol` (2-D, in its plane). Returns a dict.
@@ -932,7 +938,9 @@ fn simulate<'py>(
     let s = setup(1, &sphere, &other, &None, &materials, &friction, false)?;
     let incident = states(1, &motion)?;
     let imp = physical(&s, &incident(0), 0);
-    let out = py.detach(|| imp.solve(tol)).map_err(physics_error)?;
+    let out = py
+        .detach(|| imp.solve(tol))
+        .map_err(|e| physics_error(e, 0, &[]))?;
     let d = PyDict::new(py);
     let st = |s: &State| (s.v_x, s.v_z, s.omega);
     d.set_item("sphere", st(&out.sphere))?;
@@ -944,21 +952,7 @@ fn simulate<'py>(
     d.set_item("max_indentation", out.max_indentation)?;
     d.set_item("springs", out.resolution.springs)?;
     d.set_item("steps", out.resolution.steps)?;
-    let g = &out.groups;
-    d.set_item(
-        "groups",
-        [
-            g.gamma,
-            g.alpha,
-            g.e_star,
-            g.g_star,
-            g.normal_mass,
-            g.tangential_mass,
-            g.radius,
-            g.approach_speed,
-            g.slip_velocity,
-        ],
-    )?;
+    d.set_item("groups", groups_row(&out.groups))?;
     Ok(d)
 }
 
