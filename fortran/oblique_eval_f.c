@@ -184,16 +184,18 @@ int oblqf_curve_p(const void *curve, double alpha, int clamp, double *p) {
     return oblq_curve_p((const oblq_curve *)curve, alpha, clamp, p);
 }
 
+static oblq_body oblqf__body(double mass, double radius, double kappa) {
+    oblq_body b;
+    b.mass = mass;
+    b.radius = radius;
+    b.kappa = kappa;
+    return b;
+}
+
 /* The pair of bodies: sphere 1 on a wall (m2 == 0) or on sphere 2. */
 static int oblqf__pair(oblq_pair *k, double m1, double r1, double kappa1, double m2, double r2,
                        double kappa2, double gamma, double mu) {
-    oblq_body b1, b2;
-    b1.mass = m1;
-    b1.radius = r1;
-    b1.kappa = kappa1;
-    b2.mass = m2;
-    b2.radius = r2;
-    b2.kappa = kappa2;
+    oblq_body b1 = oblqf__body(m1, r1, kappa1), b2 = oblqf__body(m2, r2, kappa2);
     return oblq_pair_init(k, &b1, m2 == 0.0 ? NULL : &b2, gamma, mu);
 }
 
@@ -272,14 +274,8 @@ int oblqf_rebound_3d_curve(const void *curve, double m1, double r1, double kappa
    e = INFINITY. */
 int oblqf_gamma_of(double m1, double r1, double kappa1, double m2, double r2, double kappa2,
                    double e1, double nu1, double e2, double nu2, double *gamma) {
-    oblq_body b1, b2;
+    oblq_body b1 = oblqf__body(m1, r1, kappa1), b2 = oblqf__body(m2, r2, kappa2);
     oblq_material a, b;
-    b1.mass = m1;
-    b1.radius = r1;
-    b1.kappa = kappa1;
-    b2.mass = m2;
-    b2.radius = r2;
-    b2.kappa = kappa2;
     a.youngs_modulus = e1;
     a.poisson_ratio = nu1;
     b.youngs_modulus = e2;

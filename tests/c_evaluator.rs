@@ -5,12 +5,13 @@
 //! clang (scripts/setup.sh installs clang; a missing compiler fails the test).
 
 mod common;
+mod evaluator;
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::sync::OnceLock;
 
+use evaluator::{random_body, random_impact, run_ok};
 use oblique_lookup::rebound::{Body, Incident, Incident3, Motion3, Pair, State};
 use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
 use oblique_physics::regimes::{alpha_c1, alpha_c2};
@@ -101,30 +102,6 @@ fn export_file(name: &str, curves_only: bool) -> PathBuf {
     path
 }
 
-fn run_with_input(exe: &Path, args: &[&str], input: &str) -> String {
-    let mut child = Command::new(exe)
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn");
-    let mut stdin = child.stdin.take().expect("stdin");
-    let input = input.to_owned();
-    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
-    let out = child.wait_with_output().expect("wait");
-    let written = writer.join().expect("writer");
-    assert!(
-        out.status.success(),
-        "{} {args:?}: {}\n{}",
-        exe.display(),
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    written.expect("write stdin");
-    String::from_utf8(out.stdout).expect("utf-8")
-}
-
 /// Random points over the domain, with α = 0, ∞ and the critical curves in the mix.
 fn points(n: usize, seed: u64, g_lo: f64, g_hi: f64) -> Vec<(f64, f64)> {
     let mut r = SplitMix(seed);
@@ -195,7 +172,7 @@ fn query_example_gives_the_bits_of_the_rust_rule_on_a_million_points() {
         let pts = points(n, 7, s.gamma_min(), s.gamma_max());
         let input: String = pts.iter().map(|(g, a)| format!("{g:?},{a:?}\n")).collect();
         let path = export_file(name, false);
-        let out = run_with_input(&query, &[path.to_str().expect("path")], &input);
+        let out = run_ok(&query, &[path.to_str().expect("path")], &input);
         let mut differ = 0;
         let mut lines = 0;
         for ((g, a), line) in pts.iter().zip(out.lines()) {
@@ -225,7 +202,7 @@ fn clamp_and_refusals_of_queries_match_the_rust_rule() {
     let pts = points(20_000, 9, 0.5 * s.gamma_min(), 1.2 * s.gamma_max());
     let input: String = pts.iter().map(|(g, a)| format!("{g:?} {a:?}\n")).collect();
     for clamp in [0, 1] {
-        let out = run_with_input(
+        let out = run_ok(
             gcc_driver(),
             &["p", path.to_str().expect("path"), &clamp.to_string()],
             &input,
@@ -259,7 +236,7 @@ fn clamp_and_refusals_of_queries_match_the_rust_rule() {
         );
     }
     // Invalid arguments, each with its code.
-    let out = run_with_input(
+    let out = run_ok(
         gcc_driver(),
         &["p", path.to_str().expect("path"), "0"],
         "nan 0.5\n-1 0.5\ninf 0.5\n0 0.5\n1.5 -0.1\n1.5 nan\n",
@@ -286,7 +263,7 @@ fn curves_give_the_bits_of_the_rust_curves() {
                 })
                 .collect();
             let input: String = alphas.iter().map(|a| format!("{a:?}\n")).collect();
-            let out = run_with_input(
+            let out = run_ok(
                 gcc_driver(),
                 &["curve", path.to_str().expect("path"), &i.to_string(), "0"],
                 &input,
@@ -301,7 +278,7 @@ fn curves_give_the_bits_of_the_rust_curves() {
         }
         // A curves-only export refuses P at any gamma above the line.
         if curves_only {
-            let out = run_with_input(
+            let out = run_ok(
                 gcc_driver(),
                 &["p", path.to_str().expect("path"), "0"],
                 "1.5 1\n1.5 0.01\n",
@@ -314,22 +291,6 @@ fn curves_give_the_bits_of_the_rust_curves() {
     }
 }
 
-fn body(r: &mut SplitMix) -> Body {
-    Body {
-        mass: 1e-4 + 1e-2 * r.uniform(),
-        radius: 1e-3 + 1e-2 * r.uniform(),
-        kappa: 0.2 + 0.6 * r.uniform(),
-    }
-}
-
-fn vec3(r: &mut SplitMix, scale: f64) -> [f64; 3] {
-    [
-        scale * (2.0 * r.uniform() - 1.0),
-        scale * (2.0 * r.uniform() - 1.0),
-        scale * (2.0 * r.uniform() - 1.0),
-    ]
-}
-
 #[test]
 fn rebounds_agree_with_the_rust_library_and_conserve_momentum_and_energy() {
     let t = table("full");
@@ -338,8 +299,8 @@ fn rebounds_agree_with_the_rust_library_and_conserve_momentum_and_energy() {
     for case in 0..24 {
         let wall = case % 3 == 0;
         let use_curve = case % 2 == 1;
-        let b1 = body(&mut r);
-        let b2 = body(&mut r);
+        let b1 = random_body(&mut r);
+        let b2 = random_body(&mut r);
         let pair = Pair {
             sphere: b1,
             other: (!wall).then_some(b2),
@@ -355,28 +316,7 @@ fn rebounds_agree_with_the_rust_library_and_conserve_momentum_and_energy() {
         let curve = t.curve(gamma, OutOfDomain::Error).expect("curve");
         let mut incidents = Vec::new();
         while incidents.len() < 500 {
-            let n = vec3(&mut r, 1.0);
-            let s = Incident3 {
-                sphere: Motion3 {
-                    velocity: vec3(&mut r, 3.0),
-                    spin: vec3(&mut r, 500.0),
-                },
-                other: if wall {
-                    Motion3::default()
-                } else {
-                    Motion3 {
-                        velocity: vec3(&mut r, 3.0),
-                        spin: vec3(&mut r, 500.0),
-                    }
-                },
-                normal: n,
-            };
-            let d: Vec<f64> = (0..3)
-                .map(|k| s.sphere.velocity[k] - s.other.velocity[k])
-                .collect();
-            if d[0] * n[0] + d[1] * n[1] + d[2] * n[2] > 1e-3 {
-                incidents.push(s);
-            }
+            incidents.extend(random_impact(&mut r, wall));
         }
         let input: String = incidents
             .iter()
@@ -411,7 +351,7 @@ fn rebounds_agree_with_the_rust_library_and_conserve_momentum_and_energy() {
         ]
         .to_vec();
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
-        let out = run_with_input(gcc_driver(), &args, &input);
+        let out = run_ok(gcc_driver(), &args, &input);
         for (s, line) in incidents.iter().zip(out.lines()) {
             let c = parse_line(line);
             let a = if use_curve {
@@ -470,8 +410,8 @@ fn rebound_2d_agrees_with_the_rust_algebra() {
     let path = export_file("full", false);
     let mut r = SplitMix(5);
     for wall in [true, false] {
-        let b1 = body(&mut r);
-        let b2 = body(&mut r);
+        let b1 = random_body(&mut r);
+        let b2 = random_body(&mut r);
         let pair = Pair {
             sphere: b1,
             other: (!wall).then_some(b2),
@@ -525,7 +465,7 @@ fn rebound_2d_agrees_with_the_rust_algebra() {
             "0.3".into(),
         ];
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
-        let out = run_with_input(gcc_driver(), &args, &input);
+        let out = run_ok(gcc_driver(), &args, &input);
         for (s, line) in states.iter().zip(out.lines()) {
             let c = parse_line(line);
             let a = t.rebound(&pair, &contact, s).expect("valid");
@@ -620,7 +560,7 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
     let path = export_file("full", false);
     let pts = points(20_000, 4, 0.1, 3.5);
     let input: String = pts.iter().map(|(g, a)| format!("{g:?} {a:?}\n")).collect();
-    let out = run_with_input(&exe, &["p", path.to_str().expect("path"), "0"], &input);
+    let out = run_ok(&exe, &["p", path.to_str().expect("path"), "0"], &input);
     assert_eq!(out.lines().count(), pts.len());
 }
 

@@ -7,13 +7,14 @@
 //! the test (scripts/test installs gfortran).
 
 mod common;
+mod evaluator;
 
 use std::collections::BTreeMap;
-use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Command;
 use std::sync::OnceLock;
 
+use evaluator::{random_body, random_impact, run, run_ok};
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
 use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
 use oblique_physics::sample::SplitMix;
@@ -154,35 +155,6 @@ fn build(tag: &str, extra: &[&str]) -> (PathBuf, PathBuf) {
         exes.push(exe);
     }
     (exes[0].clone(), exes[1].clone())
-}
-
-fn run(exe: &Path, args: &[&str], input: &str) -> Output {
-    let mut child = Command::new(exe)
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn");
-    let mut stdin = child.stdin.take().expect("stdin");
-    let input = input.to_owned();
-    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
-    let out = child.wait_with_output().expect("wait");
-    writer.join().expect("writer").expect("write stdin");
-    out
-}
-
-/// Run and require success; stdout.
-fn run_ok(exe: &Path, args: &[&str], input: &str) -> String {
-    let out = run(exe, args, input);
-    assert!(
-        out.status.success(),
-        "{} {args:?}: {}\n{}",
-        exe.display(),
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("utf-8")
 }
 
 fn num(s: &str) -> f64 {
@@ -608,44 +580,13 @@ fn module_answers_points_curves_and_rebounds_like_the_rust_library() {
     }
     input += "cp -1 0\n";
     // Rebounds: spheres on walls and on spheres, P from the table and from the curve.
-    let body = |r: &mut SplitMix| Body {
-        mass: 1e-4 + 1e-2 * r.uniform(),
-        radius: 1e-3 + 1e-2 * r.uniform(),
-        kappa: 0.2 + 0.6 * r.uniform(),
-    };
-    let vec3 = |r: &mut SplitMix, scale: f64| -> [f64; 3] {
-        [
-            scale * (2.0 * r.uniform() - 1.0),
-            scale * (2.0 * r.uniform() - 1.0),
-            scale * (2.0 * r.uniform() - 1.0),
-        ]
-    };
     let mut cases = Vec::new();
     while cases.len() < 400 {
         let wall = cases.len() % 3 == 0;
-        let b1 = body(&mut r);
-        let b2 = body(&mut r);
+        let b1 = random_body(&mut r);
+        let b2 = random_body(&mut r);
         let mu = 0.05 + r.uniform();
-        let n = vec3(&mut r, 1.0);
-        let inc = Incident3 {
-            sphere: Motion3 {
-                velocity: vec3(&mut r, 3.0),
-                spin: vec3(&mut r, 500.0),
-            },
-            other: if wall {
-                Motion3::default()
-            } else {
-                Motion3 {
-                    velocity: vec3(&mut r, 3.0),
-                    spin: vec3(&mut r, 500.0),
-                }
-            },
-            normal: n,
-        };
-        let d: Vec<f64> = (0..3)
-            .map(|k| inc.sphere.velocity[k] - inc.other.velocity[k])
-            .collect();
-        if d[0] * n[0] + d[1] * n[1] + d[2] * n[2] > 1e-3 {
+        if let Some(inc) = random_impact(&mut r, wall) {
             let gamma = s.gamma_min() + (s.gamma_max() - s.gamma_min()) * r.uniform();
             cases.push((wall, b1, b2, gamma, mu, inc, cases.len() % 2 == 1));
         }
