@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use evaluator::{random_body, random_impact, run_ok};
+use evaluator::{random_body, random_impact, rebound_fields, run_ok};
 use oblique_lookup::rebound::{Body, Incident, Incident3, Motion3, Pair, State};
 use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
 use oblique_physics::regimes::{alpha_c1, alpha_c2};
@@ -360,14 +360,7 @@ fn rebounds_agree_with_the_rust_library_and_conserve_momentum_and_energy() {
                 t.rebound_3d_prepared(&prepared, s)
             }
             .expect("valid impact");
-            let b = &a.rebound;
-            let o = b.other.unwrap_or_default();
-            let want: Vec<f64> = [b.sphere.velocity, b.sphere.spin, o.velocity, o.spin]
-                .iter()
-                .flatten()
-                .copied()
-                .chain([b.p, b.e_t, b.energy_lost, a.alpha, b.slip_before])
-                .collect();
+            let want = rebound_fields(&a);
             for (k, (x, y)) in c.iter().zip(&want).enumerate() {
                 assert!(
                     x.to_bits() == y.to_bits() || (x - y).abs() <= 1e-13 * (1.0 + y.abs()),
@@ -576,13 +569,7 @@ fn cpp_collision_operator_agrees_with_the_rust_rebound() {
         "collision_clang",
     );
     let path = export_file("full", false);
-    let out = Command::new(&exe).arg(&path).output().expect("run");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let text = run_ok(&exe, &[path.to_str().expect("path")], "");
     let get = |key: &str| -> Vec<f64> {
         let line = text
             .lines()
@@ -661,13 +648,7 @@ fn c_rebound_example_agrees_with_the_rust_library() {
     f.extend(WARNINGS);
     let exe = compile("gcc", &f, "examples/c/rebound.c", "rebound");
     let path = export_file("full", false);
-    let out = Command::new(&exe).arg(&path).output().expect("run");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let text = run_ok(&exe, &[path.to_str().expect("path")], "");
     let t = table("full");
     let p: f64 = text
         .split("P(1.754, 0.3) = ")

@@ -9,7 +9,8 @@ use std::io::Write;
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-use oblique_lookup::rebound::{Body, Incident3, Motion3};
+use oblique_lookup::rebound::{Body, Incident3, Motion3, Rebound3};
+use oblique_lookup::Answer;
 use oblique_physics::sample::SplitMix;
 
 /// Run `exe` with `args`, `input` on its standard input. A program that exits early may leave
@@ -89,4 +90,17 @@ pub fn random_impact(r: &mut SplitMix, wall: bool) -> Option<Incident3> {
         .map(|k| s.sphere.velocity[k] - s.other.velocity[k])
         .collect();
     (d[0] * n[0] + d[1] * n[1] + d[2] * n[2] > 1e-3).then_some(s)
+}
+
+/// The fields of a 3-D rebound the C and Fortran programs print, in their order: sphere 1's
+/// velocity and spin, sphere 2's (zero for a wall), P, e_t, the energy lost, α, `|u0|`.
+pub fn rebound_fields(a: &Answer<Rebound3>) -> Vec<f64> {
+    let b = &a.rebound;
+    let o = b.other.unwrap_or_default();
+    [b.sphere.velocity, b.sphere.spin, o.velocity, o.spin]
+        .iter()
+        .flatten()
+        .copied()
+        .chain([b.p, b.e_t, b.energy_lost, a.alpha, b.slip_before])
+        .collect()
 }
