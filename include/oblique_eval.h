@@ -920,15 +920,11 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
     for (i = 0; i < 3; i++) u[i] = c1[i] - c2[i];
     oblq__axpy(u, -oblq__dot(u, n), n, u_t);
     slip = sqrt(oblq__dot(u_t, u_t));
-    if (k->wall) {
-        v0 = oblq__dot(m1->v, n);
-    } else {
-        for (i = 0; i < 3; i++) d[i] = m1->v[i] - m2->v[i];
-        v0 = oblq__dot(d, n);
-    }
+    /* The relative centre velocity (sphere 1's own for a wall, whose motion is zero). */
+    for (i = 0; i < 3; i++) d[i] = m1->v[i] - m2->v[i];
+    v0 = oblq__dot(d, n);
     if (!(v0 > 0.0 && v0 < INFINITY)) return OBLQ_E_APPROACH;
     if (!(slip < INFINITY)) return OBLQ_E_MOTION;
-    for (i = 0; i < 3; i++) d[i] = m1->v[i] - m2->v[i];
     oblq__axpy(d, -oblq__dot(d, n), n, w0);
     if (slip > 0.0) {
         for (i = 0; i < 3; i++) tg[i] = (1.0 / slip) * u_t[i];
