@@ -8,6 +8,7 @@ pub mod kinks;
 pub mod merge;
 pub mod plot;
 pub mod query;
+pub mod reference;
 pub mod run;
 pub mod scene;
 pub mod verify;

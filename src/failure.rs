@@ -134,6 +134,7 @@ user_fixable!(
     oblique_plot::PlotError,
     oblique_plot::figures::FigureError,
     oblique_study::scene::SceneError,
+    oblique_study::reference::ReferenceError,
 );
 
 /// The error and its causes on one line, each cause once: a library error whose message

@@ -160,6 +160,20 @@ endian, versioned, FNV-1a checksum) is documented in docs/export-format.md. A cu
 same P as the whole table to about 1e-15 in a few KB; gamma of a pair of materials:\n\
 sqrt((m*/m_t) G*/E*) (sweep --help).")]
     Export(cmd::export::ExportArgs),
+    /// Exact references for the oblique-impact tests DEM codes verify themselves against
+    /// (Chung & Ooi 1-8, MFIX DEM05, Thornton, seed 000): CSVs, figures, closed-form checks.
+    #[command(after_help = "Examples:\n  \
+sweep reference all -o reference/                  # every suite, a few seconds\n  \
+sweep reference chung-ooi -o out/ --direct         # two-body simulation in SI units, no mapping\n  \
+sweep reference mfix-dem05 --table tables/full.h5  # P from the table\n  \
+sweep reference all -o docs/reference --check      # are the shipped files up to date?\n\n\
+Writes, per suite, OUTPUT/SUITE/TEST.csv and TEST.png for each test, TEST_measured.csv where\n\
+the suite publishes measured points, and closed_form_checks.csv; prints the checks (Hertz\n\
+contact time, peak overlap and force; the gross-slip line P = 1 - 7 alpha; the rolling state;\n\
+the no-slip limit) and the RMS difference to measured data. Every quantity q has a column\n\
+q_err, its error bound. Exit status 1 if an exact check fails (or, with --check, a file differs).\n\
+Suites, parameters, conventions and how to compare a DEM code: docs/reference.md.")]
+    Reference(cmd::reference::ReferenceArgs),
 }
 
 /// Die quietly when the reader of our output goes away (`sweep query ... | head`), like other
@@ -195,6 +209,7 @@ fn main() -> ExitCode {
         Command::Verify(a) => verify_cmd::run(a),
         Command::Kinks(a) => cmd::kinks::run(a),
         Command::Export(a) => cmd::export::run(a),
+        Command::Reference(a) => cmd::reference::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

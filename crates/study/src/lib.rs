@@ -3,4 +3,5 @@
 //! solver's accuracy against its cost ([`accuracy`]).
 
 pub mod accuracy;
+pub mod reference;
 pub mod scene;

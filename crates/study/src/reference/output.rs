@@ -1,0 +1,551 @@
+//! A computed suite as files: one CSV and one figure per test (normal tests add their force
+//! history), the measured comparison where a suite publishes data, and the closed-form checks.
+//!
+//! CSVs start with `#` comment lines (title, source, what lies outside the elastic model, how
+//! the numbers were computed, the conventions), then one header line. Every computed quantity
+//! `q` is followed by `q_err`, its error bound. A value that does not exist for a case (a ratio
+//! to a zero incident velocity, `P` of a pure normal impact) is an empty field.
+
+use oblique_plot::{Figure, Legend, Panel, Series, Style};
+
+use super::columns::{self, Quantity};
+use super::eval::{self, Method, NormalOutcome, ObliqueResult, Outcome};
+use super::measured::Measured;
+use super::spec::{Case, Convention, NormalTest, ObliqueTest, Setup};
+use super::{Check, ReferenceError, SuiteResult, TestResult};
+use crate::scene::csv::num;
+
+/// One output file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Content {
+    /// CSV text.
+    Csv(String),
+    /// A figure (written as PNG).
+    Figure(Figure),
+}
+
+/// A file of a suite's output: its name inside the suite's folder and its content.
+pub type File = (String, Content);
+
+const COLORS: [(u8, u8, u8); 6] = [
+    (31, 90, 180),
+    (230, 130, 20),
+    (150, 70, 170),
+    (0, 150, 150),
+    (140, 90, 40),
+    (40, 40, 40),
+];
+const GROSS_SLIP: (u8, u8, u8) = (200, 50, 40);
+const RIGID: (u8, u8, u8) = (40, 150, 70);
+const MEASURED: (u8, u8, u8) = (0, 0, 0);
+
+fn cell(v: f64) -> String {
+    if v.is_finite() {
+        num(v)
+    } else {
+        String::new()
+    }
+}
+
+fn comments(lines: &[String]) -> String {
+    lines.iter().map(|l| format!("# {l}\n")).collect()
+}
+
+/// `(value, error)` of a quantity, empty where undefined.
+fn pair_cells(v: (f64, f64)) -> [String; 2] {
+    if v.0.is_finite() {
+        [num(v.0), num(v.1)]
+    } else {
+        [String::new(), String::new()]
+    }
+}
+
+fn describe_setup(s: &Setup) -> String {
+    let b = s.sphere;
+    let target = match s.target {
+        super::spec::Target::Wall(m) if m.youngs_modulus.is_infinite() => "a rigid plane".into(),
+        super::spec::Target::Wall(m) => format!(
+            "a {} wall (E = {:e} Pa, nu = {})",
+            m.name, m.youngs_modulus, m.poisson_ratio
+        ),
+        super::spec::Target::Sphere(o) => format!(
+            "a {} sphere (R = {} m, E = {:e} Pa, nu = {}, rho = {} kg/m^3)",
+            o.material.name,
+            o.radius,
+            o.material.youngs_modulus,
+            o.material.poisson_ratio,
+            o.material.density
+        ),
+    };
+    format!(
+        "{}: {} sphere R = {} m, E = {:e} Pa, nu = {}, rho = {} kg/m^3, on {target}, mu = {}",
+        s.label,
+        b.material.name,
+        b.radius,
+        b.material.youngs_modulus,
+        b.material.poisson_ratio,
+        b.material.density,
+        s.friction
+    )
+}
+
+/// Measured points against the model at the same angle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredRow {
+    /// The quantity's column.
+    pub column: &'static str,
+    /// Incidence angle from the normal (°).
+    pub angle_deg: f64,
+    /// The measured value.
+    pub measured: f64,
+    /// The model's value and its error bound.
+    pub model: (f64, f64),
+    /// Where the point is published.
+    pub source: &'static str,
+}
+
+/// The model at every measured angle (the test's first setup, its speed).
+pub fn measured_rows(
+    test: &ObliqueTest,
+    measured: &Measured,
+    method: &Method,
+) -> Result<Vec<MeasuredRow>, ReferenceError> {
+    let (setup, cases) = &test.setups[0];
+    let first = cases[0].incident.sphere;
+    let speed = first.v_x.hypot(first.v_z);
+    let qs = columns::quantities(test.convention, setup.sphere_sphere());
+    let mut rows = Vec::new();
+    for series in measured.series {
+        let Some(q) = qs.iter().find(|q| q.name == series.column) else {
+            continue;
+        };
+        for &(angle, value) in series.points {
+            let t = angle.to_radians();
+            let case = Case {
+                x: angle,
+                incident: oblique_lookup::rebound::Incident {
+                    sphere: oblique_lookup::rebound::State {
+                        v_x: speed * t.sin(),
+                        v_z: speed * t.cos(),
+                        omega: 0.0,
+                    },
+                    other: Default::default(),
+                },
+            };
+            let o = eval::outcome(setup, &case, method)?;
+            rows.push(MeasuredRow {
+                column: series.column,
+                angle_deg: angle,
+                measured: value,
+                model: columns::value(q, setup, &o),
+                source: series.source,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// RMS of model − measured per column: `(column, rms, n)`.
+pub fn rms(rows: &[MeasuredRow]) -> Vec<(&'static str, f64, usize)> {
+    let mut out: Vec<(&'static str, f64, usize)> = Vec::new();
+    for r in rows {
+        let d2 = (r.model.0 - r.measured).powi(2);
+        match out.iter_mut().find(|(c, _, _)| *c == r.column) {
+            Some(e) => {
+                e.1 += d2;
+                e.2 += 1;
+            }
+            None => out.push((r.column, d2, 1)),
+        }
+    }
+    for e in &mut out {
+        e.1 = (e.1 / e.2 as f64).sqrt();
+    }
+    out
+}
+
+fn oblique_csv(test: &ObliqueTest, res: &ObliqueResult, method: &str) -> String {
+    let sphere_sphere = res.setups.iter().any(|(s, _)| s.sphere_sphere());
+    let qs = columns::quantities(test.convention, sphere_sphere);
+    let mut head = vec![
+        test.title.to_string(),
+        format!("source: {}", test.source),
+        format!("model: {}", test.elastic_note),
+        format!("computed: {method}"),
+    ];
+    for (s, _) in &res.setups {
+        head.push(describe_setup(s));
+    }
+    head.push(
+        "conventions: angles in degrees from the normal; omega signed so that sphere 1's \
+         contact point moves at v_x + R omega (physics.md); NAME_err is the error bound of NAME"
+            .into(),
+    );
+    let mut text = comments(&head);
+    let mut header = vec![
+        "material".to_string(),
+        test.x_name.to_string(),
+        "gamma".into(),
+        "alpha".into(),
+        "regime".into(),
+        "method".into(),
+    ];
+    for q in &qs {
+        header.push(q.name.into());
+        header.push(format!("{}_err", q.name));
+    }
+    text.push_str(&header.join(","));
+    text.push('\n');
+    for (setup, outs) in &res.setups {
+        for o in outs {
+            let mut row = vec![
+                setup.label.to_string(),
+                num(o.case.x),
+                num(o.gamma),
+                num(o.alpha),
+                o.regime.map_or("normal-impact", |r| r.name()).to_string(),
+                o.how.to_string(),
+            ];
+            for q in &qs {
+                row.extend(pair_cells(columns::value(q, setup, o)));
+            }
+            text.push_str(&row.join(","));
+            text.push('\n');
+        }
+    }
+    text
+}
+
+fn measured_csv(test: &ObliqueTest, m: &Measured, rows: &[MeasuredRow]) -> String {
+    let mut text = comments(&[
+        format!("{}: measured points against the model", test.title),
+        format!("experiment: {}", m.experiment),
+        format!(
+            "model: the test's first setup ({}) at each measured angle",
+            test.setups[0].0.label
+        ),
+    ]);
+    text.push_str("quantity,angle_deg,measured,model,model_err,model_minus_measured,source\n");
+    for r in rows {
+        text.push_str(&format!(
+            "{},{},{},{},{},{},{}\n",
+            r.column,
+            num(r.angle_deg),
+            num(r.measured),
+            cell(r.model.0),
+            cell(r.model.1),
+            cell(r.model.0 - r.measured),
+            r.source
+        ));
+    }
+    text
+}
+
+fn normal_csv(test: &NormalTest, outs: &[NormalOutcome], method: &str) -> String {
+    let mut head = vec![
+        test.title.to_string(),
+        format!("source: {}", test.source),
+        format!("model: {}", test.elastic_note),
+        format!(
+            "computed: Hertz's closed form (exact for the model), and the time-resolved normal \
+             motion ({}); NAME_err is the change of the simulated value from half the time steps",
+            if method.starts_with("direct") {
+                "direct simulation"
+            } else {
+                "RK4 on 4096 steps per contact"
+            }
+        ),
+    ];
+    for o in outs {
+        head.push(describe_setup(&o.setup));
+    }
+    let mut text = comments(&head);
+    text.push_str(
+        "material,v_rel_m_s,e_star_pa,r_star_m,m_star_kg,\
+         contact_time_s,max_overlap_m,peak_force_n,\
+         contact_time_sim_s,contact_time_sim_err,max_overlap_sim_m,max_overlap_sim_err,\
+         peak_force_sim_n,peak_force_sim_err\n",
+    );
+    for o in outs {
+        let cells = [
+            o.setup.label.to_string(),
+            num(o.approach_speed),
+            num(o.effective.0),
+            num(o.effective.1),
+            num(o.effective.2),
+            num(o.hertz.contact_time),
+            num(o.hertz.max_overlap),
+            num(o.hertz.peak_force),
+            num(o.simulated.contact_time),
+            num(o.simulated_error.contact_time),
+            num(o.simulated.max_overlap),
+            num(o.simulated_error.max_overlap),
+            num(o.simulated.peak_force),
+            num(o.simulated_error.peak_force),
+        ];
+        text.push_str(&cells.join(","));
+        text.push('\n');
+    }
+    text
+}
+
+fn history_csv(test: &NormalTest, outs: &[NormalOutcome]) -> String {
+    let mut text = comments(&[
+        format!("{}: force history", test.title),
+        "time-resolved Hertz normal motion (RK4, 4096 steps per contact, every 32nd node); \
+         force_err_n is the change from half the steps"
+            .into(),
+    ]);
+    text.push_str("material,time_s,overlap_m,force_n,force_err_n\n");
+    for o in outs {
+        for &(t, d, f, e) in &o.history {
+            text.push_str(&format!(
+                "{},{},{},{},{}\n",
+                o.setup.label,
+                num(t),
+                num(d),
+                num(f),
+                num(e)
+            ));
+        }
+    }
+    text
+}
+
+fn checks_csv(checks: &[Check]) -> String {
+    let mut text = comments(&[
+        "closed-form checks: each closed form beside the computed value".into(),
+        "exact = false: a published fit, shown for comparison (bound: its accuracy)".into(),
+    ]);
+    text.push_str("test,check,closed_form,computed,difference,bound,exact,holds\n");
+    for c in checks {
+        text.push_str(&format!(
+            "{},{},{},{},{},{},{},{}\n",
+            c.test,
+            c.name,
+            num(c.closed_form),
+            num(c.computed),
+            num(c.difference()),
+            num(c.bound),
+            c.exact,
+            c.holds()
+        ));
+    }
+    text
+}
+
+fn series(label: String, points: Vec<(f64, f64)>, style: Style, color: (u8, u8, u8)) -> Series {
+    Series {
+        label,
+        points,
+        style,
+        color,
+        sets_range: !matches!(style, Style::Dashed | Style::Dotted),
+    }
+}
+
+fn curve(
+    q: &Quantity,
+    setup: &Setup,
+    outs: &[Outcome],
+    p: impl Fn(&Outcome) -> Option<f64>,
+) -> Vec<(f64, f64)> {
+    outs.iter()
+        .map(|o| {
+            let y = match p(o) {
+                Some(p) => columns::at_p(q, setup, o, p),
+                None => columns::value(q, setup, o).0,
+            };
+            (o.case.x, y)
+        })
+        .collect()
+}
+
+fn oblique_figure(
+    test: &ObliqueTest,
+    res: &ObliqueResult,
+    measured: &[MeasuredRow],
+    command: &str,
+    method: &str,
+) -> Figure {
+    let sphere_sphere = res.setups.iter().any(|(s, _)| s.sphere_sphere());
+    let qs = columns::quantities(test.convention, sphere_sphere);
+    let n = columns::plotted(test.convention);
+    let x_is_angle = test.x_name == "angle_deg";
+    let panels = qs
+        .iter()
+        .take(n)
+        .map(|q| {
+            let mut s = Vec::new();
+            for (i, (setup, outs)) in res.setups.iter().enumerate() {
+                s.push(series(
+                    setup.label.to_string(),
+                    curve(q, setup, outs, |_| None),
+                    Style::LineMarkers,
+                    COLORS[i % COLORS.len()],
+                ));
+            }
+            if test.convention != Convention::ChungOoiNoSlip {
+                let (setup, outs) = &res.setups[0];
+                let gross = |o: &Outcome| o.alpha.is_finite().then_some(1.0 - 7.0 * o.alpha);
+                s.push(series(
+                    "gross slip, P = 1 − 7α".into(),
+                    curve(q, setup, outs, gross),
+                    Style::Dashed,
+                    GROSS_SLIP,
+                ));
+                s.push(series(
+                    "rigid body, P = max(1 − 7α, 0)".into(),
+                    curve(q, setup, outs, |o| {
+                        o.alpha.is_finite().then(|| (1.0 - 7.0 * o.alpha).max(0.0))
+                    }),
+                    Style::Dotted,
+                    RIGID,
+                ));
+            }
+            let pts: Vec<(f64, f64)> = measured
+                .iter()
+                .filter(|r| r.column == q.name && x_is_angle)
+                .map(|r| (r.angle_deg, r.measured))
+                .collect();
+            if !pts.is_empty() {
+                s.push(series(
+                    "measured (Kharaz et al. 2001)".into(),
+                    pts,
+                    Style::Markers,
+                    MEASURED,
+                ));
+            }
+            Panel {
+                y_label: q.label.to_string(),
+                series: s,
+                vlines: Vec::new(),
+                y_range: None,
+                legend: Legend::LowerRight,
+            }
+        })
+        .collect();
+    let caption = vec![
+        format!("model: {}", test.elastic_note),
+        format!("computed: {method}"),
+        format!("$ {command}"),
+    ];
+    Figure {
+        title: test.title.to_string(),
+        subtitle: test.source.split(';').next().unwrap_or("").to_string(),
+        x_label: test.x_label.to_string(),
+        panels,
+        caption,
+        size: (900, 300 + 260 * n as u32),
+    }
+}
+
+fn normal_figure(test: &NormalTest, outs: &[NormalOutcome], command: &str) -> Figure {
+    let force = outs
+        .iter()
+        .enumerate()
+        .map(|(i, o)| {
+            series(
+                format!(
+                    "{}: t_c = {:.4} µs, F_max = {:.4} kN",
+                    o.setup.label,
+                    o.hertz.contact_time * 1e6,
+                    o.hertz.peak_force * 1e-3
+                ),
+                o.history.iter().map(|h| (h.0 * 1e6, h.2 * 1e-3)).collect(),
+                Style::Line,
+                COLORS[i % COLORS.len()],
+            )
+        })
+        .collect();
+    let overlap = outs
+        .iter()
+        .enumerate()
+        .map(|(i, o)| {
+            series(
+                format!(
+                    "{}: δ_max = {:.4} µm",
+                    o.setup.label,
+                    o.hertz.max_overlap * 1e6
+                ),
+                o.history.iter().map(|h| (h.0 * 1e6, h.1 * 1e6)).collect(),
+                Style::Line,
+                COLORS[i % COLORS.len()],
+            )
+        })
+        .collect();
+    Figure {
+        title: test.title.to_string(),
+        subtitle: test.elastic_note.to_string(),
+        x_label: "time t (µs)".into(),
+        panels: vec![
+            Panel {
+                y_label: "normal force F (kN)".into(),
+                series: force,
+                vlines: Vec::new(),
+                y_range: None,
+                legend: Legend::LowerRight,
+            },
+            Panel {
+                y_label: "overlap δ (µm)".into(),
+                series: overlap,
+                vlines: Vec::new(),
+                y_range: None,
+                legend: Legend::LowerRight,
+            },
+        ],
+        caption: vec![format!("$ {command}")],
+        size: (900, 820),
+    }
+}
+
+/// The files of a computed suite (names relative to the suite's folder). `command` is the
+/// command line, for the figures' captions.
+pub fn files(res: &SuiteResult, command: &str) -> Vec<File> {
+    let measured = &res.measured;
+    let mut out = Vec::new();
+    for t in &res.tests {
+        match t {
+            TestResult::Normal(test, outs) => {
+                out.push((
+                    format!("{}.csv", test.id),
+                    Content::Csv(normal_csv(test, outs, &res.method)),
+                ));
+                out.push((
+                    format!("{}_force_history.csv", test.id),
+                    Content::Csv(history_csv(test, outs)),
+                ));
+                out.push((
+                    format!("{}.png", test.id),
+                    Content::Figure(normal_figure(test, outs, command)),
+                ));
+            }
+            TestResult::Oblique(test, r) => {
+                let rows = measured
+                    .iter()
+                    .find(|(id, _)| *id == test.id)
+                    .map(|(_, r)| r.as_slice())
+                    .unwrap_or(&[]);
+                out.push((
+                    format!("{}.csv", test.id),
+                    Content::Csv(oblique_csv(test, r, &res.method)),
+                ));
+                if let (Some(m), false) = (test.measured, rows.is_empty()) {
+                    out.push((
+                        format!("{}_measured.csv", test.id),
+                        Content::Csv(measured_csv(test, m, rows)),
+                    ));
+                }
+                out.push((
+                    format!("{}.png", test.id),
+                    Content::Figure(oblique_figure(test, r, rows, command, &res.method)),
+                ));
+            }
+        }
+    }
+    out.push((
+        "closed_form_checks.csv".into(),
+        Content::Csv(checks_csv(&res.checks)),
+    ));
+    out
+}
