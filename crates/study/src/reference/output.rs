@@ -194,6 +194,14 @@ fn oblique_csv(test: &ObliqueTest, res: &ObliqueResult, method: &str) -> String 
         header.push(q.name.into());
         header.push(format!("{}_err", q.name));
     }
+    header.extend(["v_x0_m_s".into(), "v_z0_m_s".into(), "omega0_rad_s".into()]);
+    if sphere_sphere {
+        header.extend([
+            "v_x0_2_m_s".into(),
+            "v_z0_2_m_s".into(),
+            "omega0_2_rad_s".into(),
+        ]);
+    }
     text.push_str(&header.join(","));
     text.push('\n');
     for (setup, outs) in &res.setups {
@@ -208,6 +216,11 @@ fn oblique_csv(test: &ObliqueTest, res: &ObliqueResult, method: &str) -> String 
             ];
             for q in &qs {
                 row.extend(pair_cells(columns::value(q, setup, o)));
+            }
+            let (a, b) = (o.case.incident.sphere, o.case.incident.other);
+            row.extend([num(a.v_x), num(a.v_z), num(a.omega)]);
+            if sphere_sphere {
+                row.extend([num(b.v_x), num(b.v_z), num(b.omega)]);
             }
             text.push_str(&row.join(","));
             text.push('\n');
@@ -312,6 +325,45 @@ fn history_csv(test: &NormalTest, outs: &[NormalOutcome]) -> String {
     text
 }
 
+/// Every test's bodies, materials and friction, one line per setup (SI units; `target` is
+/// `wall` or `sphere`; a rigid wall has `E2_pa = inf`).
+fn setups_csv(res: &SuiteResult) -> String {
+    let mut text = comments(&[
+        "the bodies of every test: solid spheres (I = 0.4 m R^2); SI units".into(),
+        "target = wall: a fixed half-space of E2_pa, nu2 (inf: rigid); target = sphere: a free \
+         sphere of R2_m, rho2, E2_pa, nu2"
+            .into(),
+    ]);
+    text.push_str("test,material,R1_m,rho1_kg_m3,E1_pa,nu1,target,R2_m,rho2_kg_m3,E2_pa,nu2,mu\n");
+    let mut line = |id: &str, s: &Setup| {
+        let m1 = s.sphere.material;
+        let (kind, r2, m2) = match s.target {
+            super::spec::Target::Wall(m) => ("wall", f64::NAN, m),
+            super::spec::Target::Sphere(b) => ("sphere", b.radius, b.material),
+        };
+        text.push_str(&format!(
+            "{id},{},{},{},{},{},{kind},{},{},{},{},{}\n",
+            s.label,
+            num(s.sphere.radius),
+            num(m1.density),
+            num(m1.youngs_modulus),
+            num(m1.poisson_ratio),
+            cell(r2),
+            cell(m2.density),
+            num(m2.youngs_modulus),
+            num(m2.poisson_ratio),
+            num(s.friction)
+        ));
+    };
+    for t in &res.tests {
+        match t {
+            TestResult::Normal(test, outs) => outs.iter().for_each(|o| line(test.id, &o.setup)),
+            TestResult::Oblique(test, r) => r.setups.iter().for_each(|(s, _)| line(test.id, s)),
+        }
+    }
+    text
+}
+
 fn checks_csv(checks: &[Check]) -> String {
     let mut text = comments(&[
         "closed-form checks: each closed form beside the computed value".into(),
@@ -375,7 +427,8 @@ fn oblique_figure(
     let panels = qs
         .iter()
         .take(n)
-        .map(|q| {
+        .enumerate()
+        .map(|(k, q)| {
             let mut s = Vec::new();
             for (i, (setup, outs)) in res.setups.iter().enumerate() {
                 s.push(series(
@@ -421,7 +474,11 @@ fn oblique_figure(
                 series: s,
                 vlines: Vec::new(),
                 y_range: None,
-                legend: Legend::LowerRight,
+                legend: match (test.convention, k) {
+                    (Convention::Thornton, 0) => Legend::UpperLeft,
+                    (Convention::Thornton, _) => Legend::UpperRight,
+                    _ => Legend::LowerRight,
+                },
             }
         })
         .collect();
@@ -543,6 +600,7 @@ pub fn files(res: &SuiteResult, command: &str) -> Vec<File> {
             }
         }
     }
+    out.push(("setups.csv".into(), Content::Csv(setups_csv(res))));
     out.push((
         "closed_form_checks.csv".into(),
         Content::Csv(checks_csv(&res.checks)),

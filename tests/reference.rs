@@ -1,0 +1,263 @@
+//! `sweep reference`: the references agree with direct two-body simulation in SI units within
+//! their stated bounds, reproduce published numbers (Hertz values digitised from Chung & Ooi's
+//! figures, Kharaz's measurements), `--check` finds stale files, and bad arguments exit 2.
+
+mod common;
+
+use std::collections::HashMap;
+use std::path::Path;
+use std::process::Command;
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+fn sweep(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(args)
+        .output()
+        .expect("run sweep")
+}
+
+/// A CSV written by `sweep reference`: header and rows as strings (comment lines skipped).
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<String> = lines
+        .next()
+        .expect("header")
+        .split(',')
+        .map(String::from)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(String::from).collect::<Vec<_>>())
+        .collect();
+    (header, rows)
+}
+
+fn run_all(dir: &Path, extra: &[&str]) -> String {
+    let mut args = vec!["reference", "all", "-o", dir.to_str().expect("path")];
+    args.extend(extra);
+    let r = sweep(&args);
+    assert!(
+        r.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&r.stdout),
+        String::from_utf8_lossy(&r.stderr)
+    );
+    String::from_utf8_lossy(&r.stdout).into_owned()
+}
+
+/// The test CSVs of an output folder (not the checks, setups or force histories).
+fn test_csvs(dir: &Path) -> Vec<std::path::PathBuf> {
+    let mut v = Vec::new();
+    for suite in std::fs::read_dir(dir).expect("dir") {
+        for f in std::fs::read_dir(suite.expect("entry").path()).expect("suite dir") {
+            let p = f.expect("entry").path();
+            let name = p.file_name().expect("name").to_string_lossy().into_owned();
+            if name.ends_with(".csv")
+                && !name.contains("checks")
+                && !name.contains("setups")
+                && !name.contains("history")
+            {
+                v.push(p);
+            }
+        }
+    }
+    v.sort();
+    v
+}
+
+#[test]
+fn mapping_and_direct_simulation_agree_within_their_bounds() {
+    let dir = common::subdir("reference_agree");
+    let (a, b) = (dir.join("mapping"), dir.join("direct"));
+    let out = run_all(&a, &[]);
+    assert!(!out.contains("FAIL"), "{out}");
+    run_all(&b, &["--direct"]);
+    let mut compared = 0;
+    let mut sphere_sphere = 0;
+    for fa in test_csvs(&a) {
+        let rel = fa.strip_prefix(&a).expect("prefix");
+        let (ha, ra) = read_csv(&fa);
+        let (hb, rb) = read_csv(&b.join(rel));
+        assert_eq!(ha, hb, "{}", rel.display());
+        assert_eq!(ra.len(), rb.len(), "{}", rel.display());
+        let two = ha.iter().any(|h| h == "v_x0_2_m_s");
+        for (x, y) in ra.iter().zip(&rb) {
+            for (i, col) in ha.iter().enumerate() {
+                let Some(j) = ha.iter().position(|h| *h == format!("{col}_err")) else {
+                    continue;
+                };
+                assert_eq!(x[i].is_empty(), y[i].is_empty(), "{rel:?} {col}");
+                if x[i].is_empty() {
+                    continue;
+                }
+                let f = |s: &str| s.parse::<f64>().expect("number");
+                let (va, vb) = (f(&x[i]), f(&y[i]));
+                let bound = f(&x[j]) + f(&y[j]) + 1e-12 * va.abs().max(1e-300);
+                assert!(
+                    (va - vb).abs() <= bound,
+                    "{}: {} {} {col}: mapping {va}, direct {vb}, bound {bound}",
+                    rel.display(),
+                    x[0],
+                    x[1]
+                );
+                compared += 1;
+                sphere_sphere += usize::from(two);
+            }
+        }
+    }
+    assert!(compared > 2500, "{compared} numbers compared");
+    assert!(sphere_sphere > 400, "{sphere_sphere} sphere-sphere numbers");
+
+    // The closed-form checks hold in the direct run too.
+    let (h, rows) = read_csv(&b.join("chung-ooi/closed_form_checks.csv"));
+    let exact = h.iter().position(|c| c == "exact").expect("exact");
+    let holds = h.iter().position(|c| c == "holds").expect("holds");
+    for r in &rows {
+        if r[exact] == "true" {
+            assert_eq!(r[holds], "true", "{r:?}");
+        }
+    }
+
+    // --check: the same output is up to date; a changed or missing file is named (exit 1).
+    let r = sweep(&["reference", "all", "-o", a.to_str().expect("p"), "--check"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let csv = a.join("thornton/thornton_psi.csv");
+    let mut text = std::fs::read_to_string(&csv).expect("csv");
+    text.push('\n');
+    std::fs::write(&csv, text).expect("write");
+    std::fs::remove_file(a.join("seed000/seed000_kharaz_angle.png")).expect("rm");
+    let r = sweep(&["reference", "all", "-o", a.to_str().expect("p"), "--check"]);
+    assert_eq!(r.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(err.contains("thornton_psi.csv differs"), "{err}");
+    assert!(err.contains("seed000_kharaz_angle.png is missing"), "{err}");
+}
+
+fn column(header: &[String], rows: &[Vec<String>], name: &str) -> Vec<f64> {
+    let i = header.iter().position(|h| h == name).expect(name);
+    rows.iter()
+        .map(|r| r[i].parse::<f64>().expect("number"))
+        .collect()
+}
+
+#[test]
+fn published_numbers_are_reproduced() {
+    let dir = common::subdir("reference_published");
+    let r = sweep(&["reference", "chung-ooi", "-o", dir.to_str().expect("p")]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    // Peak force and contact duration digitised from Chung & Ooi's figures of tests 1 and 2
+    // (Kratos DEMApplication paper_data benchmark1_graph2.dat, benchmark2_graph2.dat: 10.70 kN,
+    // contact ending at 40.48 us; 11.36 kN, about 727 us).
+    let (h, rows) = read_csv(&dir.join("chung-ooi/chung_ooi_test1_normal_sphere_sphere.csv"));
+    let (f, t) = (
+        column(&h, &rows, "peak_force_n")[0],
+        column(&h, &rows, "contact_time_s")[0],
+    );
+    assert!((f / 10.70e3 - 1.0).abs() < 0.005, "test 1 glass F_max {f}");
+    assert!((t / 40.48e-6 - 1.0).abs() < 0.005, "test 1 glass t_c {t}");
+    let (h, rows) = read_csv(&dir.join("chung-ooi/chung_ooi_test2_normal_sphere_wall.csv"));
+    let (f, t) = (
+        column(&h, &rows, "peak_force_n")[0],
+        column(&h, &rows, "contact_time_s")[0],
+    );
+    assert!(
+        (f / 11.36e3 - 1.0).abs() < 0.005,
+        "test 2 Al alloy F_max {f}"
+    );
+    assert!((t / 727e-6 - 1.0).abs() < 0.01, "test 2 Al alloy t_c {t}");
+
+    // Test 7: the contact points move together, so nothing tangential changes.
+    let (h, rows) = read_csv(&dir.join("chung-ooi/chung_ooi_test7_equal_spins.csv"));
+    let w = column(&h, &rows, "omega_rad_s");
+    let w0 = column(&h, &rows, "omega0_rad_s");
+    assert_eq!(w, w0);
+    assert!(column(&h, &rows, "v_x_m_s").iter().all(|v| *v == 0.0));
+
+    // Test 5 in gross slip (e = 1): recoil = incident - 7 and spin = -5 in Chung & Ooi's
+    // normalisation.
+    let (h, rows) = read_csv(&dir.join("chung-ooi/chung_ooi_test5_tangential_speed.csv"));
+    let x = column(&h, &rows, "incident_normalised");
+    let recoil = column(&h, &rows, "recoil_normalised");
+    let spin = column(&h, &rows, "spin_normalised");
+    let regime = h.iter().position(|c| c == "regime").expect("regime");
+    let mut slipping = 0;
+    for (k, r) in rows.iter().enumerate() {
+        if r[regime] == "full-slip" {
+            assert!((recoil[k] - (x[k] - 7.0)).abs() < 1e-9, "{r:?}");
+            assert!((spin[k] + 5.0).abs() < 1e-9, "{r:?}");
+            slipping += 1;
+        }
+    }
+    assert!(slipping >= 10, "{slipping}");
+
+    // Kharaz et al. (2001): the model follows the measurements (RMS of e_t below 0.02, of the
+    // contact-point rebound angle below 2 degrees).
+    let (h, rows) = read_csv(&dir.join("chung-ooi/chung_ooi_test4_angle_measured.csv"));
+    let q = h.iter().position(|c| c == "quantity").expect("quantity");
+    let diff = column(&h, &rows, "model_minus_measured");
+    let rms = |name: &str| {
+        let d: Vec<f64> = rows
+            .iter()
+            .zip(&diff)
+            .filter(|(r, _)| r[q] == name)
+            .map(|(_, d)| *d)
+            .collect();
+        (d.iter().map(|d| d * d).sum::<f64>() / d.len() as f64).sqrt()
+    };
+    assert!(rms("e_t") < 0.02, "{}", rms("e_t"));
+    assert!(rms("rebound_angle_contact_deg") < 2.0);
+}
+
+#[test]
+fn the_table_gives_the_same_references_within_its_bound() {
+    let dir = common::subdir("reference_table");
+    let table = Path::new(ROOT).join("tables/full.h5");
+    let (a, b) = (dir.join("slice"), dir.join("table"));
+    for (d, extra) in [(&a, None), (&b, Some(table.to_str().expect("p")))] {
+        let mut args = vec!["reference", "mfix-dem05", "-o", d.to_str().expect("p")];
+        if let Some(t) = extra {
+            args.extend(["--table", t]);
+        }
+        let r = sweep(&args);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    }
+    let f = "mfix-dem05/mfix_dem05_angle.csv";
+    let (h, ra) = read_csv(&a.join(f));
+    let (_, rb) = read_csv(&b.join(f));
+    let p: HashMap<&str, usize> = h.iter().enumerate().map(|(i, c)| (c.as_str(), i)).collect();
+    for (x, y) in ra.iter().zip(&rb) {
+        if x[p["P"]].is_empty() {
+            continue;
+        }
+        let g = |r: &Vec<String>, c: &str| r[p[c]].parse::<f64>().expect("number");
+        let d = (g(x, "P") - g(y, "P")).abs();
+        assert!(d <= g(x, "P_err") + g(y, "P_err"), "{x:?} {y:?}");
+    }
+}
+
+#[test]
+fn bad_arguments_exit_2_with_the_allowed_values() {
+    let dir = common::subdir("reference_bad");
+    let o = dir.to_str().expect("p");
+    let r = sweep(&["reference", "chung", "-o", o]);
+    assert_eq!(r.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(
+        err.contains("chung-ooi, mfix-dem05, thornton, seed000, all"),
+        "{err}"
+    );
+    let r = sweep(&["reference", "all", "-o", o, "--tol", "1e-2"]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("[1e-10, 1e-4]"));
+    let r = sweep(&["reference", "all", "-o", o, "--direct", "--table", "x.h5"]);
+    assert_eq!(r.status.code(), Some(2));
+    let r = sweep(&["reference", "all", "-o", o, "--table", "no-such.h5"]);
+    assert_eq!(r.status.code(), Some(2));
+    // An output path that is a directory: nothing of the suite is written.
+    let suite = dir.join("thornton");
+    std::fs::create_dir_all(suite.join("thornton_psi.csv")).expect("mkdir");
+    let r = sweep(&["reference", "thornton", "-o", o]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(!suite.join("thornton_psi.png").exists());
+}
