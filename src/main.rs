@@ -168,10 +168,11 @@ sweep reference chung-ooi -o out/ --direct         # two-body simulation in SI u
 sweep reference mfix-dem05 --table tables/full.h5  # P from the table\n  \
 sweep reference all -o docs/reference --check      # are the shipped files up to date?\n\n\
 Writes, per suite, OUTPUT/SUITE/TEST.csv and TEST.png for each test, TEST_measured.csv where\n\
-the suite publishes measured points, and closed_form_checks.csv; prints the checks (Hertz\n\
-contact time, peak overlap and force; the gross-slip line P = 1 - 7 alpha; the rolling state;\n\
-the no-slip limit) and the RMS difference to measured data. Every quantity q has a column\n\
-q_err, its error bound. Exit status 1 if an exact check fails (or, with --check, a file differs).\n\
+the suite publishes measured points, setups.csv (bodies, materials, mu) and\n\
+closed_form_checks.csv; prints the checks (Hertz contact time, peak overlap and force; the\n\
+gross-slip line P = 1 - 7 alpha; the rolling state; the no-slip limit) and the RMS difference\n\
+to measured data. Every quantity q has a column q_err, its error bound. Exit status 1 if an\n\
+exact check fails (or, with --check, a file differs); 2 for a bad argument.\n\
 Suites, parameters, conventions and how to compare a DEM code: docs/reference.md.")]
     Reference(cmd::reference::ReferenceArgs),
 }

@@ -30,7 +30,7 @@ pub struct ReferenceArgs {
     #[arg(long)]
     table: Option<PathBuf>,
     /// Target absolute error of P where simulated, in [1e-10, 1e-4].
-    #[arg(long, default_value_t = DEFAULT_TOL)]
+    #[arg(long, default_value = "1e-8")]
     tol: f64,
     /// Write nothing: compare what would be written with the files in the output folder and
     /// exit with status 1, naming the files, if any differs or is missing.
