@@ -82,7 +82,7 @@ const OMEGA: Quantity = Quantity {
     value: |c| c.post.sphere.omega,
 };
 const OMEGA_ABS: Quantity = Quantity {
-    name: "omega_rad_s",
+    name: "omega_abs_rad_s",
     label: "|ω'| (rad/s)",
     value: |c| c.post.sphere.omega.abs(),
 };

@@ -45,7 +45,7 @@ pub const KHARAZ_MFIX: Measured = Measured {
             source: "MFIX tests/dem/DEM05/AUTOTEST/POST_COEFF.dat (Experiment)",
         },
         Series {
-            column: "omega_rad_s",
+            column: "omega_abs_rad_s",
             points: &[
                 (6.0025, 135.5703),
                 (10.9840, 264.5493),

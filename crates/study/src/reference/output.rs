@@ -176,11 +176,16 @@ fn oblique_csv(test: &ObliqueTest, res: &ObliqueResult, method: &str) -> String 
     for (s, _) in &res.setups {
         head.push(describe_setup(s));
     }
-    head.push(
-        "conventions: angles in degrees from the normal; omega signed so that sphere 1's \
-         contact point moves at v_x + R omega (physics.md); NAME_err is the error bound of NAME"
+    head.push(match test.convention {
+        Convention::Mfix => "conventions (MFIX's): angles in degrees from the normal; \
+            rebound_angle_deg = atan(|v'_t|/v'_n) of the centre, e_t = |v'_t|/|v_t|, \
+            omega_abs_rad_s = |omega'|; NAME_err is the error bound of NAME"
             .into(),
-    );
+        _ => "conventions: angles in degrees from the normal; omega signed so that sphere 1's \
+            contact point moves at v_x + R omega (physics.md); NAME_err is the error bound of \
+            NAME"
+            .into(),
+    });
     let mut text = comments(&head);
     let mut header = vec![
         "material".to_string(),
