@@ -230,28 +230,19 @@ pub fn no_slip(
         seen.push(gamma);
         let (p, err) = match method {
             Method::Direct { .. } => {
-                // The same bodies with infinite friction, an oblique approach.
-                let out = PhysicalImpact::sphere_on_wall(
-                    (pair.sphere, a),
-                    b,
-                    oblique_lookup::rebound::State {
-                        v_x: 1.0,
-                        v_z: 1.0,
-                        omega: 0.0,
-                    },
-                    f64::INFINITY,
-                );
-                let out = match pair.other {
-                    None => out.solve(tol)?,
-                    Some(o) => PhysicalImpact::sphere_on_sphere(
-                        (pair.sphere, a),
-                        out.incident.sphere,
-                        (o, b),
-                        Default::default(),
-                        f64::INFINITY,
-                    )
-                    .solve(tol)?,
+                // The same bodies with infinite friction, an oblique approach at 45°.
+                let mut imp = PhysicalImpact {
+                    pair,
+                    materials: [a, b],
+                    incident: Default::default(),
+                    friction: f64::INFINITY,
                 };
+                imp.incident.sphere = oblique_lookup::rebound::State {
+                    v_x: 1.0,
+                    v_z: 1.0,
+                    omega: 0.0,
+                };
+                let out = imp.solve(tol)?;
                 (out.p.unwrap_or(f64::NAN), out.error_estimate)
             }
             _ => {

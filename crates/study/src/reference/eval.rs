@@ -99,37 +99,6 @@ fn algebra(pair: &Pair, inc: &Incident, p: f64) -> Result<Post, ReferenceError> 
     })
 }
 
-/// `P` of the dimensionless slice or the table, with its bound and how it was obtained.
-fn p_of(
-    method: &Method,
-    gamma: f64,
-    alpha: f64,
-) -> Result<(f64, f64, &'static str), ReferenceError> {
-    match method {
-        Method::Slice { tol } => {
-            let s = solve(
-                gamma,
-                alpha,
-                Accuracy::Tolerance(*tol),
-                Scheme::Accurate,
-                false,
-            )?;
-            Ok(match s.method {
-                SolverMethod::ClosedForm => (s.p, 0.0, "closed-form"),
-                SolverMethod::Simulated => (s.p, s.error_estimate, "simulated"),
-            })
-        }
-        Method::Table(t) => {
-            let p = t.p(gamma, alpha)?;
-            Ok(match regimes::closed_form(gamma, alpha) {
-                Some(_) => (p, 0.0, "closed-form"),
-                None => (p, t.error_bound(), "table"),
-            })
-        }
-        Method::Direct { .. } => unreachable!("direct runs do not use P(gamma, alpha)"),
-    }
-}
-
 /// Evaluate one case.
 pub fn outcome(setup: &Setup, case: &Case, method: &Method) -> Result<Outcome, ReferenceError> {
     let pair = setup.pair();
@@ -138,25 +107,45 @@ pub fn outcome(setup: &Setup, case: &Case, method: &Method) -> Result<Outcome, R
     let inc = &case.incident;
     let alpha = pair.alpha(inc, setup.friction)?;
     let u0 = pair.slip_velocity(inc);
-    let (post, p_error, how) = if let Method::Direct { tol } = method {
-        let imp = PhysicalImpact {
-            pair,
-            materials: [a, b],
-            incident: *inc,
-            friction: setup.friction,
-        };
-        let out = imp.solve(*tol)?;
-        let post = Post {
-            sphere: out.sphere,
-            other: out.other,
-            p: out.p.unwrap_or(f64::NAN),
-        };
-        (post, out.error_estimate, "direct")
-    } else if u0 == 0.0 {
-        (algebra(&pair, inc, f64::NAN)?, 0.0, "normal-impact")
-    } else {
-        let (p, err, how) = p_of(method, gamma, alpha)?;
-        (algebra(&pair, inc, p)?, err, how)
+    let (post, p_error, how) = match method {
+        Method::Direct { tol } => {
+            let imp = PhysicalImpact {
+                pair,
+                materials: [a, b],
+                incident: *inc,
+                friction: setup.friction,
+            };
+            let out = imp.solve(*tol)?;
+            let post = Post {
+                sphere: out.sphere,
+                other: out.other,
+                p: out.p.unwrap_or(f64::NAN),
+            };
+            (post, out.error_estimate, "direct")
+        }
+        _ if u0 == 0.0 => (algebra(&pair, inc, f64::NAN)?, 0.0, "normal-impact"),
+        Method::Slice { tol } => {
+            let s = solve(
+                gamma,
+                alpha,
+                Accuracy::Tolerance(*tol),
+                Scheme::Accurate,
+                false,
+            )?;
+            let (err, how) = match s.method {
+                SolverMethod::ClosedForm => (0.0, "closed-form"),
+                SolverMethod::Simulated => (s.error_estimate, "simulated"),
+            };
+            (algebra(&pair, inc, s.p)?, err, how)
+        }
+        Method::Table(t) => {
+            let p = t.p(gamma, alpha)?;
+            let (err, how) = match regimes::closed_form(gamma, alpha) {
+                Some(_) => (0.0, "closed-form"),
+                None => (t.error_bound(), "table"),
+            };
+            (algebra(&pair, inc, p)?, err, how)
+        }
     };
     let how = if u0 == 0.0 { "normal-impact" } else { how };
     let bracket = if u0 == 0.0 {

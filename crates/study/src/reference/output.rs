@@ -110,8 +110,10 @@ pub fn measured_rows(
     measured: &Measured,
     method: &Method,
 ) -> Result<Vec<MeasuredRow>, ReferenceError> {
-    let (setup, cases) = &test.setups[0];
-    let first = cases[0].incident.sphere;
+    let Some((setup, Some(first))) = test.setups.first().map(|(s, c)| (s, c.first())) else {
+        return Ok(Vec::new());
+    };
+    let first = first.incident.sphere;
     let speed = first.v_x.hypot(first.v_z);
     let qs = columns::quantities(test.convention, setup.sphere_sphere());
     let mut rows = Vec::new();
@@ -240,7 +242,7 @@ fn measured_csv(test: &ObliqueTest, m: &Measured, rows: &[MeasuredRow]) -> Strin
         format!("experiment: {}", m.experiment),
         format!(
             "model: the test's first setup ({}) at each measured angle",
-            test.setups[0].0.label
+            test.setups.first().map_or("", |(s, _)| s.label)
         ),
     ]);
     text.push_str("quantity,angle_deg,measured,model,model_err,model_minus_measured,source\n");
@@ -443,8 +445,10 @@ fn oblique_figure(
                     COLORS[i % COLORS.len()],
                 ));
             }
-            if test.convention != Convention::ChungOoiNoSlip {
-                let (setup, outs) = &res.setups[0];
+            if let (true, Some((setup, outs))) = (
+                test.convention != Convention::ChungOoiNoSlip,
+                res.setups.first(),
+            ) {
                 let gross = |o: &Outcome| o.alpha.is_finite().then_some(1.0 - 7.0 * o.alpha);
                 s.push(series(
                     "gross slip, P = 1 − 7α".into(),
