@@ -608,8 +608,8 @@ fn mfix_dem05() -> ObliqueTest {
     ObliqueTest {
         id: "mfix_dem05_angle",
         title: "DEM05: alumina sphere (d = 5 mm) on soda-lime glass, 3.9 m/s, varying angle",
-        source: "MFIX verification case DEM05 (tests/dem/DEM05: mfix.dat), after Kharaz, Gorham \
-            & Salman (2001), Powder Technol. 120:281-291",
+        source: "MFIX verification case DEM05 after Kharaz, Gorham & Salman (2001), Powder \
+            Technol. 120:281-291; parameters from MFIX's tests/dem/DEM05/mfix.dat",
         elastic_note: "elastic as published (DES_EN_WALL_INPUT = 1)",
         x_name: "angle_deg",
         x_label: "incidence angle θ from the normal (°)",
@@ -648,7 +648,7 @@ fn seed000() -> ObliqueTest {
     ObliqueTest {
         id: "seed000_kharaz_angle",
         title: "Seed 000, Fig. 5: alumina sphere on soda-lime glass, 3.9 m/s, varying angle",
-        source: "Lyashenko, Willert & Popov (seed 000), section 4: E = 370 GPa, nu = 0.25 \
+        source: "Lyashenko, Willert & Popov (seed 000), section 4; E = 370 GPa, nu = 0.25 \
             (alumina), 73 GPa, 0.217 (glass), mu = 0.092, R = 2.5 mm, 3.9 m/s; density 3720 \
             kg/m^3 (96 % alumina; the seed gives none, and it changes no ratio)",
         elastic_note: "elastic as in the seed",
@@ -728,7 +728,7 @@ fn thornton() -> Vec<Test> {
         title:
             "Thornton's normalised oblique impact: sphere on a rigid plane, V_n = 5 m/s, μ = 0.1",
         source: "Thornton, Cummins & Cleary (2011), Powder Technol. 210:189-197, and (2013) \
-            Powder Technol. 233:30-46: Psi = 2 V_t/(mu (1 + e) V_n); R = 25 mm, E = 70 GPa, \
+            Powder Technol. 233:30-46; Psi = 2 V_t/(mu (1 + e) V_n); R = 25 mm, E = 70 GPa, \
             rho = 2650 kg/m^3, mu = 0.1, V_n = 5 m/s as in Kratos DEMApplication's Thornton \
             benchmarks; Poisson's ratio swept (it sets gamma)",
         elastic_note: "the elastic case e = 1 (the papers also damp the normal contact)",
