@@ -194,11 +194,23 @@ pub fn quantities(conv: Convention, sphere_sphere: bool) -> Vec<Quantity> {
     }
 }
 
+/// The figure's x axis where a suite plots against a quantity rather than the swept value:
+/// Chung & Ooi's tests 6 and 8 plot against `3.5 μ (1 + e) V_cn/V_st`, on which the gross-slip
+/// line is straight (`β = x − 1`).
+pub fn figure_x(conv: Convention) -> Option<Quantity> {
+    match conv {
+        Convention::ChungOoiSpin => Some(FRICTION_RATIO),
+        _ => None,
+    }
+}
+
 /// How many of a convention's quantities the figure shows.
 pub fn plotted(conv: Convention) -> usize {
     match conv {
         Convention::ChungOoiNormalised | Convention::Thornton => 2,
         Convention::ChungOoiNoSlip => 2,
+        // β against Chung & Ooi's abscissa; the other columns vary over decades on it.
+        Convention::ChungOoiSpin => 1,
         _ => 3,
     }
 }

@@ -403,8 +403,17 @@ fn series(label: String, points: Vec<(f64, f64)>, style: Style, color: (u8, u8, 
     }
 }
 
+/// The figure's x of an outcome: the convention's plotting variable, or the swept value.
+fn figure_x(conv: Convention, setup: &Setup, o: &Outcome) -> f64 {
+    match columns::figure_x(conv) {
+        Some(xq) => columns::value(&xq, setup, o).0,
+        None => o.case.x,
+    }
+}
+
 fn curve(
     q: &Quantity,
+    conv: Convention,
     setup: &Setup,
     outs: &[Outcome],
     p: impl Fn(&Outcome) -> Option<f64>,
@@ -415,7 +424,7 @@ fn curve(
                 Some(p) => columns::at_p(q, setup, o, p),
                 None => columns::value(q, setup, o).0,
             };
-            (o.case.x, y)
+            (figure_x(conv, setup, o), y)
         })
         .collect()
 }
@@ -440,7 +449,7 @@ fn oblique_figure(
             for (i, (setup, outs)) in res.setups.iter().enumerate() {
                 s.push(series(
                     setup.label.to_string(),
-                    curve(q, setup, outs, |_| None),
+                    curve(q, test.convention, setup, outs, |_| None),
                     Style::LineMarkers,
                     COLORS[i % COLORS.len()],
                 ));
@@ -452,13 +461,13 @@ fn oblique_figure(
                 let gross = |o: &Outcome| o.alpha.is_finite().then_some(1.0 - 7.0 * o.alpha);
                 s.push(series(
                     "gross slip, P = 1 − 7α".into(),
-                    curve(q, setup, outs, gross),
+                    curve(q, test.convention, setup, outs, gross),
                     Style::Dashed,
                     GROSS_SLIP,
                 ));
                 s.push(series(
                     "rigid body, P = max(1 − 7α, 0)".into(),
-                    curve(q, setup, outs, |o| {
+                    curve(q, test.convention, setup, outs, |o| {
                         o.alpha.is_finite().then(|| (1.0 - 7.0 * o.alpha).max(0.0))
                     }),
                     Style::Dotted,
@@ -499,7 +508,9 @@ fn oblique_figure(
     Figure {
         title: test.title.to_string(),
         subtitle: test.source.split(';').next().unwrap_or("").to_string(),
-        x_label: test.x_label.to_string(),
+        x_label: columns::figure_x(test.convention)
+            .map_or(test.x_label, |q| q.label)
+            .to_string(),
         panels,
         caption,
         size: (900, 300 + 260 * n as u32),
