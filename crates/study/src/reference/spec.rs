@@ -377,6 +377,24 @@ fn co_angles() -> Vec<f64> {
     steps(5.0, 85.0, 5.0)
 }
 
+/// Spheres of `radius` (m), one per material, approaching a rigid plane head-on at `speed`
+/// (m/s): the setups of Chung & Ooi's tests 2 and 3.
+fn on_rigid_plane(materials: [Material; 2], radius: f64, speed: f64) -> Vec<(Setup, Incident)> {
+    materials
+        .into_iter()
+        .map(|m| {
+            let sphere = Ball {
+                material: m,
+                radius,
+            };
+            (
+                wall(sphere, RIGID, 0.0, m.name),
+                on_wall(state(0.0, speed, 0.0)),
+            )
+        })
+        .collect()
+}
+
 fn chung_ooi() -> Vec<Test> {
     let ball = |m: Material, r: f64| Ball {
         material: m,
@@ -412,15 +430,7 @@ fn chung_ooi() -> Vec<Test> {
         title: "Test 2: elastic normal impact of a sphere with a rigid plane",
         source: CO_SOURCE,
         elastic_note: "elastic as published (e_n = 1)",
-        setups: [AL_ALLOY_T2, MG_ALLOY]
-            .into_iter()
-            .map(|m| {
-                (
-                    wall(ball(m, 0.10), RIGID, 0.0, m.name),
-                    on_wall(state(0.0, 0.2, 0.0)),
-                )
-            })
-            .collect(),
+        setups: on_rigid_plane([AL_ALLOY_T2, MG_ALLOY], 0.10, 0.2),
     };
     let t3 = NormalTest {
         id: "chung_ooi_test3_normal_restitution",
@@ -428,15 +438,7 @@ fn chung_ooi() -> Vec<Test> {
         source: CO_SOURCE,
         elastic_note: "the published test sweeps the coefficient of restitution (viscous \
             damping); the elastic model gives its e_n = 1 limit only",
-        setups: [AL_OXIDE, CAST_IRON]
-            .into_iter()
-            .map(|m| {
-                (
-                    wall(ball(m, 0.0025), RIGID, 0.0, m.name),
-                    on_wall(state(0.0, 3.9, 0.0)),
-                )
-            })
-            .collect(),
+        setups: on_rigid_plane([AL_OXIDE, CAST_IRON], 0.0025, 3.9),
     };
     let t4 = ObliqueTest {
         id: "chung_ooi_test4_angle",
