@@ -1,4 +1,4 @@
-//! `sweep impact`: simulate one impact in dimensionless form and print `P(γ, α)` with its
+//! `sweep impact`: simulate one impact in dimensionless form and print `P(γ, α, e_n)` with its
 //! error estimate, the regime, and optionally the gross-slip history.
 
 use std::time::Instant;
@@ -10,11 +10,11 @@ use serde_json::json;
 use oblique_physics::regimes;
 use oblique_solver::history::{slip_history, Episode, SlipSign};
 use oblique_solver::impact::{Limits, ALPHA_NO_SLIP};
-use oblique_solver::{Accuracy, Method, Preset, Resolution, Scheme};
+use oblique_solver::{Accuracy, Law, Method, Preset, Request, Resolution, Scheme};
 
 use crate::args::{
-    fmt_num, json_number, parse_alpha, parse_gamma, parse_preset, parse_springs, parse_steps,
-    parse_tol,
+    fmt_num, json_number, parse_alpha, parse_e_n, parse_gamma, parse_law, parse_preset,
+    parse_springs, parse_steps, parse_tol,
 };
 use crate::impact_progress;
 
@@ -34,6 +34,16 @@ pub struct ImpactArgs {
     /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
     #[arg(long, value_parser = parse_alpha, allow_hyphen_values = true)]
     alpha: f64,
+    /// Normal restitution e_n of the impact, from 0.3 to 1 (1: elastic, the default). Below 1
+    /// the springs are Kelvin-Voigt elements (one relaxation time in the normal and tangential
+    /// direction, non-adhesive), and the relaxation time that gives this e_n is found first; the
+    /// JSON output reports it as `tau` (in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(-2/5)).
+    #[arg(long = "e-n", value_parser = parse_e_n, default_value = "1", allow_hyphen_values = true)]
+    e_n: f64,
+    /// Dissipation law: elastic (e_n = 1 only) or kelvin-voigt. Default: elastic at e_n = 1,
+    /// kelvin-voigt below. P at e_n < 1 depends on the law; answers name theirs.
+    #[arg(long, value_parser = parse_law)]
+    law: Option<Law>,
     /// Target absolute error of P; the resolution is doubled until the error estimate is below it.
     #[arg(long, value_parser = parse_tol, allow_hyphen_values = true, conflicts_with_all = ["springs", "steps"])]
     tol: Option<f64>,
@@ -60,7 +70,7 @@ pub struct ImpactArgs {
     /// Also list the gross-slip episodes (the whole contact at the Coulomb limit, F_t = +/-mu F_N)
     /// of one continuum-row run at the solver's number of steps (at least 1024), with start and
     /// end as fractions of the contact time. Where such an episode vanishes inside the contact,
-    /// P(alpha) has a kink (docs/solver.md).
+    /// P(alpha) has a kink (docs/solver.md). Elastic impacts only (e_n = 1).
     #[arg(long)]
     history: bool,
     /// Report every level of the automatic refinement on stderr (level, resolution, error
@@ -113,23 +123,29 @@ pub fn run(args: ImpactArgs) -> Result<()> {
                 .unwrap_or(DEFAULT_TOL),
         ),
     };
+    let law = args.law.unwrap_or(Law::for_restitution(args.e_n));
+    if args.history && args.e_n < 1.0 {
+        return Err(crate::failure::Failure::usage(
+            "--history lists the gross-slip episodes of elastic impacts only (e_n = 1)".into(),
+        ));
+    }
+    let request = Request::new(args.gamma, args.alpha)
+        .e_n(args.e_n)
+        .law(law)
+        .accuracy(accuracy)
+        .scheme(scheme)
+        .forced(args.simulate)
+        .limits(Limits::default());
     let start = Instant::now();
     let mut progress = impact_progress::ImpactProgress::new(args.progress);
-    let sol = oblique_solver::solve_observed(
-        args.gamma,
-        args.alpha,
-        accuracy,
-        scheme,
-        args.simulate,
-        Limits::default(),
-        &mut |event| progress.report(event),
-    );
+    let sol = request.solve_observed(&mut |event| progress.report(event));
     progress.finish();
     let sol = sol?;
     let elapsed = start.elapsed().as_secs_f64();
-    // α_c1 marks the end of the full-slip line only for γ ≥ 1; below, the line ends at α_c2
-    // and the formula for α_c1 means nothing (negative for γ < 1/√2; physics.md).
-    let alpha_c1 = (args.gamma >= 1.0).then(|| regimes::alpha_c1(args.gamma));
+    let e_n = sol.e_n;
+    // α_c1(e_n) marks the end of the full-slip line only for γ > 1; below, the line ends at
+    // α_c2 and the formula for α_c1 means nothing (negative for γ < 1/√2; physics.md).
+    let alpha_c1 = (args.gamma >= 1.0).then(|| regimes::alpha_c1_dissipative(args.gamma, e_n));
     let alpha_c2 = regimes::alpha_c2(args.gamma);
     // The continuum row has no spring count; a closed form has no resolution at all.
     let (springs, steps, row) = match sol.method {
@@ -144,7 +160,7 @@ pub fn run(args: ImpactArgs) -> Result<()> {
         ),
     };
     let e_t = regimes::tangential_restitution(sol.p);
-    let regime = regimes::Regime::of(args.gamma, args.alpha);
+    let regime = regimes::Regime::of_dissipative(args.gamma, args.alpha, e_n);
     let method = match sol.method {
         Method::ClosedForm => "closed-form",
         Method::Simulated => "simulated",
@@ -158,6 +174,9 @@ pub fn run(args: ImpactArgs) -> Result<()> {
         let out = json!({
             "gamma": args.gamma,
             "alpha": json_number(args.alpha),
+            "e_n": e_n,
+            "law": sol.law.name(),
+            "tau": sol.tau,
             "P": sol.p,
             "e_t": e_t,
             "error_estimate": sol.estimate(),
@@ -186,18 +205,36 @@ pub fn run(args: ImpactArgs) -> Result<()> {
         }
         println!("{out}");
     } else {
-        let head = format!(
-            "P(gamma = {}, alpha = {}) = {:.9}",
-            fmt_num(args.gamma),
-            fmt_num(args.alpha),
-            sol.p
-        );
+        let head = if e_n == 1.0 && sol.law == Law::Elastic {
+            format!(
+                "P(gamma = {}, alpha = {}) = {:.9}",
+                fmt_num(args.gamma),
+                fmt_num(args.alpha),
+                sol.p
+            )
+        } else {
+            format!(
+                "P(gamma = {}, alpha = {}, e_n = {}) = {:.9}",
+                fmt_num(args.gamma),
+                fmt_num(args.alpha),
+                fmt_num(e_n),
+                sol.p
+            )
+        };
         match (sol.estimate(), sol.no_estimate) {
             (Some(est), _) => println!("{head}  +/- {est:.1e}"),
             (None, Some(why)) => println!("{head}  (no error estimate: {why})"),
             (None, None) => println!("{head}  (no error estimate)"),
         }
         println!("e_t = (2P + 5)/7 = {e_t:.9}   (solid sphere, no initial spin)");
+        if sol.law != Law::Elastic {
+            println!(
+                "law {} (relaxation time tau = {:.9} in units of (m*/k)^(2/5) v_z0^(-1/5) \
+                 (4/3)^(-2/5))",
+                sol.law.name(),
+                sol.tau
+            );
+        }
         match alpha_c1 {
             Some(c1) => println!(
                 "regime {} (alpha_c1 = {c1:.6}, alpha_c2 = {alpha_c2:.6})",

@@ -56,6 +56,19 @@ impl Regime {
         }
     }
 
+    /// Classify `(γ, α)` for normal restitution `e_n` (Kelvin–Voigt law): full slip up to
+    /// [`linear_limit_dissipative`]; `α_c2`, where the contact sticks at first touch
+    /// (`|u0| ≤ c v_z0`), does not move with `e_n`. `e_n = 1` is [`Regime::of`].
+    pub fn of_dissipative(gamma: f64, alpha: f64, e_n: f64) -> Self {
+        if alpha <= linear_limit_dissipative(gamma, e_n) {
+            Regime::FullSlip
+        } else if alpha < alpha_c2(gamma) {
+            Regime::PartialSlip
+        } else {
+            Regime::Stick
+        }
+    }
+
     /// Lower-case name as printed by the CLI.
     pub fn name(self) -> &'static str {
         match self {
@@ -76,6 +89,35 @@ pub fn closed_form(gamma: f64, alpha: f64) -> Option<f64> {
     } else {
         None
     }
+}
+
+/// `α_c1(e_n) = 2γ²/(7(γ²(1 + e_n) − e_n))`: the end of the full-slip line of a dissipative
+/// impact with normal restitution `e_n` (Kelvin–Voigt law, `physics.md`); `e_n = 1` gives
+/// [`alpha_c1`]. Meaningful for `γ > 1`.
+#[inline]
+pub fn alpha_c1_dissipative(gamma: f64, e_n: f64) -> f64 {
+    let g2 = gamma * gamma;
+    2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n))
+}
+
+/// Upper end of the exact line `P = 1 − (7/2)(1 + e_n) α` of a dissipative impact:
+/// [`alpha_c1_dissipative`] for `γ > 1`, `α_c2` for `γ ≤ 1` (measured with this project's
+/// Kelvin–Voigt solver at γ = 0.5, 0.8, 0.95, 1: the line holds to 2e-7 up to 0.99 α_c2 and
+/// departs at 1.01 α_c2, as in the elastic case).
+#[inline]
+pub fn linear_limit_dissipative(gamma: f64, e_n: f64) -> f64 {
+    if gamma > 1.0 {
+        alpha_c1_dissipative(gamma, e_n)
+    } else {
+        alpha_c2(gamma)
+    }
+}
+
+/// The full-slip line of an impact with normal restitution `e_n`: the tangential impulse is
+/// `μ (1 + e_n) m* v_z0`, so `P = 1 − (7/2)(1 + e_n) α` (`1 − 7α` at `e_n = 1`).
+#[inline]
+pub fn full_slip_line(alpha: f64, e_n: f64) -> f64 {
+    1.0 - 3.5 * (1.0 + e_n) * alpha
 }
 
 /// Tangential restitution `e_t = v_x/v_x0 = (2P + 5)/7` of a solid sphere hitting without spin.
@@ -115,6 +157,16 @@ pub fn no_slip_fit(gamma: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_dissipative_line_and_its_end_reduce_to_the_elastic_ones() {
+        for g in [1.2, 1.754, 2.5] {
+            assert!((alpha_c1_dissipative(g, 1.0) - alpha_c1(g)).abs() < 1e-15);
+            // Less normal impulse: the line reaches further in α.
+            assert!(alpha_c1_dissipative(g, 0.6) > alpha_c1(g));
+        }
+        assert_eq!(full_slip_line(0.1, 1.0), 1.0 - 7.0 * 0.1);
+    }
 
     #[test]
     fn critical_values_coincide_at_gamma_one() {

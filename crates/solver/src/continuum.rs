@@ -64,7 +64,7 @@ struct Piece {
 
 /// Three-point Gauss–Legendre nodes on `[0, 1]` and weights: exact for `ũ(x)`, a polynomial
 /// of degree 4 in `x`.
-const GAUSS: [(f64, f64); 3] = [
+pub(crate) const GAUSS: [(f64, f64); 3] = [
     (0.112_701_665_379_258_31, 5.0 / 18.0),
     (0.5, 8.0 / 18.0),
     (0.887_298_334_620_741_7, 5.0 / 18.0),
@@ -161,7 +161,7 @@ impl Piece {
 }
 
 /// Roots of `A + B z + Q z² = 0` strictly inside `(lo, hi)`, appended to `out`.
-fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut Vec<f64>) {
+pub(crate) fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut Vec<f64>) {
     let mut push = |r: f64| {
         if r > lo && r < hi {
             out.push(r);

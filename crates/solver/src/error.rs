@@ -82,6 +82,14 @@ pub enum PhysicsError {
         /// The allowed names.
         allowed: &'static str,
     },
+    /// An unknown dissipation law.
+    #[error("unknown law `{name}`: must be {allowed}")]
+    UnknownLaw {
+        /// The name given.
+        name: String,
+        /// The allowed names.
+        allowed: &'static str,
+    },
     /// A fixed resolution beyond the work or memory limit (refused before it runs).
     #[error(
         "resolution {res} is too large: {work:.1e} spring-steps and {memory_mb:.0} MB, limits \

@@ -258,23 +258,32 @@ impl NormalTrajectory {
     /// Indentation and its rate at time `t ∈ [0, dt]` into step `n`, by cubic Hermite
     /// interpolation of the nodes (error O(dt⁴)).
     pub fn within_step(&self, n: usize, t: f64) -> (f64, f64) {
-        let h = self.dt;
-        let s = t / h;
-        let (p0, p1) = (self.indentation[n], self.indentation[n + 1]);
-        let (m0, m1) = (self.rate[n] * h, self.rate[n + 1] * h);
-        let s2 = s * s;
-        let s3 = s2 * s;
-        let d = (2.0 * s3 - 3.0 * s2 + 1.0) * p0
-            + (s3 - 2.0 * s2 + s) * m0
-            + (-2.0 * s3 + 3.0 * s2) * p1
-            + (s3 - s2) * m1;
-        let dd = ((6.0 * s2 - 6.0 * s) * p0
-            + (3.0 * s2 - 4.0 * s + 1.0) * m0
-            + (-6.0 * s2 + 6.0 * s) * p1
-            + (3.0 * s2 - 2.0 * s) * m1)
-            / h;
-        (d.max(0.0), dd)
+        hermite(
+            self.dt,
+            (self.indentation[n], self.indentation[n + 1]),
+            (self.rate[n], self.rate[n + 1]),
+            t,
+        )
     }
+}
+
+/// Cubic Hermite interpolation over a step of length `h` between values `p0, p1` with rates
+/// `r0, r1`: the value and the rate at time `t ∈ [0, h]`, the value clamped at 0.
+pub fn hermite(h: f64, (p0, p1): (f64, f64), (r0, r1): (f64, f64), t: f64) -> (f64, f64) {
+    let s = t / h;
+    let (m0, m1) = (r0 * h, r1 * h);
+    let s2 = s * s;
+    let s3 = s2 * s;
+    let d = (2.0 * s3 - 3.0 * s2 + 1.0) * p0
+        + (s3 - 2.0 * s2 + s) * m0
+        + (-2.0 * s3 + 3.0 * s2) * p1
+        + (s3 - s2) * m1;
+    let dd = ((6.0 * s2 - 6.0 * s) * p0
+        + (3.0 * s2 - 4.0 * s + 1.0) * m0
+        + (-6.0 * s2 + 6.0 * s) * p1
+        + (3.0 * s2 - 2.0 * s) * m1)
+        / h;
+    (d.max(0.0), dd)
 }
 
 #[cfg(test)]

@@ -13,6 +13,7 @@ use serde::Serialize;
 use super::continuum::ContinuumRow;
 use super::error::{positive, PhysicsError};
 use super::hertz::{HertzClosedForm, NormalBodies, NormalTrajectory};
+use super::law::Law;
 use super::model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
 use super::springs::{SpringRow, StepMotion};
 use oblique_physics::regimes;
@@ -166,7 +167,14 @@ struct Stepper<'a, N: NormalModel, T: TangentialModel> {
 }
 
 impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
-    fn motion<B: TangentialBodies>(&self, bodies: &B, h: f64, d0: f64, rate0: f64) -> StepMotion {
+    /// The motion over a step of length `h` from `(d0, rate0)` to `(d1, rate1)`.
+    fn motion<B: TangentialBodies>(
+        &self,
+        bodies: &B,
+        h: f64,
+        (d0, rate0): (f64, f64),
+        (d1, rate1): (f64, f64),
+    ) -> StepMotion {
         StepMotion {
             h,
             d0,
@@ -174,19 +182,35 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
             accel0: self.normal.acceleration(d0, rate0),
             slip_velocity: bodies.slip_velocity(),
             slip_accel: bodies.slip_acceleration(self.force),
+            rate1,
+            accel1: if T::END_STATE {
+                self.normal.acceleration(d1, rate1)
+            } else {
+                0.0
+            },
         }
     }
 
-    /// One velocity-Verlet step of length `h` from indentation `d0` (rate `rate0`) to `d1`.
-    fn step<B: TangentialBodies>(&mut self, bodies: &mut B, h: f64, d0: f64, rate0: f64, d1: f64) {
-        let motion = self.motion(bodies, h, d0, rate0);
-        let step = self.row.step_accurate(&motion, d1, self.limit);
-        // Impulse by product integration: F = 2 G* a(t) · mean(t), with ∫ a dt exact for d
-        // linear over the step. Near separation a ∝ √(t_c − t), where the plain trapezoid rule
-        // would drop to order 1.5 (no slip keeps a finite mean displacement to the end).
-        let mean_radius = mean_sqrt(d0, d1) * self.radius.sqrt();
-        let end_mean = if d1 <= 0.0 && self.limit.is_finite() {
-            separation_mean(self.mean, self.limit * d0)
+    /// One velocity-Verlet step of length `h` from indentation `d0` (rate `rate0`) to `d1`
+    /// (rate `rate1`).
+    fn step<B: TangentialBodies>(
+        &mut self,
+        bodies: &mut B,
+        h: f64,
+        start: (f64, f64),
+        end: (f64, f64),
+    ) {
+        let motion = self.motion(bodies, h, start, end);
+        let step = self.row.step_accurate(&motion, end.0, self.limit);
+        // The contact's reach (`d` for an elastic law) at both ends: the contact radius is
+        // `a = √(R* reach)`.
+        let (b0, b1) = (self.normal.reach(start), self.normal.reach(end));
+        // Impulse by product integration: F = 2 G* a(t) · mean(t), with ∫ a dt exact for the
+        // reach linear over the step. Near separation a ∝ √(t_c − t), where the plain trapezoid
+        // rule would drop to order 1.5 (no slip keeps a finite mean displacement to the end).
+        let mean_radius = mean_sqrt(b0, b1) * self.radius.sqrt();
+        let end_mean = if b1 <= 0.0 && self.limit.is_finite() {
+            separation_mean(self.mean, self.limit * b0)
         } else {
             step.mean
         };
@@ -196,26 +220,23 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
     }
 
     /// Grid step `n`, split at the release instant of the springs at a Coulomb limit when it
-    /// falls inside: F(t) has a kink there and the trapezoid impulse across a kink is only first
-    /// order locally.
+    /// falls inside ([`TangentialModel::release_time`]): F(t) has a kink there and the
+    /// trapezoid impulse across a kink is only first order locally.
     fn grid_step<B: TangentialBodies>(&mut self, bodies: &mut B, n: usize) {
         let nt = self.normal;
         let h = nt.dt();
-        let (d0, d1, rate0) = (nt.indentation(n), nt.indentation(n + 1), nt.rate(n));
-        let (at_plus, at_minus) = self.row.at_limit();
-        let (tp, tm) = self.motion(bodies, h, d0, rate0).release_times(self.limit);
-        let split = [tp.filter(|_| at_plus), tm.filter(|_| at_minus)]
-            .into_iter()
-            .flatten()
-            .filter(|&t| t > 1e-3 * h && t < (1.0 - 1e-3) * h)
-            .reduce(f64::min);
+        let start = (nt.indentation(n), nt.rate(n));
+        let end = (nt.indentation(n + 1), nt.rate(n + 1));
+        let split = self
+            .row
+            .release_time(&self.motion(bodies, h, start, end), self.limit);
         match split {
             Some(t) => {
-                let (dm, rm) = nt.within_step(n, t);
-                self.step(bodies, t, d0, rate0, dm);
-                self.step(bodies, h - t, dm, rm, d1);
+                let mid = nt.within_step(n, t);
+                self.step(bodies, t, start, mid);
+                self.step(bodies, h - t, mid, end);
             }
-            None => self.step(bodies, h, d0, rate0, d1),
+            None => self.step(bodies, h, start, end),
         }
     }
 }
@@ -256,10 +277,10 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
                 let (d1, r1) = nt.within_step(n, s + sub);
                 (s + sub, d1, r1)
             };
-            if n + 1 == steps && (s1 >= h || d1.is_nan() || d1 <= 0.0) {
+            if n + 1 == steps && (s1 >= h || d1.is_nan() || nt.reach((d1, r1)) <= 0.0) {
                 break;
             }
-            self.step(bodies, s1 - s, d, rate, d1);
+            self.step(bodies, s1 - s, (d, rate), (d1, r1));
             (d, rate) = (d1, r1);
             if s1 >= h {
                 (n, s) = (n + 1, 0.0);
@@ -268,7 +289,8 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
             }
         }
         let end = h - s;
-        self.step(bodies, end, d, rate, nt.indentation(steps));
+        let last = (nt.indentation(steps), nt.rate(steps));
+        self.step(bodies, end, (d, rate), last);
     }
 }
 
@@ -314,6 +336,7 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
     shear_modulus: f64,
     limit: f64,
 ) {
+    let mean = row.touch_mean(bodies.slip_velocity(), normal.rate(0), limit);
     let mut stepper = Stepper {
         row,
         normal,
@@ -321,7 +344,7 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
         shear_modulus,
         limit,
         force: 0.0,
-        mean: 0.0,
+        mean,
     };
     let steps = normal.steps();
     // Grid steps that end within GRADED_SPAN of the separation are graded (finite limit only).
@@ -661,6 +684,13 @@ pub struct Solution {
     pub scheme: Scheme,
     /// Closed form or simulation.
     pub method: Method,
+    /// The dissipation law.
+    pub law: Law,
+    /// Normal restitution `e_n` of the impact (1 for the elastic law).
+    pub e_n: f64,
+    /// Dimensionless relaxation time `τ̂` of the Kelvin–Voigt law that gives `e_n` (0 for the
+    /// elastic law; time unit `(m*/k)^{2/5} v_z0^{-1/5} (4/3)^{-2/5}`, `k = (4/3) E* √R*`).
+    pub tau: f64,
 }
 
 impl Solution {
@@ -831,14 +861,14 @@ fn estimate(values: &[f64], order: i32) -> f64 {
 /// `max(|R_k − R_{k−1}|, 0.1 |P_k − P_{k−1}|)`. Measured on 32 points spanning every regime
 /// (γ 0.3–3.5, α from just above the linear limit to ∞, 128–8192 steps): never below the true
 /// error where that error exceeds the 2e-8 accuracy of the reference (`examples/estim.rs`).
-fn extrapolate(values: &[f64], order: i32) -> (f64, f64) {
+fn extrapolate(values: &[f64], order: i32, floor: f64) -> (f64, f64) {
     let r = 2f64.powi(order) - 1.0;
     let n = values.len();
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / r;
     let last = rich(n - 1);
     let est = (last - rich(n - 2))
         .abs()
-        .max(0.1 * (values[n - 1] - values[n - 2]).abs());
+        .max(floor * (values[n - 1] - values[n - 2]).abs());
     (last, est)
 }
 
@@ -854,9 +884,9 @@ fn extrapolate(values: &[f64], order: i32) -> (f64, f64) {
 /// where a sequence converges fast from a poor start: `configs/quick.toml` needs 13.8 s with it
 /// against 10.4 s without (33 %, measured under load). With three values only (no coarser
 /// estimate) the result is never accepted.
-fn previous_estimate_agrees(values: &[f64], order: i32, tol: f64) -> bool {
+fn previous_estimate_agrees(values: &[f64], order: i32, tol: f64, floor: f64) -> bool {
     let n = values.len();
-    n >= 4 && extrapolate(&values[..n - 1], order).1 <= 2f64.powi(order) * tol
+    n >= 4 && extrapolate(&values[..n - 1], order, floor).1 <= 2f64.powi(order) * tol
 }
 
 /// Refine a computation `run(level)` (resolution doubling each level from `base`) until the
@@ -906,6 +936,25 @@ pub fn refine_observed(
     tol: f64,
     richardson: bool,
     limits: Limits,
+    run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
+    observer: &mut dyn FnMut(RefineEvent),
+) -> Result<(f64, f64, Resolution), PhysicsError> {
+    let floor = if richardson { RAW_FLOOR } else { 0.0 };
+    refine_core(base, (order, floor), tol, richardson, limits, run, observer)
+}
+
+/// The share of the last raw difference `|P_k − P_{k−1}|` below which the Richardson estimate
+/// of the elastic law never falls ([`extrapolate`]).
+pub const RAW_FLOOR: f64 = 0.1;
+
+/// [`refine_observed`] with the floor of the Richardson estimate as a share of the last raw
+/// difference (`(order, floor)`), which a law sets by how regularly it converges.
+pub(crate) fn refine_core(
+    base: Resolution,
+    (order, floor): (i32, f64),
+    tol: f64,
+    richardson: bool,
+    limits: Limits,
     mut run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
@@ -940,7 +989,7 @@ pub fn refine_observed(
             });
         } else {
             let (value, est) = if richardson {
-                extrapolate(&values, order)
+                extrapolate(&values, order, floor)
             } else {
                 (values[values.len() - 1], estimate(&values, order))
             };
@@ -951,7 +1000,7 @@ pub fn refine_observed(
                 tol,
             });
             best = (est, res);
-            if est <= tol && (!richardson || previous_estimate_agrees(&values, order, tol)) {
+            if est <= tol && (!richardson || previous_estimate_agrees(&values, order, tol, floor)) {
                 return Ok((value, est, res));
             }
             // Stop before the expensive levels when even an optimistic rate (the nominal order
@@ -1035,6 +1084,26 @@ pub fn solve_observed(
 ) -> Result<Solution, PhysicsError> {
     let gamma = check_gamma(gamma)?;
     let alpha = check_alpha(alpha)?;
+    let closed = regimes::closed_form(gamma, alpha);
+    solve_core(
+        (gamma, accuracy, scheme, force_simulation, limits),
+        RAW_FLOOR,
+        closed,
+        |res| simulate(gamma, alpha, res, scheme),
+        observer,
+    )
+}
+
+/// The error-controlled driver shared by every law: checks the accuracy, answers `closed`
+/// (a closed form, unless the simulation is forced), or refines `run` (`P` at a resolution)
+/// to the tolerance, or runs a fixed resolution with its estimate. `γ` and `α` are checked.
+pub(crate) fn solve_core(
+    (gamma, accuracy, scheme, force_simulation, limits): (f64, Accuracy, Scheme, bool, Limits),
+    floor: f64,
+    closed: Option<f64>,
+    mut run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
+    observer: &mut dyn FnMut(RefineEvent),
+) -> Result<Solution, PhysicsError> {
     match accuracy {
         Accuracy::Tolerance(tol) => {
             positive("tol", tol)?;
@@ -1044,7 +1113,7 @@ pub fn solve_observed(
         }
     }
     if !force_simulation {
-        if let Some(p) = regimes::closed_form(gamma, alpha) {
+        if let Some(p) = closed {
             return Ok(Solution {
                 p,
                 error_estimate: 0.0,
@@ -1055,6 +1124,9 @@ pub fn solve_observed(
                 scheme,
                 method: Method::ClosedForm,
                 no_estimate: None,
+                law: Law::Elastic,
+                e_n: 1.0,
+                tau: 0.0,
             });
         }
     }
@@ -1064,19 +1136,19 @@ pub fn solve_observed(
     }
     let mut no_estimate = None;
     let (p, error_estimate, resolution) = match accuracy {
-        Accuracy::Tolerance(tol) => refine_observed(
+        Accuracy::Tolerance(tol) => refine_core(
             ladder_start(gamma, scheme),
-            scheme.order(),
+            (scheme.order(), floor),
             tol,
             scheme == Scheme::Accurate,
             limits,
-            |res| simulate(gamma, alpha, res, scheme),
+            run,
             observer,
         )
         .map_err(|e| e.with_gamma(gamma))?,
         Accuracy::Fixed(res) => {
             let res = res.validate()?;
-            let fine = simulate(gamma, alpha, res, scheme)?;
+            let fine = run(res)?;
             let halved = |k: u32| Resolution {
                 springs: res.springs >> k,
                 steps: res.steps >> k,
@@ -1091,7 +1163,7 @@ pub fn solve_observed(
             } else {
                 let mut values = [fine; 4];
                 for k in 1..=FIXED_HALVINGS {
-                    values[k as usize] = simulate(gamma, alpha, halved(k), scheme)?;
+                    values[k as usize] = run(halved(k))?;
                 }
                 match fixed_estimate(values, scheme.order()) {
                     Ok(est) => (fine, est, res),
@@ -1104,16 +1176,20 @@ pub fn solve_observed(
         }
     };
     Ok(Solution {
-        // Friction only dissipates: |P| ≤ 1 exactly (7ΔE/(m u0²) = P² − 1). The discrete value
-        // or its Richardson extrapolation can overshoot by up to its error near P = ±1 (γ ≈ 1:
-        // −1 − 9e-7 at 128 steps). Projecting onto [−1, 1] never moves it away from the true
-        // value, so the error estimate (computed from the unprojected values) still holds.
+        // Friction and damping only dissipate: |P| ≤ 1 exactly (elastic: 7ΔE/(m u0²) = P² − 1).
+        // The discrete value or its Richardson extrapolation can overshoot by up to its error
+        // near P = ±1 (γ ≈ 1: −1 − 9e-7 at 128 steps). Projecting onto [−1, 1] never moves it
+        // away from the true value, so the error estimate (computed from the unprojected
+        // values) still holds.
         p: p.clamp(-1.0, 1.0),
         error_estimate,
         resolution,
         scheme,
         method: Method::Simulated,
         no_estimate,
+        law: Law::Elastic,
+        e_n: 1.0,
+        tau: 0.0,
     })
 }
 

@@ -10,8 +10,11 @@ pub mod error;
 pub mod hertz;
 pub mod history;
 pub mod impact;
+pub mod kelvin_voigt;
+pub mod law;
 pub mod model;
 pub mod preset;
+pub mod request;
 pub mod springs;
 pub mod units;
 
@@ -20,5 +23,7 @@ pub use impact::{
     simulate, solve, solve_observed, Accuracy, Method, NoEstimate, RefineEvent, Resolution, Scheme,
     Solution,
 };
+pub use law::Law;
 pub use model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
 pub use preset::Preset;
+pub use request::Request;

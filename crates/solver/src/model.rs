@@ -33,6 +33,13 @@ pub trait NormalModel {
     fn acceleration(&self, d: f64, rate: f64) -> f64;
     /// Indentation and its rate at time `t ∈ [0, dt]` into step `n`.
     fn within_step(&self, n: usize, t: f64) -> (f64, f64);
+    /// The contact's reach (m) at indentation `d` and rate `ḋ`: the springs at profile height
+    /// `y = x²/R* <` reach are in contact, and the contact radius is `√(R* reach)`. The
+    /// indentation itself for an elastic law (the default); the contact ends where it is 0.
+    #[inline(always)]
+    fn reach(&self, (d, _rate): (f64, f64)) -> f64 {
+        d
+    }
 }
 
 /// The field of tangential displacements in the contact: advanced over one time step of the
@@ -44,6 +51,32 @@ pub trait TangentialModel {
     /// Advance the field over one step of motion `m` to indentation `d1` with Coulomb limit
     /// `c = μ E*/G*` (`∞` for no slip).
     fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult;
+    /// The mean force displacement (m) over the contact at first touch, when the contact radius
+    /// is still 0, for slip velocity `ẇ₀` (m/s), approach rate `ḋ₀` (m/s) and Coulomb limit
+    /// factor `c`: 0 for an elastic row (the springs enter unloaded); the product rule of the
+    /// stepper integrates the first step's force from it.
+    #[inline(always)]
+    fn touch_mean(&self, _slip_velocity: f64, _rate0: f64, _c: f64) -> f64 {
+        0.0
+    }
+    /// Whether the model reads the end state of the normal motion ([`StepMotion::rate1`],
+    /// [`StepMotion::accel1`]); without it the stepper leaves `accel1` at 0.
+    const END_STATE: bool = false;
+    /// The instant (s, inside the step, away from its ends by 1e-3 of it) at which the field
+    /// changes its law everywhere at once, so that the stepper splits the step there; `None`
+    /// if there is none. The default is the elastic row's: the part of the contact at a
+    /// Coulomb limit sticks again where `ẇ = ±c ḋ` ([`StepMotion::release_times`]).
+    #[inline(always)]
+    fn release_time(&self, m: &StepMotion, c: f64) -> Option<f64> {
+        let h = m.h;
+        let (at_plus, at_minus) = self.at_limit();
+        let (tp, tm) = m.release_times(c);
+        [tp.filter(|_| at_plus), tm.filter(|_| at_minus)]
+            .into_iter()
+            .flatten()
+            .filter(|&t| t > 1e-3 * h && t < (1.0 - 1e-3) * h)
+            .reduce(f64::min)
+    }
 }
 
 /// A time scheme: how the equations of the bodies and of the tangential field are advanced.

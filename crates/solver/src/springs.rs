@@ -20,6 +20,10 @@ pub struct StepMotion {
     pub slip_velocity: f64,
     /// Slip acceleration `ẅ_n` (m/s²); `w` is quadratic over the step.
     pub slip_accel: f64,
+    /// Indentation rate at the end of the step `ḋ_{n+1}` (m/s).
+    pub rate1: f64,
+    /// Indentation acceleration at the end of the step `d̈_{n+1}` (m/s²).
+    pub accel1: f64,
 }
 
 impl StepMotion {
@@ -343,6 +347,8 @@ pub(crate) fn motion(dw: f64, d0: f64) -> StepMotion {
         accel0: 0.0,
         slip_velocity: dw,
         slip_accel: 0.0,
+        rate1: 0.0,
+        accel1: 0.0,
     }
 }
 

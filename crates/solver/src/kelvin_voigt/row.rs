@@ -1,0 +1,863 @@
+//! The Kelvin–Voigt tangential row in the continuum limit: the field of tangential spring
+//! states over the contact, exact in space, for springs with relaxation time `τ`.
+//!
+//! A spring at profile height `y = x²/R*` holds an elastic displacement `u` and carries the
+//! force `G* v` per unit length, `v = u + τ u̇`. With the load `D = d + τ ḋ` its Coulomb limit is
+//! `|v| ≤ c (D − y)`, `c = μ E*/G*` (`physics.md`):
+//!
+//! - stuck, `u̇ = ẇ` (the contact point's velocity): `v = u + τ ẇ`, as long as that is within
+//!   the limit;
+//! - slipping with sign `s`: `v = s c (D − y)`, and `u` relaxes, `τ u̇ = v − u`; with
+//!   `δ = u − s c (D − y)` that reads `τ δ̇ = −δ − τ L̇`, `L̇ = s c Ḋ` the same for every spring,
+//!   so one step maps every slipping spring's `δ` by the same `δ ↦ E δ + K_s`, `E = e^{−h/τ}`;
+//! - a slipping spring sticks again where `s (δ + τ ẇ) ≤ 0` (where `u̇` of the relaxation falls
+//!   to `ẇ`; `u̇` is continuous across both transitions);
+//! - springs enter contact with `u = 0` while the contact grows (`y < d` in compression) and
+//!   leave it for good as it shrinks (`y < D` in restitution, non-adhesive).
+//!
+//! As in the elastic row ([`crate::continuum::ContinuumRow`]), every field the update produces
+//! is piecewise quadratic in `y`: a stuck piece holds `u − W` (`W` the accumulated increment of
+//! `w`), a slipping piece `δ` in the frame of its sign (`δ = A_s δ̃ + B_s`, with `A_s`, `B_s`
+//! accumulating the uniform relaxation, so a step that changes no state costs O(1) per chunk).
+//! `∫ v dx` is integrated exactly. Transitions happen at the end of a step (local error O(h²)
+//! once per spring: second order overall).
+
+use crate::continuum::{roots_inside, GAUSS};
+use crate::springs::{StepMotion, StepResult};
+
+/// Which law a piece follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    /// `u = W + a + b z + q z²`, `z = y − y_ref`.
+    Stuck,
+    /// Slipping at `v = +c (D − y)`; `δ̃ = a + b z + q z²`.
+    Plus,
+    /// Slipping at `v = −c (D − y)`; `δ̃ = a + b z + q z²`.
+    Minus,
+}
+
+/// One piece of the field on `y0 ≤ y ≤ y1`.
+#[derive(Debug, Clone, Copy)]
+struct Piece {
+    kind: Kind,
+    y0: f64,
+    y1: f64,
+    x0: f64,
+    x1: f64,
+    y_ref: f64,
+    a: f64,
+    b: f64,
+    q: f64,
+    /// Stuck: `∫ (u − W) dx` (m²).
+    rel_integral: f64,
+    /// Stuck: `max (u − W + c y)`; slipping: `max δ̃` (m).
+    upper: f64,
+    /// Stuck: `min (u − W − c y)`; slipping: `min δ̃` (m).
+    lower: f64,
+}
+
+impl Piece {
+    fn new(kind: Kind, y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64, r: f64) -> Self {
+        let mut p = Self {
+            kind,
+            y0,
+            y1,
+            x0: (r * y0).sqrt(),
+            x1: (r * y1).sqrt(),
+            y_ref,
+            a: abq.0,
+            b: abq.1,
+            q: abq.2,
+            rel_integral: 0.0,
+            upper: 0.0,
+            lower: 0.0,
+        };
+        p.refresh(c, r);
+        p
+    }
+
+    fn value(&self, y: f64) -> f64 {
+        let z = y - self.y_ref;
+        self.a + z * (self.b + self.q * z)
+    }
+
+    /// `max`/`min` of `value + s y` over the piece.
+    fn extremum(&self, s: f64, max: bool) -> f64 {
+        let f = |y: f64| self.value(y) + s * y;
+        let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
+        let mut best = pick(f(self.y0), f(self.y1));
+        if self.q != 0.0 {
+            let y = self.y_ref - (self.b + s) / (2.0 * self.q);
+            if y > self.y0 && y < self.y1 {
+                best = pick(best, f(y));
+            }
+        }
+        best
+    }
+
+    fn refresh(&mut self, c: f64, r: f64) {
+        match self.kind {
+            Kind::Stuck => {
+                let dx = self.x1 - self.x0;
+                let total: f64 = GAUSS
+                    .iter()
+                    .map(|&(t, w)| {
+                        let x = self.x0 + t * dx;
+                        w * self.value(x * x / r)
+                    })
+                    .sum();
+                self.rel_integral = total * dx;
+                if c.is_finite() {
+                    self.upper = self.extremum(c, true);
+                    self.lower = self.extremum(-c, false);
+                }
+            }
+            Kind::Plus | Kind::Minus => {
+                self.upper = self.extremum(0.0, true);
+                self.lower = self.extremum(0.0, false);
+            }
+        }
+    }
+
+    fn cube(&self) -> f64 {
+        self.x1 * self.x1 * self.x1 - self.x0 * self.x0 * self.x0
+    }
+}
+
+/// Consecutive pieces with the sums a step needs.
+#[derive(Debug, Clone, Default)]
+struct Chunk {
+    pieces: Vec<Piece>,
+    /// Stuck: `Σ ∫ (u − W) dx`, `Σ Δx`, `max upper`, `min lower`.
+    rel_integral: f64,
+    stuck_length: f64,
+    upper: f64,
+    lower: f64,
+    /// Slipping at `+`/`−`: `Σ Δx`, `Σ Δ(x³)`, `min δ̃` (`+`) and `max δ̃` (`−`).
+    slip_length: [f64; 2],
+    slip_cube: [f64; 2],
+    plus_min: f64,
+    minus_max: f64,
+}
+
+const CHUNK_MAX: usize = 48;
+
+impl Chunk {
+    fn summarize(&mut self) {
+        self.rel_integral = 0.0;
+        self.stuck_length = 0.0;
+        self.upper = f64::NEG_INFINITY;
+        self.lower = f64::INFINITY;
+        self.slip_length = [0.0; 2];
+        self.slip_cube = [0.0; 2];
+        self.plus_min = f64::INFINITY;
+        self.minus_max = f64::NEG_INFINITY;
+        for p in &self.pieces {
+            match p.kind {
+                Kind::Stuck => {
+                    self.rel_integral += p.rel_integral;
+                    self.stuck_length += p.x1 - p.x0;
+                    self.upper = self.upper.max(p.upper);
+                    self.lower = self.lower.min(p.lower);
+                }
+                Kind::Plus => {
+                    self.slip_length[0] += p.x1 - p.x0;
+                    self.slip_cube[0] += p.cube();
+                    self.plus_min = self.plus_min.min(p.lower);
+                }
+                Kind::Minus => {
+                    self.slip_length[1] += p.x1 - p.x0;
+                    self.slip_cube[1] += p.cube();
+                    self.minus_max = self.minus_max.max(p.upper);
+                }
+            }
+        }
+    }
+}
+
+/// The uniform relaxation of the slipping springs of one sign: `δ = A δ̃ + B`.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    scale: f64,
+    shift: f64,
+}
+
+impl Frame {
+    const IDENTITY: Frame = Frame {
+        scale: 1.0,
+        shift: 0.0,
+    };
+    fn actual(&self, stored: f64) -> f64 {
+        self.scale * stored + self.shift
+    }
+}
+
+/// Below this scale the frames are reset at the start of a step (every slipping piece
+/// rewritten in the identity frame).
+const FRAME_FLOOR: f64 = 1e-100;
+
+/// A relaxation that would take the scale below this rewrites the pieces at once instead.
+const FRAME_UNDERFLOW: f64 = 1e-250;
+
+/// What one step does to the pieces: the limit, the end state and the kinematics of the step
+/// (for the instants of the transitions inside it).
+#[derive(Debug, Clone, Copy)]
+struct Update {
+    c: f64,
+    /// Load at the end of the step `D1` (m).
+    load: f64,
+    /// `τ ẇ1` (m).
+    viscous: f64,
+    /// Step `h` (s) and relaxation time `τ` (s).
+    h: f64,
+    tau: f64,
+    /// `ẇ0` (m/s) and `ẅ0` (m/s²): `w` is quadratic over the step.
+    vel: f64,
+    acc: f64,
+    /// `D0` (m), `Ḋ0` (m/s) and the slope `β` (m/s²) of `Ḋ`, linear over the step.
+    load0: f64,
+    load_rate0: f64,
+    beta: f64,
+    /// The frames of the slipping pieces at the start of the step.
+    prev: [Frame; 2],
+}
+
+impl Update {
+    /// `w(h) − w(t)` (m).
+    fn w_after(&self, t: f64) -> f64 {
+        let h = self.h;
+        self.vel * (h - t) + 0.5 * self.acc * (h * h - t * t)
+    }
+
+    /// `ẇ(t)` (m/s).
+    fn w_rate(&self, t: f64) -> f64 {
+        self.vel + self.acc * t
+    }
+
+    /// `D(t)` (m).
+    fn load_at(&self, t: f64) -> f64 {
+        self.load0 + t * (self.load_rate0 + 0.5 * self.beta * t)
+    }
+
+    /// `e^{−Δ/τ}` and `1 − e^{−Δ/τ}`.
+    fn decay(&self, span: f64) -> (f64, f64) {
+        let x = -span / self.tau;
+        (x.exp(), -x.exp_m1())
+    }
+
+    /// `∫_{ta}^{tb} e^{−(tb − t)/τ} Ḋ(t) dt` (m): the relaxation of a slipping spring from
+    /// `ta` to `tb` maps `δ ↦ e^{−(tb−ta)/τ} δ − s c ·` this.
+    fn forcing(&self, ta: f64, tb: f64) -> f64 {
+        let (tau, span) = (self.tau, tb - ta);
+        let (e, one_minus) = self.decay(span);
+        (self.load_rate0 + self.beta * tb) * tau * one_minus
+            - self.beta * (tau * tau * one_minus - tau * span * e)
+    }
+}
+
+/// The cut points `z + y_ref` (at most four: two roots of two quadratics), without allocating.
+fn heights(cuts: &[f64], y_ref: f64) -> cut_list::Cuts {
+    let mut out = cut_list::Cuts::default();
+    for &z in cuts.iter().take(4) {
+        out.push(z + y_ref);
+    }
+    out
+}
+
+/// A list of at most four cut points on the stack.
+mod cut_list {
+    /// At most four heights.
+    #[derive(Debug, Default, Clone, Copy)]
+    pub struct Cuts {
+        values: [f64; 4],
+        len: usize,
+    }
+
+    impl Cuts {
+        pub fn push(&mut self, v: f64) {
+            self.values[self.len] = v;
+            self.len += 1;
+        }
+        pub fn iter(&self) -> std::slice::Iter<'_, f64> {
+            self.values[..self.len].iter()
+        }
+    }
+}
+
+/// The root of `g` on `[0, h]` by the Illinois method, to 1e-9 h (12 iterations at most: the
+/// transitions' instants need accuracy O(h^{3/2}) only, `u̇` being continuous across them).
+/// 0 when `g(0) ≥ 0`, `h` when `g(h) < 0`.
+fn crossing(h: f64, g: impl Fn(f64) -> f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, h);
+    let (mut g_lo, mut g_hi) = (g(lo), g(hi));
+    if g_lo >= 0.0 {
+        return 0.0;
+    }
+    if g_hi < 0.0 {
+        return h;
+    }
+    let mut side = 0;
+    for _ in 0..12 {
+        let mut t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+        if !(t > lo && t < hi) {
+            t = 0.5 * (lo + hi);
+        }
+        let gt = g(t);
+        if gt < 0.0 {
+            (lo, g_lo) = (t, gt);
+            if side == -1 {
+                g_hi *= 0.5;
+            }
+            side = -1;
+        } else {
+            (hi, g_hi) = (t, gt);
+            if side == 1 {
+                g_lo *= 0.5;
+            }
+            side = 1;
+        }
+        if hi - lo <= 1e-9 * h {
+            break;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The exact (continuum) Kelvin–Voigt half-row of tangential springs.
+#[derive(Debug, Clone)]
+pub struct ViscoelasticRow {
+    radius: f64,
+    tau: f64,
+    chunks: Vec<Chunk>,
+    /// Accumulated increment `W` (m).
+    offset: f64,
+    /// Frames of the `+` and `−` slipping pieces.
+    frames: [Frame; 2],
+    /// Contact reach `b` (m) after the last step: springs with `y < b` are in contact.
+    reach: f64,
+    /// Whether this step's relaxation forgot the slipping states' start values (the decay
+    /// `e^{−h/τ}` underflowed the frames; only for `h ≫ τ`, where that memory is lost anyway).
+    memoryless: bool,
+    at_limit: (bool, bool),
+    cuts: Vec<f64>,
+    spare: Vec<Piece>,
+}
+
+impl ViscoelasticRow {
+    /// An unloaded row for effective radius `R*` (m) and relaxation time `τ` (s, > 0).
+    pub fn new(radius: f64, tau: f64) -> Self {
+        Self {
+            radius,
+            tau,
+            chunks: Vec::new(),
+            offset: 0.0,
+            frames: [Frame::IDENTITY; 2],
+            reach: 0.0,
+            memoryless: false,
+            at_limit: (false, false),
+            cuts: Vec::new(),
+            spare: Vec::new(),
+        }
+    }
+
+    /// Relaxation time `τ` (s).
+    pub fn tau(&self) -> f64 {
+        self.tau
+    }
+
+    /// Whether some part of the contact slips at the `+` / `−` limit (after the last step).
+    pub fn at_limit(&self) -> (bool, bool) {
+        self.at_limit
+    }
+
+    /// Number of pieces (diagnostics).
+    pub fn pieces(&self) -> usize {
+        self.chunks.iter().map(|c| c.pieces.len()).sum()
+    }
+
+    fn frame(&self, kind: Kind) -> Frame {
+        match kind {
+            Kind::Minus => self.frames[1],
+            _ => self.frames[0],
+        }
+    }
+
+    /// Advance over one step of motion `m` to indentation `d1` with Coulomb limit factor `c`
+    /// (`∞`: no slip). Returns `∫₀^a v dx` (m²) at the end of the step and the mean `v`.
+    pub fn step(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        let (h, vel, acc) = (m.h, m.slip_velocity, m.slip_accel);
+        let tau = self.tau;
+        let dw = h * vel + 0.5 * h * h * acc;
+        let w_rate1 = vel + h * acc;
+        let load1 = d1 + tau * m.rate1;
+        let reach0 = self.reach;
+        let reach1 = if m.rate1 < 0.0 { load1.max(0.0) } else { d1 };
+        let finite = c.is_finite();
+        if finite && self.frames[0].scale < FRAME_FLOOR {
+            self.reset_frames(c);
+        }
+        self.memoryless = false;
+        let load_rate0 = m.rate0 + tau * m.accel0;
+        let up = Update {
+            c,
+            load: load1,
+            viscous: tau * w_rate1,
+            h,
+            tau,
+            vel,
+            acc,
+            load0: m.d0 + tau * m.rate0,
+            load_rate0,
+            beta: (m.rate1 + tau * m.accel1 - load_rate0) / h,
+            prev: self.frames,
+        };
+        if finite {
+            self.relax(&up);
+        }
+        let center = self.center(c, up.load0);
+        self.offset += dw;
+        let w = self.offset;
+        self.truncate(reach1, c);
+        let (t_plus, t_minus) = if finite {
+            (c * load1 - w - up.viscous, -c * load1 - w - up.viscous)
+        } else {
+            (f64::INFINITY, f64::NEG_INFINITY)
+        };
+        let releases = [
+            -up.viscous - self.frames[0].shift,
+            -up.viscous - self.frames[1].shift,
+        ];
+        let mut k = 0;
+        while k < self.chunks.len() {
+            let ch = &self.chunks[k];
+            let release = (ch.slip_length[0] > 0.0
+                && self.frames[0].scale * ch.plus_min <= releases[0])
+                || (ch.slip_length[1] > 0.0 && self.frames[1].scale * ch.minus_max >= releases[1]);
+            k += if release || ch.upper > t_plus || ch.lower < t_minus {
+                self.update_chunk(k, &up, t_plus, t_minus)
+            } else {
+                1
+            };
+        }
+        if reach1 > reach0 {
+            self.enter(m, (reach0, reach1), &up);
+        }
+        self.reach = reach1;
+        let r = self.radius;
+        let (mut any_plus, mut any_minus) = (false, false);
+        let mut integral = 0.0;
+        for ch in &self.chunks {
+            integral += ch.rel_integral + (w + up.viscous) * ch.stuck_length;
+            if finite {
+                let lim = |i: usize| c * (load1 * ch.slip_length[i] - ch.slip_cube[i] / (3.0 * r));
+                integral += lim(0) - lim(1);
+                any_plus |= ch.slip_length[0] > 0.0;
+                any_minus |= ch.slip_length[1] > 0.0;
+            }
+        }
+        self.at_limit = (any_plus, any_minus);
+        let a1 = (r * reach1).sqrt();
+        let mean = if a1 > 0.0 && self.pieces() > 0 {
+            integral / a1
+        } else if finite {
+            0.0
+        } else {
+            center + dw + up.viscous
+        };
+        StepResult { integral, mean }
+    }
+
+    /// Springs entering contact over the band `y ∈ [b0, b1]` (entry time `θ h`,
+    /// `θ = (y − b0)/(b1 − b0)`). A spring enters stuck where `|ẇ| ≤ c ḋ` at its entry (its
+    /// force `τ ẇ` within the limit `c τ ḋ` of `y = d`) and then moves with the contact point,
+    /// `u = w(h) − w(θh)`. Otherwise it enters slipping with sign `s` of `ẇ`, and
+    /// `u = s c (d(t) − y)` solves its relaxation exactly: `δ = −s c τ ḋ`, the same for all.
+    /// The entry law switches where `±ẇ = c ḋ` (both linear over the step).
+    fn enter(&mut self, m: &StepMotion, (b0, b1): (f64, f64), up: &Update) {
+        let (h, vel, acc) = (m.h, m.slip_velocity, m.slip_accel);
+        let c = up.c;
+        let r = self.radius;
+        let w = self.offset;
+        let span = b1 - b0;
+        let mut cuts = [0.0, 1.0, 1.0, 1.0];
+        let mut n = 1;
+        if c.is_finite() {
+            let rate = |t: f64| m.rate0 + (m.rate1 - m.rate0) * t;
+            for sign in [1.0, -1.0] {
+                // sign ẇ(θ) − c ḋ(θ) = A + B θ.
+                let a0 = sign * vel - c * m.rate0;
+                let b = sign * acc * h - c * (m.rate1 - m.rate0);
+                if b != 0.0 {
+                    let t = -a0 / b;
+                    if t > 0.0 && t < 1.0 {
+                        cuts[n] = t;
+                        n += 1;
+                    }
+                }
+            }
+            let _ = rate;
+        }
+        let cuts = &mut cuts[..=n];
+        cuts[n] = 1.0;
+        cuts.sort_by(|a, b| a.total_cmp(b));
+        let k1 = h * vel + acc * h * h;
+        let k2 = 0.5 * acc * h * h;
+        if self.chunks.is_empty() {
+            self.chunks.push(Chunk::default());
+        }
+        let mut out = std::mem::take(&mut self.spare);
+        out.clear();
+        let last = self.chunks.len() - 1;
+        out.append(&mut self.chunks[last].pieces);
+        for pair in cuts.windows(2) {
+            let (t0, t1) = (pair[0], pair[1]);
+            if t1 <= t0 {
+                continue;
+            }
+            let (y0, y1) = (b0 + t0 * span, if t1 >= 1.0 { b1 } else { b0 + t1 * span });
+            let t = 0.5 * (t0 + t1);
+            let w_rate = vel + acc * h * t;
+            let bound = c * (m.rate0 + (m.rate1 - m.rate0) * t);
+            if c.is_finite() && w_rate.abs() > bound {
+                let s = w_rate.signum();
+                let kind = if s > 0.0 { Kind::Plus } else { Kind::Minus };
+                let f = self.frame(kind);
+                let delta = -s * c * self.tau * m.rate1;
+                let abq = ((delta - f.shift) / f.scale, 0.0, 0.0);
+                let slip = Piece::new(kind, y0, y1, b0, abq, c, r);
+                let start = (-s * c * self.tau * m.rate0, 0.0, 0.0);
+                self.release(slip, up, &mut out, Some(start));
+            } else {
+                let abq = (k1 - k2 - w, (2.0 * k2 - k1) / span, -k2 / (span * span));
+                let stuck = Piece::new(Kind::Stuck, y0, y1, b0, abq, c, r);
+                self.clip(stuck, up, &mut out);
+            }
+        }
+        self.install(last, out);
+    }
+
+    /// `u` at the centre (for the no-slip end of contact).
+    fn center(&self, c: f64, load: f64) -> f64 {
+        let first = self.chunks.first().and_then(|ch| ch.pieces.first());
+        first.map_or(0.0, |p| match p.kind {
+            Kind::Stuck => self.offset + p.value(0.0),
+            Kind::Plus => c * load + self.frames[0].actual(p.value(0.0)),
+            Kind::Minus => -c * load + self.frames[1].actual(p.value(0.0)),
+        })
+    }
+
+    /// The uniform relaxation of every slipping spring over the step:
+    /// `δ₁ = E δ₀ − s c ∫₀^h e^{−(h−t)/τ} Ḋ dt`, `E = e^{−h/τ}`, with `Ḋ = ḋ + τ d̈` linear over
+    /// the step ([`Update::forcing`]).
+    fn relax(&mut self, up: &Update) {
+        let (e, _) = up.decay(up.h);
+        let k = -up.c * up.forcing(0.0, up.h);
+        if self.frames[0].scale * e < FRAME_UNDERFLOW {
+            // Rewrite every slipping piece in the identity frame with its relaxed δ.
+            let frames = self.frames;
+            let r = self.radius;
+            for ch in &mut self.chunks {
+                for p in &mut ch.pieces {
+                    let (f, s) = match p.kind {
+                        Kind::Stuck => continue,
+                        Kind::Plus => (frames[0], 1.0),
+                        Kind::Minus => (frames[1], -1.0),
+                    };
+                    p.a = e * f.actual(p.a) + s * k;
+                    p.b *= e * f.scale;
+                    p.q *= e * f.scale;
+                    p.refresh(up.c, r);
+                }
+                ch.summarize();
+            }
+            self.frames = [Frame::IDENTITY; 2];
+            self.memoryless = true;
+            return;
+        }
+        for (frame, s) in self.frames.iter_mut().zip([1.0, -1.0]) {
+            frame.scale *= e;
+            frame.shift = e * frame.shift + s * k;
+        }
+    }
+
+    /// Rewrite every slipping piece in the identity frame.
+    fn reset_frames(&mut self, c: f64) {
+        let frames = self.frames;
+        let r = self.radius;
+        for ch in &mut self.chunks {
+            for p in &mut ch.pieces {
+                let f = match p.kind {
+                    Kind::Stuck => continue,
+                    Kind::Plus => frames[0],
+                    Kind::Minus => frames[1],
+                };
+                p.a = f.actual(p.a);
+                p.b *= f.scale;
+                p.q *= f.scale;
+                p.refresh(c, r);
+            }
+            ch.summarize();
+        }
+        self.frames = [Frame::IDENTITY; 2];
+    }
+
+    /// Drop everything at `y ≥ top`.
+    fn truncate(&mut self, top: f64, c: f64) {
+        let r = self.radius;
+        while let Some(ch) = self.chunks.last_mut() {
+            while ch.pieces.last().is_some_and(|p| p.y0 >= top) {
+                ch.pieces.pop();
+            }
+            if ch.pieces.is_empty() {
+                self.chunks.pop();
+                continue;
+            }
+            if let Some(p) = ch.pieces.last_mut() {
+                if p.y1 > top {
+                    p.y1 = top;
+                    p.x1 = (r * top).sqrt();
+                    p.refresh(c, r);
+                    ch.summarize();
+                }
+            }
+            break;
+        }
+    }
+
+    fn update_chunk(&mut self, k: usize, up: &Update, t_plus: f64, t_minus: f64) -> usize {
+        let mut out = std::mem::take(&mut self.spare);
+        out.clear();
+        let old = std::mem::take(&mut self.chunks[k].pieces);
+        for &p in &old {
+            match p.kind {
+                Kind::Stuck => {
+                    if p.upper > t_plus || p.lower < t_minus {
+                        self.clip(p, up, &mut out);
+                    } else {
+                        out.push(p);
+                    }
+                }
+                Kind::Plus | Kind::Minus => self.release(p, up, &mut out, None),
+            }
+        }
+        self.spare = old;
+        self.install(k, out)
+    }
+
+    /// A slipping piece: the parts where `s (δ + τ ẇ₁) ≤ 0` stick again (and are clipped
+    /// against the limits), the rest keeps slipping. `start` is `δ` at the start of the step
+    /// (coefficients in the piece's `z`), `None` for the piece's own, from the frame then.
+    ///
+    /// A part that sticks again does so at the instant `t*` where `s (δ(t) + τ ẇ(t))` falls to
+    /// 0 (at its midpoint); it then moves with the contact point:
+    /// `u(h) = s c (D(t*) − y) + δ(t*) + w(h) − w(t*)`. Across `t*` `u̇` is continuous, so
+    /// taking the end of the step instead would cost O(h²) locally, coherent over a region
+    /// released at once (as the elastic row's release corrections say); with `t*` the local
+    /// error is O(h³).
+    fn release(
+        &mut self,
+        p: Piece,
+        up: &Update,
+        out: &mut Vec<Piece>,
+        start: Option<(f64, f64, f64)>,
+    ) {
+        let r = self.radius;
+        let c = up.c;
+        let s = if p.kind == Kind::Plus { 1.0 } else { -1.0 };
+        let f = self.frame(p.kind);
+        // δ + τẇ₁ in z: (A a + B + τẇ₁) + A b z + A q z².
+        let g = |y: f64| f.actual(p.value(y)) + up.viscous;
+        let whole = if s > 0.0 {
+            f.actual(p.lower) + up.viscous > 0.0
+        } else {
+            f.actual(p.upper) + up.viscous < 0.0
+        };
+        if whole {
+            out.push(p);
+            return;
+        }
+        let start = start.unwrap_or_else(|| {
+            let f0 = if self.memoryless {
+                f
+            } else {
+                up.prev[if s > 0.0 { 0 } else { 1 }]
+            };
+            (f0.actual(p.a), f0.scale * p.b, f0.scale * p.q)
+        });
+        self.cuts.clear();
+        let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
+        roots_inside(
+            f.actual(p.a) + up.viscous,
+            f.scale * p.b,
+            f.scale * p.q,
+            z0,
+            z1,
+            &mut self.cuts,
+        );
+        self.cuts.sort_by(|a, b| a.total_cmp(b));
+        let cuts = heights(&self.cuts, p.y_ref);
+        let mut lo = p.y0;
+        for hi in cuts.iter().copied().chain(std::iter::once(p.y1)) {
+            let hi = hi.clamp(lo, p.y1);
+            if hi > lo {
+                let mid = 0.5 * (lo + hi);
+                if s * g(mid) > 0.0 {
+                    let keep = Piece::new(p.kind, lo, hi, p.y_ref, (p.a, p.b, p.q), c, r);
+                    out.push(keep);
+                } else {
+                    let zm = mid - p.y_ref;
+                    let delta0 = start.0 + zm * (start.1 + start.2 * zm);
+                    let t = crossing(up.h, |t| {
+                        let (e, _) = up.decay(t);
+                        -s * (e * delta0 - s * c * up.forcing(0.0, t) + up.tau * up.w_rate(t))
+                    });
+                    let (e, _) = up.decay(t);
+                    let shift = -s * c * up.forcing(0.0, t);
+                    // u − W, in the piece's z.
+                    let w = self.offset;
+                    let abq = (
+                        s * c * (up.load_at(t) - p.y_ref) + e * start.0 + shift + up.w_after(t) - w,
+                        -s * c + e * start.1,
+                        e * start.2,
+                    );
+                    let stuck = Piece::new(Kind::Stuck, lo, hi, p.y_ref, abq, c, r);
+                    self.clip(stuck, up, out);
+                }
+            }
+            lo = hi;
+        }
+    }
+
+    fn install(&mut self, k: usize, mut pieces: Vec<Piece>) -> usize {
+        let mut count = 1;
+        if pieces.len() > CHUNK_MAX {
+            count = 2;
+            let tail = pieces.split_off(pieces.len() / 2);
+            let mut next = Chunk {
+                pieces: tail,
+                ..Chunk::default()
+            };
+            next.summarize();
+            self.chunks.insert(k + 1, next);
+        }
+        let ch = &mut self.chunks[k];
+        std::mem::swap(&mut ch.pieces, &mut pieces);
+        if pieces.capacity() > self.spare.capacity() {
+            self.spare = pieces;
+        }
+        ch.summarize();
+        if ch.pieces.is_empty() {
+            self.chunks.remove(k);
+            count = 0;
+        }
+        count
+    }
+
+    /// Clip a stuck piece (after the increment) against `|u + τẇ₁| ≤ c (D₁ − y)`: the parts
+    /// outside start to slip with `δ = u − s c (D₁ − y)`.
+    fn clip(&mut self, p: Piece, up: &Update, out: &mut Vec<Piece>) {
+        let r = self.radius;
+        let c = up.c;
+        if p.x1 <= p.x0 {
+            return;
+        }
+        if !c.is_finite() {
+            out.push(p);
+            return;
+        }
+        let w = self.offset;
+        let abs_a = p.a + w + up.viscous;
+        let lim_ref = c * (up.load - p.y_ref);
+        let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
+        self.cuts.clear();
+        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut self.cuts);
+        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut self.cuts);
+        self.cuts.sort_by(|a, b| a.total_cmp(b));
+        let cuts = heights(&self.cuts, p.y_ref);
+        let mut lo = p.y0;
+        for hi in cuts.iter().copied().chain(std::iter::once(p.y1)) {
+            let hi = hi.clamp(lo, p.y1);
+            if hi > lo {
+                let mid = 0.5 * (lo + hi);
+                let v = w + up.viscous + p.value(mid);
+                let lim = c * (up.load - mid);
+                let kind = if v > lim {
+                    Kind::Plus
+                } else if v < -lim {
+                    Kind::Minus
+                } else {
+                    Kind::Stuck
+                };
+                let part = match kind {
+                    Kind::Stuck if lo == p.y0 && hi == p.y1 => p,
+                    Kind::Stuck => Piece::new(kind, lo, hi, p.y_ref, (p.a, p.b, p.q), c, r),
+                    _ => {
+                        // The part starts to slip at t* where s (u + τẇ) = c (D − y) (at its
+                        // midpoint, along the stuck path u(t) = u(h) − (w(h) − w(t))); there
+                        // δ(t*) = u(t*) − s c (D(t*) − y), relaxed from t* to h.
+                        let s = if kind == Kind::Plus { 1.0 } else { -1.0 };
+                        let u_mid = w + p.value(mid);
+                        let t = crossing(up.h, |t| {
+                            s * (u_mid - up.w_after(t) + up.tau * up.w_rate(t))
+                                - c * (up.load_at(t) - mid)
+                        });
+                        let (e, _) = up.decay(up.h - t);
+                        let shift = -s * c * up.forcing(t, up.h);
+                        let lim_t = c * (up.load_at(t) - p.y_ref);
+                        let f = self.frame(kind);
+                        let abq = (
+                            (e * (w + p.a - up.w_after(t) - s * lim_t) + shift - f.shift) / f.scale,
+                            e * (p.b + s * c) / f.scale,
+                            e * p.q / f.scale,
+                        );
+                        Piece::new(kind, lo, hi, p.y_ref, abq, c, r)
+                    }
+                };
+                out.push(part);
+            }
+            lo = hi;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn motion(dw: f64, d0: f64, rate: f64) -> StepMotion {
+        StepMotion {
+            h: 1.0,
+            d0,
+            rate0: rate,
+            accel0: 0.0,
+            slip_velocity: dw,
+            slip_accel: 0.0,
+            rate1: rate,
+            accel1: 0.0,
+        }
+    }
+
+    #[test]
+    fn full_slip_carries_the_limit_of_the_load() {
+        // Everything slips: v = c (D − y) over y < d (compression), ∫ = c (D a − a³/3).
+        let tau = 0.1;
+        let mut row = ViscoelasticRow::new(1.0, tau);
+        let (d, rate) = (0.49, 0.5);
+        let got = row.step(&motion(10.0, 0.0, rate), d, 1.0).integral;
+        let (load, a) = (d + tau * rate, d.sqrt());
+        let exact = load * a - a * a * a / 3.0;
+        assert!((got - exact).abs() < 1e-14, "{got} vs {exact}");
+        assert_eq!(row.at_limit(), (true, false));
+    }
+
+    #[test]
+    fn a_stuck_entry_carries_the_viscous_force() {
+        // No slip, one step from d0 = 0 at constant w rate: u = dw (1 − y/d1), v = u + τ ẇ.
+        let tau = 0.1;
+        let mut row = ViscoelasticRow::new(1.0, tau);
+        let d = 0.36;
+        let got = row.step(&motion(0.2, 0.0, 0.5), d, f64::INFINITY).integral;
+        let exact = 0.2 * 0.6 * (2.0 / 3.0) + tau * 0.2 * 0.6;
+        assert!((got - exact).abs() < 1e-15, "{got} vs {exact}");
+    }
+}
