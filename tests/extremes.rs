@@ -229,6 +229,7 @@ fn corner_cases() -> Vec<(String, PhysicalImpact)> {
                     },
                 },
                 friction: 0.5,
+                relaxation_time: 0.0,
             };
             out.push((format!("sphere-sphere R = {r} m, v = {v} m/s"), imp));
         }

@@ -264,6 +264,7 @@ fn seed_000_sphere_on_glass_at_several_angles() {
                 other: State::default(),
             },
             friction: 0.092,
+            relaxation_time: 0.0,
         });
     }
 }
@@ -289,6 +290,7 @@ fn hollow_spinning_sphere_on_a_wall() {
             other: State::default(),
         },
         friction: 0.3,
+        relaxation_time: 0.0,
     });
 }
 
@@ -317,5 +319,6 @@ fn two_spheres_of_different_size_material_and_spin() {
             },
         },
         friction: 0.15,
+        relaxation_time: 0.0,
     });
 }

@@ -340,7 +340,7 @@ class Groups(NamedTuple):
 
 
 class Impact(NamedTuple):
-    """``P(γ, α)`` simulated (:func:`impact`)."""
+    """``P(γ, α, e_n)`` simulated (:func:`impact`)."""
 
     p: Float
     """P = u_after/u_before."""
@@ -352,6 +352,11 @@ class Impact(NamedTuple):
     """Springs on the half-row of the finest run (0: closed form or the continuum row)."""
     steps: Union[int, NDArray[np.int64]]
     """Time steps per contact of the finest run (0 for closed forms)."""
+    e_n: Float
+    """Normal restitution of the impact (1: elastic)."""
+    tau: Float
+    """Dimensionless relaxation time τ̂ of the Kelvin–Voigt law that gives ``e_n`` (0 for the
+    elastic law), in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(-2/5), k = (4/3) E* √R*."""
 
 
 @dataclass(frozen=True)
@@ -375,6 +380,11 @@ class Simulation:
     """Measured peak normal force (N)."""
     max_indentation: float
     """Measured maximum indentation (m)."""
+    e_n: float
+    """Normal restitution of the impact (1 for elastic bodies)."""
+    tau: float
+    """Dimensionless relaxation time τ̂ of the impact (0 for elastic bodies): that of
+    :func:`impact` at the same ``e_n``."""
     springs: int
     steps: int
     groups: Groups
@@ -715,21 +725,35 @@ def critical(gamma: ArrayLike) -> Tuple[Float, Float]:
 
 
 def impact(
-    gamma: ArrayLike, alpha: ArrayLike, tol: float = 1e-6, simulate: bool = False
+    gamma: ArrayLike,
+    alpha: ArrayLike,
+    tol: float = 1e-6,
+    simulate: bool = False,
+    *,
+    e_n: ArrayLike = 1.0,
+    law: Optional[str] = None,
 ) -> Impact:
-    """P(γ, α) by simulating the impact (MDR, error-controlled) until the error estimate is
-    ≤ ``tol`` (absolute); where P is known in closed form (the full-slip line, γ = 1 with
+    """P(γ, α, e_n) by simulating the impact (MDR, error-controlled) until the error estimate
+    is ≤ ``tol`` (absolute); where P is known in closed form (the full-slip line, γ = 1 with
     α ≥ 2/7, α = 0) that is returned unless ``simulate=True``. For points a table does not
-    cover. One point takes 0.05–5 ms at tol 1e-6; arrays run in parallel. Broadcasts."""
-    g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
-    shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
+    cover. One point takes 0.05–5 ms at tol 1e-6; arrays run in parallel. Broadcasts over
+    ``gamma``, ``alpha`` and ``e_n``.
+
+    ``e_n`` is the normal restitution, from 0.3 to 1 (1, the default: elastic). Below 1 the
+    springs follow the ``"kelvin-voigt"`` law (one relaxation time in the normal and tangential
+    direction, non-adhesive; physics.md), the only dissipative ``law`` so far; ``law=None``
+    picks it below 1 and ``"elastic"`` at 1."""
+    g, a, e = _f64(gamma, "gamma"), _f64(alpha, "alpha"), _f64(e_n, "e_n")
+    shape = _shape([("gamma", g.shape), ("alpha", a.shape), ("e_n", e.shape)])
     raw = _native.impact(
         _column(g, shape),
         _column(a, shape),
+        _column(e, shape),
         math.prod(shape),
         list(shape),
         float(tol),
         bool(simulate),
+        law,
     )
     v = _views(raw, shape, _native.IMPACT)
     if shape:
@@ -739,9 +763,17 @@ def impact(
             v["closed_form"] != 0,
             v["springs"].astype(np.int64),
             v["steps"].astype(np.int64),
+            v["e_n"],
+            v["tau"],
         )
     return Impact(
-        v["p"], v["error_estimate"], v["closed_form"] != 0, int(v["springs"]), int(v["steps"])
+        v["p"],
+        v["error_estimate"],
+        v["closed_form"] != 0,
+        int(v["springs"]),
+        int(v["steps"]),
+        v["e_n"],
+        v["tau"],
     )
 
 
@@ -783,18 +815,26 @@ def simulate(
     other_v_z: float = 0.0,
     other_omega: float = 0.0,
     tol: float = 1e-6,
+    relaxation_time: float = 0.0,
 ) -> Simulation:
     """One impact in physical units, simulated directly (the two bodies' equations of motion,
     Hertz normal contact, MDR tangential springs) until the error estimate of P is ≤ ``tol``:
     the reference a table answer can be checked against. Arguments and conventions as in
-    :meth:`Table.rebound_2d`, scalars only."""
+    :meth:`Table.rebound_2d`, scalars only.
+
+    ``relaxation_time`` τ (s, ≥ 0) makes the bodies Kelvin–Voigt (for this law τ equals
+    Brilliantov's dissipative constant A); the normal restitution it gives at this impact
+    speed is returned as ``e_n`` (it falls as the speed grows, 1 − e_n ∝ τ v_z0^(1/5) at
+    first order) and must be ≥ 0.3."""
     _, mats = _stiffness(materials, None, need=True)
     motion, s1, s2, mu, shape = _planar(
         sphere, v_x, v_z, omega, friction, other, other_v_x, other_v_z, other_omega, None, mats
     )
     if shape:
         raise ValueError(f"simulate: scalar arguments only, got the broadcast shape {shape}")
-    d = _native.simulate(motion, s1, s2, [_column(x, ()) for x in mats], mu, float(tol))
+    d = _native.simulate(
+        motion, s1, s2, [_column(x, ()) for x in mats], mu, float(tol), float(relaxation_time)
+    )
     v_x, v_z, omega = d["sphere"]
     o_x, o_z, o_omega = d["other"] or (None, None, None)
     return Simulation(
@@ -809,6 +849,8 @@ def simulate(
         contact_time=d["contact_time"],
         peak_force=d["peak_force"],
         max_indentation=d["max_indentation"],
+        e_n=d["e_n"],
+        tau=d["tau"],
         springs=d["springs"],
         steps=d["steps"],
         groups=Groups(*d["groups"]),

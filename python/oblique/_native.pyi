@@ -77,7 +77,14 @@ def groups(
     friction: _F,
 ) -> _F: ...
 def impact(
-    gamma: _F, alpha: _F, rows: int, shape: Sequence[int], tol: float, simulate: bool
+    gamma: _F,
+    alpha: _F,
+    e_n: _F,
+    rows: int,
+    shape: Sequence[int],
+    tol: float,
+    simulate: bool,
+    law: Optional[str],
 ) -> _F: ...
 def simulate(
     motion: Sequence[_F],
@@ -86,4 +93,5 @@ def simulate(
     materials: Sequence[_F],
     friction: _F,
     tol: float,
+    relaxation_time: float,
 ) -> dict: ...

@@ -22,7 +22,7 @@ use oblique_lookup::rebound::{
 use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Prepared, Stiffness};
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::units::{Groups, PhysicalImpact};
-use oblique_solver::{Accuracy, Method, PhysicsError, Scheme};
+use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request};
 
 create_exception!(
     oblique,
@@ -846,6 +846,7 @@ fn physical(s: &Setup<'_>, incident: &Incident, i: usize) -> PhysicalImpact {
         materials,
         incident: *incident,
         friction: s.friction.at(i),
+        relaxation_time: 0.0,
     }
 }
 
@@ -879,23 +880,41 @@ fn groups<'py>(
 }
 
 /// Columns of an impact row.
-const IMPACT: [&str; 5] = ["p", "error_estimate", "closed_form", "springs", "steps"];
+const IMPACT: [&str; 7] = [
+    "p",
+    "error_estimate",
+    "closed_form",
+    "springs",
+    "steps",
+    "e_n",
+    "tau",
+];
 
-/// `P(γ, α)` simulated to `tol` (or in closed form) for every row; returns `(rows, 5)`.
+/// `P(γ, α, e_n)` simulated to `tol` (or in closed form) for every row, with the law `law`
+/// (`None`: elastic at e_n = 1, Kelvin–Voigt below); returns `(rows, 7)`.
 #[pyfunction]
+#[pyo3(signature = (gamma, alpha, e_n, rows, shape, tol, simulate, law))]
+#[allow(clippy::too_many_arguments)]
 fn impact<'py>(
     py: Python<'py>,
     gamma: PyReadonlyArray1<'_, f64>,
     alpha: PyReadonlyArray1<'_, f64>,
+    e_n: PyReadonlyArray1<'_, f64>,
     rows: usize,
     shape: Vec<usize>,
     tol: f64,
     simulate: bool,
+    law: Option<&str>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let (g, a) = (
+    let (g, a, e) = (
         Col::new("gamma", &gamma, 1, rows)?,
         Col::new("alpha", &alpha, 1, rows)?,
+        Col::new("e_n", &e_n, 1, rows)?,
     );
+    let law = law
+        .map(Law::from_name)
+        .transpose()
+        .map_err(|err| PyValueError::new_err(format!("law: {err}")))?;
     // One simulation takes 0.05-5 ms: parallel over single rows.
     new_rows(
         py,
@@ -903,19 +922,23 @@ fn impact<'py>(
         IMPACT.len(),
         1,
         |i, r| {
-            let s = oblique_solver::solve(
-                g.at(i),
-                a.at(i),
-                Accuracy::Tolerance(tol),
-                Scheme::Accurate,
-                simulate,
-            )?;
+            let req = Request::new(g.at(i), a.at(i))
+                .e_n(e.at(i))
+                .accuracy(Accuracy::Tolerance(tol))
+                .forced(simulate);
+            let req = match law {
+                Some(l) => req.law(l),
+                None => req,
+            };
+            let s = req.solve()?;
             r.copy_from_slice(&[
                 s.p,
                 s.error_estimate,
                 f64::from(u8::from(s.method == Method::ClosedForm)),
                 s.resolution.springs as f64,
                 s.resolution.steps as f64,
+                s.e_n,
+                s.tau,
             ]);
             Ok::<(), PhysicsError>(())
         },
@@ -925,7 +948,8 @@ fn impact<'py>(
 
 /// One impact in physical units, simulated to `tol` (2-D, in its plane). Returns a dict.
 #[pyfunction]
-#[pyo3(signature = (motion, sphere, other, materials, friction, tol))]
+#[pyo3(signature = (motion, sphere, other, materials, friction, tol, relaxation_time))]
+#[allow(clippy::too_many_arguments)]
 fn simulate<'py>(
     py: Python<'py>,
     motion: Vec<PyReadonlyArray1<'_, f64>>,
@@ -934,10 +958,11 @@ fn simulate<'py>(
     materials: Vec<PyReadonlyArray1<'_, f64>>,
     friction: PyReadonlyArray1<'_, f64>,
     tol: f64,
+    relaxation_time: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = setup(1, &sphere, &other, &None, &materials, &friction, false)?;
     let incident = states(1, &motion)?;
-    let imp = physical(&s, &incident(0), 0);
+    let imp = physical(&s, &incident(0), 0).with_relaxation_time(relaxation_time);
     let out = py
         .detach(|| imp.solve(tol))
         .map_err(|e| physics_error(e, 0, &[]))?;
@@ -950,6 +975,8 @@ fn simulate<'py>(
     d.set_item("contact_time", out.contact_time)?;
     d.set_item("peak_force", out.peak_force)?;
     d.set_item("max_indentation", out.max_indentation)?;
+    d.set_item("e_n", out.e_n)?;
+    d.set_item("tau", out.tau)?;
     d.set_item("springs", out.resolution.springs)?;
     d.set_item("steps", out.resolution.steps)?;
     d.set_item("groups", groups_row(&out.groups))?;

@@ -235,3 +235,64 @@ def test_groups_solid_sphere_on_wall():
     # u0 = 0: α = ∞.
     assert oblique.groups(Sphere(0.1, 0.01), 0.0, 1.0, friction=0.4,
                           materials=(STEEL, RIGID)).alpha == math.inf
+
+
+# Dissipative impacts (Kelvin–Voigt law, physics.md "Dissipative impacts").
+
+
+def test_impact_broadcasts_over_e_n_and_keeps_the_elastic_answer_at_one():
+    e = np.array([0.5, 0.8, 1.0])
+    r = oblique.impact(1.754, np.array([[0.5], [2.0]]), 1e-6, e_n=e)
+    assert r.p.shape == (2, 3) and r.e_n.shape == (2, 3)
+    np.testing.assert_array_equal(r.e_n, np.broadcast_to(e, (2, 3)))
+    # τ̂ grows as e_n falls; 0 at e_n = 1, where the answer is the elastic solver's, bit for bit.
+    assert np.all(r.tau[:, 0] > r.tau[:, 1]) and np.all(r.tau[:, 2] == 0.0)
+    for i, a in enumerate((0.5, 2.0)):
+        assert r.p[i, 2] == oblique.impact(1.754, a, 1e-6).p
+        assert r.p[i, 0] == oblique.impact(1.754, a, 1e-6, e_n=0.5).p
+    # At e_n = 0.5 the answer moves far from the elastic one (physics.md: up to 0.3–0.5).
+    assert np.all(np.abs(r.p[:, 0] - r.p[:, 2]) > 0.1)
+    assert np.all(np.abs(r.p) <= 1.0)
+
+
+def test_the_dissipative_full_slip_line():
+    # P = 1 − (7/2)(1 + e_n) α up to α_c1(e_n) = 2γ²/(7(γ²(1 + e_n) − e_n)).
+    for g, e in ((1.2, 0.75), (2.5, 0.6)):
+        c1 = 2 * g * g / (7 * (g * g * (1 + e) - e))
+        for frac in (0.3, 0.999):
+            a = frac * c1
+            r = oblique.impact(g, a, 1e-7, e_n=e)
+            assert r.closed_form and abs(r.p - (1 - 3.5 * (1 + e) * a)) < 1e-12
+            s = oblique.impact(g, a, 1e-7, simulate=True, e_n=e)
+            assert abs(s.p - (1 - 3.5 * (1 + e) * a)) <= s.error_estimate + 1e-9
+        above = oblique.impact(g, 1.01 * c1, 1e-7, e_n=e)
+        assert not above.closed_form and above.p - (1 - 3.5 * (1 + e) * 1.01 * c1) > 1e-5
+
+
+def test_bad_restitution_and_law_are_refused_by_name():
+    for bad in (0.2, 1.1, math.nan):
+        with pytest.raises(ValueError, match=r"e_n.*0\.3"):
+            oblique.impact(1.5, 0.3, e_n=bad)
+    with pytest.raises(ValueError, match=r"e_n.*elastic"):
+        oblique.impact(1.5, 0.3, e_n=0.9, law="elastic")
+    with pytest.raises(ValueError, match=r"law.*kelvin-voigt"):
+        oblique.impact(1.5, 0.3, e_n=0.9, law="plastic")
+    with pytest.raises(ValueError, match="relaxation_time"):
+        oblique.simulate(Sphere(0.01, 0.005), 1.0, 1.0, friction=0.3,
+                         materials=(GLASS, GLASS), relaxation_time=-1.0)
+
+
+def test_simulate_with_a_relaxation_time_matches_impact_at_its_e_n():
+    # A glass bead on a glass wall with τ = 1e-7 s, then the same on a steel sphere.
+    for kw in (dict(), dict(other=Sphere(0.05, 0.012), other_v_z=-0.5)):
+        sim = oblique.simulate(Sphere(0.004, 0.007), 0.6, 2.0, 30.0, friction=0.3,
+                               materials=(GLASS, GLASS if not kw else STEEL),
+                               relaxation_time=1e-7, tol=SIM_TOL, **kw)
+        assert 0.3 < sim.e_n < 1.0 and sim.tau > 0
+        imp = oblique.impact(sim.groups.gamma, sim.groups.alpha, SIM_TOL, e_n=sim.e_n)
+        assert abs(sim.p - imp.p) <= sim.error_estimate + imp.error_estimate
+        assert math.isclose(imp.tau, sim.tau, rel_tol=1e-9)
+        # The relative normal velocity reverses with e_n.
+        before = 2.0 - kw.get("other_v_z", 0.0)
+        after = sim.v_z - (sim.other_v_z if kw else 0.0)
+        assert math.isclose(after, -sim.e_n * before, rel_tol=1e-9)

@@ -12,7 +12,8 @@ use serde::Serialize;
 
 use super::error::PhysicsError;
 use super::hertz::NormalBodies;
-use super::impact::{refine, run_contact, Limits, Resolution, TangentialBodies};
+use super::impact::{refine, run_contact, run_contact_with, Limits, Resolution, TangentialBodies};
+use super::kelvin_voigt::{self, normal::ViscoelasticBodies, row::ViscoelasticRow};
 
 /// One impact in physical units, in the vocabulary of the lookup ([`oblique_physics::rebound`]):
 /// the same [`Pair`], materials and [`Incident`] state that a table query takes.
@@ -29,6 +30,11 @@ pub struct PhysicalImpact {
     pub incident: Incident,
     /// Coulomb friction coefficient `μ` (≥ 0; `∞` for no slip).
     pub friction: f64,
+    /// Relaxation time `τ` (s) of the Kelvin–Voigt law (`physics.md`, "Dissipative impacts"),
+    /// the same as Brilliantov's dissipative constant `A` for this law; 0 for elastic bodies.
+    /// The normal restitution it gives depends on the impact speed
+    /// ([`PhysicalOutcome::e_n`]; `1 − e_n ∝ τ v_z0^{1/5}` at first order).
+    pub relaxation_time: f64,
 }
 
 /// Dimensionless groups of an impact (physics.md): `γ² = (m*/m_t) G*/E*`,
@@ -72,10 +78,25 @@ pub struct PhysicalOutcome {
     pub peak_force: f64,
     /// Measured maximum indentation (m).
     pub max_indentation: f64,
+    /// Normal restitution `e_n` of the impact (1 for elastic bodies): the relative normal
+    /// speed after over before.
+    pub e_n: f64,
+    /// Dimensionless relaxation time `τ̂` of the Kelvin–Voigt law (0 for elastic bodies): the
+    /// `τ̂` of the dimensionless impact with the same `(γ, α, e_n)`.
+    pub tau: f64,
     /// Dimensionless groups.
     pub groups: Groups,
     /// Resolution of the run reported.
     pub resolution: Resolution,
+}
+
+/// What the tangential contact and the outcome need of a normal motion.
+struct NormalSummary {
+    contact_time: f64,
+    peak_force: f64,
+    max_indentation: f64,
+    delta_v1: f64,
+    delta_v2: f64,
 }
 
 /// Tangential degrees of freedom of the two bodies (body 2 absent for a wall).
@@ -131,6 +152,7 @@ impl PhysicalImpact {
                 other: State::default(),
             },
             friction,
+            relaxation_time: 0.0,
         }
     }
 
@@ -154,7 +176,47 @@ impl PhysicalImpact {
                 other: other_motion,
             },
             friction,
+            relaxation_time: 0.0,
         }
+    }
+
+    /// The same impact with Kelvin–Voigt bodies of relaxation time `τ` (s).
+    pub fn with_relaxation_time(mut self, tau: f64) -> PhysicalImpact {
+        self.relaxation_time = tau;
+        self
+    }
+
+    /// The relaxation time checked (finite, ≥ 0) with the dimensionless `τ̂` it gives at this
+    /// impact's speed and the normal restitution of that `τ̂` (in `[0.3, 1]`).
+    pub fn restitution(&self) -> Result<(f64, f64), PhysicsError> {
+        let g = self.groups()?;
+        self.dissipation(&g)
+    }
+
+    fn dissipation(&self, g: &Groups) -> Result<(f64, f64), PhysicsError> {
+        let tau = self.relaxation_time;
+        if !(tau.is_finite() && tau >= 0.0) {
+            return Err(PhysicsError::InvalidParameter {
+                name: "relaxation_time",
+                value: tau,
+                allowed: "a finite number >= 0 (s; 0 for elastic bodies)",
+            });
+        }
+        if tau == 0.0 {
+            return Ok((0.0, 1.0));
+        }
+        let k = 4.0 / 3.0 * g.e_star * g.radius.sqrt();
+        let hat = kelvin_voigt::dimensionless_tau(tau, g.normal_mass, k, g.approach_speed);
+        let e_n = kelvin_voigt::unit_bodies(hat).restitution();
+        if e_n.is_nan() || e_n < kelvin_voigt::MIN_RESTITUTION {
+            return Err(PhysicsError::InvalidParameter {
+                name: "relaxation_time",
+                value: tau,
+                allowed: "a time whose normal restitution at this impact speed is >= 0.3 (a \
+                          shorter relaxation time, or a slower impact)",
+            });
+        }
+        Ok((hat, e_n))
     }
 
     fn bodies(&self) -> TwoBodies {
@@ -204,32 +266,77 @@ impl PhysicalImpact {
         })
     }
 
-    /// Simulate at a fixed resolution (`springs` on the half-row, `steps` per contact time).
+    /// Simulate at a fixed resolution (`springs` on the half-row, `steps` per contact time;
+    /// Kelvin–Voigt bodies take the continuum row only, `springs = 0`).
     pub fn simulate(&self, res: Resolution) -> Result<PhysicalOutcome, PhysicsError> {
         let res = res.validate()?;
         let groups = self.groups()?;
+        let (tau_hat, e_n) = self.dissipation(&groups)?;
         let mut bodies = self.bodies();
-        let normal = NormalBodies {
-            inv_mass1: bodies.inv_m1,
-            inv_mass2: bodies.inv_m2,
-            stiffness: 4.0 / 3.0 * groups.e_star * groups.radius.sqrt(),
-            approach_speed: groups.approach_speed,
-        }
-        .trajectory(res.steps);
+        let stiffness = 4.0 / 3.0 * groups.e_star * groups.radius.sqrt();
         // Beyond ALPHA_NO_SLIP the finite-μ clamp is decided by rounding: simulate no slip.
         let limit = if groups.alpha > super::impact::ALPHA_NO_SLIP {
             f64::INFINITY
         } else {
             self.friction * groups.e_star / groups.g_star
         };
-        run_contact(
-            &mut bodies,
-            &normal,
-            res.springs,
-            groups.radius,
-            groups.g_star,
-            limit,
-        );
+        let normal = if self.relaxation_time > 0.0 {
+            if res.springs != 0 {
+                return Err(PhysicsError::InvalidParameter {
+                    name: "springs",
+                    value: res.springs as f64,
+                    allowed: "0 (the continuum row) for Kelvin-Voigt bodies",
+                });
+            }
+            let tau = self.relaxation_time;
+            let normal = ViscoelasticBodies {
+                inv_mass1: bodies.inv_m1,
+                inv_mass2: bodies.inv_m2,
+                stiffness,
+                approach_speed: groups.approach_speed,
+                tau,
+            }
+            .trajectory(res.steps);
+            let row = ViscoelasticRow::new(groups.radius, tau);
+            run_contact_with(
+                &mut bodies,
+                &normal,
+                row,
+                groups.radius,
+                groups.g_star,
+                limit,
+            );
+            NormalSummary {
+                contact_time: normal.contact_time,
+                peak_force: normal.peak_force,
+                max_indentation: normal.max_indentation,
+                delta_v1: normal.delta_v1,
+                delta_v2: normal.delta_v2,
+            }
+        } else {
+            let normal = NormalBodies {
+                inv_mass1: bodies.inv_m1,
+                inv_mass2: bodies.inv_m2,
+                stiffness,
+                approach_speed: groups.approach_speed,
+            }
+            .trajectory(res.steps);
+            run_contact(
+                &mut bodies,
+                &normal,
+                res.springs,
+                groups.radius,
+                groups.g_star,
+                limit,
+            );
+            NormalSummary {
+                contact_time: normal.contact_time,
+                peak_force: normal.peak_force,
+                max_indentation: normal.max_indentation,
+                delta_v1: normal.delta_v1,
+                delta_v2: normal.delta_v2,
+            }
+        };
         let u0 = groups.slip_velocity;
         let p = (u0 != 0.0).then(|| bodies.slip_velocity() / u0);
         let sphere = State {
@@ -250,6 +357,8 @@ impl PhysicalImpact {
             contact_time: normal.contact_time,
             peak_force: normal.peak_force,
             max_indentation: normal.max_indentation,
+            e_n,
+            tau: tau_hat,
             groups,
             resolution: res,
         })

@@ -178,7 +178,7 @@ fn e_n_one_is_the_elastic_solver_to_the_bit() {
 }
 
 #[test]
-fn damping_lowers_p_where_the_contact_sticks() {
+fn the_no_slip_limit_moves_further_from_the_elastic_one_as_e_n_falls() {
     // physics.md: max over α of |P_KV − P_elastic| at γ = 1.75 is 0.019 / 0.088 / 0.164 /
     // 0.282 / 0.407 for e_n = 0.99 / 0.95 / 0.9 / 0.8 / 0.6; in the no-slip limit the
     // difference is part of that, and it grows as e_n falls.
@@ -303,4 +303,185 @@ fn bad_input_names_the_field() {
     }
     assert!(kv(f64::NAN, 1.0, 0.9).solve().is_err());
     assert!(kv(1.754, -1.0, 0.9).solve().is_err());
+}
+
+mod physical {
+    //! Kelvin–Voigt bodies in SI units, each body's equations of motion integrated: the
+    //! dimensionless groups of physics.md hold for them too.
+
+    use super::*;
+    use oblique_physics::rebound::{Body, Elastic, State};
+    use oblique_solver::kelvin_voigt::dimensionless_tau;
+    use oblique_solver::units::PhysicalImpact;
+
+    const GLASS: Elastic = Elastic {
+        youngs_modulus: 63e9,
+        poisson_ratio: 0.23,
+    };
+    const STEEL: Elastic = Elastic {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.29,
+    };
+    const ALUMINIUM: Elastic = Elastic {
+        youngs_modulus: 70e9,
+        poisson_ratio: 0.33,
+    };
+
+    fn solid(radius: f64, density: f64) -> Body {
+        Body {
+            mass: density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
+            radius,
+            kappa: 0.4,
+        }
+    }
+
+    const RES: Resolution = Resolution {
+        springs: 0,
+        steps: 1024,
+    };
+
+    /// The relaxation time (s) that gives dimensionless `τ̂` to impact `imp`.
+    fn tau_for(imp: &PhysicalImpact, hat: f64) -> f64 {
+        let g = imp.groups().unwrap();
+        let k = 4.0 / 3.0 * g.e_star * g.radius.sqrt();
+        hat / dimensionless_tau(1.0, g.normal_mass, k, g.approach_speed)
+    }
+
+    #[test]
+    fn p_depends_on_gamma_alpha_and_e_n_only() {
+        // A glass bead on a glass wall: three speeds, spins and relaxation times with equal
+        // (γ, α, e_n) give the dimensionless impact's P.
+        let hat = tau_for_restitution(0.8).unwrap();
+        let (mu, alpha) = (0.3, 0.6);
+        let mut ps = Vec::new();
+        for (radius, v_z, omega) in [(1e-3, 0.5, 0.0), (5e-3, 3.0, 200.0), (2e-2, 20.0, -50.0)] {
+            let body = solid(radius, 2500.0);
+            // α = μ v_z0/|u0| for a solid sphere on a wall: u0 = v_x + R ω.
+            let u0 = mu * v_z / alpha;
+            let motion = State {
+                v_x: u0 - radius * omega,
+                v_z,
+                omega,
+            };
+            let imp = PhysicalImpact::sphere_on_wall((body, GLASS), GLASS, motion, mu);
+            let imp = imp.with_relaxation_time(tau_for(&imp, hat));
+            let out = imp.simulate(RES).unwrap();
+            assert!((out.e_n - 0.8).abs() < 1e-12, "{}", out.e_n);
+            assert!((out.tau - hat).abs() < 1e-12 * hat);
+            // The normal velocity reverses with e_n.
+            assert!(
+                (out.sphere.v_z + 0.8 * v_z).abs() < 1e-9 * v_z,
+                "{:?}",
+                out.sphere
+            );
+            ps.push((out.groups.gamma, out.groups.alpha, out.p.unwrap()));
+        }
+        let g = ps[0].0;
+        let dimensionless = Request::new(g, alpha).e_n(0.8).simulate(RES).unwrap();
+        for (gamma, a, p) in ps {
+            assert!((gamma - g).abs() < 1e-14 && (a - alpha).abs() < 1e-12);
+            assert!((p - dimensionless).abs() < 1e-8, "{p} vs {dimensionless}");
+        }
+    }
+
+    #[test]
+    fn two_spheres_and_a_shell_follow_the_mapping() {
+        // A steel sphere on a hollow aluminium one (κ = 0.55), unequal radii, both spinning,
+        // and a thin glass shell (κ = 2/3) on a solid glass sphere: P at the mapped (γ, α) and
+        // the pair's e_n, and |P| ≤ 1.
+        let steel = solid(4e-3, 7800.0);
+        let hollow = Body {
+            mass: 2.0e-3,
+            radius: 9e-3,
+            kappa: 0.55,
+        };
+        let shell = Body {
+            mass: 1.0e-4,
+            radius: 3e-3,
+            kappa: 2.0 / 3.0,
+        };
+        let cases = [
+            PhysicalImpact::sphere_on_sphere(
+                (steel, STEEL),
+                State {
+                    v_x: 0.7,
+                    v_z: 1.5,
+                    omega: 120.0,
+                },
+                (hollow, ALUMINIUM),
+                State {
+                    v_x: -0.2,
+                    v_z: -0.5,
+                    omega: -40.0,
+                },
+                0.25,
+            ),
+            PhysicalImpact::sphere_on_sphere(
+                (shell, GLASS),
+                State {
+                    v_x: 0.3,
+                    v_z: 2.0,
+                    omega: 0.0,
+                },
+                (solid(5e-3, 2500.0), GLASS),
+                State::default(),
+                0.4,
+            ),
+        ];
+        for (imp, tau) in cases.into_iter().zip([2e-7, 5e-7]) {
+            let imp = imp.with_relaxation_time(tau);
+            let out = imp.simulate(RES).unwrap();
+            let g = out.groups;
+            assert!(out.e_n > 0.3 && out.e_n < 0.99, "e_n {}", out.e_n);
+            let mapped = Request::new(g.gamma, g.alpha)
+                .e_n(out.e_n)
+                .simulate(RES)
+                .unwrap();
+            let p = out.p.unwrap();
+            assert!(p.abs() <= 1.0);
+            assert!((p - mapped).abs() < 1e-8, "{p} vs {mapped} at {g:?}");
+            // Normal: the relative normal velocity reverses with e_n, momentum is conserved.
+            let (o, s) = (out.other.unwrap(), out.sphere);
+            let before = imp.incident.sphere.v_z - imp.incident.other.v_z;
+            assert!(((s.v_z - o.v_z) + out.e_n * before).abs() < 1e-9 * before);
+            let m1 = imp.pair.sphere.mass;
+            let m2 = imp.pair.other.unwrap().mass;
+            let p_before = m1 * imp.incident.sphere.v_z + m2 * imp.incident.other.v_z;
+            assert!((m1 * s.v_z + m2 * o.v_z - p_before).abs() < 1e-12 * p_before.abs().max(1e-6));
+        }
+    }
+
+    #[test]
+    fn the_restitution_falls_with_speed_and_bad_times_are_refused() {
+        let body = solid(2e-3, 2500.0);
+        let at = |v_z: f64| {
+            PhysicalImpact::sphere_on_wall(
+                (body, GLASS),
+                GLASS,
+                State {
+                    v_x: v_z,
+                    v_z,
+                    omega: 0.0,
+                },
+                0.3,
+            )
+            .with_relaxation_time(1e-7)
+        };
+        let e: Vec<f64> = [0.1, 1.0, 10.0]
+            .iter()
+            .map(|&v| at(v).restitution().unwrap().1)
+            .collect();
+        assert!(e[0] > e[1] && e[1] > e[2], "{e:?}");
+        // First order: 1 − e_n ∝ v^{1/5}, so a factor 10 in speed is 10^{0.2} = 1.585 in 1 − e_n.
+        let ratio = (1.0 - e[1]) / (1.0 - e[0]);
+        assert!((ratio - 10f64.powf(0.2)).abs() < 0.05, "{ratio}");
+        for bad in [-1e-7, f64::NAN, f64::INFINITY, 1.0] {
+            match at(1.0).with_relaxation_time(bad).simulate(RES) {
+                Err(PhysicsError::InvalidParameter { name, .. }) => {
+                    assert_eq!(name, "relaxation_time", "{bad}")
+                }
+                other => panic!("{bad}: {other:?}"),
+            }
+        }
+    }
 }

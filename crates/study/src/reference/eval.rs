@@ -114,6 +114,7 @@ pub fn outcome(setup: &Setup, case: &Case, method: &Method) -> Result<Outcome, R
                 materials: [a, b],
                 incident: *inc,
                 friction: setup.friction,
+                relaxation_time: 0.0,
             };
             let out = imp.solve(*tol)?;
             let post = Post {
@@ -259,6 +260,7 @@ pub fn normal(test: &NormalTest, method: &Method) -> Result<Vec<NormalOutcome>, 
                     materials: [a, b],
                     incident: *inc,
                     friction: setup.friction,
+                    relaxation_time: 0.0,
                 };
                 let run = |steps| -> Result<NormalValues, ReferenceError> {
                     let out = imp.simulate(Resolution { springs: 0, steps })?;
