@@ -861,15 +861,55 @@ fn estimate(values: &[f64], order: i32) -> f64 {
 /// `max(|R_k − R_{k−1}|, 0.1 |P_k − P_{k−1}|)`. Measured on 32 points spanning every regime
 /// (γ 0.3–3.5, α from just above the linear limit to ∞, 128–8192 steps): never below the true
 /// error where that error exceeds the 2e-8 accuracy of the reference (`examples/estim.rs`).
-fn extrapolate(values: &[f64], order: i32, floor: f64) -> (f64, f64) {
+fn extrapolate(values: &[f64], order: i32, floor: Floor) -> (f64, f64) {
     let r = 2f64.powi(order) - 1.0;
     let n = values.len();
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / r;
     let last = rich(n - 1);
+    let share = if floor.regular == floor.irregular || !regular(values, order) {
+        floor.irregular
+    } else {
+        floor.regular
+    };
     let est = (last - rich(n - 2))
         .abs()
-        .max(floor * (values[n - 1] - values[n - 2]).abs());
+        .max(share * (values[n - 1] - values[n - 2]).abs());
     (last, est)
+}
+
+/// The floor of the Richardson estimate as a share of the last raw difference
+/// `|P_k − P_{k−1}|`: `regular` where the last two ratios of successive differences are within
+/// `[0.75, 1.375] · 2^p` (clean convergence at order `p`), `irregular` elsewhere.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Floor {
+    /// Share where the convergence is regular.
+    pub regular: f64,
+    /// Share elsewhere (and while fewer than four values exist).
+    pub irregular: f64,
+}
+
+impl Floor {
+    /// One share whatever the convergence.
+    pub const fn fixed(share: f64) -> Self {
+        Floor {
+            regular: share,
+            irregular: share,
+        }
+    }
+}
+
+/// Whether the last two ratios of successive differences of `values` are within
+/// `[0.75, 1.375] · 2^order`.
+fn regular(values: &[f64], order: i32) -> bool {
+    let n = values.len();
+    if n < 4 {
+        return false;
+    }
+    let r = 2f64.powi(order);
+    let d = |k: usize| values[k] - values[k - 1];
+    [d(n - 2) / d(n - 1), d(n - 3) / d(n - 2)]
+        .iter()
+        .all(|q| (0.75 * r..=1.375 * r).contains(q))
 }
 
 /// The acceptance guard of the Richardson path: the estimate one level coarser must already be
@@ -884,7 +924,7 @@ fn extrapolate(values: &[f64], order: i32, floor: f64) -> (f64, f64) {
 /// where a sequence converges fast from a poor start: `configs/quick.toml` needs 13.8 s with it
 /// against 10.4 s without (33 %, measured under load). With three values only (no coarser
 /// estimate) the result is never accepted.
-fn previous_estimate_agrees(values: &[f64], order: i32, tol: f64, floor: f64) -> bool {
+fn previous_estimate_agrees(values: &[f64], order: i32, tol: f64, floor: Floor) -> bool {
     let n = values.len();
     n >= 4 && extrapolate(&values[..n - 1], order, floor).1 <= 2f64.powi(order) * tol
 }
@@ -939,8 +979,15 @@ pub fn refine_observed(
     run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
-    let floor = if richardson { RAW_FLOOR } else { 0.0 };
-    refine_core(base, (order, floor), tol, richardson, limits, run, observer)
+    refine_core(
+        base,
+        (order, Floor::fixed(RAW_FLOOR)),
+        tol,
+        richardson,
+        limits,
+        run,
+        observer,
+    )
 }
 
 /// The share of the last raw difference `|P_k − P_{k−1}|` below which the Richardson estimate
@@ -951,7 +998,7 @@ pub const RAW_FLOOR: f64 = 0.1;
 /// difference (`(order, floor)`), which a law sets by how regularly it converges.
 pub(crate) fn refine_core(
     base: Resolution,
-    (order, floor): (i32, f64),
+    (order, floor): (i32, Floor),
     tol: f64,
     richardson: bool,
     limits: Limits,
@@ -1087,7 +1134,7 @@ pub fn solve_observed(
     let closed = regimes::closed_form(gamma, alpha);
     solve_core(
         (gamma, accuracy, scheme, force_simulation, limits),
-        RAW_FLOOR,
+        Floor::fixed(RAW_FLOOR),
         closed,
         |res| simulate(gamma, alpha, res, scheme),
         observer,
@@ -1099,7 +1146,7 @@ pub fn solve_observed(
 /// to the tolerance, or runs a fixed resolution with its estimate. `γ` and `α` are checked.
 pub(crate) fn solve_core(
     (gamma, accuracy, scheme, force_simulation, limits): (f64, Accuracy, Scheme, bool, Limits),
-    floor: f64,
+    floor: Floor,
     closed: Option<f64>,
     mut run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),

@@ -10,19 +10,22 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use crate::error::PhysicsError;
-use crate::impact::{run_contact_with, ContactPoint, Resolution};
+use crate::impact::{run_contact_with, ContactPoint, Floor, Resolution};
 use crate::model::{NormalModel, TangentialModel};
 use crate::springs::{StepMotion, StepResult};
 use normal::{FineMotion, ViscoelasticBodies, ViscoelasticTrajectory};
 use row::ViscoelasticRow;
 
 /// The floor of the Richardson error estimate, as a share of the last raw difference between
-/// levels (0.1 for the elastic law). The Kelvin–Voigt law converges less regularly near α_c2
-/// at large γ and low e_n: with 0.1 the estimate fell below the true error at γ = 2.2,
-/// α = 0.98 α_c2, e_n = 0.3 (7.1e-9 for 2.2e-8, the raw differences 3.0e-7 then 7.1e-8 at
-/// 2048 and 4096 steps; `crates/solver/tests/kelvin_voigt.rs`); 0.5 bounds every one of its 50
-/// points.
-pub const RAW_FLOOR: f64 = 0.5;
+/// levels: 0.1 as for the elastic law where the last two ratios of differences are near 4,
+/// 0.5 elsewhere. The Kelvin–Voigt law converges less regularly near α_c2 at large γ and low
+/// e_n: with 0.1 throughout the estimate fell below the true error at γ = 2.2, α = 0.98 α_c2,
+/// e_n = 0.3 (7.1e-9 for 2.2e-8; the ratios of differences 7.1 then 4.2 at 2048 and 4096
+/// steps; `crates/solver/tests/kelvin_voigt.rs`).
+pub const RAW_FLOOR: Floor = Floor {
+    regular: 0.1,
+    irregular: 0.5,
+};
 
 /// Smallest normal restitution the solver takes.
 pub const MIN_RESTITUTION: f64 = 0.3;

@@ -124,6 +124,32 @@ impl Piece {
     }
 }
 
+/// Index of a slipping kind's frame and entry state: 0 for `+`, 1 for `−`.
+fn sign_index(kind: Kind) -> usize {
+    usize::from(kind == Kind::Minus)
+}
+
+/// Append a slipping piece, merged into the last one when both hold the same uniform state
+/// (the entry state: every spring that entered slipping and kept slipping).
+fn push_slip(out: &mut Vec<Piece>, p: Piece, c: f64, r: f64) {
+    if let Some(last) = out.last_mut() {
+        if last.kind == p.kind
+            && last.y1 == p.y0
+            && last.b == 0.0
+            && last.q == 0.0
+            && p.b == 0.0
+            && p.q == 0.0
+            && last.a == p.a
+        {
+            last.y1 = p.y1;
+            last.x1 = p.x1;
+            last.refresh(c, r);
+            return;
+        }
+    }
+    out.push(p);
+}
+
 /// Consecutive pieces with the sums a step needs.
 #[derive(Debug, Clone, Default)]
 struct Chunk {
@@ -239,17 +265,17 @@ impl Update {
         self.load0 + t * (self.load_rate0 + 0.5 * self.beta * t)
     }
 
-    /// `e^{−Δ/τ}` and `1 − e^{−Δ/τ}`.
+    /// `e^{−Δ/τ}` and `1 − e^{−Δ/τ}` (one `expm1`).
     fn decay(&self, span: f64) -> (f64, f64) {
-        let x = -span / self.tau;
-        (x.exp(), -x.exp_m1())
+        let one_minus = -(-span / self.tau).exp_m1();
+        (1.0 - one_minus, one_minus)
     }
 
     /// `∫_{ta}^{tb} e^{−(tb − t)/τ} Ḋ(t) dt` (m): the relaxation of a slipping spring from
-    /// `ta` to `tb` maps `δ ↦ e^{−(tb−ta)/τ} δ − s c ·` this.
-    fn forcing(&self, ta: f64, tb: f64) -> f64 {
+    /// `ta` to `tb` maps `δ ↦ e^{−(tb−ta)/τ} δ − s c ·` this; `decay` is
+    /// [`Update::decay`]`(tb − ta)`.
+    fn forcing(&self, ta: f64, tb: f64, (e, one_minus): (f64, f64)) -> f64 {
         let (tau, span) = (self.tau, tb - ta);
-        let (e, one_minus) = self.decay(span);
         (self.load_rate0 + self.beta * tb) * tau * one_minus
             - self.beta * (tau * tau * one_minus - tau * span * e)
     }
@@ -284,8 +310,9 @@ mod cut_list {
     }
 }
 
-/// The root of `g` on `[0, h]` by the Illinois method, to 1e-9 h (12 iterations at most: the
-/// transitions' instants need accuracy O(h^{3/2}) only, `u̇` being continuous across them).
+/// The root of `g` on `[0, h]` by the Illinois method, to 1e-6 h (12 iterations at most: an
+/// error `ε` in a transition's instant moves the state by O(ε²), `u̇` being continuous across
+/// it).
 /// 0 when `g(0) ≥ 0`, `h` when `g(h) < 0`.
 fn crossing(h: f64, g: impl Fn(f64) -> f64) -> f64 {
     let (mut lo, mut hi) = (0.0, h);
@@ -316,7 +343,7 @@ fn crossing(h: f64, g: impl Fn(f64) -> f64) -> f64 {
             }
             side = 1;
         }
-        if hi - lo <= 1e-9 * h {
+        if hi - lo <= 1e-6 * h {
             break;
         }
     }
@@ -335,6 +362,13 @@ pub struct ViscoelasticRow {
     frames: [Frame; 2],
     /// Contact reach `b` (m) after the last step: springs with `y < b` are in contact.
     reach: f64,
+    /// The stored `δ̃` (`+`, `−`) of the slipping state every spring that enters contact
+    /// slipping shares: the relaxation of `δ = −s c τ ḋ₀` from first touch (see
+    /// [`ViscoelasticRow::enter`]); `None` before the first step with a finite limit.
+    entry: [f64; 2],
+    entry_set: bool,
+    /// The last step length and its [`Update::decay`] (the grid's steps repeat).
+    last_decay: (f64, (f64, f64)),
     /// Whether this step's relaxation forgot the slipping states' start values (the decay
     /// `e^{−h/τ}` underflowed the frames; only for `h ≫ τ`, where that memory is lost anyway).
     memoryless: bool,
@@ -353,6 +387,9 @@ impl ViscoelasticRow {
             offset: 0.0,
             frames: [Frame::IDENTITY; 2],
             reach: 0.0,
+            entry: [0.0; 2],
+            entry_set: false,
+            last_decay: (f64::NAN, (0.0, 0.0)),
             memoryless: false,
             at_limit: (false, false),
             cuts: Vec::new(),
@@ -376,10 +413,7 @@ impl ViscoelasticRow {
     }
 
     fn frame(&self, kind: Kind) -> Frame {
-        match kind {
-            Kind::Minus => self.frames[1],
-            _ => self.frames[0],
-        }
+        self.frames[sign_index(kind)]
     }
 
     /// Advance over one step of motion `m` to indentation `d1` with Coulomb limit factor `c`
@@ -397,6 +431,12 @@ impl ViscoelasticRow {
             self.reset_frames(c);
         }
         self.memoryless = false;
+        if finite && !self.entry_set {
+            // First touch: a spring entering slipping has δ = −s c τ ḋ₀ (frames identity).
+            let delta = c * tau * m.rate0;
+            self.entry = [-delta, delta];
+            self.entry_set = true;
+        }
         let load_rate0 = m.rate0 + tau * m.accel0;
         let up = Update {
             c,
@@ -471,8 +511,11 @@ impl ViscoelasticRow {
     /// `θ = (y − b0)/(b1 − b0)`). A spring enters stuck where `|ẇ| ≤ c ḋ` at its entry (its
     /// force `τ ẇ` within the limit `c τ ḋ` of `y = d`) and then moves with the contact point,
     /// `u = w(h) − w(θh)`. Otherwise it enters slipping with sign `s` of `ẇ`, and
-    /// `u = s c (d(t) − y)` solves its relaxation exactly: `δ = −s c τ ḋ`, the same for all.
-    /// The entry law switches where `±ẇ = c ḋ` (both linear over the step).
+    /// `u = s c (d(t) − y)` solves its relaxation exactly: `δ = −s c τ ḋ(t)`, the same for all
+    /// of them at every instant. The row holds that shared state as the relaxation of
+    /// `δ = −s c τ ḋ₀` from first touch (second order, like every relaxation of the row), so
+    /// that all such springs carry one `δ̃` and their pieces merge, as the limit pieces of the
+    /// elastic row do. The entry law switches where `±ẇ = c ḋ` (both linear over the step).
     fn enter(&mut self, m: &StepMotion, (b0, b1): (f64, f64), up: &Update) {
         let (h, vel, acc) = (m.h, m.slip_velocity, m.slip_accel);
         let c = up.c;
@@ -521,12 +564,9 @@ impl ViscoelasticRow {
             if c.is_finite() && w_rate.abs() > bound {
                 let s = w_rate.signum();
                 let kind = if s > 0.0 { Kind::Plus } else { Kind::Minus };
-                let f = self.frame(kind);
-                let delta = -s * c * self.tau * m.rate1;
-                let abq = ((delta - f.shift) / f.scale, 0.0, 0.0);
+                let abq = (self.entry[sign_index(kind)], 0.0, 0.0);
                 let slip = Piece::new(kind, y0, y1, b0, abq, c, r);
-                let start = (-s * c * self.tau * m.rate0, 0.0, 0.0);
-                self.release(slip, up, &mut out, Some(start));
+                self.release(slip, up, &mut out, None);
             } else {
                 let abq = (k1 - k2 - w, (2.0 * k2 - k1) / span, -k2 / (span * span));
                 let stuck = Piece::new(Kind::Stuck, y0, y1, b0, abq, c, r);
@@ -550,8 +590,15 @@ impl ViscoelasticRow {
     /// `δ₁ = E δ₀ − s c ∫₀^h e^{−(h−t)/τ} Ḋ dt`, `E = e^{−h/τ}`, with `Ḋ = ḋ + τ d̈` linear over
     /// the step ([`Update::forcing`]).
     fn relax(&mut self, up: &Update) {
-        let (e, _) = up.decay(up.h);
-        let k = -up.c * up.forcing(0.0, up.h);
+        let decay = if up.h == self.last_decay.0 {
+            self.last_decay.1
+        } else {
+            let d = up.decay(up.h);
+            self.last_decay = (up.h, d);
+            d
+        };
+        let e = decay.0;
+        let k = -up.c * up.forcing(0.0, up.h, decay);
         if self.frames[0].scale * e < FRAME_UNDERFLOW {
             // Rewrite every slipping piece in the identity frame with its relaxed δ.
             let frames = self.frames;
@@ -569,6 +616,9 @@ impl ViscoelasticRow {
                     p.refresh(up.c, r);
                 }
                 ch.summarize();
+            }
+            for (i, s) in [(0, 1.0), (1, -1.0)] {
+                self.entry[i] = e * frames[i].actual(self.entry[i]) + s * k;
             }
             self.frames = [Frame::IDENTITY; 2];
             self.memoryless = true;
@@ -598,6 +648,10 @@ impl ViscoelasticRow {
             }
             ch.summarize();
         }
+        self.entry = [
+            frames[0].actual(self.entry[0]),
+            frames[1].actual(self.entry[1]),
+        ];
         self.frames = [Frame::IDENTITY; 2];
     }
 
@@ -673,7 +727,7 @@ impl ViscoelasticRow {
             f.actual(p.upper) + up.viscous < 0.0
         };
         if whole {
-            out.push(p);
+            push_slip(out, p, c, r);
             return;
         }
         let start = start.unwrap_or_else(|| {
@@ -703,16 +757,18 @@ impl ViscoelasticRow {
                 let mid = 0.5 * (lo + hi);
                 if s * g(mid) > 0.0 {
                     let keep = Piece::new(p.kind, lo, hi, p.y_ref, (p.a, p.b, p.q), c, r);
-                    out.push(keep);
+                    push_slip(out, keep, c, r);
                 } else {
                     let zm = mid - p.y_ref;
                     let delta0 = start.0 + zm * (start.1 + start.2 * zm);
                     let t = crossing(up.h, |t| {
-                        let (e, _) = up.decay(t);
-                        -s * (e * delta0 - s * c * up.forcing(0.0, t) + up.tau * up.w_rate(t))
+                        let decay = up.decay(t);
+                        -s * (decay.0 * delta0 - s * c * up.forcing(0.0, t, decay)
+                            + up.tau * up.w_rate(t))
                     });
-                    let (e, _) = up.decay(t);
-                    let shift = -s * c * up.forcing(0.0, t);
+                    let decay = up.decay(t);
+                    let e = decay.0;
+                    let shift = -s * c * up.forcing(0.0, t, decay);
                     // u − W, in the piece's z.
                     let w = self.offset;
                     let abq = (
@@ -801,8 +857,9 @@ impl ViscoelasticRow {
                             s * (u_mid - up.w_after(t) + up.tau * up.w_rate(t))
                                 - c * (up.load_at(t) - mid)
                         });
-                        let (e, _) = up.decay(up.h - t);
-                        let shift = -s * c * up.forcing(t, up.h);
+                        let decay = up.decay(up.h - t);
+                        let e = decay.0;
+                        let shift = -s * c * up.forcing(t, up.h, decay);
                         let lim_t = c * (up.load_at(t) - p.y_ref);
                         let f = self.frame(kind);
                         let abq = (
