@@ -214,6 +214,24 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
         } else {
             step.mean
         };
+        if T::END_STATE && b1 > 0.0 {
+            // The viscous part of the end force, τ ẇ₁ over the stuck length ℓ_s, was taken at
+            // the predicted ẇ₁ = ẇ₀ + h ẅ₀: solve the trapezoid rule for ẇ₁ instead (linear),
+            // f = A (M + τ σ (ẇ₁ − ŵ)), ẇ₁ = ẇ₀ + h a_b f, σ = ℓ_s/a₁.
+            let (tau, stuck) = self.row.viscous();
+            let a1 = (self.radius * b1).sqrt();
+            let sigma = stuck / a1;
+            let predicted = motion.slip_velocity + h * motion.slip_accel;
+            let a = self.shear_modulus * mean_radius;
+            let response = bodies.slip_acceleration(1.0);
+            let f = a * (self.mean + end_mean + tau * sigma * (motion.slip_velocity - predicted))
+                / (1.0 - a * tau * sigma * h * response);
+            bodies.kick(h, f);
+            let delta = bodies.slip_velocity() - predicted;
+            self.force = 2.0 * self.shear_modulus * (step.integral + tau * stuck * delta);
+            self.mean = step.mean + tau * sigma * delta;
+            return;
+        }
         bodies.kick(h, self.shear_modulus * mean_radius * (self.mean + end_mean));
         self.force = 2.0 * self.shear_modulus * step.integral;
         self.mean = step.mean;

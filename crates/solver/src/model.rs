@@ -59,6 +59,14 @@ pub trait TangentialModel {
     fn touch_mean(&self, _slip_velocity: f64, _rate0: f64, _c: f64) -> f64 {
         0.0
     }
+    /// The relaxation time `τ` (s) of a viscous row whose stuck springs carry `τ ẇ` (0 for an
+    /// elastic row), and the length `ℓ_s` (m) of the half-row stuck after the last step: the
+    /// returned integral grows by `τ ℓ_s Δẇ` when the end velocity `ẇ₁` moves by `Δẇ`. The
+    /// stepper then solves for `ẇ₁` implicitly (trapezoid rule on the viscous force).
+    #[inline(always)]
+    fn viscous(&self) -> (f64, f64) {
+        (0.0, 0.0)
+    }
     /// Whether the model reads the end state of the normal motion ([`StepMotion::rate1`],
     /// [`StepMotion::accel1`]); without it the stepper leaves `accel1` at 0.
     const END_STATE: bool = false;

@@ -249,6 +249,10 @@ impl TangentialModel for ViscoelasticRow {
     fn release_time(&self, _m: &StepMotion, _c: f64) -> Option<f64> {
         None
     }
+    #[inline(always)]
+    fn viscous(&self) -> (f64, f64) {
+        (self.tau(), self.stuck_length())
+    }
     /// At first touch every spring in contact carries `v = τ ẇ₀` within the limit `c τ ḋ₀`
     /// (`D = τ ḋ₀` at `d = 0`): the viscous force does not start from zero.
     fn touch_mean(&self, slip_velocity: f64, rate0: f64, c: f64) -> f64 {
