@@ -3,17 +3,17 @@
 //!
 //! For every `γ ∈ {0.5, 1.754, 3}` and `α ∈ {0.3, 1, ∞}` (simulated even where the closed form
 //! applies; none of these nine does):
-//! - `accurate_1e-6`: `solve(γ, α, Tolerance(1e-6), Accurate, force_simulation = true)`, the
+//! - `accurate_1e-6`: `Request::new(γ, α).accuracy(Tolerance(1e-6)).scheme(Accurate).forced(force_simulation = true).solve()`, the
 //!   whole automatic refinement (every level, coarsest first) down to an estimated error ≤ 1e-6.
 //!   The dimensionless normal trajectory is cached per thread, so after the first call (done
 //!   before timing) only the tangential contact is timed: the situation of a sweep.
 //! - `accurate_1e-5`: the same with tolerance 1e-5 (equal accuracy with the Euler baseline).
-//! - `euler`: one `simulate(γ, α, res, Euler)` at the resolution in [`EULER_1E5`], the cheapest
+//! - `euler`: one `Request::new(γ, α).scheme(Euler).simulate(res)` at the resolution in [`EULER_1E5`], the cheapest
 //!   one found whose true error is ≤ 1e-5 (see [`search`]).
 //! - `normal_trajectory`: the one-off cost of a cached normal trajectory, for reference.
 //!
 //! Before timing, every case is checked against the reference
-//! `simulate(γ, α, {springs: 16384, steps: 8192}, Accurate)` (accurate to ~1e-8) and a summary
+//! `Request::new(γ, α).scheme(Accurate).simulate({springs: 16384, steps: 8192})` (accurate to ~1e-8) and a summary
 //! line is printed (`P`, resolution, error estimate, true error, closed-form region).
 //!
 //! Modes (environment variables, the criterion arguments pass through unchanged):
@@ -31,7 +31,7 @@ use criterion::{BenchmarkId, Criterion, SamplingMode};
 use oblique_clock::Clock;
 use oblique_physics::regimes;
 use oblique_solver::hertz::NormalBodies;
-use oblique_solver::{simulate, solve, Accuracy, Resolution, Scheme};
+use oblique_solver::{Accuracy, Request, Resolution, Scheme};
 
 const GAMMAS: [f64; 3] = [0.5, 1.754, 3.0];
 const ALPHAS: [f64; 3] = [0.3, 1.0, f64::INFINITY];
@@ -90,7 +90,9 @@ fn label(gamma: f64, alpha: f64) -> String {
 }
 
 fn reference(gamma: f64, alpha: f64) -> f64 {
-    simulate(gamma, alpha, REFERENCE, Scheme::Accurate).expect("reference run")
+    Request::new(gamma, alpha)
+        .simulate(REFERENCE)
+        .expect("reference run")
 }
 
 fn region(gamma: f64, alpha: f64) -> &'static str {
@@ -123,14 +125,11 @@ fn check() {
         for &alpha in &ALPHAS {
             let p_ref = reference(gamma, alpha);
             let acc = |tol| {
-                let s = solve(
-                    gamma,
-                    alpha,
-                    Accuracy::Tolerance(tol),
-                    Scheme::Accurate,
-                    true,
-                )
-                .expect("accurate solve");
+                let s = Request::new(gamma, alpha)
+                    .accuracy(Accuracy::Tolerance(tol))
+                    .forced(true)
+                    .solve()
+                    .expect("accurate solve");
                 (
                     format!("{}x{}", s.resolution.springs, s.resolution.steps),
                     s.error_estimate,
@@ -141,7 +140,10 @@ fn check() {
             let (r5, e5, t5) = acc(EULER_TARGET);
             let er = euler_resolution(gamma, alpha);
             let t = Instant::now();
-            let p = simulate(gamma, alpha, er, Scheme::Euler).expect("euler run");
+            let p = Request::new(gamma, alpha)
+                .scheme(Scheme::Euler)
+                .simulate(er)
+                .expect("euler run");
             let euler_s = t.elapsed().as_secs_f64();
             eprintln!(
                 "{:>6} {:>5} {:>12} {:>13.9} | {:>10} {:>8.1e} {:>8.1e} | {:>10} {:>8.1e} {:>8.1e} | {:>11} {:>8.1e} {:>7.3}",
@@ -177,7 +179,10 @@ fn check() {
 fn search() {
     let run = |gamma, alpha, p_ref: f64, r: Resolution, ratio| {
         let t = Instant::now();
-        let p = simulate(gamma, alpha, r, Scheme::Euler).expect("euler run");
+        let p = Request::new(gamma, alpha)
+            .scheme(Scheme::Euler)
+            .simulate(r)
+            .expect("euler run");
         let secs = t.elapsed().as_secs_f64();
         let err = p - p_ref;
         println!(
@@ -263,7 +268,7 @@ fn search() {
     }
 }
 
-/// `solve(γ, α, Tolerance(tol), Accurate, force_simulation = true)` for every case.
+/// `Request::new(γ, α).accuracy(Tolerance(tol)).scheme(Accurate).forced(force_simulation = true).solve()` for every case.
 fn bench_accurate(c: &mut Criterion, clock: Clock, name: &str, tol: f64) {
     let mut group = c.benchmark_group(format!("{name}{}", clock.suffix()));
     group
@@ -277,14 +282,11 @@ fn bench_accurate(c: &mut Criterion, clock: Clock, name: &str, tol: f64) {
                 &(gamma, alpha),
                 |b, &(g, a)| {
                     clock.iter(b, || {
-                        solve(
-                            black_box(g),
-                            black_box(a),
-                            Accuracy::Tolerance(tol),
-                            Scheme::Accurate,
-                            true,
-                        )
-                        .expect("accurate solve")
+                        Request::new(black_box(g), black_box(a))
+                            .accuracy(Accuracy::Tolerance(tol))
+                            .forced(true)
+                            .solve()
+                            .expect("accurate solve")
                     })
                 },
             );
@@ -331,7 +333,10 @@ fn bench_euler(c: &mut Criterion, clock: Clock) {
                 &(gamma, alpha, r),
                 |b, &(g, a, r)| {
                     clock.iter(b, || {
-                        simulate(black_box(g), black_box(a), r, Scheme::Euler).expect("euler run")
+                        Request::new(black_box(g), black_box(a))
+                            .scheme(Scheme::Euler)
+                            .simulate(r)
+                            .expect("euler run")
                     })
                 },
             );

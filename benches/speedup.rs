@@ -13,7 +13,7 @@ use std::time::Duration;
 use criterion::Criterion;
 use oblique_clock::{timed, Clock};
 use oblique_lookup::Table;
-use oblique_solver::{solve, Accuracy, Scheme};
+use oblique_solver::{Accuracy, Request};
 
 const POINTS: [(f64, f64); 4] = [
     (1.754, 0.3),
@@ -59,14 +59,10 @@ fn main() {
     let mut g = c.benchmark_group(&simulate);
     g.sample_size(10);
     for (gamma, alpha) in POINTS {
-        let sol = solve(
-            gamma,
-            alpha,
-            Accuracy::Tolerance(1e-6),
-            Scheme::Accurate,
-            false,
-        )
-        .unwrap_or_else(|e| panic!("{e}"));
+        let sol = Request::new(gamma, alpha)
+            .accuracy(Accuracy::Tolerance(1e-6))
+            .solve()
+            .unwrap_or_else(|e| panic!("{e}"));
         let p = table.p(gamma, alpha).unwrap_or(f64::NAN);
         println!(
             "({gamma}, {alpha}): simulated P = {:.9} +/- {:.1e}, table P = {p:.9} (diff {:.1e})",
@@ -75,13 +71,9 @@ fn main() {
             (p - sol.p).abs()
         );
         timed(&mut g, &case(gamma, alpha), clock, || {
-            solve(
-                black_box(gamma),
-                black_box(alpha),
-                Accuracy::Tolerance(1e-6),
-                Scheme::Accurate,
-                false,
-            )
+            Request::new(black_box(gamma), black_box(alpha))
+                .accuracy(Accuracy::Tolerance(1e-6))
+                .solve()
         });
     }
     g.finish();

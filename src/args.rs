@@ -91,8 +91,12 @@ pub(crate) fn parse_count(s: &str, name: &str, min: usize) -> Result<usize, Stri
     parse_integer(s, min, None).ok_or_else(|| format!("{name} must be an integer >= {min}"))
 }
 
+/// Springs on the half-row: 0 (the continuum row) or an integer >= 2.
 pub(crate) fn parse_springs(s: &str) -> Result<usize, String> {
-    parse_count(s, "springs", 2)
+    match parse_integer(s, 0, None) {
+        Some(n) if n != 1 => Ok(n),
+        _ => Err("springs must be 0 (the continuum row) or an integer >= 2".into()),
+    }
 }
 
 pub(crate) fn parse_steps(s: &str) -> Result<usize, String> {

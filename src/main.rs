@@ -33,14 +33,19 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Simulate one impact in dimensionless form and print P(gamma, alpha) with its error estimate.
+    /// Simulate one impact in dimensionless form and print P(gamma, alpha, e_n) with its error
+    /// estimate.
     #[command(after_help = "Examples:\n  \
 sweep impact --gamma 1.754 --alpha 1\n  \
+sweep impact --gamma 1.754 --alpha 1 --e-n 0.9      # a dissipative impact (Kelvin-Voigt law)\n  \
 sweep impact --gamma 1.754 --alpha inf --tol 1e-8 --json\n  \
 sweep impact --gamma 1.754 --alpha 0.5 --preset fast\n  \
 sweep impact --gamma 3.2 --alpha 1.3 --history          # gross-slip episodes of the impact\n  \
 sweep impact --gamma 2 --alpha 0.3 --springs 1024 --steps 512 --scheme euler\n\n\
 gamma must lie in [0.01, 5], the range the solver is tested in (docs/accuracy.md, extremes).\n\
+e_n < 1 solves the Kelvin-Voigt law (docs/solver.md, \"Dissipative impacts\"): P depends on \
+(gamma, alpha, e_n) only; the full-slip line is P = 1 - (7/2)(1 + e_n) alpha up to \
+alpha_c1(e_n) = 2 gamma^2/(7(gamma^2 (1 + e_n) - e_n)).\n\
 At a fixed resolution (--springs/--steps) the error estimate compares runs at 1/2, 1/4 and 1/8 \
 of it and is printed only where they converge steadily (else \"no error estimate\" and why; \
 --json: error_estimate null with no_estimate_reason).\n\

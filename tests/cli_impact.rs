@@ -2,7 +2,7 @@
 
 use std::process::{Command, Output};
 
-use oblique_solver::{simulate, Resolution, Scheme};
+use oblique_solver::{Request, Resolution};
 
 fn sweep(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_sweep"))
@@ -56,16 +56,12 @@ fn check_p(map: &serde_json::Map<String, serde_json::Value>, gamma: f64, alpha: 
         est > 0.0 && est <= 1e-6,
         "default tolerance is 1e-6: {map:?}"
     );
-    let reference = simulate(
-        gamma,
-        alpha,
-        Resolution {
+    let reference = Request::new(gamma, alpha)
+        .simulate(Resolution {
             springs: 8 * springs,
             steps: 8 * steps,
-        },
-        Scheme::Accurate,
-    )
-    .unwrap();
+        })
+        .unwrap();
     assert!(
         (p - reference).abs() <= est,
         "P = {p} +/- {est:e}, reference {reference} (diff {:e})",
@@ -126,7 +122,7 @@ fn invalid_values_fail_with_a_message_naming_the_flag() {
                 "--alpha",
                 "1",
                 "--springs",
-                "0",
+                "1",
                 "--steps",
                 "10",
             ],
@@ -387,4 +383,64 @@ fn progress_goes_to_stderr_only() {
         "{}",
         String::from_utf8_lossy(&quiet.stderr)
     );
+}
+
+#[test]
+fn a_dissipative_impact_names_its_law_e_n_and_relaxation_time() {
+    let map = stdout_json(&[
+        "impact", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.9", "--json",
+    ]);
+    assert_eq!(num(&map, "e_n"), 0.9);
+    assert_eq!(map["law"], "kelvin-voigt");
+    let tau = num(&map, "tau");
+    assert!((tau - 0.056135553).abs() < 3e-8, "{tau}");
+    // P within its estimate of the library at 8× the resolution.
+    let p = num(&map, "P");
+    let est = num(&map, "error_estimate");
+    let steps = count(&map, "steps");
+    let fine = Request::new(1.754, 1.0)
+        .e_n(0.9)
+        .simulate(Resolution {
+            springs: 0,
+            steps: 8 * steps,
+        })
+        .unwrap();
+    assert!((p - fine).abs() <= est, "{p} vs {fine} ± {est}");
+    // The elastic answer names its law too, with e_n 1 and tau 0.
+    let el = stdout_json(&["impact", "--gamma", "1.754", "--alpha", "1", "--json"]);
+    assert_eq!(el["law"], "elastic");
+    assert_eq!((num(&el, "e_n"), num(&el, "tau")), (1.0, 0.0));
+    assert!((num(&el, "P") - p).abs() > 0.05);
+    // Full slip: the dissipative line, in closed form, and the regime follows α_c1(e_n).
+    let line = stdout_json(&[
+        "impact", "--gamma", "1.754", "--alpha", "0.15", "--e-n", "0.9", "--json",
+    ]);
+    assert_eq!(line["method"], "closed-form");
+    assert_eq!(line["regime"], "full-slip");
+    assert!((num(&line, "P") - (1.0 - 3.5 * 1.9 * 0.15)).abs() < 1e-15);
+}
+
+#[test]
+fn bad_dissipation_input_is_refused_with_exit_2() {
+    for (args, needle) in [
+        (vec!["--e-n", "0.2"], "e-n"),
+        (vec!["--e-n", "1.5"], "e-n"),
+        (vec!["--e-n", "nan"], "e-n"),
+        (vec!["--e-n", "0.9", "--law", "elastic"], "e_n"),
+        (vec!["--law", "plastic"], "law"),
+        (vec!["--e-n", "0.9", "--history"], "--history"),
+        (vec!["--e-n", "0.9", "--scheme", "euler"], "scheme"),
+        (
+            vec!["--e-n", "0.9", "--springs", "64", "--steps", "256"],
+            "springs",
+        ),
+    ] {
+        let mut all = vec!["impact", "--gamma", "1.754", "--alpha", "1"];
+        all.extend(args.iter().copied());
+        let out = sweep(&all);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{all:?}: {err}");
+        assert!(err.contains(needle), "{all:?}: {err}");
+        assert!(out.stdout.is_empty(), "{all:?}");
+    }
 }

@@ -13,7 +13,7 @@ use oblique_physics::rebound::{Body, Elastic, Incident, Pair, State};
 use oblique_physics::regimes::{alpha_c1, alpha_c2};
 use oblique_solver::impact::{base_resolution, dimensionless_normal, plan, Limits};
 use oblique_solver::units::PhysicalImpact;
-use oblique_solver::{simulate, solve, Accuracy, PhysicsError, Resolution, Scheme};
+use oblique_solver::{Accuracy, PhysicsError, Request, Resolution, Scheme};
 
 const ACC: Scheme = Scheme::Accurate;
 const GAMMAS: [f64; 9] = [0.01, 0.1, 0.5, 0.99, 1.0, 1.01, 2.16, 3.5, 5.0];
@@ -54,7 +54,11 @@ fn every_gamma_alpha_case_is_bounded_and_converges() {
         for a in alphas(g) {
             let what = format!("gamma = {g}, alpha = {a:e}");
             // The solver as used: automatic refinement to 1e-4, simulated even on the line.
-            let s = solve(g, a, Accuracy::Tolerance(1e-4), ACC, true)
+            let s = Request::new(g, a)
+                .accuracy(Accuracy::Tolerance(1e-4))
+                .scheme(ACC)
+                .forced(true)
+                .solve()
                 .unwrap_or_else(|e| panic!("{what}: {e}"));
             check_bounded(s.p, 0.0, &what);
             assert!(
@@ -71,7 +75,10 @@ fn every_gamma_alpha_case_is_bounded_and_converges() {
             );
             // Convergence: the fixed ladder from the base resolution against 32x it.
             let base = base_resolution(g, ACC);
-            let reference = simulate(g, a, base.doubled(5), ACC).unwrap();
+            let reference = Request::new(g, a)
+                .scheme(ACC)
+                .simulate(base.doubled(5))
+                .unwrap();
             // A raw discrete value may overshoot |P| = 1 by its discretisation error. The
             // largest seen: γ = 1, α = 2/7 (1 + 1e-3), where α_c1 = α_c2 and convergence is
             // irregular: −1.0000325 at 2048 springs x 1024 steps (docs/accuracy.md). The
@@ -79,7 +86,10 @@ fn every_gamma_alpha_case_is_bounded_and_converges() {
             check_bounded(reference, 1e-4, &what);
             let errs: Vec<f64> = (0..4)
                 .map(|k| {
-                    let p = simulate(g, a, base.doubled(k), ACC).unwrap();
+                    let p = Request::new(g, a)
+                        .scheme(ACC)
+                        .simulate(base.doubled(k))
+                        .unwrap();
                     // A raw discrete value may overshoot |P| = 1 by its discretisation error
                     // (γ = 1, α = 1e3: 1.001 at 32 steps); the solver's results are projected
                     // onto [−1, 1]. Bound: the distance to the reference plus 1e-4.
@@ -118,7 +128,12 @@ fn every_gamma_alpha_case_is_bounded_and_converges() {
 fn closed_forms_hold_at_the_extremes() {
     for &g in &GAMMAS {
         // α = 1e-9: deep in full slip, P = 1 − 7α; the simulation agrees.
-        let s = solve(g, 1e-9, Accuracy::Tolerance(1e-4), ACC, true).unwrap();
+        let s = Request::new(g, 1e-9)
+            .accuracy(Accuracy::Tolerance(1e-4))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap();
         assert!(
             (s.p - (1.0 - 7e-9)).abs() < 1e-11,
             "gamma = {g}: P = {} on the line",
@@ -127,7 +142,12 @@ fn closed_forms_hold_at_the_extremes() {
     }
     // γ = 1: P = −1 for every α ≥ 2/7 (the value is projected onto [−1, 1]).
     for a in [2.0 / 7.0 * (1.0 + 1e-3), 1e3, 1e9, f64::INFINITY] {
-        let s = solve(1.0, a, Accuracy::Tolerance(1e-4), ACC, true).unwrap();
+        let s = Request::new(1.0, a)
+            .accuracy(Accuracy::Tolerance(1e-4))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap();
         assert!(s.p >= -1.0, "gamma = 1, alpha = {a}: P = {}", s.p);
         assert!(
             (s.p + 1.0).abs() <= s.error_estimate,
@@ -146,8 +166,18 @@ fn large_finite_alpha_tends_to_no_slip() {
     // used the Coulomb-limited mean).
     for &g in &[0.5, 1.754, 3.5] {
         let base = base_resolution(g, ACC);
-        let fine = simulate(g, f64::INFINITY, base.doubled(6), ACC).unwrap();
-        let err = |k: u32| (simulate(g, 1e9, base.doubled(k), ACC).unwrap() - fine).abs();
+        let fine = Request::new(g, f64::INFINITY)
+            .scheme(ACC)
+            .simulate(base.doubled(6))
+            .unwrap();
+        let err = |k: u32| {
+            (Request::new(g, 1e9)
+                .scheme(ACC)
+                .simulate(base.doubled(k))
+                .unwrap()
+                - fine)
+                .abs()
+        };
         let (e2, e4) = (err(2), err(4));
         assert!(
             e4 <= e2 / 10.0,
@@ -258,7 +288,10 @@ fn physical_units_corners_match_the_dimensionless_solver() {
             -rel_after
         );
         // Same P as the dimensionless solver at the mapped groups, same resolution.
-        let q = simulate(groups.gamma, groups.alpha, r, ACC).unwrap();
+        let q = Request::new(groups.gamma, groups.alpha)
+            .scheme(ACC)
+            .simulate(r)
+            .unwrap();
         assert!(
             (p - q).abs() <= 1e-9,
             "{what}: physical P = {p}, dimensionless P(gamma = {}, alpha = {:e}) = {q}",
@@ -293,7 +326,10 @@ fn vanishing_tangential_speed_tends_to_no_slip_and_zero_is_pure_normal() {
     let r = res(256, 256);
     let no_slip = {
         let g = steel_on_glass(1.0).groups().unwrap().gamma;
-        simulate(g, f64::INFINITY, r, ACC).unwrap()
+        Request::new(g, f64::INFINITY)
+            .scheme(ACC)
+            .simulate(r)
+            .unwrap()
     };
     // u0 → 0⁺: α → ∞ and P → P(γ, ∞), down to speeds where the displacements are subnormal.
     // (At v_x = 1e-6 m/s, α = 3.9e5 and P is still 6e-6 from the no-slip value: the thin slip
@@ -306,7 +342,10 @@ fn vanishing_tangential_speed_tends_to_no_slip_and_zero_is_pure_normal() {
         let what = format!("v_x = {vx:e}");
         check_bounded(p, 1e-9, &what);
         let g = imp.groups().unwrap();
-        let q = simulate(g.gamma, g.alpha, r, ACC).unwrap();
+        let q = Request::new(g.gamma, g.alpha)
+            .scheme(ACC)
+            .simulate(r)
+            .unwrap();
         let gap = (p - no_slip).abs();
         // Above ALPHA_NO_SLIP = 1e10 both paths simulate no slip (the finite-μ clamp is decided
         // by rounding there: |P| ≈ 1e82 at v_x = 1e-100 m/s before that cut-off).
@@ -345,26 +384,39 @@ fn requests_beyond_the_limits_are_refused_before_any_work() {
     for &g in &[1e4, 1e8] {
         let e = plan(g, 1e-6, ACC, limits).unwrap_err();
         assert!(matches!(e, PhysicsError::Infeasible { .. }), "{e}");
-        let e = solve(g, f64::INFINITY, Accuracy::Tolerance(1e-6), ACC, true).unwrap_err();
+        let e = Request::new(g, f64::INFINITY)
+            .accuracy(Accuracy::Tolerance(1e-6))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap_err();
         assert!(matches!(e, PhysicsError::Infeasible { .. }), "{e}");
         assert!(e.to_string().contains("gamma"), "{e}");
     }
     // The seed's Euler scheme at 1e-6: millions of steps, refused (it would run for an hour).
-    let e = solve(1.754, 1.0, Accuracy::Tolerance(1e-6), Scheme::Euler, true).unwrap_err();
+    let e = Request::new(1.754, 1.0)
+        .accuracy(Accuracy::Tolerance(1e-6))
+        .scheme(Scheme::Euler)
+        .forced(true)
+        .solve()
+        .unwrap_err();
     assert!(matches!(e, PhysicsError::Infeasible { .. }), "{e}");
     assert!(e.to_string().contains("accurate scheme"), "{e}");
     // An absurd tolerance for the accurate scheme.
-    let e = solve(3.5, 1.0, Accuracy::Tolerance(1e-15), ACC, true).unwrap_err();
+    let e = Request::new(3.5, 1.0)
+        .accuracy(Accuracy::Tolerance(1e-15))
+        .scheme(ACC)
+        .forced(true)
+        .solve()
+        .unwrap_err();
     assert!(matches!(e, PhysicsError::Infeasible { .. }), "{e}");
     // A fixed resolution beyond the memory limit.
-    let e = solve(
-        1.754,
-        1.0,
-        Accuracy::Fixed(res(1 << 30, 1 << 10)),
-        ACC,
-        true,
-    )
-    .unwrap_err();
+    let e = Request::new(1.754, 1.0)
+        .accuracy(Accuracy::Fixed(res(1 << 30, 1 << 10)))
+        .scheme(ACC)
+        .forced(true)
+        .solve()
+        .unwrap_err();
     assert!(matches!(e, PhysicsError::TooLarge { .. }), "{e}");
     // The physical-units path refuses the same way (γ ≈ 2e3 from a stiff shear modulus is
     // impossible for real materials, so use an absurd tolerance instead).

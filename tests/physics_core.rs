@@ -10,7 +10,7 @@ use oblique_physics::regimes::{self, alpha_c1, alpha_c2, closed_form, linear_lim
 use oblique_solver::hertz::{HertzClosedForm, NormalBodies};
 use oblique_solver::impact::base_resolution;
 use oblique_solver::units::{PhysicalImpact, PhysicalOutcome};
-use oblique_solver::{simulate, solve, Accuracy, Method, PhysicsError, Resolution, Scheme};
+use oblique_solver::{Accuracy, Method, PhysicsError, Request, Resolution, Scheme};
 
 const ACC: Scheme = Scheme::Accurate;
 
@@ -281,7 +281,10 @@ fn full_slip_line_is_exact_below_the_linear_limit() {
         assert_eq!(limit, expected_limit, "linear limit at gamma = {g}");
         for &frac in &[0.25, 0.6] {
             let a = frac * limit;
-            let p = simulate(g, a, line_resolution(a), ACC).unwrap();
+            let p = Request::new(g, a)
+                .scheme(ACC)
+                .simulate(line_resolution(a))
+                .unwrap();
             assert!(
                 (p - line(a)).abs() < 1e-8,
                 "gamma = {g}, alpha = {a}: P = {p}, 1 - 7 alpha = {}, diff {:e}",
@@ -299,7 +302,12 @@ fn full_slip_line_is_exact_below_the_linear_limit() {
 #[test]
 fn gamma_one_plateau_is_minus_one() {
     for &a in &[2.0 / 7.0, 0.3, 0.5, 1.0, 10.0, f64::INFINITY] {
-        let s = solve(1.0, a, Accuracy::Tolerance(1e-6), ACC, true).unwrap();
+        let s = Request::new(1.0, a)
+            .accuracy(Accuracy::Tolerance(1e-6))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap();
         assert_eq!(s.method, Method::Simulated);
         assert!(s.error_estimate <= 1e-6);
         assert!(
@@ -456,7 +464,10 @@ fn line_holds_just_below_the_limit_and_departs_above() {
         let below = 0.999 * limit;
         assert_eq!(Regime::of(g, below), Regime::FullSlip);
         assert_eq!(closed_form(g, below), Some(line(below)));
-        let p = simulate(g, below, line_resolution(below), ACC).unwrap();
+        let p = Request::new(g, below)
+            .scheme(ACC)
+            .simulate(line_resolution(below))
+            .unwrap();
         assert!(
             (p - line(below)).abs() < 1e-8,
             "gamma = {g}, alpha = 0.999 limit = {below}: P - (1 - 7 alpha) = {:e}",
@@ -466,7 +477,12 @@ fn line_holds_just_below_the_limit_and_departs_above() {
         let above = 1.2 * limit;
         assert_ne!(Regime::of(g, above), Regime::FullSlip);
         assert_eq!(closed_form(g, above), None);
-        let s = solve(g, above, Accuracy::Tolerance(1e-6), ACC, true).unwrap();
+        let s = Request::new(g, above)
+            .accuracy(Accuracy::Tolerance(1e-6))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap();
         let dev = (s.p - line(above)).abs();
         assert!(
             dev > 1e-3 && dev > 100.0 * s.error_estimate,
@@ -480,7 +496,12 @@ fn line_holds_just_below_the_limit_and_departs_above() {
 /// One-sided second differences of `P(α)` around `ac` with spacing `d`: `(left, right)`.
 fn one_sided_curvatures(g: f64, ac: f64, d: f64) -> (f64, f64) {
     let p: Vec<f64> = (-2..=2)
-        .map(|k| simulate(g, ac + f64::from(k) * d, res2(2048), ACC).unwrap())
+        .map(|k| {
+            Request::new(g, ac + f64::from(k) * d)
+                .scheme(ACC)
+                .simulate(res2(2048))
+                .unwrap()
+        })
         .collect();
     (
         (p[0] - 2.0 * p[1] + p[2]) / (d * d),
@@ -499,7 +520,10 @@ fn gamma_08_nothing_happens_at_alpha_c1_but_line_ends_at_alpha_c2() {
     assert!(c1 > c2);
     assert_eq!(linear_limit(g), c2);
 
-    let p_c1 = simulate(g, c1, res2(2048), ACC).unwrap();
+    let p_c1 = Request::new(g, c1)
+        .scheme(ACC)
+        .simulate(res2(2048))
+        .unwrap();
     assert!(
         (p_c1 - line(c1)).abs() > 0.1,
         "P(alpha_c1) = {p_c1} should be far off the line (alpha_c1 > alpha_c2)"
@@ -556,12 +580,25 @@ fn check_second_order(g: f64, a: f64) {
 /// continuum row, exact in space) against the Richardson extrapolation of continuum runs at
 /// 16384 and 32768 steps, the ratios per doubling and a printable summary.
 fn convergence_ladder(g: f64, a: f64) -> (Vec<f64>, Vec<f64>, String) {
-    let fine = simulate(g, a, res(0, 32768), ACC).unwrap();
-    let coarse = simulate(g, a, res(0, 16384), ACC).unwrap();
+    let fine = Request::new(g, a)
+        .scheme(ACC)
+        .simulate(res(0, 32768))
+        .unwrap();
+    let coarse = Request::new(g, a)
+        .scheme(ACC)
+        .simulate(res(0, 16384))
+        .unwrap();
     let reference = fine + (fine - coarse) / 3.0;
     let base = base_resolution(g, ACC);
     let errs: Vec<f64> = (1..=5)
-        .map(|k| (simulate(g, a, base.doubled(k), ACC).unwrap() - reference).abs())
+        .map(|k| {
+            (Request::new(g, a)
+                .scheme(ACC)
+                .simulate(base.doubled(k))
+                .unwrap()
+                - reference)
+                .abs()
+        })
         .collect();
     let ratios: Vec<f64> = errs.windows(2).map(|w| w[0] / w[1]).collect();
     let errs_s: Vec<String> = errs.iter().map(|e| format!("{e:.3e}")).collect();
@@ -604,9 +641,19 @@ fn convergence_gamma_3_alpha_4_stick_by_component() {
     // clean and dominant, the time error small and irregular; on the joint ladder the two
     // partly cancel (opposite signs), so each component is checked on its own.
     let (g, a) = (3.0, 4.0);
-    let reference = simulate(g, a, res(16384, 65536), ACC).unwrap();
+    let reference = Request::new(g, a)
+        .scheme(ACC)
+        .simulate(res(16384, 65536))
+        .unwrap();
     let spatial: Vec<f64> = (0..5)
-        .map(|k| (simulate(g, a, res(64 << k, 65536), ACC).unwrap() - reference).abs())
+        .map(|k| {
+            (Request::new(g, a)
+                .scheme(ACC)
+                .simulate(res(64 << k, 65536))
+                .unwrap()
+                - reference)
+                .abs()
+        })
         .collect();
     let ratios: Vec<f64> = spatial.windows(2).map(|w| w[0] / w[1]).collect();
     assert!(
@@ -633,9 +680,19 @@ fn convergence_gamma_3_alpha_4_stick_by_component() {
 #[test]
 fn convergence_gamma_3_alpha_1_partial_slip_overall_order() {
     let (g, a) = (3.0, 1.0);
-    let reference = simulate(g, a, res(16384, 16384), ACC).unwrap();
+    let reference = Request::new(g, a)
+        .scheme(ACC)
+        .simulate(res(16384, 16384))
+        .unwrap();
     let spatial: Vec<f64> = (0..4)
-        .map(|k| (simulate(g, a, res(128 << k, 4096), ACC).unwrap() - reference).abs())
+        .map(|k| {
+            (Request::new(g, a)
+                .scheme(ACC)
+                .simulate(res(128 << k, 4096))
+                .unwrap()
+                - reference)
+                .abs()
+        })
         .collect();
     let ratios: Vec<f64> = spatial.windows(2).map(|w| w[0] / w[1]).collect();
     assert!(
@@ -643,7 +700,14 @@ fn convergence_gamma_3_alpha_1_partial_slip_overall_order() {
         "spatial error not second order: {spatial:?} ratios {ratios:?}"
     );
     let time: Vec<f64> = (0..5)
-        .map(|k| (simulate(g, a, res(16384, 256 << k), ACC).unwrap() - reference).abs())
+        .map(|k| {
+            (Request::new(g, a)
+                .scheme(ACC)
+                .simulate(res(16384, 256 << k))
+                .unwrap()
+                - reference)
+                .abs()
+        })
         .collect();
     let ratios: Vec<f64> = time.windows(2).map(|w| w[0] / w[1]).collect();
     assert!(
@@ -689,14 +753,22 @@ fn error_estimate_bounds_the_true_error() {
     let mut checked = 0;
     for &(g, a) in &points {
         for &tol in &[1e-4, 1e-5] {
-            let s = solve(g, a, Accuracy::Tolerance(tol), ACC, true).unwrap();
+            let s = Request::new(g, a)
+                .accuracy(Accuracy::Tolerance(tol))
+                .scheme(ACC)
+                .forced(true)
+                .solve()
+                .unwrap();
             assert_eq!(s.method, Method::Simulated);
             assert!(s.error_estimate <= tol);
             let mut k = 2;
             while s.resolution.doubled(k).steps < 8192 {
                 k += 1;
             }
-            let reference = simulate(g, a, s.resolution.doubled(k), ACC).unwrap();
+            let reference = Request::new(g, a)
+                .scheme(ACC)
+                .simulate(s.resolution.doubled(k))
+                .unwrap();
             let err = (s.p - reference).abs();
             checked += 1;
             assert!(
@@ -749,16 +821,17 @@ fn universality_of_random_physical_impacts() {
         // Same resolution: the physical run and the dimensionless run agree far below the error.
         let out = imp.simulate(fixed).unwrap();
         let p_phys = out.p.expect("u0 != 0");
-        let p_dimless = simulate(groups.gamma, groups.alpha, fixed, ACC).unwrap();
-        let fixed_est = solve(
-            groups.gamma,
-            groups.alpha,
-            Accuracy::Fixed(fixed),
-            ACC,
-            true,
-        )
-        .unwrap()
-        .error_estimate;
+        let p_dimless = Request::new(groups.gamma, groups.alpha)
+            .scheme(ACC)
+            .simulate(fixed)
+            .unwrap();
+        let fixed_est = Request::new(groups.gamma, groups.alpha)
+            .accuracy(Accuracy::Fixed(fixed))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap()
+            .error_estimate;
         let diff = (p_phys - p_dimless).abs();
         assert!(
             diff <= 1e-9 && diff <= fixed_est,
@@ -775,14 +848,12 @@ fn universality_of_random_physical_impacts() {
 
         // With refinement: the physical solve and the dimensionless solve agree within estimates.
         let phys = imp.solve(1e-6).unwrap();
-        let dimless = solve(
-            groups.gamma,
-            groups.alpha,
-            Accuracy::Tolerance(1e-6),
-            ACC,
-            true,
-        )
-        .unwrap();
+        let dimless = Request::new(groups.gamma, groups.alpha)
+            .accuracy(Accuracy::Tolerance(1e-6))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap();
         let bound = phys.error_estimate + dimless.error_estimate;
         let diff = (phys.p.unwrap() - dimless.p).abs();
         assert!(
@@ -1013,49 +1084,74 @@ fn invalid_parameters_are_rejected_with_their_name() {
     let ok = res2(64);
     for g in [0.0, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         assert_eq!(
-            invalid_name(simulate(g, 0.5, ok, ACC)),
+            invalid_name(Request::new(g, 0.5).scheme(ACC).simulate(ok)),
             "gamma",
             "gamma = {g}"
         );
         assert_eq!(
-            invalid_name(solve(g, 0.5, Accuracy::Tolerance(1e-6), ACC, false)),
+            invalid_name(
+                Request::new(g, 0.5)
+                    .accuracy(Accuracy::Tolerance(1e-6))
+                    .scheme(ACC)
+                    .solve()
+            ),
             "gamma"
         );
     }
     for a in [-0.1, -1e-300, f64::NAN, f64::NEG_INFINITY] {
         assert_eq!(
-            invalid_name(simulate(1.754, a, ok, ACC)),
+            invalid_name(Request::new(1.754, a).scheme(ACC).simulate(ok)),
             "alpha",
             "alpha = {a}"
         );
         assert_eq!(
-            invalid_name(solve(1.754, a, Accuracy::Tolerance(1e-6), ACC, false)),
+            invalid_name(
+                Request::new(1.754, a)
+                    .accuracy(Accuracy::Tolerance(1e-6))
+                    .scheme(ACC)
+                    .solve()
+            ),
             "alpha"
         );
     }
     // springs = 0 is the continuum row of the accurate scheme; Euler needs real springs.
     assert_eq!(
-        invalid_name(simulate(1.754, 1.0, res(0, 64), Scheme::Euler)),
+        invalid_name(
+            Request::new(1.754, 1.0)
+                .scheme(Scheme::Euler)
+                .simulate(res(0, 64))
+        ),
         "springs"
     );
     for scheme in [Scheme::Accurate, Scheme::Euler] {
         assert_eq!(
-            invalid_name(simulate(1.754, 1.0, res(1, 64), scheme)),
+            invalid_name(Request::new(1.754, 1.0).scheme(scheme).simulate(res(1, 64))),
             "springs"
         );
         assert_eq!(
-            invalid_name(simulate(1.754, 1.0, res(64, 0), scheme)),
+            invalid_name(Request::new(1.754, 1.0).scheme(scheme).simulate(res(64, 0))),
             "steps"
         );
     }
     assert_eq!(
-        invalid_name(solve(1.754, 1.0, Accuracy::Fixed(res(1, 64)), ACC, true)),
+        invalid_name(
+            Request::new(1.754, 1.0)
+                .accuracy(Accuracy::Fixed(res(1, 64)))
+                .scheme(ACC)
+                .forced(true)
+                .solve()
+        ),
         "springs"
     );
     for tol in [0.0, -1e-6, f64::NAN, f64::INFINITY] {
         // α = 1 at γ = 1.754 has no closed form: the tolerance is used.
         assert_eq!(
-            invalid_name(solve(1.754, 1.0, Accuracy::Tolerance(tol), ACC, false)),
+            invalid_name(
+                Request::new(1.754, 1.0)
+                    .accuracy(Accuracy::Tolerance(tol))
+                    .scheme(ACC)
+                    .solve()
+            ),
             "tol",
             "tol = {tol}"
         );
@@ -1095,13 +1191,23 @@ fn invalid_accuracy_is_rejected_in_the_closed_form_region_too() {
     assert!(closed_form(g, a).is_some());
     for tol in [0.0, -1e-6, f64::NAN] {
         assert_eq!(
-            invalid_name(solve(g, a, Accuracy::Tolerance(tol), ACC, false)),
+            invalid_name(
+                Request::new(g, a)
+                    .accuracy(Accuracy::Tolerance(tol))
+                    .scheme(ACC)
+                    .solve()
+            ),
             "tol",
             "tol = {tol}"
         );
     }
     assert_eq!(
-        invalid_name(solve(g, a, Accuracy::Fixed(res(1, 64)), ACC, false)),
+        invalid_name(
+            Request::new(g, a)
+                .accuracy(Accuracy::Fixed(res(1, 64)))
+                .scheme(ACC)
+                .solve()
+        ),
         "springs"
     );
 }
@@ -1119,9 +1225,19 @@ fn error_estimate_is_not_fooled_by_a_pre_asymptotic_plateau() {
     let mut failures = Vec::new();
     for i in 0..11 {
         let a = 5.140 + 0.001 * i as f64;
-        let reference = solve(g, a, Accuracy::Tolerance(1e-8), ACC, true).unwrap();
+        let reference = Request::new(g, a)
+            .accuracy(Accuracy::Tolerance(1e-8))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap();
         for &tol in &[2e-6, 1e-5] {
-            let s = solve(g, a, Accuracy::Tolerance(tol), ACC, true).unwrap();
+            let s = Request::new(g, a)
+                .accuracy(Accuracy::Tolerance(tol))
+                .scheme(ACC)
+                .forced(true)
+                .solve()
+                .unwrap();
             let err = (s.p - reference.p).abs();
             if err > tol {
                 failures.push(format!(
@@ -1160,7 +1276,10 @@ fn fixed_resolution_estimate_is_absent_or_bounds_the_true_error() {
     let mut failures = Vec::new();
     let mut ratios = Vec::new();
     for &(g, a) in &points {
-        let reference = solve(g, a, Accuracy::Tolerance(1e-9), ACC, false)
+        let reference = Request::new(g, a)
+            .accuracy(Accuracy::Tolerance(1e-9))
+            .scheme(ACC)
+            .solve()
             .unwrap()
             .p;
         for scheme in [Scheme::Accurate, Scheme::Euler] {
@@ -1169,7 +1288,11 @@ fn fixed_resolution_estimate_is_absent_or_bounds_the_true_error() {
                     continue;
                 }
                 for steps in [8, 32, 256, 1024] {
-                    let s = solve(g, a, Accuracy::Fixed(res(springs, steps)), scheme, true)
+                    let s = Request::new(g, a)
+                        .accuracy(Accuracy::Fixed(res(springs, steps)))
+                        .scheme(scheme)
+                        .forced(true)
+                        .solve()
                         .unwrap_or_else(|e| panic!("{g}, {a}, {springs} x {steps}: {e}"));
                     let err = (s.p - reference).abs();
                     match (s.estimate(), s.no_estimate) {
@@ -1220,7 +1343,12 @@ fn fixed_resolution_estimate_is_absent_or_bounds_the_true_error() {
         (2, 8, ACC),
         (8, 32, Scheme::Euler),
     ] {
-        let s = solve(1.7, 1.0, Accuracy::Fixed(res(springs, steps)), scheme, true).unwrap();
+        let s = Request::new(1.7, 1.0)
+            .accuracy(Accuracy::Fixed(res(springs, steps)))
+            .scheme(scheme)
+            .forced(true)
+            .solve()
+            .unwrap();
         assert_eq!(s.estimate(), None, "{springs} x {steps}: {s:?}");
     }
 }

@@ -10,7 +10,7 @@
 //! simulation's.
 
 use oblique_solver::units::PhysicalImpact;
-use oblique_solver::{solve, Accuracy, Scheme};
+use oblique_solver::{Accuracy, Request};
 use std::sync::OnceLock;
 
 use oblique_lookup::rebound::{Body, Elastic, Incident, Incident3, Motion3, Pair, State, Vec3};
@@ -118,14 +118,10 @@ fn check(imp: &PhysicalImpact) {
     }
 
     // 2. rebound(P from the dimensionless solver) agrees within the error estimates.
-    let sol = solve(
-        g.gamma,
-        g.alpha,
-        Accuracy::Tolerance(TOL),
-        Scheme::Accurate,
-        false,
-    )
-    .unwrap();
+    let sol = Request::new(g.gamma, g.alpha)
+        .accuracy(Accuracy::Tolerance(TOL))
+        .solve()
+        .unwrap();
     let err = sol.error_estimate + phys.error_estimate;
     close(sol.p, p_phys, err + 1e-12, "P (dimensionless vs physical)");
     let r = pair.rebound(&inc, sol.p).unwrap();

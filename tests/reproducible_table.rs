@@ -1,7 +1,7 @@
 //! The shipped table is reproducible: a sample of its simulated nodes, recomputed from the config
 //! stored in the file, agrees with the stored values within their error estimates.
 
-use oblique_solver::{solve, Accuracy, Scheme};
+use oblique_solver::{Accuracy, Request};
 use oblique_sweep::Config;
 
 const FULL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5");
@@ -40,14 +40,10 @@ fn reproduce_nodes(table: &str) {
         // Three nodes per patch, spread over the patch's node list (deterministic).
         for j in 0..3 {
             let i = simulated[(j * 7919 + 13) % simulated.len()];
-            let again = solve(
-                gamma[i],
-                alpha[i],
-                Accuracy::Tolerance(tol),
-                Scheme::Accurate,
-                false,
-            )
-            .expect("node solves");
+            let again = Request::new(gamma[i], alpha[i])
+                .accuracy(Accuracy::Tolerance(tol))
+                .solve()
+                .expect("node solves");
             let diff = (again.p - p[i]).abs();
             assert!(
                 diff <= est[i] + again.error_estimate,
@@ -94,14 +90,10 @@ fn random_points(path: &str, claim: f64, count: usize) {
             10f64.powf(-2.0 + 4.0 * uniform())
         };
         let from_table = table.p(gamma, alpha).expect("inside the domain");
-        let direct = solve(
-            gamma,
-            alpha,
-            Accuracy::Tolerance(1e-7),
-            Scheme::Accurate,
-            false,
-        )
-        .expect("direct solve");
+        let direct = Request::new(gamma, alpha)
+            .accuracy(Accuracy::Tolerance(1e-7))
+            .solve()
+            .expect("direct solve");
         let err = (from_table - direct.p).abs();
         worst = worst.max(err);
         assert!(

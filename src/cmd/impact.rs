@@ -50,8 +50,9 @@ pub struct ImpactArgs {
     /// Accuracy preset: fast (tol 1e-4), standard (1e-6, the default) or reference (1e-8).
     #[arg(long, value_parser = parse_preset, conflicts_with_all = ["tol", "springs", "steps"])]
     preset: Option<Preset>,
-    /// Springs on the half-row [0, a_max] (>= 2; an error estimate needs >= 16); use with --steps
-    /// instead of --tol.
+    /// Springs on the half-row [0, a_max] (>= 2; an error estimate needs >= 16), or 0 for the
+    /// continuum row (exact in space, what --tol refines; the only row for e_n < 1); use with
+    /// --steps instead of --tol.
     #[arg(long, requires = "steps", value_parser = parse_springs)]
     springs: Option<usize>,
     /// Time steps per contact time (>= 8; an error estimate needs >= 64); use with --springs

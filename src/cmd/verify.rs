@@ -10,7 +10,7 @@ use clap::Args;
 use rayon::prelude::*;
 
 use oblique_lookup::Table;
-use oblique_solver::{Accuracy, Scheme};
+use oblique_solver::{Accuracy, Request};
 
 /// Loosest simulation tolerance `--tol` accepts: the reference must be far more accurate than
 /// the table's bound (1e-5 for the shipped table).
@@ -155,16 +155,12 @@ pub fn run(args: VerifyArgs) -> Result<()> {
                 .par_iter()
                 .map(|&(gamma, alpha)| {
                     let p_table = table.p(gamma, alpha)?;
-                    let sim = oblique_solver::solve(
-                        gamma,
-                        alpha,
-                        Accuracy::Tolerance(args.tol),
-                        Scheme::Accurate,
-                        false,
-                    )
-                    .with_context(|| {
-                        format!("simulating gamma = {gamma}, alpha = {}", fmt_alpha(alpha))
-                    })?;
+                    let sim = Request::new(gamma, alpha)
+                        .accuracy(Accuracy::Tolerance(args.tol))
+                        .solve()
+                        .with_context(|| {
+                            format!("simulating gamma = {gamma}, alpha = {}", fmt_alpha(alpha))
+                        })?;
                     done.fetch_add(1, Ordering::Relaxed);
                     Ok(Outcome {
                         gamma,

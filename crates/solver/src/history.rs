@@ -7,7 +7,7 @@
 //! t ≈ 0.86 t_c vanishes (`docs/solver.md`, "Kink curves"). Such curves limit how well a table
 //! can interpolate `P`; this module finds them.
 //!
-//! Dimensionless units as in [`crate::impact::simulate`]: `m* = R* = E* = v_z0 = 1`,
+//! Dimensionless units as in [`crate::Request::simulate`]: `m* = R* = E* = v_z0 = 1`,
 //! `u0 = 1`, so `μ = α` and `F_N = (4/3) d^{3/2}`; times are fractions of the contact time `t_c`.
 
 use super::error::PhysicsError;
@@ -55,7 +55,7 @@ pub const MERGE_GAP: f64 = 0.01;
 /// mean friction force and `μ F_N` averaged over the step by the stepper's own product rule.
 pub const SLIP_THRESHOLD: f64 = 1e-6;
 
-/// The contact point of [`crate::impact::simulate`], recording the mean friction force
+/// The contact point of [`crate::Request::simulate`], recording the mean friction force
 /// of every step.
 struct Recorder {
     point: ContactPoint,

@@ -31,22 +31,33 @@ pub enum Scheme {
     Euler,
 }
 
+/// `$body` with `$I` the [`Integrator`] of `scheme`: the one place a scheme's name picks its
+/// integrator.
+macro_rules! with_integrator {
+    ($scheme:expr, $I:ident => $body:expr) => {
+        match $scheme {
+            Scheme::Accurate => {
+                type $I = VelocityVerlet;
+                $body
+            }
+            Scheme::Euler => {
+                type $I = ExplicitEuler;
+                $body
+            }
+        }
+    };
+}
+
 impl Scheme {
     /// Name as used on the command line ([`Integrator::NAME`] of the scheme's integrator).
     pub fn name(self) -> &'static str {
-        match self {
-            Scheme::Accurate => VelocityVerlet::NAME,
-            Scheme::Euler => ExplicitEuler::NAME,
-        }
+        with_integrator!(self, I => I::NAME)
     }
 
     /// Order of convergence in the resolution `h ∝ 1/steps ∝ 1/springs`
     /// ([`Integrator::ORDER`]).
     pub fn order(self) -> i32 {
-        match self {
-            Scheme::Accurate => VelocityVerlet::ORDER,
-            Scheme::Euler => ExplicitEuler::ORDER,
-        }
+        with_integrator!(self, I => I::ORDER)
     }
 }
 
@@ -456,8 +467,9 @@ pub fn dimensionless_normal(steps: usize) -> Rc<NormalTrajectory> {
 /// as `α` grows (7e-4 at α = 390, 6e-6 at 3.9e5).
 pub const ALPHA_NO_SLIP: f64 = 1e10;
 
-/// Simulate one impact at a fixed resolution and return `P` (no closed-form shortcut).
-pub fn simulate(
+/// Simulate one elastic impact at a fixed resolution and return `P` (no closed-form shortcut;
+/// [`crate::Request::simulate`] is the public door).
+pub(crate) fn simulate_elastic(
     gamma: f64,
     alpha: f64,
     res: Resolution,
@@ -472,23 +484,47 @@ pub fn simulate(
     } else {
         alpha / shear
     };
-    Ok(match scheme {
-        Scheme::Accurate => VelocityVerlet::dimensionless_p(shear, limit, res),
-        Scheme::Euler if res.springs == 0 => {
-            return Err(PhysicsError::InvalidParameter {
-                name: "springs",
-                value: 0.0,
-                allowed:
-                    "an integer >= 2 for the euler scheme (0, the continuum, is accurate only)",
-            })
-        }
-        Scheme::Euler => ExplicitEuler::dimensionless_p(shear, limit, res),
-    })
+    with_integrator!(scheme, I => Ok(I::dimensionless_p(shear, limit, I::check(res)?)))
 }
 
 impl Integrator for VelocityVerlet {
     const NAME: &'static str = "accurate";
     const ORDER: i32 = 2;
+    const RICHARDSON: bool = true;
+
+    /// The continuum row (springs = 0) has no spatial error, so only the time error is left;
+    /// it grows with γ (≈ 1.4/S² at γ = 1.9, ≈ 8/S² at γ = 3.2 for S steps,
+    /// `tools/src/bin/errsplit.rs`). With springs (one per step, as this refinement used
+    /// before the continuum row) the spatial error fell slowly and irregularly at large finite
+    /// α (a slip ring thinner than the spacing): 8192 springs × 4096 steps for 1e-6 at
+    /// γ = 2.8, α = 69, where the continuum needs 2048–4096 steps.
+    fn base_resolution(scale: f64) -> Resolution {
+        Resolution {
+            springs: 0,
+            steps: (32.0 * scale).ceil() as usize,
+        }
+    }
+
+    /// One level below the base, so that the acceptance guard ([`previous_estimate_agrees`])
+    /// has its coarser estimate at the same finest resolution as the three-level estimate
+    /// alone (the extra level costs about 1/8 of the finest one).
+    fn ladder_start(base: Resolution) -> Resolution {
+        Resolution {
+            springs: base.springs / 2,
+            steps: base.steps / 2,
+        }
+    }
+
+    /// The normal trajectory: 3 arrays of `steps + 1` values, counted twice because the
+    /// per-thread cache keeps the coarser levels of a refinement too.
+    fn normal_memory(res: Resolution) -> f64 {
+        2.0 * 3.0 * 8.0 * (res.steps as f64 + 1.0)
+    }
+
+    /// About 1e-3 up to γ ≈ 2, growing like γ^1.2 beyond (1e-2 at γ = 16, 2.3e-2 at γ = 64).
+    fn base_error(gamma: f64, _base: Resolution) -> f64 {
+        1e-3 * (gamma / 2.0).max(1.0).powf(1.2)
+    }
 
     /// Hertz normal motion on `res.steps` steps ([`dimensionless_normal`]), the continuum row
     /// (`res.springs = 0`) or `res.springs` springs, [`run_contact`].
@@ -503,6 +539,42 @@ impl Integrator for VelocityVerlet {
 impl Integrator for ExplicitEuler {
     const NAME: &'static str = "euler";
     const ORDER: i32 = 1;
+    const RICHARDSON: bool = false;
+
+    fn base_resolution(scale: f64) -> Resolution {
+        let steps = (256.0 * scale).ceil() as usize;
+        Resolution {
+            springs: steps / 4,
+            steps,
+        }
+    }
+
+    fn ladder_start(base: Resolution) -> Resolution {
+        base
+    }
+
+    /// The scheme integrates its own normal motion: nothing stored.
+    fn normal_memory(_res: Resolution) -> f64 {
+        0.0
+    }
+
+    /// `C/S` with `C ≈ 2` at the base `S`.
+    fn base_error(_gamma: f64, base: Resolution) -> f64 {
+        2.0 / base.steps as f64
+    }
+
+    /// At least 2 springs: the scheme has no continuum row.
+    fn check(res: Resolution) -> Result<Resolution, PhysicsError> {
+        if res.springs == 0 {
+            return Err(PhysicsError::InvalidParameter {
+                name: "springs",
+                value: 0.0,
+                allowed:
+                    "an integer >= 2 for the euler scheme (0, the continuum, is accurate only)",
+            });
+        }
+        Ok(res)
+    }
 
     /// The seed's scheme: explicit Euler for the normal and tangential motion together, springs
     /// at the cell midpoints ([`SpringRow::midpoints`], `res.springs ≥ 2`).
@@ -605,20 +677,16 @@ pub fn work(res: Resolution) -> f64 {
 }
 
 /// Memory of one run (bytes): the spring row (positions, weights, heights, displacements: 5
-/// arrays of `springs + 4` values) and the normal trajectory (3 arrays of `steps + 1` values,
-/// counted twice because the per-thread cache keeps the coarser levels of a refinement too).
-/// The continuum row holds at most about two pieces of 96 bytes per step.
+/// arrays of `springs + 4` values) and what the scheme stores of the normal motion
+/// ([`Integrator::normal_memory`]). The continuum row holds at most about two pieces of 96
+/// bytes per step.
 pub fn memory_bytes(res: Resolution, scheme: Scheme) -> f64 {
     let row = if res.springs == 0 {
         2.0 * 96.0 * res.steps as f64
     } else {
         5.0 * 8.0 * (res.springs as f64 + 4.0)
     };
-    let normal = match scheme {
-        Scheme::Accurate => 2.0 * 3.0 * 8.0 * (res.steps as f64 + 1.0),
-        Scheme::Euler => 0.0,
-    };
-    row + normal
+    row + with_integrator!(scheme, I => I::normal_memory(res))
 }
 
 /// What a refinement to `tol` is predicted to need, before anything is simulated.
@@ -634,14 +702,11 @@ pub struct Plan {
 }
 
 /// Predicted raw error of the base level of the refinement at `γ` (the difference between
-/// the first two levels, measured at α = ∞ and mid partial slip for γ = 0.01–64 by
-/// `cargo run --release --example errmodel`): about 1e-3 up to γ ≈ 2, growing like γ^1.2
-/// beyond (1e-2 at γ = 16, 2.3e-2 at γ = 64). Euler: `C/S` with `C ≈ 2` at the base `S`.
+/// the first two levels, measured at α = ∞ and mid partial slip for γ = 0.01–64):
+/// [`Integrator::base_error`].
 fn base_error(gamma: f64, scheme: Scheme) -> f64 {
-    match scheme {
-        Scheme::Accurate => 1e-3 * (gamma / 2.0).max(1.0).powf(1.2),
-        Scheme::Euler => 2.0 / base_resolution(gamma, scheme).steps as f64,
-    }
+    let base = base_resolution(gamma, scheme);
+    with_integrator!(scheme, I => I::base_error(gamma, base))
 }
 
 /// Predict the finest resolution a refinement to `tol` reaches at `γ` and refuse, before any
@@ -820,40 +885,13 @@ pub fn base_resolution(gamma: f64, scheme: Scheme) -> Resolution {
     // Not clamped at large γ (only against overflow): fewer steps than ∝ γ would make the base
     // level useless there, and [`plan`] refuses what does not fit the limits.
     let scale = gamma.clamp(1.0, 1e12).log2().ceil().exp2();
-    match scheme {
-        // The continuum row (springs = 0) has no spatial error, so only the time error is
-        // left; it grows with γ (≈ 1.4/S² at γ = 1.9, ≈ 8/S² at γ = 3.2 for S steps,
-        // `examples/errsplit.rs`). With springs (one per step, as this refinement used before
-        // the continuum row) the spatial error fell slowly and irregularly at large finite α
-        // (a slip ring thinner than the spacing): 8192 springs × 4096 steps for 1e-6 at
-        // γ = 2.8, α = 69, where the continuum needs 2048–4096 steps.
-        Scheme::Accurate => Resolution {
-            springs: 0,
-            steps: (32.0 * scale).ceil() as usize,
-        },
-        Scheme::Euler => {
-            let steps = (256.0 * scale).ceil() as usize;
-            Resolution {
-                springs: steps / 4,
-                steps,
-            }
-        }
-    }
+    with_integrator!(scheme, I => I::base_resolution(scale))
 }
 
-/// First level of the automatic refinement: the base resolution, and for the accurate scheme
-/// one level below it, so that the acceptance guard ([`previous_estimate_agrees`]) has its
-/// coarser estimate at the same finest resolution as the three-level estimate alone (the extra
-/// level costs about 1/8 of the finest one).
+/// First level of the automatic refinement ([`Integrator::ladder_start`]).
 fn ladder_start(gamma: f64, scheme: Scheme) -> Resolution {
     let base = base_resolution(gamma, scheme);
-    match scheme {
-        Scheme::Accurate => Resolution {
-            springs: base.springs / 2,
-            steps: base.steps / 2,
-        },
-        Scheme::Euler => base,
-    }
+    with_integrator!(scheme, I => I::ladder_start(base))
 }
 
 /// Estimate the error of a sequence of results at resolutions doubling each time.
@@ -1096,49 +1134,11 @@ pub(crate) fn refine_core(
     unreachable!("the refinement loop only exits by returning")
 }
 
-/// `P(γ, α)` to the requested accuracy. Uses the closed form where it is exact unless
-/// `force_simulation` is set.
-pub fn solve(
-    gamma: f64,
-    alpha: f64,
-    accuracy: Accuracy,
-    scheme: Scheme,
-    force_simulation: bool,
-) -> Result<Solution, PhysicsError> {
-    solve_with_limits(
-        gamma,
-        alpha,
-        accuracy,
-        scheme,
-        force_simulation,
-        Limits::default(),
-    )
-}
-
-/// [`solve`] with explicit refinement limits.
-pub fn solve_with_limits(
-    gamma: f64,
-    alpha: f64,
-    accuracy: Accuracy,
-    scheme: Scheme,
-    force_simulation: bool,
-    limits: Limits,
-) -> Result<Solution, PhysicsError> {
-    solve_observed(
-        gamma,
-        alpha,
-        accuracy,
-        scheme,
-        force_simulation,
-        limits,
-        &mut |_| {},
-    )
-}
-
-/// [`solve_with_limits`] that reports each level of the automatic refinement to `observer`
-/// (before it runs and after, with the estimate reached), for progress displays. A fixed
-/// resolution or a closed form reports nothing.
-pub fn solve_observed(
+/// `P(γ, α)` of the elastic law to the requested accuracy ([`crate::Request`] is the public
+/// door): the closed form where it is exact unless `force_simulation` is set; each level of
+/// the automatic refinement is reported to `observer` (before it runs and after, with the
+/// estimate reached). A fixed resolution or a closed form reports nothing.
+pub(crate) fn solve_elastic(
     gamma: f64,
     alpha: f64,
     accuracy: Accuracy,
@@ -1154,7 +1154,7 @@ pub fn solve_observed(
         (gamma, accuracy, scheme, force_simulation, limits),
         Floor::fixed(RAW_FLOOR),
         closed,
-        |res| simulate(gamma, alpha, res, scheme),
+        |res| simulate_elastic(gamma, alpha, res, scheme),
         observer,
     )
 }
@@ -1205,7 +1205,7 @@ pub(crate) fn solve_core(
             ladder_start(gamma, scheme),
             (scheme.order(), floor),
             tol,
-            scheme == Scheme::Accurate,
+            with_integrator!(scheme, I => I::RICHARDSON),
             limits,
             run,
             observer,

@@ -19,10 +19,7 @@ pub mod springs;
 pub mod units;
 
 pub use error::PhysicsError;
-pub use impact::{
-    simulate, solve, solve_observed, Accuracy, Method, NoEstimate, RefineEvent, Resolution, Scheme,
-    Solution,
-};
+pub use impact::{Accuracy, Method, NoEstimate, RefineEvent, Resolution, Scheme, Solution};
 pub use law::Law;
 pub use model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
 pub use preset::Preset;

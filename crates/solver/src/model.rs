@@ -2,7 +2,7 @@
 //! a normal model (the motion along the common normal), a tangential model (the field of
 //! tangential displacements in the contact and the force it exerts) and an integrator (the
 //! time scheme). [`crate::impact::run_contact`] composes them; the error-controlled driver
-//! ([`crate::impact::refine`], [`crate::impact::solve`]) sits on top.
+//! ([`crate::impact::refine`], [`crate::Request::solve`]) sits on top.
 //!
 //! Today's models: Hertz normal contact, elastic (`e_n = 1`), tabulated on the contact's time
 //! grid ([`crate::hertz::NormalTrajectory`]); the MDR continuum row
@@ -87,12 +87,32 @@ pub trait TangentialModel {
     }
 }
 
-/// A time scheme: how the equations of the bodies and of the tangential field are advanced.
+/// A time scheme: how the equations of the bodies and of the tangential field are advanced,
+/// with what the error-controlled driver needs to know of it: its order, its ladder of
+/// resolutions, the memory it holds and the error of its first level.
 pub trait Integrator {
     /// The scheme's name as the CLI and the tables print it.
     const NAME: &'static str;
     /// Order of convergence in the time step.
     const ORDER: i32;
+    /// Whether the refinement extrapolates its values (Richardson) rather than reporting the
+    /// finest one.
+    const RICHARDSON: bool;
+    /// The base level of the refinement for a `γ` whose tangential frequency asks for `scale`
+    /// times the steps of `γ ≤ 1` (a power of two).
+    fn base_resolution(scale: f64) -> crate::impact::Resolution;
+    /// The first level the refinement runs, from its base.
+    fn ladder_start(base: crate::impact::Resolution) -> crate::impact::Resolution;
+    /// Memory (bytes) the scheme holds of the normal motion at `res`.
+    fn normal_memory(res: crate::impact::Resolution) -> f64;
+    /// Predicted raw error (difference between the first two levels) at `γ` with base `base`.
+    fn base_error(gamma: f64, base: crate::impact::Resolution) -> f64;
+    /// Refuse a resolution the scheme cannot run.
+    fn check(
+        res: crate::impact::Resolution,
+    ) -> Result<crate::impact::Resolution, crate::PhysicsError> {
+        Ok(res)
+    }
     /// `P` of the dimensionless impact of one solid sphere (`m* = R* = E* = v_z0 = 1`,
     /// `u0 = 1`) at resolution `res`, with `G* = shear = (2/7)γ²` and Coulomb limit
     /// `c = limit` (`∞` for no slip). `res` is valid for the scheme.
@@ -172,7 +192,7 @@ mod tests {
     use super::*;
     use crate::continuum::ContinuumRow;
     use crate::impact::{
-        dimensionless_normal, run_contact_with, simulate, ContactPoint, Resolution, Scheme,
+        dimensionless_normal, run_contact_with, simulate_elastic, ContactPoint, Resolution, Scheme,
     };
     use crate::springs::SpringRow;
 
@@ -204,7 +224,7 @@ mod tests {
     #[test]
     fn the_composed_models_are_the_accurate_scheme_to_the_bit() {
         for (g, a) in [(0.5, 2.0), (1.754, 1.0), (3.2, 1.3)] {
-            let continuum = simulate(
+            let continuum = simulate_elastic(
                 g,
                 a,
                 Resolution {
@@ -222,7 +242,7 @@ mod tests {
                 springs: 64,
                 steps: 256,
             };
-            let springs = simulate(g, a, res, Scheme::Accurate).unwrap();
+            let springs = simulate_elastic(g, a, res, Scheme::Accurate).unwrap();
             let a_max = dimensionless_normal(256).max_indentation.sqrt();
             let row = SpringRow::nodes(a_max, 64, 1.0);
             assert_eq!(p_with(g, a, 256, row).to_bits(), springs.to_bits());

@@ -14,8 +14,8 @@ use oblique_physics::regimes;
 
 use crate::error::PhysicsError;
 use crate::impact::{
-    check_alpha, check_gamma, solve_core, solve_observed, Accuracy, Limits, RefineEvent,
-    Resolution, Scheme, Solution, ALPHA_NO_SLIP,
+    check_alpha, check_gamma, simulate_elastic, solve_core, solve_elastic, Accuracy, Limits,
+    RefineEvent, Resolution, Scheme, Solution, ALPHA_NO_SLIP,
 };
 use crate::kelvin_voigt;
 use crate::law::Law;
@@ -113,7 +113,7 @@ impl Request {
     ) -> Result<Solution, PhysicsError> {
         let e_n = self.law.check_restitution(self.e_n)?;
         if e_n == 1.0 {
-            let mut s = solve_observed(
+            let mut s = solve_elastic(
                 self.gamma,
                 self.alpha,
                 self.accuracy,
@@ -153,7 +153,7 @@ impl Request {
     pub fn simulate(&self, res: Resolution) -> Result<f64, PhysicsError> {
         let e_n = self.law.check_restitution(self.e_n)?;
         if e_n == 1.0 {
-            return crate::impact::simulate(self.gamma, self.alpha, res, self.scheme);
+            return simulate_elastic(self.gamma, self.alpha, res, self.scheme);
         }
         let gamma = check_gamma(self.gamma)?;
         let alpha = check_alpha(self.alpha)?;

@@ -83,6 +83,10 @@ fn the_restitution_follows_the_small_damping_series() {
         let s: f64 = (i + 1..3).map(|j| m[i][j] * x[j]).sum();
         x[i] = (m[i][3] - s) / m[i][i];
     }
+    eprintln!(
+        "fitted C1 = {:.8}, C2' = {:.5}, C3 = {:.4}",
+        x[0], x[1], x[2]
+    );
     assert!((x[0] - C1).abs() < 2e-5, "C1 fitted {}", x[0]);
     assert!((x[1] - 1.0887).abs() < 5e-3, "C2' fitted {}", x[1]);
 }
@@ -161,7 +165,7 @@ fn e_n_one_is_the_elastic_solver_to_the_bit() {
                 steps: 512,
             }),
         ] {
-            let elastic = oblique_solver::solve(g, a, acc, Default::default(), false).unwrap();
+            let elastic = Request::new(g, a).accuracy(acc).solve().unwrap();
             for law in Law::ALL {
                 let s = Request::new(g, a)
                     .e_n(1.0)
@@ -178,29 +182,31 @@ fn e_n_one_is_the_elastic_solver_to_the_bit() {
 }
 
 #[test]
-fn the_no_slip_limit_moves_further_from_the_elastic_one_as_e_n_falls() {
-    // physics.md: max over α of |P_KV − P_elastic| at γ = 1.75 is 0.019 / 0.088 / 0.164 /
-    // 0.282 / 0.407 for e_n = 0.99 / 0.95 / 0.9 / 0.8 / 0.6; in the no-slip limit the
-    // difference is part of that, and it grows as e_n falls.
-    let p = |e: f64| {
-        kv(1.75, f64::INFINITY, e)
-            .accuracy(Accuracy::Tolerance(1e-7))
-            .solve()
-            .unwrap()
-            .p
-    };
-    let elastic = p(1.0);
-    let mut last = 0.0;
-    for (e, max) in [
-        (0.99, 0.019),
-        (0.95, 0.088),
-        (0.9, 0.164),
-        (0.8, 0.282),
-        (0.6, 0.407),
+fn the_size_of_the_effect_matches_the_independent_solver() {
+    // physics.md (an independent prototype): max over α of |P_KV − P_elastic| at
+    // e_n = 0.99 / 0.95 / 0.9 / 0.8 / 0.6 is 0.019 / 0.088 / 0.164 / 0.282 / 0.407 at γ = 1.75
+    // and 0.030 / 0.137 / 0.241 / 0.377 / 0.490 at γ = 2.5. Over 240 α from 0.05 to 30 and ∞
+    // the maximum is in the no-slip limit at both γ (python/tests, docs/solver.md), so it is
+    // checked there, to the three digits given.
+    for (g, maxima) in [
+        (1.75, [0.019, 0.088, 0.164, 0.282, 0.407]),
+        (2.5, [0.030, 0.137, 0.241, 0.377, 0.490]),
     ] {
-        let d = (p(e) - elastic).abs();
-        assert!(d > last && d <= max + 1e-3, "e_n {e}: |ΔP| = {d}");
-        last = d;
+        let p = |e: f64| {
+            kv(g, f64::INFINITY, e)
+                .accuracy(Accuracy::Tolerance(1e-7))
+                .solve()
+                .unwrap()
+                .p
+        };
+        let elastic = p(1.0);
+        for (e, max) in [0.99, 0.95, 0.9, 0.8, 0.6].into_iter().zip(maxima) {
+            let d = (p(e) - elastic).abs();
+            assert!(
+                (d - max).abs() <= 6e-4,
+                "γ {g} e_n {e}: |ΔP| = {d}, physics.md {max}"
+            );
+        }
     }
 }
 
@@ -379,6 +385,7 @@ mod physical {
         let g = ps[0].0;
         let dimensionless = Request::new(g, alpha).e_n(0.8).simulate(RES).unwrap();
         for (gamma, a, p) in ps {
+            eprintln!("physical P {p:.15}, dimensionless {dimensionless:.15}");
             assert!((gamma - g).abs() < 1e-14 && (a - alpha).abs() < 1e-12);
             assert!((p - dimensionless).abs() < 1e-8, "{p} vs {dimensionless}");
         }
@@ -439,6 +446,10 @@ mod physical {
                 .unwrap();
             let p = out.p.unwrap();
             assert!(p.abs() <= 1.0);
+            eprintln!(
+                "two-body P {p:.15}, mapped {mapped:.15}, e_n {:.6}",
+                out.e_n
+            );
             assert!((p - mapped).abs() < 1e-8, "{p} vs {mapped} at {g:?}");
             // Normal: the relative normal velocity reverses with e_n, momentum is conserved.
             let (o, s) = (out.other.unwrap(), out.sphere);

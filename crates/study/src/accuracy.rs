@@ -11,7 +11,7 @@ use serde::Serialize;
 use oblique_physics::regimes::{self, alpha_c1, alpha_c2};
 use oblique_plot::{Figure, Legend, Panel, Series, Style};
 use oblique_solver::impact::{base_resolution, dimensionless_normal};
-use oblique_solver::{simulate, solve, Accuracy, PhysicsError, Preset, Resolution, Scheme};
+use oblique_solver::{Accuracy, PhysicsError, Preset, Request, Resolution, Scheme};
 
 /// One point of the study.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -111,15 +111,10 @@ pub fn reference(gamma: f64, alpha: f64, steps: usize) -> Result<Reference, Phys
     let levels: Vec<usize> = (0..4).map(|k| steps >> (3 - k)).collect();
     let mut values = Vec::new();
     for &s in &levels {
-        values.push(simulate(
-            gamma,
-            alpha,
-            Resolution {
-                springs: s,
-                steps: s,
-            },
-            Scheme::Accurate,
-        )?);
+        values.push(Request::new(gamma, alpha).simulate(Resolution {
+            springs: s,
+            steps: s,
+        })?);
     }
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / 3.0;
     let p = rich(3);
@@ -237,7 +232,7 @@ impl Settings {
 }
 
 /// The fixed resolutions of the `accurate` series at `γ`: the levels the default refinement
-/// (`solve(γ, α, Accuracy::Tolerance(tol), Scheme::Accurate, …)`) runs, from
+/// (`Request::new(γ, α).accuracy(Accuracy::Tolerance(tol)).forced(…).solve()`) runs, from
 /// [`base_resolution`] up to `max_steps` steps, doubling. Those are the continuum row
 /// (`springs = 0`, exact in space) with the steps graded towards separation, so each row is
 /// one level of the shipped solver, not the spring row that the study measured up to commit
@@ -273,20 +268,17 @@ pub fn study_point(pt: &StudyPoint, set: &Settings) -> Result<(Reference, Vec<Ro
     for res in fixed_ladder(pt.gamma, set.accurate_max_steps) {
         dimensionless_normal(res.steps);
         let (p, t, n) = time_per_call(set.min_time, || {
-            simulate(pt.gamma, pt.alpha, res, Scheme::Accurate)
+            Request::new(pt.gamma, pt.alpha).simulate(res)
         })?;
         rows.push(row("accurate", None, res, p, None, t, n));
     }
     // Automatic refinement (the solver as used): every level from the base, Richardson value.
     for &tol in &set.tolerances {
         let (sol, t, n) = time_per_call(set.min_time, || {
-            solve(
-                pt.gamma,
-                pt.alpha,
-                Accuracy::Tolerance(tol),
-                Scheme::Accurate,
-                true,
-            )
+            Request::new(pt.gamma, pt.alpha)
+                .accuracy(Accuracy::Tolerance(tol))
+                .forced(true)
+                .solve()
         })?;
         rows.push(row(
             "accurate-tol",
@@ -306,7 +298,9 @@ pub fn study_point(pt: &StudyPoint, set: &Settings) -> Result<(Reference, Vec<Ro
             steps,
         };
         let (p, t, n) = time_per_call(set.min_time, || {
-            simulate(pt.gamma, pt.alpha, res, Scheme::Euler)
+            Request::new(pt.gamma, pt.alpha)
+                .scheme(Scheme::Euler)
+                .simulate(res)
         })?;
         rows.push(row("euler", None, res, p, None, t, n));
         steps *= 2;
@@ -559,14 +553,11 @@ mod tests {
             assert_eq!(ladder[0], base_resolution(gamma, Scheme::Accurate));
             assert_eq!(ladder.last().map(|r| r.steps), Some(8192));
             let alpha = 1.5 * alpha_c2(gamma);
-            let sol = solve(
-                gamma,
-                alpha,
-                Accuracy::Tolerance(1e-5),
-                Scheme::Accurate,
-                true,
-            )
-            .expect("solve");
+            let sol = Request::new(gamma, alpha)
+                .accuracy(Accuracy::Tolerance(1e-5))
+                .forced(true)
+                .solve()
+                .expect("solve");
             assert!(ladder.contains(&sol.resolution), "{gamma}: {sol:?}");
         }
     }

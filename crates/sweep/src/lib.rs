@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use thiserror::Error;
 
 pub use config::Config;
-use oblique_solver::{Accuracy, PhysicsError, Scheme};
+use oblique_solver::{Accuracy, PhysicsError, Request};
 pub mod warp;
 
 /// Engine version.
@@ -369,19 +369,15 @@ pub fn solve_points(
 }
 
 fn solve_one(gamma: f64, alpha: f64, tol: f64) -> Result<(f64, f64), SweepError> {
-    oblique_solver::solve(
-        gamma,
-        alpha,
-        Accuracy::Tolerance(tol),
-        Scheme::Accurate,
-        false,
-    )
-    .map(|s| (s.p, s.error_estimate))
-    .map_err(|source| SweepError::Node {
-        gamma,
-        alpha,
-        source,
-    })
+    Request::new(gamma, alpha)
+        .accuracy(Accuracy::Tolerance(tol))
+        .solve()
+        .map(|s| (s.p, s.error_estimate))
+        .map_err(|source| SweepError::Node {
+            gamma,
+            alpha,
+            source,
+        })
 }
 
 /// [`solve_points`] with stored values, saving in batches and stopping when asked.
@@ -926,14 +922,10 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
     let mut probe = |key: &'static str, tol: f64, advice: &str| -> Result<(), SweepError> {
         for &(gamma, alpha) in &probes {
             let start = std::time::Instant::now();
-            let r = oblique_solver::impact::solve_with_limits(
-                gamma,
-                alpha,
-                Accuracy::Tolerance(tol),
-                Scheme::Accurate,
-                false,
-                limits,
-            );
+            let r = Request::new(gamma, alpha)
+                .accuracy(Accuracy::Tolerance(tol))
+                .limits(limits)
+                .solve();
             slowest = slowest.max(start.elapsed().as_secs_f64());
             match r {
                 Ok(_) => {}

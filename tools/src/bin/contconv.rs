@@ -1,6 +1,7 @@
 //! Convergence of the continuum row in the number of steps: `cargo run --release -p oblique-tools --bin contconv -- 2.8,69.4 3,inf`
 //! (pairs `gamma,alpha`). Prints P, the difference to the previous level, the ratio of
 //! successive differences (4 for clean second order), the Richardson value and the time.
+use oblique_solver::Request;
 use oblique_solver::*;
 use std::time::Instant;
 fn main() -> anyhow::Result<()> {
@@ -12,7 +13,7 @@ fn main() -> anyhow::Result<()> {
         for k in 0..8 {
             let steps = 128usize << k;
             let t = Instant::now();
-            let p = simulate(g, a, Resolution { springs: 0, steps }, Scheme::Accurate)?;
+            let p = Request::new(g, a).simulate(Resolution { springs: 0, steps })?;
             let ms = t.elapsed().as_secs_f64() * 1e3;
             let d = p - prev;
             println!(

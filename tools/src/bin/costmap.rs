@@ -1,5 +1,6 @@
 //! Cost map of the automatic refinement over the (γ, α) plane (a scratch tool):
 //! `cargo run --release -p oblique-tools --bin costmap -- TOL`.
+use oblique_solver::Request;
 use oblique_solver::*;
 use std::time::Instant;
 
@@ -27,7 +28,9 @@ fn main() -> anyhow::Result<()> {
         let mut tot = 0.0;
         for &a in &alphas {
             let t = Instant::now();
-            let s = solve(g, a, Accuracy::Tolerance(tol), Scheme::Accurate, false)?;
+            let s = Request::new(g, a)
+                .accuracy(Accuracy::Tolerance(tol))
+                .solve()?;
             let ms = t.elapsed().as_secs_f64() * 1e3;
             tot += ms;
             line += &format!(" {:.0}:{:.1}ms", s.resolution.steps, ms);

@@ -3,6 +3,7 @@
 //! allowed). For each point it prints, per step count (rows) and spring count (columns), the
 //! error against a 32768 × 32768 reference and the time of one impact. The base resolution of
 //! the automatic refinement (`impact::base_resolution`) was chosen from these tables.
+use oblique_solver::Request;
 use oblique_solver::*;
 
 fn parse(arg: &str) -> Option<(f64, f64)> {
@@ -18,8 +19,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if pts.is_empty() {
         return Err("give at least one point gamma,alpha (e.g. 1.9,0.5)".into());
     }
-    let run =
-        |g, a, steps, springs| simulate(g, a, Resolution { springs, steps }, Scheme::Accurate);
+    let run = |g, a, steps, springs| Request::new(g, a).simulate(Resolution { springs, steps });
     for (g, a) in pts {
         let r = run(g, a, 32768, 32768)?;
         println!("g={g} a={a} ref={r:.10}");

@@ -2,7 +2,7 @@
 //! `cargo run --release -p oblique-tools --bin estim` (about 3 minutes). Prints, per point and level, the true
 //! error / estimate of the plain finest value (P) and of the Richardson value (R).
 use oblique_physics::regimes;
-use oblique_solver::{impact::base_resolution, *};
+use oblique_solver::{impact::base_resolution, Request, *};
 fn main() {
     let gammas = [0.3, 0.7, 0.95, 1.2, 1.754, 2.2, 2.8, 3.5];
     let alphas_rel = [1.1, 1.5, 3.0, 0.0]; // multiples of linear limit; 0 => inf
@@ -18,9 +18,15 @@ fn main() {
             };
             let base = base_resolution(g, Scheme::Accurate);
             let pk: Vec<f64> = (0..7)
-                .map(|k| simulate(g, a, base.doubled(k), Scheme::Accurate).expect("valid point"))
+                .map(|k| {
+                    Request::new(g, a)
+                        .simulate(base.doubled(k))
+                        .expect("valid point")
+                })
                 .collect();
-            let reference = simulate(g, a, base.doubled(9), Scheme::Accurate).expect("valid point");
+            let reference = Request::new(g, a)
+                .simulate(base.doubled(9))
+                .expect("valid point");
             let mut line = format!("g={g} a={a:.3}:");
             for k in 2..7 {
                 let plain_est = (pk[k] - pk[k - 1])

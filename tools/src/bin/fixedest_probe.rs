@@ -5,7 +5,7 @@
 //!
 //! `cargo run --release -p oblique-tools --bin fixedest_probe` (about 2 s).
 
-use oblique_solver::{simulate, solve, Accuracy, Resolution, Scheme};
+use oblique_solver::{Accuracy, Request, Resolution, Scheme};
 
 fn main() -> Result<(), oblique_solver::PhysicsError> {
     let points = [
@@ -20,7 +20,11 @@ fn main() -> Result<(), oblique_solver::PhysicsError> {
     ];
     println!("gamma alpha scheme springs steps error differences");
     for &(g, a) in &points {
-        let reference = solve(g, a, Accuracy::Tolerance(1e-9), Scheme::Accurate, true)?.p;
+        let reference = Request::new(g, a)
+            .accuracy(Accuracy::Tolerance(1e-9))
+            .forced(true)
+            .solve()?
+            .p;
         for scheme in [Scheme::Accurate, Scheme::Euler] {
             for &s in &[0usize, 2, 8, 64, 1024] {
                 if s == 0 && scheme == Scheme::Euler {
@@ -33,7 +37,11 @@ fn main() -> Result<(), oblique_solver::PhysicsError> {
                         if (s != 0 && springs < 2) || steps < 8 {
                             break;
                         }
-                        values.push(simulate(g, a, Resolution { springs, steps }, scheme)?);
+                        values.push(
+                            Request::new(g, a)
+                                .scheme(scheme)
+                                .simulate(Resolution { springs, steps })?,
+                        );
                     }
                     let err = (values[0] - reference).abs();
                     let d: Vec<String> = values

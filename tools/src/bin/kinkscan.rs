@@ -1,6 +1,7 @@
 //! Scan P(α) at fixed γ (tol 1e-7) and print P, its slope and the change of slope on a log grid:
 //! `cargo run --release -p oblique-tools --bin kinkscan -- GAMMA [N] [LO HI]` (LO, HI as fractions of α_c2;
 //! default α_c1 to 3 α_c2). See docs/solver.md, "Kink curves".
+use oblique_solver::Request;
 use oblique_solver::*;
 use oblique_tools::{arg, arg_or, args};
 
@@ -17,7 +18,12 @@ fn main() -> anyhow::Result<()> {
         .collect();
     let ps = xs
         .iter()
-        .map(|&a| Ok(solve(g, a, Accuracy::Tolerance(1e-7), Scheme::Accurate, false)?.p))
+        .map(|&a| {
+            Ok(Request::new(g, a)
+                .accuracy(Accuracy::Tolerance(1e-7))
+                .solve()?
+                .p)
+        })
         .collect::<anyhow::Result<Vec<f64>>>()?;
     println!("# gamma {g} ac1 {c1} ac2 {c2}");
     for i in 1..n {

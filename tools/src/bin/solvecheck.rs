@@ -4,6 +4,7 @@
 //! Reference: the Richardson value of continuum runs at 16 and 32 times the accepted steps
 //! (at least 16384). Prints every point whose true error exceeds the tolerance or the estimate.
 use oblique_physics::regimes;
+use oblique_solver::Request;
 use oblique_solver::*;
 
 fn main() -> anyhow::Result<()> {
@@ -21,21 +22,18 @@ fn main() -> anyhow::Result<()> {
         } else {
             lo * (hi / lo).powf(next())
         };
-        let s = solve(g, a, Accuracy::Tolerance(tol), Scheme::Accurate, false)?;
+        let s = Request::new(g, a)
+            .accuracy(Accuracy::Tolerance(tol))
+            .solve()?;
         if s.method == Method::ClosedForm {
             continue;
         }
         let steps = (16 * s.resolution.steps).max(16384);
         let run = |st| {
-            simulate(
-                g,
-                a,
-                Resolution {
-                    springs: 0,
-                    steps: st,
-                },
-                Scheme::Accurate,
-            )
+            Request::new(g, a).simulate(Resolution {
+                springs: 0,
+                steps: st,
+            })
         };
         let (c, f) = (run(steps)?, run(2 * steps)?);
         let reference = f + (f - c) / 3.0;

@@ -3,7 +3,7 @@
 
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::units::PhysicalImpact;
-use oblique_solver::{solve, Accuracy, Scheme};
+use oblique_solver::{Accuracy, Request};
 
 use super::eval::{Method, NormalOutcome, ObliqueResult};
 use super::spec::Setup;
@@ -110,23 +110,17 @@ pub fn gross_slip(
             let (p, err) = match method {
                 Method::Direct { .. } => (o.post.p, o.p_error),
                 Method::Slice { tol } => {
-                    let s = solve(
-                        o.gamma,
-                        o.alpha,
-                        Accuracy::Tolerance(*tol),
-                        Scheme::Accurate,
-                        true,
-                    )?;
+                    let s = Request::new(o.gamma, o.alpha)
+                        .accuracy(Accuracy::Tolerance(*tol))
+                        .forced(true)
+                        .solve()?;
                     (s.p, s.error_estimate)
                 }
                 Method::Table(_) => {
-                    let s = solve(
-                        o.gamma,
-                        o.alpha,
-                        Accuracy::Tolerance(1e-8),
-                        Scheme::Accurate,
-                        true,
-                    )?;
+                    let s = Request::new(o.gamma, o.alpha)
+                        .accuracy(Accuracy::Tolerance(1e-8))
+                        .forced(true)
+                        .solve()?;
                     (s.p, s.error_estimate)
                 }
             };
@@ -247,13 +241,10 @@ pub fn no_slip(
                 (out.p.unwrap_or(f64::NAN), out.error_estimate)
             }
             _ => {
-                let s = solve(
-                    gamma,
-                    f64::INFINITY,
-                    Accuracy::Tolerance(tol),
-                    Scheme::Accurate,
-                    true,
-                )?;
+                let s = Request::new(gamma, f64::INFINITY)
+                    .accuracy(Accuracy::Tolerance(tol))
+                    .forced(true)
+                    .solve()?;
                 (s.p, s.error_estimate)
             }
         };
@@ -266,13 +257,10 @@ pub fn no_slip(
             exact: false,
         });
     }
-    let s = solve(
-        1.0,
-        f64::INFINITY,
-        Accuracy::Tolerance(tol),
-        Scheme::Accurate,
-        true,
-    )?;
+    let s = Request::new(1.0, f64::INFINITY)
+        .accuracy(Accuracy::Tolerance(tol))
+        .forced(true)
+        .solve()?;
     v.push(Check {
         test: format!("{suite} (gamma = 1)"),
         name: "no-slip limit P(1, inf) = -1 (exact), simulated".into(),

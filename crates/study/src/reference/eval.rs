@@ -6,7 +6,7 @@ use oblique_lookup::Table;
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::hertz::{HertzClosedForm, NormalBodies};
 use oblique_solver::units::PhysicalImpact;
-use oblique_solver::{solve, Accuracy, Method as SolverMethod, Resolution, Scheme};
+use oblique_solver::{Accuracy, Method as SolverMethod, Request, Resolution};
 use rayon::prelude::*;
 
 use super::spec::{Case, NormalTest, ObliqueTest, Setup};
@@ -126,13 +126,9 @@ pub fn outcome(setup: &Setup, case: &Case, method: &Method) -> Result<Outcome, R
         }
         _ if u0 == 0.0 => (algebra(&pair, inc, f64::NAN)?, 0.0, "normal-impact"),
         Method::Slice { tol } => {
-            let s = solve(
-                gamma,
-                alpha,
-                Accuracy::Tolerance(*tol),
-                Scheme::Accurate,
-                false,
-            )?;
+            let s = Request::new(gamma, alpha)
+                .accuracy(Accuracy::Tolerance(*tol))
+                .solve()?;
             let (err, how) = match s.method {
                 SolverMethod::ClosedForm => (0.0, "closed-form"),
                 SolverMethod::Simulated => (s.error_estimate, "simulated"),

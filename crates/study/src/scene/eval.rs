@@ -10,7 +10,7 @@ use super::measured::{self, MeasuredPoint};
 use super::spec::{CaseKind, Scene};
 use super::SceneError;
 use oblique_physics::regimes::{self, Regime};
-use oblique_solver::{solve, Accuracy, Method, Scheme};
+use oblique_solver::{Accuracy, Method, Request};
 
 /// Where `P` comes from.
 #[derive(Debug, Clone, Copy)]
@@ -191,14 +191,10 @@ fn evaluate_row(
     } else {
         match source {
             PSource::Simulate => {
-                let sol = solve(
-                    gamma,
-                    alpha,
-                    Accuracy::Tolerance(scene.tol),
-                    Scheme::Accurate,
-                    false,
-                )
-                .map_err(|source| SceneError::Physics { x_name, x, source })?;
+                let sol = Request::new(gamma, alpha)
+                    .accuracy(Accuracy::Tolerance(scene.tol))
+                    .solve()
+                    .map_err(|source| SceneError::Physics { x_name, x, source })?;
                 let method = match sol.method {
                     Method::ClosedForm => RowMethod::ClosedForm,
                     Method::Simulated => RowMethod::Simulated,
