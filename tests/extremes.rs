@@ -430,3 +430,58 @@ fn requests_beyond_the_limits_are_refused_before_any_work() {
     }
     plan(3.5, 1e-8, ACC, limits).unwrap();
 }
+
+/// The Kelvin–Voigt law at the edges: e_n = 0.3 and 0.999, γ = 0.5, 1 and 3.5, α from 1e-9 to
+/// ∞ with points just around α_c1(e_n) and α_c2. Bounded, within the tolerance asked for,
+/// converging against 32× the base resolution, and the normal motion of every level restitutes
+/// with the e_n asked for.
+#[test]
+fn dissipative_cases_are_bounded_and_converge() {
+    for e_n in [0.3, 0.999] {
+        let tau = oblique_solver::kelvin_voigt::tau_for_restitution(e_n).unwrap();
+        for g in [0.5, 1.0, 3.5] {
+            let c1 = oblique_physics::regimes::linear_limit_dissipative(g, e_n);
+            let c2 = alpha_c2(g);
+            for a in [
+                1e-9,
+                c1 * (1.0 - 1e-3),
+                c1 * (1.0 + 1e-3),
+                c2 * (1.0 + 1e-3),
+                1e3,
+                1e9,
+                f64::INFINITY,
+            ] {
+                let what = format!("gamma = {g}, alpha = {a:e}, e_n = {e_n}");
+                let req = Request::new(g, a).e_n(e_n);
+                let s = req
+                    .accuracy(Accuracy::Tolerance(1e-4))
+                    .forced(true)
+                    .solve()
+                    .unwrap_or_else(|e| panic!("{what}: {e}"));
+                check_bounded(s.p, 0.0, &what);
+                assert!(s.error_estimate <= 1e-4, "{what}: {:e}", s.error_estimate);
+                let normal =
+                    oblique_solver::kelvin_voigt::dimensionless_normal(s.resolution.steps, tau);
+                let e = -normal.rate[normal.rate.len() - 1];
+                assert!((e - e_n).abs() < 1e-9, "{what}: restitution {e}");
+                let base = base_resolution(g, ACC);
+                let reference = req.simulate(base.doubled(5)).unwrap();
+                check_bounded(reference, 1e-4, &what);
+                let errs: Vec<f64> = (0..4)
+                    .map(|k| (req.simulate(base.doubled(k)).unwrap() - reference).abs())
+                    .collect();
+                assert!(
+                    errs[3] <= errs[0] / 8.0 || errs[3] < 1e-6,
+                    "{what}: not converging, errors {errs:?}"
+                );
+                let slack = errs[3] / 4.0 + 1e-7;
+                assert!(
+                    (s.p - reference).abs() <= s.error_estimate + slack,
+                    "{what}: P = {}, reference {reference}, estimate {:e}",
+                    s.p,
+                    s.error_estimate
+                );
+            }
+        }
+    }
+}

@@ -29,6 +29,11 @@ pub struct AccuracyArgs {
     /// Directory of the configs used by --tables.
     #[arg(long, default_value = "configs")]
     configs: PathBuf,
+    /// Normal restitution of every impact, from 0.3 to 1 (1: elastic, the default). Below 1 the
+    /// study measures the Kelvin-Voigt law (its reference, fixed ladder and presets); it has no
+    /// Euler series, so the comparison with the seed scheme is left out.
+    #[arg(long = "e-n", value_parser = crate::args::parse_e_n, default_value = "1", conflicts_with = "tables")]
+    e_n: f64,
 }
 
 fn command_line() -> String {
@@ -45,10 +50,13 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
             Config::load(&args.configs.join(format!("{name}.toml")))?;
         }
     }
-    let set = if args.quick {
-        Settings::quick()
-    } else {
-        Settings::default()
+    let set = Settings {
+        e_n: args.e_n,
+        ..if args.quick {
+            Settings::quick()
+        } else {
+            Settings::default()
+        }
     };
     let cmd = command_line();
     let points = accuracy::study_points();
@@ -56,8 +64,13 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
     let mut reaches = Vec::new();
     let start = Instant::now();
     eprintln!(
-        "{} points; reference: accurate scheme to {} steps (Richardson); times are thread CPU time",
+        "{} points{}; reference: accurate scheme to {} steps (Richardson); times are thread CPU time",
         points.len(),
+        if set.e_n < 1.0 {
+            format!(", e_n = {} (kelvin-voigt)", set.e_n)
+        } else {
+            String::new()
+        },
         set.reference_steps
     );
     for pt in &points {
@@ -102,50 +115,55 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
         );
     }
     std::fs::write(args.out.join("presets.csv"), pcsv).context("cannot write presets.csv")?;
-    // Where each scheme reaches the targets.
-    let mut rcsv = String::from(
-        "point,target,accurate_tol_cpu_s,accurate_fixed_cpu_s,euler_C,euler_measured_cpu_s,euler_cpu_s,euler_cpu_s_lower,ratio,ratio_lower\n",
-    );
-    println!();
-    println!("target  point                                       accurate(tol)  euler C   euler (extrap.)  euler/accurate (lower bound)");
-    let opt = |v: Option<f64>| v.map(|x| format!("{x:e}")).unwrap_or_default();
-    for r in &reaches {
-        let ratio = r.accurate_tol_time.map(|t| r.euler_time / t);
-        let lower = r.accurate_tol_time.map(|t| r.euler_time_lower / t);
-        rcsv.push_str(&format!(
-            "\"{}\",{:e},{},{},{:.3},{},{:e},{:e},{},{}\n",
-            r.point,
-            r.target,
-            opt(r.accurate_tol_time),
-            opt(r.accurate_fixed_time),
-            r.euler_constant,
-            opt(r.euler_measured_time),
-            r.euler_time,
-            r.euler_time_lower,
-            opt(ratio),
-            opt(lower)
-        ));
-        println!(
-            "{:6.0e}  {:42} {:>13}  {:7.2}  {:>15}{}  {:>9} ({})",
-            r.target,
-            r.point,
-            r.accurate_tol_time.map_or("-".into(), fmt_time),
-            r.euler_constant,
-            fmt_time(r.euler_time),
-            if r.euler_measured_time.is_some() {
-                " "
-            } else {
-                "*"
-            },
-            ratio.map_or("-".into(), |x| format!("{x:.0}x")),
-            lower.map_or("-".into(), |x| format!("{x:.0}x")),
+    if set.e_n < 1.0 {
+        println!("(e_n < 1: no Euler series, so no comparison with the seed scheme; reach.csv not written)");
+    } else {
+        // Where each scheme reaches the targets.
+        let mut rcsv = String::from(
+            "point,target,accurate_tol_cpu_s,accurate_fixed_cpu_s,euler_C,euler_measured_cpu_s,euler_cpu_s,euler_cpu_s_lower,ratio,ratio_lower\n",
         );
+        println!();
+        println!("target  point                                       accurate(tol)  euler C   euler (extrap.)  euler/accurate (lower bound)");
+        let opt = |v: Option<f64>| v.map(|x| format!("{x:e}")).unwrap_or_default();
+        for r in &reaches {
+            let ratio = r.accurate_tol_time.map(|t| r.euler_time / t);
+            let lower = r.accurate_tol_time.map(|t| r.euler_time_lower / t);
+            rcsv.push_str(&format!(
+                "\"{}\",{:e},{},{},{:.3},{},{:e},{:e},{},{}\n",
+                r.point,
+                r.target,
+                opt(r.accurate_tol_time),
+                opt(r.accurate_fixed_time),
+                r.euler_constant,
+                opt(r.euler_measured_time),
+                r.euler_time,
+                r.euler_time_lower,
+                opt(ratio),
+                opt(lower)
+            ));
+            println!(
+                "{:6.0e}  {:42} {:>13}  {:7.2}  {:>15}{}  {:>9} ({})",
+                r.target,
+                r.point,
+                r.accurate_tol_time.map_or("-".into(), fmt_time),
+                r.euler_constant,
+                fmt_time(r.euler_time),
+                if r.euler_measured_time.is_some() {
+                    " "
+                } else {
+                    "*"
+                },
+                ratio.map_or("-".into(), |x| format!("{x:.0}x")),
+                lower.map_or("-".into(), |x| format!("{x:.0}x")),
+            );
+        }
+        std::fs::write(args.out.join("reach.csv"), rcsv).context("cannot write reach.csv")?;
+        println!("(* extrapolated from the finest Euler runs: error = C/steps)");
     }
-    std::fs::write(args.out.join("reach.csv"), rcsv).context("cannot write reach.csv")?;
-    println!("(* extrapolated from the finest Euler runs: error = C/steps)");
     eprintln!(
-        "wrote {}/accuracy.csv, accuracy.png, presets.csv, reach.csv ({} rows) in {:.1} s",
+        "wrote {}/accuracy.csv, accuracy.png, presets.csv{} ({} rows) in {:.1} s",
         args.out.display(),
+        if set.e_n < 1.0 { "" } else { ", reach.csv" },
         rows.len(),
         start.elapsed().as_secs_f64()
     );

@@ -231,6 +231,7 @@ impl Table {
                 slip_after: p * u0,
                 tangential_impulse: j,
                 normal_impulse: nn,
+                e_n: 1.0,
                 e_t: if w0w0 == 0.0 {
                     f64::NAN
                 } else {

@@ -14,10 +14,11 @@
 //!   `m_1 Δv_1x = −J`, `I_1 Δω_1 = −J R_1`, `m_2 Δv_2x = +J`, `I_2 Δω_2 = −J R_2`, so that
 //!   `Δu = −J/m_t` with `1/m_t = Σ (1/m + R²/I)`.
 //!
-//! Given `P = u_after/u_before`, `J = m_t (1 − P) u0`. The normal motion is elastic
-//! (`e_n = 1`): the relative approach velocity reverses exactly, normal impulse `2 m* v_z0` with
-//! `m* = m_1 m_2/(m_1 + m_2)` (`m_1` for a wall). The energy lost to friction is
-//! `(m_t/2) u0² (1 − P²)`.
+//! Given `P = u_after/u_before`, `J = m_t (1 − P) u0`. The relative approach velocity reverses
+//! with the normal restitution `e_n` (1 for elastic bodies), normal impulse `(1 + e_n) m* v_z0`
+//! with `m* = m_1 m_2/(m_1 + m_2)` (`m_1` for a wall). The energy lost is
+//! `(m_t/2) u0² (1 − P²) + (m*/2) v_z0² (1 − e_n²)`: to friction (and, for dissipative
+//! bodies, tangential damping; `P` carries both) and to normal damping.
 //!
 //! The groups that decide `P` (`physics.md`): `γ² = (m*/m_t) G*/E*` and
 //! `α = (2/7)(m*/m_t) μ v_z0/|u0|`; for one solid sphere on a wall `m*/m_t = 7/2`.
@@ -177,8 +178,11 @@ pub struct Rebound {
     pub slip_after: f64,
     /// Friction impulse `J` on body 2 along `+x` (N s); body 1 receives `−J`.
     pub tangential_impulse: f64,
-    /// Normal impulse `2 m* v_z0` on body 2 along `+z` (N s); body 1 receives the opposite.
+    /// Normal impulse `(1 + e_n) m* v_z0` on body 2 along `+z` (N s); body 1 receives the
+    /// opposite.
     pub normal_impulse: f64,
+    /// Normal restitution `e_n` used: the relative normal velocity after is `−e_n v_z0`.
+    pub e_n: f64,
     /// Tangential restitution of the centres, `e_t = (v_1x − v_2x)_after/(v_1x − v_2x)_before`
     /// (for a wall `v_x/v_x0`); NaN when the incident relative tangential velocity is 0.
     pub e_t: f64,
@@ -186,12 +190,14 @@ pub struct Rebound {
     /// `atan2(v_x0,rel, v_z0)`.
     pub incidence_angle: f64,
     /// Rebound angle of the relative centre velocity from the normal (rad),
-    /// `atan2(v_x,rel, v_z0)` after the impact; positive on the side of `+x`.
+    /// `atan2(v_x,rel, e_n v_z0)` after the impact; positive on the side of `+x`.
     pub rebound_angle_centre: f64,
-    /// Rebound angle of the contact-point velocity from the normal (rad), `atan2(P u0, v_z0)`:
-    /// negative when the contact point's tangential motion reversed (for `u0 > 0`).
+    /// Rebound angle of the contact-point velocity from the normal (rad),
+    /// `atan2(P u0, e_n v_z0)`: negative when the contact point's tangential motion reversed
+    /// (for `u0 > 0`).
     pub rebound_angle_contact: f64,
-    /// Kinetic energy lost to friction, `(m_t/2) u0² (1 − P²)` (J).
+    /// Kinetic energy lost, `(m_t/2) u0² (1 − P²) + (m*/2) v_z0² (1 − e_n²)` (J): to friction
+    /// (and tangential damping) and to normal damping (0 for `e_n = 1`).
     pub energy_lost: f64,
 }
 
@@ -368,13 +374,27 @@ impl Pair {
         Ok(())
     }
 
-    /// The state after the impact for a given `P` (ignored when `u0 = 0`).
+    /// The state after the impact for a given `P` (ignored when `u0 = 0`), elastic in the
+    /// normal direction ([`Pair::rebound_dissipative`] at `e_n = 1`).
+    pub fn rebound(&self, s: &Incident, p: f64) -> Result<Rebound, InvalidInput> {
+        self.rebound_dissipative(s, p, 1.0)
+    }
+
+    /// The state after the impact for a given `P` (ignored when `u0 = 0`) and normal
+    /// restitution `e_n ∈ [0, 1]`.
     ///
     /// Linear momentum is conserved exactly (sphere–sphere), and so is the angular momentum
-    /// about the contact point; the normal velocity difference reverses.
-    pub fn rebound(&self, s: &Incident, p: f64) -> Result<Rebound, InvalidInput> {
+    /// about the contact point; the normal velocity difference reverses with `e_n`, the
+    /// contact point's tangential velocity with `P`. Energy:
+    /// `ΔE = (m_t/2) u0² (1 − P²) + (m*/2) v_z0² (1 − e_n²)` ([`Rebound::energy_lost`]).
+    pub fn rebound_dissipative(
+        &self,
+        s: &Incident,
+        p: f64,
+        e_n: f64,
+    ) -> Result<Rebound, InvalidInput> {
         self.check_incident(s)?;
-        let c = self.impulses(s, p)?;
+        let c = self.impulses(s, p, check_restitution(e_n)?)?;
         let rel_x0 = s.sphere.v_x - s.other.v_x;
         let rel_x1 = c.sphere.v_x - c.other.map_or(0.0, |o| o.v_x);
         let v0 = c.approach_speed;
@@ -386,21 +406,22 @@ impl Pair {
             slip_after: c.slip_after,
             tangential_impulse: c.tangential_impulse,
             normal_impulse: c.normal_impulse,
+            e_n: c.e_n,
             e_t: if rel_x0 == 0.0 {
                 f64::NAN
             } else {
                 rel_x1 / rel_x0
             },
             incidence_angle: rel_x0.atan2(v0),
-            rebound_angle_centre: rel_x1.atan2(v0),
-            rebound_angle_contact: c.slip_after.atan2(v0),
+            rebound_angle_centre: rel_x1.atan2(c.e_n * v0),
+            rebound_angle_contact: c.slip_after.atan2(c.e_n * v0),
             energy_lost: c.energy_lost,
         })
     }
 
     /// The impulses and states after the impact for an incident state already checked.
     #[inline]
-    fn impulses(&self, s: &Incident, p: f64) -> Result<Core, InvalidInput> {
+    fn impulses(&self, s: &Incident, p: f64, e_n: f64) -> Result<Core, InvalidInput> {
         let u0 = self.slip_velocity(s);
         let p = if u0 == 0.0 { f64::NAN } else { p };
         if u0 != 0.0 && !p.is_finite() {
@@ -409,7 +430,7 @@ impl Pair {
         let m_t = self.tangential_mass();
         let j = if u0 == 0.0 { 0.0 } else { m_t * (1.0 - p) * u0 };
         let v0 = self.approach_speed(s);
-        let n = 2.0 * self.normal_mass() * v0;
+        let n = (1.0 + e_n) * self.normal_mass() * v0;
         let b1 = &self.sphere;
         let sphere = State {
             v_x: s.sphere.v_x - j / b1.mass,
@@ -429,12 +450,13 @@ impl Pair {
             slip_after: if u0 == 0.0 { 0.0 } else { p * u0 },
             tangential_impulse: j,
             normal_impulse: n,
+            e_n,
             approach_speed: v0,
             energy_lost: if u0 == 0.0 {
                 0.0
             } else {
                 0.5 * m_t * u0 * u0 * (1.0 - p * p)
-            },
+            } + 0.5 * self.normal_mass() * v0 * v0 * (1.0 - e_n * e_n),
         })
     }
 }
@@ -448,8 +470,18 @@ struct Core {
     slip_after: f64,
     tangential_impulse: f64,
     normal_impulse: f64,
+    e_n: f64,
     approach_speed: f64,
     energy_lost: f64,
+}
+
+/// Check a normal restitution for the rebound algebra: finite, in `[0, 1]`.
+fn check_restitution(e_n: f64) -> Result<f64, InvalidInput> {
+    if (0.0..=1.0).contains(&e_n) {
+        Ok(e_n)
+    } else {
+        Err(query("e_n", e_n, "a number in [0, 1] (1: elastic)"))
+    }
 }
 
 pub use crate::vec3::Vec3;
@@ -506,8 +538,11 @@ pub struct Rebound3 {
     pub slip_after: f64,
     /// Friction impulse `J` on body 2 along `+t` (N s); body 1 receives `−J t`.
     pub tangential_impulse: f64,
-    /// Normal impulse `2 m* v_z0` on body 2 along `+n` (N s); body 1 receives the opposite.
+    /// Normal impulse `(1 + e_n) m* v_z0` on body 2 along `+n` (N s); body 1 receives the
+    /// opposite.
     pub normal_impulse: f64,
+    /// Normal restitution `e_n` used: the bodies separate at `e_n v_z0`.
+    pub e_n: f64,
     /// Tangential restitution of the centres, `e_t = (w_after · w_before)/|w_before|²` with `w`
     /// the tangential part of `v_1 − v_2` (the 2-D `e_t` when `w` lies along `t`); NaN when
     /// `w_before = 0`.
@@ -516,9 +551,9 @@ pub struct Rebound3 {
     pub centre_speed_before: f64,
     /// `|w_after|`, tangential speed of the relative centre velocity after (m/s).
     pub centre_speed_after: f64,
-    /// Approach speed `v_z0 = (v_1 − v_2)·n > 0` (m/s); the bodies separate at the same speed.
+    /// Approach speed `v_z0 = (v_1 − v_2)·n > 0` (m/s); the bodies separate at `e_n v_z0`.
     pub approach_speed: f64,
-    /// Kinetic energy lost to friction, `(m_t/2) |u0|² (1 − P²)` (J).
+    /// Kinetic energy lost, `(m_t/2) |u0|² (1 − P²) + (m*/2) v_z0² (1 − e_n²)` (J).
     pub energy_lost: f64,
 }
 
@@ -530,15 +565,16 @@ impl Rebound3 {
     }
 
     /// Rebound angle of the relative centre velocity from the normal (rad),
-    /// `atan2(|w_after|, v_z0)`, in `[0, π/2)`.
+    /// `atan2(|w_after|, e_n v_z0)`, in `[0, π/2)`.
     pub fn rebound_angle_centre(&self) -> f64 {
-        self.centre_speed_after.atan2(self.approach_speed)
+        self.centre_speed_after
+            .atan2(self.e_n * self.approach_speed)
     }
 
     /// Rebound angle of the contact-point velocity from the normal, in the plane of impact
-    /// (rad), `atan2(P |u0|, v_z0)`: negative when the slip reversed.
+    /// (rad), `atan2(P |u0|, e_n v_z0)`: negative when the slip reversed.
     pub fn rebound_angle_contact(&self) -> f64 {
-        self.slip_after.atan2(self.approach_speed)
+        self.slip_after.atan2(self.e_n * self.approach_speed)
     }
 }
 
@@ -633,9 +669,20 @@ impl Pair {
     /// [`Pair::rebound`] in the plane of impact ([`Pair::plane`]), its changes applied along `t`,
     /// `n` and about `b`; all other components unchanged.
     pub fn rebound_3d(&self, s: &Incident3, p: f64) -> Result<Rebound3, InvalidInput> {
+        self.rebound_3d_dissipative(s, p, 1.0)
+    }
+
+    /// [`Pair::rebound_3d`] with normal restitution `e_n ∈ [0, 1]`: the normal relative
+    /// velocity reverses with `e_n` ([`Pair::rebound_dissipative`]).
+    pub fn rebound_3d_dissipative(
+        &self,
+        s: &Incident3,
+        p: f64,
+        e_n: f64,
+    ) -> Result<Rebound3, InvalidInput> {
         let plane = self.plane(s)?;
         self.check_incident(&plane.incident)?;
-        self.rebound_in_plane(s, &plane, p)
+        self.rebound_in_plane_dissipative(s, &plane, p, e_n)
     }
 
     /// [`Pair::rebound_3d`] for a plane already found by [`Pair::plane`] (`s` is the state the
@@ -648,7 +695,19 @@ impl Pair {
         plane: &Plane,
         p: f64,
     ) -> Result<Rebound3, InvalidInput> {
-        let c = self.impulses(&plane.incident, p)?;
+        self.rebound_in_plane_dissipative(s, plane, p, 1.0)
+    }
+
+    /// [`Pair::rebound_in_plane`] with normal restitution `e_n ∈ [0, 1]`.
+    #[inline]
+    pub fn rebound_in_plane_dissipative(
+        &self,
+        s: &Incident3,
+        plane: &Plane,
+        p: f64,
+        e_n: f64,
+    ) -> Result<Rebound3, InvalidInput> {
+        let c = self.impulses(&plane.incident, p, check_restitution(e_n)?)?;
         let Frame {
             tangent: t,
             binormal: b,
@@ -683,6 +742,7 @@ impl Pair {
             slip_after: c.slip_after,
             tangential_impulse: c.tangential_impulse,
             normal_impulse: c.normal_impulse,
+            e_n: c.e_n,
             e_t: if w0w0 == 0.0 {
                 f64::NAN
             } else {
@@ -890,6 +950,68 @@ mod tests {
         assert_eq!(out.sphere.omega, 0.0);
         assert_eq!(out.energy_lost, 0.0);
         assert!(out.p.is_nan() && out.e_t.is_nan());
+    }
+
+    #[test]
+    fn dissipative_rebounds_balance_momentum_and_energy() {
+        // Sphere–sphere, both moving and spinning, in 2-D and in 3-D: momentum conserved, the
+        // relative normal velocity reversed with e_n, the kinetic energy lost equal to
+        // (m_t/2) u0² (1 − P²) + (m*/2) v_z0² (1 − e_n²); e_n = 1 is the elastic rebound's bits.
+        let pair = Pair {
+            sphere: solid(2.0, 0.5),
+            other: Some(Body {
+                mass: 3.0,
+                radius: 0.8,
+                kappa: 0.55,
+            }),
+        };
+        let s = Incident {
+            sphere: State {
+                v_x: 0.7,
+                v_z: 2.0,
+                omega: 1.5,
+            },
+            other: State {
+                v_x: -0.2,
+                v_z: -0.4,
+                omega: -0.6,
+            },
+        };
+        let kinetic = |st: &State, b: &Body| {
+            0.5 * b.mass * (st.v_x * st.v_x + st.v_z * st.v_z)
+                + 0.5 * b.inertia() * st.omega * st.omega
+        };
+        let b2 = pair.other.unwrap();
+        let before = kinetic(&s.sphere, &pair.sphere) + kinetic(&s.other, &b2);
+        for (p, e_n) in [(0.3, 0.6), (-0.5, 0.9), (1.0, 0.3), (0.2, 0.0)] {
+            let r = pair.rebound_dissipative(&s, p, e_n).unwrap();
+            let o = r.other.unwrap();
+            let v0 = s.sphere.v_z - s.other.v_z;
+            assert!(((r.sphere.v_z - o.v_z) + e_n * v0).abs() < 1e-14);
+            for (a, b) in [(s.sphere.v_x, r.sphere.v_x), (s.sphere.v_z, r.sphere.v_z)]
+                .iter()
+                .zip([(s.other.v_x, o.v_x), (s.other.v_z, o.v_z)])
+                .map(|((a1, a2), (b1, b2))| (2.0 * a1 + 3.0 * b1, 2.0 * a2 + 3.0 * b2))
+            {
+                assert!((a - b).abs() < 1e-13);
+            }
+            let after = kinetic(&r.sphere, &pair.sphere) + kinetic(&o, &b2);
+            assert!(
+                (before - after - r.energy_lost).abs() < 1e-13 * before,
+                "{before} − {after} vs {}",
+                r.energy_lost
+            );
+            assert!((r.slip_after - p * r.slip_before).abs() < 1e-14);
+            assert_eq!(r.e_n, e_n);
+            assert!(r.rebound_angle_contact == r.slip_after.atan2(e_n * v0));
+        }
+        let elastic = pair.rebound(&s, 0.3).unwrap();
+        let one = pair.rebound_dissipative(&s, 0.3, 1.0).unwrap();
+        assert_eq!(format!("{elastic:?}"), format!("{one:?}"));
+        for bad in [-0.1, 1.1, f64::NAN] {
+            let err = pair.rebound_dissipative(&s, 0.3, bad).unwrap_err();
+            assert_eq!(err.name, "e_n");
+        }
     }
 
     #[test]

@@ -11,6 +11,7 @@ use serde::Serialize;
 use oblique_physics::regimes::{self, alpha_c1, alpha_c2};
 use oblique_plot::{Figure, Legend, Panel, Series, Style};
 use oblique_solver::impact::{base_resolution, dimensionless_normal};
+use oblique_solver::request::dissipative_closed_form;
 use oblique_solver::{Accuracy, PhysicsError, Preset, Request, Resolution, Scheme};
 
 /// One point of the study.
@@ -97,8 +98,21 @@ pub const REFERENCE_STEPS: usize = 1 << 15;
 /// scheme at `2^12, 2^13, 2^14, 2^15` steps (one spring per step), Richardson-extrapolated
 /// (`R_k = P_k + (P_k − P_{k−1})/3`), with the estimate `max(|R_k − R_{k−1}|, 0.1 |P_k − P_{k−1}|)`
 /// of the solver itself.
-pub fn reference(gamma: f64, alpha: f64, steps: usize) -> Result<Reference, PhysicsError> {
-    if let Some(p) = regimes::closed_form(gamma, alpha) {
+///
+/// For `e_n < 1` (Kelvin–Voigt law) the closed forms are the dissipative ones and the levels run
+/// the continuum row (the only row of that law).
+pub fn reference(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<Reference, PhysicsError> {
+    let closed = if e_n < 1.0 {
+        dissipative_closed_form(gamma, alpha, e_n)
+    } else {
+        regimes::closed_form(gamma, alpha)
+    };
+    if let Some(p) = closed {
         return Ok(Reference {
             p,
             error_estimate: 0.0,
@@ -111,10 +125,12 @@ pub fn reference(gamma: f64, alpha: f64, steps: usize) -> Result<Reference, Phys
     let levels: Vec<usize> = (0..4).map(|k| steps >> (3 - k)).collect();
     let mut values = Vec::new();
     for &s in &levels {
-        values.push(Request::new(gamma, alpha).simulate(Resolution {
-            springs: s,
-            steps: s,
-        })?);
+        let springs = if e_n < 1.0 { 0 } else { s };
+        values.push(
+            Request::new(gamma, alpha)
+                .e_n(e_n)
+                .simulate(Resolution { springs, steps: s })?,
+        );
     }
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / 3.0;
     let p = rich(3);
@@ -123,7 +139,7 @@ pub fn reference(gamma: f64, alpha: f64, steps: usize) -> Result<Reference, Phys
         p,
         error_estimate: est,
         resolution: Resolution {
-            springs: steps,
+            springs: if e_n < 1.0 { 0 } else { steps },
             steps,
         },
     })
@@ -200,6 +216,9 @@ pub struct Settings {
     pub reference_steps: usize,
     /// Minimum CPU time spent timing one row (s).
     pub min_time: f64,
+    /// Normal restitution of every impact of the study (1: elastic; below, the Kelvin–Voigt
+    /// law, whose only scheme is the accurate one: no Euler series then).
+    pub e_n: f64,
 }
 
 impl Default for Settings {
@@ -212,6 +231,7 @@ impl Default for Settings {
             tolerances: vec![1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
             reference_steps: REFERENCE_STEPS,
             min_time: 0.05,
+            e_n: 1.0,
         }
     }
 }
@@ -227,6 +247,7 @@ impl Settings {
             tolerances: vec![1e-3, 1e-4, 1e-5],
             reference_steps: 1 << 13,
             min_time: 0.005,
+            e_n: 1.0,
         }
     }
 }
@@ -247,7 +268,8 @@ pub fn fixed_ladder(gamma: f64, max_steps: usize) -> Vec<Resolution> {
 
 /// Run the study at one point: the reference, then every ladder.
 pub fn study_point(pt: &StudyPoint, set: &Settings) -> Result<(Reference, Vec<Row>), PhysicsError> {
-    let reference = reference(pt.gamma, pt.alpha, set.reference_steps)?;
+    let reference = reference(pt.gamma, pt.alpha, set.e_n, set.reference_steps)?;
+    let request = Request::new(pt.gamma, pt.alpha).e_n(set.e_n);
     let mut rows = Vec::new();
     let row = |series, tol, res: Resolution, p: f64, est, time_s, calls| Row {
         point: pt.label,
@@ -267,15 +289,13 @@ pub fn study_point(pt: &StudyPoint, set: &Settings) -> Result<(Reference, Vec<Ro
     // Accurate scheme at fixed resolutions: the levels of the default refinement.
     for res in fixed_ladder(pt.gamma, set.accurate_max_steps) {
         dimensionless_normal(res.steps);
-        let (p, t, n) = time_per_call(set.min_time, || {
-            Request::new(pt.gamma, pt.alpha).simulate(res)
-        })?;
+        let (p, t, n) = time_per_call(set.min_time, || request.simulate(res))?;
         rows.push(row("accurate", None, res, p, None, t, n));
     }
     // Automatic refinement (the solver as used): every level from the base, Richardson value.
     for &tol in &set.tolerances {
         let (sol, t, n) = time_per_call(set.min_time, || {
-            Request::new(pt.gamma, pt.alpha)
+            request
                 .accuracy(Accuracy::Tolerance(tol))
                 .forced(true)
                 .solve()
@@ -290,8 +310,12 @@ pub fn study_point(pt: &StudyPoint, set: &Settings) -> Result<(Reference, Vec<Ro
             n,
         ));
     }
-    // Euler at fixed resolutions, springs = steps / ratio (at least 8).
-    let mut steps = set.euler_min_steps;
+    // Euler at fixed resolutions, springs = steps / ratio (at least 8); elastic only.
+    let mut steps = if set.e_n < 1.0 {
+        usize::MAX
+    } else {
+        set.euler_min_steps
+    };
     while steps <= set.euler_max_steps {
         let res = Resolution {
             springs: (steps / set.euler_ratio).max(8),
@@ -576,6 +600,7 @@ mod tests {
             tolerances: vec![1e-4],
             reference_steps: 1 << 11,
             min_time: 0.0,
+            e_n: 1.0,
         };
         let (reference, rows) = study_point(&pt, &set).expect("study");
         assert!(reference.error_estimate < 1e-6, "{reference:?}");
@@ -596,5 +621,29 @@ mod tests {
             reach.euler_constant > 0.0 && reach.euler_time > 0.0,
             "{reach:?}"
         );
+    }
+
+    /// The study of a dissipative law: its own reference, no Euler series, the refinement
+    /// within its tolerance of the reference.
+    #[test]
+    fn small_dissipative_study() {
+        let pt = study_points()[2];
+        let set = Settings {
+            accurate_max_steps: 512,
+            tolerances: vec![1e-4, 1e-5],
+            reference_steps: 1 << 12,
+            min_time: 0.0,
+            e_n: 0.8,
+            ..Settings::quick()
+        };
+        let (reference, rows) = study_point(&pt, &set).expect("study");
+        let elastic = oblique_solver::Request::new(pt.gamma, pt.alpha)
+            .solve()
+            .unwrap();
+        assert!((reference.p - elastic.p).abs() > 0.01, "{reference:?}");
+        assert!(rows.iter().all(|r| r.series != "euler"));
+        for r in rows.iter().filter(|r| r.series == "accurate-tol") {
+            assert!(r.error.abs() <= r.tol.unwrap(), "{r:?}");
+        }
     }
 }
