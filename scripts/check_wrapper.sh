@@ -23,3 +23,9 @@ set -e
 [ "$code" -eq 2 ] || fail "a missing table should exit 2 through the wrapper, got $code"
 grep -q 'missing.h5' err.txt || fail "the error should name missing.h5: $(cat err.txt)"
 echo "check_wrapper: scripts/sweep resolves paths against the caller's directory"
+# A second build with nothing changed compiles nothing, not even the build script that records
+# the git commit (its rerun paths must exist, or cargo reruns it and relinks on every call).
+cd "$root"
+rebuilt="$(cargo build --release --bin sweep -v 2>&1 | grep -E '^ *(Compiling|Running) ' || true)"
+[ -z "$rebuilt" ] || fail "a second build with nothing changed rebuilt: $rebuilt"
+echo "check_wrapper: a second scripts/sweep call builds nothing"

@@ -1,23 +1,35 @@
 //! Records the git commit of the engine for table provenance.
+//!
+//! Reruns only when the repository's HEAD, index or refs change: the paths are the git
+//! directory's own (absolute), so that cargo finds them; relative to this crate's folder they
+//! would never exist and the script would rerun, and the binary relink, on every build.
 use std::process::Command;
 
-fn main() {
-    let commit = Command::new("git")
-        .args(["rev-parse", "HEAD"])
+fn git(args: &[&str]) -> Option<String> {
+    // No optional locks: `git status` would otherwise refresh and rewrite the index, whose
+    // change makes the next build rerun this script.
+    Command::new("git")
+        .args(args)
+        .env("GIT_OPTIONAL_LOCKS", "0")
         .output()
         .ok()
         .filter(|o| o.status.success())
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_else(|| "unknown".into());
-    let dirty = Command::new("git")
-        .args(["status", "--porcelain", "--untracked-files=no"])
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .is_some_and(|o| !o.stdout.is_empty());
+}
+
+fn main() {
+    let commit = git(&["rev-parse", "HEAD"]).unwrap_or_else(|| "unknown".into());
+    let dirty = git(&["status", "--porcelain", "--untracked-files=no"])
+        .is_some_and(|s| !s.is_empty());
     let suffix = if dirty { "-dirty" } else { "" };
     println!("cargo:rustc-env=OBLIQUE_GIT_COMMIT={commit}{suffix}");
-    println!("cargo:rerun-if-changed=.git/HEAD");
-    println!("cargo:rerun-if-changed=.git/index");
-    println!("cargo:rerun-if-changed=.git/refs");
+    println!("cargo:rerun-if-changed=build.rs");
+    if let Some(dir) = git(&["rev-parse", "--absolute-git-dir"]) {
+        for name in ["HEAD", "index", "refs", "packed-refs"] {
+            let path = std::path::Path::new(&dir).join(name);
+            if path.exists() {
+                println!("cargo:rerun-if-changed={}", path.display());
+            }
+        }
+    }
 }
