@@ -26,6 +26,7 @@ echo "check_wrapper: scripts/sweep resolves paths against the caller's directory
 # A second build with nothing changed compiles nothing, not even the build script that records
 # the git commit (its rerun paths must exist, or cargo reruns it and relinks on every call).
 cd "$root"
+source scripts/setup.sh   # the wrapper's build environment (HDF5_DIR)
 rebuilt="$(cargo build --release --bin sweep -v 2>&1 | grep -E '^ *(Compiling|Running) ' || true)"
 [ -z "$rebuilt" ] || fail "a second build with nothing changed rebuilt: $rebuilt"
 echo "check_wrapper: a second scripts/sweep call builds nothing"

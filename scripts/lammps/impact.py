@@ -283,6 +283,113 @@ def tangential_coeff(model, d: Derived, kt_null=False):
 
 
 # --------------------------------------------------------------------------------------------
+# Damping (see DAMPING in HELP)
+
+# e_n = 1 - C1 b + O(b^2) (Schwager & Poeschel), the same at first order for the Kelvin-Voigt
+# law and for LAMMPS's viscoelastic damping (their forces differ at O(tau^2) only)
+KV_C1 = 1.15344886
+
+
+def hertz_time(d: Derived):
+    """T = (m*/k)^(2/5) v^(-1/5), k = (4/3) E* sqrt(R*): the time unit of the normal motion."""
+    k = 4.0 / 3.0 * d.e_star * math.sqrt(d.r_star)
+    return (d.m_star / k) ** 0.4 * d.v_n**-0.2
+
+
+def damping_number(d: Derived, eta_n0):
+    """B = eta_n0 sqrt(R* v) T^(3/2): LAMMPS's e_n at a given N depends on B only.
+
+    For eta_n0 = 2 tau E*/m* (the Kelvin-Voigt compression force) B equals physics.md's
+    b = (3/2) tau/T, so B/b = eta_n0/(2 tau E*/m*)."""
+    return eta_n0 * math.sqrt(d.r_star * d.v_n) * hertz_time(d) ** 1.5
+
+
+def kv_damping(d: Derived, tau):
+    """eta_n0 = 2 tau E*/m*: LAMMPS's viscoelastic force eta_n0 m* a d' is then the
+    Kelvin-Voigt law's 2 tau E* a d' (tau in seconds)."""
+    return 2.0 * tau * d.e_star / d.m_star
+
+
+def matched_xgammat(d: Derived):
+    """xgammat = G*/E* (oblique convention, G* = 4 G_L): eta_t = xgammat eta_n is then
+    2 G* tau a, the tangential Kelvin-Voigt springs' viscous force while stuck."""
+    return d.g_star / d.e_star
+
+
+def damped_gran(model, d: Derived, setup, e_eff, nu_eff, kt, mu):
+    """The pair_coeff / fix wall/gran arguments of a damped contact, and xgammat."""
+    xt = matched_xgammat(d) if setup.xgammat is None else setup.xgammat
+    gran = (
+        f"hertz/material {e_eff!r} {setup.damping!r} {nu_eff!r} damping viscoelastic "
+        f"tangential {model} {kt if isinstance(kt, str) else repr(kt)} {xt!r} {mu!r} "
+        "rolling none twisting none" + (" limit_damping" if setup.limit_damping else "")
+    )
+    return gran, xt
+
+
+@dataclass(frozen=True)
+class Calibration:
+    damping: float  # eta_n0 (1/(m s))
+    e_n: float  # LAMMPS's normal restitution with it (normal impact at N)
+    target: float
+    runs: int
+    number: float  # damping_number B
+    tau_equivalent: float  # eta_n0 m*/(2 E*): the Kelvin-Voigt tau with this compression
+
+
+def calibrate_damping(lammps, c: Case, e_n, steps_per_contact, setup=None, tol=1e-10):
+    """eta_n0 for which LAMMPS's normal restitution of case c is e_n (secant on e_n(eta_n0)).
+
+    Normal-only runs (the tangential velocities set to zero; on a wall the normal motion does
+    not depend on them) at dt = t_c/steps_per_contact with setup's wall, xgammat and
+    limit_damping; safeguarded by bisection once a bracket is known (e_n falls with eta_n0)."""
+    setup = setup or Setup()
+    d = derive(c)
+    if not 0.0 < e_n <= 1.0:
+        raise ValueError(f"e_n = {e_n} is not in (0, 1]")
+    per_b = damping_number(d, 1.0)  # B per unit eta_n0
+    if e_n == 1.0:
+        return Calibration(0.0, 1.0, 1.0, 0, 0.0, 0.0)
+    normal = replace(c, v1x=0.0, w1=0.0, v2x=0.0, w2=0.0)
+    runs = 0
+
+    def restitution(b):
+        nonlocal runs
+        runs += 1
+        eta = b / per_b
+        return run_once(lammps, normal, "mindlin", steps_per_contact, replace(setup, damping=eta)).e_n
+
+    lo = hi = None  # B with e_n(lo) > e_n > e_n(hi)
+    b0 = (1.0 - e_n) / KV_C1
+    pts = []
+    for b in (b0, 1.05 * b0):
+        pts.append((b, restitution(b) - e_n))
+    best = min(pts, key=lambda p: abs(p[1]))
+    for _ in range(60):
+        for b, f in pts[-2:]:
+            if f > 0.0 and (lo is None or b > lo[0]):
+                lo = (b, f)
+            elif f < 0.0 and (hi is None or b < hi[0]):
+                hi = (b, f)
+        best = min(pts, key=lambda p: abs(p[1]))
+        if abs(best[1]) <= tol:
+            break
+        (b1, f1), (b2, f2) = pts[-2], pts[-1]
+        b = b2 - f2 * (b2 - b1) / (f2 - f1) if f2 != f1 else math.nan
+        if lo is not None and hi is not None:
+            if not lo[0] < b < hi[0]:
+                b = 0.5 * (lo[0] + hi[0])
+        elif not b > 0.0:
+            b = 2.0 * max(b1, b2) if max(f1, f2) > 0.0 else 0.5 * min(b1, b2)
+        pts.append((b, restitution(b) - e_n))
+    else:
+        raise RuntimeError(f"case {c.case_id}: no damping gives e_n = {e_n} (best {best})")
+    b, f = best
+    eta = b / per_b
+    return Calibration(eta, e_n + f, e_n, runs, b, eta * d.m_star / (2.0 * d.e_star))
+
+
+# --------------------------------------------------------------------------------------------
 # One simulation
 
 # The first touch falls this fraction of a step after a step boundary. LAMMPS adds a whole
@@ -298,6 +405,15 @@ class Setup:
     wall_radius_factor: float = 1e4
     kt_null: bool = False
     lammps_e_nu: tuple | None = None  # override the effective (E, nu) (--check only)
+    # Damping (see DAMPING in HELP). damping = 0 and xgammat in (None, 0): the elastic
+    # contact of the published comparison, with the same pair_coeff line as before.
+    damping: float = 0.0  # eta_n0 of `damping viscoelastic` (1/(m s)): eta_n = eta_n0 m* a
+    xgammat: float | None = None  # eta_t = xgammat eta_n; None: G*/E* (the Kelvin-Voigt match)
+    limit_damping: bool = True  # no tensile normal force (LAMMPS keyword limit_damping)
+
+    @property
+    def damped(self):
+        return self.damping != 0.0 or bool(self.xgammat)
 
 
 @dataclass
@@ -322,6 +438,17 @@ class Result:
     lammps_nu: float
     lammps_kt: object
     extrapolated: bool = False
+    damped: bool = False
+    lammps_damping: float = 0.0  # eta_n0 given to LAMMPS
+    lammps_xgammat: float = 0.0
+    limit_damping: bool = True
+
+    @property
+    def e_n(self):
+        """Normal restitution: relative normal velocity after/before (sign reversed)."""
+        c = self.case
+        v_after = self.v1z if c.wall else self.v1z - self.v2z
+        return -v_after / (c.v1z - (0.0 if c.wall else c.v2z))
 
     @property
     def u_out(self):
@@ -345,24 +472,35 @@ def simulate(
     return run_once(lammps, c, model, steps_per_contact, setup)
 
 
+def contact_args(c: Case, d: Derived, model: str, setup: Setup):
+    """(pair_coeff arguments, kt, xgammat, E, nu) given to LAMMPS for this case and model."""
+    e_eff, nu_eff = setup.lammps_e_nu or effective_material(d.e_star, d.g_lmp)
+    kt = tangential_coeff(model, d, setup.kt_null)
+    xt = 0.0
+    if not setup.damped:
+        gran = (
+            f"hertz/material {e_eff!r} 0.0 {nu_eff!r} damping velocity "
+            f"tangential {model} {kt if isinstance(kt, str) else repr(kt)} 0.0 {c.mu!r} "
+            "rolling none twisting none"
+        )  # damping velocity with a zero coefficient: no normal or tangential damping
+    else:
+        gran, xt = damped_gran(model, d, setup, e_eff, nu_eff, kt, c.mu)
+    return gran, kt, xt, e_eff, nu_eff
+
+
 def run_once(lammps, c: Case, model: str, steps_per_contact: int, setup=Setup()):
     """Simulate one impact at dt = t_c/steps_per_contact; the state after separation."""
     if model not in MODELS:
         raise ValueError(f"unknown model {model}")
     d = derive(c)
     dt = d.t_c / steps_per_contact
-    e_eff, nu_eff = setup.lammps_e_nu or effective_material(d.e_star, d.g_lmp)
-    kt = tangential_coeff(model, d, setup.kt_null)
-    gran = (
-        f"hertz/material {e_eff!r} 0.0 {nu_eff!r} damping velocity "
-        f"tangential {model} {kt if isinstance(kt, str) else repr(kt)} 0.0 {c.mu!r} "
-        "rolling none twisting none"
-    )  # damping velocity with a zero coefficient: no normal or tangential damping
+    gran, kt, xt, e_eff, nu_eff = contact_args(c, d, model, setup)
     big = c.wall and setup.wall_mode == "sphere"
     R2 = setup.wall_radius_factor * c.R1 if big else c.R2
     geometry = dict(big=big, R2=R2, two=not c.wall or big)
-    # Each attempt is a fresh run, a longer one if the contact has not ended.
-    for span in (1.2, 2.0, 4.0):
+    # Each attempt is a fresh run, a longer one if the contact has not ended. A damped
+    # contact lasts longer: the overlap closes only after the force has vanished.
+    for span in (1.2, 2.0, 4.0) if not setup.damped else (1.6, 2.4, 4.0):
         r = _run(lammps, c, d, dt, gran, geometry, (3.0 + ONSET + span * steps_per_contact))
         if r is not None:
             v, w, t_contact, f_peak, d_peak, rotation = r
@@ -386,12 +524,31 @@ def run_once(lammps, c: Case, model: str, steps_per_contact: int, setup=Setup())
                 lammps_e=e_eff,
                 lammps_nu=nu_eff,
                 lammps_kt=kt,
+                damped=setup.damped,
+                lammps_damping=setup.damping,
+                lammps_xgammat=xt,
+                limit_damping=setup.limit_damping,
             )
     raise RuntimeError(f"case {c.case_id}: the contact did not end within 4 t_c")
 
 
-def _run(lammps, c: Case, d: Derived, dt, gran, geometry, n_run):
-    """One LAMMPS run of ceil(n_run) steps; None if the contact has not ended by then."""
+def trace_run(lammps, c: Case, model: str, steps_per_contact: int, setup=Setup(), span=2.0):
+    """A wall impact (fix wall/gran) step by step, for the checks: a list of rows
+    (d, F_n, v_z, F_x, v_x, omega_y, torque_y) of sphere 1 after each step (row 0: setup)."""
+    if not c.wall or setup.wall_mode != "fix":
+        raise ValueError("trace_run: fix wall/gran cases only")
+    d = derive(c)
+    dt = d.t_c / steps_per_contact
+    gran = contact_args(c, d, model, setup)[0]
+    geometry = dict(big=False, R2=c.R2, two=False)
+    n_run = 3.0 + ONSET + span * steps_per_contact
+    return dt, _run(lammps, c, d, dt, gran, geometry, n_run, trace=True)
+
+
+def _run(lammps, c: Case, d: Derived, dt, gran, geometry, n_run, trace=False):
+    """One LAMMPS run of ceil(n_run) steps; None if the contact has not ended by then.
+
+    trace (a wall only): return every step's (d, F_n, v_z, F_x, v_x, omega_y, torque_y)."""
     big, R2, two = geometry["big"], geometry["R2"], geometry["two"]
     nsteps = int(math.ceil(n_run))
     # First touch at t0 = (3 + ONSET) dt with the centres lined up on z at that instant, so
@@ -447,6 +604,17 @@ def _run(lammps, c: Case, d: Derived, dt, gran, geometry, n_run):
             ]
         else:
             cmds += [f"variable d equal z[1]+{c.R1!r}", "variable fn equal -fz[1]"]
+        if trace:
+            cmds += [
+                "compute rot all property/atom omegay tqy",
+                "compute rsum all reduce sum c_rot[1] c_rot[2]",  # one atom: its values
+                "variable vz equal vz[1]",
+                "variable fx equal fx[1]",
+                "variable vx equal vx[1]",
+                "variable wy equal c_rsum[1]",
+                "variable ty equal c_rsum[2]",
+                "fix trace all vector 1 v_d v_fn v_vz v_fx v_vx v_wy v_ty",
+            ]
         cmds += [
             "fix rec all vector 1 v_d v_fn",
             "variable dmax equal max(f_rec[1])",
@@ -456,6 +624,11 @@ def _run(lammps, c: Case, d: Derived, dt, gran, geometry, n_run):
         lmp.commands_string("\n".join(cmds))
 
         style, array = lammps.LMP_STYLE_GLOBAL, lammps.LMP_TYPE_ARRAY
+        if trace:
+            return [
+                [lmp.extract_fix("trace", style, array, i, j) for j in range(7)]
+                for i in range(nsteps + 1)
+            ]
         rows = lmp.extract_fix("rec", style, lammps.LMP_SIZE_ROWS, 0, 0)
         if rows != nsteps + 1:
             raise RuntimeError(f"fix vector holds {rows} rows, expected {nsteps + 1}")
@@ -509,9 +682,16 @@ COLUMNS = (
     "gamma alpha e_t contact_time contact_time_hertz peak_force peak_force_hertz max_overlap "
     "max_overlap_hertz normal_rotation wall_mode lammps_E lammps_nu lammps_kt"
 ).split()
+# appended to COLUMNS for damped runs (--e-n, --damping); elastic output is unchanged
+DAMPED_COLUMNS = COLUMNS + (
+    "e_n e_n_target calibration_runs lammps_damping lammps_xgammat limit_damping "
+    "damping_number tau_equivalent"
+).split()
 
 
-def result_row(r: Result):
+def result_row(r: Result, calibration: Calibration | None = None):
+    """One output row; damped runs (r.damped) add DAMPED_COLUMNS's fields."""
+
     def f(x):
         if isinstance(x, str):
             return x
@@ -548,6 +728,20 @@ def result_row(r: Result):
         "lammps_E": f(r.lammps_e),
         "lammps_nu": f(r.lammps_nu),
         "lammps_kt": f(r.lammps_kt),
+    } | (_damped_fields(r, calibration, f) if r.damped else {})
+
+
+def _damped_fields(r: Result, cal, f):
+    d = r.derived
+    return {
+        "e_n": f(r.e_n),
+        "e_n_target": f(cal.target) if cal else "",
+        "calibration_runs": cal.runs if cal else "",
+        "lammps_damping": f(r.lammps_damping),
+        "lammps_xgammat": f(r.lammps_xgammat),
+        "limit_damping": int(r.limit_damping),
+        "damping_number": f(damping_number(d, r.lammps_damping)),
+        "tau_equivalent": f(r.lammps_damping * d.m_star / (2.0 * d.e_star)),
     }
 
 
@@ -719,6 +913,130 @@ def run_checks(lammps, N, extrapolate):
     return not failures
 
 
+def _lsq2(rows):
+    """Least squares y = p x1 + q x2 over rows (y, x1, x2): (p, q, max |residual|/max |y|)."""
+    s11 = sum(x1 * x1 for _, x1, _ in rows)
+    s12 = sum(x1 * x2 for _, x1, x2 in rows)
+    s22 = sum(x2 * x2 for _, _, x2 in rows)
+    b1 = sum(y * x1 for y, x1, _ in rows)
+    b2 = sum(y * x2 for y, _, x2 in rows)
+    det = s11 * s22 - s12 * s12
+    if not det > 0.0:
+        return math.nan, math.nan, math.nan  # degenerate (e.g. no tangential motion)
+    p, q = (b1 * s22 - b2 * s12) / det, (s11 * b2 - s12 * b1) / det
+    res = max(abs(y - p * x1 - q * x2) for y, x1, x2 in rows)
+    return p, q, res / max(abs(y) for y, _, _ in rows)
+
+
+def damped_force_fits(lammps, c: Case, model, N, setup):
+    """Fit LAMMPS's forces, step by step, to the Kelvin-Voigt compression forms.
+
+    LAMMPS computes the forces of step i at x_i with the half-step velocities
+    v_i - (dt/2) f_i/m, omega_i - (dt/2) t_i/I (velocity Verlet). Normal, while the force is
+    not clipped: F_n = K_n d^(3/2) + C_n a v_z (a = sqrt(R d)); tangential (mindlin, a wall:
+    the history is the sum of u dt since the first touch): F_x = -(K_t h + C_t u) a,
+    u = v_x + R omega_y. Returns (K_n, C_n, res_n, K_t, C_t, res_t, the trace, dt)."""
+    d = derive(c)
+    dt, rows = trace_run(lammps, c, model, N, setup)
+    m, R, inertia = c.m1, c.R1, 0.4 * c.m1 * c.R1**2
+    normal, tang = [], []
+    h = 0.0
+    for dd, fn, vz, fx, vx, wy, ty in rows[4:]:
+        if dd <= 0.0:
+            break
+        a = math.sqrt(R * dd)
+        vz_h = vz + 0.5 * dt * fn / m  # the force on sphere 1 along z is -F_n
+        u = (vx - 0.5 * dt * fx / m) + R * (wy - 0.5 * dt * ty / inertia)
+        h += u * dt
+        if fn > 0.0:
+            normal.append((fn, dd**1.5, a * vz_h))
+            tang.append((fx, -a * h, -a * u))
+    return (*_lsq2(normal), *_lsq2(tang), rows, dt, d)
+
+
+def run_damped_checks(lammps, N, extrapolate):
+    """--check-damped: the damped contact against the Kelvin-Voigt law's conventions."""
+    failures = []
+
+    def report(name, value, tol=None):
+        status = ""
+        if tol is not None:
+            status = "ok" if abs(value) <= tol else "FAIL"
+            status = f"(tol {tol:.0e}) {status}"
+            if abs(value) > tol:
+                failures.append(name)
+        print(f"  {name:<66s} {value:+.3e}  {status}")
+
+    lmp = new_instance(lammps)
+    print(f"LAMMPS {lmp.version()}, GRANULAR package: {lmp.has_package('GRANULAR')}")
+    lmp.close()
+    t_start = time.perf_counter()
+    c0 = alumina_wall(0.0)
+    d0 = derive(c0)
+    tau = 1.5e-7  # s; e_n about 0.9 at 3.9 m/s
+    eta = kv_damping(d0, tau)
+    print(f"(e) force laws, alumina on an alumina wall at 3.9 m/s, N = {N}: eta_n0 = 2 tau E*/m*")
+    print(f"    with tau = {tau:g} s, xgammat = G*/E* = {matched_xgammat(d0):.6f}; least-squares")
+    print("    fits of every step in contact (before the normal force is clipped)")
+    setup = Setup(damping=eta)
+    kn, cn, rn, _, _, _, rows, dt, _ = damped_force_fits(lammps, c0, "mindlin", N, setup)
+    k_hertz = 4.0 / 3.0 * d0.e_star * math.sqrt(d0.r_star)
+    report("normal: K_n/((4/3) E* sqrt R*) - 1", kn / k_hertz - 1.0, 1e-9)
+    report("normal: C_n/(eta_n0 m*) - 1   (= 2 tau E*: eta_n = 2 tau E* a)", cn / (eta * c0.m1) - 1.0, 1e-9)
+    report("normal: max residual / max F_n", rn, 1e-9)
+    fmin = min(r[1] for r in rows[4:])
+    report("limit_damping: min F_n / F_max  (no attraction)", fmin / d0.f_max, 0.0)
+    _, rows_t = trace_run(lammps, c0, "mindlin", N, replace(setup, limit_damping=False))
+    fmin_t = min(r[1] for r in rows_t[4:])
+    report("without limit_damping: min F_n / F_max  (the tensile end)", fmin_t / d0.f_max)
+    c = replace(alumina_wall(10.0), mu=1e6)
+    *_, kt, ct, rt, _, dt, d = damped_force_fits(lammps, c, "mindlin", N, setup)
+    report("tangential (mindlin, mu = 1e6): K_t/(8 G_L) - 1  (= 2 G* a)", kt / (8.0 * d.g_lmp) - 1.0, 1e-6)
+    report("tangential: C_t/(2 G* tau) - 1  (eta_t = xgammat eta_n = 2 G* tau a)",
+           ct / (2.0 * d.g_star * tau) - 1.0, 1e-6)  # fmt: skip
+    report("tangential: max residual / max |F_x|", rt, 1e-6)
+
+    print(f"(f) calibration of eta_n0 to LAMMPS's own e_n (normal impact, N = {N}); B, the")
+    print("    damping number eta_n0 sqrt(R* v) T^(3/2), against first order (1 - e_n)/C1")
+    cals = {}
+    for e in (0.98, 0.9, 0.6):
+        cal = calibrate_damping(lammps, c0, e, N)
+        cals[e] = cal
+        report(f"e_n = {e}: |e_n(LAMMPS) - e_n| after {cal.runs} runs", cal.e_n - e, 1e-9)
+        report(f"e_n = {e}: B/((1 - e_n)/C1) - 1", cal.number / ((1.0 - e) / KV_C1) - 1.0)
+    cal = cals[0.9]
+    r = run_once(lammps, c0, "mindlin", N, Setup(damping=cal.damping, limit_damping=False))
+    report("e_n = 0.9 without limit_damping (same eta_n0): e_n - 0.9", r.e_n - 0.9)
+    c = alumina_wall(0.0, speed=1.0)
+    r = run_once(lammps, c, "mindlin", N, Setup(damping=cal.damping))
+    report("same eta_n0 at 1 m/s: e_n - 0.9  (e_n depends on the speed)", r.e_n - 0.9)
+
+    print("(g) full slip on a wall, 80 deg, calibrated to e_n = 0.6: P = 1 - (7/2)(1 + e_n) alpha")
+    print("    with the run's own e_n")
+    c = alumina_wall(80.0)
+    cal = calibrate_damping(lammps, c, 0.6, N)
+    for model in MODELS:
+        r = simulate(lammps, c, model, N, Setup(damping=cal.damping), extrapolate)
+        d = r.derived
+        exact = 1.0 - 3.5 * (1.0 + r.e_n) * d.alpha
+        report(f"{model}: P - exact", r.u_out / d.u_in - exact, 1e-6)
+
+    print(f"(h) time step: N = {N} vs 2N at fixed eta_n0 (e_n = 0.6), extrapolate = {extrapolate}")
+    for angle in (5.0, 10.0, 20.0):
+        c = alumina_wall(angle)
+        cal = calibrate_damping(lammps, c, 0.6, N)
+        setup = Setup(damping=cal.damping)
+        for model in MODELS[1:]:
+            a, b = (simulate(lammps, c, model, n, setup, extrapolate) for n in (N, 2 * N))
+            u = a.derived.u_in
+            report(f"{angle:g} deg, {model}: P(2N) - P(N)", (b.u_out - a.u_out) / u, 1e-5)
+        report(f"{angle:g} deg: e_n(2N) - e_n(N)", b.e_n - a.e_n, 1e-8)
+    print(f"({time.perf_counter() - t_start:.1f} s)")
+    if failures:
+        print(f"{len(failures)} check(s) failed: {', '.join(failures)}")
+    return not failures
+
+
 def _change(a: Result, b: Result):
     c = a.case
     scale = math.hypot(c.v1x - c.v2x, c.v1z - c.v2z)
@@ -782,13 +1100,53 @@ def main(argv=None):
         help="run the built-in validation (Hertz, wall material, full slip, spin sign, G "
         "convention, dt convergence) with alumina cases and exit: status 1 on a failure",
     )
+    damping = ap.add_argument_group("damping (see DAMPING above; default: none, e_n = 1)")
+    damping.add_argument(
+        "--e-n",
+        type=float,
+        metavar="E",
+        help="normal restitution: calibrate eta_n0 of `damping viscoelastic` per case so that "
+        "LAMMPS's own e_n of the case's normal impact is E (at N), then run the models",
+    )
+    damping.add_argument(
+        "--damping",
+        type=float,
+        metavar="ETA_N0",
+        help="eta_n0 of `damping viscoelastic` (1/(m s); eta_n = eta_n0 m* a) instead of --e-n",
+    )
+    damping.add_argument(
+        "--xgammat",
+        type=float,
+        metavar="X",
+        help="tangential damping eta_t = X eta_n (default with damping: G*/E*, the "
+        "Kelvin-Voigt match; 0: none)",
+    )
+    damping.add_argument(
+        "--no-limit-damping",
+        action="store_true",
+        help="leave out limit_damping (LAMMPS then pulls at the end of the contact)",
+    )
+    damping.add_argument(
+        "--check-damped",
+        action="store_true",
+        help="run the damped validation (force laws against Kelvin-Voigt, calibration, "
+        "limit_damping, damped full slip, dt convergence) and exit: status 1 on a failure",
+    )
     args = ap.parse_args(argv)
     if args.steps_per_contact < 100:
         ap.error("--steps-per-contact must be at least 100")
+    if args.e_n is not None and args.damping is not None:
+        ap.error("give --e-n or --damping, not both")
+    if args.e_n is not None and not 0.0 < args.e_n <= 1.0:
+        ap.error("--e-n must be in (0, 1]")
+    if args.damping is not None and args.damping < 0.0:
+        ap.error("--damping must be >= 0")
 
     lammps = load_lammps()
     if args.check:
         return 0 if run_checks(lammps, args.steps_per_contact, args.extrapolate) else 1
+    if args.check_damped:
+        return 0 if run_damped_checks(lammps, args.steps_per_contact, args.extrapolate) else 1
     if not args.cases:
         ap.error("give a cases CSV (or --check)")
     models = MODELS if args.model == "all" else tuple(m.strip() for m in args.model.split(","))
@@ -796,17 +1154,30 @@ def main(argv=None):
         if m not in MODELS:
             ap.error(f"unknown model {m!r}; choose from {', '.join(MODELS)}")
     setup = Setup(args.wall_mode, args.wall_radius_factor, args.kt_null)
+    damped = args.e_n is not None or args.damping is not None or bool(args.xgammat)
+    if damped:
+        setup = replace(setup, damping=args.damping or 0.0, xgammat=args.xgammat,
+                        limit_damping=not args.no_limit_damping)  # fmt: skip
 
     cases = read_cases(args.cases)
     out = open(args.output, "w", newline="") if args.output else sys.stdout
     try:
-        writer = csv.DictWriter(out, fieldnames=COLUMNS, lineterminator="\n")
+        columns = DAMPED_COLUMNS if damped else COLUMNS
+        writer = csv.DictWriter(out, fieldnames=columns, lineterminator="\n")
         writer.writeheader()
         for c in cases:
+            cal, case_setup = None, setup
+            if args.e_n is not None:
+                t = time.perf_counter()
+                cal = calibrate_damping(lammps, c, args.e_n, args.steps_per_contact, setup)
+                case_setup = replace(setup, damping=cal.damping)
+                print(f"{c.case_id}: eta_n0 = {cal.damping:.9g} 1/(m s) gives e_n = "
+                      f"{cal.e_n:.10f} ({cal.runs} runs, {time.perf_counter() - t:.3f} s)",
+                      file=sys.stderr)  # fmt: skip
             for m in models:
                 t = time.perf_counter()
-                r = simulate(lammps, c, m, args.steps_per_contact, setup, args.extrapolate)
-                writer.writerow(result_row(r))
+                r = simulate(lammps, c, m, args.steps_per_contact, case_setup, args.extrapolate)
+                writer.writerow(result_row(r, cal))
                 out.flush()
                 print(f"{c.case_id} {m}: {time.perf_counter() - t:.3f} s", file=sys.stderr)
     finally:
