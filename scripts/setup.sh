@@ -26,7 +26,11 @@ if [ ${#need[@]} -gt 0 ]; then
   rm -f "$log"
   echo "setup: installed ${need[*]}" >&2
 fi
-# HDF5 on Debian lives under an architecture/serial directory; tell hdf5-metno's build script.
-if [ -z "${HDF5_DIR:-}" ] && [ -d /usr/lib/x86_64-linux-gnu/hdf5/serial ]; then
+# hdf5-metno's build script finds Debian's HDF5 through pkg-config, as a plain `cargo build`
+# does: no HDF5_DIR, so that the README's cargo commands and scripts/sweep share one build
+# (a different HDF5_DIR rebuilds hdf5-metno-sys and everything above it). Only where
+# pkg-config cannot find HDF5 is Debian's serial directory named.
+if [ -z "${HDF5_DIR:-}" ] && ! pkg-config --exists hdf5 2>/dev/null &&
+  [ -d /usr/lib/x86_64-linux-gnu/hdf5/serial ]; then
   export HDF5_DIR=/usr/lib/x86_64-linux-gnu/hdf5/serial
 fi
