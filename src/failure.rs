@@ -5,6 +5,19 @@
 use std::fmt::Display;
 use std::process::ExitCode;
 
+/// `println!` that returns an error instead of panicking when standard output cannot be
+/// written (a full disk, `/dev/full`, a closed pipe with SIGPIPE ignored): the command then
+/// fails with exit status 1 and a message on standard error.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($arg)*).map_err(|e| {
+            $crate::failure::Failure::from(anyhow::Error::new(e).context("cannot write to standard output"))
+        })
+    }};
+}
+pub(crate) use outln;
+
 /// A failed command.
 #[derive(Debug)]
 pub struct Failure {

@@ -1,5 +1,6 @@
 //! `sweep accuracy`: the accuracy-against-cost study (library: `oblique_study::accuracy`).
 
+use crate::failure::outln;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -93,7 +94,7 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
     // Presets.
     let presets = accuracy::preset_summaries(&rows);
     let mut pcsv = String::from("preset,tol,max_error,max_estimate,median_cpu_s,max_cpu_s\n");
-    println!("preset     tol     max true error  max estimate  CPU time per impact: median   max");
+    outln!("preset     tol     max true error  max estimate  CPU time per impact: median   max")?;
     for p in &presets {
         pcsv.push_str(&format!(
             "{},{:e},{:e},{:e},{:e},{:e}\n",
@@ -104,7 +105,7 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
             p.median_time,
             p.max_time
         ));
-        println!(
+        outln!(
             "{:9} {:7.0e}  {:14.1e}  {:12.1e}  {:>26}  {}",
             p.preset.name(),
             p.tol,
@@ -112,18 +113,18 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
             p.max_estimate,
             fmt_time(p.median_time),
             fmt_time(p.max_time)
-        );
+        )?;
     }
     std::fs::write(args.out.join("presets.csv"), pcsv).context("cannot write presets.csv")?;
     if set.e_n < 1.0 {
-        println!("(e_n < 1: no Euler series, so no comparison with the seed scheme; reach.csv not written)");
+        outln!("(e_n < 1: no Euler series, so no comparison with the seed scheme; reach.csv not written)")?;
     } else {
         // Where each scheme reaches the targets.
         let mut rcsv = String::from(
             "point,target,accurate_tol_cpu_s,accurate_fixed_cpu_s,euler_C,euler_measured_cpu_s,euler_cpu_s,euler_cpu_s_lower,ratio,ratio_lower\n",
         );
-        println!();
-        println!("target  point                                       accurate(tol)  euler C   euler (extrap.)  euler/accurate (lower bound)");
+        outln!()?;
+        outln!("target  point                                       accurate(tol)  euler C   euler (extrap.)  euler/accurate (lower bound)")?;
         let opt = |v: Option<f64>| v.map(|x| format!("{x:e}")).unwrap_or_default();
         for r in &reaches {
             let ratio = r.accurate_tol_time.map(|t| r.euler_time / t);
@@ -141,7 +142,7 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
                 opt(ratio),
                 opt(lower)
             ));
-            println!(
+            outln!(
                 "{:6.0e}  {:42} {:>13}  {:7.2}  {:>15}{}  {:>9} ({})",
                 r.target,
                 r.point,
@@ -155,10 +156,10 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
                 },
                 ratio.map_or("-".into(), |x| format!("{x:.0}x")),
                 lower.map_or("-".into(), |x| format!("{x:.0}x")),
-            );
+            )?;
         }
         std::fs::write(args.out.join("reach.csv"), rcsv).context("cannot write reach.csv")?;
-        println!("(* extrapolated from the finest Euler runs: error = C/steps)");
+        outln!("(* extrapolated from the finest Euler runs: error = C/steps)")?;
     }
     eprintln!(
         "wrote {}/accuracy.csv, accuracy.png, presets.csv{} ({} rows) in {:.1} s",

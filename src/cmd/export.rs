@@ -1,6 +1,7 @@
 //! `sweep export`: a table (or the curves of a few γ) in the flat little-endian layout that the
 //! dependency-free evaluator `include/oblique_eval.h` reads, as a binary file or a C source.
 
+use crate::failure::outln;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -140,7 +141,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
             args.output.display()
         ))
     })?;
-    println!(
+    outln!(
         "wrote {} ({} bytes{}): {}{} curve{}, stated error bound {:.2e}",
         args.output.display(),
         content.len(),
@@ -157,6 +158,6 @@ pub fn run(args: ExportArgs) -> Result<()> {
         curves.len(),
         if curves.len() == 1 { "" } else { "s" },
         table.error_bound()
-    );
+    )?;
     Ok(())
 }

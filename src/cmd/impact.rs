@@ -1,6 +1,7 @@
 //! `sweep impact`: simulate one impact in dimensionless form and print `P(γ, α, e_n)` with its
 //! error estimate, the regime, and optionally the gross-slip history.
 
+use crate::failure::outln;
 use std::time::Instant;
 
 use crate::failure::Result;
@@ -204,7 +205,7 @@ pub fn run(args: ImpactArgs) -> Result<()> {
                 Err(why) => json!(why),
             };
         }
-        println!("{out}");
+        outln!("{out}")?;
     } else {
         let head = if e_n == 1.0 && sol.law == Law::Elastic {
             format!(
@@ -223,54 +224,54 @@ pub fn run(args: ImpactArgs) -> Result<()> {
             )
         };
         match (sol.estimate(), sol.no_estimate) {
-            (Some(est), _) => println!("{head}  +/- {est:.1e}"),
-            (None, Some(why)) => println!("{head}  (no error estimate: {why})"),
-            (None, None) => println!("{head}  (no error estimate)"),
+            (Some(est), _) => outln!("{head}  +/- {est:.1e}")?,
+            (None, Some(why)) => outln!("{head}  (no error estimate: {why})")?,
+            (None, None) => outln!("{head}  (no error estimate)")?,
         }
-        println!("e_t = (2P + 5)/7 = {e_t:.9}   (solid sphere, no initial spin)");
+        outln!("e_t = (2P + 5)/7 = {e_t:.9}   (solid sphere, no initial spin)")?;
         if sol.law != Law::Elastic {
-            println!(
+            outln!(
                 "law {} (relaxation time tau = {:.9} in units of (m*/k)^(2/5) v_z0^(-1/5) \
                  (4/3)^(-2/5))",
                 sol.law.name(),
                 sol.tau
-            );
+            )?;
         }
         match alpha_c1 {
-            Some(c1) => println!(
+            Some(c1) => outln!(
                 "regime {} (alpha_c1 = {c1:.6}, alpha_c2 = {alpha_c2:.6})",
                 regime.name()
-            ),
-            None => println!(
+            )?,
+            None => outln!(
                 "regime {} (alpha_c2 = {alpha_c2:.6}; for gamma < 1 the full-slip line ends at \
                  alpha_c2, alpha_c1 does not apply)",
                 regime.name()
-            ),
+            )?,
         }
         match sol.method {
-            Method::ClosedForm => println!("closed form (exact; --simulate to simulate anyway)"),
-            Method::Simulated => println!(
+            Method::ClosedForm => outln!("closed form (exact; --simulate to simulate anyway)")?,
+            Method::Simulated => outln!(
                 "{} scheme, {}, {:.3} ms",
                 sol.scheme.name(),
                 sol.resolution,
                 elapsed * 1e3
-            ),
+            )?,
         }
         match &episodes {
             None => {}
-            Some(Err(why)) => println!("gross slip: {why}"),
+            Some(Err(why)) => outln!("gross slip: {why}")?,
             Some(Ok(list)) if list.is_empty() => {
-                println!("gross slip: none (the contact never slips as a whole)")
+                outln!("gross slip: none (the contact never slips as a whole)")?
             }
             Some(Ok(list)) => {
                 let parts: Vec<String> = list
                     .iter()
                     .map(|e| format!("{} {:.4}..{:.4}", sign_str(e), e.start, e.end))
                     .collect();
-                println!(
+                outln!(
                     "gross slip (F_t = +/-mu F_N; start..end in units of t_c): {}",
                     parts.join(", ")
-                );
+                )?;
             }
         }
     }

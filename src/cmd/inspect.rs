@@ -1,6 +1,7 @@
 //! `sweep inspect`: a table's domain, patches, node counts, error statistics, stated bound and
 //! provenance.
 
+use crate::failure::outln;
 use std::path::PathBuf;
 
 use crate::failure::Result;
@@ -74,21 +75,21 @@ pub fn run(args: InspectArgs) -> Result<()> {
                 "node_tol": pv.node_tol, "check_tol": pv.check_tol, "target_error": pv.target_error, "config": pv.config,
             }
         });
-        println!("{out}");
+        outln!("{out}")?;
         return Ok(());
     }
-    println!("table {}", args.table.display());
-    println!(
+    outln!("table {}", args.table.display())?;
+    outln!(
         "domain gamma in [{}, {}], alpha in [0, {}]; stencil {} points per axis (schema v{})",
         s.gamma_min(),
         s.gamma_max(),
         s.alpha_max(),
         s.stencil(),
         pv.schema_version
-    );
+    )?;
     for (n, p) in &patches {
         let depth = p.leaf_depths();
-        println!(
+        outln!(
             "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} roots, {} leaves at depth {}..{}, {} nodes stored (shared leaf edges once per leaf), max node error estimate {:.1e}",
             p.kind().name(),
             p.gamma_lo(),
@@ -100,9 +101,9 @@ pub fn run(args: InspectArgs) -> Result<()> {
             depth.iter().max().unwrap_or(&0),
             p.p().len(),
             p.error_estimate().iter().copied().fold(0.0, f64::max)
-        );
+        )?;
         if let Some(w) = &p.warp() {
-            println!(
+            outln!(
                 "                fold edge: from gamma {} (root row {}) the fold F+ lies on c' = {} (graded below it; {} knots from gamma {}, step {})",
                 w.start_gamma(p.gamma_lo(), p.gamma_hi(), p.blocks_gamma()),
                 w.start(),
@@ -110,17 +111,21 @@ pub fn run(args: InspectArgs) -> Result<()> {
                 w.knot().len(),
                 w.gamma_0(),
                 w.gamma_step()
-            );
+            )?;
         }
     }
-    println!("held-out checks: {nc} points, max interpolation error {cmax:.2e}, rms {crms:.2e}");
-    println!(
+    outln!("held-out checks: {nc} points, max interpolation error {cmax:.2e}, rms {crms:.2e}")?;
+    outln!(
         "stated error bound: {:.2e} (largest leaf prediction + 2.66 x node error estimate; docs/table-format.md)",
         t.error_bound()
-    );
-    println!(
+    )?;
+    outln!(
         "built {} in {:.1} s by engine {} (commit {}); {}",
-        pv.created, pv.wall_time_s, pv.engine_version, pv.git_commit, pv.solver
-    );
+        pv.created,
+        pv.wall_time_s,
+        pv.engine_version,
+        pv.git_commit,
+        pv.solver
+    )?;
     Ok(())
 }

@@ -1,6 +1,7 @@
 //! `sweep kinks`: the fold curve F₊ of `P(γ, α)`, where a `+μF_N` gross-slip episode of the
 //! restitution phase vanishes as α grows and `P(α)` has a kink.
 
+use crate::failure::outln;
 use std::time::Instant;
 
 use crate::failure::Result;
@@ -83,28 +84,28 @@ pub fn run(args: KinksArgs) -> Result<()> {
         if curve.points.is_empty() {
             out["note"] = json!(below);
         }
-        println!("{out}");
+        outln!("{out}")?;
         return Ok(());
     }
     if curve.points.is_empty() {
-        println!("{below}");
+        outln!("{below}")?;
         return Ok(());
     }
-    println!(
+    outln!(
         "# fold curve F+ ({} steps, continuum row): birth at gamma_b = {gb:.6}, alpha_b = {ab:.6} \
          ({:.4} alpha_c2); {elapsed:.2} s",
         curve.steps,
         ab / regimes::alpha_c2(gb)
-    );
-    println!("# gamma,alpha_F,alpha_F/alpha_c2,slope_jump");
+    )?;
+    outln!("# gamma,alpha_F,alpha_F/alpha_c2,slope_jump")?;
     for p in &curve.points {
-        println!(
+        outln!(
             "{:.6},{:.9},{:.6},{:.4}",
             p.gamma,
             p.alpha,
             p.alpha / regimes::alpha_c2(p.gamma),
             p.slope_jump
-        );
+        )?;
     }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! `sweep plot`: the figures of a table (`oblique_plot::figures`), written as PNG or SVG.
 
+use crate::failure::outln;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -164,13 +165,13 @@ pub fn run(args: PlotArgs) -> Result<()> {
     }
     for ((kind, sheet), path) in sheets.iter().zip(&paths) {
         oblique_plot::render_sheet(sheet, path)?;
-        println!("wrote {}  ({})", path.display(), kind.describe());
+        outln!("wrote {}  ({})", path.display(), kind.describe())?;
     }
-    println!(
+    outln!(
         "{} figure(s) of {} in {:.2} s",
         sheets.len(),
         args.table.display(),
         start.elapsed().as_secs_f64()
-    );
+    )?;
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! `sweep query`: answer `P(γ, α)` from a table (no simulation), one point or a batch.
 
+use crate::failure::outln;
 use std::io::{BufRead, BufWriter, Write};
 use std::path::PathBuf;
 
@@ -96,18 +97,18 @@ pub fn run(args: QueryArgs) -> Result<()> {
             "error_bound": error,
             "table": args.table.display().to_string(),
         });
-        println!("{out}");
+        outln!("{out}")?;
     } else {
-        println!(
+        outln!(
             "P(gamma = {}, alpha = {}) = {p:.9}  +/- {error:.1e}",
             crate::args::fmt_num(gamma),
             crate::args::fmt_num(alpha)
-        );
-        println!(
+        )?;
+        outln!(
             "e_t = (2P + 5)/7 = {:.9}   (solid sphere, no initial spin)",
             tangential_restitution(p)
-        );
-        println!("{region}, from {}", args.table.display());
+        )?;
+        outln!("{region}, from {}", args.table.display())?;
     }
     Ok(())
 }

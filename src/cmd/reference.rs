@@ -1,6 +1,7 @@
 //! `sweep reference`: the exact references of the DEM verification suites, as CSVs and figures,
 //! with the closed-form checks printed beside the computed values.
 
+use crate::failure::outln;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -79,23 +80,23 @@ fn bytes(content: &Content, scratch: &Path) -> Result<Vec<u8>> {
     }
 }
 
-fn print_summary(res: &SuiteResult) {
-    println!(
+fn print_summary(res: &SuiteResult) -> Result<()> {
+    outln!(
         "{}: {} ({} cases in {:.2} s)",
         res.suite.name(),
         res.suite.describe(),
         res.cases(),
         res.elapsed_s
-    );
-    println!("  {}", res.method);
-    println!("  closed-form checks (closed form | computed | difference | bound):");
+    )?;
+    outln!("  {}", res.method)?;
+    outln!("  closed-form checks (closed form | computed | difference | bound):")?;
     for c in &res.checks {
         let mark = match (c.exact, c.holds()) {
             (true, true) => "ok  ",
             (true, false) => "FAIL",
             (false, _) => "fit ",
         };
-        println!(
+        outln!(
             "    {mark} {}: {}: {:.10e} | {:.10e} | {:+.2e} | {:.1e}",
             c.test,
             c.name,
@@ -103,18 +104,19 @@ fn print_summary(res: &SuiteResult) {
             c.computed,
             c.difference(),
             c.bound
-        );
+        )?;
     }
     for (id, rows) in &res.measured {
         let parts: Vec<String> = output::rms(rows)
             .iter()
             .map(|(col, r, n)| format!("{col} {r:.4} (n = {n})"))
             .collect();
-        println!(
+        outln!(
             "  {id}: RMS model - measured (Kharaz et al. 2001): {}",
             parts.join(", ")
-        );
+        )?;
     }
+    Ok(())
 }
 
 pub fn run(args: ReferenceArgs) -> Result<()> {
@@ -141,7 +143,7 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
     let mut written = 0;
     for suite in suites {
         let res = reference::run(suite, &method)?;
-        print_summary(&res);
+        print_summary(&res)?;
         failed_checks += res.checks.iter().filter(|c| c.exact && !c.holds()).count();
         let files = output::files(&res, &command_line(&args, suite));
         let dir = args.output.join(suite.name());
@@ -174,7 +176,7 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
             }
             written += 1;
         }
-        println!("  wrote {} files in {}", files.len(), dir.display());
+        outln!("  wrote {} files in {}", files.len(), dir.display())?;
     }
     let _ = std::fs::remove_dir_all(&scratch);
     if args.check {
@@ -189,12 +191,12 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
             )
             .into());
         }
-        println!("every file in {} is up to date", args.output.display());
+        outln!("every file in {} is up to date", args.output.display())?;
     } else {
-        println!(
+        outln!(
             "wrote {written} files in {:.2} s",
             start.elapsed().as_secs_f64()
-        );
+        )?;
     }
     if failed_checks > 0 {
         return Err(anyhow::anyhow!("{failed_checks} closed-form check(s) failed").into());

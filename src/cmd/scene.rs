@@ -1,5 +1,6 @@
 //! `sweep scene`: evaluate a scene file, write its CSV and plot, print a summary.
 
+use crate::failure::outln;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -80,9 +81,9 @@ pub fn run(args: SceneArgs) -> Result<()> {
         written.push(svg_path.display().to_string());
     }
 
-    println!("scene {} ({})", scene.name, args.scene.display());
+    outln!("scene {} ({})", scene.name, args.scene.display())?;
     if !scene.description.is_empty() {
-        println!("  {}", scene.description);
+        outln!("  {}", scene.description)?;
     }
     let target = match &scene.target {
         SceneTarget::Wall { material } => format!("the {} wall", material.describe()),
@@ -94,21 +95,21 @@ pub fn run(args: SceneArgs) -> Result<()> {
             body.kappa
         ),
     };
-    println!(
+    outln!(
         "  {} sphere (R = {:.4e} m, m = {:.4e} kg, kappa = {:.4}) on {target}, mu = {}",
         scene.sphere_material.describe(),
         scene.sphere.radius,
         scene.sphere.mass,
         scene.sphere.kappa,
         scene.friction
-    );
-    println!(
+    )?;
+    outln!(
         "  gamma = {:.6}  (E* = {:.4e} Pa, G* = {:.4e} Pa, m* = {:.4e} kg, m_t = {:.4e} kg, R* = {:.4e} m)",
         ev.gamma, ev.e_star, ev.g_star, ev.normal_mass, ev.tangential_mass, ev.effective_radius
-    );
+    )?;
     let cases = ev.rows.iter().filter(|r| r.in_scene).count();
     match ev.alpha_range() {
-        Some((lo, hi)) => println!(
+        Some((lo, hi)) => outln!(
             "  alpha {lo:.4e} .. {hi:.4e} (alpha_c1 = {:.6}, alpha_c2 = {:.6}): {} full-slip, {} partial-slip, {} stick, {} normal",
             ev.alpha_c1,
             ev.alpha_c2,
@@ -116,35 +117,35 @@ pub fn run(args: SceneArgs) -> Result<()> {
             ev.count_regime(Regime::PartialSlip),
             ev.count_regime(Regime::Stick),
             ev.count(RowMethod::NormalImpact)
-        ),
-        None => println!("  alpha = inf for every case"),
+        )?,
+        None => outln!("  alpha = inf for every case")?,
     }
-    println!(
+    outln!(
         "  {cases} cases: {} simulated, {} interpolated, {} closed form, {} pure normal; max error of P {:.1e}",
         ev.count(RowMethod::Simulated),
         ev.count(RowMethod::Table),
         ev.count(RowMethod::ClosedForm),
         ev.count(RowMethod::NormalImpact),
         ev.max_p_error()
-    );
-    println!("  P: {}", ev.source);
-    println!(
+    )?;
+    outln!("  P: {}", ev.source)?;
+    outln!(
         "  evaluated in {:.3} s ({:.3} s in all)",
         ev.elapsed_s,
         start.elapsed().as_secs_f64()
-    );
+    )?;
     if let (Some(rms), Some(m)) = (&ev.rms, &scene.measured) {
         let part = |v: Option<(f64, usize)>, unit: &str| match v {
             Some((r, n)) => format!("{r:.4}{unit} (n = {n})"),
             None => "-".into(),
         };
-        println!(
+        outln!(
             "  RMS model - measured: e_t {}, omega {}  [{}]",
             part(rms.e_t, ""),
             part(rms.omega, " rad/s"),
             m.source
-        );
+        )?;
     }
-    println!("wrote {}", written.join(", "));
+    outln!("wrote {}", written.join(", "))?;
     Ok(())
 }

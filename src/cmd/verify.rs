@@ -1,6 +1,7 @@
 //! `sweep verify`: check a table against direct simulation at random points, against the error
 //! bound the table states (`Table::error_bound`, docs/table-format.md "The stated error bound").
 
+use crate::failure::outln;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -189,21 +190,21 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         .filter(|o| o.error().is_nan() || o.error() > bound)
         .count();
     let max_sim_error = outcomes.iter().map(|o| o.sim_error).fold(0.0, f64::max);
-    println!("table        {}", args.table.display());
-    println!(
+    outln!("table        {}", args.table.display())?;
+    outln!(
         "points       {n} (seed {}), simulated at tol {:e} (largest estimate {max_sim_error:.1e}) in {wall:.1} s",
         args.seed, args.tol
-    );
-    println!("max |error|  {:.3e}", worst.error());
-    println!("rms error    {:.3e}", (sq / n as f64).sqrt());
-    println!(
+    )?;
+    outln!("max |error|  {:.3e}", worst.error())?;
+    outln!("rms error    {:.3e}", (sq / n as f64).sqrt())?;
+    outln!(
         "worst point  gamma = {}, alpha = {}: table {:.9}, simulation {:.9}",
         worst.gamma,
         fmt_alpha(worst.alpha),
         worst.p_table,
         worst.p_sim
-    );
-    println!("stated bound {bound:.3e}; points above it: {exceeding}");
+    )?;
+    outln!("stated bound {bound:.3e}; points above it: {exceeding}")?;
     if exceeding > 0 {
         return Err(anyhow::Error::new(BoundExceeded {
             count: exceeding,
