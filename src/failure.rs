@@ -18,6 +18,19 @@ macro_rules! outln {
 }
 pub(crate) use outln;
 
+/// Refuse, before any work, an output folder (`flag`, e.g. `-o`) that exists as something other
+/// than a folder: a usage error (exit status 2), where creating it would fail only after
+/// everything was computed.
+pub fn check_output_folder(path: &std::path::Path, flag: &str) -> Result<()> {
+    match std::fs::metadata(path) {
+        Ok(m) if !m.is_dir() => Err(Failure::usage(format!(
+            "{flag} {}: exists and is not a folder (give a folder, new or existing)",
+            path.display()
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// A failed command.
 #[derive(Debug)]
 pub struct Failure {

@@ -136,6 +136,7 @@ pub fn run(args: PlotArgs) -> Result<()> {
     } else {
         args.alphas.clone()
     };
+    crate::failure::check_output_folder(&args.output, "-o")?;
     // Build every figure first: a bad option fails before anything is written.
     let sheets = kinds
         .iter()

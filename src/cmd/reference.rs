@@ -128,6 +128,10 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
             args.tol
         )));
     }
+    crate::failure::check_output_folder(&args.output, "-o")?;
+    for suite in &suites {
+        crate::failure::check_output_folder(&args.output.join(suite.name()), "-o")?;
+    }
     let table = match &args.table {
         Some(p) => Some(Table::open(p)?),
         None => None,
