@@ -13,12 +13,24 @@ fn commands_writing_to_a_full_stdout_fail_cleanly() {
     let out = out_dir.to_str().expect("utf-8").to_string();
     let cases: Vec<Vec<&str>> = vec![
         vec!["query", &table, "--gamma", "1.754", "--alpha", "1"],
-        vec!["query", &table, "--gamma", "1.754", "--alpha", "1", "--json"],
+        vec![
+            "query", &table, "--gamma", "1.754", "--alpha", "1", "--json",
+        ],
         vec!["inspect", &table],
         vec!["impact", "--gamma", "1.754", "--alpha", "1"],
-        vec!["impact", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.9", "--json"],
+        vec![
+            "impact", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.9", "--json",
+        ],
         vec!["reference", "chung-ooi", "-o", &out],
-        vec!["kinks", "--gamma-max", "2.95", "--points", "2", "--steps", "256"],
+        vec![
+            "kinks",
+            "--gamma-max",
+            "2.95",
+            "--points",
+            "2",
+            "--steps",
+            "256",
+        ],
     ];
     for args in cases {
         let full = OpenOptions::new()
@@ -32,7 +44,10 @@ fn commands_writing_to_a_full_stdout_fail_cleanly() {
             .expect("run sweep");
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
-        assert!(err.contains("cannot write to standard output"), "{args:?}: {err}");
+        assert!(
+            err.contains("cannot write to standard output"),
+            "{args:?}: {err}"
+        );
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
 }

@@ -93,6 +93,9 @@ pub fn run(args: ExportArgs) -> Result<()> {
             )));
         }
     }
+    // A device, FIFO or symbolic link at the output is not replaced by a file, and the table
+    // being read is not overwritten (also under another name or a hard link).
+    oblique_table::write::check_output_not_input(&args.output, &[&args.table])?;
     let table = Table::open(&args.table)?;
     let mut curves = Vec::with_capacity(args.gammas.len());
     for &g in &args.gammas {

@@ -1,0 +1,92 @@
+//! Output paths the user must fix, refused before any work with exit status 2, nothing replaced:
+//! an output folder that is a file (`plot`, `reference`); an export over a FIFO, a symbolic
+//! link, a device or its own input (`export`).
+
+use std::process::Command;
+
+#[test]
+fn an_output_folder_that_is_a_file_is_refused_up_front() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("output_folder-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("suites")).expect("create test directory");
+    let file = dir.join("a_file");
+    std::fs::write(&file, b"keep me").expect("write");
+    std::fs::write(dir.join("suites/thornton"), b"keep me too").expect("write");
+    let f = file.to_str().expect("utf-8");
+    let suites = dir.join("suites");
+    let s = suites.to_str().expect("utf-8");
+    let table = format!("{root}/tables/quick.h5");
+    for args in [
+        vec!["plot", &table, "-o", f],
+        vec!["reference", "chung-ooi", "-o", f],
+        vec!["reference", "all", "-o", s],
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .args(&args)
+            .output()
+            .expect("run sweep");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("-o") && err.contains("not a folder"),
+            "{args:?}: {err}"
+        );
+        // Refused before computing: nothing printed on stdout.
+        assert!(o.stdout.is_empty(), "{args:?} computed first");
+    }
+    assert_eq!(std::fs::read(&file).unwrap(), b"keep me");
+    assert_eq!(
+        std::fs::read(dir.join("suites/thornton")).unwrap(),
+        b"keep me too"
+    );
+    // Nothing else was written into the folder of suites.
+    let names: Vec<_> = std::fs::read_dir(&suites).unwrap().collect();
+    assert_eq!(names.len(), 1);
+}
+
+#[cfg(unix)]
+#[test]
+fn export_replaces_no_special_file_and_not_its_input() {
+    use std::os::unix::fs::FileTypeExt;
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("export_paths-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("create test directory");
+    let input = dir.join("t.h5");
+    std::fs::copy(format!("{root}/tables/quick.h5"), &input).expect("copy table");
+    let original = std::fs::read(&input).unwrap();
+    let hard = dir.join("same.h5");
+    std::fs::hard_link(&input, &hard).expect("hard link");
+    let link = dir.join("link.bin");
+    std::os::unix::fs::symlink(dir.join("target.bin"), &link).expect("symlink");
+    let fifo = dir.join("fifo");
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo");
+    assert!(made.success());
+    for (out, what) in [
+        (&input, "is the input"),
+        (&hard, "is the input"),
+        (&link, "symbolic link"),
+        (&fifo, "FIFO"),
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .args([
+                "export",
+                input.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+            ])
+            .output()
+            .expect("run sweep");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{out:?}: {err}");
+        assert!(err.contains(what), "{out:?}: {err}");
+    }
+    assert_eq!(std::fs::read(&input).unwrap(), original);
+    assert!(!dir.join("target.bin").exists());
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+}
