@@ -356,7 +356,7 @@ class Impact(NamedTuple):
     """Normal restitution of the impact (1: elastic)."""
     tau: Float
     """Dimensionless relaxation time τ̂ of the Kelvin–Voigt law that gives ``e_n`` (0 for the
-    elastic law), in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(-2/5), k = (4/3) E* √R*."""
+    elastic law), in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(2/5), k = (4/3) E* √R*."""
 
 
 @dataclass(frozen=True)

@@ -38,7 +38,7 @@ pub struct ImpactArgs {
     /// Normal restitution e_n of the impact, from 0.3 to 1 (1: elastic, the default). Below 1
     /// the springs are Kelvin-Voigt elements (one relaxation time in the normal and tangential
     /// direction, non-adhesive), and the relaxation time that gives this e_n is found first; the
-    /// JSON output reports it as `tau` (in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(-2/5)).
+    /// JSON output reports it as `tau` (in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(2/5)).
     #[arg(long = "e-n", value_parser = parse_e_n, default_value = "1", allow_hyphen_values = true)]
     e_n: f64,
     /// Dissipation law: elastic (e_n = 1 only) or kelvin-voigt. Default: elastic at e_n = 1,
@@ -232,7 +232,7 @@ pub fn run(args: ImpactArgs) -> Result<()> {
         if sol.law != Law::Elastic {
             outln!(
                 "law {} (relaxation time tau = {:.9} in units of (m*/k)^(2/5) v_z0^(-1/5) \
-                 (4/3)^(-2/5))",
+                 (4/3)^(2/5))",
                 sol.law.name(),
                 sol.tau
             )?;

@@ -772,7 +772,7 @@ pub struct Solution {
     /// Normal restitution `e_n` of the impact (1 for the elastic law).
     pub e_n: f64,
     /// Dimensionless relaxation time `τ̂` of the Kelvin–Voigt law that gives `e_n` (0 for the
-    /// elastic law; time unit `(m*/k)^{2/5} v_z0^{-1/5} (4/3)^{-2/5}`, `k = (4/3) E* √R*`).
+    /// elastic law; time unit `(m*/k)^{2/5} v_z0^{-1/5} (4/3)^{2/5}`, `k = (4/3) E* √R*`).
     pub tau: f64,
 }
 

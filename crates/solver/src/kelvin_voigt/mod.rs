@@ -51,7 +51,7 @@ pub fn damping_number(tau: f64) -> f64 {
     1.5 * tau * (4.0f64 / 3.0).powf(0.4)
 }
 
-/// The dimensionless relaxation time `τ̂` (time unit `(m*/k)^{2/5} v_z0^{-1/5} (4/3)^{-2/5}`,
+/// The dimensionless relaxation time `τ̂` (time unit `(m*/k)^{2/5} v_z0^{-1/5} (4/3)^{2/5}`,
 /// the unit of [`unit_bodies`]) of a relaxation time `τ` (s) for bodies of reduced mass `m*`
 /// (kg), Hertz stiffness `k` (N/m^{3/2}) meeting at `v_z0` (m/s).
 pub fn dimensionless_tau(tau: f64, mass: f64, stiffness: f64, approach_speed: f64) -> f64 {
