@@ -206,6 +206,61 @@ struct Chunk {
 /// Pieces per chunk above which a chunk is split in two.
 const CHUNK_MAX: usize = 48;
 
+/// A run of consecutive pieces of a row with the sums a step needs.
+pub(crate) trait PieceChunk: Default {
+    /// The piece type.
+    type Piece;
+    /// The pieces, in order.
+    fn pieces_mut(&mut self) -> &mut Vec<Self::Piece>;
+    /// Recompute the sums after the pieces changed.
+    fn summarize(&mut self);
+}
+
+impl PieceChunk for Chunk {
+    type Piece = Piece;
+    fn pieces_mut(&mut self) -> &mut Vec<Piece> {
+        &mut self.pieces
+    }
+    fn summarize(&mut self) {
+        Chunk::summarize(self);
+    }
+}
+
+/// Put `pieces` into chunk `k` of `chunks`, splitting it in two when it holds more than `max`;
+/// returns the number of chunks they occupy (0 when empty: the chunk is removed). `spare` is
+/// the scratch buffer of the next update.
+pub(crate) fn install<C: PieceChunk>(
+    chunks: &mut Vec<C>,
+    spare: &mut Vec<C::Piece>,
+    k: usize,
+    mut pieces: Vec<C::Piece>,
+    max: usize,
+) -> usize {
+    let mut count = 1;
+    if pieces.len() > max {
+        count = 2;
+        let tail = pieces.split_off(pieces.len() / 2);
+        let mut next = C::default();
+        *next.pieces_mut() = tail;
+        next.summarize();
+        chunks.insert(k + 1, next);
+    }
+    let ch = &mut chunks[k];
+    std::mem::swap(ch.pieces_mut(), &mut pieces);
+    // Keep whichever buffer has room as the scratch of the next update: the chunk's old vector
+    // was often taken (left empty, without capacity), and dropping the spare instead made every
+    // chunk update allocate anew.
+    if pieces.capacity() > spare.capacity() {
+        *spare = pieces;
+    }
+    ch.summarize();
+    if ch.pieces_mut().is_empty() {
+        chunks.remove(k);
+        count = 0;
+    }
+    count
+}
+
 impl Chunk {
     fn summarize(&mut self) {
         self.has_limit = false;
@@ -454,34 +509,9 @@ impl ContinuumRow {
         self.install(k, out)
     }
 
-    /// Put `pieces` into chunk `k`, splitting it when it grew too long; returns the number of
-    /// chunks they occupy (0 when empty: the chunk is removed).
-    fn install(&mut self, k: usize, mut pieces: Vec<Piece>) -> usize {
-        let mut count = 1;
-        if pieces.len() > CHUNK_MAX {
-            count = 2;
-            let tail = pieces.split_off(pieces.len() / 2);
-            let mut next = Chunk {
-                pieces: tail,
-                ..Chunk::default()
-            };
-            next.summarize();
-            self.chunks.insert(k + 1, next);
-        }
-        let ch = &mut self.chunks[k];
-        std::mem::swap(&mut ch.pieces, &mut pieces);
-        // Keep whichever buffer has room as the scratch of the next update: the chunk's old
-        // vector was often taken (left empty, without capacity), and dropping the spare instead
-        // made every chunk update allocate anew.
-        if pieces.capacity() > self.spare.capacity() {
-            self.spare = pieces;
-        }
-        ch.summarize();
-        if ch.pieces.is_empty() {
-            self.chunks.remove(k);
-            count = 0;
-        }
-        count
+    /// Put `pieces` into chunk `k` ([`install`]).
+    fn install(&mut self, k: usize, pieces: Vec<Piece>) -> usize {
+        install(&mut self.chunks, &mut self.spare, k, pieces, CHUNK_MAX)
     }
 
     /// Clip a stuck piece (after the increment) against the limits `±c (d1 − y)` and append the

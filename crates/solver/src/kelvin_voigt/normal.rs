@@ -343,44 +343,27 @@ impl ViscoelasticTrajectory {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-
-    fn unit(tau: f64) -> ViscoelasticBodies {
-        ViscoelasticBodies {
-            inv_mass1: 1.0,
-            inv_mass2: 0.0,
-            stiffness: 4.0 / 3.0,
-            approach_speed: 1.0,
-            tau,
-        }
-    }
+    use crate::kelvin_voigt::unit_bodies;
 
     #[test]
     fn without_relaxation_it_is_hertz() {
-        let tr = unit(0.0).trajectory(512);
+        let tr = unit_bodies(0.0).trajectory(512);
         assert!((tr.contact_time - 2.868_265_699_195_331_5).abs() < 1e-10);
         assert!((tr.max_indentation - 0.974_514_960_229_047_3).abs() < 1e-10);
         assert!((tr.delta_v1 + 2.0).abs() < 1e-11, "{}", tr.delta_v1);
     }
 
     #[test]
-    fn the_restitution_of_the_tabulated_relaxation_times() {
-        // physics.md: dimensionless τ giving e_n = 0.99 / 0.95 / 0.9 / 0.8 / 0.6, from an
-        // independent prototype solver. This integration converges to 2e-10 (8192 against
-        // 65536 substeps) and agrees within 5e-10 with an mpmath RK4 run extrapolated in its
-        // step; the prototype's values sit 1e-9 (0.99) to 1.7e-8 (0.6) above it.
-        for (tau, e) in [
-            (0.005194042, 0.99),
-            (0.026859667, 0.95),
-            (0.056135553, 0.9),
-            (0.123491155, 0.8),
-            (0.310622293, 0.6),
-        ] {
-            let got = unit(tau).restitution();
-            assert!(
-                (got - e).abs() < 2.5e-8,
-                "τ = {tau}: e_n = {got}, expected {e}"
-            );
-        }
+    fn sampled_grids_are_the_fine_motion() {
+        // A grid that divides the fine one is its every k-th node, with the same contact.
+        let b = unit_bodies(0.1);
+        let (fine, coarse) = (b.fine().sample(8192), b.trajectory(256));
+        assert_eq!(coarse.indentation.len(), 257);
+        assert_eq!(coarse.indentation[100], fine.indentation[3200]);
+        assert_eq!(coarse.contact_time, fine.contact_time);
+        // Off the fine grid: integrated on its own, the same motion to 1e-10.
+        let other = b.trajectory(300);
+        assert!((other.contact_time - fine.contact_time).abs() < 1e-12);
+        assert!((other.rate[300] - fine.rate[8192]).abs() < 1e-10);
     }
 }

@@ -22,7 +22,7 @@
 //! `∫ v dx` is integrated exactly. Transitions happen at the end of a step (local error O(h²)
 //! once per spring: second order overall).
 
-use crate::continuum::{roots_inside, GAUSS};
+use crate::continuum::{install, roots_inside, PieceChunk, GAUSS};
 use crate::springs::{StepMotion, StepResult};
 
 /// Which law a piece follows.
@@ -172,6 +172,16 @@ struct Chunk {
 /// normal motion; γ = 3, α = 0.3, e_n = 0.9: 10.0e6 with 48,
 /// 8.5e6 with 24, 8.3e6 with 16; at γ = 0.5, α = 1: 15.5e6, 14.6e6, 15.7e6).
 const CHUNK_MAX: usize = 24;
+
+impl PieceChunk for Chunk {
+    type Piece = Piece;
+    fn pieces_mut(&mut self) -> &mut Vec<Piece> {
+        &mut self.pieces
+    }
+    fn summarize(&mut self) {
+        Chunk::summarize(self);
+    }
+}
 
 impl Chunk {
     fn summarize(&mut self) {
@@ -794,29 +804,8 @@ impl ViscoelasticRow {
         }
     }
 
-    fn install(&mut self, k: usize, mut pieces: Vec<Piece>) -> usize {
-        let mut count = 1;
-        if pieces.len() > CHUNK_MAX {
-            count = 2;
-            let tail = pieces.split_off(pieces.len() / 2);
-            let mut next = Chunk {
-                pieces: tail,
-                ..Chunk::default()
-            };
-            next.summarize();
-            self.chunks.insert(k + 1, next);
-        }
-        let ch = &mut self.chunks[k];
-        std::mem::swap(&mut ch.pieces, &mut pieces);
-        if pieces.capacity() > self.spare.capacity() {
-            self.spare = pieces;
-        }
-        ch.summarize();
-        if ch.pieces.is_empty() {
-            self.chunks.remove(k);
-            count = 0;
-        }
-        count
+    fn install(&mut self, k: usize, pieces: Vec<Piece>) -> usize {
+        install(&mut self.chunks, &mut self.spare, k, pieces, CHUNK_MAX)
     }
 
     /// Clip a stuck piece (after the increment) against `|u + τẇ₁| ≤ c (D₁ − y)`: the parts
