@@ -26,9 +26,10 @@
 
 use super::springs::{StepMotion, StepResult};
 
-/// Which law a piece follows.
+/// Which law a piece follows (shared with the Kelvin–Voigt row,
+/// [`crate::kelvin_voigt::row`], where `Plus`/`Minus` slip with a state of their own).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
+pub(crate) enum Kind {
     /// Stuck: `ũ = W + a + b z + q z²`, `z = y − y_ref`, with `W` the row's accumulated
     /// increment: it moves rigidly with `w`.
     Stuck,
@@ -40,26 +41,27 @@ enum Kind {
 
 /// One piece of the field on `y0 ≤ y ≤ y1`.
 #[derive(Debug, Clone, Copy)]
-struct Piece {
-    kind: Kind,
+pub(crate) struct Piece {
+    pub(crate) kind: Kind,
     /// Lower and upper profile height (m).
-    y0: f64,
-    y1: f64,
+    pub(crate) y0: f64,
+    pub(crate) y1: f64,
     /// The matching positions `x = √(R* y)` (m).
-    x0: f64,
-    x1: f64,
+    pub(crate) x0: f64,
+    pub(crate) x1: f64,
     /// Reference height of the local coordinate `z = y − y_ref` (m).
-    y_ref: f64,
-    /// Coefficients of a stuck piece `ũ − W = a + b z + q z²` (m, 1, 1/m); unused at a limit.
-    a: f64,
-    b: f64,
-    q: f64,
+    pub(crate) y_ref: f64,
+    /// Coefficients of a stuck piece `ũ − W = a + b z + q z²` (m, 1, 1/m); unused at a limit
+    /// here (the Kelvin–Voigt row keeps a slipping piece's state in them).
+    pub(crate) a: f64,
+    pub(crate) b: f64,
+    pub(crate) q: f64,
     /// `∫ (ũ − W) dx` over a stuck piece (m²).
-    rel_integral: f64,
+    pub(crate) rel_integral: f64,
     /// `max (ũ − W + c y)` and `min (ũ − W − c y)` over a stuck piece (m): it stays inside the
     /// limits `±c (d − y)` while `upper ≤ c d − W` and `lower ≥ −c d − W`.
-    upper: f64,
-    lower: f64,
+    pub(crate) upper: f64,
+    pub(crate) lower: f64,
 }
 
 /// Three-point Gauss–Legendre nodes on `[0, 1]` and weights: exact for `ũ(x)`, a polynomial
@@ -110,7 +112,7 @@ impl Piece {
     }
 
     /// Recompute the integral and the bounds of a stuck piece after its ends changed.
-    fn refresh(&mut self, c: f64, radius: f64) {
+    pub(crate) fn refresh(&mut self, c: f64, radius: f64) {
         let dx = self.x1 - self.x0;
         let total: f64 = GAUSS
             .iter()
@@ -127,7 +129,7 @@ impl Piece {
     }
 
     /// `max` (or `min`) of `ũ − W + s y` over the piece: at an end or at the vertex.
-    fn extremum(&self, s: f64, max: bool) -> f64 {
+    pub(crate) fn extremum(&self, s: f64, max: bool) -> f64 {
         let f = |y: f64| self.value(y) + s * y;
         let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
         let mut best = pick(f(self.y0), f(self.y1));
@@ -141,7 +143,7 @@ impl Piece {
     }
 
     /// `ũ − W` at height `y` for a stuck piece.
-    fn value(&self, y: f64) -> f64 {
+    pub(crate) fn value(&self, y: f64) -> f64 {
         let z = y - self.y_ref;
         self.a + z * (self.b + self.q * z)
     }

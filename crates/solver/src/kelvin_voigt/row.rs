@@ -22,106 +22,46 @@
 //! `∫ v dx` is integrated exactly. Transitions happen at the end of a step (local error O(h²)
 //! once per spring: second order overall).
 
-use crate::continuum::{install, roots_inside, PieceChunk, GAUSS};
+use crate::continuum::{install, roots_inside, Kind, Piece, PieceChunk};
 use crate::springs::{StepMotion, StepResult};
 
-/// Which law a piece follows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    /// `u = W + a + b z + q z²`, `z = y − y_ref`.
-    Stuck,
-    /// Slipping at `v = +c (D − y)`; `δ̃ = a + b z + q z²`.
-    Plus,
-    /// Slipping at `v = −c (D − y)`; `δ̃ = a + b z + q z²`.
-    Minus,
+/// A piece of this row on `[y0, y1]` with `z = y − y_ref` (the elastic row's [`Piece`]): a
+/// stuck one holds `u − W = a + b z + q z²`, a slipping one (`Kind::Plus`, `Kind::Minus`) its
+/// state `δ̃ = a + b z + q z²` in the frame of its sign.
+fn piece(kind: Kind, y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64, r: f64) -> Piece {
+    let mut p = Piece {
+        kind,
+        y0,
+        y1,
+        x0: (r * y0).sqrt(),
+        x1: (r * y1).sqrt(),
+        y_ref,
+        a: abq.0,
+        b: abq.1,
+        q: abq.2,
+        rel_integral: 0.0,
+        upper: 0.0,
+        lower: 0.0,
+    };
+    refresh(&mut p, c, r);
+    p
 }
 
-/// One piece of the field on `y0 ≤ y ≤ y1`.
-#[derive(Debug, Clone, Copy)]
-struct Piece {
-    kind: Kind,
-    y0: f64,
-    y1: f64,
-    x0: f64,
-    x1: f64,
-    y_ref: f64,
-    a: f64,
-    b: f64,
-    q: f64,
-    /// Stuck: `∫ (u − W) dx` (m²).
-    rel_integral: f64,
-    /// Stuck: `max (u − W + c y)`; slipping: `max δ̃` (m).
-    upper: f64,
-    /// Stuck: `min (u − W − c y)`; slipping: `min δ̃` (m).
-    lower: f64,
+/// Recompute a piece's sums after its ends changed: for a stuck piece those of the elastic
+/// row, for a slipping one `upper = max δ̃` and `lower = min δ̃`.
+fn refresh(p: &mut Piece, c: f64, r: f64) {
+    match p.kind {
+        Kind::Stuck => Piece::refresh(p, c, r),
+        Kind::Plus | Kind::Minus => {
+            p.upper = p.extremum(0.0, true);
+            p.lower = p.extremum(0.0, false);
+        }
+    }
 }
 
-impl Piece {
-    fn new(kind: Kind, y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64, r: f64) -> Self {
-        let mut p = Self {
-            kind,
-            y0,
-            y1,
-            x0: (r * y0).sqrt(),
-            x1: (r * y1).sqrt(),
-            y_ref,
-            a: abq.0,
-            b: abq.1,
-            q: abq.2,
-            rel_integral: 0.0,
-            upper: 0.0,
-            lower: 0.0,
-        };
-        p.refresh(c, r);
-        p
-    }
-
-    fn value(&self, y: f64) -> f64 {
-        let z = y - self.y_ref;
-        self.a + z * (self.b + self.q * z)
-    }
-
-    /// `max`/`min` of `value + s y` over the piece.
-    fn extremum(&self, s: f64, max: bool) -> f64 {
-        let f = |y: f64| self.value(y) + s * y;
-        let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
-        let mut best = pick(f(self.y0), f(self.y1));
-        if self.q != 0.0 {
-            let y = self.y_ref - (self.b + s) / (2.0 * self.q);
-            if y > self.y0 && y < self.y1 {
-                best = pick(best, f(y));
-            }
-        }
-        best
-    }
-
-    fn refresh(&mut self, c: f64, r: f64) {
-        match self.kind {
-            Kind::Stuck => {
-                let dx = self.x1 - self.x0;
-                let total: f64 = GAUSS
-                    .iter()
-                    .map(|&(t, w)| {
-                        let x = self.x0 + t * dx;
-                        w * self.value(x * x / r)
-                    })
-                    .sum();
-                self.rel_integral = total * dx;
-                if c.is_finite() {
-                    self.upper = self.extremum(c, true);
-                    self.lower = self.extremum(-c, false);
-                }
-            }
-            Kind::Plus | Kind::Minus => {
-                self.upper = self.extremum(0.0, true);
-                self.lower = self.extremum(0.0, false);
-            }
-        }
-    }
-
-    fn cube(&self) -> f64 {
-        self.x1 * self.x1 * self.x1 - self.x0 * self.x0 * self.x0
-    }
+/// `x1³ − x0³` of a piece (m³).
+fn cube(p: &Piece) -> f64 {
+    p.x1 * p.x1 * p.x1 - p.x0 * p.x0 * p.x0
 }
 
 /// Index of a slipping kind's frame and entry state: 0 for `+`, 1 for `−`.
@@ -143,7 +83,7 @@ fn push_slip(out: &mut Vec<Piece>, p: Piece, c: f64, r: f64) {
         {
             last.y1 = p.y1;
             last.x1 = p.x1;
-            last.refresh(c, r);
+            refresh(last, c, r);
             return;
         }
     }
@@ -203,12 +143,12 @@ impl Chunk {
                 }
                 Kind::Plus => {
                     self.slip_length[0] += p.x1 - p.x0;
-                    self.slip_cube[0] += p.cube();
+                    self.slip_cube[0] += cube(p);
                     self.plus_min = self.plus_min.min(p.lower);
                 }
                 Kind::Minus => {
                     self.slip_length[1] += p.x1 - p.x0;
-                    self.slip_cube[1] += p.cube();
+                    self.slip_cube[1] += cube(p);
                     self.minus_max = self.minus_max.max(p.upper);
                 }
             }
@@ -585,11 +525,11 @@ impl ViscoelasticRow {
                 let s = w_rate.signum();
                 let kind = if s > 0.0 { Kind::Plus } else { Kind::Minus };
                 let abq = (self.entry[sign_index(kind)], 0.0, 0.0);
-                let slip = Piece::new(kind, y0, y1, b0, abq, c, r);
+                let slip = piece(kind, y0, y1, b0, abq, c, r);
                 self.release(slip, up, &mut out, None);
             } else {
                 let abq = (k1 - k2 - w, (2.0 * k2 - k1) / span, -k2 / (span * span));
-                let stuck = Piece::new(Kind::Stuck, y0, y1, b0, abq, c, r);
+                let stuck = piece(Kind::Stuck, y0, y1, b0, abq, c, r);
                 self.clip(stuck, up, &mut out);
             }
         }
@@ -633,7 +573,7 @@ impl ViscoelasticRow {
                     p.a = e * f.actual(p.a) + s * k;
                     p.b *= e * f.scale;
                     p.q *= e * f.scale;
-                    p.refresh(up.c, r);
+                    refresh(p, up.c, r);
                 }
                 ch.summarize();
             }
@@ -664,7 +604,7 @@ impl ViscoelasticRow {
                 p.a = f.actual(p.a);
                 p.b *= f.scale;
                 p.q *= f.scale;
-                p.refresh(c, r);
+                refresh(p, c, r);
             }
             ch.summarize();
         }
@@ -690,7 +630,7 @@ impl ViscoelasticRow {
                 if p.y1 > top {
                     p.y1 = top;
                     p.x1 = (r * top).sqrt();
-                    p.refresh(c, r);
+                    refresh(p, c, r);
                     ch.summarize();
                 }
             }
@@ -776,7 +716,7 @@ impl ViscoelasticRow {
             if hi > lo {
                 let mid = 0.5 * (lo + hi);
                 if s * g(mid) > 0.0 {
-                    let keep = Piece::new(p.kind, lo, hi, p.y_ref, (p.a, p.b, p.q), c, r);
+                    let keep = piece(p.kind, lo, hi, p.y_ref, (p.a, p.b, p.q), c, r);
                     push_slip(out, keep, c, r);
                 } else {
                     let zm = mid - p.y_ref;
@@ -796,7 +736,7 @@ impl ViscoelasticRow {
                         -s * c + e * start.1,
                         e * start.2,
                     );
-                    let stuck = Piece::new(Kind::Stuck, lo, hi, p.y_ref, abq, c, r);
+                    let stuck = piece(Kind::Stuck, lo, hi, p.y_ref, abq, c, r);
                     self.clip(stuck, up, out);
                 }
             }
@@ -845,7 +785,7 @@ impl ViscoelasticRow {
                 };
                 let part = match kind {
                     Kind::Stuck if lo == p.y0 && hi == p.y1 => p,
-                    Kind::Stuck => Piece::new(kind, lo, hi, p.y_ref, (p.a, p.b, p.q), c, r),
+                    Kind::Stuck => piece(kind, lo, hi, p.y_ref, (p.a, p.b, p.q), c, r),
                     _ => {
                         // The part starts to slip at t* where s (u + τẇ) = c (D − y) (at its
                         // midpoint, along the stuck path u(t) = u(h) − (w(h) − w(t))); there
@@ -866,7 +806,7 @@ impl ViscoelasticRow {
                             e * (p.b + s * c) / f.scale,
                             e * p.q / f.scale,
                         );
-                        Piece::new(kind, lo, hi, p.y_ref, abq, c, r)
+                        piece(kind, lo, hi, p.y_ref, abq, c, r)
                     }
                 };
                 out.push(part);
