@@ -90,3 +90,36 @@ fn export_replaces_no_special_file_and_not_its_input() {
         .is_symlink());
     assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
 }
+
+#[cfg(target_os = "linux")]
+#[test]
+fn export_removes_the_temporary_file_a_killed_export_left() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("export_stale-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("create test directory");
+    // The PID of a process that has ended: what a killed export leaves in the name.
+    let mut child = Command::new("true").spawn().expect("spawn");
+    let dead = child.id();
+    child.wait().expect("wait");
+    let stale = dir.join(format!(".out.bin.tmp{dead}"));
+    std::fs::write(&stale, b"half an export").expect("write");
+    // A file of a running process (this test) and an unrelated one stay.
+    let live = dir.join(format!(".out.bin.tmp{}", std::process::id()));
+    std::fs::write(&live, b"in progress").expect("write");
+    let other = dir.join(".other.bin.tmp1");
+    std::fs::write(&other, b"not ours").expect("write");
+    let out = dir.join("out.bin");
+    let o = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(["export", &format!("{root}/tables/quick.h5"), "-o"])
+        .arg(&out)
+        .output()
+        .expect("run sweep");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.exists());
+    assert!(
+        !stale.exists(),
+        "the killed export's temporary file is still there"
+    );
+    assert!(live.exists() && other.exists());
+}

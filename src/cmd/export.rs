@@ -46,12 +46,11 @@ fn write_atomic(out: &Path, bytes: &[u8]) -> std::io::Result<()> {
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let name = out.file_name().map(|n| n.to_string_lossy().into_owned());
-    let tmp = dir.join(format!(
-        ".{}.tmp{}",
-        name.unwrap_or_else(|| "export".into()),
-        std::process::id()
-    ));
+    let name = out
+        .file_name()
+        .map_or_else(|| "export".into(), |n| n.to_string_lossy().into_owned());
+    remove_stale_temporaries(dir, &name);
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
@@ -62,6 +61,30 @@ fn write_atomic(out: &Path, bytes: &[u8]) -> std::io::Result<()> {
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+/// Remove the temporary files `.NAME.tmpPID` that an earlier export of the same output left
+/// when it was killed (kill -9, power loss): those whose process no longer runs (Linux: no
+/// `/proc/PID`). A running export's file, and anything else, is left alone.
+fn remove_stale_temporaries(dir: &Path, name: &str) {
+    let prefix = format!(".{name}.tmp");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file = entry.file_name();
+        let Some(pid) = file
+            .to_str()
+            .and_then(|f| f.strip_prefix(&prefix))
+            .and_then(|p| p.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        let running = Path::new("/proc").join(pid.to_string()).exists();
+        if pid != std::process::id() && Path::new("/proc/self").exists() && !running {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
 }
 
 fn is_identifier(s: &str) -> bool {
