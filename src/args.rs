@@ -61,12 +61,17 @@ pub(crate) fn parse_alpha(s: &str) -> Result<f64, String> {
     }
 }
 
+/// Largest `--tol`: a tolerance on P (in [−1, 1]) is meaningful well below its range.
+pub(crate) const MAX_TOL: f64 = 1e-2;
+
 pub(crate) fn parse_tol(s: &str) -> Result<f64, String> {
     let v = parse_f64(s)?;
-    if v.is_finite() && v > 0.0 {
+    if v > 0.0 && v <= MAX_TOL {
         Ok(v)
     } else {
-        Err("tol must be a finite number > 0 (e.g. 1e-6)".into())
+        Err(format!(
+            "tol must be a number > 0 and <= {MAX_TOL} (an absolute error of P; e.g. 1e-6)"
+        ))
     }
 }
 

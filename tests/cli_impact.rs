@@ -108,13 +108,14 @@ fn impact_json_accepts_alpha_inf() {
 
 #[test]
 fn invalid_values_fail_with_a_message_naming_the_flag() {
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 8] = [
         (&["--gamma", "0", "--alpha", "1"], "--gamma"),
         (&["--gamma", "-1", "--alpha", "1"], "--gamma"),
         (&["--gamma", "nan", "--alpha", "1"], "--gamma"),
         (&["--gamma", "1.754", "--alpha", "-0.1"], "--alpha"),
         (&["--gamma", "1.754", "--alpha", "nan"], "--alpha"),
         (&["--gamma", "1.754", "--alpha", "1", "--tol", "0"], "--tol"),
+        (&["--gamma", "1.754", "--alpha", "1", "--tol", "1"], "--tol"),
         (
             &[
                 "--gamma",

@@ -123,3 +123,30 @@ fn export_removes_the_temporary_file_a_killed_export_left() {
     );
     assert!(live.exists() && other.exists());
 }
+
+#[test]
+fn export_names_the_gamma_range_for_a_curve_outside_it() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("export_gamma-{}.bin", std::process::id()));
+    let o = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args([
+            "export",
+            &format!("{root}/tables/quick.h5"),
+            "--gamma",
+            "4",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .expect("run sweep");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--gamma 4") && err.contains("[0.5, 2.5]"),
+        "{err}"
+    );
+    // Export has no clamping and no alpha to ask for: the message must not offer them.
+    assert!(!err.contains("clamp") && !err.contains("alpha"), "{err}");
+    assert!(!out.exists());
+}

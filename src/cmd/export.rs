@@ -121,7 +121,15 @@ pub fn run(args: ExportArgs) -> Result<()> {
     oblique_table::write::check_output_not_input(&args.output, &[&args.table])?;
     let table = Table::open(&args.table)?;
     let mut curves = Vec::with_capacity(args.gammas.len());
+    let (g_min, g_max) = (table.surface().gamma_min(), table.surface().gamma_max());
     for &g in &args.gammas {
+        // A curve is a whole P(α) at one γ of the table: export has no clamping, so the message
+        // names the table's γ range only.
+        if !(g >= g_min && g <= g_max) {
+            return Err(Failure::usage(format!(
+                "--gamma {g}: outside the table's gamma domain [{g_min}, {g_max}]"
+            )));
+        }
         let curve = table.curve(g, OutOfDomain::Error)?;
         let data = curve
             .export_data()

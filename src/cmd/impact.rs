@@ -45,7 +45,8 @@ pub struct ImpactArgs {
     /// kelvin-voigt below. P at e_n < 1 depends on the law; answers name theirs.
     #[arg(long, value_parser = parse_law)]
     law: Option<Law>,
-    /// Target absolute error of P; the resolution is doubled until the error estimate is below it.
+    /// Target absolute error of P, > 0 and <= 1e-2; the resolution is doubled until the error
+    /// estimate is below it.
     #[arg(long, value_parser = parse_tol, allow_hyphen_values = true, conflicts_with_all = ["springs", "steps"])]
     tol: Option<f64>,
     /// Accuracy preset: fast (tol 1e-4), standard (1e-6, the default) or reference (1e-8).
