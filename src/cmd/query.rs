@@ -132,16 +132,13 @@ fn parse_line(line: &str, number: usize) -> Result<(f64, f64)> {
     Ok((g, a))
 }
 
-/// One input line of a batch: a point to answer, or a line passed through unchanged.
-enum BatchLine {
-    /// `gamma,alpha`: index into the point vectors.
-    Point,
-    /// A blank line, a `#` comment or the header, copied to the output as it is.
-    Verbatim(String),
-}
-
 /// Read a whole batch: every line is checked before anything is answered, so a bad line anywhere
 /// (or a point outside the domain) stops the batch with no output at all, whatever its size.
+///
+/// Memory: the points are held as two arrays of `f64` (16 bytes a point, up to twice that
+/// while they grow) and the answers as a third (8 bytes); the rare lines copied unchanged
+/// (blank, `#`, the header) are kept with their position, and a point's line number is derived
+/// from them when a message needs it.
 fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
     let input: Box<dyn BufRead> = if path.as_os_str() == "-" {
         Box::new(std::io::stdin().lock())
@@ -150,65 +147,87 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
             .map_err(|e| Failure::usage(format!("--batch {}: cannot open: {e}", path.display())))?;
         Box::new(std::io::BufReader::new(f))
     };
-    let (mut gammas, mut alphas, mut numbers) = (Vec::new(), Vec::new(), Vec::new());
-    let mut lines = Vec::new();
+    let (mut gammas, mut alphas) = (Vec::new(), Vec::new());
+    // (line index, text) of the lines copied unchanged, in order.
+    let mut verbatim: Vec<(usize, String)> = Vec::new();
     let mut header_allowed = true;
-    for (i, line) in input.lines().enumerate() {
+    let mut buf = String::new();
+    let mut input = input;
+    let mut i = 0usize;
+    loop {
+        buf.clear();
         let number = i + 1;
-        let line =
-            line.map_err(|e| Failure::usage(format!("batch line {number}: cannot read: {e}")))?;
+        let read = input
+            .read_line(&mut buf)
+            .map_err(|e| Failure::usage(format!("batch line {number}: cannot read: {e}")))?;
+        if read == 0 {
+            break;
+        }
+        let line = buf.trim_end_matches(['\n', '\r']);
         let line = if number == 1 {
-            line.strip_prefix('\u{feff}')
-                .map(str::to_owned)
-                .unwrap_or(line)
+            line.strip_prefix('\u{feff}').unwrap_or(line)
         } else {
             line
         };
         let text = line.trim();
         if text.is_empty() || text.starts_with('#') {
-            lines.push(BatchLine::Verbatim(line.trim_end().to_owned()));
-            continue;
-        }
-        if header_allowed && text.replace(' ', "").eq_ignore_ascii_case("gamma,alpha") {
+            verbatim.push((i, line.trim_end().to_owned()));
+        } else if header_allowed && text.replace(' ', "").eq_ignore_ascii_case("gamma,alpha") {
             header_allowed = false;
-            lines.push(BatchLine::Verbatim("gamma,alpha,P,e_t".into()));
-            continue;
+            verbatim.push((i, "gamma,alpha,P,e_t".into()));
+        } else {
+            header_allowed = false;
+            let (g, a) = parse_line(text, number)?;
+            gammas.push(g);
+            alphas.push(a);
         }
-        header_allowed = false;
-        let (g, a) = parse_line(text, number)?;
-        gammas.push(g);
-        alphas.push(a);
-        numbers.push(number);
-        lines.push(BatchLine::Point);
+        i += 1;
     }
+    gammas.shrink_to_fit();
+    alphas.shrink_to_fit();
+    // The line number of point `k`: its index plus the copied lines before it, plus one.
+    let line_of = |k: usize| {
+        let mut line = k;
+        for &(at, _) in &verbatim {
+            if at <= line {
+                line += 1;
+            } else {
+                break;
+            }
+        }
+        line + 1
+    };
     let mut ps = vec![0.0; gammas.len()];
     table
         .p_batch_par(&gammas, &alphas, &mut ps, outside)
         .map_err(|e| match e {
             LookupError::Batch { index, source } => {
-                Failure::usage(format!("batch line {}: {source} (--clamp)", numbers[index]))
+                Failure::usage(format!("batch line {}: {source} (--clamp)", line_of(index)))
             }
             other => usage(other),
         })?;
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
+    let mut copied = verbatim.iter().peekable();
     let mut points = gammas.iter().zip(&alphas).zip(&ps);
-    for line in &lines {
-        match line {
-            BatchLine::Verbatim(text) => writeln!(out, "{text}"),
-            BatchLine::Point => match points.next() {
-                Some(((g, a), p)) => writeln!(
-                    out,
-                    "{},{},{},{}",
-                    crate::args::fmt_num(*g),
-                    crate::args::fmt_num(*a),
-                    crate::args::fmt_num(*p),
-                    crate::args::fmt_num(tangential_restitution(*p))
-                ),
-                None => Ok(()),
-            },
+    for index in 0..i {
+        if copied.peek().is_some_and(|(at, _)| *at == index) {
+            if let Some((_, text)) = copied.next() {
+                writeln!(out, "{text}").context("writing the output")?;
+            }
+            continue;
         }
-        .context("writing the output")?;
+        if let Some(((g, a), p)) = points.next() {
+            writeln!(
+                out,
+                "{},{},{},{}",
+                crate::args::fmt_num(*g),
+                crate::args::fmt_num(*a),
+                crate::args::fmt_num(*p),
+                crate::args::fmt_num(tangential_restitution(*p))
+            )
+            .context("writing the output")?;
+        }
     }
     out.flush().context("writing the output")?;
     Ok(())
