@@ -182,6 +182,43 @@ fn fill_rows<E: Send>(
     })
 }
 
+/// [`new_rows`] for rows that each cost milliseconds or more (simulations): the rows run in
+/// waves of a few per worker thread, and between waves the interpreter's signal handlers run,
+/// so that Ctrl-C raises `KeyboardInterrupt` within one wave (about a second at most) instead
+/// of after the whole array. A row's error stops the array at the lowest failing row of its
+/// wave.
+fn new_rows_interruptible<'py, E: Send>(
+    py: Python<'py>,
+    rows: usize,
+    width: usize,
+    row: impl Fn(usize, &mut [f64]) -> Result<(), E> + Sync + Send,
+    error: impl FnOnce(usize, E) -> PyErr,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
+    {
+        let mut rw = out.readwrite();
+        let o = rw
+            .as_slice_mut()
+            .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
+        let wave = 4 * rayon::current_num_threads().max(1);
+        for (w, block) in o.chunks_mut(wave * width.max(1)).enumerate() {
+            let first = w * wave;
+            let failed = py.detach(|| {
+                block
+                    .par_chunks_mut(width.max(1))
+                    .enumerate()
+                    .filter_map(|(j, r)| row(first + j, r).err().map(|e| (first + j, e)))
+                    .min_by_key(|(i, _)| *i)
+            });
+            if let Some((i, e)) = failed {
+                return Err(error(i, e));
+            }
+            py.check_signals()?;
+        }
+    }
+    Ok(out)
+}
+
 /// A new `(rows, width)` array filled by [`fill_rows`]; the lowest failing row's error as
 /// `error(row, e)`.
 fn new_rows<'py, E: Send>(
@@ -915,12 +952,12 @@ fn impact<'py>(
         .map(Law::from_name)
         .transpose()
         .map_err(|err| PyValueError::new_err(format!("law: {err}")))?;
-    // One simulation takes 0.05-5 ms: parallel over single rows.
-    new_rows(
+    // One simulation takes 0.05-5 ms (up to 0.1 s at tol 1e-8): parallel over single rows, in
+    // waves that let Ctrl-C through.
+    new_rows_interruptible(
         py,
         rows,
         IMPACT.len(),
-        1,
         |i, r| {
             let req = Request::new(g.at(i), a.at(i))
                 .e_n(e.at(i))

@@ -296,3 +296,24 @@ def test_simulate_with_a_relaxation_time_matches_impact_at_its_e_n():
         before = 2.0 - kw.get("other_v_z", 0.0)
         after = sim.v_z - (sim.other_v_z if kw else 0.0)
         assert math.isclose(after, -sim.e_n * before, rel_tol=1e-9)
+
+
+def test_impact_over_an_array_stops_at_ctrl_c():
+    # 20 000 impacts at tol 1e-8 and γ = 3.3 take minutes; SIGINT after 0.5 s must raise
+    # KeyboardInterrupt between two waves of rows, not after the whole array.
+    import os
+    import signal
+    import threading
+    import time
+
+    g = np.full(20_000, 3.3)
+    a = np.linspace(1.0, 3.0, 20_000)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            oblique.impact(g, a, 1e-8)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 15.0
