@@ -25,8 +25,10 @@ arrays, the index; a file that is not a valid table raises :class:`TableError`.
 
 from __future__ import annotations
 
+import errno
 import math
 import os
+import stat
 from dataclasses import dataclass
 from typing import Any, NamedTuple, Optional, Sequence, Tuple, Union, overload
 
@@ -468,7 +470,20 @@ class Table:
     def __init__(self, path: Union[str, os.PathLike], clamp: bool = False) -> None:
         path = os.fspath(path)
         # The operating system's own error for a path that cannot be read (FileNotFoundError,
-        # IsADirectoryError, PermissionError), before the format is looked at.
+        # IsADirectoryError, PermissionError), before the format is looked at; a FIFO, device
+        # or socket is refused without opening it (opening a FIFO blocks until a writer comes).
+        mode = os.stat(path).st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), path)
+        if not stat.S_ISREG(mode):
+            kind = (
+                "a FIFO (named pipe)"
+                if stat.S_ISFIFO(mode)
+                else "a device"
+                if stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
+                else "not a regular file"
+            )
+            raise TableError(f"{path}: {kind}, not a table file; give the path of a table")
         with open(path, "rb"):
             pass
         self._t = _native.Table(path)

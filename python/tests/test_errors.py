@@ -427,3 +427,20 @@ def test_damaged_tables_do_not_crash_the_interpreter(tmp_path, table_paths):
     want = ["TableError"] * (len(names) - 2) + ["FileNotFoundError", "IsADirectoryError"]
     assert lines[:-1] == want, r.stdout
     assert lines[-1] == "still answers 1.0"
+
+
+def test_a_fifo_or_device_is_refused_without_blocking(tmp_path):
+    # Opening a FIFO for reading blocks until a writer comes: run in a child with a timeout.
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    for target in (str(fifo), "/dev/zero"):
+        r = subprocess.run(
+            [sys.executable, "-c",
+             "import sys, oblique\n"
+             "try:\n    oblique.Table(sys.argv[1])\n"
+             "except oblique.TableError as e:\n    print('refused:', e)\n",
+             target],
+            capture_output=True, text=True, timeout=60,
+        )
+        assert r.returncode == 0, r.stderr
+        assert "refused:" in r.stdout and target in r.stdout, r.stdout
