@@ -151,32 +151,42 @@ impl TangentialModel for crate::springs::SpringRow {
     }
 }
 
+/// The grid accessors of [`NormalModel`] for a trajectory tabulated in the fields
+/// `indentation`, `rate`, `dt`, `contact_time` and `max_indentation` (the Hertz and the
+/// Kelvin–Voigt trajectories).
+macro_rules! grid_accessors {
+    () => {
+        #[inline(always)]
+        fn steps(&self) -> usize {
+            self.indentation.len() - 1
+        }
+        #[inline(always)]
+        fn dt(&self) -> f64 {
+            self.dt
+        }
+        #[inline(always)]
+        fn contact_time(&self) -> f64 {
+            self.contact_time
+        }
+        #[inline(always)]
+        fn max_indentation(&self) -> f64 {
+            self.max_indentation
+        }
+        #[inline(always)]
+        fn indentation(&self, n: usize) -> f64 {
+            self.indentation[n]
+        }
+        #[inline(always)]
+        fn rate(&self, n: usize) -> f64 {
+            self.rate[n]
+        }
+    };
+}
+pub(crate) use grid_accessors;
+
 /// Hertz, elastic: `d̈ = −k (1/m1 + 1/m2) d^{3/2}`, tabulated on the contact's grid.
 impl NormalModel for crate::hertz::NormalTrajectory {
-    #[inline(always)]
-    fn steps(&self) -> usize {
-        self.indentation.len() - 1
-    }
-    #[inline(always)]
-    fn dt(&self) -> f64 {
-        self.dt
-    }
-    #[inline(always)]
-    fn contact_time(&self) -> f64 {
-        self.contact_time
-    }
-    #[inline(always)]
-    fn max_indentation(&self) -> f64 {
-        self.max_indentation
-    }
-    #[inline(always)]
-    fn indentation(&self, n: usize) -> f64 {
-        self.indentation[n]
-    }
-    #[inline(always)]
-    fn rate(&self, n: usize) -> f64 {
-        self.rate[n]
-    }
+    grid_accessors!();
     #[inline(always)]
     fn acceleration(&self, d: f64, _rate: f64) -> f64 {
         -self.accel_factor * d * d.max(0.0).sqrt()

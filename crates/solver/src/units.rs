@@ -90,6 +90,19 @@ pub struct PhysicalOutcome {
     pub resolution: Resolution,
 }
 
+/// The [`NormalSummary`] of a normal trajectory (Hertz or Kelvin–Voigt: the same fields).
+macro_rules! summary {
+    ($n:expr) => {
+        NormalSummary {
+            contact_time: $n.contact_time,
+            peak_force: $n.peak_force,
+            max_indentation: $n.max_indentation,
+            delta_v1: $n.delta_v1,
+            delta_v2: $n.delta_v2,
+        }
+    };
+}
+
 /// What the tangential contact and the outcome need of a normal motion.
 struct NormalSummary {
     contact_time: f64,
@@ -306,13 +319,7 @@ impl PhysicalImpact {
                 groups.g_star,
                 limit,
             );
-            NormalSummary {
-                contact_time: normal.contact_time,
-                peak_force: normal.peak_force,
-                max_indentation: normal.max_indentation,
-                delta_v1: normal.delta_v1,
-                delta_v2: normal.delta_v2,
-            }
+            summary!(normal)
         } else {
             let normal = NormalBodies {
                 inv_mass1: bodies.inv_m1,
@@ -329,13 +336,7 @@ impl PhysicalImpact {
                 groups.g_star,
                 limit,
             );
-            NormalSummary {
-                contact_time: normal.contact_time,
-                peak_force: normal.peak_force,
-                max_indentation: normal.max_indentation,
-                delta_v1: normal.delta_v1,
-                delta_v2: normal.delta_v2,
-            }
+            summary!(normal)
         };
         let u0 = groups.slip_velocity;
         let p = (u0 != 0.0).then(|| bodies.slip_velocity() / u0);

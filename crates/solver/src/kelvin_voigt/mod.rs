@@ -192,30 +192,7 @@ pub fn dimensionless_p(shear: f64, limit: f64, tau: f64, res: Resolution) -> f64
 }
 
 impl NormalModel for ViscoelasticTrajectory {
-    #[inline(always)]
-    fn steps(&self) -> usize {
-        self.indentation.len() - 1
-    }
-    #[inline(always)]
-    fn dt(&self) -> f64 {
-        self.dt
-    }
-    #[inline(always)]
-    fn contact_time(&self) -> f64 {
-        self.contact_time
-    }
-    #[inline(always)]
-    fn max_indentation(&self) -> f64 {
-        self.max_indentation
-    }
-    #[inline(always)]
-    fn indentation(&self, n: usize) -> f64 {
-        self.indentation[n]
-    }
-    #[inline(always)]
-    fn rate(&self, n: usize) -> f64 {
-        self.rate[n]
-    }
+    crate::model::grid_accessors!();
     #[inline(always)]
     fn acceleration(&self, d: f64, rate: f64) -> f64 {
         let law = &self.law;
