@@ -194,12 +194,7 @@ fn new_rows_interruptible<'py, E: Send>(
     row: impl Fn(usize, &mut [f64]) -> Result<(), E> + Sync + Send,
     error: impl FnOnce(usize, E) -> PyErr,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
-    {
-        let mut rw = out.readwrite();
-        let o = rw
-            .as_slice_mut()
-            .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
+    new_array(py, rows, width, |o| {
         let wave = 4 * rayon::current_num_threads().max(1);
         for (w, block) in o.chunks_mut(wave * width.max(1)).enumerate() {
             let first = w * wave;
@@ -215,6 +210,24 @@ fn new_rows_interruptible<'py, E: Send>(
             }
             py.check_signals()?;
         }
+        Ok(())
+    })
+}
+
+/// A new zeroed `(rows, width)` array, filled in place by `fill`.
+fn new_array<'py>(
+    py: Python<'py>,
+    rows: usize,
+    width: usize,
+    fill: impl FnOnce(&mut [f64]) -> PyResult<()>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
+    {
+        let mut rw = out.readwrite();
+        let o = rw
+            .as_slice_mut()
+            .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
+        fill(o)?;
     }
     Ok(out)
 }
@@ -229,15 +242,9 @@ fn new_rows<'py, E: Send>(
     row: impl Fn(usize, &mut [f64]) -> Result<(), E> + Sync + Send,
     error: impl FnOnce(usize, E) -> PyErr,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let out = PyArray2::<f64>::zeros(py, [rows, width], false);
-    {
-        let mut rw = out.readwrite();
-        let o = rw
-            .as_slice_mut()
-            .map_err(|_| PyRuntimeError::new_err("output array is not contiguous"))?;
-        fill_rows(py, o, width, chunk, row).map_err(|(i, e)| error(i, e))?;
-    }
-    Ok(out)
+    new_array(py, rows, width, |o| {
+        fill_rows(py, o, width, chunk, row).map_err(|(i, e)| error(i, e))
+    })
 }
 
 fn slice_mut<'a>(name: &str, a: &'a mut PyReadwriteArray1<'_, f64>) -> PyResult<&'a mut [f64]> {
