@@ -322,6 +322,8 @@ pub struct ViscoelasticRow {
     /// [`ViscoelasticRow::enter`]); `None` before the first step with a finite limit.
     entry: [f64; 2],
     entry_set: bool,
+    /// Length of the half-row stuck after the last step (m).
+    stuck: f64,
     /// The last step length and its [`Update::decay`] (the grid's steps repeat).
     last_decay: (f64, (f64, f64)),
     /// Whether this step's relaxation forgot the slipping states' start values (the decay
@@ -344,6 +346,7 @@ impl ViscoelasticRow {
             reach: 0.0,
             entry: [0.0; 2],
             entry_set: false,
+            stuck: 0.0,
             last_decay: (f64::NAN, (0.0, 0.0)),
             memoryless: false,
             at_limit: (false, false),
@@ -359,7 +362,7 @@ impl ViscoelasticRow {
 
     /// Length (m) of the half-row that is stuck after the last step.
     pub fn stuck_length(&self) -> f64 {
-        self.chunks.iter().map(|c| c.stuck_length).sum()
+        self.stuck
     }
 
     /// Whether some part of the contact slips at the `+` / `−` limit (after the last step).
@@ -446,8 +449,10 @@ impl ViscoelasticRow {
         let r = self.radius;
         let (mut any_plus, mut any_minus) = (false, false);
         let mut integral = 0.0;
+        let mut stuck = 0.0;
         for ch in &self.chunks {
             integral += ch.rel_integral + (w + up.viscous) * ch.stuck_length;
+            stuck += ch.stuck_length;
             if finite {
                 let lim = |i: usize| c * (load1 * ch.slip_length[i] - ch.slip_cube[i] / (3.0 * r));
                 integral += lim(0) - lim(1);
@@ -456,8 +461,10 @@ impl ViscoelasticRow {
             }
         }
         self.at_limit = (any_plus, any_minus);
+        self.stuck = stuck;
         let a1 = (r * reach1).sqrt();
-        let mean = if a1 > 0.0 && self.pieces() > 0 {
+        // Chunks are removed when they empty: pieces exist iff a chunk does.
+        let mean = if a1 > 0.0 && !self.chunks.is_empty() {
             integral / a1
         } else if finite {
             0.0
