@@ -90,6 +90,10 @@ fn print_summary(res: &SuiteResult) -> Result<()> {
     )?;
     outln!("  {}", res.method)?;
     outln!("  closed-form checks (closed form | computed | difference | bound):")?;
+    outln!(
+        "  (ok: an exact result, asserted within its bound; fit: a published fit, shown for \
+         comparison only, its bound the fit's stated accuracy)"
+    )?;
     for c in &res.checks {
         let mark = match (c.exact, c.holds()) {
             (true, true) => "ok  ",
