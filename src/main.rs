@@ -69,6 +69,13 @@ same output is refused, naming the first. The output must be a regular file or n
 Config keys, defaults and ranges: docs/config.md. The file format: docs/table-format.md.")]
     Run(cmd::run::RunArgs),
     /// Print a table's domain, node counts, error statistics and provenance.
+    #[command(after_help = "Examples:\n  \
+sweep inspect tables/full.h5\n  \
+sweep inspect out/full.h5        # the table the main job built\n\n\
+Per patch: its regime and gamma range, roots and leaves, the nodes stored and the largest node\n\
+error estimate; then the held-out checks (maximum and rms interpolation error), the stated\n\
+error bound and the build's provenance (date, time, engine commit, solver settings). The\n\
+format: docs/table-format.md.")]
     Inspect(cmd::inspect::InspectArgs),
     /// Merge the parts of a sharded run (`sweep run CONFIG --shard K/N -o PART`) into the table.
     #[command(after_help = "Examples:\n  \
