@@ -367,11 +367,18 @@ class Simulation:
     in :class:`Rebound2D`."""
 
     v_x: float
+    """Tangential velocity of sphere 1 after (m/s)."""
     v_z: float
+    """Normal velocity of sphere 1 after (m/s): the relative normal velocity reverses with
+    ``e_n``."""
     omega: float
+    """Spin of sphere 1 after (rad/s)."""
     other_v_x: Optional[float]
+    """Tangential velocity of sphere 2 after (m/s); ``None`` for a wall."""
     other_v_z: Optional[float]
+    """Normal velocity of sphere 2 after (m/s); ``None`` for a wall."""
     other_omega: Optional[float]
+    """Spin of sphere 2 after (rad/s); ``None`` for a wall."""
     p: float
     """P = u_after/u0 (NaN when u0 = 0)."""
     error_estimate: float
@@ -388,7 +395,9 @@ class Simulation:
     """Dimensionless relaxation time τ̂ of the impact (0 for elastic bodies): that of
     :func:`impact` at the same ``e_n``."""
     springs: int
+    """Springs on the half-row of the finest run (0: the continuum row)."""
     steps: int
+    """Time steps per contact of the finest run."""
     groups: Groups
     """γ, α and the effective quantities of the impact."""
 
