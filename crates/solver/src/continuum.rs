@@ -228,6 +228,39 @@ impl PieceChunk for Chunk {
     }
 }
 
+/// Drop every part of `chunks` at `y ≥ top` (points leaving contact drop to zero): whole
+/// pieces from the end, and the piece across `top` cut there and passed to `refresh`.
+pub(crate) fn truncate<C: PieceChunk<Piece = Piece>>(
+    chunks: &mut Vec<C>,
+    top: f64,
+    radius: f64,
+    refresh: impl Fn(&mut Piece),
+) {
+    while let Some(ch) = chunks.last_mut() {
+        let pieces = ch.pieces_mut();
+        while pieces.last().is_some_and(|p| p.y0 >= top) {
+            pieces.pop();
+        }
+        if pieces.is_empty() {
+            chunks.pop();
+            continue;
+        }
+        let mut cut = false;
+        if let Some(p) = pieces.last_mut() {
+            if p.y1 > top {
+                p.y1 = top;
+                p.x1 = (radius * top).sqrt();
+                refresh(p);
+                cut = true;
+            }
+        }
+        if cut {
+            ch.summarize();
+        }
+        break;
+    }
+}
+
 /// Put `pieces` into chunk `k` of `chunks`, splitting it in two when it holds more than `max`;
 /// returns the number of chunks they occupy (0 when empty: the chunk is removed). `spare` is
 /// the scratch buffer of the next update.
@@ -452,26 +485,11 @@ impl ContinuumRow {
     /// Drop everything at `y ≥ top` (points leaving contact drop to zero).
     fn truncate(&mut self, top: f64, c: f64) {
         let radius = self.radius;
-        while let Some(ch) = self.chunks.last_mut() {
-            while ch.pieces.last().is_some_and(|p| p.y0 >= top) {
-                ch.pieces.pop();
+        truncate(&mut self.chunks, top, radius, |p| {
+            if p.kind == Kind::Stuck {
+                p.refresh(c, radius);
             }
-            if ch.pieces.is_empty() {
-                self.chunks.pop();
-                continue;
-            }
-            if let Some(p) = ch.pieces.last_mut() {
-                if p.y1 > top {
-                    p.y1 = top;
-                    p.x1 = (radius * top).sqrt();
-                    if p.kind == Kind::Stuck {
-                        p.refresh(c, radius);
-                    }
-                    ch.summarize();
-                }
-            }
-            break;
-        }
+        });
     }
 
     /// Apply the step to every piece of chunk `k` (after the offset moved by `dw`); returns the

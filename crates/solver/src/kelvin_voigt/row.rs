@@ -22,7 +22,7 @@
 //! `∫ v dx` is integrated exactly. Transitions happen at the end of a step (local error O(h²)
 //! once per spring: second order overall).
 
-use crate::continuum::{install, roots_inside, Kind, Piece, PieceChunk};
+use crate::continuum::{install, roots_inside, truncate, Kind, Piece, PieceChunk};
 use crate::springs::{StepMotion, StepResult};
 
 /// A piece of this row on `[y0, y1]` with `z = y − y_ref` (the elastic row's [`Piece`]): a
@@ -492,7 +492,6 @@ impl ViscoelasticRow {
         let mut cuts = [0.0, 1.0, 1.0, 1.0];
         let mut n = 1;
         if c.is_finite() {
-            let rate = |t: f64| m.rate0 + (m.rate1 - m.rate0) * t;
             for sign in [1.0, -1.0] {
                 // sign ẇ(θ) − c ḋ(θ) = A + B θ.
                 let a0 = sign * vel - c * m.rate0;
@@ -505,7 +504,6 @@ impl ViscoelasticRow {
                     }
                 }
             }
-            let _ = rate;
         }
         let cuts = &mut cuts[..=n];
         cuts[n] = 1.0;
@@ -568,26 +566,7 @@ impl ViscoelasticRow {
         let k = -up.c * up.forcing(0.0, up.h, decay);
         if self.frames[0].scale * e < FRAME_UNDERFLOW {
             // Rewrite every slipping piece in the identity frame with its relaxed δ.
-            let frames = self.frames;
-            let r = self.radius;
-            for ch in &mut self.chunks {
-                for p in &mut ch.pieces {
-                    let (f, s) = match p.kind {
-                        Kind::Stuck => continue,
-                        Kind::Plus => (frames[0], 1.0),
-                        Kind::Minus => (frames[1], -1.0),
-                    };
-                    p.a = e * f.actual(p.a) + s * k;
-                    p.b *= e * f.scale;
-                    p.q *= e * f.scale;
-                    refresh(p, up.c, r);
-                }
-                ch.summarize();
-            }
-            for (i, s) in [(0, 1.0), (1, -1.0)] {
-                self.entry[i] = e * frames[i].actual(self.entry[i]) + s * k;
-            }
-            self.frames = [Frame::IDENTITY; 2];
+            self.rewrite_frames(up.c, e, k);
             self.memoryless = true;
             return;
         }
@@ -599,50 +578,38 @@ impl ViscoelasticRow {
 
     /// Rewrite every slipping piece in the identity frame.
     fn reset_frames(&mut self, c: f64) {
+        self.rewrite_frames(c, 1.0, 0.0);
+    }
+
+    /// Rewrite every slipping piece (and the entry state) in the identity frame, its actual
+    /// `δ` mapped by `δ ↦ e δ + s k` on the way (`e = 1`, `k = 0`: unchanged).
+    fn rewrite_frames(&mut self, c: f64, e: f64, k: f64) {
         let frames = self.frames;
         let r = self.radius;
         for ch in &mut self.chunks {
             for p in &mut ch.pieces {
-                let f = match p.kind {
+                let (f, s) = match p.kind {
                     Kind::Stuck => continue,
-                    Kind::Plus => frames[0],
-                    Kind::Minus => frames[1],
+                    Kind::Plus => (frames[0], 1.0),
+                    Kind::Minus => (frames[1], -1.0),
                 };
-                p.a = f.actual(p.a);
-                p.b *= f.scale;
-                p.q *= f.scale;
+                p.a = e * f.actual(p.a) + s * k;
+                p.b *= e * f.scale;
+                p.q *= e * f.scale;
                 refresh(p, c, r);
             }
             ch.summarize();
         }
-        self.entry = [
-            frames[0].actual(self.entry[0]),
-            frames[1].actual(self.entry[1]),
-        ];
+        for (i, s) in [(0, 1.0), (1, -1.0)] {
+            self.entry[i] = e * frames[i].actual(self.entry[i]) + s * k;
+        }
         self.frames = [Frame::IDENTITY; 2];
     }
 
-    /// Drop everything at `y ≥ top`.
+    /// Drop everything at `y ≥ top` ([`truncate`]).
     fn truncate(&mut self, top: f64, c: f64) {
         let r = self.radius;
-        while let Some(ch) = self.chunks.last_mut() {
-            while ch.pieces.last().is_some_and(|p| p.y0 >= top) {
-                ch.pieces.pop();
-            }
-            if ch.pieces.is_empty() {
-                self.chunks.pop();
-                continue;
-            }
-            if let Some(p) = ch.pieces.last_mut() {
-                if p.y1 > top {
-                    p.y1 = top;
-                    p.x1 = (r * top).sqrt();
-                    refresh(p, c, r);
-                    ch.summarize();
-                }
-            }
-            break;
-        }
+        truncate(&mut self.chunks, top, r, |p| refresh(p, c, r));
     }
 
     fn update_chunk(&mut self, k: usize, up: &Update, t_plus: f64, t_minus: f64) -> usize {
