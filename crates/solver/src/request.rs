@@ -125,10 +125,7 @@ impl Request {
             s.law = self.law;
             return Ok(s);
         }
-        let gamma = check_gamma(self.gamma)?;
-        let alpha = check_alpha(self.alpha)?;
-        self.check_scheme()?;
-        let tau = kelvin_voigt::tau_for_restitution(e_n)?;
+        let (gamma, alpha, tau) = self.dissipative(e_n)?;
         let closed = dissipative_closed_form(gamma, alpha, e_n);
         let mut s = solve_core(
             (
@@ -155,14 +152,15 @@ impl Request {
         if e_n == 1.0 {
             return simulate_elastic(self.gamma, self.alpha, res, self.scheme);
         }
-        let gamma = check_gamma(self.gamma)?;
-        let alpha = check_alpha(self.alpha)?;
-        self.check_scheme()?;
-        let tau = kelvin_voigt::tau_for_restitution(e_n)?;
+        let (gamma, alpha, tau) = self.dissipative(e_n)?;
         self.simulate_with(gamma, alpha, tau, res)
     }
 
-    fn check_scheme(&self) -> Result<(), PhysicsError> {
+    /// The checked `(γ, α)` of a Kelvin–Voigt request (`e_n < 1`, checked) and the relaxation
+    /// time `τ̂` of its `e_n`; the scheme must be the accurate one.
+    fn dissipative(&self, e_n: f64) -> Result<(f64, f64, f64), PhysicsError> {
+        let gamma = check_gamma(self.gamma)?;
+        let alpha = check_alpha(self.alpha)?;
         if self.scheme != Scheme::Accurate {
             return Err(PhysicsError::InvalidParameter {
                 name: "scheme",
@@ -170,7 +168,7 @@ impl Request {
                 allowed: "accurate for e_n < 1 (the euler scheme is elastic only)",
             });
         }
-        Ok(())
+        Ok((gamma, alpha, kelvin_voigt::tau_for_restitution(e_n)?))
     }
 
     fn simulate_with(
