@@ -26,8 +26,26 @@
  * -ffp-contract=off, which ISO modes such as -std=c99 select in GCC): the same operations in
  * the same order. Otherwise they differ by rounding only (a few units in the last place).
  *
- * GPU codes: define OBLQ_FN before including (e.g. `#define OBLQ_FN __host__ __device__ static
- * inline`) to mark every function.
+ * GPU codes (CUDA): `#define OBLQ_FN __host__ __device__ static inline` before including marks
+ * every function for host and device code alike (none calls a host-only function). Open the
+ * export on the host, copy its bytes to the device, and move a copy of the table there:
+ *
+ *   oblq_table host, dev;                          // host: checks the bytes at `bytes`
+ *   oblq_open(&host, bytes, size);
+ *   cudaMalloc(&d_bytes, size); cudaMemcpy(d_bytes, bytes, size, cudaMemcpyHostToDevice);
+ *   dev = host;
+ *   oblq_rebase(&dev, d_bytes);                    // dev's pointers now point into d_bytes
+ *   kernel<<<blocks, threads>>>(dev, ...);         // by value; oblq_p(&dev, ...) in the kernel
+ *
+ * (oblq_curve_rebase moves a curve the same way; oblq_open also runs in a kernel, on one
+ * thread, but reads the whole export serially.) Compiled with nvcc -fmad=false (no fused
+ * multiply-add, as -ffp-contract=off on the host; without it oblq_open and oblq_curve_get,
+ * which check stored values against the rule's to the bit, may refuse a sound export), device
+ * answers are the host's bit for bit except where CUDA's double log, within 1 ulp of the exact
+ * logarithm but not always rounded as the host's libm, differs: in partial slip, where P then
+ * differs in the last bits only (a few 1e-15 at most: 2e-15 at 1.7e7 random points with half
+ * of the logs off by an ulp).
+ * examples/cuda/oblique_gpu.cu does all of this and compares the device with the host.
  */
 #ifndef OBLIQUE_EVAL_H
 #define OBLIQUE_EVAL_H
@@ -302,6 +320,17 @@ OBLQ_FN double oblq_linear_limit(double gamma);
 OBLQ_FN double oblq_alpha_c2(double gamma);
 OBLQ_FN double oblq__stick_scale(double gamma);
 
+/* Whether a stored logarithm is the one computed here: to the bit on the host; within 2^-51
+   relative in CUDA device code, whose log is within 1 ulp but not always rounded as the host
+   libm's that wrote the export. */
+OBLQ_FN int oblq__same_log(double stored, double computed) {
+#ifdef __CUDA_ARCH__
+    return fabs(stored - computed) <= 4.440892098500626e-16 * fabs(computed);
+#else
+    return stored == computed;
+#endif
+}
+
 OBLQ_FN int oblq__curve_at(const oblq_table *t, size_t i, oblq_curve *c) {
     const unsigned char *r = t->data + t->curves + 168 * i;
     double v[10];
@@ -332,7 +361,7 @@ OBLQ_FN int oblq__curve_at(const oblq_table *t, size_t i, oblq_curve *c) {
         if (c->alpha_lin != oblq_linear_limit(c->gamma) || c->alpha_c2 != oblq_alpha_c2(c->gamma) ||
             c->g2 != g2 || c->ratio != g2 - 1.0 || c->stick_c2 != sc2 || c->rho_c2 != rc2)
             return OBLQ_E_CORRUPT;
-        if (c->high && c->ln_ratio != log(g2 - 1.0)) return OBLQ_E_CORRUPT;
+        if (c->high && !oblq__same_log(c->ln_ratio, log(g2 - 1.0))) return OBLQ_E_CORRUPT;
         if (isinf(c->alpha_max) ? !isnan(c->s_max) : c->s_max != dm / (dm + rc2))
             return OBLQ_E_CORRUPT;
     }
@@ -353,7 +382,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     oblq_curve c;
     if (!t || !data) return OBLQ_E_NULL;
     if (size < 8) return OBLQ_E_TRUNCATED;
-    if (memcmp(d, "OBLQEVAL", 8) != 0) return OBLQ_E_FORMAT;
+    for (k = 0; k < 8; k++) /* a byte loop, not memcmp: device code has no memcmp */
+        if (d[k] != (unsigned char)"OBLQEVAL"[k]) return OBLQ_E_FORMAT;
     if (size < 96) return OBLQ_E_TRUNCATED;
     if (oblq__u32(d + 8) != OBLQ_EXPORT_VERSION) return OBLQ_E_VERSION;
     if (oblq__u32(d + 12) != 96) return OBLQ_E_CORRUPT;
@@ -401,6 +431,37 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         return OBLQ_E_CORRUPT;
     }
     if (!out.has_surface && out.n_curves == 0) return OBLQ_E_CORRUPT;
+    *t = out;
+    return OBLQ_OK;
+}
+
+/* The pointer at `p` into the copy at `from`, moved to the same offset in the copy at `to`
+   (NULL stays NULL). Integer arithmetic: `to` may be an address the caller cannot read. */
+OBLQ_FN const void *oblq__moved(const void *p, const void *from, const void *to) {
+    if (!p) return NULL;
+    return (const void *)((uintptr_t)to + ((uintptr_t)p - (uintptr_t)from));
+}
+
+/* Make `t` (checked by oblq_open) refer to another copy of the same bytes at `data`: a GPU
+   code opens the export on the host, copies its bytes to the device (cudaMalloc, cudaMemcpy)
+   and rebases a copy of the table to that address, then passes the table to kernels by value.
+   Only the table's pointers change; `data` is not read (it may be device memory), so it must
+   hold the bytes oblq_open checked, unchanged, 8-byte aligned (cudaMalloc's are). */
+OBLQ_FN int oblq_rebase(oblq_table *t, const void *data) {
+    oblq_table out;
+    size_t k;
+    if (!t || !data || !t->data) return OBLQ_E_NULL;
+    if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
+    out = *t;
+    for (k = 0; k < 3; k++) {
+        oblq_patch *p = &out.patch[k];
+        p->tree = (const unsigned char *)oblq__moved(p->tree, t->data, data);
+        p->p = (const double *)oblq__moved(p->p, t->data, data);
+        p->knot = (const double *)oblq__moved(p->knot, t->data, data);
+        p->index = (const unsigned char *)oblq__moved(p->index, t->data, data);
+        p->origin = (const double *)oblq__moved(p->origin, t->data, data);
+    }
+    out.data = (const unsigned char *)data;
     *t = out;
     return OBLQ_OK;
 }
@@ -660,6 +721,29 @@ OBLQ_FN int oblq_curve_find(const oblq_table *t, double gamma, double rel_tol, o
     }
     if (!(dbest <= rel_tol * gamma)) return OBLQ_E_NO_CURVE;
     return oblq_curve_get(t, best, c);
+}
+
+/* Make a curve of the table `from` (oblq_curve_get or oblq_curve_find) refer to the same
+   bytes in `to`, a copy of `from` moved by oblq_rebase (e.g. to the device). OBLQ_E_NO_CURVE
+   when the curve does not point into `from`'s export. */
+OBLQ_FN int oblq_curve_rebase(oblq_curve *c, const oblq_table *from, const oblq_table *to) {
+    oblq_curve out;
+    oblq_piece *pc[2];
+    int k;
+    if (!c || !from || !to || !from->data || !to->data) return OBLQ_E_NULL;
+    if (from->size != to->size) return OBLQ_E_CORRUPT;
+    out = *c;
+    pc[0] = &out.partial;
+    pc[1] = &out.stick;
+    for (k = 0; k < 2; k++) {
+        uintptr_t at = (uintptr_t)pc[k]->coef, lo = (uintptr_t)from->data;
+        if (!pc[k]->present) continue;
+        if (at < lo || at - lo > from->size || 32 * (uint64_t)pc[k]->n > from->size - (at - lo))
+            return OBLQ_E_NO_CURVE;
+        pc[k]->coef = (const double *)oblq__moved(pc[k]->coef, from->data, to->data);
+    }
+    *c = out;
+    return OBLQ_OK;
 }
 
 OBLQ_FN double oblq__piece_eval(const oblq_piece *pc, double c) {

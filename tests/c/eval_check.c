@@ -51,6 +51,52 @@ static int open_or_die(oblq_table *t, unsigned char *d, size_t n) {
     return rc;
 }
 
+/* Open the export at *d, then move the table (and the curve `index`, when >= 0, made from the
+   first copy) to a fresh copy of the bytes with oblq_rebase and oblq_curve_rebase, as a GPU code
+   does for its device copy, and wipe and free the first copy: every query then reads the new
+   copy only (a pointer left behind reads wiped bytes, or freed memory under AddressSanitizer). */
+static void open_moved(oblq_table *t, unsigned char **d, size_t n, long index, oblq_curve *c) {
+    oblq_table first, other;
+    unsigned char *copy = (unsigned char *)malloc(n + 8);
+    int rc;
+    open_or_die(&first, *d, n);
+    if (index >= 0) {
+        rc = oblq_curve_get(&first, (size_t)index, c);
+        if (rc != OBLQ_OK) {
+            fprintf(stderr, "eval_check: %s\n", oblq_error_message(rc));
+            exit(3);
+        }
+    }
+    if (!copy) exit(1);
+    memcpy(copy, *d, n);
+    *t = first;
+    /* Refusals first: they leave the table and curve unchanged. */
+    if (oblq_rebase(NULL, copy) != OBLQ_E_NULL || oblq_rebase(t, NULL) != OBLQ_E_NULL ||
+        oblq_rebase(t, copy + 4) != OBLQ_E_CORRUPT || t->data != *d) {
+        fprintf(stderr, "eval_check: oblq_rebase: a refusal failed\n");
+        exit(4);
+    }
+    rc = oblq_rebase(t, copy);
+    if (rc != OBLQ_OK || t->data != copy) {
+        fprintf(stderr, "eval_check: oblq_rebase: %d\n", rc);
+        exit(4);
+    }
+    if (index >= 0) {
+        other = first;
+        other.size -= 8;
+        if (oblq_curve_rebase(c, t, &first) != OBLQ_E_NO_CURVE ||
+            oblq_curve_rebase(c, &first, &other) != OBLQ_E_CORRUPT ||
+            oblq_curve_rebase(NULL, &first, t) != OBLQ_E_NULL ||
+            (rc = oblq_curve_rebase(c, &first, t)) != OBLQ_OK) {
+            fprintf(stderr, "eval_check: oblq_curve_rebase: wrong status\n");
+            exit(4);
+        }
+    }
+    memset(*d, 0xa5, n);
+    free(*d);
+    *d = copy;
+}
+
 static unsigned long long rng_state;
 static unsigned long long next_u64(void) {
     unsigned long long z = (rng_state += 0x9e3779b97f4a7c15ULL);
@@ -166,7 +212,7 @@ int main(int argc, char **argv) {
     } else if (!strcmp(argv[1], "p") && argc == 4) {
         double g, a, p;
         int clamp = atoi(argv[3]);
-        open_or_die(&t, d, n);
+        open_moved(&t, &d, n, -1, NULL);
         while (scanf("%lf %lf", &g, &a) == 2) {
             int rc = oblq_p(&t, g, a, clamp, &p);
             if (rc == OBLQ_OK) g17(p);
@@ -177,12 +223,7 @@ int main(int argc, char **argv) {
         oblq_curve c;
         double a, p;
         int rc, clamp = atoi(argv[4]);
-        open_or_die(&t, d, n);
-        rc = oblq_curve_get(&t, (size_t)atol(argv[3]), &c);
-        if (rc != OBLQ_OK) {
-            fprintf(stderr, "eval_check: %s\n", oblq_error_message(rc));
-            return 3;
-        }
+        open_moved(&t, &d, n, atol(argv[3]), &c);
         while (scanf("%lf", &a) == 1) {
             rc = oblq_curve_p(&c, a, clamp, &p);
             if (rc == OBLQ_OK) g17(p);
@@ -199,7 +240,7 @@ int main(int argc, char **argv) {
         oblq_curve c;
         double gamma, mu;
         int rc;
-        open_or_die(&t, d, n);
+        open_moved(&t, &d, n, -1, NULL);
         b1.mass = atof(a[0]);
         b1.radius = atof(a[1]);
         b1.kappa = atof(a[2]);
