@@ -1484,7 +1484,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
     oblique_table::write::seal(&wrong_format).unwrap();
     refused(&wrong_format, &["not a p table"]);
 
-    for (name, version) in [("schema1.h5", 1.0), ("schema4.h5", 4.0)] {
+    for (name, version) in [("schema1.h5", 1.0), ("schema5.h5", 5.0)] {
         let other = dir.join(name);
         std::fs::copy(&fx.table, &other).unwrap();
         {
@@ -1572,6 +1572,7 @@ fn built_with_warp(path: &Path, warp: &Warp) -> oblique_sweep::Built {
             gamma,
             coord,
             alpha,
+            e_n: Vec::new(),
             leaf_error: f64s(&g, "leaf_predicted_error"),
             leaf_depth: leaf_depth.iter().map(|&d| d as u32).collect(),
             unique_nodes: 0,

@@ -420,7 +420,23 @@ fn files_with_a_bad_warp_are_refused_naming_the_field() {
 }
 
 #[test]
-fn schema_4_is_refused() {
+fn schema_5_is_refused() {
+    let path = write(
+        "schema5.h5",
+        &Spec {
+            schema: 5.0,
+            ..good()
+        },
+    );
+    let msg = Table::open(&path)
+        .map(|_| ())
+        .expect_err("schema 5")
+        .to_string();
+    assert!(msg.contains("schema version 5"), "{msg}");
+}
+
+#[test]
+fn schema_4_without_its_axes_attribute_is_refused_naming_it() {
     let path = write(
         "schema4.h5",
         &Spec {
@@ -430,7 +446,7 @@ fn schema_4_is_refused() {
     );
     let msg = Table::open(&path)
         .map(|_| ())
-        .expect_err("schema 4")
+        .expect_err("schema 4 without axes")
         .to_string();
-    assert!(msg.contains("schema version 4"), "{msg}");
+    assert!(msg.contains("'axes'"), "{msg}");
 }

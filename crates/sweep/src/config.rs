@@ -79,6 +79,20 @@ pub struct Domain {
     /// Upper end of α: a number > α_c2(gamma_max), or "inf" (default) to include no slip.
     #[serde(default = "default_alpha_max", deserialize_with = "alpha_max_de")]
     pub alpha_max: f64,
+    /// Lowest normal restitution `e_n` of a table with an `e_n` axis (with `e_n_max`; in
+    /// [0.3, 1)): the table is then `P(γ, α, e_n)` of the law `solver.law`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub e_n_min: Option<f64>,
+    /// Highest normal restitution `e_n` (with `e_n_min`; in (e_n_min, 1]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub e_n_max: Option<f64>,
+}
+
+impl Domain {
+    /// The `e_n` range of a table with an `e_n` axis (`None`: elastic, `e_n = 1`).
+    pub fn e_n_range(&self) -> Option<(f64, f64)> {
+        Some((self.e_n_min?, self.e_n_max?))
+    }
 }
 
 /// `[nodes]`: how nodes are placed.
@@ -105,6 +119,9 @@ pub struct Nodes {
     /// Root cells along the patch coordinate.
     #[serde(default = "default_blocks_coord")]
     pub blocks_coord: usize,
+    /// Root cells along `e_n` (a table with an `e_n` axis; default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blocks_e_n: Option<usize>,
     /// Refuse to place more nodes than this in total.
     #[serde(default = "default_max_nodes")]
     pub max_nodes: usize,
@@ -143,6 +160,10 @@ pub struct Solver {
     pub tol: f64,
     /// The preset `tol` came from, if any.
     pub preset: Option<String>,
+    /// The contact law of a table with an `e_n` axis: `kelvin-voigt` (the default there, and
+    /// the only dissipative law); `elastic` (or absent) otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub law: Option<String>,
 }
 
 /// `[solver]` as written.
@@ -151,20 +172,30 @@ pub struct Solver {
 struct RawSolver {
     tol: Option<f64>,
     preset: Option<String>,
+    law: Option<String>,
 }
 
 impl TryFrom<RawSolver> for Solver {
     type Error = String;
 
     fn try_from(raw: RawSolver) -> Result<Self, String> {
+        if let Some(law) = &raw.law {
+            oblique_solver::Law::from_name(law).map_err(|e| format!("solver.law: {e}"))?;
+        }
+        let law = raw.law;
         match (raw.tol, raw.preset) {
-            (Some(tol), None) => Ok(Solver { tol, preset: None }),
+            (Some(tol), None) => Ok(Solver {
+                tol,
+                preset: None,
+                law,
+            }),
             (None, Some(name)) => {
                 let p = oblique_solver::Preset::from_name(&name)
                     .map_err(|e| format!("solver.preset: {e}"))?;
                 Ok(Solver {
                     tol: p.tolerance(),
                     preset: Some(p.name().to_string()),
+                    law,
                 })
             }
             (Some(_), Some(_)) => Err("give solver.tol or solver.preset, not both".to_string()),
@@ -276,6 +307,23 @@ impl Config {
             .unwrap_or((self.solver.tol / 10.0).max(1e-10))
     }
 
+    /// The contact law of the node values: `solver.law`, else Kelvin–Voigt for a table with
+    /// an `e_n` range and elastic without.
+    pub fn law(&self) -> oblique_solver::Law {
+        match &self.solver.law {
+            Some(name) => {
+                oblique_solver::Law::from_name(name).unwrap_or(oblique_solver::Law::Elastic)
+            }
+            None if self.domain.e_n_range().is_some() => oblique_solver::Law::KelvinVoigt,
+            None => oblique_solver::Law::Elastic,
+        }
+    }
+
+    /// Root cells along `e_n` (`nodes.blocks_e_n`, default 1).
+    pub fn blocks_e_n(&self) -> usize {
+        self.nodes.blocks_e_n.unwrap_or(1)
+    }
+
     fn validate(&self, path: &str) -> Result<(), ConfigError> {
         let err = |key: &'static str, value: String, allowed: String| ConfigError::Range {
             path: path.to_string(),
@@ -306,7 +354,70 @@ impl Config {
                 format!("\"inf\" or a number > alpha_c2(gamma_max) = {c2}"),
             ));
         }
+        match (d.e_n_min, d.e_n_max) {
+            (None, None) => {}
+            (Some(lo), Some(hi)) => {
+                let min = oblique_solver::kelvin_voigt::MIN_RESTITUTION;
+                if !(lo >= min && lo < 1.0) {
+                    return Err(err(
+                        "domain.e_n_min",
+                        lo.to_string(),
+                        format!("in [{min}, 1)"),
+                    ));
+                }
+                if !(hi > lo && hi <= 1.0) {
+                    return Err(err(
+                        "domain.e_n_max",
+                        hi.to_string(),
+                        format!("in (e_n_min = {lo}, 1]"),
+                    ));
+                }
+            }
+            (lo, _) => {
+                let (key, other) = if lo.is_none() {
+                    ("domain.e_n_min", "e_n_max")
+                } else {
+                    ("domain.e_n_max", "e_n_min")
+                };
+                return Err(err(
+                    key,
+                    "missing".into(),
+                    format!("given with {other}: both or neither (an elastic table)"),
+                ));
+            }
+        }
+        let law = self.law();
+        if law == oblique_solver::Law::Elastic && d.e_n_range().is_some() {
+            return Err(err(
+                "solver.law",
+                "\"elastic\"".into(),
+                "\"kelvin-voigt\" (or absent) for a table with an e_n range".into(),
+            ));
+        }
+        if law != oblique_solver::Law::Elastic && d.e_n_range().is_none() {
+            return Err(err(
+                "solver.law",
+                format!("\"{}\"", law.name()),
+                "\"elastic\" (or absent) without domain.e_n_min and e_n_max".into(),
+            ));
+        }
         let n = &self.nodes;
+        if let Some(b) = n.blocks_e_n {
+            if d.e_n_range().is_none() || !(1..=64).contains(&b) {
+                return Err(err(
+                    "nodes.blocks_e_n",
+                    b.to_string(),
+                    "in [1, 64], with domain.e_n_min and e_n_max".into(),
+                ));
+            }
+        }
+        if d.e_n_range().is_some() && n.fold_warp {
+            return Err(err(
+                "nodes.fold_warp",
+                "true".into(),
+                "false for a table with an e_n range".into(),
+            ));
+        }
         if n.placement != "aligned" {
             return Err(err(
                 "nodes.placement",

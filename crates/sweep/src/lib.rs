@@ -9,14 +9,17 @@ pub mod nodestore;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use oblique_table::surface::{stencil, Patch, PatchId, PatchKind, Region, Surface, Warp};
+use oblique_table::surface::{
+    stencil, OutOfDomain, PartialMap, Patch, PatchId, PatchKind, Point, Region, RestitutionAxis,
+    Surface, Warp,
+};
 pub use oblique_table::write::{Built, BuiltPatch};
 use oblique_table::Check;
 use rayon::prelude::*;
 use thiserror::Error;
 
 pub use config::Config;
-use oblique_solver::{Accuracy, PhysicsError, Request};
+use oblique_solver::{Accuracy, Law, PhysicsError, Request};
 pub mod warp;
 
 /// Engine version.
@@ -56,20 +59,44 @@ pub fn provenance(
     config_text: String,
     wall_time_s: f64,
 ) -> oblique_table::Provenance {
+    let dissipative = cfg.domain.e_n_range().is_some();
+    let law = if dissipative {
+        format!(" law={}", cfg.law().name())
+    } else {
+        String::new()
+    };
     oblique_table::Provenance {
-        schema_version: oblique_table::format::SCHEMA_VERSION,
+        schema_version: if dissipative {
+            oblique_table::format::SCHEMA_VERSION
+        } else {
+            oblique_table::format::ELASTIC_SCHEMA_VERSION
+        },
         engine_version: VERSION.into(),
         git_commit: GIT_COMMIT.into(),
         config: config_text,
         solver: format!(
-            "scheme=accurate tol={:e} (automatic refinement, error estimate per node)",
+            "scheme=accurate{law} tol={:e} (automatic refinement, error estimate per node)",
             cfg.solver.tol
         ),
+        law: if dissipative {
+            cfg.law().name().to_string()
+        } else {
+            String::new()
+        },
         created: crate::utc_now(),
         wall_time_s,
         node_tol: cfg.solver.tol,
         check_tol: cfg.check_tol(),
         target_error: cfg.nodes.target_error,
+    }
+}
+
+/// `", e_n = …"` for a point of a dissipative table, nothing at `e_n = 1`.
+fn e_n_words(e_n: f64) -> String {
+    if e_n == 1.0 {
+        String::new()
+    } else {
+        format!(", e_n = {e_n}")
     }
 }
 
@@ -92,12 +119,14 @@ pub enum SweepError {
         what: String,
     },
     /// A node could not be computed.
-    #[error("node gamma = {gamma}, alpha = {alpha}: {source}")]
+    #[error("node gamma = {gamma}, alpha = {alpha}{en}: {source}", en = e_n_words(*e_n))]
     Node {
         /// γ of the node.
         gamma: f64,
         /// α of the node.
         alpha: f64,
+        /// e_n of the node.
+        e_n: f64,
         /// The solver's error.
         source: PhysicsError,
     },
@@ -191,8 +220,9 @@ pub enum RunError {
     /// A merge needs a node that none of the parts holds.
     #[error(
         "{count} node(s) needed by the table are in none of the parts (first: gamma = {gamma}, \
-         alpha = {alpha}); the parts are incomplete or come from different builds: rerun the \
-         missing shards"
+         alpha = {alpha}{en}); the parts are incomplete or come from different builds: rerun the \
+         missing shards",
+        en = e_n_words(*e_n)
     )]
     Missing {
         /// Number of missing nodes in the first batch that had any.
@@ -201,6 +231,8 @@ pub enum RunError {
         gamma: f64,
         /// α of the first missing node.
         alpha: f64,
+        /// e_n of the first missing node.
+        e_n: f64,
     },
     /// A node or the refinement failed.
     #[error(transparent)]
@@ -238,13 +270,18 @@ impl SweepError {
     }
 }
 
-/// One computed node: `P(γ, α)` at solver tolerance `tol`, with its error estimate.
+/// The exact key of a node: bit patterns of `(γ, α, e_n, tol)`.
+pub type NodeKey = (u64, u64, u64, u64);
+
+/// One computed node: `P(γ, α, e_n)` at solver tolerance `tol`, with its error estimate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodeRecord {
     /// γ.
     pub gamma: f64,
     /// α (`∞` allowed).
     pub alpha: f64,
+    /// Normal restitution (1 for an elastic table).
+    pub e_n: f64,
     /// Solver tolerance the value was computed with.
     pub tol: f64,
     /// `P`.
@@ -254,13 +291,26 @@ pub struct NodeRecord {
 }
 
 impl NodeRecord {
-    /// The exact key of a node: bit patterns of `(γ, α, tol)`.
-    pub fn key(&self) -> (u64, u64, u64) {
+    /// The exact key of a node: bit patterns of `(γ, α, e_n, tol)`.
+    pub fn key(&self) -> NodeKey {
         (
             self.gamma.to_bits(),
             self.alpha.to_bits(),
+            self.e_n.to_bits(),
             self.tol.to_bits(),
         )
+    }
+
+    /// The record of `point` at `tol`, without values yet (for its key).
+    pub fn at(point: Point, tol: f64) -> NodeRecord {
+        NodeRecord {
+            gamma: point.gamma,
+            alpha: point.alpha,
+            e_n: point.e_n,
+            tol,
+            p: f64::NAN,
+            error: f64::NAN,
+        }
     }
 }
 
@@ -268,7 +318,7 @@ impl NodeRecord {
 /// The storage layer implements it; the sweep does no I/O itself.
 pub trait NodeStore: Sync {
     /// A value computed before, by its exact key.
-    fn get(&self, key: (u64, u64, u64)) -> Option<(f64, f64)>;
+    fn get(&self, key: NodeKey) -> Option<(f64, f64)>;
     /// Save newly computed values durably (called after every batch of a few hundred).
     fn put(&self, records: &[NodeRecord]) -> Result<(), String>;
 }
@@ -355,45 +405,45 @@ pub fn stages(cfg: &Config) -> Vec<String> {
 /// Deepest quadtree level (a leaf at this depth has `2^-MAX_DEPTH` of its root's size).
 const MAX_DEPTH: u32 = 12;
 
-/// Compute P at many points in parallel, in order (deterministic whatever the thread count).
+/// Compute `(P, error estimate)` at many points of law `law` in parallel, in order
+/// (deterministic whatever the thread count).
 pub fn solve_points(
-    points: &[(f64, f64)],
+    points: &[Point],
     tol: f64,
+    law: Law,
     progress: &dyn Progress,
 ) -> Result<Vec<(f64, f64)>, SweepError> {
-    solve_points_with(points, tol, progress, RunOptions::default()).map_err(|e| match e {
+    solve_points_with(points, tol, law, progress, RunOptions::default()).map_err(|e| match e {
         RunError::Sweep(e) => e,
         // No store and no stop flag: nothing else can happen.
         other => unreachable!("solve_points without options: {other}"),
     })
 }
 
-fn solve_one(gamma: f64, alpha: f64, tol: f64) -> Result<(f64, f64), SweepError> {
-    Request::new(gamma, alpha)
+fn solve_one(pt: Point, tol: f64, law: Law) -> Result<(f64, f64), SweepError> {
+    Request::new(pt.gamma, pt.alpha)
+        .e_n(pt.e_n)
+        .law(law)
         .accuracy(Accuracy::Tolerance(tol))
         .solve()
         .map(|s| (s.p, s.error_estimate))
         .map_err(|source| SweepError::Node {
-            gamma,
-            alpha,
+            gamma: pt.gamma,
+            alpha: pt.alpha,
+            e_n: pt.e_n,
             source,
         })
 }
 
 /// [`solve_points`] with stored values, saving in batches and stopping when asked.
 pub fn solve_points_with(
-    points: &[(f64, f64)],
+    points: &[Point],
     tol: f64,
+    law: Law,
     progress: &dyn Progress,
     opts: RunOptions,
 ) -> Result<Vec<(f64, f64)>, RunError> {
-    let rec = |&(gamma, alpha): &(f64, f64)| NodeRecord {
-        gamma,
-        alpha,
-        tol,
-        p: f64::NAN,
-        error: f64::NAN,
-    };
+    let rec = |pt: &Point| NodeRecord::at(*pt, tol);
     let mut out: Vec<Option<(f64, f64)>> = points
         .iter()
         .map(|pt| opts.store.and_then(|s| s.get(rec(pt).key())))
@@ -403,8 +453,9 @@ pub fn solve_points_with(
         if let Some(&i) = todo.first() {
             return Err(RunError::Missing {
                 count: todo.len(),
-                gamma: points[i].0,
-                alpha: points[i].1,
+                gamma: points[i].gamma,
+                alpha: points[i].alpha,
+                e_n: points[i].e_n,
             });
         }
     }
@@ -417,7 +468,7 @@ pub fn solve_points_with(
         let values: Vec<(f64, f64)> = batch
             .par_iter()
             .map(|&i| {
-                let r = solve_one(points[i].0, points[i].1, tol);
+                let r = solve_one(points[i], tol, law);
                 progress.inc(1);
                 r
             })
@@ -477,6 +528,14 @@ fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
     specs
 }
 
+/// The `e_n` axis of every patch of a dissipative table (`None`: elastic).
+fn restitution_axis(cfg: &Config) -> Result<Option<RestitutionAxis>, SweepError> {
+    cfg.domain
+        .e_n_range()
+        .map(|(lo, hi)| RestitutionAxis::new(lo, hi, cfg.blocks_e_n()).map_err(SweepError::Model))
+        .transpose()
+}
+
 /// Root cells of a patch along γ.
 fn roots_gamma(cfg: &Config, spec: &PatchSpec) -> usize {
     ((spec.gamma_hi - spec.gamma_lo) * cfg.nodes.blocks_per_unit_gamma)
@@ -486,7 +545,12 @@ fn roots_gamma(cfg: &Config, spec: &PatchSpec) -> usize {
 
 /// Root cells of a patch.
 fn root_count(cfg: &Config, spec: &PatchSpec) -> usize {
-    roots_gamma(cfg, spec) * cfg.nodes.blocks_coord
+    let be = if cfg.domain.e_n_range().is_some() {
+        cfg.blocks_e_n()
+    } else {
+        1
+    };
+    roots_gamma(cfg, spec) * cfg.nodes.blocks_coord * be
 }
 
 /// The root grid of a patch being built and the exact lattice its nodes live on.
@@ -498,18 +562,23 @@ struct Layout<'a> {
     alpha_max: f64,
     /// Fold warp of the partial-slip patch: the lattice is in `c'`, α comes from `c`.
     warp: Option<&'a Warp>,
+    /// The `e_n` axis of a dissipative table: the lattice has a third axis.
+    restitution: Option<RestitutionAxis>,
 }
 
-/// A node on the finest lattice of a patch: `(γ index, c index, warped)`. A node on the
-/// warp's `start` row exists twice: unwarped for the leaves below it, warped for those above.
-type Key = (u64, u64, bool);
+/// A node on the finest lattice of a patch: `(γ index, c index, e_n index, warped)`. A node on
+/// the warp's `start` row exists twice: unwarped for the leaves below it, warped for those
+/// above. The `e_n` index is 0 without an `e_n` axis.
+type Key = (u64, u64, u64, bool);
 
-/// A quadtree cell: its depth and integer position at that depth.
+/// A tree cell: its depth and integer position at that depth (`ie = 0` without an `e_n`
+/// axis).
 #[derive(Debug, Clone, Copy)]
 struct Cell {
     depth: u32,
     ig: u64,
     ic: u64,
+    ie: u64,
 }
 
 impl Layout<'_> {
@@ -518,8 +587,49 @@ impl Layout<'_> {
         (self.m as u64) << MAX_DEPTH
     }
 
-    /// `(γ, c, α)` of a lattice node (computed from the key alone, so shared nodes agree).
-    fn point(&self, key: Key) -> (f64, f64, f64) {
+    /// The partial-slip coordinate's map ([`Patch::partial_map`]).
+    fn partial_map(&self) -> PartialMap {
+        if self.restitution.is_some() {
+            PartialMap::Arcsine
+        } else {
+            PartialMap::SqrtEnd
+        }
+    }
+
+    /// Axes of the tree: 2, or 3 with an `e_n` axis.
+    fn dims(&self) -> u32 {
+        if self.restitution.is_some() {
+            3
+        } else {
+            2
+        }
+    }
+
+    /// Root cells along `e_n` (1 without the axis).
+    fn be(&self) -> usize {
+        self.restitution.map_or(1, |r| r.blocks())
+    }
+
+    /// The root cells, in the order of the format (`γ` outer, `e_n` inner).
+    fn roots(&self) -> Vec<Cell> {
+        let (bc, be) = (self.bc as u64, self.be() as u64);
+        (0..self.bg as u64)
+            .flat_map(|ig| {
+                (0..bc).flat_map(move |ic| {
+                    (0..be).map(move |ie| Cell {
+                        depth: 0,
+                        ig,
+                        ic,
+                        ie,
+                    })
+                })
+            })
+            .collect()
+    }
+
+    /// `(γ, c, α)` and the point `(γ, α, e_n)` of a lattice node (computed from the key
+    /// alone, so shared nodes agree).
+    fn point(&self, key: Key) -> (f64, f64, Point) {
         let ng = self.bg as u64 * self.fine();
         let nc = self.bc as u64 * self.fine();
         let xg = key.0 as f64 / ng as f64;
@@ -529,15 +639,19 @@ impl Layout<'_> {
             self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * xg
         };
         let c = key.1 as f64 / nc as f64;
+        let e_n = match self.restitution {
+            Some(r) => r.e_n(key.2 as f64 / (self.be() as u64 * self.fine()) as f64),
+            None => 1.0,
+        };
         let unwarped = match self.warp {
-            Some(w) if key.2 => w.invert(gamma, c),
+            Some(w) if key.3 => w.invert(gamma, c),
             _ => c,
         };
-        (
-            gamma,
-            c,
-            self.spec.kind.alpha(gamma, unwarped, self.alpha_max),
-        )
+        let alpha =
+            self.spec
+                .kind
+                .alpha_at(self.partial_map(), gamma, unwarped, e_n, self.alpha_max);
+        (gamma, c, Point::new(gamma, alpha, e_n))
     }
 
     /// The cell's extent along γ in root-row units (exact dyadic values).
@@ -558,52 +672,83 @@ impl Layout<'_> {
         self.warp.is_some_and(|w| lo < w.start() && w.start() < hi)
     }
 
-    /// Lattice keys of a cell's `(m+1)²` nodes, row-major (`γ` outer).
+    /// Lattice keys of a cell's `(m+1)^dims` nodes, row-major (`γ` outer, `e_n` inner).
     fn cell_keys(&self, cell: Cell) -> Vec<Key> {
         let step = 1u64 << (MAX_DEPTH - cell.depth);
         let m = self.m as u64;
         let warped = self.warped(cell);
-        (0..=m)
-            .flat_map(|i| (0..=m).map(move |j| (i, j)))
-            .map(|(i, j)| ((cell.ig * m + i) * step, (cell.ic * m + j) * step, warped))
-            .collect()
+        let me = if self.restitution.is_some() { m } else { 0 };
+        let mut keys = Vec::with_capacity((self.m + 1).pow(self.dims()));
+        for i in 0..=m {
+            for j in 0..=m {
+                for l in 0..=me {
+                    keys.push((
+                        (cell.ig * m + i) * step,
+                        (cell.ic * m + j) * step,
+                        (cell.ie * m + l) * step,
+                        warped,
+                    ));
+                }
+            }
+        }
+        keys
+    }
+
+    /// The children of a split cell, in the order of the format: `2·q_γ + q_c`, or
+    /// `4·q_γ + 2·q_c + q_e` with an `e_n` axis.
+    fn children(&self, cell: Cell) -> Vec<Cell> {
+        let qe_max = if self.restitution.is_some() { 1 } else { 0 };
+        let mut out = Vec::with_capacity(1 << self.dims());
+        for qg in 0..2 {
+            for qc in 0..2 {
+                for qe in 0..=qe_max {
+                    out.push(Cell {
+                        depth: cell.depth + 1,
+                        ig: 2 * cell.ig + qg,
+                        ic: 2 * cell.ic + qc,
+                        ie: if qe_max == 1 { 2 * cell.ie + qe } else { 0 },
+                    });
+                }
+            }
+        }
+        out
     }
 }
 
-impl Cell {
-    fn children(self) -> [Cell; 4] {
-        let child = |qg: u64, qc: u64| Cell {
-            depth: self.depth + 1,
-            ig: 2 * self.ig + qg,
-            ic: 2 * self.ic + qc,
-        };
-        // Order fixed by the format: child `2·q_γ + q_c`.
-        [child(0, 0), child(0, 1), child(1, 0), child(1, 1)]
-    }
-}
-
-/// Largest deviation, over the nodes of an `n`-interval grid that are not on its `n/2`-interval
-/// sub-grid, between the value and the `k`-point tensor interpolation from the sub-grid.
-fn surplus(values: &[f64], n: usize, k: usize) -> f64 {
+/// Largest deviation, over the nodes of an `n`-interval grid over `dims` axes (2 or 3,
+/// row-major) that are not on its `n/2`-interval sub-grid, between the value and the `k`-point
+/// tensor interpolation from the sub-grid.
+fn surplus(values: &[f64], n: usize, k: usize, dims: u32) -> f64 {
     let coarse_n = n / 2;
-    let at = |i: usize, j: usize| values[i * (n + 1) + j];
-    let mut wg = [0.0; 8];
-    let mut wc = [0.0; 8];
+    let n1 = n + 1;
+    let me = if dims == 3 { n } else { 0 };
+    let at = |i: usize, j: usize, l: usize| values[(i * n1 + j) * (me + 1) + l];
+    let mut w = [[0.0; 8]; 3];
     let mut worst = 0.0_f64;
     for i in 0..=n {
         for j in 0..=n {
-            if i % 2 == 0 && j % 2 == 0 {
-                continue;
-            }
-            let (sg, kg) = stencil(i as f64 / 2.0, coarse_n + 1, k, &mut wg);
-            let (sc, kc) = stencil(j as f64 / 2.0, coarse_n + 1, k, &mut wc);
-            let mut v = 0.0;
-            for (x, wx) in wg.iter().enumerate().take(kg) {
-                for (y, wy) in wc.iter().enumerate().take(kc) {
-                    v += wx * wy * at(2 * (sg + x), 2 * (sc + y));
+            for l in 0..=me {
+                if i % 2 == 0 && j % 2 == 0 && l % 2 == 0 {
+                    continue;
                 }
+                let (sg, kg) = stencil(i as f64 / 2.0, coarse_n + 1, k, &mut w[0]);
+                let (sc, kc) = stencil(j as f64 / 2.0, coarse_n + 1, k, &mut w[1]);
+                let (se, ke) = if dims == 3 {
+                    stencil(l as f64 / 2.0, coarse_n + 1, k, &mut w[2])
+                } else {
+                    w[2][0] = 1.0;
+                    (0, 1)
+                };
+                let mut v = 0.0;
+                for (x, wx) in w[0].iter().enumerate().take(kg) {
+                    for (y, wy) in w[1].iter().enumerate().take(kc) {
+                        for (z, wz) in w[2].iter().enumerate().take(ke) {
+                            v += wx * wy * wz * at(2 * (sg + x), 2 * (sc + y), 2 * (se + z));
+                        }
+                    }
+                }
+                worst = worst.max((v - at(i, j, l)).abs());
             }
-            worst = worst.max((v - at(i, j)).abs());
         }
     }
     worst
@@ -653,12 +798,12 @@ fn build_patch(
         m: cfg.nodes.leaf_intervals,
         alpha_max: cfg.domain.alpha_max,
         warp: warp.as_ref(),
+        restitution: restitution_axis(cfg)?,
     };
     let m = layout.m;
+    let law = cfg.law();
     // All cells ever created, roots first; `child[i]` is the first child of a split cell.
-    let mut cells: Vec<Cell> = (0..layout.bg as u64)
-        .flat_map(|ig| (0..layout.bc as u64).map(move |ic| Cell { depth: 0, ig, ic }))
-        .collect();
+    let mut cells: Vec<Cell> = layout.roots();
     let mut child: Vec<Option<usize>> = vec![None; cells.len()];
     let mut predicted = vec![f64::NAN; cells.len()];
     let mut open: Vec<usize> = (0..cells.len())
@@ -699,14 +844,8 @@ fn build_patch(
                 wanted.len()
             ),
         );
-        let points: Vec<(f64, f64)> = wanted
-            .iter()
-            .map(|&key| {
-                let (g, _, a) = layout.point(key);
-                (g, a)
-            })
-            .collect();
-        let values = solve_points_with(&points, cfg.solver.tol, progress, opts)?;
+        let points: Vec<Point> = wanted.iter().map(|&key| layout.point(key).2).collect();
+        let values = solve_points_with(&points, cfg.solver.tol, law, progress, opts)?;
         *total_nodes += wanted.len();
         cache.extend(wanted.into_iter().zip(values));
         let mut next = Vec::new();
@@ -719,7 +858,7 @@ fn build_patch(
                     .iter()
                     .map(|key| cache[key].0)
                     .collect();
-                let pred = surplus(&vals, m, k) / 4.0;
+                let pred = surplus(&vals, m, k, layout.dims()) / 4.0;
                 predicted[c] = pred;
                 if pred <= cfg.nodes.target_error {
                     continue;
@@ -742,7 +881,7 @@ fn build_patch(
                 }
             }
             child[c] = Some(cells.len());
-            for ch in cells[c].children() {
+            for ch in layout.children(cells[c]) {
                 next.push(cells.len());
                 cells.push(ch);
                 child.push(None);
@@ -761,8 +900,14 @@ fn build_patch(
     let mut tree = Vec::with_capacity(cells.len());
     let mut leaf_error = Vec::new();
     let mut leaf_depth = Vec::new();
-    let (mut p, mut err, mut gamma, mut coord, mut alpha) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut p, mut err, mut gamma, mut coord, mut alpha, mut e_n) = (
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+    );
     for (c, cell) in cells.iter().enumerate() {
         match child[c] {
             Some(first) => tree.push(first as i32),
@@ -771,13 +916,16 @@ fn build_patch(
                 leaf_error.push(predicted[c]);
                 leaf_depth.push(cell.depth);
                 for key in layout.cell_keys(*cell) {
-                    let (g, cc, a) = layout.point(key);
+                    let (g, cc, pt) = layout.point(key);
                     let (v, e) = cache[&key];
                     p.push(v);
                     err.push(e);
                     gamma.push(g);
                     coord.push(cc);
-                    alpha.push(a);
+                    alpha.push(pt.alpha);
+                    if layout.restitution.is_some() {
+                        e_n.push(pt.e_n);
+                    }
                 }
             }
         }
@@ -785,7 +933,7 @@ fn build_patch(
     let simulated = cache.values().filter(|(_, e)| *e > 0.0).count();
     Ok(Some(BuiltPatch {
         name: spec.name,
-        patch: Patch::new(
+        patch: Patch::with_restitution(
             spec.kind,
             spec.gamma_lo,
             spec.gamma_hi,
@@ -796,11 +944,13 @@ fn build_patch(
             p,
             err,
             warp.clone(),
+            layout.restitution,
         )
         .map_err(|m| SweepError::Model(format!("patch '{}': {m}", spec.name)))?,
         gamma,
         coord,
         alpha,
+        e_n,
         leaf_error,
         leaf_depth,
         unique_nodes: cache.len(),
@@ -846,18 +996,10 @@ pub fn check_tol_in_store(cfg: &Config, store: &dyn NodeStore) -> Option<f64> {
     if cfg.checks.tol.is_some() {
         return None;
     }
-    let &(gamma, alpha) = check_points(cfg).first()?;
-    default_check_tols(cfg).into_iter().find(|&tol| {
-        let key = NodeRecord {
-            gamma,
-            alpha,
-            tol,
-            p: f64::NAN,
-            error: f64::NAN,
-        }
-        .key();
-        store.get(key).is_some()
-    })
+    let &first = check_points(cfg).first()?;
+    default_check_tols(cfg)
+        .into_iter()
+        .find(|&tol| store.get(NodeRecord::at(first, tol).key()).is_some())
 }
 
 /// Why a probe failed, naming only the limits that were exceeded.
@@ -908,21 +1050,32 @@ fn unreachable_reason(e: &PhysicsError) -> String {
 /// never refuses a run.
 pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
     let g = cfg.domain.gamma_max;
-    let mut probes = vec![(g, f64::INFINITY)];
-    if g > 1.0 {
-        let (a1, a2) = (
-            oblique_table::surface::alpha_c1(g),
-            oblique_table::surface::alpha_c2(g),
-        );
-        probes.push((g, (a1 * a2).sqrt()));
+    // Both ends of the e_n range of a dissipative table.
+    let e_ns = match cfg.domain.e_n_range() {
+        Some((lo, hi)) => vec![lo, hi],
+        None => vec![1.0],
+    };
+    let mut probes = Vec::new();
+    for &e_n in &e_ns {
+        probes.push(Point::new(g, f64::INFINITY, e_n));
+        if g > 1.0 {
+            let (a1, a2) = (
+                oblique_table::surface::alpha_c1_dissipative(g, e_n),
+                oblique_table::surface::alpha_c2(g),
+            );
+            probes.push(Point::new(g, (a1 * a2).sqrt(), e_n));
+        }
     }
     let limits = probe_limits();
+    let law = cfg.law();
     let mut slowest = 0.0f64;
     // Solve every probe point at `tol`: the first failure, as the refusal of `key`.
     let mut probe = |key: &'static str, tol: f64, advice: &str| -> Result<(), SweepError> {
-        for &(gamma, alpha) in &probes {
+        for &Point { gamma, alpha, e_n } in &probes {
             let start = std::time::Instant::now();
             let r = Request::new(gamma, alpha)
+                .e_n(e_n)
+                .law(law)
                 .accuracy(Accuracy::Tolerance(tol))
                 .limits(limits)
                 .solve();
@@ -946,6 +1099,7 @@ pub fn preflight(cfg: &Config) -> Result<Preflight, SweepError> {
                     return Err(SweepError::Node {
                         gamma,
                         alpha,
+                        e_n,
                         source,
                     })
                 }
@@ -1015,29 +1169,33 @@ pub fn build_with(
             .find(|p| p.name == id.name())
             .map(|p| p.patch.clone())
     };
-    let surface = Surface::new(
+    let surface = Surface::with_restitution(
         cfg.domain.gamma_min,
         cfg.domain.gamma_max,
         cfg.domain.alpha_max,
         cfg.nodes.stencil,
         PatchId::ALL.map(find),
+        cfg.domain.e_n_range(),
     )
     .map_err(SweepError::Model)?;
     let points = check_points(cfg);
     progress.phase(STAGE_CHECKS, &format!("{} points", points.len()));
-    let sims = solve_points_with(&points, cfg.check_tol(), progress, opts)?;
+    let sims = solve_points_with(&points, cfg.check_tol(), cfg.law(), progress, opts)?;
     let checks = points
         .iter()
         .zip(&sims)
-        .map(|(&(gamma, alpha), &(p_sim, _))| {
-            let p_int = surface.eval(gamma, alpha).unwrap_or(f64::NAN);
+        .map(|(pt, &(p_sim, _))| {
+            let p_int = surface
+                .eval_point(pt.gamma, pt.alpha, pt.e_n, OutOfDomain::Error)
+                .unwrap_or(f64::NAN);
             Check {
-                gamma,
-                alpha,
+                gamma: pt.gamma,
+                alpha: pt.alpha,
+                e_n: pt.e_n,
                 p_simulated: p_sim,
                 p_interpolated: p_int,
                 interpolation_error: (p_int - p_sim).abs(),
-                patch: Region::of(gamma, alpha).index(),
+                patch: Region::of_e(pt.gamma, pt.alpha, pt.e_n).index(),
             }
         })
         .collect();
@@ -1071,27 +1229,39 @@ pub fn build_shard(
         )?;
         first_root += root_count(cfg, &spec);
     }
-    let points: Vec<(f64, f64)> = check_points(cfg)
+    let points: Vec<Point> = check_points(cfg)
         .into_iter()
         .enumerate()
         .filter(|(i, _)| shard.owns(*i))
         .map(|(_, pt)| pt)
         .collect();
     progress.phase(STAGE_CHECKS, &format!("{} points", points.len()));
-    solve_points_with(&points, cfg.check_tol(), progress, opts)?;
+    solve_points_with(&points, cfg.check_tol(), cfg.law(), progress, opts)?;
     Ok(())
 }
 
-/// Held-out points: uniform in each patch's (γ, c), strictly inside (c < 1 keeps α finite).
-fn check_points(cfg: &Config) -> Vec<(f64, f64)> {
+/// Held-out points: uniform in each patch's (γ, c), and in `e_n` over its range for a
+/// dissipative table, strictly inside (c < 1 keeps α finite).
+fn check_points(cfg: &Config) -> Vec<Point> {
     let mut rng = SplitMix(cfg.checks.seed);
     let mut points = Vec::new();
+    let range = cfg.domain.e_n_range();
     for p in patch_specs(cfg) {
         for _ in 0..cfg.checks.per_patch {
             let gamma = p.gamma_lo + (p.gamma_hi - p.gamma_lo) * rng.uniform();
             let c = rng.uniform();
-            let alpha = p.kind.alpha(gamma, c, cfg.domain.alpha_max);
-            points.push((gamma, alpha));
+            // The elastic sequence of draws is unchanged: e_n draws only with an e_n axis.
+            let e_n = match range {
+                Some((lo, hi)) => lo + (hi - lo) * rng.uniform(),
+                None => 1.0,
+            };
+            let map = if range.is_some() {
+                PartialMap::Arcsine
+            } else {
+                PartialMap::SqrtEnd
+            };
+            let alpha = p.kind.alpha_at(map, gamma, c, e_n, cfg.domain.alpha_max);
+            points.push(Point::new(gamma, alpha, e_n));
         }
     }
     points

@@ -1,17 +1,17 @@
 //! The storage layer's node files: checkpoints of interrupted runs and the parts of sharded runs.
 //!
-//! A node file holds node values `(γ, α, tol) → (P, error estimate)` that a sweep computed, so
+//! A node file holds node values `(γ, α, e_n, tol) → (P, error estimate)` that a sweep computed, so
 //! that a resumed run or a merge does not compute them again. Layout (little-endian):
 //!
 //! | bytes | content |
 //! |---|---|
 //! | 8 | magic `OBLQNODE` |
-//! | 4 | format version (1) |
+//! | 4 | format version (2) |
 //! | 4 | kind: 1 = checkpoint (still being written), 2 = finished shard part |
 //! | 4, 4 | shard index `k` (0-based) and count `n` (0, 1 for an unsharded run) |
 //! | 8 | fingerprint of the config sections that decide the values (FNV-1a 64) |
 //! | 8 + L | length `L` and UTF-8 text of the config |
-//! | 48 each | records: `γ, α, tol, P, error` as float64, then the FNV-1a 64 of those 40 bytes |
+//! | 56 each | records: `γ, α, e_n, tol, P, error` as float64, then the FNV-1a 64 of those 48 bytes |
 //!
 //! Records are appended in batches and synced to disk after each batch. A record cut short by a
 //! crash (or one whose checksum does not match) ends the readable part of a checkpoint; the
@@ -26,11 +26,13 @@ use std::sync::Mutex;
 use oblique_table::format::fnv1a64;
 use thiserror::Error;
 
-use crate::{Config, NodeRecord, NodeStore, Shard};
+use crate::{Config, NodeKey, NodeRecord, NodeStore, Shard};
 
 const MAGIC: &[u8; 8] = b"OBLQNODE";
-const VERSION: u32 = 1;
-const RECORD: usize = 48;
+const VERSION: u32 = 2;
+const RECORD: usize = 56;
+/// Bytes of a record before its checksum.
+const RECORD_DATA: usize = RECORD - 8;
 
 /// What a node file is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -130,17 +132,20 @@ impl Header {
 
 fn record_bytes(r: &NodeRecord) -> [u8; RECORD] {
     let mut b = [0u8; RECORD];
-    for (i, v) in [r.gamma, r.alpha, r.tol, r.p, r.error].iter().enumerate() {
+    for (i, v) in [r.gamma, r.alpha, r.e_n, r.tol, r.p, r.error]
+        .iter()
+        .enumerate()
+    {
         b[8 * i..8 * i + 8].copy_from_slice(&v.to_le_bytes());
     }
-    let sum = fnv1a64(&b[..40]);
-    b[40..].copy_from_slice(&sum.to_le_bytes());
+    let sum = fnv1a64(&b[..RECORD_DATA]);
+    b[RECORD_DATA..].copy_from_slice(&sum.to_le_bytes());
     b
 }
 
 fn parse_record(b: &[u8]) -> Option<NodeRecord> {
-    let sum = u64::from_le_bytes(b[40..48].try_into().ok()?);
-    if sum != fnv1a64(&b[..40]) {
+    let sum = u64::from_le_bytes(b[RECORD_DATA..RECORD].try_into().ok()?);
+    if sum != fnv1a64(&b[..RECORD_DATA]) {
         return None;
     }
     let f = |i: usize| -> Option<f64> {
@@ -149,9 +154,10 @@ fn parse_record(b: &[u8]) -> Option<NodeRecord> {
     Some(NodeRecord {
         gamma: f(0)?,
         alpha: f(1)?,
-        tol: f(2)?,
-        p: f(3)?,
-        error: f(4)?,
+        e_n: f(2)?,
+        tol: f(3)?,
+        p: f(4)?,
+        error: f(5)?,
     })
 }
 
@@ -256,7 +262,7 @@ impl NodeFile {
 /// A node store backed by an append-only checkpoint file.
 pub struct Checkpoint {
     path: PathBuf,
-    known: HashMap<(u64, u64, u64), (f64, f64)>,
+    known: HashMap<NodeKey, (f64, f64)>,
     out: Mutex<BufWriter<File>>,
     header: Header,
 }
@@ -377,7 +383,7 @@ impl Checkpoint {
 }
 
 impl NodeStore for Checkpoint {
-    fn get(&self, key: (u64, u64, u64)) -> Option<(f64, f64)> {
+    fn get(&self, key: NodeKey) -> Option<(f64, f64)> {
         self.known.get(&key).copied()
     }
 
@@ -397,7 +403,7 @@ impl NodeStore for Checkpoint {
 
 /// The merged, read-only values of all parts of a sharded run.
 pub struct Merged {
-    known: HashMap<(u64, u64, u64), (f64, f64)>,
+    known: HashMap<NodeKey, (f64, f64)>,
     /// The config text the parts were computed for.
     pub config: String,
 }
@@ -414,7 +420,7 @@ impl Merged {
             path: "(none)".into(),
             message: "no parts given".into(),
         })?;
-        let mut known: HashMap<(u64, u64, u64), (f64, f64)> = HashMap::new();
+        let mut known: HashMap<NodeKey, (f64, f64)> = HashMap::new();
         let mut seen: Vec<Option<&Path>> = Vec::new();
         let mut reference: Option<(u64, usize, String)> = None;
         for path in parts {
@@ -476,9 +482,9 @@ impl Merged {
                         return Err(invalid(
                             path,
                             format!(
-                                "node gamma = {}, alpha = {} has P = {} here and {} in another \
-                                 part: the parts were computed by different engines",
-                                r.gamma, r.alpha, v.0, old.0
+                                "node gamma = {}, alpha = {}, e_n = {} has P = {} here and {} in \
+                                 another part: the parts were computed by different engines",
+                                r.gamma, r.alpha, r.e_n, v.0, old.0
                             ),
                         ));
                     }
@@ -506,7 +512,7 @@ impl Merged {
 }
 
 impl NodeStore for Merged {
-    fn get(&self, key: (u64, u64, u64)) -> Option<(f64, f64)> {
+    fn get(&self, key: NodeKey) -> Option<(f64, f64)> {
         self.known.get(&key).copied()
     }
 

@@ -8,7 +8,8 @@
 //! node errors reach the result through the Lagrange weights, whose absolute sum is at most
 //! `Λ_k` per axis (the Lebesgue constant of `k` equispaced points over the stencil's range,
 //! [`lebesgue`]). So the error at any point of leaf `L` is at most
-//! `leaf_predicted_error[L] + Λ_k² · max_i error_estimate[L, i]`, and the table's bound is the
+//! `leaf_predicted_error[L] + Λ_k^dims · max_i error_estimate[L, i]` (`dims = 2`, or 3 with an
+//! `e_n` axis), and the table's bound is the
 //! largest of these over all leaves of all patches. The full-slip line (exact) and the bound
 //! `|P| ≤ 1` of the rule (step 10) only make the error smaller.
 
@@ -43,8 +44,14 @@ pub fn lebesgue(k: usize) -> f64 {
 /// The factor `Λ_k²` by which the tensor-product rule (`k` points per axis) can amplify node
 /// errors: `2.6606` for the cubic stencil.
 pub fn node_error_factor(k: usize) -> f64 {
+    node_error_factor_of(k, 2)
+}
+
+/// The factor `Λ_k^dims` of a tensor product over `dims` axes: `Λ_4³ = 4.3397` for the
+/// octree leaves of a table with an `e_n` axis.
+pub fn node_error_factor_of(k: usize, dims: u32) -> f64 {
     let l = lebesgue(k);
-    l * l
+    (0..dims).map(|_| l).product()
 }
 
 /// The bound of one leaf: `predicted + factor · max(node_errors)`, `factor =`
@@ -60,8 +67,8 @@ pub fn patch_bound(patch: &Patch, leaf_predicted: &[f64], k: usize) -> f64 {
     if leaf_predicted.len() != leaves {
         return f64::NAN;
     }
-    let size = (patch.leaf_intervals() + 1).pow(2);
-    let factor = node_error_factor(k);
+    let size = patch.leaf_size();
+    let factor = node_error_factor_of(k, patch.dims());
     leaf_predicted
         .iter()
         .zip(patch.error_estimate().chunks_exact(size))

@@ -1,7 +1,10 @@
-//! Names of the HDF5 objects of a table (schema v3). `docs/table-format.md` documents each.
+//! Names of the HDF5 objects of a table (schema v4, v3). `docs/table-format.md` documents each.
 
-/// Schema version written by this crate (and the newest it reads).
-pub const SCHEMA_VERSION: u32 = 3;
+/// Newest schema version this crate reads and writes: v4 adds the normal-restitution axis
+/// (`e_n`) to v3; a table with that axis is written as v4.
+pub const SCHEMA_VERSION: u32 = 4;
+/// Schema version of an elastic table (no `e_n` axis): v3, which every reader of v3 reads.
+pub const ELASTIC_SCHEMA_VERSION: u32 = 3;
 /// Oldest schema version this crate reads: v2 is v3 without the optional warp.
 pub const MIN_SCHEMA_VERSION: u32 = 2;
 
@@ -19,6 +22,21 @@ pub const ATTR_GAMMA_MIN: &str = "gamma_min";
 pub const ATTR_GAMMA_MAX: &str = "gamma_max";
 /// Root attribute: upper end of the α domain (`inf` for no slip included).
 pub const ATTR_ALPHA_MAX: &str = "alpha_max";
+/// Root attribute (schema 4): the axes of the table, in order, separated by commas:
+/// `gamma,alpha` or `gamma,alpha,e_n`.
+pub const ATTR_AXES: &str = "axes";
+/// Root attribute (schema 4, with an `e_n` axis): lowest normal restitution `e_n`.
+pub const ATTR_E_N_MIN: &str = "e_n_min";
+/// Root attribute (schema 4, with an `e_n` axis): highest normal restitution `e_n`.
+pub const ATTR_E_N_MAX: &str = "e_n_max";
+/// Root attribute (schema 4, with an `e_n` axis): the contact law of the node values
+/// (`kelvin-voigt`).
+pub const ATTR_LAW: &str = "law";
+/// Patch attribute (schema 4, with an `e_n` axis): number of root cells along `e_n`.
+pub const ATTR_BLOCKS_E_N: &str = "blocks_e_n";
+/// Node dataset (schema 4, with an `e_n` axis; `[leaves, m+1, m+1, m+1]`): `e_n` of every
+/// node; also the check dataset of the held-out points' `e_n`, and a no-slip dataset.
+pub const DS_E_N: &str = "e_n";
 /// Root attribute: engine version.
 pub const ATTR_ENGINE_VERSION: &str = "engine_version";
 /// Root attribute: git commit of the engine (or "unknown").

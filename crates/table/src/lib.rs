@@ -16,7 +16,10 @@ pub mod surface;
 pub mod write;
 
 pub use read::{Check, Contents, Provenance};
-pub use surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
+pub use surface::{
+    Axis, AxisName, OutOfDomain, PartialMap, Patch, PatchKind, Point, Region, RestitutionAxis,
+    Surface, Warp,
+};
 
 use thiserror::Error;
 

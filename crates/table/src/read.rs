@@ -5,7 +5,7 @@ use std::path::Path;
 use hdf5::types::VarLenUnicode;
 
 use crate::format::*;
-use crate::surface::{Patch, PatchId, PatchKind, Surface, Warp};
+use crate::surface::{Patch, PatchId, PatchKind, RestitutionAxis, Surface, Warp};
 use crate::TableError;
 
 /// Where a table came from (root attributes).
@@ -31,6 +31,9 @@ pub struct Provenance {
     pub check_tol: f64,
     /// Target interpolation error.
     pub target_error: f64,
+    /// The contact law of the node values (`kelvin-voigt` for a table with an `e_n` axis;
+    /// empty for an elastic table).
+    pub law: String,
 }
 
 /// One held-out check point.
@@ -40,6 +43,8 @@ pub struct Check {
     pub gamma: f64,
     /// α.
     pub alpha: f64,
+    /// Normal restitution `e_n` (1 for an elastic table).
+    pub e_n: f64,
     /// P simulated at the check tolerance (`check_tol`).
     pub p_simulated: f64,
     /// P interpolated from the table.
@@ -137,12 +142,6 @@ impl Reader<'_> {
             })
     }
 
-    /// [`crate::surface::check_tree`], its message naming the patch and the dataset.
-    fn check_tree(&self, patch: &str, tree: &[i32], roots: usize) -> Result<usize, TableError> {
-        crate::surface::check_tree(tree, roots)
-            .map_err(|m| self.invalid(format!("patch '{patch}': dataset 'tree' {m}")))
-    }
-
     fn count_attr(&self, g: &hdf5::Group, name: &str, max: usize) -> Result<usize, TableError> {
         let v = self.attr_f64(g, name)?;
         if v.fract() != 0.0 || v < 1.0 || v > max as f64 {
@@ -199,6 +198,7 @@ impl Reader<'_> {
         kind: PatchKind,
         stencil: usize,
         version: u32,
+        e_range: Option<(f64, f64)>,
     ) -> Result<Option<Patch>, TableError> {
         let Ok(g) = root.group(name) else {
             return Ok(None);
@@ -226,9 +226,27 @@ impl Reader<'_> {
                 "patch '{name}': leaf_intervals = {m} gives fewer nodes than stencil_points = {stencil}"
             )));
         }
+        let restitution = match e_range {
+            Some((lo, hi)) => {
+                let be = self.count_attr(&g, ATTR_BLOCKS_E_N, 1 << 16)?;
+                Some(
+                    RestitutionAxis::new(lo, hi, be)
+                        .map_err(|m| self.invalid(format!("patch '{name}': {m}")))?,
+                )
+            }
+            None => None,
+        };
         let tree = self.vector(&g, &format!("patch '{name}'"), DS_TREE, "int32")?;
-        let leaves = self.check_tree(name, &tree, bg * bc)?;
-        let shape = [leaves, m + 1, m + 1];
+        let (roots, fanout) = match restitution {
+            Some(r) => (bg * bc * r.blocks(), 8),
+            None => (bg * bc, 4),
+        };
+        let leaves = crate::surface::check_tree_of(&tree, roots, fanout)
+            .map_err(|m| self.invalid(format!("patch '{name}': dataset 'tree' {m}")))?;
+        let mut shape = vec![leaves, m + 1, m + 1];
+        if restitution.is_some() {
+            shape.push(m + 1);
+        }
         let p = self.dataset(&g, DS_P, &shape)?;
         let err = self.dataset(&g, DS_ERROR, &shape)?;
         self.finite(&format!("{name}/{DS_P}"), &p)?;
@@ -239,8 +257,20 @@ impl Reader<'_> {
         let warp = self.warp(&g, name, version)?;
         // The checks above name the datasets as the file has them; what remains (the warp's
         // rules against the patch) is the model's own check.
-        let patch = Patch::new(kind, gamma_lo, gamma_hi, bg, bc, m, tree, p, err, warp)
-            .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
+        let patch = Patch::with_restitution(
+            kind,
+            gamma_lo,
+            gamma_hi,
+            bg,
+            bc,
+            m,
+            tree,
+            p,
+            err,
+            warp,
+            restitution,
+        )
+        .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
         Ok(Some(patch))
     }
 }
@@ -360,15 +390,46 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
     if alpha_max.is_nan() || alpha_max <= 0.0 {
         return Err(r.invalid(format!("alpha_max = {alpha_max} must be > 0 or inf")));
     }
+    // Schema 4 names its axes; an `e_n` axis brings its range.
+    let e_range = if version >= 4 {
+        let axes = r.attr_str(&file, ATTR_AXES)?;
+        match axes.as_str() {
+            "gamma,alpha" => None,
+            "gamma,alpha,e_n" => {
+                let (lo, hi) = (
+                    r.attr_f64(&file, ATTR_E_N_MIN)?,
+                    r.attr_f64(&file, ATTR_E_N_MAX)?,
+                );
+                RestitutionAxis::new(lo, hi, 1).map_err(|m| r.invalid(m))?;
+                Some((lo, hi))
+            }
+            other => {
+                return Err(r.invalid(format!(
+                    "root attribute '{ATTR_AXES}' = '{other}': this reader understands \
+                     'gamma,alpha' and 'gamma,alpha,e_n'"
+                )))
+            }
+        }
+    } else {
+        None
+    };
     let patches = file
         .group(GROUP_PATCHES)
         .map_err(|_| r.invalid(format!("missing group '{GROUP_PATCHES}'")))?;
     let mut read_patches: [Option<Patch>; 3] = [None, None, None];
     for id in PatchId::ALL {
-        read_patches[id.index()] = r.patch(&patches, id.name(), id.kind(), stencil, version)?;
+        read_patches[id.index()] =
+            r.patch(&patches, id.name(), id.kind(), stencil, version, e_range)?;
     }
-    let surface = Surface::new(gamma_min, gamma_max, alpha_max, stencil, read_patches)
-        .map_err(|m| r.invalid(m))?;
+    let surface = Surface::with_restitution(
+        gamma_min,
+        gamma_max,
+        alpha_max,
+        stencil,
+        read_patches,
+        e_range,
+    )
+    .map_err(|m| r.invalid(m))?;
     // The predicted error of every leaf, for the stated bound (`None`: not in the file).
     let leaf_predicted = PatchId::ALL.map(|id| {
         let name = id.name();
@@ -402,6 +463,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
         node_tol: r.attr_f64(&file, ATTR_NODE_TOL).unwrap_or(f64::NAN),
         check_tol: r.attr_f64(&file, ATTR_CHECK_TOL).unwrap_or(f64::NAN),
         target_error: r.attr_f64(&file, ATTR_TARGET_ERROR).unwrap_or(f64::NAN),
+        law: str_attr(ATTR_LAW),
     };
     let checks = match file.group(GROUP_CHECKS) {
         Ok(g) => {
@@ -411,6 +473,11 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
                 .unwrap_or(0);
             let col = |name: &str| r.dataset(&g, name, &[n]);
             let (gm, al) = (col(DS_GAMMA)?, col(DS_ALPHA)?);
+            let en = if e_range.is_some() {
+                col(DS_E_N)?
+            } else {
+                vec![1.0; n]
+            };
             let (ps, pi, er) = (
                 col(DS_P_SIMULATED)?,
                 col(DS_P_INTERPOLATED)?,
@@ -427,6 +494,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
                 .map(|i| Check {
                     gamma: gm[i],
                     alpha: al[i],
+                    e_n: en[i],
                     p_simulated: ps[i],
                     p_interpolated: pi[i],
                     interpolation_error: er[i],

@@ -18,7 +18,10 @@
 
 use crate::TableError;
 
-pub use oblique_physics::regimes::{alpha_c1, alpha_c2, linear_limit};
+pub use oblique_physics::regimes::{
+    alpha_c1, alpha_c1_dissipative, alpha_c2, full_slip_line, linear_limit,
+    linear_limit_dissipative,
+};
 
 /// Which part of the plane a patch covers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,13 +42,29 @@ impl PatchKind {
         }
     }
 
-    /// Patch coordinate `c` of `(γ, α)`.
+    /// Patch coordinate `c` of `(γ, α)` (an elastic table: `e_n = 1`).
     pub fn coord(self, gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
+        self.coord_at(PartialMap::SqrtEnd, gamma, alpha, 1.0, alpha_max)
+    }
+
+    /// Patch coordinate `c` of `(γ, α, e_n)`: the partial-slip coordinate is `map` of
+    /// `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)`, from `α_c1(γ, e_n) = 2γ²/(7(γ²(1 + e_n) − e_n))`
+    /// (where the full-slip line ends, `physics.md`) to `α_c2`, which does not move with
+    /// `e_n`; the stick coordinate does not depend on `e_n`. [`PartialMap::SqrtEnd`] at
+    /// `e_n = 1` is the elastic coordinate, bit for bit.
+    pub fn coord_at(
+        self,
+        map: PartialMap,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        alpha_max: f64,
+    ) -> f64 {
         match self {
             PatchKind::PartialSlip => {
-                let c1 = alpha_c1(gamma);
+                let c1 = alpha_c1_dissipative(gamma, e_n);
                 let l = (alpha / c1).ln() / (alpha_c2(gamma) / c1).ln();
-                1.0 - (1.0 - l).max(0.0).sqrt()
+                map.c_of_l(l)
             }
             PatchKind::Stick => {
                 let rho = stick_scale(gamma);
@@ -66,11 +85,15 @@ impl PatchKind {
     /// `α` at patch coordinate `c` (inverse of [`PatchKind::coord`]); `∞` at `c = 1` for a stick
     /// patch with `α_max = ∞`.
     pub fn alpha(self, gamma: f64, c: f64, alpha_max: f64) -> f64 {
+        self.alpha_at(PartialMap::SqrtEnd, gamma, c, 1.0, alpha_max)
+    }
+
+    /// `α` at patch coordinate `c` and restitution `e_n` (inverse of [`PatchKind::coord_at`]).
+    pub fn alpha_at(self, map: PartialMap, gamma: f64, c: f64, e_n: f64, alpha_max: f64) -> f64 {
         match self {
             PatchKind::PartialSlip => {
-                let c1 = alpha_c1(gamma);
-                let q = 1.0 - c;
-                c1 * (alpha_c2(gamma) / c1).powf(1.0 - q * q)
+                let c1 = alpha_c1_dissipative(gamma, e_n);
+                c1 * (alpha_c2(gamma) / c1).powf(map.l_of_c(c))
             }
             PatchKind::Stick => {
                 if c >= 1.0 {
@@ -86,6 +109,45 @@ impl PatchKind {
                 };
                 let q = c * top;
                 c2 * (1.0 + rho * q / (1.0 - q))
+            }
+        }
+    }
+}
+
+/// The map from `ℓ = ln(α/α_c1)/ln(α_c2/α_c1) ∈ [0, 1]` to the partial-slip coordinate `c`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PartialMap {
+    /// `c = 1 − √(1 − ℓ)` (an elastic table): graded towards `α_c2`, where `P` goes like
+    /// `√(1 − ℓ)`; at `α_c1` the elastic `P` leaves the full-slip line like `(α − α_c1)²`.
+    SqrtEnd,
+    /// `c = (2/π) asin(√ℓ)` (a table with an `e_n` axis): graded at both ends, because a
+    /// dissipative impact leaves the full-slip line like `(α − α_c1)^{3/2}` (measured: the
+    /// local exponent falls from 1.85 towards 1.5 as `α → α_c1` at `e_n = 0.95`), which is a
+    /// polynomial in `√ℓ`.
+    Arcsine,
+}
+
+impl PartialMap {
+    /// `c` of `ℓ` (`ℓ` outside `[0, 1]` by rounding: the ends).
+    #[inline(always)]
+    pub fn c_of_l(self, l: f64) -> f64 {
+        match self {
+            PartialMap::SqrtEnd => 1.0 - (1.0 - l).max(0.0).sqrt(),
+            PartialMap::Arcsine => std::f64::consts::FRAC_2_PI * l.clamp(0.0, 1.0).sqrt().asin(),
+        }
+    }
+
+    /// `ℓ` of `c` (the inverse of [`PartialMap::c_of_l`]).
+    #[inline]
+    pub fn l_of_c(self, c: f64) -> f64 {
+        match self {
+            PartialMap::SqrtEnd => {
+                let q = 1.0 - c;
+                1.0 - q * q
+            }
+            PartialMap::Arcsine => {
+                let s = (std::f64::consts::FRAC_PI_2 * c).sin();
+                s * s
             }
         }
     }
@@ -176,6 +238,74 @@ pub struct Patch {
     /// Optional warp of the coordinate (only `partial_high`, schema 3): when present, the
     /// quadtree is over `(x, c')` with `c' =` [`Warp::apply`]`(γ, c)` instead of `(x, c)`.
     warp: Option<Warp>,
+    /// The third axis, normal restitution `e_n` (schema 4), if the table has one: the tree is
+    /// then an octree over `(x, c, x_e)` (see [`RestitutionAxis`]).
+    restitution: Option<RestitutionAxis>,
+}
+
+/// The normal-restitution axis of a patch (schema 4): `e_n` from `lo` to `hi`, cut into
+/// `blocks` equal root cells; the patch's third coordinate is `x_e = (e_n − lo)/(hi − lo)`.
+///
+/// With it a patch is `blocks_gamma × blocks_coord × blocks` root cells, numbered row-major
+/// (`γ` outer, `e_n` inner), each the root of an octree: a split cell's children are the cells
+/// `tree[i] + 4·q_γ + 2·q_c + q_e`, and every leaf stores `(m + 1)³` nodes,
+/// `p[leaf·(m+1)³ + (i_γ·(m+1) + i_c)·(m+1) + i_e]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RestitutionAxis {
+    /// Lowest `e_n`.
+    lo: f64,
+    /// Highest `e_n`.
+    hi: f64,
+    /// Root cells along `e_n`.
+    blocks: usize,
+}
+
+impl RestitutionAxis {
+    /// The axis from its stored values: `0 < lo < hi ≤ 1` and `1 ≤ blocks ≤ 2¹⁶`. `Err` names
+    /// the attribute and the allowed range.
+    pub fn new(lo: f64, hi: f64, blocks: usize) -> Result<RestitutionAxis, String> {
+        if !(lo > 0.0 && hi > lo && hi <= 1.0) {
+            return Err(format!(
+                "e_n range [{lo}, {hi}]: must satisfy 0 < e_n_lo < e_n_hi <= 1"
+            ));
+        }
+        if !(1..=1 << 16).contains(&blocks) {
+            return Err(format!(
+                "blocks_e_n = {blocks}: must be an integer in [1, 65536]"
+            ));
+        }
+        Ok(RestitutionAxis { lo, hi, blocks })
+    }
+
+    /// Lowest `e_n`.
+    pub fn lo(&self) -> f64 {
+        self.lo
+    }
+
+    /// Highest `e_n`.
+    pub fn hi(&self) -> f64 {
+        self.hi
+    }
+
+    /// Root cells along `e_n`.
+    pub fn blocks(&self) -> usize {
+        self.blocks
+    }
+
+    /// The coordinate `x_e = (e_n − lo)/(hi − lo)` of `e_n`.
+    #[inline(always)]
+    pub fn x(&self, e_n: f64) -> f64 {
+        (e_n - self.lo) / (self.hi - self.lo)
+    }
+
+    /// `e_n` at coordinate `x` (`hi` exactly at `x = 1`).
+    pub fn e_n(&self, x: f64) -> f64 {
+        if x >= 1.0 {
+            self.hi
+        } else {
+            self.lo + (self.hi - self.lo) * x
+        }
+    }
 }
 
 /// Warp of the partial-slip coordinate (group `/patches/partial_high/warp`, schema 3): a map
@@ -488,9 +618,15 @@ pub fn locate(x: f64, blocks: usize) -> (usize, f64) {
 /// `0..leaves` each exactly once; returns the number of leaves. `Err` says what is wrong with
 /// the dataset `tree`.
 pub fn check_tree(tree: &[i32], roots: usize) -> Result<usize, String> {
-    if tree.len() < roots || !(tree.len() - roots).is_multiple_of(4) {
+    check_tree_of(tree, roots, 4)
+}
+
+/// [`check_tree`] for a tree whose split cells have `fanout` children (4 for a quadtree, 8
+/// for the octree of a patch with an `e_n` axis).
+pub fn check_tree_of(tree: &[i32], roots: usize, fanout: usize) -> Result<usize, String> {
+    if tree.len() < roots || !(tree.len() - roots).is_multiple_of(fanout) {
         return Err(format!(
-            "has {} cells: expected {roots} roots plus groups of 4 children",
+            "has {} cells: expected {roots} roots plus groups of {fanout} children",
             tree.len()
         ));
     }
@@ -503,10 +639,10 @@ pub fn check_tree(tree: &[i32], roots: usize) -> Result<usize, String> {
         }
         let first = t as usize;
         // Children come after their parent (no cycles) and after the roots.
-        if first <= i || first < roots || first + 4 > tree.len() {
+        if first <= i || first < roots || first + fanout > tree.len() {
             return Err(format!("cell {i} points to children at {t}: out of range"));
         }
-        for r in &mut referenced[first..first + 4] {
+        for r in &mut referenced[first..first + fanout] {
             if *r {
                 return Err(format!(
                     "cell {i}: children at {t} shared with another cell"
@@ -526,10 +662,8 @@ pub fn check_tree(tree: &[i32], roots: usize) -> Result<usize, String> {
 }
 
 impl Patch {
-    /// A patch from its stored values, checked: finite increasing γ edges `> 0`, at least one
-    /// root cell per axis, `m ≥ 1`, a valid quadtree ([`check_tree`]), `(m + 1)²` finite node
-    /// values of `P` (each `|P| ≤ 1 + 1e-6`) and of the error estimate per leaf, and a valid
-    /// warp ([`Patch::check_warp`]). `Err` names the value and the rule.
+    /// A patch of an elastic table from its stored values: [`Patch::with_restitution`]
+    /// without an `e_n` axis.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         kind: PatchKind,
@@ -543,6 +677,40 @@ impl Patch {
         error_estimate: Vec<f64>,
         warp: Option<Warp>,
     ) -> Result<Patch, String> {
+        Patch::with_restitution(
+            kind,
+            gamma_lo,
+            gamma_hi,
+            blocks_gamma,
+            blocks_coord,
+            leaf_intervals,
+            tree,
+            p,
+            error_estimate,
+            warp,
+            None,
+        )
+    }
+
+    /// A patch from its stored values, checked: finite increasing γ edges `> 0`, at least one
+    /// root cell per axis, `m ≥ 1`, a valid tree ([`check_tree_of`]: a quadtree, or an octree
+    /// with an `e_n` axis), `(m + 1)^dims` finite node values of `P` (each `|P| ≤ 1 + 1e-6`)
+    /// and of the error estimate per leaf, and a valid warp ([`Patch::check_warp`]; a patch
+    /// with an `e_n` axis has none). `Err` names the value and the rule.
+    #[allow(clippy::too_many_arguments)]
+    pub fn with_restitution(
+        kind: PatchKind,
+        gamma_lo: f64,
+        gamma_hi: f64,
+        blocks_gamma: usize,
+        blocks_coord: usize,
+        leaf_intervals: usize,
+        tree: Vec<i32>,
+        p: Vec<f64>,
+        error_estimate: Vec<f64>,
+        warp: Option<Warp>,
+        restitution: Option<RestitutionAxis>,
+    ) -> Result<Patch, String> {
         if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi > gamma_lo)
         {
             return Err(format!(
@@ -555,16 +723,22 @@ impl Patch {
                  leaf_intervals = {leaf_intervals}: each must be >= 1"
             ));
         }
-        let leaves = check_tree(&tree, blocks_gamma * blocks_coord)
-            .map_err(|m| format!("dataset 'tree' {m}"))?;
-        let size = leaves * (leaf_intervals + 1).pow(2);
+        if restitution.is_some() && warp.is_some() {
+            return Err("a patch with an e_n axis cannot have a warp".into());
+        }
+        let dims = if restitution.is_some() { 3 } else { 2 };
+        let roots = blocks_gamma * blocks_coord * restitution.map_or(1, |r| r.blocks);
+        let leaves =
+            check_tree_of(&tree, roots, 1 << dims).map_err(|m| format!("dataset 'tree' {m}"))?;
+        let size = leaves * (leaf_intervals + 1).pow(dims);
         for (name, v) in [("P", &p), ("error_estimate", &error_estimate)] {
             if v.len() != size {
+                let n1 = leaf_intervals + 1;
+                let grid = vec![n1.to_string(); dims as usize].join(" x ");
                 return Err(format!(
                     "dataset '{name}' has {} values: expected {size} ({leaves} leaves of \
-                     {n1} x {n1} nodes)",
+                     {grid} nodes)",
                     v.len(),
-                    n1 = leaf_intervals + 1
                 ));
             }
             if let Some(i) = v.iter().position(|x| !x.is_finite()) {
@@ -585,17 +759,21 @@ impl Patch {
             p,
             error_estimate,
             warp,
+            restitution,
         };
         patch.check_warp()?;
         Ok(patch)
     }
 
-    /// The same patch with other node values of `P` (`f(i, P_i)` at node `i`), checked as by
-    /// [`Patch::new`].
-    pub fn map_values(&self, f: impl FnMut(usize, f64) -> f64) -> Result<Patch, String> {
-        let mut f = f;
-        let p = self.p.iter().enumerate().map(|(i, &v)| f(i, v)).collect();
-        Patch::new(
+    /// The same patch with other node values and error estimates, checked as by
+    /// [`Patch::with_restitution`].
+    fn remade(
+        &self,
+        p: Vec<f64>,
+        error_estimate: Vec<f64>,
+        warp: Option<Warp>,
+    ) -> Result<Patch, String> {
+        Patch::with_restitution(
             self.kind,
             self.gamma_lo,
             self.gamma_hi,
@@ -604,9 +782,18 @@ impl Patch {
             self.leaf_intervals,
             self.tree.clone(),
             p,
-            self.error_estimate.clone(),
-            self.warp.clone(),
+            error_estimate,
+            warp,
+            self.restitution,
         )
+    }
+
+    /// The same patch with other node values of `P` (`f(i, P_i)` at node `i`), checked as by
+    /// [`Patch::new`].
+    pub fn map_values(&self, f: impl FnMut(usize, f64) -> f64) -> Result<Patch, String> {
+        let mut f = f;
+        let p = self.p.iter().enumerate().map(|(i, &v)| f(i, v)).collect();
+        self.remade(p, self.error_estimate.clone(), self.warp.clone())
     }
 
     /// The same patch with other error estimates (`f(i, e_i)` at node `i`), checked as by
@@ -621,34 +808,56 @@ impl Patch {
             .enumerate()
             .map(|(i, &v)| f(i, v))
             .collect();
-        Patch::new(
-            self.kind,
-            self.gamma_lo,
-            self.gamma_hi,
-            self.blocks_gamma,
-            self.blocks_coord,
-            self.leaf_intervals,
-            self.tree.clone(),
-            self.p.clone(),
-            error_estimate,
-            self.warp.clone(),
-        )
+        self.remade(self.p.clone(), error_estimate, self.warp.clone())
     }
 
     /// The same patch with another warp (or none), checked as by [`Patch::new`].
     pub fn with_warp(&self, warp: Option<Warp>) -> Result<Patch, String> {
-        Patch::new(
-            self.kind,
-            self.gamma_lo,
-            self.gamma_hi,
-            self.blocks_gamma,
-            self.blocks_coord,
-            self.leaf_intervals,
-            self.tree.clone(),
-            self.p.clone(),
-            self.error_estimate.clone(),
-            warp,
-        )
+        self.remade(self.p.clone(), self.error_estimate.clone(), warp)
+    }
+
+    /// The `e_n` axis, if the patch has one.
+    pub fn restitution(&self) -> Option<&RestitutionAxis> {
+        self.restitution.as_ref()
+    }
+
+    /// Number of axes of the tree: 2 (`γ`, `c`), or 3 with an `e_n` axis.
+    pub fn dims(&self) -> u32 {
+        if self.restitution.is_some() {
+            3
+        } else {
+            2
+        }
+    }
+
+    /// The partial-slip coordinate's map: [`PartialMap::Arcsine`] with an `e_n` axis,
+    /// [`PartialMap::SqrtEnd`] without.
+    pub fn partial_map(&self) -> PartialMap {
+        if self.restitution.is_some() {
+            PartialMap::Arcsine
+        } else {
+            PartialMap::SqrtEnd
+        }
+    }
+
+    /// Children of a split cell: `2^dims`.
+    pub fn fanout(&self) -> usize {
+        1 << self.dims()
+    }
+
+    /// Root cells along `e_n` (1 without an `e_n` axis).
+    pub fn blocks_e_n(&self) -> usize {
+        self.restitution.map_or(1, |r| r.blocks)
+    }
+
+    /// Root cells of the tree.
+    pub fn roots(&self) -> usize {
+        self.blocks_gamma * self.blocks_coord * self.blocks_e_n()
+    }
+
+    /// Nodes per leaf, `(m + 1)^dims`.
+    pub fn leaf_size(&self) -> usize {
+        (self.leaf_intervals + 1).pow(self.dims())
     }
 
     /// Region and coordinate.
@@ -703,12 +912,15 @@ impl Patch {
 
     /// Number of leaves.
     pub fn leaves(&self) -> usize {
-        self.p.len() / (self.leaf_intervals + 1).pow(2)
+        self.p.len() / self.leaf_size()
     }
 
     /// The fine index of this patch ([`FineIndex`]) with at most `max_entries` entries, or
     /// `None` for a grid too small for the cubic stencil (`m < 3`) or a tree deeper than 30.
     pub fn fine_index(&self, max_entries: usize) -> Option<FineIndex> {
+        if self.restitution.is_some() {
+            return None;
+        }
         let (bg, bc, m) = (self.blocks_gamma, self.blocks_coord, self.leaf_intervals);
         let roots = bg * bc;
         let n = self.tree.len();
@@ -788,15 +1000,14 @@ impl Patch {
     /// Depth of every leaf (roots have depth 0), in leaf order.
     pub fn leaf_depths(&self) -> Vec<u32> {
         let mut depth = vec![0u32; self.leaves()];
-        let mut stack: Vec<(usize, u32)> = (0..self.blocks_gamma * self.blocks_coord)
-            .map(|i| (i, 0))
-            .collect();
+        let mut stack: Vec<(usize, u32)> = (0..self.roots()).map(|i| (i, 0)).collect();
+        let fanout = self.fanout();
         while let Some((cell, d)) = stack.pop() {
             let t = self.tree[cell];
             if t < 0 {
                 depth[(-(t as i64) - 1) as usize] = d;
             } else {
-                stack.extend((0..4).map(|q| (t as usize + q, d + 1)));
+                stack.extend((0..fanout).map(|q| (t as usize + q, d + 1)));
             }
         }
         depth
@@ -848,16 +1059,21 @@ impl Patch {
     /// `d` with integer position `a` (exact dyadic values), leaf by leaf.
     pub fn leaf_gamma_spans(&self) -> Vec<(f64, f64)> {
         let mut spans = vec![(0.0, 0.0); self.leaves()];
-        let mut stack: Vec<(usize, u32, u64)> = (0..self.blocks_gamma * self.blocks_coord)
-            .map(|i| (i, 0, (i / self.blocks_coord) as u64))
+        let per_row = self.blocks_coord * self.blocks_e_n();
+        let mut stack: Vec<(usize, u32, u64)> = (0..self.roots())
+            .map(|i| (i, 0, (i / per_row) as u64))
             .collect();
+        let fanout = self.fanout();
         while let Some((cell, d, a)) = stack.pop() {
             let t = self.tree[cell];
             if t < 0 {
                 let scale = f64::from(d.min(1000) as i32).exp2();
                 spans[(-(t as i64) - 1) as usize] = (a as f64 / scale, (a + 1) as f64 / scale);
             } else {
-                stack.extend((0..4).map(|q| (t as usize + q, d + 1, 2 * a + (q / 2) as u64)));
+                // The child's upper half along γ: `q_γ`, the first bit of `q`.
+                stack.extend(
+                    (0..fanout).map(|q| (t as usize + q, d + 1, 2 * a + (q / (fanout / 2)) as u64)),
+                );
             }
         }
         spans
@@ -921,6 +1137,74 @@ impl Patch {
             let row = &vals[(sg + i) * (n + 1) + sc..][..kc];
             let inner: f64 = row.iter().zip(&wc[..kc]).map(|(p, w)| p * w).sum();
             total += wi * inner;
+        }
+        total
+    }
+
+    /// The leaf of a patch with an `e_n` axis that contains `(γ, c, x_e)` (`x_e` the
+    /// coordinate of [`RestitutionAxis::x`]) and the position inside it, each component in
+    /// `[0, 1]`: [`Patch::find_leaf`] with a third axis.
+    #[inline]
+    pub fn find_leaf3(&self, gamma: f64, c: f64, xe: f64) -> (usize, [f64; 3]) {
+        let be = self.blocks_e_n();
+        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
+        let (a, mut fg) = locate(xg, self.blocks_gamma);
+        let (b, mut fc) = locate(c, self.blocks_coord);
+        let (e, mut fe) = locate(xe, be);
+        let mut cell = (a * self.blocks_coord + b) * be + e;
+        loop {
+            let t = self.tree[cell];
+            if t < 0 {
+                return ((-(t as i64) - 1) as usize, [fg, fc, fe]);
+            }
+            fg *= 2.0;
+            fc *= 2.0;
+            fe *= 2.0;
+            let qg = usize::from(fg >= 1.0);
+            let qc = usize::from(fc >= 1.0);
+            let qe = usize::from(fe >= 1.0);
+            fg -= qg as f64;
+            fc -= qc as f64;
+            fe -= qe as f64;
+            cell = t as usize + 4 * qg + 2 * qc + qe;
+        }
+    }
+
+    /// `P` at `(γ, c, e_n)` (`e_n` ignored without an `e_n` axis): the tensor product of the
+    /// rule over every axis of the patch, limited to `[−1, 1]` ([`bound_p`]).
+    #[inline]
+    pub fn interpolate_at(&self, gamma: f64, c: f64, e_n: f64, k: usize) -> f64 {
+        match &self.restitution {
+            None => self.interpolate(gamma, c, k),
+            Some(r) => bound_p(self.tensor3(gamma, c, r.x(e_n), k)),
+        }
+    }
+
+    /// The tensor product of a patch with an `e_n` axis at `(γ, c, x_e)` with a `k`-point
+    /// stencil per axis, before the bound of step 10.
+    #[inline]
+    pub fn tensor3(&self, gamma: f64, c: f64, xe: f64, k: usize) -> f64 {
+        let (leaf, f) = self.find_leaf3(gamma, c, xe);
+        let n = self.leaf_intervals;
+        let n1 = n + 1;
+        let vals = &self.p[leaf * n1 * n1 * n1..(leaf + 1) * n1 * n1 * n1];
+        let mut w = [[0.0; 8]; 3];
+        let mut start = [0usize; 3];
+        let mut count = [0usize; 3];
+        for axis in 0..3 {
+            let (s0, k0) = stencil(f[axis] * n as f64, n1, k, &mut w[axis]);
+            start[axis] = s0;
+            count[axis] = k0;
+        }
+        let mut total = 0.0;
+        for i in 0..count[0] {
+            let mut plane = 0.0;
+            for j in 0..count[1] {
+                let row = &vals[((start[0] + i) * n1 + start[1] + j) * n1 + start[2]..][..count[2]];
+                let inner: f64 = row.iter().zip(&w[2][..count[2]]).map(|(p, w)| p * w).sum();
+                plane += w[1][j] * inner;
+            }
+            total += w[0][i] * plane;
         }
         total
     }
@@ -1020,6 +1304,9 @@ pub struct Surface {
     stencil: usize,
     /// The patches, indexed by [`PatchId::index`].
     patches: [Option<Patch>; 3],
+    /// The `e_n` range `[lo, hi]` of a table with a normal-restitution axis (every patch has
+    /// that axis); `None` for an elastic table (`e_n = 1`).
+    restitution: Option<(f64, f64)>,
 }
 
 impl Surface {
@@ -1035,6 +1322,23 @@ impl Surface {
         stencil: usize,
         patches: [Option<Patch>; 3],
     ) -> Result<Surface, String> {
+        Surface::with_restitution(gamma_min, gamma_max, alpha_max, stencil, patches, None)
+    }
+
+    /// [`Surface::new`] with an `e_n` axis over `restitution = (lo, hi)` (schema 4): every
+    /// patch must have that axis ([`Patch::restitution`]) over that range; with `None`, none
+    /// may have one.
+    pub fn with_restitution(
+        gamma_min: f64,
+        gamma_max: f64,
+        alpha_max: f64,
+        stencil: usize,
+        patches: [Option<Patch>; 3],
+        restitution: Option<(f64, f64)>,
+    ) -> Result<Surface, String> {
+        if let Some((lo, hi)) = restitution {
+            RestitutionAxis::new(lo, hi, 1)?;
+        }
         if !(gamma_min > 0.0 && gamma_max > gamma_min && gamma_max.is_finite()) {
             return Err(format!(
                 "gamma domain [{gamma_min}, {gamma_max}] must satisfy 0 < min < max < inf"
@@ -1067,6 +1371,13 @@ impl Surface {
                     p.leaf_intervals()
                 ));
             }
+            let axis = p.restitution().map(|r| (r.lo(), r.hi()));
+            if axis != restitution {
+                return Err(format!(
+                    "patch '{name}' has the e_n axis {axis:?}, the table {restitution:?}: every \
+                     patch must have the table's"
+                ));
+            }
             if p.warp().is_some() && id != PatchId::PartialHigh {
                 return Err(format!(
                     "patch '{name}' has a warp: only '{}' may have one",
@@ -1091,6 +1402,7 @@ impl Surface {
             alpha_max,
             stencil,
             patches,
+            restitution,
         })
     }
 
@@ -1106,13 +1418,45 @@ impl Surface {
                 patches[id.index()] = Some(f(id, p)?);
             }
         }
-        Surface::new(
+        Surface::with_restitution(
             self.gamma_min,
             self.gamma_max,
             self.alpha_max,
             self.stencil,
             patches,
+            self.restitution,
         )
+    }
+
+    /// The `e_n` range `[lo, hi]` of a table with a normal-restitution axis; `None` for an
+    /// elastic table (it answers `e_n = 1` only).
+    pub fn restitution(&self) -> Option<(f64, f64)> {
+        self.restitution
+    }
+
+    /// The table's axes, in order: `γ` over `[gamma_min, gamma_max]`, `α` over
+    /// `[0, alpha_max]`, and `e_n` over its range when the table has one.
+    pub fn axes(&self) -> Vec<Axis> {
+        let mut axes = vec![
+            Axis {
+                name: AxisName::Gamma,
+                lo: self.gamma_min,
+                hi: self.gamma_max,
+            },
+            Axis {
+                name: AxisName::Alpha,
+                lo: 0.0,
+                hi: self.alpha_max,
+            },
+        ];
+        if let Some((lo, hi)) = self.restitution {
+            axes.push(Axis {
+                name: AxisName::RestitutionN,
+                lo,
+                hi,
+            });
+        }
+        axes
     }
 
     /// Lower end of the γ domain.
@@ -1176,6 +1520,22 @@ impl Region {
         }
     }
 
+    /// Region of `(γ, α)` at normal restitution `e_n` (assumed valid): the full-slip line ends
+    /// at [`linear_limit_dissipative`]; `α_c2` does not move with `e_n`. `e_n = 1` is
+    /// [`Region::of`], bit for bit.
+    #[inline]
+    pub fn of_e(gamma: f64, alpha: f64, e_n: f64) -> Self {
+        if alpha <= linear_limit_dissipative(gamma, e_n) {
+            Region::Line
+        } else if gamma <= 1.0 {
+            Region::StickLow
+        } else if alpha < alpha_c2(gamma) {
+            Region::PartialHigh
+        } else {
+            Region::StickHigh
+        }
+    }
+
     /// The patch that answers in this region (`None` on the line).
     pub fn patch_id(self) -> Option<PatchId> {
         match self {
@@ -1211,12 +1571,13 @@ impl Surface {
         self.eval_with(gamma, alpha, OutOfDomain::Error)
     }
 
-    /// `P(γ, α)` by the documented rule (dimensionless, `−1 ≤ P ≤ 1`). `γ` must be finite and
-    /// `> 0`, `α ≥ 0` (`α = ∞` is the no-slip limit). The full-slip line `P = 1 − 7α` is exact
-    /// and answered for any `γ > 0`. Elsewhere a point outside the table's domain
-    /// (`γ ∉ [gamma_min, gamma_max]` or `α > alpha_max`) is an error with
-    /// [`OutOfDomain::Error`]; with [`OutOfDomain::Clamp`] it is answered at the nearest point of
-    /// the domain, `P(clamp(γ), min(α, alpha_max))`.
+    /// `P(γ, α)` by the documented rule (dimensionless, `−1 ≤ P ≤ 1`) of an elastic impact:
+    /// [`Surface::eval_point`] at `e_n = 1` (an error for a table whose `e_n` range does not
+    /// reach 1). `γ` must be finite and `> 0`, `α ≥ 0` (`α = ∞` is the no-slip limit). The
+    /// full-slip line `P = 1 − 7α` is exact and answered for any `γ > 0`. Elsewhere a point
+    /// outside the table's domain (`γ ∉ [gamma_min, gamma_max]` or `α > alpha_max`) is an
+    /// error with [`OutOfDomain::Error`]; with [`OutOfDomain::Clamp`] it is answered at the
+    /// nearest point of the domain, `P(clamp(γ), min(α, alpha_max))`.
     ///
     /// Touches only memory and does not allocate unless it returns an error.
     #[inline]
@@ -1226,19 +1587,48 @@ impl Surface {
         alpha: f64,
         outside: OutOfDomain,
     ) -> Result<f64, TableError> {
+        self.eval_point(gamma, alpha, 1.0, outside)
+    }
+
+    /// `P(γ, α, e_n)` by the documented rule: [`Surface::eval_with`] at normal restitution
+    /// `e_n`. `e_n` must be 1 for an elastic table and inside the table's `e_n` range
+    /// otherwise (with either [`OutOfDomain`]: clamping applies to `γ` and `α` only, never to
+    /// `e_n`). The full-slip line is `P = 1 − (7/2)(1 + e_n)α` up to
+    /// `α_c1(γ, e_n)` (`physics.md`).
+    #[inline]
+    pub fn eval_point(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, TableError> {
         if !(gamma.is_finite() && gamma > 0.0) {
             return Err(bad_gamma(gamma));
         }
         if alpha.is_nan() || alpha < 0.0 {
             return Err(bad_alpha(alpha));
         }
-        let region = Region::of(gamma, alpha);
+        self.check_e_n(e_n)?;
+        let region = Region::of_e(gamma, alpha, e_n);
         if region == Region::Line {
-            return Ok(1.0 - 7.0 * alpha);
+            return Ok(full_slip_line(alpha, e_n));
         }
-        self.apply_domain(region, gamma, alpha, outside, |r, g, a| {
-            self.eval_in(r, g, a)
+        self.apply_domain_e(region, gamma, alpha, e_n, outside, |r, g, a| {
+            self.eval_in(r, g, a, e_n)
         })
+    }
+
+    /// `Ok` when the table answers at normal restitution `e_n`: exactly 1 for an elastic
+    /// table, inside `[lo, hi]` for a table with an `e_n` axis; otherwise the query error
+    /// naming `e_n` and the allowed values.
+    #[inline(always)]
+    pub fn check_e_n(&self, e_n: f64) -> Result<(), TableError> {
+        match self.restitution {
+            None if e_n == 1.0 => Ok(()),
+            Some((lo, hi)) if e_n >= lo && e_n <= hi => Ok(()),
+            r => Err(e_n_outside(r, e_n)),
+        }
     }
 
     /// The domain policy of [`Surface::eval_with`] for a valid query above the full-slip line
@@ -1257,6 +1647,21 @@ impl Surface {
         outside: OutOfDomain,
         eval_in: impl Fn(Region, f64, f64) -> f64,
     ) -> Result<f64, TableError> {
+        self.apply_domain_e(region, gamma, alpha, 1.0, outside, eval_in)
+    }
+
+    /// [`Surface::apply_domain`] at normal restitution `e_n` (checked by the caller): the
+    /// clamped point's region and line are those of `e_n`.
+    #[inline(always)]
+    pub fn apply_domain_e(
+        &self,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+        eval_in: impl Fn(Region, f64, f64) -> f64,
+    ) -> Result<f64, TableError> {
         let inside = gamma >= self.gamma_min && gamma <= self.gamma_max;
         if inside && alpha <= self.alpha_max {
             return Ok(eval_in(region, gamma, alpha));
@@ -1267,8 +1672,8 @@ impl Surface {
             OutOfDomain::Clamp => {
                 let g = gamma.clamp(self.gamma_min, self.gamma_max);
                 let a = alpha.min(self.alpha_max);
-                match Region::of(g, a) {
-                    Region::Line => Ok(1.0 - 7.0 * a),
+                match Region::of_e(g, a, e_n) {
+                    Region::Line => Ok(full_slip_line(a, e_n)),
                     r => Ok(eval_in(r, g, a)),
                 }
             }
@@ -1293,12 +1698,12 @@ impl Surface {
         alpha_outside(self.alpha_max, alpha)
     }
 
-    /// Evaluate in a known non-line region (no checks). The patch coordinate is computed with
-    /// fewer divisions than [`PatchKind::coord`] (same value up to rounding).
+    /// Evaluate in a known non-line region at `e_n` (no checks). The patch coordinate is
+    /// computed with fewer divisions than [`PatchKind::coord_at`] (same value up to rounding).
     #[inline]
-    fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
+    fn eval_in(&self, region: Region, gamma: f64, alpha: f64, e_n: f64) -> f64 {
         match self.patch(region) {
-            Some(patch) => {
+            Some(patch) if patch.restitution.is_none() => {
                 let c = match patch.kind {
                     PatchKind::PartialSlip => partial_coord(gamma, alpha),
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
@@ -1306,11 +1711,101 @@ impl Surface {
                 let c = patch.warped(gamma, c.clamp(0.0, 1.0));
                 patch.interpolate(gamma, c, self.stencil)
             }
-            // A domain that touches γ = 1 only from one side: at γ = 1 exactly P = −1 on the
-            // nonlinear part (α ≥ 2/7).
-            None => -1.0,
+            Some(patch) => {
+                let c = match patch.kind {
+                    PatchKind::PartialSlip => partial_coord_e(gamma, alpha, e_n),
+                    PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
+                };
+                patch.interpolate_at(gamma, c.clamp(0.0, 1.0), e_n, self.stencil)
+            }
+            // A domain that touches γ = 1 only from one side: at γ = 1 exactly the contact
+            // sticks at once and P = −e_n on the nonlinear part (α ≥ 2/7).
+            None => -e_n,
         }
     }
+}
+
+/// `e_n` that a table with the `e_n` range `range` (`None`: elastic) does not answer.
+#[cold]
+pub fn e_n_outside(range: Option<(f64, f64)>, e_n: f64) -> TableError {
+    TableError::Query {
+        name: "e_n",
+        value: e_n,
+        allowed: match range {
+            None => "1: this table is elastic (it has no e_n axis); for e_n < 1 use a table \
+                     built with an e_n range"
+                .into(),
+            Some((lo, hi)) => format!("in the table's e_n range [{lo}, {hi}]"),
+        },
+    }
+}
+
+/// A point of a table's domain: `(γ, α, e_n)`, dimensionless (`physics.md`); `e_n = 1` is
+/// an elastic impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    /// `γ = √((7/2) G*/E*)`.
+    pub gamma: f64,
+    /// `α = μ v_z0/|u0|` (`∞`: no slip).
+    pub alpha: f64,
+    /// Normal restitution `e_n`.
+    pub e_n: f64,
+}
+
+impl Point {
+    /// `(γ, α, e_n)`.
+    pub fn new(gamma: f64, alpha: f64, e_n: f64) -> Point {
+        Point { gamma, alpha, e_n }
+    }
+
+    /// `(γ, α)` of an elastic impact (`e_n = 1`).
+    pub fn elastic(gamma: f64, alpha: f64) -> Point {
+        Point::new(gamma, alpha, 1.0)
+    }
+}
+
+/// The name of an axis of a table (schema 4 lists them in this order).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisName {
+    /// `γ = √((7/2) G*/E*)`.
+    Gamma,
+    /// `α = μ v_z0/|u0|`.
+    Alpha,
+    /// Normal restitution `e_n`.
+    RestitutionN,
+}
+
+impl AxisName {
+    /// The name stored in the file and used in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            AxisName::Gamma => "gamma",
+            AxisName::Alpha => "alpha",
+            AxisName::RestitutionN => "e_n",
+        }
+    }
+}
+
+/// One axis of a table: its name and range (`hi = ∞` for `α` with no slip included).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Axis {
+    /// Which quantity.
+    pub name: AxisName,
+    /// Lowest value.
+    pub lo: f64,
+    /// Highest value.
+    pub hi: f64,
+}
+
+/// [`PatchKind::coord_at`] of the partial-slip patch of a table with an `e_n` axis
+/// ([`PartialMap::Arcsine`]) at normal restitution `e_n`: `α/α_c1 = 7α h/(2γ²)` and
+/// `α_c2/α_c1 = h`, `h = γ²(1 + e_n) − e_n`.
+#[inline(always)]
+pub fn partial_coord_e(gamma: f64, alpha: f64, e_n: f64) -> f64 {
+    let g2 = gamma * gamma;
+    let ratio = g2 * (1.0 + e_n) - e_n;
+    let l = (7.0 * alpha * ratio / (2.0 * g2)).ln() / ratio.ln();
+    PartialMap::Arcsine.c_of_l(l)
 }
 
 /// [`PatchKind::coord`] of the partial-slip patch: `α/α_c1 = 7α(2γ² − 1)/(2γ²)` and
@@ -1468,6 +1963,7 @@ mod tests {
                 c_star: 0.5,
                 knot: vec![0.6; 61],
             }),
+            restitution: None,
         };
         // γ(start) = 2.90625: unwarped below, warped from it on.
         let w = patch.warp.as_ref().expect("warp");

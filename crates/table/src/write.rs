@@ -1,11 +1,11 @@
-//! The storage layer: writes a built table as HDF5 (schema v3, `docs/table-format.md`), atomically
+//! The storage layer: writes a built table as HDF5 (schema v3, or v4 with an `e_n` axis; `docs/table-format.md`), atomically
 //! (temporary file in the same directory, then rename). Names come from `crate::format`,
 //! which owns the format; the lookup crate reads what this writes.
 
 use std::path::{Path, PathBuf};
 
 use hdf5::types::VarLenUnicode;
-use oblique_physics::regimes::{alpha_c1, alpha_c2};
+use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 
 use crate::format::*;
 use crate::read::{Check, Provenance};
@@ -25,6 +25,8 @@ pub struct BuiltPatch {
     pub coord: Vec<f64>,
     /// α of every node (`∞` allowed).
     pub alpha: Vec<f64>,
+    /// `e_n` of every node (empty for a patch without an `e_n` axis).
+    pub e_n: Vec<f64>,
     /// Predicted interpolation error of every leaf.
     pub leaf_error: Vec<f64>,
     /// Depth of every leaf.
@@ -389,8 +391,19 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         .create(tmp)
         .map_err(w.e("create file"))?;
     let s = &built.surface;
+    let e_range = s.restitution();
     w.attr_str(&file, ATTR_FORMAT, FORMAT_NAME)?;
-    w.attr_f64(&file, ATTR_SCHEMA, SCHEMA_VERSION as f64)?;
+    let version = match e_range {
+        Some(_) => SCHEMA_VERSION,
+        None => ELASTIC_SCHEMA_VERSION,
+    };
+    w.attr_f64(&file, ATTR_SCHEMA, version as f64)?;
+    if let Some((lo, hi)) = e_range {
+        w.attr_str(&file, ATTR_AXES, "gamma,alpha,e_n")?;
+        w.attr_f64(&file, ATTR_E_N_MIN, lo)?;
+        w.attr_f64(&file, ATTR_E_N_MAX, hi)?;
+        w.attr_str(&file, ATTR_LAW, &prov.law)?;
+    }
     w.attr_f64(&file, ATTR_STENCIL, s.stencil() as f64)?;
     w.attr_f64(&file, ATTR_GAMMA_MIN, s.gamma_min())?;
     w.attr_f64(&file, ATTR_GAMMA_MAX, s.gamma_max())?;
@@ -415,15 +428,24 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.attr_f64(&g, ATTR_BLOCKS_GAMMA, p.blocks_gamma() as f64)?;
         w.attr_f64(&g, ATTR_BLOCKS_COORD, p.blocks_coord() as f64)?;
         w.attr_f64(&g, ATTR_LEAF_INTERVALS, p.leaf_intervals() as f64)?;
+        if let Some(r) = p.restitution() {
+            w.attr_f64(&g, ATTR_BLOCKS_E_N, r.blocks() as f64)?;
+        }
         let leaves = [bp.leaf_error.len()];
         w.ints(&g, DS_TREE, p.tree(), &[p.tree().len()])?;
         let depth: Vec<i32> = bp.leaf_depth.iter().map(|&d| d as i32).collect();
         w.ints(&g, DS_LEAF_DEPTH, &depth, &leaves)?;
         w.ds(&g, DS_LEAF_ERROR, &bp.leaf_error, &leaves)?;
-        let n = [leaves[0], p.leaf_intervals() + 1, p.leaf_intervals() + 1];
+        let mut n = vec![leaves[0], p.leaf_intervals() + 1, p.leaf_intervals() + 1];
+        if p.restitution().is_some() {
+            n.push(p.leaf_intervals() + 1);
+        }
         w.ds(&g, DS_GAMMA, &bp.gamma, &n)?;
         w.ds(&g, DS_COORD, &bp.coord, &n)?;
         w.ds(&g, DS_ALPHA, &bp.alpha, &n)?;
+        if p.restitution().is_some() {
+            w.ds(&g, DS_E_N, &bp.e_n, &n)?;
+        }
         w.ds(&g, DS_P, p.p(), &n)?;
         w.ds(&g, DS_ERROR, p.error_estimate(), &n)?;
         // The optional warp of the coordinate (schema 3; only `partial_high` has one).
@@ -448,41 +470,72 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         }
     }
 
-    // No-slip limit: the nodes at c = 1 of the stick patches (when α_max = ∞), by γ.
+    // No-slip limit: the nodes at c = 1 of the stick patches (when α_max = ∞), by γ (and by
+    // e_n within a γ, with an e_n axis).
     if s.alpha_max().is_infinite() {
-        let mut rows: Vec<(f64, f64, f64)> = built
+        let e_at = |b: &BuiltPatch, i: usize| b.e_n.get(i).copied().unwrap_or(1.0);
+        let mut rows: Vec<(f64, f64, f64, f64)> = built
             .patches
             .iter()
             .filter(|b| b.patch.kind() == PatchKind::Stick)
             .flat_map(|b| {
                 (0..b.coord.len())
                     .filter(|&i| b.coord[i] == 1.0)
-                    .map(|i| (b.gamma[i], b.patch.p()[i], b.patch.error_estimate()[i]))
+                    .map(move |i| {
+                        (
+                            b.gamma[i],
+                            e_at(b, i),
+                            b.patch.p()[i],
+                            b.patch.error_estimate()[i],
+                        )
+                    })
             })
             .collect();
-        rows.sort_by(|x, y| x.0.total_cmp(&y.0));
-        rows.dedup_by(|x, y| x.0 == y.0);
+        rows.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+        rows.dedup_by(|x, y| x.0 == y.0 && x.1 == y.1);
         let g = file.create_group(GROUP_NO_SLIP).map_err(w.e("no_slip"))?;
-        let col = |f: fn(&(f64, f64, f64)) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
+        let col = |f: fn(&(f64, f64, f64, f64)) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
         w.ds(&g, DS_GAMMA, &col(|r| r.0), &[rows.len()])?;
-        w.ds(&g, DS_P, &col(|r| r.1), &[rows.len()])?;
-        w.ds(&g, DS_ERROR, &col(|r| r.2), &[rows.len()])?;
+        if e_range.is_some() {
+            w.ds(&g, DS_E_N, &col(|r| r.1), &[rows.len()])?;
+        }
+        w.ds(&g, DS_P, &col(|r| r.2), &[rows.len()])?;
+        w.ds(&g, DS_ERROR, &col(|r| r.3), &[rows.len()])?;
     }
 
     // Critical curves sampled on 401 points of the γ domain (α_c1 is NaN below γ = 1, where it
-    // marks nothing).
+    // marks nothing); with an e_n axis α_c1 on 5 rows of e_n from e_n_min to e_n_max.
     let n = 401;
     let gamma: Vec<f64> = (0..n)
         .map(|i| s.gamma_min() + (s.gamma_max() - s.gamma_min()) * i as f64 / (n - 1) as f64)
         .collect();
-    let c1: Vec<f64> = gamma
-        .iter()
-        .map(|&g| if g >= 1.0 { alpha_c1(g) } else { f64::NAN })
-        .collect();
+    let c1_at = |e: f64| {
+        gamma
+            .iter()
+            .map(move |&g| {
+                if g >= 1.0 {
+                    alpha_c1_dissipative(g, e)
+                } else {
+                    f64::NAN
+                }
+            })
+            .collect::<Vec<f64>>()
+    };
     let c2: Vec<f64> = gamma.iter().map(|&g| alpha_c2(g)).collect();
     let g = file.create_group(GROUP_CRITICAL).map_err(w.e("critical"))?;
     w.ds(&g, DS_GAMMA, &gamma, &[n])?;
-    w.ds(&g, DS_ALPHA_C1, &c1, &[n])?;
+    match e_range {
+        None => w.ds(&g, DS_ALPHA_C1, &c1_at(1.0), &[n])?,
+        Some((lo, hi)) => {
+            let rows = 5;
+            let e: Vec<f64> = (0..rows)
+                .map(|i| lo + (hi - lo) * i as f64 / (rows - 1) as f64)
+                .collect();
+            let c1: Vec<f64> = e.iter().flat_map(|&e| c1_at(e)).collect();
+            w.ds(&g, DS_E_N, &e, &[rows])?;
+            w.ds(&g, DS_ALPHA_C1, &c1, &[rows, n])?;
+        }
+    }
     w.ds(&g, DS_ALPHA_C2, &c2, &[n])?;
 
     let ch = &built.checks;
@@ -490,6 +543,9 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     let col = |f: fn(&Check) -> f64| ch.iter().map(f).collect::<Vec<f64>>();
     w.ds(&g, DS_GAMMA, &col(|c| c.gamma), &[ch.len()])?;
     w.ds(&g, DS_ALPHA, &col(|c| c.alpha), &[ch.len()])?;
+    if e_range.is_some() {
+        w.ds(&g, DS_E_N, &col(|c| c.e_n), &[ch.len()])?;
+    }
     w.ds(&g, DS_P_SIMULATED, &col(|c| c.p_simulated), &[ch.len()])?;
     w.ds(
         &g,
