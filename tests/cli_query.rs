@@ -152,7 +152,12 @@ fn bad_batch_lines_name_their_line_number() {
             "1.5,0.3\n1.5,0.3\n1.5,abc\n",
             vec!["line 3", "alpha", "abc"],
         ),
-        ("1.5,0.3,7\n", vec!["line 1", "3 field"]),
+        ("1.5,0.3,7,1\n", vec!["line 1", "4 field"]),
+        ("1.5,0.3,0.7\n", vec!["line 1", "e_n = 0.7", "elastic"]),
+        (
+            "1.5,0.3,1\n1.5,0.3\n",
+            vec!["line 2", "2 field", "gamma,alpha,e_n"],
+        ),
         ("1.5,0.3\n \t\n1.5\n", vec!["line 3"]),
         ("1.5,-0.5\n", vec!["line 1", "alpha"]),
         ("nan,0.5\n", vec!["line 1", "gamma"]),

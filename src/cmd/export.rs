@@ -120,6 +120,13 @@ pub fn run(args: ExportArgs) -> Result<()> {
     // being read is not overwritten (also under another name or a hard link).
     oblique_table::write::check_output_not_input(&args.output, &[&args.table])?;
     let table = Table::open(&args.table)?;
+    if let Some((lo, hi)) = table.surface().restitution() {
+        return Err(Failure::usage(format!(
+            "{}: a table with an e_n axis (e_n in [{lo}, {hi}]); the export format of \
+             include/oblique_eval.h holds elastic tables (gamma, alpha) only",
+            args.table.display()
+        )));
+    }
     let mut curves = Vec::with_capacity(args.gammas.len());
     let (g_min, g_max) = (table.surface().gamma_min(), table.surface().gamma_max());
     for &g in &args.gammas {

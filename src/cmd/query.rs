@@ -1,4 +1,5 @@
-//! `sweep query`: answer `P(γ, α)` from a table (no simulation), one point or a batch.
+//! `sweep query`: answer `P(γ, α)` or `P(γ, α, e_n)` from a table (no simulation), one point
+//! or a batch.
 
 use crate::failure::outln;
 use std::io::{BufRead, BufWriter, Write};
@@ -15,7 +16,7 @@ use oblique_table::surface::{Region, Surface};
 
 #[derive(Args)]
 pub struct QueryArgs {
-    /// Table file written by `sweep run` (HDF5, schema v2 or v3).
+    /// Table file written by `sweep run` (HDF5, schema v2 to v4).
     table: PathBuf,
     /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
     #[arg(long, value_parser = crate::args::parse_table_gamma, allow_hyphen_values = true,
@@ -25,8 +26,13 @@ pub struct QueryArgs {
     #[arg(long, value_parser = crate::args::parse_alpha, allow_hyphen_values = true,
           conflicts_with = "batch", requires = "gamma")]
     alpha: Option<f64>,
-    /// Read lines `gamma,alpha` from FILE (`-` for stdin) and write lines `gamma,alpha,P,e_t`
-    /// in the same order.
+    /// Normal restitution e_n of the impact, in the table's e_n range (a table built with
+    /// domain.e_n_min and e_n_max); an elastic table answers e_n = 1 only. Default 1.
+    #[arg(long = "e-n", value_name = "E_N", value_parser = crate::args::parse_f64, allow_hyphen_values = true,
+          conflicts_with = "batch")]
+    e_n: Option<f64>,
+    /// Read lines `gamma,alpha` (or `gamma,alpha,e_n`) from FILE (`-` for stdin) and write
+    /// lines `gamma,alpha,P,e_t` (or `gamma,alpha,e_n,P,e_t`) in the same order.
     #[arg(long, value_name = "FILE")]
     batch: Option<PathBuf>,
     /// Answer a gamma (alpha) outside the table's domain at the nearest gamma (alpha_max) of
@@ -50,9 +56,9 @@ fn usage(e: LookupError) -> Failure {
     }
 }
 
-fn region_name(surface: &Surface, gamma: f64, alpha: f64) -> &'static str {
+fn region_name(surface: &Surface, gamma: f64, alpha: f64, e_n: f64) -> &'static str {
     let inside = gamma >= surface.gamma_min() && gamma <= surface.gamma_max();
-    match Region::of(gamma, alpha) {
+    match Region::of_e(gamma, alpha, e_n) {
         Region::Line => "full-slip line (closed form)",
         _ if !inside || alpha > surface.alpha_max() => "outside the table (clamped)",
         Region::PartialHigh => "partial slip (interpolated)",
@@ -80,9 +86,15 @@ pub fn run(args: QueryArgs) -> Result<()> {
                 .into(),
         ));
     };
-    let p = table.p_with(gamma, alpha, outside).map_err(usage)?;
-    let region = region_name(table.surface(), gamma, alpha);
-    let error = if Region::of(gamma, alpha) == Region::Line {
+    let e_n = args.e_n.unwrap_or(1.0);
+    let p = table
+        .p_e_with(gamma, alpha, e_n, outside)
+        .map_err(|e| match e {
+            LookupError::Query { name: "e_n", .. } => Failure::usage(format!("--e-n: {e}")),
+            other => usage(other),
+        })?;
+    let region = region_name(table.surface(), gamma, alpha, e_n);
+    let error = if Region::of_e(gamma, alpha, e_n) == Region::Line {
         0.0
     } else {
         table.error_bound()
@@ -91,6 +103,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
         let out = json!({
             "gamma": gamma,
             "alpha": crate::args::json_number(alpha),
+            "e_n": e_n,
             "P": p,
             "e_t": tangential_restitution(p),
             "region": region,
@@ -99,8 +112,12 @@ pub fn run(args: QueryArgs) -> Result<()> {
         });
         outln!("{out}")?;
     } else {
+        let e_n_words = match args.e_n {
+            Some(e) => format!(", e_n = {}", crate::args::fmt_num(e)),
+            None => String::new(),
+        };
         outln!(
-            "P(gamma = {}, alpha = {}) = {p:.9}  +/- {error:.1e}",
+            "P(gamma = {}, alpha = {}{e_n_words}) = {p:.9}  +/- {error:.1e}",
             crate::args::fmt_num(gamma),
             crate::args::fmt_num(alpha)
         )?;
@@ -113,23 +130,28 @@ pub fn run(args: QueryArgs) -> Result<()> {
     Ok(())
 }
 
-/// Parse one batch line `gamma,alpha` (1-based `number` for messages).
-fn parse_line(line: &str, number: usize) -> Result<(f64, f64)> {
-    let bad = |what: String| {
-        Failure::usage(format!(
-            "batch line {number}: {what}; expected `gamma,alpha` (e.g. `1.75,0.3`, alpha may be `inf`)"
-        ))
+/// Parse one batch line `gamma,alpha` (`fields = 2`) or `gamma,alpha,e_n` (`fields = 3`)
+/// (1-based `number` for messages).
+fn parse_line(line: &str, number: usize, fields: usize) -> Result<(f64, f64, f64)> {
+    let expected = if fields == 3 {
+        "`gamma,alpha,e_n` like the first line (e.g. `1.75,0.3,0.8`, alpha may be `inf`)"
+    } else {
+        "`gamma,alpha` like the first line (e.g. `1.75,0.3`, alpha may be `inf`), or \
+         `gamma,alpha,e_n` on every line"
     };
-    let mut fields = line.split(',');
-    let (Some(g), Some(a), None) = (fields.next(), fields.next(), fields.next()) else {
-        return Err(bad(format!(
-            "{} field(s) in {line:?}",
-            line.split(',').count()
-        )));
+    let bad =
+        |what: String| Failure::usage(format!("batch line {number}: {what}; expected {expected}"));
+    let parts: Vec<&str> = line.split(',').collect();
+    if parts.len() != fields {
+        return Err(bad(format!("{} field(s) in {line:?}", parts.len())));
+    }
+    let g = crate::args::parse_f64(parts[0]).map_err(|e| bad(format!("gamma: {e}")))?;
+    let a = crate::args::parse_f64(parts[1]).map_err(|e| bad(format!("alpha: {e}")))?;
+    let e = match parts.get(2) {
+        Some(e) => crate::args::parse_f64(e).map_err(|e| bad(format!("e_n: {e}")))?,
+        None => 1.0,
     };
-    let g = crate::args::parse_f64(g).map_err(|e| bad(format!("gamma: {e}")))?;
-    let a = crate::args::parse_f64(a).map_err(|e| bad(format!("alpha: {e}")))?;
-    Ok((g, a))
+    Ok((g, a, e))
 }
 
 /// Read a whole batch: every line is checked before anything is answered, so a bad line anywhere
@@ -147,7 +169,9 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
             .map_err(|e| Failure::usage(format!("--batch {}: cannot open: {e}", path.display())))?;
         Box::new(std::io::BufReader::new(f))
     };
-    let (mut gammas, mut alphas) = (Vec::new(), Vec::new());
+    let (mut gammas, mut alphas, mut e_ns) = (Vec::new(), Vec::new(), Vec::new());
+    // Fields per line, fixed by the first point (or the header): 2, or 3 with e_n.
+    let mut fields: Option<usize> = None;
     // (line index, text) of the lines copied unchanged, in order.
     let mut verbatim: Vec<(usize, String)> = Vec::new();
     let mut header_allowed = true;
@@ -174,12 +198,25 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
             verbatim.push((i, line.trim_end().to_owned()));
         } else if header_allowed && text.replace(' ', "").eq_ignore_ascii_case("gamma,alpha") {
             header_allowed = false;
+            fields = Some(2);
             verbatim.push((i, "gamma,alpha,P,e_t".into()));
+        } else if header_allowed
+            && text
+                .replace(' ', "")
+                .eq_ignore_ascii_case("gamma,alpha,e_n")
+        {
+            header_allowed = false;
+            fields = Some(3);
+            verbatim.push((i, "gamma,alpha,e_n,P,e_t".into()));
         } else {
             header_allowed = false;
-            let (g, a) = parse_line(text, number)?;
+            let n = *fields.get_or_insert(text.split(',').count().clamp(2, 3));
+            let (g, a, e) = parse_line(text, number, n)?;
             gammas.push(g);
             alphas.push(a);
+            if n == 3 {
+                e_ns.push(e);
+            }
         }
         i += 1;
     }
@@ -198,18 +235,43 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
         line + 1
     };
     let mut ps = vec![0.0; gammas.len()];
-    table
-        .p_batch_par(&gammas, &alphas, &mut ps, outside)
-        .map_err(|e| match e {
-            LookupError::Batch { index, source } => {
-                Failure::usage(format!("batch line {}: {source} (--clamp)", line_of(index)))
-            }
-            other => usage(other),
-        })?;
+    let with_e_n = fields == Some(3);
+    let answered = if with_e_n {
+        // Point by point by the rule (a table with an e_n axis has no batch path yet).
+        gammas
+            .iter()
+            .zip(&alphas)
+            .zip(&e_ns)
+            .zip(ps.iter_mut())
+            .enumerate()
+            .try_for_each(|(k, (((&g, &a), &e), p))| {
+                *p = table
+                    .p_e_with(g, a, e, outside)
+                    .map_err(|source| LookupError::Batch {
+                        index: k,
+                        source: Box::new(source),
+                    })?;
+                Ok(())
+            })
+    } else {
+        table.p_batch_par(&gammas, &alphas, &mut ps, outside)
+    };
+    answered.map_err(|e| match e {
+        LookupError::Batch { index, source } => {
+            // e_n is never clamped: no hint for it.
+            let hint = match *source {
+                LookupError::Query { name: "e_n", .. } => "",
+                _ => " (--clamp)",
+            };
+            Failure::usage(format!("batch line {}: {source}{hint}", line_of(index)))
+        }
+        other => usage(other),
+    })?;
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
     let mut copied = verbatim.iter().peekable();
     let mut points = gammas.iter().zip(&alphas).zip(&ps);
+    let mut done = 0usize;
     for index in 0..i {
         if copied.peek().is_some_and(|(at, _)| *at == index) {
             if let Some((_, text)) = copied.next() {
@@ -218,9 +280,15 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
             continue;
         }
         if let Some(((g, a), p)) = points.next() {
+            let e_n = if with_e_n {
+                format!(",{}", crate::args::fmt_num(e_ns[done]))
+            } else {
+                String::new()
+            };
+            done += 1;
             writeln!(
                 out,
-                "{},{},{},{}",
+                "{},{}{e_n},{},{}",
                 crate::args::fmt_num(*g),
                 crate::args::fmt_num(*a),
                 crate::args::fmt_num(*p),

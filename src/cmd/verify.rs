@@ -11,7 +11,8 @@ use clap::Args;
 use rayon::prelude::*;
 
 use oblique_lookup::Table;
-use oblique_solver::{Accuracy, Request};
+use oblique_solver::{Accuracy, Law, Request};
+use oblique_table::Point;
 
 /// Loosest simulation tolerance `--tol` accepts: the reference must be far more accurate than
 /// the table's bound (1e-5 for the shipped table).
@@ -56,8 +57,9 @@ pub struct BoundExceeded {
 
 /// The `n` points: γ uniform in `[gamma_min, gamma_max]`, `s = α/(1 + α)` uniform in
 /// `[0, s_max)` with `s_max = alpha_max/(1 + alpha_max)` (1 for `alpha_max = inf`), and, when
-/// the table includes no slip, every [`NO_SLIP_EVERY`]-th point at `α = inf` instead.
-fn sample(table: &Table, n: usize, seed: u64) -> Vec<(f64, f64)> {
+/// the table includes no slip, every [`NO_SLIP_EVERY`]-th point at `α = inf` instead; `e_n`
+/// uniform in the table's range for a table with an `e_n` axis (1 otherwise).
+fn sample(table: &Table, n: usize, seed: u64) -> Vec<Point> {
     let s = &table.surface();
     let s_max = if s.alpha_max().is_infinite() {
         1.0
@@ -74,7 +76,12 @@ fn sample(table: &Table, n: usize, seed: u64) -> Vec<(f64, f64)> {
             } else {
                 (u / (1.0 - u)).min(s.alpha_max())
             };
-            (gamma.min(s.gamma_max()), alpha)
+            // Drawn last, and only with an e_n axis: an elastic table's points are unchanged.
+            let e_n = match s.restitution() {
+                Some((lo, hi)) => (lo + (hi - lo) * rng.uniform()).min(hi),
+                None => 1.0,
+            };
+            Point::new(gamma.min(s.gamma_max()), alpha, e_n)
         })
         .collect()
 }
@@ -84,6 +91,7 @@ fn sample(table: &Table, n: usize, seed: u64) -> Vec<(f64, f64)> {
 struct Outcome {
     gamma: f64,
     alpha: f64,
+    e_n: f64,
     p_table: f64,
     p_sim: f64,
     sim_error: f64,
@@ -125,17 +133,32 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         .into());
     }
     let points = sample(&table, args.points, args.seed);
+    // The law of the table's node values (an elastic table: elastic).
+    let law = match table.restitution() {
+        Some(_) => Law::from_name(&table.provenance().law).map_err(|e| {
+            anyhow::anyhow!(
+                "{}: the table's root attribute 'law' = {:?}: {e}",
+                args.table.display(),
+                table.provenance().law
+            )
+        })?,
+        None => Law::Elastic,
+    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
         .build()
         .context("starting the worker threads")?;
     eprintln!(
-        "verify {}: {} points (gamma uniform in [{}, {}], alpha/(1+alpha) uniform{}), \
+        "verify {}: {} points (gamma uniform in [{}, {}], alpha/(1+alpha) uniform{}{}), \
          simulated at tol {:e} on {} threads; stated bound {bound:.2e}",
         args.table.display(),
         points.len(),
         table.surface().gamma_min(),
         table.surface().gamma_max(),
+        match table.restitution() {
+            Some((lo, hi)) => format!(", e_n uniform in [{lo}, {hi}], law {}", law.name()),
+            None => String::new(),
+        },
         if table.surface().alpha_max().is_infinite() {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {
@@ -154,18 +177,24 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         let out = pool.install(|| {
             points
                 .par_iter()
-                .map(|&(gamma, alpha)| {
-                    let p_table = table.p(gamma, alpha)?;
+                .map(|&Point { gamma, alpha, e_n }| {
+                    let p_table = table.p_e(gamma, alpha, e_n)?;
                     let sim = Request::new(gamma, alpha)
+                        .e_n(e_n)
+                        .law(law)
                         .accuracy(Accuracy::Tolerance(args.tol))
                         .solve()
                         .with_context(|| {
-                            format!("simulating gamma = {gamma}, alpha = {}", fmt_alpha(alpha))
+                            format!(
+                                "simulating gamma = {gamma}, alpha = {}, e_n = {e_n}",
+                                fmt_alpha(alpha)
+                            )
                         })?;
                     done.fetch_add(1, Ordering::Relaxed);
                     Ok(Outcome {
                         gamma,
                         alpha,
+                        e_n,
                         p_table,
                         p_sim: sim.p,
                         sim_error: sim.error_estimate,
@@ -197,8 +226,13 @@ pub fn run(args: VerifyArgs) -> Result<()> {
     )?;
     outln!("max |error|  {:.3e}", worst.error())?;
     outln!("rms error    {:.3e}", (sq / n as f64).sqrt())?;
+    let worst_e_n = if table.restitution().is_some() {
+        format!(", e_n = {}", worst.e_n)
+    } else {
+        String::new()
+    };
     outln!(
-        "worst point  gamma = {}, alpha = {}: table {:.9}, simulation {:.9}",
+        "worst point  gamma = {}, alpha = {}{worst_e_n}: table {:.9}, simulation {:.9}",
         worst.gamma,
         fmt_alpha(worst.alpha),
         worst.p_table,

@@ -181,6 +181,15 @@ impl Curve {
         if !(gamma.is_finite() && gamma > 0.0) {
             return Err(oblique_table::surface::bad_gamma(gamma));
         }
+        if let Some((lo, hi)) = surface.restitution() {
+            return Err(LookupError::Query {
+                name: "table e_n axis",
+                value: lo.min(hi),
+                allowed: "absent (an elastic table) for a curve; query a table with an e_n axis \
+                          with Table::p_e"
+                    .into(),
+            });
+        }
         if surface.stencil() != 4 {
             // Along a line the rule is then a polynomial of another degree.
             return Err(LookupError::Query {

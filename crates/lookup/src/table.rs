@@ -107,6 +107,38 @@ impl Table {
         }
     }
 
+    /// `P(γ, α, e_n)` (dimensionless) at normal restitution `e_n`, refusing points outside
+    /// the table's domain; see [`Surface::eval_point`]. An elastic table answers `e_n = 1`
+    /// only; a table with an `e_n` axis (schema 4) answers inside its range
+    /// ([`Surface::restitution`]), never outside it.
+    #[inline]
+    pub fn p_e(&self, gamma: f64, alpha: f64, e_n: f64) -> Result<f64, LookupError> {
+        self.p_e_with(gamma, alpha, e_n, OutOfDomain::Error)
+    }
+
+    /// [`Table::p_e`] with the caller's choice for `γ` and `α` outside the domain
+    /// ([`OutOfDomain::Clamp`]; `e_n` is never clamped).
+    #[inline]
+    pub fn p_e_with(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        match &self.accel {
+            // Only elastic tables have the acceleration structure.
+            Some(a) if e_n == 1.0 => a.eval_with(&self.surface, gamma, alpha, outside),
+            _ => self.surface.eval_point(gamma, alpha, e_n, outside),
+        }
+    }
+
+    /// The `e_n` range of a table with a normal-restitution axis (`None`: an elastic table,
+    /// which answers `e_n = 1` only).
+    pub fn restitution(&self) -> Option<(f64, f64)> {
+        self.surface.restitution()
+    }
+
     /// [`Surface::eval_with`] out of line, for tables without an acceleration structure.
     #[inline(never)]
     fn p_by_descent(

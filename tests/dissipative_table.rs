@@ -1,0 +1,258 @@
+//! Tables with a normal-restitution axis, end to end through the CLI: `sweep run` builds a
+//! small `P(γ, α, e_n)` table (Kelvin–Voigt law, schema 4), `sweep verify` checks its stated
+//! bound against direct simulations at random `(γ, α, e_n)`, `sweep query --e-n` answers
+//! single points and batches, and every path that cannot answer `e_n < 1` refuses by name.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+const FULL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5");
+
+fn sweep(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(args)
+        .output()
+        .expect("run the sweep binary")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = sweep(args);
+    assert!(
+        out.status.success(),
+        "sweep {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("UTF-8")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    serde_json::from_str(&ok(args)).expect("JSON")
+}
+
+/// `sweep ARGS` fails with exit status 2 and a message containing every needle.
+fn refused(args: &[&str], needles: &[&str]) {
+    let out = sweep(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "sweep {args:?}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "sweep {args:?}: {err:?} lacks {n:?}");
+    }
+}
+
+/// The small table (built once per test process, a few seconds on 2 cores).
+fn table() -> &'static Path {
+    static T: OnceLock<PathBuf> = OnceLock::new();
+    T.get_or_init(|| {
+        let dir = common::subdir("dissipative");
+        let out = dir.join("kv.h5");
+        let cfg = dir.join("kv.toml");
+        std::fs::write(
+            &cfg,
+            format!(
+                "output = {:?}\n[domain]\ngamma_min = 1.3\ngamma_max = 1.6\n\
+                 e_n_min = 0.7\ne_n_max = 1.0\n[nodes]\ntarget_error = 4e-4\n\
+                 leaf_intervals = 6\nblocks_coord = 2\n[solver]\ntol = 4e-5\n\
+                 [checks]\nper_patch = 30\n",
+                out.display().to_string()
+            ),
+        )
+        .expect("write config");
+        ok(&["run", cfg.to_str().expect("path"), "--quiet"]);
+        out
+    })
+}
+
+fn t() -> &'static str {
+    table().to_str().expect("path")
+}
+
+#[test]
+fn the_table_is_schema_4_with_its_axes_and_law() {
+    let text = ok(&["inspect", t(), "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    assert_eq!(v["schema_version"].as_u64(), Some(4), "{text}");
+    let f = hdf5_attrs(table());
+    assert!(f.contains("gamma,alpha,e_n"), "{f}");
+    assert!(f.contains("kelvin-voigt"), "{f}");
+}
+
+/// The root attributes of a table as `h5dump -A` would show them, through the Python reader's
+/// h5py (installed by the test command).
+fn hdf5_attrs(path: &Path) -> String {
+    let out = Command::new("python3")
+        .args([
+            "-c",
+            "import h5py, sys; f = h5py.File(sys.argv[1], 'r'); \
+             print({k: str(v) for k, v in f.attrs.items()})",
+            path.to_str().expect("path"),
+        ])
+        .output()
+        .expect("python3 with h5py (the test command installs it)");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).to_string()
+}
+
+#[test]
+fn verify_holds_the_stated_bound_at_random_gamma_alpha_e_n() {
+    let text = ok(&[
+        "verify",
+        t(),
+        "--points",
+        "60",
+        "--seed",
+        "3",
+        "--quiet",
+        "--tol",
+        "1e-8",
+    ]);
+    assert!(text.contains("points above it: 0"), "{text}");
+}
+
+#[test]
+fn query_answers_the_line_exactly_and_the_patches_within_the_bound() {
+    // Full slip below alpha_c1(gamma, e_n): 1 - (7/2)(1 + e_n) alpha, exactly.
+    let q = json(&[
+        "query",
+        t(),
+        "--gamma",
+        "1.4",
+        "--alpha",
+        "0.05",
+        "--e-n",
+        "0.8",
+        "--json",
+    ]);
+    assert_eq!(q["P"].as_f64(), Some(1.0 - 3.5 * 1.8 * 0.05));
+    assert_eq!(q["error_bound"].as_f64(), Some(0.0));
+    // Partial slip, stick and no slip against direct simulations.
+    for (g, a, e) in [
+        ("1.45", "0.3", "0.75"),
+        ("1.35", "0.9", "0.95"),
+        ("1.55", "inf", "0.7"),
+        ("1.5", "0.25", "1"),
+    ] {
+        let q = json(&[
+            "query",
+            t(),
+            "--gamma",
+            g,
+            "--alpha",
+            a,
+            "--e-n",
+            e,
+            "--json",
+        ]);
+        let sim = json(&[
+            "impact", "--gamma", g, "--alpha", a, "--e-n", e, "--tol", "1e-8", "--json",
+        ]);
+        let (p, bound) = (
+            q["P"].as_f64().expect("P"),
+            q["error_bound"].as_f64().expect("bound"),
+        );
+        let want = sim["P"].as_f64().expect("P");
+        assert!(
+            (p - want).abs() <= bound && bound > 0.0,
+            "({g}, {a}, {e}): table {p}, simulation {want}, bound {bound}"
+        );
+    }
+    // Without --e-n a table with the axis answers its e_n = 1 slice.
+    let q1 = json(&["query", t(), "--gamma", "1.5", "--alpha", "0.25", "--json"]);
+    let q2 = json(&[
+        "query",
+        t(),
+        "--gamma",
+        "1.5",
+        "--alpha",
+        "0.25",
+        "--e-n",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(q1["P"], q2["P"]);
+}
+
+#[test]
+fn a_batch_with_e_n_gives_the_single_answers() {
+    let dir = common::subdir("dissipative-batch");
+    let input = dir.join("points.csv");
+    std::fs::write(&input, "gamma,alpha,e_n\n1.4,0.3,0.8\n1.5,inf,0.9\n").expect("write");
+    let text = ok(&["query", t(), "--batch", input.to_str().expect("path")]);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "gamma,alpha,e_n,P,e_t");
+    for (line, (g, a, e)) in lines[1..]
+        .iter()
+        .zip([("1.4", "0.3", "0.8"), ("1.5", "inf", "0.9")])
+    {
+        let q = json(&[
+            "query",
+            t(),
+            "--gamma",
+            g,
+            "--alpha",
+            a,
+            "--e-n",
+            e,
+            "--json",
+        ]);
+        let p: f64 = line.split(',').nth(3).expect("P").parse().expect("number");
+        assert_eq!(Some(p), q["P"].as_f64(), "{line}");
+    }
+    // Lines must keep the first line's number of fields.
+    std::fs::write(&input, "1.4,0.3,0.8\n1.5,0.3\n").expect("write");
+    refused(
+        &["query", t(), "--batch", input.to_str().expect("path")],
+        &["batch line 2", "gamma,alpha,e_n"],
+    );
+}
+
+#[test]
+fn e_n_outside_a_table_is_refused_by_name() {
+    refused(
+        &[
+            "query",
+            t(),
+            "--gamma",
+            "1.4",
+            "--alpha",
+            "0.3",
+            "--e-n",
+            "0.5",
+        ],
+        &["--e-n", "e_n = 0.5", "[0.7, 1]"],
+    );
+    refused(
+        &[
+            "query", FULL, "--gamma", "1.4", "--alpha", "0.3", "--e-n", "0.8",
+        ],
+        &["--e-n", "elastic"],
+    );
+    let out = common::subdir("dissipative-export").join("t.oblq");
+    refused(
+        &["export", t(), "-o", out.to_str().expect("path")],
+        &["e_n axis", "elastic tables"],
+    );
+    assert!(!out.exists(), "nothing written");
+}
+
+#[test]
+fn a_curve_of_a_table_with_an_e_n_axis_is_refused() {
+    let table = oblique_lookup::Table::open(table()).expect("open");
+    assert_eq!(table.restitution(), Some((0.7, 1.0)));
+    let e = table
+        .curve(1.4, oblique_lookup::OutOfDomain::Error)
+        .map(|_| ())
+        .expect_err("no curves with an e_n axis");
+    assert!(e.to_string().contains("e_n axis"), "{e}");
+    // The library answers what the CLI does.
+    let p = table.p_e(1.45, 0.3, 0.75).expect("inside");
+    assert!(p.abs() <= 1.0);
+    assert!(table.p_e(1.45, 0.3, 0.69).is_err());
+    assert!(table.p_e(1.45, 0.3, f64::NAN).is_err());
+}
