@@ -256,3 +256,89 @@ fn a_curve_of_a_table_with_an_e_n_axis_is_refused() {
     assert!(table.p_e(1.45, 0.3, 0.69).is_err());
     assert!(table.p_e(1.45, 0.3, f64::NAN).is_err());
 }
+
+/// A 3-D sphere–sphere rebound at `e_n < 1`: the prepared (fast) path and the step-by-step
+/// one agree, the normal relative velocity reverses to `e_n` times its value, and the energy
+/// lost has its normal part `(m*/2) v_z0² (1 − e_n²)`; an elastic table refuses the contact.
+#[test]
+fn rebounds_with_e_n_reverse_the_normal_velocity_by_e_n() {
+    use oblique_lookup::rebound::{Body, Incident3, Motion3, Pair};
+    use oblique_lookup::{Contact, Prepared, Table};
+    let table = Table::open(table()).expect("open");
+    let pair = Pair {
+        sphere: Body {
+            mass: 2.4e-4,
+            radius: 2.5e-3,
+            kappa: 0.4,
+        },
+        other: Some(Body {
+            mass: 1.1e-3,
+            radius: 4e-3,
+            kappa: 0.4,
+        }),
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let n = [0.0, 0.0, 1.0];
+    for (i, e_n) in [0.72, 0.85, 1.0].into_iter().enumerate() {
+        let contact = Contact::with_gamma(1.45, 0.3).with_restitution(e_n);
+        let inc = Incident3 {
+            sphere: Motion3 {
+                velocity: [0.4 + 0.1 * i as f64, -0.2, 1.3],
+                spin: [30.0, -80.0, 5.0],
+            },
+            other: Motion3 {
+                velocity: [-0.1, 0.3, -0.4],
+                spin: [-20.0, 10.0, 0.0],
+            },
+            normal: n,
+        };
+        let steps = table.rebound_3d(&pair, &contact, &inc).expect("steps");
+        let prepared = Prepared::new(&pair, &contact).expect("prepared");
+        let fast = table.rebound_3d_prepared(&prepared, &inc).expect("fast");
+        let r = &fast.rebound;
+        assert_eq!(fast.rebound.p.to_bits(), steps.rebound.p.to_bits());
+        assert_eq!(r.p, table.p_e(1.45, fast.alpha, e_n).expect("P"));
+        let v_before = dot(inc.sphere.velocity, n) - dot(inc.other.velocity, n);
+        let other = r.other.expect("sphere 2");
+        let v_after = dot(r.sphere.velocity, n) - dot(other.velocity, n);
+        assert!(
+            (v_after + e_n * v_before).abs() <= 1e-14 * v_before,
+            "e_n {e_n}: {v_after} vs {}",
+            -e_n * v_before
+        );
+        for (a, b) in [
+            (r.energy_lost, steps.rebound.energy_lost),
+            (r.normal_impulse, steps.rebound.normal_impulse),
+        ] {
+            assert!((a - b).abs() <= 1e-13 * b.abs().max(1e-12), "{a} vs {b}");
+        }
+        let m_star = 1.0 / (1.0 / 2.4e-4 + 1.0 / 1.1e-3);
+        let kinetic = |m: f64, v: [f64; 3], w: [f64; 3], radius: f64| {
+            0.5 * m * dot(v, v) + 0.5 * 0.4 * m * radius * radius * dot(w, w)
+        };
+        let before = kinetic(2.4e-4, inc.sphere.velocity, inc.sphere.spin, 2.5e-3)
+            + kinetic(1.1e-3, inc.other.velocity, inc.other.spin, 4e-3);
+        let after = kinetic(2.4e-4, r.sphere.velocity, r.sphere.spin, 2.5e-3)
+            + kinetic(1.1e-3, other.velocity, other.spin, 4e-3);
+        assert!(
+            (before - after - r.energy_lost).abs() <= 1e-12 * before,
+            "energy balance at e_n {e_n}"
+        );
+        assert!(r.energy_lost >= 0.5 * m_star * v_before * v_before * (1.0 - e_n * e_n) - 1e-15);
+    }
+    let elastic = Table::open(FULL).expect("full");
+    let contact = Contact::with_gamma(1.45, 0.3).with_restitution(0.8);
+    let inc = Incident3 {
+        sphere: Motion3 {
+            velocity: [0.4, 0.0, 1.0],
+            spin: [0.0; 3],
+        },
+        other: Motion3::default(),
+        normal: n,
+    };
+    let e = elastic
+        .rebound_3d(&pair, &contact, &inc)
+        .map(|_| ())
+        .expect_err("elastic table, e_n = 0.8");
+    assert!(e.to_string().contains("e_n"), "{e}");
+}

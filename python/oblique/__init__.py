@@ -506,7 +506,8 @@ class Table:
 
     @property
     def info(self) -> dict:
-        """Domain (``gamma_min``, ``gamma_max``, ``alpha_max``), the stated ``error_bound`` (the
+        """Domain (``gamma_min``, ``gamma_max``, ``alpha_max``, and ``e_n_min``, ``e_n_max``:
+        both 1 for an elastic table), the contact ``law``, the stated ``error_bound`` (the
         largest absolute error of any P the table answers), the held-out checks (``checks``,
         ``checks_max_error``) and the provenance (``schema_version``, ``engine_version``,
         ``git_commit``, ``created``, ``config``, ``solver``, ``node_tol``, ``check_tol``,
@@ -521,22 +522,54 @@ class Table:
         return self.info["error_bound"]
 
     @overload
-    def p(self, gamma: float, alpha: float, out: None = None) -> float: ...
+    def p(
+        self, gamma: float, alpha: float, out: None = None, *, e_n: float = 1.0
+    ) -> float: ...
     @overload
     def p(
-        self, gamma: ArrayLike, alpha: ArrayLike, out: Optional[np.ndarray] = None
+        self,
+        gamma: ArrayLike,
+        alpha: ArrayLike,
+        out: Optional[np.ndarray] = None,
+        *,
+        e_n: ArrayLike = 1.0,
     ) -> NDArray[np.float64]: ...
-    def p(self, gamma: ArrayLike, alpha: ArrayLike, out: Optional[np.ndarray] = None) -> Float:
-        """P(γ, α), the tangential restitution of the contact point, by the table's
-        interpolation rule. γ finite > 0, α ≥ 0 (``inf``: no slip). Broadcasts; returns a float
-        for scalar arguments. |P| ≤ 1 everywhere."""
-        if out is None and type(gamma) in _NUMBER and type(alpha) in _NUMBER:
-            return self._t.p(gamma, alpha, self._clamp)  # type: ignore[arg-type]  # checked above
-        g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
-        shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
+    def p(
+        self,
+        gamma: ArrayLike,
+        alpha: ArrayLike,
+        out: Optional[np.ndarray] = None,
+        *,
+        e_n: ArrayLike = 1.0,
+    ) -> Float:
+        """P(γ, α, e_n), the tangential restitution of the contact point, by the table's
+        interpolation rule. γ finite > 0, α ≥ 0 (``inf``: no slip), e_n the normal restitution:
+        1 (the default) for an elastic table, inside ``info["e_n_min"] … info["e_n_max"]`` for
+        a table built with an e_n range (never clamped: ``ValueError`` outside). Broadcasts
+        over all three; returns a float for scalar arguments. |P| ≤ 1 everywhere."""
+        scalar_e = type(e_n) in _NUMBER
+        if scalar_e and e_n == 1.0:
+            if out is None and type(gamma) in _NUMBER and type(alpha) in _NUMBER:
+                return self._t.p(gamma, alpha, self._clamp)  # type: ignore[arg-type]  # checked above
+            g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
+            shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
+            o = _output(out, shape)
+            gf, af = _full(g, shape), _full(a, shape)
+            _into(o, lambda f: self._t.p_into(gf, af, f, self._clamp, list(shape)), gf, af)
+            return _result(o, out)
+        if out is None and scalar_e and type(gamma) in _NUMBER and type(alpha) in _NUMBER:
+            return self._t.p_e(gamma, alpha, e_n, self._clamp)  # type: ignore[arg-type]  # checked above
+        g, a, e = _f64(gamma, "gamma"), _f64(alpha, "alpha"), _f64(e_n, "e_n")
+        shape = _shape([("gamma", g.shape), ("alpha", a.shape), ("e_n", e.shape)])
         o = _output(out, shape)
-        gf, af = _full(g, shape), _full(a, shape)
-        _into(o, lambda f: self._t.p_into(gf, af, f, self._clamp, list(shape)), gf, af)
+        gf, af, ef = _full(g, shape), _full(a, shape), _full(e, shape)
+        _into(
+            o,
+            lambda f: self._t.p_e_into(gf, af, ef, f, self._clamp, list(shape)),
+            gf,
+            af,
+            ef,
+        )
         return _result(o, out)
 
     @overload

@@ -320,6 +320,45 @@ impl PyTable {
         r.map_err(|e| lookup_error(e, &shape))
     }
 
+    /// `P(γ, α, e_n)` of one point.
+    fn p_e(&self, gamma: f64, alpha: f64, e_n: f64, clamp: bool) -> PyResult<f64> {
+        self.inner
+            .p_e_with(gamma, alpha, e_n, outside(clamp))
+            .map_err(|e| lookup_error(e, &[]))
+    }
+
+    /// `out[i] = P(gamma[i], alpha[i], e_n[i])`; `shape` names a failing index.
+    #[allow(clippy::too_many_arguments)]
+    fn p_e_into(
+        &self,
+        py: Python<'_>,
+        gamma: PyReadonlyArray1<'_, f64>,
+        alpha: PyReadonlyArray1<'_, f64>,
+        e_n: PyReadonlyArray1<'_, f64>,
+        mut out: PyReadwriteArray1<'_, f64>,
+        clamp: bool,
+        shape: Vec<usize>,
+    ) -> PyResult<()> {
+        let (g, a, e) = (
+            slice("gamma", &gamma)?,
+            slice("alpha", &alpha)?,
+            slice("e_n", &e_n)?,
+        );
+        let o = slice_mut("out", &mut out)?;
+        same_length("alpha", a.len(), g.len())?;
+        same_length("e_n", e.len(), g.len())?;
+        same_length("out", o.len(), g.len())?;
+        let t = &self.inner;
+        let r = py.detach(|| {
+            if g.len() < 2 * CHUNK {
+                t.p_e_batch(g, a, e, o, outside(clamp))
+            } else {
+                t.p_e_batch_par(g, a, e, o, outside(clamp))
+            }
+        });
+        r.map_err(|e| lookup_error(e, &shape))
+    }
+
     /// A per-γ curve.
     fn curve(&self, py: Python<'_>, gamma: f64, clamp: bool) -> PyResult<PyCurve> {
         let t = &self.inner;
@@ -339,6 +378,18 @@ impl PyTable {
         d.set_item("gamma_min", s.gamma_min())?;
         d.set_item("gamma_max", s.gamma_max())?;
         d.set_item("alpha_max", s.alpha_max())?;
+        // The e_n range ([1, 1] for an elastic table) and the law of the node values.
+        let (e_lo, e_hi) = s.restitution().unwrap_or((1.0, 1.0));
+        d.set_item("e_n_min", e_lo)?;
+        d.set_item("e_n_max", e_hi)?;
+        d.set_item(
+            "law",
+            if s.restitution().is_some() {
+                p.law.as_str()
+            } else {
+                "elastic"
+            },
+        )?;
         d.set_item("error_bound", t.error_bound())?;
         d.set_item("schema_version", p.schema_version)?;
         d.set_item("engine_version", &p.engine_version)?;
@@ -542,6 +593,7 @@ impl Setup<'_> {
             stiffness: self.stiffness.at(i),
             friction: self.friction.at(i),
             outside: outside(self.clamp),
+            restitution: 1.0,
         }
     }
 

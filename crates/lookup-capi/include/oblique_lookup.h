@@ -193,6 +193,27 @@ int oblique_table_domain(const struct ObliqueTable *table,
 // `table` is NULL or a live handle; `p` is NULL or valid for writes.
 int oblique_p(const struct ObliqueTable *table, double gamma, double alpha, int clamp, double *p);
 
+// `*p = P(γ, α, e_n)` (dimensionless) at normal restitution `e_n`: `oblique_p` for a table
+// with an `e_n` axis (built with `domain.e_n_min`/`e_n_max`). An elastic table answers
+// `e_n = 1` only, a table with the axis `e_n` inside its range (`oblique_table_restitution`);
+// otherwise `OBLIQUE_ERR_QUERY` naming `e_n` (never clamped, whatever `clamp`).
+//
+// # Safety
+// `table` is NULL or a live handle; `p` is NULL or valid for writes.
+int oblique_p_e(const struct ObliqueTable *table,
+                double gamma,
+                double alpha,
+                double e_n,
+                int clamp,
+                double *p);
+
+// The `e_n` range of a table: `[e_n_min, e_n_max]` for a table with an `e_n` axis, `[1, 1]`
+// for an elastic table. Any out-pointer may be NULL.
+//
+// # Safety
+// `table` is NULL or a live handle; the out-pointers are NULL or valid for writes.
+int oblique_table_restitution(const struct ObliqueTable *table, double *e_n_min, double *e_n_max);
+
 // `p[i] = P(gamma[i], alpha[i])` for `i < n`, on the calling thread. On an invalid query the
 // message names its index and `p` is filled only before it.
 //

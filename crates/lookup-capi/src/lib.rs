@@ -354,6 +354,58 @@ pub unsafe extern "C" fn oblique_p(
     })
 }
 
+/// `*p = P(γ, α, e_n)` (dimensionless) at normal restitution `e_n`: `oblique_p` for a table
+/// with an `e_n` axis (built with `domain.e_n_min`/`e_n_max`). An elastic table answers
+/// `e_n = 1` only, a table with the axis `e_n` inside its range (`oblique_table_restitution`);
+/// otherwise `OBLIQUE_ERR_QUERY` naming `e_n` (never clamped, whatever `clamp`).
+///
+/// # Safety
+/// `table` is NULL or a live handle; `p` is NULL or valid for writes.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_p_e(
+    table: *const ObliqueTable,
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    clamp: c_int,
+    p: *mut f64,
+) -> c_int {
+    guard(|| {
+        let t = table.as_ref().ok_or_else(|| null("table"))?;
+        if p.is_null() {
+            return Err(null("p"));
+        }
+        *p =
+            t.0.p_e_with(gamma, alpha, e_n, outside(clamp))
+                .map_err(lookup)?;
+        Ok(())
+    })
+}
+
+/// The `e_n` range of a table: `[e_n_min, e_n_max]` for a table with an `e_n` axis, `[1, 1]`
+/// for an elastic table. Any out-pointer may be NULL.
+///
+/// # Safety
+/// `table` is NULL or a live handle; the out-pointers are NULL or valid for writes.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_table_restitution(
+    table: *const ObliqueTable,
+    e_n_min: *mut f64,
+    e_n_max: *mut f64,
+) -> c_int {
+    guard(|| {
+        let t = table.as_ref().ok_or_else(|| null("table"))?;
+        let (lo, hi) = t.0.restitution().unwrap_or((1.0, 1.0));
+        if let Some(x) = e_n_min.as_mut() {
+            *x = lo;
+        }
+        if let Some(x) = e_n_max.as_mut() {
+            *x = hi;
+        }
+        Ok(())
+    })
+}
+
 /// `p[i] = P(gamma[i], alpha[i])` for `i < n`, on the calling thread. On an invalid query the
 /// message names its index and `p` is filled only before it.
 ///
@@ -454,6 +506,7 @@ fn contact(c: &ObliqueContact) -> Contact {
         },
         friction: c.friction,
         outside: outside(c.clamp),
+        restitution: 1.0,
     }
 }
 

@@ -43,6 +43,8 @@ fn header_is_up_to_date() {
         "oblique_table_close",
         "oblique_p",
         "oblique_p_batch",
+        "oblique_p_e",
+        "oblique_table_restitution",
         "oblique_curve_new",
         "oblique_curve_p",
         "oblique_curve_free",

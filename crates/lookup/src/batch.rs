@@ -145,4 +145,72 @@ impl Table {
             Some((index, e)) => Err(batch_error(index, e)),
         }
     }
+
+    /// `out[i] = P(gamma[i], alpha[i], e_n[i])` for every `i`, in order ([`Table::p_e_with`]):
+    /// [`Table::p_batch`] with a normal-restitution slice (all four of one length). A batch
+    /// whose `e_n` are all 1 takes the path of [`Table::p_batch`].
+    pub fn p_e_batch(
+        &self,
+        gamma: &[f64],
+        alpha: &[f64],
+        e_n: &[f64],
+        out: &mut [f64],
+        outside: OutOfDomain,
+    ) -> Result<(), LookupError> {
+        check_lengths(gamma, alpha, out)?;
+        check_length("e_n", e_n.len(), gamma.len())?;
+        self.p_e_slices(gamma, alpha, e_n, out, outside)
+            .map_err(|(index, e)| batch_error(index, e))
+    }
+
+    fn p_e_slices(
+        &self,
+        gamma: &[f64],
+        alpha: &[f64],
+        e_n: &[f64],
+        out: &mut [f64],
+        outside: OutOfDomain,
+    ) -> Result<(), (usize, LookupError)> {
+        if e_n.iter().all(|&e| e == 1.0) {
+            return self.p_slices(gamma, alpha, out, outside);
+        }
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self
+                .p_e_with(gamma[i], alpha[i], e_n[i], outside)
+                .map_err(|e| (i, e))?;
+        }
+        Ok(())
+    }
+
+    /// [`Table::p_e_batch`] in parallel on the current rayon pool (chunks of 4096 queries);
+    /// the error names the lowest invalid index, as [`Table::p_batch_par`].
+    #[cfg(feature = "rayon")]
+    pub fn p_e_batch_par(
+        &self,
+        gamma: &[f64],
+        alpha: &[f64],
+        e_n: &[f64],
+        out: &mut [f64],
+        outside: OutOfDomain,
+    ) -> Result<(), LookupError> {
+        use rayon::prelude::*;
+        check_lengths(gamma, alpha, out)?;
+        check_length("e_n", e_n.len(), gamma.len())?;
+        let first_error = out
+            .par_chunks_mut(CHUNK)
+            .zip(gamma.par_chunks(CHUNK))
+            .zip(alpha.par_chunks(CHUNK))
+            .zip(e_n.par_chunks(CHUNK))
+            .enumerate()
+            .filter_map(|(k, (((o, g), a), e))| {
+                self.p_e_slices(g, a, e, o, outside)
+                    .err()
+                    .map(|(i, e)| (k * CHUNK + i, e))
+            })
+            .min_by_key(|(i, _)| *i);
+        match first_error {
+            None => Ok(()),
+            Some((index, e)) => Err(batch_error(index, e)),
+        }
+    }
 }

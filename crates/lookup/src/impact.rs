@@ -26,6 +26,10 @@ pub struct Contact {
     pub friction: f64,
     /// What a `γ` outside the table's domain does (default: an error).
     pub outside: OutOfDomain,
+    /// Normal restitution `e_n` of the impact (1 for an elastic one): the table must answer it
+    /// (an elastic table `e_n = 1` only, one with an `e_n` axis its range), and the normal
+    /// relative velocity reverses to `e_n` times its value.
+    pub restitution: f64,
 }
 
 impl Contact {
@@ -35,6 +39,7 @@ impl Contact {
             stiffness: Stiffness::Gamma(gamma),
             friction,
             outside: OutOfDomain::Error,
+            restitution: 1.0,
         }
     }
 
@@ -44,6 +49,15 @@ impl Contact {
             stiffness: Stiffness::Materials(sphere, other),
             friction,
             outside: OutOfDomain::Error,
+            restitution: 1.0,
+        }
+    }
+
+    /// The same contact with normal restitution `e_n` ([`Contact::restitution`]).
+    pub fn with_restitution(self, e_n: f64) -> Contact {
+        Contact {
+            restitution: e_n,
+            ..self
         }
     }
 
@@ -91,7 +105,7 @@ impl Table {
             // u0 = 0: a pure normal impact, P is not needed.
             return Ok(f64::NAN);
         }
-        self.p_with(gamma, alpha, contact.outside)
+        self.p_e_with(gamma, alpha, contact.restitution, contact.outside)
     }
 
     /// A 2-D impact in its plane (sphere–wall when `pair.other` is `None`, else
@@ -108,7 +122,7 @@ impl Table {
         Ok(Answer {
             gamma,
             alpha,
-            rebound: pair.rebound(s, p)?,
+            rebound: pair.rebound_dissipative(s, p, contact.restitution)?,
         })
     }
 
@@ -148,7 +162,7 @@ impl Table {
         Ok(Answer {
             gamma,
             alpha,
-            rebound: pair.rebound_in_plane(s, &plane, p)?,
+            rebound: pair.rebound_in_plane_dissipative(s, &plane, p, contact.restitution)?,
         })
     }
 }

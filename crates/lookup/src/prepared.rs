@@ -28,8 +28,10 @@ pub struct Prepared {
     alpha_scale: f64,
     /// `m_t` (kg).
     tangential_mass: f64,
-    /// `2 m*` (kg).
+    /// `(1 + e_n) m*` (kg): the normal impulse per unit approach speed (`2 m*` elastic).
     two_normal_mass: f64,
+    /// `(m*/2)(1 − e_n²)` (kg): the normal energy lost per unit squared approach speed.
+    normal_loss: f64,
     /// `1/m_1`, `R_1/I_1`, `R_1` and the same for sphere 2 (zero for a wall).
     inv_m1: f64,
     spin1: f64,
@@ -58,6 +60,14 @@ impl Prepared {
         if mu.is_nan() || mu < 0.0 {
             return Err(friction_error(mu));
         }
+        let e_n = contact.restitution;
+        if !(0.0..=1.0).contains(&e_n) {
+            return Err(LookupError::Query {
+                name: "e_n",
+                value: e_n,
+                allowed: "in [0, 1] (and in the table's e_n range)".into(),
+            });
+        }
         // The same operations, in the same order, as `Pair::alpha_checked` and
         // `Pair::impulses`, so that α, J and the normal impulse have the same bits.
         let alpha_scale = 2.0 / 7.0 * pair.mass_ratio() * mu;
@@ -71,7 +81,10 @@ impl Prepared {
             gamma,
             alpha_scale,
             tangential_mass: pair.tangential_mass(),
-            two_normal_mass: 2.0 * pair.normal_mass(),
+            two_normal_mass: (1.0 + contact.restitution) * pair.normal_mass(),
+            normal_loss: 0.5
+                * pair.normal_mass()
+                * (1.0 - contact.restitution * contact.restitution),
             inv_m1: 1.0 / b1.mass,
             spin1: b1.radius / b1.inertia(),
             r1: b1.radius,
@@ -132,7 +145,12 @@ impl Table {
         s: &Incident3,
     ) -> Result<Answer<Rebound3>, LookupError> {
         self.rebound_3d_fast(prepared, s, |alpha| {
-            self.p_with(prepared.gamma, alpha, prepared.contact.outside)
+            self.p_e_with(
+                prepared.gamma,
+                alpha,
+                prepared.contact.restitution,
+                prepared.contact.outside,
+            )
         })
     }
 
@@ -231,7 +249,7 @@ impl Table {
                 slip_after: p * u0,
                 tangential_impulse: j,
                 normal_impulse: nn,
-                e_n: 1.0,
+                e_n: k.contact.restitution,
                 e_t: if w0w0 == 0.0 {
                     f64::NAN
                 } else {
@@ -240,7 +258,12 @@ impl Table {
                 centre_speed_before: w0w0.sqrt(),
                 centre_speed_after: dot(w_after, w_after).sqrt(),
                 approach_speed: v0,
-                energy_lost: 0.5 * k.tangential_mass * u0 * u0 * (1.0 - p * p),
+                energy_lost: 0.5 * k.tangential_mass * u0 * u0 * (1.0 - p * p)
+                    + if k.normal_loss == 0.0 {
+                        0.0
+                    } else {
+                        k.normal_loss * v0 * v0
+                    },
             },
         })
     }

@@ -415,6 +415,7 @@ fn three_d_rebounds_obey_the_conservation_laws() {
             stiffness: Stiffness::Materials(ALUMINA, STEEL),
             friction: 0.05 + next(),
             outside: OutOfDomain::Error,
+            restitution: 1.0,
         };
         let a = t.rebound_3d(&pair, &contact, &inc).unwrap();
         assert!(a.rebound.p.is_finite());
