@@ -233,12 +233,6 @@ fn e_n_outside_a_table_is_refused_by_name() {
         ],
         &["--e-n", "elastic"],
     );
-    let out = common::subdir("dissipative-export").join("t.oblq");
-    refused(
-        &["export", t(), "-o", out.to_str().expect("path")],
-        &["e_n axis", "elastic tables"],
-    );
-    assert!(!out.exists(), "nothing written");
 }
 
 #[test]
@@ -341,4 +335,61 @@ fn rebounds_with_e_n_reverse_the_normal_velocity_by_e_n() {
         .map(|_| ())
         .expect_err("elastic table, e_n = 0.8");
     assert!(e.to_string().contains("e_n"), "{e}");
+}
+
+/// The query path (a fine index over `(γ, c, e_n)`) gives the bits of the rule written step
+/// by step (`Surface::eval_point`), at random points of the whole domain and beyond it, at the
+/// ends of the `e_n` range, on the patch edges, with and without clamping.
+#[test]
+fn the_indexed_path_gives_the_bits_of_the_rule() {
+    use oblique_lookup::{OutOfDomain, Table};
+    let table = Table::open(table()).expect("open");
+    assert!(
+        table.index_bytes() > 0,
+        "a table with an e_n axis has its index"
+    );
+    let s = table.surface();
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut checked = 0;
+    for i in 0..200_000 {
+        let gamma = 1.2 + 0.5 * next();
+        let alpha = match i % 10 {
+            0 => f64::INFINITY,
+            1 => oblique_physics::regimes::alpha_c2(gamma),
+            _ => 10f64.powf(-2.0 + 3.0 * next()),
+        };
+        let e_n = match i % 7 {
+            0 => 0.7,
+            1 => 1.0,
+            _ => 0.69 + 0.32 * next(),
+        };
+        for outside in [OutOfDomain::Error, OutOfDomain::Clamp] {
+            let fast = table.p_e_with(gamma, alpha, e_n, outside);
+            let rule = s.eval_point(gamma, alpha, e_n, outside);
+            match (fast, rule) {
+                (Ok(a), Ok(b)) => {
+                    assert_eq!(a.to_bits(), b.to_bits(), "({gamma}, {alpha}, {e_n})");
+                    checked += 1;
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string()),
+                (a, b) => panic!("({gamma}, {alpha}, {e_n}): {a:?} vs {b:?}"),
+            }
+        }
+    }
+    assert!(checked > 300_000, "{checked} answers compared");
+    // Table::p is the e_n = 1 slice.
+    for (g, a) in [(1.4, 0.3), (1.55, 2.0), (1.3, f64::INFINITY)] {
+        assert_eq!(
+            table.p(g, a).expect("inside").to_bits(),
+            s.eval_point(g, a, 1.0, OutOfDomain::Error)
+                .expect("inside")
+                .to_bits()
+        );
+    }
 }

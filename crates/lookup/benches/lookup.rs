@@ -4,6 +4,9 @@
 //!   slip, stick, no slip, `γ < 1`), and `p/mixed`: cycling through 4096 points spread over the
 //!   whole domain (γ uniform, α log-uniform in [1e-3, 1e3] plus 10 % α = ∞), so that branch
 //!   prediction and cache see a realistic stream.
+//! - `p_e/mixed`: `Table::p_e` of a table with an e_n axis (`tables/dissipative-demo.h5`, or
+//!   `LOOKUP_BENCH_TABLE_E_N=path`) at 4096 points cycled (e_n uniform in its range);
+//!   `p_e/elastic_same_points`: the elastic table at the same (γ, α).
 //! - `curve/<region>`: the same points through `Table::curve` (built once per γ), and
 //!   `curve/mixed_alpha`: the α of `p/mixed` at γ = 1.754.
 //! - `rebound/<case>`: one `Table::rebound` (2-D sphere–wall) and `Table::rebound_3d`
@@ -101,6 +104,34 @@ fn main() {
     timed(&mut g, "mixed", clock, || {
         i = (i + 1) & 4095;
         table.p(black_box(mg[i]), black_box(ma[i]))
+    });
+    g.finish();
+
+    // One P(γ, α, e_n) of a table with an e_n axis, at 4096 points cycled (γ, α as in
+    // `p/mixed` over its domain, e_n uniform in its range), and the elastic table at the same
+    // (γ, α) for the ratio.
+    let path_e = std::env::var("LOOKUP_BENCH_TABLE_E_N").unwrap_or_else(|_| {
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../tables/dissipative-demo.h5"
+        )
+        .to_string()
+    });
+    let table_e = Table::open(&path_e).unwrap_or_else(|e| panic!("{e}"));
+    let (lo, hi) = table_e.restitution().unwrap_or((1.0, 1.0));
+    let (eg, ea) = mixed_points(&table_e, 4096);
+    let mut u = testing::uniform(0x5DEE_CE66_D1CE_4E5B);
+    let ee: Vec<f64> = (0..4096).map(|_| lo + (hi - lo) * u()).collect();
+    let mut g = c.benchmark_group(format!("p_e{}", clock.suffix()));
+    let mut i = 0usize;
+    timed(&mut g, "mixed", clock, || {
+        i = (i + 1) & 4095;
+        table_e.p_e(black_box(eg[i]), black_box(ea[i]), black_box(ee[i]))
+    });
+    let mut i = 0usize;
+    timed(&mut g, "elastic_same_points", clock, || {
+        i = (i + 1) & 4095;
+        table.p(black_box(eg[i]), black_box(ea[i]))
     });
     g.finish();
 

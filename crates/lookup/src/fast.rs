@@ -24,6 +24,9 @@ use oblique_table::surface::{bound_p, partial_coord, stencil4, stick_coord};
 use oblique_table::surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
 
 mod batch;
+mod restitution;
+
+pub(crate) use restitution::Accel3;
 
 /// Largest number of entries of one patch's fine index ([`Patch::fine_index`]). A full-depth
 /// index for `partial_high` of `tables/full.h5` (327 680 entries, 1.3 MB) answered a repeated

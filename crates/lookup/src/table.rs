@@ -7,7 +7,7 @@ use oblique_table::read::Contents;
 use oblique_table::surface::{OutOfDomain, Surface};
 use oblique_table::{Check, Provenance};
 
-use crate::fast::Accel;
+use crate::fast::{Accel, Accel3};
 use crate::LookupError;
 
 /// A loaded table: the surface, its provenance and its held-out checks. Immutable,
@@ -28,6 +28,8 @@ pub struct Table {
     error_bound: f64,
     /// The query path's acceleration structure (`None`: answered by `surface` directly).
     accel: Option<Accel>,
+    /// The same for a table with an `e_n` axis.
+    accel3: Option<Accel3>,
 }
 
 impl Table {
@@ -54,12 +56,14 @@ impl Table {
         error_bound: f64,
     ) -> Table {
         let accel = Accel::new(&surface);
+        let accel3 = Accel3::new(&surface);
         Table {
             surface,
             provenance,
             checks,
             error_bound,
             accel,
+            accel3,
         }
     }
 
@@ -87,6 +91,7 @@ impl Table {
     /// quadtree descent of [`Surface::eval_with`], as for stencils other than 4 points).
     pub fn index_bytes(&self) -> usize {
         self.accel.as_ref().map_or(0, Accel::index_bytes)
+            + self.accel3.as_ref().map_or(0, Accel3::index_bytes)
     }
 
     /// `P(γ, α)` (dimensionless), refusing points outside the table's domain; see
@@ -101,9 +106,10 @@ impl Table {
     /// [`Surface::eval_with`].
     #[inline]
     pub fn p_with(&self, gamma: f64, alpha: f64, outside: OutOfDomain) -> Result<f64, LookupError> {
-        match &self.accel {
-            Some(a) => a.eval_with(&self.surface, gamma, alpha, outside),
-            None => self.p_by_descent(gamma, alpha, outside),
+        match (&self.accel, &self.accel3) {
+            (Some(a), _) => a.eval_with(&self.surface, gamma, alpha, outside),
+            (None, Some(a)) => a.eval(&self.surface, gamma, alpha, 1.0, outside),
+            (None, None) => self.p_by_descent(gamma, alpha, outside),
         }
     }
 
@@ -126,9 +132,10 @@ impl Table {
         e_n: f64,
         outside: OutOfDomain,
     ) -> Result<f64, LookupError> {
-        match &self.accel {
-            // Only elastic tables have the acceleration structure.
-            Some(a) if e_n == 1.0 => a.eval_with(&self.surface, gamma, alpha, outside),
+        match (&self.accel, &self.accel3) {
+            // An elastic table's structure answers e_n = 1 (the others are refused).
+            (Some(a), _) if e_n == 1.0 => a.eval_with(&self.surface, gamma, alpha, outside),
+            (_, Some(a)) => a.eval(&self.surface, gamma, alpha, e_n, outside),
             _ => self.surface.eval_point(gamma, alpha, e_n, outside),
         }
     }

@@ -22,7 +22,7 @@ pub fn overshooting(t: Table, mut off: impl FnMut(usize) -> f64) -> Table {
     let surface = t
         .surface()
         .map_patches(|_, p| {
-            let size = (p.leaf_intervals() + 1).pow(2);
+            let size = p.leaf_size();
             p.map_values(|i, _| {
                 let sign = if (i / size) % 2 == 0 { -1.0 } else { 1.0 };
                 sign * (1.0 - if i % 3 == 0 { 0.0 } else { off(i) })

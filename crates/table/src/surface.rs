@@ -182,6 +182,8 @@ pub struct CellOrigin {
     pub og: f64,
     /// Origin along `c`.
     pub oc: f64,
+    /// Origin along `e_n` (0 without an `e_n` axis).
+    pub oe: f64,
 }
 
 /// A uniform grid at depth `depth` over a patch (`rows = blocks_gamma·2^depth` along γ,
@@ -199,7 +201,9 @@ pub struct FineIndex {
     pub rows: usize,
     /// Entries along `c`.
     pub cols: usize,
-    /// `rows × cols` cell numbers, row-major (γ outer), each `< cells.len()`.
+    /// Entries along `e_n` (1 without an `e_n` axis).
+    pub layers: usize,
+    /// `rows × cols × layers` cell numbers, row-major (γ outer), each `< cells.len()`.
     pub index: Vec<u32>,
     /// Every cell of the quadtree, in the order of the tree.
     pub cells: Vec<CellOrigin>,
@@ -599,6 +603,26 @@ pub fn cubic_weights(a: f64) -> [f64; 4] {
     ]
 }
 
+/// Steps 8 and 9 of the rule in a leaf of a patch with an `e_n` axis, for the cubic stencil:
+/// `vals` the leaf's `n1³` node values (`n1 = m + 1 ≥ 4`, `[i_γ][i_c][i_e]`), `f` the position
+/// inside the leaf (each in `[0, 1]`). The weights of [`stencil4`] at `f·m` per axis; the sum
+/// runs over `e_n` innermost, each sum from left to right (the one statement of these
+/// operations: the rule and the fast path both call it).
+#[inline(always)]
+pub fn cubic_tensor3(vals: &[f64], n1: usize, f: [f64; 3]) -> f64 {
+    let m = (n1 - 1) as f64;
+    let (sg, wg) = stencil4(f[0] * m, n1);
+    let (sc, wc) = stencil4(f[1] * m, n1);
+    let (se, we) = stencil4(f[2] * m, n1);
+    let row = |i: usize, j: usize| {
+        let r = &vals[((sg + i) * n1 + sc + j) * n1 + se..][..4];
+        r[0] * we[0] + r[1] * we[1] + r[2] * we[2] + r[3] * we[3]
+    };
+    let plane =
+        |i: usize| wc[0] * row(i, 0) + wc[1] * row(i, 1) + wc[2] * row(i, 2) + wc[3] * row(i, 3);
+    wg[0] * plane(0) + wg[1] * plane(1) + wg[2] * plane(2) + wg[3] * plane(3)
+}
+
 /// `min(floor(u), max)` for `u ≥ 0` (`0` for `u < 0` or NaN): `as i64` truncates with one
 /// instruction plus saturation, where `floor` is a library call on baseline x86-64.
 #[inline(always)]
@@ -916,13 +940,34 @@ impl Patch {
     }
 
     /// The fine index of this patch ([`FineIndex`]) with at most `max_entries` entries, or
-    /// `None` for a grid too small for the cubic stencil (`m < 3`) or a tree deeper than 30.
+    /// `None` for a grid too small for the cubic stencil (`m < 3`), a tree deeper than 30, or
+    /// a patch with an `e_n` axis (see [`Patch::fine_index3`]).
     pub fn fine_index(&self, max_entries: usize) -> Option<FineIndex> {
         if self.restitution.is_some() {
             return None;
         }
-        let (bg, bc, m) = (self.blocks_gamma, self.blocks_coord, self.leaf_intervals);
-        let roots = bg * bc;
+        self.fine_index_any(max_entries)
+    }
+
+    /// The fine index of a patch with an `e_n` axis: [`FineIndex`] over `(γ, c, e_n)`
+    /// (`layers` entries along `e_n`), or `None` as [`Patch::fine_index`] (and for a patch
+    /// without the axis).
+    pub fn fine_index3(&self, max_entries: usize) -> Option<FineIndex> {
+        self.restitution?;
+        self.fine_index_any(max_entries)
+    }
+
+    /// [`Patch::fine_index`] over the patch's 2 or 3 axes.
+    fn fine_index_any(&self, max_entries: usize) -> Option<FineIndex> {
+        let dims = self.dims();
+        let (bg, bc, be, m) = (
+            self.blocks_gamma,
+            self.blocks_coord,
+            self.blocks_e_n(),
+            self.leaf_intervals,
+        );
+        let roots = bg * bc * be;
+        let fanout = self.fanout();
         let n = self.tree.len();
         if m < 3 || roots == 0 || n < roots || n > u32::MAX as usize {
             return None;
@@ -933,44 +978,59 @@ impl Patch {
                 scale: 1.0,
                 og: 0.0,
                 oc: 0.0,
+                oe: 0.0,
             };
             n
         ];
         let mut depth = vec![0u32; n];
-        let mut origin = vec![(0usize, 0usize); n];
+        let mut origin = vec![(0usize, 0usize, 0usize); n];
         for a in 0..bg {
             for b in 0..bc {
-                origin[a * bc + b] = (a, b);
+                for e in 0..be {
+                    origin[(a * bc + b) * be + e] = (a, b, e);
+                }
             }
         }
         let mut max_depth = 0;
         for i in 0..n {
             let t = self.tree[i];
-            let (a, b) = origin[i];
+            let (a, b, e) = origin[i];
             cells[i] = CellOrigin {
                 scale: f64::from(1u32 << depth[i].min(31)),
                 og: a as f64,
                 oc: b as f64,
+                oe: e as f64,
             };
             max_depth = max_depth.max(depth[i]);
             if t >= 0 {
                 let first = t as usize;
-                if first <= i || first + 4 > n || depth[i] >= 30 {
+                if first <= i || first + fanout > n || depth[i] >= 30 {
                     return None;
                 }
-                for q in 0..4 {
+                for q in 0..fanout {
+                    // Child `2·q_γ + q_c`, or `4·q_γ + 2·q_c + q_e` with an e_n axis.
+                    let (qg, qc, qe) = if dims == 3 {
+                        (q >> 2, (q >> 1) & 1, q & 1)
+                    } else {
+                        (q >> 1, q & 1, 0)
+                    };
                     depth[first + q] = depth[i] + 1;
-                    origin[first + q] = (2 * a + q / 2, 2 * b + q % 2);
+                    origin[first + q] = (
+                        2 * a + qg,
+                        2 * b + qc,
+                        if dims == 3 { 2 * e + qe } else { 0 },
+                    );
                 }
             }
         }
         // The deepest index within the budget.
         let mut d = max_depth;
-        while d > 0 && ((roots as u128) << (2 * d)) > max_entries as u128 {
+        while d > 0 && ((roots as u128) << (dims * d)) > max_entries as u128 {
             d -= 1;
         }
         let (rows, cols) = (bg << d, bc << d);
-        let mut index = vec![u32::MAX; rows * cols];
+        let layers = if dims == 3 { be << d } else { 1 };
+        let mut index = vec![u32::MAX; rows * cols * layers];
         for i in 0..n {
             let di = depth[i];
             // Cells at depth ≤ d cover their part of the index; deeper cells are reached by
@@ -980,9 +1040,17 @@ impl Patch {
                 continue;
             }
             let k = 1usize << (d - di);
-            let (a, b) = origin[i];
+            let (a, b, e) = origin[i];
+            let (e0, e1) = if dims == 3 {
+                (e * k, (e + 1) * k)
+            } else {
+                (0, 1)
+            };
             for r in a * k..(a + 1) * k {
-                index[r * cols + b * k..r * cols + (b + 1) * k].fill(i as u32);
+                for col in b * k..(b + 1) * k {
+                    let at = (r * cols + col) * layers;
+                    index[at + e0..at + e1].fill(i as u32);
+                }
             }
         }
         if index.iter().any(|&e| e as usize >= n) {
@@ -992,6 +1060,7 @@ impl Patch {
             depth: d,
             rows,
             cols,
+            layers,
             index,
             cells,
         })
@@ -1188,6 +1257,9 @@ impl Patch {
         let n = self.leaf_intervals;
         let n1 = n + 1;
         let vals = &self.p[leaf * n1 * n1 * n1..(leaf + 1) * n1 * n1 * n1];
+        if k == 4 && n >= 3 {
+            return cubic_tensor3(vals, n1, f);
+        }
         let mut w = [[0.0; 8]; 3];
         let mut start = [0usize; 3];
         let mut count = [0usize; 3];
