@@ -171,7 +171,8 @@ The evaluator reads the file in place (read or mmap it, then oblq_open) and answ
 alpha), the per-gamma curves, e_t and rebounds with no library but libm. The layout (little-\n\
 endian, versioned, FNV-1a checksum) is documented in docs/export-format.md. A curve answers the\n\
 same P as the whole table to about 1e-15 in a few KB; gamma of a pair of materials:\n\
-sqrt((m*/m_t) G*/E*) (sweep --help).")]
+sqrt((m*/m_t) G*/E*) (sweep --help). A table with an e_n axis is exported whole (layout\n\
+version 2; oblq_p_e answers P(gamma, alpha, e_n)); curves hold elastic tables only.")]
     Export(cmd::export::ExportArgs),
     /// Exact references for the oblique-impact tests DEM codes verify themselves against
     /// (Chung & Ooi 1-8, MFIX DEM05, Thornton, seed 000): CSVs, figures, closed-form checks.

@@ -120,10 +120,11 @@ pub fn run(args: ExportArgs) -> Result<()> {
     // being read is not overwritten (also under another name or a hard link).
     oblique_table::write::check_output_not_input(&args.output, &[&args.table])?;
     let table = Table::open(&args.table)?;
-    if let Some((lo, hi)) = table.surface().restitution() {
+    let axis = table.surface().restitution();
+    if let (Some((lo, hi)), false) = (axis, args.gammas.is_empty()) {
         return Err(Failure::usage(format!(
-            "{}: a table with an e_n axis (e_n in [{lo}, {hi}]); the export format of \
-             include/oblique_eval.h holds elastic tables (gamma, alpha) only",
+            "--gamma: {} has an e_n axis (e_n in [{lo}, {hi}]); curves P(alpha) hold elastic \
+             tables only: export the table without --gamma and query it with oblq_p_e",
             args.table.display()
         )));
     }
@@ -157,7 +158,8 @@ pub fn run(args: ExportArgs) -> Result<()> {
         .format
         .unwrap_or(if c_by_name { Format::C } else { Format::Binary });
     let what = format!(
-        "P(gamma, alpha) from {}{}",
+        "P(gamma, alpha{}) from {}{}",
+        if axis.is_some() { ", e_n" } else { "" },
         args.table.display(),
         if args.gammas.is_empty() {
             String::new()
@@ -191,10 +193,10 @@ pub fn run(args: ExportArgs) -> Result<()> {
         } else {
             String::new()
         },
-        if args.curves_only {
-            ""
-        } else {
-            "the table and "
+        match (args.curves_only, axis) {
+            (true, _) => String::new(),
+            (false, None) => "the table and ".into(),
+            (false, Some((lo, hi))) => format!("the table (e_n in [{lo}, {hi}]) and "),
         },
         curves.len(),
         if curves.len() == 1 { "" } else { "s" },

@@ -5,16 +5,25 @@
 //!
 //! Every offset is in bytes from the start of the export; every array starts at a multiple of
 //! 8. Integers are unsigned little-endian (`u32`, `u64`), reals IEEE binary64, the tree `i32`.
+//!
+//! An elastic table is written as layout version 1, byte for byte as before the `e_n` axis
+//! existed; a table with an `e_n` axis (schema 4) as version 2: a 112-byte header that ends
+//! with the `e_n` range, octree patches with `blocks_e_n` in their record and `(m+1)³` nodes
+//! per leaf, no curves (a reader of version 1 only refuses it by its version).
 
 use crate::format::fnv1a64;
 use crate::surface::{PatchId, PatchKind, Surface, MAX_INDEX_ENTRIES};
 
 /// The first 8 bytes of an export.
 pub const MAGIC: &[u8; 8] = b"OBLQEVAL";
-/// Layout version written (readers refuse others).
+/// Layout version of the export of an elastic table (readers refuse versions they do not know).
 pub const VERSION: u32 = 1;
-/// Bytes of the header.
+/// Layout version of the export of a table with an `e_n` axis.
+pub const VERSION_E_N: u32 = 2;
+/// Bytes of the header (version 1).
 pub const HEADER_BYTES: usize = 96;
+/// Bytes of the header of version 2: the version-1 header, then `e_n_min` and `e_n_max`.
+pub const HEADER_BYTES_E_N: usize = 112;
 /// Bytes of one patch record (three follow the header when the export holds the surface).
 pub const PATCH_BYTES: usize = 160;
 /// Bytes of one curve record.
@@ -94,16 +103,37 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 
 /// The export of `surface` (with `error_bound`, the table's stated bound) when `with_surface`,
 /// and of `curves`, as bytes. An export without the surface answers only its curves.
+///
+/// A surface with an `e_n` axis ([`Surface::restitution`]) is written as version 2; curves
+/// belong to elastic tables only.
+///
+/// # Panics
+///
+/// For a surface with an `e_n` axis and `curves` or without `with_surface` (`sweep export`
+/// refuses `--gamma` for such a table before it gets here).
 pub fn export(
     surface: &Surface,
     error_bound: f64,
     with_surface: bool,
     curves: &[CurveData],
 ) -> Vec<u8> {
-    let mut v = vec![0u8; HEADER_BYTES];
+    let axis = surface.restitution();
+    assert!(
+        axis.is_none() || (with_surface && curves.is_empty()),
+        "the export of a table with an e_n axis holds its surface and no curves"
+    );
+    let (version, header) = match axis {
+        Some(_) => (VERSION_E_N, HEADER_BYTES_E_N),
+        None => (VERSION, HEADER_BYTES),
+    };
+    let mut v = vec![0u8; header];
     v[..8].copy_from_slice(MAGIC);
-    put_u32(&mut v, 8, VERSION);
-    put_u32(&mut v, 12, HEADER_BYTES as u32);
+    put_u32(&mut v, 8, version);
+    put_u32(&mut v, 12, header as u32);
+    if let Some((lo, hi)) = axis {
+        put_f64(&mut v, 96, lo);
+        put_f64(&mut v, 104, hi);
+    }
     put_f64(&mut v, 32, surface.gamma_min());
     put_f64(&mut v, 40, surface.gamma_max());
     put_f64(&mut v, 48, surface.alpha_max());
@@ -131,6 +161,10 @@ pub fn export(
             put_u32(&mut v, r + 32, p.leaf_intervals() as u32);
             put_u32(&mut v, r + 36, p.tree().len() as u32);
             put_u32(&mut v, r + 40, p.leaves() as u32);
+            if let Some(e) = p.restitution() {
+                // The octree's third axis; its range is the table's (header, offset 96).
+                put_u32(&mut v, r + 136, e.blocks() as u32);
+            }
             align8(&mut v);
             let tree_at = v.len() as u64;
             for t in p.tree() {
