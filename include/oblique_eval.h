@@ -1,6 +1,7 @@
 /*
  * oblique_eval.h: the tangential restitution P(gamma, alpha) of oblique elastic impacts with
- * friction, and the rebounds of spheres on walls and on spheres, evaluated from an export of a
+ * friction (and P(gamma, alpha, e_n) of dissipative ones, from a table with a normal-restitution
+ * axis), and the rebounds of spheres on walls and on spheres, evaluated from an export of a
  * table (`sweep export TABLE -o FILE`) held in memory. One header, no library but libm, no
  * allocation: C99 and later, C++11 and later. Little-endian machines only (x86-64, AArch64).
  *
@@ -9,6 +10,7 @@
  *   int rc = oblq_open(&t, bytes, size);          // checks the export once (layout, checksum)
  *   double p;
  *   rc = oblq_p(&t, 1.754, 0.3, 0, &p);           // P(gamma, alpha); rc = OBLQ_OK or an error
+ *   rc = oblq_p_e(&t, 1.45, 0.3, 0.8, 0, &p);     // P(gamma, alpha, e_n): a table with the axis
  *
  * Symbols and units (SI) as in the project's physics.md: gamma = sqrt((m* / m_t) G* / E*),
  * alpha = (2/7)(m* / m_t) mu v_z0/|u0|, P = u_after/u_before (the tangential restitution of the
@@ -45,13 +47,17 @@
  * logarithm but not always rounded as the host's libm, differs: in partial slip, where P then
  * differs in the last bits only, by at most 2e-15 (on an NVIDIA H200 over 2^24 random points:
  * 1.2e-15, about 1 answer in 4000 not the host's bits; a curve's P 3.3e-16; on the host with
- * half of the logs off by an ulp: 2e-15). A 3-D rebound carries that difference into the fields
- * computed from P: over 2^24 random sphere-sphere impacts (H200) every field was within 4.3e-14
- * of the host's, relative to the field's size where that exceeds 1 and absolute below, i.e.
- * |device - host| <= 4.3e-14 max(1, |host|): relative for the spins (rad/s, nearly all above
- * 1), absolute for most velocity components (m/s, mostly below 1) and for the impulses and
- * energy lost (below 1e-3 N s and 1e-4 J there, so the bound says little about them).
- * examples/cuda/oblique_gpu.cu does all of this and compares the device with the host.
+ * half of the logs off by an ulp: 2e-15; a table with an e_n axis also calls asin there, which
+ * CUDA likewise computes to within 1 ulp: oblq_p_e on an H200 over 2^24 random points of a small
+ * such table, every status the host's, P within 6.7e-16, 1 answer in 46 not the host's bits).
+ * A 3-D rebound carries that difference into the fields computed from P: over 2^24 random
+ * sphere-sphere impacts (H200) every field was within 4.3e-14 of the host's, relative to the
+ * field's size where that exceeds 1 and absolute below, i.e. |device - host| <= 4.3e-14
+ * max(1, |host|): relative for the spins (rad/s, nearly all above 1), absolute for most
+ * velocity components (m/s, mostly below 1) and for the impulses and energy lost (below
+ * 1e-3 N s and 1e-4 J there, so the bound says little about them).
+ * examples/cuda/oblique_gpu.cu does all of this (elastic tables) and compares the device with
+ * the host.
  */
 #ifndef OBLIQUE_EVAL_H
 #define OBLIQUE_EVAL_H
@@ -69,8 +75,9 @@
 extern "C" {
 #endif
 
-/* Layout version this header reads. */
-#define OBLQ_EXPORT_VERSION 1u
+/* Newest layout version this header reads: 1 (an elastic table, and curves) and 2 (a table
+   with a normal-restitution axis e_n). */
+#define OBLQ_EXPORT_VERSION 2u
 
 /* Status codes. */
 enum {
@@ -97,7 +104,8 @@ enum {
     OBLQ_E_NORMAL = 20,       /* a zero (or overflowing) normal */
     OBLQ_E_APPROACH = 21,     /* the bodies do not approach along the normal (v_z0 <= 0) */
     OBLQ_E_WALL_MOTION = 22,  /* a wall (other = NULL) given a non-zero motion */
-    OBLQ_E_KAPPA_P = 23       /* P outside [-1, 1] given to oblq_e_t */
+    OBLQ_E_KAPPA_P = 23,      /* P outside [-1, 1] given to oblq_e_t */
+    OBLQ_E_E_N = 24           /* e_n outside the table's e_n range (elastic: e_n != 1) */
 };
 
 /* One patch of the surface (pointers into the export). */
@@ -118,6 +126,9 @@ typedef struct {
     const double *origin;       /* [cells][3]: scale, og, oc */
     size_t rows, cols;
     double fine;
+    /* Root cells along e_n (1 without the axis); with the axis the tree is an octree and p
+       is [leaves][m+1][m+1][m+1]. */
+    size_t blocks_e_n;
 } oblq_patch;
 
 /* A checked export: the table's domain and stated error bound, its patches, its curves. */
@@ -130,6 +141,8 @@ typedef struct {
     const unsigned char *data; /* the export */
     uint64_t size;
     uint64_t curves; /* offset of the curve records */
+    int has_e_n;              /* 1: a table with a normal-restitution axis (layout version 2) */
+    double e_n_min, e_n_max;  /* the e_n range it answers: 1, 1 for an elastic table */
 } oblq_table;
 
 /* One patch of a curve. */
@@ -188,8 +201,10 @@ OBLQ_FN int oblq__finite_array(const double *v, size_t n) {
     return 1;
 }
 
-OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len, const unsigned char *r) {
-    uint64_t cells, leaves, m, bg, bc, roots, i, nodes, off;
+/* A patch record; `octree`: of a table with an e_n axis (version 2). */
+OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
+                        const unsigned char *r, int octree) {
+    uint64_t cells, leaves, m, bg, bc, be, fan, roots, i, nodes, off;
     memset(p, 0, sizeof *p);
     if (oblq__u32(r) == 0) return OBLQ_OK;
     if (oblq__u32(r) != 1 || oblq__u32(r + 4) > 1) return OBLQ_E_CORRUPT;
@@ -206,8 +221,19 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len, con
           p->gamma_lo < p->gamma_hi))
         return OBLQ_E_CORRUPT;
     if (bg < 1 || bc < 1 || m < 3 || m > 64 || leaves < 1) return OBLQ_E_CORRUPT;
-    roots = bg * bc;
-    if (cells < roots || (cells - roots) % 4 != 0) return OBLQ_E_CORRUPT;
+    be = 1;
+    fan = 4;
+    if (octree) {
+        /* The third axis: an octree, without a warp or a fine index. */
+        be = oblq__u32(r + 136);
+        fan = 8;
+        if (be < 1 || be > 65536 || oblq__u32(r + 44) != 0 || oblq__u64(r + 120) != 0)
+            return OBLQ_E_CORRUPT;
+    }
+    roots = bg * bc; /* < 2^64; then at most cells (< 2^32) times be (<= 2^16) */
+    if (cells < roots) return OBLQ_E_CORRUPT;
+    roots *= be;
+    if (cells < roots || (cells - roots) % fan != 0) return OBLQ_E_CORRUPT;
     off = oblq__u64(r + 48);
     if (!oblq__span(off, cells, 4, len)) return OBLQ_E_CORRUPT;
     p->tree = d + off;
@@ -216,12 +242,12 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len, con
     for (i = 0; i < cells; i++) {
         int32_t t = oblq__i32(p->tree + 4 * i);
         if (t >= 0) {
-            if ((uint64_t)t <= i || (uint64_t)t + 3 >= cells) return OBLQ_E_CORRUPT;
+            if ((uint64_t)t <= i || (uint64_t)t + fan - 1 >= cells) return OBLQ_E_CORRUPT;
         } else if ((uint64_t)(-(int64_t)t - 1) >= leaves) {
             return OBLQ_E_CORRUPT;
         }
     }
-    nodes = leaves * (m + 1) * (m + 1);
+    nodes = leaves * (m + 1) * (m + 1) * (octree ? m + 1 : 1); /* < 2^51 */
     off = oblq__u64(r + 56);
     if (!oblq__span(off, nodes, 8, len)) return OBLQ_E_CORRUPT;
     p->p = (const double *)(const void *)(d + off);
@@ -231,6 +257,7 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len, con
     p->m = (size_t)m;
     p->cells = (size_t)cells;
     p->leaves = (size_t)leaves;
+    p->blocks_e_n = (size_t)be;
     if (oblq__u32(r + 44) > 1) return OBLQ_E_CORRUPT;
     p->warp = (int)oblq__u32(r + 44);
     if (p->warp) {
@@ -381,7 +408,8 @@ OBLQ_FN int oblq__curve_at(const oblq_table *t, size_t i, oblq_curve *c) {
    checksum); no allocation. */
 OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     const unsigned char *d = (const unsigned char *)data;
-    uint64_t len, sum, off, i;
+    uint64_t len, sum, off, i, header;
+    uint32_t version;
     size_t k;
     int rc;
     oblq_table out;
@@ -391,12 +419,14 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     for (k = 0; k < 8; k++) /* a byte loop, not memcmp: device code has no memcmp */
         if (d[k] != (unsigned char)"OBLQEVAL"[k]) return OBLQ_E_FORMAT;
     if (size < 96) return OBLQ_E_TRUNCATED;
-    if (oblq__u32(d + 8) != OBLQ_EXPORT_VERSION) return OBLQ_E_VERSION;
-    if (oblq__u32(d + 12) != 96) return OBLQ_E_CORRUPT;
+    version = oblq__u32(d + 8);
+    if (version != 1 && version != 2) return OBLQ_E_VERSION;
+    header = version == 1 ? 96 : 112; /* version 2 adds the e_n range */
+    if (oblq__u32(d + 12) != header) return OBLQ_E_CORRUPT;
     if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
     len = oblq__u64(d + 16);
     if (len > (uint64_t)size) return OBLQ_E_TRUNCATED;
-    if (len < 96 || len % 8 != 0) return OBLQ_E_CORRUPT;
+    if (len < header || len % 8 != 0) return OBLQ_E_CORRUPT;
     sum = 0xcbf29ce484222325ULL;
     for (i = 32; i < len; i++) sum = (sum ^ d[i]) * 0x100000001b3ULL;
     if (sum != oblq__u64(d + 24)) return OBLQ_E_CHECKSUM;
@@ -411,12 +441,24 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
           out.gamma_min < out.gamma_max && out.alpha_max >= 0.0 && !isnan(out.error_bound)))
         return OBLQ_E_CORRUPT;
     if (oblq__u32(d + 64) != 4) return OBLQ_E_CORRUPT; /* the cubic stencil */
+    out.e_n_min = 1.0;
+    out.e_n_max = 1.0;
+    if (version == 2) {
+        /* A table with an e_n axis: its range, its surface, no curves. */
+        out.has_e_n = 1;
+        out.e_n_min = oblq__f64(d + 96);
+        out.e_n_max = oblq__f64(d + 104);
+        if (!(out.e_n_min > 0.0 && out.e_n_max > out.e_n_min && out.e_n_max <= 1.0))
+            return OBLQ_E_CORRUPT;
+        if (oblq__u64(d + 72) == 0 || oblq__u32(d + 80) != 0 || oblq__u64(d + 88) != 0)
+            return OBLQ_E_CORRUPT;
+    }
     off = oblq__u64(d + 72);
     if (off != 0) {
-        if (!oblq__span(off, 3, 160, len) || off < 96) return OBLQ_E_CORRUPT;
+        if (!oblq__span(off, 3, 160, len) || off < header) return OBLQ_E_CORRUPT;
         out.has_surface = 1;
         for (k = 0; k < 3; k++) {
-            rc = oblq__patch(&out.patch[k], d, len, d + off + 160 * k);
+            rc = oblq__patch(&out.patch[k], d, len, d + off + 160 * k, out.has_e_n);
             if (rc != OBLQ_OK) return rc;
         }
         if (out.patch[1].present && !out.patch[1].partial) return OBLQ_E_CORRUPT;
@@ -427,7 +469,7 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     out.n_curves = oblq__u32(d + 80);
     off = oblq__u64(d + 88);
     if (out.n_curves > 0) {
-        if (!oblq__span(off, out.n_curves, 168, len) || off < 96) return OBLQ_E_CORRUPT;
+        if (!oblq__span(off, out.n_curves, 168, len) || off < header) return OBLQ_E_CORRUPT;
         out.curves = off;
         for (k = 0; k < out.n_curves; k++) {
             rc = oblq__curve_at(&out, k, &c);
@@ -499,6 +541,7 @@ OBLQ_FN const char *oblq_error_message(int code) {
     case OBLQ_E_APPROACH: return "invalid v_z: the approach speed v_z0 along the normal must be finite and > 0 (the bodies must move towards each other)";
     case OBLQ_E_WALL_MOTION: return "invalid other motion: must be zero for a fixed wall";
     case OBLQ_E_KAPPA_P: return "invalid P: must be in [-1, 1]";
+    case OBLQ_E_E_N: return "invalid e_n: must be in the table's e_n range [e_n_min, e_n_max] (never clamped); an elastic table answers e_n = 1 only";
     default: return "unknown status code";
     }
 }
@@ -666,11 +709,9 @@ OBLQ_FN int oblq__region(double gamma, double alpha) {
     return 2;
 }
 
-/* P(gamma, alpha) (dimensionless, -1 <= P <= 1) by the table's rule. gamma finite > 0,
-   alpha >= 0 (INFINITY: no slip). On the full-slip line P = 1 - 7 alpha for any gamma > 0;
-   elsewhere outside the table's domain: OBLQ_E_GAMMA_DOMAIN / OBLQ_E_ALPHA_DOMAIN, or with
-   clamp != 0 the answer at the nearest point of the domain. */
-OBLQ_FN int oblq_p(const oblq_table *t, double gamma, double alpha, int clamp, double *p) {
+/* oblq_p of an elastic table (or a curves-only export). */
+OBLQ_FN int oblq__p_elastic(const oblq_table *t, double gamma, double alpha, int clamp,
+                            double *p) {
     int region, inside;
     if (!t || !p) return OBLQ_E_NULL;
     if (!(gamma > 0.0 && gamma < INFINITY)) return OBLQ_E_GAMMA;
@@ -693,6 +734,147 @@ OBLQ_FN int oblq_p(const oblq_table *t, double gamma, double alpha, int clamp, d
         }
     }
     *p = oblq__eval_in(t, region, gamma, alpha);
+    return OBLQ_OK;
+}
+
+/* alpha_c1(gamma, e_n) = 2 gamma^2/(7(gamma^2(1 + e_n) - e_n)): the end of full slip of an
+   impact with normal restitution e_n for gamma > 1 (alpha_c2, where stick starts, does not move
+   with e_n). */
+OBLQ_FN double oblq__alpha_c1_e(double gamma, double e_n) {
+    double g2 = gamma * gamma;
+    return 2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n));
+}
+
+OBLQ_FN int oblq__region_e(double gamma, double alpha, double e_n) {
+    if (alpha <= (gamma > 1.0 ? oblq__alpha_c1_e(gamma, e_n) : oblq_alpha_c2(gamma))) return -1;
+    if (gamma <= 1.0) return 0;
+    if (alpha < oblq_alpha_c2(gamma)) return 1;
+    return 2;
+}
+
+/* The full-slip line at e_n: P = 1 - (7/2)(1 + e_n) alpha. */
+OBLQ_FN double oblq__line_e(double alpha, double e_n) { return 1.0 - 3.5 * (1.0 + e_n) * alpha; }
+
+/* The partial-slip coordinate of a table with an e_n axis: c = (2/pi) asin(sqrt(l)),
+   l = ln(alpha/alpha_c1)/ln(alpha_c2/alpha_c1) clamped to [0, 1], with
+   alpha/alpha_c1 = 7 alpha h/(2 gamma^2) and alpha_c2/alpha_c1 = h = gamma^2(1 + e_n) - e_n. */
+OBLQ_FN double oblq__partial_coord_e(double gamma, double alpha, double e_n) {
+    double g2 = gamma * gamma;
+    double ratio = g2 * (1.0 + e_n) - e_n;
+    double l = log(7.0 * alpha * ratio / (2.0 * g2)) / log(ratio);
+    return 0.636619772367581343075535053490057448 * asin(sqrt(oblq__clamp(l, 0.0, 1.0)));
+}
+
+/* Steps 6-9 on a patch with an e_n axis at (gamma, c, x_e): the octree's leaf, then the tensor
+   product of the three cubic stencils, summed e_n innermost, gamma outermost. */
+OBLQ_FN double oblq__tensor3(const oblq_patch *p, double gamma, double c, double xe) {
+    double fg, fc, fe, wg[4], wc[4], we[4], r[4], plane[4];
+    double xg = (gamma - p->gamma_lo) / (p->gamma_hi - p->gamma_lo);
+    size_t a = oblq__locate(xg, p->blocks_gamma, &fg);
+    size_t b = oblq__locate(c, p->blocks_coord, &fc);
+    size_t e = oblq__locate(xe, p->blocks_e_n, &fe);
+    size_t cell = (a * p->blocks_coord + b) * p->blocks_e_n + e, leaf, n1, sg, sc, se, i, j;
+    const double *v;
+    for (;;) {
+        int32_t t = oblq__i32(p->tree + 4 * cell);
+        size_t qg, qc, qe;
+        if (t < 0) {
+            leaf = (size_t)(-(int64_t)t - 1);
+            break;
+        }
+        fg *= 2.0;
+        fc *= 2.0;
+        fe *= 2.0;
+        qg = fg >= 1.0;
+        qc = fc >= 1.0;
+        qe = fe >= 1.0;
+        fg -= (double)qg;
+        fc -= (double)qc;
+        fe -= (double)qe;
+        cell = (size_t)t + 4 * qg + 2 * qc + qe;
+    }
+    n1 = p->m + 1;
+    sg = oblq__stencil4(fg * (double)p->m, n1, wg);
+    sc = oblq__stencil4(fc * (double)p->m, n1, wc);
+    se = oblq__stencil4(fe * (double)p->m, n1, we);
+    v = p->p + leaf * n1 * n1 * n1;
+    for (i = 0; i < 4; i++) {
+        for (j = 0; j < 4; j++) {
+            const double *row = v + ((sg + i) * n1 + sc + j) * n1 + se;
+            r[j] = row[0] * we[0] + row[1] * we[1] + row[2] * we[2] + row[3] * we[3];
+        }
+        plane[i] = wc[0] * r[0] + wc[1] * r[1] + wc[2] * r[2] + wc[3] * r[3];
+    }
+    return wg[0] * plane[0] + wg[1] * plane[1] + wg[2] * plane[2] + wg[3] * plane[3];
+}
+
+/* The rule of a table with an e_n axis in a region above the line, inside the domain. */
+OBLQ_FN double oblq__eval_in_e(const oblq_table *t, int region, double gamma, double alpha,
+                               double e_n) {
+    const oblq_patch *p = &t->patch[region];
+    double c;
+    if (!p->present) return -e_n; /* at gamma = 1 exactly the contact sticks at once */
+    c = p->partial ? oblq__partial_coord_e(gamma, alpha, e_n)
+                   : oblq__stick_coord(gamma, alpha, t->alpha_max);
+    c = oblq__clamp(c, 0.0, 1.0);
+    return oblq__clamp(
+        oblq__tensor3(p, gamma, c, (e_n - t->e_n_min) / (t->e_n_max - t->e_n_min)), -1.0, 1.0);
+}
+
+/* oblq_p_e of a table with an e_n axis, e_n checked. */
+OBLQ_FN int oblq__p_axis(const oblq_table *t, double gamma, double alpha, double e_n, int clamp,
+                         double *p) {
+    int region = oblq__region_e(gamma, alpha, e_n), inside;
+    if (region < 0) {
+        *p = oblq__line_e(alpha, e_n);
+        return OBLQ_OK;
+    }
+    inside = gamma >= t->gamma_min && gamma <= t->gamma_max;
+    if (!(inside && alpha <= t->alpha_max)) {
+        if (!clamp) return inside ? OBLQ_E_ALPHA_DOMAIN : OBLQ_E_GAMMA_DOMAIN;
+        gamma = oblq__clamp(gamma, t->gamma_min, t->gamma_max);
+        alpha = alpha < t->alpha_max ? alpha : t->alpha_max;
+        region = oblq__region_e(gamma, alpha, e_n);
+        if (region < 0) {
+            *p = oblq__line_e(alpha, e_n);
+            return OBLQ_OK;
+        }
+    }
+    *p = oblq__eval_in_e(t, region, gamma, alpha, e_n);
+    return OBLQ_OK;
+}
+
+/* P(gamma, alpha, e_n) (dimensionless, -1 <= P <= 1) at normal restitution e_n by the table's
+   rule (docs/table-format.md, schema v4). e_n must lie in the table's range [e_n_min, e_n_max]
+   (oblq_e_n_range), else OBLQ_E_E_N: it is never clamped, and an elastic table answers
+   e_n = 1 only (as oblq_p). On the full-slip line, alpha <= alpha_c1(gamma, e_n) (gamma > 1) or
+   alpha_c2 (gamma <= 1), P = 1 - (7/2)(1 + e_n) alpha for any gamma > 0; gamma, alpha and clamp
+   otherwise as for oblq_p (clamp moves gamma and alpha only). */
+OBLQ_FN int oblq_p_e(const oblq_table *t, double gamma, double alpha, double e_n, int clamp,
+                     double *p) {
+    if (!t || !p) return OBLQ_E_NULL;
+    if (!(gamma > 0.0 && gamma < INFINITY)) return OBLQ_E_GAMMA;
+    if (!(alpha >= 0.0)) return OBLQ_E_ALPHA; /* NaN or negative */
+    if (!(e_n >= t->e_n_min && e_n <= t->e_n_max)) return OBLQ_E_E_N; /* NaN too */
+    if (!t->has_e_n) return oblq__p_elastic(t, gamma, alpha, clamp, p);
+    return oblq__p_axis(t, gamma, alpha, e_n, clamp, p);
+}
+
+/* P(gamma, alpha) (dimensionless, -1 <= P <= 1) by the table's rule. gamma finite > 0,
+   alpha >= 0 (INFINITY: no slip). On the full-slip line P = 1 - 7 alpha for any gamma > 0;
+   elsewhere outside the table's domain: OBLQ_E_GAMMA_DOMAIN / OBLQ_E_ALPHA_DOMAIN, or with
+   clamp != 0 the answer at the nearest point of the domain. A table with an e_n axis answers
+   its elastic slice, oblq_p_e at e_n = 1 (OBLQ_E_E_N when its range ends below 1). */
+OBLQ_FN int oblq_p(const oblq_table *t, double gamma, double alpha, int clamp, double *p) {
+    if (t && t->has_e_n) return oblq_p_e(t, gamma, alpha, 1.0, clamp, p);
+    return oblq__p_elastic(t, gamma, alpha, clamp, p);
+}
+
+/* The e_n range [e_n_min, e_n_max] the table answers (oblq_p_e): 1, 1 for an elastic table. */
+OBLQ_FN int oblq_e_n_range(const oblq_table *t, double *e_n_min, double *e_n_max) {
+    if (!t || !e_n_min || !e_n_max) return OBLQ_E_NULL;
+    *e_n_min = t->e_n_min;
+    *e_n_max = t->e_n_max;
     return OBLQ_OK;
 }
 

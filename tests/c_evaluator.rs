@@ -11,10 +11,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use evaluator::{random_body, random_impact, rebound_fields, run_ok};
+use evaluator::{points_e, random_body, random_impact, rebound_fields, run_ok, status_of};
 use oblique_lookup::rebound::{Body, Incident, Incident3, Motion3, Pair, State};
 use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
-use oblique_physics::regimes::{alpha_c1, alpha_c2};
+use oblique_physics::regimes::{alpha_c1, alpha_c2, linear_limit};
 use oblique_physics::sample::SplitMix;
 use oblique_table::export;
 
@@ -511,7 +511,7 @@ fn damaged_truncated_and_foreign_files_are_refused_with_their_code() {
     let hdf5 = std::fs::read(root("tables/quick.h5")).expect("table");
     assert!(case("hdf5", &hdf5).starts_with("3 not an export"));
     let mut newer = good.clone();
-    newer[8] = 2;
+    newer[8] = 3; // 1 and 2 (a table with an e_n axis) are known
     assert!(case("newer", &newer).starts_with("4 "));
     // A consistent checksum over inconsistent contents: an offset beyond the end.
     let mut bad = good.clone();
@@ -534,6 +534,7 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
     for (path, n) in [
         (export_file("quick", false), "2000"),
         (export_file("full", true), "3000"),
+        (dissipative().1.clone(), "2000"),
     ] {
         let out = Command::new(&exe)
             .args(["fuzz", path.to_str().expect("path"), n, "17"])
@@ -555,6 +556,17 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
     let input: String = pts.iter().map(|(g, a)| format!("{g:?} {a:?}\n")).collect();
     let out = run_ok(&exe, &["p", path.to_str().expect("path"), "0"], &input);
     assert_eq!(out.lines().count(), pts.len());
+    // And P(γ, α, e_n) of the table with an e_n axis, inside and outside its domain.
+    let pts = points_e(20_000, 5, (0.1, 3.5), (0.6, 1.05));
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
+        .collect();
+    let path = &dissipative().1;
+    for clamp in ["0", "1"] {
+        let out = run_ok(&exe, &["pe", path.to_str().expect("path"), clamp], &input);
+        assert_eq!(out.lines().count(), pts.len() + 1);
+    }
 }
 
 #[test]
@@ -684,4 +696,277 @@ fn c_rebound_example_agrees_with_the_rust_library() {
         .and_then(|s| s.parse().ok())
         .expect("rebound P");
     assert!((c - b.p).abs() < 1e-13, "C {c}, Rust {}", b.p);
+}
+
+// ---------------------------------------------------------------------------------------------
+// A table with a normal-restitution axis (schema 4; export layout version 2)
+
+/// The table with an e_n axis of [`evaluator::dissipative_table`] and its export, made once
+/// per process.
+fn dissipative() -> &'static (Table, PathBuf) {
+    static T: OnceLock<(Table, PathBuf)> = OnceLock::new();
+    T.get_or_init(|| evaluator::dissipative_table(&dir().join("dissipative")))
+}
+
+#[test]
+fn e_n_table_gives_the_bits_of_the_rust_rule_on_a_million_points() {
+    let start = std::time::Instant::now();
+    let (t, path) = dissipative();
+    let s = t.surface();
+    let mut f = vec!["-std=c99"];
+    f.extend(WARNINGS);
+    let query = compile("gcc", &f, "examples/c/query.c", "query_e");
+    let n = 1_000_000;
+    let pts = points_e(n, 13, (s.gamma_min(), s.gamma_max()), (0.7, 1.0));
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect();
+    let out = run_ok(&query, &[path.to_str().expect("path")], &input);
+    let (mut lines, mut differ, mut line_pts) = (0, 0, 0);
+    for ((g, a, e), line) in pts.iter().zip(out.lines()) {
+        lines += 1;
+        let c: f64 = line.rsplit(',').next().expect("P").parse().expect("P");
+        let r = t.p_e(*g, *a, *e).expect("inside");
+        line_pts += usize::from(*a <= oblique_physics::regimes::linear_limit_dissipative(*g, *e));
+        if c.to_bits() != r.to_bits() {
+            differ += 1;
+            if differ < 5 {
+                eprintln!("gamma {g:?} alpha {a:?} e_n {e:?}: C {c:?}, Rust {r:?}");
+            }
+        }
+    }
+    assert_eq!(lines, n, "every point answered");
+    assert_eq!(differ, 0, "{differ} of {n} points differ in some bit");
+    assert!(
+        line_pts > n / 20 && line_pts < n / 2,
+        "{line_pts} on the line"
+    );
+    eprintln!(
+        "{n} points (γ, α, e_n), {line_pts} on the full-slip line: C == Rust bit for bit ({:.1} s)",
+        start.elapsed().as_secs_f64()
+    );
+}
+
+#[test]
+fn e_n_clamp_and_refusals_match_the_rust_rule() {
+    let (t, path) = dissipative();
+    let s = t.surface();
+    let path = path.to_str().expect("path");
+    let mut pts = points_e(
+        40_000,
+        17,
+        (0.5 * s.gamma_min(), 1.2 * s.gamma_max()),
+        (0.6, 1.05),
+    );
+    pts.extend([
+        (f64::NAN, 0.5, 0.8),
+        (-1.0, 0.5, 0.8),
+        (f64::INFINITY, 0.5, 0.8),
+        (1.5, -0.1, 0.8),
+        (1.5, f64::NAN, 0.8),
+        (1.5, 0.3, f64::NAN),
+        (1.5, 0.3, f64::INFINITY),
+        (1.5, 0.3, 0.0),
+        (1.5, 0.3, 0.7),
+        (1.5, 0.3, 1.0),
+        (1.5, 0.3, 0.699_999_999_999_999_9),
+        (1.5, 0.3, 1.000_000_000_000_000_2),
+        (0.5, 0.01, 0.5), // on the line, outside the e_n range: refused (e_n is never clamped)
+    ]);
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
+        .collect();
+    for clamp in [0, 1] {
+        let out = run_ok(gcc_driver(), &["pe", path, &clamp.to_string()], &input);
+        let mut lines = out.lines();
+        assert_eq!(lines.next(), Some("e_n 1 0.69999999999999996 1"));
+        let outside = if clamp == 1 {
+            OutOfDomain::Clamp
+        } else {
+            OutOfDomain::Error
+        };
+        let mut refused = [0usize; 25];
+        for ((g, a, e), line) in pts.iter().zip(lines) {
+            match t.p_e_with(*g, *a, *e, outside) {
+                Ok(r) => {
+                    let c: f64 = line.parse().unwrap_or_else(|_| {
+                        panic!("gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {line}")
+                    });
+                    assert_eq!(
+                        c.to_bits(),
+                        r.to_bits(),
+                        "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}"
+                    );
+                }
+                Err(err) => {
+                    let code = status_of(&err, *g, *a);
+                    refused[code as usize] += 1;
+                    assert_eq!(
+                        line,
+                        format!("error {code}"),
+                        "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {err}"
+                    );
+                }
+            }
+        }
+        // Refusals of e_n always; of gamma outside the domain only without clamping.
+        assert!(refused[24] > 3000, "clamp {clamp}: {refused:?}");
+        assert_eq!(refused[9] > 1000, clamp == 0, "clamp {clamp}: {refused:?}");
+        assert_eq!(refused[7] + refused[8], 5, "clamp {clamp}: {refused:?}");
+    }
+    // oblq_p on the table answers its e_n = 1 slice, as Table::p does.
+    let pts = points(20_000, 19, s.gamma_min(), s.gamma_max());
+    let input: String = pts.iter().map(|(g, a)| format!("{g:?} {a:?}\n")).collect();
+    let out = run_ok(gcc_driver(), &["p", path, "0"], &input);
+    for ((g, a), line) in pts.iter().zip(out.lines()) {
+        let r = t.p(*g, *a).expect("inside");
+        let c: f64 = line.parse().expect("P");
+        assert_eq!(c.to_bits(), r.to_bits(), "oblq_p: gamma {g:?} alpha {a:?}");
+        assert_eq!(r.to_bits(), t.p_e(*g, *a, 1.0).expect("inside").to_bits());
+    }
+    // `sweep export` wrote the export of the library; it refuses curves of such a table.
+    let bytes = std::fs::read(path).expect("export");
+    assert_eq!(
+        bytes,
+        export::export(s, t.error_bound(), true, &[]),
+        "sweep export"
+    );
+    assert_eq!(
+        &bytes[8..16],
+        &[2, 0, 0, 0, 112, 0, 0, 0],
+        "version 2, 112-byte header"
+    );
+    let table = dir().join("dissipative").join("kv.h5");
+    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(["export", table.to_str().expect("path"), "-o"])
+        .arg(dir().join("curves.oblq"))
+        .args(["--gamma", "1.4"])
+        .output()
+        .expect("run sweep");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("e_n axis") && err.contains("elastic tables"),
+        "{err}"
+    );
+    assert!(!dir().join("curves.oblq").exists());
+}
+
+#[test]
+fn elastic_exports_answer_e_n_1_only_and_keep_layout_version_1() {
+    let path = export_file("quick", false);
+    let bytes = std::fs::read(&path).expect("export");
+    assert_eq!(
+        &bytes[8..16],
+        &[1, 0, 0, 0, 96, 0, 0, 0],
+        "version 1, 96-byte header"
+    );
+    let t = table("quick");
+    let s = t.surface();
+    let mut pts = points_e(
+        20_000,
+        23,
+        (0.5 * s.gamma_min(), 1.2 * s.gamma_max()),
+        (0.9, 1.0),
+    );
+    for (i, p) in pts.iter_mut().enumerate() {
+        if i % 3 != 0 {
+            p.2 = 1.0;
+        }
+    }
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
+        .collect();
+    for (file, curves_only) in [(path, false), (export_file("full", true), true)] {
+        // A curves-only export answers the full-slip line (the same for every table).
+        let out = run_ok(
+            gcc_driver(),
+            &["pe", file.to_str().expect("path"), "0"],
+            &input,
+        );
+        let mut lines = out.lines();
+        assert_eq!(lines.next(), Some("e_n 0 1 1"));
+        let mut answered = 0;
+        for ((g, a, e), line) in pts.iter().zip(lines) {
+            let want = if curves_only && *e == 1.0 && *a > linear_limit(*g) && g.is_finite() {
+                Err(11)
+            } else {
+                t.p_e(*g, *a, *e).map_err(|err| status_of(&err, *g, *a))
+            };
+            match want {
+                Ok(r) => {
+                    answered += 1;
+                    let c: f64 = line.parse().expect("P");
+                    assert_eq!(c.to_bits(), r.to_bits(), "gamma {g:?} alpha {a:?}");
+                    assert_eq!(r.to_bits(), t.p(*g, *a).expect("inside").to_bits());
+                }
+                Err(code) => assert_eq!(line, format!("error {code}"), "{g:?} {a:?} {e:?}"),
+            }
+        }
+        assert!(
+            answered > if curves_only { 2000 } else { 5000 },
+            "{answered} answered"
+        );
+    }
+}
+
+#[test]
+fn damaged_e_n_exports_are_refused_with_their_code() {
+    let (_, path) = dissipative();
+    let good = std::fs::read(path).expect("export");
+    let case = |name: &str, bytes: &[u8]| -> String {
+        let p = dir().join(format!("e_{name}"));
+        std::fs::write(&p, bytes).expect("write");
+        let out = Command::new(gcc_driver())
+            .args(["open", p.to_str().expect("path")])
+            .output()
+            .expect("run");
+        assert!(out.status.success(), "{name}: {}", out.status);
+        String::from_utf8(out.stdout).expect("utf-8")
+    };
+    let sealed = |mut b: Vec<u8>| {
+        let sum = oblique_table::format::fnv1a64(&b[32..]);
+        b[24..32].copy_from_slice(&sum.to_le_bytes());
+        b
+    };
+    assert!(case("good", &good).starts_with("0 ok"));
+    assert!(case("truncated", &good[..good.len() - 8]).starts_with("2 "));
+    let mut flipped = good.clone();
+    flipped[good.len() / 2] ^= 0x04;
+    assert!(case("flipped", &flipped).starts_with("5 "));
+    let mut newer = good.clone();
+    newer[8] = 3;
+    assert!(case("newer", &newer).starts_with("4 "));
+    // Version 1 with the header of version 2, and the reverse.
+    let mut v1 = good.clone();
+    v1[8] = 1;
+    assert!(case("v1", &v1).starts_with("6 "));
+    let mut elastic = std::fs::read(export_file("quick", false)).expect("export");
+    elastic[8] = 2;
+    assert!(case("v2_of_elastic", &elastic).starts_with("6 "));
+    let dir_at = u64::from_le_bytes(good[72..80].try_into().expect("8 bytes")) as usize;
+    let mut edits: Vec<(&str, usize, Vec<u8>)> = vec![
+        ("e_n_min_0", 96, 0.0f64.to_le_bytes().to_vec()),
+        ("e_n_max_above_1", 104, 1.5f64.to_le_bytes().to_vec()),
+        ("e_n_max_nan", 104, f64::NAN.to_le_bytes().to_vec()),
+        ("e_n_reversed", 96, 1.0f64.to_le_bytes().to_vec()),
+        ("curves", 80, 1u32.to_le_bytes().to_vec()),
+    ];
+    for k in 0..3 {
+        let r = dir_at + 160 * k;
+        edits.push(("blocks_e_n_0", r + 136, 0u32.to_le_bytes().to_vec()));
+        edits.push(("blocks_e_n_big", r + 136, 9u32.to_le_bytes().to_vec()));
+        edits.push(("warp", r + 44, 1u32.to_le_bytes().to_vec()));
+        edits.push(("fine_index", r + 120, 8u64.to_le_bytes().to_vec()));
+        edits.push(("cells", r + 36, 9u32.to_le_bytes().to_vec()));
+    }
+    for (name, at, value) in edits {
+        let mut b = good.clone();
+        b[at..at + value.len()].copy_from_slice(&value);
+        let said = case(name, &sealed(b));
+        assert!(said.starts_with("6 "), "{name} at {at}: {said}");
+    }
 }

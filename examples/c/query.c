@@ -1,9 +1,12 @@
 /* P(gamma, alpha) for lines "gamma,alpha" on standard input, from an export of a table
    (`sweep export TABLE -o FILE`); prints "gamma,alpha,P" lines (P with %.17g, which reads back
-   to the same double), like `sweep query TABLE --batch -`. Needs only the header and libm:
+   to the same double), like `sweep query TABLE --batch -`. Lines "gamma,alpha,e_n" give
+   P(gamma, alpha, e_n) (oblq_p_e: a table with an e_n axis) as "gamma,alpha,e_n,P". Needs only
+   the header and libm:
 
        cc -std=c99 -O2 -I include -o query examples/c/query.c -lm
        printf '1.75,0.3\n2,inf\n' | ./query full.oblq
+       printf '1.45,0.3,0.8\n' | ./query dissipative.oblq
 
    Exit status: 0, 1 when the file cannot be read, 2 for a malformed line or a point outside the
    table (the message names the line). */
@@ -62,7 +65,8 @@ int main(int argc, char **argv) {
     long lineno = 0;
     int rc;
     if (argc != 2) {
-        fprintf(stderr, "usage: %s EXPORT < points.csv   (lines gamma,alpha)\n", argv[0]);
+        fprintf(stderr, "usage: %s EXPORT < points.csv   (lines gamma,alpha[,e_n])\n",
+                argv[0]);
         return 2;
     }
     data = read_file(argv[1], &size);
@@ -78,7 +82,8 @@ int main(int argc, char **argv) {
     }
     while (fgets(line, sizeof line, stdin)) {
         char *end, *text = line;
-        double gamma, alpha, p;
+        double gamma, alpha, e_n = 1.0, p;
+        int with_e_n = 0;
         size_t len = strlen(line);
         lineno++;
         while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r')) line[--len] = '\0';
@@ -87,12 +92,15 @@ int main(int argc, char **argv) {
             continue;
         }
         if (!parse(text, &end, &gamma) || *end != ',' || !parse(end + 1, &end, &alpha) ||
-            *end != '\0') {
-            fprintf(stderr, "error: line %ld: expected gamma,alpha, got \"%s\"\n", lineno, line);
+            (*end == ',' && !(with_e_n = parse(end + 1, &end, &e_n))) || *end != '\0') {
+            fprintf(stderr,
+                    "error: line %ld: expected gamma,alpha or gamma,alpha,e_n, got \"%s\"\n",
+                    lineno, line);
             free(data);
             return 2;
         }
-        rc = oblq_p(&table, gamma, alpha, 0, &p);
+        rc = with_e_n ? oblq_p_e(&table, gamma, alpha, e_n, 0, &p)
+                      : oblq_p(&table, gamma, alpha, 0, &p);
         if (rc != OBLQ_OK) {
             fprintf(stderr, "error: line %ld (%s): %s\n", lineno, line, oblq_error_message(rc));
             free(data);

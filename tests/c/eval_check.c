@@ -2,6 +2,8 @@
 
      eval_check open FILE                        status code and message of oblq_open
      eval_check p EXPORT CLAMP                   stdin "gamma alpha" -> P or "error CODE"
+     eval_check pe EXPORT CLAMP                  stdin "gamma alpha e_n" -> P (oblq_p_e) or
+                                                 "error CODE"; first line: the e_n range
      eval_check curve EXPORT INDEX CLAMP         stdin "alpha" -> P of curve INDEX
      eval_check rebound EXPORT SOURCE m1 R1 k1 m2 R2 k2 GAMMA MU
                                                  SOURCE: table or curve (the curve of GAMMA);
@@ -171,6 +173,17 @@ static int fuzz(const unsigned char *orig, size_t n, long count) {
                     free(d);
                     return 1;
                 }
+                /* And across the e_n range of a table with the axis. */
+                if (t.has_e_n) {
+                    double e = t.e_n_min + (t.e_n_max - t.e_n_min) * (double)(j % 4) / 3.0;
+                    if (oblq_p_e(&t, gs[i], as[j], e, (int)(j % 2), &p) == OBLQ_OK &&
+                        !(p >= -1.0 && p <= 1.0)) {
+                        fprintf(stderr, "fuzz: mutation %ld: P(%g, %g, %g) = %g\n", k, gs[i],
+                                as[j], e, p);
+                        free(d);
+                        return 1;
+                    }
+                }
             }
         }
         for (i = 0; i < t.n_curves; i++) {
@@ -215,6 +228,28 @@ int main(int argc, char **argv) {
         open_moved(&t, &d, n, -1, NULL);
         while (scanf("%lf %lf", &g, &a) == 2) {
             int rc = oblq_p(&t, g, a, clamp, &p);
+            if (rc == OBLQ_OK) g17(p);
+            else printf("error %d", rc);
+            printf("\n");
+        }
+    } else if (!strcmp(argv[1], "pe") && argc == 4) {
+        double g, a, e, p, lo = 0.0, hi = 0.0;
+        int clamp = atoi(argv[3]);
+        open_moved(&t, &d, n, -1, NULL);
+        if (oblq_e_n_range(&t, &lo, &hi) != OBLQ_OK ||
+            oblq_e_n_range(&t, NULL, &hi) != OBLQ_E_NULL ||
+            oblq_p_e(NULL, 1.5, 0.3, 1.0, 0, &p) != OBLQ_E_NULL ||
+            oblq_p_e(&t, 1.5, 0.3, 1.0, 0, NULL) != OBLQ_E_NULL) {
+            fprintf(stderr, "eval_check: oblq_e_n_range or oblq_p_e: wrong status\n");
+            exit(4);
+        }
+        printf("e_n %d ", t.has_e_n);
+        g17(lo);
+        printf(" ");
+        g17(hi);
+        printf("\n");
+        while (scanf("%lf %lf %lf", &g, &a, &e) == 3) {
+            int rc = oblq_p_e(&t, g, a, e, clamp, &p);
             if (rc == OBLQ_OK) g17(p);
             else printf("error %d", rc);
             printf("\n");

@@ -15,12 +15,14 @@ __global__ void every_function(const unsigned char *data, size_t size, double *o
     oblq_rebound3 r3;
     oblq_state s1 = {0.1, 1.0, 0.0}, s2 = {0.0, 0.0, 0.0};
     oblq_rebound2 r2;
-    double gamma = 0.0, p = 0.0, e_t = 0.0;
+    double gamma = 0.0, p = 0.0, e_t = 0.0, e_lo = 0.0, e_hi = 0.0;
     int regime = 0, k = 0;
     rc[k++] = oblq_open(&t, data, size);
     moved = t;
     rc[k++] = oblq_rebase(&moved, data);
     rc[k++] = oblq_p(&t, 1.754, 0.3, 0, &p);
+    rc[k++] = oblq_p_e(&t, 1.45, 0.3, 0.8, 1, &p);
+    rc[k++] = oblq_e_n_range(&t, &e_lo, &e_hi);
     rc[k++] = oblq_curve_get(&t, 0, &c);
     rc[k++] = oblq_curve_find(&t, 1.75, 1e-12, &found);
     rc[k++] = oblq_curve_rebase(&found, &t, &moved);
@@ -35,5 +37,5 @@ __global__ void every_function(const unsigned char *data, size_t size, double *o
     rc[k++] = oblq_rebound_2d(&t, &c, &wall, &s1, &s2, 0, &r2);
     rc[k++] = oblq_error_message(rc[0])[0];
     out[0] = p + e_t + gamma + r3.p + r2.p + (double)regime + oblq_alpha_c1(gamma) +
-             oblq_alpha_c2(gamma) + oblq_linear_limit(gamma) + moved.gamma_min;
+             oblq_alpha_c2(gamma) + oblq_linear_limit(gamma) + moved.gamma_min + e_lo + e_hi;
 }

@@ -1,16 +1,17 @@
 //! Helpers shared by the tests of the dependency-free evaluator (`tests/c_evaluator.rs`,
-//! `tests/fortran.rs`): running a compiled program on an input, and the random bodies and
-//! impacts both compare with the Rust library.
+//! `tests/fortran.rs`): running a compiled program on an input, the random bodies, impacts and
+//! points both compare with the Rust library, and a small table with an `e_n` axis.
 
 // Each test file uses a part of this module.
 #![allow(dead_code)]
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
 use oblique_lookup::rebound::{Body, Incident3, Motion3, Rebound3};
-use oblique_lookup::Answer;
+use oblique_lookup::{Answer, Table};
+use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 use oblique_physics::sample::SplitMix;
 
 /// Run `exe` with `args`, `input` on its standard input. A program that exits early may leave
@@ -103,4 +104,87 @@ pub fn rebound_fields(a: &Answer<Rebound3>) -> Vec<f64> {
         .copied()
         .chain([b.p, b.e_t, b.energy_lost, a.alpha, b.slip_before])
         .collect()
+}
+
+/// Run the sweep binary; its standard output (it must succeed).
+pub fn sweep_ok(args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(args)
+        .output()
+        .expect("run the sweep binary");
+    assert!(
+        out.status.success(),
+        "sweep {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("utf-8")
+}
+
+/// A small table with an e_n axis, e_n in [0.7, 1], built in the folder `d` with the CLI (about
+/// 2.5 s on 2 cores): γ from 0.9 to 1.6, so that all three patches are there, and octree leaves
+/// of depth 1 in partial slip; and its export by `sweep export` (layout version 2), `d/kv.oblq`.
+pub fn dissipative_table(d: &Path) -> (Table, PathBuf) {
+    std::fs::create_dir_all(d).expect("folder");
+    let (table, cfg, export) = (d.join("kv.h5"), d.join("kv.toml"), d.join("kv.oblq"));
+    std::fs::write(
+        &cfg,
+        format!(
+            "output = {:?}\n[domain]\ngamma_min = 0.9\ngamma_max = 1.6\n\
+             e_n_min = 0.7\ne_n_max = 1.0\n[nodes]\ntarget_error = 4e-4\n\
+             leaf_intervals = 6\nblocks_coord = 2\n[solver]\ntol = 4e-5\n\
+             [checks]\nper_patch = 30\n",
+            table.display().to_string()
+        ),
+    )
+    .expect("write config");
+    let path = |p: &Path| p.to_str().expect("utf-8 path").to_string();
+    sweep_ok(&["run", &path(&cfg), "--quiet"]);
+    let said = sweep_ok(&["export", &path(&table), "-o", &path(&export)]);
+    assert!(said.contains("e_n in [0.7, 1]"), "{said}");
+    let t = Table::open(&table).expect("the table");
+    assert_eq!(t.restitution(), Some((0.7, 1.0)));
+    assert!(t.surface().patches().count() == 3);
+    (t, export)
+}
+
+/// Random `(γ, α, e_n)` with `γ` in `[g_lo, g_hi]` and `e_n` in `[e_lo, e_hi]`; α = 0, ∞, α_c2
+/// and α_c1(γ, e_n) in the mix, `γ = 1` and the ends of the `e_n` range now and then.
+pub fn points_e(n: usize, seed: u64, g: (f64, f64), e: (f64, f64)) -> Vec<(f64, f64, f64)> {
+    let mut r = SplitMix(seed);
+    (0..n)
+        .map(|i| {
+            let gamma = if i % 101 == 7 {
+                1.0
+            } else {
+                g.0 + (g.1 - g.0) * r.uniform()
+            };
+            let e_n = match i % 89 {
+                0 => e.0,
+                1 => e.1,
+                _ => e.0 + (e.1 - e.0) * r.uniform(),
+            };
+            let alpha = match i % 50 {
+                0 => f64::INFINITY,
+                1 => 0.0,
+                2 => alpha_c2(gamma),
+                3 if gamma > 1.0 => alpha_c1_dissipative(gamma, e_n),
+                4 if gamma > 1.0 => alpha_c1_dissipative(gamma, e_n) * (1.0 + 1e-12),
+                _ => 3.0 * r.uniform() * r.uniform(),
+            };
+            (gamma, alpha, e_n)
+        })
+        .collect()
+}
+
+/// The status `oblq_p_e` gives where the Rust rule refuses `(γ, α)` with `err`.
+pub fn status_of(err: &oblique_lookup::LookupError, g: f64, a: f64) -> i32 {
+    use oblique_lookup::LookupError::Query;
+    match err {
+        Query { name: "e_n", .. } => 24,
+        Query { name: "gamma", .. } if g.is_finite() && g > 0.0 => 9,
+        Query { name: "gamma", .. } => 7,
+        Query { name: "alpha", .. } if a >= 0.0 => 10,
+        Query { name: "alpha", .. } => 8,
+        other => panic!("unexpected refusal: {other}"),
+    }
 }
