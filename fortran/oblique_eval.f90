@@ -1,6 +1,6 @@
 ! oblique_eval.f90: Fortran 2008 bindings of the dependency-free evaluator include/oblique_eval.h,
-! through the C shim fortran/oblique_eval_f.c (iso_c_binding). P(gamma, alpha), curves P(alpha)
-! of one gamma, and 3-D rebounds of spheres on walls and spheres, from an export of a table
+! through the C shim fortran/oblique_eval_f.c (iso_c_binding). P(gamma, alpha) (P(gamma, alpha,
+! e_n) of a table with a normal-restitution axis), curves P(alpha) of one gamma, and 3-D rebounds of spheres on walls and spheres, from an export of a table
 ! (`sweep export TABLE -o FILE`). Symbols and units (SI) as in the header and docs/physics.md.
 !
 !   gcc -std=c99 -O2 -I include -c fortran/oblique_eval_f.c
@@ -32,7 +32,8 @@ module oblique_eval
 
    public :: c_int, c_double
    public :: oblique_table, oblique_curve
-   public :: oblique_open, oblique_close, oblique_info, oblique_p
+   public :: oblique_open, oblique_close, oblique_info, oblique_p, oblique_p_e
+   public :: oblique_e_n_range
    public :: oblique_curve_find, oblique_curve_p, oblique_curve_free
    public :: oblique_rebound_3d, oblique_rebound_3d_curve, oblique_gamma_of, oblique_message
 
@@ -61,6 +62,7 @@ module oblique_eval
    integer(c_int), parameter, public :: OBLQ_E_APPROACH = 21     ! the bodies do not approach
    integer(c_int), parameter, public :: OBLQ_E_WALL_MOTION = 22  ! a wall given a motion
    integer(c_int), parameter, public :: OBLQ_E_KAPPA_P = 23      ! P outside [-1, 1]
+   integer(c_int), parameter, public :: OBLQ_E_E_N = 24          ! e_n outside the table's range
    ! Codes of the shim fortran/oblique_eval_f.c.
    integer(c_int), parameter, public :: OBLQF_E_IO = 101         ! the file cannot be read
    integer(c_int), parameter, public :: OBLQF_E_NOMEM = 102      ! out of memory
@@ -103,6 +105,22 @@ module oblique_eval
          integer(c_int), value :: clamp
          real(c_double), intent(out) :: p
       end function oblqf_p
+
+      integer(c_int) function oblqf_p_e(handle, gamma, alpha, e_n, clamp, p) &
+         bind(C, name='oblqf_p_e')
+         import :: c_int, c_double, c_ptr
+         type(c_ptr), value :: handle
+         real(c_double), value :: gamma, alpha, e_n
+         integer(c_int), value :: clamp
+         real(c_double), intent(out) :: p
+      end function oblqf_p_e
+
+      integer(c_int) function oblqf_e_n_range(handle, e_n_min, e_n_max) &
+         bind(C, name='oblqf_e_n_range')
+         import :: c_int, c_double, c_ptr
+         type(c_ptr), value :: handle
+         real(c_double), intent(out) :: e_n_min, e_n_max
+      end function oblqf_e_n_range
 
       integer(c_int) function oblqf_curve_find(handle, gamma, rel_tol, curve, found_gamma) &
          bind(C, name='oblqf_curve_find')
@@ -243,6 +261,32 @@ contains
       status = oblqf_p(table%handle, gamma, alpha, clamp_flag(clamp), p)
       if (status /= OBLQ_OK) p = nan()
    end subroutine oblique_p
+
+   !> P(gamma, alpha, e_n) at normal restitution e_n by the table's rule, -1 <= P <= 1. e_n
+   !> must lie in the table's e_n range (oblique_e_n_range), else OBLQ_E_E_N: it is never
+   !> clamped, and an elastic table answers e_n = 1 only. gamma, alpha and clamp as for
+   !> oblique_p (clamp moves gamma and alpha only). Elemental.
+   impure elemental subroutine oblique_p_e(table, gamma, alpha, e_n, p, status, clamp)
+      type(oblique_table), intent(in) :: table
+      real(c_double), intent(in) :: gamma, alpha, e_n
+      real(c_double), intent(out) :: p
+      integer(c_int), intent(out) :: status
+      logical, intent(in), optional :: clamp
+      status = oblqf_p_e(table%handle, gamma, alpha, e_n, clamp_flag(clamp), p)
+      if (status /= OBLQ_OK) p = nan()
+   end subroutine oblique_p_e
+
+   !> The e_n range [e_n_min, e_n_max] the table answers (1, 1 for an elastic table).
+   subroutine oblique_e_n_range(table, e_n_min, e_n_max, status)
+      type(oblique_table), intent(in) :: table
+      real(c_double), intent(out) :: e_n_min, e_n_max
+      integer(c_int), intent(out) :: status
+      status = oblqf_e_n_range(table%handle, e_n_min, e_n_max)
+      if (status /= OBLQ_OK) then
+         e_n_min = nan()
+         e_n_max = nan()
+      end if
+   end subroutine oblique_e_n_range
 
    !> The exported curve whose gamma is nearest to `gamma`, if within `rel_tol` relative
    !> (default 0: exactly the exported value; exports hold the curves of `sweep export

@@ -39,6 +39,8 @@ void oblqf_close(void *handle);
 int oblqf_info(const void *handle, double *gamma_min, double *gamma_max, double *alpha_max,
                double *error_bound, int *has_surface, int *n_curves);
 int oblqf_p(const void *handle, double gamma, double alpha, int clamp, double *p);
+int oblqf_p_e(const void *handle, double gamma, double alpha, double e_n, int clamp, double *p);
+int oblqf_e_n_range(const void *handle, double *e_n_min, double *e_n_max);
 int oblqf_curve_find(const void *handle, double gamma, double rel_tol, void **curve,
                      double *found_gamma);
 void oblqf_curve_free(void *curve);
@@ -155,6 +157,17 @@ int oblqf_info(const void *handle, double *gamma_min, double *gamma_max, double 
 /* P(gamma, alpha) by the table's rule (alpha = INFINITY: no slip). */
 int oblqf_p(const void *handle, double gamma, double alpha, int clamp, double *p) {
     return oblq_p(oblqf__table(handle), gamma, alpha, clamp, p);
+}
+
+/* P(gamma, alpha, e_n) at normal restitution e_n, in the table's e_n range (never clamped;
+   an elastic table answers e_n = 1 only). */
+int oblqf_p_e(const void *handle, double gamma, double alpha, double e_n, int clamp, double *p) {
+    return oblq_p_e(oblqf__table(handle), gamma, alpha, e_n, clamp, p);
+}
+
+/* The e_n range the table answers (1, 1 for an elastic table). */
+int oblqf_e_n_range(const void *handle, double *e_n_min, double *e_n_max) {
+    return oblq_e_n_range(oblqf__table(handle), e_n_min, e_n_max);
 }
 
 /* The curve of the export whose gamma is nearest to `gamma`, if within `rel_tol` relative

@@ -14,7 +14,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use evaluator::{random_body, random_impact, rebound_fields, run, run_ok};
+use evaluator::{
+    dissipative_table, points_e, random_body, random_impact, rebound_fields, run, run_ok, status_of,
+};
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
 use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
 use oblique_physics::sample::SplitMix;
@@ -212,6 +214,9 @@ fn header_messages(codes: &BTreeMap<String, i32>) -> BTreeMap<i32, String> {
 /// answers stdin lines, one output line each (status first, reals in G0.17):
 ///   p GAMMA ALPHA CLAMP             status P
 ///   pv G1 A1 G2 A2 G3 A3            the elemental form on arrays: 3 x (status P)
+///   pe GAMMA ALPHA E_N CLAMP        status P                 (oblique_p_e)
+///   pev G1 A1 E1 G2 A2 E2 G3 A3 E3  the elemental oblique_p_e on arrays: 3 x (status P)
+///   erange                          status e_n_min e_n_max
 ///   curve GAMMA REL_TOL             status found_gamma      (the curve is kept)
 ///   cp ALPHA CLAMP                  status P                 (of the kept curve)
 ///   r  M1 R1 K1 M2 R2 K2 GAMMA MU V1 W1 V2 W2 N CLAMP        status v1 w1 v2 w2 P e_t E alpha
@@ -233,7 +238,7 @@ const DRIVER: &str = r#"program driver
    logical :: surface
    real(c_double) :: g, a, p, m1, r1, k1, m2, r2, k2, mu, e1, nu1, e2, nu2, e_t, lost, alpha
    real(c_double) :: v1(3), w1(3), v2(3), w2(3), nrm(3), v1a(3), w1a(3), v2a(3), w2a(3)
-   real(c_double) :: g3(3), a3(3), p3(3), gmin, gmax, amax, bound
+   real(c_double) :: g3(3), a3(3), p3(3), e3(3), gmin, gmax, amax, bound, e
    call get_command_argument(1, length=length)
    allocate (character(len=length) :: path)
    call get_command_argument(1, path)
@@ -253,6 +258,17 @@ const DRIVER: &str = r#"program driver
          read (line, *) cmd, g3(1), a3(1), g3(2), a3(2), g3(3), a3(3)
          call oblique_p(t, g3, a3, p3, st3)
          write (*, '(3(I0,1X,G0.17,:,1X))') (st3(n), p3(n), n = 1, 3)
+      case ('pe')
+         read (line, *) cmd, g, a, e, clamp
+         call oblique_p_e(t, g, a, e, p, status, clamp=clamp /= 0)
+         write (*, '(I0,1X,G0.17)') status, p
+      case ('pev')
+         read (line, *) cmd, (g3(n), a3(n), e3(n), n = 1, 3)
+         call oblique_p_e(t, g3, a3, e3, p3, st3)
+         write (*, '(3(I0,1X,G0.17,:,1X))') (st3(n), p3(n), n = 1, 3)
+      case ('erange')
+         call oblique_e_n_range(t, gmin, gmax, status)
+         write (*, '(I0,2(1X,G0.17))') status, gmin, gmax
       case ('curve')
          read (line, *) cmd, g, a
          call oblique_curve_find(t, g, c, status, rel_tol=a, found_gamma=p)
@@ -799,4 +815,92 @@ fn module_answers_points_curves_and_rebounds_like_the_rust_library() {
     assert!(next().starts_with("1 "), "a closed table");
     assert!(next().starts_with("1 "), "info of a closed table");
     eprintln!("driver: {:.1} s", start.elapsed().as_secs_f64());
+}
+
+/// The module on a table with an `e_n` axis (export layout version 2): `oblique_p_e` (scalar and
+/// elemental) gives the bits of `Table::p_e` and its refusals, `oblique_p` the `e_n = 1` slice,
+/// `oblique_e_n_range` the range; and an elastic export answers `e_n = 1` only.
+#[test]
+fn module_answers_p_of_a_table_with_an_e_n_axis() {
+    let start = std::time::Instant::now();
+    let (t, export) = dissipative_table(&dir().join("dissipative"));
+    let s = t.surface();
+    let pts = points_e(
+        20_000,
+        29,
+        (0.8 * s.gamma_min(), 1.1 * s.gamma_max()),
+        (0.65, 1.02),
+    );
+    let mut input = String::from("erange\n");
+    for (i, (g, a, e)) in pts.iter().enumerate() {
+        input += &format!("pe {} {} {} {}\n", f(*g), f(*a), f(*e), i % 2);
+    }
+    input += "pev 1.45 0.3 0.8 1.45 0.3 0.5 1.45 inf 1\n";
+    input += "pe 1.45 0.3 nan 0\np 1.45 0.3 0\n";
+    let plain = &builds()[0].1;
+    let out = run_ok(plain, &[&path_str(&export)], &input);
+    let mut lines = out.lines();
+    let mut next = || lines.next().expect("an answer per line");
+    assert_eq!(next(), "0", "open");
+    let r = nums(next());
+    assert_eq!(r, [0.0, 0.7, 1.0]);
+    let mut refused = 0;
+    for (i, (g, a, e)) in pts.iter().enumerate() {
+        let line = next();
+        let (st, p) = line.split_once(' ').expect("status P");
+        let outside = if i % 2 == 1 {
+            OutOfDomain::Clamp
+        } else {
+            OutOfDomain::Error
+        };
+        match t.p_e_with(*g, *a, *e, outside) {
+            Ok(want) => {
+                assert_eq!(st, "0", "({g:?}, {a:?}, {e:?}): {line}");
+                assert_eq!(num(p).to_bits(), want.to_bits(), "({g:?}, {a:?}, {e:?})");
+            }
+            Err(err) => {
+                refused += 1;
+                assert!(num(p).is_nan(), "{line}");
+                assert_eq!(
+                    st,
+                    status_of(&err, *g, *a).to_string(),
+                    "({g:?}, {a:?}, {e:?})"
+                );
+            }
+        }
+    }
+    assert!(refused > 2000, "{refused} refused");
+    let pv = nums(next());
+    assert_eq!(pv[0], 0.0);
+    assert_eq!(
+        pv[1].to_bits(),
+        t.p_e(1.45, 0.3, 0.8).expect("inside").to_bits()
+    );
+    assert_eq!((pv[2], pv[3].is_nan()), (24.0, true));
+    assert_eq!(
+        pv[5].to_bits(),
+        t.p_e(1.45, f64::INFINITY, 1.0).expect("inside").to_bits()
+    );
+    assert!(next().starts_with("24 "), "e_n = NaN");
+    let p = nums(next());
+    assert_eq!(p[1].to_bits(), t.p(1.45, 0.3).expect("inside").to_bits());
+    // An elastic export: the range 1, 1; e_n = 1 answers oblique_p's bits, e_n < 1 refused.
+    let out = run_ok(
+        plain,
+        &[&path_str(export_file())],
+        "erange\npe 1.754 0.3 1 0\npe 1.754 0.3 0.9 0\n",
+    );
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[1], "0 1.0000000000000000 1.0000000000000000");
+    let p = nums(lines[2]);
+    assert_eq!(
+        p[1].to_bits(),
+        table().p(1.754, 0.3).expect("inside").to_bits()
+    );
+    assert!(lines[3].starts_with("24 "), "{out}");
+    eprintln!(
+        "e_n table: {} points through oblique_p_e ({:.1} s)",
+        pts.len(),
+        start.elapsed().as_secs_f64()
+    );
 }
