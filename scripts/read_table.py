@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Reference reader of the P(gamma, alpha) table (HDF5, schema v3 or v2), h5py + numpy only.
+"""Reference reader of the P(gamma, alpha) table (HDF5, schema v4, v3 or v2), h5py + numpy only.
 
-Implements the interpolation rule of docs/table-format.md (steps 1-10) exactly, independently of
-the Rust code, so that it can cross-check both the `oblique-lookup` crate and the simulator.
+Implements the interpolation rule of docs/table-format.md (steps 1-10, and the rule of a table
+with a normal-restitution axis, schema v4) exactly, independently of the Rust code, so that it
+can cross-check both the `oblique-lookup` crate and the simulator.
 
     python3 scripts/read_table.py TABLE --gamma G --alpha A        # prints P (alpha may be inf)
+    python3 scripts/read_table.py TABLE --gamma G --alpha A --e-n E   # P(gamma, alpha, e_n)
     python3 scripts/read_table.py TABLE --check-stored             # vs /checks/P_interpolated
     python3 scripts/read_table.py TABLE --error-bound              # the stated error bound
     python3 scripts/read_table.py TABLE --check-against-sweep 12 --max-error 1e-5
@@ -17,6 +19,8 @@ As a library:
     from read_table import Table
     t = Table("tables/full.h5")
     t.p(1.754, 1.0), t.p(0.8, float("inf"))
+    t = Table("kv.h5")                 # a table with an e_n axis (schema 4)
+    t.e_n_range, t.p_e(1.45, 0.3, 0.8)
 """
 
 import argparse
@@ -36,18 +40,23 @@ except ImportError as e:  # pragma: no cover - depends on the machine
     sys.exit(2)
 
 FORMAT_NAME = "oblique-P-table"
-SCHEMA_VERSION = 3
-SCHEMA_VERSIONS = (2, 3)  # v2: v3 without the optional warp
+SCHEMA_VERSION = 4
+SCHEMA_VERSIONS = (2, 3, 4)  # v2: v3 without the optional warp; v4: v3 with optional e_n axis
 PATCH_NAMES = ("stick_low", "partial_high", "stick_high")
 PATCH_KINDS = {"stick_low": "stick", "partial_high": "partial-slip", "stick_high": "stick"}
 
 
 class TableError(Exception):
-    """The file is not a readable P table of schema v2 or v3."""
+    """The file is not a readable P table of schema v2, v3 or v4."""
 
 
 class DomainError(ValueError):
-    """A query (gamma, alpha) outside what the table (or the rule) answers."""
+    """A query (gamma, alpha[, e_n]) outside what the table (or the rule) answers; `name` is
+    the refused argument: 'gamma', 'alpha' or 'e_n'."""
+
+    def __init__(self, message, name=None):
+        super().__init__(message)
+        self.name = name
 
 
 def alpha_c1(gamma):
@@ -135,6 +144,72 @@ def _clamp01(v):
     return min(max(v, 0.0), 1.0)
 
 
+# ---------------------------------------------------------------------------------------------
+# The rule of a table with an e_n axis (schema v4), written with the operations, in the order,
+# that docs/table-format.md ("Schema v4", "The same bits") states, so that P has the bits of
+# every other reader: closed-form cubic weights, sums from left to right, libm's log and asin
+# (Python's math module calls the C library's, as Rust does on Linux).
+
+FRAC_2_PI = 0.6366197723675814  # 2/pi rounded to the nearest double
+
+
+def alpha_c1_e(gamma, e_n):
+    """alpha_c1(gamma, e_n) = 2 gamma^2 / (7 (gamma^2 (1 + e_n) - e_n))."""
+    g2 = gamma * gamma
+    return 2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n))
+
+
+def alpha_lin_e(gamma, e_n):
+    """End of the full-slip line P = 1 - (7/2)(1 + e_n) alpha: alpha_c1(gamma, e_n) for
+    gamma > 1, else alpha_c2(gamma) (which does not move with e_n)."""
+    return alpha_c1_e(gamma, e_n) if gamma > 1.0 else alpha_c2(gamma)
+
+
+def full_slip_e(alpha, e_n):
+    """P = 1 - (7/2)(1 + e_n) alpha."""
+    return 1.0 - 3.5 * (1.0 + e_n) * alpha
+
+
+def partial_coord_e(gamma, alpha, e_n):
+    """c = (2/pi) asin(sqrt(l)), l = ln(alpha/alpha_c1)/ln(alpha_c2/alpha_c1) clamped to [0, 1],
+    with alpha/alpha_c1 = 7 alpha h/(2 gamma^2) and alpha_c2/alpha_c1 = h = gamma^2(1+e_n) - e_n."""
+    g2 = gamma * gamma
+    ratio = g2 * (1.0 + e_n) - e_n
+    ell = math.log(7.0 * alpha * ratio / (2.0 * g2)) / math.log(ratio)
+    return FRAC_2_PI * math.asin(math.sqrt(_clamp01(ell)))
+
+
+def stick_coord(gamma, alpha, alpha_max):
+    """S(alpha)/S(alpha_max), S = d/(d + rho c2), d = alpha - c2, c2 = gamma^2 (2/7)."""
+    if math.isinf(alpha):
+        return 1.0
+    c2 = gamma * gamma * (2.0 / 7.0)
+    rho = stick_rho(gamma)
+    d = alpha - c2
+    s = d / (d + rho * c2)
+    if math.isinf(alpha_max):
+        return s
+    dm = alpha_max - c2
+    return s / (dm / (dm + rho * c2))
+
+
+def cubic_stencil(u, n):
+    """Step 8 for k = 4 on n nodes: start and the cubic Lagrange weights at u, in closed form."""
+    cell = min(max(int(u), 0), n - 2)  # u >= 0: int() is floor
+    start = min(max(cell - 1, 0), n - 4)
+    a = u - start
+    b, c, d = a - 1.0, a - 2.0, a - 3.0
+    ab, cd = a * b, c * d
+    return start, (-(b * cd) * (1.0 / 6.0), a * cd * 0.5, -(ab * d) * 0.5, ab * c * (1.0 / 6.0))
+
+
+def locate(x, blocks):
+    """Step 6 on one axis: root cell and position in it of x in [0, 1] (clamped)."""
+    u = min(max(x * blocks, 0.0), float(blocks))
+    a = min(max(int(u), 0), blocks - 1)
+    return a, u - a
+
+
 def _str_attr(attrs, name):
     v = attrs[name]
     if isinstance(v, bytes):
@@ -186,10 +261,11 @@ class Warp:
 
 
 class Patch:
-    """One patch held in memory: root cells, quadtree and node values."""
+    """One patch held in memory: root cells, quadtree (octree with an e_n axis) and node
+    values."""
 
     def __init__(self, name, kind, gamma_lo, gamma_hi, blocks_gamma, blocks_coord,
-                 leaf_intervals, tree, p, warp=None):
+                 leaf_intervals, tree, p, warp=None, blocks_e_n=None, e_n_range=None):
         self.name = name
         self.kind = kind
         self.gamma_lo = gamma_lo
@@ -198,8 +274,12 @@ class Patch:
         self.blocks_coord = blocks_coord
         self.leaf_intervals = leaf_intervals
         self.tree = tree  # int list [cells]
-        self.p = p  # float64 [leaves, m+1, m+1]
+        self.p = p  # float64 [leaves, m+1, m+1] ([leaves, m+1, m+1, m+1] with an e_n axis)
         self.warp = warp  # Warp or None
+        self.blocks_e_n = blocks_e_n  # root cells along e_n, or None (no e_n axis)
+        self.e_n_range = e_n_range  # (e_n_min, e_n_max) or None
+        # Node values as Python floats, flat (leaf, i_gamma, i_c, i_e), for the e_n rule.
+        self.flat = [float(v) for v in p.reshape(-1)] if blocks_e_n is not None else None
 
     def find_leaf(self, x, c):
         """Steps 6 and 7: leaf number and position (fx, fc) inside it, for x, c in [0, 1]."""
@@ -236,22 +316,63 @@ class Patch:
         # 10. The bound: |P| <= 1.
         return min(max(total, -1.0), 1.0)
 
+    def find_leaf3(self, gamma, c, xe):
+        """Steps 6 and 7 in the octree of a patch with an e_n axis: leaf number and position
+        (fg, fc, fe) inside it. Roots row-major (gamma outer, e_n inner); the children of a
+        split cell i are tree[i] + 4 q_gamma + 2 q_c + q_e."""
+        bg, bc, be = self.blocks_gamma, self.blocks_coord, self.blocks_e_n
+        a, fg = locate((gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo), bg)
+        b, fc = locate(c, bc)
+        e, fe = locate(xe, be)
+        i = (a * bc + b) * be + e
+        tree = self.tree
+        while tree[i] >= 0:
+            fg, fc, fe = 2.0 * fg, 2.0 * fc, 2.0 * fe
+            qg, qc, qe = int(fg >= 1.0), int(fc >= 1.0), int(fe >= 1.0)
+            fg, fc, fe = fg - qg, fc - qc, fe - qe
+            i = tree[i] + 4 * qg + 2 * qc + qe
+        return -tree[i] - 1, fg, fc, fe
 
-def check_tree(tree, roots):
-    """Problem with a quadtree array (docs/table-format.md, 'The tree'), or None; and the leaf
-    count."""
+    def interpolate_e(self, gamma, c, e_n):
+        """Steps 6 to 10 of a patch with an e_n axis (the cubic stencil), c clamped, at
+        x_e = (e_n - e_n_min)/(e_n_max - e_n_min): the tensor product summed e_n innermost,
+        gamma outermost, each sum from left to right."""
+        lo, hi = self.e_n_range
+        leaf, fg, fc, fe = self.find_leaf3(gamma, c, (e_n - lo) / (hi - lo))
+        m = self.leaf_intervals
+        n1 = m + 1
+        sg, wg = cubic_stencil(fg * m, n1)
+        sc, wc = cubic_stencil(fc * m, n1)
+        se, we = cubic_stencil(fe * m, n1)
+        v = self.flat
+        base = leaf * n1 * n1 * n1
+        planes = []
+        for i in range(4):
+            rows = []
+            for j in range(4):
+                at = base + ((sg + i) * n1 + sc + j) * n1 + se
+                rows.append(v[at] * we[0] + v[at + 1] * we[1] + v[at + 2] * we[2]
+                            + v[at + 3] * we[3])
+            planes.append(wc[0] * rows[0] + wc[1] * rows[1] + wc[2] * rows[2] + wc[3] * rows[3])
+        total = wg[0] * planes[0] + wg[1] * planes[1] + wg[2] * planes[2] + wg[3] * planes[3]
+        return min(max(total, -1.0), 1.0)
+
+
+def check_tree(tree, roots, fanout=4):
+    """Problem with a quadtree (fanout 4) or octree (8) array (docs/table-format.md, 'The
+    tree'), or None; and the leaf count."""
     n = len(tree)
-    if n < roots or (n - roots) % 4:
-        return f"has {n} cells: expected {roots} roots plus groups of 4 children", 0
+    if n < roots or (n - roots) % fanout:
+        return f"has {n} cells: expected {roots} roots plus groups of {fanout} children", 0
     referenced = [False] * n
     leaves = []
     for i, t in enumerate(tree):
         if t < 0:
             leaves.append(-t - 1)
             continue
-        if t <= i or t < roots or t + 4 > n:
+        if t <= i or t < roots or t + fanout > n:
             return f"cell {i} points to children at {t}: out of range", 0
-        for q in range(t, t + 4):
+        for q in range(t, t + fanout):
             if referenced[q]:
                 return f"cell {i}: children at {t} shared with another cell", 0
             referenced[q] = True
@@ -282,7 +403,8 @@ def check_seal(path):
 
 
 class Table:
-    """A P(gamma, alpha) table of schema v2 or v3, loaded into memory (no HDF5 call per query)."""
+    """A P(gamma, alpha) table of schema v2, v3 or v4 (P(gamma, alpha, e_n) with a normal-
+    restitution axis), loaded into memory (no HDF5 call per query)."""
 
     def __init__(self, path):
         self.path = str(path)
@@ -338,6 +460,23 @@ class Table:
                 "0 < gamma_min < gamma_max < inf")
         if math.isnan(self.alpha_max) or self.alpha_max <= 0:
             raise self._invalid(f"alpha_max = {self.alpha_max} must be > 0 or inf")
+        # Schema 4 names its axes; an e_n axis brings its range (None: an elastic table).
+        self.e_n_range = None
+        if self.schema_version >= 4:
+            try:
+                axes = _str_attr(f.attrs, "axes")
+            except (KeyError, TypeError):
+                raise self._invalid("missing or non-string root attribute 'axes'") from None
+            if axes == "gamma,alpha,e_n":
+                lo, hi = num(f.attrs, "e_n_min"), num(f.attrs, "e_n_max")
+                if not 0 < lo < hi <= 1:
+                    raise self._invalid(
+                        f"e_n range [{lo}, {hi}]: must satisfy 0 < e_n_min < e_n_max <= 1")
+                self.e_n_range = (lo, hi)
+            elif axes != "gamma,alpha":
+                raise self._invalid(
+                    f"root attribute 'axes' = '{axes}': this reader understands 'gamma,alpha' "
+                    "and 'gamma,alpha,e_n'")
         if "patches" not in f or not isinstance(f["patches"], h5py.Group):
             raise self._invalid("missing group '/patches'")
         self.patches = {}
@@ -357,7 +496,7 @@ class Table:
         if "checks" in f:
             g = f["checks"]
             self.checks = {n: g[n][()] for n in
-                           ("gamma", "alpha", "P_simulated", "P_interpolated",
+                           ("gamma", "alpha", "e_n", "P_simulated", "P_interpolated",
                             "interpolation_error", "patch") if n in g}
 
     def _patch(self, g, name, num):
@@ -382,6 +521,20 @@ class Table:
         if m + 1 < self.stencil:
             raise self._invalid(
                 f"{where}: leaf_intervals = {m} gives fewer nodes than stencil_points")
+        be = None
+        if self.e_n_range is not None:
+            be = num(g.attrs, "blocks_e_n", where)
+            if be != int(be) or not 1 <= be <= 65536:
+                raise self._invalid(
+                    f"{where}: attribute 'blocks_e_n' = {be}: must be an integer in [1, 65536]")
+            be = int(be)
+            if self.stencil != 4:
+                raise self._invalid(
+                    f"{where}: stencil_points = {self.stencil}: this reader evaluates tables "
+                    "with an e_n axis with the cubic stencil (4) only")
+            if "warp" in g:
+                raise self._invalid(f"{where}: a patch with an e_n axis cannot have a warp")
+        dims = 2 if be is None else 3
         if "tree" not in g:
             raise self._invalid(f"{where}: missing dataset 'tree'")
         d = g["tree"]
@@ -389,13 +542,13 @@ class Table:
             raise self._invalid(
                 f"{where}: dataset 'tree' is {d.dtype}{list(d.shape)}, expected 1-D integer")
         tree = [int(t) for t in d[()]]
-        problem, leaves = check_tree(tree, bg * bc)
+        problem, leaves = check_tree(tree, bg * bc * (be or 1), 1 << dims)
         if problem:
             raise self._invalid(f"{where}: dataset 'tree' {problem}")
         if "P" not in g:
             raise self._invalid(f"{where}: missing dataset 'P'")
         d = g["P"]
-        shape = (leaves, m + 1, m + 1)
+        shape = (leaves,) + (m + 1,) * dims
         if d.shape != shape or d.dtype.kind != "f":
             raise self._invalid(
                 f"{where}: dataset 'P' is {d.dtype}{list(d.shape)}, expected float {list(shape)}")
@@ -404,17 +557,17 @@ class Table:
             raise self._invalid(f"{where}: non-finite value in 'P'")
         warp = self._warp(g, name, lo, hi, bg, bc, tree, num) if "warp" in g else None
         # The stated error bound of the patch (docs/table-format.md, "The stated error bound"):
-        # max over leaves of leaf_predicted_error + Lambda_k^2 * max node error_estimate.
+        # max over leaves of leaf_predicted_error + Lambda_k^dims * max node error_estimate.
         bound = math.nan
         if "leaf_predicted_error" in g and "error_estimate" in g:
             pred = g["leaf_predicted_error"][()].astype(np.float64)
             est = g["error_estimate"][()].astype(np.float64)
             if pred.shape == (leaves,) and est.shape == shape:
-                factor = lebesgue(self.stencil) ** 2
+                factor = lebesgue(self.stencil) ** dims
                 per_leaf = pred + factor * est.reshape(leaves, -1).max(axis=1, initial=0.0)
                 bound = float(per_leaf.max(initial=0.0))
         self.bounds[name] = bound
-        return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp)
+        return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp, be, self.e_n_range)
 
     def _warp(self, g, name, gamma_lo, gamma_hi, bg, bc, tree, num):
         """The optional warp group of a patch, validated as docs/table-format.md states."""
@@ -474,34 +627,79 @@ class Table:
             stack.extend((t + q, d + 1, 2 * a + q // 2) for q in range(4))
         return Warp(start, gamma_0, gamma_step, c_star, knot)
 
-    def region(self, gamma, alpha):
-        """Patch name of a query (steps 1 and 3), or 'line' for the exact full-slip line."""
-        if alpha <= alpha_lin(gamma):
+    def region(self, gamma, alpha, e_n=1.0):
+        """Patch name of a query (steps 1 and 3), or 'line' for the exact full-slip line (at
+        normal restitution e_n)."""
+        if alpha <= (alpha_lin(gamma) if e_n == 1.0 else alpha_lin_e(gamma, e_n)):
             return "line"
         if gamma <= 1.0:
             return "stick_low"
         return "partial_high" if alpha < alpha_c2(gamma) else "stick_high"
 
+    def _check_point(self, gamma, alpha):
+        if not (math.isfinite(gamma) and gamma > 0):
+            raise DomainError(f"gamma = {gamma}: must be a finite number > 0", "gamma")
+        if math.isnan(alpha) or alpha < 0:
+            raise DomainError(f"alpha = {alpha}: must be >= 0 (or inf)", "alpha")
+
+    def _check_domain(self, gamma, alpha, lin):
+        if not self.gamma_min <= gamma <= self.gamma_max:
+            raise DomainError(
+                f"gamma = {gamma} outside the table's domain [{self.gamma_min}, "
+                f"{self.gamma_max}] (only alpha <= alpha_lin(gamma) = {lin} "
+                "is answered outside it)", "gamma")
+        if alpha > self.alpha_max:
+            raise DomainError(
+                f"alpha = {alpha} above the table's alpha_max = {self.alpha_max}", "alpha")
+
+    def p_e(self, gamma, alpha, e_n):
+        """P(gamma, alpha, e_n) at normal restitution e_n (schema v4). e_n must lie in the
+        table's e_n range, never clamped; an elastic table answers e_n = 1 only (as p). Raises
+        DomainError outside the answered domain."""
+        gamma, alpha, e_n = float(gamma), float(alpha), float(e_n)
+        self._check_point(gamma, alpha)
+        if self.e_n_range is None:
+            if e_n != 1.0:
+                raise DomainError(
+                    f"e_n = {e_n}: this table is elastic (no e_n axis), it answers e_n = 1 only",
+                    "e_n")
+            return self.p(gamma, alpha)
+        lo, hi = self.e_n_range
+        if not lo <= e_n <= hi:
+            raise DomainError(f"e_n = {e_n} outside the table's e_n range [{lo}, {hi}]", "e_n")
+        # 1. Full slip, exact (any gamma): P = 1 - (7/2)(1 + e_n) alpha.
+        lin = alpha_lin_e(gamma, e_n)
+        if alpha <= lin:
+            return full_slip_e(alpha, e_n)
+        # 2. Domain.
+        self._check_domain(gamma, alpha, lin)
+        # 3. Patch (alpha_c2 does not move with e_n).
+        name = "stick_low" if gamma <= 1.0 else (
+            "partial_high" if alpha < alpha_c2(gamma) else "stick_high")
+        patch = self.patches.get(name)
+        if patch is None:
+            return -e_n  # at gamma = 1 exactly the contact sticks at once
+        # 4. Coordinates (no warp with an e_n axis); 6-10 in Patch.interpolate_e.
+        if patch.kind == "partial-slip":
+            c = partial_coord_e(gamma, alpha, e_n)
+        else:
+            c = stick_coord(gamma, alpha, self.alpha_max)
+        return patch.interpolate_e(gamma, _clamp01(c), e_n)
+
     def p(self, gamma, alpha):
-        """P(gamma, alpha) by steps 1-10. Raises DomainError outside the answered domain."""
+        """P(gamma, alpha) by steps 1-10 (a table with an e_n axis: p_e at e_n = 1). Raises
+        DomainError outside the answered domain."""
         gamma = float(gamma)
         alpha = float(alpha)
-        if not (math.isfinite(gamma) and gamma > 0):
-            raise DomainError(f"gamma = {gamma}: must be a finite number > 0")
-        if math.isnan(alpha) or alpha < 0:
-            raise DomainError(f"alpha = {alpha}: must be >= 0 (or inf)")
+        if self.e_n_range is not None:
+            return self.p_e(gamma, alpha, 1.0)
+        self._check_point(gamma, alpha)
         # 1. Full slip, exact (any gamma).
         name = self.region(gamma, alpha)
         if name == "line":
             return 1.0 - 7.0 * alpha
         # 2. Domain.
-        if not self.gamma_min <= gamma <= self.gamma_max:
-            raise DomainError(
-                f"gamma = {gamma} outside the table's domain [{self.gamma_min}, "
-                f"{self.gamma_max}] (only alpha <= alpha_lin(gamma) = {alpha_lin(gamma)} "
-                "is answered outside it)")
-        if alpha > self.alpha_max:
-            raise DomainError(f"alpha = {alpha} above the table's alpha_max = {self.alpha_max}")
+        self._check_domain(gamma, alpha, alpha_lin(gamma))
         # 3. Patch.
         patch = self.patches.get(name)
         if patch is None:
@@ -635,11 +833,13 @@ def check_stored(table, tolerance=1e-12):
     index = {"stick_low": 0, "partial_high": 1, "stick_high": 2, "line": -1}
     worst = 0.0
     bad = 0
+    with_e_n = table.e_n_range is not None and "e_n" in ch
     for i in range(n):
         g, a = float(ch["gamma"][i]), float(ch["alpha"][i])
+        e = float(ch["e_n"][i]) if with_e_n else 1.0
         stored = float(ch["P_interpolated"][i])
         try:
-            mine = table.p(g, a)
+            mine = table.p_e(g, a, e)
         except DomainError as e:
             print(f"check {i}: (gamma {g!r}, alpha {a!r}) refused: {e}", file=sys.stderr)
             bad += 1
@@ -651,7 +851,7 @@ def check_stored(table, tolerance=1e-12):
                   f"|diff| {d:.3e}", file=sys.stderr)
         else:
             worst = max(worst, d)
-        want = index[table.region(g, a)]
+        want = index[table.region(g, a, e)]
         if int(ch["patch"][i]) != want:
             bad += 1
             print(f"check {i}: gamma {g!r} alpha {a!r}: stored patch {int(ch['patch'][i])}, "
@@ -667,6 +867,9 @@ def main(argv=None):
     ap.add_argument("table", help="HDF5 table written by `sweep run`")
     ap.add_argument("--gamma", type=parse_number, help="gamma > 0")
     ap.add_argument("--alpha", type=parse_number, help="alpha >= 0, or inf")
+    ap.add_argument("--e-n", type=parse_number, default=None,
+                    help="normal restitution e_n in the table's e_n range (default 1; an "
+                    "elastic table answers 1 only)")
     ap.add_argument("--error-bound", action="store_true",
                     help="print the table's stated error bound (docs/table-format.md)")
     ap.add_argument("--check-stored", action="store_true",
@@ -686,6 +889,8 @@ def main(argv=None):
     query = args.gamma is not None or args.alpha is not None
     if query and (args.gamma is None or args.alpha is None):
         ap.error("--gamma and --alpha go together")
+    if args.e_n is not None and not query:
+        ap.error("--e-n needs --gamma and --alpha")
     if not (query or args.error_bound or args.check_stored
             or args.check_against_sweep is not None):
         ap.error("nothing to do: give --gamma/--alpha, --error-bound, --check-stored or "
@@ -700,7 +905,8 @@ def main(argv=None):
     status = 0
     if query:
         try:
-            print(repr(table.p(args.gamma, args.alpha)))
+            e_n = 1.0 if args.e_n is None else args.e_n
+            print(repr(table.p_e(args.gamma, args.alpha, e_n)))
         except DomainError as e:
             print(f"error: {e}", file=sys.stderr)
             return 2
@@ -708,6 +914,10 @@ def main(argv=None):
         print(repr(table.error_bound))
     if args.check_stored:
         status = max(status, check_stored(table))
+    if args.check_against_sweep is not None and table.e_n_range is not None:
+        print("error: --check-against-sweep samples elastic tables; for a table with an e_n "
+              "axis run `sweep verify TABLE`", file=sys.stderr)
+        return 2
     if args.check_against_sweep is not None:
         sweep = args.sweep or os.path.join(
             os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "target", "release",

@@ -1,7 +1,8 @@
 //! The Rust query path against the independent Python reference reader of the rule
 //! (`scripts/read_table.py`, h5py + numpy), at a few thousand points of the shipped tables,
-//! including the deepest leaves of `tables/full.h5`. Skipped (with a message) when `python3`
-//! with h5py and numpy is not available.
+//! including the deepest leaves of `tables/full.h5`, and bit for bit at 200 000 points of a
+//! small table with an `e_n` axis (schema 4) built here. Fails (naming what is missing) when
+//! `python3` with h5py and numpy is not available.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -159,6 +160,149 @@ fn python_reader_bounds_p_and_states_the_same_bound() {
         at_one > 20,
         "only {at_one} points bounded: the test has no teeth"
     );
+}
+
+/// A small table with an `e_n` axis (schema 4), `e_n` in [0.7, 1] and γ from 0.9 to 1.6 (all
+/// three patches, octree leaves of depth 1 in partial slip), built by the sweep library as
+/// `sweep run` builds it (about 2.5 s on 2 cores), in the folder `dir`.
+fn dissipative_table(dir: &std::path::Path) -> PathBuf {
+    std::fs::create_dir_all(dir).expect("scratch folder");
+    let out = dir.join("kv.h5");
+    let text = format!(
+        "output = {:?}\n[domain]\ngamma_min = 0.9\ngamma_max = 1.6\n\
+         e_n_min = 0.7\ne_n_max = 1.0\n[nodes]\ntarget_error = 4e-4\n\
+         leaf_intervals = 6\nblocks_coord = 2\n[solver]\ntol = 4e-5\n\
+         [checks]\nper_patch = 30\n",
+        out.display().to_string()
+    );
+    let cfg = oblique_sweep::Config::parse(&text, "kv.toml").expect("config");
+    let built = oblique_sweep::build(&cfg, &oblique_sweep::Silent).expect("build");
+    let prov = oblique_sweep::provenance(&cfg, text.clone(), 0.0);
+    oblique_table::write::write_table(&cfg.output, &built, &prov).expect("write the table");
+    out
+}
+
+/// Every line `script` prints when run by python3 with the arguments `scripts/`, `table` and
+/// `input` on its standard input.
+fn python_lines(script: &str, table: &std::path::Path, input: String) -> Vec<String> {
+    require_python();
+    let mut child = Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .arg(repo().join("scripts"))
+        .arg(table)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("run python3");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let out = child.wait_with_output().expect("python3 output");
+    writer.join().expect("writer").expect("write points");
+    assert!(out.status.success(), "read_table.py failed");
+    String::from_utf8(out.stdout)
+        .expect("utf-8")
+        .lines()
+        .map(str::to_owned)
+        .collect()
+}
+
+/// `P(γ, α, e_n)` of a table with an `e_n` axis: the Python reader, which follows the
+/// documented rule with its own code (schema v4), gives the bits of `Table::p_e` at every
+/// point it answers and refuses the same points naming the same argument (`e_n` outside the
+/// range, `γ` outside the domain); `Table.p` is the `e_n = 1` slice; the stated bound (with
+/// `Λ_4³`) is the same.
+#[test]
+fn python_reader_gives_the_bits_of_p_e_on_a_table_with_an_e_n_axis() {
+    let start = std::time::Instant::now();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("python_reader_e_n-{}", std::process::id()));
+    let path = dissipative_table(&dir);
+    let t = Table::open(&path).expect("the table");
+    assert_eq!(t.restitution(), Some((0.7, 1.0)));
+    let built = start.elapsed().as_secs_f64();
+    let s = t.surface();
+    let (g_lo, g_hi) = (0.95 * s.gamma_min(), 1.05 * s.gamma_max());
+    let mut next = oblique_lookup::testing::uniform(0x5EED_0E0E);
+    let n = 200_000;
+    let mut points = Vec::with_capacity(n);
+    for i in 0..n {
+        let g = if i % 97 == 5 {
+            1.0
+        } else {
+            g_lo + (g_hi - g_lo) * next()
+        };
+        let e = match i % 89 {
+            0 => 0.7,
+            1 => 1.0,
+            _ => 0.65 + 0.37 * next(),
+        };
+        let a = match i % 40 {
+            0 => f64::INFINITY,
+            1 => 0.0,
+            2 => oblique_table::surface::alpha_c2(g),
+            3 if g > 1.0 => oblique_table::surface::alpha_c1_dissipative(g, e),
+            _ => 3.0 * next() * next(),
+        };
+        points.push((g, a, e));
+    }
+    let input: String = points
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect();
+    let script = "import sys\n\
+                  sys.path.insert(0, sys.argv[1])\n\
+                  from read_table import Table, DomainError\n\
+                  t = Table(sys.argv[2])\n\
+                  out = [repr(t.error_bound), repr(t.p(1.45, 0.3))]\n\
+                  for line in sys.stdin:\n    \
+                      g, a, e = (float(x) for x in line.split(','))\n    \
+                      try:\n        \
+                          out.append(repr(t.p_e(g, a, e)))\n    \
+                      except DomainError as err:\n        \
+                          out.append('error ' + err.name)\n\
+                  sys.stdout.write('\\n'.join(out) + '\\n')\n";
+    let py_start = std::time::Instant::now();
+    let lines = python_lines(script, &path, input);
+    let py_time = py_start.elapsed().as_secs_f64();
+    assert_eq!(lines.len(), n + 2);
+    let bound: f64 = lines[0].parse().expect("bound");
+    assert!(
+        (bound - t.error_bound()).abs() <= 1e-12 * t.error_bound(),
+        "Python bound {bound}, Rust {}",
+        t.error_bound()
+    );
+    let slice: f64 = lines[1].parse().expect("P");
+    assert_eq!(slice.to_bits(), t.p(1.45, 0.3).expect("inside").to_bits());
+    let (mut answered, mut refused_e_n, mut refused_gamma) = (0, 0, 0);
+    for (&(g, a, e), line) in points.iter().zip(&lines[2..]) {
+        match t.p_e(g, a, e) {
+            Ok(p) => {
+                let r: f64 = line
+                    .parse()
+                    .unwrap_or_else(|_| panic!("({g:?}, {a:?}, {e:?}): Rust {p:?}, Python {line}"));
+                assert_eq!(
+                    p.to_bits(),
+                    r.to_bits(),
+                    "({g:?}, {a:?}, {e:?}): Rust {p:?}, read_table.py {r:?}"
+                );
+                answered += 1;
+            }
+            Err(oblique_lookup::LookupError::Query { name, .. }) => {
+                assert_eq!(*line, format!("error {name}"), "({g:?}, {a:?}, {e:?})");
+                refused_e_n += usize::from(name == "e_n");
+                refused_gamma += usize::from(name == "gamma");
+            }
+            Err(other) => panic!("({g:?}, {a:?}, {e:?}): {other}"),
+        }
+    }
+    assert!(answered > n / 2 && refused_e_n > n / 20 && refused_gamma > n / 50);
+    eprintln!(
+        "e_n table: {answered} of {n} points the same bits in Rust and read_table.py, \
+         {refused_e_n} refused for e_n and {refused_gamma} for gamma by both (build {built:.1} s, \
+         Python {py_time:.1} s)"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// The cross-check needs python3 with h5py and numpy (`scripts/test` installs them): without
