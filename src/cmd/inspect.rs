@@ -44,6 +44,7 @@ pub fn run(args: InspectArgs) -> Result<()> {
                 json!({
                     "name": n, "kind": p.kind().name(), "gamma_lo": p.gamma_lo(), "gamma_hi": p.gamma_hi(),
                     "blocks_gamma": p.blocks_gamma(), "blocks_coord": p.blocks_coord(),
+                    "blocks_e_n": p.blocks_e_n(),
                     "leaf_intervals": p.leaf_intervals(),
                     "leaves": p.leaves(),
                     "depth_min": depth.iter().min(), "depth_max": depth.iter().max(),
@@ -64,6 +65,9 @@ pub fn run(args: InspectArgs) -> Result<()> {
             "schema_version": pv.schema_version,
             "gamma_min": s.gamma_min(), "gamma_max": s.gamma_max(),
             "alpha_max": if s.alpha_max().is_finite() { json!(s.alpha_max()) } else { json!("inf") },
+            "axes": s.axes().iter().map(|a| a.name.name()).collect::<Vec<_>>(),
+            "e_n_min": s.restitution().map(|r| r.0), "e_n_max": s.restitution().map(|r| r.1),
+            "law": if s.restitution().is_some() { pv.law.as_str() } else { "elastic" },
             "stencil_points": s.stencil(),
             "nodes": patches.iter().map(|(_, p)| p.p().len()).sum::<usize>(),
             "patches": ps,
@@ -79,8 +83,12 @@ pub fn run(args: InspectArgs) -> Result<()> {
         return Ok(());
     }
     outln!("table {}", args.table.display())?;
+    let e_n = match s.restitution() {
+        Some((lo, hi)) => format!(", e_n in [{lo}, {hi}] ({} law)", pv.law),
+        None => String::new(),
+    };
     outln!(
-        "domain gamma in [{}, {}], alpha in [0, {}]; stencil {} points per axis (schema v{})",
+        "domain gamma in [{}, {}], alpha in [0, {}]{e_n}; stencil {} points per axis (schema v{})",
         s.gamma_min(),
         s.gamma_max(),
         s.alpha_max(),
@@ -89,13 +97,20 @@ pub fn run(args: InspectArgs) -> Result<()> {
     )?;
     for (n, p) in &patches {
         let depth = p.leaf_depths();
+        let roots = match p.restitution() {
+            Some(r) => format!(
+                "{} x {} x {}",
+                p.blocks_gamma(),
+                p.blocks_coord(),
+                r.blocks()
+            ),
+            None => format!("{} x {}", p.blocks_gamma(), p.blocks_coord()),
+        };
         outln!(
-            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {} x {} roots, {} leaves at depth {}..{}, {} nodes stored (shared leaf edges once per leaf), max node error estimate {:.1e}",
+            "  {n:13} {:12} gamma [{:.4}, {:.4}]  {roots} roots, {} leaves at depth {}..{}, {} nodes stored (shared leaf edges once per leaf), max node error estimate {:.1e}",
             p.kind().name(),
             p.gamma_lo(),
             p.gamma_hi(),
-            p.blocks_gamma(),
-            p.blocks_coord(),
             p.leaves(),
             depth.iter().min().unwrap_or(&0),
             depth.iter().max().unwrap_or(&0),
@@ -115,8 +130,13 @@ pub fn run(args: InspectArgs) -> Result<()> {
         }
     }
     outln!("held-out checks: {nc} points, max interpolation error {cmax:.2e}, rms {crms:.2e}")?;
+    let factor = if s.restitution().is_some() {
+        oblique_table::bound::node_error_factor_of(s.stencil(), 3)
+    } else {
+        oblique_table::bound::node_error_factor(s.stencil())
+    };
     outln!(
-        "stated error bound: {:.2e} (largest leaf prediction + 2.66 x node error estimate; docs/table-format.md)",
+        "stated error bound: {:.2e} (largest leaf prediction + {factor:.2} x node error estimate; docs/table-format.md)",
         t.error_bound()
     )?;
     outln!(
