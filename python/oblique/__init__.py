@@ -1,8 +1,9 @@
 """Oblique elastic impacts with friction: the tangential restitution P(γ, α), rebounds and the
 MDR impact solver, from NumPy.
 
-A sphere hits a wall or another sphere, elastically (normal restitution 1), with Coulomb
-friction μ. What happens tangentially depends on two numbers (see ``physics.md``):
+A sphere hits a wall or another sphere, elastically (normal restitution e_n = 1) or, with a
+table built with an e_n range, dissipatively (e_n < 1), with Coulomb friction μ. What happens
+tangentially depends on two numbers besides e_n (see ``physics.md``):
 
 - ``γ = √((m*/m_t) G*/E*)``, the elastic group (``√((7/2) G*/E*)`` for a solid sphere on a wall);
 - ``α = (2/7)(m*/m_t) μ v_z0/|u0|``, the friction group (``μ v_z0/|u0|`` for a solid sphere on a
@@ -10,9 +11,10 @@ friction μ. What happens tangentially depends on two numbers (see ``physics.md`
 
 and the answer is ``P = u_after/u_before``, the tangential restitution of the contact point.
 
-- :class:`Table` answers ``P`` from a table written by ``sweep run`` (``tables/full.h5`` ships
-  with the project), with the error bound the table states, in nanoseconds per point; and
-  rebounds (:meth:`Table.rebound`, :meth:`Table.rebound_2d`) in SI units.
+- :class:`Table` answers ``P`` from a table written by ``sweep run`` (``tables/full.h5``, elastic,
+  and ``tables/dissipative-demo.h5``, with an e_n axis, ship with the project), with the error
+  bound the table states, in nanoseconds per point; and rebounds (:meth:`Table.rebound`,
+  :meth:`Table.rebound_2d`) in SI units.
 - :func:`impact` simulates ``P(γ, α)`` directly to a tolerance; :func:`simulate` simulates one
   impact in physical units; :func:`groups` gives ``γ`` and ``α`` of an impact;
   :func:`critical` the critical friction groups ``α_c1``, ``α_c2``; :func:`regime` the regime.
@@ -243,24 +245,28 @@ class Rebound:
     tangential_impulse: Float
     """Friction impulse J on body 2 along +tangent (N s); body 1 receives −J."""
     normal_impulse: Float
-    """Normal impulse 2 m* v_z0 on body 2 along +normal (N s)."""
+    """Normal impulse (1 + e_n) m* v_z0 on body 2 along +normal (N s)."""
+    e_n: Float
+    """Normal restitution used (dimensionless; 1: elastic): the bodies separate at e_n v_z0."""
     approach_speed: Float
-    """v_z0 = (v_1 − v_2)·n > 0 (m/s); the bodies separate at the same speed."""
+    """v_z0 = (v_1 − v_2)·n > 0 (m/s); the bodies separate at e_n v_z0."""
     centre_speed_before: Float
     """|w_before|, tangential speed of the relative centre velocity before (m/s)."""
     centre_speed_after: Float
     """|w_after| (m/s)."""
     energy_lost: Float
-    """Kinetic energy lost to friction, (m_t/2) u0² (1 − P²) (J), ≥ 0."""
+    """Kinetic energy lost, (m_t/2) u0² (1 − P²) + (m*/2) v_z0² (1 − e_n²) (J), ≥ 0: to friction
+    (and tangential damping), and to normal damping (0 for e_n = 1)."""
     tangent: NDArray[np.float64]
     """Unit tangent t of the plane of impact: the direction of the incident slip u0."""
     incidence_angle: Float
     """Angle of the incident relative centre velocity from the normal (rad)."""
     rebound_angle_centre: Float
-    """Angle of the relative centre velocity after, from the normal (rad), in [0, π/2)."""
+    """Angle of the relative centre velocity after, from the normal (rad), in [0, π/2]:
+    atan2(|w_after|, e_n v_z0)."""
     rebound_angle_contact: Float
-    """Angle of the contact-point velocity after, from the normal, in the plane of impact (rad):
-    negative when the slip reversed."""
+    """Angle of the contact-point velocity after, from the normal, in the plane of impact (rad),
+    atan2(P |u0|, e_n v_z0): negative when the slip reversed."""
 
     @property
     def e_t_contact(self) -> Float:
@@ -302,15 +308,19 @@ class Rebound2D:
     tangential_impulse: Float
     """Friction impulse J on body 2 along +x (N s); body 1 receives −J."""
     normal_impulse: Float
-    """Normal impulse 2 m* v_z0 on body 2 along +z (N s)."""
+    """Normal impulse (1 + e_n) m* v_z0 on body 2 along +z (N s)."""
+    e_n: Float
+    """Normal restitution used (dimensionless; 1: elastic): the relative v_z after is
+    −e_n v_z0."""
     incidence_angle: Float
     """atan2(v_x0,rel, v_z0) (rad)."""
     rebound_angle_centre: Float
-    """atan2(v_x,rel after, v_z0) (rad), positive on the side of +x."""
+    """atan2(v_x,rel after, e_n v_z0) (rad), positive on the side of +x."""
     rebound_angle_contact: Float
-    """atan2(P u0, v_z0) (rad): negative when the contact point's motion reversed."""
+    """atan2(P u0, e_n v_z0) (rad): negative when the contact point's motion reversed."""
     energy_lost: Float
-    """Kinetic energy lost to friction, (m_t/2) u0² (1 − P²) (J)."""
+    """Kinetic energy lost, (m_t/2) u0² (1 − P²) + (m*/2) v_z0² (1 − e_n²) (J): to friction
+    (and tangential damping), and to normal damping (0 for e_n = 1)."""
 
     @property
     def e_t_contact(self) -> Float:
@@ -462,7 +472,8 @@ class Curve:
 
 
 class Table:
-    """A table of P(γ, α) written by ``sweep run`` (HDF5), loaded into memory and checked.
+    """A table of P(γ, α) written by ``sweep run`` (HDF5), loaded into memory and checked; of
+    P(γ, α, e_n) for a table built with an e_n range (schema 4, ``info["e_n_min"]`` < 1).
 
     ``clamp=False`` (the default) refuses a γ or α outside the table's domain (:attr:`info`)
     with ``ValueError``; ``clamp=True`` answers there at the nearest point of the domain (an
@@ -624,6 +635,7 @@ class Table:
         other: Optional[Sphere] = None,
         other_velocity: ArrayLike = (0.0, 0.0, 0.0),
         other_spin: ArrayLike = (0.0, 0.0, 0.0),
+        e_n: ArrayLike = 1.0,
     ) -> Rebound:
         """3-D impacts of sphere 1 on a fixed wall (``other=None``) or on sphere 2.
 
@@ -632,10 +644,14 @@ class Table:
         into the wall or towards sphere 2's centre, and the bodies must approach along it.
         ``friction`` is μ ≥ 0 (``inf``: no slip). γ comes from ``materials=(sphere's Material,
         wall's or sphere 2's Material)`` with the pair's masses and κ, or is given as
-        ``gamma=``. Every argument (the fields of :class:`Sphere` and :class:`Material`
-        included) broadcasts against the others; the leading shape of the vectors is the
-        batch shape. When the bodies, materials and μ are the same for every impact they are
-        checked once (the faster path)."""
+        ``gamma=``. ``e_n`` is the normal restitution (dimensionless): the relative normal
+        velocity reverses to ``e_n`` times its value, and P is the table's P(γ, α, e_n); 1 (the
+        default, elastic) for an elastic table, inside ``info["e_n_min"] … info["e_n_max"]``
+        for a table built with an e_n range (never clamped: ``ValueError`` outside, also for
+        impacts without slip). Every argument (the fields of :class:`Sphere` and
+        :class:`Material` included) broadcasts against the others; the leading shape of the
+        vectors is the batch shape. When the bodies, materials, μ and e_n are the same for
+        every impact they are checked once (the faster path)."""
         g, mats = _stiffness(materials, gamma)
         vecs = [
             ("velocity", _vector(velocity, "velocity")),
@@ -647,7 +663,8 @@ class Table:
         s1 = _body(sphere, "sphere")
         s2 = [] if other is None else _body(other, "other")
         mu = _f64(friction, "friction")
-        scal = [("friction", mu)] + list(zip(("mass", "radius", "kappa"), s1))
+        e = _f64(e_n, "e_n")
+        scal = [("friction", mu), ("e_n", e)] + list(zip(("mass", "radius", "kappa"), s1))
         scal += list(zip(("other mass", "other radius", "other kappa"), s2))
         scal += [("gamma", g)] if g is not None else list(zip(("materials",) * 4, mats))
         shape = _shape([(n, v.shape[:-1]) for n, v in vecs] + [(n, x.shape) for n, x in scal])
@@ -667,6 +684,7 @@ class Table:
             None if g is None else _column(g, shape),
             [_column(x, shape) for x in mats],
             _column(mu, shape),
+            _column(e, shape),
             self._clamp,
         )
         names = _native.REBOUND3
@@ -699,14 +717,28 @@ class Table:
         other_v_x: ArrayLike = 0.0,
         other_v_z: ArrayLike = 0.0,
         other_omega: ArrayLike = 0.0,
+        e_n: ArrayLike = 1.0,
     ) -> Rebound2D:
         """Impacts in the plane of impact: ``z`` the normal from sphere 1 into the wall or sphere
         2 (``v_z > 0`` approaches), ``x`` the tangent, ω signed so that sphere 1's contact point
-        moves at v_x + R ω (sphere 2's at v_x − R ω). Arguments as in :meth:`rebound`; all
-        broadcast."""
+        moves at v_x + R ω (sphere 2's at v_x − R ω). Arguments, ``e_n`` (the normal
+        restitution: the relative v_z reverses to ``e_n`` times its value) included, as in
+        :meth:`rebound`; all broadcast."""
         g, mats = _stiffness(materials, gamma)
+        e = _f64(e_n, "e_n")
         motion, s1, s2, mu, shape = _planar(
-            sphere, v_x, v_z, omega, friction, other, other_v_x, other_v_z, other_omega, g, mats
+            sphere,
+            v_x,
+            v_z,
+            omega,
+            friction,
+            other,
+            other_v_x,
+            other_v_z,
+            other_omega,
+            g,
+            mats,
+            [("e_n", e)],
         )
         raw = _native.rebound_2d(
             self._t,
@@ -718,6 +750,7 @@ class Table:
             None if g is None else _column(g, shape),
             [_column(x, shape) for x in mats],
             mu,
+            _column(e, shape),
             self._clamp,
         )
         v = _views(raw, shape, _native.REBOUND2)
@@ -729,14 +762,17 @@ class Table:
         i = self.info
         return (
             f"<oblique.Table {i['path']!r}: gamma in [{i['gamma_min']}, {i['gamma_max']}], "
-            f"alpha <= {i['alpha_max']}, error bound {i['error_bound']:.2g}"
+            f"alpha <= {i['alpha_max']}, "
+            + (f"e_n in [{i['e_n_min']}, {i['e_n_max']}], " if i["law"] != "elastic" else "")
+            + f"error bound {i['error_bound']:.2g}"
             + (", clamped" if self._clamp else "")
             + ">"
         )
 
 
-def _planar(sphere, v_x, v_z, omega, friction, other, ov_x, ov_z, oomega, g, mats):
-    """Columns of a 2-D batch: motion (six), bodies, μ, and the broadcast shape."""
+def _planar(sphere, v_x, v_z, omega, friction, other, ov_x, ov_z, oomega, g, mats, extra=()):
+    """Columns of a 2-D batch: motion (six), bodies, μ, and the broadcast shape (of these and
+    of the named arrays ``extra``)."""
     names = ("v_x", "v_z", "omega", "other_v_x", "other_v_z", "other_omega")
     motion = [_f64(x, n) for x, n in zip((v_x, v_z, omega, ov_x, ov_z, oomega), names)]
     s1 = _body(sphere, "sphere")
@@ -746,6 +782,7 @@ def _planar(sphere, v_x, v_z, omega, friction, other, ov_x, ov_z, oomega, g, mat
     named += list(zip(("mass", "radius", "kappa"), s1))
     named += list(zip(("other mass", "other radius", "other kappa"), s2))
     named += [("gamma", g)] if g is not None else list(zip(("materials",) * 4, mats))
+    named += list(extra)
     shape = _shape([(n, x.shape) for n, x in named])
     col = lambda xs: [_column(x, shape) for x in xs]  # noqa: E731
     return col(motion), col(s1), col(s2), _column(mu, shape), shape

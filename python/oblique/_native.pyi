@@ -57,6 +57,7 @@ def rebound_3d(
     gamma: Optional[_F],
     materials: Sequence[_F],
     friction: _F,
+    e_n: _F,
     clamp: bool,
 ) -> _F: ...
 def rebound_2d(
@@ -69,6 +70,7 @@ def rebound_2d(
     gamma: Optional[_F],
     materials: Sequence[_F],
     friction: _F,
+    e_n: _F,
     clamp: bool,
 ) -> _F: ...
 def groups(

@@ -572,6 +572,8 @@ struct Setup<'a> {
     other: Option<[Col<'a>; 3]>,
     stiffness: Stiff<'a>,
     friction: Col<'a>,
+    /// Normal restitution `e_n` (1 for the callers that take none).
+    restitution: Col<'a>,
     clamp: bool,
 }
 
@@ -593,8 +595,19 @@ impl Setup<'_> {
             stiffness: self.stiffness.at(i),
             friction: self.friction.at(i),
             outside: outside(self.clamp),
-            restitution: 1.0,
+            restitution: self.restitution.at(i),
         }
+    }
+
+    /// `Ok` when `table` answers the `e_n` of row `i` (exactly 1 for an elastic table, inside
+    /// its range for one with an `e_n` axis): checked for every row, also where the contact
+    /// point does not slip and the table is not consulted.
+    fn check_restitution(
+        &self,
+        table: &oblique_lookup::Table,
+        i: usize,
+    ) -> Result<(), LookupError> {
+        table.surface().check_e_n(self.restitution.at(i))
     }
 
     fn shared(&self) -> bool {
@@ -602,10 +615,12 @@ impl Setup<'_> {
             && self.other.iter().flatten().all(Col::shared)
             && self.stiffness.shared()
             && self.friction.shared()
+            && self.restitution.shared()
     }
 }
 
-/// Reads the body and contact columns (see `Setup`); `rows` is the number of rows.
+/// Reads the body and contact columns (see `Setup`); `rows` is the number of rows, `e_n` the
+/// normal restitution (`None`: 1 for every row).
 #[allow(clippy::too_many_arguments)]
 fn setup<'a>(
     rows: usize,
@@ -614,6 +629,7 @@ fn setup<'a>(
     gamma: &'a Option<PyReadonlyArray1<'_, f64>>,
     materials: &'a [PyReadonlyArray1<'_, f64>],
     friction: &'a PyReadonlyArray1<'_, f64>,
+    e_n: Option<&'a PyReadonlyArray1<'_, f64>>,
     clamp: bool,
 ) -> PyResult<Setup<'a>> {
     let three = |name: &str, v: &'a [PyReadonlyArray1<'_, f64>]| -> PyResult<[Col<'a>; 3]> {
@@ -653,12 +669,19 @@ fn setup<'a>(
         },
         stiffness,
         friction: Col::new("friction", friction, 1, rows)?,
+        restitution: match e_n {
+            Some(e) => Col::new("e_n", e, 1, rows)?,
+            None => Col {
+                data: &[1.0],
+                width: 1,
+            },
+        },
         clamp,
     })
 }
 
 /// Columns of a 3-D rebound row.
-const REBOUND3: [&str; 30] = [
+const REBOUND3: [&str; 31] = [
     "velocity_x",
     "velocity_y",
     "velocity_z",
@@ -679,6 +702,7 @@ const REBOUND3: [&str; 30] = [
     "slip_after",
     "tangential_impulse",
     "normal_impulse",
+    "e_n",
     "approach_speed",
     "centre_speed_before",
     "centre_speed_after",
@@ -701,7 +725,7 @@ fn write3(a: &Answer<Rebound3>, r: &mut [f64]) {
     });
     r[6..9].copy_from_slice(&o.velocity);
     r[9..12].copy_from_slice(&o.spin);
-    r[12..24].copy_from_slice(&[
+    r[12..25].copy_from_slice(&[
         a.gamma,
         a.alpha,
         b.p,
@@ -710,20 +734,21 @@ fn write3(a: &Answer<Rebound3>, r: &mut [f64]) {
         b.slip_after,
         b.tangential_impulse,
         b.normal_impulse,
+        b.e_n,
         b.approach_speed,
         b.centre_speed_before,
         b.centre_speed_after,
         b.energy_lost,
     ]);
-    r[24..27].copy_from_slice(&b.frame.tangent);
-    r[27] = b.incidence_angle();
-    r[28] = b.rebound_angle_centre();
-    r[29] = b.rebound_angle_contact();
+    r[25..28].copy_from_slice(&b.frame.tangent);
+    r[28] = b.incidence_angle();
+    r[29] = b.rebound_angle_centre();
+    r[30] = b.rebound_angle_contact();
 }
 
 /// 3-D rebounds of `rows` impacts; returns `(rows, len(REBOUND3))`.
 #[pyfunction]
-#[pyo3(signature = (table, rows, shape, velocity, spin, other_velocity, other_spin, normal, sphere, other, gamma, materials, friction, clamp))]
+#[pyo3(signature = (table, rows, shape, velocity, spin, other_velocity, other_spin, normal, sphere, other, gamma, materials, friction, e_n, clamp))]
 #[allow(clippy::too_many_arguments)]
 fn rebound_3d<'py>(
     py: Python<'py>,
@@ -740,9 +765,19 @@ fn rebound_3d<'py>(
     gamma: Option<PyReadonlyArray1<'_, f64>>,
     materials: Vec<PyReadonlyArray1<'_, f64>>,
     friction: PyReadonlyArray1<'_, f64>,
+    e_n: PyReadonlyArray1<'_, f64>,
     clamp: bool,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let s = setup(rows, &sphere, &other, &gamma, &materials, &friction, clamp)?;
+    let s = setup(
+        rows,
+        &sphere,
+        &other,
+        &gamma,
+        &materials,
+        &friction,
+        Some(&e_n),
+        clamp,
+    )?;
     let v1 = Col::new("velocity", &velocity, 3, rows)?;
     let w1 = Col::new("spin", &spin, 3, rows)?;
     let v2 = Col::new("other_velocity", &other_velocity, 3, rows)?;
@@ -760,6 +795,12 @@ fn rebound_3d<'py>(
         normal: n.vec(i),
     };
     let t = &table.inner;
+    // One e_n for every row: check it once (no index), else row by row.
+    let each_e_n = !s.restitution.shared();
+    if !each_e_n {
+        s.check_restitution(t, 0)
+            .map_err(|e| lookup_error(e, &[]))?;
+    }
     // One pair and contact for every row: check them once.
     let prepared = if s.shared() {
         Some(Prepared::new(&s.pair(0), &s.contact(0)).map_err(|e| lookup_error(e, &[]))?)
@@ -772,6 +813,9 @@ fn rebound_3d<'py>(
         REBOUND3.len(),
         CHUNK,
         |i, r| {
+            if each_e_n {
+                s.check_restitution(t, i)?;
+            }
             let answer = match &prepared {
                 Some(k) => t.rebound_3d_prepared(k, &incident(i))?,
                 None => t.rebound_3d(&s.pair(i), &s.contact(i), &incident(i))?,
@@ -784,7 +828,7 @@ fn rebound_3d<'py>(
 }
 
 /// Columns of a 2-D rebound row.
-const REBOUND2: [&str; 18] = [
+const REBOUND2: [&str; 19] = [
     "v_x",
     "v_z",
     "omega",
@@ -799,6 +843,7 @@ const REBOUND2: [&str; 18] = [
     "slip_after",
     "tangential_impulse",
     "normal_impulse",
+    "e_n",
     "incidence_angle",
     "rebound_angle_centre",
     "rebound_angle_contact",
@@ -827,6 +872,7 @@ fn write2(a: &Answer<Rebound>, r: &mut [f64]) {
         b.slip_after,
         b.tangential_impulse,
         b.normal_impulse,
+        b.e_n,
         b.incidence_angle,
         b.rebound_angle_centre,
         b.rebound_angle_contact,
@@ -871,7 +917,7 @@ fn states<'a>(
 
 /// 2-D rebounds (in the plane of impact) of `rows` impacts; returns `(rows, len(REBOUND2))`.
 #[pyfunction]
-#[pyo3(signature = (table, rows, shape, motion, sphere, other, gamma, materials, friction, clamp))]
+#[pyo3(signature = (table, rows, shape, motion, sphere, other, gamma, materials, friction, e_n, clamp))]
 #[allow(clippy::too_many_arguments)]
 fn rebound_2d<'py>(
     py: Python<'py>,
@@ -884,17 +930,36 @@ fn rebound_2d<'py>(
     gamma: Option<PyReadonlyArray1<'_, f64>>,
     materials: Vec<PyReadonlyArray1<'_, f64>>,
     friction: PyReadonlyArray1<'_, f64>,
+    e_n: PyReadonlyArray1<'_, f64>,
     clamp: bool,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let s = setup(rows, &sphere, &other, &gamma, &materials, &friction, clamp)?;
+    let s = setup(
+        rows,
+        &sphere,
+        &other,
+        &gamma,
+        &materials,
+        &friction,
+        Some(&e_n),
+        clamp,
+    )?;
     let incident = states(rows, &motion)?;
     let t = &table.inner;
+    // One e_n for every row: check it once (no index), else row by row.
+    let each_e_n = !s.restitution.shared();
+    if !each_e_n {
+        s.check_restitution(t, 0)
+            .map_err(|e| lookup_error(e, &[]))?;
+    }
     new_rows(
         py,
         rows,
         REBOUND2.len(),
         CHUNK,
         |i, r| {
+            if each_e_n {
+                s.check_restitution(t, i)?;
+            }
             write2(&t.rebound(&s.pair(i), &s.contact(i), &incident(i))?, r);
             Ok::<(), LookupError>(())
         },
@@ -960,7 +1025,9 @@ fn groups<'py>(
     materials: Vec<PyReadonlyArray1<'_, f64>>,
     friction: PyReadonlyArray1<'_, f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let s = setup(rows, &sphere, &other, &None, &materials, &friction, false)?;
+    let s = setup(
+        rows, &sphere, &other, &None, &materials, &friction, None, false,
+    )?;
     let incident = states(rows, &motion)?;
     new_rows(
         py,
@@ -1056,7 +1123,9 @@ fn simulate<'py>(
     tol: f64,
     relaxation_time: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let s = setup(1, &sphere, &other, &None, &materials, &friction, false)?;
+    let s = setup(
+        1, &sphere, &other, &None, &materials, &friction, None, false,
+    )?;
     let incident = states(1, &motion)?;
     let imp = physical(&s, &incident(0), 0).with_relaxation_time(relaxation_time);
     let out = py

@@ -16,6 +16,8 @@ TABLES = ROOT / "tables"
 SWEEP = ROOT / "target" / "release" / "sweep"
 READER = ROOT / "scripts" / "read_table.py"
 SHIPPED = ("full", "quick", "isotropic")
+#: The shipped table with a normal-restitution axis (e_n in [0.5, 1], Kelvin–Voigt law).
+DISSIPATIVE = TABLES / "dissipative-demo.h5"
 
 
 # ---------------------------------------------------------------------------------------------

@@ -17,7 +17,7 @@ from typing import Dict
 import pytest
 
 import oblique
-from _oblique_helpers import READER, ROOT, SHIPPED, SWEEP, TABLES
+from _oblique_helpers import DISSIPATIVE, READER, ROOT, SHIPPED, SWEEP, TABLES
 
 # ---------------------------------------------------------------------------------------------
 # Fixtures
@@ -45,6 +45,13 @@ def tables(table_paths) -> Dict[str, oblique.Table]:
 @pytest.fixture(scope="session")
 def full(tables) -> oblique.Table:
     return tables["full"]
+
+
+@pytest.fixture(scope="session")
+def dissipative() -> oblique.Table:
+    """tables/dissipative-demo.h5: P(γ, α, e_n) for 0.5 <= e_n <= 1 (schema 4)."""
+    assert DISSIPATIVE.is_file(), f"shipped table {DISSIPATIVE} is missing"
+    return oblique.Table(DISSIPATIVE)
 
 
 @pytest.fixture(scope="session")

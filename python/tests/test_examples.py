@@ -7,7 +7,7 @@ import os
 import subprocess
 import sys
 
-from _oblique_helpers import ROOT
+from _oblique_helpers import DISSIPATIVE, ROOT
 
 
 def test_seed000_example_draws_the_figure(tmp_path):
@@ -40,3 +40,20 @@ def test_quickstart_example_runs(tmp_path):
     )
     assert r.returncode == 0, r.stderr
     assert "simulated P(1.754, 0.3)" in r.stdout
+
+
+def test_dissipative_rebound_example_runs(tmp_path):
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "python/examples/dissipative_rebound.py"), str(DISSIPATIVE)],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=120,
+    )
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("law kelvin-voigt, e_n in [0.5, 1.0]")
+    # The rows of the rebound table: v_z after = −e_n v_z0, with v_z0 = 3.9 cos 30°.
+    rows = [ln.split() for ln in r.stdout.splitlines()[-3:]]
+    for row in rows:
+        e_n, v_z = float(row[0]), float(row[4])
+        assert abs(v_z + e_n * 3.9 * 3**0.5 / 2) < 1e-5
