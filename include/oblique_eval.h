@@ -47,9 +47,8 @@
  * logarithm but not always rounded as the host's libm, differs: in partial slip, where P then
  * differs in the last bits only, by at most 2e-15 (on an NVIDIA H200 over 2^24 random points:
  * 1.2e-15, about 1 answer in 4000 not the host's bits; a curve's P 3.3e-16; on the host with
- * half of the logs off by an ulp: 2e-15; a table with an e_n axis also calls asin there, which
- * CUDA likewise computes to within 1 ulp: oblq_p_e on an H200 over 2^24 random points of a small
- * such table, every status the host's, P within 6.7e-16, 1 answer in 46 not the host's bits).
+ * half of the logs off by an ulp: 2e-15; oblq_p_e of a table with an e_n axis likewise: log is
+ * its only call that CUDA may round otherwise).
  * A 3-D rebound carries that difference into the fields computed from P: over 2^24 random
  * sphere-sphere impacts (H200) every field was within 4.3e-14 of the host's, relative to the
  * field's size where that exceeds 1 and absolute below, i.e. |device - host| <= 4.3e-14
@@ -755,14 +754,14 @@ OBLQ_FN int oblq__region_e(double gamma, double alpha, double e_n) {
 /* The full-slip line at e_n: P = 1 - (7/2)(1 + e_n) alpha. */
 OBLQ_FN double oblq__line_e(double alpha, double e_n) { return 1.0 - 3.5 * (1.0 + e_n) * alpha; }
 
-/* The partial-slip coordinate of a table with an e_n axis: c = (2/pi) asin(sqrt(l)),
+/* The partial-slip coordinate of a table with an e_n axis: c = 1 - sqrt(1 - sqrt(l)),
    l = ln(alpha/alpha_c1)/ln(alpha_c2/alpha_c1) clamped to [0, 1], with
    alpha/alpha_c1 = 7 alpha h/(2 gamma^2) and alpha_c2/alpha_c1 = h = gamma^2(1 + e_n) - e_n. */
 OBLQ_FN double oblq__partial_coord_e(double gamma, double alpha, double e_n) {
     double g2 = gamma * gamma;
     double ratio = g2 * (1.0 + e_n) - e_n;
     double l = log(7.0 * alpha * ratio / (2.0 * g2)) / log(ratio);
-    return 0.636619772367581343075535053490057448 * asin(sqrt(oblq__clamp(l, 0.0, 1.0)));
+    return 1.0 - sqrt(1.0 - sqrt(oblq__clamp(l, 0.0, 1.0)));
 }
 
 /* Steps 6-9 on a patch with an e_n axis at (gamma, c, x_e): the octree's leaf, then the tensor

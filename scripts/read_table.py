@@ -147,10 +147,8 @@ def _clamp01(v):
 # ---------------------------------------------------------------------------------------------
 # The rule of a table with an e_n axis (schema v4), written with the operations, in the order,
 # that docs/table-format.md ("Schema v4", "The same bits") states, so that P has the bits of
-# every other reader: closed-form cubic weights, sums from left to right, libm's log and asin
-# (Python's math module calls the C library's, as Rust does on Linux).
-
-FRAC_2_PI = 0.6366197723675814  # 2/pi rounded to the nearest double
+# every other reader: closed-form cubic weights, sums from left to right, libm's log (Python's
+# math module calls the C library's, as Rust does on Linux; sqrt is exact everywhere).
 
 
 def alpha_c1_e(gamma, e_n):
@@ -171,12 +169,12 @@ def full_slip_e(alpha, e_n):
 
 
 def partial_coord_e(gamma, alpha, e_n):
-    """c = (2/pi) asin(sqrt(l)), l = ln(alpha/alpha_c1)/ln(alpha_c2/alpha_c1) clamped to [0, 1],
+    """c = 1 - sqrt(1 - sqrt(l)), l = ln(alpha/alpha_c1)/ln(alpha_c2/alpha_c1) clamped to [0, 1],
     with alpha/alpha_c1 = 7 alpha h/(2 gamma^2) and alpha_c2/alpha_c1 = h = gamma^2(1+e_n) - e_n."""
     g2 = gamma * gamma
     ratio = g2 * (1.0 + e_n) - e_n
     ell = math.log(7.0 * alpha * ratio / (2.0 * g2)) / math.log(ratio)
-    return FRAC_2_PI * math.asin(math.sqrt(_clamp01(ell)))
+    return 1.0 - math.sqrt(1.0 - math.sqrt(_clamp01(ell)))
 
 
 def stick_coord(gamma, alpha, alpha_max):

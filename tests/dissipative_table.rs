@@ -236,15 +236,9 @@ fn e_n_outside_a_table_is_refused_by_name() {
 }
 
 #[test]
-fn a_curve_of_a_table_with_an_e_n_axis_is_refused() {
+fn the_library_answers_inside_the_e_n_range_only() {
     let table = oblique_lookup::Table::open(table()).expect("open");
     assert_eq!(table.restitution(), Some((0.7, 1.0)));
-    let e = table
-        .curve(1.4, oblique_lookup::OutOfDomain::Error)
-        .map(|_| ())
-        .expect_err("no curves with an e_n axis");
-    assert!(e.to_string().contains("e_n axis"), "{e}");
-    // The library answers what the CLI does.
     let p = table.p_e(1.45, 0.3, 0.75).expect("inside");
     assert!(p.abs() <= 1.0);
     assert!(table.p_e(1.45, 0.3, 0.69).is_err());
@@ -392,4 +386,84 @@ fn the_indexed_path_gives_the_bits_of_the_rule() {
                 .to_bits()
         );
     }
+}
+
+/// A curve at fixed `(γ, e_n)` answers what `Table::p_e` answers (to 1e-14, as the elastic
+/// curves do), on the shipped table with an `e_n` axis, also when `γ` is clamped; its `e_n`
+/// must be the table's and the prepared rebound's.
+#[test]
+fn curves_at_fixed_gamma_and_e_n_answer_as_p_e() {
+    use oblique_lookup::{OutOfDomain, Table};
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/dissipative-demo.h5");
+    let table = Table::open(path).expect("demo table");
+    let (lo, hi) = table.restitution().expect("an e_n axis");
+    let mut worst = 0.0f64;
+    let mut count = 0;
+    for (gamma, outside) in [
+        (1.2, OutOfDomain::Error),
+        (1.754, OutOfDomain::Error),
+        (1.9999, OutOfDomain::Error),
+        (2.3, OutOfDomain::Clamp),
+    ] {
+        for e_n in [lo, 0.63, 0.8, 0.97, hi] {
+            let curve = table.curve_e(gamma, e_n, outside).expect("curve");
+            assert_eq!(curve.e_n(), e_n);
+            for j in 0..4000 {
+                let alpha = if j == 0 {
+                    f64::INFINITY
+                } else {
+                    10f64.powf(-2.5 + 4.0 * j as f64 / 4000.0)
+                };
+                let want = table.p_e_with(gamma, alpha, e_n, outside).expect("p_e");
+                let got = curve.p(alpha).expect("curve p");
+                worst = worst.max((got - want).abs());
+                count += 1;
+            }
+        }
+    }
+    assert!(worst <= 1e-14, "worst {worst:e} over {count} points");
+    // Outside the range, and an elastic table, refuse e_n by name.
+    let e = table
+        .curve_e(1.754, 0.4, OutOfDomain::Error)
+        .map(|_| ())
+        .expect_err("e_n below the range");
+    assert!(e.to_string().contains("e_n"), "{e}");
+    let full = Table::open(FULL).expect("full");
+    assert!(full.curve_e(1.754, 0.8, OutOfDomain::Error).is_err());
+    assert!(full.curve_e(1.754, 1.0, OutOfDomain::Error).is_ok());
+    // A prepared pair's rebound through its curve: the curve's e_n must be the contact's.
+    use oblique_lookup::rebound::{Body, Incident3, Motion3, Pair};
+    use oblique_lookup::{Contact, Prepared};
+    let pair = Pair {
+        sphere: Body {
+            mass: 2.4e-4,
+            radius: 2.5e-3,
+            kappa: 0.4,
+        },
+        other: None,
+    };
+    let contact = Contact::with_gamma(1.754, 0.25).with_restitution(0.8);
+    let prepared = Prepared::new(&pair, &contact).expect("prepared");
+    let inc = Incident3 {
+        sphere: Motion3 {
+            velocity: [0.7, 0.1, 1.2],
+            spin: [10.0, 40.0, 0.0],
+        },
+        other: Motion3::default(),
+        normal: [0.0, 0.0, 1.0],
+    };
+    let direct = table.rebound_3d_prepared(&prepared, &inc).expect("direct");
+    let curve = table
+        .curve_e(1.754, 0.8, OutOfDomain::Error)
+        .expect("curve");
+    let via = table
+        .rebound_3d_curve(&prepared, &curve, &inc)
+        .expect("via the curve");
+    assert!((via.rebound.p - direct.rebound.p).abs() <= 1e-14);
+    let elastic_curve = table.curve(1.754, OutOfDomain::Error).expect("e_n = 1");
+    let e = table
+        .rebound_3d_curve(&prepared, &elastic_curve, &inc)
+        .map(|_| ())
+        .expect_err("a curve of e_n = 1 for a contact of e_n = 0.8");
+    assert!(e.to_string().contains("e_n = 0.8"), "{e}");
 }

@@ -18,7 +18,10 @@
 
 use crate::{LookupError, Table};
 use oblique_table::export::{CurveData, CurvePiece};
-use oblique_table::surface::{alpha_c2, bound_p, linear_limit, stick_scale, Patch, Warp};
+use oblique_table::surface::{
+    alpha_c2, bound_p, full_slip_line, linear_limit_dissipative, stick_scale, PartialMap, Patch,
+    Warp,
+};
 use oblique_table::surface::{alpha_outside, bad_alpha, OutOfDomain, PatchId, Surface};
 
 /// Largest number of intervals of one patch's curve (`2²⁰`, 32 MiB of coefficients); a line
@@ -40,10 +43,12 @@ struct Piecewise {
 }
 
 impl Piecewise {
-    /// The restriction of `patch`'s interpolant to `γ = gamma` (inside the patch's γ range).
-    fn new(patch: &Patch, gamma: f64) -> Result<Piecewise, LookupError> {
+    /// The restriction of `patch`'s interpolant to `γ = gamma` (inside the patch's γ range),
+    /// and to `e_n` for a patch with an `e_n` axis (inside its range).
+    fn new(patch: &Patch, gamma: f64, e_n: f64) -> Result<Piecewise, LookupError> {
         let m = patch.leaf_intervals();
-        let depth = line_depth(patch, gamma);
+        let xe = patch.restitution().map(|r| r.x(e_n));
+        let depth = line_depth(patch, gamma, xe);
         let n = patch
             .blocks_coord()
             .checked_mul(m)
@@ -65,7 +70,13 @@ impl Piecewise {
         let nf = n as f64;
         let coef = (0..n)
             .map(|i| {
-                let v = S.map(|s| patch.tensor(gamma, (i as f64 + 0.5 + s) / nf, k));
+                let v = S.map(|s| {
+                    let c = (i as f64 + 0.5 + s) / nf;
+                    match xe {
+                        Some(xe) => patch.tensor3(gamma, c, xe, k),
+                        None => patch.tensor(gamma, c, k),
+                    }
+                });
                 cubic_through(&S, &v)
             })
             .collect();
@@ -95,26 +106,42 @@ impl Piecewise {
     }
 }
 
-/// Depth of the deepest leaf of `patch` crossed by the line `γ = gamma`, following the rule's
-/// descent along γ (which does not depend on `c`).
-fn line_depth(patch: &Patch, gamma: f64) -> u32 {
+/// Depth of the deepest leaf of `patch` crossed by the line `γ = gamma` (and `x_e = xe` for a
+/// patch with an `e_n` axis), following the rule's descent along γ (and `e_n`), which does not
+/// depend on `c`.
+fn line_depth(patch: &Patch, gamma: f64, xe: Option<f64>) -> u32 {
     let xg = (gamma - patch.gamma_lo()) / (patch.gamma_hi() - patch.gamma_lo());
     let (a, fg) = oblique_table::surface::locate(xg, patch.blocks_gamma());
-    let mut stack: Vec<(usize, f64, u32)> = (0..patch.blocks_coord())
-        .map(|b| (a * patch.blocks_coord() + b, fg, 0))
+    let be = patch.blocks_e_n();
+    let (e, fe) = match xe {
+        Some(x) => oblique_table::surface::locate(x, be),
+        None => (0, 0.0),
+    };
+    let mut stack: Vec<(usize, f64, f64, u32)> = (0..patch.blocks_coord())
+        .map(|b| ((a * patch.blocks_coord() + b) * be + e, fg, fe, 0))
         .collect();
     let mut deepest = 0;
-    while let Some((cell, fg, d)) = stack.pop() {
+    while let Some((cell, fg, fe, d)) = stack.pop() {
         let t = patch.tree()[cell];
         if t < 0 {
             deepest = deepest.max(d);
             continue;
         }
-        let f = 2.0 * fg;
-        let qg = usize::from(f >= 1.0);
-        let f = f - qg as f64;
-        stack.push((t as usize + 2 * qg, f, d + 1));
-        stack.push((t as usize + 2 * qg + 1, f, d + 1));
+        let half = |f: f64| {
+            let f = 2.0 * f;
+            let q = usize::from(f >= 1.0);
+            (q, f - q as f64)
+        };
+        let (qg, fg) = half(fg);
+        let (qe, fe) = if xe.is_some() { half(fe) } else { (0, fe) };
+        // Both halves along c: the children `2·q_γ + q_c`, or `4·q_γ + 2·q_c + q_e`.
+        let (first, step) = if xe.is_some() {
+            (t as usize + 4 * qg + qe, 2)
+        } else {
+            (t as usize + 2 * qg, 1)
+        };
+        stack.push((first, fg, fe, d + 1));
+        stack.push((first + step, fg, fe, d + 1));
     }
     deepest
 }
@@ -148,15 +175,20 @@ pub struct Curve {
     gamma: f64,
     outside: OutOfDomain,
     alpha_max: f64,
-    /// `1 − 7α` up to here: at the requested `γ` (the rule's first test, for any `γ`) and at
-    /// the one used (its test after clamping).
+    /// Normal restitution of the line (1 for an elastic curve).
+    e_n: f64,
+    /// The partial-slip coordinate's map ([`Patch::partial_map`]).
+    map: PartialMap,
+    /// `1 − (7/2)(1 + e_n)α` up to here: at the requested `γ` (the rule's first test, for any
+    /// `γ`) and at the one used (its test after clamping).
     alpha_lin_requested: f64,
     alpha_lin: f64,
     /// Partial slip below, stick above (`γ > 1`).
     alpha_c2: f64,
     /// `γ > 1`: the line crosses `partial_high` and `stick_high`; else `stick_low`.
     high: bool,
-    /// The rule's `2γ²`, `2γ² − 1` and `ln(2γ² − 1)` (partial-slip coordinate).
+    /// The rule's `2γ²`, `α_c2/α_c1` (`2γ² − 1`, or `γ²(1 + e_n) − e_n`) and its log
+    /// (partial-slip coordinate).
     g2: f64,
     ratio: f64,
     ln_ratio: f64,
@@ -176,20 +208,13 @@ impl Curve {
     pub(crate) fn new(
         surface: &Surface,
         gamma: f64,
+        e_n: f64,
         outside: OutOfDomain,
     ) -> Result<Curve, LookupError> {
         if !(gamma.is_finite() && gamma > 0.0) {
             return Err(oblique_table::surface::bad_gamma(gamma));
         }
-        if let Some((lo, hi)) = surface.restitution() {
-            return Err(LookupError::Query {
-                name: "table e_n axis",
-                value: lo.min(hi),
-                allowed: "absent (an elastic table) for a curve; query a table with an e_n axis \
-                          with Table::p_e"
-                    .into(),
-            });
-        }
+        surface.check_e_n(e_n)?;
         if surface.stencil() != 4 {
             // Along a line the rule is then a polynomial of another degree.
             return Err(LookupError::Query {
@@ -205,8 +230,8 @@ impl Curve {
                     let clamped = gamma.clamp(surface.gamma_min(), surface.gamma_max());
                     return Ok(Curve {
                         requested: gamma,
-                        alpha_lin_requested: linear_limit(gamma),
-                        ..Curve::new(surface, clamped, outside)?
+                        alpha_lin_requested: linear_limit_dissipative(gamma, e_n),
+                        ..Curve::new(surface, clamped, e_n, outside)?
                     });
                 }
             }
@@ -220,10 +245,16 @@ impl Curve {
         } else {
             (None, surface.patch_by_id(PatchId::StickLow))
         };
-        let piecewise = |p: Option<&Patch>| p.map(|p| Piecewise::new(p, gamma)).transpose();
-        // The same operations as `surface::partial_coord` and `surface::stick_coord`.
-        let g2 = 2.0 * gamma * gamma;
-        let ratio = g2 - 1.0;
+        let piecewise = |p: Option<&Patch>| p.map(|p| Piecewise::new(p, gamma, e_n)).transpose();
+        // The same operations as `surface::partial_coord` (an elastic table),
+        // `surface::partial_coord_e` (a table with an e_n axis) and `surface::stick_coord`.
+        let (map, g2, ratio) = if surface.restitution().is_some() {
+            let sq = gamma * gamma;
+            (PartialMap::SqrtBoth, 2.0 * sq, sq * (1.0 + e_n) - e_n)
+        } else {
+            let g2 = 2.0 * gamma * gamma;
+            (PartialMap::SqrtEnd, g2, g2 - 1.0)
+        };
         let stick_c2 = gamma * gamma * (2.0 / 7.0);
         let rho_c2 = stick_scale(gamma) * stick_c2;
         let s_max = surface.alpha_max().is_finite().then(|| {
@@ -235,8 +266,10 @@ impl Curve {
             gamma,
             outside,
             alpha_max: surface.alpha_max(),
-            alpha_lin_requested: linear_limit(gamma),
-            alpha_lin: linear_limit(gamma),
+            e_n,
+            map,
+            alpha_lin_requested: linear_limit_dissipative(gamma, e_n),
+            alpha_lin: linear_limit_dissipative(gamma, e_n),
             alpha_c2: alpha_c2(gamma),
             high,
             g2,
@@ -266,6 +299,11 @@ impl Curve {
         self.requested == gamma && self.outside == outside
     }
 
+    /// The normal restitution `e_n` of the curve (1 for an elastic one).
+    pub fn e_n(&self) -> f64 {
+        self.e_n
+    }
+
     /// `P(γ, α)` (dimensionless) for `α ≥ 0` (`∞`: no slip). `α > alpha_max` is refused or
     /// clamped as the curve's [`OutOfDomain`] says; a NaN or negative `α` is an error.
     #[inline]
@@ -276,7 +314,7 @@ impl Curve {
         // The rule's order: the line at the requested point, then the domain, then (after
         // clamping) the line again at the point used.
         if alpha <= self.alpha_lin_requested {
-            return Ok(1.0 - 7.0 * alpha);
+            return Ok(full_slip_line(alpha, self.e_n));
         }
         let alpha = if alpha > self.alpha_max {
             match self.outside {
@@ -287,7 +325,7 @@ impl Curve {
             alpha
         };
         if alpha <= self.alpha_lin {
-            return Ok(1.0 - 7.0 * alpha);
+            return Ok(full_slip_line(alpha, self.e_n));
         }
         Ok(self.eval_above_line(alpha))
     }
@@ -296,12 +334,15 @@ impl Curve {
     #[inline(always)]
     fn eval_above_line(&self, alpha: f64) -> f64 {
         if self.high && alpha < self.alpha_c2 {
-            let Some(p) = &self.partial else { return -1.0 };
+            let Some(p) = &self.partial else {
+                return -self.e_n;
+            };
             let l = (7.0 * alpha * self.ratio / self.g2).ln() / self.ln_ratio;
-            let c = 1.0 - (1.0 - l).max(0.0).sqrt();
-            p.eval(c.clamp(0.0, 1.0))
+            p.eval(self.map.c_of_l(l).clamp(0.0, 1.0))
         } else {
-            let Some(p) = &self.stick else { return -1.0 };
+            let Some(p) = &self.stick else {
+                return -self.e_n;
+            };
             let c = if alpha.is_infinite() {
                 1.0
             } else {
@@ -327,7 +368,8 @@ impl Curve {
     /// `None` for a curve whose `γ` was clamped into the domain (the export holds curves of
     /// `γ` inside it).
     pub fn export_data(&self) -> Option<CurveData> {
-        if self.requested != self.gamma {
+        // The export holds elastic curves only.
+        if self.requested != self.gamma || self.map != PartialMap::SqrtEnd {
             return None;
         }
         let piece = |p: &Option<Piecewise>| {
@@ -370,7 +412,19 @@ impl Table {
     /// sets what the curve's queries do with `α > alpha_max`. Costs one evaluation of the rule
     /// per node interval on the line (milliseconds) and up to a few MB.
     pub fn curve(&self, gamma: f64, outside: OutOfDomain) -> Result<Curve, LookupError> {
-        Curve::new(self.surface(), gamma, outside)
+        Curve::new(self.surface(), gamma, 1.0, outside)
+    }
+
+    /// `P(α)` at one fixed `γ` and normal restitution `e_n` ([`Table::curve`] of a table with
+    /// an `e_n` axis; `e_n` must be in its range, never clamped; an elastic table answers
+    /// `e_n = 1` only).
+    pub fn curve_e(
+        &self,
+        gamma: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+    ) -> Result<Curve, LookupError> {
+        Curve::new(self.surface(), gamma, e_n, outside)
     }
 }
 

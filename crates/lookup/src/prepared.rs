@@ -116,9 +116,10 @@ fn curve_mismatch(curve: &Curve, prepared: &Prepared) -> LookupError {
         name: "curve gamma",
         value: curve.requested_gamma(),
         allowed: format!(
-            "the prepared pair's gamma = {} with its out-of-domain choice {:?}: build the curve \
-             with table.curve(prepared.gamma(), prepared.contact().outside)",
-            prepared.gamma, prepared.contact.outside
+            "the prepared pair's gamma = {} and e_n = {} with its out-of-domain choice {:?}: \
+             build the curve with table.curve_e(prepared.gamma(), prepared.contact().restitution, \
+             prepared.contact().outside)",
+            prepared.gamma, prepared.contact.restitution, prepared.contact.outside
         ),
     }
 }
@@ -166,7 +167,9 @@ impl Table {
         curve: &Curve,
         s: &Incident3,
     ) -> Result<Answer<Rebound3>, LookupError> {
-        if !curve.matches(prepared.gamma, prepared.contact.outside) {
+        if !curve.matches(prepared.gamma, prepared.contact.outside)
+            || curve.e_n() != prepared.contact.restitution
+        {
             return Err(curve_mismatch(curve, prepared));
         }
         self.rebound_3d_fast(prepared, s, |alpha| curve.p(alpha))

@@ -590,7 +590,7 @@ impl Layout<'_> {
     /// The partial-slip coordinate's map ([`Patch::partial_map`]).
     fn partial_map(&self) -> PartialMap {
         if self.restitution.is_some() {
-            PartialMap::Arcsine
+            PartialMap::SqrtBoth
         } else {
             PartialMap::SqrtEnd
         }
@@ -1256,7 +1256,7 @@ fn check_points(cfg: &Config) -> Vec<Point> {
                 None => 1.0,
             };
             let map = if range.is_some() {
-                PartialMap::Arcsine
+                PartialMap::SqrtBoth
             } else {
                 PartialMap::SqrtEnd
             };

@@ -120,11 +120,12 @@ pub enum PartialMap {
     /// `c = 1 − √(1 − ℓ)` (an elastic table): graded towards `α_c2`, where `P` goes like
     /// `√(1 − ℓ)`; at `α_c1` the elastic `P` leaves the full-slip line like `(α − α_c1)²`.
     SqrtEnd,
-    /// `c = (2/π) asin(√ℓ)` (a table with an `e_n` axis): graded at both ends, because a
+    /// `c = 1 − √(1 − √ℓ)` (a table with an `e_n` axis): graded at both ends, because a
     /// dissipative impact leaves the full-slip line like `(α − α_c1)^{3/2}` (measured: the
-    /// local exponent falls from 1.85 towards 1.5 as `α → α_c1` at `e_n = 0.95`), which is a
-    /// polynomial in `√ℓ`.
-    Arcsine,
+    /// local exponent falls from 1.85 towards 1.5 as `α → α_c1` at `e_n = 0.95`), which is
+    /// smooth in `√ℓ`; near `α_c2` it is smooth in `√(1 − ℓ)` as the elastic map is. (The
+    /// balanced `(2/π) asin(√ℓ)` needs 15 % fewer nodes but an `asin` in every query.)
+    SqrtBoth,
 }
 
 impl PartialMap {
@@ -133,7 +134,7 @@ impl PartialMap {
     pub fn c_of_l(self, l: f64) -> f64 {
         match self {
             PartialMap::SqrtEnd => 1.0 - (1.0 - l).max(0.0).sqrt(),
-            PartialMap::Arcsine => std::f64::consts::FRAC_2_PI * l.clamp(0.0, 1.0).sqrt().asin(),
+            PartialMap::SqrtBoth => 1.0 - (1.0 - l.clamp(0.0, 1.0).sqrt()).sqrt(),
         }
     }
 
@@ -145,8 +146,9 @@ impl PartialMap {
                 let q = 1.0 - c;
                 1.0 - q * q
             }
-            PartialMap::Arcsine => {
-                let s = (std::f64::consts::FRAC_PI_2 * c).sin();
+            PartialMap::SqrtBoth => {
+                let q = 1.0 - c;
+                let s = 1.0 - q * q;
                 s * s
             }
         }
@@ -854,11 +856,11 @@ impl Patch {
         }
     }
 
-    /// The partial-slip coordinate's map: [`PartialMap::Arcsine`] with an `e_n` axis,
+    /// The partial-slip coordinate's map: [`PartialMap::SqrtBoth`] with an `e_n` axis,
     /// [`PartialMap::SqrtEnd`] without.
     pub fn partial_map(&self) -> PartialMap {
         if self.restitution.is_some() {
-            PartialMap::Arcsine
+            PartialMap::SqrtBoth
         } else {
             PartialMap::SqrtEnd
         }
@@ -1870,14 +1872,14 @@ pub struct Axis {
 }
 
 /// [`PatchKind::coord_at`] of the partial-slip patch of a table with an `e_n` axis
-/// ([`PartialMap::Arcsine`]) at normal restitution `e_n`: `α/α_c1 = 7α h/(2γ²)` and
+/// ([`PartialMap::SqrtBoth`]) at normal restitution `e_n`: `α/α_c1 = 7α h/(2γ²)` and
 /// `α_c2/α_c1 = h`, `h = γ²(1 + e_n) − e_n`.
 #[inline(always)]
 pub fn partial_coord_e(gamma: f64, alpha: f64, e_n: f64) -> f64 {
     let g2 = gamma * gamma;
     let ratio = g2 * (1.0 + e_n) - e_n;
     let l = (7.0 * alpha * ratio / (2.0 * g2)).ln() / ratio.ln();
-    PartialMap::Arcsine.c_of_l(l)
+    PartialMap::SqrtBoth.c_of_l(l)
 }
 
 /// [`PatchKind::coord`] of the partial-slip patch: `α/α_c1 = 7α(2γ² − 1)/(2γ²)` and
