@@ -532,6 +532,13 @@ class Table:
                     "with an e_n axis with the cubic stencil (4) only")
             if "warp" in g:
                 raise self._invalid(f"{where}: a patch with an e_n axis cannot have a warp")
+            if kind == "partial-slip":
+                coord = g.attrs.get("coordinate")
+                coord = coord.decode() if isinstance(coord, bytes) else coord
+                if coord != "1-sqrt(1-sqrt(l))":
+                    raise self._invalid(
+                        f"{where}: attribute 'coordinate' = {coord!r}: this reader understands "
+                        "'1-sqrt(1-sqrt(l))'")
         dims = 2 if be is None else 3
         if "tree" not in g:
             raise self._invalid(f"{where}: missing dataset 'tree'")

@@ -467,3 +467,50 @@ fn curves_at_fixed_gamma_and_e_n_answer_as_p_e() {
         .expect_err("a curve of e_n = 1 for a contact of e_n = 0.8");
     assert!(e.to_string().contains("e_n = 0.8"), "{e}");
 }
+
+/// The partial-slip patch names its coordinate's map: a table whose map is another (an older
+/// build's `(2/π) asin(√ℓ)`) is refused by the library and by the reference reader, never read
+/// with this map.
+#[test]
+fn a_table_with_another_partial_slip_map_is_refused() {
+    let bad = common::subdir("dissipative-map").join("asin.h5");
+    std::fs::copy(table(), &bad).expect("copy");
+    let out = Command::new("python3")
+        .args([
+            "-c",
+            "import h5py, sys; f = h5py.File(sys.argv[1], 'r+'); \
+             f['patches/partial_high'].attrs['coordinate'] = '(2/pi)asin(sqrt(l))'",
+            bad.to_str().expect("path"),
+        ])
+        .output()
+        .expect("python3 with h5py");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    oblique_table::write::seal(&bad).expect("seal again");
+    let e = oblique_lookup::Table::open(&bad)
+        .map(|_| ())
+        .expect_err("another map");
+    assert!(e.to_string().contains("'coordinate'"), "{e}");
+    let reader = Command::new("python3")
+        .args([
+            concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/read_table.py"),
+            bad.to_str().expect("path"),
+            "--gamma",
+            "1.4",
+            "--alpha",
+            "0.3",
+            "--e-n",
+            "0.8",
+        ])
+        .output()
+        .expect("the reference reader");
+    assert!(!reader.status.success());
+    assert!(
+        String::from_utf8_lossy(&reader.stderr).contains("'coordinate'"),
+        "{}",
+        String::from_utf8_lossy(&reader.stderr)
+    );
+}

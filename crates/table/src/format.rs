@@ -32,6 +32,12 @@ pub const ATTR_E_N_MAX: &str = "e_n_max";
 /// Root attribute (schema 4, with an `e_n` axis): the contact law of the node values
 /// (`kelvin-voigt`).
 pub const ATTR_LAW: &str = "law";
+/// Patch attribute (schema 4, partial-slip patch with an `e_n` axis): the map from
+/// `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)` to the patch coordinate; the one value readers accept is
+/// [`PARTIAL_MAP_SQRT_BOTH`].
+pub const ATTR_COORDINATE: &str = "coordinate";
+/// Value of [`ATTR_COORDINATE`]: `c = 1 − √(1 − √ℓ)` ([`crate::surface::PartialMap::SqrtBoth`]).
+pub const PARTIAL_MAP_SQRT_BOTH: &str = "1-sqrt(1-sqrt(l))";
 /// Patch attribute (schema 4, with an `e_n` axis): number of root cells along `e_n`.
 pub const ATTR_BLOCKS_E_N: &str = "blocks_e_n";
 /// Node dataset (schema 4, with an `e_n` axis; `[leaves, m+1, m+1, m+1]`): `e_n` of every

@@ -228,6 +228,18 @@ impl Reader<'_> {
         }
         let restitution = match e_range {
             Some((lo, hi)) => {
+                if kind == PatchKind::PartialSlip {
+                    // The coordinate's map is named: a table built with another one is refused,
+                    // never read with this one.
+                    let map = self.attr_str(&g, ATTR_COORDINATE)?;
+                    if map != PARTIAL_MAP_SQRT_BOTH {
+                        return Err(self.invalid(format!(
+                            "patch '{name}': attribute '{ATTR_COORDINATE}' = '{map}': this reader \
+                             understands '{PARTIAL_MAP_SQRT_BOTH}'; rebuild the table with this \
+                             engine"
+                        )));
+                    }
+                }
                 let be = self.count_attr(&g, ATTR_BLOCKS_E_N, 1 << 16)?;
                 Some(
                     RestitutionAxis::new(lo, hi, be)

@@ -430,6 +430,9 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.attr_f64(&g, ATTR_LEAF_INTERVALS, p.leaf_intervals() as f64)?;
         if let Some(r) = p.restitution() {
             w.attr_f64(&g, ATTR_BLOCKS_E_N, r.blocks() as f64)?;
+            if p.kind() == PatchKind::PartialSlip {
+                w.attr_str(&g, ATTR_COORDINATE, PARTIAL_MAP_SQRT_BOTH)?;
+            }
         }
         let leaves = [bp.leaf_error.len()];
         w.ints(&g, DS_TREE, p.tree(), &[p.tree().len()])?;
