@@ -2,6 +2,7 @@
 
 pub mod accuracy;
 pub mod export;
+pub mod gamma;
 pub mod impact;
 pub mod inspect;
 pub mod kinks;

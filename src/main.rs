@@ -21,9 +21,15 @@ use cmd::{accuracy as accuracy_cmd, plot as plot_cmd, query as query_cmd, scene 
     long_about = "Oblique elastic impacts with friction by the method of dimensionality reduction \
 (Hertz normal contact, Cattaneo-Mindlin partial slip).\n\n\
 Every rebound of a sphere on a half-space is decided by one function P(gamma, alpha):\n  \
-gamma = sqrt((7/2) G*/E*)        material group (1.52 < gamma < 2.16 for one isotropic material)\n  \
-alpha = mu v_z0 / |v_x0 + R w0|  friction group (alpha = inf: no slip)\n  \
-P     = u_after / u_before       restitution of the contact-point velocity u = v_x + R w\n\
+gamma = sqrt((m*/m_t) G*/E*)        material group\n  \
+alpha = (2/7)(m*/m_t) mu v_z0/|u0|  friction group (alpha = inf: no slip)\n  \
+P     = u_after / u_before          restitution of the contact-point velocity u\n\
+with E*, G* the effective moduli, m* the normal and m_t the tangential reduced mass, v_z0 the \
+approach speed and u0 the incident slip of the contact point (u = v_x + R w on a wall).\n\
+For one sphere on a wall, or two spheres of the same inertia factor kappa (I = kappa m R^2), \
+m*/m_t = (1 + kappa)/kappa whatever the masses and radii: for solid spheres (kappa = 0.4) \
+gamma = sqrt((7/2) G*/E*) (1.52 < gamma < 2.16 for one isotropic material) and \
+alpha = mu v_z0/|u0|. `sweep gamma` prints gamma and alpha of your materials and bodies.\n\
 For a solid sphere without initial spin, e_t = v_x/v_x0 = (2P + 5)/7."
 )]
 struct Cli {
@@ -87,8 +93,12 @@ datasets are identical to those of a single `sweep run`. On a cluster: scripts/s
     /// Rebound curves of a scene (materials, friction, impact conditions): CSV, plot, summary.
     #[command(after_help = "Examples:\n  \
 sweep scene configs/scenes/seed000_alumina_on_glass.toml -o out/\n  \
-sweep scene configs/scenes/steel_on_steel.toml --table tables/full.h5 -o out/\n\n\
+sweep scene configs/scenes/steel_on_steel.toml --table tables/full.h5 -o out/\n  \
+sweep scene configs/scenes/seed000_alumina_on_glass.toml -o docs/figures --check   # shipped copy up to date?\n\n\
 Without --table, only the scene's own cases are simulated (closed forms never are).\n\
+--check writes nothing: it compares what would be written with the files in the output folder\n\
+(exit status 1 naming those that differ or are missing).\n\
+Materials of the catalogue: `sweep gamma --catalogue`.\n\
 Scene file keys: docs/scenes.md.")]
     Scene(scene_cmd::SceneArgs),
     /// Figures of a table: P surface, slices, regime diagram, held-out errors (PNG or SVG).
@@ -174,6 +184,27 @@ same P as the whole table to about 1e-15 in a few KB; gamma of a pair of materia
 sqrt((m*/m_t) G*/E*) (sweep --help). A table with an e_n axis is exported whole (layout\n\
 version 2; oblq_p_e answers P(gamma, alpha, e_n)); curves hold elastic tables only.")]
     Export(cmd::export::ExportArgs),
+    /// gamma, m*/m_t and alpha of a pair of materials and bodies (a sphere on a wall or on a
+    /// sphere), or the material catalogue with gamma of every pair.
+    #[command(after_help = "Examples:\n  \
+sweep gamma --sphere alumina-96 --other soda-lime-glass      # a solid sphere on a wall\n  \
+sweep gamma --sphere nylon --other steel --kappa 0.5         # a hollow sphere on a wall\n  \
+sweep gamma --sphere steel --other nylon --radius 5e-3 --other-radius 0.01   # two solid spheres\n  \
+sweep gamma --sphere steel --other nylon --radius 5e-3 --other-radius 0.01 --other-kappa 0.5 \
+--other-mass 2e-3\n  \
+sweep gamma --sphere E=200e9,nu=0.29,rho=7900 --other rigid --json\n  \
+sweep gamma --catalogue            # E, nu, density and gamma of every pair, with the sources\n\n\
+SI units: E in Pa, density in kg/m^3, radii in m, masses in kg. The groups (physics.md):\n  \
+gamma^2 = (m*/m_t) G*/E*        1/E* = sum (1 - nu^2)/E, 1/G* = sum (2 - nu)/(4G), G = E/(2(1 + nu))\n  \
+alpha = (2/7)(m*/m_t) mu v_z0/|u0|   v_z0 the approach speed, u0 the incident slip of the contact point\n  \
+m* = m_1 m_2/(m_1 + m_2) (m_1 on a wall), 1/m_t = sum (1/m + R^2/I), I = kappa m R^2\n\
+For one sphere on a wall, and for two spheres of the same kappa, m*/m_t = (1 + kappa)/kappa\n\
+whatever the radii and masses: gamma = sqrt((7/2) G*/E*) and alpha = mu v_z0/|u0| for solid\n\
+spheres (kappa = 0.4). Radii and masses change gamma only between spheres of different kappa\n\
+(a mass is the density times (4/3) pi R^3 for kappa = 0.4, else --mass). A rigid body\n\
+(E = inf) adds no compliance. gamma goes to `sweep query --gamma`, `sweep export --gamma` and\n\
+oblq_p; alpha_c1 and alpha_c2 bound full slip and stick. Values and sources: docs/materials.md.")]
+    Gamma(cmd::gamma::GammaArgs),
     /// Exact references for the oblique-impact tests DEM codes verify themselves against
     /// (Chung & Ooi 1-8, MFIX DEM05, Thornton, seed 000): CSVs, figures, closed-form checks.
     #[command(after_help = "Examples:\n  \
@@ -224,6 +255,7 @@ fn main() -> ExitCode {
         Command::Verify(a) => verify_cmd::run(a),
         Command::Kinks(a) => cmd::kinks::run(a),
         Command::Export(a) => cmd::export::run(a),
+        Command::Gamma(a) => cmd::gamma::run(a),
         Command::Reference(a) => cmd::reference::run(a),
     };
     match result {

@@ -15,6 +15,8 @@ and the answer is ``P = u_after/u_before``, the tangential restitution of the co
   and ``tables/dissipative-demo.h5``, with an e_n axis, ship with the project), with the error
   bound the table states, in nanoseconds per point; and rebounds (:meth:`Table.rebound`,
   :meth:`Table.rebound_2d`) in SI units.
+- :data:`materials` is the material catalogue (E, ν, density, the source of the values):
+  ``materials=(oblique.materials["alumina-96"], oblique.materials["soda-lime-glass"])``.
 - :func:`impact` simulates ``P(γ, α)`` directly to a tolerance; :func:`simulate` simulates one
   impact in physical units; :func:`groups` gives ``γ`` and ``α`` of an impact;
   :func:`critical` the critical friction groups ``α_c1``, ``α_c2``; :func:`regime` the regime.
@@ -31,6 +33,7 @@ import errno
 import math
 import os
 import stat
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any, NamedTuple, Optional, Sequence, Tuple, Union, overload
 
@@ -45,8 +48,10 @@ __all__ = [
     "Curve",
     "TableError",
     "Material",
+    "CatalogueMaterial",
     "Sphere",
     "RIGID",
+    "materials",
     "Rebound",
     "Rebound2D",
     "Groups",
@@ -82,6 +87,81 @@ class Material(NamedTuple):
 
 #: A rigid body: E = ∞ (it adds no compliance; at most one of the two bodies).
 RIGID = Material(math.inf, 0.0)
+
+
+class CatalogueMaterial(Material):
+    """An entry of :data:`materials`: a :class:`Material` (it unpacks, compares and is passed
+    as one: ``(E, ν)``) that also carries its name, density and the source of its values.
+    Read-only."""
+
+    name: str = ""
+    """The catalogue's name, e.g. ``"soda-lime-glass"``."""
+    density: Optional[float] = None
+    """Density ρ (kg/m³); ``None`` for the rigid body. Only :meth:`solid_sphere` uses it:
+    impacts take masses (:class:`Sphere`)."""
+    source: str = ""
+    """Where the values come from (a citation)."""
+
+    def __setattr__(self, key: str, value: Any) -> None:
+        raise AttributeError(f"catalogue entries are read-only (cannot set {key})")
+
+    def solid_sphere(self, radius: float) -> "Sphere":
+        """A solid sphere of this material: ``Sphere(mass=ρ (4/3)π R³, radius, kappa=0.4)``,
+        ``radius`` R in m. ``ValueError`` when the density is not known (rigid)."""
+        if self.density is None:
+            raise ValueError(f"solid_sphere: {self.name} has no density (give Sphere(mass, ...))")
+        r = float(radius)
+        if not (math.isfinite(r) and r > 0.0):
+            raise ValueError(f"invalid radius = {radius!r}: must be a finite number > 0 (m)")
+        return Sphere(self.density * 4.0 / 3.0 * math.pi * r**3, r, 0.4)
+
+    def __repr__(self) -> str:
+        return (
+            f"CatalogueMaterial({self.name!r}, youngs_modulus={self.youngs_modulus!r}, "
+            f"poisson_ratio={self.poisson_ratio!r}, density={self.density!r})"
+        )
+
+
+def _entry(
+    name: str, e: float, nu: float, density: Optional[float], source: str
+) -> CatalogueMaterial:
+    m = CatalogueMaterial(e, nu)
+    for key, value in (("name", name), ("density", density), ("source", source)):
+        object.__setattr__(m, key, value)
+    return m
+
+
+class _Catalogue(Mapping[str, CatalogueMaterial]):
+    """The material catalogue: a read-only mapping from a name to its entry."""
+
+    def __init__(self, rows: Sequence[Tuple[str, float, float, Optional[float], str]]) -> None:
+        self._by_name = {row[0]: _entry(*row) for row in rows}
+
+    def __getitem__(self, name: str) -> CatalogueMaterial:
+        try:
+            return self._by_name[name]
+        except (KeyError, TypeError):
+            raise KeyError(
+                f"unknown material {name!r}: the catalogue has {', '.join(self._by_name)} "
+                "(your own values: oblique.Material(youngs_modulus, poisson_ratio))"
+            ) from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._by_name)
+
+    def __len__(self) -> int:
+        return len(self._by_name)
+
+    def __repr__(self) -> str:
+        return f"<oblique.materials: {', '.join(self._by_name)}>"
+
+
+#: The built-in material catalogue, a read-only mapping name → :class:`CatalogueMaterial` (a
+#: :class:`Material` with ``name``, ``density`` in kg/m³, ``None`` for ``"rigid"``, and
+#: ``source``, the citation of the values): the materials of scene files and ``sweep gamma``
+#: (``docs/materials.md``). Nominal room-temperature, quasi-static values; the polymers' are a
+#: first estimate.
+materials: Mapping[str, CatalogueMaterial] = _Catalogue(_native.MATERIALS)
 
 
 class Sphere(NamedTuple):

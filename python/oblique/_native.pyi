@@ -14,6 +14,8 @@ REBOUND3: List[str]
 REBOUND2: List[str]
 GROUPS: List[str]
 IMPACT: List[str]
+# (name, E (Pa), nu, density (kg/m^3) or None, source), in catalogue order.
+MATERIALS: List[Tuple[str, float, float, Optional[float], str]]
 
 class TableError(OSError): ...
 

@@ -1148,6 +1148,23 @@ fn simulate<'py>(
     Ok(d)
 }
 
+/// The material catalogue (`oblique_physics::materials`) as rows `(name, E (Pa), nu, density
+/// (kg/m³) or None, source)`, in catalogue order.
+fn material_rows() -> Vec<(&'static str, f64, f64, Option<f64>, &'static str)> {
+    oblique_physics::materials::CATALOGUE
+        .iter()
+        .map(|m| {
+            (
+                m.name,
+                m.youngs_modulus,
+                m.poisson_ratio,
+                Some(m.density).filter(|d| d.is_finite()),
+                m.source,
+            )
+        })
+        .collect()
+}
+
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -1159,6 +1176,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GROUPS", GROUPS.to_vec())?;
     m.add("IMPACT", IMPACT.to_vec())?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
+    m.add("MATERIALS", material_rows())?;
     m.add_function(wrap_pyfunction!(regime_into, m)?)?;
     m.add_function(wrap_pyfunction!(critical_into, m)?)?;
     m.add_function(wrap_pyfunction!(e_t_into, m)?)?;

@@ -29,10 +29,11 @@ pub enum SchemeArg {
 
 #[derive(Args)]
 pub struct ImpactArgs {
-    /// Material group gamma = sqrt((7/2) G*/E*), from 0.01 to 5 (the tested range).
+    /// Material group gamma = sqrt((m*/m_t) G*/E*) (`sweep gamma`), from 0.01 to 5 (the tested
+    /// range).
     #[arg(long, value_parser = parse_gamma, allow_hyphen_values = true)]
     gamma: f64,
-    /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
+    /// Friction group alpha = (2/7)(m*/m_t) mu v_z0/|u0|; >= 0, or `inf` for no slip.
     #[arg(long, value_parser = parse_alpha, allow_hyphen_values = true)]
     alpha: f64,
     /// Normal restitution e_n of the impact, from 0.3 to 1 (1: elastic, the default). Below 1

@@ -18,11 +18,11 @@ use oblique_table::surface::{Region, Surface};
 pub struct QueryArgs {
     /// Table file written by `sweep run` (HDF5, schema v2 to v4).
     table: PathBuf,
-    /// Material group gamma = sqrt((7/2) G*/E*); a finite number > 0.
+    /// Material group gamma = sqrt((m*/m_t) G*/E*) (`sweep gamma`); a finite number > 0.
     #[arg(long, value_parser = crate::args::parse_table_gamma, allow_hyphen_values = true,
           conflicts_with = "batch", requires = "alpha")]
     gamma: Option<f64>,
-    /// Friction group alpha = mu v_z0/|u0|; >= 0, or `inf` for no slip.
+    /// Friction group alpha = (2/7)(m*/m_t) mu v_z0/|u0|; >= 0, or `inf` for no slip.
     #[arg(long, value_parser = crate::args::parse_alpha, allow_hyphen_values = true,
           conflicts_with = "batch", requires = "gamma")]
     alpha: Option<f64>,

@@ -24,15 +24,67 @@ pub struct SceneArgs {
     /// Also write the plot as NAME.svg.
     #[arg(long)]
     svg: bool,
+    /// Write nothing: compare what would be written with the files in the output folder and
+    /// exit with status 1, naming the files, if any differs or is missing (shipped outputs:
+    /// `sweep scene configs/scenes/seed000_alumina_on_glass.toml -o docs/figures --check`).
+    #[arg(long)]
+    check: bool,
 }
 
+/// The command line that reproduces the output, for the figure's caption (no output folder:
+/// the caption must not depend on where the files go).
 fn command_line(args: &SceneArgs) -> String {
     let mut c = format!("sweep scene {}", args.scene.display());
     if let Some(t) = &args.table {
         c.push_str(&format!(" --table {}", t.display()));
     }
-    c.push_str(&format!(" -o {}", args.output.display()));
     c
+}
+
+/// Compare the bytes `want` with the file at `path`; a line for the report if they differ.
+fn stale(path: &Path, want: &[u8]) -> Option<String> {
+    match std::fs::read(path) {
+        Ok(have) if have == want => None,
+        Ok(_) => Some(format!("{} differs", path.display())),
+        Err(_) => Some(format!("{} is missing", path.display())),
+    }
+}
+
+/// `--check`: what `run` would write, compared with the files there. Figures are rendered into
+/// a scratch folder and read back.
+fn check(
+    args: &SceneArgs,
+    csv: &[u8],
+    fig: &oblique_plot::Figure,
+    paths: &[&PathBuf],
+) -> Result<Vec<String>> {
+    let mut report: Vec<String> = stale(paths[0], csv).into_iter().collect();
+    let scratch = std::env::temp_dir().join(format!("sweep-scene-{}", std::process::id()));
+    std::fs::create_dir_all(&scratch)
+        .with_context(|| format!("cannot create {}", scratch.display()))?;
+    let result = (|| -> Result<()> {
+        for path in &paths[1..] {
+            let tmp = scratch.join(path.file_name().unwrap_or_default());
+            oblique_plot::render(fig, &tmp)?;
+            let want = std::fs::read(&tmp)
+                .with_context(|| format!("cannot read back {}", tmp.display()))?;
+            report.extend(stale(path, &want));
+        }
+        Ok(())
+    })();
+    let _ = std::fs::remove_dir_all(&scratch);
+    result?;
+    if !report.is_empty() {
+        return Err(anyhow::anyhow!(
+            "{} file(s) are not what `{} -o {}` writes now (regenerate them with it):\n  {}",
+            report.len(),
+            command_line(args),
+            args.output.display(),
+            report.join("\n  ")
+        )
+        .into());
+    }
+    Ok(paths.iter().map(|p| p.display().to_string()).collect())
 }
 
 fn write_file(
@@ -56,30 +108,32 @@ pub fn run(args: SceneArgs) -> Result<()> {
         None => PSource::Simulate,
     };
     let ev = scene::evaluate(&scene, source)?;
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("cannot create output folder {}", args.output.display()))?;
     let sphere_sphere = matches!(scene.target, SceneTarget::Sphere { .. });
     let csv_path = args.output.join(format!("{}.csv", scene.name));
     let png_path = args.output.join(format!("{}.png", scene.name));
     let svg_path = args.output.join(format!("{}.svg", scene.name));
-    // Nothing is written unless every output can be.
-    for path in [&csv_path, &png_path]
+    let paths: Vec<&PathBuf> = [&csv_path, &png_path]
         .into_iter()
         .chain(args.svg.then_some(&svg_path))
-    {
-        oblique_table::write::check_output(path)?;
-    }
-    write_file(&csv_path, |f| scene::csv::write(&ev, sphere_sphere, f))?;
+        .collect();
     let fig = scene::figure::figure(&scene, &ev, &command_line(&args));
-    oblique_plot::render(&fig, &png_path)?;
-    let mut written = vec![
-        csv_path.display().to_string(),
-        png_path.display().to_string(),
-    ];
-    if args.svg {
-        oblique_plot::render(&fig, &svg_path)?;
-        written.push(svg_path.display().to_string());
-    }
+    let written = if args.check {
+        let mut csv = Vec::new();
+        scene::csv::write(&ev, sphere_sphere, &mut csv).context("cannot format the CSV")?;
+        check(&args, &csv, &fig, &paths)?
+    } else {
+        std::fs::create_dir_all(&args.output)
+            .with_context(|| format!("cannot create output folder {}", args.output.display()))?;
+        // Nothing is written unless every output can be.
+        for path in &paths {
+            oblique_table::write::check_output(path)?;
+        }
+        write_file(&csv_path, |f| scene::csv::write(&ev, sphere_sphere, f))?;
+        for path in &paths[1..] {
+            oblique_plot::render(&fig, path)?;
+        }
+        paths.iter().map(|p| p.display().to_string()).collect()
+    };
 
     outln!("scene {} ({})", scene.name, args.scene.display())?;
     if !scene.description.is_empty() {
@@ -146,6 +200,10 @@ pub fn run(args: SceneArgs) -> Result<()> {
             m.source
         )?;
     }
-    outln!("wrote {}", written.join(", "))?;
+    if args.check {
+        outln!("up to date: {}", written.join(", "))?;
+    } else {
+        outln!("wrote {}", written.join(", "))?;
+    }
     Ok(())
 }

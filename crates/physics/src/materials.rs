@@ -2,10 +2,11 @@
 //!
 //! Values are nominal room-temperature, quasi-static ones. The model is elastic: for the
 //! polymers (strongly rate-, temperature- and moisture-dependent, and viscoelastic) treat the
-//! result as a first estimate. A scene may override any value (`youngs_modulus`,
-//! `poisson_ratio`, `density`).
+//! result as a first estimate. Scene files name these materials (and may override any value:
+//! `youngs_modulus`, `poisson_ratio`, `density`), `sweep gamma` prints γ of a pair of them,
+//! and Python reads them as `oblique.materials` (docs/materials.md).
 
-use oblique_lookup::rebound::Elastic;
+use crate::rebound::Elastic;
 
 /// One catalogue entry.
 #[derive(Debug, Clone, Copy, PartialEq)]

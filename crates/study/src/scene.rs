@@ -14,7 +14,8 @@
 pub mod csv;
 mod eval;
 pub mod figure;
-pub mod materials;
+/// The material catalogue (it lives in `oblique-physics`, where Python reads it too).
+pub use oblique_physics::materials;
 pub mod measured;
 mod spec;
 
