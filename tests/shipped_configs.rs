@@ -13,7 +13,13 @@ fn shipped_configs_write_outside_the_tracked_tables() {
         ignore.lines().any(|l| l.trim() == "/out/"),
         ".gitignore must ignore /out/"
     );
-    for name in ["full", "isotropic", "quick", "dissipative-demo"] {
+    for name in [
+        "full",
+        "isotropic",
+        "quick",
+        "dissipative-demo",
+        "dissipative",
+    ] {
         let path = root.join("configs").join(format!("{name}.toml"));
         let (cfg, _) = Config::load(&path).expect("shipped config parses");
         assert_eq!(

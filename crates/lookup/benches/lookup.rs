@@ -6,14 +6,16 @@
 //!   prediction and cache see a realistic stream.
 //! - `p_e/mixed`: `Table::p_e` of a table with an e_n axis (`tables/dissipative-demo.h5`, or
 //!   `LOOKUP_BENCH_TABLE_E_N=path`) at 4096 points cycled (e_n uniform in its range);
-//!   `p_e/elastic_same_points`: the elastic table at the same (γ, α).
+//!   `p_e/elastic_same_points`: the elastic table at the same (γ, α); `p_e/curve_mixed_alpha`:
+//!   its curve at (γ, e_n) = (1.754, 0.8) at the α of `curve/mixed_alpha`.
 //! - `curve/<region>`: the same points through `Table::curve` (built once per γ), and
 //!   `curve/mixed_alpha`: the α of `p/mixed` at γ = 1.754.
 //! - `rebound/<case>`: one `Table::rebound` (2-D sphere–wall) and `Table::rebound_3d`
 //!   (sphere–wall, sphere–sphere) from materials and μ.
 //!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Prepared` (pair and
 //!   materials checked once, as a DEM code does per material pair); `rebound/spheres_3d_curve`:
-//!   the same with `P` from the pair's `Table::curve`.
+//!   the same with `P` from the pair's `Table::curve`; `rebound/spheres_3d_prepared_e_n`: the
+//!   prepared pair at e_n = 0.8 from the table with an e_n axis.
 //! - `batch/serial`, `batch/rayon`: 2²⁰ mixed points through `p_batch` / `p_batch_par` (on all
 //!   cores of the rayon pool); throughput in queries/s.
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
@@ -133,6 +135,17 @@ fn main() {
         i = (i + 1) & 4095;
         table.p(black_box(eg[i]), black_box(ea[i]))
     });
+    // A curve at fixed (γ, e_n) = (1.754, 0.8) of that table, at the α of `p/mixed`, next to
+    // the elastic table's curve at γ = 1.754 (`curve/mixed_alpha`).
+    let curve_e = table_e
+        .curve_e(1.754, 0.8, OutOfDomain::Error)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let (_, alphas) = mixed_points(&table, 4096);
+    let mut i = 0usize;
+    timed(&mut g, "curve_mixed_alpha", clock, || {
+        i = (i + 1) & 4095;
+        curve_e.p(black_box(alphas[i]))
+    });
     g.finish();
 
     // The processor's cycle: a chain of 64 dependent additions (no reassociation of floats).
@@ -207,6 +220,12 @@ fn main() {
         .unwrap_or_else(|e| panic!("{e}"));
     timed(&mut g, "spheres_3d_curve", clock, || {
         table.rebound_3d_curve(black_box(&prepared), black_box(&curve), black_box(&inc3))
+    });
+    // The same prepared pair at e_n = 0.8, from the table with an e_n axis.
+    let contact_e = contact.with_restitution(0.8);
+    let prepared_e = Prepared::new(&spheres, &contact_e).unwrap_or_else(|e| panic!("{e}"));
+    timed(&mut g, "spheres_3d_prepared_e_n", clock, || {
+        table_e.rebound_3d_prepared(black_box(&prepared_e), black_box(&inc3))
     });
     g.finish();
 
