@@ -383,7 +383,8 @@ OBLQ_FN int oblq__curve_at(const oblq_table *t, size_t i, oblq_curve *c) {
     c->high = (int)oblq__u32(r + 80);
     for (k = 0; k < 8; k++) /* ln(2 gamma^2 - 1) is NaN below gamma = 1/sqrt(2): unused there */
         if (!isfinite(v[k]) && k != 5) return OBLQ_E_CORRUPT;
-    if (!(c->gamma > 0.0) || c->alpha_max != t->alpha_max) return OBLQ_E_CORRUPT;
+    if (!(c->gamma >= t->gamma_min && c->gamma <= t->gamma_max) || c->alpha_max != t->alpha_max)
+        return OBLQ_E_CORRUPT;
     if (c->high != (c->gamma > 1.0)) return OBLQ_E_CORRUPT;
     /* Everything but the cubics follows from gamma and alpha_max: it must be what the rule
        computes (so that a damaged but resealed record cannot move the full-slip line). */
@@ -436,8 +437,19 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     out.gamma_max = oblq__f64(d + 40);
     out.alpha_max = oblq__f64(d + 48);
     out.error_bound = oblq__f64(d + 56);
-    if (!(isfinite(out.gamma_min) && isfinite(out.gamma_max) && out.gamma_min > 0.0 &&
-          out.gamma_min < out.gamma_max && out.alpha_max >= 0.0 && !isnan(out.error_bound)))
+    /* Every header value as the data implies it (a value changed and resealed must not reach
+       a query: alpha_max at alpha_c2 made the stick coordinate 0/0): the domain
+       0 < gamma_min < gamma_max <= 1e100 (tables are built to gamma <= 64; below 1e100 no
+       product of the rule overflows), the bound finite and >= 0, alpha_max inf or above
+       alpha_c2(gamma_max) in both of the rule's forms (then S(alpha_max) > 0 at every gamma of
+       the domain), and below the patches and curves. */
+    if (!(isfinite(out.gamma_min) && out.gamma_min > 0.0 && out.gamma_min < out.gamma_max &&
+          out.gamma_max <= 1e100))
+        return OBLQ_E_CORRUPT;
+    if (!(out.error_bound >= 0.0 && out.error_bound < INFINITY)) return OBLQ_E_CORRUPT;
+    if (!(out.alpha_max == INFINITY ||
+          (out.alpha_max > oblq_alpha_c2(out.gamma_max) &&
+           out.alpha_max > out.gamma_max * out.gamma_max * (2.0 / 7.0))))
         return OBLQ_E_CORRUPT;
     if (oblq__u32(d + 64) != 4) return OBLQ_E_CORRUPT; /* the cubic stencil */
     out.e_n_min = 1.0;
@@ -464,6 +476,18 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if ((out.patch[0].present && out.patch[0].partial) ||
             (out.patch[2].present && out.patch[2].partial))
             return OBLQ_E_CORRUPT;
+        /* The patches the domain needs, over the gamma ranges they are built on: stick_low
+           over [gamma_min, min(gamma_max, 1)] when gamma_min < 1, the other two over
+           [max(gamma_min, 1), gamma_max] when gamma_max > 1; no other. */
+        for (k = 0; k < 3; k++) {
+            const oblq_patch *p = &out.patch[k];
+            int low = k == 0;
+            int needed = low ? out.gamma_min < 1.0 : out.gamma_max > 1.0;
+            double lo = low || out.gamma_min > 1.0 ? out.gamma_min : 1.0;
+            double hi = !low || out.gamma_max < 1.0 ? out.gamma_max : 1.0;
+            if (p->present != needed || (needed && !(p->gamma_lo == lo && p->gamma_hi == hi)))
+                return OBLQ_E_CORRUPT;
+        }
     }
     out.n_curves = oblq__u32(d + 80);
     off = oblq__u64(d + 88);
@@ -548,10 +572,14 @@ OBLQ_FN const char *oblq_error_message(int code) {
 /* ---------------------------------------------------------------------------------------- */
 /* The rule (docs/table-format.md, steps 1-10)                                               */
 
-/* alpha_c1 = 2 gamma^2/(7(2 gamma^2 - 1)): the end of full slip for gamma > 1. */
+/* alpha_c1 = 2 gamma^2/(7(2 gamma^2 - 1)): the end of full slip for gamma > 1. Where the
+   denominator overflows (gamma > 3.58e153), the same value as 1/(7(1 - 1/(2 gamma^2))) (1/7, the
+   limit); elsewhere exactly these operations, the Rust library's. */
 OBLQ_FN double oblq_alpha_c1(double gamma) {
     double g2 = gamma * gamma;
-    return 2.0 * g2 / (7.0 * (2.0 * g2 - 1.0));
+    double d = 7.0 * (2.0 * g2 - 1.0);
+    if (d == INFINITY) return 1.0 / (7.0 * (1.0 - 1.0 / (2.0 * g2)));
+    return 2.0 * g2 / d;
 }
 
 /* alpha_c2 = 2 gamma^2/7: the start of stick. */
@@ -741,7 +769,9 @@ OBLQ_FN int oblq__p_elastic(const oblq_table *t, double gamma, double alpha, int
    with e_n). */
 OBLQ_FN double oblq__alpha_c1_e(double gamma, double e_n) {
     double g2 = gamma * gamma;
-    return 2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n));
+    double d = 7.0 * (g2 * (1.0 + e_n) - e_n);
+    if (d == INFINITY) return 2.0 / (7.0 * ((1.0 + e_n) - e_n / g2)); /* overflow: the same */
+    return 2.0 * g2 / d;
 }
 
 OBLQ_FN int oblq__region_e(double gamma, double alpha, double e_n) {

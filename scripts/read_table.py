@@ -60,9 +60,13 @@ class DomainError(ValueError):
 
 
 def alpha_c1(gamma):
-    """alpha_c1 = 2 gamma^2 / (7 (2 gamma^2 - 1))."""
+    """alpha_c1 = 2 gamma^2 / (7 (2 gamma^2 - 1)); where the denominator overflows, the same
+    value as 1 / (7 (1 - 1/(2 gamma^2))) (1/7), as the Rust library computes it."""
     g2 = gamma * gamma
-    return 2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
+    d = 7.0 * (2.0 * g2 - 1.0)
+    if d == math.inf:
+        return 1.0 / (7.0 * (1.0 - 1.0 / (2.0 * g2)))
+    return 2.0 * g2 / d
 
 
 def alpha_c2(gamma):
@@ -154,7 +158,10 @@ def _clamp01(v):
 def alpha_c1_e(gamma, e_n):
     """alpha_c1(gamma, e_n) = 2 gamma^2 / (7 (gamma^2 (1 + e_n) - e_n))."""
     g2 = gamma * gamma
-    return 2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n))
+    d = 7.0 * (g2 * (1.0 + e_n) - e_n)
+    if d == math.inf:  # overflow: the same value, as the Rust library computes it
+        return 2.0 / (7.0 * ((1.0 + e_n) - e_n / g2))
+    return 2.0 * g2 / d
 
 
 def alpha_lin_e(gamma, e_n):

@@ -521,6 +521,134 @@ fn damaged_truncated_and_foreign_files_are_refused_with_their_code() {
     assert!(case("offset", &bad).starts_with("6 the export is inconsistent"));
 }
 
+/// A header value changed and the checksum recomputed: `oblq_open` checks each against what
+/// the data implies and refuses the export (6, inconsistent) instead of answering NaN (an
+/// `alpha_max` at `α_c2` of a queried γ made the stick coordinate 0/0: NaN with `OBLQ_OK`).
+#[test]
+fn header_values_the_data_contradicts_are_refused_after_resealing() {
+    let path = export_file("quick", false);
+    let good = std::fs::read(&path).expect("export");
+    let s = table("quick").surface();
+    let with = |at: usize, v: f64| -> Vec<u8> {
+        let mut b = good.clone();
+        b[at..at + 8].copy_from_slice(&v.to_le_bytes());
+        let sum = oblique_table::format::fnv1a64(&b[32..]);
+        b[24..32].copy_from_slice(&sum.to_le_bytes());
+        b
+    };
+    let open = |name: &str, bytes: &[u8]| -> String {
+        let p = dir().join(format!("header_{name}"));
+        std::fs::write(&p, bytes).expect("write");
+        run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
+    };
+    let c2 = |g: f64| g * g * (2.0 / 7.0);
+    for (name, at, v) in [
+        ("alpha_max_at_c2", 48, c2(2.2)),
+        ("alpha_max_at_c2_end", 48, c2(s.gamma_max())),
+        ("alpha_max_below", 48, alpha_c2(s.gamma_max()) * 0.5),
+        ("alpha_max_nan", 48, f64::NAN),
+        ("alpha_max_zero", 48, 0.0),
+        ("bound_nan", 56, f64::NAN),
+        ("bound_inf", 56, f64::INFINITY),
+        ("bound_negative", 56, -1e-6),
+        ("gamma_min_other", 32, 0.6),
+        ("gamma_min_zero", 32, 0.0),
+        ("gamma_max_other", 40, 2.4),
+        ("gamma_max_huge", 40, 1e300),
+        ("gamma_max_inf", 40, f64::INFINITY),
+        ("gamma_max_nan", 40, f64::NAN),
+    ] {
+        let said = open(name, &with(at, v));
+        assert!(
+            said.starts_with("6 the export is inconsistent"),
+            "{name}: {said}"
+        );
+    }
+    // What the data does not fix stays the writer's: the bound. (A finite alpha_max above
+    // α_c2 is the curves' business here: their records hold it.)
+    assert!(open("bound_other", &with(56, 0.5)).starts_with("0 ok"));
+    assert!(open("alpha_max_finite", &with(48, 10.0)).starts_with("6 "));
+    // Swapped: gamma_min > gamma_max.
+    let mut b = with(32, s.gamma_max());
+    b[40..48].copy_from_slice(&s.gamma_min().to_le_bytes());
+    let sum = oblique_table::format::fnv1a64(&b[32..]);
+    b[24..32].copy_from_slice(&sum.to_le_bytes());
+    assert!(open("swapped", &b).starts_with("6 "));
+    // A curve's γ outside the header's domain (every other field of the record recomputed).
+    let path = export_file("quick", true);
+    let curves = std::fs::read(&path).expect("export");
+    assert!(open("curves", &curves).starts_with("0 ok"));
+    let mut b = curves.clone();
+    b[40..48].copy_from_slice(&0.9_f64.to_le_bytes()); // gamma_max below the curve at 1.0
+    let sum = oblique_table::format::fnv1a64(&b[32..]);
+    b[24..32].copy_from_slice(&sum.to_le_bytes());
+    assert!(
+        open("curve_outside", &b).starts_with("6 "),
+        "curve outside the domain"
+    );
+}
+
+/// The full-slip line for every γ > 0: where `2γ²` overflows (γ ≳ 1.3e154; `α_c1` was NaN and
+/// the point refused) `oblq_p` and `oblq_p_e` answer `1 − 7α` and `1 − (7/2)(1 + e_n)α` as the
+/// Rust library does, to the bit, and refuse the points above the line as it does.
+#[test]
+fn the_line_at_overflowing_gamma_as_in_rust() {
+    let t = table("quick");
+    let path = export_file("quick", false);
+    let mut input = String::new();
+    let mut pts = Vec::new();
+    for g in [3.0e153, 3.6e153, 1e154, 1.4e154, 1e200, f64::MAX] {
+        for a in [0.0, 0.1, 1.0 / 7.0, 0.15, 0.3] {
+            input.push_str(&format!("{g:?} {a:?}\n"));
+            pts.push((g, a));
+        }
+    }
+    let out = run_ok(
+        gcc_driver(),
+        &["p", path.to_str().expect("path"), "0"],
+        &input,
+    );
+    for ((g, a), line) in pts.iter().zip(out.lines()) {
+        match t.p(*g, *a) {
+            Ok(p) => {
+                assert!(*a < 0.15, "({g:e}, {a})");
+                let c: f64 = line.parse().expect("P");
+                assert_eq!(c.to_bits(), p.to_bits(), "({g:e}, {a})");
+            }
+            Err(_) => {
+                assert!(*a >= 0.15, "({g:e}, {a})");
+                assert_eq!(line, "error 9", "({g:e}, {a})");
+            }
+        }
+    }
+    let (t, path) = dissipative();
+    let mut input = String::new();
+    let mut pts = Vec::new();
+    for g in [1e154, 1e200, f64::MAX] {
+        for (a, e) in [(0.1, 0.7), (0.15, 0.8), (0.14, 1.0), (0.2, 0.7)] {
+            input.push_str(&format!("{g:?} {a:?} {e:?}\n"));
+            pts.push((g, a, e));
+        }
+    }
+    let out = run_ok(
+        gcc_driver(),
+        &["pe", path.to_str().expect("path"), "0"],
+        &input,
+    );
+    for ((g, a, e), line) in pts.iter().zip(out.lines().skip(1)) {
+        match t.p_e(*g, *a, *e) {
+            Ok(p) => {
+                let c: f64 = line.parse().expect("P");
+                assert_eq!(c.to_bits(), p.to_bits(), "({g:e}, {a}, {e})");
+            }
+            Err(_) => {
+                assert!(*a == 0.2, "({g:e}, {a}, {e})");
+                assert_eq!(line, "error 9", "({g:e}, {a}, {e})");
+            }
+        }
+    }
+}
+
 #[test]
 fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
     let mut f = vec![
@@ -549,6 +677,23 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
         );
         let text = String::from_utf8_lossy(&out.stdout);
         assert!(text.contains("refused"), "{text}");
+        // Each header field set to NaN, ±inf, 0, negative, huge, a critical value, the other
+        // end of its range, resealed: refused with a code, or every answer in [−1, 1].
+        let out = Command::new(&exe)
+            .args(["headers", path.to_str().expect("path")])
+            .output()
+            .expect("run");
+        assert!(
+            out.status.success(),
+            "headers {}: {}\n{}",
+            path.display(),
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    for path in [export_file("quick", true), export_file("full", false)] {
+        let said = run_ok(gcc_driver(), &["headers", path.to_str().expect("path")], "");
+        assert!(said.contains("refused"), "{said}");
     }
     // The million-point comparison once more, under the sanitizers, on a sample.
     let path = export_file("full", false);

@@ -13,6 +13,10 @@
      eval_check rebound2 EXPORT m1 R1 k1 m2 R2 k2 GAMMA MU
                                                  stdin: v_x v_z omega (x2) -> the 2-D answer
      eval_check fuzz EXPORT N SEED               N mutated copies through oblq_open and queries
+     eval_check headers EXPORT                   every header field set to NaN, +-inf, 0,
+                                                 negative, huge, a critical value, the other
+                                                 end of its range (resealed): refused with a
+                                                 code, or every answer finite with |P| <= 1
 
    Numbers are printed with %.17g (they read back to the same double). */
 #include <errno.h>
@@ -206,6 +210,222 @@ static int fuzz(const unsigned char *orig, size_t n, long count) {
     return 0;
 }
 
+/* Whether every answer of the export at d (opened as t) is finite with |P| <= 1, at points
+   around its domain, its critical curves and alpha_max, with and without clamping, along the
+   e_n range of a table with the axis, and on every curve. Prints the first bad one. */
+static int answers_bounded(const oblq_table *t, const char *what) {
+    static const double gs0[] = {1e-300, 0.05, 0.1, 0.5, 0.99, 1.0, 1.01, 1.5, 2.2, 2.9, 3.5,
+                                 4.0, 70.0, 1e100, 3.6e153, 1.4e154, 1e200, 1.7e308};
+    double gs[sizeof gs0 / sizeof gs0[0] + 6], as[40];
+    size_t ng = 0, i, j, c;
+    for (i = 0; i < sizeof gs0 / sizeof gs0[0]; i++) gs[ng++] = gs0[i];
+    gs[ng++] = t->gamma_min;
+    gs[ng++] = t->gamma_max;
+    gs[ng++] = nextafter(t->gamma_min, 0.0);
+    gs[ng++] = nextafter(t->gamma_max, INFINITY);
+    gs[ng++] = 0.5 * (t->gamma_min + t->gamma_max);
+    gs[ng++] = sqrt(t->gamma_min * t->gamma_max);
+    for (i = 0; i < ng; i++) {
+        double g = gs[i], base[] = {0.0, 0.01, 0.1, 0.2, 0.3, 0.5, 1.0, 10.0, 1e300, INFINITY};
+        size_t na = 0;
+        if (!(g > 0.0 && g < INFINITY)) continue;
+        for (j = 0; j < sizeof base / sizeof base[0]; j++) as[na++] = base[j];
+        as[na++] = t->alpha_max;
+        as[na++] = nextafter(t->alpha_max, 0.0);
+        as[na++] = oblq_linear_limit(g);
+        as[na++] = nextafter(oblq_linear_limit(g), INFINITY);
+        as[na++] = oblq_alpha_c2(g);
+        as[na++] = nextafter(oblq_alpha_c2(g), 0.0);
+        as[na++] = g * g * (2.0 / 7.0);
+        as[na++] = 0.5 * (oblq_linear_limit(g) + oblq_alpha_c2(g));
+        for (j = 0; j < na; j++) {
+            int clamp;
+            for (clamp = 0; clamp < 2; clamp++) {
+                double p = 0.0;
+                int rc = oblq_p(t, g, as[j], clamp, &p);
+                if (rc == OBLQ_OK && !(p >= -1.0 && p <= 1.0)) {
+                    fprintf(stderr, "%s: P(%.17g, %.17g) = %g (clamp %d)\n", what, g, as[j], p,
+                            clamp);
+                    return 0;
+                }
+                for (c = 0; t->has_e_n && c < 5; c++) {
+                    double e = c == 4 ? t->e_n_max : t->e_n_min + (t->e_n_max - t->e_n_min) * c / 4.0;
+                    rc = oblq_p_e(t, g, as[j], e, clamp, &p);
+                    if (rc == OBLQ_OK && !(p >= -1.0 && p <= 1.0)) {
+                        fprintf(stderr, "%s: P(%.17g, %.17g, %.17g) = %g (clamp %d)\n", what, g,
+                                as[j], e, p, clamp);
+                        return 0;
+                    }
+                }
+            }
+        }
+    }
+    for (c = 0; c < t->n_curves; c++) {
+        oblq_curve cv;
+        if (oblq_curve_get(t, c, &cv) != OBLQ_OK) continue;
+        for (j = 0; j < 6; j++) {
+            double a[] = {0.1, cv.alpha_lin, cv.alpha_c2, cv.stick_c2, cv.alpha_max, INFINITY};
+            int clamp;
+            for (clamp = 0; clamp < 2; clamp++) {
+                double p = 0.0;
+                if (oblq_curve_p(&cv, a[j], clamp, &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0)) {
+                    fprintf(stderr, "%s: curve %lu P(%.17g) = %g\n", what, (unsigned long)c, a[j],
+                            p);
+                    return 0;
+                }
+            }
+        }
+    }
+    return 1;
+}
+
+static void put_f64(unsigned char *d, double v) { memcpy(d, &v, 8); }
+
+/* Each header field of the export set to values that the data contradicts or that stress
+   the rule, resealed; every copy is refused with a code and a message, or answers within
+   [-1, 1]. */
+static int headers(const unsigned char *orig, size_t n) {
+    unsigned char *d = (unsigned char *)malloc(n + 8);
+    long refused = 0, opened = 0, tried = 0;
+    oblq_table t0;
+    size_t f, v, i;
+    size_t header;
+    if (!d) return 1;
+    if (oblq_open(&t0, orig, n) != OBLQ_OK) {
+        fprintf(stderr, "headers: the export does not open\n");
+        free(d);
+        return 1;
+    }
+    header = oblq__u32(orig + 12);
+    /* The reals: gamma_min, gamma_max, alpha_max, error_bound (and e_n_min, e_n_max). */
+    for (f = 32; f < header; f += 8) {
+        double o, vals[48];
+        size_t nv = 0;
+        static const size_t reals[] = {32, 40, 48, 56, 96, 104};
+        int real = 0;
+        for (i = 0; i < sizeof reals / sizeof reals[0]; i++) real |= reals[i] == f;
+        if (!real) continue;
+        o = oblq__f64(orig + f);
+        vals[nv++] = NAN;
+        vals[nv++] = INFINITY;
+        vals[nv++] = -INFINITY;
+        vals[nv++] = 0.0;
+        vals[nv++] = -0.0;
+        vals[nv++] = -1.0;
+        vals[nv++] = -o;
+        vals[nv++] = 1e-310;
+        vals[nv++] = 1e100;
+        vals[nv++] = 1e101;
+        vals[nv++] = 1e300;
+        vals[nv++] = 1.7976931348623157e308;
+        vals[nv++] = 2.0 * o;
+        vals[nv++] = 0.5 * o;
+        vals[nv++] = nextafter(o, 0.0);
+        vals[nv++] = nextafter(o, INFINITY);
+        vals[nv++] = 1.0;
+        vals[nv++] = nextafter(1.0, 0.0);
+        vals[nv++] = nextafter(1.0, 2.0);
+        vals[nv++] = 2.0 / 7.0;
+        vals[nv++] = t0.gamma_min;
+        vals[nv++] = t0.gamma_max;
+        /* alpha_c2 in both of the rule's forms where queries fall, and at the domain's ends */
+        {
+            double gs[] = {1.0, 1.5, 2.2, t0.gamma_min, t0.gamma_max, 0.5, 0.99};
+            for (i = 0; i < sizeof gs / sizeof gs[0] && nv + 3 <= 48; i++) {
+                vals[nv++] = oblq_alpha_c2(gs[i]);
+                vals[nv++] = gs[i] * gs[i] * (2.0 / 7.0);
+                vals[nv++] = oblq_linear_limit(gs[i]);
+            }
+        }
+        for (v = 0; v < nv; v++) {
+            oblq_table t;
+            char what[96];
+            int rc;
+            memcpy(d, orig, n);
+            put_f64(d + f, vals[v]);
+            reseal(d, n);
+            tried++;
+            rc = oblq_open(&t, d, n);
+            if (rc != OBLQ_OK) {
+                refused++;
+                if (strlen(oblq_error_message(rc)) == 0 || rc == OBLQ_E_CHECKSUM) {
+                    fprintf(stderr, "headers: offset %lu = %g: status %d\n", (unsigned long)f,
+                            vals[v], rc);
+                    free(d);
+                    return 1;
+                }
+                continue;
+            }
+            opened++;
+            snprintf(what, sizeof what, "headers: offset %lu = %.17g", (unsigned long)f, vals[v]);
+            if (!answers_bounded(&t, what)) {
+                free(d);
+                return 1;
+            }
+        }
+    }
+    /* The ranges swapped: gamma_min <-> gamma_max, e_n_min <-> e_n_max. */
+    for (f = 32; f <= 96 && f + 16 <= header; f += 64) {
+        oblq_table t;
+        memcpy(d, orig, n);
+        memcpy(d + f, orig + f + 8, 8);
+        memcpy(d + f + 8, orig + f, 8);
+        reseal(d, n);
+        tried++;
+        if (oblq_open(&t, d, n) == OBLQ_OK) {
+            opened++;
+            if (!answers_bounded(&t, "headers: a range swapped")) {
+                free(d);
+                return 1;
+            }
+        } else {
+            refused++;
+        }
+    }
+    /* The integers: version, header size, length, stencil, reserved words, the offsets and
+       the number of curves. */
+    {
+        static const size_t words[] = {8, 12, 64, 68, 80, 84};
+        static const size_t longs[] = {16, 72, 88};
+        uint64_t vals[] = {0, 1, 2, 3, 4, 7, 8, 96, 112, 0xffffffffULL, 0x80000000ULL};
+        for (f = 0; f < sizeof words / sizeof words[0] + sizeof longs / sizeof longs[0]; f++) {
+            int wide = f >= sizeof words / sizeof words[0];
+            size_t at = wide ? longs[f - sizeof words / sizeof words[0]] : words[f];
+            uint64_t o = wide ? oblq__u64(orig + at) : oblq__u32(orig + at);
+            for (v = 0; v < sizeof vals / sizeof vals[0] + 4; v++) {
+                oblq_table t;
+                uint64_t x;
+                char what[96];
+                if (v < sizeof vals / sizeof vals[0]) x = vals[v];
+                else x = o + (v % 2 ? 8 : -8) * (v >= sizeof vals / sizeof vals[0] + 2 ? 2 : 1);
+                memcpy(d, orig, n);
+                for (i = 0; i < (wide ? 8u : 4u); i++) d[at + i] = (unsigned char)(x >> (8 * i));
+                reseal(d, n);
+                tried++;
+                if (oblq_open(&t, d, n) != OBLQ_OK) {
+                    refused++;
+                    continue;
+                }
+                opened++;
+                snprintf(what, sizeof what, "headers: offset %lu = %llu", (unsigned long)at,
+                         (unsigned long long)x);
+                if (!answers_bounded(&t, what)) {
+                    free(d);
+                    return 1;
+                }
+            }
+        }
+    }
+    if (!answers_bounded(&t0, "headers: the export itself")) {
+        free(d);
+        return 1;
+    }
+    printf("headers: %ld mutations, %ld refused, %ld opened and queried\n", tried, refused,
+           opened);
+    free(d);
+    return 0;
+}
+
 int main(int argc, char **argv) {
     size_t n = 0;
     unsigned char *d;
@@ -350,6 +570,10 @@ int main(int argc, char **argv) {
                 printf("\n");
             }
         }
+    } else if (!strcmp(argv[1], "headers") && argc == 3) {
+        int rc = headers(d, n);
+        free(d);
+        return rc;
     } else if (!strcmp(argv[1], "fuzz") && argc == 5) {
         int rc;
         rng_state = strtoull(argv[4], NULL, 10);

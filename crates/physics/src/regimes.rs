@@ -10,10 +10,16 @@ pub fn alpha_c1(gamma: f64) -> f64 {
 }
 
 /// `α_c1` from `γ²` (for callers that hold `γ²` already; the same operations as
-/// [`alpha_c1`]).
+/// [`alpha_c1`]). Where `7(2γ² − 1)` overflows (`γ ≳ 3.6e153`), the same value as
+/// `1/(7(1 − 1/(2γ²)))`, which does not (`1/7`, the limit); elsewhere these exact operations,
+/// whose bits the tables, `oblique_eval.h` and `scripts/read_table.py` share.
 #[inline(always)]
 pub fn alpha_c1_of_squared(g2: f64) -> f64 {
-    2.0 * g2 / (7.0 * (2.0 * g2 - 1.0))
+    let d = 7.0 * (2.0 * g2 - 1.0);
+    if d == f64::INFINITY {
+        return 1.0 / (7.0 * (1.0 - 1.0 / (2.0 * g2)));
+    }
+    2.0 * g2 / d
 }
 
 /// `α_c2 = 2γ²/7`.
@@ -97,7 +103,13 @@ pub fn closed_form(gamma: f64, alpha: f64) -> Option<f64> {
 #[inline]
 pub fn alpha_c1_dissipative(gamma: f64, e_n: f64) -> f64 {
     let g2 = gamma * gamma;
-    2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n))
+    let d = 7.0 * (g2 * (1.0 + e_n) - e_n);
+    if d == f64::INFINITY {
+        // γ² or the denominator overflows: `2/(7((1 + e_n) − e_n/γ²))`, the same value
+        // (`2/(7(1 + e_n))` in the limit; `1/7`, [`alpha_c1`]'s, at `e_n = 1`).
+        return 2.0 / (7.0 * ((1.0 + e_n) - e_n / g2));
+    }
+    2.0 * g2 / d
 }
 
 /// Upper end of the exact line `P = 1 − (7/2)(1 + e_n) α` of a dissipative impact:
@@ -166,6 +178,63 @@ mod tests {
             assert!(alpha_c1_dissipative(g, 0.6) > alpha_c1(g));
         }
         assert_eq!(full_slip_line(0.1, 1.0), 1.0 - 7.0 * 0.1);
+    }
+
+    #[test]
+    fn the_end_of_full_slip_is_finite_for_every_gamma() {
+        let seventh = 1.0 / 7.0;
+        // 7(2γ²) overflows from 3.59e153 (the old formula gave 0 there, then NaN from
+        // 1.35e154, where 2γ² overflows).
+        assert_eq!(alpha_c1(3.6e153), seventh);
+        for g in [1e154, 1.3e154, 1.4e154, 1e200, f64::MAX, f64::INFINITY] {
+            assert_eq!(alpha_c1(g), seventh, "gamma {g:e}");
+            assert_eq!(linear_limit(g), seventh, "gamma {g:e}");
+            assert_eq!(alpha_c1_dissipative(g, 1.0), seventh, "gamma {g:e}");
+            assert_eq!(
+                alpha_c1_dissipative(g, 0.5),
+                2.0 / (7.0 * 1.5),
+                "gamma {g:e}"
+            );
+            assert_eq!(Regime::of(g, 0.1), Regime::FullSlip);
+            assert_eq!(Regime::of(g, 0.15), Regime::PartialSlip);
+            assert_eq!(Regime::of_dissipative(g, 0.17, 0.6), Regime::FullSlip);
+            assert_eq!(closed_form(g, 0.1), Some(1.0 - 7.0 * 0.1));
+        }
+        // Where the formula does not overflow, its bits are those of the written operations
+        // (the tables, oblique_eval.h and read_table.py share them).
+        let old = |g2: f64| 2.0 * g2 / (7.0 * (2.0 * g2 - 1.0));
+        let old_e = |g: f64, e: f64| {
+            let g2 = g * g;
+            2.0 * g2 / (7.0 * (g2 * (1.0 + e) - e))
+        };
+        let mut r = crate::sample::SplitMix(7);
+        for i in 0..200_000 {
+            // log-uniform from 1e-3 to just below the overflow (3.58e153), and near 1.
+            let g = if i % 4 == 0 {
+                1.0 + 1e-3 * r.uniform()
+            } else {
+                10f64.powf(-3.0 + 156.55 * r.uniform())
+            };
+            let e = 0.3 + 0.7 * r.uniform();
+            assert!((7.0 * (2.0 * g * g - 1.0)).is_finite());
+            assert_eq!(alpha_c1(g).to_bits(), old(g * g).to_bits(), "gamma {g:e}");
+            let want = old_e(g, e);
+            assert_eq!(
+                alpha_c1_dissipative(g, e).to_bits(),
+                want.to_bits(),
+                "{g:e}, {e}"
+            );
+            assert_eq!(alpha_c1_dissipative(g, 1.0).to_bits(), old(g * g).to_bits());
+        }
+        // Across the switch the values stay at 1/7 to rounding, without a step.
+        let mut g = 1e150;
+        while g < 1e160 {
+            assert!(
+                (alpha_c1(g) - seventh).abs() <= f64::EPSILON * seventh,
+                "{g:e}"
+            );
+            g *= 1.01;
+        }
     }
 
     #[test]
