@@ -4,13 +4,26 @@
 use oblique_solver::Preset;
 use serde_json::json;
 
+/// A number; `inf` (or `infinity`, `∞`) spelled out for infinity. A number beyond the largest
+/// double (`1e400`) is refused, not read as `inf`.
 pub(crate) fn parse_f64(s: &str) -> Result<f64, String> {
     let t = s.trim().to_ascii_lowercase();
     match t.as_str() {
         "inf" | "infinity" | "+inf" | "∞" => Ok(f64::INFINITY),
-        _ => t
-            .parse::<f64>()
-            .map_err(|_| format!("`{s}` is not a number")),
+        _ => {
+            let v = t
+                .parse::<f64>()
+                .map_err(|_| format!("`{s}` is not a number"))?;
+            let spelled = t.trim_start_matches(['+', '-']).starts_with("inf");
+            if v.is_infinite() && !spelled {
+                return Err(format!(
+                    "`{s}` overflows: its magnitude exceeds the largest number, {:e} (write inf for \
+                     infinity where it is allowed)",
+                    f64::MAX
+                ));
+            }
+            Ok(v)
+        }
     }
 }
 

@@ -22,7 +22,8 @@ and the answer is ``P = u_after/u_before``, the tangential restitution of the co
   :func:`critical` the critical friction groups ``α_c1``, ``α_c2``; :func:`regime` the regime.
 
 Every function takes NumPy arrays or scalars and broadcasts them by NumPy's rules; arrays are
-converted to float64 (integers are accepted; complex, strings, objects and booleans are not).
+converted to float64 (integers are accepted; complex, strings, objects, booleans and masked
+arrays, whose mask would be lost, are not).
 Invalid values raise ``ValueError`` naming the argument, its value, the allowed range and, for
 arrays, the index; a file that is not a valid table raises :class:`TableError`.
 """
@@ -181,6 +182,12 @@ class Sphere(NamedTuple):
 
 def _f64(x: Any, name: str) -> NDArray[np.float64]:
     """``x`` as a float64 array, refusing what is not a real number."""
+    if isinstance(x, np.ma.MaskedArray):
+        # np.asarray would drop the mask: the masked entries would be computed as numbers.
+        raise TypeError(
+            f"{name}: masked arrays are not accepted (their mask would be ignored); pass "
+            "x.compressed() or x.filled(value)"
+        )
     try:
         a = np.asarray(x)
     except Exception as e:  # ragged lists and the like
@@ -227,8 +234,8 @@ def _full(a: NDArray[np.float64], shape: Tuple[int, ...]) -> NDArray[np.float64]
 def _output(out: Optional[np.ndarray], shape: Tuple[int, ...]) -> np.ndarray:
     if out is None:
         return np.empty(shape, dtype=np.float64)
-    if not isinstance(out, np.ndarray):
-        raise TypeError(f"out: expected a numpy.ndarray, got {type(out).__name__}")
+    if not isinstance(out, np.ndarray) or isinstance(out, np.ma.MaskedArray):
+        raise TypeError(f"out: expected a numpy.ndarray (not masked), got {type(out).__name__}")
     if out.dtype != np.float64:
         raise TypeError(f"out: expected dtype float64, got {out.dtype}")
     if out.shape != shape:
@@ -560,6 +567,8 @@ class Table:
     extrapolation by a constant; the error it makes is yours). The full-slip line
     ``P = 1 − 7α`` (α up to α_c1 for γ > 1, α_c2 for γ ≤ 1) is exact and answered for any γ > 0.
 
+    ``path``: a ``str``, ``bytes`` or ``os.PathLike`` (``pathlib.Path``).
+
     Immutable; one table may be used by many threads. Raises ``FileNotFoundError`` (and the other
     ``OSError`` subclasses) when the file cannot be opened, :class:`TableError` when it is not a
     valid table.
@@ -567,8 +576,10 @@ class Table:
 
     __slots__ = ("_t", "_clamp", "_info")
 
-    def __init__(self, path: Union[str, os.PathLike], clamp: bool = False) -> None:
+    def __init__(self, path: Union[str, bytes, os.PathLike], clamp: bool = False) -> None:
         path = os.fspath(path)
+        if isinstance(path, bytes):
+            path = os.fsdecode(path)
         # The operating system's own error for a path that cannot be read (FileNotFoundError,
         # IsADirectoryError, PermissionError), before the format is looked at; a FIFO, device
         # or socket is refused without opening it (opening a FIFO blocks until a writer comes).

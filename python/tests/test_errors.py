@@ -312,6 +312,9 @@ BAD_DTYPES = {
     "python complex": 1.5 + 0j,
     "python bool": True,
     "python str": "1.5",
+    # A mask would be dropped by np.asarray: the masked entries computed as numbers.
+    "masked": np.ma.masked_array([1.5], mask=[True]),
+    "masked, none masked": np.ma.masked_array([1.5], mask=[False]),
 }
 
 
@@ -444,3 +447,16 @@ def test_a_fifo_or_device_is_refused_without_blocking(tmp_path):
         )
         assert r.returncode == 0, r.stderr
         assert "refused:" in r.stdout and target in r.stdout, r.stdout
+
+
+def test_masked_arrays_are_refused_naming_the_argument(full):
+    m = np.ma.masked_array([1.5, 2.0], mask=[False, True])
+    raises(TypeError, lambda: full.p(m, 0.3), r"\bgamma\b", "masked")
+    raises(TypeError, lambda: full.p([1.5, 2.0], np.ma.masked_array([0.3, 0.4])), r"\balpha\b",
+           "masked")
+    raises(TypeError, lambda: oblique.critical(np.ma.masked), r"\bgamma\b", "masked")
+    out = np.ma.masked_array(np.zeros(2), mask=[False, True])
+    raises(TypeError, lambda: full.p([1.5, 2.0], 0.3, out=out), r"\bout\b", "masked")
+    assert np.all(out.data == 0.0)
+    # The unmasked values, as the message says, are answered.
+    assert full.p(m.compressed(), 0.3) == full.p(1.5, 0.3)

@@ -5,6 +5,7 @@ reference reader scripts/read_table.py, closed forms), and the NumPy conventions
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -430,6 +431,33 @@ def test_full_slip_line_exact_for_any_gamma(full):
     a = 0.9 * alpha_lin(g)
     assert np.array_equal(full.p(g, a), 1.0 - 7.0 * a)
     assert np.array_equal(full.p(g, 0.0), np.ones_like(g))
+
+
+def test_full_slip_line_where_gamma_squared_overflows(full, dissipative):
+    """γ ≳ 1.3e154: 2γ² overflows; α_c1 is 1/7 there (its limit), not NaN, and the line is
+    answered as for every γ > 0 (it was refused, and the regime said partial slip)."""
+    for g in (3.6e153, 1e154, 1.4e154, 1e200, 1.7e308):
+        c1, c2 = oblique.critical(g)
+        assert c1 == 1.0 / 7.0 and c2 >= 3e306, (g, c1, c2)
+        assert oblique.regime(g, 0.1) == "full-slip"
+        assert oblique.regime(g, 0.15) == "partial-slip"
+        assert oblique.regime(g, math.inf) == "stick"
+        assert full.p(g, 0.1) == 1.0 - 7.0 * 0.1
+        with pytest.raises(ValueError, match=r"\bgamma\b"):
+            full.p(g, 0.15)
+        assert dissipative.p(g, 0.17, e_n=0.6) == 1.0 - 3.5 * 1.6 * 0.17
+    g = np.array([1e154, 1e200])
+    assert np.array_equal(oblique.critical(g)[0], [1.0 / 7.0] * 2)
+    assert np.array_equal(full.p(g, 0.1), [1.0 - 7.0 * 0.1] * 2)
+
+
+def test_a_table_path_as_str_bytes_or_path(table_paths):
+    path = table_paths["quick"]
+    want = oblique.Table(str(path)).p(1.5, 0.3)
+    for given in (path, bytes(path), os.fsencode(str(path))):
+        assert oblique.Table(given).p(1.5, 0.3) == want, repr(given)
+    with pytest.raises(FileNotFoundError):
+        oblique.Table(b"/nonexistent/table.h5")
 
 
 def test_curve_on_a_finite_alpha_max_table(finite_table, finite_table_path):

@@ -95,7 +95,8 @@ typedef struct ObliqueContact {
   struct ObliqueMaterial other_material;
   // Coulomb friction coefficient `μ ≥ 0` (`INFINITY` for no slip).
   double friction;
-  // 0: a `γ` outside the table's domain is an error; 1: answer at the nearest `γ` of the table.
+  // 0: a `γ` outside the table's domain is an error; 1: answer at the nearest `γ` of the table
+  // (any other value is refused with `OBLIQUE_ERR_QUERY`).
   int clamp;
 } ObliqueContact;
 
@@ -187,7 +188,8 @@ int oblique_table_domain(const struct ObliqueTable *table,
                          double *alpha_max);
 
 // `*p = P(γ, α)` (dimensionless). `alpha` may be `INFINITY` (no slip). `clamp` = 0: a point
-// outside the table's domain is an error; 1: it is answered at the nearest point of the domain.
+// outside the table's domain is an error; 1: it is answered at the nearest point of the domain
+// (in every function: any other value is refused with `OBLIQUE_ERR_QUERY` naming `clamp`).
 //
 // # Safety
 // `table` is NULL or a live handle; `p` is NULL or valid for writes.

@@ -110,7 +110,8 @@ pub struct ObliqueContact {
     pub other_material: ObliqueMaterial,
     /// Coulomb friction coefficient `μ ≥ 0` (`INFINITY` for no slip).
     pub friction: f64,
-    /// 0: a `γ` outside the table's domain is an error; 1: answer at the nearest `γ` of the table.
+    /// 0: a `γ` outside the table's domain is an error; 1: answer at the nearest `γ` of the table
+    /// (any other value is refused with `OBLIQUE_ERR_QUERY`).
     pub clamp: c_int,
 }
 
@@ -323,16 +324,25 @@ pub unsafe extern "C" fn oblique_table_domain(
     })
 }
 
-fn outside(clamp: c_int) -> OutOfDomain {
-    if clamp != 0 {
-        OutOfDomain::Clamp
-    } else {
-        OutOfDomain::Error
+/// `clamp` as the functions take it: 0 or 1; any other value is refused (`OBLIQUE_ERR_QUERY`
+/// naming it), not read as "clamp".
+fn outside(clamp: c_int) -> Result<OutOfDomain, (c_int, String)> {
+    match clamp {
+        0 => Ok(OutOfDomain::Error),
+        1 => Ok(OutOfDomain::Clamp),
+        _ => Err((
+            OBLIQUE_ERR_QUERY,
+            format!(
+                "invalid clamp = {clamp}: must be 0 (refuse a point outside the table's \
+                 domain) or 1 (answer at the nearest point of the domain)"
+            ),
+        )),
     }
 }
 
 /// `*p = P(γ, α)` (dimensionless). `alpha` may be `INFINITY` (no slip). `clamp` = 0: a point
-/// outside the table's domain is an error; 1: it is answered at the nearest point of the domain.
+/// outside the table's domain is an error; 1: it is answered at the nearest point of the domain
+/// (in every function: any other value is refused with `OBLIQUE_ERR_QUERY` naming `clamp`).
 ///
 /// # Safety
 /// `table` is NULL or a live handle; `p` is NULL or valid for writes.
@@ -349,7 +359,7 @@ pub unsafe extern "C" fn oblique_p(
         if p.is_null() {
             return Err(null("p"));
         }
-        *p = t.0.p_with(gamma, alpha, outside(clamp)).map_err(lookup)?;
+        *p = t.0.p_with(gamma, alpha, outside(clamp)?).map_err(lookup)?;
         Ok(())
     })
 }
@@ -376,7 +386,7 @@ pub unsafe extern "C" fn oblique_p_e(
             return Err(null("p"));
         }
         *p =
-            t.0.p_e_with(gamma, alpha, e_n, outside(clamp))
+            t.0.p_e_with(gamma, alpha, e_n, outside(clamp)?)
                 .map_err(lookup)?;
         Ok(())
     })
@@ -428,10 +438,11 @@ pub unsafe extern "C" fn oblique_p_batch(
                 return Err(null(name));
             }
         }
+        let outside = outside(clamp)?;
         let g = std::slice::from_raw_parts(gamma, n);
         let a = std::slice::from_raw_parts(alpha, n);
         let out = std::slice::from_raw_parts_mut(p, n);
-        t.0.p_batch(g, a, out, outside(clamp)).map_err(lookup)
+        t.0.p_batch(g, a, out, outside).map_err(lookup)
     })
 }
 
@@ -455,7 +466,7 @@ pub unsafe extern "C" fn oblique_curve_new(
         if curve.is_null() {
             return Err(null("curve"));
         }
-        let c = t.0.curve(gamma, outside(clamp)).map_err(lookup)?;
+        let c = t.0.curve(gamma, outside(clamp)?).map_err(lookup)?;
         *curve = Box::into_raw(Box::new(ObliqueCurve(c)));
         Ok(())
     })
@@ -493,21 +504,21 @@ pub unsafe extern "C" fn oblique_curve_free(curve: *mut ObliqueCurve) {
     }
 }
 
-fn contact(c: &ObliqueContact) -> Contact {
+fn contact(c: &ObliqueContact) -> Result<Contact, (c_int, String)> {
     let elastic = |m: &ObliqueMaterial| Elastic {
         youngs_modulus: m.youngs_modulus,
         poisson_ratio: m.poisson_ratio,
     };
-    Contact {
+    Ok(Contact {
         stiffness: if c.gamma == 0.0 {
             Stiffness::Materials(elastic(&c.sphere_material), elastic(&c.other_material))
         } else {
             Stiffness::Gamma(c.gamma)
         },
         friction: c.friction,
-        outside: outside(c.clamp),
+        outside: outside(c.clamp)?,
         restitution: 1.0,
-    }
+    })
 }
 
 fn body(b: &ObliqueBody) -> Body {
@@ -578,7 +589,7 @@ unsafe fn rebound(
                 None => None,
             },
         };
-        let c = contact(&read(contact_, "contact")?);
+        let c = contact(&read(contact_, "contact")?)?;
         if normal.is_null() {
             return Err(null("normal"));
         }
@@ -668,7 +679,7 @@ pub unsafe extern "C" fn oblique_prepare(
             sphere: body(&read(sphere, "sphere")?),
             other: other.as_ref().map(body),
         };
-        let c = self::contact(&read(contact, "contact")?);
+        let c = self::contact(&read(contact, "contact")?)?;
         if prepared.is_null() {
             return Err(null("prepared"));
         }
