@@ -15,7 +15,8 @@
 //!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Prepared` (pair and
 //!   materials checked once, as a DEM code does per material pair); `rebound/spheres_3d_curve`:
 //!   the same with `P` from the pair's `Table::curve`; `rebound/spheres_3d_prepared_e_n`: the
-//!   prepared pair at e_n = 0.8 from the table with an e_n axis.
+//!   prepared pair at e_n = 0.8 from the table with an e_n axis; `…_curve_e_n`: the same through
+//!   its curve at (γ, 0.8).
 //! - `batch/serial`, `batch/rayon`: 2²⁰ mixed points through `p_batch` / `p_batch_par` (on all
 //!   cores of the rayon pool); throughput in queries/s.
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
@@ -226,6 +227,16 @@ fn main() {
     let prepared_e = Prepared::new(&spheres, &contact_e).unwrap_or_else(|e| panic!("{e}"));
     timed(&mut g, "spheres_3d_prepared_e_n", clock, || {
         table_e.rebound_3d_prepared(black_box(&prepared_e), black_box(&inc3))
+    });
+    let curve_e = table_e
+        .curve_e(prepared_e.gamma(), 0.8, contact_e.outside)
+        .unwrap_or_else(|e| panic!("{e}"));
+    timed(&mut g, "spheres_3d_curve_e_n", clock, || {
+        table_e.rebound_3d_curve(
+            black_box(&prepared_e),
+            black_box(&curve_e),
+            black_box(&inc3),
+        )
     });
     g.finish();
 
