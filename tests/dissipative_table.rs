@@ -514,3 +514,49 @@ fn a_table_with_another_partial_slip_map_is_refused() {
         String::from_utf8_lossy(&reader.stderr)
     );
 }
+
+/// Batches (serial and parallel) answer every point with the bits of `Table::p_e`, and name
+/// the first refused point's index.
+#[test]
+fn batches_give_the_single_answers_bit_for_bit() {
+    use oblique_lookup::{OutOfDomain, Table};
+    let table = Table::open(table()).expect("open");
+    let n = 100_000;
+    let mut state = 0x2545_F491_4F6C_DD1Du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let gamma: Vec<f64> = (0..n).map(|_| 1.3 + 0.3 * next()).collect();
+    let alpha: Vec<f64> = (0..n)
+        .map(|i| {
+            if i % 11 == 0 {
+                f64::INFINITY
+            } else {
+                10f64.powf(-2.0 + 3.0 * next())
+            }
+        })
+        .collect();
+    let e_n: Vec<f64> = (0..n).map(|_| 0.7 + 0.3 * next()).collect();
+    let (mut serial, mut parallel) = (vec![0.0; n], vec![0.0; n]);
+    table
+        .p_e_batch(&gamma, &alpha, &e_n, &mut serial, OutOfDomain::Error)
+        .expect("serial");
+    table
+        .p_e_batch_par(&gamma, &alpha, &e_n, &mut parallel, OutOfDomain::Error)
+        .expect("parallel");
+    for i in 0..n {
+        let one = table.p_e(gamma[i], alpha[i], e_n[i]).expect("single");
+        assert_eq!(serial[i].to_bits(), one.to_bits(), "serial {i}");
+        assert_eq!(parallel[i].to_bits(), one.to_bits(), "parallel {i}");
+    }
+    let mut bad = e_n.clone();
+    bad[4321] = 0.6;
+    bad[70_000] = 0.5;
+    let e = table
+        .p_e_batch_par(&gamma, &alpha, &bad, &mut parallel, OutOfDomain::Error)
+        .expect_err("e_n below the range");
+    assert!(e.to_string().contains("query 4321"), "{e}");
+}
