@@ -159,6 +159,20 @@ module oblique_eval
          real(c_double), intent(out) :: p, alpha, e_t, energy_lost
       end function oblqf_rebound_3d
 
+      integer(c_int) function oblqf_rebound_3d_e(handle, m1, r1, kappa1, m2, r2, kappa2, &
+                                                 gamma, mu, e_n, v1, w1, v2, w2, normal, &
+                                                 clamp, v1_out, w1_out, v2_out, w2_out, p, &
+                                                 alpha, e_t, energy_lost) &
+         bind(C, name='oblqf_rebound_3d_e')
+         import :: c_int, c_double, c_ptr
+         type(c_ptr), value :: handle
+         real(c_double), value :: m1, r1, kappa1, m2, r2, kappa2, gamma, mu, e_n
+         real(c_double), intent(in) :: v1(3), w1(3), v2(3), w2(3), normal(3)
+         integer(c_int), value :: clamp
+         real(c_double), intent(out) :: v1_out(3), w1_out(3), v2_out(3), w2_out(3)
+         real(c_double), intent(out) :: p, alpha, e_t, energy_lost
+      end function oblqf_rebound_3d_e
+
       integer(c_int) function oblqf_rebound_3d_curve(curve, m1, r1, kappa1, m2, r2, kappa2, &
                                                      mu, v1, w1, v2, w2, normal, clamp, &
                                                      v1_out, w1_out, v2_out, w2_out, p, &
@@ -349,10 +363,14 @@ contains
    !> bodies must approach along it). After: v1_after, w1_after, v2_after, w2_after (a wall's
    !> stay zero), P (NaN when the contact point does not slip), e_t (tangential restitution of
    !> the centres; NaN when they have no tangential motion), energy_lost (J), and optionally
-   !> alpha (the friction group used; +infinity without slip).
+   !> alpha (the friction group used; +infinity without slip). Optional e_n (default 1, elastic):
+   !> the normal restitution, 0 <= e_n <= 1: the normal relative velocity reverses to e_n times
+   !> its value, P is the table's P(gamma, alpha, e_n) (e_n in its range, oblique_e_n_range,
+   !> else OBLQ_E_E_N; an elastic table answers e_n = 1 only) and energy_lost adds
+   !> (m*/2) v_z0**2 (1 - e_n**2).
    subroutine oblique_rebound_3d(table, m1, r1, kappa1, m2, r2, kappa2, gamma, mu, &
                                  v1, w1, v2, w2, normal, v1_after, w1_after, v2_after, &
-                                 w2_after, p, e_t, energy_lost, status, clamp, alpha)
+                                 w2_after, p, e_t, energy_lost, status, clamp, alpha, e_n)
       type(oblique_table), intent(in) :: table
       real(c_double), intent(in) :: m1, r1, kappa1, m2, r2, kappa2, gamma, mu
       real(c_double), intent(in) :: v1(3), w1(3), v2(3), w2(3), normal(3)
@@ -361,10 +379,13 @@ contains
       integer(c_int), intent(out) :: status
       logical, intent(in), optional :: clamp
       real(c_double), intent(out), optional :: alpha
-      real(c_double) :: a
-      status = oblqf_rebound_3d(table%handle, m1, r1, kappa1, m2, r2, kappa2, gamma, mu, &
-                                v1, w1, v2, w2, normal, clamp_flag(clamp), v1_after, &
-                                w1_after, v2_after, w2_after, p, a, e_t, energy_lost)
+      real(c_double), intent(in), optional :: e_n
+      real(c_double) :: a, e
+      e = 1.0_c_double
+      if (present(e_n)) e = e_n
+      status = oblqf_rebound_3d_e(table%handle, m1, r1, kappa1, m2, r2, kappa2, gamma, mu, e, &
+                                  v1, w1, v2, w2, normal, clamp_flag(clamp), v1_after, &
+                                  w1_after, v2_after, w2_after, p, a, e_t, energy_lost)
       if (status /= OBLQ_OK) &
          call rebound_nan(v1_after, w1_after, v2_after, w2_after, p, e_t, energy_lost, a)
       if (present(alpha)) alpha = a

@@ -51,6 +51,12 @@ int oblqf_rebound_3d(const void *handle, double m1, double r1, double kappa1, do
                      const double normal[3], int clamp, double v1_out[3], double w1_out[3],
                      double v2_out[3], double w2_out[3], double *p, double *alpha, double *e_t,
                      double *energy_lost);
+int oblqf_rebound_3d_e(const void *handle, double m1, double r1, double kappa1, double m2,
+                       double r2, double kappa2, double gamma, double mu, double e_n,
+                       const double v1[3], const double w1[3], const double v2[3],
+                       const double w2[3], const double normal[3], int clamp, double v1_out[3],
+                       double w1_out[3], double v2_out[3], double w2_out[3], double *p,
+                       double *alpha, double *e_t, double *energy_lost);
 int oblqf_rebound_3d_curve(const void *curve, double m1, double r1, double kappa1, double m2,
                            double r2, double kappa2, double mu, const double v1[3],
                            const double w1[3], const double v2[3], const double w2[3],
@@ -207,14 +213,14 @@ static oblq_body oblqf__body(double mass, double radius, double kappa) {
 
 /* The pair of bodies: sphere 1 on a wall (m2 == 0) or on sphere 2. */
 static int oblqf__pair(oblq_pair *k, double m1, double r1, double kappa1, double m2, double r2,
-                       double kappa2, double gamma, double mu) {
+                       double kappa2, double gamma, double mu, double e_n) {
     oblq_body b1 = oblqf__body(m1, r1, kappa1), b2 = oblqf__body(m2, r2, kappa2);
-    return oblq_pair_init(k, &b1, m2 == 0.0 ? NULL : &b2, gamma, mu);
+    return oblq_pair_init_e(k, &b1, m2 == 0.0 ? NULL : &b2, gamma, mu, e_n);
 }
 
 static int oblqf__rebound(const oblq_table *t, const oblq_curve *c, double m1, double r1,
                           double kappa1, double m2, double r2, double kappa2, double gamma,
-                          double mu, const double v1[3], const double w1[3], const double v2[3],
+                          double mu, double e_n, const double v1[3], const double w1[3], const double v2[3],
                           const double w2[3], const double normal[3], int clamp, double v1_out[3],
                           double w1_out[3], double v2_out[3], double w2_out[3], double *p,
                           double *alpha, double *e_t, double *energy_lost) {
@@ -225,7 +231,7 @@ static int oblqf__rebound(const oblq_table *t, const oblq_curve *c, double m1, d
     if (!v1 || !w1 || !v2 || !w2 || !normal || !v1_out || !w1_out || !v2_out || !w2_out || !p ||
         !alpha || !e_t || !energy_lost)
         return OBLQ_E_NULL;
-    rc = oblqf__pair(&k, m1, r1, kappa1, m2, r2, kappa2, gamma, mu);
+    rc = oblqf__pair(&k, m1, r1, kappa1, m2, r2, kappa2, gamma, mu, e_n);
     if (rc != OBLQ_OK) return rc;
     for (i = 0; i < 3; i++) {
         s.sphere.v[i] = v1[i];
@@ -263,8 +269,25 @@ int oblqf_rebound_3d(const void *handle, double m1, double r1, double kappa1, do
                      double *energy_lost) {
     const oblq_table *t = oblqf__table(handle);
     if (!t) return OBLQ_E_NULL;
-    return oblqf__rebound(t, NULL, m1, r1, kappa1, m2, r2, kappa2, gamma, mu, v1, w1, v2, w2,
-                          normal, clamp, v1_out, w1_out, v2_out, w2_out, p, alpha, e_t,
+    return oblqf__rebound(t, NULL, m1, r1, kappa1, m2, r2, kappa2, gamma, mu, 1.0, v1, w1, v2,
+                          w2, normal, clamp, v1_out, w1_out, v2_out, w2_out, p, alpha, e_t,
+                          energy_lost);
+}
+
+/* oblqf_rebound_3d at normal restitution 0 <= e_n <= 1 (oblq_pair_init_e): the normal relative
+   velocity reverses to e_n times its value, P is the table's P(gamma, alpha, e_n) (e_n in its
+   e_n range, else OBLQ_E_E_N; an elastic table: e_n = 1 only), and energy_lost adds
+   (m* / 2) v_z0^2 (1 - e_n^2). e_n = 1: the bits of oblqf_rebound_3d. */
+int oblqf_rebound_3d_e(const void *handle, double m1, double r1, double kappa1, double m2,
+                       double r2, double kappa2, double gamma, double mu, double e_n,
+                       const double v1[3], const double w1[3], const double v2[3],
+                       const double w2[3], const double normal[3], int clamp, double v1_out[3],
+                       double w1_out[3], double v2_out[3], double w2_out[3], double *p,
+                       double *alpha, double *e_t, double *energy_lost) {
+    const oblq_table *t = oblqf__table(handle);
+    if (!t) return OBLQ_E_NULL;
+    return oblqf__rebound(t, NULL, m1, r1, kappa1, m2, r2, kappa2, gamma, mu, e_n, v1, w1, v2,
+                          w2, normal, clamp, v1_out, w1_out, v2_out, w2_out, p, alpha, e_t,
                           energy_lost);
 }
 
@@ -277,8 +300,8 @@ int oblqf_rebound_3d_curve(const void *curve, double m1, double r1, double kappa
                            double *alpha, double *e_t, double *energy_lost) {
     const oblq_curve *c = (const oblq_curve *)curve;
     if (!c) return OBLQ_E_NULL;
-    return oblqf__rebound(NULL, c, m1, r1, kappa1, m2, r2, kappa2, c->gamma, mu, v1, w1, v2, w2,
-                          normal, clamp, v1_out, w1_out, v2_out, w2_out, p, alpha, e_t,
+    return oblqf__rebound(NULL, c, m1, r1, kappa1, m2, r2, kappa2, c->gamma, mu, 1.0, v1, w1, v2,
+                          w2, normal, clamp, v1_out, w1_out, v2_out, w2_out, p, alpha, e_t,
                           energy_lost);
 }
 

@@ -1054,12 +1054,16 @@ typedef struct {
     double youngs_modulus, poisson_ratio;
 } oblq_material;
 
-/* A pair of bodies with its contact, checked and reduced once (oblq_pair_init). */
+/* A pair of bodies with its contact, checked and reduced once (oblq_pair_init,
+   oblq_pair_init_e). */
 typedef struct {
     int wall; /* 1: sphere 1 on a fixed wall */
     double gamma, friction;
-    double alpha_scale, tangential_mass, two_normal_mass;
+    double alpha_scale, tangential_mass, two_normal_mass; /* two_normal_mass: (1 + e_n) m* */
     double inv_m1, spin1, r1, inv_m2, spin2, r2;
+    double e_n;          /* normal restitution (1: elastic) */
+    double normal_mass;  /* m* (kg) */
+    double normal_loss;  /* (m* / 2)(1 - e_n^2) (kg): energy lost per unit v_z0^2 */
 } oblq_pair;
 
 /* Velocity v (m/s) and angular velocity w (rad/s) of one body. */
@@ -1083,9 +1087,10 @@ typedef struct {
     double e_t;                  /* tangential restitution of the centres (NaN: none) */
     double slip_before, slip_after;      /* |u0| and P |u0| along t (m/s) */
     double tangential_impulse;   /* J on body 2 along +t (N s) */
-    double normal_impulse;       /* 2 m* v_z0 on body 2 along +n (N s) */
+    double normal_impulse;       /* (1 + e_n) m* v_z0 on body 2 along +n (N s) */
     double approach_speed;       /* v_z0 (m/s) */
-    double energy_lost;          /* (m_t/2) u0^2 (1 - P^2) (J) */
+    double energy_lost;          /* (m_t/2) u0^2 (1 - P^2) + (m* / 2) v_z0^2 (1 - e_n^2) (J) */
+    double e_n;                  /* the pair's normal restitution: separation at e_n v_z0 */
 } oblq_rebound3;
 
 OBLQ_FN int oblq__body_ok(const oblq_body *b) {
@@ -1138,9 +1143,15 @@ OBLQ_FN int oblq_gamma_of(const oblq_body *sphere, const oblq_body *other,
 }
 
 /* Check a pair (sphere 1 on a wall when other = NULL, else on sphere 2), its gamma (from
-   oblq_gamma_of, or given) and friction mu >= 0 (INFINITY: no slip), once for many impacts. */
-OBLQ_FN int oblq_pair_init(oblq_pair *k, const oblq_body *sphere, const oblq_body *other,
-                           double gamma, double friction) {
+   oblq_gamma_of, or given), friction mu >= 0 (INFINITY: no slip) and normal restitution
+   0 <= e_n <= 1 (else OBLQ_E_E_N), once for many impacts. The normal relative velocity
+   reverses to e_n times its value: normal impulse (1 + e_n) m* v_z0, and (m* / 2) v_z0^2
+   (1 - e_n^2) more energy lost (as Rust's Prepared::new with Contact::with_restitution). The
+   rebounds then ask the table for P(gamma, alpha, e_n) (oblq_p_e): e_n must lie in its e_n
+   range, else they return OBLQ_E_E_N (an elastic table: e_n = 1 only; curves: e_n = 1 only).
+   A pure normal impact (u0 = 0) does not consult the table. */
+OBLQ_FN int oblq_pair_init_e(oblq_pair *k, const oblq_body *sphere, const oblq_body *other,
+                             double gamma, double friction, double e_n) {
     double inv_mt, normal_mass, mt;
     int rc;
     if (!k || !sphere) return OBLQ_E_NULL;
@@ -1148,6 +1159,7 @@ OBLQ_FN int oblq_pair_init(oblq_pair *k, const oblq_body *sphere, const oblq_bod
     if (other && (rc = oblq__body_ok(other)) != OBLQ_OK) return rc;
     if (!(isfinite(gamma) && gamma > 0.0)) return OBLQ_E_GAMMA;
     if (isnan(friction) || friction < 0.0) return OBLQ_E_FRICTION;
+    if (!(e_n >= 0.0 && e_n <= 1.0)) return OBLQ_E_E_N; /* NaN too */
     normal_mass = other ? 1.0 / (1.0 / sphere->mass + 1.0 / other->mass) : sphere->mass;
     inv_mt = oblq__inv_mt(sphere) + (other ? oblq__inv_mt(other) : 0.0);
     mt = 1.0 / inv_mt;
@@ -1156,7 +1168,10 @@ OBLQ_FN int oblq_pair_init(oblq_pair *k, const oblq_body *sphere, const oblq_bod
     k->friction = friction;
     k->alpha_scale = 2.0 / 7.0 * (normal_mass / mt) * friction;
     k->tangential_mass = mt;
-    k->two_normal_mass = 2.0 * normal_mass;
+    k->two_normal_mass = (1.0 + e_n) * normal_mass; /* 2 m* exactly for e_n = 1 */
+    k->e_n = e_n;
+    k->normal_mass = normal_mass;
+    k->normal_loss = 0.5 * normal_mass * (1.0 - e_n * e_n);
     k->inv_m1 = 1.0 / sphere->mass;
     k->spin1 = sphere->radius / (sphere->kappa * sphere->mass * sphere->radius * sphere->radius);
     k->r1 = sphere->radius;
@@ -1170,6 +1185,12 @@ OBLQ_FN int oblq_pair_init(oblq_pair *k, const oblq_body *sphere, const oblq_bod
         k->r2 = 0.0;
     }
     return OBLQ_OK;
+}
+
+/* oblq_pair_init_e of an elastic impact, e_n = 1. */
+OBLQ_FN int oblq_pair_init(oblq_pair *k, const oblq_body *sphere, const oblq_body *other,
+                           double gamma, double friction) {
+    return oblq_pair_init_e(k, sphere, other, gamma, friction, 1.0);
 }
 
 OBLQ_FN double oblq__dot(const double a[3], const double b[3]) {
@@ -1198,6 +1219,7 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
     const oblq_motion3 *m1, *m2;
     int i, rc;
     if (!k || !s || !out || (!t && !cv)) return OBLQ_E_NULL;
+    if (cv && k->e_n != 1.0) return OBLQ_E_E_N; /* curves are elastic */
     {
         /* Every component finite: x * 0 is (+-)0 for a finite x and NaN otherwise. */
         double z = 0.0;
@@ -1232,7 +1254,8 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
         u0 = slip;
         alpha = k->alpha_scale * v0 / u0;
         if (alpha != alpha) alpha = INFINITY; /* 0 * inf (no friction, no slip speed) */
-        rc = cv ? oblq_curve_p(cv, alpha, clamp, &p) : oblq_p(t, k->gamma, alpha, clamp, &p);
+        rc = cv ? oblq_curve_p(cv, alpha, clamp, &p)
+                : oblq_p_e(t, k->gamma, alpha, k->e_n, clamp, &p);
         if (rc != OBLQ_OK) return rc;
         j = k->tangential_mass * (1.0 - p) * u0;
     } else {
@@ -1280,7 +1303,13 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
     r->tangential_impulse = j;
     r->normal_impulse = nn;
     r->approach_speed = v0;
-    r->energy_lost = u0 == 0.0 ? 0.0 : 0.5 * k->tangential_mass * u0 * u0 * (1.0 - p * p);
+    /* The operations of the Rust library: its fast path for u0 > 0, its step-by-step one
+       (Pair::rebound_in_plane_dissipative) for u0 = 0. */
+    r->energy_lost = u0 == 0.0
+                         ? 0.0 + 0.5 * k->normal_mass * v0 * v0 * (1.0 - k->e_n * k->e_n)
+                         : 0.5 * k->tangential_mass * u0 * u0 * (1.0 - p * p) +
+                               (k->normal_loss == 0.0 ? 0.0 : k->normal_loss * v0 * v0);
+    r->e_n = k->e_n;
     return OBLQ_OK;
 }
 
@@ -1292,7 +1321,8 @@ OBLQ_FN int oblq_rebound_3d(const oblq_table *t, const oblq_pair *k, const oblq_
 }
 
 /* A 3-D impact of a pair, P from a curve of the export at the pair's gamma (the same answer
-   to about 1e-15 in P, fewer operations). */
+   to about 1e-15 in P, fewer operations). Curves are elastic: a pair of e_n != 1 is refused
+   (OBLQ_E_E_N). */
 OBLQ_FN int oblq_rebound_3d_curve(const oblq_curve *c, const oblq_pair *k,
                                 const oblq_incident3 *s, int clamp, oblq_rebound3 *out) {
     if (!c) return OBLQ_E_NULL;
@@ -1310,10 +1340,12 @@ typedef struct {
     oblq_state sphere, other; /* after (other unchanged for a wall) */
     double gamma, alpha, p, e_t, slip_before, slip_after, tangential_impulse, normal_impulse,
         energy_lost;
+    double e_n; /* the pair's normal restitution */
 } oblq_rebound2;
 
 /* A 2-D impact (sphere and other states before), P from the table or a curve (one of them may
-   be NULL). Uses only the pair's masses, radii and inertia through oblq_pair. */
+   be NULL). Uses only the pair's masses, radii and inertia through oblq_pair, and its e_n
+   (oblq_pair_init_e; a curve answers e_n = 1 only, else OBLQ_E_E_N). */
 OBLQ_FN int oblq_rebound_2d(const oblq_table *t, const oblq_curve *cv, const oblq_pair *k,
                           const oblq_state *s1, const oblq_state *s2, int clamp,
                           oblq_rebound2 *out) {
@@ -1352,6 +1384,7 @@ OBLQ_FN int oblq_rebound_2d(const oblq_table *t, const oblq_curve *cv, const obl
     out->tangential_impulse = r.tangential_impulse * r.tangent[0];
     out->normal_impulse = r.normal_impulse;
     out->energy_lost = r.energy_lost;
+    out->e_n = r.e_n;
     return OBLQ_OK;
 }
 #ifdef __cplusplus

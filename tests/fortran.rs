@@ -221,6 +221,7 @@ fn header_messages(codes: &BTreeMap<String, i32>) -> BTreeMap<i32, String> {
 ///   cp ALPHA CLAMP                  status P                 (of the kept curve)
 ///   r  M1 R1 K1 M2 R2 K2 GAMMA MU V1 W1 V2 W2 N CLAMP        status v1 w1 v2 w2 P e_t E alpha
 ///   rc M1 R1 K1 M2 R2 K2 MU V1 W1 V2 W2 N CLAMP              the same with P from the curve
+///   re M1 R1 K1 M2 R2 K2 GAMMA MU E_N V1 W1 V2 W2 N CLAMP    `r` at normal restitution E_N
 ///   g  M1 R1 K1 E1 NU1 M2 R2 K2 E2 NU2                       status gamma
 ///   m CODE                          len:text
 ///   info                            status gamma_min gamma_max alpha_max bound surface n
@@ -283,6 +284,12 @@ const DRIVER: &str = r#"program driver
                                  v1a, w1a, v2a, w2a, p, e_t, lost, status, &
                                  clamp=clamp /= 0, alpha=alpha)
          write (*, '(I0,16(1X,G0.17))') status, v1a, w1a, v2a, w2a, p, e_t, lost, alpha
+      case ('re')
+         read (line, *) cmd, m1, r1, k1, m2, r2, k2, g, mu, e, v1, w1, v2, w2, nrm, clamp
+         call oblique_rebound_3d(t, m1, r1, k1, m2, r2, k2, g, mu, v1, w1, v2, w2, nrm, &
+                                 v1a, w1a, v2a, w2a, p, e_t, lost, status, &
+                                 clamp=clamp /= 0, alpha=alpha, e_n=e)
+         write (*, '(I0,16(1X,G0.17))') status, v1a, w1a, v2a, w2a, p, e_t, lost, alpha
       case ('rc')
          read (line, *) cmd, m1, r1, k1, m2, r2, k2, mu, v1, w1, v2, w2, nrm, clamp
          call oblique_rebound_3d_curve(c, m1, r1, k1, m2, r2, k2, mu, v1, w1, v2, w2, nrm, &
@@ -314,6 +321,13 @@ const DRIVER: &str = r#"program driver
    if (allocated(msg)) deallocate (msg)
 end program driver
 "#;
+
+/// The table with an e_n axis of [`dissipative_table`] and its export, made once per process
+/// (the tests that use it run in parallel).
+fn dissipative() -> &'static (Table, PathBuf) {
+    static T: OnceLock<(Table, PathBuf)> = OnceLock::new();
+    T.get_or_init(|| dissipative_table(&dir().join("dissipative")))
+}
 
 /// The normal and sanitized builds (made once).
 fn builds() -> &'static [(PathBuf, PathBuf); 2] {
@@ -823,7 +837,7 @@ fn module_answers_points_curves_and_rebounds_like_the_rust_library() {
 #[test]
 fn module_answers_p_of_a_table_with_an_e_n_axis() {
     let start = std::time::Instant::now();
-    let (t, export) = dissipative_table(&dir().join("dissipative"));
+    let (t, export) = dissipative();
     let s = t.surface();
     let pts = points_e(
         20_000,
@@ -838,7 +852,7 @@ fn module_answers_p_of_a_table_with_an_e_n_axis() {
     input += "pev 1.45 0.3 0.8 1.45 0.3 0.5 1.45 inf 1\n";
     input += "pe 1.45 0.3 nan 0\np 1.45 0.3 0\n";
     let plain = &builds()[0].1;
-    let out = run_ok(plain, &[&path_str(&export)], &input);
+    let out = run_ok(plain, &[&path_str(export)], &input);
     let mut lines = out.lines();
     let mut next = || lines.next().expect("an answer per line");
     assert_eq!(next(), "0", "open");
@@ -903,4 +917,104 @@ fn module_answers_p_of_a_table_with_an_e_n_axis() {
         pts.len(),
         start.elapsed().as_secs_f64()
     );
+}
+
+#[test]
+fn module_rebounds_at_e_n_give_the_bits_of_the_rust_library() {
+    let (t, export) = dissipative();
+    let mut r = SplitMix(43);
+    let mut cases = Vec::new();
+    for case in 0..12 {
+        let wall = case % 3 == 0;
+        let pair = Pair {
+            sphere: random_body(&mut r),
+            other: (!wall).then(|| random_body(&mut r)),
+        };
+        let (gamma, mu) = (1.0 + 0.55 * r.uniform(), 0.05 + r.uniform());
+        let e_n = if case == 0 {
+            1.0
+        } else {
+            0.7 + 0.3 * r.uniform()
+        };
+        for _ in 0..50 {
+            if let Some(s) = random_impact(&mut r, wall) {
+                cases.push((pair, gamma, mu, e_n, s));
+            }
+        }
+    }
+    let line = |pair: &Pair, gamma: f64, mu: f64, e_n: f64, s: &Incident3| {
+        let b2 = pair.other.unwrap_or(pair.sphere);
+        let m2 = if pair.other.is_none() { 0.0 } else { b2.mass };
+        let b1 = pair.sphere;
+        format!(
+            "re {} {} {} {} {} {} {} {} {} {} {} {} {} {} 0\n",
+            f(b1.mass),
+            f(b1.radius),
+            f(b1.kappa),
+            f(m2),
+            f(b2.radius),
+            f(b2.kappa),
+            f(gamma),
+            f(mu),
+            f(e_n),
+            v3(&s.sphere.velocity),
+            v3(&s.sphere.spin),
+            v3(&s.other.velocity),
+            v3(&s.other.spin),
+            v3(&s.normal)
+        )
+    };
+    let mut input: String = cases
+        .iter()
+        .map(|(p, g, mu, e, s)| line(p, *g, *mu, *e, s))
+        .collect();
+    // Refusals: e_n outside [0, 1] (the pair) and outside the table's range [0.7, 1].
+    let (p0, g0, mu0, _, s0) = cases[1];
+    for e_n in [1.5, -0.5, f64::NAN, 0.6] {
+        input += &line(&p0, g0, mu0, e_n, &s0);
+    }
+    let plain = &builds()[0].1;
+    let out = run_ok(plain, &[&path_str(export)], &input);
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some("0"), "open");
+    let (mut compared, mut refused) = (0, 0);
+    for (pair, gamma, mu, e_n, s) in &cases {
+        let c = nums(lines.next().expect("an answer"));
+        let contact = Contact::with_gamma(*gamma, *mu).with_restitution(*e_n);
+        match t.rebound_3d(pair, &contact, s) {
+            Ok(a) => {
+                assert_eq!(c[0], 0.0);
+                let want = &rebound_fields(&a)[..16];
+                for (k, (x, y)) in c[1..].iter().zip(want).enumerate() {
+                    assert!(
+                        x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()),
+                        "e_n {e_n:?} field {k}: Fortran {x:?}, Rust {y:?}"
+                    );
+                }
+                compared += 1;
+            }
+            Err(e) => {
+                refused += 1;
+                assert_eq!(c[0], 10.0, "{e}");
+                assert!(c[1..].iter().all(|x| x.is_nan()));
+            }
+        }
+    }
+    for _ in 0..4 {
+        let c = nums(lines.next().expect("an answer"));
+        assert_eq!(c[0], 24.0);
+        assert!(c[1..].iter().all(|x| x.is_nan()));
+    }
+    // An elastic export answers e_n = 1 only.
+    let out = run_ok(
+        plain,
+        &[&path_str(export_file())],
+        &line(&p0, 1.6, mu0, 0.9, &s0),
+    );
+    assert!(
+        out.lines().nth(1).expect("an answer").starts_with("24 "),
+        "{out}"
+    );
+    assert!(compared > 250, "{compared} compared, {refused} refused");
+    eprintln!("Fortran rebounds at e_n: {compared} C == Rust bit for bit, {refused} refused alike");
 }

@@ -12,6 +12,11 @@
                                                  alpha slip_before
      eval_check rebound2 EXPORT m1 R1 k1 m2 R2 k2 GAMMA MU
                                                  stdin: v_x v_z omega (x2) -> the 2-D answer
+     eval_check rebound EXPORT SOURCE m1 R1 k1 m2 R2 k2 GAMMA MU E_N
+     eval_check rebound2 EXPORT m1 R1 k1 m2 R2 k2 GAMMA MU E_N
+                                                 the same at normal restitution E_N
+                                                 (oblq_pair_init_e), two more fields:
+                                                 normal_impulse e_n
      eval_check fuzz EXPORT N SEED               N mutated copies through oblq_open and queries
      eval_check headers EXPORT                   every header field set to NaN, +-inf, 0,
                                                  negative, huge, a critical value, the other
@@ -485,9 +490,10 @@ int main(int argc, char **argv) {
             else printf("error %d", rc);
             printf("\n");
         }
-    } else if ((!strcmp(argv[1], "rebound") && argc == 12) ||
-               (!strcmp(argv[1], "rebound2") && argc == 11)) {
+    } else if ((!strcmp(argv[1], "rebound") && (argc == 12 || argc == 13)) ||
+               (!strcmp(argv[1], "rebound2") && (argc == 11 || argc == 12))) {
         int two = !strcmp(argv[1], "rebound2");
+        int with_e = argc == (two ? 12 : 13);
         const char **a = (const char **)argv + (two ? 3 : 4);
         int use_curve = !two && !strcmp(argv[3], "curve");
         oblq_body b1, b2;
@@ -504,7 +510,8 @@ int main(int argc, char **argv) {
         b2.kappa = atof(a[5]);
         gamma = atof(a[6]);
         mu = atof(a[7]);
-        rc = oblq_pair_init(&k, &b1, b2.mass > 0.0 ? &b2 : NULL, gamma, mu);
+        rc = with_e ? oblq_pair_init_e(&k, &b1, b2.mass > 0.0 ? &b2 : NULL, gamma, mu, atof(a[8]))
+                    : oblq_pair_init(&k, &b1, b2.mass > 0.0 ? &b2 : NULL, gamma, mu);
         if (rc == OBLQ_OK && use_curve) rc = oblq_curve_find(&t, gamma, 0.0, &c);
         if (rc != OBLQ_OK) {
             printf("error %d\n", rc);
@@ -515,7 +522,7 @@ int main(int argc, char **argv) {
             oblq_rebound2 r;
             while (scanf("%lf %lf %lf %lf %lf %lf", &s1.v_x, &s1.v_z, &s1.omega, &s2.v_x, &s2.v_z,
                          &s2.omega) == 6) {
-                double v[11];
+                double v[13];
                 int i;
                 rc = oblq_rebound_2d(&t, NULL, &k, &s1, &s2, 0, &r);
                 if (rc != OBLQ_OK) {
@@ -526,7 +533,8 @@ int main(int argc, char **argv) {
                 v[3] = r.other.v_x; v[4] = r.other.v_z; v[5] = r.other.omega;
                 v[6] = r.p; v[7] = r.e_t; v[8] = r.energy_lost; v[9] = r.alpha;
                 v[10] = r.tangential_impulse;
-                for (i = 0; i < 11; i++) {
+                v[11] = r.normal_impulse; v[12] = r.e_n;
+                for (i = 0; i < (with_e ? 13 : 11); i++) {
                     if (i) printf(" ");
                     g17(v[i]);
                 }
@@ -563,7 +571,8 @@ int main(int argc, char **argv) {
                 }
                 v[12] = r.p; v[13] = r.e_t; v[14] = r.energy_lost; v[15] = r.alpha;
                 v[16] = r.slip_before;
-                for (i = 0; i < 17; i++) {
+                v[17] = r.normal_impulse; v[18] = r.e_n;
+                for (i = 0; i < (with_e ? 19 : 17); i++) {
                     if (i) printf(" ");
                     g17(v[i]);
                 }

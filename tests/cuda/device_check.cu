@@ -9,7 +9,7 @@ __global__ void every_function(const unsigned char *data, size_t size, double *o
     oblq_curve c, found;
     oblq_body b1 = {1e-3, 1e-3, 0.4}, b2 = {2e-3, 2e-3, 0.4};
     oblq_material m1 = {2e11, 0.3}, m2 = {7e10, 0.33};
-    oblq_pair pair, wall;
+    oblq_pair pair, wall, damped;
     oblq_incident3 s = {{{0.1, 0.0, 1.0}, {0.0, 0.0, 0.0}}, {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}},
                         {0.0, 0.0, 1.0}};
     oblq_rebound3 r3;
@@ -32,6 +32,8 @@ __global__ void every_function(const unsigned char *data, size_t size, double *o
     rc[k++] = oblq_gamma_of(&b1, &b2, &m1, &m2, &gamma);
     rc[k++] = oblq_pair_init(&pair, &b1, &b2, gamma, 0.3);
     rc[k++] = oblq_pair_init(&wall, &b1, NULL, gamma, 0.3);
+    rc[k++] = oblq_pair_init_e(&damped, &b1, &b2, gamma, 0.3, 0.8);
+    rc[k++] = oblq_rebound_3d(&t, &damped, &s, 1, &r3);
     rc[k++] = oblq_rebound_3d(&t, &pair, &s, 0, &r3);
     rc[k++] = oblq_rebound_3d_curve(&c, &pair, &s, 1, &r3);
     rc[k++] = oblq_rebound_2d(&t, &c, &wall, &s1, &s2, 0, &r2);

@@ -24,11 +24,12 @@
 //
 // Threads: an `ObliqueTable` is immutable once `oblique_table_open` returns; any number of
 // threads may use one handle at the same time, without locking, in `oblique_table_domain`,
-// `oblique_p`, `oblique_p_batch`, `oblique_curve_new`, `oblique_rebound_wall`,
-// `oblique_rebound_spheres` and `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
+// `oblique_p`, `oblique_p_e`, `oblique_p_batch`, `oblique_curve_new`, `oblique_rebound_wall`,
+// `oblique_rebound_spheres`, `oblique_rebound_wall_e`, `oblique_rebound_spheres_e` and
+// `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
 // (`oblique_curve_p`) and an `ObliquePrepared` (`oblique_rebound_prepared`) are immutable and
 // may be shared. `oblique_table_open` and `oblique_prepare` may be called by several threads
-// at once (the library serialises its calls into HDF5). Only the functions that free a handle
+// at once (the library serialises its calls into HDF5), and so may `oblique_prepare_e`. Only the functions that free a handle
 // (`oblique_table_close`, `oblique_curve_free`, `oblique_prepared_free`) need it to be used by
 // no other thread, during and after the call. `oblique_last_error()` reports the last failure
 // of the calling thread only. `oblique_version()` and `oblique_abi_version()` may be called at
@@ -132,17 +133,18 @@ typedef struct ObliqueRebound {
   double slip_after;
   // Friction impulse on body 2 along `+t` (N s).
   double tangential_impulse;
-  // Normal impulse `2 m* v_z0` on body 2 along `+n` (N s).
+  // Normal impulse `(1 + e_n) m* v_z0` on body 2 along `+n` (N s): `2 m* v_z0` elastic.
   double normal_impulse;
   // `e_t = (w_after · w_before)/|w_before|²`, `w` the tangential relative centre velocity.
   double e_t;
   // `atan2(|w_before|, v_z0)` (rad).
   double incidence_angle;
-  // `atan2(|w_after|, v_z0)` (rad).
+  // `atan2(|w_after|, e_n v_z0)` (rad).
   double rebound_angle_centre;
-  // `atan2(P |u0|, v_z0)` (rad), negative when the slip reversed.
+  // `atan2(P |u0|, e_n v_z0)` (rad), negative when the slip reversed.
   double rebound_angle_contact;
-  // Kinetic energy lost to friction, `(m_t/2) u0² (1 − P²)` (J).
+  // Kinetic energy lost, `(m_t/2) u0² (1 − P²) + (m*/2) v_z0² (1 − e_n²)` (J): to friction,
+  // and to normal damping at `e_n < 1` (the `_e` functions).
   double energy_lost;
 } ObliqueRebound;
 
@@ -283,6 +285,40 @@ int oblique_rebound_spheres(const struct ObliqueTable *table,
                             const double *normal,
                             struct ObliqueRebound *out);
 
+// `oblique_rebound_wall` at normal restitution `e_n` in [0, 1]: the sphere leaves the wall at
+// `e_n` times its approach speed, `P` is `P(γ, α, e_n)` of the table (`oblique_p_e`: `e_n`
+// must lie in the table's range, `oblique_table_restitution`; an elastic table answers
+// `e_n = 1` only), and the normal impulse and the energy lost follow (`ObliqueRebound`). An
+// `e_n` outside [0, 1] or outside the table's range: `OBLIQUE_ERR_QUERY` (a pure normal
+// impact, `u0 = 0`, does not consult the table). `e_n = 1`: the answer of
+// `oblique_rebound_wall`, bit for bit.
+//
+// # Safety
+// As for `oblique_rebound_wall`.
+int oblique_rebound_wall_e(const struct ObliqueTable *table,
+                           const struct ObliqueBody *sphere,
+                           const struct ObliqueContact *contact,
+                           double e_n,
+                           const struct ObliqueMotion *motion,
+                           const double *normal,
+                           struct ObliqueRebound *out);
+
+// `oblique_rebound_spheres` at normal restitution `e_n` in [0, 1]: the spheres separate at
+// `e_n` times their approach speed (see `oblique_rebound_wall_e`). `e_n = 1`: the answer of
+// `oblique_rebound_spheres`, bit for bit.
+//
+// # Safety
+// As for `oblique_rebound_spheres`.
+int oblique_rebound_spheres_e(const struct ObliqueTable *table,
+                              const struct ObliqueBody *sphere,
+                              const struct ObliqueBody *other,
+                              const struct ObliqueContact *contact,
+                              double e_n,
+                              const struct ObliqueMotion *motion,
+                              const struct ObliqueMotion *other_motion,
+                              const double *normal,
+                              struct ObliqueRebound *out);
+
 // Check a pair of bodies (`other` NULL: a fixed wall) and its contact once, and precompute what
 // every rebound of the pair needs (`γ`, the reduced masses). On success `*prepared` is a handle
 // for `oblique_rebound_prepared`, to free with `oblique_prepared_free`. It does not depend on a
@@ -295,6 +331,19 @@ int oblique_prepare(const struct ObliqueBody *sphere,
                     const struct ObliqueBody *other,
                     const struct ObliqueContact *contact,
                     struct ObliquePrepared **prepared);
+
+// `oblique_prepare` at normal restitution `e_n` in [0, 1] (else `OBLIQUE_ERR_QUERY`): the
+// handle's rebounds (`oblique_rebound_prepared`) are those of `oblique_rebound_wall_e` /
+// `oblique_rebound_spheres_e`, and need a table that answers `e_n` (`oblique_p_e`). `e_n = 1`:
+// the handle of `oblique_prepare`.
+//
+// # Safety
+// As for `oblique_prepare`.
+int oblique_prepare_e(const struct ObliqueBody *sphere,
+                      const struct ObliqueBody *other,
+                      const struct ObliqueContact *contact,
+                      double e_n,
+                      struct ObliquePrepared **prepared);
 
 // Free a handle from `oblique_prepare` (NULL is ignored).
 //

@@ -38,11 +38,12 @@ use oblique_lookup::{Curve, LookupError, Prepared, Table};
 ///
 /// Threads: an `ObliqueTable` is immutable once `oblique_table_open` returns; any number of
 /// threads may use one handle at the same time, without locking, in `oblique_table_domain`,
-/// `oblique_p`, `oblique_p_batch`, `oblique_curve_new`, `oblique_rebound_wall`,
-/// `oblique_rebound_spheres` and `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
+/// `oblique_p`, `oblique_p_e`, `oblique_p_batch`, `oblique_curve_new`, `oblique_rebound_wall`,
+/// `oblique_rebound_spheres`, `oblique_rebound_wall_e`, `oblique_rebound_spheres_e` and
+/// `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
 /// (`oblique_curve_p`) and an `ObliquePrepared` (`oblique_rebound_prepared`) are immutable and
 /// may be shared. `oblique_table_open` and `oblique_prepare` may be called by several threads
-/// at once (the library serialises its calls into HDF5). Only the functions that free a handle
+/// at once (the library serialises its calls into HDF5), and so may `oblique_prepare_e`. Only the functions that free a handle
 /// (`oblique_table_close`, `oblique_curve_free`, `oblique_prepared_free`) need it to be used by
 /// no other thread, during and after the call. `oblique_last_error()` reports the last failure
 /// of the calling thread only. `oblique_version()` and `oblique_abi_version()` may be called at
@@ -151,17 +152,18 @@ pub struct ObliqueRebound {
     pub slip_after: f64,
     /// Friction impulse on body 2 along `+t` (N s).
     pub tangential_impulse: f64,
-    /// Normal impulse `2 m* v_z0` on body 2 along `+n` (N s).
+    /// Normal impulse `(1 + e_n) m* v_z0` on body 2 along `+n` (N s): `2 m* v_z0` elastic.
     pub normal_impulse: f64,
     /// `e_t = (w_after · w_before)/|w_before|²`, `w` the tangential relative centre velocity.
     pub e_t: f64,
     /// `atan2(|w_before|, v_z0)` (rad).
     pub incidence_angle: f64,
-    /// `atan2(|w_after|, v_z0)` (rad).
+    /// `atan2(|w_after|, e_n v_z0)` (rad).
     pub rebound_angle_centre: f64,
-    /// `atan2(P |u0|, v_z0)` (rad), negative when the slip reversed.
+    /// `atan2(P |u0|, e_n v_z0)` (rad), negative when the slip reversed.
     pub rebound_angle_contact: f64,
-    /// Kinetic energy lost to friction, `(m_t/2) u0² (1 − P²)` (J).
+    /// Kinetic energy lost, `(m_t/2) u0² (1 − P²) + (m*/2) v_z0² (1 − e_n²)` (J): to friction,
+    /// and to normal damping at `e_n < 1` (the `_e` functions).
     pub energy_lost: f64,
 }
 
@@ -504,7 +506,8 @@ pub unsafe extern "C" fn oblique_curve_free(curve: *mut ObliqueCurve) {
     }
 }
 
-fn contact(c: &ObliqueContact) -> Result<Contact, (c_int, String)> {
+/// The contact of `c` at normal restitution `e_n` (1: the functions without `_e`).
+fn contact(c: &ObliqueContact, e_n: f64) -> Result<Contact, (c_int, String)> {
     let elastic = |m: &ObliqueMaterial| Elastic {
         youngs_modulus: m.youngs_modulus,
         poisson_ratio: m.poisson_ratio,
@@ -517,7 +520,7 @@ fn contact(c: &ObliqueContact) -> Result<Contact, (c_int, String)> {
         },
         friction: c.friction,
         outside: outside(c.clamp)?,
-        restitution: 1.0,
+        restitution: e_n,
     })
 }
 
@@ -578,6 +581,7 @@ unsafe fn rebound(
     motion1: *const ObliqueMotion,
     motion2: Option<*const ObliqueMotion>,
     normal: *const f64,
+    e_n: f64,
     out: *mut ObliqueRebound,
 ) -> c_int {
     guard(|| {
@@ -589,7 +593,7 @@ unsafe fn rebound(
                 None => None,
             },
         };
-        let c = contact(&read(contact_, "contact")?)?;
+        let c = contact(&read(contact_, "contact")?, e_n)?;
         if normal.is_null() {
             return Err(null("normal"));
         }
@@ -626,7 +630,7 @@ pub unsafe extern "C" fn oblique_rebound_wall(
     normal: *const f64,
     out: *mut ObliqueRebound,
 ) -> c_int {
-    rebound(table, sphere, None, contact, motion, None, normal, out)
+    rebound(table, sphere, None, contact, motion, None, normal, 1.0, out)
 }
 
 /// Two spheres: `normal` (3 doubles, any non-zero length) points from sphere 1's centre towards
@@ -655,6 +659,62 @@ pub unsafe extern "C" fn oblique_rebound_spheres(
         motion,
         Some(other_motion),
         normal,
+        1.0,
+        out,
+    )
+}
+
+/// `oblique_rebound_wall` at normal restitution `e_n` in [0, 1]: the sphere leaves the wall at
+/// `e_n` times its approach speed, `P` is `P(γ, α, e_n)` of the table (`oblique_p_e`: `e_n`
+/// must lie in the table's range, `oblique_table_restitution`; an elastic table answers
+/// `e_n = 1` only), and the normal impulse and the energy lost follow (`ObliqueRebound`). An
+/// `e_n` outside [0, 1] or outside the table's range: `OBLIQUE_ERR_QUERY` (a pure normal
+/// impact, `u0 = 0`, does not consult the table). `e_n = 1`: the answer of
+/// `oblique_rebound_wall`, bit for bit.
+///
+/// # Safety
+/// As for `oblique_rebound_wall`.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_rebound_wall_e(
+    table: *const ObliqueTable,
+    sphere: *const ObliqueBody,
+    contact: *const ObliqueContact,
+    e_n: f64,
+    motion: *const ObliqueMotion,
+    normal: *const f64,
+    out: *mut ObliqueRebound,
+) -> c_int {
+    rebound(table, sphere, None, contact, motion, None, normal, e_n, out)
+}
+
+/// `oblique_rebound_spheres` at normal restitution `e_n` in [0, 1]: the spheres separate at
+/// `e_n` times their approach speed (see `oblique_rebound_wall_e`). `e_n = 1`: the answer of
+/// `oblique_rebound_spheres`, bit for bit.
+///
+/// # Safety
+/// As for `oblique_rebound_spheres`.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn oblique_rebound_spheres_e(
+    table: *const ObliqueTable,
+    sphere: *const ObliqueBody,
+    other: *const ObliqueBody,
+    contact: *const ObliqueContact,
+    e_n: f64,
+    motion: *const ObliqueMotion,
+    other_motion: *const ObliqueMotion,
+    normal: *const f64,
+    out: *mut ObliqueRebound,
+) -> c_int {
+    rebound(
+        table,
+        sphere,
+        Some(other),
+        contact,
+        motion,
+        Some(other_motion),
+        normal,
+        e_n,
         out,
     )
 }
@@ -674,12 +734,44 @@ pub unsafe extern "C" fn oblique_prepare(
     contact: *const ObliqueContact,
     prepared: *mut *mut ObliquePrepared,
 ) -> c_int {
+    prepare(sphere, other, contact, 1.0, prepared)
+}
+
+/// `oblique_prepare` at normal restitution `e_n` in [0, 1] (else `OBLIQUE_ERR_QUERY`): the
+/// handle's rebounds (`oblique_rebound_prepared`) are those of `oblique_rebound_wall_e` /
+/// `oblique_rebound_spheres_e`, and need a table that answers `e_n` (`oblique_p_e`). `e_n = 1`:
+/// the handle of `oblique_prepare`.
+///
+/// # Safety
+/// As for `oblique_prepare`.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_prepare_e(
+    sphere: *const ObliqueBody,
+    other: *const ObliqueBody,
+    contact: *const ObliqueContact,
+    e_n: f64,
+    prepared: *mut *mut ObliquePrepared,
+) -> c_int {
+    prepare(sphere, other, contact, e_n, prepared)
+}
+
+/// Shared part of `oblique_prepare` and `oblique_prepare_e`.
+///
+/// # Safety
+/// As for `oblique_prepare`.
+unsafe fn prepare(
+    sphere: *const ObliqueBody,
+    other: *const ObliqueBody,
+    contact: *const ObliqueContact,
+    e_n: f64,
+    prepared: *mut *mut ObliquePrepared,
+) -> c_int {
     guard(|| {
         let pair = Pair {
             sphere: body(&read(sphere, "sphere")?),
             other: other.as_ref().map(body),
         };
-        let c = self::contact(&read(contact, "contact")?)?;
+        let c = self::contact(&read(contact, "contact")?, e_n)?;
         if prepared.is_null() {
             return Err(null("prepared"));
         }
