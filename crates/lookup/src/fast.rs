@@ -20,7 +20,7 @@
 //! same bits as the single-query path (tested on both builds and all shipped tables).
 
 use crate::LookupError;
-use oblique_table::surface::{bound_p, partial_coord, stencil4, stick_coord};
+use oblique_table::surface::{bound_p, cubic_tensor2, partial_coord, stick_coord};
 use oblique_table::surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
 
 mod batch;
@@ -170,16 +170,8 @@ impl FastPatch {
         let ig = floor_index(vg * self.fine, self.rows - 1);
         let ic = floor_index(vc * self.fine, self.cols - 1);
         let (leaf, fg, fc) = self.leaf_from(ig * self.cols + ic, vg, vc);
-        let n1 = self.n1;
-        let (sg, wg) = stencil4(fg * self.m, n1);
-        let (sc, wc) = stencil4(fc * self.m, n1);
-        let start = leaf * self.size + sg * n1 + sc;
-        let block = &self.p[start..start + 3 * n1 + 4];
-        let (r0, rest) = block.split_at(n1);
-        let (r1, rest) = rest.split_at(n1);
-        let (r2, r3) = rest.split_at(n1);
-        let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
-        bound_p(wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3))
+        let vals = &self.p[leaf * self.size..(leaf + 1) * self.size];
+        bound_p(cubic_tensor2(vals, self.n1, [fg, fc]))
     }
 }
 

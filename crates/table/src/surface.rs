@@ -605,6 +605,25 @@ pub fn cubic_weights(a: f64) -> [f64; 4] {
     ]
 }
 
+/// Steps 8 and 9 of the rule in a leaf of a quadtree patch, for the cubic stencil: `vals` the
+/// leaf's `n1²` node values (`n1 = m + 1 ≥ 4`, `[i_γ][i_c]`), `f` the position inside the leaf
+/// (each in `[0, 1]`). The weights of [`stencil4`] at `f·m` per axis, a 4 × 4 block of the leaf
+/// read through one bounds-checked slice, each sum from left to right (the one statement of
+/// these operations: the rule and the query path both call it).
+#[inline(always)]
+pub fn cubic_tensor2(vals: &[f64], n1: usize, f: [f64; 2]) -> f64 {
+    let m = (n1 - 1) as f64;
+    let (sg, wg) = stencil4(f[0] * m, n1);
+    let (sc, wc) = stencil4(f[1] * m, n1);
+    let start = sg * n1 + sc;
+    let block = &vals[start..start + 3 * n1 + 4];
+    let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
+    let (r0, rest) = block.split_at(n1);
+    let (r1, rest) = rest.split_at(n1);
+    let (r2, r3) = rest.split_at(n1);
+    wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3)
+}
+
 /// Steps 8 and 9 of the rule in a leaf of a patch with an `e_n` axis, for the cubic stencil:
 /// `vals` the leaf's `n1³` node values (`n1 = m + 1 ≥ 4`, `[i_γ][i_c][i_e]`), `f` the position
 /// inside the leaf (each in `[0, 1]`). The weights of [`stencil4`] at `f·m` per axis; the sum
@@ -1186,17 +1205,7 @@ impl Patch {
         let n1 = n + 1;
         let size = n1 * n1;
         if k == 4 && n >= 3 {
-            // The shipped case (cubic): closed-form weights, a 4 × 4 block of the leaf read
-            // through one bounds-checked slice.
-            let (sg, wg) = stencil4(fg * n as f64, n1);
-            let (sc, wc) = stencil4(fc * n as f64, n1);
-            let start = leaf * size + sg * n1 + sc;
-            let block = &self.p[start..start + 3 * n1 + 4];
-            let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
-            let (r0, rest) = block.split_at(n1);
-            let (r1, rest) = rest.split_at(n1);
-            let (r2, r3) = rest.split_at(n1);
-            return wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3);
+            return cubic_tensor2(&self.p[leaf * size..(leaf + 1) * size], n1, [fg, fc]);
         }
         let vals = &self.p[leaf * size..(leaf + 1) * size];
         let mut wg = [0.0; 8];
