@@ -406,6 +406,7 @@ fn sweep_plot_writes_every_figure_as_png() {
             &src(),
             &figures::default_gammas(quick()),
             &figures::default_alphas(quick()),
+            &[],
         )
         .unwrap();
         assert_eq!(sheet.size, size);
@@ -516,5 +517,141 @@ fn sweep_plot_help_teaches() {
         "--format",
     ] {
         assert!(help.contains(needle), "help lacks {needle}:\n{help}");
+    }
+}
+
+fn dissipative() -> &'static Table {
+    static T: OnceLock<Table> = OnceLock::new();
+    T.get_or_init(|| {
+        Table::open(root().join("tables/dissipative-demo.h5")).expect("shipped dissipative table")
+    })
+}
+
+/// `p_restitution`: every point of every curve is an independent `Table::p_e` query, `e_n = 1`
+/// is the elastic curve, the full-slip lines are `1 − (7/2)(1 + e_n)α` and the dots sit at
+/// `α_c1(e_n)`.
+#[test]
+fn restitution_figure_plots_the_table_at_each_e_n_beside_the_elastic_curve() {
+    let t = dissipative();
+    let gammas = figures::default_restitution_gammas(t);
+    let e_ns = figures::default_restitutions(t);
+    assert_eq!(gammas, [1.52, 1.84]);
+    assert_eq!(e_ns, [0.5, 0.7, 0.9, 1.0]);
+    let sheet = figures::restitution(t, &src(), &gammas, &e_ns).unwrap();
+    assert_eq!(sheet.charts.len(), 2);
+    for (chart, &g) in sheet.charts.iter().zip(&gammas) {
+        let all = &chart.series;
+        for (k, &e) in e_ns.iter().enumerate() {
+            let label = if e == 1.0 {
+                "elastic (e_n = 1)".to_string()
+            } else {
+                format!("e_n = {e}")
+            };
+            let curve = series(all, &label);
+            assert!(std::ptr::eq(curve, &all[k]));
+            assert_eq!(curve.points.len(), figures::SLICE_SAMPLES + 1);
+            for &(y, p) in &curve.points {
+                assert_eq!(p.to_bits(), t.p_e(g, alpha_at(y), e).unwrap().to_bits());
+            }
+            if e == 1.0 {
+                assert_eq!(curve.color, (0, 0, 0));
+                // The e_n = 1 slice is the elastic surface (within the table's bound).
+                for &(y, p) in curve.points.iter().step_by(40) {
+                    let a = alpha_at(y);
+                    if a.is_finite() {
+                        let el = oblique_solver::Request::new(g, a).solve().unwrap().p;
+                        assert!((p - el).abs() < t.error_bound() + 1e-5, "γ {g} α {a}");
+                    }
+                }
+            }
+            let c1 = oblique_physics::regimes::alpha_c1_dissipative(g, e);
+            let line = &all[e_ns.len() + 2 * k];
+            assert_eq!(line.style, Style::Dashed);
+            assert!(!line.points.is_empty());
+            for &(y, p) in &line.points {
+                let a = alpha_at(y);
+                assert!((p - (1.0 - 3.5 * (1.0 + e) * a)).abs() < 1e-12);
+            }
+            let dots = &all[e_ns.len() + 2 * k + 1];
+            assert_eq!(dots.points, [(compact(c1), t.p_e(g, c1, e).unwrap())]);
+            // The table holds the exact full-slip line up to α_c1(e_n).
+            assert!(
+                (t.p_e(g, 0.9 * c1, e).unwrap() - (1.0 - 3.5 * (1.0 + e) * 0.9 * c1)).abs() < 1e-9
+            );
+        }
+    }
+    // Bad requests name the option.
+    let bad = |r: Result<_, figures::FigureError>, name: &str| match r {
+        Err(figures::FigureError::Invalid { name: n, .. }) => assert_eq!(n, name),
+        other => panic!("{name}: {:?}", other.map(|_: oblique_plot::Sheet| ())),
+    };
+    bad(figures::restitution(t, &src(), &[1.52], &[0.3]), "e-n");
+    bad(figures::restitution(t, &src(), &[2.5], &[0.7]), "gammas");
+    bad(
+        figures::restitution(t, &src(), &[1.3, 1.5, 1.7], &[0.7]),
+        "gammas",
+    );
+    bad(
+        figures::restitution(quick(), &src(), &[1.52], &[1.0]),
+        "figure",
+    );
+}
+
+#[test]
+fn sweep_plot_draws_the_restitution_figure_only_when_asked_and_refuses_an_elastic_table() {
+    let out = scratch("restitution");
+    let o = out.to_str().unwrap();
+    let run = sweep(&[
+        "plot",
+        "tables/dissipative-demo.h5",
+        "--figure",
+        "restitution",
+        "--e-n",
+        "0.6,1",
+        "--gammas",
+        "1.75",
+        "-o",
+        o,
+    ]);
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(stdout.contains("p_restitution.png"), "{stdout}");
+    let png = std::fs::read(out.join("p_restitution.png")).unwrap();
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 10_000);
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 1);
+    for (args, needle) in [
+        (
+            vec![
+                "plot",
+                "tables/quick.h5",
+                "--figure",
+                "restitution",
+                "-o",
+                o,
+            ],
+            "invalid --figure: restitution needs a table with an e_n axis",
+        ),
+        (
+            vec![
+                "plot",
+                "tables/dissipative-demo.h5",
+                "--figure",
+                "restitution",
+                "--e-n",
+                "0.4",
+                "-o",
+                o,
+            ],
+            "invalid --e-n: 0.4 is not an e_n in the table's range [0.5, 1]",
+        ),
+    ] {
+        let run = sweep(&args);
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains(needle), "{stderr}");
     }
 }

@@ -12,7 +12,9 @@ use oblique_lookup::rebound::{Incident, Pair, State};
 use oblique_lookup::Table;
 use oblique_physics::regimes::Regime;
 use oblique_solver::units::PhysicalImpact;
-use oblique_study::scene::{self, evaluate, PSource, RowMethod, Scene, SceneTarget};
+use oblique_study::scene::{
+    self, evaluate, Dissipation, PSource, RowMethod, Scene, SceneError, SceneTarget,
+};
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -31,12 +33,13 @@ fn scratch(name: &str) -> PathBuf {
     d
 }
 
-const SHIPPED: [&str; 5] = [
+const SHIPPED: [&str; 6] = [
     "seed000_alumina_on_glass",
     "alumina_on_rigid_wall",
     "steel_on_steel",
     "sphere_sphere_mixed",
     "nylon_spin_on_steel",
+    "steel_on_steel_damped",
 ];
 
 #[test]
@@ -154,6 +157,11 @@ fn simulated_slice_agrees_with_table_lookup_within_its_certified_error() {
     println!("table certified error (max(held-out max, target) + node tol): {certified}");
     for name in SHIPPED {
         let s = shipped(name);
+        if s.dissipation.is_named() {
+            // An elastic table answers e_n = 1 only (the damped scene's table test is
+            // constant_e_n_from_a_table_agrees_with_simulation_and_e_n_1_is_elastic).
+            continue;
+        }
         let sim = evaluate(&s, PSource::Simulate).unwrap();
         let tab = evaluate(&s, PSource::Table(t)).unwrap();
         assert_eq!(sim.rows.len(), tab.rows.len());
@@ -760,4 +768,162 @@ omega0 = [-W, 0, W]
     let lines = scene::csv::lines(&ev, false);
     assert!(!lines.iter().any(|l| l.contains("NaN")), "{lines:?}");
     assert!(lines[1..].iter().all(|l| l.split(',').nth(4) == Some("")));
+}
+
+/// A scene with a Kelvin–Voigt relaxation time: each case's `e_n` is the one of a direct
+/// physical-units simulation at that case's speed (so it varies along an `angles` sweep), and
+/// its `P` and rebound agree with that simulation.
+#[test]
+fn relaxation_time_gives_each_case_its_e_n_and_p_of_a_physical_simulation() {
+    let s = shipped("steel_on_steel_damped");
+    assert_eq!(s.dissipation, Dissipation::RelaxationTime(1e-6));
+    let ev = evaluate(&s, PSource::Simulate).unwrap();
+    let (lo, hi) = ev.e_n_range().unwrap();
+    assert!(lo > 0.85 && hi < 0.9 && hi - lo > 0.03, "e_n {lo} .. {hi}");
+    // e_n grows with the angle: the normal speed v_z0 = |v| cos θ falls.
+    assert!(ev.rows.windows(2).all(|w| w[1].e_n > w[0].e_n));
+    let n = ev.rows.len();
+    for r in [&ev.rows[1], &ev.rows[n / 2], &ev.rows[n - 2]] {
+        let SceneTarget::Wall { material } = &s.target else {
+            unreachable!()
+        };
+        let imp = PhysicalImpact::sphere_on_wall(
+            (s.sphere, s.sphere_material.elastic),
+            material.elastic,
+            r.incident.sphere,
+            s.friction,
+        )
+        .with_relaxation_time(1e-6);
+        let phys = imp.solve(1e-6).unwrap();
+        assert!(
+            (phys.e_n - r.e_n).abs() < 1e-6,
+            "e_n {} vs {}",
+            phys.e_n,
+            r.e_n
+        );
+        let err = phys.error_estimate + r.p_error + 1e-6;
+        let p = phys.p.unwrap();
+        assert!((p - r.p).abs() <= err, "x = {}: P {} vs {p}", r.x, r.p);
+        let v = r.incident.sphere.v_z;
+        assert!(
+            (phys.sphere.v_z - r.model.sphere.v_z).abs() <= 1e-5 * v,
+            "v_z {} vs {}",
+            phys.sphere.v_z,
+            r.model.sphere.v_z
+        );
+        assert!((r.model.sphere.v_z + r.e_n * v).abs() < 1e-12 * v);
+    }
+    // The full-slip cases are the exact line P = 1 − (7/2)(1 + e_n)α, not simulated.
+    let full: Vec<_> = ev
+        .rows
+        .iter()
+        .filter(|r| r.regime == Some(Regime::FullSlip))
+        .collect();
+    assert!(!full.is_empty());
+    for r in full {
+        assert_eq!(r.method, RowMethod::ClosedForm);
+        assert!((r.p - (1.0 - 3.5 * (1.0 + r.e_n) * r.alpha)).abs() < 1e-12);
+    }
+}
+
+/// A constant `e_n`: the table with an e_n axis agrees with the simulated slice within its
+/// stated bound; `e_n = 1` is the elastic scene's answer.
+#[test]
+fn constant_e_n_from_a_table_agrees_with_simulation_and_e_n_1_is_elastic() {
+    let text = std::fs::read_to_string(root().join("configs/scenes/steel_on_steel_damped.toml"))
+        .unwrap()
+        .replace("relaxation_time = 1e-6", "e_n = 0.7");
+    let s = Scene::parse(&text, Path::new("damped.toml")).unwrap();
+    assert_eq!(s.dissipation, Dissipation::Restitution(0.7));
+    let table = Table::open(root().join("tables/dissipative-demo.h5")).unwrap();
+    let sim = evaluate(&s, PSource::Simulate).unwrap();
+    let tab = evaluate(&s, PSource::Table(&table)).unwrap();
+    assert_eq!(tab.count(RowMethod::Simulated), 0);
+    assert!(tab.count(RowMethod::Table) > 0);
+    for (a, b) in sim.rows.iter().zip(&tab.rows) {
+        assert_eq!((a.e_n, b.e_n), (0.7, 0.7));
+        assert!(
+            (a.p - b.p).abs() <= table.error_bound() + a.p_error,
+            "x = {}: simulated {} table {}",
+            a.x,
+            a.p,
+            b.p
+        );
+    }
+    let lines = scene::csv::lines(&tab, false);
+    assert!(lines[0].ends_with(",omega_rolling,e_n,law"), "{}", lines[0]);
+    assert!(lines[1].ends_with(",0.7,kelvin-voigt"), "{}", lines[1]);
+
+    // e_n = 1 named: the elastic scene's P, with the e_n and law columns.
+    let one = Scene::parse(&text.replace("e_n = 0.7", "e_n = 1"), Path::new("one.toml")).unwrap();
+    let elastic = Scene::parse(&text.replace("e_n = 0.7", ""), Path::new("el.toml")).unwrap();
+    let (a, b) = (
+        evaluate(&one, PSource::Simulate).unwrap(),
+        evaluate(&elastic, PSource::Simulate).unwrap(),
+    );
+    for (r1, r2) in a.rows.iter().zip(&b.rows) {
+        assert_eq!(r1.p.to_bits(), r2.p.to_bits());
+        assert_eq!(r1.model, r2.model);
+    }
+    assert!(scene::csv::lines(&a, false)[1].ends_with(",1,elastic"));
+    assert!(!scene::csv::lines(&b, false)[0].contains("e_n"));
+}
+
+/// A table that cannot answer a case's e_n is refused (exit 2), naming e_n and the range.
+#[test]
+fn a_table_without_the_case_e_n_is_refused_naming_e_n_and_the_range() {
+    let out = scratch("restitution");
+    let text = std::fs::read_to_string(root().join("configs/scenes/steel_on_steel_damped.toml"))
+        .unwrap()
+        .replace("relaxation_time = 1e-6", "e_n = 0.4");
+    let low = out.join("low.toml");
+    std::fs::write(&low, &text).unwrap();
+    let damped = root().join("configs/scenes/steel_on_steel_damped.toml");
+    for (scene_file, table, expect) in [
+        (
+            &low,
+            "tables/dissipative-demo.h5",
+            "covers e_n in [0.5, 1] only",
+        ),
+        (&damped, "tables/quick.h5", "no e_n axis"),
+    ] {
+        let run = Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .arg("scene")
+            .arg(scene_file)
+            .args(["--table", table, "-o"])
+            .arg(&out)
+            .current_dir(root())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{stderr}");
+        assert!(
+            stderr.contains(expect) && stderr.contains("the case has e_n = "),
+            "{stderr}"
+        );
+        // The first case in sweep order is named, whichever thread met it first.
+        assert!(stderr.contains("case angle_deg = 5:"), "{stderr}");
+        assert!(!out.join("steel_on_steel_damped.csv").exists());
+    }
+    let s = Scene::load(&low).unwrap();
+    let t = Table::open(root().join("tables/dissipative-demo.h5")).unwrap();
+    let e = evaluate(&s, PSource::Table(&t)).unwrap_err();
+    assert!(matches!(e, SceneError::Restitution { .. }) && e.user_can_fix());
+
+    // Bad keys: out of range, both given.
+    for (edit, key) in [
+        ("e_n = 1.5", "e_n"),
+        ("e_n = 0.1", "e_n"),
+        ("relaxation_time = -1", "relaxation_time"),
+        ("e_n = 0.9\nrelaxation_time = 1e-6", "relaxation_time"),
+        ("relaxation_time = 1e-3", "relaxation_time"),
+    ] {
+        let text = text.replace("e_n = 0.4", edit);
+        let e = match Scene::parse(&text, Path::new("bad.toml")) {
+            Err(e) => e,
+            // A relaxation time too long for the impact speed fails when evaluated.
+            Ok(s) => evaluate(&s, PSource::Simulate).unwrap_err(),
+        };
+        assert!(e.to_string().contains(key), "{edit}: {e}");
+    }
 }

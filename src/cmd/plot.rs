@@ -28,6 +28,9 @@ pub enum FigureArg {
     Regimes,
     /// check_errors: interpolation error at the held-out checks.
     Quality,
+    /// p_restitution: P against alpha at fixed gamma for several e_n beside the elastic curve
+    /// (a table with an e_n axis; only when asked for).
+    Restitution,
 }
 
 impl From<FigureArg> for FigureKind {
@@ -37,6 +40,7 @@ impl From<FigureArg> for FigureKind {
             FigureArg::Slices => FigureKind::Slices,
             FigureArg::Regimes => FigureKind::Regimes,
             FigureArg::Quality => FigureKind::Quality,
+            FigureArg::Restitution => FigureKind::Restitution,
         }
     }
 }
@@ -51,7 +55,8 @@ pub struct PlotArgs {
     /// Image format.
     #[arg(long, value_enum, default_value = "png")]
     format: FormatArg,
-    /// Only this figure (repeat for several); all four by default.
+    /// Only this figure (repeat for several); all four by default (restitution only when
+    /// named).
     #[arg(long = "figure", value_enum)]
     figures: Vec<FigureArg>,
     /// gamma values of the P-against-alpha panel, comma-separated (default: round values in the
@@ -62,6 +67,10 @@ pub struct PlotArgs {
     /// (default: 0.3,0.5,0.7,1,2,4,12,inf).
     #[arg(long, value_delimiter = ',', value_parser = parse_number, allow_hyphen_values = true)]
     alphas: Vec<f64>,
+    /// e_n values of the restitution figure, comma-separated, in the table's e_n range
+    /// (default: 0.5,0.7,0.9,1 where it covers them; 1 is the elastic curve).
+    #[arg(long = "e-n", value_delimiter = ',', value_parser = parse_number, allow_hyphen_values = true)]
+    e_ns: Vec<f64>,
 }
 
 fn parse_number(s: &str) -> Result<f64, String> {
@@ -104,6 +113,9 @@ fn command_line(args: &PlotArgs) -> String {
     if !args.alphas.is_empty() {
         c.push_str(&format!(" --alphas {}", list(&args.alphas)));
     }
+    if !args.e_ns.is_empty() {
+        c.push_str(&format!(" --e-n {}", list(&args.e_ns)));
+    }
     c
 }
 
@@ -136,18 +148,31 @@ pub fn run(args: PlotArgs) -> Result<()> {
     } else {
         args.alphas.clone()
     };
+    let e_ns = if args.e_ns.is_empty() {
+        figures::default_restitutions(&table)
+    } else {
+        args.e_ns.clone()
+    };
     crate::failure::check_output_folder(&args.output, "-o")?;
     // Build every figure first: a bad option fails before anything is written.
     let sheets = kinds
         .iter()
         .map(|&k| {
-            let sheet = figures::build(k, &table, &src, &gammas, &alphas).map_err(|e| match e {
-                // The library names the option; on the command line it is the flag.
-                figures::FigureError::Invalid { name, message } => {
-                    Failure::usage(format!("invalid --{name}: {message}"))
-                }
-                other => other.into(),
-            })?;
+            let restitution_gammas;
+            let gammas = if k == FigureKind::Restitution && args.gammas.is_empty() {
+                restitution_gammas = figures::default_restitution_gammas(&table);
+                &restitution_gammas
+            } else {
+                &gammas
+            };
+            let sheet =
+                figures::build(k, &table, &src, gammas, &alphas, &e_ns).map_err(|e| match e {
+                    // The library names the option; on the command line it is the flag.
+                    figures::FigureError::Invalid { name, message } => {
+                        Failure::usage(format!("invalid --{name}: {message}"))
+                    }
+                    other => other.into(),
+                })?;
             Ok((k, sheet))
         })
         .collect::<Result<Vec<_>>>()?;

@@ -9,7 +9,7 @@ use clap::Args;
 
 use oblique_lookup::Table;
 use oblique_physics::regimes::Regime;
-use oblique_study::scene::{self, PSource, RowMethod, Scene, SceneTarget};
+use oblique_study::scene::{self, Dissipation, PSource, RowMethod, Scene, SceneTarget};
 
 #[derive(Args)]
 pub struct SceneArgs {
@@ -161,6 +161,19 @@ pub fn run(args: SceneArgs) -> Result<()> {
         "  gamma = {:.6}  (E* = {:.4e} Pa, G* = {:.4e} Pa, m* = {:.4e} kg, m_t = {:.4e} kg, R* = {:.4e} m)",
         ev.gamma, ev.e_star, ev.g_star, ev.normal_mass, ev.tangential_mass, ev.effective_radius
     )?;
+    if let Some((lo, hi)) = ev.e_n_range().filter(|_| ev.dissipative) {
+        let from = match scene.dissipation {
+            Dissipation::RelaxationTime(tau) => {
+                format!(", relaxation time {tau:e} s with each case's impact speed")
+            }
+            _ => String::new(),
+        };
+        if lo == hi {
+            outln!("  e_n = {lo} (Kelvin-Voigt law{from})")?;
+        } else {
+            outln!("  e_n {lo:.6} .. {hi:.6} (Kelvin-Voigt law{from})")?;
+        }
+    }
     let cases = ev.rows.iter().filter(|r| r.in_scene).count();
     match ev.alpha_range() {
         Some((lo, hi)) => outln!(

@@ -15,6 +15,7 @@
 //! | [`slices`] | `p_slices` | `P` against `α` for fixed `γ`; `P` against `γ` for fixed `α` with seed 001's fit (29) |
 //! | [`regimes`] | `regimes` | full slip / partial slip / stick in the `(γ, α)` plane |
 //! | [`quality`] | `check_errors` | interpolation error at the held-out checks, over the quadtree leaves |
+//! | [`restitution`] | `p_restitution` | `P` against `α` at fixed `γ` for several `e_n` beside the elastic curve (a table with an `e_n` axis; on request only) |
 
 use oblique_lookup::{LookupError, Table};
 use oblique_table::surface::{alpha_c1, alpha_c2, linear_limit, Patch};
@@ -24,7 +25,7 @@ use crate::{
     Axis, Chart, ColorScale, Colormap, Contours, Grid, Legend, LegendPlace, Note, Region, Scale,
     Scatter, Series, Sheet, Style, Ticks,
 };
-use oblique_physics::regimes::no_slip_fit;
+use oblique_physics::regimes::{alpha_c1_dissipative, full_slip_line, no_slip_fit};
 use oblique_solver::history::fold_plus_curve;
 
 /// Range of `γ` of one isotropic material (`G*/E* = 2(1 − ν)/(2 − ν)`, `0 ≤ ν ≤ 1/2`), rounded as in
@@ -72,10 +73,13 @@ pub enum FigureKind {
     Regimes,
     /// [`quality`].
     Quality,
+    /// [`restitution`] (a table with an `e_n` axis; not among [`FigureKind::ALL`]).
+    Restitution,
 }
 
 impl FigureKind {
-    /// All figures, in order.
+    /// The four figures of every table, in order (`sweep plot` without `--figure`);
+    /// [`FigureKind::Restitution`] is drawn on request.
     pub const ALL: [FigureKind; 4] = [
         FigureKind::Surface,
         FigureKind::Slices,
@@ -90,6 +94,7 @@ impl FigureKind {
             FigureKind::Slices => "p_slices",
             FigureKind::Regimes => "regimes",
             FigureKind::Quality => "check_errors",
+            FigureKind::Restitution => "p_restitution",
         }
     }
 
@@ -105,6 +110,9 @@ impl FigureKind {
             FigureKind::Regimes => "full slip / partial slip / stick in the (gamma, alpha) plane",
             FigureKind::Quality => {
                 "interpolation error at the held-out checks, over the quadtree leaves"
+            }
+            FigureKind::Restitution => {
+                "P against alpha at fixed gamma for several e_n beside the elastic curve"
             }
         }
     }
@@ -902,20 +910,198 @@ pub fn quality(table: &Table, src: &Source) -> Sheet {
     }
 }
 
-/// Build one figure.
+/// Build one figure (`e_ns`: the `e_n` family of [`FigureKind::Restitution`], whose `γ` are the
+/// first two of `gammas`).
 pub fn build(
     kind: FigureKind,
     table: &Table,
     src: &Source,
     gammas: &[f64],
     alphas: &[f64],
+    e_ns: &[f64],
 ) -> Result<Sheet, FigureError> {
     match kind {
         FigureKind::Surface => surface(table, src),
         FigureKind::Slices => slices(table, src, gammas, alphas),
         FigureKind::Regimes => Ok(regimes(table, src)),
         FigureKind::Quality => Ok(quality(table, src)),
+        FigureKind::Restitution => restitution(table, src, gammas, e_ns),
     }
+}
+
+/// Default `γ` of [`restitution`]: 1.52 and 1.84 (inside the isotropic band) where the table
+/// covers them, else the middle of its domain.
+pub fn default_restitution_gammas(table: &Table) -> Vec<f64> {
+    let s = table.surface();
+    let inside: Vec<f64> = [1.52, 1.84]
+        .into_iter()
+        .filter(|&g| g >= s.gamma_min() && g <= s.gamma_max())
+        .collect();
+    if inside.is_empty() {
+        vec![0.5 * (s.gamma_min() + s.gamma_max())]
+    } else {
+        inside
+    }
+}
+
+/// Default `e_n` family of [`restitution`]: 0.5, 0.7, 0.9 and 1 where the table's `e_n` range
+/// covers them (empty for an elastic table).
+pub fn default_restitutions(table: &Table) -> Vec<f64> {
+    match table.restitution() {
+        None => Vec::new(),
+        Some((lo, hi)) => [0.5, 0.7, 0.9, 1.0]
+            .into_iter()
+            .filter(|&e| e >= lo && e <= hi)
+            .collect(),
+    }
+}
+
+/// Figure 5 (a table with an `e_n` axis): for each `γ` in `gammas` (at most two; one chart
+/// each), `P` against `α` (compactified) for each `e_n` in `e_ns` (Kelvin–Voigt law), with
+/// `e_n = 1` drawn as the elastic curve (black), the full-slip line `1 − (7/2)(1 + e_n)α` of
+/// each `e_n` (dashed) and a dot at each `α_c1(e_n)` (γ > 1).
+///
+/// Data layout: `charts[j].series[k]` (k < e_ns.len()) is the curve of `e_ns[k]` at
+/// `gammas[j]`, points `(y, P(γ, alpha_at(y), e_n))` from [`Table::p_e`].
+pub fn restitution(
+    table: &Table,
+    src: &Source,
+    gammas: &[f64],
+    e_ns: &[f64],
+) -> Result<Sheet, FigureError> {
+    let Some((e_lo, e_hi)) = table.restitution() else {
+        return Err(FigureError::Invalid {
+            name: "figure",
+            message: format!(
+                "restitution needs a table with an e_n axis; {} is elastic (it answers e_n = 1 \
+                 only): give one such as tables/dissipative-demo.h5",
+                src.table
+            ),
+        });
+    };
+    let s = table.surface();
+    let allowed = format!(
+        "a gamma in the table's domain [{}, {}] (at most two for this figure)",
+        s.gamma_min(),
+        s.gamma_max()
+    );
+    check_family(
+        "gammas",
+        gammas,
+        |g| g >= s.gamma_min() && g <= s.gamma_max(),
+        &allowed,
+    )?;
+    if gammas.len() > 2 {
+        return Err(FigureError::Invalid {
+            name: "gammas",
+            message: format!("{} values: {allowed}", gammas.len()),
+        });
+    }
+    let allowed = format!("an e_n in the table's range [{e_lo}, {e_hi}]");
+    check_family("e-n", e_ns, |e| e >= e_lo && e <= e_hi, &allowed)?;
+    let top = compact(s.alpha_max());
+    let base = linspace(0.0, top, SLICE_SAMPLES);
+    let mut charts = Vec::new();
+    for (j, &g) in gammas.iter().enumerate() {
+        let mut curves = Vec::new();
+        let mut extras = Vec::new();
+        let damped = e_ns.iter().filter(|&&e| e < 1.0).count();
+        let mut k_damped = 0;
+        for &e in e_ns {
+            let crit: Vec<f64> = if g > 1.0 {
+                vec![alpha_c1_dissipative(g, e)]
+            } else {
+                Vec::new()
+            };
+            let mut ys = base.clone();
+            ys.extend(crit.iter().map(|&a| compact(a)));
+            ys.sort_by(f64::total_cmp);
+            ys.dedup();
+            let points = ys
+                .iter()
+                .map(|&y| Ok((y, table.p_e(g, alpha_at(y), e)?)))
+                .collect::<Result<Vec<_>, LookupError>>()?;
+            let (label, color) = if e == 1.0 {
+                ("elastic (e_n = 1)".to_string(), BLACK)
+            } else {
+                k_damped += 1;
+                (
+                    format!("e_n = {}", fmt_num(e)),
+                    family_color(k_damped - 1, damped),
+                )
+            };
+            curves.push(Series {
+                label,
+                points,
+                style: Style::Line,
+                color,
+                sets_range: true,
+            });
+            let lim = crit.first().copied().unwrap_or(0.0);
+            extras.push(Series {
+                label: String::new(),
+                points: base
+                    .iter()
+                    .filter(|&&y| y <= compact(if lim > 0.0 { 1.5 * lim } else { 0.3 }))
+                    .map(|&y| (y, full_slip_line(alpha_at(y), e)))
+                    .collect(),
+                style: Style::Dashed,
+                color,
+                sets_range: false,
+            });
+            extras.push(Series {
+                label: String::new(),
+                points: crit
+                    .iter()
+                    .map(|&a| Ok((compact(a), table.p_e(g, a, e)?)))
+                    .collect::<Result<Vec<_>, LookupError>>()?,
+                style: Style::Markers,
+                color,
+                sets_range: false,
+            });
+        }
+        let mut series = curves;
+        series.extend(extras);
+        series.push(Series {
+            label: "dashed: full slip P = 1 − (7/2)(1 + e_n)α; dots: α_c1(e_n)".into(),
+            points: Vec::new(),
+            style: Style::Dashed,
+            color: (90, 90, 90),
+            sets_range: false,
+        });
+        charts.push(Chart {
+            title: format!(
+                "({}) P against α at γ = {}",
+                ["a", "b"][j.min(1)],
+                fmt_num(g)
+            ),
+            x: alpha_axis(s.alpha_max(), ALPHA_LABEL),
+            y: Axis {
+                label: P_LABEL.into(),
+                range: (-1.05, 1.05),
+                ticks: Ticks::Auto,
+            },
+            regions: Vec::new(),
+            map: None,
+            contours: None,
+            outlines: Vec::new(),
+            series,
+            scatter: None,
+            color_scale: None,
+            notes: Vec::new(),
+            legend: LegendPlace::Right,
+        });
+    }
+    let size = (1200, if charts.len() > 1 { 1250 } else { 700 });
+    Ok(Sheet {
+        title: "P(γ, α, e_n): dissipative impacts beside the elastic curve".into(),
+        subtitle: format!(
+            "Kelvin–Voigt law (one relaxation time, physics.md \"Dissipative impacts\"); table e_n range [{e_lo}, {e_hi}]; DEM codes damp by other laws"
+        ),
+        charts,
+        caption: caption(table, src),
+        size,
+    })
 }
 
 #[cfg(test)]

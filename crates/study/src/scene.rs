@@ -22,7 +22,8 @@ mod spec;
 pub use eval::{evaluate, Evaluation, PSource, Rms, Row, RowMethod};
 pub use measured::MeasuredPoint;
 pub use spec::{
-    CaseKind, Cases, MaterialUse, MeasuredRef, Scene, SceneTarget, Values, DEFAULT_TOL, MAX_CASES,
+    CaseKind, Cases, Dissipation, MaterialUse, MeasuredRef, Scene, SceneTarget, Values,
+    DEFAULT_TOL, MAX_CASES,
 };
 
 use thiserror::Error;
@@ -78,6 +79,21 @@ pub enum SceneError {
         /// Solver error.
         source: oblique_solver::PhysicsError,
     },
+    /// The table has no `e_n` axis covering a case's `e_n`.
+    #[error(
+        "case {x_name} = {x}: the table {what}; the case has e_n = {e_n} (simulate it: run \
+         without --table, or give a table with an e_n axis covering it)"
+    )]
+    Restitution {
+        /// Swept quantity.
+        x_name: &'static str,
+        /// Its value.
+        x: f64,
+        /// The case's `e_n`.
+        e_n: f64,
+        /// What the table covers, in words.
+        what: String,
+    },
     /// A case could not be looked up in the table (outside its domain, …) or mapped to a
     /// rebound.
     #[error("case {x_name} = {x}: {source}")]
@@ -101,6 +117,7 @@ impl SceneError {
                 | SceneError::Parse { .. }
                 | SceneError::Invalid { .. }
                 | SceneError::Measured { .. }
+                | SceneError::Restitution { .. }
         )
     }
 }

@@ -30,6 +30,7 @@
 //! | `alpha`, `P_error`, `method` | `α`, error bound of `P`, how `P` was obtained |
 //! | `v_x0`, `v_z0`, `omega0` | sphere 1 before the impact |
 //! | `omega_closed_form`, `omega_rolling` | `ω` of the two approximations |
+//! | `e_n`, `law` | normal restitution of the case and the law (`kelvin-voigt`, or `elastic` where `e_n = 1`; scenes that give `e_n` or `relaxation_time` only) |
 //! | `v_x_2`, `v_z_2`, `omega_2` | sphere 2 after the impact (sphere–sphere scenes only) |
 //! | `e_t_measured`, `omega_measured` | measured values (scenes with measured data only) |
 
@@ -89,6 +90,9 @@ pub fn lines(ev: &Evaluation, sphere_sphere: bool) -> Vec<String> {
         "omega_closed_form",
         "omega_rolling",
     ];
+    if ev.dissipative {
+        header.extend(["e_n", "law"]);
+    }
     if sphere_sphere {
         header.extend(["v_x_2", "v_z_2", "omega_2"]);
     }
@@ -97,12 +101,12 @@ pub fn lines(ev: &Evaluation, sphere_sphere: bool) -> Vec<String> {
     }
     let mut out = vec![header.join(",")];
     for r in &ev.rows {
-        out.push(row(r, sphere_sphere, has_measured).join(","));
+        out.push(row(r, ev.dissipative, sphere_sphere, has_measured).join(","));
     }
     out
 }
 
-fn row(r: &Row, sphere_sphere: bool, has_measured: bool) -> Vec<String> {
+fn row(r: &Row, dissipative: bool, sphere_sphere: bool, has_measured: bool) -> Vec<String> {
     let m = &r.model;
     let cf = r.closed_form.as_ref();
     // e_t is a ratio to the incident relative tangential velocity of the centres.
@@ -130,6 +134,14 @@ fn row(r: &Row, sphere_sphere: bool, has_measured: bool) -> Vec<String> {
         cf.map(|c| num(c.sphere.omega)).unwrap_or_default(),
         num(r.rolling.sphere.omega),
     ];
+    if dissipative {
+        cells.push(num(r.e_n));
+        cells.push(
+            oblique_solver::Law::for_restitution(r.e_n)
+                .name()
+                .to_string(),
+        );
+    }
     if sphere_sphere {
         let o = m.other.unwrap_or_default();
         cells.extend([num(o.v_x), num(o.v_z), num(o.omega)]);

@@ -7,10 +7,12 @@ use oblique_lookup::Table;
 use rayon::prelude::*;
 
 use super::measured::{self, MeasuredPoint};
-use super::spec::{CaseKind, Scene};
+use super::spec::{CaseKind, Dissipation, Scene, SceneTarget};
 use super::SceneError;
 use oblique_physics::regimes::{self, Regime};
-use oblique_solver::{Accuracy, Method, Request};
+use oblique_solver::request::dissipative_closed_form;
+use oblique_solver::units::PhysicalImpact;
+use oblique_solver::{Accuracy, Law, Method, Request};
 
 /// Where `P` comes from.
 #[derive(Debug, Clone, Copy)]
@@ -59,6 +61,9 @@ pub struct Row {
     pub incident: Incident,
     /// `α = (2/7)(m*/m_t) μ v_z0/|u0|` (`∞` for `u0 = 0` or `μ = ∞`).
     pub alpha: f64,
+    /// Normal restitution `e_n` of the case (1 for elastic bodies; from the impact speed when
+    /// the scene gives a relaxation time).
+    pub e_n: f64,
     /// `P` (NaN for a pure normal impact).
     pub p: f64,
     /// Error bound of `P`: the solver's estimate, the table's stated bound
@@ -71,8 +76,8 @@ pub struct Row {
     /// The rebound with the model's `P`.
     pub model: Rebound,
     /// The seed's closed-form approximation: full slip throughout, `P = 1 − 7α`
-    /// (`e_t = 1 − μ(1 + e_n) v_z0/v_x0` for a solid sphere on a wall without spin); `None` when
-    /// `α = ∞`.
+    /// (`e_t = 1 − μ(1 + e_n) v_z0/v_x0` for a solid sphere on a wall without spin;
+    /// `P = 1 − (7/2)(1 + e_n)α` with the case's `e_n < 1`); `None` when `α = ∞`.
     pub closed_form: Option<Rebound>,
     /// The classical rolling solution: the contact point stops, `P = 0`.
     pub rolling: Rebound,
@@ -106,12 +111,15 @@ pub struct Evaluation {
     pub tangential_mass: f64,
     /// Effective radius `R*` (m).
     pub effective_radius: f64,
-    /// `α_c1(γ)` (meaningful for `γ > 1`).
+    /// `α_c1(γ)` (meaningful for `γ > 1`), at the scene's `e_n` when it gives a constant one.
     pub alpha_c1: f64,
     /// `α_c2(γ)`.
     pub alpha_c2: f64,
     /// The cases, sorted by `x` (scene cases and measured-only points).
     pub rows: Vec<Row>,
+    /// Whether the scene names a dissipation (`e_n` or `relaxation_time`): the CSV then has
+    /// the `e_n` and `law` columns.
+    pub dissipative: bool,
     /// Where `P` came from, in words.
     pub source: String,
     /// Wall time of the evaluation (s).
@@ -149,16 +157,28 @@ impl Evaluation {
             })
     }
 
+    /// Smallest and largest `e_n` of the scene's cases (`None` if there is none).
+    pub fn e_n_range(&self) -> Option<(f64, f64)> {
+        self.rows
+            .iter()
+            .filter(|r| r.in_scene)
+            .map(|r| r.e_n)
+            .fold(None, |acc, e| match acc {
+                None => Some((e, e)),
+                Some((lo, hi)) => Some((lo.min(e), hi.max(e))),
+            })
+    }
+
     /// Largest error bound of `P` over the rows.
     pub fn max_p_error(&self) -> f64 {
         self.rows.iter().map(|r| r.p_error).fold(0.0, f64::max)
     }
 }
 
-fn rebound(scene: &Scene, x: f64, inc: &Incident, p: f64) -> Result<Rebound, SceneError> {
+fn rebound(scene: &Scene, x: f64, inc: &Incident, p: f64, e_n: f64) -> Result<Rebound, SceneError> {
     scene
         .pair()
-        .rebound(inc, p)
+        .rebound_dissipative(inc, p, e_n)
         .map_err(|source| SceneError::Lookup {
             x_name: scene.cases.kind.x_column(),
             x,
@@ -185,11 +205,51 @@ fn evaluate_row(
             x,
             source: source.into(),
         })?;
+    let e_n =
+        restitution(scene, &inc).map_err(|source| SceneError::Physics { x_name, x, source })?;
     let u0 = pair.slip_velocity(&inc);
     let (p, p_error, method) = if u0 == 0.0 {
         (f64::NAN, 0.0, RowMethod::NormalImpact)
     } else {
         match source {
+            PSource::Simulate if e_n != 1.0 => {
+                let sol = Request::new(gamma, alpha)
+                    .e_n(e_n)
+                    .law(Law::KelvinVoigt)
+                    .accuracy(Accuracy::Tolerance(scene.tol))
+                    .solve()
+                    .map_err(|source| SceneError::Physics { x_name, x, source })?;
+                let method = match sol.method {
+                    Method::ClosedForm => RowMethod::ClosedForm,
+                    Method::Simulated => RowMethod::Simulated,
+                };
+                (sol.p, sol.error_estimate, method)
+            }
+            PSource::Table(table) if e_n != 1.0 => {
+                let what = match table.restitution() {
+                    None => Some("is elastic (no e_n axis: it answers e_n = 1 only)".to_string()),
+                    Some((lo, hi)) if !(lo..=hi).contains(&e_n) => {
+                        Some(format!("covers e_n in [{lo}, {hi}] only"))
+                    }
+                    Some(_) => None,
+                };
+                if let Some(what) = what {
+                    return Err(SceneError::Restitution {
+                        x_name,
+                        x,
+                        e_n,
+                        what,
+                    });
+                }
+                let p = table
+                    .p_e(gamma, alpha, e_n)
+                    .map_err(|source| SceneError::Lookup { x_name, x, source })?;
+                if dissipative_closed_form(gamma, alpha, e_n).is_some() {
+                    (p, 0.0, RowMethod::ClosedForm)
+                } else {
+                    (p, table_error, RowMethod::Table)
+                }
+            }
             PSource::Simulate => {
                 let sol = Request::new(gamma, alpha)
                     .accuracy(Accuracy::Tolerance(scene.tol))
@@ -215,13 +275,18 @@ fn evaluate_row(
             }
         }
     };
-    let model = rebound(scene, x, &inc, p)?;
+    let model = rebound(scene, x, &inc, p, e_n)?;
     let closed_form = if alpha.is_finite() {
-        Some(rebound(scene, x, &inc, 1.0 - 7.0 * alpha)?)
+        let line = if e_n == 1.0 {
+            1.0 - 7.0 * alpha
+        } else {
+            regimes::full_slip_line(alpha, e_n)
+        };
+        Some(rebound(scene, x, &inc, line, e_n)?)
     } else {
         None
     };
-    let rolling = rebound(scene, x, &inc, 0.0)?;
+    let rolling = rebound(scene, x, &inc, 0.0, e_n)?;
     let angle_deg = match scene.cases.kind {
         CaseKind::Angles => x,
         _ => model.incidence_angle.to_degrees(),
@@ -231,16 +296,51 @@ fn evaluate_row(
         angle_deg,
         incident: inc,
         alpha,
+        e_n,
         p: model.p,
         p_error,
         method,
-        regime: (u0 != 0.0).then(|| Regime::of(gamma, alpha)),
+        regime: (u0 != 0.0).then(|| {
+            if e_n == 1.0 {
+                Regime::of(gamma, alpha)
+            } else {
+                Regime::of_dissipative(gamma, alpha, e_n)
+            }
+        }),
         model,
         closed_form,
         rolling,
         measured,
         in_scene,
     })
+}
+
+/// The normal restitution of the case with incident state `inc`: 1 for elastic bodies, the
+/// scene's `e_n`, or that of its relaxation time at this impact's speed.
+fn restitution(scene: &Scene, inc: &Incident) -> Result<f64, oblique_solver::PhysicsError> {
+    match scene.dissipation {
+        Dissipation::Elastic => Ok(1.0),
+        Dissipation::Restitution(e) => Ok(e),
+        Dissipation::RelaxationTime(tau) => {
+            let sphere = (scene.sphere, scene.sphere_material.elastic);
+            let impact = match &scene.target {
+                SceneTarget::Wall { material } => PhysicalImpact::sphere_on_wall(
+                    sphere,
+                    material.elastic,
+                    inc.sphere,
+                    scene.friction,
+                ),
+                SceneTarget::Sphere { body, material, .. } => PhysicalImpact::sphere_on_sphere(
+                    sphere,
+                    inc.sphere,
+                    (*body, material.elastic),
+                    inc.other,
+                    scene.friction,
+                ),
+            };
+            Ok(impact.with_relaxation_time(tau).restitution()?.1)
+        }
+    }
 }
 
 fn rms(values: impl Iterator<Item = (f64, f64)>) -> Option<(f64, usize)> {
@@ -295,6 +395,9 @@ pub fn evaluate(scene: &Scene, source: PSource) -> Result<Evaluation, SceneError
     let rows = jobs
         .into_par_iter()
         .map(|(x, m, in_scene)| evaluate_row(scene, gamma, source, table_error, x, m, in_scene))
+        .collect::<Vec<_>>()
+        // The first failing case in x order, whichever thread met it first.
+        .into_iter()
         .collect::<Result<Vec<_>, _>>()?;
     let rms = scene.measured.as_ref().map(|_| Rms {
         e_t: rms(rows
@@ -321,9 +424,13 @@ pub fn evaluate(scene: &Scene, source: PSource) -> Result<Evaluation, SceneError
         normal_mass: pair.normal_mass(),
         tangential_mass: pair.tangential_mass(),
         effective_radius: pair.effective_radius(),
-        alpha_c1: regimes::alpha_c1(gamma),
+        alpha_c1: match scene.dissipation {
+            Dissipation::Restitution(e) if e != 1.0 => regimes::alpha_c1_dissipative(gamma, e),
+            _ => regimes::alpha_c1(gamma),
+        },
         alpha_c2: regimes::alpha_c2(gamma),
         rows,
+        dissipative: scene.dissipation.is_named(),
         source,
         elapsed_s: start.elapsed().as_secs_f64(),
         rms,

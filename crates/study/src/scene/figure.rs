@@ -3,7 +3,7 @@
 //! points and the regime boundaries.
 
 use super::eval::{Evaluation, Row};
-use super::spec::{CaseKind, Scene, SceneTarget};
+use super::spec::{CaseKind, Dissipation, Scene, SceneTarget};
 use oblique_plot::{Figure, Legend, Panel, Series, Style};
 
 const MODEL: (u8, u8, u8) = (31, 90, 180);
@@ -80,7 +80,9 @@ pub fn figure(scene: &Scene, ev: &Evaluation, command: &str) -> Figure {
         && scene.cases.kind != CaseKind::Spin
         && scene.cases.omega0 == 0.0
         && (scene.sphere.kappa - 0.4).abs() < 1e-12;
-    let closed_label = if simple && use_e_t {
+    let closed_label = if ev.dissipative {
+        "full slip throughout: P = 1 − (7/2)(1 + e_n)α"
+    } else if simple && use_e_t {
         "full slip: e_t = 1 − 2μ v_z0/v_x0 (seed eq. 35)"
     } else {
         "full slip throughout: P = 1 − 7α"
@@ -208,6 +210,9 @@ pub fn figure(scene: &Scene, ev: &Evaluation, command: &str) -> Figure {
             ev.alpha_c2
         ),
     ];
+    if let Some(line) = dissipation_caption(scene, ev) {
+        caption.push(line);
+    }
     if let Some(m) = &scene.measured {
         caption.push(format!("measured data: {}", shorten(&m.source, 150)));
     }
@@ -234,4 +239,16 @@ fn fmt_g(v: f64) -> String {
     let s = format!("{v:.4}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     s.to_string()
+}
+
+/// The caption line of a dissipative scene: its `e_n` (range) and the law.
+fn dissipation_caption(scene: &Scene, ev: &Evaluation) -> Option<String> {
+    let (lo, hi) = ev.e_n_range()?;
+    match scene.dissipation {
+        Dissipation::Elastic => None,
+        Dissipation::Restitution(e) => Some(format!("normal restitution e_n = {e} (Kelvin–Voigt law)")),
+        Dissipation::RelaxationTime(tau) => Some(format!(
+            "Kelvin–Voigt relaxation time τ = {tau:e} s: e_n = {lo:.4} .. {hi:.4} from each case's impact speed"
+        )),
+    }
 }

@@ -121,6 +121,8 @@ struct SceneFile {
     description: Option<String>,
     friction: f64,
     tol: Option<f64>,
+    e_n: Option<f64>,
+    relaxation_time: Option<f64>,
     sphere: SphereFile,
     target: TargetFile,
     cases: CasesFile,
@@ -311,6 +313,28 @@ pub struct MeasuredRef {
     pub source: String,
 }
 
+/// How the bodies dissipate in the normal direction (`physics.md`, "Dissipative impacts").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Dissipation {
+    /// Elastic bodies: `e_n = 1` (no `e_n` or `relaxation_time` in the scene file).
+    Elastic,
+    /// A normal restitution `e_n` (Kelvin–Voigt law; `e_n = 1` is elastic), the same for every
+    /// case.
+    Restitution(f64),
+    /// The relaxation time `τ` (s) of the Kelvin–Voigt law: each case's `e_n` follows from its
+    /// impact speed (`oblique_solver::units::PhysicalImpact::restitution`), so it varies along
+    /// the sweep.
+    RelaxationTime(f64),
+}
+
+impl Dissipation {
+    /// Whether the scene names a dissipation (`e_n` or `relaxation_time`): its CSV then has
+    /// the `e_n` and `law` columns.
+    pub fn is_named(self) -> bool {
+        !matches!(self, Dissipation::Elastic)
+    }
+}
+
 /// A validated scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -324,6 +348,8 @@ pub struct Scene {
     pub friction: f64,
     /// Solver tolerance of `P` when simulating (absolute).
     pub tol: f64,
+    /// Normal dissipation: elastic, a constant `e_n`, or a Kelvin–Voigt relaxation time.
+    pub dissipation: Dissipation,
     /// Sphere 1: mass, radius, κ.
     pub sphere: Body,
     /// Sphere 1's material.
@@ -501,6 +527,7 @@ impl Validator<'_> {
         if !(1e-10..=1e-2).contains(&tol) {
             return Err(self.invalid_num("tol", tol, "in [1e-10, 1e-2] (absolute error of P)"));
         }
+        let dissipation = self.dissipation(f.e_n, f.relaxation_time)?;
         let s = &f.sphere;
         let (sphere, sphere_material) = self.body(&BodyFields {
             section: "sphere",
@@ -546,6 +573,7 @@ impl Validator<'_> {
             path: path.to_path_buf(),
             friction: f.friction,
             tol,
+            dissipation,
             sphere,
             sphere_material,
             target,
@@ -571,6 +599,35 @@ impl Validator<'_> {
             }
         }
         Ok(scene)
+    }
+
+    fn dissipation(
+        &self,
+        e_n: Option<f64>,
+        relaxation_time: Option<f64>,
+    ) -> Result<Dissipation, SceneError> {
+        let lo = oblique_solver::kelvin_voigt::MIN_RESTITUTION;
+        match (e_n, relaxation_time) {
+            (Some(_), Some(_)) => Err(self.invalid(
+                "relaxation_time",
+                "(given with e_n)",
+                "either e_n (constant) or relaxation_time (s; e_n then follows from each case's \
+                 impact speed), not both",
+            )),
+            (Some(e), None) if (lo..=1.0).contains(&e) => Ok(Dissipation::Restitution(e)),
+            (Some(e), None) => Err(self.invalid_num(
+                "e_n",
+                e,
+                &format!("in [{lo}, 1] (normal restitution of the Kelvin-Voigt law; 1: elastic)"),
+            )),
+            (None, Some(t)) if (0.0..=1.0).contains(&t) => Ok(Dissipation::RelaxationTime(t)),
+            (None, Some(t)) => Err(self.invalid_num(
+                "relaxation_time",
+                t,
+                "a finite number in [0, 1] (s): the Kelvin-Voigt relaxation time (0: elastic)",
+            )),
+            (None, None) => Ok(Dissipation::Elastic),
+        }
     }
 
     fn material(&self, b: &BodyFields) -> Result<(MaterialUse, Option<f64>), SceneError> {
