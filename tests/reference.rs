@@ -261,3 +261,61 @@ fn bad_arguments_exit_2_with_the_allowed_values() {
     assert_eq!(r.status.code(), Some(2));
     assert!(!suite.join("thornton_psi.png").exists());
 }
+
+/// Chung & Ooi test 4 at its published e_n = 0.98: every case reverses the normal velocity
+/// with e_n, P is the Kelvin–Voigt P(γ, α, 0.98) (the full-slip cases on
+/// `1 − (7/2)(1 + e_n)α`), the CSV names the law, and an elastic table does not answer it (its
+/// cases are simulated).
+#[test]
+fn chung_ooi_test4_damped_is_the_kelvin_voigt_reference_at_its_published_e_n() {
+    use oblique_study::reference::{eval, spec::Suite, Method, Test};
+    let t = Suite::ChungOoi
+        .tests()
+        .into_iter()
+        .find_map(|t| match t {
+            Test::Oblique(o) if o.id == "chung_ooi_test4_angle_damped" => Some(o),
+            _ => None,
+        })
+        .expect("damped test 4");
+    assert_eq!(t.e_n, 0.98);
+    assert!(t.elastic_note.contains("Kelvin-Voigt") && t.elastic_note.contains("other laws"));
+    let res = eval::oblique(&t, &Method::Slice { tol: 1e-8 }).expect("computed");
+    let mut full = 0;
+    for (_, outs) in &res.setups {
+        for o in outs {
+            assert_eq!(o.e_n, 0.98);
+            let v = o.case.incident.sphere.v_z;
+            assert!((o.post.sphere.v_z + 0.98 * v).abs() < 1e-12 * v);
+            let p = oblique_solver::Request::new(o.gamma, o.alpha)
+                .e_n(0.98)
+                .accuracy(oblique_solver::Accuracy::Tolerance(1e-8))
+                .solve()
+                .expect("solve");
+            assert!((o.post.p - p.p).abs() < 1e-12, "{o:?}");
+            if o.alpha <= oblique_physics::regimes::alpha_c1_dissipative(o.gamma, 0.98) {
+                full += 1;
+                assert!((o.post.p - (1.0 - 3.5 * 1.98 * o.alpha)).abs() < 1e-12);
+            }
+        }
+    }
+    assert!(full >= 20, "{full} full-slip cases");
+    // The elastic table cannot answer e_n = 0.98: those cases are simulated, same numbers.
+    let table = oblique_lookup::Table::open(Path::new(ROOT).join("tables/full.h5")).expect("table");
+    let tab = eval::oblique(&t, &Method::Table(&table)).expect("with the table");
+    for ((_, a), (_, b)) in res.setups.iter().zip(&tab.setups) {
+        for (x, y) in a.iter().zip(b) {
+            assert!(y.how == "simulated" || y.how == "closed-form", "{}", y.how);
+            assert!((x.post.p - y.post.p).abs() < 1e-7);
+        }
+    }
+    // With a table whose e_n axis covers 0.98, P comes from it within its bound.
+    let demo = oblique_lookup::Table::open(Path::new(ROOT).join("tables/dissipative-demo.h5"))
+        .expect("demo table");
+    let dt = eval::oblique(&t, &Method::Table(&demo)).expect("with the demo table");
+    for ((_, a), (_, b)) in res.setups.iter().zip(&dt.setups) {
+        for (x, y) in a.iter().zip(b) {
+            assert!(y.how == "table" || y.how == "closed-form", "{}", y.how);
+            assert!((x.post.p - y.post.p).abs() <= demo.error_bound() + x.p_error);
+        }
+    }
+}

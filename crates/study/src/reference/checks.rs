@@ -110,29 +110,44 @@ pub fn gross_slip(
             let (p, err) = match method {
                 Method::Direct { .. } => (o.post.p, o.p_error),
                 Method::Slice { tol } => {
-                    let s = Request::new(o.gamma, o.alpha)
+                    let mut r = Request::new(o.gamma, o.alpha)
                         .accuracy(Accuracy::Tolerance(*tol))
-                        .forced(true)
-                        .solve()?;
+                        .forced(true);
+                    if o.e_n != 1.0 {
+                        r = r.e_n(o.e_n);
+                    }
+                    let s = r.solve()?;
                     (s.p, s.error_estimate)
                 }
                 Method::Table(_) => {
-                    let s = Request::new(o.gamma, o.alpha)
+                    let mut r = Request::new(o.gamma, o.alpha)
                         .accuracy(Accuracy::Tolerance(1e-8))
-                        .forced(true)
-                        .solve()?;
+                        .forced(true);
+                    if o.e_n != 1.0 {
+                        r = r.e_n(o.e_n);
+                    }
+                    let s = r.solve()?;
                     (s.p, s.error_estimate)
                 }
             };
             checks.push(Check {
                 test: format!("{test} ({})", setup.label),
                 name: format!(
-                    "gross-slip line P = 1 - 7 alpha ({} full-slip cases, simulated)",
+                    "gross-slip line P = 1 - {} alpha ({} full-slip cases, simulated)",
+                    if o.e_n == 1.0 {
+                        "7".to_string()
+                    } else {
+                        format!("3.5 (1 + e_n) = {}", 3.5 * (1.0 + o.e_n))
+                    },
                     outs.iter()
                         .filter(|o| o.regime == Some(Regime::FullSlip))
                         .count()
                 ),
-                closed_form: 1.0 - 7.0 * o.alpha,
+                closed_form: if o.e_n == 1.0 {
+                    1.0 - 7.0 * o.alpha
+                } else {
+                    oblique_physics::regimes::full_slip_line(o.alpha, o.e_n)
+                },
                 computed: p,
                 bound: err + ROUNDING,
                 exact: true,

@@ -238,7 +238,7 @@ pub fn value(q: &Quantity, setup: &Setup, o: &Outcome) -> (f64, f64) {
 
 /// A quantity evaluated at another `P` (the approximations drawn beside the model).
 pub fn at_p(q: &Quantity, setup: &Setup, o: &Outcome, p: f64) -> f64 {
-    match setup.pair().rebound(&o.case.incident, p) {
+    match setup.pair().rebound_dissipative(&o.case.incident, p, o.e_n) {
         Ok(r) => (q.value)(&Ctx {
             setup,
             incident: &o.case.incident,

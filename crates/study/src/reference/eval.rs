@@ -5,6 +5,7 @@ use oblique_lookup::rebound::{Incident, Pair, State};
 use oblique_lookup::Table;
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::hertz::{HertzClosedForm, NormalBodies};
+use oblique_solver::request::dissipative_closed_form;
 use oblique_solver::units::PhysicalImpact;
 use oblique_solver::{Accuracy, Method as SolverMethod, Request, Resolution};
 use rayon::prelude::*;
@@ -73,6 +74,8 @@ pub struct Outcome {
     pub p_error: f64,
     /// Friction regime (`None`: `u0 = 0`, a pure normal impact).
     pub regime: Option<Regime>,
+    /// Normal restitution of the impact (1: elastic; below, the Kelvin–Voigt law).
+    pub e_n: f64,
     /// How `P` was obtained: `simulated`, `closed-form`, `table`, `direct`, `normal-impact`.
     pub how: &'static str,
     /// The state after the impact.
@@ -90,8 +93,8 @@ pub struct ObliqueResult {
     pub setups: Vec<(Setup, Vec<Outcome>)>,
 }
 
-fn algebra(pair: &Pair, inc: &Incident, p: f64) -> Result<Post, ReferenceError> {
-    let r = pair.rebound(inc, p)?;
+fn algebra(pair: &Pair, inc: &Incident, p: f64, e_n: f64) -> Result<Post, ReferenceError> {
+    let r = pair.rebound_dissipative(inc, p, e_n)?;
     Ok(Post {
         sphere: r.sphere,
         other: r.other,
@@ -101,6 +104,38 @@ fn algebra(pair: &Pair, inc: &Incident, p: f64) -> Result<Post, ReferenceError> 
 
 /// Evaluate one case.
 pub fn outcome(setup: &Setup, case: &Case, method: &Method) -> Result<Outcome, ReferenceError> {
+    outcome_e(setup, case, 1.0, method)
+}
+
+/// The relaxation time `τ` (s) of the Kelvin–Voigt law that gives normal restitution `e_n` to
+/// this setup's impact `inc` (0 for `e_n = 1`).
+pub fn relaxation_time(setup: &Setup, inc: &Incident, e_n: f64) -> Result<f64, ReferenceError> {
+    if e_n == 1.0 {
+        return Ok(0.0);
+    }
+    let pair = setup.pair();
+    let [a, b] = setup.materials();
+    let (e_star, _) = oblique_lookup::rebound::effective_moduli(&a, &b);
+    let stiffness = 4.0 / 3.0 * e_star * pair.effective_radius().sqrt();
+    let hat = oblique_solver::kelvin_voigt::tau_for_restitution(e_n)?;
+    let unit = oblique_solver::kelvin_voigt::dimensionless_tau(
+        1.0,
+        pair.normal_mass(),
+        stiffness,
+        pair.approach_speed(inc),
+    );
+    Ok(hat / unit)
+}
+
+/// [`outcome`] at normal restitution `e_n` (Kelvin–Voigt law; 1: elastic, the same bits as
+/// [`outcome`]).
+pub fn outcome_e(
+    setup: &Setup,
+    case: &Case,
+    e_n: f64,
+    method: &Method,
+) -> Result<Outcome, ReferenceError> {
+    let algebra = |pair: &Pair, inc: &Incident, p: f64| algebra(pair, inc, p, e_n);
     let pair = setup.pair();
     let [a, b] = setup.materials();
     let gamma = pair.gamma_from_materials(&a, &b)?;
@@ -114,7 +149,7 @@ pub fn outcome(setup: &Setup, case: &Case, method: &Method) -> Result<Outcome, R
                 materials: [a, b],
                 incident: *inc,
                 friction: setup.friction,
-                relaxation_time: 0.0,
+                relaxation_time: relaxation_time(setup, inc, e_n)?,
             };
             let out = imp.solve(*tol)?;
             let post = Post {
@@ -126,14 +161,42 @@ pub fn outcome(setup: &Setup, case: &Case, method: &Method) -> Result<Outcome, R
         }
         _ if u0 == 0.0 => (algebra(&pair, inc, f64::NAN)?, 0.0, "normal-impact"),
         Method::Slice { tol } => {
+            let mut r = Request::new(gamma, alpha).accuracy(Accuracy::Tolerance(*tol));
+            if e_n != 1.0 {
+                r = r.e_n(e_n);
+            }
+            let s = r.solve()?;
+            let (err, how) = match s.method {
+                SolverMethod::ClosedForm => (0.0, "closed-form"),
+                SolverMethod::Simulated => (s.error_estimate, "simulated"),
+            };
+            (algebra(&pair, inc, s.p)?, err, how)
+        }
+        // A damped test and a table without its e_n: that case is simulated (its `method`
+        // column says so), never answered at e_n = 1.
+        Method::Table(t)
+            if e_n != 1.0
+                && !t
+                    .restitution()
+                    .is_some_and(|(lo, hi)| (lo..=hi).contains(&e_n)) =>
+        {
             let s = Request::new(gamma, alpha)
-                .accuracy(Accuracy::Tolerance(*tol))
+                .e_n(e_n)
+                .accuracy(Accuracy::Tolerance(1e-8))
                 .solve()?;
             let (err, how) = match s.method {
                 SolverMethod::ClosedForm => (0.0, "closed-form"),
                 SolverMethod::Simulated => (s.error_estimate, "simulated"),
             };
             (algebra(&pair, inc, s.p)?, err, how)
+        }
+        Method::Table(t) if e_n != 1.0 => {
+            let p = t.p_e(gamma, alpha, e_n)?;
+            let (err, how) = match dissipative_closed_form(gamma, alpha, e_n) {
+                Some(_) => (0.0, "closed-form"),
+                None => (t.error_bound(), "table"),
+            };
+            (algebra(&pair, inc, p)?, err, how)
         }
         Method::Table(t) => {
             let p = t.p(gamma, alpha)?;
@@ -159,7 +222,14 @@ pub fn outcome(setup: &Setup, case: &Case, method: &Method) -> Result<Outcome, R
         gamma,
         alpha,
         p_error,
-        regime: (u0 != 0.0).then(|| Regime::of(gamma, alpha)),
+        regime: (u0 != 0.0).then(|| {
+            if e_n == 1.0 {
+                Regime::of(gamma, alpha)
+            } else {
+                Regime::of_dissipative(gamma, alpha, e_n)
+            }
+        }),
+        e_n,
         how,
         post,
         bracket,
@@ -174,7 +244,7 @@ pub fn oblique(test: &ObliqueTest, method: &Method) -> Result<ObliqueResult, Ref
         .map(|(setup, cases)| {
             let outs = cases
                 .par_iter()
-                .map(|c| outcome(setup, c, method))
+                .map(|c| outcome_e(setup, c, test.e_n, method))
                 .collect::<Result<Vec<_>, _>>()?;
             Ok((*setup, outs))
         })

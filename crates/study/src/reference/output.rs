@@ -134,7 +134,7 @@ pub fn measured_rows(
                     other: Default::default(),
                 },
             };
-            let o = eval::outcome(setup, &case, method)?;
+            let o = eval::outcome_e(setup, &case, test.e_n, method)?;
             rows.push(MeasuredRow {
                 column: series.column,
                 angle_deg: angle,
@@ -458,17 +458,36 @@ fn oblique_figure(
                 test.convention != Convention::ChungOoiNoSlip,
                 res.setups.first(),
             ) {
-                let gross = |o: &Outcome| o.alpha.is_finite().then_some(1.0 - 7.0 * o.alpha);
+                // The full-slip line at the test's e_n (1 − 7α when elastic).
+                let line = |o: &Outcome| {
+                    if o.e_n == 1.0 {
+                        1.0 - 7.0 * o.alpha
+                    } else {
+                        oblique_physics::regimes::full_slip_line(o.alpha, o.e_n)
+                    }
+                };
+                let gross = |o: &Outcome| o.alpha.is_finite().then(|| line(o));
+                let (gross_label, rigid_label) = if test.e_n == 1.0 {
+                    (
+                        "gross slip, P = 1 − 7α".to_string(),
+                        "rigid body, P = max(1 − 7α, 0)".to_string(),
+                    )
+                } else {
+                    (
+                        "gross slip, P = 1 − 3.5(1 + e_n)α".to_string(),
+                        "rigid body, P = max(1 − 3.5(1 + e_n)α, 0)".to_string(),
+                    )
+                };
                 s.push(series(
-                    "gross slip, P = 1 − 7α".into(),
+                    gross_label,
                     curve(q, test.convention, setup, outs, gross),
                     Style::Dashed,
                     GROSS_SLIP,
                 ));
                 s.push(series(
-                    "rigid body, P = max(1 − 7α, 0)".into(),
+                    rigid_label,
                     curve(q, test.convention, setup, outs, |o| {
-                        o.alpha.is_finite().then(|| (1.0 - 7.0 * o.alpha).max(0.0))
+                        o.alpha.is_finite().then(|| line(o).max(0.0))
                     }),
                     Style::Dotted,
                     RIGID,

@@ -156,6 +156,9 @@ pub struct ObliqueTest {
     pub convention: Convention,
     /// Measured points to overlay, if the suite publishes some.
     pub measured: Option<&'static Measured>,
+    /// Normal restitution of every case: 1 (elastic), or the `e_n < 1` a damped test
+    /// publishes, computed with the Kelvin–Voigt law (`physics.md`, "Dissipative impacts").
+    pub e_n: f64,
 }
 
 /// A normal-impact test (contact time, peak force, peak overlap).
@@ -459,6 +462,7 @@ fn chung_ooi() -> Vec<Test> {
             .collect(),
         convention: Convention::ChungOoiAngle,
         measured: Some(&measured::KHARAZ_KRATOS),
+        e_n: 1.0,
     };
     let t5 = ObliqueTest {
         id: "chung_ooi_test5_tangential_speed",
@@ -487,6 +491,7 @@ fn chung_ooi() -> Vec<Test> {
             .collect(),
         convention: Convention::ChungOoiNormalised,
         measured: None,
+        e_n: 1.0,
     };
     // Tests 6 and 8: a spinning sphere without tangential centre velocity; the contact point's
     // incidence angle is swept, V_st = V_n tan θ.
@@ -516,6 +521,7 @@ fn chung_ooi() -> Vec<Test> {
             .collect(),
         convention: Convention::ChungOoiSpin,
         measured: None,
+        e_n: 1.0,
     };
     let t7 = ObliqueTest {
         id: "chung_ooi_test7_equal_spins",
@@ -554,6 +560,7 @@ fn chung_ooi() -> Vec<Test> {
             .collect(),
         convention: Convention::ChungOoiNoSlip,
         measured: None,
+        e_n: 1.0,
     };
     let t8 = ObliqueTest {
         id: "chung_ooi_test8_spin_sphere",
@@ -578,12 +585,26 @@ fn chung_ooi() -> Vec<Test> {
             .collect(),
         convention: Convention::ChungOoiSpin,
         measured: None,
+        e_n: 1.0,
+    };
+    // Test 4 as published, damped to e_n = 0.98, by the Kelvin–Voigt law.
+    let t4_damped = ObliqueTest {
+        id: "chung_ooi_test4_angle_damped",
+        title: "Test 4 damped (e_n = 0.98, Kelvin-Voigt): rigid plane, 3.9 m/s, varying angle",
+        elastic_note: "damped as published, e_n = 0.98 in every case, by the Kelvin-Voigt law \
+            (one relaxation time in the normal and tangential springs, physics.md \
+            \"Dissipative impacts\"); Chung & Ooi's DEM and its re-implementations damp by \
+            other laws (a viscous dashpot giving a constant e_n), which give another P at the \
+            same e_n",
+        e_n: 0.98,
+        ..t4.clone()
     };
     vec![
         Test::Normal(t1),
         Test::Normal(t2),
         Test::Normal(t3),
         Test::Oblique(t4),
+        Test::Oblique(t4_damped),
         Test::Oblique(t5),
         Test::Oblique(t6),
         Test::Oblique(t7),
@@ -629,6 +650,7 @@ fn mfix_dem05() -> ObliqueTest {
         )],
         convention: Convention::Mfix,
         measured: Some(&measured::KHARAZ_MFIX),
+        e_n: 1.0,
     }
 }
 
@@ -670,6 +692,7 @@ fn seed000() -> ObliqueTest {
         )],
         convention: Convention::Seed000,
         measured: Some(&measured::KHARAZ_KRATOS),
+        e_n: 1.0,
     }
 }
 
@@ -739,6 +762,7 @@ fn thornton() -> Vec<Test> {
         setups: family,
         convention: Convention::Thornton,
         measured: None,
+        e_n: 1.0,
     })]
 }
 
