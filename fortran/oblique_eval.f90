@@ -15,7 +15,8 @@
 !   call oblique_close(t)
 !
 ! Every procedure reports an integer(c_int) status: OBLQ_OK (0) or one of the OBLQ_E_* codes
-! below (the values of the header's enum, plus OBLQF_E_IO and OBLQF_E_NOMEM of the shim);
+! below (the values of the header's enum, plus OBLQF_E_IO, OBLQF_E_NOMEM and
+! OBLQF_E_NOT_FILE of the shim);
 ! oblique_message(status) is its text. On an error the real outputs are NaN.
 !
 ! Tables and curves hold C memory: release them with oblique_close and oblique_curve_free
@@ -66,6 +67,7 @@ module oblique_eval
    ! Codes of the shim fortran/oblique_eval_f.c.
    integer(c_int), parameter, public :: OBLQF_E_IO = 101         ! the file cannot be read
    integer(c_int), parameter, public :: OBLQF_E_NOMEM = 102      ! out of memory
+   integer(c_int), parameter, public :: OBLQF_E_NOT_FILE = 103   ! not a regular file
 
    !> An export read into memory and checked (oblique_open); release with oblique_close.
    type :: oblique_table

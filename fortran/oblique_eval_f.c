@@ -6,7 +6,8 @@
  *     gcc -std=c99 -O2 -Wall -Wextra -Werror -pedantic -I include -c fortran/oblique_eval_f.c
  *
  * Every function returns an int status: OBLQ_OK (0), an OBLQ_E_* code of the header, or one of
- * the two codes of this file (OBLQF_E_IO, OBLQF_E_NOMEM), and writes its outputs only on
+ * the three codes of this file (OBLQF_E_IO, OBLQF_E_NOMEM, OBLQF_E_NOT_FILE), and writes its
+ * outputs only on
  * OBLQ_OK. oblqf_message(code, ...) gives the text of any of them.
  *
  * Handles: oblqf_open makes a table (the export read into memory, checked once); oblqf_close
@@ -25,12 +26,16 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/stat.h>
+#endif
 
 #include "oblique_eval.h"
 
 /* Status codes of this file, beyond the header's. */
 #define OBLQF_E_IO 101    /* the file cannot be read */
 #define OBLQF_E_NOMEM 102 /* no memory for the export */
+#define OBLQF_E_NOT_FILE 103 /* not a regular file: a directory, FIFO, device or socket */
 
 /* The functions of this file (declared for C callers to copy; the Fortran interfaces are in
    fortran/oblique_eval.f90). */
@@ -73,11 +78,22 @@ typedef struct {
     void *data;
 } oblqf_table;
 
-/* The whole file in a malloc'ed buffer; OBLQ_OK, OBLQF_E_IO or OBLQF_E_NOMEM. */
+/* The whole file in a malloc'ed buffer; OBLQ_OK, OBLQF_E_IO, OBLQF_E_NOMEM or
+   OBLQF_E_NOT_FILE. Only a regular file is opened (a FIFO would block, a device such as
+   /dev/zero would be read until memory runs out), and no more bytes are read than the file
+   had when it was opened (plus one, to see that it grew: then it is refused). */
 static int oblqf__read(const char *path, void **data, size_t *size) {
-    FILE *f = fopen(path, "rb");
+    FILE *f;
     char *buf = NULL;
-    size_t cap = 0, len = 0, n;
+    size_t cap = 0, len = 0, n, limit = (size_t)-1;
+#if defined(__unix__) || defined(__APPLE__)
+    struct stat st;
+    if (stat(path, &st) != 0) return OBLQF_E_IO;
+    if (!S_ISREG(st.st_mode)) return OBLQF_E_NOT_FILE;
+    if ((unsigned long long)st.st_size < (unsigned long long)((size_t)-1))
+        limit = (size_t)st.st_size + 1;
+#endif
+    f = fopen(path, "rb");
     if (!f) return OBLQF_E_IO;
     for (;;) {
         if (len == cap) {
@@ -91,9 +107,14 @@ static int oblqf__read(const char *path, void **data, size_t *size) {
             }
             buf = bigger;
         }
-        n = fread(buf + len, 1, cap - len, f);
+        n = fread(buf + len, 1, (cap - len < limit - len) ? cap - len : limit - len, f);
         len += n;
-        if (n == 0) break;
+        if (n == 0 || len == limit) break;
+    }
+    if (limit != (size_t)-1 && len == limit) { /* it grew while being read */
+        free(buf);
+        fclose(f);
+        return OBLQF_E_IO;
     }
     if (ferror(f)) { /* e.g. a directory */
         free(buf);
@@ -331,6 +352,9 @@ int oblqf_message(int code, char *buf, int cap) {
                "directory";
         break;
     case OBLQF_E_NOMEM: text = "out of memory reading the export"; break;
+    case OBLQF_E_NOT_FILE:
+        text = "the export path is not a regular file (a directory, FIFO, device or socket)";
+        break;
     default: text = oblq_error_message(code); break;
     }
     len = strlen(text);

@@ -497,6 +497,11 @@ fn example_prints_the_bits_of_the_rust_library_and_links_only_the_runtimes() {
     );
 
     // A file that cannot be opened: error stop (non-zero), with the message.
+    let fifo = dir().join("export.fifo");
+    if !fifo.exists() {
+        let r = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo");
+        assert!(r.success(), "mkfifo");
+    }
     for (build, what) in [(plain, "plain"), (sanitized, "sanitized")] {
         for (file, status, text) in [
             (
@@ -505,6 +510,23 @@ fn example_prints_the_bits_of_the_rust_library_and_links_only_the_runtimes() {
                 "cannot read the export file",
             ),
             (path_str(&root("tables/full.h5")), 3, "not an export"),
+            // Not regular files: refused before they are opened (a FIFO would block, a device
+            // be read until memory runs out).
+            (
+                "/dev/zero".to_string(),
+                103,
+                "the export path is not a regular file",
+            ),
+            (
+                path_str(&fifo),
+                103,
+                "the export path is not a regular file",
+            ),
+            (
+                path_str(dir()),
+                103,
+                "the export path is not a regular file",
+            ),
         ] {
             let r = run(build, &[&file], "");
             let err = String::from_utf8_lossy(&r.stderr);
