@@ -137,7 +137,7 @@ pub fn gross_slip(
                     if o.e_n == 1.0 {
                         "7".to_string()
                     } else {
-                        format!("3.5 (1 + e_n) = {}", 3.5 * (1.0 + o.e_n))
+                        format!("3.5(1 + e_n) alpha = 1 - {}", 3.5 * (1.0 + o.e_n))
                     },
                     outs.iter()
                         .filter(|o| o.regime == Some(Regime::FullSlip))

@@ -31,6 +31,8 @@ pub struct Ctx<'a> {
     pub incident: &'a Incident,
     /// The state after.
     pub post: &'a Post,
+    /// Normal restitution of the impact (1: elastic).
+    pub e_n: f64,
 }
 
 impl Ctx<'_> {
@@ -134,7 +136,8 @@ const SPIN_NORMALISED: Quantity = Quantity {
 const FRICTION_RATIO: Quantity = Quantity {
     name: "friction_ratio",
     label: "3.5 μ (1 + e) V_cn/V_st",
-    value: |c| 7.0 * c.mu_v_cn() / c.slip_before(),
+    // 3.5 (1 + e_n) is 7 exactly at e_n = 1: the elastic value's bits.
+    value: |c| 3.5 * (1.0 + c.e_n) * c.mu_v_cn() / c.slip_before(),
 };
 const BETA: Quantity = Quantity {
     name: "beta",
@@ -224,6 +227,7 @@ pub fn value(q: &Quantity, setup: &Setup, o: &Outcome) -> (f64, f64) {
             setup,
             incident: &o.case.incident,
             post,
+            e_n: o.e_n,
         })
     };
     let v = at(&o.post);
@@ -247,6 +251,7 @@ pub fn at_p(q: &Quantity, setup: &Setup, o: &Outcome, p: f64) -> f64 {
                 other: r.other,
                 p: r.p,
             },
+            e_n: o.e_n,
         }),
         Err(_) => f64::NAN,
     }
