@@ -64,12 +64,25 @@ pub(crate) fn parallel<I: Sync, O: Send>(
     out: &mut [O],
     f: impl Fn(&I) -> Result<O, LookupError> + Sync,
 ) -> Result<(), LookupError> {
+    parallel_chunks(out, |start, o| run(&input[start..start + o.len()], o, &f))
+}
+
+/// `fill(start, chunk)` for every chunk of [`CHUNK`] outputs (`start` the index of its first),
+/// on the current rayon pool; a chunk's error `(i, e)` is at index `start + i`, and the lowest
+/// such index becomes [`LookupError::Batch`].
+#[cfg(feature = "rayon")]
+fn parallel_chunks<O: Send>(
+    out: &mut [O],
+    fill: impl Fn(usize, &mut [O]) -> Result<(), (usize, LookupError)> + Sync,
+) -> Result<(), LookupError> {
     use rayon::prelude::*;
     let first_error = out
         .par_chunks_mut(CHUNK)
-        .zip(input.par_chunks(CHUNK))
         .enumerate()
-        .filter_map(|(k, (o, x))| run(x, o, &f).err().map(|(i, e)| (k * CHUNK + i, e)))
+        .filter_map(|(k, o)| {
+            let start = k * CHUNK;
+            fill(start, o).err().map(|(i, e)| (start + i, e))
+        })
         .min_by_key(|(i, _)| *i);
     match first_error {
         None => Ok(()),
@@ -127,23 +140,11 @@ impl Table {
         out: &mut [f64],
         outside: OutOfDomain,
     ) -> Result<(), LookupError> {
-        use rayon::prelude::*;
         check_lengths(gamma, alpha, out)?;
-        let first_error = out
-            .par_chunks_mut(CHUNK)
-            .zip(gamma.par_chunks(CHUNK))
-            .zip(alpha.par_chunks(CHUNK))
-            .enumerate()
-            .filter_map(|(k, ((o, g), a))| {
-                self.p_slices(g, a, o, outside)
-                    .err()
-                    .map(|(i, e)| (k * CHUNK + i, e))
-            })
-            .min_by_key(|(i, _)| *i);
-        match first_error {
-            None => Ok(()),
-            Some((index, e)) => Err(batch_error(index, e)),
-        }
+        parallel_chunks(out, |s, o| {
+            let end = s + o.len();
+            self.p_slices(&gamma[s..end], &alpha[s..end], o, outside)
+        })
     }
 
     /// `out[i] = P(gamma[i], alpha[i], e_n[i])` for every `i`, in order ([`Table::p_e_with`]):
@@ -193,24 +194,11 @@ impl Table {
         out: &mut [f64],
         outside: OutOfDomain,
     ) -> Result<(), LookupError> {
-        use rayon::prelude::*;
         check_lengths(gamma, alpha, out)?;
         check_length("e_n", e_n.len(), gamma.len())?;
-        let first_error = out
-            .par_chunks_mut(CHUNK)
-            .zip(gamma.par_chunks(CHUNK))
-            .zip(alpha.par_chunks(CHUNK))
-            .zip(e_n.par_chunks(CHUNK))
-            .enumerate()
-            .filter_map(|(k, (((o, g), a), e))| {
-                self.p_e_slices(g, a, e, o, outside)
-                    .err()
-                    .map(|(i, e)| (k * CHUNK + i, e))
-            })
-            .min_by_key(|(i, _)| *i);
-        match first_error {
-            None => Ok(()),
-            Some((index, e)) => Err(batch_error(index, e)),
-        }
+        parallel_chunks(out, |s, o| {
+            let end = s + o.len();
+            self.p_e_slices(&gamma[s..end], &alpha[s..end], &e_n[s..end], o, outside)
+        })
     }
 }
