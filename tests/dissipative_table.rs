@@ -343,13 +343,7 @@ fn the_indexed_path_gives_the_bits_of_the_rule() {
         "a table with an e_n axis has its index"
     );
     let s = table.surface();
-    let mut state = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = oblique_lookup::testing::uniform(0x9E37_79B9_7F4A_7C15);
     let mut checked = 0;
     for i in 0..200_000 {
         let gamma = 1.2 + 0.5 * next();
@@ -522,13 +516,7 @@ fn batches_give_the_single_answers_bit_for_bit() {
     use oblique_lookup::{OutOfDomain, Table};
     let table = Table::open(table()).expect("open");
     let n = 100_000;
-    let mut state = 0x2545_F491_4F6C_DD1Du64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = oblique_lookup::testing::uniform(0x2545_F491_4F6C_DD1D);
     let gamma: Vec<f64> = (0..n).map(|_| 1.3 + 0.3 * next()).collect();
     let alpha: Vec<f64> = (0..n)
         .map(|i| {
