@@ -1,4 +1,4 @@
-//! Single-impact benchmark (issue 2, speed part): the accurate scheme with automatic refinement
+//! Single-impact benchmark: the accurate scheme with automatic refinement
 //! against the seed paper's explicit Euler scheme at equal accuracy.
 //!
 //! For every `γ ∈ {0.5, 1.754, 3}` and `α ∈ {0.3, 1, ∞}` (simulated even where the closed form

@@ -1,4 +1,4 @@
-//! Lookup against simulation, side by side in one run (issue 4): for a few `(γ, α)` in the
+//! Lookup against simulation, side by side in one run: for a few `(γ, α)` in the
 //! simulated regions, one `Table::p` from `tables/full.h5` and one accurate simulated impact
 //! `solve(γ, α, Tolerance(1e-6), Accurate)` (automatic refinement to an estimated error ≤ 1e-6;
 //! the normal trajectory cache is warm, as in a sweep). The ratio of the two medians is the

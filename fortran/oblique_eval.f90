@@ -62,7 +62,8 @@ module oblique_eval
    integer(c_int), parameter, public :: OBLQ_E_NORMAL = 20       ! a zero normal
    integer(c_int), parameter, public :: OBLQ_E_APPROACH = 21     ! the bodies do not approach
    integer(c_int), parameter, public :: OBLQ_E_WALL_MOTION = 22  ! a wall given a motion
-   integer(c_int), parameter, public :: OBLQ_E_KAPPA_P = 23      ! P outside [-1, 1]
+   integer(c_int), parameter, public :: OBLQ_E_P_RANGE = 23      ! P outside [-1, 1]
+   integer(c_int), parameter, public :: OBLQ_E_KAPPA_P = 23      ! deprecated: OBLQ_E_P_RANGE
    integer(c_int), parameter, public :: OBLQ_E_E_N = 24          ! e_n outside the table's range
    ! Codes of the shim fortran/oblique_eval_f.c.
    integer(c_int), parameter, public :: OBLQF_E_IO = 101         ! the file cannot be read

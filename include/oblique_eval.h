@@ -105,9 +105,12 @@ enum {
     OBLQ_E_NORMAL = 20,       /* a zero (or overflowing) normal */
     OBLQ_E_APPROACH = 21,     /* the bodies do not approach along the normal (v_z0 <= 0) */
     OBLQ_E_WALL_MOTION = 22,  /* a wall (other = NULL) given a non-zero motion */
-    OBLQ_E_KAPPA_P = 23,      /* P outside [-1, 1] given to oblq_e_t */
+    OBLQ_E_P_RANGE = 23,      /* P outside [-1, 1] given to oblq_e_t */
     OBLQ_E_E_N = 24           /* e_n outside the table's e_n range (elastic: e_n != 1) */
 };
+
+/* Deprecated: the old name of OBLQ_E_P_RANGE (kept for source compatibility). */
+#define OBLQ_E_KAPPA_P OBLQ_E_P_RANGE
 
 /* One patch of the surface (pointers into the export). */
 typedef struct {
@@ -565,7 +568,7 @@ OBLQ_FN const char *oblq_error_message(int code) {
     case OBLQ_E_NORMAL: return "invalid normal: must be a vector of non-zero, finite length";
     case OBLQ_E_APPROACH: return "invalid v_z: the approach speed v_z0 along the normal must be finite and > 0 (the bodies must move towards each other)";
     case OBLQ_E_WALL_MOTION: return "invalid other motion: must be zero for a fixed wall";
-    case OBLQ_E_KAPPA_P: return "invalid P: must be in [-1, 1]";
+    case OBLQ_E_P_RANGE: return "invalid P: must be in [-1, 1]";
     case OBLQ_E_E_N: return "invalid e_n: must be in the table's e_n range [e_n_min, e_n_max] (never clamped); an elastic table answers e_n = 1 only";
     default: return "unknown status code";
     }
@@ -1028,7 +1031,7 @@ OBLQ_FN int oblq_curve_p(const oblq_curve *cv, double alpha, int clamp, double *
    sphere (I = kappa m R^2) hitting a wall without spin; (2P + 5)/7 for kappa = 0.4. */
 OBLQ_FN int oblq_e_t(double p, double kappa, double *e_t) {
     if (!e_t) return OBLQ_E_NULL;
-    if (!(isfinite(p) && p >= -1.0 && p <= 1.0)) return OBLQ_E_KAPPA_P;
+    if (!(isfinite(p) && p >= -1.0 && p <= 1.0)) return OBLQ_E_P_RANGE;
     if (!(isfinite(kappa) && kappa > 0.0)) return OBLQ_E_KAPPA;
     *e_t = 1.0 - kappa / (1.0 + kappa) * (1.0 - p);
     return OBLQ_OK;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Single-impact benchmark (issue 2): the accurate scheme refined to an estimated error <= 1e-6
+# Single-impact benchmark: the accurate scheme refined to an estimated error <= 1e-6
 # (and 1e-5) against the seed's explicit Euler scheme at a true error <= 1e-5. Installs what is
 # missing, runs `cargo bench --bench impact` with the given arguments (criterion's), then prints
 # the criterion medians as a table (docs/benchmarks.md). IMPACT_BENCH_CLOCK=cpu measures thread

@@ -16,6 +16,9 @@ Times (`3.362 ms`, `52.9 s`), dates and commit hashes vary from run to run and a
 placeholders; progress lines (those with an `ETA`) depend on the machine's speed and are left
 out; every other character must match.
 
+It also refuses development history in tracked files (an issue's number, a found/fixed
+table): that goes to CHANGELOG.md.
+
     python3 scripts/check_docs.py            # check; exit 1 and a diff on any difference
     python3 scripts/check_docs.py --update   # rewrite the blocks with what the commands print
 """
@@ -42,6 +45,30 @@ VOLATILE = [
 
 
 PROGRESS = re.compile(r"\bETA\b")
+
+# Development history (an issue's number, a found/fixed table) belongs in CHANGELOG.md and git, not in
+# the files people read for what the code does.
+NARRATIVE = re.compile(r"\bissues? #?\d+\b|\|\s*found\s*\|\s*fixed\s*\|", re.IGNORECASE)
+
+
+def narrative():
+    """Lines of tracked files (CHANGELOG.md aside) that tell development history; 0 or 1."""
+    files = subprocess.run(
+        ["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True
+    ).stdout.decode().split("\0")
+    found = 0
+    for name in files:
+        if not name or name == "CHANGELOG.md":
+            continue
+        try:
+            text = (ROOT / name).read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
+            continue
+        for number, line in enumerate(text.splitlines(), 1):
+            if NARRATIVE.search(line):
+                print(f"check_docs: {name}:{number}: development history (to CHANGELOG.md): {line}")
+                found = 1
+    return found
 
 
 def normalise(text):
@@ -136,7 +163,7 @@ def main():
         sys.exit(f"check_docs: {sweep} not built (run scripts/sweep --version or scripts/test)")
     env = dict(os.environ)
     env["PATH"] = os.pathsep.join([str(sweep.parent), str(sweep.parent / "examples"), env.get("PATH", "")])
-    failures, count = 0, 0
+    failures, count = narrative(), 0
     with tempfile.TemporaryDirectory(prefix="check_docs-") as scratch:
         for folder in ("configs", "tables", "python/examples", "include", "examples"):
             shutil.copytree(ROOT / folder, Path(scratch) / folder)

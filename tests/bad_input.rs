@@ -1,4 +1,4 @@
-//! Bad sweep configs through the CLI (issue 7): each is refused before any work with a one-line
+//! Bad sweep configs through the CLI: each is refused before any work with a one-line
 //! message naming the key (or the problem) and the allowed range (a TOML error: the parser's
 //! report with the line and a caret), exit code 2, no panic, and an existing table at the
 //! output path is left as it was.

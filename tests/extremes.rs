@@ -1,4 +1,4 @@
-//! The extremes suite (issue 5): the solver at the edges of its domain.
+//! The extremes suite: the solver at the edges of its domain.
 //!
 //! For every case: no panic, no NaN, `|P| ≤ 1` (friction never adds energy), the normal speed
 //! reverses exactly, the result converges as the resolution grows, and the physical-units

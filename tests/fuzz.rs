@@ -1,4 +1,4 @@
-//! Property-based fuzzing (issue 7) of the three places where outside data enters: config
+//! Property-based fuzzing of the three places where outside data enters: config
 //! parsing, table loading (mutated table files) and queries (arbitrary floats). Nothing may
 //! panic; what is accepted must be sane. Bounded for CI (about a minute in all); set
 //! `FUZZ_CASES=N` for a longer run, e.g. `FUZZ_CASES=20000 cargo test --release --test fuzz`.

@@ -1,4 +1,4 @@
-//! Long runs that survive interruption and scale out (issue 7): `sweep run --resume` after
+//! Long runs that survive interruption and scale out: `sweep run --resume` after
 //! SIGKILL and Ctrl-C, `sweep run --shard K/N` + `sweep merge`, and the refusals of bad
 //! checkpoints and parts. Every comparison is of the table's datasets, value for value (bit
 //! patterns), against an uninterrupted single run.

@@ -165,15 +165,34 @@ class _Catalogue(Mapping[str, CatalogueMaterial]):
 materials: Mapping[str, CatalogueMaterial] = _Catalogue(_native.MATERIALS)
 
 
-class Sphere(NamedTuple):
-    """Mass, radius and inertia factor of a sphere (each may be an array)."""
-
+class _SphereFields(NamedTuple):
     mass: ArrayLike
     """Mass m (kg), > 0."""
     radius: ArrayLike
     """Radius R (m), > 0."""
     kappa: ArrayLike = 0.4
     """Inertia factor κ in I = κ m R² (0.4 a solid sphere, 2/3 a thin shell), > 0."""
+
+
+class Sphere(_SphereFields):
+    """Mass (kg), radius (m) and inertia factor κ (I = κ m R²; 0.4 a solid sphere, 2/3 a thin
+    shell) of a sphere; each may be an array. Each must be a finite number > 0: anything else is
+    refused here, with a ``ValueError`` naming the field (and the index in an array)."""
+
+    __slots__ = ()
+
+    def __new__(cls, mass: ArrayLike, radius: ArrayLike, kappa: ArrayLike = 0.4) -> "Sphere":
+        for name, value in (("mass", mass), ("radius", radius), ("kappa", kappa)):
+            a = _f64(value, f"Sphere {name}")
+            bad = ~(np.isfinite(a) & (a > 0.0))
+            if bad.any():
+                at = tuple(int(i) for i in np.argwhere(bad)[0])
+                where = f" (at index {at})" if a.ndim else ""
+                raise ValueError(
+                    f"Sphere: invalid {name} = {float(a[at])!r}: must be a finite number > 0"
+                    f"{where}"
+                )
+        return super().__new__(cls, mass, radius, kappa)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -290,7 +309,8 @@ def _stiffness(
 def _body(s: Any, name: str) -> list:
     if not isinstance(s, Sphere):
         try:
-            s = Sphere(*s)
+            # Checked below with the argument's name (a tuple is not refused as a Sphere).
+            s = _SphereFields(*s)
         except TypeError:
             raise TypeError(f"{name}: expected oblique.Sphere(mass, radius, kappa)") from None
     prefix = "" if name == "sphere" else "other "

@@ -144,18 +144,26 @@ POSITIVE = r"finite number > 0"
 
 @pytest.mark.parametrize("bad", [-0.1, 0.0, NAN, INF])
 def test_bad_body(full, bad):
-    raises(ValueError, _wall(full, sphere=Sphere(bad, 0.01)), r"\bmass", POSITIVE)
-    raises(ValueError, _wall(full, sphere=Sphere(0.1, bad)), r"\bradius", POSITIVE)
-    raises(ValueError, _wall(full, sphere=Sphere(0.1, 0.01, bad)), r"\bkappa", POSITIVE)
-    raises(ValueError, _pair(full, other=Sphere(bad, 0.01)), r"other[._ ]mass", POSITIVE)
-    raises(ValueError, _pair(full, other=Sphere(0.1, bad)), r"other[._ ]radius", POSITIVE)
-    raises(ValueError, _pair(full, other=Sphere(0.1, 0.01, bad)), r"other[._ ]kappa", POSITIVE)
+    # A Sphere is refused where it is made, naming the field (and the index in an array).
+    raises(ValueError, lambda: Sphere(bad, 0.01), r"^Sphere: invalid mass\b", POSITIVE)
+    raises(ValueError, lambda: Sphere(0.1, bad), r"^Sphere: invalid radius\b", POSITIVE)
+    raises(ValueError, lambda: Sphere(0.1, 0.01, bad), r"^Sphere: invalid kappa\b", POSITIVE)
+    raises(ValueError, lambda: Sphere(0.1, 0.01, kappa=bad), r"^Sphere: invalid kappa\b")
     arr = np.array([0.1, 0.1, bad])
-    raises(ValueError, _wall(full, sphere=Sphere(arr, 0.01)), r"\bmass", POSITIVE,
+    raises(ValueError, lambda: Sphere(0.1, 0.01, arr), r"^Sphere: invalid kappa\b", POSITIVE,
            re.escape("(at index (2,))"))
-    raises(ValueError, _pair(full, other=Sphere(0.1, 0.01, arr)), r"other[._ ]kappa",
+    # A plain tuple in its place is refused where it is used, naming the argument.
+    raises(ValueError, _wall(full, sphere=(bad, 0.01)), r"\bmass", POSITIVE)
+    raises(ValueError, _wall(full, sphere=(0.1, bad)), r"\bradius", POSITIVE)
+    raises(ValueError, _wall(full, sphere=(0.1, 0.01, bad)), r"\bkappa", POSITIVE)
+    raises(ValueError, _pair(full, other=(bad, 0.01)), r"other[._ ]mass", POSITIVE)
+    raises(ValueError, _pair(full, other=(0.1, bad)), r"other[._ ]radius", POSITIVE)
+    raises(ValueError, _pair(full, other=(0.1, 0.01, bad)), r"other[._ ]kappa", POSITIVE)
+    raises(ValueError, _wall(full, sphere=(arr, 0.01)), r"\bmass", POSITIVE,
            re.escape("(at index (2,))"))
-    raises(ValueError, lambda: full.rebound_2d(Sphere(bad, 0.01), 1.0, 1.0, friction=0.3,
+    raises(ValueError, _pair(full, other=(0.1, 0.01, arr)), r"other[._ ]kappa",
+           re.escape("(at index (2,))"))
+    raises(ValueError, lambda: full.rebound_2d((bad, 0.01), 1.0, 1.0, friction=0.3,
                                                gamma=1.5), r"\bmass", POSITIVE)
     raises(ValueError, lambda: full.e_t(1.5, 0.3, kappa=bad), r"kappa", POSITIVE)
     raises(ValueError, lambda: full.e_t(1.5, 0.3, kappa=[0.4, bad]), r"kappa",
@@ -330,8 +338,10 @@ def test_bad_dtypes(full, kind):
     raises(TypeError, lambda: oblique.critical(x), r"\bgamma\b")
     raises(TypeError, lambda: oblique.impact(1.5, x), r"\balpha\b")
     raises(TypeError, _wall(full, friction=x), r"\bfriction\b")
-    raises(TypeError, _wall(full, sphere=Sphere(x, 0.01)), r"\bmass\b")
-    raises(TypeError, _wall(full, sphere=Sphere(0.1, x)), r"\bradius\b")
+    raises(TypeError, lambda: Sphere(x, 0.01), r"\bmass\b")
+    raises(TypeError, lambda: Sphere(0.1, x), r"\bradius\b")
+    raises(TypeError, _wall(full, sphere=(x, 0.01)), r"\bmass\b")
+    raises(TypeError, _wall(full, sphere=(0.1, x)), r"\bradius\b")
     raises(TypeError, _wall(full, materials=(Material(x, 0.3), RIGID)), r"youngs_modulus")
     raises(TypeError, _wall(full, materials=(Material(1e9, x), RIGID)), r"poisson_ratio")
     raises(TypeError, _wall(full, materials=None, gamma=x), r"\bgamma\b")

@@ -31,6 +31,9 @@
 
 #include "oblique_eval.h"
 
+/* oblq_e_t's refusal of P is OBLQ_E_P_RANGE; OBLQ_E_KAPPA_P stays as its deprecated alias. */
+typedef char oblq_check_p_range[(OBLQ_E_P_RANGE == 23 && OBLQ_E_KAPPA_P == OBLQ_E_P_RANGE) ? 1 : -1];
+
 static unsigned char *read_all(const char *path, size_t *size) {
     FILE *f = fopen(path, "rb");
     unsigned char *buf;

@@ -1,4 +1,4 @@
-//! Query speed of `oblique-lookup` (issue 4): one `P(γ, α)`, one rebound, batches.
+//! Query speed of `oblique-lookup`: one `P(γ, α)`, one rebound, batches.
 //!
 //! - `p/<region>`: one `Table::p` at a fixed point of each region (full-slip line, partial
 //!   slip, stick, no slip, `γ < 1`), and `p/mixed`: cycling through 4096 points spread over the

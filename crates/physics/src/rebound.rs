@@ -8,7 +8,10 @@
 //!   `x` the tangent.
 //! - A spin `ω` is signed so that sphere 1's contact point moves at `v_x + R ω`; sphere 2's
 //!   contact point, on its other side, moves at `v_x − R ω`. Both are the same component of the
-//!   angular velocity vector (`ŷ = ẑ × x̂`).
+//!   angular velocity vector (`ŷ = ẑ × x̂`). In 3-D that component is the spin along the
+//!   binormal `b = n × t` of the plane of impact ([`Frame`]), not along a fixed lab axis: for a
+//!   sphere on a floor below it (`n = (0, 0, −1)` with the lab's `z` up) slipping along `+x`,
+//!   `b = (0, −1, 0)` and the 2-D `ω` is `−ω_y` of the lab.
 //! - The slip velocity is `u = (v_1x + R_1 ω_1) − (v_2x − R_2 ω_2)` (for a wall, `u = v_x + R ω`).
 //! - The friction impulse `J` acts on body 2 along `+x` and on body 1 along `−x`:
 //!   `m_1 Δv_1x = −J`, `I_1 Δω_1 = −J R_1`, `m_2 Δv_2x = +J`, `I_2 Δω_2 = −J R_2`, so that
