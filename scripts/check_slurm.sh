@@ -20,9 +20,10 @@ if [ "$(id -u)" -ne 0 ]; then
   exec sudo -E bash "$0" "$@"
 fi
 OBLIQUE_SETUP_EXTRA="slurm-wlm munge" source scripts/setup.sh
+# h5py and numpy from the checks' own virtual environment (scripts/venv.sh; nothing installed
+# into the system's Python).
 if ! python3 -c 'import h5py, numpy' >/dev/null 2>&1; then
-  echo "check_slurm: installing h5py and numpy (pip)" >&2
-  python3 -m pip install --quiet --disable-pip-version-check h5py numpy
+  source scripts/venv.sh
 fi
 sweep="$root/target/release/sweep" # what scripts/slurm-array.sh submits; scripts/test builds it
 [ -x "$sweep" ] || { echo "check_slurm: $sweep missing: source scripts/build.sh first" >&2; exit 2; }

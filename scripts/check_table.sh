@@ -27,10 +27,11 @@ if [ ! -f "$table" ]; then
   exit 1
 fi
 
+# Without h5py and numpy, the checks' own virtual environment (scripts/venv.sh; nothing is
+# installed into the system's Python).
 if ! "$python" -c 'import h5py, numpy' >/dev/null 2>&1; then
-  echo "check_table: installing h5py and numpy (pip)" >&2
-  "$python" -m pip install --quiet --disable-pip-version-check h5py numpy >/dev/null 2>&1 ||
-    "$python" -m pip install --quiet --disable-pip-version-check --user h5py numpy >/dev/null
+  source "$root/scripts/venv.sh"
+  python="$OBLIQUE_VENV/bin/python3"
   "$python" -c 'import h5py, numpy' || {
     echo "check_table: h5py/numpy still not importable" >&2
     exit 1
