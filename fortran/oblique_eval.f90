@@ -65,6 +65,11 @@ module oblique_eval
    integer(c_int), parameter, public :: OBLQ_E_P_RANGE = 23      ! P outside [-1, 1]
    integer(c_int), parameter, public :: OBLQ_E_KAPPA_P = 23      ! deprecated: OBLQ_E_P_RANGE
    integer(c_int), parameter, public :: OBLQ_E_E_N = 24          ! e_n outside the table's range
+   ! The codes of the header's file loader oblq_load_file (the module reads files through the
+   ! shim, whose codes are the OBLQF_E_* below).
+   integer(c_int), parameter, public :: OBLQ_E_FILE = 25         ! the file cannot be read
+   integer(c_int), parameter, public :: OBLQ_E_NOT_FILE = 26     ! not a regular file
+   integer(c_int), parameter, public :: OBLQ_E_NO_MEMORY = 27    ! out of memory
    ! Codes of the shim fortran/oblique_eval_f.c.
    integer(c_int), parameter, public :: OBLQF_E_IO = 101         ! the file cannot be read
    integer(c_int), parameter, public :: OBLQF_E_NOMEM = 102      ! out of memory

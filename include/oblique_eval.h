@@ -3,11 +3,13 @@
  * friction (and P(gamma, alpha, e_n) of dissipative ones, from a table with a normal-restitution
  * axis), and the rebounds of spheres on walls and on spheres, evaluated from an export of a
  * table (`sweep export TABLE -o FILE`) held in memory. One header, no library but libm, no
- * allocation: C99 and later, C++11 and later. Little-endian machines only (x86-64, AArch64).
+ * allocation (but in the optional file loader oblq_load_file): C99 and later, C++11 and later.
+ * Little-endian machines only (x86-64, AArch64).
  *
  *   #include "oblique_eval.h"
  *   oblq_table t;
  *   int rc = oblq_open(&t, bytes, size);          // checks the export once (layout, checksum)
+ *   rc = oblq_load_file(&t, "full.oblq");         // or: read the file, then oblq_open (host)
  *   double p;
  *   rc = oblq_p(&t, 1.754, 0.3, 0, &p);           // P(gamma, alpha); rc = OBLQ_OK or an error
  *   rc = oblq_p_e(&t, 1.45, 0.3, 0.8, 0, &p);     // P(gamma, alpha, e_n): a table with the axis
@@ -67,6 +69,14 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
+#ifndef OBLQ_NO_STDIO
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/stat.h>
+#endif
+#endif
 
 #ifndef OBLQ_FN
 #define OBLQ_FN static inline
@@ -79,6 +89,13 @@ extern "C" {
 /* Newest layout version this header reads: 1 (an elastic table, and curves) and 2 (a table
    with a normal-restitution axis e_n). */
 #define OBLQ_EXPORT_VERSION 2u
+
+/* Status codes of the file loader oblq_load_file (host only; the others follow). */
+enum {
+    OBLQ_E_FILE = 25,      /* the file cannot be opened or read (errno says why) */
+    OBLQ_E_NOT_FILE = 26,  /* the path is a directory, FIFO, device or socket, not a file */
+    OBLQ_E_NO_MEMORY = 27  /* no memory for the file's contents */
+};
 
 /* Status codes. */
 enum {
@@ -546,6 +563,9 @@ OBLQ_FN int oblq_rebase(oblq_table *t, const void *data) {
 OBLQ_FN const char *oblq_error_message(int code) {
     switch (code) {
     case OBLQ_OK: return "ok";
+    case OBLQ_E_FILE: return "cannot open or read the export file (errno says why: missing, unreadable, changed while read)";
+    case OBLQ_E_NOT_FILE: return "the export path is not a regular file (a directory, FIFO, device or socket)";
+    case OBLQ_E_NO_MEMORY: return "out of memory reading the export file";
     case OBLQ_E_NULL: return "a pointer argument is NULL";
     case OBLQ_E_TRUNCATED: return "the export is truncated: shorter than its header says";
     case OBLQ_E_FORMAT: return "not an export of oblique (`sweep export`): wrong magic bytes";
@@ -1392,6 +1412,93 @@ OBLQ_FN int oblq_rebound_2d(const oblq_table *t, const oblq_curve *cv, const obl
     out->e_n = r.e_n;
     return OBLQ_OK;
 }
+
+/* ---------------------------------------------------------------------------------------- */
+/* Loading an export from a file (host only)                                                  */
+
+#ifndef OBLQ_NO_STDIO
+/* Read the export file at `path` (a NUL-terminated name) into memory (malloc: 8-byte aligned)
+   and open it (oblq_open). On OBLQ_OK, *t is the table and owns that memory (t->data): free it
+   with oblq_free_file(t) once t and the curves made from it are no longer used. On an error,
+   *t is untouched and nothing stays allocated: OBLQ_E_NULL (t is NULL), OBLQ_E_FILE (path is
+   NULL, or the file cannot be opened or read; errno as the failing call left it), OBLQ_E_NOT_FILE (a directory, FIFO, device or
+   socket: refused before it is opened, so that a FIFO does not block and /dev/zero is not read
+   until memory runs out), OBLQ_E_NO_MEMORY, or oblq_open's code for the contents.
+   No more bytes are read than the file had when it was opened (a file that grows meanwhile is
+   refused, OBLQ_E_FILE).
+
+       oblq_table t;
+       int rc = oblq_load_file(&t, "full.oblq");
+       if (rc != OBLQ_OK) { fprintf(stderr, "full.oblq: %s\n", oblq_error_message(rc)); ... }
+       ...
+       oblq_free_file(&t);
+
+   Host code only (C stdio and malloc; not marked OBLQ_FN, so CUDA device code cannot call it:
+   load on the host, then copy t.data to the device as above). The only function of this header
+   that allocates or touches files; define OBLQ_NO_STDIO before including to leave it out (and
+   the headers stdio.h, stdlib.h, errno.h it needs). */
+static inline int oblq_load_file(oblq_table *t, const char *path) {
+    FILE *f;
+    char *buf = NULL;
+    size_t cap = 0, len = 0, n, limit = (size_t)-1;
+    oblq_table opened;
+    int rc, saved;
+#if defined(__unix__) || defined(__APPLE__)
+    struct stat st;
+#endif
+    if (!t) return OBLQ_E_NULL;
+    if (!path) return OBLQ_E_FILE;
+#if defined(__unix__) || defined(__APPLE__)
+    if (stat(path, &st) != 0) return OBLQ_E_FILE;
+    if (!S_ISREG(st.st_mode)) return OBLQ_E_NOT_FILE;
+    if ((unsigned long long)st.st_size < (unsigned long long)((size_t)-1))
+        limit = (size_t)st.st_size + 1;
+#endif
+    f = fopen(path, "rb");
+    if (!f) return OBLQ_E_FILE;
+    for (;;) {
+        if (len == cap) {
+            char *bigger;
+            cap = cap ? 2 * cap : (limit != (size_t)-1 && limit > 0 ? limit : (size_t)1 << 20);
+            bigger = (char *)realloc(buf, cap);
+            if (!bigger) {
+                free(buf);
+                fclose(f);
+                return OBLQ_E_NO_MEMORY;
+            }
+            buf = bigger;
+        }
+        n = fread(buf + len, 1, (cap - len < limit - len) ? cap - len : limit - len, f);
+        len += n;
+        if (n == 0 || len == limit) break;
+    }
+    if ((limit != (size_t)-1 && len == limit) || ferror(f)) { /* it grew, or a read failed */
+        saved = errno;
+        free(buf);
+        fclose(f);
+        errno = saved;
+        return OBLQ_E_FILE;
+    }
+    fclose(f);
+    rc = oblq_open(&opened, buf, len);
+    if (rc != OBLQ_OK) {
+        free(buf);
+        return rc;
+    }
+    *t = opened;
+    return OBLQ_OK;
+}
+
+/* Free the memory of a table made by oblq_load_file (and clear *t); NULL, or a table whose
+   memory was already freed, does nothing. Not for a table made by oblq_open on memory of the
+   caller's. */
+static inline void oblq_free_file(oblq_table *t) {
+    if (!t || !t->data) return;
+    free((void *)t->data);
+    memset(t, 0, sizeof *t);
+}
+#endif /* OBLQ_NO_STDIO */
+
 #ifdef __cplusplus
 }
 #endif

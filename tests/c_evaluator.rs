@@ -1450,3 +1450,148 @@ fn rebounds_refuse_an_e_n_the_table_or_curve_does_not_answer() {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The file loader oblq_load_file
+
+/// The C examples read their export with the header's loader, not with file-reading code of
+/// their own.
+#[test]
+fn c_examples_load_their_export_with_the_header() {
+    for src in ["examples/c/query.c", "examples/c/rebound.c"] {
+        let text = std::fs::read_to_string(root(src)).expect("example");
+        assert!(
+            text.contains("oblq_load_file("),
+            "{src} does not call oblq_load_file"
+        );
+        assert!(
+            text.contains("oblq_free_file("),
+            "{src} does not call oblq_free_file"
+        );
+        for own in ["fopen", "fread", "malloc"] {
+            assert!(!text.contains(own), "{src} reads the file itself ({own})");
+        }
+    }
+}
+
+/// `oblq_load_file` on a sound export, on what is not a regular file (refused before it is
+/// opened: a FIFO would block, /dev/zero never ends), on a missing file, and on files that are
+/// not exports (oblq_open's code); under AddressSanitizer and LeakSanitizer, so that no path
+/// leaks the buffer or reads outside it. The header without the loader (OBLQ_NO_STDIO) has no
+/// `oblq_load_file` and needs no stdio.
+#[test]
+fn load_file_reads_exports_and_refuses_other_paths_with_their_code() {
+    let mut f = vec!["-std=c99", "-g", "-fsanitize=address,undefined"];
+    f.extend(WARNINGS);
+    let query = compile("gcc", &f, "examples/c/query.c", "query_load_asan");
+    let rebound = compile("gcc", &f, "examples/c/rebound.c", "rebound_load_asan");
+    let run = |exe: &Path, path: &Path| -> (i32, String, String) {
+        let mut child = Command::new(exe)
+            .arg(path)
+            .env("ASAN_OPTIONS", "detect_leaks=1")
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("run");
+        {
+            use std::io::Write;
+            let mut stdin = child.stdin.take().expect("stdin");
+            stdin.write_all(b"1.754,0.3\n").expect("write");
+        }
+        let out = child.wait_with_output().expect("wait");
+        (
+            out.status.code().expect("exit code (not killed)"),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let good = export_file("quick", false);
+    let want = table("quick").p(1.754, 0.3).expect("inside");
+    let (code, out, err) = run(&query, &good);
+    assert_eq!(code, 0, "{err}");
+    let got: f64 = out
+        .trim()
+        .strip_prefix("1.754,0.3,")
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("query printed {out:?}"));
+    assert_eq!(got.to_bits(), want.to_bits());
+    let (code, out, err) = run(&rebound, &good);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("P(1.754, 0.3) = "), "{out}");
+
+    let fifo = dir().join("load.fifo");
+    let _ = std::fs::remove_file(&fifo);
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo");
+    assert!(made.success());
+    let empty = dir().join("load.empty");
+    std::fs::write(&empty, b"").expect("write");
+    let not_file = "the export path is not a regular file";
+    for (path, code, says) in [
+        (dir().to_path_buf(), 1, not_file),
+        (fifo.clone(), 1, not_file),
+        (PathBuf::from("/dev/zero"), 1, not_file),
+        (dir().join("missing.oblq"), 1, "No such file or directory"),
+        (root("tables/quick.h5"), 2, "not an export of oblique"),
+        (empty.clone(), 2, "the export is truncated"),
+    ] {
+        for exe in [&query, &rebound] {
+            let (got, _, err) = run(exe, &path);
+            assert_eq!(got, code, "{} on {}: {err}", exe.display(), path.display());
+            if exe == &query || code == 2 || says == not_file {
+                assert!(
+                    err.contains(says),
+                    "{} on {}: {err}",
+                    exe.display(),
+                    path.display()
+                );
+            }
+            assert!(!err.contains("Sanitizer"), "{err}");
+        }
+    }
+
+    // Without the loader: no oblq_load_file, and no stdio.h pulled in by the header.
+    let src = dir().join("no_stdio.c");
+    std::fs::write(
+        &src,
+        "#define OBLQ_NO_STDIO\n#include \"oblique_eval.h\"\n\
+         #ifdef EOF\n#error stdio.h included\n#endif\n\
+         int main(void) { oblq_table t; return oblq_open(&t, 0, 0) == OBLQ_E_NULL ? 0 : 1; }\n",
+    )
+    .expect("write");
+    let out = Command::new("gcc")
+        .args([
+            "-std=c99",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-pedantic",
+            "-fsyntax-only",
+            "-I",
+        ])
+        .arg(root("include"))
+        .arg(&src)
+        .output()
+        .expect("gcc");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::write(
+        &src,
+        "#define OBLQ_NO_STDIO\n#include \"oblique_eval.h\"\n\
+         int main(void) { oblq_table t; return oblq_load_file(&t, \"x\"); }\n",
+    )
+    .expect("write");
+    let out = Command::new("gcc")
+        .args(["-std=c99", "-Werror", "-fsyntax-only", "-I"])
+        .arg(root("include"))
+        .arg(&src)
+        .output()
+        .expect("gcc");
+    assert!(
+        !out.status.success(),
+        "OBLQ_NO_STDIO left oblq_load_file in"
+    );
+}

@@ -17,39 +17,6 @@
 
 #include "oblique_eval.h"
 
-/* The whole file in an 8-byte aligned buffer (malloc's alignment). */
-static void *read_file(const char *path, size_t *size) {
-    FILE *f = fopen(path, "rb");
-    char *buf = NULL;
-    size_t cap = 0, len = 0, n;
-    if (!f) return NULL;
-    for (;;) {
-        if (len == cap) {
-            char *bigger;
-            cap = cap ? 2 * cap : 1 << 20;
-            bigger = (char *)realloc(buf, cap);
-            if (!bigger) {
-                free(buf);
-                fclose(f);
-                errno = ENOMEM;
-                return NULL;
-            }
-            buf = bigger;
-        }
-        n = fread(buf + len, 1, cap - len, f);
-        len += n;
-        if (n == 0) break;
-    }
-    if (ferror(f)) {
-        free(buf);
-        fclose(f);
-        return NULL;
-    }
-    fclose(f);
-    *size = len;
-    return buf;
-}
-
 /* A number as sweep query reads it: strtod, plus "inf". */
 static int parse(const char *s, char **end, double *x) {
     errno = 0;
@@ -59,8 +26,6 @@ static int parse(const char *s, char **end, double *x) {
 
 int main(int argc, char **argv) {
     oblq_table table;
-    size_t size = 0;
-    void *data;
     char line[512];
     long lineno = 0;
     int rc;
@@ -69,15 +34,18 @@ int main(int argc, char **argv) {
                 argv[0]);
         return 2;
     }
-    data = read_file(argv[1], &size);
-    if (!data) {
+    /* The file read into memory and checked (oblq_open); oblq_free_file frees it. */
+    rc = oblq_load_file(&table, argv[1]);
+    if (rc == OBLQ_E_FILE) {
         fprintf(stderr, "error: cannot read %s: %s\n", argv[1], strerror(errno));
         return 1;
     }
-    rc = oblq_open(&table, data, size);
+    if (rc == OBLQ_E_NOT_FILE || rc == OBLQ_E_NO_MEMORY) {
+        fprintf(stderr, "error: %s: %s\n", argv[1], oblq_error_message(rc));
+        return 1;
+    }
     if (rc != OBLQ_OK) {
         fprintf(stderr, "error: %s: %s\n", argv[1], oblq_error_message(rc));
-        free(data);
         return 2;
     }
     while (fgets(line, sizeof line, stdin)) {
@@ -96,18 +64,18 @@ int main(int argc, char **argv) {
             fprintf(stderr,
                     "error: line %ld: expected gamma,alpha or gamma,alpha,e_n, got \"%s\"\n",
                     lineno, line);
-            free(data);
+            oblq_free_file(&table);
             return 2;
         }
         rc = with_e_n ? oblq_p_e(&table, gamma, alpha, e_n, 0, &p)
                       : oblq_p(&table, gamma, alpha, 0, &p);
         if (rc != OBLQ_OK) {
             fprintf(stderr, "error: line %ld (%s): %s\n", lineno, line, oblq_error_message(rc));
-            free(data);
+            oblq_free_file(&table);
             return 2;
         }
         printf("%s,%.17g\n", line, p);
     }
-    free(data);
+    oblq_free_file(&table);
     return 0;
 }

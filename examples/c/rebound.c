@@ -4,7 +4,6 @@
        sweep export tables/full.h5 -o full.oblq
        cc -std=c99 -O2 -I include -o rebound examples/c/rebound.c -lm && ./rebound full.oblq */
 #include <stdio.h>
-#include <stdlib.h>
 
 #include "oblique_eval.h"
 
@@ -23,39 +22,33 @@ int main(int argc, char **argv) {
     oblq_pair pair;
     oblq_rebound3 r;
     double gamma, p;
-    size_t size;
-    long len;
-    void *data;
-    FILE *f;
+    int rc;
     if (argc != 2) {
         fprintf(stderr, "usage: %s EXPORT\n", argv[0]);
         return 2;
     }
-    f = fopen(argv[1], "rb");
-    if (!f || fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fprintf(stderr, "error: cannot read %s\n", argv[1]);
-        return 1;
+    rc = oblq_load_file(&t, argv[1]); /* reads the file and checks it (oblq_open) */
+    if (rc != OBLQ_OK) {
+        fprintf(stderr, "error: %s: %s\n", argv[1], oblq_error_message(rc));
+        return rc == OBLQ_E_FILE || rc == OBLQ_E_NOT_FILE || rc == OBLQ_E_NO_MEMORY ? 1 : 2;
     }
-    size = (size_t)len;
-    data = malloc(size ? size : 1); /* malloc's alignment is enough (8 bytes) */
-    if (!data || fread(data, 1, size, f) != size) {
-        fprintf(stderr, "error: cannot read %s\n", argv[1]);
-        return 1;
+    if (check(oblq_p(&t, 1.754, 0.3, 0, &p), "P")) {
+        oblq_free_file(&t);
+        return 2;
     }
-    fclose(f);
-    if (check(oblq_open(&t, data, size), argv[1])) return 2;
-    if (check(oblq_p(&t, 1.754, 0.3, 0, &p), "P")) return 2;
     printf("P(1.754, 0.3) = %.17g  (+/- %.2g)\n", p, t.error_bound);
     if (check(oblq_gamma_of(&alumina_ball, &steel_ball, &alumina, &steel, &gamma), "gamma") ||
         check(oblq_pair_init(&pair, &alumina_ball, &steel_ball, gamma, 0.15), "pair") ||
-        check(oblq_rebound_3d(&t, &pair, &s, 0, &r), "rebound"))
+        check(oblq_rebound_3d(&t, &pair, &s, 0, &r), "rebound")) {
+        oblq_free_file(&t);
         return 2;
+    }
     printf("gamma = %.17g, alpha = %.17g, P = %.17g\n", r.gamma, r.alpha, r.p);
     printf("sphere 1: v = [%.9f, %.9f, %.9f] m/s, w = [%.6f, %.6f, %.6f] rad/s\n", r.sphere.v[0],
            r.sphere.v[1], r.sphere.v[2], r.sphere.w[0], r.sphere.w[1], r.sphere.w[2]);
     printf("sphere 2: v = [%.9f, %.9f, %.9f] m/s, w = [%.6f, %.6f, %.6f] rad/s\n", r.other.v[0],
            r.other.v[1], r.other.v[2], r.other.w[0], r.other.w[1], r.other.w[2]);
     printf("e_t = %.9f, energy lost = %.6e J\n", r.e_t, r.energy_lost);
-    free(data);
+    oblq_free_file(&t);
     return 0;
 }
