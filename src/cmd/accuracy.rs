@@ -87,8 +87,10 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
         }
         rows.extend(pr);
     }
-    std::fs::write(args.out.join("accuracy.csv"), accuracy::csv(&rows))
-        .context("cannot write accuracy.csv")?;
+    oblique_output::write_bytes(
+        &args.out.join("accuracy.csv"),
+        accuracy::csv(&rows).as_bytes(),
+    )?;
     let fig = accuracy::figure(&points, &rows, &set, &cmd);
     oblique_plot::render_log_log(&fig, &args.out.join("accuracy.png"))?;
     // Presets.
@@ -115,7 +117,7 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
             fmt_time(p.max_time)
         )?;
     }
-    std::fs::write(args.out.join("presets.csv"), pcsv).context("cannot write presets.csv")?;
+    oblique_output::write_bytes(&args.out.join("presets.csv"), pcsv.as_bytes())?;
     if set.e_n < 1.0 {
         outln!("(e_n < 1: no Euler series, so no comparison with the seed scheme; reach.csv not written)")?;
     } else {
@@ -158,7 +160,7 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
                 lower.map_or("-".into(), |x| format!("{x:.0}x")),
             )?;
         }
-        std::fs::write(args.out.join("reach.csv"), rcsv).context("cannot write reach.csv")?;
+        oblique_output::write_bytes(&args.out.join("reach.csv"), rcsv.as_bytes())?;
         outln!("(* extrapolated from the finest Euler runs: error = C/steps)")?;
     }
     eprintln!(
@@ -293,7 +295,7 @@ fn tables(args: &AccuracyArgs) -> Result<()> {
             r.rms_error
         ));
     }
-    std::fs::write(args.out.join("tables.csv"), csv).context("cannot write tables.csv")?;
+    oblique_output::write_bytes(&args.out.join("tables.csv"), csv.as_bytes())?;
     oblique_plot::render_log_log(&tables_figure(&rows), &args.out.join("tables.png"))?;
     eprintln!("wrote {0}/tables.csv, {0}/tables.png", args.out.display());
     Ok(())

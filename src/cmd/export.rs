@@ -2,8 +2,7 @@
 //! dependency-free evaluator `include/oblique_eval.h` reads, as a binary file or a C source.
 
 use crate::failure::outln;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
@@ -41,52 +40,6 @@ pub struct ExportArgs {
     name: String,
 }
 
-fn write_atomic(out: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = out
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = out
-        .file_name()
-        .map_or_else(|| "export".into(), |n| n.to_string_lossy().into_owned());
-    remove_stale_temporaries(dir, &name);
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, out)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
-/// Remove the temporary files `.NAME.tmpPID` that an earlier export of the same output left
-/// when it was killed (kill -9, power loss): those whose process no longer runs (Linux: no
-/// `/proc/PID`). A running export's file, and anything else, is left alone.
-fn remove_stale_temporaries(dir: &Path, name: &str) {
-    let prefix = format!(".{name}.tmp");
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let file = entry.file_name();
-        let Some(pid) = file
-            .to_str()
-            .and_then(|f| f.strip_prefix(&prefix))
-            .and_then(|p| p.parse::<u32>().ok())
-        else {
-            continue;
-        };
-        let running = Path::new("/proc").join(pid.to_string()).exists();
-        if pid != std::process::id() && Path::new("/proc/self").exists() && !running {
-            let _ = std::fs::remove_file(entry.path());
-        }
-    }
-}
-
 fn is_identifier(s: &str) -> bool {
     let mut chars = s.chars();
     matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
@@ -118,7 +71,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
     }
     // A device, FIFO or symbolic link at the output is not replaced by a file, and the table
     // being read is not overwritten (also under another name or a hard link).
-    oblique_table::write::check_output_not_input(&args.output, &[&args.table])?;
+    oblique_output::check_output_not_input(&args.output, &[&args.table])?;
     let table = Table::open(&args.table)?;
     let axis = table.surface().restitution();
     if let (Some((lo, hi)), false) = (axis, args.gammas.is_empty()) {
@@ -178,12 +131,9 @@ pub fn run(args: ExportArgs) -> Result<()> {
         Format::Binary => bytes.clone(),
         Format::C => export::c_source(&bytes, &args.name, &what).into_bytes(),
     };
-    write_atomic(&args.output, &content).map_err(|e| {
-        Failure::from(anyhow::anyhow!(
-            "cannot write {}: {e}",
-            args.output.display()
-        ))
-    })?;
+    // A temporary file beside the output, synced, then renamed (`oblique_output`); it also
+    // removes the temporary files that a killed export of the same output left.
+    oblique_output::write_bytes(&args.output, &content)?;
     outln!(
         "wrote {} ({} bytes{}): {}{} curve{}, stated error bound {:.2e}",
         args.output.display(),

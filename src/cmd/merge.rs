@@ -6,9 +6,10 @@ use std::time::Instant;
 use crate::failure::Result;
 use clap::Args;
 
+use oblique_output::check_output_not_input;
 use oblique_sweep::nodestore::{Merged, OutputLock};
 use oblique_sweep::{provenance, Config, RunOptions};
-use oblique_table::write::{check_output_not_input, write_table};
+use oblique_table::write::write_table;
 
 use super::run::{check_writable, summary};
 

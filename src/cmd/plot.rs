@@ -187,7 +187,7 @@ pub fn run(args: PlotArgs) -> Result<()> {
         .map(|(kind, _)| args.output.join(format!("{}.{ext}", kind.stem())))
         .collect();
     for path in &paths {
-        oblique_table::write::check_output(path)?;
+        oblique_output::check_output(path)?;
     }
     for ((kind, sheet), path) in sheets.iter().zip(&paths) {
         oblique_plot::render_sheet(sheet, path)?;

@@ -173,13 +173,12 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
             .with_context(|| format!("cannot create output folder {}", dir.display()))?;
         // Nothing of a suite is written unless every one of its paths can be.
         for (name, _) in &files {
-            oblique_table::write::check_output(&dir.join(name))?;
+            oblique_output::check_output(&dir.join(name))?;
         }
         for (name, content) in &files {
             let path = dir.join(name);
             match content {
-                Content::Csv(text) => std::fs::write(&path, text)
-                    .with_context(|| format!("cannot write {}", path.display()))?,
+                Content::Csv(text) => oblique_output::write_bytes(&path, text.as_bytes())?,
                 Content::Figure(fig) => oblique_plot::render(fig, &path)?,
             }
             written += 1;

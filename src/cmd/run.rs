@@ -7,10 +7,11 @@ use std::time::Instant;
 use crate::failure::{Context, Failure, Result};
 use clap::Args;
 
+use oblique_output::{check_output, check_output_not_input};
 use oblique_sweep::nodestore::{fingerprint, Checkpoint, Header, Kind, NodeFile, OutputLock};
 use oblique_sweep::provenance;
 use oblique_sweep::{Built, Config, Progress, RunError, RunOptions, Shard};
-use oblique_table::write::{check_output, check_output_not_input, write_table};
+use oblique_table::write::write_table;
 
 use crate::progress::{CliProgress, STEP_PREFLIGHT, STEP_WRITING};
 
@@ -85,6 +86,8 @@ pub(crate) fn check_writable(out: &std::path::Path) -> Result<()> {
     std::fs::create_dir_all(dir)
         .with_context(|| format!("output {}: cannot create directory", out.display()))?;
     let probe = dir.join(format!(".sweep-probe-{}", std::process::id()));
+    // A probe, not an output: created and removed at once (a temporary file and a rename
+    // would only widen the window in which a killed run leaves it).
     std::fs::write(&probe, b"")
         .with_context(|| format!("output {}: directory is not writable", out.display()))?;
     let _ = std::fs::remove_file(probe);

@@ -87,15 +87,6 @@ fn check(
     Ok(paths.iter().map(|p| p.display().to_string()).collect())
 }
 
-fn write_file(
-    path: &Path,
-    write: impl FnOnce(&mut std::fs::File) -> std::io::Result<()>,
-) -> Result<()> {
-    let mut f =
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-    write(&mut f).with_context(|| format!("cannot write {}", path.display()))
-}
-
 pub fn run(args: SceneArgs) -> Result<()> {
     let start = Instant::now();
     let scene = Scene::load(&args.scene)?;
@@ -126,9 +117,11 @@ pub fn run(args: SceneArgs) -> Result<()> {
             .with_context(|| format!("cannot create output folder {}", args.output.display()))?;
         // Nothing is written unless every output can be.
         for path in &paths {
-            oblique_table::write::check_output(path)?;
+            oblique_output::check_output(path)?;
         }
-        write_file(&csv_path, |f| scene::csv::write(&ev, sphere_sphere, f))?;
+        oblique_output::write_with(&csv_path, |mut w| {
+            scene::csv::write(&ev, sphere_sphere, &mut w)
+        })?;
         for path in &paths[1..] {
             oblique_plot::render(&fig, path)?;
         }

@@ -39,12 +39,34 @@ pub enum PlotError {
         /// What went wrong.
         message: String,
     },
+    /// The output path is not a regular file, or the finished figure could not be put there.
+    #[error(transparent)]
+    Output(#[from] oblique_output::OutputError),
 }
 
 impl PlotError {
-    /// Whether the caller can fix it: an unknown output format (not: a failed drawing).
+    /// Whether the caller can fix it: an unknown output format or an output path in the way
+    /// (not: a failed drawing or write).
     pub fn user_can_fix(&self) -> bool {
-        matches!(self, PlotError::Format { .. })
+        match self {
+            PlotError::Format { .. } => true,
+            PlotError::Output(e) => e.user_can_fix(),
+            PlotError::Draw { .. } => false,
+        }
+    }
+}
+
+/// The format of `path` by its extension, or [`PlotError::Format`].
+fn format_of(path: &Path) -> Result<&'static str, PlotError> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("png") => Ok("png"),
+        Some("svg") => Ok("svg"),
+        _ => Err(PlotError::Format {
+            path: path.display().to_string(),
+        }),
     }
 }
 
@@ -135,7 +157,8 @@ fn register_font() -> Result<(), String> {
         .clone()
 }
 
-/// Draw a figure to `path`; the format follows the extension (`.png` or `.svg`).
+/// Draw a figure to `path`; the format follows the extension (`.png` or `.svg`). The file is
+/// written through `oblique_output`: on any error `path` is left as it was.
 pub fn render(fig: &Figure, path: &Path) -> Result<(), PlotError> {
     render_with(fig, path, false)
 }
@@ -155,12 +178,19 @@ fn render_with(fig: &Figure, path: &Path, log_log: bool) -> Result<(), PlotError
         message,
     };
     register_font().map_err(draw_err)?;
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match ext.as_deref() {
-        Some("png") => {
-            let root = BitMapBackend::new(path, fig.size).into_drawing_area();
+    let format = format_of(path)?;
+    oblique_output::write_via_path(path, |tmp| {
+        if format == "png" {
+            let root = BitMapBackend::new(tmp, fig.size).into_drawing_area();
+            if log_log {
+                draw_log_log(fig, &root)
+            } else {
+                draw(fig, &root)
+            }
+            .map_err(draw_err)?;
+            root.present().map_err(|e| draw_err(e.to_string()))
+        } else {
+            let root = SVGBackend::new(tmp, fig.size).into_drawing_area();
             if log_log {
                 draw_log_log(fig, &root)
             } else {
@@ -169,18 +199,7 @@ fn render_with(fig: &Figure, path: &Path, log_log: bool) -> Result<(), PlotError
             .map_err(draw_err)?;
             root.present().map_err(|e| draw_err(e.to_string()))
         }
-        Some("svg") => {
-            let root = SVGBackend::new(path, fig.size).into_drawing_area();
-            if log_log {
-                draw_log_log(fig, &root)
-            } else {
-                draw(fig, &root)
-            }
-            .map_err(draw_err)?;
-            root.present().map_err(|e| draw_err(e.to_string()))
-        }
-        _ => Err(PlotError::Format { path: shown }),
-    }
+    })
 }
 
 fn rgb(c: (u8, u8, u8)) -> RGBColor {

@@ -483,7 +483,8 @@ impl ValueFormatter<f64> for TickedRange {
     }
 }
 
-/// Draw a sheet to `path`; the format follows the extension (`.png` or `.svg`).
+/// Draw a sheet to `path`; the format follows the extension (`.png` or `.svg`), written through
+/// `oblique_output` like [`render`](super::render).
 pub fn render_sheet(sheet: &Sheet, path: &Path) -> Result<(), PlotError> {
     let shown = path.display().to_string();
     let draw_err = |message: String| PlotError::Draw {
@@ -491,22 +492,18 @@ pub fn render_sheet(sheet: &Sheet, path: &Path) -> Result<(), PlotError> {
         message,
     };
     register_font().map_err(draw_err)?;
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match ext.as_deref() {
-        Some("png") => {
-            let root = BitMapBackend::new(path, sheet.size).into_drawing_area();
+    let format = super::format_of(path)?;
+    oblique_output::write_via_path(path, |tmp| {
+        if format == "png" {
+            let root = BitMapBackend::new(tmp, sheet.size).into_drawing_area();
+            draw_sheet(sheet, &root).map_err(draw_err)?;
+            root.present().map_err(|e| draw_err(e.to_string()))
+        } else {
+            let root = SVGBackend::new(tmp, sheet.size).into_drawing_area();
             draw_sheet(sheet, &root).map_err(draw_err)?;
             root.present().map_err(|e| draw_err(e.to_string()))
         }
-        Some("svg") => {
-            let root = SVGBackend::new(path, sheet.size).into_drawing_area();
-            draw_sheet(sheet, &root).map_err(draw_err)?;
-            root.present().map_err(|e| draw_err(e.to_string()))
-        }
-        _ => Err(PlotError::Format { path: shown }),
-    }
+    })
 }
 
 fn draw_sheet<DB: DrawingBackend>(

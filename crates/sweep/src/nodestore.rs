@@ -18,7 +18,7 @@
 //! file is truncated there before appending. In a finished part every record must be intact.
 
 use std::collections::HashMap;
-use std::fs::{File, OpenOptions};
+use std::fs::File;
 use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -62,12 +62,19 @@ pub enum NodeFileError {
         /// What is wrong and what to do.
         message: String,
     },
+    /// A checkpoint or part could not be written (or its path is not a regular file).
+    #[error(transparent)]
+    Output(#[from] oblique_output::OutputError),
 }
 
 impl NodeFileError {
-    /// Always true: the file named is missing, unreadable, damaged or from another config.
+    /// Whether the caller can fix it: true for a file that is missing, unreadable, damaged or
+    /// from another config, or an output path in the way; false for a failed write.
     pub fn user_can_fix(&self) -> bool {
-        true
+        match self {
+            NodeFileError::Output(e) => e.user_can_fix(),
+            _ => true,
+        }
     }
 }
 
@@ -268,15 +275,16 @@ pub struct Checkpoint {
 }
 
 impl Checkpoint {
-    /// Start a new checkpoint at `path` (replacing any file there).
+    /// Start a new checkpoint at `path` (replacing any regular file there): its header is
+    /// written whole (`oblique_output`), then records are appended in place.
     pub fn create(path: &Path, header: Header) -> Result<Checkpoint, NodeFileError> {
         let io = |source| NodeFileError::Io {
             path: path.display().to_string(),
             source,
         };
-        let mut f = File::create(path).map_err(io)?;
-        f.write_all(&header.bytes()).map_err(io)?;
-        f.sync_data().map_err(io)?;
+        oblique_output::write_bytes(path, &header.bytes())?;
+        let mut f = oblique_output::open_in_place(path, false)?;
+        f.seek(SeekFrom::End(0)).map_err(io)?;
         Ok(Checkpoint {
             path: path.to_path_buf(),
             known: HashMap::new(),
@@ -324,7 +332,7 @@ impl Checkpoint {
             path: p.clone(),
             source,
         };
-        let mut f = OpenOptions::new().write(true).open(path).map_err(io)?;
+        let mut f = oblique_output::open_in_place(path, false)?;
         f.set_len(file.intact_len).map_err(io)?;
         f.seek(SeekFrom::End(0)).map_err(io)?;
         let known = file
@@ -358,17 +366,13 @@ impl Checkpoint {
             kind: Kind::Part,
             ..self.header
         };
-        let tmp = part.with_extension(format!("part.tmp{}", std::process::id()));
-        {
-            let mut w = BufWriter::new(File::create(&tmp).map_err(io(&tmp))?);
-            w.write_all(&header.bytes()).map_err(io(&tmp))?;
+        oblique_output::write_with(part, |w| {
+            w.write_all(&header.bytes())?;
             for r in &file.records {
-                w.write_all(&record_bytes(r)).map_err(io(&tmp))?;
+                w.write_all(&record_bytes(r))?;
             }
-            let f = w.into_inner().map_err(|e| io(&tmp)(e.into_error()))?;
-            f.sync_all().map_err(io(&tmp))?;
-        }
-        std::fs::rename(&tmp, part).map_err(io(part))?;
+            Ok(())
+        })?;
         std::fs::remove_file(&self.path).map_err(io(&self.path))
     }
 
@@ -539,7 +543,7 @@ pub enum LockError {
     },
     /// Something that is not a regular file is at the lock file's path.
     #[error(transparent)]
-    Path(#[from] oblique_table::write::OutputPathError),
+    Path(#[from] oblique_output::OutputPathError),
     /// The lock file could not be created, read or written.
     #[error("lock file {path}: {source}")]
     Io {
@@ -626,15 +630,11 @@ impl OutputLock {
             path: shown.clone(),
             source,
         };
-        oblique_table::write::check_output(&path)?;
         loop {
-            let mut file = OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create(true)
-                .truncate(false)
-                .open(&path)
-                .map_err(io)?;
+            let mut file = oblique_output::open_in_place(&path, true).map_err(|e| match e {
+                oblique_output::OutputError::Path(p) => LockError::Path(p),
+                oblique_output::OutputError::Io { source, .. } => io(source),
+            })?;
             if !try_flock(&file).map_err(io)? {
                 let mut holder = String::new();
                 let _ = file.read_to_string(&mut holder);

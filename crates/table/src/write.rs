@@ -1,8 +1,9 @@
-//! The storage layer: writes a built table as HDF5 (schema v3, or v4 with an `e_n` axis; `docs/table-format.md`), atomically
-//! (temporary file in the same directory, then rename). Names come from `crate::format`,
+//! The storage layer: writes a built table as HDF5 (schema v3, or v4 with an `e_n` axis;
+//! `docs/table-format.md`) through `oblique-output` (a temporary file beside the target, synced,
+//! then renamed). Names come from `crate::format`,
 //! which owns the format; the lookup crate reads what this writes.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use hdf5::types::VarLenUnicode;
 use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
@@ -93,6 +94,15 @@ pub enum StorageError {
     Output(#[from] OutputPathError),
 }
 
+impl From<oblique_output::OutputError> for StorageError {
+    fn from(e: oblique_output::OutputError) -> Self {
+        match e {
+            oblique_output::OutputError::Path(p) => StorageError::Output(p),
+            oblique_output::OutputError::Io { path, source } => StorageError::Io { path, source },
+        }
+    }
+}
+
 impl StorageError {
     /// Whether the caller can fix it: the output path is in the way (not: a failed write, or a
     /// build whose checks contradict its bound).
@@ -101,127 +111,7 @@ impl StorageError {
     }
 }
 
-/// An output path that must not be written: something other than a regular file is there, or
-/// it is one of the inputs.
-#[derive(Debug, Error)]
-pub enum OutputPathError {
-    /// The path exists and is not a regular file (writing would replace or write into it).
-    #[error("output {path} is {kind}, not a regular file; give the path of a file")]
-    NotAFile {
-        /// The path.
-        path: String,
-        /// What is there, e.g. "a directory", "a symbolic link (to /x)", "a FIFO".
-        kind: String,
-    },
-    /// The path is (through any name or hard link) one of the files being read.
-    #[error("output {path} is the input {input}; give another output path")]
-    IsInput {
-        /// The output path.
-        path: String,
-        /// The input it is the same file as.
-        input: String,
-    },
-    /// The path could not be examined.
-    #[error("output {path}: {source}")]
-    Io {
-        /// The path.
-        path: String,
-        /// Cause.
-        source: std::io::Error,
-    },
-}
-
-impl OutputPathError {
-    /// Always true: the caller chose the path.
-    pub fn user_can_fix(&self) -> bool {
-        true
-    }
-}
-
-/// What is at `path` in words ("a directory", "a FIFO", …), when it is not a regular file;
-/// `None` for a regular file. A symbolic link is reported as one (with its target), never
-/// followed.
-fn non_file_kind(meta: &std::fs::Metadata, path: &Path) -> Option<String> {
-    let t = meta.file_type();
-    if t.is_file() {
-        return None;
-    }
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if t.is_fifo() {
-            return Some("a FIFO (named pipe)".into());
-        }
-        if t.is_char_device() {
-            return Some("a character device".into());
-        }
-        if t.is_block_device() {
-            return Some("a block device".into());
-        }
-        if t.is_socket() {
-            return Some("a socket".into());
-        }
-    }
-    Some(if t.is_dir() {
-        "a directory".into()
-    } else if t.is_symlink() {
-        match std::fs::read_link(path) {
-            Ok(target) => format!("a symbolic link (to {})", target.display()),
-            Err(_) => "a symbolic link".into(),
-        }
-    } else {
-        "not a regular file".into()
-    })
-}
-
-/// Check that `path` may be written as an output file: it does not exist, or it is a regular
-/// file (not a directory, symbolic link, FIFO, device or socket, which writing would replace or
-/// write into).
-pub fn check_output(path: &Path) -> Result<(), OutputPathError> {
-    match std::fs::symlink_metadata(path) {
-        Ok(meta) => match non_file_kind(&meta, path) {
-            None => Ok(()),
-            Some(kind) => Err(OutputPathError::NotAFile {
-                path: path.display().to_string(),
-                kind,
-            }),
-        },
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(source) => Err(OutputPathError::Io {
-            path: path.display().to_string(),
-            source,
-        }),
-    }
-}
-
-/// [`check_output`], and that `path` is none of `inputs` (compared by device and inode, so
-/// another name or a hard link of an input is caught too).
-pub fn check_output_not_input(path: &Path, inputs: &[&Path]) -> Result<(), OutputPathError> {
-    check_output(path)?;
-    let Ok(out) = std::fs::metadata(path) else {
-        return Ok(());
-    };
-    for input in inputs {
-        if std::fs::metadata(input).is_ok_and(|m| same_file(&m, &out)) {
-            return Err(OutputPathError::IsInput {
-                path: path.display().to_string(),
-                input: input.display().to_string(),
-            });
-        }
-    }
-    Ok(())
-}
-
-#[cfg(unix)]
-fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    a.dev() == b.dev() && a.ino() == b.ino()
-}
-
-#[cfg(not(unix))]
-fn same_file(_: &std::fs::Metadata, _: &std::fs::Metadata) -> bool {
-    false
-}
+pub use oblique_output::{check_output, check_output_not_input, OutputPathError};
 
 struct W<'a> {
     path: &'a str,
@@ -332,51 +222,12 @@ pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), S
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(io)?;
     }
-    let file_name = out
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_else(|| "table.h5".into());
-    remove_stale_temporaries(out, &file_name);
-    let tmp: PathBuf = out.with_file_name(format!(".{file_name}.tmp-{}", std::process::id()));
-    // HDF5 finishes the file when its last handle closes (at the end of `write_to`); only then
-    // are its bytes final. Seal them and make sure they are on disk before the rename
-    // publishes the file.
-    let result = write_to(&tmp, &path, built, prov).and_then(|()| seal(&tmp).map_err(io));
-    // Checked again just before the rename: the write may have taken a while.
-    let result = result.and_then(|()| check_output(out).map_err(StorageError::from));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    std::fs::rename(&tmp, out).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io(e)
+    // HDF5 creates the file itself, at the output module's temporary path, and finishes it
+    // when its last handle closes (at the end of `write_to`); only then are its bytes final.
+    // The seal goes into them before the module syncs the file and renames it over `out`.
+    oblique_output::write_via_path(out, |tmp| {
+        write_to(tmp, &path, built, prov).and_then(|()| seal(tmp).map_err(io))
     })
-}
-
-/// Remove `.NAME.tmp-PID` files left next to `out` by writers that were killed (their process no
-/// longer exists). Best effort: errors are ignored.
-fn remove_stale_temporaries(out: &Path, file_name: &str) {
-    let dir = match out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        Some(d) => d.to_path_buf(),
-        None => PathBuf::from("."),
-    };
-    let prefix = format!(".{file_name}.tmp-");
-    let Ok(entries) = std::fs::read_dir(&dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let name = entry.file_name().to_string_lossy().to_string();
-        let Some(pid) = name.strip_prefix(&prefix) else {
-            continue;
-        };
-        let alive = pid
-            .parse::<u32>()
-            .is_ok_and(|p| p == std::process::id() || Path::new(&format!("/proc/{p}")).exists());
-        if !alive {
-            let _ = std::fs::remove_file(entry.path());
-        }
-    }
 }
 
 fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<(), StorageError> {
