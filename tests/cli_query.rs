@@ -364,3 +364,55 @@ fn query_answers_no_p_beyond_one() {
     }
     assert_eq!(lines, 1_000_001);
 }
+
+/// Without a table, `sweep query` answers from the table built into the binary
+/// (tables/isotropic.h5), in any directory; `--help` names it; outside its domain the message
+/// points to tables/full.h5.
+#[test]
+fn without_a_table_the_built_in_one_answers() {
+    let isotropic = Table::open(concat!(env!("CARGO_MANIFEST_DIR"), "/tables/isotropic.h5"))
+        .expect("isotropic.h5");
+    let dir = std::env::temp_dir();
+    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(["query", "--gamma", "1.754", "--alpha", "1", "--json"])
+        .current_dir(&dir)
+        .output()
+        .expect("run");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let want = isotropic.p(1.754, 1.0).unwrap();
+    assert_eq!(v["P"].as_f64().unwrap().to_bits(), want.to_bits());
+    assert_eq!(v["table"], "built-in tables/isotropic.h5");
+    let out = sweep(&["query", "--batch", "-"], Some("1.75,0.3\n2,inf\n"));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let p: f64 = text
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .nth(2)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(p.to_bits(), isotropic.p(1.75, 0.3).unwrap().to_bits());
+    refused(
+        &sweep(&["query", "--gamma", "3", "--alpha", "1"], None),
+        &["built-in table is tables/isotropic.h5", "tables/full.h5"],
+    );
+    let help = sweep(&["query", "--help"], None);
+    let help = String::from_utf8_lossy(&help.stdout);
+    assert!(help.contains("[TABLE]"), "{help}");
+    assert!(
+        help.contains("Default: the table built into sweep, tables/isotropic.h5"),
+        "{help}"
+    );
+}

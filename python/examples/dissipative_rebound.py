@@ -2,16 +2,19 @@
 
     python3 python/examples/dissipative_rebound.py [TABLE]
 
-TABLE defaults to tables/dissipative-demo.h5 (e_n from 0.5 to 1, Kelvin–Voigt law).
+TABLE defaults to the repository's tables/dissipative-demo.h5 (e_n from 0.5 to 1, Kelvin–Voigt
+law), found from this file's place, so that it runs from any directory of a checkout.
 """
 
 import sys
+from pathlib import Path
 
 import numpy as np
 
 import oblique
 
-table = oblique.Table(sys.argv[1] if len(sys.argv) > 1 else "tables/dissipative-demo.h5")
+DEFAULT = Path(__file__).resolve().parents[2] / "tables" / "dissipative-demo.h5"
+table = oblique.Table(sys.argv[1] if len(sys.argv) > 1 else DEFAULT)
 info = table.info
 print(f"law {info['law']}, e_n in [{info['e_n_min']}, {info['e_n_max']}], "
       f"gamma in [{info['gamma_min']}, {info['gamma_max']}], error bound {table.error_bound:.1e}")

@@ -1,7 +1,7 @@
 import numpy as np
 import oblique
 
-table = oblique.Table("tables/full.h5")
+table = oblique.Table()  # the table built into the package; or Table("tables/full.h5")
 print(table.p(1.754, 1.0))                       # P(gamma, alpha): a float
 print(table.p(1.754, np.array([0.1, 0.3, np.inf])))  # arrays broadcast
 

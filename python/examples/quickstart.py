@@ -1,7 +1,10 @@
 """A first session with the Python package: P, e_t and regimes from the table, a 3-D rebound,
 and the solver for a point checked against the table.
 
-    python3 python/examples/quickstart.py [TABLE]      (TABLE defaults to tables/full.h5)
+    python3 python/examples/quickstart.py [TABLE]
+
+TABLE defaults to the table built into the package (tables/isotropic.h5); runs from any
+directory.
 """
 
 import sys
@@ -10,7 +13,7 @@ import numpy as np
 
 import oblique
 
-table = oblique.Table(sys.argv[1] if len(sys.argv) > 1 else "tables/full.h5")
+table = oblique.Table(sys.argv[1] if len(sys.argv) > 1 else None)
 print(table)
 
 # P(gamma, alpha), e_t of a solid sphere without spin, the regime: scalars or arrays.

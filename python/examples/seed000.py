@@ -2,7 +2,8 @@
 
     python3 python/examples/seed000.py [TABLE] [FIGURE]
 
-TABLE defaults to tables/full.h5, FIGURE to seed000_alumina_on_glass.png. Needs matplotlib.
+TABLE defaults to the table built into the package (tables/isotropic.h5), FIGURE to
+seed000_alumina_on_glass.png in the current directory. Needs matplotlib.
 """
 
 import os
@@ -16,7 +17,7 @@ import numpy as np
 
 import oblique
 
-table_path = sys.argv[1] if len(sys.argv) > 1 else "tables/full.h5"
+table_path = sys.argv[1] if len(sys.argv) > 1 else None
 figure_path = sys.argv[2] if len(sys.argv) > 2 else "seed000_alumina_on_glass.png"
 table = oblique.Table(table_path)
 

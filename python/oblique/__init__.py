@@ -64,9 +64,14 @@ __all__ = [
     "critical",
     "regime",
     "REGIMES",
+    "EMBEDDED_TABLE",
 ]
 
 __version__: str = _native.VERSION
+
+#: The table built into the package, opened by ``Table()`` without a path (as the repository
+#: names it: one isotropic material, 1.52 ≤ γ ≤ 2.16).
+EMBEDDED_TABLE: str = _native.EMBEDDED_TABLE
 
 #: Names of the friction regimes, indexed by the codes the native layer returns.
 REGIMES: Tuple[str, str, str] = ("full-slip", "partial-slip", "stick")
@@ -587,7 +592,11 @@ class Table:
     extrapolation by a constant; the error it makes is yours). The full-slip line
     ``P = 1 − 7α`` (α up to α_c1 for γ > 1, α_c2 for γ ≤ 1) is exact and answered for any γ > 0.
 
-    ``path``: a ``str``, ``bytes`` or ``os.PathLike`` (``pathlib.Path``).
+    ``path``: a ``str``, ``bytes`` or ``os.PathLike`` (``pathlib.Path``); ``None`` (the
+    default, ``oblique.Table()``) opens the table built into the package,
+    :data:`EMBEDDED_TABLE` (``tables/isotropic.h5``: one isotropic material,
+    1.52 ≤ γ ≤ 2.16, α from 0 to ∞, stated error bound 8.96e-6); give ``tables/full.h5`` of
+    the repository for 0.1 ≤ γ ≤ 3.5.
 
     Immutable; one table may be used by many threads. Raises ``FileNotFoundError`` (and the other
     ``OSError`` subclasses) when the file cannot be opened, :class:`TableError` when it is not a
@@ -596,7 +605,14 @@ class Table:
 
     __slots__ = ("_t", "_clamp", "_info")
 
-    def __init__(self, path: Union[str, bytes, os.PathLike], clamp: bool = False) -> None:
+    def __init__(
+        self, path: Optional[Union[str, bytes, os.PathLike]] = None, clamp: bool = False
+    ) -> None:
+        self._clamp = bool(clamp)
+        self._info: Optional[dict] = None
+        if path is None:
+            self._t = _native.Table.embedded()
+            return
         path = os.fspath(path)
         if isinstance(path, bytes):
             path = os.fsdecode(path)
@@ -618,8 +634,6 @@ class Table:
         with open(path, "rb"):
             pass
         self._t = _native.Table(path)
-        self._clamp = bool(clamp)
-        self._info: Optional[dict] = None
 
     @property
     def clamp(self) -> bool:

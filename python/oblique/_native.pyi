@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 _F = NDArray[np.float64]
 
 VERSION: str
+EMBEDDED_TABLE: str
 REBOUND3: List[str]
 REBOUND2: List[str]
 GROUPS: List[str]
@@ -21,6 +22,8 @@ class TableError(OSError): ...
 
 class Table:
     def __init__(self, path: str) -> None: ...
+    @staticmethod
+    def embedded() -> Table: ...
     def p(self, gamma: float, alpha: float, clamp: bool) -> float: ...
     def p_into(
         self, gamma: _F, alpha: _F, out: _F, clamp: bool, shape: Sequence[int]

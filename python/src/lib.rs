@@ -288,6 +288,18 @@ impl PyTable {
         })
     }
 
+    /// The table built into the module (`EMBEDDED_TABLE`: tables/isotropic.h5).
+    #[staticmethod]
+    fn embedded(py: Python<'_>) -> PyResult<Self> {
+        let inner = py
+            .detach(oblique_lookup::Table::embedded)
+            .map_err(|e| lookup_error(e, &[]))?;
+        Ok(PyTable {
+            inner,
+            path: oblique_lookup::embedded_name(),
+        })
+    }
+
     /// `P(γ, α)` of one point.
     fn p(&self, gamma: f64, alpha: f64, clamp: bool) -> PyResult<f64> {
         self.inner
@@ -1176,6 +1188,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GROUPS", GROUPS.to_vec())?;
     m.add("IMPACT", IMPACT.to_vec())?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;
+    m.add("EMBEDDED_TABLE", oblique_lookup::EMBEDDED_TABLE)?;
     m.add("MATERIALS", material_rows())?;
     m.add_function(wrap_pyfunction!(regime_into, m)?)?;
     m.add_function(wrap_pyfunction!(critical_into, m)?)?;

@@ -30,9 +30,10 @@ def test_seed000_example_draws_the_figure(tmp_path):
     assert sum(counts) == 89
 
 
-def test_quickstart_example_runs(tmp_path):
+def test_quickstart_example_runs_from_any_directory(tmp_path):
+    # No table given: the one built into the package, from a folder without tables/.
     r = subprocess.run(
-        [sys.executable, str(ROOT / "python/examples/quickstart.py"), str(ROOT / "tables/full.h5")],
+        [sys.executable, str(ROOT / "python/examples/quickstart.py")],
         capture_output=True,
         text=True,
         cwd=tmp_path,
@@ -40,11 +41,26 @@ def test_quickstart_example_runs(tmp_path):
     )
     assert r.returncode == 0, r.stderr
     assert "simulated P(1.754, 0.3)" in r.stdout
+    assert "built-in tables/isotropic.h5" in r.stdout
 
 
-def test_dissipative_rebound_example_runs(tmp_path):
+def test_first_example_runs_from_any_directory(tmp_path):
     r = subprocess.run(
-        [sys.executable, str(ROOT / "python/examples/dissipative_rebound.py"), str(DISSIPATIVE)],
+        [sys.executable, str(ROOT / "python/examples/first.py")],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=120,
+    )
+    assert r.returncode == 0, r.stderr
+    assert abs(float(r.stdout.splitlines()[0]) - 0.098791819) < 1e-5
+
+
+def test_dissipative_rebound_example_runs_from_any_directory(tmp_path):
+    # Its default table is found from the example's place in the checkout, not the cwd.
+    assert DISSIPATIVE == ROOT / "tables/dissipative-demo.h5"
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "python/examples/dissipative_rebound.py")],
         capture_output=True,
         text=True,
         cwd=tmp_path,

@@ -460,6 +460,23 @@ def test_a_table_path_as_str_bytes_or_path(table_paths):
         oblique.Table(b"/nonexistent/table.h5")
 
 
+def test_no_path_opens_the_built_in_table(tables):
+    # The table built into the package is tables/isotropic.h5, answered to the same bits.
+    built_in = oblique.Table()
+    assert oblique.EMBEDDED_TABLE == "tables/isotropic.h5"
+    info, shipped = built_in.info, tables["isotropic"].info
+    assert info["path"] == "built-in tables/isotropic.h5"
+    for key in ("gamma_min", "gamma_max", "alpha_max", "error_bound", "git_commit", "created"):
+        assert info[key] == shipped[key], key
+    gamma, alpha = domain_points(built_in, 2000, 5)
+    assert np.array_equal(built_in.p(gamma, alpha), tables["isotropic"].p(gamma, alpha))
+    assert abs(built_in.p(1.754, 1.0) - tables["full"].p(1.754, 1.0)) < 2e-5
+    with pytest.raises(ValueError, match="gamma"):
+        built_in.p(3.0, 1.0)
+    assert oblique.Table(clamp=True).clamp
+    assert "built-in tables/isotropic.h5" in repr(built_in)
+
+
 def test_curve_on_a_finite_alpha_max_table(finite_table, finite_table_path):
     amax = finite_table.info["alpha_max"]
     clamped = oblique.Table(finite_table_path, clamp=True)

@@ -16,8 +16,10 @@ use oblique_table::surface::{Region, Surface};
 
 #[derive(Args)]
 pub struct QueryArgs {
-    /// Table file written by `sweep run` (HDF5, schema v2 to v4).
-    table: PathBuf,
+    /// Table file written by `sweep run` (HDF5, schema v2 to v4). Default: the table built into
+    /// sweep, tables/isotropic.h5 (one isotropic material: 1.52 <= gamma <= 2.16, alpha from 0
+    /// to inf, stated error bound 8.96e-6).
+    table: Option<PathBuf>,
     /// Material group gamma = sqrt((m*/m_t) G*/E*) (`sweep gamma`); a finite number > 0.
     #[arg(long, value_parser = crate::args::parse_table_gamma, allow_hyphen_values = true,
           conflicts_with = "batch", requires = "alpha")]
@@ -70,7 +72,10 @@ fn region_name(surface: &Surface, gamma: f64, alpha: f64, e_n: f64) -> &'static 
 }
 
 pub fn run(args: QueryArgs) -> Result<()> {
-    let table = Table::open(&args.table)?;
+    let (table, name) = match &args.table {
+        Some(path) => (Table::open(path)?, path.display().to_string()),
+        None => (Table::embedded()?, oblique_lookup::embedded_name()),
+    };
     let outside = if args.clamp {
         OutOfDomain::Clamp
     } else {
@@ -91,6 +96,13 @@ pub fn run(args: QueryArgs) -> Result<()> {
         .p_e_with(gamma, alpha, e_n, outside)
         .map_err(|e| match e {
             LookupError::Query { name: "e_n", .. } => Failure::usage(format!("--e-n: {e}")),
+            LookupError::Query { name: "gamma", .. } if args.table.is_none() => {
+                Failure::usage(format!(
+                    "{e} (--clamp); the built-in table is {} (one isotropic material): give \
+                     tables/full.h5 of the repository for 0.1 <= gamma <= 3.5",
+                    oblique_lookup::EMBEDDED_TABLE
+                ))
+            }
             other => usage(other),
         })?;
     let region = region_name(table.surface(), gamma, alpha, e_n);
@@ -108,7 +120,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
             "e_t": tangential_restitution(p),
             "region": region,
             "error_bound": error,
-            "table": args.table.display().to_string(),
+            "table": name,
         });
         outln!("{out}")?;
     } else {
@@ -125,7 +137,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
             "e_t = (2P + 5)/7 = {:.9}   (solid sphere, no initial spin)",
             tangential_restitution(p)
         )?;
-        outln!("{region}, from {}", args.table.display())?;
+        outln!("{region}, from {name}")?;
     }
     Ok(())
 }

@@ -5,7 +5,8 @@
 //! the linear limit, otherwise local Lagrange interpolation on curve-aligned patches. No HDF5 call
 //! happens on the query path. This crate never depends on the simulator.
 //!
-//! - [`Table::open`] loads and validates a table; [`Table::p`] / [`Table::p_with`] answer one
+//! - [`Table::open`] loads and validates a table ([`Table::embedded`]: the one built in,
+//!   [`EMBEDDED_TABLE`]); [`Table::p`] / [`Table::p_with`] answer one
 //!   `P(γ, α)`, [`Table::p_batch`] and [`Table::p_batch_par`] (feature `rayon`) many.
 //! - [`Table::rebound`] (2-D, the plane of impact) and [`Table::rebound_3d`] (velocity and spin
 //!   vectors, contact normal) answer sphere–wall and sphere–sphere impacts in SI units, with
@@ -22,6 +23,7 @@
 
 mod batch;
 mod curve;
+mod embedded;
 mod fast;
 pub mod impact;
 mod prepared;
@@ -30,6 +32,7 @@ mod table;
 pub mod testing;
 
 pub use curve::Curve;
+pub use embedded::{embedded_name, EMBEDDED_TABLE};
 pub use impact::{Answer, Contact, Stiffness};
 pub use oblique_table::{Check, OutOfDomain, Provenance};
 pub use prepared::Prepared;
