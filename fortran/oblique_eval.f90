@@ -1,7 +1,7 @@
 ! oblique_eval.f90: Fortran 2008 bindings of the dependency-free evaluator include/oblique_eval.h,
 ! through the C shim fortran/oblique_eval_f.c (iso_c_binding). P(gamma, alpha) (P(gamma, alpha,
 ! e_n) of a table with a normal-restitution axis), curves P(alpha) of one gamma, and 3-D rebounds of spheres on walls and spheres, from an export of a table
-! (`sweep export TABLE -o FILE`). Symbols and units (SI) as in the header and docs/physics.md.
+! (`sweep export TABLE -o FILE`). Symbols and units (SI) as in the header and ../shared/physics.md.
 !
 !   gcc -std=c99 -O2 -I include -c fortran/oblique_eval_f.c
 !   gfortran -std=f2008 -O2 -c fortran/oblique_eval.f90

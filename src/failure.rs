@@ -159,7 +159,7 @@ user_fixable!(
     oblique_sweep::nodestore::NodeFileError,
     oblique_sweep::nodestore::LockError,
     oblique_plot::PlotError,
-    oblique_plot::figures::FigureError,
+    oblique_study::figures::FigureError,
     oblique_study::scene::SceneError,
     oblique_study::reference::ReferenceError,
 );

@@ -1,4 +1,4 @@
-//! Figures of a table (`oblique_plot::figures`, `sweep plot`): every plotted grid, curve, region and
+//! Figures of a table (`oblique_study::figures`, `sweep plot`): every plotted grid, curve, region and
 //! point is checked against independent queries of the table (`Table::p`, its held-out checks,
 //! the critical values), then the command is checked to write valid PNG and SVG files and to
 //! fail cleanly on bad input.
@@ -9,8 +9,8 @@ use std::sync::OnceLock;
 
 use oblique_lookup::Table;
 use oblique_physics::regimes::{no_slip_fit, Regime};
-use oblique_plot::figures::{self, alpha_at, compact, FigureKind, Source, REGIME_LABELS};
 use oblique_plot::{Series, Style};
+use oblique_study::figures::{self, alpha_at, compact, FigureKind, Source, REGIME_LABELS};
 use oblique_table::surface::{alpha_c1, alpha_c2, linear_limit};
 
 fn root() -> PathBuf {

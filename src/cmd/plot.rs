@@ -1,4 +1,4 @@
-//! `sweep plot`: the figures of a table (`oblique_plot::figures`), written as PNG or SVG.
+//! `sweep plot`: the figures of a table (`oblique_study::figures`), written as PNG or SVG.
 
 use crate::failure::outln;
 use std::path::PathBuf;
@@ -8,7 +8,7 @@ use crate::failure::{Context, Failure, Result};
 use clap::{Args, ValueEnum};
 
 use oblique_lookup::Table;
-use oblique_plot::figures::{self, FigureKind, Source};
+use oblique_study::figures::{self, FigureKind, Source};
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum FormatArg {

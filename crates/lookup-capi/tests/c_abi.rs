@@ -1,4 +1,4 @@
-//! The C ABI: the committed header is what cbindgen generates from `src/capi.rs`, and the C
+//! The C ABI: the committed header is what cbindgen generates from `src/lib.rs`, and the C
 //! example `examples/query.c` compiles against it with the system C compiler (`cc`, or `$CC`),
 //! links to the `cdylib` and runs, checking its results against the Rust API.
 
@@ -34,7 +34,7 @@ fn header_is_up_to_date() {
     let committed = std::fs::read_to_string(&path).unwrap_or_default();
     assert!(
         committed == generated,
-        "{} is out of date with src/capi.rs: regenerate it with \
+        "{} is out of date with src/lib.rs: regenerate it with \
          `UPDATE_HEADER=1 cargo test -p oblique-lookup-capi --test c_abi` and commit it",
         path.display()
     );

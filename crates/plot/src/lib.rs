@@ -1,5 +1,6 @@
 //! Figures: one figure model (stacked line/marker panels sharing an x axis, and sheets),
-//! written as PNG or SVG; [`figures`] draws the pictures of a table.
+//! written as PNG or SVG. The engine knows nothing of tables or the solver: the pictures of a
+//! table are built above it (`oblique_study::figures`).
 //!
 //! Shared by every command that draws. A [`Figure`] is plain
 //! data; [`render`] draws it with `plotters`. The font (a subset of DejaVu Sans, see
@@ -14,7 +15,6 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 use thiserror::Error;
 
-pub mod figures;
 mod sheet;
 pub use sheet::*;
 

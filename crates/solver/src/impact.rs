@@ -847,8 +847,9 @@ pub const FIXED_HALVINGS: u32 = 3;
 /// `3 max(|d_0|, |d_1|/r) / (min(q_0, r) − 1)`; at the nominal rate this is `3|d_0|/(r − 1)`,
 /// i.e. `|d_0|` for the accurate scheme and `3|d_0|` for Euler.
 ///
-/// Measured (`cargo run --release --example fixedest_probe`; `tests/physics_core.rs` checks 12
-/// points) on 8 points (γ 0.3–3.2, α 0.05–∞), springs {0, 2, 8, 64, 1024} × steps {8, 32, 256,
+/// Measured (`cargo run --release -p oblique-tools --bin fixedest_probe`;
+/// `crates/solver/tests/physics_core.rs` checks 12 points) on 8 points (γ 0.3–3.2, α 0.05–∞),
+/// springs {0, 2, 8, 64, 1024} × steps {8, 32, 256,
 /// 1024}, both schemes, against tol 1e-9 references: the accepted estimates exceed the true
 /// error by 2.6–54× (median 3.3); the half-resolution difference used
 /// before under-stated it up to 10⁴× where the spring count or the step count could not be
@@ -916,7 +917,7 @@ fn estimate(values: &[f64], order: i32) -> f64 {
 /// `R_k = P_k + (P_k − P_{k−1})/(2^p − 1)`, estimated by
 /// `max(|R_k − R_{k−1}|, 0.1 |P_k − P_{k−1}|)`. Measured on 32 points spanning every regime
 /// (γ 0.3–3.5, α from just above the linear limit to ∞, 128–8192 steps): never below the true
-/// error where that error exceeds the 2e-8 accuracy of the reference (`examples/estim.rs`).
+/// error where that error exceeds the 2e-8 accuracy of the reference (`tools/src/bin/estim.rs`).
 fn extrapolate(values: &[f64], order: i32, floor: Floor) -> (f64, f64) {
     let r = 2f64.powi(order) - 1.0;
     let n = values.len();

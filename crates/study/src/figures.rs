@@ -1,7 +1,7 @@
 //! The figures of `sweep plot`: what a `P(γ, α)` table holds, as pictures.
 //!
 //! Each function here is a pure function from a loaded [`Table`] to a [`Sheet`] (plain data:
-//! grids, series, regions, points); [`crate::render_sheet`] draws it. So the plotted numbers
+//! grids, series, regions, points); [`oblique_plot::render_sheet`] draws it. So the plotted numbers
 //! can be checked against the table without looking at pixels.
 //!
 //! Symbols as in `physics.md`: `γ = √((7/2) G*/E*)`, `α = μ v_z0/|v_x0 + R ω0|` (dimensionless),
@@ -21,11 +21,11 @@ use oblique_lookup::{LookupError, Table};
 use oblique_table::surface::{alpha_c1, alpha_c2, linear_limit, Patch};
 use thiserror::Error;
 
-use crate::{
+use oblique_physics::regimes::{alpha_c1_dissipative, full_slip_line, no_slip_fit};
+use oblique_plot::{
     Axis, Chart, ColorScale, Colormap, Contours, Grid, Legend, LegendPlace, Note, Region, Scale,
     Scatter, Series, Sheet, Style, Ticks,
 };
-use oblique_physics::regimes::{alpha_c1_dissipative, full_slip_line, no_slip_fit};
 use oblique_solver::history::fold_plus_curve;
 
 /// Range of `γ` of one isotropic material (`G*/E* = 2(1 − ν)/(2 − ν)`, `0 ≤ ν ≤ 1/2`), rounded as in
