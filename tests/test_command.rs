@@ -75,6 +75,19 @@ fn scripts_install_python_packages_only_into_their_own_environment() {
         venv < first_python,
         "scripts/test must source scripts/venv.sh before its first Python step and the Rust tests"
     );
+    // The wheel a user installs without Rust or HDF5 is built and checked after the package.
+    let install = lines
+        .iter()
+        .position(|l| l.contains("pip install") && l.contains("./python"))
+        .expect("scripts/test installs ./python");
+    let wheel = lines
+        .iter()
+        .position(|l| l == "bash scripts/check_wheel.sh")
+        .expect("scripts/test runs scripts/check_wheel.sh");
+    assert!(
+        install < wheel,
+        "check_wheel.sh reuses the package's build: run it after"
+    );
     let venv_sh = read("scripts/venv.sh");
     assert!(venv_sh.contains("-m venv"), "scripts/venv.sh makes a venv");
     assert!(venv_sh.contains("target/venv"), "scripts/venv.sh's folder");
