@@ -18,7 +18,7 @@ use oblique_solver::{Accuracy, PhysicsError, Request, Resolution, Scheme};
 const ACC: Scheme = Scheme::Accurate;
 const GAMMAS: [f64; 9] = [0.01, 0.1, 0.5, 0.99, 1.0, 1.01, 2.16, 3.5, 5.0];
 
-/// The α values of the issue at `γ`: 1e-9, just below and above α_c1 (where it is positive)
+/// The α values of the suite at `γ`: 1e-9, just below and above α_c1 (where it is positive)
 /// and α_c2, 1e3, 1e9 and ∞.
 fn alphas(gamma: f64) -> Vec<f64> {
     let mut out = vec![1e-9];
