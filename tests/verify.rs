@@ -90,3 +90,47 @@ fn verify_refuses_bad_arguments() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/table.h5"));
 }
+
+/// `--near-curves` draws α next to `α_c1(γ, e_n)` and `α_c2(γ)` (within 10 % of one of them)
+/// and the table holds its bound there too: the worst point it reports lies next to a curve.
+#[test]
+fn near_curves_draws_alpha_next_to_the_critical_curves() {
+    let table = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/dissipative-demo.h5");
+    let out = sweep(&[
+        "verify",
+        table,
+        "--points",
+        "40",
+        "--seed",
+        "3",
+        "--near-curves",
+        "--quiet",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stdout}{stderr}");
+    assert!(
+        stderr.contains("of alpha_c1(gamma, e_n) and alpha_c2(gamma)"),
+        "{stderr}"
+    );
+    let worst = stdout
+        .lines()
+        .find(|l| l.starts_with("worst point"))
+        .expect("worst point line");
+    let field = |name: &str| -> f64 {
+        let at = worst.find(&format!("{name} = ")).expect(name) + name.len() + 3;
+        worst[at..]
+            .split([',', ':'])
+            .next()
+            .and_then(|v| v.trim().parse().ok())
+            .expect("a number")
+    };
+    let (g, a, e) = (field("gamma"), field("alpha"), field("e_n"));
+    let c1 = oblique_physics::regimes::alpha_c1_dissipative(g, e);
+    let c2 = oblique_physics::regimes::alpha_c2(g);
+    let near = |c: f64| (a / c - 1.0).abs() <= 0.1 + 1e-12;
+    assert!(
+        near(c1) || near(c2),
+        "{worst}: alpha_c1 {c1}, alpha_c2 {c2}"
+    );
+}

@@ -37,6 +37,12 @@ pub struct VerifyArgs {
     /// Worker threads for the simulations (0 = one per core).
     #[arg(long, default_value_t = 0)]
     threads: usize,
+    /// Draw alpha next to the critical curves instead of over the whole range: alternately
+    /// alpha_c1(gamma, e_n) and alpha_c2(gamma) times 1 + s·r, s = +1 or -1, r log-uniform in
+    /// [1e-4, 0.1], where the surface has its kinks (points outside the table's alpha range
+    /// are drawn again).
+    #[arg(long)]
+    near_curves: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
@@ -59,7 +65,10 @@ pub struct BoundExceeded {
 /// `[0, s_max)` with `s_max = alpha_max/(1 + alpha_max)` (1 for `alpha_max = inf`), and, when
 /// the table includes no slip, every [`NO_SLIP_EVERY`]-th point at `α = inf` instead; `e_n`
 /// uniform in the table's range for a table with an `e_n` axis (1 otherwise).
-fn sample(table: &Table, n: usize, seed: u64) -> Vec<Point> {
+fn sample(table: &Table, n: usize, seed: u64, near_curves: bool) -> Vec<Point> {
+    if near_curves {
+        return sample_near_curves(table, n, seed);
+    }
     let s = &table.surface();
     let s_max = if s.alpha_max().is_infinite() {
         1.0
@@ -84,6 +93,38 @@ fn sample(table: &Table, n: usize, seed: u64) -> Vec<Point> {
             Point::new(gamma.min(s.gamma_max()), alpha, e_n)
         })
         .collect()
+}
+
+/// The `n` points of `--near-curves`: γ and `e_n` as [`sample`] draws them, `α` at
+/// `α_k (1 + s·r)` with `α_k` alternately `α_c1(γ, e_n)` (`α_c2` for `γ ≤ 1`) and `α_c2(γ)`,
+/// `s = ±1` and `r = 10^u`, `u` uniform in `[−4, −1]`; a point beyond `alpha_max` is drawn
+/// again.
+fn sample_near_curves(table: &Table, n: usize, seed: u64) -> Vec<Point> {
+    use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
+    let s = &table.surface();
+    let mut rng = oblique_sweep::SplitMix(seed);
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let i = out.len();
+        let gamma =
+            (s.gamma_min() + (s.gamma_max() - s.gamma_min()) * rng.uniform()).min(s.gamma_max());
+        let e_n = match s.restitution() {
+            Some((lo, hi)) => (lo + (hi - lo) * rng.uniform()).min(hi),
+            None => 1.0,
+        };
+        let curve = if i % 2 == 0 && gamma > 1.0 {
+            alpha_c1_dissipative(gamma, e_n)
+        } else {
+            alpha_c2(gamma)
+        };
+        let r = 10f64.powf(-4.0 + 3.0 * rng.uniform());
+        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        let alpha = curve * (1.0 + sign * r);
+        if alpha <= s.alpha_max() {
+            out.push(Point::new(gamma, alpha, e_n));
+        }
+    }
+    out
 }
 
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
@@ -132,7 +173,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         )
         .into());
     }
-    let points = sample(&table, args.points, args.seed);
+    let points = sample(&table, args.points, args.seed, args.near_curves);
     // The law of the table's node values (an elastic table: elastic).
     let law = match table.restitution() {
         Some(_) => Law::from_name(&table.provenance().law).map_err(|e| {
@@ -149,17 +190,23 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         .build()
         .context("starting the worker threads")?;
     eprintln!(
-        "verify {}: {} points (gamma uniform in [{}, {}], alpha/(1+alpha) uniform{}{}), \
+        "verify {}: {} points (gamma uniform in [{}, {}], {}{}{}), \
          simulated at tol {:e} on {} threads; stated bound {bound:.2e}",
         args.table.display(),
         points.len(),
         table.surface().gamma_min(),
         table.surface().gamma_max(),
+        if args.near_curves {
+            "alpha within 1e-4 to 0.1 (relative) of alpha_c1(gamma, e_n) and alpha_c2(gamma), \
+             alternately"
+        } else {
+            "alpha/(1+alpha) uniform"
+        },
         match table.restitution() {
             Some((lo, hi)) => format!(", e_n uniform in [{lo}, {hi}], law {}", law.name()),
             None => String::new(),
         },
-        if table.surface().alpha_max().is_infinite() {
+        if table.surface().alpha_max().is_infinite() && !args.near_curves {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {
             String::new()
