@@ -853,44 +853,144 @@ fn dissipative() -> &'static (Table, PathBuf) {
     T.get_or_init(|| evaluator::dissipative_table(&dir().join("dissipative")))
 }
 
-#[test]
-fn e_n_table_gives_the_bits_of_the_rust_rule_on_a_million_points() {
-    let start = std::time::Instant::now();
-    let (t, path) = dissipative();
-    let s = t.surface();
-    let mut f = vec!["-std=c99"];
-    f.extend(WARNINGS);
-    let query = compile("gcc", &f, "examples/c/query.c", "query_e");
-    let n = 1_000_000;
-    let pts = points_e(n, 13, (s.gamma_min(), s.gamma_max()), (0.7, 1.0));
+/// The shipped table with an e_n axis, `tables/dissipative-demo.h5`, and its export (written
+/// by `oblique_table::export`), made once per process.
+fn dissipative_demo() -> &'static (Table, PathBuf) {
+    static T: OnceLock<(Table, PathBuf)> = OnceLock::new();
+    T.get_or_init(|| {
+        let t = Table::open(root("tables/dissipative-demo.h5")).expect("shipped table");
+        let path = dir().join("dissipative-demo.oblq");
+        let bytes = export::export(t.surface(), t.error_bound(), true, &[]);
+        std::fs::write(&path, bytes).expect("write export");
+        (t, path)
+    })
+}
+
+/// `P(γ, α, e_n)` of the reference reader `scripts/read_table.py` at `pts` (one `repr` a
+/// point, the same text Rust's `{:?}` parses back to the same bits).
+fn python_p_e(table: &Path, pts: &[(f64, f64, f64)]) -> Vec<f64> {
+    let script = "import sys\n\
+                  sys.path.insert(0, sys.argv[1])\n\
+                  from read_table import Table\n\
+                  t = Table(sys.argv[2])\n\
+                  out = []\n\
+                  for line in sys.stdin:\n    \
+                      g, a, e = (float(x) for x in line.split(','))\n    \
+                      out.append(repr(t.p_e(g, a, e)))\n\
+                  sys.stdout.write('\\n'.join(out) + '\\n')\n";
     let input: String = pts
         .iter()
         .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
         .collect();
-    let out = run_ok(&query, &[path.to_str().expect("path")], &input);
-    let (mut lines, mut differ, mut line_pts) = (0, 0, 0);
-    for ((g, a, e), line) in pts.iter().zip(out.lines()) {
-        lines += 1;
-        let c: f64 = line.rsplit(',').next().expect("P").parse().expect("P");
-        let r = t.p_e(*g, *a, *e).expect("inside");
-        line_pts += usize::from(*a <= oblique_physics::regimes::linear_limit_dissipative(*g, *e));
-        if c.to_bits() != r.to_bits() {
-            differ += 1;
-            if differ < 5 {
-                eprintln!("gamma {g:?} alpha {a:?} e_n {e:?}: C {c:?}, Rust {r:?}");
+    let scripts = root("scripts");
+    let args = [
+        "-c",
+        script,
+        scripts.to_str().expect("path"),
+        table.to_str().expect("path"),
+    ];
+    run_ok(Path::new("python3"), &args, &input)
+        .lines()
+        .map(|l| l.parse().unwrap_or_else(|_| panic!("read_table.py: {l}")))
+        .collect()
+}
+
+/// `P(γ, α, e_n)` with the same bits from every path: `Table::p_e`, the batches
+/// `p_e_batch` and `p_e_batch_par`, `oblq_p_e` of the C header on the export, and on every
+/// 40th point the reference reader `scripts/read_table.py`. 10⁶ random points over the
+/// domain of the shipped `tables/dissipative-demo.h5` (α = 0, ∞, α_c2, α_c1(γ, e_n) and
+/// just above it in the mix, the ends of the e_n range), 10⁵ on the small table built here.
+#[test]
+fn e_n_tables_give_the_same_bits_in_rust_batches_c_and_python_on_a_million_points() {
+    let start = std::time::Instant::now();
+    let mut f = vec!["-std=c99"];
+    f.extend(WARNINGS);
+    let query = compile("gcc", &f, "examples/c/query.c", "query_e");
+    let shipped = dissipative_demo();
+    let tables = [
+        ("dissipative-demo", shipped, 1_000_000, true),
+        ("built here", dissipative(), 100_000, false),
+    ];
+    for (name, (t, export), n, python) in tables {
+        let s = t.surface();
+        let (e_lo, e_hi) = t.restitution().expect("an e_n axis");
+        // points_e puts γ = 1 in the mix: where the domain starts above it, its lowest γ.
+        let pts: Vec<(f64, f64, f64)> =
+            points_e(n, 13, (s.gamma_min(), s.gamma_max()), (e_lo, e_hi))
+                .into_iter()
+                .map(|(g, a, e)| (g.max(s.gamma_min()), a, e))
+                .collect();
+        let scalar: Vec<f64> = pts
+            .iter()
+            .map(|&(g, a, e)| t.p_e(g, a, e).expect("inside"))
+            .collect();
+        let columns = |k: usize| -> Vec<f64> { pts.iter().map(|p| [p.0, p.1, p.2][k]).collect() };
+        let (g, a, e) = (columns(0), columns(1), columns(2));
+        let (mut serial, mut parallel) = (vec![f64::NAN; n], vec![f64::NAN; n]);
+        t.p_e_batch(&g, &a, &e, &mut serial, OutOfDomain::Error)
+            .expect("serial batch");
+        t.p_e_batch_par(&g, &a, &e, &mut parallel, OutOfDomain::Error)
+            .expect("parallel batch");
+        let input: String = pts
+            .iter()
+            .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+            .collect();
+        let out = run_ok(&query, &[export.to_str().expect("path")], &input);
+        let c: Vec<f64> = out
+            .lines()
+            .map(|l| l.rsplit(',').next().expect("P").parse().expect("P"))
+            .collect();
+        assert_eq!(c.len(), n, "{name}: every point answered by C");
+        let (mut differ, mut line_pts) = (0, 0);
+        for (i, &(g, a, e)) in pts.iter().enumerate() {
+            line_pts += usize::from(a <= oblique_physics::regimes::linear_limit_dissipative(g, e));
+            let bits = [scalar[i], serial[i], parallel[i], c[i]].map(f64::to_bits);
+            if bits.iter().any(|&b| b != bits[0]) {
+                differ += 1;
+                if differ < 5 {
+                    eprintln!(
+                        "{name}: gamma {g:?} alpha {a:?} e_n {e:?}: p_e {:?}, batch {:?}, \
+                         parallel {:?}, C {:?}",
+                        scalar[i], serial[i], parallel[i], c[i]
+                    );
+                }
             }
         }
+        assert_eq!(
+            differ, 0,
+            "{name}: {differ} of {n} points differ in some bit"
+        );
+        assert!(
+            line_pts > n / 20 && line_pts < n / 2,
+            "{name}: {line_pts} on the line"
+        );
+        let mut checked_python = 0;
+        if python {
+            let every = 40;
+            let subset: Vec<_> = pts.iter().copied().step_by(every).collect();
+            let py = python_p_e(&root("tables/dissipative-demo.h5"), &subset);
+            assert_eq!(
+                py.len(),
+                subset.len(),
+                "{name}: every point answered by Python"
+            );
+            for (k, (&p, &(g, a, e))) in py.iter().zip(&subset).enumerate() {
+                let r = scalar[k * every];
+                assert_eq!(
+                    p.to_bits(),
+                    r.to_bits(),
+                    "{name}: gamma {g:?} alpha {a:?} e_n {e:?}: read_table.py {p:?}, Rust {r:?}"
+                );
+            }
+            checked_python = subset.len();
+        }
+        eprintln!(
+            "{name}: {n} points (γ, α, e_n), {line_pts} on the full-slip line: p_e == \
+             p_e_batch == p_e_batch_par == C bit for bit, {checked_python} of them == \
+             read_table.py ({:.1} s so far)",
+            start.elapsed().as_secs_f64()
+        );
     }
-    assert_eq!(lines, n, "every point answered");
-    assert_eq!(differ, 0, "{differ} of {n} points differ in some bit");
-    assert!(
-        line_pts > n / 20 && line_pts < n / 2,
-        "{line_pts} on the line"
-    );
-    eprintln!(
-        "{n} points (γ, α, e_n), {line_pts} on the full-slip line: C == Rust bit for bit ({:.1} s)",
-        start.elapsed().as_secs_f64()
-    );
 }
 
 #[test]

@@ -19,8 +19,8 @@
 use crate::{LookupError, Table};
 use oblique_table::export::{CurveData, CurvePiece};
 use oblique_table::surface::{
-    alpha_c2, bound_p, full_slip_line, linear_limit_dissipative, stick_scale, PartialMap, Patch,
-    Warp,
+    alpha_c2, bound_p, floor_index, full_slip_line, linear_limit_dissipative, partial_coord_from,
+    partial_ratio, partial_ratio_e, stick_coord_from, stick_parts, PartialMap, Patch, Warp,
 };
 use oblique_table::surface::{alpha_outside, bad_alpha, OutOfDomain, PatchId, Surface};
 
@@ -47,8 +47,7 @@ impl Piecewise {
     /// and to `e_n` for a patch with an `e_n` axis (inside its range).
     fn new(patch: &Patch, gamma: f64, e_n: f64) -> Result<Piecewise, LookupError> {
         let m = patch.leaf_intervals();
-        let xe = patch.restitution().map(|r| r.x(e_n));
-        let depth = line_depth(patch, gamma, xe);
+        let depth = patch.line_depth(gamma, e_n);
         let n = patch
             .blocks_coord()
             .checked_mul(m)
@@ -70,13 +69,7 @@ impl Piecewise {
         let nf = n as f64;
         let coef = (0..n)
             .map(|i| {
-                let v = S.map(|s| {
-                    let c = (i as f64 + 0.5 + s) / nf;
-                    match xe {
-                        Some(xe) => patch.tensor3(gamma, c, xe, k),
-                        None => patch.tensor(gamma, c, k),
-                    }
-                });
+                let v = S.map(|s| patch.tensor_point(gamma, (i as f64 + 0.5 + s) / nf, e_n, k));
                 cubic_through(&S, &v)
             })
             .collect();
@@ -98,52 +91,12 @@ impl Piecewise {
             None => c,
         };
         let u = c * self.n;
-        let i = ((u as i64).max(0) as usize).min(self.last);
+        let i = floor_index(u, self.last);
         let s = u - i as f64 - 0.5;
         let [a0, a1, a2, a3] = self.coef[i];
         // The cubic of the tensor product, then the rule's bound (step 10).
         bound_p(((a3 * s + a2) * s + a1) * s + a0)
     }
-}
-
-/// Depth of the deepest leaf of `patch` crossed by the line `γ = gamma` (and `x_e = xe` for a
-/// patch with an `e_n` axis), following the rule's descent along γ (and `e_n`), which does not
-/// depend on `c`.
-fn line_depth(patch: &Patch, gamma: f64, xe: Option<f64>) -> u32 {
-    let xg = (gamma - patch.gamma_lo()) / (patch.gamma_hi() - patch.gamma_lo());
-    let (a, fg) = oblique_table::surface::locate(xg, patch.blocks_gamma());
-    let be = patch.blocks_e_n();
-    let (e, fe) = match xe {
-        Some(x) => oblique_table::surface::locate(x, be),
-        None => (0, 0.0),
-    };
-    let mut stack: Vec<(usize, f64, f64, u32)> = (0..patch.blocks_coord())
-        .map(|b| ((a * patch.blocks_coord() + b) * be + e, fg, fe, 0))
-        .collect();
-    let mut deepest = 0;
-    while let Some((cell, fg, fe, d)) = stack.pop() {
-        let t = patch.tree()[cell];
-        if t < 0 {
-            deepest = deepest.max(d);
-            continue;
-        }
-        let half = |f: f64| {
-            let f = 2.0 * f;
-            let q = usize::from(f >= 1.0);
-            (q, f - q as f64)
-        };
-        let (qg, fg) = half(fg);
-        let (qe, fe) = if xe.is_some() { half(fe) } else { (0, fe) };
-        // Both halves along c: the children `2·q_γ + q_c`, or `4·q_γ + 2·q_c + q_e`.
-        let (first, step) = if xe.is_some() {
-            (t as usize + 4 * qg + qe, 2)
-        } else {
-            (t as usize + 2 * qg, 1)
-        };
-        stack.push((first, fg, fe, d + 1));
-        stack.push((first + step, fg, fe, d + 1));
-    }
-    deepest
 }
 
 /// Coefficients `[a0, a1, a2, a3]` of the cubic through `(t[j], v[j])`.
@@ -246,21 +199,14 @@ impl Curve {
             (None, surface.patch_by_id(PatchId::StickLow))
         };
         let piecewise = |p: Option<&Patch>| p.map(|p| Piecewise::new(p, gamma, e_n)).transpose();
-        // The same operations as `surface::partial_coord` (an elastic table),
+        // The γ-only parts of `surface::partial_coord` (an elastic table),
         // `surface::partial_coord_e` (a table with an e_n axis) and `surface::stick_coord`.
-        let (map, g2, ratio) = if surface.restitution().is_some() {
-            let sq = gamma * gamma;
-            (PartialMap::SqrtBoth, 2.0 * sq, sq * (1.0 + e_n) - e_n)
+        let (map, (ratio, g2)) = if surface.restitution().is_some() {
+            (PartialMap::SqrtBoth, partial_ratio_e(gamma, e_n))
         } else {
-            let g2 = 2.0 * gamma * gamma;
-            (PartialMap::SqrtEnd, g2, g2 - 1.0)
+            (PartialMap::SqrtEnd, partial_ratio(gamma))
         };
-        let stick_c2 = gamma * gamma * (2.0 / 7.0);
-        let rho_c2 = stick_scale(gamma) * stick_c2;
-        let s_max = surface.alpha_max().is_finite().then(|| {
-            let dm = surface.alpha_max() - stick_c2;
-            dm / (dm + rho_c2)
-        });
+        let (stick_c2, rho_c2, s_max) = stick_parts(gamma, surface.alpha_max());
         Ok(Curve {
             requested: gamma,
             gamma,
@@ -337,22 +283,13 @@ impl Curve {
             let Some(p) = &self.partial else {
                 return -self.e_n;
             };
-            let l = (7.0 * alpha * self.ratio / self.g2).ln() / self.ln_ratio;
-            p.eval(self.map.c_of_l(l).clamp(0.0, 1.0))
+            let c = partial_coord_from(self.map, alpha, self.ratio, self.g2, self.ln_ratio);
+            p.eval(c.clamp(0.0, 1.0))
         } else {
             let Some(p) = &self.stick else {
                 return -self.e_n;
             };
-            let c = if alpha.is_infinite() {
-                1.0
-            } else {
-                let d = alpha - self.stick_c2;
-                let s = d / (d + self.rho_c2);
-                match self.s_max {
-                    None => s,
-                    Some(m) => s / m,
-                }
-            };
+            let c = stick_coord_from(alpha, self.stick_c2, self.rho_c2, self.s_max);
             p.eval(c.clamp(0.0, 1.0))
         }
     }

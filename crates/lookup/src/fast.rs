@@ -12,7 +12,10 @@
 //! the value are exact in binary floating point, so this equals the rule's repeated
 //! `f ← 2f − q` bit for bit, and the leaf and the weights are the rule's.
 //!
-//! Only the shipped stencil (`k = 4`) takes this path; other stencils use [`Surface`] directly.
+//! The patch with its fine index ([`IndexedPatch`]) and the arithmetic of its leaves
+//! (`oblique_table::leaf`) are the format crate's, the same code as the rule's: this module
+//! chooses the patch and its coordinate and applies the domain policy. Only the shipped
+//! stencil (`k = 4`) takes this path; other stencils use [`Surface`] directly.
 //!
 //! Batches ([`Accel::eval_batch`], in `fast/batch.rs`) run the same operations in passes over
 //! arrays (classification, coordinates, index, stencils, tensor product) that the compiler
@@ -20,15 +23,16 @@
 //! same bits as the single-query path (tested on both builds and all shipped tables).
 
 use crate::LookupError;
-use oblique_table::surface::{bound_p, cubic_tensor2, partial_coord, stick_coord};
-use oblique_table::surface::{OutOfDomain, Patch, PatchKind, Region, Surface, Warp};
+use oblique_table::indexed::IndexedPatch;
+use oblique_table::surface::{full_slip_line, partial_coord, stick_coord};
+use oblique_table::surface::{OutOfDomain, PatchKind, Region, Surface};
 
 mod batch;
 mod restitution;
 
 pub(crate) use restitution::Accel3;
 
-/// Largest number of entries of one patch's fine index ([`Patch::fine_index`]). A full-depth
+/// Largest number of entries of one patch's fine index (`Patch::fine_index`). A full-depth
 /// index for `partial_high` of `tables/full.h5` (327 680 entries, 1.3 MB) answered a repeated
 /// point in the deepest leaves 10 % faster but a random stream of 2²⁰ queries 10–15 % slower
 /// (cache misses).
@@ -37,150 +41,6 @@ pub(crate) use oblique_table::surface::MAX_INDEX_ENTRIES;
 /// Queries per chunk of [`Accel::eval_batch`] (fits its `u16` query numbers).
 const BATCH: usize = 256;
 
-/// `α_c1 = 2γ²/(7(2γ² − 1))` from `γ²`.
-pub(crate) use oblique_physics::regimes::alpha_c1_of_squared as alpha_c1_of;
-
-/// One cell of a patch's quadtree with its position, for the fine index.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Cell {
-    /// `2^depth`.
-    scale: f64,
-    /// Integer origin along γ, in units of the cell's size (`floor(v_γ·2^depth)`).
-    og: f64,
-    /// Integer origin along `c`, in units of the cell's size.
-    oc: f64,
-    /// `tree[cell]`: `≥ 0` the first child, `< 0` leaf number `−link − 1`.
-    link: i32,
-}
-
-/// A patch with its fine index.
-#[derive(Clone, PartialEq)]
-struct FastPatch {
-    kind: PatchKind,
-    gamma_lo: f64,
-    width: f64,
-    /// `blocks_gamma`, `blocks_coord` as floats.
-    bg: f64,
-    bc: f64,
-    /// `2^D`.
-    fine: f64,
-    /// Fine cells along γ (`blocks_gamma·2^D`) and along `c` (`blocks_coord·2^D`).
-    rows: usize,
-    cols: usize,
-    /// `rows × cols` cell numbers, row-major (γ outer). Invariant (built by [`FastPatch::new`]):
-    /// every entry is `< cells.len()`.
-    index: Vec<u32>,
-    /// Every cell of the quadtree, in the order of `tree`.
-    cells: Vec<Cell>,
-    /// `m`, `m + 1`, `(m + 1)²`.
-    m: f64,
-    n1: usize,
-    size: usize,
-    /// `P` at the nodes, as in [`Patch::p`].
-    p: Vec<f64>,
-    /// The warp of the coordinate, as in [`Patch::warp`].
-    warp: Option<Warp>,
-}
-
-impl std::fmt::Debug for FastPatch {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("FastPatch")
-            .field("kind", &self.kind)
-            .field("rows", &self.rows)
-            .field("cols", &self.cols)
-            .field("cells", &self.cells.len())
-            .finish_non_exhaustive()
-    }
-}
-
-impl FastPatch {
-    /// The fine index of a validated patch (a tree as `surface::check_tree` accepts it), or
-    /// `None` when the patch's grid is too small for the cubic stencil.
-    fn new(patch: &Patch, max_entries: usize) -> Option<FastPatch> {
-        let fine = patch.fine_index(max_entries)?;
-        let cells = fine
-            .cells
-            .iter()
-            .zip(patch.tree())
-            .map(|(c, &link)| Cell {
-                scale: c.scale,
-                og: c.og,
-                oc: c.oc,
-                link,
-            })
-            .collect();
-        let (bg, bc, m) = (
-            patch.blocks_gamma(),
-            patch.blocks_coord(),
-            patch.leaf_intervals(),
-        );
-        let (d, rows, cols, index) = (fine.depth, fine.rows, fine.cols, fine.index);
-        Some(FastPatch {
-            kind: patch.kind(),
-            gamma_lo: patch.gamma_lo(),
-            width: patch.gamma_hi() - patch.gamma_lo(),
-            bg: bg as f64,
-            bc: bc as f64,
-            fine: f64::from(1u32 << d),
-            rows,
-            cols,
-            index,
-            cells,
-            m: m as f64,
-            n1: m + 1,
-            size: (m + 1) * (m + 1),
-            p: patch.p().to_vec(),
-            warp: patch.warp().cloned(),
-        })
-    }
-
-    /// The leaf and the position inside it of the point at `(vg, vc)` (in units of the root
-    /// cells) whose fine index entry is `entry`: the entry's cell, then step 6 of the rule, only
-    /// when the index depth was capped below the deepest leaf.
-    #[inline(always)]
-    fn leaf_from(&self, entry: usize, vg: f64, vc: f64) -> (usize, f64, f64) {
-        let mut cell = self.cells[self.index[entry] as usize];
-        let mut fg = vg * cell.scale - cell.og;
-        let mut fc = vc * cell.scale - cell.oc;
-        while cell.link >= 0 {
-            fg *= 2.0;
-            fc *= 2.0;
-            let qg = usize::from(fg >= 1.0);
-            let qc = usize::from(fc >= 1.0);
-            fg -= qg as f64;
-            fc -= qc as f64;
-            cell = self.cells[cell.link as usize + 2 * qg + qc];
-        }
-        ((-(cell.link as i64) - 1) as usize, fg, fc)
-    }
-
-    /// Interpolate at `(γ, c)`, `c ∈ [0, 1]` the unwarped coordinate: [`Patch::warped`], then
-    /// [`Patch::interpolate`] with `k = 4`.
-    #[inline(always)]
-    fn interpolate(&self, gamma: f64, c: f64) -> f64 {
-        // Step 5 of the rule: v = x·blocks, clamped (as `surface::locate`).
-        let xg = (gamma - self.gamma_lo) / self.width;
-        let vg = (xg * self.bg).clamp(0.0, self.bg);
-        // The warp, from its start on ([`Patch::warped`], the same operations).
-        let c = match &self.warp {
-            Some(w) if vg >= w.start() => w.apply(gamma, c),
-            _ => c,
-        };
-        let vc = (c * self.bc).clamp(0.0, self.bc);
-        let ig = floor_index(vg * self.fine, self.rows - 1);
-        let ic = floor_index(vc * self.fine, self.cols - 1);
-        let (leaf, fg, fc) = self.leaf_from(ig * self.cols + ic, vg, vc);
-        let vals = &self.p[leaf * self.size..(leaf + 1) * self.size];
-        bound_p(cubic_tensor2(vals, self.n1, [fg, fc]))
-    }
-}
-
-/// `min(floor(u), max)` for `u ≥ 0` (as in [`oblique_table::surface`]).
-#[inline(always)]
-fn floor_index(u: f64, max: usize) -> usize {
-    ((u as i64).max(0) as usize).min(max)
-}
-
 /// The acceleration structure of a table: its three patches with their fine indexes.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Accel {
@@ -188,8 +48,8 @@ pub(crate) struct Accel {
     gamma_max: f64,
     alpha_max: f64,
     /// The patches with their indexes, indexed by [`PatchId::index`].
-    patches: [Option<FastPatch>; 3],
-    /// Every patch passes [`FastPatch::fits_u32`] (the batch path's 32-bit positions).
+    patches: [Option<IndexedPatch<2>>; 3],
+    /// Every patch passes [`IndexedPatch::fits_u32`] (the batch path's 32-bit positions).
     batch_u32: bool,
 }
 
@@ -205,11 +65,11 @@ impl Accel {
         if surface.stencil() != 4 {
             return None;
         }
-        let mut patches: [Option<FastPatch>; 3] = [None, None, None];
+        let mut patches: [Option<IndexedPatch<2>>; 3] = [None, None, None];
         for (id, p) in surface.patches() {
-            patches[id.index()] = Some(FastPatch::new(p, max_entries)?);
+            patches[id.index()] = Some(IndexedPatch::new(p, max_entries)?);
         }
-        let batch_u32 = patches.iter().flatten().all(FastPatch::fits_u32);
+        let batch_u32 = patches.iter().flatten().all(IndexedPatch::fits_u32);
         Some(Accel {
             gamma_min: surface.gamma_min(),
             gamma_max: surface.gamma_max(),
@@ -224,7 +84,7 @@ impl Accel {
         self.patches
             .iter()
             .flatten()
-            .map(|p| p.index.len() * 4 + p.cells.len() * std::mem::size_of::<Cell>())
+            .map(IndexedPatch::index_bytes)
             .sum()
     }
 
@@ -238,15 +98,10 @@ impl Accel {
         alpha: f64,
         outside: OutOfDomain,
     ) -> Result<f64, LookupError> {
-        if !(gamma.is_finite() && gamma > 0.0) {
-            return Err(oblique_table::surface::bad_gamma(gamma));
-        }
-        if alpha.is_nan() || alpha < 0.0 {
-            return Err(oblique_table::surface::bad_alpha(alpha));
-        }
+        oblique_table::surface::check_query(gamma, alpha)?;
         let region = Region::of(gamma, alpha);
         if region == Region::Line {
-            return Ok(1.0 - 7.0 * alpha);
+            return Ok(full_slip_line(alpha, 1.0));
         }
         self.eval_off_line(surface, region, gamma, alpha, outside)
     }
@@ -276,11 +131,11 @@ impl Accel {
         };
         match patch {
             Some(patch) => {
-                let c = match patch.kind {
+                let c = match patch.kind() {
                     PatchKind::PartialSlip => partial_coord(gamma, alpha),
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
                 };
-                patch.interpolate(gamma, c.clamp(0.0, 1.0))
+                patch.interpolate([gamma, c.clamp(0.0, 1.0)])
             }
             None => -1.0,
         }
@@ -291,7 +146,7 @@ impl Accel {
 mod tests {
     use super::*;
     use crate::Table;
-    use oblique_table::surface::PatchId;
+    use oblique_table::surface::{PatchId, Warp};
 
     pub(super) fn table(name: &str) -> Table {
         Table::open(format!(
@@ -515,13 +370,15 @@ mod tests {
                 .find(|&d| roots << (2 * d) <= MAX_INDEX_ENTRIES)
                 .unwrap_or(0);
             assert_eq!(
-                (fast.rows, fast.cols),
-                (patch.blocks_gamma() << d, patch.blocks_coord() << d)
+                fast.shape(),
+                [patch.blocks_gamma() << d, patch.blocks_coord() << d]
             );
         }
         // partial_high of tables/full.h5 has leaves down to depth 7: its index is capped.
         let partial = s.patch_by_id(PatchId::PartialHigh).expect("partial_high");
         assert!(partial.leaf_depths().into_iter().max() > Some(5));
-        assert!(accel.patches[1].as_ref().map(|p| p.rows) < Some(partial.blocks_gamma() << 7));
+        assert!(
+            accel.patches[1].as_ref().map(|p| p.shape()[0]) < Some(partial.blocks_gamma() << 7)
+        );
     }
 }

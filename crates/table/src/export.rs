@@ -183,7 +183,9 @@ pub fn export(
                 put_u64(&mut v, r + 120, at);
                 let cells_at = push_f64s(
                     &mut v,
-                    fine.cells.iter().flat_map(|c| [c.scale, c.og, c.oc]),
+                    fine.cells
+                        .iter()
+                        .flat_map(|c| [c.scale, c.origin[0], c.origin[1]]),
                 );
                 put_u64(&mut v, r + 128, cells_at);
             }

@@ -11,6 +11,8 @@
 pub mod bound;
 pub mod export;
 pub mod format;
+pub mod indexed;
+pub mod leaf;
 pub mod read;
 pub mod surface;
 pub mod write;

@@ -16,7 +16,10 @@
 //! consecutive nodes of that leaf per axis (`k = stencil_points`). The partial-slip patch may
 //! carry a [`Warp`] of its coordinate (schema 3), applied before the leaf is located.
 
+use crate::leaf::{cubic_tensor, descend, lagrange_tensor, MAX_AXES};
 use crate::TableError;
+
+pub use crate::leaf::{cubic_weights, floor_index, locate, stencil, stencil4};
 
 pub use oblique_physics::regimes::{
     alpha_c1, alpha_c1_dissipative, alpha_c2, full_slip_line, linear_limit,
@@ -173,41 +176,34 @@ pub fn stick_scale(gamma: f64) -> f64 {
 /// (`tables/full.h5`: `partial_high` indexed at depth 5 of 9, the others at full depth).
 pub const MAX_INDEX_ENTRIES: usize = 1 << 15;
 
-/// Depth `d` and integer origin of a quadtree cell: `scale = 2^d`, and the cell covers
-/// `[og, og + 1) × [oc, oc + 1)` in units of its own size (root cells have `scale = 1` and the
-/// origin `(a, b)` of step 6 of the rule).
+/// Depth `d` and integer origin of a cell of a patch's tree: `scale = 2^d`, and the cell covers
+/// `[o_k, o_k + 1)` along each axis `k` (`γ`, `c`, `e_n`) in units of its own size (root cells
+/// have `scale = 1` and the origin `(a, b, …)` of step 6 of the rule; 0 beyond the patch's
+/// axes).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CellOrigin {
     /// `2^depth`.
     pub scale: f64,
-    /// Origin along γ, `floor(v_γ·2^depth)` for the points it covers.
-    pub og: f64,
-    /// Origin along `c`.
-    pub oc: f64,
-    /// Origin along `e_n` (0 without an `e_n` axis).
-    pub oe: f64,
+    /// Origin per axis, `floor(v_k·2^depth)` for the points it covers.
+    pub origin: [f64; MAX_AXES],
 }
 
-/// A uniform grid at depth `depth` over a patch (`rows = blocks_gamma·2^depth` along γ,
-/// `cols = blocks_coord·2^depth` along `c`), each entry the deepest cell of depth `≤ depth`
-/// that contains it, and every cell's depth and origin. A query at `v = x·blocks` (step 6 of
-/// the rule) reads the entry of `floor(v·2^depth)`; inside a cell the position is
-/// `v·scale − origin`, which equals the rule's repeated `f ← 2f − q` bit for bit (scaling by a
-/// power of two and subtracting an integer below the value are exact), and the rule's descent
-/// continues from there when the cell is split.
+/// A uniform grid at depth `depth` over a patch (`blocks_k·2^depth` entries along each axis
+/// `k` of the patch), each entry the deepest cell of depth `≤ depth` that contains it, and
+/// every cell's depth and origin. A query at `v = x·blocks` (step 6 of the rule) reads the
+/// entry of `floor(v·2^depth)`; inside a cell the position is `v·scale − origin`, which equals
+/// the rule's repeated `f ← 2f − q` bit for bit (scaling by a power of two and subtracting an
+/// integer below the value are exact), and the rule's descent continues from there when the
+/// cell is split.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FineIndex {
     /// Depth of the grid.
     pub depth: u32,
-    /// Entries along γ.
-    pub rows: usize,
-    /// Entries along `c`.
-    pub cols: usize,
-    /// Entries along `e_n` (1 without an `e_n` axis).
-    pub layers: usize,
-    /// `rows × cols × layers` cell numbers, row-major (γ outer), each `< cells.len()`.
+    /// Entries per axis (`γ`, `c`, `e_n`; 1 beyond the patch's axes).
+    pub shape: [usize; MAX_AXES],
+    /// The cell numbers, row-major (γ outer), each `< cells.len()`.
     pub index: Vec<u32>,
-    /// Every cell of the quadtree, in the order of the tree.
+    /// Every cell of the tree, in the order of the tree.
     pub cells: Vec<CellOrigin>,
 }
 
@@ -560,105 +556,6 @@ pub fn bound_p(p: f64) -> f64 {
     p.clamp(-1.0, 1.0)
 }
 
-/// Start index and weights of the `k`-point Lagrange stencil at grid position `u` (in units of
-/// the node spacing, node `i` at `u = i`) on `n` nodes. Weights are written to `w[..k']` where
-/// `k' = min(k, n)` is returned with the start.
-#[inline]
-pub fn stencil(u: f64, n: usize, k: usize, w: &mut [f64; 8]) -> (usize, usize) {
-    let k = k.min(n).min(8);
-    // `as usize` truncates towards zero and saturates (NaN → 0): the floor for `u ≥ 0`, without
-    // a call to `floor` (not an instruction on baseline x86-64).
-    let cell = (u.max(0.0) as usize).min(n - 2);
-    let start = (cell + 1).saturating_sub(k / 2).min(n - k);
-    for (j, wj) in w.iter_mut().enumerate().take(k) {
-        let mut prod = 1.0;
-        for m in 0..k {
-            if m != j {
-                prod *= (u - (start + m) as f64) / (j as f64 - m as f64);
-            }
-        }
-        *wj = prod;
-    }
-    (start, k)
-}
-
-/// [`stencil`] for `k = 4` on `n ≥ 4` nodes (cubic Lagrange): start index and the four
-/// weights, from the closed forms of the cubic basis on nodes `0, 1, 2, 3` at `t = u − start`.
-#[inline(always)]
-pub fn stencil4(u: f64, n: usize) -> (usize, [f64; 4]) {
-    let cell = floor_index(u, n - 2);
-    let start = cell.saturating_sub(1).min(n - 4);
-    (start, cubic_weights(u - start as f64))
-}
-
-/// The cubic Lagrange weights on nodes `0, 1, 2, 3` at `a` (the one statement of these
-/// operations, shared by every path that must give the rule's bits).
-#[inline(always)]
-pub fn cubic_weights(a: f64) -> [f64; 4] {
-    let (b, c, d) = (a - 1.0, a - 2.0, a - 3.0);
-    let (ab, cd) = (a * b, c * d);
-    [
-        -(b * cd) * (1.0 / 6.0),
-        a * cd * 0.5,
-        -(ab * d) * 0.5,
-        ab * c * (1.0 / 6.0),
-    ]
-}
-
-/// Steps 8 and 9 of the rule in a leaf of a quadtree patch, for the cubic stencil: `vals` the
-/// leaf's `n1²` node values (`n1 = m + 1 ≥ 4`, `[i_γ][i_c]`), `f` the position inside the leaf
-/// (each in `[0, 1]`). The weights of [`stencil4`] at `f·m` per axis, a 4 × 4 block of the leaf
-/// read through one bounds-checked slice, each sum from left to right (the one statement of
-/// these operations: the rule and the query path both call it).
-#[inline(always)]
-pub fn cubic_tensor2(vals: &[f64], n1: usize, f: [f64; 2]) -> f64 {
-    let m = (n1 - 1) as f64;
-    let (sg, wg) = stencil4(f[0] * m, n1);
-    let (sc, wc) = stencil4(f[1] * m, n1);
-    let start = sg * n1 + sc;
-    let block = &vals[start..start + 3 * n1 + 4];
-    let row = |r: &[f64]| r[0] * wc[0] + r[1] * wc[1] + r[2] * wc[2] + r[3] * wc[3];
-    let (r0, rest) = block.split_at(n1);
-    let (r1, rest) = rest.split_at(n1);
-    let (r2, r3) = rest.split_at(n1);
-    wg[0] * row(r0) + wg[1] * row(r1) + wg[2] * row(r2) + wg[3] * row(r3)
-}
-
-/// Steps 8 and 9 of the rule in a leaf of a patch with an `e_n` axis, for the cubic stencil:
-/// `vals` the leaf's `n1³` node values (`n1 = m + 1 ≥ 4`, `[i_γ][i_c][i_e]`), `f` the position
-/// inside the leaf (each in `[0, 1]`). The weights of [`stencil4`] at `f·m` per axis; the sum
-/// runs over `e_n` innermost, each sum from left to right (the one statement of these
-/// operations: the rule and the fast path both call it).
-#[inline(always)]
-pub fn cubic_tensor3(vals: &[f64], n1: usize, f: [f64; 3]) -> f64 {
-    let m = (n1 - 1) as f64;
-    let (sg, wg) = stencil4(f[0] * m, n1);
-    let (sc, wc) = stencil4(f[1] * m, n1);
-    let (se, we) = stencil4(f[2] * m, n1);
-    let row = |i: usize, j: usize| {
-        let r = &vals[((sg + i) * n1 + sc + j) * n1 + se..][..4];
-        r[0] * we[0] + r[1] * we[1] + r[2] * we[2] + r[3] * we[3]
-    };
-    let plane =
-        |i: usize| wc[0] * row(i, 0) + wc[1] * row(i, 1) + wc[2] * row(i, 2) + wc[3] * row(i, 3);
-    wg[0] * plane(0) + wg[1] * plane(1) + wg[2] * plane(2) + wg[3] * plane(3)
-}
-
-/// `min(floor(u), max)` for `u ≥ 0` (`0` for `u < 0` or NaN): `as i64` truncates with one
-/// instruction plus saturation, where `floor` is a library call on baseline x86-64.
-#[inline(always)]
-fn floor_index(u: f64, max: usize) -> usize {
-    ((u as i64).max(0) as usize).min(max)
-}
-
-/// Block index and position inside the block (in `[0, 1]`) of a patch coordinate `x ∈ [0, 1]`.
-#[inline]
-pub fn locate(x: f64, blocks: usize) -> (usize, f64) {
-    let u = (x * blocks as f64).clamp(0.0, blocks as f64);
-    let a = floor_index(u, blocks - 1);
-    (a, u - a as f64)
-}
-
 /// Check that `tree` is a valid quadtree over `roots` root cells whose leaves are numbered
 /// `0..leaves` each exactly once; returns the number of leaves. `Err` says what is wrong with
 /// the dataset `tree`.
@@ -978,100 +875,76 @@ impl Patch {
         self.fine_index_any(max_entries)
     }
 
-    /// [`Patch::fine_index`] over the patch's 2 or 3 axes.
-    fn fine_index_any(&self, max_entries: usize) -> Option<FineIndex> {
-        let dims = self.dims();
-        let (bg, bc, be, m) = (
-            self.blocks_gamma,
-            self.blocks_coord,
-            self.blocks_e_n(),
-            self.leaf_intervals,
-        );
-        let roots = bg * bc * be;
-        let fanout = self.fanout();
-        let n = self.tree.len();
-        if m < 3 || roots == 0 || n < roots || n > u32::MAX as usize {
+    /// [`Patch::fine_index`] over the patch's axes.
+    pub(crate) fn fine_index_any(&self, max_entries: usize) -> Option<FineIndex> {
+        let dims = self.dims() as usize;
+        let blocks = self.blocks_of::<MAX_AXES>();
+        let (roots, fanout, n) = (self.roots(), self.fanout(), self.tree.len());
+        if self.leaf_intervals < 3 || roots == 0 || n < roots || n > u32::MAX as usize {
             return None;
         }
         // Depth and integer origin of every cell (children come after their parents).
-        let mut cells = vec![
-            CellOrigin {
-                scale: 1.0,
-                og: 0.0,
-                oc: 0.0,
-                oe: 0.0,
-            };
-            n
-        ];
         let mut depth = vec![0u32; n];
-        let mut origin = vec![(0usize, 0usize, 0usize); n];
-        for a in 0..bg {
-            for b in 0..bc {
-                for e in 0..be {
-                    origin[(a * bc + b) * be + e] = (a, b, e);
-                }
+        let mut origin = vec![[0usize; MAX_AXES]; n];
+        for (r, o) in origin.iter_mut().take(roots).enumerate() {
+            let mut rest = r;
+            for k in (0..dims).rev() {
+                (o[k], rest) = (rest % blocks[k], rest / blocks[k]);
             }
         }
+        let mut cells = Vec::with_capacity(n);
         let mut max_depth = 0;
         for i in 0..n {
-            let t = self.tree[i];
-            let (a, b, e) = origin[i];
-            cells[i] = CellOrigin {
+            cells.push(CellOrigin {
                 scale: f64::from(1u32 << depth[i].min(31)),
-                og: a as f64,
-                oc: b as f64,
-                oe: e as f64,
-            };
+                origin: origin[i].map(|a| a as f64),
+            });
             max_depth = max_depth.max(depth[i]);
+            let t = self.tree[i];
             if t >= 0 {
                 let first = t as usize;
                 if first <= i || first + fanout > n || depth[i] >= 30 {
                     return None;
                 }
                 for q in 0..fanout {
-                    // Child `2·q_γ + q_c`, or `4·q_γ + 2·q_c + q_e` with an e_n axis.
-                    let (qg, qc, qe) = if dims == 3 {
-                        (q >> 2, (q >> 1) & 1, q & 1)
-                    } else {
-                        (q >> 1, q & 1, 0)
-                    };
+                    // Child `Σ q_k·2^(dims − 1 − k)`: `2·q_γ + q_c`, `4·q_γ + 2·q_c + q_e`.
+                    let mut o = origin[i];
+                    for (k, ok) in o.iter_mut().enumerate().take(dims) {
+                        *ok = 2 * *ok + ((q >> (dims - 1 - k)) & 1);
+                    }
                     depth[first + q] = depth[i] + 1;
-                    origin[first + q] = (
-                        2 * a + qg,
-                        2 * b + qc,
-                        if dims == 3 { 2 * e + qe } else { 0 },
-                    );
+                    origin[first + q] = o;
                 }
             }
         }
         // The deepest index within the budget.
         let mut d = max_depth;
-        while d > 0 && ((roots as u128) << (dims * d)) > max_entries as u128 {
+        while d > 0 && ((roots as u128) << (dims as u32 * d)) > max_entries as u128 {
             d -= 1;
         }
-        let (rows, cols) = (bg << d, bc << d);
-        let layers = if dims == 3 { be << d } else { 1 };
-        let mut index = vec![u32::MAX; rows * cols * layers];
+        let shape: [usize; MAX_AXES] =
+            std::array::from_fn(|k| if k < dims { blocks[k] << d } else { 1 });
+        let mut index = vec![u32::MAX; shape.iter().product()];
+        let last = dims - 1;
         for i in 0..n {
-            let di = depth[i];
-            // Cells at depth ≤ d cover their part of the index; deeper cells are reached by
-            // the descent. Parents come first, so a later (deeper) cell overwrites its
-            // ancestor's entries.
-            if di > d {
+            // Cells at depth ≤ d cover their part of the index (a box of k entries per axis);
+            // deeper cells are reached by the descent. Parents come first, so a later (deeper)
+            // cell overwrites its ancestor's entries.
+            if depth[i] > d {
                 continue;
             }
-            let k = 1usize << (d - di);
-            let (a, b, e) = origin[i];
-            let (e0, e1) = if dims == 3 {
-                (e * k, (e + 1) * k)
-            } else {
-                (0, 1)
-            };
-            for r in a * k..(a + 1) * k {
-                for col in b * k..(b + 1) * k {
-                    let at = (r * cols + col) * layers;
-                    index[at + e0..at + e1].fill(i as u32);
+            let k = 1usize << (d - depth[i]);
+            for t in 0..k.pow(last as u32) {
+                let (mut at, mut rest) = (0, t);
+                let mut along = [0usize; MAX_AXES];
+                for a in (0..last).rev() {
+                    (along[a], rest) = (origin[i][a] * k + rest % k, rest / k);
                 }
+                for a in 0..last {
+                    at = at * shape[a] + along[a];
+                }
+                at = at * shape[last] + origin[i][last] * k;
+                index[at..at + k].fill(i as u32);
             }
         }
         if index.iter().any(|&e| e as usize >= n) {
@@ -1079,9 +952,7 @@ impl Patch {
         }
         Some(FineIndex {
             depth: d,
-            rows,
-            cols,
-            layers,
+            shape,
             index,
             cells,
         })
@@ -1103,26 +974,108 @@ impl Patch {
         depth
     }
 
-    /// The leaf containing `(γ, c)` and the position inside it, both components in `[0, 1]`.
+    /// The leaf containing `(γ, c)` and the position inside it, both components in `[0, 1]`
+    /// (a patch without an `e_n` axis): [`Patch::find_leaf_at`].
     #[inline]
     pub fn find_leaf(&self, gamma: f64, c: f64) -> (usize, f64, f64) {
-        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
-        let (a, mut fg) = locate(xg, self.blocks_gamma);
-        let (b, mut fc) = locate(c, self.blocks_coord);
-        let mut cell = a * self.blocks_coord + b;
+        let (leaf, [fg, fc]) = self.find_leaf_at([self.x_gamma(gamma), c]);
+        (leaf, fg, fc)
+    }
+
+    /// `x = (γ − gamma_lo)/(gamma_hi − gamma_lo)`, the patch's coordinate along γ.
+    #[inline(always)]
+    pub fn x_gamma(&self, gamma: f64) -> f64 {
+        (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo)
+    }
+
+    /// Root cells along each of the first `D` axes (`γ`, `c`, `e_n`; 1 beyond the patch's).
+    #[inline(always)]
+    fn blocks_of<const D: usize>(&self) -> [usize; D] {
+        std::array::from_fn(|k| self.axis(k).2)
+    }
+
+    /// Axis `k` of the patch's tree (0 `γ`, 1 `c`, 2 `e_n`): `(lo, width, blocks)`, its
+    /// coordinate `x = (value − lo)/width` (`c` is its own coordinate: `(0, 1)`) and its root
+    /// cells; `(0, 1, 1)` beyond the patch's axes.
+    pub fn axis(&self, k: usize) -> (f64, f64, usize) {
+        match (k, &self.restitution) {
+            (0, _) => (
+                self.gamma_lo,
+                self.gamma_hi - self.gamma_lo,
+                self.blocks_gamma,
+            ),
+            (1, _) => (0.0, 1.0, self.blocks_coord),
+            (2, Some(r)) => (r.lo, r.hi - r.lo, r.blocks),
+            _ => (0.0, 1.0, 1),
+        }
+    }
+
+    /// Steps 6 and 7 of the rule in a patch of `D` axes ([`Patch::dims`]): the leaf that
+    /// contains the point at coordinates `x` (`x_γ`, `c`, `x_e`, each in `[0, 1]`) and the
+    /// position inside it, each component in `[0, 1]`. The root cell per axis
+    /// ([`locate`]), numbered row-major, then the descent ([`descend`]).
+    #[inline]
+    pub fn find_leaf_at<const D: usize>(&self, x: [f64; D]) -> (usize, [f64; D]) {
+        let blocks = self.blocks_of::<D>();
+        let mut f = [0.0; D];
+        let mut cell = 0;
+        for ((fk, &xk), &bk) in f.iter_mut().zip(&x).zip(&blocks) {
+            let (a, frac) = locate(xk, bk);
+            cell = cell * bk + a;
+            *fk = frac;
+        }
         loop {
             let t = self.tree[cell];
             if t < 0 {
-                return ((-(t as i64) - 1) as usize, fg, fc);
+                return ((-(t as i64) - 1) as usize, f);
             }
-            fg *= 2.0;
-            fc *= 2.0;
-            let qg = usize::from(fg >= 1.0);
-            let qc = usize::from(fc >= 1.0);
-            fg -= qg as f64;
-            fc -= qc as f64;
-            cell = t as usize + 2 * qg + qc;
+            cell = t as usize + descend(&mut f);
         }
+    }
+
+    /// Depth of the deepest leaf crossed by the line `γ = gamma` (at `e_n` for a patch with an
+    /// `e_n` axis, ignored without), following the rule's descent along every axis but `c`
+    /// (which does not depend on `c`) and both halves along `c`.
+    pub fn line_depth(&self, gamma: f64, e_n: f64) -> u32 {
+        let xg = self.x_gamma(gamma);
+        match &self.restitution {
+            None => self.line_depth_at([xg, 0.0]),
+            Some(r) => self.line_depth_at([xg, 0.0, r.x(e_n)]),
+        }
+    }
+
+    /// [`Patch::line_depth`] at coordinates `x` of `D` axes (`x[1]`, along `c`, unused).
+    fn line_depth_at<const D: usize>(&self, x: [f64; D]) -> u32 {
+        let blocks = self.blocks_of::<D>();
+        let (mut root, mut f) = ([0usize; D], [0.0; D]);
+        for k in (0..D).filter(|&k| k != 1) {
+            (root[k], f[k]) = locate(x[k], blocks[k]);
+        }
+        let mut stack = Vec::new();
+        for b in 0..blocks[1] {
+            root[1] = b;
+            let cell = root
+                .iter()
+                .zip(&blocks)
+                .fold(0, |cell, (&a, &bk)| cell * bk + a);
+            stack.push((cell, f, 0));
+        }
+        // The child's upper half along `c`: `q_c = 1` adds `2^(D − 2)`.
+        let upper_c = 1 << (D - 2);
+        let mut deepest = 0;
+        while let Some((cell, f, d)) = stack.pop() {
+            let t = self.tree[cell];
+            if t < 0 {
+                deepest = deepest.max(d);
+                continue;
+            }
+            // f[1] = 0 stays 0: the lower half along c; the upper one next to it.
+            let mut f = f;
+            let child = t as usize + descend(&mut f);
+            stack.push((child, f, d + 1));
+            stack.push((child + upper_c, f, d + 1));
+        }
+        deepest
     }
 
     /// Check the patch's warp, if any: [`Warp::validate`], and no leaf straddles its `start`
@@ -1174,7 +1127,7 @@ impl Patch {
     #[inline]
     pub fn warp_at(&self, gamma: f64) -> Option<&Warp> {
         let w = self.warp.as_ref()?;
-        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
+        let xg = self.x_gamma(gamma);
         let bg = self.blocks_gamma as f64;
         ((xg * bg).clamp(0.0, bg) >= w.start).then_some(w)
     }
@@ -1200,96 +1153,42 @@ impl Patch {
     /// the bound of step 10 (a polynomial inside each interval of the leaf's grid).
     #[inline]
     pub fn tensor(&self, gamma: f64, c: f64, k: usize) -> f64 {
-        let (leaf, fg, fc) = self.find_leaf(gamma, c);
-        let n = self.leaf_intervals;
-        let n1 = n + 1;
-        let size = n1 * n1;
-        if k == 4 && n >= 3 {
-            return cubic_tensor2(&self.p[leaf * size..(leaf + 1) * size], n1, [fg, fc]);
-        }
-        let vals = &self.p[leaf * size..(leaf + 1) * size];
-        let mut wg = [0.0; 8];
-        let mut wc = [0.0; 8];
-        let (sg, kg) = stencil(fg * n as f64, n + 1, k, &mut wg);
-        let (sc, kc) = stencil(fc * n as f64, n + 1, k, &mut wc);
-        let mut total = 0.0;
-        for (i, wi) in wg.iter().enumerate().take(kg) {
-            let row = &vals[(sg + i) * (n + 1) + sc..][..kc];
-            let inner: f64 = row.iter().zip(&wc[..kc]).map(|(p, w)| p * w).sum();
-            total += wi * inner;
-        }
-        total
+        self.tensor_at([self.x_gamma(gamma), c], k)
     }
 
-    /// The leaf of a patch with an `e_n` axis that contains `(γ, c, x_e)` (`x_e` the
-    /// coordinate of [`RestitutionAxis::x`]) and the position inside it, each component in
-    /// `[0, 1]`: [`Patch::find_leaf`] with a third axis.
+    /// Steps 6 to 9 in a patch of `D` axes at coordinates `x` (`x_γ`, `c`, `x_e`): the leaf
+    /// ([`Patch::find_leaf_at`]) and its tensor product with a `k`-point stencil per axis
+    /// ([`cubic_tensor`] for `k = 4`, else [`lagrange_tensor`]), before the bound of step 10.
     #[inline]
-    pub fn find_leaf3(&self, gamma: f64, c: f64, xe: f64) -> (usize, [f64; 3]) {
-        let be = self.blocks_e_n();
-        let xg = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo);
-        let (a, mut fg) = locate(xg, self.blocks_gamma);
-        let (b, mut fc) = locate(c, self.blocks_coord);
-        let (e, mut fe) = locate(xe, be);
-        let mut cell = (a * self.blocks_coord + b) * be + e;
-        loop {
-            let t = self.tree[cell];
-            if t < 0 {
-                return ((-(t as i64) - 1) as usize, [fg, fc, fe]);
-            }
-            fg *= 2.0;
-            fc *= 2.0;
-            fe *= 2.0;
-            let qg = usize::from(fg >= 1.0);
-            let qc = usize::from(fc >= 1.0);
-            let qe = usize::from(fe >= 1.0);
-            fg -= qg as f64;
-            fc -= qc as f64;
-            fe -= qe as f64;
-            cell = t as usize + 4 * qg + 2 * qc + qe;
+    pub fn tensor_at<const D: usize>(&self, x: [f64; D], k: usize) -> f64 {
+        let (leaf, f) = self.find_leaf_at(x);
+        let n1 = self.leaf_intervals + 1;
+        let size = self.leaf_size();
+        let vals = &self.p[leaf * size..(leaf + 1) * size];
+        if k == 4 && n1 >= 4 {
+            cubic_tensor(vals, n1, f)
+        } else {
+            lagrange_tensor(vals, n1, f, k)
         }
     }
 
-    /// `P` at `(γ, c, e_n)` (`e_n` ignored without an `e_n` axis): the tensor product of the
-    /// rule over every axis of the patch, limited to `[−1, 1]` ([`bound_p`]).
+    /// The tensor product of the rule at `(γ, c, e_n)` over every axis of the patch (`e_n`
+    /// ignored without an `e_n` axis) with a `k`-point stencil per axis, before the bound of
+    /// step 10.
+    #[inline]
+    pub fn tensor_point(&self, gamma: f64, c: f64, e_n: f64, k: usize) -> f64 {
+        let xg = self.x_gamma(gamma);
+        match &self.restitution {
+            None => self.tensor_at([xg, c], k),
+            Some(r) => self.tensor_at([xg, c, r.x(e_n)], k),
+        }
+    }
+
+    /// `P` at `(γ, c, e_n)` (`e_n` ignored without an `e_n` axis): [`Patch::tensor_point`]
+    /// limited to `[−1, 1]` ([`bound_p`]).
     #[inline]
     pub fn interpolate_at(&self, gamma: f64, c: f64, e_n: f64, k: usize) -> f64 {
-        match &self.restitution {
-            None => self.interpolate(gamma, c, k),
-            Some(r) => bound_p(self.tensor3(gamma, c, r.x(e_n), k)),
-        }
-    }
-
-    /// The tensor product of a patch with an `e_n` axis at `(γ, c, x_e)` with a `k`-point
-    /// stencil per axis, before the bound of step 10.
-    #[inline]
-    pub fn tensor3(&self, gamma: f64, c: f64, xe: f64, k: usize) -> f64 {
-        let (leaf, f) = self.find_leaf3(gamma, c, xe);
-        let n = self.leaf_intervals;
-        let n1 = n + 1;
-        let vals = &self.p[leaf * n1 * n1 * n1..(leaf + 1) * n1 * n1 * n1];
-        if k == 4 && n >= 3 {
-            return cubic_tensor3(vals, n1, f);
-        }
-        let mut w = [[0.0; 8]; 3];
-        let mut start = [0usize; 3];
-        let mut count = [0usize; 3];
-        for axis in 0..3 {
-            let (s0, k0) = stencil(f[axis] * n as f64, n1, k, &mut w[axis]);
-            start[axis] = s0;
-            count[axis] = k0;
-        }
-        let mut total = 0.0;
-        for i in 0..count[0] {
-            let mut plane = 0.0;
-            for j in 0..count[1] {
-                let row = &vals[((start[0] + i) * n1 + start[1] + j) * n1 + start[2]..][..count[2]];
-                let inner: f64 = row.iter().zip(&w[2][..count[2]]).map(|(p, w)| p * w).sum();
-                plane += w[1][j] * inner;
-            }
-            total += w[0][i] * plane;
-        }
-        total
+        bound_p(self.tensor_point(gamma, c, e_n, k))
     }
 }
 
@@ -1302,6 +1201,19 @@ pub enum OutOfDomain {
     /// Answer at the nearest point of the domain: `γ` clamped to `[gamma_min, gamma_max]`, `α`
     /// to `alpha_max`. An extrapolation by a constant: the caller accepts the error it makes.
     Clamp,
+}
+
+/// `Ok` for a query the rule takes: `γ` finite and `> 0`, `α ≥ 0` (`∞` allowed); otherwise
+/// the error naming the first that is not (every query path checks with this).
+#[inline(always)]
+pub fn check_query(gamma: f64, alpha: f64) -> Result<(), TableError> {
+    if !(gamma.is_finite() && gamma > 0.0) {
+        return Err(bad_gamma(gamma));
+    }
+    if alpha.is_nan() || alpha < 0.0 {
+        return Err(bad_alpha(alpha));
+    }
+    Ok(())
 }
 
 #[cold]
@@ -1603,6 +1515,23 @@ impl Region {
         }
     }
 
+    /// [`Region::of`] as a number, branch-free (for passes over arrays that a vector unit
+    /// runs): 0 the line, then [`PatchId::index`] + 1 (1 `stick_low`, 2 `partial_high`, 3
+    /// `stick_high`).
+    #[inline(always)]
+    pub fn code_of(gamma: f64, alpha: f64) -> u8 {
+        let c2 = alpha_c2(gamma);
+        let high = gamma > 1.0;
+        // `linear_limit`, the same operations.
+        let line = alpha <= if high { alpha_c1(gamma) } else { c2 };
+        let patch = 1 + u8::from(high) + u8::from(high & (alpha >= c2));
+        if line {
+            0
+        } else {
+            patch
+        }
+    }
+
     /// Region of `(γ, α)` at normal restitution `e_n` (assumed valid): the full-slip line ends
     /// at [`linear_limit_dissipative`]; `α_c2` does not move with `e_n`. `e_n = 1` is
     /// [`Region::of`], bit for bit.
@@ -1686,12 +1615,7 @@ impl Surface {
         e_n: f64,
         outside: OutOfDomain,
     ) -> Result<f64, TableError> {
-        if !(gamma.is_finite() && gamma > 0.0) {
-            return Err(bad_gamma(gamma));
-        }
-        if alpha.is_nan() || alpha < 0.0 {
-            return Err(bad_alpha(alpha));
-        }
+        check_query(gamma, alpha)?;
         self.check_e_n(e_n)?;
         let region = Region::of_e(gamma, alpha, e_n);
         if region == Region::Line {
@@ -1881,41 +1805,97 @@ pub struct Axis {
 }
 
 /// [`PatchKind::coord_at`] of the partial-slip patch of a table with an `e_n` axis
-/// ([`PartialMap::SqrtBoth`]) at normal restitution `e_n`: `α/α_c1 = 7α h/(2γ²)` and
-/// `α_c2/α_c1 = h`, `h = γ²(1 + e_n) − e_n`.
+/// ([`PartialMap::SqrtBoth`]) at normal restitution `e_n`: [`partial_coord_from`] with
+/// [`partial_ratio_e`].
 #[inline(always)]
 pub fn partial_coord_e(gamma: f64, alpha: f64, e_n: f64) -> f64 {
-    let g2 = gamma * gamma;
-    let ratio = g2 * (1.0 + e_n) - e_n;
-    let l = (7.0 * alpha * ratio / (2.0 * g2)).ln() / ratio.ln();
-    PartialMap::SqrtBoth.c_of_l(l)
+    let (ratio, two_g2) = partial_ratio_e(gamma, e_n);
+    partial_coord_from(PartialMap::SqrtBoth, alpha, ratio, two_g2, ratio.ln())
 }
 
-/// [`PatchKind::coord`] of the partial-slip patch: `α/α_c1 = 7α(2γ² − 1)/(2γ²)` and
-/// `α_c2/α_c1 = 2γ² − 1`.
+/// [`PatchKind::coord`] of the partial-slip patch: [`partial_coord_from`] with
+/// [`partial_ratio`].
 #[inline(always)]
 pub fn partial_coord(gamma: f64, alpha: f64) -> f64 {
-    let g2 = 2.0 * gamma * gamma;
-    let ratio = g2 - 1.0;
-    let l = (7.0 * alpha * ratio / g2).ln() / ratio.ln();
-    1.0 - (1.0 - l).max(0.0).sqrt()
+    let (ratio, two_g2) = partial_ratio(gamma);
+    partial_coord_from(PartialMap::SqrtEnd, alpha, ratio, two_g2, ratio.ln())
 }
 
-/// [`PatchKind::coord`] of a stick patch: `S(α) = r/(r + ρ) = (α − α_c2)/(α − α_c2 + ρ α_c2)`.
+/// The `γ`-only parts of the partial-slip coordinate of an elastic table:
+/// `α_c2/α_c1 = 2γ² − 1` and `2γ²`.
+#[inline(always)]
+pub fn partial_ratio(gamma: f64) -> (f64, f64) {
+    let two_g2 = 2.0 * gamma * gamma;
+    (two_g2 - 1.0, two_g2)
+}
+
+/// The `γ`-only parts of the partial-slip coordinate at normal restitution `e_n`:
+/// `α_c2/α_c1 = h = γ²(1 + e_n) − e_n` and `2γ²`.
+#[inline(always)]
+pub fn partial_ratio_e(gamma: f64, e_n: f64) -> (f64, f64) {
+    let g2 = gamma * gamma;
+    (g2 * (1.0 + e_n) - e_n, 2.0 * g2)
+}
+
+/// `α/α_c1 = 7α·ratio/(2γ²)`, the argument of the numerator's logarithm in `ℓ`.
+#[inline(always)]
+pub fn partial_arg(alpha: f64, ratio: f64, two_g2: f64) -> f64 {
+    7.0 * alpha * ratio / two_g2
+}
+
+/// The partial-slip coordinate `map(ℓ)`, `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)`, from the `γ`-only
+/// parts ([`partial_ratio`], [`partial_ratio_e`]) and `ln_ratio = ln(ratio)`: the one
+/// statement of these operations (the rule, the query paths, the curves).
+#[inline(always)]
+pub fn partial_coord_from(
+    map: PartialMap,
+    alpha: f64,
+    ratio: f64,
+    two_g2: f64,
+    ln_ratio: f64,
+) -> f64 {
+    map.c_of_l(partial_arg(alpha, ratio, two_g2).ln() / ln_ratio)
+}
+
+/// [`PatchKind::coord`] of a stick patch: `S(α) = r/(r + ρ) = (α − α_c2)/(α − α_c2 + ρ α_c2)`,
+/// [`stick_coord_from`] with [`stick_parts`].
 #[inline(always)]
 pub fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
     if alpha.is_infinite() {
         return 1.0;
     }
+    let (c2, rho_c2, s_max) = stick_parts(gamma, alpha_max);
+    stick_coord_from(alpha, c2, rho_c2, s_max)
+}
+
+/// The `γ`-only parts of the stick coordinate: `α_c2 = γ²·(2/7)`, `ρ α_c2`, and
+/// `S(α_max)` (`None` for `α_max = ∞`).
+#[inline(always)]
+pub fn stick_parts(gamma: f64, alpha_max: f64) -> (f64, f64, Option<f64>) {
     let c2 = gamma * gamma * (2.0 / 7.0);
-    let rho = stick_scale(gamma);
-    let d = alpha - c2;
-    let s = d / (d + rho * c2);
-    if alpha_max.is_infinite() {
-        s
-    } else {
+    let rho_c2 = stick_scale(gamma) * c2;
+    let s_max = (!alpha_max.is_infinite()).then(|| {
         let dm = alpha_max - c2;
-        s / (dm / (dm + rho * c2))
+        dm / (dm + rho_c2)
+    });
+    (c2, rho_c2, s_max)
+}
+
+/// The stick coordinate `S(α)/S(α_max)` (1 at `α = ∞`) from the `γ`-only parts
+/// ([`stick_parts`]): the one statement of these operations, branch-free in `α` (a pass over
+/// an array of queries is vectorized).
+#[inline(always)]
+pub fn stick_coord_from(alpha: f64, c2: f64, rho_c2: f64, s_max: Option<f64>) -> f64 {
+    let d = alpha - c2;
+    let s = d / (d + rho_c2);
+    let s = match s_max {
+        None => s,
+        Some(m) => s / m,
+    };
+    if alpha.is_infinite() {
+        1.0
+    } else {
+        s
     }
 }
 

@@ -15,9 +15,14 @@
 //! compiler's vectorization pays most (SSE4.1 truncation and blends, 4 lanes). No
 //! `-C target-cpu` is needed: binaries and tables run on any x86-64.
 
-use super::{alpha_c1_of, Accel, FastPatch, BATCH};
+use super::{Accel, BATCH};
 use crate::LookupError;
-use oblique_table::surface::{bound_p, cubic_weights, OutOfDomain, PatchKind, Surface};
+use oblique_table::indexed::IndexedPatch;
+use oblique_table::leaf::{cubic_stencils_f64, cubic_stencils_u32, cubic_sum, exact_u32};
+use oblique_table::surface::{
+    bound_p, full_slip_line, partial_arg, partial_ratio, stick_coord_from, stick_parts,
+    OutOfDomain, PartialMap, PatchKind, Region, Surface,
+};
 
 /// The per-patch arrays of one chunk (structure of arrays, `BATCH` entries each).
 struct Lanes {
@@ -55,173 +60,93 @@ impl Lanes {
     }
 }
 
-/// `min(floor(u), max)` for `u ≥ 0`, `0` for `u < 0` or NaN, for `max < 2³¹`: the same as
-/// `fast::floor_index`, through a 32-bit conversion (which vector units have): `as i32`
-/// saturates, so `u ≥ 2³¹` gives `i32::MAX`, then `max`, as the 64-bit conversion does.
+/// `out[list[k]] = p.interpolate([γ_k, c_k])` for the `n` queries gathered in `lanes` whose
+/// patch coordinates `c_k` are in `lanes.vc` (not yet clamped): the steps of
+/// [`IndexedPatch::interpolate`] in passes, each through the rule's own functions (the vector
+/// formulations of `oblique_table::leaf` where a vector unit needs them).
 #[inline(always)]
-fn floor_index32(u: f64, max: u32) -> u32 {
-    ((u as i32).max(0) as u32).min(max)
-}
-
-/// [`floor_index32`] in floating point (`max` an integer below 2³¹), for a vector unit that
-/// truncates (SSE4.1 `roundpd`): `max(u, 0)` is `0` for NaN and negative `u` (where the integer
-/// conversion gives a value `≤ 0`, then `0`), and for `u ≥ 0` truncating and taking the minimum
-/// with an integer commute.
-#[inline(always)]
-fn floor_f64(u: f64, max: f64) -> f64 {
-    u.max(0.0).min(max).trunc()
-}
-
-/// `x` as `u32`, for an integer `0 ≤ x < 2³²`: `2⁵² + x` is exact and its significand's low 32
-/// bits are `x` (a bit cast, which vector units do, where a saturating conversion is several
-/// instructions per value).
-#[inline(always)]
-fn exact_u32(x: f64) -> u32 {
-    (x + 4_503_599_627_370_496.0).to_bits() as u32
-}
-
-/// [`oblique_table::surface::stencil4`] with [`floor_index32`] (`n ≤ 2³¹`): the same start and weights.
-#[inline(always)]
-fn stencil4_32(u: f64, n: u32) -> (u32, [f64; 4]) {
-    let cell = floor_index32(u, n - 2);
-    let start = cell.saturating_sub(1).min(n - 4);
-    (start, cubic_weights(u - f64::from(start)))
-}
-
-/// [`stencil4_32`] in floating point: the same start (as a float) and weights. The cell is
-/// [`floor_f64`]; `start = min(max(cell − 1, 0), n − 4)` is the saturating subtraction.
-#[inline(always)]
-fn stencil4_f64(u: f64, n: f64) -> (f64, [f64; 4]) {
-    let cell = floor_f64(u, n - 2.0);
-    let start = (cell - 1.0).max(0.0).min(n - 4.0);
-    (start, cubic_weights(u - start))
-}
-
-impl FastPatch {
-    /// Whether the batch path can use 32-bit positions for this patch (always for shipped
-    /// tables: the fine index, the node array and the leaf grid are far below 2³¹ entries),
-    /// and every leaf the quadtree names has its whole node grid in `p`, so that the first
-    /// node of any 4 × 4 block is an integer below `p.len() < 2³¹` (see [`exact_u32`]).
-    pub(super) fn fits_u32(&self) -> bool {
-        let small = |n: usize| n < (1 << 31);
-        let leaves_end = self
-            .cells
-            .iter()
-            .filter(|c| c.link < 0)
-            .map(|c| (-(c.link as i64)) as usize)
-            .max()
-            .unwrap_or(0);
-        small(self.index.len())
-            && small(self.p.len())
-            && small(self.n1)
-            && small(self.rows)
-            && leaves_end
-                .checked_mul(self.size)
-                .is_some_and(|e| e <= self.p.len())
+fn interpolate_lanes<const AVX2: bool>(
+    p: &IndexedPatch<2>,
+    lanes: &mut Lanes,
+    n: usize,
+    list: &[u16],
+    out: &mut [f64],
+) {
+    // Step 6 along γ: `v = x·blocks`, clamped, and the clamped coordinate.
+    for ((vg, vc), &g) in lanes.vg[..n]
+        .iter_mut()
+        .zip(&mut lanes.vc[..n])
+        .zip(&lanes.g[..n])
+    {
+        *vg = p.position(0, g);
+        *vc = vc.clamp(0.0, 1.0);
     }
-
-    /// `out[list[k]] = self.interpolate(γ_k, c_k)` for the `n` queries gathered in `lanes`
-    /// whose patch coordinates `c_k` are in `lanes.vc` (not yet clamped).
-    #[inline(always)]
-    fn interpolate_lanes<const AVX2: bool>(
-        &self,
-        lanes: &mut Lanes,
-        n: usize,
-        list: &[u16],
-        out: &mut [f64],
-    ) {
-        let (rows1, cols1) = (self.rows as u32 - 1, self.cols as u32 - 1);
-        let cols = self.cols as u32;
-        // Step 5: `v = x·blocks`, clamped, and the clamped coordinate.
-        for ((vg, vc), &g) in lanes.vg[..n]
-            .iter_mut()
+    // Step 5, the warp from its start on.
+    if p.warp().is_some() {
+        for ((&vg, vc), &g) in lanes.vg[..n]
+            .iter()
             .zip(&mut lanes.vc[..n])
             .zip(&lanes.g[..n])
         {
-            let xg = (g - self.gamma_lo) / self.width;
-            *vg = (xg * self.bg).clamp(0.0, self.bg);
-            *vc = vc.clamp(0.0, 1.0);
+            *vc = p.warped(g, vg, *vc);
         }
-        // The warp from its start on (`Patch::warped`, the same operations).
-        if let Some(w) = &self.warp {
-            for ((&vg, vc), &g) in lanes.vg[..n]
-                .iter()
-                .zip(&mut lanes.vc[..n])
-                .zip(&lanes.g[..n])
-            {
-                if vg >= w.start() {
-                    *vc = w.apply(g, *vc);
-                }
-            }
-        }
-        // The fine index entry.
-        for ((&vg, vc), slot) in lanes.vg[..n]
-            .iter()
-            .zip(&mut lanes.vc[..n])
-            .zip(&mut lanes.slot[..n])
-        {
-            *vc = (*vc * self.bc).clamp(0.0, self.bc);
-            *slot = if AVX2 {
-                let ig = floor_f64(vg * self.fine, f64::from(rows1));
-                let ic = floor_f64(*vc * self.fine, f64::from(cols1));
-                // An integer below `rows·cols = index.len() < 2³¹`.
-                exact_u32(ig * f64::from(cols) + ic)
-            } else {
-                let ig = floor_index32(vg * self.fine, rows1);
-                let ic = floor_index32(*vc * self.fine, cols1);
-                ig * cols + ic
-            };
-        }
-        // Step 6: the cell from the index, the position in it, the rest of the descent.
-        for ((vg, vc), slot) in lanes.vg[..n]
-            .iter_mut()
-            .zip(&mut lanes.vc[..n])
-            .zip(&mut lanes.slot[..n])
-        {
-            let (leaf, fg, fc) = self.leaf_from(*slot as usize, *vg, *vc);
-            // The leaf number `−link − 1` of an `i32` link is below 2³¹.
-            *vg = fg;
-            *vc = fc;
-            *slot = leaf as u32;
-        }
-        // Step 7: the stencils (first node of the 4 × 4 block, weights), in a loop of their
-        // own so that it is vectorized.
-        let [w0g, w1g, w2g, w3g, w0c, w1c, w2c, w3c] = &mut lanes.w;
-        for (k, ((&fg, &fc), &leaf)) in lanes.vg[..n]
-            .iter()
-            .zip(&lanes.vc[..n])
-            .zip(&lanes.slot[..n])
-            .enumerate()
-        {
-            let ((sg, wg), (sc, wc)) = if AVX2 {
-                let n1 = self.n1 as f64;
-                (stencil4_f64(fg * self.m, n1), stencil4_f64(fc * self.m, n1))
-            } else {
-                let n1 = self.n1 as u32;
-                let (sg, wg) = stencil4_32(fg * self.m, n1);
-                let (sc, wc) = stencil4_32(fc * self.m, n1);
-                ((f64::from(sg), wg), (f64::from(sc), wc))
-            };
-            [w0g[k], w1g[k], w2g[k], w3g[k]] = wg;
-            [w0c[k], w1c[k], w2c[k], w3c[k]] = wc;
-            // An integer below `(leaf + 1)·size ≤ p.len() < 2³¹` (`fits_u32`).
-            let start = f64::from(leaf) * self.size as f64 + (sg * self.n1 as f64 + sc);
-            lanes.start[k] = exact_u32(start);
-        }
-        // Step 8: the tensor product.
-        let stride = self.n1;
-        let [w0g, w1g, w2g, w3g, w0c, w1c, w2c, w3c] = &lanes.w;
-        for (k, (&start, &i)) in lanes.start[..n].iter().zip(list).enumerate() {
-            let start = start as usize;
-            let block = &self.p[start..start + 3 * stride + 4];
-            let (r0, rest) = block.split_at(stride);
-            let (r1, rest) = rest.split_at(stride);
-            let (r2, r3) = rest.split_at(stride);
-            let (wc0, wc1, wc2, wc3) = (w0c[k], w1c[k], w2c[k], w3c[k]);
-            let row = |r: &[f64]| r[0] * wc0 + r[1] * wc1 + r[2] * wc2 + r[3] * wc3;
-            out[i as usize] =
-                bound_p(w0g[k] * row(r0) + w1g[k] * row(r1) + w2g[k] * row(r2) + w3g[k] * row(r3));
-        }
+    }
+    // Step 6 along `c`, and the fine index entry.
+    for ((&vg, vc), slot) in lanes.vg[..n]
+        .iter()
+        .zip(&mut lanes.vc[..n])
+        .zip(&mut lanes.slot[..n])
+    {
+        *vc = p.position_c(*vc);
+        *slot = if AVX2 {
+            // An integer below `index.len() < 2³¹` (`fits_u32`).
+            exact_u32(p.entry_f64([vg, *vc]))
+        } else {
+            p.entry_u32([vg, *vc])
+        };
+    }
+    // Step 7: the cell from the index, the position in it, the rest of the descent.
+    for ((vg, vc), slot) in lanes.vg[..n]
+        .iter_mut()
+        .zip(&mut lanes.vc[..n])
+        .zip(&mut lanes.slot[..n])
+    {
+        let (leaf, [fg, fc]) = p.leaf_from(*slot as usize, [*vg, *vc]);
+        // The leaf number `−link − 1` of an `i32` link is below 2³¹.
+        *vg = fg;
+        *vc = fc;
+        *slot = leaf as u32;
+    }
+    // Step 8: the stencils (first node of the 4 × 4 block, weights), in a loop of their own
+    // so that it is vectorized.
+    let size = p.leaf_size() as f64;
+    let [w0g, w1g, w2g, w3g, w0c, w1c, w2c, w3c] = &mut lanes.w;
+    for (k, ((&fg, &fc), &leaf)) in lanes.vg[..n]
+        .iter()
+        .zip(&lanes.vc[..n])
+        .zip(&lanes.slot[..n])
+        .enumerate()
+    {
+        let (first, [wg, wc]) = if AVX2 {
+            cubic_stencils_f64([fg, fc], p.n1() as f64)
+        } else {
+            let (first, w) = cubic_stencils_u32([fg, fc], p.n1() as u32);
+            (f64::from(first), w)
+        };
+        [w0g[k], w1g[k], w2g[k], w3g[k]] = wg;
+        [w0c[k], w1c[k], w2c[k], w3c[k]] = wc;
+        // An integer below `(leaf + 1)·size ≤ p.len() < 2³¹` (`fits_u32`).
+        lanes.start[k] = exact_u32(f64::from(leaf) * size + first);
+    }
+    // Step 9 and 10: the tensor product, bounded.
+    let (vals, n1) = (p.p(), p.n1());
+    let [w0g, w1g, w2g, w3g, w0c, w1c, w2c, w3c] = &lanes.w;
+    for (k, (&start, &i)) in lanes.start[..n].iter().zip(list).enumerate() {
+        let w = [
+            [w0g[k], w1g[k], w2g[k], w3g[k]],
+            [w0c[k], w1c[k], w2c[k], w3c[k]],
+        ];
+        out[i as usize] = bound_p(cubic_sum(vals, start as usize, n1, &w));
     }
 }
 
@@ -331,17 +256,14 @@ impl Accel {
             // Pass 1, branch-free: 0 line, 1–3 a patch, 4 outside (clamped), 5 refused.
             for ((c, &gi), &ai) in code[..len].iter_mut().zip(g).zip(a) {
                 let valid = (gi.abs() < f64::INFINITY) & (gi > 0.0) & (ai >= 0.0);
-                let g2 = gi * gi;
-                // `surface::alpha_c2` and `surface::linear_limit`, the same operations.
-                let c2 = 2.0 * gi * gi / 7.0;
-                let hi = gi > 1.0;
-                let lin = if hi { alpha_c1_of(g2) } else { c2 };
-                let line = ai <= lin;
-                let patch = 1 + u8::from(hi) + u8::from(hi & (ai >= c2));
+                let region = Region::code_of(gi, ai);
                 let inside =
                     (gi >= self.gamma_min) & (gi <= self.gamma_max) & (ai <= self.alpha_max);
-                let r = if inside { patch } else { outside_code };
-                let r = if line { 0 } else { r };
+                let r = if inside | (region == 0) {
+                    region
+                } else {
+                    outside_code
+                };
                 *c = if valid { r } else { 5 };
             }
             if code[..len].iter().fold(false, |r, &c| r | (c == 5)) {
@@ -350,7 +272,7 @@ impl Accel {
             }
             // Pass 2: the line everywhere (the patches overwrite theirs), and the lists.
             for (o, &ai) in o.iter_mut().zip(a) {
-                *o = 1.0 - 7.0 * ai;
+                *o = full_slip_line(ai, 1.0);
             }
             let mut counts = [0usize; 5];
             for (i, &c) in code[..len].iter().enumerate() {
@@ -372,11 +294,11 @@ impl Accel {
                     *lg = g[i as usize];
                     *la = a[i as usize];
                 }
-                match p.kind {
+                match p.kind() {
                     PatchKind::PartialSlip => partial_coords(&mut lanes, n),
                     PatchKind::Stick => stick_coords(&mut lanes, n, self.alpha_max),
                 }
-                p.interpolate_lanes::<AVX2>(&mut lanes, n, list, o);
+                interpolate_lanes::<AVX2>(p, &mut lanes, n, list, o);
             }
             for &i in &lists[4][..counts[4]] {
                 let i = i as usize;
@@ -389,7 +311,9 @@ impl Accel {
     }
 }
 
-/// `lanes.vc[k] =` [`oblique_table::surface::partial_coord`]`(g[k], a[k])`, the same operations.
+/// `lanes.vc[k] =` [`partial_coord`](oblique_table::surface::partial_coord)`(g[k], a[k])`,
+/// through its parts in passes of their own (the logarithms apart, so that the rest is
+/// vectorized).
 #[inline(always)]
 fn partial_coords(lanes: &mut Lanes, n: usize) {
     for (((x, r), &g), &a) in lanes.x[..n]
@@ -398,9 +322,8 @@ fn partial_coords(lanes: &mut Lanes, n: usize) {
         .zip(&lanes.g[..n])
         .zip(&lanes.a[..n])
     {
-        let g2 = 2.0 * g * g;
-        let ratio = g2 - 1.0;
-        *x = 7.0 * a * ratio / g2;
+        let (ratio, two_g2) = partial_ratio(g);
+        *x = partial_arg(a, ratio, two_g2);
         *r = ratio;
     }
     for (x, r) in lanes.x[..n].iter_mut().zip(&mut lanes.r[..n]) {
@@ -412,32 +335,21 @@ fn partial_coords(lanes: &mut Lanes, n: usize) {
         .zip(&lanes.x[..n])
         .zip(&lanes.r[..n])
     {
-        let l = x / r;
-        *c = 1.0 - (1.0 - l).max(0.0).sqrt();
+        *c = PartialMap::SqrtEnd.c_of_l(x / r);
     }
 }
 
-/// `lanes.vc[k] =` [`oblique_table::surface::stick_coord`]`(g[k], a[k], alpha_max)`, the same
-/// operations, branch-free.
+/// `lanes.vc[k] =` [`stick_coord`](oblique_table::surface::stick_coord)`(g[k], a[k],
+/// alpha_max)`: its parts, branch-free.
 #[inline(always)]
 fn stick_coords(lanes: &mut Lanes, n: usize, alpha_max: f64) {
-    let lanes_iter = lanes.vc[..n]
+    for ((c, &g), &a) in lanes.vc[..n]
         .iter_mut()
         .zip(&lanes.g[..n])
-        .zip(&lanes.a[..n]);
-    let finite_max = !alpha_max.is_infinite();
-    for ((c, &g), &a) in lanes_iter {
-        let c2 = g * g * (2.0 / 7.0);
-        let rho = if g < 1.0 { 2.0 * (1.0 - g * g) } else { 1.0 };
-        let d = a - c2;
-        let s = d / (d + rho * c2);
-        let s = if finite_max {
-            let dm = alpha_max - c2;
-            s / (dm / (dm + rho * c2))
-        } else {
-            s
-        };
-        *c = if a == f64::INFINITY { 1.0 } else { s };
+        .zip(&lanes.a[..n])
+    {
+        let (c2, rho_c2, s_max) = stick_parts(g, alpha_max);
+        *c = stick_coord_from(a, c2, rho_c2, s_max);
     }
 }
 
@@ -445,9 +357,9 @@ fn stick_coords(lanes: &mut Lanes, n: usize, alpha_max: f64) {
 mod tests {
     use super::*;
     use crate::fast::tests::{points, table};
-    use crate::fast::{floor_index, MAX_INDEX_ENTRIES};
+    use crate::fast::MAX_INDEX_ENTRIES;
     use crate::Table;
-    use oblique_table::surface::{alpha_c1, alpha_c2, stencil4};
+    use oblique_table::surface::{alpha_c1, alpha_c2};
 
     /// [`points`] plus the edges of the rule: γ = 1 and its neighbours, the domain's and the
     /// patches' γ edges and root-cell edges, and at each of these γ: α on and next to α_c1 and
@@ -608,55 +520,6 @@ mod tests {
                 );
                 let rule = s.eval(g[i], a[i]).map(f64::to_bits).ok();
                 assert_eq!(Some(out[i].to_bits()), rule, "({}, {})", g[i], a[i]);
-            }
-        }
-    }
-
-    #[test]
-    fn exact_u32_converts_integers() {
-        for x in [0u32, 1, 2, 255, 65_536, (1 << 31) - 1, 1 << 31, u32::MAX] {
-            assert_eq!(exact_u32(f64::from(x)), x);
-        }
-    }
-
-    #[test]
-    fn the_vector_stencils_are_the_rules() {
-        let mut us = vec![
-            f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            -0.0,
-            0.0,
-            -1e-300,
-            1e300,
-            -3.5,
-            4e9,
-        ];
-        for k in 0..=40 {
-            let u = f64::from(k) * 0.25;
-            us.extend([u, u.next_up(), u.next_down()]);
-        }
-        for n in [4u32, 5, 9, 17] {
-            for &u in &us {
-                let (s32, w32) = stencil4_32(u, n);
-                let (s64, w64) = stencil4_f64(u, f64::from(n));
-                let (s, w) = stencil4(u, n as usize);
-                assert_eq!((s32 as usize, f64::from(s32)), (s, s64), "u = {u}, n = {n}");
-                for j in 0..4 {
-                    let bits = [w32[j], w64[j], w[j]].map(|x| (x.is_nan(), x.to_bits()));
-                    let same = |x: (bool, u64)| x == bits[2] || (x.0 && bits[2].0);
-                    assert!(same(bits[0]) && same(bits[1]), "u = {u}, n = {n}: {bits:?}");
-                }
-                for max in [0u32, 1, 7, 1 << 20] {
-                    let f = floor_index32(u, max);
-                    assert_eq!(f as usize, floor_index(u, max as usize));
-                    let f64_path = floor_f64(u, f64::from(max));
-                    assert_eq!(
-                        (f64_path, exact_u32(f64_path)),
-                        (f64::from(f), f),
-                        "u = {u}"
-                    );
-                }
             }
         }
     }
