@@ -150,6 +150,9 @@ typedef struct {
     /* Root cells along e_n (1 without the axis); with the axis the tree is an octree and p
        is [leaves][m+1][m+1][m+1]. */
     size_t blocks_e_n;
+    /* With the axis, optionally: which axes each split cell halves (bit 4: gamma, 2: c,
+       1: e_n; 0 for a leaf), uint8 [cells]; NULL: every split halves every axis. */
+    const unsigned char *split;
 } oblq_patch;
 
 /* A checked export: the table's domain and stated error bound, its patches, its curves. */
@@ -254,19 +257,39 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
     roots = bg * bc; /* < 2^64; then at most cells (< 2^32) times be (<= 2^16) */
     if (cells < roots) return OBLQ_E_CORRUPT;
     roots *= be;
-    if (cells < roots || (cells - roots) % fan != 0) return OBLQ_E_CORRUPT;
+    if (cells < roots) return OBLQ_E_CORRUPT;
     off = oblq__u64(r + 48);
     if (!oblq__span(off, cells, 4, len)) return OBLQ_E_CORRUPT;
     p->tree = d + off;
-    /* Safe descent: a split cell's children exist and come after it (so every descent ends),
-       a leaf number is in range. */
-    for (i = 0; i < cells; i++) {
-        int32_t t = oblq__i32(p->tree + 4 * i);
-        if (t >= 0) {
-            if ((uint64_t)t <= i || (uint64_t)t + fan - 1 >= cells) return OBLQ_E_CORRUPT;
-        } else if ((uint64_t)(-(int64_t)t - 1) >= leaves) {
-            return OBLQ_E_CORRUPT;
+    p->split = NULL;
+    if (octree) {
+        /* The split masks (offset 0: none). Their offset need not be 8-byte aligned. */
+        off = oblq__u64(r + 144);
+        if (off != 0) {
+            if (off > len || cells > len - off) return OBLQ_E_CORRUPT;
+            p->split = d + off;
         }
+    } else if (oblq__u64(r + 144) != 0) {
+        return OBLQ_E_CORRUPT;
+    }
+    /* Safe descent: a split cell's children exist and come after it (so every descent ends),
+       a leaf number is in range; a mask is 1 to 7 for a split cell, 0 for a leaf; the children
+       of all split cells are exactly the cells after the roots. */
+    {
+        uint64_t children = 0;
+        for (i = 0; i < cells; i++) {
+            int32_t t = oblq__i32(p->tree + 4 * i);
+            uint64_t s = p->split ? p->split[i] : (t >= 0 ? 7 : 0), f;
+            if (t >= 0) {
+                if (s < 1 || s > 7) return OBLQ_E_CORRUPT;
+                f = p->split ? (uint64_t)1 << ((s & 1) + ((s >> 1) & 1) + (s >> 2)) : fan;
+                if ((uint64_t)t <= i || (uint64_t)t + f - 1 >= cells) return OBLQ_E_CORRUPT;
+                children += f;
+            } else if (s != 0 || (uint64_t)(-(int64_t)t - 1) >= leaves) {
+                return OBLQ_E_CORRUPT;
+            }
+        }
+        if (cells - roots != children) return OBLQ_E_CORRUPT;
     }
     nodes = leaves * (m + 1) * (m + 1) * (octree ? m + 1 : 1); /* < 2^51 */
     off = oblq__u64(r + 56);
@@ -553,6 +576,7 @@ OBLQ_FN int oblq_rebase(oblq_table *t, const void *data) {
         p->knot = (const double *)oblq__moved(p->knot, t->data, data);
         p->index = (const unsigned char *)oblq__moved(p->index, t->data, data);
         p->origin = (const double *)oblq__moved(p->origin, t->data, data);
+        p->split = (const unsigned char *)oblq__moved(p->split, t->data, data);
     }
     out.data = (const unsigned char *)data;
     *t = out;
@@ -831,21 +855,33 @@ OBLQ_FN double oblq__tensor3(const oblq_patch *p, double gamma, double c, double
     const double *v;
     for (;;) {
         int32_t t = oblq__i32(p->tree + 4 * cell);
-        size_t qg, qc, qe;
+        size_t qg, qc, qe, q;
+        unsigned mask;
         if (t < 0) {
             leaf = (size_t)(-(int64_t)t - 1);
             break;
         }
-        fg *= 2.0;
-        fc *= 2.0;
-        fe *= 2.0;
-        qg = fg >= 1.0;
-        qc = fc >= 1.0;
-        qe = fe >= 1.0;
-        fg -= (double)qg;
-        fc -= (double)qc;
-        fe -= (double)qe;
-        cell = (size_t)t + 4 * qg + 2 * qc + qe;
+        mask = p->split ? p->split[cell] : 7;
+        q = 0;
+        if (mask & 4) {
+            fg *= 2.0;
+            qg = fg >= 1.0;
+            fg -= (double)qg;
+            q = qg;
+        }
+        if (mask & 2) {
+            fc *= 2.0;
+            qc = fc >= 1.0;
+            fc -= (double)qc;
+            q = 2 * q + qc;
+        }
+        if (mask & 1) {
+            fe *= 2.0;
+            qe = fe >= 1.0;
+            fe -= (double)qe;
+            q = 2 * q + qe;
+        }
+        cell = (size_t)t + q;
     }
     n1 = p->m + 1;
     sg = oblq__stencil4(fg * (double)p->m, n1, wg);

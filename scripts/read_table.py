@@ -270,7 +270,8 @@ class Patch:
     values."""
 
     def __init__(self, name, kind, gamma_lo, gamma_hi, blocks_gamma, blocks_coord,
-                 leaf_intervals, tree, p, warp=None, blocks_e_n=None, e_n_range=None):
+                 leaf_intervals, tree, p, warp=None, blocks_e_n=None, e_n_range=None,
+                 split=None):
         self.name = name
         self.kind = kind
         self.gamma_lo = gamma_lo
@@ -283,6 +284,8 @@ class Patch:
         self.warp = warp  # Warp or None
         self.blocks_e_n = blocks_e_n  # root cells along e_n, or None (no e_n axis)
         self.e_n_range = e_n_range  # (e_n_min, e_n_max) or None
+        # Per cell, the axes a split cell halves (bit 4: gamma, 2: c, 1: e_n), or None: all.
+        self.split = split
         # Node values as Python floats, flat (leaf, i_gamma, i_c, i_e), for the e_n rule.
         self.flat = [float(v) for v in p.reshape(-1)] if blocks_e_n is not None else None
 
@@ -324,18 +327,31 @@ class Patch:
     def find_leaf3(self, gamma, c, xe):
         """Steps 6 and 7 in the octree of a patch with an e_n axis: leaf number and position
         (fg, fc, fe) inside it. Roots row-major (gamma outer, e_n inner); the children of a
-        split cell i are tree[i] + 4 q_gamma + 2 q_c + q_e."""
+        split cell i are tree[i] + 4 q_gamma + 2 q_c + q_e, or, with the dataset 'split', the
+        2^k cells from tree[i] numbered over the k axes the cell halves (gamma, c, e_n order)."""
         bg, bc, be = self.blocks_gamma, self.blocks_coord, self.blocks_e_n
         a, fg = locate((gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo), bg)
         b, fc = locate(c, bc)
         e, fe = locate(xe, be)
         i = (a * bc + b) * be + e
         tree = self.tree
+        split = self.split
         while tree[i] >= 0:
-            fg, fc, fe = 2.0 * fg, 2.0 * fc, 2.0 * fe
-            qg, qc, qe = int(fg >= 1.0), int(fc >= 1.0), int(fe >= 1.0)
-            fg, fc, fe = fg - qg, fc - qc, fe - qe
-            i = tree[i] + 4 * qg + 2 * qc + qe
+            mask = 7 if split is None else split[i]
+            q = 0
+            if mask & 4:
+                fg = 2.0 * fg
+                qg = int(fg >= 1.0)
+                fg, q = fg - qg, qg
+            if mask & 2:
+                fc = 2.0 * fc
+                qc = int(fc >= 1.0)
+                fc, q = fc - qc, 2 * q + qc
+            if mask & 1:
+                fe = 2.0 * fe
+                qe = int(fe >= 1.0)
+                fe, q = fe - qe, 2 * q + qe
+            i = tree[i] + q
         return -tree[i] - 1, fg, fc, fe
 
     def interpolate_e(self, gamma, c, e_n):
@@ -363,21 +379,27 @@ class Patch:
         return min(max(total, -1.0), 1.0)
 
 
-def check_tree(tree, roots, fanout=4):
+def check_tree(tree, roots, fanout=4, split=None):
     """Problem with a quadtree (fanout 4) or octree (8) array (docs/table-format.md, 'The
-    tree'), or None; and the leaf count."""
+    tree'), or None; and the leaf count. With `split` (one mask per cell), a split cell i has
+    2^popcount(split[i]) children."""
     n = len(tree)
-    if n < roots or (n - roots) % fanout:
-        return f"has {n} cells: expected {roots} roots plus groups of {fanout} children", 0
+    if n < roots:
+        return f"has {n} cells: expected at least {roots} roots", 0
+    fan = [fanout if split is None else 1 << bin(split[i]).count("1") for i in range(n)]
+    children = sum(fan[i] for i in range(n) if tree[i] >= 0)
+    if n - roots != children:
+        return (f"has {n} cells: expected {roots} roots plus {children} children of its split "
+                "cells"), 0
     referenced = [False] * n
     leaves = []
     for i, t in enumerate(tree):
         if t < 0:
             leaves.append(-t - 1)
             continue
-        if t <= i or t < roots or t + fanout > n:
+        if t <= i or t < roots or t + fan[i] > n:
             return f"cell {i} points to children at {t}: out of range", 0
-        for q in range(t, t + fanout):
+        for q in range(t, t + fan[i]):
             if referenced[q]:
                 return f"cell {i}: children at {t} shared with another cell", 0
             referenced[q] = True
@@ -554,7 +576,20 @@ class Table:
             raise self._invalid(
                 f"{where}: dataset 'tree' is {d.dtype}{list(d.shape)}, expected 1-D integer")
         tree = [int(t) for t in d[()]]
-        problem, leaves = check_tree(tree, bg * bc * (be or 1), 1 << dims)
+        split = None
+        if "split" in g:
+            d = g["split"]
+            if d.ndim != 1 or d.dtype.kind not in "iu" or len(d) != len(tree) or dims != 3:
+                raise self._invalid(
+                    f"{where}: dataset 'split' is {d.dtype}{list(d.shape)}, expected 1-D integer "
+                    f"[{len(tree)}] (one mask per cell, only with an e_n axis)")
+            split = [int(s) for s in d[()]]
+            for i, (t, s) in enumerate(zip(tree, split)):
+                if (t >= 0) != (s != 0) or not 0 <= s < 8:
+                    raise self._invalid(
+                        f"{where}: dataset 'split'[{i}] = {s}: must be 1 to 7 for a split cell, "
+                        "0 for a leaf")
+        problem, leaves = check_tree(tree, bg * bc * (be or 1), 1 << dims, split)
         if problem:
             raise self._invalid(f"{where}: dataset 'tree' {problem}")
         if "P" not in g:
@@ -579,7 +614,7 @@ class Table:
                 per_leaf = pred + factor * est.reshape(leaves, -1).max(axis=1, initial=0.0)
                 bound = float(per_leaf.max(initial=0.0))
         self.bounds[name] = bound
-        return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp, be, self.e_n_range)
+        return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp, be, self.e_n_range, split)
 
     def _warp(self, g, name, gamma_lo, gamma_hi, bg, bc, tree, num):
         """The optional warp group of a patch, validated as docs/table-format.md states."""

@@ -1695,3 +1695,75 @@ fn load_file_reads_exports_and_refuses_other_paths_with_their_code() {
         "OBLQ_NO_STDIO left oblq_load_file in"
     );
 }
+
+/// The split masks of an export with an `e_n` axis (offset 144 of a patch record: which axes
+/// each split cell halves): `oblq_open` refuses a mask of 0 on a split cell, a mask on a leaf,
+/// a mask above 7, masks that do not account for the cells after the roots, and an offset past
+/// the end; an elastic export with the field set is refused too.
+#[test]
+fn damaged_split_masks_are_refused() {
+    let (_, path) = dissipative();
+    let good = std::fs::read(path).expect("export");
+    let open = |name: &str, bytes: &[u8]| -> String {
+        let p = dir().join(format!("split_{name}"));
+        std::fs::write(&p, bytes).expect("write");
+        run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
+    };
+    let sealed = |mut b: Vec<u8>| {
+        let sum = oblique_table::format::fnv1a64(&b[32..]);
+        b[24..32].copy_from_slice(&sum.to_le_bytes());
+        b
+    };
+    let u32_at = |b: &[u8], at: usize| u32::from_le_bytes(b[at..at + 4].try_into().expect("4"));
+    let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().expect("8"));
+    assert!(open("good", &good).starts_with("0 ok"));
+    let dir_at = u64_at(&good, 72) as usize;
+    let mut cases = 0;
+    for k in 0..3 {
+        let r = dir_at + 160 * k;
+        let (masks, cells) = (
+            u64_at(&good, r + 144) as usize,
+            u32_at(&good, r + 36) as usize,
+        );
+        if masks == 0 {
+            continue;
+        }
+        let tree_at = u64_at(&good, r + 48) as usize;
+        let link =
+            |i: usize| i32::from_le_bytes(good[tree_at + 4 * i..][..4].try_into().expect("4"));
+        let Some(split) = (0..cells).find(|&i| link(i) >= 0) else {
+            continue; // every root a leaf
+        };
+        let leaf = (0..cells).find(|&i| link(i) < 0).expect("a leaf");
+        let with = |at: usize, v: &[u8]| {
+            let mut b = good.clone();
+            b[at..at + v.len()].copy_from_slice(v);
+            sealed(b)
+        };
+        for (name, bytes) in [
+            ("zero_on_split", with(masks + split, &[0])),
+            ("on_leaf", with(masks + leaf, &[1])),
+            ("above_7", with(masks + split, &[8])),
+            (
+                "offset_past_end",
+                with(r + 144, &(good.len() as u64).to_le_bytes()),
+            ),
+        ] {
+            let said = open(name, &bytes);
+            assert!(said.starts_with("6 "), "patch {k} {name}: {said}");
+        }
+        // A cell halving other axes than stored: the child count no longer adds up (or the
+        // children overlap), unless it happens to stay consistent; either way never a crash.
+        let m = good[masks + split];
+        let other = if m == 7 { 2 } else { 7 };
+        let said = open("other_axes", &with(masks + split, &[other]));
+        assert!(said.starts_with("6 "), "patch {k} other axes: {said}");
+        cases += 1;
+    }
+    assert!(cases > 0, "the export has split masks");
+    let elastic = std::fs::read(export_file("quick", false)).expect("export");
+    let r = u64_at(&elastic, 72) as usize + 160;
+    let mut b = elastic.clone();
+    b[r + 144..r + 152].copy_from_slice(&8u64.to_le_bytes());
+    assert!(open("elastic", &sealed(b)).starts_with("6 "));
+}

@@ -548,3 +548,72 @@ fn batches_give_the_single_answers_bit_for_bit() {
         .expect_err("e_n below the range");
     assert!(e.to_string().contains("query 4321"), "{e}");
 }
+
+/// The cells of a table with an `e_n` axis halve only the axes that need it: the built
+/// table's patches carry `split` masks and not all of them are 7 (every axis); a mask changed
+/// on disk (and the file resealed) is refused by the library and by the reference reader,
+/// naming the dataset.
+#[test]
+fn cells_halve_only_the_axes_that_need_it_and_bad_masks_are_refused() {
+    use oblique_table::surface::PatchId;
+    let shipped = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tables/dissipative-demo.h5"
+    ));
+    for path in [table(), shipped] {
+        let t = oblique_lookup::Table::open(path).expect("open");
+        let p = t
+            .surface()
+            .patch_by_id(PatchId::PartialHigh)
+            .expect("partial slip");
+        let split = p.split().expect("a split dataset");
+        let halved: Vec<u8> = split.iter().copied().filter(|&s| s != 0).collect();
+        assert!(!halved.is_empty(), "{}: a tree with splits", path.display());
+        assert!(
+            halved.iter().any(|&s| s != 7),
+            "{}: some cells halve fewer than 3 axes",
+            path.display()
+        );
+    }
+    let bad = common::subdir("dissipative-split").join("split.h5");
+    std::fs::copy(table(), &bad).expect("copy");
+    let out = Command::new("python3")
+        .args([
+            "-c",
+            "import h5py, sys; f = h5py.File(sys.argv[1], 'r+'); \
+             d = f['patches/partial_high/split']; s = d[()]; \
+             i = next(i for i, v in enumerate(s) if v != 0); s[i] = 0; d[...] = s",
+            bad.to_str().expect("path"),
+        ])
+        .output()
+        .expect("python3 with h5py");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    oblique_table::write::seal(&bad).expect("seal again");
+    let e = oblique_lookup::Table::open(&bad)
+        .map(|_| ())
+        .expect_err("a split cell without axes");
+    assert!(e.to_string().contains("'split'"), "{e}");
+    let reader = Command::new("python3")
+        .args([
+            concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/read_table.py"),
+            bad.to_str().expect("path"),
+            "--gamma",
+            "1.4",
+            "--alpha",
+            "0.3",
+            "--e-n",
+            "0.8",
+        ])
+        .output()
+        .expect("the reference reader");
+    assert!(!reader.status.success());
+    assert!(
+        String::from_utf8_lossy(&reader.stderr).contains("'split'"),
+        "{}",
+        String::from_utf8_lossy(&reader.stderr)
+    );
+}

@@ -173,8 +173,14 @@ pub fn export(
             put_u64(&mut v, r + 48, tree_at);
             let p_at = push_f64s(&mut v, p.p().iter().copied());
             put_u64(&mut v, r + 56, p_at);
+            if let Some(split) = p.split() {
+                // The axes each split cell halves (version 2): `u8[cells]`.
+                let at = v.len() as u64;
+                v.extend_from_slice(split);
+                put_u64(&mut v, r + 144, at);
+            }
             if let Some(fine) = p.fine_index(MAX_INDEX_ENTRIES) {
-                put_u32(&mut v, r + 112, fine.depth);
+                put_u32(&mut v, r + 112, fine.depth[0]);
                 align8(&mut v);
                 let at = v.len() as u64;
                 for e in &fine.index {
@@ -185,7 +191,7 @@ pub fn export(
                     &mut v,
                     fine.cells
                         .iter()
-                        .flat_map(|c| [c.scale, c.origin[0], c.origin[1]]),
+                        .flat_map(|c| [c.scale[0], c.origin[0], c.origin[1]]),
                 );
                 put_u64(&mut v, r + 128, cells_at);
             }

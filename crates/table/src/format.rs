@@ -85,6 +85,8 @@ pub const ATTR_LEAF_INTERVALS: &str = "leaf_intervals";
 /// Patch dataset (int32 `[cells]`): the quadtree; `≥ 0` first child of a split cell, `< 0` leaf
 /// number `−value − 1`.
 pub const DS_TREE: &str = "tree";
+/// Per-cell masks of the axes a split cell halves (schema 4, optional; `uint8`).
+pub const DS_SPLIT: &str = "split";
 /// Patch dataset (int32 `[leaves]`): depth of every leaf (roots are depth 0).
 pub const DS_LEAF_DEPTH: &str = "leaf_depth";
 /// Node dataset (`[leaves, m+1, m+1]`): γ of every node.

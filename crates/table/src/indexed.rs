@@ -4,19 +4,22 @@
 //! `oblique-lookup` (single queries, batches) hold one per patch; the arithmetic of the leaf is
 //! [`crate::leaf`]'s, the rule's own.
 
-use crate::leaf::{cubic_tensor, descend, floor_f64, floor_index, floor_index32};
+use crate::leaf::{cubic_tensor, descend, descend_masked, floor_f64, floor_index, floor_index32};
 use crate::surface::{bound_p, Patch, PatchKind, Warp};
 
-/// One cell of a patch's tree with its position, for the fine index: `2^depth`, the integer
-/// origin per axis in units of the cell's size, and `tree[cell]`.
+/// One cell of a patch's tree with its position, for the fine index: `2^depth` and the
+/// integer origin per axis in units of the cell's size along it, `tree[cell]`, and the axes it
+/// halves if split.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct IndexedCell<const D: usize> {
-    /// `2^depth`.
-    pub scale: f64,
+    /// `2^depth` per axis.
+    pub scale: [f64; D],
     /// Integer origin per axis (`floor(v·2^depth)` for the points it covers).
     pub origin: [f64; D],
     /// `tree[cell]`: `≥ 0` the first child, `< 0` leaf number `−link − 1`.
     pub link: i32,
+    /// The axes a split cell halves ([`Patch::split_mask`]; `2^D − 1` for every axis).
+    pub mask: u8,
 }
 
 /// A patch of `D` axes (`γ`, `c`, then `e_n` for a table with that axis) with its fine index
@@ -29,8 +32,8 @@ pub struct IndexedPatch<const D: usize> {
     width: [f64; D],
     /// Root cells per axis, as floats.
     blocks: [f64; D],
-    /// `2^depth` of the index.
-    fine: f64,
+    /// `2^depth` of the index per axis.
+    fine: [f64; D],
     /// Index entries per axis.
     shape: [usize; D],
     /// Cell numbers, row-major (γ outer). Invariant (built by [`IndexedPatch::new`]): every
@@ -72,9 +75,10 @@ impl<const D: usize> IndexedPatch<D> {
             .iter()
             .zip(patch.tree())
             .map(|(c, &link)| IndexedCell {
-                scale: c.scale,
+                scale: std::array::from_fn(|k| c.scale[k]),
                 origin: std::array::from_fn(|k| c.origin[k]),
                 link,
+                mask: c.mask,
             })
             .collect();
         let m = patch.leaf_intervals();
@@ -83,7 +87,7 @@ impl<const D: usize> IndexedPatch<D> {
             lo: std::array::from_fn(|k| patch.axis(k).0),
             width: std::array::from_fn(|k| patch.axis(k).1),
             blocks: std::array::from_fn(|k| patch.axis(k).2 as f64),
-            fine: f64::from(1u32 << fine.depth),
+            fine: std::array::from_fn(|k| f64::from(1u32 << fine.depth[k])),
             shape: std::array::from_fn(|k| fine.shape[k]),
             index: fine.index,
             cells,
@@ -184,8 +188,8 @@ impl<const D: usize> IndexedPatch<D> {
     #[inline(always)]
     pub fn entry(&self, v: [f64; D]) -> usize {
         let mut e = 0;
-        for (&vk, &s) in v.iter().zip(&self.shape) {
-            e = e * s + floor_index(vk * self.fine, s - 1);
+        for ((&vk, &s), &fk) in v.iter().zip(&self.shape).zip(&self.fine) {
+            e = e * s + floor_index(vk * fk, s - 1);
         }
         e
     }
@@ -195,8 +199,8 @@ impl<const D: usize> IndexedPatch<D> {
     #[inline(always)]
     pub fn entry_u32(&self, v: [f64; D]) -> u32 {
         let mut e = 0;
-        for (&vk, &s) in v.iter().zip(&self.shape) {
-            e = e * s as u32 + floor_index32(vk * self.fine, s as u32 - 1);
+        for ((&vk, &s), &fk) in v.iter().zip(&self.shape).zip(&self.fine) {
+            e = e * s as u32 + floor_index32(vk * fk, s as u32 - 1);
         }
         e
     }
@@ -206,8 +210,8 @@ impl<const D: usize> IndexedPatch<D> {
     #[inline(always)]
     pub fn entry_f64(&self, v: [f64; D]) -> f64 {
         let mut e = 0.0;
-        for (&vk, &s) in v.iter().zip(&self.shape) {
-            e = e * s as f64 + floor_f64(vk * self.fine, (s - 1) as f64);
+        for ((&vk, &s), &fk) in v.iter().zip(&self.shape).zip(&self.fine) {
+            e = e * s as f64 + floor_f64(vk * fk, (s - 1) as f64);
         }
         e
     }
@@ -219,11 +223,16 @@ impl<const D: usize> IndexedPatch<D> {
     pub fn leaf_from(&self, entry: usize, v: [f64; D]) -> (usize, [f64; D]) {
         let mut cell = self.cells[self.index[entry] as usize];
         let mut f = [0.0; D];
-        for ((fk, &vk), &ok) in f.iter_mut().zip(&v).zip(&cell.origin) {
-            *fk = vk * cell.scale - ok;
+        for (((fk, &vk), &ok), &sk) in f.iter_mut().zip(&v).zip(&cell.origin).zip(&cell.scale) {
+            *fk = vk * sk - ok;
         }
         while cell.link >= 0 {
-            cell = self.cells[cell.link as usize + descend(&mut f)];
+            let child = if u32::from(cell.mask) == (1 << D) - 1 {
+                descend(&mut f)
+            } else {
+                descend_masked(&mut f, cell.mask)
+            };
+            cell = self.cells[cell.link as usize + child];
         }
         ((-(cell.link as i64) - 1) as usize, f)
     }

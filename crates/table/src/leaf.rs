@@ -69,6 +69,24 @@ pub fn descend<const D: usize>(f: &mut [f64; D]) -> usize {
     child
 }
 
+/// [`descend`] along the axes of `mask` only (bit `D − 1 − k` for axis `k`; a tree whose
+/// cells halve different axes, [`crate::surface::check_split`]): the other positions are
+/// unchanged, and the child's offset is `Σ q_k·2^j` over the halved axes, numbered row-major
+/// in axis order. With every bit set it is [`descend`].
+#[inline(always)]
+pub fn descend_masked<const D: usize>(f: &mut [f64; D], mask: u8) -> usize {
+    let mut child = 0;
+    for (k, x) in f.iter_mut().enumerate() {
+        if mask >> (D - 1 - k) & 1 == 1 {
+            *x *= 2.0;
+            let q = usize::from(*x >= 1.0);
+            *x -= q as f64;
+            child = 2 * child + q;
+        }
+    }
+    child
+}
+
 /// Start index and weights of the `k`-point Lagrange stencil at grid position `u` (in units of
 /// the node spacing, node `i` at `u = i`) on `n` nodes. Weights are written to `w[..k']` where
 /// `k' = min(k, n)` is returned with the start.

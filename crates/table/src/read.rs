@@ -253,8 +253,19 @@ impl Reader<'_> {
             Some(r) => (bg * bc * r.blocks(), 8),
             None => (bg * bc, 4),
         };
-        let leaves = crate::surface::check_tree_of(&tree, roots, fanout)
-            .map_err(|m| self.invalid(format!("patch '{name}': dataset 'tree' {m}")))?;
+        let split: Option<Vec<u8>> = if g.link_exists(DS_SPLIT) {
+            let split = self.vector(&g, &format!("patch '{name}'"), DS_SPLIT, "uint8")?;
+            crate::surface::check_split(&tree, &split, if restitution.is_some() { 3 } else { 2 })
+                .map_err(|m| self.invalid(format!("patch '{name}': dataset 'split' {m}")))?;
+            Some(split)
+        } else {
+            None
+        };
+        let leaves = match &split {
+            Some(s) => crate::surface::check_tree_split(&tree, roots, &|i| 1 << s[i].count_ones()),
+            None => crate::surface::check_tree_of(&tree, roots, fanout),
+        }
+        .map_err(|m| self.invalid(format!("patch '{name}': dataset 'tree' {m}")))?;
         let mut shape = vec![leaves, m + 1, m + 1];
         if restitution.is_some() {
             shape.push(m + 1);
@@ -269,7 +280,7 @@ impl Reader<'_> {
         let warp = self.warp(&g, name, version)?;
         // The checks above name the datasets as the file has them; what remains (the warp's
         // rules against the patch) is the model's own check.
-        let patch = Patch::with_restitution(
+        let patch = Patch::with_split(
             kind,
             gamma_lo,
             gamma_hi,
@@ -281,6 +292,7 @@ impl Reader<'_> {
             err,
             warp,
             restitution,
+            split,
         )
         .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
         Ok(Some(patch))

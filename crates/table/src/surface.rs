@@ -16,7 +16,7 @@
 //! consecutive nodes of that leaf per axis (`k = stencil_points`). The partial-slip patch may
 //! carry a [`Warp`] of its coordinate (schema 3), applied before the leaf is located.
 
-use crate::leaf::{cubic_tensor, descend, lagrange_tensor, MAX_AXES};
+use crate::leaf::{cubic_tensor, descend, descend_masked, lagrange_tensor, MAX_AXES};
 use crate::TableError;
 
 pub use crate::leaf::{cubic_weights, floor_index, locate, stencil, stencil4};
@@ -176,29 +176,33 @@ pub fn stick_scale(gamma: f64) -> f64 {
 /// (`tables/full.h5`: `partial_high` indexed at depth 5 of 9, the others at full depth).
 pub const MAX_INDEX_ENTRIES: usize = 1 << 15;
 
-/// Depth `d` and integer origin of a cell of a patch's tree: `scale = 2^d`, and the cell covers
-/// `[o_k, o_k + 1)` along each axis `k` (`γ`, `c`, `e_n`) in units of its own size (root cells
-/// have `scale = 1` and the origin `(a, b, …)` of step 6 of the rule; 0 beyond the patch's
-/// axes).
+/// Depth `d_k` along each axis `k` (`γ`, `c`, `e_n`) and integer origin of a cell of a
+/// patch's tree: `scale_k = 2^d_k`, and the cell covers `[o_k, o_k + 1)` along axis `k` in units
+/// of its own size along it (root cells have `scale = 1` and the origin `(a, b, …)` of step 6
+/// of the rule; 0 beyond the patch's axes). Without a `split` dataset every `d_k` is the cell's
+/// depth.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CellOrigin {
-    /// `2^depth`.
-    pub scale: f64,
-    /// Origin per axis, `floor(v_k·2^depth)` for the points it covers.
+    /// `2^d_k` per axis.
+    pub scale: [f64; MAX_AXES],
+    /// Origin per axis, `floor(v_k·2^d_k)` for the points it covers.
     pub origin: [f64; MAX_AXES],
+    /// The axes the cell halves if it is split ([`Patch::split_mask`]); 0 for a leaf.
+    pub mask: u8,
 }
 
-/// A uniform grid at depth `depth` over a patch (`blocks_k·2^depth` entries along each axis
-/// `k` of the patch), each entry the deepest cell of depth `≤ depth` that contains it, and
-/// every cell's depth and origin. A query at `v = x·blocks` (step 6 of the rule) reads the
-/// entry of `floor(v·2^depth)`; inside a cell the position is `v·scale − origin`, which equals
-/// the rule's repeated `f ← 2f − q` bit for bit (scaling by a power of two and subtracting an
-/// integer below the value are exact), and the rule's descent continues from there when the
-/// cell is split.
+/// A uniform grid at depth `depth_k` along each axis `k` of a patch (`blocks_k·2^depth_k`
+/// entries), each entry the deepest cell that contains it among those of depth `≤ depth_k`
+/// along every axis, and every cell's depths and origin. A query at `v = x·blocks` (step 6 of
+/// the rule) reads the entry of `floor(v_k·2^depth_k)`; inside a cell the position is
+/// `v_k·scale_k − origin_k`, which equals the rule's repeated `f ← 2f − q` bit for bit
+/// (scaling by a power of two and subtracting an integer below the value are exact), and the
+/// rule's descent continues from there when the cell is split. Without a `split` dataset
+/// every `depth_k` is the same.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FineIndex {
-    /// Depth of the grid.
-    pub depth: u32,
+    /// Depth of the grid per axis (0 beyond the patch's axes).
+    pub depth: [u32; MAX_AXES],
     /// Entries per axis (`γ`, `c`, `e_n`; 1 beyond the patch's axes).
     pub shape: [usize; MAX_AXES],
     /// The cell numbers, row-major (γ outer), each `< cells.len()`.
@@ -243,6 +247,11 @@ pub struct Patch {
     /// The third axis, normal restitution `e_n` (schema 4), if the table has one: the tree is
     /// then an octree over `(x, c, x_e)` (see [`RestitutionAxis`]).
     restitution: Option<RestitutionAxis>,
+    /// Which axes each split cell halves (schema 4, optional; see [`check_split`]): bit
+    /// `dims − 1 − k` for axis `k` (`γ`, `c`, `e_n`), non-zero exactly for the split cells.
+    /// The children of cell `i` are the `2^popcount` cells from `tree[i]`, numbered row-major
+    /// over the halved axes in axis order. `None`: every split halves every axis.
+    split: Option<Vec<u8>>,
 }
 
 /// The normal-restitution axis of a patch (schema 4): `e_n` from `lo` to `hi`, cut into
@@ -603,6 +612,83 @@ pub fn check_tree_of(tree: &[i32], roots: usize, fanout: usize) -> Result<usize,
     Ok(leaves.len())
 }
 
+/// [`check_tree_of`] with the number of children of each split cell given by `fanout(cell)`
+/// (a tree whose cells halve different sets of axes, [`check_split`]).
+pub fn check_tree_split(
+    tree: &[i32],
+    roots: usize,
+    fanout: &dyn Fn(usize) -> usize,
+) -> Result<usize, String> {
+    if tree.len() < roots {
+        return Err(format!(
+            "has {} cells: expected at least {roots} roots",
+            tree.len()
+        ));
+    }
+    let children: usize = (0..tree.len()).filter(|&i| tree[i] >= 0).map(fanout).sum();
+    if tree.len() - roots != children {
+        return Err(format!(
+            "has {} cells: expected {roots} roots plus the {children} children of its split \
+             cells",
+            tree.len()
+        ));
+    }
+    let mut referenced = vec![false; tree.len()];
+    let mut leaves = Vec::new();
+    for (i, &t) in tree.iter().enumerate() {
+        if t < 0 {
+            leaves.push((-(t as i64) - 1) as usize);
+            continue;
+        }
+        let (first, fanout) = (t as usize, fanout(i));
+        // Children come after their parent (no cycles) and after the roots.
+        if first <= i || first < roots || first + fanout > tree.len() {
+            return Err(format!("cell {i} points to children at {t}: out of range"));
+        }
+        for r in &mut referenced[first..first + fanout] {
+            if *r {
+                return Err(format!(
+                    "cell {i}: children at {t} shared with another cell"
+                ));
+            }
+            *r = true;
+        }
+    }
+    if let Some(i) = (roots..tree.len()).find(|&i| !referenced[i]) {
+        return Err(format!("cell {i} is not reachable from a root"));
+    }
+    leaves.sort_unstable();
+    if leaves.iter().enumerate().any(|(k, &l)| k != l) {
+        return Err("does not number its leaves 0, 1, 2, ... exactly once".into());
+    }
+    Ok(leaves.len())
+}
+
+/// Check a `split` dataset against its tree: one mask per cell, 1 to `2^dims − 1` for a split
+/// cell (bit `dims − 1 − k` for each axis `k` it halves), 0 for a leaf; only in a patch with
+/// an `e_n` axis (`dims = 3`).
+pub fn check_split(tree: &[i32], split: &[u8], dims: u32) -> Result<(), String> {
+    if dims != 3 {
+        return Err("is allowed only in a patch with an e_n axis".into());
+    }
+    if split.len() != tree.len() {
+        return Err(format!(
+            "has {} masks: expected one per cell of 'tree' ({})",
+            split.len(),
+            tree.len()
+        ));
+    }
+    for (i, (&t, &s)) in tree.iter().zip(split).enumerate() {
+        if (t >= 0) != (s != 0) || u32::from(s) >= 1 << dims {
+            return Err(format!(
+                "[{i}] = {s}: must be 1 to {} for a split cell, 0 for a leaf",
+                (1 << dims) - 1
+            ));
+        }
+    }
+    Ok(())
+}
+
 impl Patch {
     /// A patch of an elastic table from its stored values: [`Patch::with_restitution`]
     /// without an `e_n` axis.
@@ -653,6 +739,39 @@ impl Patch {
         warp: Option<Warp>,
         restitution: Option<RestitutionAxis>,
     ) -> Result<Patch, String> {
+        Patch::with_split(
+            kind,
+            gamma_lo,
+            gamma_hi,
+            blocks_gamma,
+            blocks_coord,
+            leaf_intervals,
+            tree,
+            p,
+            error_estimate,
+            warp,
+            restitution,
+            None,
+        )
+    }
+
+    /// [`Patch::with_restitution`] with the axes each split cell halves (`split`, checked by
+    /// [`check_split`]; only with an `e_n` axis), or `None` when every split halves every axis.
+    #[allow(clippy::too_many_arguments)]
+    pub fn with_split(
+        kind: PatchKind,
+        gamma_lo: f64,
+        gamma_hi: f64,
+        blocks_gamma: usize,
+        blocks_coord: usize,
+        leaf_intervals: usize,
+        tree: Vec<i32>,
+        p: Vec<f64>,
+        error_estimate: Vec<f64>,
+        warp: Option<Warp>,
+        restitution: Option<RestitutionAxis>,
+        split: Option<Vec<u8>>,
+    ) -> Result<Patch, String> {
         if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi > gamma_lo)
         {
             return Err(format!(
@@ -670,8 +789,14 @@ impl Patch {
         }
         let dims = if restitution.is_some() { 3 } else { 2 };
         let roots = blocks_gamma * blocks_coord * restitution.map_or(1, |r| r.blocks);
-        let leaves =
-            check_tree_of(&tree, roots, 1 << dims).map_err(|m| format!("dataset 'tree' {m}"))?;
+        let leaves = match &split {
+            None => check_tree_of(&tree, roots, 1 << dims),
+            Some(split) => {
+                check_split(&tree, split, dims).map_err(|m| format!("dataset 'split' {m}"))?;
+                check_tree_split(&tree, roots, &|i| 1 << split[i].count_ones())
+            }
+        }
+        .map_err(|m| format!("dataset 'tree' {m}"))?;
         let size = leaves * (leaf_intervals + 1).pow(dims);
         for (name, v) in [("P", &p), ("error_estimate", &error_estimate)] {
             if v.len() != size {
@@ -702,6 +827,7 @@ impl Patch {
             error_estimate,
             warp,
             restitution,
+            split,
         };
         patch.check_warp()?;
         Ok(patch)
@@ -715,7 +841,7 @@ impl Patch {
         error_estimate: Vec<f64>,
         warp: Option<Warp>,
     ) -> Result<Patch, String> {
-        Patch::with_restitution(
+        Patch::with_split(
             self.kind,
             self.gamma_lo,
             self.gamma_hi,
@@ -727,6 +853,7 @@ impl Patch {
             error_estimate,
             warp,
             self.restitution,
+            self.split.clone(),
         )
     }
 
@@ -782,9 +909,30 @@ impl Patch {
         }
     }
 
-    /// Children of a split cell: `2^dims`.
+    /// Children of a split cell that halves every axis: `2^dims`.
     pub fn fanout(&self) -> usize {
         1 << self.dims()
+    }
+
+    /// The axes split cell `cell` halves: bit `dims − 1 − k` for axis `k` (every axis,
+    /// `2^dims − 1`, without a `split` dataset).
+    #[inline(always)]
+    pub fn split_mask(&self, cell: usize) -> u8 {
+        match &self.split {
+            None => ((1u32 << self.dims()) - 1) as u8,
+            Some(s) => s[cell],
+        }
+    }
+
+    /// The masks of a tree whose cells halve different axes ([`check_split`]), if it is one.
+    pub fn split(&self) -> Option<&[u8]> {
+        self.split.as_deref()
+    }
+
+    /// Children of split cell `cell`: `2^k` for the `k` axes it halves.
+    #[inline]
+    pub fn fanout_of(&self, cell: usize) -> usize {
+        1 << self.split_mask(cell).count_ones()
     }
 
     /// Root cells along `e_n` (1 without an `e_n` axis).
@@ -879,12 +1027,12 @@ impl Patch {
     pub(crate) fn fine_index_any(&self, max_entries: usize) -> Option<FineIndex> {
         let dims = self.dims() as usize;
         let blocks = self.blocks_of::<MAX_AXES>();
-        let (roots, fanout, n) = (self.roots(), self.fanout(), self.tree.len());
+        let (roots, n) = (self.roots(), self.tree.len());
         if self.leaf_intervals < 3 || roots == 0 || n < roots || n > u32::MAX as usize {
             return None;
         }
-        // Depth and integer origin of every cell (children come after their parents).
-        let mut depth = vec![0u32; n];
+        // Depths and integer origin of every cell (children come after their parents).
+        let mut depth = vec![[0u32; MAX_AXES]; n];
         let mut origin = vec![[0usize; MAX_AXES]; n];
         for (r, o) in origin.iter_mut().take(roots).enumerate() {
             let mut rest = r;
@@ -893,58 +1041,83 @@ impl Patch {
             }
         }
         let mut cells = Vec::with_capacity(n);
-        let mut max_depth = 0;
+        let mut max_depth = [0u32; MAX_AXES];
         for i in 0..n {
-            cells.push(CellOrigin {
-                scale: f64::from(1u32 << depth[i].min(31)),
-                origin: origin[i].map(|a| a as f64),
-            });
-            max_depth = max_depth.max(depth[i]);
             let t = self.tree[i];
+            let mask = if t >= 0 { self.split_mask(i) } else { 0 };
+            cells.push(CellOrigin {
+                scale: depth[i].map(|d| f64::from(1u32 << d.min(31))),
+                origin: origin[i].map(|a| a as f64),
+                mask,
+            });
+            for k in 0..dims {
+                max_depth[k] = max_depth[k].max(depth[i][k]);
+            }
             if t >= 0 {
-                let first = t as usize;
-                if first <= i || first + fanout > n || depth[i] >= 30 {
+                let (first, fanout) = (t as usize, self.fanout_of(i));
+                if first <= i || first + fanout > n || depth[i].iter().any(|&d| d >= 30) {
                     return None;
                 }
+                let halved: Vec<usize> = (0..dims)
+                    .filter(|&k| mask >> (dims - 1 - k) & 1 == 1)
+                    .collect();
                 for q in 0..fanout {
-                    // Child `Σ q_k·2^(dims − 1 − k)`: `2·q_γ + q_c`, `4·q_γ + 2·q_c + q_e`.
-                    let mut o = origin[i];
-                    for (k, ok) in o.iter_mut().enumerate().take(dims) {
-                        *ok = 2 * *ok + ((q >> (dims - 1 - k)) & 1);
+                    // Child `q`, row-major over the halved axes: `2·q_γ + q_c`,
+                    // `4·q_γ + 2·q_c + q_e` when every axis is halved.
+                    let (mut o, mut d) = (origin[i], depth[i]);
+                    for (j, &k) in halved.iter().enumerate() {
+                        o[k] = 2 * o[k] + ((q >> (halved.len() - 1 - j)) & 1);
+                        d[k] += 1;
                     }
-                    depth[first + q] = depth[i] + 1;
+                    depth[first + q] = d;
                     origin[first + q] = o;
                 }
             }
         }
-        // The deepest index within the budget.
+        // The deepest index within the budget: every axis together without a `split`
+        // dataset; with one, the deepest axis first.
         let mut d = max_depth;
-        while d > 0 && ((roots as u128) << (dims as u32 * d)) > max_entries as u128 {
-            d -= 1;
+        let entries = |d: &[u32; MAX_AXES]| (0..dims).fold(roots as u128, |e, k| e << d[k]);
+        while entries(&d) > max_entries as u128 && d.iter().any(|&x| x > 0) {
+            if self.split.is_none() {
+                for x in d.iter_mut().take(dims) {
+                    *x -= 1;
+                }
+            } else {
+                let k = (0..dims).max_by_key(|&k| (d[k], dims - k)).unwrap_or(0);
+                d[k] -= 1;
+            }
         }
         let shape: [usize; MAX_AXES] =
-            std::array::from_fn(|k| if k < dims { blocks[k] << d } else { 1 });
+            std::array::from_fn(|k| if k < dims { blocks[k] << d[k] } else { 1 });
         let mut index = vec![u32::MAX; shape.iter().product()];
         let last = dims - 1;
         for i in 0..n {
-            // Cells at depth ≤ d cover their part of the index (a box of k entries per axis);
-            // deeper cells are reached by the descent. Parents come first, so a later (deeper)
-            // cell overwrites its ancestor's entries.
-            if depth[i] > d {
+            // Cells no deeper than the index along every axis cover their part of it (a box of
+            // k_a entries along axis a); deeper cells are reached by the descent. Parents come
+            // first, so a later (deeper) cell overwrites its ancestor's entries.
+            if (0..dims).any(|k| depth[i][k] > d[k]) {
                 continue;
             }
-            let k = 1usize << (d - depth[i]);
-            for t in 0..k.pow(last as u32) {
+            let k: [usize; MAX_AXES] = std::array::from_fn(|a| {
+                if a < dims {
+                    1usize << (d[a] - depth[i][a])
+                } else {
+                    1
+                }
+            });
+            let inner: usize = k[..last].iter().product();
+            for t in 0..inner {
                 let (mut at, mut rest) = (0, t);
                 let mut along = [0usize; MAX_AXES];
                 for a in (0..last).rev() {
-                    (along[a], rest) = (origin[i][a] * k + rest % k, rest / k);
+                    (along[a], rest) = (origin[i][a] * k[a] + rest % k[a], rest / k[a]);
                 }
                 for a in 0..last {
                     at = at * shape[a] + along[a];
                 }
-                at = at * shape[last] + origin[i][last] * k;
-                index[at..at + k].fill(i as u32);
+                at = at * shape[last] + origin[i][last] * k[last];
+                index[at..at + k[last]].fill(i as u32);
             }
         }
         if index.iter().any(|&e| e as usize >= n) {
@@ -962,13 +1135,12 @@ impl Patch {
     pub fn leaf_depths(&self) -> Vec<u32> {
         let mut depth = vec![0u32; self.leaves()];
         let mut stack: Vec<(usize, u32)> = (0..self.roots()).map(|i| (i, 0)).collect();
-        let fanout = self.fanout();
         while let Some((cell, d)) = stack.pop() {
             let t = self.tree[cell];
             if t < 0 {
                 depth[(-(t as i64) - 1) as usize] = d;
             } else {
-                stack.extend((0..fanout).map(|q| (t as usize + q, d + 1)));
+                stack.extend((0..self.fanout_of(cell)).map(|q| (t as usize + q, d + 1)));
             }
         }
         depth
@@ -1029,13 +1201,18 @@ impl Patch {
             if t < 0 {
                 return ((-(t as i64) - 1) as usize, f);
             }
-            cell = t as usize + descend(&mut f);
+            cell = t as usize
+                + match &self.split {
+                    None => descend(&mut f),
+                    Some(s) => descend_masked(&mut f, s[cell]),
+                };
         }
     }
 
-    /// Depth of the deepest leaf crossed by the line `γ = gamma` (at `e_n` for a patch with an
-    /// `e_n` axis, ignored without), following the rule's descent along every axis but `c`
-    /// (which does not depend on `c`) and both halves along `c`.
+    /// Depth along `c` (the number of halvings of `c`) of the deepest leaf crossed by the line
+    /// `γ = gamma` (at `e_n` for a patch with an `e_n` axis, ignored without), following the
+    /// rule's descent along every axis but `c` (which does not depend on `c`) and both halves
+    /// along `c`.
     pub fn line_depth(&self, gamma: f64, e_n: f64) -> u32 {
         let xg = self.x_gamma(gamma);
         match &self.restitution {
@@ -1060,8 +1237,6 @@ impl Patch {
                 .fold(0, |cell, (&a, &bk)| cell * bk + a);
             stack.push((cell, f, 0));
         }
-        // The child's upper half along `c`: `q_c = 1` adds `2^(D − 2)`.
-        let upper_c = 1 << (D - 2);
         let mut deepest = 0;
         while let Some((cell, f, d)) = stack.pop() {
             let t = self.tree[cell];
@@ -1069,11 +1244,20 @@ impl Patch {
                 deepest = deepest.max(d);
                 continue;
             }
-            // f[1] = 0 stays 0: the lower half along c; the upper one next to it.
+            // f[1] = 0 stays 0: the lower half along c; the upper one next to it, which is
+            // `2^(number of halved axes after c)` further on. A cell that does not halve `c`
+            // has one child on the line and adds no depth along `c`.
             let mut f = f;
-            let child = t as usize + descend(&mut f);
-            stack.push((child, f, d + 1));
-            stack.push((child + upper_c, f, d + 1));
+            let mask = self.split_mask(cell);
+            let c_bit = 1u8 << (D - 2);
+            let child = t as usize + descend_masked(&mut f, mask);
+            if mask & c_bit == 0 {
+                stack.push((child, f, d));
+            } else {
+                let upper_c = 1usize << (mask & (c_bit - 1)).count_ones();
+                stack.push((child, f, d + 1));
+                stack.push((child + upper_c, f, d + 1));
+            }
         }
         deepest
     }
@@ -2027,6 +2211,7 @@ mod tests {
                 knot: vec![0.6; 61],
             }),
             restitution: None,
+            split: None,
         };
         // γ(start) = 2.90625: unwarped below, warped from it on.
         let w = patch.warp.as_ref().expect("warp");

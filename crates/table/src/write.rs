@@ -287,6 +287,9 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         }
         let leaves = [bp.leaf_error.len()];
         w.ints(&g, DS_TREE, p.tree(), &[p.tree().len()])?;
+        if let Some(split) = p.split() {
+            w.ints(&g, DS_SPLIT, split, &[split.len()])?;
+        }
         let depth: Vec<i32> = bp.leaf_depth.iter().map(|&d| d as i32).collect();
         w.ints(&g, DS_LEAF_DEPTH, &depth, &leaves)?;
         w.ds(&g, DS_LEAF_ERROR, &bp.leaf_error, &leaves)?;
