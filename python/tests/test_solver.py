@@ -308,6 +308,10 @@ def test_impact_over_an_array_stops_at_ctrl_c():
 
     g = np.full(20_000, 3.3)
     a = np.linspace(1.0, 3.0, 20_000)
+    # Python's own Ctrl-C handler, even where the test runner was started with SIGINT ignored
+    # (a background job of a shell without job control inherits SIG_IGN, and Python then
+    # installs no handler: the signal would be dropped and the whole array computed).
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
     start = time.monotonic()
     timer.start()
@@ -316,4 +320,5 @@ def test_impact_over_an_array_stops_at_ctrl_c():
             oblique.impact(g, a, 1e-8)
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     assert time.monotonic() - start < 15.0
