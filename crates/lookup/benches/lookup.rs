@@ -14,9 +14,10 @@
 //!   (sphere–wall, sphere–sphere) from materials and μ.
 //!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Prepared` (pair and
 //!   materials checked once, as a DEM code does per material pair); `rebound/spheres_3d_curve`:
-//!   the same with `P` from the pair's `Table::curve`; `rebound/spheres_3d_prepared_e_n`: the
-//!   prepared pair at e_n = 0.8 from the table with an e_n axis; `…_curve_e_n`: the same through
-//!   its curve at (γ, 0.8).
+//!   the same with `P` from the pair's `Table::curve`; `rebound/spheres_3d_e_n`: the
+//!   sphere–sphere case at e_n = 0.8 from the table with an e_n axis;
+//!   `rebound/spheres_3d_prepared_e_n`: that pair prepared; `…_curve_e_n`: the same through its
+//!   curve at (γ, 0.8).
 //! - `batch/serial`, `batch/rayon`: 2²⁰ mixed points through `p_batch` / `p_batch_par` (on all
 //!   cores of the rayon pool); throughput in queries/s.
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
@@ -222,8 +223,12 @@ fn main() {
     timed(&mut g, "spheres_3d_curve", clock, || {
         table.rebound_3d_curve(black_box(&prepared), black_box(&curve), black_box(&inc3))
     });
-    // The same prepared pair at e_n = 0.8, from the table with an e_n axis.
+    // The same pair at e_n = 0.8, from the table with an e_n axis: unprepared, prepared and
+    // through its curve.
     let contact_e = contact.with_restitution(0.8);
+    timed(&mut g, "spheres_3d_e_n", clock, || {
+        table_e.rebound_3d(black_box(&spheres), black_box(&contact_e), black_box(&inc3))
+    });
     let prepared_e = Prepared::new(&spheres, &contact_e).unwrap_or_else(|e| panic!("{e}"));
     timed(&mut g, "spheres_3d_prepared_e_n", clock, || {
         table_e.rebound_3d_prepared(black_box(&prepared_e), black_box(&inc3))
