@@ -19,6 +19,7 @@ fn shipped_configs_write_outside_the_tracked_tables() {
         "quick",
         "dissipative-demo",
         "dissipative",
+        "dissipative-pair",
     ] {
         let path = root.join("configs").join(format!("{name}.toml"));
         let (cfg, _) = Config::load(&path).expect("shipped config parses");
