@@ -581,35 +581,7 @@ pub fn check_tree_of(tree: &[i32], roots: usize, fanout: usize) -> Result<usize,
             tree.len()
         ));
     }
-    let mut referenced = vec![false; tree.len()];
-    let mut leaves = Vec::new();
-    for (i, &t) in tree.iter().enumerate() {
-        if t < 0 {
-            leaves.push((-(t as i64) - 1) as usize);
-            continue;
-        }
-        let first = t as usize;
-        // Children come after their parent (no cycles) and after the roots.
-        if first <= i || first < roots || first + fanout > tree.len() {
-            return Err(format!("cell {i} points to children at {t}: out of range"));
-        }
-        for r in &mut referenced[first..first + fanout] {
-            if *r {
-                return Err(format!(
-                    "cell {i}: children at {t} shared with another cell"
-                ));
-            }
-            *r = true;
-        }
-    }
-    if let Some(i) = (roots..tree.len()).find(|&i| !referenced[i]) {
-        return Err(format!("cell {i} is not reachable from a root"));
-    }
-    leaves.sort_unstable();
-    if leaves.iter().enumerate().any(|(k, &l)| k != l) {
-        return Err("does not number its leaves 0, 1, 2, ... exactly once".into());
-    }
-    Ok(leaves.len())
+    check_tree_split(tree, roots, &|_| fanout)
 }
 
 /// [`check_tree_of`] with the number of children of each split cell given by `fanout(cell)`
