@@ -848,6 +848,13 @@ fn c_rebound_example_agrees_with_the_rust_library() {
 
 /// The table with an e_n axis of [`evaluator::dissipative_table`] and its export, made once
 /// per process.
+/// `b` with its checksum recomputed (an export edited after it was written, resealed).
+fn sealed(mut b: Vec<u8>) -> Vec<u8> {
+    let sum = oblique_table::format::fnv1a64(&b[32..]);
+    b[24..32].copy_from_slice(&sum.to_le_bytes());
+    b
+}
+
 fn dissipative() -> &'static (Table, PathBuf) {
     static T: OnceLock<(Table, PathBuf)> = OnceLock::new();
     T.get_or_init(|| evaluator::dissipative_table(&dir().join("dissipative")))
@@ -1171,11 +1178,6 @@ fn damaged_e_n_exports_are_refused_with_their_code() {
             .expect("run");
         assert!(out.status.success(), "{name}: {}", out.status);
         String::from_utf8(out.stdout).expect("utf-8")
-    };
-    let sealed = |mut b: Vec<u8>| {
-        let sum = oblique_table::format::fnv1a64(&b[32..]);
-        b[24..32].copy_from_slice(&sum.to_le_bytes());
-        b
     };
     assert!(case("good", &good).starts_with("0 ok"));
     assert!(case("truncated", &good[..good.len() - 8]).starts_with("2 "));
@@ -1708,11 +1710,6 @@ fn damaged_split_masks_are_refused() {
         let p = dir().join(format!("split_{name}"));
         std::fs::write(&p, bytes).expect("write");
         run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
-    };
-    let sealed = |mut b: Vec<u8>| {
-        let sum = oblique_table::format::fnv1a64(&b[32..]);
-        b[24..32].copy_from_slice(&sum.to_le_bytes());
-        b
     };
     let u32_at = |b: &[u8], at: usize| u32::from_le_bytes(b[at..at + 4].try_into().expect("4"));
     let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().expect("8"));
