@@ -87,10 +87,12 @@ pub fn run(args: InspectArgs) -> Result<()> {
         Some((lo, hi)) => format!(", e_n in [{lo}, {hi}] ({} law)", pv.law),
         None => String::new(),
     };
+    let gamma = match s.pair_gamma() {
+        Some(g) => format!("gamma = {g} (one pair of materials)"),
+        None => format!("gamma in [{}, {}]", s.gamma_min(), s.gamma_max()),
+    };
     outln!(
-        "domain gamma in [{}, {}], alpha in [0, {}]{e_n}; stencil {} points per axis (schema v{})",
-        s.gamma_min(),
-        s.gamma_max(),
+        "domain {gamma}, alpha in [0, {}]{e_n}; stencil {} points per axis (schema v{})",
         s.alpha_max(),
         s.stencil(),
         pv.schema_version
@@ -130,11 +132,9 @@ pub fn run(args: InspectArgs) -> Result<()> {
         }
     }
     outln!("held-out checks: {nc} points, max interpolation error {cmax:.2e}, rms {crms:.2e}")?;
-    let factor = if s.restitution().is_some() {
-        oblique_table::bound::node_error_factor_of(s.stencil(), 3)
-    } else {
-        oblique_table::bound::node_error_factor(s.stencil())
-    };
+    // Λ_k per axis of the patches' trees: 2 (γ, c or c, e_n), or 3 (γ, c, e_n).
+    let dims = s.patches().map(|(_, p)| p.dims()).max().unwrap_or(2);
+    let factor = oblique_table::bound::node_error_factor_of(s.stencil(), dims);
     outln!(
         "stated error bound: {:.2e} (largest leaf prediction + {factor:.2} x node error estimate; docs/table-format.md)",
         t.error_bound()

@@ -303,10 +303,12 @@ pub(crate) fn summary(cfg: &Config, built: &Built, wall: f64) {
     let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
     for p in &built.patches {
         eprintln!(
-                "  {:13} {} x {} roots, {} leaves at depth {}..{}, {} nodes ({} simulated), max predicted error {:.1e}",
+                "  {:13} {} roots, {} leaves at depth {}..{}, {} nodes ({} simulated), max predicted error {:.1e}",
                 p.name,
-                p.patch.blocks_gamma(),
-                p.patch.blocks_coord(),
+                (0..p.patch.dims() as usize)
+                    .map(|k| p.patch.axis(k).2.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" x "),
                 p.leaf_depth.len(),
                 p.leaf_depth.iter().min().unwrap_or(&0),
                 p.leaf_depth.iter().max().unwrap_or(&0),

@@ -190,12 +190,18 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         .build()
         .context("starting the worker threads")?;
     eprintln!(
-        "verify {}: {} points (gamma uniform in [{}, {}], {}{}{}), \
+        "verify {}: {} points ({}, {}{}{}), \
          simulated at tol {:e} on {} threads; stated bound {bound:.2e}",
         args.table.display(),
         points.len(),
-        table.surface().gamma_min(),
-        table.surface().gamma_max(),
+        match table.surface().pair_gamma() {
+            Some(g) => format!("gamma = {g}, the table's one pair"),
+            None => format!(
+                "gamma uniform in [{}, {}]",
+                table.surface().gamma_min(),
+                table.surface().gamma_max()
+            ),
+        },
         if args.near_curves {
             "alpha within 1e-4 to 0.1 (relative) of alpha_c1(gamma, e_n) and alpha_c2(gamma), \
              alternately"

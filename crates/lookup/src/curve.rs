@@ -164,6 +164,8 @@ impl Curve {
         e_n: f64,
         outside: OutOfDomain,
     ) -> Result<Curve, LookupError> {
+        // The table of one pair takes a γ next to its own as its own.
+        let gamma = surface.rule_gamma(gamma);
         if !(gamma.is_finite() && gamma > 0.0) {
             return Err(oblique_table::surface::bad_gamma(gamma));
         }

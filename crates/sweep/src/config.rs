@@ -68,14 +68,24 @@ fn default_alpha_max() -> f64 {
     f64::INFINITY
 }
 
+fn unset() -> f64 {
+    f64::NAN
+}
+
 /// `[domain]`: the part of the `(γ, α)` plane the table covers. `α` always starts at 0.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Domain {
-    /// Lower end of γ (> 0).
+    /// Lower end of γ (> 0). With `gamma` (one pair) it is `gamma` and not given.
+    #[serde(default = "unset")]
     pub gamma_min: f64,
-    /// Upper end of γ (> gamma_min, ≤ 64).
+    /// Upper end of γ (> gamma_min, ≤ 64). With `gamma` it is `gamma` and not given.
+    #[serde(default = "unset")]
     pub gamma_max: f64,
+    /// The single γ of one pair of materials (in (0, 64], with `e_n_min` and `e_n_max`, in
+    /// place of `gamma_min` and `gamma_max`): the table is then `P(α, e_n)` at that γ.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma: Option<f64>,
     /// Upper end of α: a number > α_c2(gamma_max), or "inf" (default) to include no slip.
     #[serde(default = "default_alpha_max", deserialize_with = "alpha_max_de")]
     pub alpha_max: f64,
@@ -92,6 +102,11 @@ impl Domain {
     /// The `e_n` range of a table with an `e_n` axis (`None`: elastic, `e_n = 1`).
     pub fn e_n_range(&self) -> Option<(f64, f64)> {
         Some((self.e_n_min?, self.e_n_max?))
+    }
+
+    /// The single γ of the table of one pair (`domain.gamma`), if it is one.
+    pub fn pair_gamma(&self) -> Option<f64> {
+        self.gamma
     }
 }
 
@@ -280,10 +295,11 @@ impl Config {
     pub fn parse(text: &str, path: &str) -> Result<Self, ConfigError> {
         // toml's report spans several lines (the line of the file, a caret under the error):
         // kept as it is.
-        let cfg: Config = toml::from_str(text).map_err(|e| ConfigError::Parse {
+        let mut cfg: Config = toml::from_str(text).map_err(|e| ConfigError::Parse {
             path: path.to_string(),
             message: e.to_string().trim_end().to_string(),
         })?;
+        cfg.validate_pair(path)?;
         cfg.validate(path)?;
         Ok(cfg)
     }
@@ -324,6 +340,61 @@ impl Config {
         self.nodes.blocks_e_n.unwrap_or(1)
     }
 
+    /// `domain.gamma` (one pair) in place of `gamma_min` and `gamma_max`, which it then sets;
+    /// without it both are required.
+    fn validate_pair(&mut self, path: &str) -> Result<(), ConfigError> {
+        let err = |key: &'static str, value: String, allowed: String| ConfigError::Range {
+            path: path.to_string(),
+            key,
+            value,
+            allowed,
+        };
+        let d = &mut self.domain;
+        let Some(g) = d.gamma else {
+            for (key, v) in [
+                ("domain.gamma_min", d.gamma_min),
+                ("domain.gamma_max", d.gamma_max),
+            ] {
+                if v.is_nan() {
+                    return Err(err(
+                        key,
+                        "missing".into(),
+                        "a number: gamma_min and gamma_max give the range of gamma (or \
+                         domain.gamma alone, the gamma of one pair of materials)"
+                            .into(),
+                    ));
+                }
+            }
+            return Ok(());
+        };
+        for (key, v) in [
+            ("domain.gamma_min", d.gamma_min),
+            ("domain.gamma_max", d.gamma_max),
+        ] {
+            if !v.is_nan() {
+                return Err(err(
+                    key,
+                    v.to_string(),
+                    "absent with domain.gamma (the table of one pair has a single gamma)".into(),
+                ));
+            }
+        }
+        if !(g.is_finite() && g > 0.0 && g <= 64.0) {
+            return Err(err("domain.gamma", g.to_string(), "in (0, 64]".into()));
+        }
+        if d.e_n_range().is_none() {
+            return Err(err(
+                "domain.gamma",
+                g.to_string(),
+                "with domain.e_n_min and e_n_max: the table of one pair is P(alpha, e_n); for an \
+                 elastic pair read P(alpha) from a table over a range of gamma"
+                    .into(),
+            ));
+        }
+        (d.gamma_min, d.gamma_max) = (g, g);
+        Ok(())
+    }
+
     fn validate(&self, path: &str) -> Result<(), ConfigError> {
         let err = |key: &'static str, value: String, allowed: String| ConfigError::Range {
             path: path.to_string(),
@@ -339,7 +410,9 @@ impl Config {
                 "a finite number > 0".into(),
             ));
         }
-        if !(d.gamma_max.is_finite() && d.gamma_max > d.gamma_min && d.gamma_max <= 64.0) {
+        let pair = d.gamma.is_some();
+        if !(d.gamma_max.is_finite() && (d.gamma_max > d.gamma_min || pair) && d.gamma_max <= 64.0)
+        {
             return Err(err(
                 "domain.gamma_max",
                 d.gamma_max.to_string(),

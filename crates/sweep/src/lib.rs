@@ -598,13 +598,18 @@ impl Layout<'_> {
         }
     }
 
-    /// Axes of the tree: 2, or 3 with an `e_n` axis.
+    /// Axes of the tree: 2, or 3 with an `e_n` axis, or 2 (`c`, `e_n`) for one pair.
     fn dims(&self) -> u32 {
-        if self.restitution.is_some() {
+        if self.restitution.is_some() && !self.pair() {
             3
         } else {
             2
         }
+    }
+
+    /// The patch of one pair: a single γ, no node spacing along it ([`Patch::is_pair`]).
+    fn pair(&self) -> bool {
+        self.spec.gamma_lo == self.spec.gamma_hi
     }
 
     /// Root cells along `e_n` (1 without the axis).
@@ -683,8 +688,9 @@ impl Layout<'_> {
         let m = self.m as u64;
         let warped = self.warped(cell);
         let me = if self.restitution.is_some() { m } else { 0 };
+        let mg = if self.pair() { 0 } else { m };
         let mut keys = Vec::with_capacity((self.m + 1).pow(self.dims()));
-        for i in 0..=m {
+        for i in 0..=mg {
             for j in 0..=m {
                 for l in 0..=me {
                     keys.push((
@@ -807,20 +813,21 @@ fn surplus_axis(values: &[f64], n: usize, k: usize, dims: u32, axis: usize) -> f
 }
 
 /// The axes a cell of a patch with an `e_n` axis halves when its prediction exceeds `target`
-/// (bit `2 − k` for axis `k`: `γ`, `c`, `e_n`): each axis whose own surplus
+/// (bit `dims − 1 − k` for axis `k`: `γ`, `c`, `e_n`, or `c`, `e_n` for one pair): each axis
+/// whose own surplus
 /// ([`surplus_axis`], a quarter of it as the cell's own error along that axis) exceeds the
 /// target, or else the axis with the largest. Along `e_n` `P` is smooth and the kink curves
 /// lie across `c`, so most cells need only one or two axes halved (measured on γ 1.9–2.6,
 /// target 1e-4: 55 315 nodes in the partial-slip patch against 188 131 halving every axis).
-fn split_axes(values: &[f64], m: usize, k: usize, target: f64) -> u8 {
-    let s: Vec<f64> = (0..3)
-        .map(|a| surplus_axis(values, m, k, 3, a) / 4.0)
+fn split_axes(values: &[f64], m: usize, k: usize, target: f64, dims: u32) -> u8 {
+    let s: Vec<f64> = (0..dims as usize)
+        .map(|a| surplus_axis(values, m, k, dims, a) / 4.0)
         .collect();
     let big = s.iter().copied().fold(0.0, f64::max);
     let mut bits = 0u8;
     for (a, &sa) in s.iter().enumerate() {
         if sa > target || sa >= big {
-            bits |= 1 << (2 - a);
+            bits |= 1 << (dims as usize - 1 - a);
         }
     }
     bits
@@ -940,7 +947,7 @@ fn build_patch(
                     continue;
                 }
                 mask[c] = if layout.restitution.is_some() {
-                    split_axes(&vals, m, k, cfg.nodes.target_error)
+                    split_axes(&vals, m, k, cfg.nodes.target_error, layout.dims())
                 } else {
                     0b11
                 };

@@ -23,8 +23,11 @@ pub const ATTR_GAMMA_MAX: &str = "gamma_max";
 /// Root attribute: upper end of the α domain (`inf` for no slip included).
 pub const ATTR_ALPHA_MAX: &str = "alpha_max";
 /// Root attribute (schema 4): the axes of the table, in order, separated by commas:
-/// `gamma,alpha` or `gamma,alpha,e_n`.
+/// `gamma,alpha`, `gamma,alpha,e_n`, or [`AXES_PAIR`].
 pub const ATTR_AXES: &str = "axes";
+/// The axes of the table of one pair of materials (schema 4): `P(α, e_n)` at the single `γ`
+/// `gamma_min = gamma_max`; its patches' trees are over `(c, e_n)`.
+pub const AXES_PAIR: &str = "alpha,e_n";
 /// Root attribute (schema 4, with an `e_n` axis): lowest normal restitution `e_n`.
 pub const ATTR_E_N_MIN: &str = "e_n_min";
 /// Root attribute (schema 4, with an `e_n` axis): highest normal restitution `e_n`.

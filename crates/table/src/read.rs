@@ -191,6 +191,7 @@ impl Reader<'_> {
             .map_err(|m| self.invalid(format!("'{where_}': {m}")))
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn patch(
         &self,
         root: &hdf5::Group,
@@ -199,6 +200,7 @@ impl Reader<'_> {
         stencil: usize,
         version: u32,
         e_range: Option<(f64, f64)>,
+        pair: bool,
     ) -> Result<Option<Patch>, TableError> {
         let Ok(g) = root.group(name) else {
             return Ok(None);
@@ -212,10 +214,19 @@ impl Reader<'_> {
         }
         let gamma_lo = self.attr_f64(&g, ATTR_GAMMA_LO)?;
         let gamma_hi = self.attr_f64(&g, ATTR_GAMMA_HI)?;
-        if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi > gamma_lo)
-        {
+        let ordered = if pair {
+            gamma_hi == gamma_lo
+        } else {
+            gamma_hi > gamma_lo
+        };
+        if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && ordered) {
             return Err(self.invalid(format!(
-                "patch '{name}': gamma edges [{gamma_lo}, {gamma_hi}] must be finite, > 0, increasing"
+                "patch '{name}': gamma edges [{gamma_lo}, {gamma_hi}] must be finite, > 0, {}",
+                if pair {
+                    "and equal (the table of one pair)"
+                } else {
+                    "increasing"
+                }
             )));
         }
         let bg = self.count_attr(&g, ATTR_BLOCKS_GAMMA, 1 << 16)?;
@@ -249,13 +260,13 @@ impl Reader<'_> {
             None => None,
         };
         let tree = self.vector(&g, &format!("patch '{name}'"), DS_TREE, "int32")?;
-        let (roots, fanout) = match restitution {
-            Some(r) => (bg * bc * r.blocks(), 8),
-            None => (bg * bc, 4),
-        };
+        // The tree's axes: (γ, c), (γ, c, e_n), or (c, e_n) in the table of one pair.
+        let dims: u32 = if restitution.is_some() && !pair { 3 } else { 2 };
+        let roots = bg * bc * restitution.map_or(1, |r| r.blocks());
+        let fanout = 1 << dims;
         let split: Option<Vec<u8>> = if g.link_exists(DS_SPLIT) {
             let split = self.vector(&g, &format!("patch '{name}'"), DS_SPLIT, "uint8")?;
-            crate::surface::check_split(&tree, &split, if restitution.is_some() { 3 } else { 2 })
+            crate::surface::check_split(&tree, &split, dims, restitution.is_some())
                 .map_err(|m| self.invalid(format!("patch '{name}': dataset 'split' {m}")))?;
             Some(split)
         } else {
@@ -267,7 +278,7 @@ impl Reader<'_> {
         }
         .map_err(|m| self.invalid(format!("patch '{name}': dataset 'tree' {m}")))?;
         let mut shape = vec![leaves, m + 1, m + 1];
-        if restitution.is_some() {
+        if dims == 3 {
             shape.push(m + 1);
         }
         let p = self.dataset(&g, DS_P, &shape)?;
@@ -406,20 +417,23 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
     let gamma_min = r.attr_f64(&file, ATTR_GAMMA_MIN)?;
     let gamma_max = r.attr_f64(&file, ATTR_GAMMA_MAX)?;
     let alpha_max = r.attr_f64(&file, ATTR_ALPHA_MAX)?;
-    if !(gamma_min > 0.0 && gamma_max > gamma_min && gamma_max.is_finite()) {
+    if !(gamma_min > 0.0 && gamma_max >= gamma_min && gamma_max.is_finite()) {
         return Err(r.invalid(format!(
-            "gamma domain [{gamma_min}, {gamma_max}] must satisfy 0 < min < max < inf"
+            "gamma domain [{gamma_min}, {gamma_max}] must satisfy 0 < min < max < inf (min = \
+             max in the table of one pair)"
         )));
     }
     if alpha_max.is_nan() || alpha_max <= 0.0 {
         return Err(r.invalid(format!("alpha_max = {alpha_max} must be > 0 or inf")));
     }
     // Schema 4 names its axes; an `e_n` axis brings its range.
+    let mut pair = false;
     let e_range = if version >= 4 {
         let axes = r.attr_str(&file, ATTR_AXES)?;
+        pair = axes == AXES_PAIR;
         match axes.as_str() {
             "gamma,alpha" => None,
-            "gamma,alpha,e_n" => {
+            "gamma,alpha,e_n" | AXES_PAIR => {
                 let (lo, hi) = (
                     r.attr_f64(&file, ATTR_E_N_MIN)?,
                     r.attr_f64(&file, ATTR_E_N_MAX)?,
@@ -430,20 +444,34 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
             other => {
                 return Err(r.invalid(format!(
                     "root attribute '{ATTR_AXES}' = '{other}': this reader understands \
-                     'gamma,alpha' and 'gamma,alpha,e_n'"
+                     'gamma,alpha', 'gamma,alpha,e_n' and '{AXES_PAIR}'"
                 )))
             }
         }
     } else {
         None
     };
+    if pair != (gamma_min == gamma_max) {
+        return Err(r.invalid(format!(
+            "gamma domain [{gamma_min}, {gamma_max}] with the axes '{}': the table of one pair \
+             ('{AXES_PAIR}') has gamma_min = gamma_max, any other table gamma_min < gamma_max",
+            r.attr_str(&file, ATTR_AXES).unwrap_or_default()
+        )));
+    }
     let patches = file
         .group(GROUP_PATCHES)
         .map_err(|_| r.invalid(format!("missing group '{GROUP_PATCHES}'")))?;
     let mut read_patches: [Option<Patch>; 3] = [None, None, None];
     for id in PatchId::ALL {
-        read_patches[id.index()] =
-            r.patch(&patches, id.name(), id.kind(), stencil, version, e_range)?;
+        read_patches[id.index()] = r.patch(
+            &patches,
+            id.name(),
+            id.kind(),
+            stencil,
+            version,
+            e_range,
+            pair,
+        )?;
     }
     let surface = Surface::with_restitution(
         gamma_min,

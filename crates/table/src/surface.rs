@@ -638,9 +638,10 @@ pub fn check_tree_split(
 
 /// Check a `split` dataset against its tree: one mask per cell, 1 to `2^dims − 1` for a split
 /// cell (bit `dims − 1 − k` for each axis `k` it halves), 0 for a leaf; only in a patch with
-/// an `e_n` axis (`dims = 3`).
-pub fn check_split(tree: &[i32], split: &[u8], dims: u32) -> Result<(), String> {
-    if dims != 3 {
+/// an `e_n` axis: `dims = 3` over `(γ, c, e_n)`, or `dims = 2` over `(c, e_n)` in a patch of
+/// one pair (`has_e_n`; an elastic patch, `dims = 2` without the axis, has none).
+pub fn check_split(tree: &[i32], split: &[u8], dims: u32, has_e_n: bool) -> Result<(), String> {
+    if !has_e_n || !(2..=3).contains(&dims) {
         return Err("is allowed only in a patch with an e_n axis".into());
     }
     if split.len() != tree.len() {
@@ -744,10 +745,20 @@ impl Patch {
         restitution: Option<RestitutionAxis>,
         split: Option<Vec<u8>>,
     ) -> Result<Patch, String> {
-        if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi > gamma_lo)
+        if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi >= gamma_lo)
         {
             return Err(format!(
-                "gamma edges [{gamma_lo}, {gamma_hi}] must be finite, > 0, increasing"
+                "gamma edges [{gamma_lo}, {gamma_hi}] must be finite, > 0, increasing (or \
+                 equal, for the patch of one pair)"
+            ));
+        }
+        let pair = gamma_hi == gamma_lo;
+        if pair && (restitution.is_none() || blocks_gamma != 1) {
+            return Err(format!(
+                "gamma edges [{gamma_lo}, {gamma_hi}] are equal: only the patch of one pair (an \
+                 e_n axis, blocks_gamma = 1) holds a single gamma; blocks_gamma = {blocks_gamma}, \
+                 e_n axis: {}",
+                if restitution.is_some() { "yes" } else { "no" }
             ));
         }
         if blocks_gamma == 0 || blocks_coord == 0 || leaf_intervals == 0 {
@@ -759,12 +770,13 @@ impl Patch {
         if restitution.is_some() && warp.is_some() {
             return Err("a patch with an e_n axis cannot have a warp".into());
         }
-        let dims = if restitution.is_some() { 3 } else { 2 };
+        let dims = if restitution.is_some() && !pair { 3 } else { 2 };
         let roots = blocks_gamma * blocks_coord * restitution.map_or(1, |r| r.blocks);
         let leaves = match &split {
             None => check_tree_of(&tree, roots, 1 << dims),
             Some(split) => {
-                check_split(&tree, split, dims).map_err(|m| format!("dataset 'split' {m}"))?;
+                check_split(&tree, split, dims, restitution.is_some())
+                    .map_err(|m| format!("dataset 'split' {m}"))?;
                 check_tree_split(&tree, roots, &|i| 1 << split[i].count_ones())
             }
         }
@@ -862,13 +874,23 @@ impl Patch {
         self.restitution.as_ref()
     }
 
-    /// Number of axes of the tree: 2 (`γ`, `c`), or 3 with an `e_n` axis.
+    /// Number of axes of the tree: 2 (`γ`, `c`), 3 with an `e_n` axis (`γ`, `c`, `e_n`), or 2
+    /// in the patch of one pair (`c`, `e_n`; [`Patch::is_pair`]).
     pub fn dims(&self) -> u32 {
-        if self.restitution.is_some() {
+        if self.restitution.is_some() && !self.is_pair() {
             3
         } else {
             2
         }
+    }
+
+    /// Whether this is the patch of one pair of materials: a single `γ` (`gamma_lo =
+    /// gamma_hi`, one root cell along γ) with an `e_n` axis, its tree over `(c, e_n)` only. Its
+    /// masks, children and nodes are those of a patch over `(γ, c, e_n)` whose cells never
+    /// halve `γ` and whose leaves have one node along it.
+    #[inline(always)]
+    pub fn is_pair(&self) -> bool {
+        self.gamma_lo == self.gamma_hi
     }
 
     /// The partial-slip coordinate's map: [`PartialMap::SqrtBoth`] with an `e_n` axis,
@@ -997,6 +1019,11 @@ impl Patch {
 
     /// [`Patch::fine_index`] over the patch's axes.
     pub(crate) fn fine_index_any(&self, max_entries: usize) -> Option<FineIndex> {
+        // The patch of one pair is answered by the descent (its axes are `c`, `e_n`, which the
+        // indexed paths of `(γ, c)` and `(γ, c, e_n)` do not take).
+        if self.is_pair() {
+            return None;
+        }
         let dims = self.dims() as usize;
         let blocks = self.blocks_of::<MAX_AXES>();
         let (roots, n) = (self.roots(), self.tree.len());
@@ -1142,6 +1169,14 @@ impl Patch {
     /// coordinate `x = (value − lo)/width` (`c` is its own coordinate: `(0, 1)`) and its root
     /// cells; `(0, 1, 1)` beyond the patch's axes.
     pub fn axis(&self, k: usize) -> (f64, f64, usize) {
+        if let (true, Some(r)) = (self.is_pair(), &self.restitution) {
+            // The patch of one pair: `(c, e_n)`.
+            return match k {
+                0 => (0.0, 1.0, self.blocks_coord),
+                1 => (r.lo, r.hi - r.lo, r.blocks),
+                _ => (0.0, 1.0, 1),
+            };
+        }
         match (k, &self.restitution) {
             (0, _) => (
                 self.gamma_lo,
@@ -1188,21 +1223,23 @@ impl Patch {
     pub fn line_depth(&self, gamma: f64, e_n: f64) -> u32 {
         let xg = self.x_gamma(gamma);
         match &self.restitution {
-            None => self.line_depth_at([xg, 0.0]),
-            Some(r) => self.line_depth_at([xg, 0.0, r.x(e_n)]),
+            None => self.line_depth_at([xg, 0.0], 1),
+            Some(r) if self.is_pair() => self.line_depth_at([0.0, r.x(e_n)], 0),
+            Some(r) => self.line_depth_at([xg, 0.0, r.x(e_n)], 1),
         }
     }
 
-    /// [`Patch::line_depth`] at coordinates `x` of `D` axes (`x[1]`, along `c`, unused).
-    fn line_depth_at<const D: usize>(&self, x: [f64; D]) -> u32 {
+    /// [`Patch::line_depth`] at coordinates `x` of `D` axes (`x[ca]`, along `c`, unused; `ca`
+    /// the axis of `c`).
+    fn line_depth_at<const D: usize>(&self, x: [f64; D], ca: usize) -> u32 {
         let blocks = self.blocks_of::<D>();
         let (mut root, mut f) = ([0usize; D], [0.0; D]);
-        for k in (0..D).filter(|&k| k != 1) {
+        for k in (0..D).filter(|&k| k != ca) {
             (root[k], f[k]) = locate(x[k], blocks[k]);
         }
         let mut stack = Vec::new();
-        for b in 0..blocks[1] {
-            root[1] = b;
+        for b in 0..blocks[ca] {
+            root[ca] = b;
             let cell = root
                 .iter()
                 .zip(&blocks)
@@ -1221,7 +1258,7 @@ impl Patch {
             // has one child on the line and adds no depth along `c`.
             let mut f = f;
             let mask = self.split_mask(cell);
-            let c_bit = 1u8 << (D - 2);
+            let c_bit = 1u8 << (D - 1 - ca);
             let child = t as usize + descend_masked(&mut f, mask);
             if mask & c_bit == 0 {
                 stack.push((child, f, d));
@@ -1336,6 +1373,7 @@ impl Patch {
         let xg = self.x_gamma(gamma);
         match &self.restitution {
             None => self.tensor_at([xg, c], k),
+            Some(r) if self.is_pair() => self.tensor_at([c, r.x(e_n)], k),
             Some(r) => self.tensor_at([xg, c, r.x(e_n)], k),
         }
     }
@@ -1347,6 +1385,10 @@ impl Patch {
         bound_p(self.tensor_point(gamma, c, e_n, k))
     }
 }
+
+/// Relative distance from the `γ` of the table of one pair within which a query's `γ` is the
+/// pair's ([`Surface::rule_gamma`]): `P` moves by about `|∂P/∂γ|·1e-9 γ`, below 1e-8.
+pub const PAIR_GAMMA_TOL: f64 = 1e-9;
 
 /// What a query outside the table's domain does (the full-slip line is answered everywhere).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -1490,9 +1532,11 @@ impl Surface {
         if let Some((lo, hi)) = restitution {
             RestitutionAxis::new(lo, hi, 1)?;
         }
-        if !(gamma_min > 0.0 && gamma_max > gamma_min && gamma_max.is_finite()) {
+        let pair = gamma_min == gamma_max && restitution.is_some();
+        if !(gamma_min > 0.0 && (gamma_max > gamma_min || pair) && gamma_max.is_finite()) {
             return Err(format!(
-                "gamma domain [{gamma_min}, {gamma_max}] must satisfy 0 < min < max < inf"
+                "gamma domain [{gamma_min}, {gamma_max}] must satisfy 0 < min < max < inf (or \
+                 min = max for the table of one pair, which has an e_n axis)"
             ));
         }
         if alpha_max.is_nan() || alpha_max <= 0.0 {
@@ -1527,6 +1571,15 @@ impl Surface {
                 return Err(format!(
                     "patch '{name}' has the e_n axis {axis:?}, the table {restitution:?}: every \
                      patch must have the table's"
+                ));
+            }
+            if p.is_pair() != pair || (pair && p.gamma_lo() != gamma_min) {
+                return Err(format!(
+                    "patch '{name}' has the gamma edges [{}, {}], the table the gamma domain \
+                     [{gamma_min}, {gamma_max}]: the table of one pair and its patches hold the \
+                     same single gamma, any other table none",
+                    p.gamma_lo(),
+                    p.gamma_hi()
                 ));
             }
             if p.warp().is_some() && id != PatchId::PartialHigh {
@@ -1585,21 +1638,42 @@ impl Surface {
         self.restitution
     }
 
+    /// The single `γ` of the table of one pair of materials (axes `α`, `e_n`; `gamma_min =
+    /// gamma_max`), `None` for a table over a range of `γ`.
+    pub fn pair_gamma(&self) -> Option<f64> {
+        (self.gamma_min == self.gamma_max).then_some(self.gamma_min)
+    }
+
+    /// `γ` as the rule takes it: in the table of one pair, a `γ` within [`PAIR_GAMMA_TOL`]
+    /// (relative) of the pair's is the pair's (`P` moves by far less than the table's error
+    /// there); any other `γ` as it is.
+    #[inline(always)]
+    pub fn rule_gamma(&self, gamma: f64) -> f64 {
+        if self.gamma_min == self.gamma_max
+            && (gamma - self.gamma_min).abs() <= PAIR_GAMMA_TOL * self.gamma_min
+        {
+            self.gamma_min
+        } else {
+            gamma
+        }
+    }
+
     /// The table's axes, in order: `γ` over `[gamma_min, gamma_max]`, `α` over
     /// `[0, alpha_max]`, and `e_n` over its range when the table has one.
     pub fn axes(&self) -> Vec<Axis> {
-        let mut axes = vec![
-            Axis {
+        let mut axes = Vec::with_capacity(3);
+        if self.pair_gamma().is_none() {
+            axes.push(Axis {
                 name: AxisName::Gamma,
                 lo: self.gamma_min,
                 hi: self.gamma_max,
-            },
-            Axis {
-                name: AxisName::Alpha,
-                lo: 0.0,
-                hi: self.alpha_max,
-            },
-        ];
+            });
+        }
+        axes.extend([Axis {
+            name: AxisName::Alpha,
+            lo: 0.0,
+            hi: self.alpha_max,
+        }]);
         if let Some((lo, hi)) = self.restitution {
             axes.push(Axis {
                 name: AxisName::RestitutionN,
@@ -1771,6 +1845,7 @@ impl Surface {
         e_n: f64,
         outside: OutOfDomain,
     ) -> Result<f64, TableError> {
+        let gamma = self.rule_gamma(gamma);
         check_query(gamma, alpha)?;
         self.check_e_n(e_n)?;
         let region = Region::of_e(gamma, alpha, e_n);
@@ -1845,6 +1920,17 @@ impl Surface {
 
     #[cold]
     pub fn gamma_outside(&self, gamma: f64) -> TableError {
+        if let Some(g) = self.pair_gamma() {
+            return TableError::Query {
+                name: "gamma",
+                value: gamma,
+                allowed: format!(
+                    "{g} (within a relative {PAIR_GAMMA_TOL:e}): this table holds one pair of \
+                     materials (or alpha <= alpha_lin(gamma)); for other pairs use a table over \
+                     a range of gamma"
+                ),
+            };
+        }
         TableError::Query {
             name: "gamma",
             value: gamma,

@@ -250,7 +250,12 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     };
     w.attr_f64(&file, ATTR_SCHEMA, version as f64)?;
     if let Some((lo, hi)) = e_range {
-        w.attr_str(&file, ATTR_AXES, "gamma,alpha,e_n")?;
+        let axes = if s.pair_gamma().is_some() {
+            AXES_PAIR
+        } else {
+            "gamma,alpha,e_n"
+        };
+        w.attr_str(&file, ATTR_AXES, axes)?;
         w.attr_f64(&file, ATTR_E_N_MIN, lo)?;
         w.attr_f64(&file, ATTR_E_N_MAX, hi)?;
         w.attr_str(&file, ATTR_LAW, &prov.law)?;
@@ -294,7 +299,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.ints(&g, DS_LEAF_DEPTH, &depth, &leaves)?;
         w.ds(&g, DS_LEAF_ERROR, &bp.leaf_error, &leaves)?;
         let mut n = vec![leaves[0], p.leaf_intervals() + 1, p.leaf_intervals() + 1];
-        if p.restitution().is_some() {
+        if p.dims() == 3 {
             n.push(p.leaf_intervals() + 1);
         }
         w.ds(&g, DS_GAMMA, &bp.gamma, &n)?;
