@@ -391,38 +391,48 @@ fn bad_shard_arguments_are_usage_errors() {
 }
 
 /// A table with an `e_n` axis, whose cells halve only some axes (the `split` dataset), built in
-/// three shards and merged: every dataset equal to a single run's.
+/// three shards and merged: every dataset equal to a single run's; the same for the table of
+/// one pair (`domain.gamma`).
 #[test]
 fn shards_of_a_table_with_an_e_n_axis_merge_to_the_single_run() {
-    let text = "output = \"unused.h5\"\n[domain]\ngamma_min = 1.3\ngamma_max = 1.6\n\
-                e_n_min = 0.7\ne_n_max = 1.0\n[nodes]\ntarget_error = 1e-4\n\
-                leaf_intervals = 6\nblocks_coord = 2\nblocks_e_n = 2\n[solver]\ntol = 1e-5\n\
-                [checks]\nper_patch = 10\n";
-    let cfg = config("e_n.toml", text);
-    let dir = subdir("e_n_shards");
-    let single = dir.join("single.h5");
-    ok(
-        &sweep(&["run", s(&cfg), "-o", s(&single), "--quiet"]),
-        "single run",
-    );
-    let parts: Vec<PathBuf> = (1..=3).map(|k| dir.join(format!("p{k}.part"))).collect();
-    for (k, part) in parts.iter().enumerate() {
-        let shard = format!("{}/3", k + 1);
+    for (name, domain) in [
+        ("e_n", "gamma_min = 1.3\ngamma_max = 1.6\n"),
+        ("pair", "gamma = 1.7497858600774299\n"),
+    ] {
+        let text = format!(
+            "output = \"unused.h5\"\n[domain]\n{domain}e_n_min = 0.7\ne_n_max = 1.0\n\
+             [nodes]\ntarget_error = 1e-4\nleaf_intervals = 6\nblocks_coord = 2\n\
+             blocks_e_n = 2\n[solver]\ntol = 1e-5\n[checks]\nper_patch = 10\n"
+        );
+        let cfg = config(&format!("{name}.toml"), &text);
+        let dir = subdir(&format!("{name}_shards"));
+        let single = dir.join("single.h5");
         ok(
-            &sweep(&["run", s(&cfg), "--shard", &shard, "-o", s(part), "--quiet"]),
-            "shard",
+            &sweep(&["run", s(&cfg), "-o", s(&single), "--quiet"]),
+            "single run",
+        );
+        let parts: Vec<PathBuf> = (1..=3).map(|k| dir.join(format!("p{k}.part"))).collect();
+        for (k, part) in parts.iter().enumerate() {
+            let shard = format!("{}/3", k + 1);
+            ok(
+                &sweep(&["run", s(&cfg), "--shard", &shard, "-o", s(part), "--quiet"]),
+                "shard",
+            );
+        }
+        let merged = dir.join("merged.h5");
+        let mut args = vec!["merge"];
+        args.extend(parts.iter().map(|p| s(p)));
+        args.extend(["-o", s(&merged), "--quiet"]);
+        ok(&sweep(&args), "merge");
+        let (want, got) = (datasets(&single), datasets(&merged));
+        assert!(
+            want.contains_key("/patches/partial_high/split"),
+            "{name}: {:?}",
+            want.keys().collect::<Vec<_>>()
+        );
+        assert_eq!(
+            want, got,
+            "{name}: merged shards differ from the single run"
         );
     }
-    let merged = dir.join("merged.h5");
-    let mut args = vec!["merge"];
-    args.extend(parts.iter().map(|p| s(p)));
-    args.extend(["-o", s(&merged), "--quiet"]);
-    ok(&sweep(&args), "merge");
-    let (want, got) = (datasets(&single), datasets(&merged));
-    assert!(
-        want.contains_key("/patches/partial_high/split"),
-        "{:?}",
-        want.keys().collect::<Vec<_>>()
-    );
-    assert_eq!(want, got, "merged shards differ from the single run");
 }
