@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Reference reader of the P(gamma, alpha) table (HDF5, schema v4, v3 or v2), h5py + numpy only.
 
-Implements the interpolation rule of docs/table-format.md (steps 1-10, and the rule of a table
-with a normal-restitution axis, schema v4) exactly, independently of the Rust code, so that it
-can cross-check both the `oblique-lookup` crate and the simulator.
+Implements the interpolation rule of docs/table-format.md (steps 1-10, the rule of a table with
+a normal-restitution axis, schema v4, and that of the table of one pair, axes 'alpha,e_n')
+exactly, independently of the Rust code, so that it can cross-check both the `oblique-lookup`
+crate and the simulator.
 
     python3 scripts/read_table.py TABLE --gamma G --alpha A        # prints P (alpha may be inf)
     python3 scripts/read_table.py TABLE --gamma G --alpha A --e-n E   # P(gamma, alpha, e_n)
@@ -21,6 +22,8 @@ As a library:
     t.p(1.754, 1.0), t.p(0.8, float("inf"))
     t = Table("kv.h5")                 # a table with an e_n axis (schema 4)
     t.e_n_range, t.p_e(1.45, 0.3, 0.8)
+    t = Table("tables/dissipative-pair.h5")   # the table of one pair: P(alpha, e_n) at one gamma
+    t.pair_gamma, t.p_e(t.pair_gamma, 0.3, 0.8)
 """
 
 import argparse
@@ -42,6 +45,8 @@ except ImportError as e:  # pragma: no cover - depends on the machine
 FORMAT_NAME = "oblique-P-table"
 SCHEMA_VERSION = 4
 SCHEMA_VERSIONS = (2, 3, 4)  # v2: v3 without the optional warp; v4: v3 with optional e_n axis
+AXES_PAIR = "alpha,e_n"  # the axes of the table of one pair (schema 4): P(alpha, e_n) at one gamma
+PAIR_GAMMA_TOL = 1e-9  # a gamma within this (relative) of the pair's is the pair's
 PATCH_NAMES = ("stick_low", "partial_high", "stick_high")
 PATCH_KINDS = {"stick_low": "stick", "partial_high": "partial-slip", "stick_high": "stick"}
 
@@ -271,7 +276,7 @@ class Patch:
 
     def __init__(self, name, kind, gamma_lo, gamma_hi, blocks_gamma, blocks_coord,
                  leaf_intervals, tree, p, warp=None, blocks_e_n=None, e_n_range=None,
-                 split=None):
+                 split=None, pair=False):
         self.name = name
         self.kind = kind
         self.gamma_lo = gamma_lo
@@ -286,6 +291,8 @@ class Patch:
         self.e_n_range = e_n_range  # (e_n_min, e_n_max) or None
         # Per cell, the axes a split cell halves (bit 4: gamma, 2: c, 1: e_n), or None: all.
         self.split = split
+        # The patch of one pair: gamma_lo = gamma_hi, its tree over (c, e_n) only.
+        self.pair = pair
         # Node values as Python floats, flat (leaf, i_gamma, i_c, i_e), for the e_n rule.
         self.flat = [float(v) for v in p.reshape(-1)] if blocks_e_n is not None else None
 
@@ -354,10 +361,56 @@ class Patch:
             i = tree[i] + q
         return -tree[i] - 1, fg, fc, fe
 
+    def find_leaf_pair(self, c, xe):
+        """Steps 6 and 7 in the quadtree of the patch of one pair, over (c, x_e): leaf number
+        and position (fc, fe) inside it. Roots row-major (c outer); the children of a split
+        cell i are tree[i] + 2 q_c + q_e, or, with the dataset 'split', the 2^k cells from
+        tree[i] numbered over the k axes the cell halves (mask bit 2: c, bit 1: e_n)."""
+        bc, be = self.blocks_coord, self.blocks_e_n
+        b, fc = locate(c, bc)
+        e, fe = locate(xe, be)
+        i = b * be + e
+        tree = self.tree
+        split = self.split
+        while tree[i] >= 0:
+            mask = 3 if split is None else split[i]
+            q = 0
+            if mask & 2:
+                fc = 2.0 * fc
+                qc = int(fc >= 1.0)
+                fc, q = fc - qc, qc
+            if mask & 1:
+                fe = 2.0 * fe
+                qe = int(fe >= 1.0)
+                fe, q = fe - qe, 2 * q + qe
+            i = tree[i] + q
+        return -tree[i] - 1, fc, fe
+
+    def interpolate_pair(self, c, e_n):
+        """Steps 6 to 10 of the patch of one pair (the cubic stencil over (c, x_e)), c clamped:
+        the rows along e_n first, r_j = P[s_c + j, s_e] w_e0 + ... + P[s_c + j, s_e + 3] w_e3,
+        then w_c0 r_0 + ... + w_c3 r_3, each sum from left to right."""
+        lo, hi = self.e_n_range
+        leaf, fc, fe = self.find_leaf_pair(c, (e_n - lo) / (hi - lo))
+        m = self.leaf_intervals
+        n1 = m + 1
+        sc, wc = cubic_stencil(fc * m, n1)
+        se, we = cubic_stencil(fe * m, n1)
+        v = self.flat
+        base = leaf * n1 * n1
+        rows = []
+        for j in range(4):
+            at = base + (sc + j) * n1 + se
+            rows.append(v[at] * we[0] + v[at + 1] * we[1] + v[at + 2] * we[2] + v[at + 3] * we[3])
+        total = wc[0] * rows[0] + wc[1] * rows[1] + wc[2] * rows[2] + wc[3] * rows[3]
+        return min(max(total, -1.0), 1.0)
+
     def interpolate_e(self, gamma, c, e_n):
         """Steps 6 to 10 of a patch with an e_n axis (the cubic stencil), c clamped, at
         x_e = (e_n - e_n_min)/(e_n_max - e_n_min): the tensor product summed e_n innermost,
-        gamma outermost, each sum from left to right."""
+        gamma outermost, each sum from left to right. The patch of one pair: over (c, x_e)."""
+        if self.pair:
+            return self.interpolate_pair(c, e_n)
         lo, hi = self.e_n_range
         leaf, fg, fc, fe = self.find_leaf3(gamma, c, (e_n - lo) / (hi - lo))
         m = self.leaf_intervals
@@ -481,20 +534,23 @@ class Table:
         self.gamma_min = num(f.attrs, "gamma_min")
         self.gamma_max = num(f.attrs, "gamma_max")
         self.alpha_max = num(f.attrs, "alpha_max")
-        if not (0 < self.gamma_min < self.gamma_max < math.inf):
+        if not (0 < self.gamma_min <= self.gamma_max < math.inf):
             raise self._invalid(
                 f"gamma domain [{self.gamma_min}, {self.gamma_max}] must satisfy "
-                "0 < gamma_min < gamma_max < inf")
+                "0 < gamma_min < gamma_max < inf (gamma_min = gamma_max in the table of one "
+                "pair)")
         if math.isnan(self.alpha_max) or self.alpha_max <= 0:
             raise self._invalid(f"alpha_max = {self.alpha_max} must be > 0 or inf")
-        # Schema 4 names its axes; an e_n axis brings its range (None: an elastic table).
+        # Schema 4 names its axes; an e_n axis brings its range (None: an elastic table). The
+        # table of one pair ('alpha,e_n') holds the single gamma gamma_min = gamma_max.
         self.e_n_range = None
+        axes = "gamma,alpha"
         if self.schema_version >= 4:
             try:
                 axes = _str_attr(f.attrs, "axes")
             except (KeyError, TypeError):
                 raise self._invalid("missing or non-string root attribute 'axes'") from None
-            if axes == "gamma,alpha,e_n":
+            if axes in ("gamma,alpha,e_n", AXES_PAIR):
                 lo, hi = num(f.attrs, "e_n_min"), num(f.attrs, "e_n_max")
                 if not 0 < lo < hi <= 1:
                     raise self._invalid(
@@ -502,8 +558,17 @@ class Table:
                 self.e_n_range = (lo, hi)
             elif axes != "gamma,alpha":
                 raise self._invalid(
-                    f"root attribute 'axes' = '{axes}': this reader understands 'gamma,alpha' "
-                    "and 'gamma,alpha,e_n'")
+                    f"root attribute 'axes' = '{axes}': this reader understands 'gamma,alpha', "
+                    f"'gamma,alpha,e_n' and '{AXES_PAIR}'")
+        pair = axes == AXES_PAIR
+        if pair != (self.gamma_min == self.gamma_max):
+            raise self._invalid(
+                f"root attributes 'gamma_min' = {self.gamma_min!r}, 'gamma_max' = "
+                f"{self.gamma_max!r} with 'axes' = '{axes}': the table of one pair "
+                f"('{AXES_PAIR}') has gamma_min = gamma_max, any other table "
+                "gamma_min < gamma_max")
+        # The single gamma of the table of one pair, None for a table over a range of gamma.
+        self.pair_gamma = self.gamma_min if pair else None
         if "patches" not in f or not isinstance(f["patches"], h5py.Group):
             raise self._invalid("missing group '/patches'")
         self.patches = {}
@@ -536,7 +601,14 @@ class Table:
             raise self._invalid(f"{where}: kind '{kind}', expected '{PATCH_KINDS[name]}'")
         lo = num(g.attrs, "gamma_lo", where)
         hi = num(g.attrs, "gamma_hi", where)
-        if not (0 < lo < hi < math.inf):
+        pair = self.pair_gamma is not None
+        if pair:
+            if not lo == hi == self.pair_gamma:
+                raise self._invalid(
+                    f"{where}: attributes 'gamma_lo' = {lo!r}, 'gamma_hi' = {hi!r}: the patch of "
+                    f"one pair has both equal to the table's gamma_min = gamma_max = "
+                    f"{self.pair_gamma!r}")
+        elif not (0 < lo < hi < math.inf):
             raise self._invalid(f"{where}: gamma edges [{lo}, {hi}] must be finite, > 0, increasing")
         counts = []
         for a in ("blocks_gamma", "blocks_coord", "leaf_intervals"):
@@ -545,6 +617,9 @@ class Table:
                 raise self._invalid(f"{where}: attribute '{a}' = {v}: must be an integer >= 1")
             counts.append(int(v))
         bg, bc, m = counts
+        if pair and bg != 1:
+            raise self._invalid(
+                f"{where}: attribute 'blocks_gamma' = {bg}: must be 1 in the patch of one pair")
         if m + 1 < self.stencil:
             raise self._invalid(
                 f"{where}: leaf_intervals = {m} gives fewer nodes than stencil_points")
@@ -568,7 +643,8 @@ class Table:
                     raise self._invalid(
                         f"{where}: attribute 'coordinate' = {coord!r}: this reader understands "
                         "'1-sqrt(1-sqrt(l))'")
-        dims = 2 if be is None else 3
+        # The tree's axes: (gamma, c), (gamma, c, e_n), or (c, e_n) in the patch of one pair.
+        dims = 2 if be is None or pair else 3
         if "tree" not in g:
             raise self._invalid(f"{where}: missing dataset 'tree'")
         d = g["tree"]
@@ -579,16 +655,19 @@ class Table:
         split = None
         if "split" in g:
             d = g["split"]
-            if d.ndim != 1 or d.dtype.kind not in "iu" or len(d) != len(tree) or dims != 3:
+            if d.ndim != 1 or d.dtype.kind not in "iu" or len(d) != len(tree) or be is None:
                 raise self._invalid(
                     f"{where}: dataset 'split' is {d.dtype}{list(d.shape)}, expected 1-D integer "
                     f"[{len(tree)}] (one mask per cell, only with an e_n axis)")
             split = [int(s) for s in d[()]]
+            top = (1 << dims) - 1
             for i, (t, s) in enumerate(zip(tree, split)):
-                if (t >= 0) != (s != 0) or not 0 <= s < 8:
+                if (t >= 0) != (s != 0) or not 0 <= s <= top:
                     raise self._invalid(
-                        f"{where}: dataset 'split'[{i}] = {s}: must be 1 to 7 for a split cell, "
-                        "0 for a leaf")
+                        f"{where}: dataset 'split'[{i}] = {s}: must be 1 to {top} for a split "
+                        "cell, 0 for a leaf"
+                        + (" (the patch of one pair halves c and e_n only: no gamma bit 4)"
+                           if pair else ""))
         problem, leaves = check_tree(tree, bg * bc * (be or 1), 1 << dims, split)
         if problem:
             raise self._invalid(f"{where}: dataset 'tree' {problem}")
@@ -614,7 +693,8 @@ class Table:
                 per_leaf = pred + factor * est.reshape(leaves, -1).max(axis=1, initial=0.0)
                 bound = float(per_leaf.max(initial=0.0))
         self.bounds[name] = bound
-        return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp, be, self.e_n_range, split)
+        return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp, be, self.e_n_range, split,
+                     pair)
 
     def _warp(self, g, name, gamma_lo, gamma_hi, bg, bc, tree, num):
         """The optional warp group of a patch, validated as docs/table-format.md states."""
@@ -689,7 +769,20 @@ class Table:
         if math.isnan(alpha) or alpha < 0:
             raise DomainError(f"alpha = {alpha}: must be >= 0 (or inf)", "alpha")
 
+    def rule_gamma(self, gamma):
+        """gamma as the rule takes it: in the table of one pair, a gamma within PAIR_GAMMA_TOL
+        (relative) of the pair's is the pair's; any other gamma as it is."""
+        g = self.pair_gamma
+        if g is not None and abs(gamma - g) <= PAIR_GAMMA_TOL * g:
+            return g
+        return gamma
+
     def _check_domain(self, gamma, alpha, lin):
+        if self.pair_gamma is not None and gamma != self.pair_gamma:
+            raise DomainError(
+                f"gamma = {gamma}: this table holds one pair of materials, gamma = "
+                f"{self.pair_gamma!r} (within a relative {PAIR_GAMMA_TOL:g}; only alpha <= "
+                f"alpha_lin(gamma) = {lin} is answered at another gamma)", "gamma")
         if not self.gamma_min <= gamma <= self.gamma_max:
             raise DomainError(
                 f"gamma = {gamma} outside the table's domain [{self.gamma_min}, "
@@ -701,9 +794,11 @@ class Table:
 
     def p_e(self, gamma, alpha, e_n):
         """P(gamma, alpha, e_n) at normal restitution e_n (schema v4). e_n must lie in the
-        table's e_n range, never clamped; an elastic table answers e_n = 1 only (as p). Raises
-        DomainError outside the answered domain."""
+        table's e_n range, never clamped; an elastic table answers e_n = 1 only (as p). The table
+        of one pair answers its gamma (within PAIR_GAMMA_TOL, relative: taken as the pair's) and
+        the full-slip line at any gamma. Raises DomainError outside the answered domain."""
         gamma, alpha, e_n = float(gamma), float(alpha), float(e_n)
+        gamma = self.rule_gamma(gamma)
         self._check_point(gamma, alpha)
         if self.e_n_range is None:
             if e_n != 1.0:
@@ -726,7 +821,8 @@ class Table:
         patch = self.patches.get(name)
         if patch is None:
             return -e_n  # at gamma = 1 exactly the contact sticks at once
-        # 4. Coordinates (no warp with an e_n axis); 6-10 in Patch.interpolate_e.
+        # 4. Coordinates (no warp with an e_n axis); 6-10 in Patch.interpolate_e (over (c, x_e)
+        # in the table of one pair, at its gamma).
         if patch.kind == "partial-slip":
             c = partial_coord_e(gamma, alpha, e_n)
         else:

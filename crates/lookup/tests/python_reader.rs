@@ -1,7 +1,8 @@
 //! The Rust query path against the independent Python reference reader of the rule
 //! (`scripts/read_table.py`, h5py + numpy), at a few thousand points of the shipped tables,
 //! including the deepest leaves of `tables/full.h5`, and bit for bit at 200 000 points of a
-//! small table with an `e_n` axis (schema 4) built here. Fails (naming what is missing) when
+//! small table with an `e_n` axis (schema 4) built here and at 30 000 points of the table of
+//! one pair (`tables/dissipative-pair.h5`, axes `alpha,e_n`). Fails (naming what is missing) when
 //! `python3` with h5py and numpy is not available.
 
 use std::io::Write;
@@ -302,6 +303,178 @@ fn python_reader_gives_the_bits_of_p_e_on_a_table_with_an_e_n_axis() {
          {refused_e_n} refused for e_n and {refused_gamma} for gamma by both (build {built:.1} s, \
          Python {py_time:.1} s)"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The script that answers `gamma,alpha,e_n` lines with `read_table.py`'s `Table.p_e`: `P`
+/// as `repr`, or `error NAME: MESSAGE` for a refused point.
+const P_E_LINES: &str = "import sys\n\
+                         sys.path.insert(0, sys.argv[1])\n\
+                         from read_table import Table, DomainError\n\
+                         t = Table(sys.argv[2])\n\
+                         out = [repr(t.pair_gamma), repr(t.error_bound)]\n\
+                         for line in sys.stdin:\n    \
+                             g, a, e = (float(x) for x in line.split(','))\n    \
+                             try:\n        \
+                                 out.append(repr(t.p_e(g, a, e)))\n    \
+                             except DomainError as err:\n        \
+                                 out.append('error ' + err.name + ': ' + str(err))\n\
+                         sys.stdout.write('\\n'.join(out) + '\\n')\n";
+
+/// The table of one pair (`tables/dissipative-pair.h5`, axes `alpha,e_n`): the Python reader
+/// gives the bits of `Table::p_e` at 30 000 random `(α, e_n)` at the pair's γ, with α = 0, ∞,
+/// α_c1(γ, e_n), α_c2 and the ends of the `e_n` range among them; a γ within 1e-9 (relative)
+/// of the pair's is the pair's in both, a γ further off is refused by both naming γ and the
+/// pair's value (the full-slip line answered there), an `e_n` outside the range by both
+/// naming `e_n`; the stated bound (with `Λ_4²`) is the same.
+#[test]
+fn python_reader_gives_the_bits_of_p_e_on_the_table_of_one_pair() {
+    let path = repo().join("tables/dissipative-pair.h5");
+    let t = Table::open(&path).expect("dissipative-pair.h5");
+    let s = t.surface();
+    let gamma = s.pair_gamma().expect("the table of one pair");
+    let (lo, hi) = t.restitution().expect("an e_n axis");
+    let mut next = oblique_lookup::testing::uniform(0x0BE_9A1E);
+    let n = 30_000;
+    let mut points = Vec::with_capacity(n);
+    for i in 0..n {
+        let g = match i % 101 {
+            7 => gamma * (1.0 + 9e-10 * (2.0 * next() - 1.0)),
+            8 => gamma * (1.0 + 1e-6 * (2.0 * next() - 1.0)),
+            9 => 0.5 + 3.0 * next(),
+            _ => gamma,
+        };
+        let e = match i % 37 {
+            0 => lo,
+            1 => hi,
+            2 => lo - 0.01 * next(),
+            _ => lo + (hi - lo) * next(),
+        };
+        let a = match i % 23 {
+            0 => f64::INFINITY,
+            1 => 0.0,
+            2 => oblique_table::surface::alpha_c2(g),
+            3 => oblique_table::surface::alpha_c1_dissipative(g, e),
+            4 => oblique_table::surface::alpha_c1_dissipative(g, e) * (1.0 + 1e-9 * next()),
+            5 => oblique_table::surface::alpha_c2(g) * (1.0 - 1e-9 * next()),
+            6 => 1e300 * next(),
+            _ => 3.0 * next() * next(),
+        };
+        points.push((g, a, e));
+    }
+    let input: String = points
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect();
+    let lines = python_lines(P_E_LINES, &path, input);
+    assert_eq!(lines.len(), n + 2);
+    assert_eq!(lines[0], format!("{gamma:?}"), "Table.pair_gamma");
+    let bound: f64 = lines[1].parse().expect("bound");
+    assert_eq!(bound.to_bits(), t.error_bound().to_bits(), "stated bound");
+    let (mut answered, mut line, mut near, mut refused_e_n, mut refused_gamma) = (0, 0, 0, 0, 0);
+    for (&(g, a, e), py) in points.iter().zip(&lines[2..]) {
+        match t.p_e(g, a, e) {
+            Ok(p) => {
+                let r: f64 = py
+                    .parse()
+                    .unwrap_or_else(|_| panic!("({g:?}, {a:?}, {e:?}): Rust {p:?}, Python {py}"));
+                assert_eq!(
+                    p.to_bits(),
+                    r.to_bits(),
+                    "({g:?}, {a:?}, {e:?}): Rust {p:?}, read_table.py {r:?}"
+                );
+                answered += 1;
+                line += usize::from(g != gamma && s.rule_gamma(g) != gamma);
+                near += usize::from(g != gamma && s.rule_gamma(g) == gamma);
+            }
+            Err(err @ oblique_lookup::LookupError::Query { name, .. }) => {
+                assert!(
+                    py.starts_with(&format!("error {name}: ")),
+                    "({g:?}, {a:?}, {e:?}): Rust {err}, Python {py}"
+                );
+                if name == "gamma" {
+                    for m in [err.to_string(), py.clone()] {
+                        assert!(m.contains(&format!("{gamma:?}")), "{m}");
+                    }
+                }
+                refused_e_n += usize::from(name == "e_n");
+                refused_gamma += usize::from(name == "gamma");
+            }
+            Err(other) => panic!("({g:?}, {a:?}, {e:?}): {other}"),
+        }
+    }
+    assert!(
+        answered > n * 9 / 10
+            && line > 50
+            && near > 200
+            && refused_e_n > 500
+            && refused_gamma > 300,
+        "{answered} answered ({line} on the line off the pair, {near} near it), {refused_e_n} \
+         refused for e_n, {refused_gamma} for gamma"
+    );
+    eprintln!(
+        "pair table: {answered} of {n} points the same bits in Rust and read_table.py ({near} at \
+         a gamma within 1e-9 of the pair's, {line} on the line at other gammas), {refused_e_n} \
+         refused for e_n and {refused_gamma} for gamma by both"
+    );
+}
+
+/// Copies of the table of one pair edited and sealed again, each refused by the Rust reader
+/// and by `read_table.py`, which names the attribute or dataset: an `axes` attribute that says
+/// it spans a range of γ, a `gamma_max` that differs from `gamma_min`, a patch whose γ edges
+/// differ, one with two root cells along γ, and a `split` mask with the γ bit.
+#[test]
+fn edited_tables_of_one_pair_are_refused_by_both_readers() {
+    require_python();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("python_reader_pair-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    let split = "s = f['patches/partial_high/split']; v = s[()]; \
+                 i = int((v != 0).nonzero()[0][0]); v[i] |= 4; s[...] = v";
+    let cases = [
+        ("axes", "f.attrs['axes'] = 'gamma,alpha,e_n'", "'axes'"),
+        ("gamma_max", "f.attrs['gamma_max'] = 1.76", "'gamma_max'"),
+        (
+            "edges",
+            "f['patches/stick_high'].attrs['gamma_hi'] = 1.76",
+            "'gamma_hi'",
+        ),
+        (
+            "blocks",
+            "f['patches/stick_high'].attrs['blocks_gamma'] = 2.0",
+            "'blocks_gamma'",
+        ),
+        ("split", split, "'split'"),
+    ];
+    for (name, edit, needle) in cases {
+        let bad = dir.join(format!("{name}.h5"));
+        std::fs::copy(repo().join("tables/dissipative-pair.h5"), &bad).expect("copy");
+        let script =
+            format!("import h5py, sys\nwith h5py.File(sys.argv[1], 'r+') as f:\n    {edit}\n");
+        let out = Command::new("python3")
+            .args(["-c", &script, bad.to_str().expect("path")])
+            .output()
+            .expect("python3 with h5py");
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        oblique_table::write::seal(&bad).expect("seal again");
+        let rust = Table::open(&bad).map(|_| ()).expect_err(name);
+        let out = Command::new("python3")
+            .arg(repo().join("scripts/read_table.py"))
+            .arg(&bad)
+            .arg("--error-bound")
+            .output()
+            .expect("read_table.py");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        assert!(
+            err.contains(needle),
+            "{name}: read_table.py says {err:?}, not naming {needle} (Rust: {rust})"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
