@@ -86,9 +86,10 @@
 extern "C" {
 #endif
 
-/* Newest layout version this header reads: 1 (an elastic table, and curves) and 2 (a table
-   with a normal-restitution axis e_n). */
-#define OBLQ_EXPORT_VERSION 2u
+/* Newest layout version this header reads: 1 (an elastic table, and curves), 2 (a table
+   with a normal-restitution axis e_n) and 3 (the table of one pair: P(alpha, e_n) at a single
+   gamma). */
+#define OBLQ_EXPORT_VERSION 3u
 
 /* Status codes of the file loader oblq_load_file (host only; the others follow). */
 enum {
@@ -148,10 +149,12 @@ typedef struct {
     size_t rows, cols;
     double fine;
     /* Root cells along e_n (1 without the axis); with the axis the tree is an octree and p
-       is [leaves][m+1][m+1][m+1]. */
+       is [leaves][m+1][m+1][m+1]; in the patch of one pair (gamma_lo == gamma_hi,
+       blocks_gamma 1) a quadtree over (c, e_n) and p is [leaves][m+1][m+1]. */
     size_t blocks_e_n;
     /* With the axis, optionally: which axes each split cell halves (bit 4: gamma, 2: c,
-       1: e_n; 0 for a leaf), uint8 [cells]; NULL: every split halves every axis. */
+       1: e_n; 0 for a leaf; 1 to 3 in the patch of one pair), uint8 [cells]; NULL: every
+       split halves every axis. */
     const unsigned char *split;
 } oblq_patch;
 
@@ -165,8 +168,9 @@ typedef struct {
     const unsigned char *data; /* the export */
     uint64_t size;
     uint64_t curves; /* offset of the curve records */
-    int has_e_n;              /* 1: a table with a normal-restitution axis (layout version 2) */
+    int has_e_n;              /* 1: a table with a normal-restitution axis (layout version 2, 3) */
     double e_n_min, e_n_max;  /* the e_n range it answers: 1, 1 for an elastic table */
+    int pair; /* 1: the table of one pair (layout version 3): gamma_min == gamma_max, its gamma */
 } oblq_table;
 
 /* One patch of a curve. */
@@ -225,10 +229,13 @@ OBLQ_FN int oblq__finite_array(const double *v, size_t n) {
     return 1;
 }
 
-/* A patch record; `octree`: of a table with an e_n axis (version 2). */
+/* A patch record; `axes`: 2 of an elastic table (version 1), 3 of a table with an e_n axis
+   (version 2: an octree over gamma, c, e_n), 1 of the table of one pair (version 3: a single
+   gamma, a quadtree over c, e_n). */
 OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
-                        const unsigned char *r, int octree) {
-    uint64_t cells, leaves, m, bg, bc, be, fan, roots, i, nodes, off;
+                        const unsigned char *r, int axes) {
+    uint64_t cells, leaves, m, bg, bc, be, fan, roots, i, nodes, off, masks;
+    int octree = axes != 2, pair = axes == 1;
     memset(p, 0, sizeof *p);
     if (oblq__u32(r) == 0) return OBLQ_OK;
     if (oblq__u32(r) != 1 || oblq__u32(r + 4) > 1) return OBLQ_E_CORRUPT;
@@ -241,16 +248,20 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
     m = oblq__u32(r + 32);
     cells = oblq__u32(r + 36);
     leaves = oblq__u32(r + 40);
+    /* gamma_lo < gamma_hi; equal (and one root along gamma) in the patch of one pair only. */
     if (!(isfinite(p->gamma_lo) && isfinite(p->gamma_hi) && p->gamma_lo > 0.0 &&
-          p->gamma_lo < p->gamma_hi))
+          (pair ? p->gamma_lo == p->gamma_hi && bg == 1 : p->gamma_lo < p->gamma_hi)))
         return OBLQ_E_CORRUPT;
     if (bg < 1 || bc < 1 || m < 3 || m > 64 || leaves < 1) return OBLQ_E_CORRUPT;
     be = 1;
     fan = 4;
+    masks = 7; /* the masks a split cell may have */
     if (octree) {
-        /* The third axis: an octree, without a warp or a fine index. */
+        /* The e_n axis: an octree (a quadtree over c, e_n in the patch of one pair), without a
+           warp or a fine index. */
         be = oblq__u32(r + 136);
-        fan = 8;
+        fan = pair ? 4 : 8;
+        masks = pair ? 3 : 7;
         if (be < 1 || be > 65536 || oblq__u32(r + 44) != 0 || oblq__u64(r + 120) != 0)
             return OBLQ_E_CORRUPT;
     }
@@ -273,15 +284,16 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
         return OBLQ_E_CORRUPT;
     }
     /* Safe descent: a split cell's children exist and come after it (so every descent ends),
-       a leaf number is in range; a mask is 1 to 7 for a split cell, 0 for a leaf; the children
-       of all split cells are exactly the cells after the roots. */
+       a leaf number is in range; a mask is 1 to 7 for a split cell (1 to 3 in the patch of one
+       pair: never gamma), 0 for a leaf; the children of all split cells are exactly the cells
+       after the roots. */
     {
         uint64_t children = 0;
         for (i = 0; i < cells; i++) {
             int32_t t = oblq__i32(p->tree + 4 * i);
-            uint64_t s = p->split ? p->split[i] : (t >= 0 ? 7 : 0), f;
+            uint64_t s = p->split ? p->split[i] : (t >= 0 ? masks : 0), f;
             if (t >= 0) {
-                if (s < 1 || s > 7) return OBLQ_E_CORRUPT;
+                if (s < 1 || s > masks) return OBLQ_E_CORRUPT;
                 f = p->split ? (uint64_t)1 << ((s & 1) + ((s >> 1) & 1) + (s >> 2)) : fan;
                 if ((uint64_t)t <= i || (uint64_t)t + f - 1 >= cells) return OBLQ_E_CORRUPT;
                 children += f;
@@ -291,7 +303,7 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
         }
         if (cells - roots != children) return OBLQ_E_CORRUPT;
     }
-    nodes = leaves * (m + 1) * (m + 1) * (octree ? m + 1 : 1); /* < 2^51 */
+    nodes = leaves * (m + 1) * (m + 1) * (octree && !pair ? m + 1 : 1); /* < 2^51 */
     off = oblq__u64(r + 56);
     if (!oblq__span(off, nodes, 8, len)) return OBLQ_E_CORRUPT;
     p->p = (const double *)(const void *)(d + off);
@@ -465,8 +477,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if (d[k] != (unsigned char)"OBLQEVAL"[k]) return OBLQ_E_FORMAT;
     if (size < 96) return OBLQ_E_TRUNCATED;
     version = oblq__u32(d + 8);
-    if (version != 1 && version != 2) return OBLQ_E_VERSION;
-    header = version == 1 ? 96 : 112; /* version 2 adds the e_n range */
+    if (version < 1 || version > 3) return OBLQ_E_VERSION;
+    header = version == 1 ? 96 : 112; /* versions 2 and 3 add the e_n range */
     if (oblq__u32(d + 12) != header) return OBLQ_E_CORRUPT;
     if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
     len = oblq__u64(d + 16);
@@ -485,10 +497,13 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     /* Every header value as the data implies it (a value changed and resealed must not reach
        a query: alpha_max at alpha_c2 made the stick coordinate 0/0): the domain
        0 < gamma_min < gamma_max <= 1e100 (tables are built to gamma <= 64; below 1e100 no
-       product of the rule overflows), the bound finite and >= 0, alpha_max inf or above
-       alpha_c2(gamma_max) in both of the rule's forms (then S(alpha_max) > 0 at every gamma of
-       the domain), and below the patches and curves. */
-    if (!(isfinite(out.gamma_min) && out.gamma_min > 0.0 && out.gamma_min < out.gamma_max &&
+       product of the rule overflows; gamma_min == gamma_max in version 3 only, the table of
+       one pair), the bound finite and >= 0, alpha_max inf or above alpha_c2(gamma_max) in both
+       of the rule's forms (then S(alpha_max) > 0 at every gamma of the domain), and below the
+       patches and curves. */
+    out.pair = version == 3;
+    if (!(isfinite(out.gamma_min) && out.gamma_min > 0.0 &&
+          (out.pair ? out.gamma_min == out.gamma_max : out.gamma_min < out.gamma_max) &&
           out.gamma_max <= 1e100))
         return OBLQ_E_CORRUPT;
     if (!(out.error_bound >= 0.0 && out.error_bound < INFINITY)) return OBLQ_E_CORRUPT;
@@ -499,8 +514,9 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     if (oblq__u32(d + 64) != 4) return OBLQ_E_CORRUPT; /* the cubic stencil */
     out.e_n_min = 1.0;
     out.e_n_max = 1.0;
-    if (version == 2) {
-        /* A table with an e_n axis: its range, its surface, no curves. */
+    if (version >= 2) {
+        /* A table with an e_n axis (of one pair in version 3): its range, its surface, no
+           curves. */
         out.has_e_n = 1;
         out.e_n_min = oblq__f64(d + 96);
         out.e_n_max = oblq__f64(d + 104);
@@ -514,7 +530,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if (!oblq__span(off, 3, 160, len) || off < header) return OBLQ_E_CORRUPT;
         out.has_surface = 1;
         for (k = 0; k < 3; k++) {
-            rc = oblq__patch(&out.patch[k], d, len, d + off + 160 * k, out.has_e_n);
+            rc = oblq__patch(&out.patch[k], d, len, d + off + 160 * k,
+                             out.pair ? 1 : (out.has_e_n ? 3 : 2));
             if (rc != OBLQ_OK) return rc;
         }
         if (out.patch[1].present && !out.patch[1].partial) return OBLQ_E_CORRUPT;
@@ -523,7 +540,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
             return OBLQ_E_CORRUPT;
         /* The patches the domain needs, over the gamma ranges they are built on: stick_low
            over [gamma_min, min(gamma_max, 1)] when gamma_min < 1, the other two over
-           [max(gamma_min, 1), gamma_max] when gamma_max > 1; no other. */
+           [max(gamma_min, 1), gamma_max] when gamma_max > 1; no other. (The table of one pair:
+           its patches at its gamma, gamma_lo == gamma_hi == gamma_min.) */
         for (k = 0; k < 3; k++) {
             const oblq_patch *p = &out.patch[k];
             int low = k == 0;
@@ -598,7 +616,7 @@ OBLQ_FN const char *oblq_error_message(int code) {
     case OBLQ_E_CORRUPT: return "the export is inconsistent (offsets, sizes or values out of range) or not 8-byte aligned in memory";
     case OBLQ_E_GAMMA: return "invalid gamma: must be a finite number > 0";
     case OBLQ_E_ALPHA: return "invalid alpha: must be >= 0 (or inf for no slip)";
-    case OBLQ_E_GAMMA_DOMAIN: return "gamma outside the table's domain [gamma_min, gamma_max] (and alpha above the full-slip line); or opt into clamping";
+    case OBLQ_E_GAMMA_DOMAIN: return "gamma outside the table's domain [gamma_min, gamma_max] (and alpha above the full-slip line; a table of one pair: its gamma within 1e-9 relative); or opt into clamping";
     case OBLQ_E_ALPHA_DOMAIN: return "alpha above the table's alpha_max; or opt into clamping";
     case OBLQ_E_NO_SURFACE: return "this export holds only curves: query a curve, or export the whole table";
     case OBLQ_E_NO_CURVE: return "no curve of that gamma (or index) in the export: export it with sweep export --gamma";
@@ -898,17 +916,69 @@ OBLQ_FN double oblq__tensor3(const oblq_patch *p, double gamma, double c, double
     return wg[0] * plane[0] + wg[1] * plane[1] + wg[2] * plane[2] + wg[3] * plane[3];
 }
 
+/* Steps 6-9 on the patch of one pair at (c, x_e): the quadtree's leaf (masks: bit 2 c, bit 1
+   e_n), then the tensor product of the two cubic stencils, summed e_n innermost. */
+OBLQ_FN double oblq__tensor_pair(const oblq_patch *p, double c, double xe) {
+    double fc, fe, wc[4], we[4], r[4];
+    size_t b = oblq__locate(c, p->blocks_coord, &fc);
+    size_t e = oblq__locate(xe, p->blocks_e_n, &fe);
+    size_t cell = b * p->blocks_e_n + e, leaf, n1, sc, se, i;
+    const double *v;
+    for (;;) {
+        int32_t t = oblq__i32(p->tree + 4 * cell);
+        size_t qc, qe, q;
+        unsigned mask;
+        if (t < 0) {
+            leaf = (size_t)(-(int64_t)t - 1);
+            break;
+        }
+        mask = p->split ? p->split[cell] : 3;
+        q = 0;
+        if (mask & 2) {
+            fc *= 2.0;
+            qc = fc >= 1.0;
+            fc -= (double)qc;
+            q = qc;
+        }
+        if (mask & 1) {
+            fe *= 2.0;
+            qe = fe >= 1.0;
+            fe -= (double)qe;
+            q = 2 * q + qe;
+        }
+        cell = (size_t)t + q;
+    }
+    n1 = p->m + 1;
+    sc = oblq__stencil4(fc * (double)p->m, n1, wc);
+    se = oblq__stencil4(fe * (double)p->m, n1, we);
+    v = p->p + leaf * n1 * n1 + sc * n1 + se;
+    for (i = 0; i < 4; i++) {
+        const double *row = v + i * n1;
+        r[i] = row[0] * we[0] + row[1] * we[1] + row[2] * we[2] + row[3] * we[3];
+    }
+    return wc[0] * r[0] + wc[1] * r[1] + wc[2] * r[2] + wc[3] * r[3];
+}
+
 /* The rule of a table with an e_n axis in a region above the line, inside the domain. */
 OBLQ_FN double oblq__eval_in_e(const oblq_table *t, int region, double gamma, double alpha,
                                double e_n) {
     const oblq_patch *p = &t->patch[region];
-    double c;
+    double c, xe;
     if (!p->present) return -e_n; /* at gamma = 1 exactly the contact sticks at once */
     c = p->partial ? oblq__partial_coord_e(gamma, alpha, e_n)
                    : oblq__stick_coord(gamma, alpha, t->alpha_max);
     c = oblq__clamp(c, 0.0, 1.0);
-    return oblq__clamp(
-        oblq__tensor3(p, gamma, c, (e_n - t->e_n_min) / (t->e_n_max - t->e_n_min)), -1.0, 1.0);
+    xe = (e_n - t->e_n_min) / (t->e_n_max - t->e_n_min);
+    return oblq__clamp(t->pair ? oblq__tensor_pair(p, c, xe) : oblq__tensor3(p, gamma, c, xe),
+                       -1.0, 1.0);
+}
+
+/* gamma as the rule takes it: in the table of one pair a gamma within 1e-9 (relative) of the
+   pair's is the pair's (P moves by far less than the table's error there); any other as it
+   is (then refused as outside the domain, or clamped, above the full-slip line). */
+OBLQ_FN double oblq__rule_gamma(const oblq_table *t, double gamma) {
+    double g = t->gamma_min;
+    return t->pair && fabs(gamma - g) <= 1e-9 * g ? g : gamma;
 }
 
 /* oblq_p_e of a table with an e_n axis, e_n checked. */
@@ -939,7 +1009,10 @@ OBLQ_FN int oblq__p_axis(const oblq_table *t, double gamma, double alpha, double
    (oblq_e_n_range), else OBLQ_E_E_N: it is never clamped, and an elastic table answers
    e_n = 1 only (as oblq_p). On the full-slip line, alpha <= alpha_c1(gamma, e_n) (gamma > 1) or
    alpha_c2 (gamma <= 1), P = 1 - (7/2)(1 + e_n) alpha for any gamma > 0; gamma, alpha and clamp
-   otherwise as for oblq_p (clamp moves gamma and alpha only). */
+   otherwise as for oblq_p (clamp moves gamma and alpha only). The table of one pair (t->pair,
+   layout version 3, gamma_min == gamma_max) takes a gamma within 1e-9 relative of its own,
+   |gamma - gamma_min| <= 1e-9 gamma_min, as its own; above the line it refuses any other
+   (OBLQ_E_GAMMA_DOMAIN) or, with clamp, answers at its own. */
 OBLQ_FN int oblq_p_e(const oblq_table *t, double gamma, double alpha, double e_n, int clamp,
                      double *p) {
     if (!t || !p) return OBLQ_E_NULL;
@@ -947,7 +1020,7 @@ OBLQ_FN int oblq_p_e(const oblq_table *t, double gamma, double alpha, double e_n
     if (!(alpha >= 0.0)) return OBLQ_E_ALPHA; /* NaN or negative */
     if (!(e_n >= t->e_n_min && e_n <= t->e_n_max)) return OBLQ_E_E_N; /* NaN too */
     if (!t->has_e_n) return oblq__p_elastic(t, gamma, alpha, clamp, p);
-    return oblq__p_axis(t, gamma, alpha, e_n, clamp, p);
+    return oblq__p_axis(t, oblq__rule_gamma(t, gamma), alpha, e_n, clamp, p);
 }
 
 /* P(gamma, alpha) (dimensionless, -1 <= P <= 1) by the table's rule. gamma finite > 0,

@@ -511,7 +511,7 @@ fn damaged_truncated_and_foreign_files_are_refused_with_their_code() {
     let hdf5 = std::fs::read(root("tables/quick.h5")).expect("table");
     assert!(case("hdf5", &hdf5).starts_with("3 not an export"));
     let mut newer = good.clone();
-    newer[8] = 3; // 1 and 2 (a table with an e_n axis) are known
+    newer[8] = 4; // 1, 2 (a table with an e_n axis) and 3 (the table of one pair) are known
     assert!(case("newer", &newer).starts_with("4 "));
     // A consistent checksum over inconsistent contents: an offset beyond the end.
     let mut bad = good.clone();
@@ -663,6 +663,7 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
         (export_file("quick", false), "2000"),
         (export_file("full", true), "3000"),
         (dissipative().1.clone(), "2000"),
+        (pair_table().1.clone(), "2000"),
     ] {
         let out = Command::new(&exe)
             .args(["fuzz", path.to_str().expect("path"), n, "17"])
@@ -1185,8 +1186,12 @@ fn damaged_e_n_exports_are_refused_with_their_code() {
     flipped[good.len() / 2] ^= 0x04;
     assert!(case("flipped", &flipped).starts_with("5 "));
     let mut newer = good.clone();
-    newer[8] = 3;
+    newer[8] = 4;
     assert!(case("newer", &newer).starts_with("4 "));
+    // Version 3 (the table of one pair) with the header and patches of version 2.
+    let mut v3 = good.clone();
+    v3[8] = 3;
+    assert!(case("v3", &v3).starts_with("6 "));
     // Version 1 with the header of version 2, and the reverse.
     let mut v1 = good.clone();
     v1[8] = 1;
@@ -1763,4 +1768,460 @@ fn damaged_split_masks_are_refused() {
     let mut b = elastic.clone();
     b[r + 144..r + 152].copy_from_slice(&8u64.to_le_bytes());
     assert!(open("elastic", &sealed(b)).starts_with("6 "));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The table of one pair: P(α, e_n) at a single γ (export layout version 3)
+
+/// γ of the shipped `tables/dissipative-pair.h5` (alumina-96 on soda-lime glass).
+const PAIR_GAMMA: f64 = 1.749_785_860_077_429_9;
+
+/// The shipped table of one pair and its export by `sweep export`, made once per process.
+fn pair_table() -> &'static (Table, PathBuf) {
+    static T: OnceLock<(Table, PathBuf)> = OnceLock::new();
+    T.get_or_init(|| {
+        let table = root("tables/dissipative-pair.h5");
+        let t = Table::open(&table).expect("shipped table");
+        let path = dir().join("dissipative-pair.oblq");
+        let said = evaluator::sweep_ok(&[
+            "export",
+            table.to_str().expect("path"),
+            "-o",
+            path.to_str().expect("path"),
+        ]);
+        assert!(
+            said.contains("the table of one pair (gamma = 1.7497858600774299, e_n in [0.5, 1])"),
+            "{said}"
+        );
+        (t, path)
+    })
+}
+
+/// `x` one ulp up (`x` finite, > 0).
+fn ulp_up(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() + 1)
+}
+
+/// Random `(γ_pair, α, e_n)` over the pair's `e_n` range: [`points_e`] at the pair's γ, with
+/// α = 0, ∞, α_c2, α_c1(γ, e_n), 1e-12 above it, one ulp above it and one ulp below α_c2 in the
+/// mix, and the ends of the `e_n` range.
+fn pair_points(n: usize, seed: u64, e: (f64, f64)) -> Vec<(f64, f64, f64)> {
+    use oblique_physics::regimes::alpha_c1_dissipative;
+    points_e(n, seed, (PAIR_GAMMA, PAIR_GAMMA), e)
+        .into_iter()
+        .enumerate()
+        .map(|(i, (_, a, e))| {
+            let a = match i % 50 {
+                2 => alpha_c2(PAIR_GAMMA),
+                3 => alpha_c1_dissipative(PAIR_GAMMA, e),
+                4 => alpha_c1_dissipative(PAIR_GAMMA, e) * (1.0 + 1e-12),
+                5 => ulp_up(alpha_c1_dissipative(PAIR_GAMMA, e)),
+                6 => f64::from_bits(alpha_c2(PAIR_GAMMA).to_bits() - 1),
+                _ => a,
+            };
+            (PAIR_GAMMA, a, e)
+        })
+        .collect()
+}
+
+/// `P(γ, α, e_n)` of the table of one pair with the same bits in Rust (`Table::p_e`) and in C
+/// (`oblq_p_e` of `examples/c/query.c` on the export of `sweep export`): 10⁶ random points
+/// `(α, e_n)` at the pair's γ, and at γ within 5e-10 (relative) of it, which both take as the
+/// pair's. The export is layout version 3, the format crate's bytes.
+#[test]
+fn pair_table_gives_the_same_bits_in_rust_and_c_on_a_million_points() {
+    let start = std::time::Instant::now();
+    let (t, path) = pair_table();
+    let s = t.surface();
+    assert_eq!(s.pair_gamma(), Some(PAIR_GAMMA));
+    let bytes = std::fs::read(path).expect("export");
+    assert_eq!(bytes, export::export(s, t.error_bound(), true, &[]));
+    assert_eq!(
+        &bytes[8..16],
+        &[3, 0, 0, 0, 112, 0, 0, 0],
+        "version 3, 112-byte header"
+    );
+    assert_eq!(bytes[32..40], bytes[40..48], "gamma_min == gamma_max");
+    let mut f = vec!["-std=c99"];
+    f.extend(WARNINGS);
+    let query = compile("gcc", &f, "examples/c/query.c", "query_pair");
+    let range = t.restitution().expect("an e_n axis");
+    let n = 1_000_000;
+    let mut pts = pair_points(n, 53, range);
+    // Every 20th point at a γ within 5e-10 (relative) of the pair's: the pair's answer.
+    let near = |i: usize| match i % 80 {
+        10 => PAIR_GAMMA * (1.0 + 5e-10),
+        30 => PAIR_GAMMA * (1.0 - 5e-10),
+        50 => ulp_up(PAIR_GAMMA),
+        70 => f64::from_bits(PAIR_GAMMA.to_bits() - 1),
+        _ => PAIR_GAMMA,
+    };
+    for (i, p) in pts.iter_mut().enumerate() {
+        p.0 = near(i);
+    }
+    let rust: Vec<f64> = pts
+        .iter()
+        .map(|&(g, a, e)| t.p_e(g, a, e).expect("at the pair's gamma"))
+        .collect();
+    let rust_s = start.elapsed().as_secs_f64();
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect();
+    let c_start = std::time::Instant::now();
+    let out = run_ok(&query, &[path.to_str().expect("path")], &input);
+    let c_s = c_start.elapsed().as_secs_f64();
+    let c: Vec<f64> = out
+        .lines()
+        .map(|l| l.rsplit(',').next().expect("P").parse().expect("P"))
+        .collect();
+    assert_eq!(c.len(), n, "every point answered by C");
+    let (mut differ, mut line_pts, mut snapped) = (0, 0, 0);
+    for (i, &(g, a, e)) in pts.iter().enumerate() {
+        line_pts += usize::from(a <= oblique_physics::regimes::linear_limit_dissipative(g, e));
+        if c[i].to_bits() != rust[i].to_bits() {
+            differ += 1;
+            if differ < 5 {
+                eprintln!(
+                    "gamma {g:?} alpha {a:?} e_n {e:?}: p_e {:?}, C {:?}",
+                    rust[i], c[i]
+                );
+            }
+        }
+        if g != PAIR_GAMMA {
+            // γ within 5e-10: the answer at the pair's γ, to the bit.
+            let at_pair = t.p_e(PAIR_GAMMA, a, e).expect("inside");
+            assert_eq!(rust[i].to_bits(), at_pair.to_bits(), "{g:?} {a:?} {e:?}");
+            snapped += 1;
+        }
+    }
+    assert_eq!(differ, 0, "{differ} of {n} points differ in some bit");
+    assert!(
+        line_pts > n / 20 && line_pts < n / 2,
+        "{line_pts} on the line"
+    );
+    assert!(snapped >= n / 20, "{snapped} near the pair's gamma");
+    eprintln!(
+        "table of one pair: {n} points (α, e_n), {line_pts} on the full-slip line, {snapped} at \
+         γ within 5e-10 of the pair's: p_e == C bit for bit (Rust {rust_s:.2} s, C with its \
+         I/O {c_s:.2} s, in all {:.1} s)",
+        start.elapsed().as_secs_f64()
+    );
+}
+
+/// The table of one pair refuses another γ above the full-slip line (1e-6 off, 2e-9 off, other
+/// materials) with `OBLQ_E_GAMMA_DOMAIN` where Rust refuses it naming `gamma`, answers the line
+/// at any γ, clamps to the pair's γ with clamping, and refuses `e_n` outside its range; `oblq_p`
+/// answers its `e_n = 1` slice, all with Rust's bits.
+#[test]
+fn pair_table_refuses_another_gamma_as_rust_does() {
+    use oblique_physics::regimes::alpha_c1_dissipative;
+    let (t, path) = pair_table();
+    let path = path.to_str().expect("path");
+    let base = pair_points(20_000, 59, (0.45, 1.02));
+    let gammas = [
+        PAIR_GAMMA * (1.0 + 1e-6),
+        PAIR_GAMMA * (1.0 - 1e-6),
+        PAIR_GAMMA * (1.0 + 2e-9),
+        PAIR_GAMMA * (1.0 - 2e-9),
+        PAIR_GAMMA * (1.0 + 5e-10),
+        PAIR_GAMMA,
+        1.2,
+        0.8,
+        3.0,
+    ];
+    let mut pts: Vec<(f64, f64, f64)> = base
+        .iter()
+        .enumerate()
+        .map(|(i, &(_, a, e))| (gammas[i % gammas.len()], a, e))
+        .collect();
+    // The edge of the tolerance: |γ − γ_pair| against 1e-9·γ_pair, either side of it.
+    let tol = 1e-9 * PAIR_GAMMA;
+    let mut edge = PAIR_GAMMA + tol;
+    while (edge - PAIR_GAMMA).abs() > tol {
+        edge = f64::from_bits(edge.to_bits() - 1);
+    }
+    for g in [edge, ulp_up(edge), ulp_up(ulp_up(edge))] {
+        pts.push((g, 0.3, 0.8));
+        pts.push((g, f64::INFINITY, 0.6));
+    }
+    let a1 = alpha_c1_dissipative(3.0, 0.8);
+    pts.extend([
+        (f64::NAN, 0.3, 0.8),
+        (-PAIR_GAMMA, 0.3, 0.8),
+        (f64::INFINITY, 0.3, 0.8),
+        (PAIR_GAMMA, -0.1, 0.8),
+        (PAIR_GAMMA, 0.3, 0.499_999_999_999_999_9),
+        (PAIR_GAMMA * (1.0 + 1e-6), 0.3, 0.4), // e_n is checked first
+        (3.0, 0.5 * a1, 0.8),                  // on the line at γ = 3: answered
+        (3.0, 2.0 * a1, 0.8),                  // above it: refused
+    ]);
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
+        .collect();
+    for clamp in [0, 1] {
+        let out = run_ok(gcc_driver(), &["pe", path, &clamp.to_string()], &input);
+        let mut lines = out.lines();
+        assert_eq!(lines.next(), Some("e_n 1 0.5 1"));
+        let outside = if clamp == 1 {
+            OutOfDomain::Clamp
+        } else {
+            OutOfDomain::Error
+        };
+        let mut refused = [0usize; 25];
+        let mut answered = 0;
+        for ((g, a, e), line) in pts.iter().zip(lines) {
+            match t.p_e_with(*g, *a, *e, outside) {
+                Ok(r) => {
+                    answered += 1;
+                    let c: f64 = line.parse().unwrap_or_else(|_| {
+                        panic!("gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {line}")
+                    });
+                    assert_eq!(
+                        c.to_bits(),
+                        r.to_bits(),
+                        "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}"
+                    );
+                }
+                Err(err) => {
+                    let code = status_of(&err, *g, *a);
+                    if code == 9 {
+                        assert!(err.to_string().contains("1.7497858600774299"), "{err}");
+                    }
+                    refused[code as usize] += 1;
+                    assert_eq!(
+                        line,
+                        format!("error {code}"),
+                        "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {err}"
+                    );
+                }
+            }
+        }
+        // Another γ above the line: refused without clamping, answered at the pair's with it.
+        assert_eq!(refused[9] > 8000, clamp == 0, "clamp {clamp}: {refused:?}");
+        assert!(refused[24] > 500, "clamp {clamp}: {refused:?}");
+        assert_eq!(refused[7] + refused[8], 4, "clamp {clamp}: {refused:?}");
+        assert!(answered > 5000, "clamp {clamp}: {answered} answered");
+    }
+    // The tolerance's edge: within it the pair's bits, one ulp beyond it refused (above the
+    // line), in Rust and C alike (checked above); here that the edge is where Rust puts it.
+    let at_pair = t.p_e(PAIR_GAMMA, 0.3, 0.8).expect("inside");
+    assert_eq!(
+        t.p_e(edge, 0.3, 0.8).expect("inside").to_bits(),
+        at_pair.to_bits()
+    );
+    assert!(t.p_e(ulp_up(edge), 0.3, 0.8).is_err());
+    // oblq_p: the e_n = 1 slice at the pair's γ (and its refusals elsewhere).
+    let mut pts = points(4_000, 61, PAIR_GAMMA, PAIR_GAMMA);
+    pts.extend([
+        (PAIR_GAMMA * (1.0 + 1e-6), 0.3),
+        (PAIR_GAMMA * (1.0 + 5e-10), 0.3),
+    ]);
+    let input: String = pts.iter().map(|(g, a)| format!("{g:?} {a:?}\n")).collect();
+    let out = run_ok(gcc_driver(), &["p", path, "0"], &input);
+    for ((g, a), line) in pts.iter().zip(out.lines()) {
+        match t.p(*g, *a) {
+            Ok(r) => {
+                let c: f64 = line.parse().expect("P");
+                assert_eq!(c.to_bits(), r.to_bits(), "oblq_p: gamma {g:?} alpha {a:?}");
+            }
+            Err(err) => assert_eq!(line, format!("error {}", status_of(&err, *g, *a))),
+        }
+    }
+    // `sweep export --gamma` refuses a curve of the table, as of every table with an e_n axis.
+    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .arg("export")
+        .arg(root("tables/dissipative-pair.h5"))
+        .arg("-o")
+        .arg(dir().join("pair_curves.oblq"))
+        .args(["--gamma", "1.7497858600774299"])
+        .output()
+        .expect("run sweep");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("e_n axis") && err.contains("elastic tables"),
+        "{err}"
+    );
+    assert!(!dir().join("pair_curves.oblq").exists());
+}
+
+/// Rebounds of the pair's bodies on the table of one pair (`oblq_pair_init_e` with the pair's
+/// γ, or one 1e-6 off): the bits of `Table::rebound_3d`, and its refusals with their codes.
+#[test]
+fn rebounds_on_the_table_of_one_pair_give_the_bits_of_the_rust_library() {
+    let (t, path) = pair_table();
+    let mut r = SplitMix(67);
+    let (mut compared, mut refused) = (0, 0);
+    for case in 0..8 {
+        let wall = case % 2 == 0;
+        let pair = Pair {
+            sphere: random_body(&mut r),
+            other: (!wall).then(|| random_body(&mut r)),
+        };
+        let gamma = match case {
+            3 => PAIR_GAMMA * (1.0 + 1e-6),
+            5 => PAIR_GAMMA * (1.0 - 3e-10),
+            _ => PAIR_GAMMA,
+        };
+        let mu = 0.05 + r.uniform();
+        let e_n = match case {
+            0 => 1.0,
+            1 => 0.5,
+            6 => 0.4, // below the table's range: refused (24)
+            _ => 0.5 + 0.5 * r.uniform(),
+        };
+        let contact = Contact::with_gamma(gamma, mu).with_restitution(e_n);
+        let mut incidents = Vec::new();
+        while incidents.len() < 300 {
+            incidents.extend(random_impact(&mut r, wall));
+        }
+        let input: String = incidents.iter().map(incident_line).collect();
+        let args = rebound_args("rebound", path, Some("table"), &pair, gamma, mu, e_n);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = run_ok(gcc_driver(), &args, &input);
+        assert_eq!(out.lines().count(), incidents.len());
+        for (s, line) in incidents.iter().zip(out.lines()) {
+            match t.rebound_3d(&pair, &contact, s) {
+                Ok(a) => {
+                    let c = parse_line(line);
+                    let mut want = rebound_fields(&a);
+                    want.extend([a.rebound.normal_impulse, a.rebound.e_n]);
+                    assert_eq!(c.len(), want.len(), "{line}");
+                    for (k, (x, y)) in c.iter().zip(&want).enumerate() {
+                        assert!(
+                            x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()),
+                            "case {case} gamma {gamma:?} e_n {e_n:?} field {k}: C {x:?}, \
+                             Rust {y:?}"
+                        );
+                    }
+                    compared += 1;
+                }
+                Err(e) => {
+                    assert_eq!(line, rebound_status(&e), "case {case}: {e}");
+                    refused += 1;
+                }
+            }
+        }
+    }
+    assert!(compared > 1500 && refused > 400, "{compared} {refused}");
+    eprintln!(
+        "rebounds on the table of one pair: {compared} C == Rust bit for bit, {refused} \
+         refused by both alike"
+    );
+}
+
+/// Exports of the table of one pair edited and resealed: a γ bit in a split mask, a patch whose
+/// γ edges differ, a header whose γ range is not a single γ, a patch of two γ blocks, a leaf
+/// marked split, the pair's export read as version 2 or a range's export as version 3: each
+/// refused (`OBLQ_E_CORRUPT`); an unknown version by its version; damage by the checksum.
+#[test]
+fn damaged_pair_exports_are_refused() {
+    let (_, path) = pair_table();
+    let good = std::fs::read(path).expect("export");
+    let open = |name: &str, bytes: &[u8]| -> String {
+        let p = dir().join(format!("pair_{name}"));
+        std::fs::write(&p, bytes).expect("write");
+        run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
+    };
+    let u32_at = |b: &[u8], at: usize| u32::from_le_bytes(b[at..at + 4].try_into().expect("4"));
+    let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().expect("8"));
+    let with = |edits: &[(usize, Vec<u8>)]| {
+        let mut b = good.clone();
+        for (at, v) in edits {
+            b[*at..*at + v.len()].copy_from_slice(v);
+        }
+        sealed(b)
+    };
+    assert!(open("good", &good).starts_with("0 ok"));
+    assert!(open("truncated", &good[..good.len() - 8]).starts_with("2 "));
+    let mut flipped = good.clone();
+    flipped[good.len() / 2] ^= 0x08;
+    assert!(open("flipped", &flipped).starts_with("5 "));
+    let mut newer = good.clone();
+    newer[8] = 4;
+    assert!(open("newer", &newer).starts_with("4 "));
+    let mut v2 = good.clone();
+    v2[8] = 2;
+    assert!(open("as_v2", &v2).starts_with("6 "), "a single gamma in v2");
+    let mut ranged = std::fs::read(&dissipative().1).expect("export");
+    ranged[8] = 3;
+    assert!(open("range_as_v3", &ranged).starts_with("6 "));
+    let g = f64::from_le_bytes(good[32..40].try_into().expect("8"));
+    let f = |x: f64| x.to_le_bytes().to_vec();
+    let mut cases: Vec<(String, Vec<u8>)> = vec![
+        ("gamma_max_up".into(), with(&[(40, f(ulp_up(g)))])),
+        ("gamma_min_down".into(), with(&[(32, f(g * (1.0 - 1e-12)))])),
+        (
+            "gamma_both_other".into(),
+            with(&[(32, f(1.5)), (40, f(1.5))]),
+        ),
+        ("gamma_range".into(), with(&[(32, f(1.5)), (40, f(2.0))])),
+        ("curves".into(), with(&[(80, 1u32.to_le_bytes().to_vec())])),
+    ];
+    let dir_at = u64_at(&good, 72) as usize;
+    let mut masked = 0;
+    for k in 0..3 {
+        let r = dir_at + 160 * k;
+        if u32_at(&good, r) == 0 {
+            continue;
+        }
+        let lo = f64::from_le_bytes(good[r + 8..r + 16].try_into().expect("8"));
+        cases.push((format!("{k}_gamma_hi_up"), with(&[(r + 16, f(ulp_up(lo)))])));
+        cases.push((
+            format!("{k}_gamma_lo_down"),
+            with(&[(r + 8, f(lo * (1.0 - 1e-9)))]),
+        ));
+        cases.push((
+            format!("{k}_both_edges_other"),
+            with(&[(r + 8, f(1.5)), (r + 16, f(1.5))]),
+        ));
+        cases.push((
+            format!("{k}_blocks_gamma_2"),
+            with(&[(r + 24, 2u32.to_le_bytes().to_vec())]),
+        ));
+        cases.push((
+            format!("{k}_blocks_e_n_0"),
+            with(&[(r + 136, 0u32.to_le_bytes().to_vec())]),
+        ));
+        cases.push((
+            format!("{k}_warp"),
+            with(&[(r + 44, 1u32.to_le_bytes().to_vec())]),
+        ));
+        cases.push((
+            format!("{k}_fine_index"),
+            with(&[(r + 120, 8u64.to_le_bytes().to_vec())]),
+        ));
+        let (masks, cells) = (
+            u64_at(&good, r + 144) as usize,
+            u32_at(&good, r + 36) as usize,
+        );
+        let tree_at = u64_at(&good, r + 48) as usize;
+        let link =
+            |i: usize| i32::from_le_bytes(good[tree_at + 4 * i..][..4].try_into().expect("4"));
+        assert!(masks != 0, "patch {k} has split masks");
+        let split = (0..cells).find(|&i| link(i) >= 0).expect("a split cell");
+        let leaf = (0..cells).find(|&i| link(i) < 0).expect("a leaf");
+        let m = good[masks + split];
+        assert!((1..=3).contains(&m), "patch {k}: mask {m}");
+        for (name, v) in [
+            ("gamma_bit", m | 4),
+            ("gamma_only", 4),
+            ("all_three", 7),
+            ("zero_on_split", 0),
+        ] {
+            cases.push((format!("{k}_{name}"), with(&[(masks + split, vec![v])])));
+        }
+        cases.push((
+            format!("{k}_mask_on_leaf"),
+            with(&[(masks + leaf, vec![3])]),
+        ));
+        masked += 1;
+    }
+    assert!(masked >= 2, "{masked} patches");
+    for (name, bytes) in &cases {
+        let said = open(name, bytes);
+        assert!(said.starts_with("6 "), "{name}: {said}");
+    }
 }

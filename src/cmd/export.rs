@@ -110,9 +110,14 @@ pub fn run(args: ExportArgs) -> Result<()> {
     let format = args
         .format
         .unwrap_or(if c_by_name { Format::C } else { Format::Binary });
+    let pair = table.surface().pair_gamma();
     let what = format!(
-        "P(gamma, alpha{}) from {}{}",
-        if axis.is_some() { ", e_n" } else { "" },
+        "{} from {}{}",
+        match (axis, pair) {
+            (Some(_), Some(g)) => format!("P(alpha, e_n) at gamma = {g}"),
+            (Some(_), None) => "P(gamma, alpha, e_n)".to_string(),
+            (None, _) => "P(gamma, alpha)".to_string(),
+        },
         args.table.display(),
         if args.gammas.is_empty() {
             String::new()
@@ -146,7 +151,10 @@ pub fn run(args: ExportArgs) -> Result<()> {
         match (args.curves_only, axis) {
             (true, _) => String::new(),
             (false, None) => "the table and ".into(),
-            (false, Some((lo, hi))) => format!("the table (e_n in [{lo}, {hi}]) and "),
+            (false, Some((lo, hi))) => match pair {
+                Some(g) => format!("the table of one pair (gamma = {g}, e_n in [{lo}, {hi}]) and "),
+                None => format!("the table (e_n in [{lo}, {hi}]) and "),
+            },
         },
         curves.len(),
         if curves.len() == 1 { "" } else { "s" },

@@ -176,21 +176,23 @@ static int fuzz(const unsigned char *orig, size_t n, long count) {
             continue;
         }
         opened++;
-        for (i = 0; i < sizeof gs / sizeof gs[0]; i++) {
+        for (i = 0; i <= sizeof gs / sizeof gs[0]; i++) {
             size_t j;
+            /* The fixed gammas, then the table's lowest (the gamma of a table of one pair). */
+            double g = i < sizeof gs / sizeof gs[0] ? gs[i] : t.gamma_min;
             for (j = 0; j < sizeof as / sizeof as[0]; j++) {
                 double p = 0.0;
-                if (oblq_p(&t, gs[i], as[j], (int)(j % 2), &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0)) {
-                    fprintf(stderr, "fuzz: mutation %ld: P(%g, %g) = %g\n", k, gs[i], as[j], p);
+                if (oblq_p(&t, g, as[j], (int)(j % 2), &p) == OBLQ_OK && !(p >= -1.0 && p <= 1.0)) {
+                    fprintf(stderr, "fuzz: mutation %ld: P(%g, %g) = %g\n", k, g, as[j], p);
                     free(d);
                     return 1;
                 }
                 /* And across the e_n range of a table with the axis. */
                 if (t.has_e_n) {
                     double e = t.e_n_min + (t.e_n_max - t.e_n_min) * (double)(j % 4) / 3.0;
-                    if (oblq_p_e(&t, gs[i], as[j], e, (int)(j % 2), &p) == OBLQ_OK &&
+                    if (oblq_p_e(&t, g, as[j], e, (int)(j % 2), &p) == OBLQ_OK &&
                         !(p >= -1.0 && p <= 1.0)) {
-                        fprintf(stderr, "fuzz: mutation %ld: P(%g, %g, %g) = %g\n", k, gs[i],
+                        fprintf(stderr, "fuzz: mutation %ld: P(%g, %g, %g) = %g\n", k, g,
                                 as[j], e, p);
                         free(d);
                         return 1;

@@ -9,7 +9,11 @@
 //! An elastic table is written as layout version 1, byte for byte as before the `e_n` axis
 //! existed; a table with an `e_n` axis (schema 4) as version 2: a 112-byte header that ends
 //! with the `e_n` range, octree patches with `blocks_e_n` in their record and `(m+1)³` nodes
-//! per leaf, no curves (a reader of version 1 only refuses it by its version).
+//! per leaf, no curves (a reader of version 1 only refuses it by its version); the table of one
+//! pair (axes `alpha,e_n`, [`Surface::pair_gamma`]) as version 3: version 2 with `gamma_min =
+//! gamma_max` and patches of a single `γ` (`gamma_lo = gamma_hi`, `blocks_gamma = 1`), whose
+//! trees are quadtrees over `(c, e_n)` (masks 1 to 3) with `(m+1)²` nodes per leaf (a reader of
+//! version 2 only refuses it by its version).
 
 use crate::format::fnv1a64;
 use crate::surface::{PatchId, PatchKind, Surface, MAX_INDEX_ENTRIES};
@@ -20,9 +24,12 @@ pub const MAGIC: &[u8; 8] = b"OBLQEVAL";
 pub const VERSION: u32 = 1;
 /// Layout version of the export of a table with an `e_n` axis.
 pub const VERSION_E_N: u32 = 2;
+/// Layout version of the export of the table of one pair (axes `alpha,e_n`).
+pub const VERSION_PAIR: u32 = 3;
 /// Bytes of the header (version 1).
 pub const HEADER_BYTES: usize = 96;
-/// Bytes of the header of version 2: the version-1 header, then `e_n_min` and `e_n_max`.
+/// Bytes of the header of versions 2 and 3: the version-1 header, then `e_n_min` and
+/// `e_n_max`.
 pub const HEADER_BYTES_E_N: usize = 112;
 /// Bytes of one patch record (three follow the header when the export holds the surface).
 pub const PATCH_BYTES: usize = 160;
@@ -104,8 +111,8 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// The export of `surface` (with `error_bound`, the table's stated bound) when `with_surface`,
 /// and of `curves`, as bytes. An export without the surface answers only its curves.
 ///
-/// A surface with an `e_n` axis ([`Surface::restitution`]) is written as version 2; curves
-/// belong to elastic tables only.
+/// A surface with an `e_n` axis ([`Surface::restitution`]) is written as version 2, the table of
+/// one pair ([`Surface::pair_gamma`]) as version 3; curves belong to elastic tables only.
 ///
 /// # Panics
 ///
@@ -122,9 +129,10 @@ pub fn export(
         axis.is_none() || (with_surface && curves.is_empty()),
         "the export of a table with an e_n axis holds its surface and no curves"
     );
-    let (version, header) = match axis {
-        Some(_) => (VERSION_E_N, HEADER_BYTES_E_N),
-        None => (VERSION, HEADER_BYTES),
+    let (version, header) = match (axis, surface.pair_gamma()) {
+        (Some(_), Some(_)) => (VERSION_PAIR, HEADER_BYTES_E_N),
+        (Some(_), None) => (VERSION_E_N, HEADER_BYTES_E_N),
+        (None, _) => (VERSION, HEADER_BYTES),
     };
     let mut v = vec![0u8; header];
     v[..8].copy_from_slice(MAGIC);
@@ -162,7 +170,8 @@ pub fn export(
             put_u32(&mut v, r + 36, p.tree().len() as u32);
             put_u32(&mut v, r + 40, p.leaves() as u32);
             if let Some(e) = p.restitution() {
-                // The octree's third axis; its range is the table's (header, offset 96).
+                // The octree's third axis (the quadtree's second in a patch of one pair, whose
+                // `blocks_gamma` is 1); its range is the table's (header, offset 96).
                 put_u32(&mut v, r + 136, e.blocks() as u32);
             }
             align8(&mut v);
@@ -174,7 +183,7 @@ pub fn export(
             let p_at = push_f64s(&mut v, p.p().iter().copied());
             put_u64(&mut v, r + 56, p_at);
             if let Some(split) = p.split() {
-                // The axes each split cell halves (version 2): `u8[cells]`.
+                // The axes each split cell halves (versions 2 and 3): `u8[cells]`.
                 let at = v.len() as u64;
                 v.extend_from_slice(split);
                 put_u64(&mut v, r + 144, at);
