@@ -585,7 +585,9 @@ class Curve:
 
 class Table:
     """A table of P(γ, α) written by ``sweep run`` (HDF5), loaded into memory and checked; of
-    P(γ, α, e_n) for a table built with an e_n range (schema 4, ``info["e_n_min"]`` < 1).
+    P(γ, α, e_n) for a table built with an e_n range (schema 4, ``info["e_n_min"]`` < 1); of
+    P(α, e_n) at a single γ for the table of one pair of materials (:attr:`pair_gamma`; such a
+    table answers that γ only, within a relative 1e-9, and the full-slip line at any γ).
 
     ``clamp=False`` (the default) refuses a γ or α outside the table's domain (:attr:`info`)
     with ``ValueError``; ``clamp=True`` answers there at the nearest point of the domain (an
@@ -643,7 +645,9 @@ class Table:
     @property
     def info(self) -> dict:
         """Domain (``gamma_min``, ``gamma_max``, ``alpha_max``, and ``e_n_min``, ``e_n_max``:
-        both 1 for an elastic table), the contact ``law``, the stated ``error_bound`` (the
+        both 1 for an elastic table; ``pair_gamma``, the γ of the table of one pair, else
+        ``None``; ``axes``, the names of the table's axes), the contact ``law``, the stated
+        ``error_bound`` (the
         largest absolute error of any P the table answers), the held-out checks (``checks``,
         ``checks_max_error``) and the provenance (``schema_version``, ``engine_version``,
         ``git_commit``, ``created``, ``config``, ``solver``, ``node_tol``, ``check_tol``,
@@ -656,6 +660,15 @@ class Table:
     def error_bound(self) -> float:
         """The absolute error bound the table states for every P it answers."""
         return self.info["error_bound"]
+
+    @property
+    def pair_gamma(self) -> Optional[float]:
+        """The single γ of the table of one pair of materials (axes α, e_n; built with
+        ``domain.gamma``), ``None`` for a table over a range of γ. Such a table answers this γ
+        (a γ within a relative 1e-9 of it is taken as it) and refuses any other with
+        ``ValueError`` naming both (except on the full-slip line, exact at any γ)."""
+        g = self.info["pair_gamma"]
+        return None if g is None else float(g)
 
     @overload
     def p(
@@ -681,8 +694,10 @@ class Table:
         """P(γ, α, e_n), the tangential restitution of the contact point, by the table's
         interpolation rule. γ finite > 0, α ≥ 0 (``inf``: no slip), e_n the normal restitution:
         1 (the default) for an elastic table, inside ``info["e_n_min"] … info["e_n_max"]`` for
-        a table built with an e_n range (never clamped: ``ValueError`` outside). Broadcasts
-        over all three; returns a float for scalar arguments. |P| ≤ 1 everywhere."""
+        a table built with an e_n range (never clamped: ``ValueError`` outside). The table of
+        one pair answers γ = :attr:`pair_gamma` only (``ValueError`` naming γ and the pair's
+        γ elsewhere, except on the full-slip line). Broadcasts over all three; returns a float
+        for scalar arguments. |P| ≤ 1 everywhere."""
         scalar_e = type(e_n) in _NUMBER
         if scalar_e and e_n == 1.0:
             if out is None and type(gamma) in _NUMBER and type(alpha) in _NUMBER:
@@ -773,7 +788,8 @@ class Table:
         velocity reverses to ``e_n`` times its value, and P is the table's P(γ, α, e_n); 1 (the
         default, elastic) for an elastic table, inside ``info["e_n_min"] … info["e_n_max"]``
         for a table built with an e_n range (never clamped: ``ValueError`` outside, also for
-        impacts without slip). Every argument (the fields of :class:`Sphere` and
+        impacts without slip). With the table of one pair the γ of every impact (from
+        ``materials`` or ``gamma``) must be its :attr:`pair_gamma`. Every argument (the fields of :class:`Sphere` and
         :class:`Material` included) broadcasts against the others; the leading shape of the
         vectors is the batch shape. When the bodies, materials, μ and e_n are the same for
         every impact they are checked once (the faster path)."""
@@ -885,8 +901,13 @@ class Table:
 
     def __repr__(self) -> str:
         i = self.info
+        gamma = (
+            f"gamma in [{i['gamma_min']}, {i['gamma_max']}]"
+            if i["pair_gamma"] is None
+            else f"gamma = {i['pair_gamma']} (one pair)"
+        )
         return (
-            f"<oblique.Table {i['path']!r}: gamma in [{i['gamma_min']}, {i['gamma_max']}], "
+            f"<oblique.Table {i['path']!r}: {gamma}, "
             f"alpha <= {i['alpha_max']}, "
             + (f"e_n in [{i['e_n_min']}, {i['e_n_max']}], " if i["law"] != "elastic" else "")
             + f"error bound {i['error_bound']:.2g}"

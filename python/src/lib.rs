@@ -390,6 +390,11 @@ impl PyTable {
         d.set_item("gamma_min", s.gamma_min())?;
         d.set_item("gamma_max", s.gamma_max())?;
         d.set_item("alpha_max", s.alpha_max())?;
+        // The single γ of the table of one pair (axes alpha, e_n; gamma_min = gamma_max), None
+        // for a table over a range of γ; and the table's axes, in order.
+        d.set_item("pair_gamma", s.pair_gamma())?;
+        let axes: Vec<&str> = s.axes().iter().map(|a| a.name.name()).collect();
+        d.set_item("axes", axes)?;
         // The e_n range ([1, 1] for an elastic table) and the law of the node values.
         let (e_lo, e_hi) = s.restitution().unwrap_or((1.0, 1.0));
         d.set_item("e_n_min", e_lo)?;

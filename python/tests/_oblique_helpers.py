@@ -18,6 +18,8 @@ READER = ROOT / "scripts" / "read_table.py"
 SHIPPED = ("full", "quick", "isotropic")
 #: The shipped table with a normal-restitution axis (e_n in [0.5, 1], Kelvin–Voigt law).
 DISSIPATIVE = TABLES / "dissipative-demo.h5"
+#: The shipped table of one pair (alumina-96 on soda-lime glass): P(α, e_n) at one γ.
+PAIR = TABLES / "dissipative-pair.h5"
 
 
 # ---------------------------------------------------------------------------------------------

@@ -7,7 +7,7 @@ import os
 import subprocess
 import sys
 
-from _oblique_helpers import DISSIPATIVE, ROOT
+from _oblique_helpers import DISSIPATIVE, PAIR, ROOT
 
 
 def test_seed000_example_draws_the_figure(tmp_path):
@@ -73,3 +73,19 @@ def test_dissipative_rebound_example_runs_from_any_directory(tmp_path):
     for row in rows:
         e_n, v_z = float(row[0]), float(row[4])
         assert abs(v_z + e_n * 3.9 * 3**0.5 / 2) < 1e-5
+
+
+def test_pair_table_example_runs_from_any_directory(tmp_path):
+    assert PAIR == ROOT / "tables/dissipative-pair.h5"
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "python/examples/pair_table.py")],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=120,
+    )
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert "gamma = 1.7497858600774299 (one pair)" in lines[0]
+    assert lines[-1].startswith("refused: invalid gamma = 1.75:")
+    assert "1.7497858600774299" in lines[-1] and lines[-1].endswith("(at index (1,))")
