@@ -8,6 +8,7 @@ crate and the simulator.
 
     python3 scripts/read_table.py TABLE --gamma G --alpha A        # prints P (alpha may be inf)
     python3 scripts/read_table.py TABLE --gamma G --alpha A --e-n E   # P(gamma, alpha, e_n)
+    python3 scripts/read_table.py PAIR_TABLE --alpha A --e-n E       # at the pair's gamma
     python3 scripts/read_table.py TABLE --check-stored             # vs /checks/P_interpolated
     python3 scripts/read_table.py TABLE --error-bound              # the stated error bound
     python3 scripts/read_table.py TABLE --check-against-sweep 12 --max-error 1e-5
@@ -1008,7 +1009,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(
         description="Reference reader of a P(gamma, alpha) table (docs/table-format.md).")
     ap.add_argument("table", help="HDF5 table written by `sweep run`")
-    ap.add_argument("--gamma", type=parse_number, help="gamma > 0")
+    ap.add_argument("--gamma", type=parse_number,
+                    help="gamma > 0 (default for the table of one pair: the pair's gamma)")
     ap.add_argument("--alpha", type=parse_number, help="alpha >= 0, or inf")
     ap.add_argument("--e-n", type=parse_number, default=None,
                     help="normal restitution e_n in the table's e_n range (default 1; an "
@@ -1030,14 +1032,14 @@ def main(argv=None):
     args = ap.parse_args(argv)
 
     query = args.gamma is not None or args.alpha is not None
-    if query and (args.gamma is None or args.alpha is None):
-        ap.error("--gamma and --alpha go together")
+    if args.gamma is not None and args.alpha is None:
+        ap.error("--gamma needs --alpha")
     if args.e_n is not None and not query:
-        ap.error("--e-n needs --gamma and --alpha")
+        ap.error("--e-n needs --alpha (and --gamma, except for the table of one pair)")
     if not (query or args.error_bound or args.check_stored
             or args.check_against_sweep is not None):
-        ap.error("nothing to do: give --gamma/--alpha, --error-bound, --check-stored or "
-                 "--check-against-sweep N")
+        ap.error("nothing to do: give --gamma/--alpha (--alpha alone for the table of one "
+                 "pair), --error-bound, --check-stored or --check-against-sweep N")
     if args.check_against_sweep is not None and args.check_against_sweep < 1:
         ap.error("--check-against-sweep N needs N >= 1")
     try:
@@ -1047,9 +1049,15 @@ def main(argv=None):
         return 2
     status = 0
     if query:
+        gamma = table.pair_gamma if args.gamma is None else args.gamma
+        if gamma is None:
+            print(f"error: --gamma is needed: {table.path} spans gamma in [{table.gamma_min}, "
+                  f"{table.gamma_max}] (only the table of one pair has a default)",
+                  file=sys.stderr)
+            return 2
         try:
             e_n = 1.0 if args.e_n is None else args.e_n
-            print(repr(table.p_e(args.gamma, args.alpha, e_n)))
+            print(repr(table.p_e(gamma, args.alpha, e_n)))
         except DomainError as e:
             print(f"error: {e}", file=sys.stderr)
             return 2

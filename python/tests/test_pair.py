@@ -157,6 +157,16 @@ def test_the_line_is_exact_at_any_gamma(pair):
         np.testing.assert_array_equal(pair.p(g, a, e_n=0.8), 1 - 3.5 * 1.8 * a)
 
 
+def test_the_curve_of_the_pair(pair):
+    """``Table.curve`` at the pair's γ: P(α) at e_n = 1, the values of ``Table.p`` to 1e-14;
+    another γ refused as in ``Table.p``."""
+    a = np.concatenate([np.linspace(0.0, 3.0, 3001), 10 ** np.linspace(0.5, 4, 50), [np.inf]])
+    c = pair.curve(pair.pair_gamma)
+    assert c.gamma == GAMMA
+    np.testing.assert_allclose(c.p(a), pair.p(GAMMA, a), rtol=0, atol=1e-14)
+    _raises(ValueError, lambda: pair.curve(1.75), r"\bgamma = 1\.75\b", PAIR_TEXT)
+
+
 # ---------------------------------------------------------------------------------------------
 # Refusals
 
