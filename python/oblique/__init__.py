@@ -12,7 +12,8 @@ tangentially depends on two numbers besides e_n (see ``physics.md``):
 and the answer is ``P = u_after/u_before``, the tangential restitution of the contact point.
 
 - :class:`Table` answers ``P`` from a table written by ``sweep run`` (``tables/full.h5``, elastic,
-  and ``tables/dissipative-demo.h5``, with an e_n axis, ship with the project), with the error
+  ``tables/dissipative-demo.h5``, with an e_n axis, and ``tables/dissipative-pair.h5``, the
+  table of one pair at its :attr:`Table.pair_gamma`, ship with the project), with the error
   bound the table states, in nanoseconds per point; and rebounds (:meth:`Table.rebound`,
   :meth:`Table.rebound_2d`) in SI units.
 - :data:`materials` is the material catalogue (E, ν, density, the source of the values):
