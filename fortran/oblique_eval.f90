@@ -243,7 +243,8 @@ contains
    end subroutine oblique_close
 
    !> The table's domain [gamma_min, gamma_max] x [0, alpha_max], its absolute error bound on
-   !> every P, whether it holds the surface (or only curves) and its number of curves.
+   !> every P, whether it holds the surface (or only curves) and its number of curves. The
+   !> table of one pair (P(alpha, e_n) at a single gamma): gamma_min = gamma_max, its gamma.
    subroutine oblique_info(table, status, gamma_min, gamma_max, alpha_max, error_bound, &
                            has_surface, n_curves)
       type(oblique_table), intent(in) :: table
@@ -287,7 +288,9 @@ contains
    !> P(gamma, alpha, e_n) at normal restitution e_n by the table's rule, -1 <= P <= 1. e_n
    !> must lie in the table's e_n range (oblique_e_n_range), else OBLQ_E_E_N: it is never
    !> clamped, and an elastic table answers e_n = 1 only. gamma, alpha and clamp as for
-   !> oblique_p (clamp moves gamma and alpha only). Elemental.
+   !> oblique_p (clamp moves gamma and alpha only); the table of one pair takes a gamma within
+   !> 1e-9 (relative) of its own as its own and refuses any other above the full-slip line
+   !> (OBLQ_E_GAMMA_DOMAIN), or clamps it to its own. Elemental.
    impure elemental subroutine oblique_p_e(table, gamma, alpha, e_n, p, status, clamp)
       type(oblique_table), intent(in) :: table
       real(c_double), intent(in) :: gamma, alpha, e_n

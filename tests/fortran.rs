@@ -1053,3 +1053,178 @@ fn module_rebounds_at_e_n_give_the_bits_of_the_rust_library() {
     assert!(compared > 250, "{compared} compared, {refused} refused");
     eprintln!("Fortran rebounds at e_n: {compared} C == Rust bit for bit, {refused} refused alike");
 }
+
+/// γ of the shipped table of one pair, `tables/dissipative-pair.h5`.
+const PAIR_GAMMA: f64 = 1.749_785_860_077_429_9;
+
+/// The module on the table of one pair (export layout version 3): `oblique_info` gives its single
+/// γ as both ends of the domain, `oblique_p_e` (scalar and elemental) and `oblique_p` the bits of
+/// `Table::p_e` at that γ and at γ within 5e-10 (relative), and its refusal of another γ above
+/// the line (`OBLQ_E_GAMMA_DOMAIN`, or clamped); rebounds at the pair's γ (`e_n = ...`) the bits
+/// of `Table::rebound_3d`, and the same refusals.
+#[test]
+fn module_answers_the_table_of_one_pair() {
+    let start = std::time::Instant::now();
+    let t = Table::open(root("tables/dissipative-pair.h5")).expect("shipped table");
+    let export = dir().join("pair.oblq");
+    std::fs::write(
+        &export,
+        export::export(t.surface(), t.error_bound(), true, &[]),
+    )
+    .expect("write export");
+    let near = [
+        PAIR_GAMMA,
+        PAIR_GAMMA,
+        PAIR_GAMMA * (1.0 + 5e-10),
+        PAIR_GAMMA * (1.0 - 5e-10),
+        PAIR_GAMMA * (1.0 + 1e-6),
+        PAIR_GAMMA * (1.0 - 2e-9),
+        2.5,
+    ];
+    let pts: Vec<(f64, f64, f64)> = points_e(20_000, 71, (PAIR_GAMMA, PAIR_GAMMA), (0.45, 1.0))
+        .into_iter()
+        .enumerate()
+        .map(|(i, (_, a, e))| (near[i % near.len()], a, e))
+        .collect();
+    let mut input = String::from("info\nerange\n");
+    for (i, (g, a, e)) in pts.iter().enumerate() {
+        input += &format!("pe {} {} {} {}\n", f(*g), f(*a), f(*e), i % 2);
+    }
+    let g2 = PAIR_GAMMA * (1.0 + 1e-6);
+    input += &format!("pev {PAIR_GAMMA:?} 0.3 0.8 {g2:?} 0.3 0.8 {PAIR_GAMMA:?} inf 0.5\n");
+    input += &format!("p {PAIR_GAMMA:?} 0.3 0\np {g2:?} 0.3 0\n");
+    // Rebounds at the pair's γ, at γ within 3e-10 of it and 1e-6 off it.
+    let mut r = SplitMix(73);
+    let mut cases = Vec::new();
+    for case in 0..9 {
+        let wall = case % 3 == 0;
+        let pair = Pair {
+            sphere: random_body(&mut r),
+            other: (!wall).then(|| random_body(&mut r)),
+        };
+        let gamma = match case {
+            4 => PAIR_GAMMA * (1.0 + 1e-6),
+            7 => PAIR_GAMMA * (1.0 + 3e-10),
+            _ => PAIR_GAMMA,
+        };
+        let (mu, e_n) = (0.05 + r.uniform(), 0.5 + 0.5 * r.uniform());
+        for _ in 0..40 {
+            if let Some(s) = random_impact(&mut r, wall) {
+                cases.push((pair, gamma, mu, e_n, s));
+            }
+        }
+    }
+    for (pair, gamma, mu, e_n, s) in &cases {
+        let b2 = pair.other.unwrap_or(pair.sphere);
+        let m2 = if pair.other.is_none() { 0.0 } else { b2.mass };
+        let b1 = pair.sphere;
+        input += &format!(
+            "re {} {} {} {} {} {} {} {} {} {} {} {} {} {} 0\n",
+            f(b1.mass),
+            f(b1.radius),
+            f(b1.kappa),
+            f(m2),
+            f(b2.radius),
+            f(b2.kappa),
+            f(*gamma),
+            f(*mu),
+            f(*e_n),
+            v3(&s.sphere.velocity),
+            v3(&s.sphere.spin),
+            v3(&s.other.velocity),
+            v3(&s.other.spin),
+            v3(&s.normal)
+        );
+    }
+    let plain = &builds()[0].1;
+    let out = run_ok(plain, &[&path_str(&export)], &input);
+    let mut lines = out.lines();
+    let mut next = || lines.next().expect("an answer per line");
+    assert_eq!(next(), "0", "open");
+    let info = nums(next().replace(" T ", " 1 ").as_str());
+    assert_eq!(info[0], 0.0);
+    assert_eq!(
+        (info[1], info[2]),
+        (PAIR_GAMMA, PAIR_GAMMA),
+        "a single gamma"
+    );
+    assert_eq!(nums(next()), [0.0, 0.5, 1.0]);
+    let (mut answered, mut refused) = (0, [0usize; 25]);
+    for (i, (g, a, e)) in pts.iter().enumerate() {
+        let line = next();
+        let (st, p) = line.split_once(' ').expect("status P");
+        let outside = if i % 2 == 1 {
+            OutOfDomain::Clamp
+        } else {
+            OutOfDomain::Error
+        };
+        match t.p_e_with(*g, *a, *e, outside) {
+            Ok(want) => {
+                answered += 1;
+                assert_eq!(st, "0", "({g:?}, {a:?}, {e:?}): {line}");
+                assert_eq!(num(p).to_bits(), want.to_bits(), "({g:?}, {a:?}, {e:?})");
+            }
+            Err(err) => {
+                let code = status_of(&err, *g, *a);
+                refused[code as usize] += 1;
+                assert!(num(p).is_nan(), "{line}");
+                assert_eq!(st, code.to_string(), "({g:?}, {a:?}, {e:?})");
+            }
+        }
+    }
+    assert!(
+        answered > 10_000 && refused[9] > 2000 && refused[24] > 500,
+        "{refused:?}"
+    );
+    let pv = nums(next());
+    assert_eq!(
+        pv[1].to_bits(),
+        t.p_e(PAIR_GAMMA, 0.3, 0.8).expect("inside").to_bits()
+    );
+    assert_eq!((pv[2], pv[3].is_nan()), (9.0, true), "another gamma");
+    assert_eq!(
+        pv[5].to_bits(),
+        t.p_e(PAIR_GAMMA, f64::INFINITY, 0.5)
+            .expect("inside")
+            .to_bits()
+    );
+    let p = nums(next());
+    assert_eq!(
+        p[1].to_bits(),
+        t.p(PAIR_GAMMA, 0.3).expect("inside").to_bits()
+    );
+    assert!(next().starts_with("9 "), "oblique_p at another gamma");
+    let (mut compared, mut refused) = (0, 0);
+    for (pair, gamma, mu, e_n, s) in &cases {
+        let c = nums(next());
+        let contact = Contact::with_gamma(*gamma, *mu).with_restitution(*e_n);
+        match t.rebound_3d(pair, &contact, s) {
+            Ok(a) => {
+                assert_eq!(c[0], 0.0);
+                let want = &rebound_fields(&a)[..16];
+                for (k, (x, y)) in c[1..].iter().zip(want).enumerate() {
+                    assert!(
+                        x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()),
+                        "gamma {gamma:?} e_n {e_n:?} field {k}: Fortran {x:?}, Rust {y:?}"
+                    );
+                }
+                compared += 1;
+            }
+            Err(e) => {
+                refused += 1;
+                assert_eq!(c[0], 9.0, "{e}");
+                assert!(c[1..].iter().all(|x| x.is_nan()));
+            }
+        }
+    }
+    assert!(
+        compared > 150 && refused >= 5,
+        "{compared} compared, {refused} refused"
+    );
+    eprintln!(
+        "table of one pair: {} points through oblique_p_e, {compared} rebounds Fortran == Rust \
+         bit for bit, {refused} refused alike ({:.1} s)",
+        pts.len(),
+        start.elapsed().as_secs_f64()
+    );
+}

@@ -200,7 +200,11 @@ int oblique_p(const struct ObliqueTable *table, double gamma, double alpha, int 
 // `*p = P(γ, α, e_n)` (dimensionless) at normal restitution `e_n`: `oblique_p` for a table
 // with an `e_n` axis (built with `domain.e_n_min`/`e_n_max`). An elastic table answers
 // `e_n = 1` only, a table with the axis `e_n` inside its range (`oblique_table_restitution`);
-// otherwise `OBLIQUE_ERR_QUERY` naming `e_n` (never clamped, whatever `clamp`).
+// otherwise `OBLIQUE_ERR_QUERY` naming `e_n` (never clamped, whatever `clamp`). The table of
+// one pair (`P(α, e_n)` at a single γ: `oblique_table_domain` gives it as both ends) takes a
+// `gamma` within 1e-9 (relative) of its own as its own; above the full-slip line it refuses any
+// other (`OBLIQUE_ERR_QUERY` naming `gamma` and the pair's γ) or, with `clamp` = 1, answers at
+// its own.
 //
 // # Safety
 // `table` is NULL or a live handle; `p` is NULL or valid for writes.
