@@ -496,3 +496,30 @@ mod physical {
         }
     }
 }
+
+#[test]
+fn the_estimate_holds_where_the_convergence_turns_to_order_one_and_a_half() {
+    // Chung & Ooi's test 6 damped (nylon, 50°): γ = 1.620185, α = 0.335640 (partial slip),
+    // e_n = 0.5. The differences between step doublings fall 4.2× up to 4096 steps, then
+    // about 2.9× (order 1.5): a Richardson value of order 2 looks converged early. With a floor
+    // of 0.1 of the last difference where the ratios looked regular, tol 1e-8 was accepted at
+    // 4096 steps with an estimate of 9.5e-9 for an error of 2.9e-8.
+    let (g, a, e) = (1.620185174601965, 0.33563985247091205, 0.5);
+    let reference = kv(g, a, e)
+        .accuracy(Accuracy::Tolerance(1e-10))
+        .solve()
+        .unwrap();
+    for tol in [1e-6, 1e-7, 1e-8] {
+        let s = kv(g, a, e)
+            .accuracy(Accuracy::Tolerance(tol))
+            .solve()
+            .unwrap();
+        let err = (s.p - reference.p).abs();
+        assert!(
+            s.error_estimate >= err + reference.error_estimate,
+            "tol {tol:e}: estimate {:e} < error {err:e} (+ {:e})",
+            s.error_estimate,
+            reference.error_estimate
+        );
+    }
+}
