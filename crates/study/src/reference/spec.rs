@@ -599,6 +599,32 @@ fn chung_ooi() -> Vec<Test> {
         e_n: 0.98,
         ..t4.clone()
     };
+    let damped_half = |t: &ObliqueTest, id: &'static str, title: &'static str| ObliqueTest {
+        id,
+        title,
+        elastic_note: "damped as published, e_n = 0.5 in every case, by the Kelvin-Voigt law \
+            (one relaxation time in the normal and tangential springs, physics.md \
+            \"Dissipative impacts\"); Chung & Ooi's DEM and its re-implementations damp by \
+            other laws (a viscous dashpot giving a constant e_n), which give another P at the \
+            same e_n",
+        e_n: 0.5,
+        ..t.clone()
+    };
+    let t6_damped = damped_half(
+        &t6,
+        "chung_ooi_test6_spin_wall_damped",
+        "Test 6 damped (e_n = 0.5, Kelvin-Voigt): a spinning sphere on a rigid plane, 0.2 m/s",
+    );
+    let t7_damped = damped_half(
+        &t7,
+        "chung_ooi_test7_equal_spins_damped",
+        "Test 7 damped (e_n = 0.5, Kelvin-Voigt): two identical spheres, equal and opposite spins",
+    );
+    let t8_damped = damped_half(
+        &t8,
+        "chung_ooi_test8_spin_sphere_damped",
+        "Test 8 damped (e_n = 0.5, Kelvin-Voigt): a spinning sphere on a resting sphere, 0.2 m/s",
+    );
     vec![
         Test::Normal(t1),
         Test::Normal(t2),
@@ -607,8 +633,11 @@ fn chung_ooi() -> Vec<Test> {
         Test::Oblique(t4_damped),
         Test::Oblique(t5),
         Test::Oblique(t6),
+        Test::Oblique(t6_damped),
         Test::Oblique(t7),
+        Test::Oblique(t7_damped),
         Test::Oblique(t8),
+        Test::Oblique(t8_damped),
     ]
 }
 
