@@ -4,7 +4,10 @@
 //! `oblique-lookup` (single queries, batches) hold one per patch; the arithmetic of the leaf is
 //! [`crate::leaf`]'s, the rule's own.
 
-use crate::leaf::{cubic_tensor, descend, descend_masked, floor_f64, floor_index, floor_index32};
+use crate::leaf::{
+    cubic_tensor, cubic_tensor3_fast, descend, descend_masked, floor_f64, floor_index,
+    floor_index32,
+};
 use crate::surface::{bound_p, Patch, PatchKind, Warp};
 
 /// One cell of a patch's tree with its position, for the fine index: `2^depth` and the
@@ -238,24 +241,56 @@ impl<const D: usize> IndexedPatch<D> {
     }
 
     /// Steps 6 to 10 at `v` (per axis, in units of the root cells, after the warp):
-    /// [`cubic_tensor`] in the leaf, limited to `[−1, 1]`.
+    /// [`cubic_tensor`] in the leaf (of three axes through [`cubic_tensor3_fast`],
+    /// the same bits), limited to `[−1, 1]`.
     #[inline(always)]
     pub fn at(&self, v: [f64; D]) -> f64 {
+        self.at_by(v, |vals, n1, f| {
+            if D == 3 {
+                cubic_tensor3_fast(vals, n1, std::array::from_fn(|k| f[k]))
+            } else {
+                cubic_tensor(vals, n1, f)
+            }
+        })
+    }
+
+    /// [`IndexedPatch::at`] with the leaf's tensor product from `tensor(vals, n1, f)`, which
+    /// must be [`cubic_tensor`]'s bits (the scalar sum, or [`crate::leaf::cubic_tensor3_avx`]
+    /// from code compiled for AVX, where it is inlined).
+    #[inline(always)]
+    pub fn at_by(&self, v: [f64; D], tensor: impl Fn(&[f64], usize, [f64; D]) -> f64) -> f64 {
         let (leaf, f) = self.leaf_from(self.entry(v), v);
         let vals = &self.p[leaf * self.size..(leaf + 1) * self.size];
-        bound_p(cubic_tensor(vals, self.n1, f))
+        bound_p(tensor(vals, self.n1, f))
     }
 
     /// [`Patch::interpolate_at`] with `k = 4` at `point`, the value per axis: `γ`, the
     /// unwarped coordinate `c ∈ [0, 1]`, then `e_n` (a table with that axis).
     #[inline(always)]
     pub fn interpolate(&self, point: [f64; D]) -> f64 {
+        self.at(self.positions(point))
+    }
+
+    /// [`IndexedPatch::interpolate`] with the tensor product of [`IndexedPatch::at_by`].
+    #[inline(always)]
+    pub fn interpolate_by(
+        &self,
+        point: [f64; D],
+        tensor: impl Fn(&[f64], usize, [f64; D]) -> f64,
+    ) -> f64 {
+        self.at_by(self.positions(point), tensor)
+    }
+
+    /// Steps 5 and 6 at `point` (as [`IndexedPatch::interpolate`] takes it): the position per
+    /// axis in units of the root cells, after the warp.
+    #[inline(always)]
+    pub fn positions(&self, point: [f64; D]) -> [f64; D] {
         let mut v = [0.0; D];
         for k in 2..D {
             v[k] = self.position(k, point[k]);
         }
         v[0] = self.position(0, point[0]);
         v[1] = self.position_c(self.warped(point[0], v[0], point[1]));
-        self.at(v)
+        v
     }
 }

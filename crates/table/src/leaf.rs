@@ -154,9 +154,13 @@ pub fn cubic_weights(a: f64) -> [f64; 4] {
 /// axis, the last axis innermost), with the weights `w[k]` along axis `k`. The rows along the
 /// last axis first (`v₀·w₀ + … + v₃·w₃`), then each further axis outwards
 /// (`w₀·r₀ + … + w₃·r₃`), each sum from left to right: a running sum per axis, which a row
-/// completes when its index along that axis is the last (no array of `4^(D−1)` rows).
+/// completes when its index along that axis is the last (no array of `4^(D−1)` rows). Three
+/// axes are summed unrolled ([`cubic_sum3`], the same operations).
 #[inline(always)]
 pub fn cubic_sum<const D: usize>(vals: &[f64], first: usize, n1: usize, w: &[[f64; 4]; D]) -> f64 {
+    if D == 3 {
+        return cubic_sum3(vals, first, n1, std::array::from_fn(|k| w[k]));
+    }
     // Node offset of one step along each axis: n1^(D − 1 − k).
     let mut stride = [1usize; D];
     for k in (0..D.saturating_sub(1)).rev() {
@@ -188,6 +192,120 @@ pub fn cubic_sum<const D: usize>(vals: &[f64], first: usize, n1: usize, w: &[[f6
         total = x;
     }
     total
+}
+
+/// [`cubic_sum`] of three axes written out (the same operations in the same order): the 16
+/// rows along `e_n`, each `v₀·w₀ + … + v₃·w₃`; per `γ` index the plane `w₀·r₀ + … + w₃·r₃`
+/// over `c`; then the planes over `γ`. Unrolled, the rows are independent of each other (no
+/// running sums to carry), and the block is bounds-checked once per plane.
+#[inline(always)]
+fn cubic_sum3(vals: &[f64], first: usize, n1: usize, w: [[f64; 4]; 3]) -> f64 {
+    let [wg, wc, we] = w;
+    let s0 = n1 * n1;
+    let len = 3 * n1 + 4;
+    let p0 = sum_plane(&vals[first..][..len], n1, &wc, &we);
+    let p1 = sum_plane(&vals[first + s0..][..len], n1, &wc, &we);
+    let p2 = sum_plane(&vals[first + 2 * s0..][..len], n1, &wc, &we);
+    let p3 = sum_plane(&vals[first + 3 * s0..][..len], n1, &wc, &we);
+    wg[0] * p0 + wg[1] * p1 + wg[2] * p2 + wg[3] * p3
+}
+
+/// One plane of [`cubic_sum3`] (a fixed `γ` index): `b` its nodes from the first, the rows
+/// `j·n1 .. j·n1 + 4` for `j < 4`.
+#[inline(always)]
+fn sum_plane(b: &[f64], n1: usize, wc: &[f64; 4], we: &[f64; 4]) -> f64 {
+    let r0 = sum_row(&b[..4], we);
+    let r1 = sum_row(&b[n1..][..4], we);
+    let r2 = sum_row(&b[2 * n1..][..4], we);
+    let r3 = sum_row(&b[3 * n1..][..4], we);
+    wc[0] * r0 + wc[1] * r1 + wc[2] * r2 + wc[3] * r3
+}
+
+/// `v₀·w₀ + v₁·w₁ + v₂·w₂ + v₃·w₃`, from the left.
+#[inline(always)]
+fn sum_row(v: &[f64], w: &[f64; 4]) -> f64 {
+    v[0] * w[0] + v[1] * w[1] + v[2] * w[2] + v[3] * w[3]
+}
+
+/// [`cubic_tensor`] of three axes, the same bits, with 256-bit vectors where the processor
+/// has AVX (checked at run time unless the build enables it): [`cubic_tensor3_avx`], else the
+/// scalar [`cubic_tensor`]. The query path of a table with an `e_n` axis
+/// ([`crate::indexed::IndexedPatch::at`]) calls this; the rule ([`crate::surface::Patch`])
+/// keeps the scalar sum, and the tests compare the two.
+#[inline(always)]
+pub fn cubic_tensor3_fast(vals: &[f64], n1: usize, f: [f64; 3]) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if cfg!(target_feature = "avx") || std::is_x86_feature_detected!("avx") {
+        // SAFETY: the processor has AVX (checked just above, or enabled for the whole build).
+        return unsafe { cubic_tensor3_avx(vals, n1, f) };
+    }
+    cubic_tensor(vals, n1, f)
+}
+
+/// [`cubic_tensor`] of three axes in 256-bit vectors, the same bits. The stencils are
+/// [`stencil4_f64`]'s (the same starts and weights as [`stencil4`]; its floor is one
+/// instruction here). The sum makes the same operations in the same order, four at a time,
+/// with lane `i` for the `γ` index: per `c` index `j`, the rows of the four planes
+/// (transposed as they are loaded, before the weights are known) times the `e_n` weights and
+/// summed from the left, `((v₀·w₀ + v₁·w₁) + v₂·w₂) + v₃·w₃`, row `(i, j)` in lane `i`; those
+/// times the `c` weights, summed the same way over `j`: plane `i` in lane `i`; times the `γ`
+/// weights, summed from the left. No product is fused with a sum (FMA is not enabled).
+///
+/// # Safety
+/// The processor must support AVX (code compiled for AVX may call it without `unsafe`).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+pub fn cubic_tensor3_avx(vals: &[f64], n1: usize, f: [f64; 3]) -> f64 {
+    use std::arch::x86_64::{
+        __m256d, _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_permute2f128_pd,
+        _mm256_set1_pd, _mm256_setr_pd, _mm256_storeu_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd,
+    };
+    /// `Σ_k a[k]·w[k]` lane by lane, from the left.
+    #[inline]
+    #[target_feature(enable = "avx")]
+    fn dot4(a: [__m256d; 4], w: [__m256d; 4]) -> __m256d {
+        let s = _mm256_add_pd(_mm256_mul_pd(a[0], w[0]), _mm256_mul_pd(a[1], w[1]));
+        let s = _mm256_add_pd(s, _mm256_mul_pd(a[2], w[2]));
+        _mm256_add_pd(s, _mm256_mul_pd(a[3], w[3]))
+    }
+    let (m, n) = ((n1 - 1) as f64, n1 as f64);
+    let u = f.map(|fk| fk * m);
+    // The weights from the floor in floating point, the first node from the integer floor
+    // (the same starts, [`stencil4_f64`]): two short chains side by side.
+    let [(_, wg), (_, wc), (_, we)] = u.map(|uk| stencil4_f64(uk, n));
+    let start = |uk: f64| floor_index(uk, n1 - 2).saturating_sub(1).min(n1 - 4);
+    let first = (start(u[0]) * n1 + start(u[1])) * n1 + start(u[2]);
+    let s0 = n1 * n1;
+    // The block's nodes, checked once: row `(i, j)` starts at `i·s0 + j·n1` and reads 4.
+    let block = &vals[first..][..3 * s0 + 3 * n1 + 4];
+    // SAFETY: `i·s0 + j·n1 + 4 ≤ 3·s0 + 3·n1 + 4 = block.len()` for `i, j < 4`.
+    let row = |i: usize, j: usize| unsafe { _mm256_loadu_pd(block.as_ptr().add(i * s0 + j * n1)) };
+    let we = we.map(|x| _mm256_set1_pd(x));
+    // Rows `(i, j)` of the four planes, lane `i`.
+    let rows = |j: usize| {
+        let (l0, l1, l2, l3) = (row(0, j), row(1, j), row(2, j), row(3, j));
+        let t0 = _mm256_unpacklo_pd(l0, l1); // l0[0] l1[0] l0[2] l1[2]
+        let t1 = _mm256_unpackhi_pd(l0, l1); // l0[1] l1[1] l0[3] l1[3]
+        let t2 = _mm256_unpacklo_pd(l2, l3);
+        let t3 = _mm256_unpackhi_pd(l2, l3);
+        let v = [
+            _mm256_permute2f128_pd::<0x20>(t0, t2), // node k = 0 of each row
+            _mm256_permute2f128_pd::<0x20>(t1, t3),
+            _mm256_permute2f128_pd::<0x31>(t0, t2),
+            _mm256_permute2f128_pd::<0x31>(t1, t3),
+        ];
+        dot4(v, we)
+    };
+    let planes = dot4(
+        [rows(0), rows(1), rows(2), rows(3)],
+        wc.map(|x| _mm256_set1_pd(x)),
+    );
+    let x = _mm256_mul_pd(planes, _mm256_setr_pd(wg[0], wg[1], wg[2], wg[3]));
+    let mut p = [0.0; 4];
+    // SAFETY: `p` holds 4 values.
+    unsafe { _mm256_storeu_pd(p.as_mut_ptr(), x) };
+    p[0] + p[1] + p[2] + p[3]
 }
 
 /// Step 8 for the cubic stencil on every axis: the first node of the `4^D` block in a leaf of
@@ -363,6 +481,54 @@ mod tests {
             assert!((t - poly(f)).abs() <= 1e-13, "{t} {}", poly(f));
             let g = lagrange_tensor(&vals, n1, f, 4);
             assert!((g - poly(f)).abs() <= 1e-13, "{g} {}", poly(f));
+        }
+    }
+
+    /// The vector sum of three axes gives the scalar sum's bits, wherever the block starts,
+    /// for values and weights of every magnitude (and where the processor has no AVX, the
+    /// dispatch answers with the scalar sum).
+    #[test]
+    fn the_vector_sum_of_three_axes_has_the_bits_of_the_scalar_sum() {
+        let mut s = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for n1 in [4usize, 5, 9, 17] {
+            let size = n1 * n1 * n1;
+            for _ in 0..2000 {
+                // Values of mixed signs and exponents (cancellation, rounding in every sum).
+                let vals: Vec<f64> = (0..size)
+                    .map(|_| {
+                        let r = next();
+                        let m = (r >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+                        m * 2f64.powi((r % 41) as i32 - 20)
+                    })
+                    .collect();
+                // Random positions, and (one time in four per axis) the leaf's edges and its
+                // nodes, where the stencil's start changes, and their neighbours.
+                let mut u = || {
+                    let r = next();
+                    if r % 4 == 0 {
+                        let node = (r >> 8) % n1 as u64;
+                        let x = node as f64 / (n1 - 1) as f64;
+                        [x, x.next_up(), x.next_down().max(0.0)][(r >> 16) as usize % 3].min(1.0)
+                    } else {
+                        (r >> 11) as f64 / (1u64 << 53) as f64
+                    }
+                };
+                let f = [u(), u(), u()];
+                let scalar = cubic_tensor(&vals, n1, f);
+                assert_eq!(cubic_tensor3_fast(&vals, n1, f).to_bits(), scalar.to_bits());
+                #[cfg(target_arch = "x86_64")]
+                if std::is_x86_feature_detected!("avx") {
+                    // SAFETY: the processor has AVX.
+                    let avx = unsafe { cubic_tensor3_avx(&vals, n1, f) };
+                    assert_eq!(avx.to_bits(), scalar.to_bits(), "n1 = {n1}, f = {f:?}");
+                }
+            }
         }
     }
 

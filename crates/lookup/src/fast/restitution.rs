@@ -7,6 +7,9 @@
 
 use crate::LookupError;
 use oblique_table::indexed::IndexedPatch;
+use oblique_table::leaf::cubic_tensor;
+#[cfg(target_arch = "x86_64")]
+use oblique_table::leaf::cubic_tensor3_avx;
 use oblique_table::surface::{
     full_slip_line, partial_coord_e, stick_coord, OutOfDomain, PatchKind, Region, Surface,
 };
@@ -48,8 +51,10 @@ impl Accel3 {
             .sum()
     }
 
-    /// [`Surface::eval_point`], bit for bit.
-    #[inline]
+    /// [`Surface::eval_point`], bit for bit. The checks and the full-slip line are inlined
+    /// into the caller; the patches are answered out of line ([`Accel3::eval_off_line`]), as
+    /// [`super::Accel::eval_with`] does.
+    #[inline(always)]
     pub(crate) fn eval(
         &self,
         surface: &Surface,
@@ -64,13 +69,61 @@ impl Accel3 {
         if region == Region::Line {
             return Ok(full_slip_line(alpha, e_n));
         }
+        #[cfg(target_arch = "x86_64")]
+        if cfg!(target_feature = "avx") || std::is_x86_feature_detected!("avx") {
+            // SAFETY: the processor has AVX (checked just above, or enabled for the build).
+            return unsafe { self.eval_off_line_avx(surface, region, gamma, alpha, e_n, outside) };
+        }
+        self.eval_off_line(surface, region, gamma, alpha, e_n, outside)
+    }
+
+    /// [`Accel3::eval`] for a valid query above the full-slip line.
+    #[inline(never)]
+    fn eval_off_line(
+        &self,
+        surface: &Surface,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
         surface.apply_domain_e(region, gamma, alpha, e_n, outside, |r, g, a| {
-            self.eval_in(r, g, a, e_n)
+            self.eval_in(r, g, a, e_n, cubic_tensor)
         })
     }
 
+    /// [`Accel3::eval_off_line`] compiled for AVX, with the leaf's sum in 256-bit vectors
+    /// ([`cubic_tensor3_avx`], inlined here): the same operations, so the same bits (no
+    /// product is fused with a sum: FMA is not enabled).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    #[inline(never)]
+    fn eval_off_line_avx(
+        &self,
+        surface: &Surface,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        surface.apply_domain_e(region, gamma, alpha, e_n, outside, |r, g, a| {
+            self.eval_in(r, g, a, e_n, |vals, n1, f| cubic_tensor3_avx(vals, n1, f))
+        })
+    }
+
+    /// In a known non-line region: the patch's coordinate, then its tensor product from
+    /// `tensor` ([`IndexedPatch::interpolate_by`]).
     #[inline(always)]
-    fn eval_in(&self, region: Region, gamma: f64, alpha: f64, e_n: f64) -> f64 {
+    fn eval_in(
+        &self,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        tensor: impl Fn(&[f64], usize, [f64; 3]) -> f64,
+    ) -> f64 {
         let patch = match region.patch_id() {
             Some(id) => self.patches[id.index()].as_ref(),
             None => None,
@@ -81,7 +134,7 @@ impl Accel3 {
                     PatchKind::PartialSlip => partial_coord_e(gamma, alpha, e_n),
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
                 };
-                patch.interpolate([gamma, c.clamp(0.0, 1.0), e_n])
+                patch.interpolate_by([gamma, c.clamp(0.0, 1.0), e_n], tensor)
             }
             None => -e_n,
         }
