@@ -68,19 +68,15 @@ fn default_alpha_max() -> f64 {
     f64::INFINITY
 }
 
-fn unset() -> f64 {
-    f64::NAN
-}
-
 /// `[domain]`: the part of the `(γ, α)` plane the table covers. `α` always starts at 0.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Domain {
     /// Lower end of γ (> 0). With `gamma` (one pair) it is `gamma` and not given.
-    #[serde(default = "unset")]
+    #[serde(skip_deserializing)]
     pub gamma_min: f64,
     /// Upper end of γ (> gamma_min, ≤ 64). With `gamma` it is `gamma` and not given.
-    #[serde(default = "unset")]
+    #[serde(skip_deserializing)]
     pub gamma_max: f64,
     /// The single γ of one pair of materials (in (0, 64], with `e_n_min` and `e_n_max`, in
     /// place of `gamma_min` and `gamma_max`): the table is then `P(α, e_n)` at that γ.
@@ -96,6 +92,12 @@ pub struct Domain {
     /// Highest normal restitution `e_n` (with `e_n_min`; in (e_n_min, 1]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub e_n_max: Option<f64>,
+    /// `gamma_min` as the file gives it (absent with `gamma`).
+    #[serde(default, rename = "gamma_min", skip_serializing)]
+    gamma_min_given: Option<f64>,
+    /// `gamma_max` as the file gives it (absent with `gamma`).
+    #[serde(default, rename = "gamma_max", skip_serializing)]
+    gamma_max_given: Option<f64>,
 }
 
 impl Domain {
@@ -350,12 +352,13 @@ impl Config {
             allowed,
         };
         let d = &mut self.domain;
+        let given = [
+            ("domain.gamma_min", d.gamma_min_given),
+            ("domain.gamma_max", d.gamma_max_given),
+        ];
         let Some(g) = d.gamma else {
-            for (key, v) in [
-                ("domain.gamma_min", d.gamma_min),
-                ("domain.gamma_max", d.gamma_max),
-            ] {
-                if v.is_nan() {
+            for (key, v) in given {
+                if v.is_none() {
                     return Err(err(
                         key,
                         "missing".into(),
@@ -365,13 +368,12 @@ impl Config {
                     ));
                 }
             }
+            d.gamma_min = d.gamma_min_given.unwrap_or(f64::NAN);
+            d.gamma_max = d.gamma_max_given.unwrap_or(f64::NAN);
             return Ok(());
         };
-        for (key, v) in [
-            ("domain.gamma_min", d.gamma_min),
-            ("domain.gamma_max", d.gamma_max),
-        ] {
-            if !v.is_nan() {
+        for (key, v) in given {
+            if let Some(v) = v {
                 return Err(err(
                     key,
                     v.to_string(),
