@@ -600,11 +600,7 @@ impl Layout<'_> {
 
     /// Axes of the tree: 2, or 3 with an `e_n` axis, or 2 (`c`, `e_n`) for one pair.
     fn dims(&self) -> u32 {
-        if self.restitution.is_some() && !self.pair() {
-            3
-        } else {
-            2
-        }
+        oblique_table::surface::tree_dims(self.restitution.is_some(), self.pair())
     }
 
     /// The patch of one pair: a single γ, no node spacing along it ([`Patch::is_pair`]).

@@ -261,7 +261,7 @@ impl Reader<'_> {
         };
         let tree = self.vector(&g, &format!("patch '{name}'"), DS_TREE, "int32")?;
         // The tree's axes: (γ, c), (γ, c, e_n), or (c, e_n) in the table of one pair.
-        let dims: u32 = if restitution.is_some() && !pair { 3 } else { 2 };
+        let dims = crate::surface::tree_dims(restitution.is_some(), pair);
         let roots = bg * bc * restitution.map_or(1, |r| r.blocks());
         let fanout = 1 << dims;
         let split: Option<Vec<u8>> = if g.link_exists(DS_SPLIT) {

@@ -565,6 +565,16 @@ pub fn bound_p(p: f64) -> f64 {
     p.clamp(-1.0, 1.0)
 }
 
+/// Axes of a patch's tree: 3 (`γ`, `c`, `e_n`) with an `e_n` axis over a range of `γ`, else 2
+/// (`γ`, `c` without the axis; `c`, `e_n` in the patch of one pair, [`Patch::is_pair`]).
+pub fn tree_dims(has_e_n: bool, pair: bool) -> u32 {
+    if has_e_n && !pair {
+        3
+    } else {
+        2
+    }
+}
+
 /// Check that `tree` is a valid quadtree over `roots` root cells whose leaves are numbered
 /// `0..leaves` each exactly once; returns the number of leaves. `Err` says what is wrong with
 /// the dataset `tree`.
@@ -770,7 +780,7 @@ impl Patch {
         if restitution.is_some() && warp.is_some() {
             return Err("a patch with an e_n axis cannot have a warp".into());
         }
-        let dims = if restitution.is_some() && !pair { 3 } else { 2 };
+        let dims = tree_dims(restitution.is_some(), pair);
         let roots = blocks_gamma * blocks_coord * restitution.map_or(1, |r| r.blocks);
         let leaves = match &split {
             None => check_tree_of(&tree, roots, 1 << dims),
@@ -877,11 +887,7 @@ impl Patch {
     /// Number of axes of the tree: 2 (`γ`, `c`), 3 with an `e_n` axis (`γ`, `c`, `e_n`), or 2
     /// in the patch of one pair (`c`, `e_n`; [`Patch::is_pair`]).
     pub fn dims(&self) -> u32 {
-        if self.restitution.is_some() && !self.is_pair() {
-            3
-        } else {
-            2
-        }
+        tree_dims(self.restitution.is_some(), self.is_pair())
     }
 
     /// Whether this is the patch of one pair of materials: a single `γ` (`gamma_lo =
