@@ -864,50 +864,46 @@ OBLQ_FN double oblq__partial_coord_e(double gamma, double alpha, double e_n) {
     return 1.0 - sqrt(1.0 - sqrt(oblq__clamp(l, 0.0, 1.0)));
 }
 
-/* Steps 6-9 on a patch with an e_n axis at (gamma, c, x_e): the octree's leaf, then the tensor
-   product of the three cubic stencils, summed e_n innermost, gamma outermost. */
-OBLQ_FN double oblq__tensor3(const oblq_patch *p, double gamma, double c, double xe) {
-    double fg, fc, fe, wg[4], wc[4], we[4], r[4], plane[4];
-    double xg = (gamma - p->gamma_lo) / (p->gamma_hi - p->gamma_lo);
-    size_t a = oblq__locate(xg, p->blocks_gamma, &fg);
-    size_t b = oblq__locate(c, p->blocks_coord, &fc);
-    size_t e = oblq__locate(xe, p->blocks_e_n, &fe);
-    size_t cell = (a * p->blocks_coord + b) * p->blocks_e_n + e, leaf, n1, sg, sc, se, i, j;
-    const double *v;
+/* Step 7 in a tree whose cells halve the axes of their mask: the leaf that holds the positions
+   f[0..n) (changed to the positions inside it) from root cell `cell`. A split cell's mask has
+   bit n - 1 - k for each axis k it halves (every axis without a `split` dataset); each of them
+   is doubled, q_k = 1 where it reaches 1 (then 1 subtracted), and the child is
+   tree[cell] + q, q the q_k of the halved axes read as binary digits in axis order. */
+OBLQ_FN size_t oblq__descend(const oblq_patch *p, size_t cell, double *f, unsigned n) {
+    unsigned every = (1u << n) - 1u, k;
     for (;;) {
         int32_t t = oblq__i32(p->tree + 4 * cell);
-        size_t qg, qc, qe, q;
         unsigned mask;
-        if (t < 0) {
-            leaf = (size_t)(-(int64_t)t - 1);
-            break;
-        }
-        mask = p->split ? p->split[cell] : 7;
-        q = 0;
-        if (mask & 4) {
-            fg *= 2.0;
-            qg = fg >= 1.0;
-            fg -= (double)qg;
-            q = qg;
-        }
-        if (mask & 2) {
-            fc *= 2.0;
-            qc = fc >= 1.0;
-            fc -= (double)qc;
-            q = 2 * q + qc;
-        }
-        if (mask & 1) {
-            fe *= 2.0;
-            qe = fe >= 1.0;
-            fe -= (double)qe;
-            q = 2 * q + qe;
+        size_t q = 0, b;
+        if (t < 0) return (size_t)(-(int64_t)t - 1);
+        mask = p->split ? p->split[cell] : every;
+        for (k = 0; k < n; k++) {
+            if ((mask >> (n - 1u - k)) & 1u) {
+                f[k] *= 2.0;
+                b = f[k] >= 1.0;
+                f[k] -= (double)b;
+                q = 2 * q + b;
+            }
         }
         cell = (size_t)t + q;
     }
+}
+
+/* Steps 6-9 on a patch with an e_n axis at (gamma, c, x_e): the octree's leaf, then the tensor
+   product of the three cubic stencils, summed e_n innermost, gamma outermost. */
+OBLQ_FN double oblq__tensor3(const oblq_patch *p, double gamma, double c, double xe) {
+    double f[3], wg[4], wc[4], we[4], r[4], plane[4];
+    double xg = (gamma - p->gamma_lo) / (p->gamma_hi - p->gamma_lo);
+    size_t a = oblq__locate(xg, p->blocks_gamma, &f[0]);
+    size_t b = oblq__locate(c, p->blocks_coord, &f[1]);
+    size_t e = oblq__locate(xe, p->blocks_e_n, &f[2]);
+    size_t leaf, n1, sg, sc, se, i, j;
+    const double *v;
+    leaf = oblq__descend(p, (a * p->blocks_coord + b) * p->blocks_e_n + e, f, 3);
     n1 = p->m + 1;
-    sg = oblq__stencil4(fg * (double)p->m, n1, wg);
-    sc = oblq__stencil4(fc * (double)p->m, n1, wc);
-    se = oblq__stencil4(fe * (double)p->m, n1, we);
+    sg = oblq__stencil4(f[0] * (double)p->m, n1, wg);
+    sc = oblq__stencil4(f[1] * (double)p->m, n1, wc);
+    se = oblq__stencil4(f[2] * (double)p->m, n1, we);
     v = p->p + leaf * n1 * n1 * n1;
     for (i = 0; i < 4; i++) {
         for (j = 0; j < 4; j++) {
@@ -922,38 +918,15 @@ OBLQ_FN double oblq__tensor3(const oblq_patch *p, double gamma, double c, double
 /* Steps 6-9 on the patch of one pair at (c, x_e): the quadtree's leaf (masks: bit 2 c, bit 1
    e_n), then the tensor product of the two cubic stencils, summed e_n innermost. */
 OBLQ_FN double oblq__tensor_pair(const oblq_patch *p, double c, double xe) {
-    double fc, fe, wc[4], we[4], r[4];
-    size_t b = oblq__locate(c, p->blocks_coord, &fc);
-    size_t e = oblq__locate(xe, p->blocks_e_n, &fe);
-    size_t cell = b * p->blocks_e_n + e, leaf, n1, sc, se, i;
+    double f[2], wc[4], we[4], r[4];
+    size_t b = oblq__locate(c, p->blocks_coord, &f[0]);
+    size_t e = oblq__locate(xe, p->blocks_e_n, &f[1]);
+    size_t leaf, n1, sc, se, i;
     const double *v;
-    for (;;) {
-        int32_t t = oblq__i32(p->tree + 4 * cell);
-        size_t qc, qe, q;
-        unsigned mask;
-        if (t < 0) {
-            leaf = (size_t)(-(int64_t)t - 1);
-            break;
-        }
-        mask = p->split ? p->split[cell] : 3;
-        q = 0;
-        if (mask & 2) {
-            fc *= 2.0;
-            qc = fc >= 1.0;
-            fc -= (double)qc;
-            q = qc;
-        }
-        if (mask & 1) {
-            fe *= 2.0;
-            qe = fe >= 1.0;
-            fe -= (double)qe;
-            q = 2 * q + qe;
-        }
-        cell = (size_t)t + q;
-    }
+    leaf = oblq__descend(p, b * p->blocks_e_n + e, f, 2);
     n1 = p->m + 1;
-    sc = oblq__stencil4(fc * (double)p->m, n1, wc);
-    se = oblq__stencil4(fe * (double)p->m, n1, we);
+    sc = oblq__stencil4(f[0] * (double)p->m, n1, wc);
+    se = oblq__stencil4(f[1] * (double)p->m, n1, we);
     v = p->p + leaf * n1 * n1 + sc * n1 + se;
     for (i = 0; i < 4; i++) {
         const double *row = v + i * n1;

@@ -341,51 +341,36 @@ class Patch:
         a, fg = locate((gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo), bg)
         b, fc = locate(c, bc)
         e, fe = locate(xe, be)
-        i = (a * bc + b) * be + e
-        tree = self.tree
-        split = self.split
+        leaf, (fg, fc, fe) = self.descend((a * bc + b) * be + e, [fg, fc, fe])
+        return leaf, fg, fc, fe
+
+    def descend(self, i, f):
+        """Step 7 from root cell i in a tree whose cells halve the axes of their mask (bit
+        n - 1 - k for axis k of the n positions f; every axis without the dataset 'split'):
+        each halved position doubled, q_k = 1 where it reaches 1 (then 1 subtracted), the child
+        tree[i] + q with q the q_k of the halved axes as binary digits in axis order. Returns
+        the leaf number and the positions inside it."""
+        tree, split, n = self.tree, self.split, len(f)
         while tree[i] >= 0:
-            mask = 7 if split is None else split[i]
+            mask = (1 << n) - 1 if split is None else split[i]
             q = 0
-            if mask & 4:
-                fg = 2.0 * fg
-                qg = int(fg >= 1.0)
-                fg, q = fg - qg, qg
-            if mask & 2:
-                fc = 2.0 * fc
-                qc = int(fc >= 1.0)
-                fc, q = fc - qc, 2 * q + qc
-            if mask & 1:
-                fe = 2.0 * fe
-                qe = int(fe >= 1.0)
-                fe, q = fe - qe, 2 * q + qe
+            for k in range(n):
+                if mask >> (n - 1 - k) & 1:
+                    f[k] = 2.0 * f[k]
+                    b = int(f[k] >= 1.0)
+                    f[k], q = f[k] - b, 2 * q + b
             i = tree[i] + q
-        return -tree[i] - 1, fg, fc, fe
+        return -tree[i] - 1, f
 
     def find_leaf_pair(self, c, xe):
         """Steps 6 and 7 in the quadtree of the patch of one pair, over (c, x_e): leaf number
         and position (fc, fe) inside it. Roots row-major (c outer); the children of a split
         cell i are tree[i] + 2 q_c + q_e, or, with the dataset 'split', the 2^k cells from
         tree[i] numbered over the k axes the cell halves (mask bit 2: c, bit 1: e_n)."""
-        bc, be = self.blocks_coord, self.blocks_e_n
-        b, fc = locate(c, bc)
-        e, fe = locate(xe, be)
-        i = b * be + e
-        tree = self.tree
-        split = self.split
-        while tree[i] >= 0:
-            mask = 3 if split is None else split[i]
-            q = 0
-            if mask & 2:
-                fc = 2.0 * fc
-                qc = int(fc >= 1.0)
-                fc, q = fc - qc, qc
-            if mask & 1:
-                fe = 2.0 * fe
-                qe = int(fe >= 1.0)
-                fe, q = fe - qe, 2 * q + qe
-            i = tree[i] + q
-        return -tree[i] - 1, fc, fe
+        b, fc = locate(c, self.blocks_coord)
+        e, fe = locate(xe, self.blocks_e_n)
+        leaf, (fc, fe) = self.descend(b * self.blocks_e_n + e, [fc, fe])
+        return leaf, fc, fe
 
     def interpolate_pair(self, c, e_n):
         """Steps 6 to 10 of the patch of one pair (the cubic stencil over (c, x_e)), c clamped:
