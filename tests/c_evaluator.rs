@@ -1091,20 +1091,31 @@ fn e_n_clamp_and_refusals_match_the_rust_rule() {
         &[2, 0, 0, 0, 112, 0, 0, 0],
         "version 2, 112-byte header"
     );
-    let table = dir().join("dissipative").join("kv.h5");
-    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(["export", table.to_str().expect("path"), "-o"])
-        .arg(dir().join("curves.oblq"))
-        .args(["--gamma", "1.4"])
+    curves_are_refused(
+        &dir().join("dissipative").join("kv.h5"),
+        "curves.oblq",
+        "1.4",
+    );
+}
+
+/// `sweep export TABLE --gamma GAMMA` of a table with an e_n axis exits with status 2, saying
+/// that curves are for elastic tables, and writes nothing to `out` (in the scratch folder).
+fn curves_are_refused(table: &Path, out: &str, gamma: &str) {
+    let run = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .arg("export")
+        .arg(table)
+        .arg("-o")
+        .arg(dir().join(out))
+        .args(["--gamma", gamma])
         .output()
         .expect("run sweep");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
     assert!(
         err.contains("e_n axis") && err.contains("elastic tables"),
         "{err}"
     );
-    assert!(!dir().join("curves.oblq").exists());
+    assert!(!dir().join(out).exists());
 }
 
 #[test]
@@ -2030,21 +2041,11 @@ fn pair_table_refuses_another_gamma_as_rust_does() {
         }
     }
     // `sweep export --gamma` refuses a curve of the table, as of every table with an e_n axis.
-    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .arg("export")
-        .arg(root("tables/dissipative-pair.h5"))
-        .arg("-o")
-        .arg(dir().join("pair_curves.oblq"))
-        .args(["--gamma", "1.7497858600774299"])
-        .output()
-        .expect("run sweep");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("e_n axis") && err.contains("elastic tables"),
-        "{err}"
+    curves_are_refused(
+        &root("tables/dissipative-pair.h5"),
+        "pair_curves.oblq",
+        "1.7497858600774299",
     );
-    assert!(!dir().join("pair_curves.oblq").exists());
 }
 
 /// Rebounds of the pair's bodies on the table of one pair (`oblq_pair_init_e` with the pair's
