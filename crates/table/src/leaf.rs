@@ -223,7 +223,7 @@ fn sum_plane(b: &[f64], n1: usize, wc: &[f64; 4], we: &[f64; 4]) -> f64 {
 
 /// `v₀·w₀ + v₁·w₁ + v₂·w₂ + v₃·w₃`, from the left.
 #[inline(always)]
-fn sum_row(v: &[f64], w: &[f64; 4]) -> f64 {
+pub(crate) fn sum_row(v: &[f64], w: &[f64; 4]) -> f64 {
     v[0] * w[0] + v[1] * w[1] + v[2] * w[2] + v[3] * w[3]
 }
 

@@ -13,6 +13,7 @@ pub mod export;
 pub mod format;
 pub mod indexed;
 pub mod leaf;
+pub mod line;
 pub mod read;
 pub mod surface;
 pub mod write;

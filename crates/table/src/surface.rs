@@ -1773,11 +1773,21 @@ impl Region {
     /// [`Region::of`], bit for bit.
     #[inline]
     pub fn of_e(gamma: f64, alpha: f64, e_n: f64) -> Self {
-        if alpha <= linear_limit_dissipative(gamma, e_n) {
+        Region::of_limits(gamma, alpha, linear_limit_dissipative(gamma, e_n), || {
+            alpha_c2(gamma)
+        })
+    }
+
+    /// [`Region::of_e`] from the `γ`-only parts: `line_end` =
+    /// [`linear_limit_dissipative`]`(γ, e_n)` and `c2()` = [`alpha_c2`]`(γ)` (for a code that
+    /// asks at one `γ` and `e_n` many times).
+    #[inline(always)]
+    pub fn of_limits(gamma: f64, alpha: f64, line_end: f64, c2: impl Fn() -> f64) -> Self {
+        if alpha <= line_end {
             Region::Line
         } else if gamma <= 1.0 {
             Region::StickLow
-        } else if alpha < alpha_c2(gamma) {
+        } else if alpha < c2() {
             Region::PartialHigh
         } else {
             Region::StickHigh
@@ -1953,10 +1963,11 @@ impl Surface {
         alpha_outside(self.alpha_max, alpha)
     }
 
-    /// Evaluate in a known non-line region at `e_n` (no checks). The patch coordinate is
-    /// computed with fewer divisions than [`PatchKind::coord_at`] (same value up to rounding).
+    /// Evaluate in a known non-line region at `e_n` (no checks: `γ` inside the table's range,
+    /// `α ≤ alpha_max`, `e_n` one the table answers). The patch coordinate is computed with
+    /// fewer divisions than [`PatchKind::coord_at`] (same value up to rounding).
     #[inline]
-    fn eval_in(&self, region: Region, gamma: f64, alpha: f64, e_n: f64) -> f64 {
+    pub fn eval_in(&self, region: Region, gamma: f64, alpha: f64, e_n: f64) -> f64 {
         match self.patch(region) {
             Some(patch) if patch.restitution.is_none() => {
                 let c = match patch.kind {
@@ -2112,8 +2123,16 @@ pub fn stick_coord(gamma: f64, alpha: f64, alpha_max: f64) -> f64 {
     if alpha.is_infinite() {
         return 1.0;
     }
-    let (c2, rho_c2, s_max) = stick_parts(gamma, alpha_max);
-    stick_coord_from(alpha, c2, rho_c2, s_max)
+    stick_coord_parts(alpha, stick_parts(gamma, alpha_max))
+}
+
+/// [`stick_coord`] from the `γ`-only parts `parts` = [`stick_parts`]`(γ, alpha_max)`.
+#[inline(always)]
+pub fn stick_coord_parts(alpha: f64, parts: (f64, f64, Option<f64>)) -> f64 {
+    if alpha.is_infinite() {
+        return 1.0;
+    }
+    stick_coord_from(alpha, parts.0, parts.1, parts.2)
 }
 
 /// The `γ`-only parts of the stick coordinate: `α_c2 = γ²·(2/7)`, `ρ α_c2`, and

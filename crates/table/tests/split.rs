@@ -85,6 +85,9 @@ fn the_rule_descends_the_halved_axes_only() {
         );
         let fast = indexed.interpolate([gamma, x[1], e_n]);
         assert_eq!(fast.to_bits(), rule.to_bits(), "{x:?}");
+        // The line through the point (`Patch::line`) gives the same bits.
+        let line = patch.line(gamma, e_n).expect("a line");
+        assert_eq!(line.interpolate(x[1]).to_bits(), rule.to_bits(), "{x:?}");
     }
     // The line γ = 1.7 crosses one halving of c.
     assert_eq!(patch.line_depth(1.7, 0.8), 1);
