@@ -12,12 +12,14 @@
 //!   `curve/mixed_alpha`: the α of `p/mixed` at γ = 1.754.
 //! - `rebound/<case>`: one `Table::rebound` (2-D sphere–wall) and `Table::rebound_3d`
 //!   (sphere–wall, sphere–sphere) from materials and μ.
-//!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Prepared` (pair and
+//!   `rebound/spheres_3d_prepared`: the sphere–sphere case through `Table::prepare` (pair and
 //!   materials checked once, as a DEM code does per material pair); `rebound/spheres_3d_curve`:
 //!   the same with `P` from the pair's `Table::curve`; `rebound/spheres_3d_e_n`: the
 //!   sphere–sphere case at e_n = 0.8 from the table with an e_n axis;
-//!   `rebound/spheres_3d_prepared_e_n`: that pair prepared; `…_curve_e_n`: the same through its
-//!   curve at (γ, 0.8).
+//!   `rebound/spheres_3d_prepared_e_n`: that pair prepared (`Table::prepare`, which stores the
+//!   pair's line through the table); `…_prepared_new_e_n`: prepared without the table
+//!   (`Prepared::new`); `…_curve_e_n`: the same through its curve at (γ, 0.8);
+//!   `rebound/prepare_e_n`: one `Table::prepare` of that pair.
 //! - `batch/serial`, `batch/rayon`: 2²⁰ mixed points through `p_batch` / `p_batch_par` (on all
 //!   cores of the rayon pool); throughput in queries/s.
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
@@ -213,7 +215,9 @@ fn main() {
     timed(&mut g, "spheres_3d", clock, || {
         table.rebound_3d(black_box(&spheres), black_box(&contact), black_box(&inc3))
     });
-    let prepared = Prepared::new(&spheres, &contact).unwrap_or_else(|e| panic!("{e}"));
+    let prepared = table
+        .prepare(&spheres, &contact)
+        .unwrap_or_else(|e| panic!("{e}"));
     timed(&mut g, "spheres_3d_prepared", clock, || {
         table.rebound_3d_prepared(black_box(&prepared), black_box(&inc3))
     });
@@ -229,9 +233,20 @@ fn main() {
     timed(&mut g, "spheres_3d_e_n", clock, || {
         table_e.rebound_3d(black_box(&spheres), black_box(&contact_e), black_box(&inc3))
     });
-    let prepared_e = Prepared::new(&spheres, &contact_e).unwrap_or_else(|e| panic!("{e}"));
+    let prepared_e = table_e
+        .prepare(&spheres, &contact_e)
+        .unwrap_or_else(|e| panic!("{e}"));
     timed(&mut g, "spheres_3d_prepared_e_n", clock, || {
         table_e.rebound_3d_prepared(black_box(&prepared_e), black_box(&inc3))
+    });
+    // The cost of `Table::prepare` itself (the pair's line through the table).
+    timed(&mut g, "prepare_e_n", clock, || {
+        table_e.prepare(black_box(&spheres), black_box(&contact_e))
+    });
+    // Prepared without the table (`Prepared::new`): `P` from the table's octree index.
+    let unbound_e = Prepared::new(&spheres, &contact_e).unwrap_or_else(|e| panic!("{e}"));
+    timed(&mut g, "spheres_3d_prepared_new_e_n", clock, || {
+        table_e.rebound_3d_prepared(black_box(&unbound_e), black_box(&inc3))
     });
     let curve_e = table_e
         .curve_e(prepared_e.gamma(), 0.8, contact_e.outside)

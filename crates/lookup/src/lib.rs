@@ -26,6 +26,7 @@ mod curve;
 mod embedded;
 mod fast;
 pub mod impact;
+mod line;
 mod prepared;
 mod table;
 #[doc(hidden)]

@@ -13,13 +13,16 @@
 //! (any invalid input, which then gets the error [`Table::rebound_3d`] gives, and a contact point
 //! that does not slip, `u0 = 0`) are passed to the step-by-step path.
 
+use std::sync::Arc;
+
+use crate::line::PairLine;
 use crate::rebound::{Frame, Incident3, Motion3, Pair, Rebound3};
 use crate::{Answer, Contact, Curve, LookupError, Table};
 use oblique_physics::vec3::{axpy, cross, dot, scale, sub};
 
 /// A pair of bodies with its contact, validated and reduced once, for many 3-D rebounds
 /// ([`Table::rebound_3d_prepared`], [`Table::rebound_3d_batch`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Prepared {
     pair: Pair,
     contact: Contact,
@@ -39,6 +42,9 @@ pub struct Prepared {
     inv_m2: f64,
     spin2: f64,
     r2: f64,
+    /// `P(α)` of this pair through the table it was prepared for ([`Table::prepare`], a table
+    /// with an `e_n` axis), shared by the clones.
+    line: Option<Arc<PairLine>>,
 }
 
 #[cold]
@@ -91,6 +97,7 @@ impl Prepared {
             inv_m2,
             spin2,
             r2,
+            line: None,
         })
     }
 
@@ -107,6 +114,11 @@ impl Prepared {
     /// `γ` of this pair (dimensionless).
     pub fn gamma(&self) -> f64 {
         self.gamma
+    }
+
+    /// Bytes held for the table this pair was prepared for ([`Table::prepare`]; 0 without).
+    pub fn table_bytes(&self) -> usize {
+        self.line.as_ref().map_or(0, |l| l.bytes())
     }
 }
 
@@ -137,14 +149,38 @@ fn all_finite(s: &Incident3) -> bool {
 }
 
 impl Table {
+    /// [`Prepared::new`] for rebounds through this table, refusing at once an `e_n` the table
+    /// does not answer ([`Table::p_e`]). For a table with an `e_n` axis it also computes the
+    /// pair's `P(α)` at its `(γ, e_n)` once ([`Table::rebound_3d_prepared`] then answers with
+    /// the same bits in fewer operations: the leaf's sum over `e_n` and the `γ`- and
+    /// `e_n`-only parts of the rule are done here, a few kB per pair,
+    /// [`Prepared::table_bytes`]). The result works with any table; with another one than
+    /// this (or its clones) it answers as [`Prepared::new`]'s does.
+    pub fn prepare(&self, pair: &Pair, contact: &Contact) -> Result<Prepared, LookupError> {
+        let mut k = Prepared::new(pair, contact)?;
+        self.surface().check_e_n(contact.restitution)?;
+        k.line = PairLine::new(
+            self.id(),
+            self.surface(),
+            k.gamma,
+            contact.restitution,
+            contact.outside,
+        )
+        .map(Arc::new);
+        Ok(k)
+    }
+
     /// [`Table::rebound_3d`] for a [`Prepared`] pair and contact: only the incident state is
-    /// checked, and the algebra is shortened (the same answer up to rounding).
+    /// checked, and the algebra is shortened (the same answer up to rounding; the same `P`).
     #[inline]
     pub fn rebound_3d_prepared(
         &self,
         prepared: &Prepared,
         s: &Incident3,
     ) -> Result<Answer<Rebound3>, LookupError> {
+        if let Some(line) = prepared.line.as_deref().filter(|l| l.serves(self.id())) {
+            return self.rebound_3d_fast(prepared, s, |alpha| line.p(self.surface(), alpha));
+        }
         self.rebound_3d_fast(prepared, s, |alpha| {
             self.p_e_with(
                 prepared.gamma,

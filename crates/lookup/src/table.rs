@@ -2,6 +2,7 @@
 //! structure of the query path.
 
 use std::path::Path;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use oblique_table::read::Contents;
 use oblique_table::surface::{OutOfDomain, Surface};
@@ -16,7 +17,7 @@ use crate::LookupError;
 /// [`Table::p`] and the other queries answer from an acceleration structure built from the
 /// surface when the table is made (a fine leaf index per patch, see [`Table::index_bytes`], and
 /// a copy of the node values); they return the same bits as [`Surface::eval_with`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Table {
     /// The interpolated surface.
     surface: Surface,
@@ -30,7 +31,23 @@ pub struct Table {
     accel: Option<Accel>,
     /// The same for a table with an `e_n` axis.
     accel3: Option<Accel3>,
+    /// This table's identity (kept by its clones), named by what [`Table::prepare`] stores
+    /// for it.
+    id: u64,
 }
+
+/// Tables are equal when their contents are (whatever their identities).
+impl PartialEq for Table {
+    fn eq(&self, other: &Table) -> bool {
+        self.surface == other.surface
+            && self.provenance == other.provenance
+            && self.checks == other.checks
+            && self.error_bound.to_bits() == other.error_bound.to_bits()
+    }
+}
+
+/// The identity of the next table made ([`Table::from_parts`]).
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
 impl Table {
     /// Open, validate and load a table ([`oblique_table::read::read`]). Errors name the
@@ -64,7 +81,14 @@ impl Table {
             error_bound,
             accel,
             accel3,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
         }
+    }
+
+    /// This table's identity: equal for a table and its clones, different for every other
+    /// table made.
+    pub(crate) fn id(&self) -> u64 {
+        self.id
     }
 
     /// The acceleration structure, if the table has one.

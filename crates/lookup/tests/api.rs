@@ -802,3 +802,100 @@ fn rebound_batches_match_single_rebounds_and_name_the_first_bad_index() {
         .unwrap_err();
     assert!(e.to_string().contains("'out'"), "{e}");
 }
+
+/// `Table::prepare` on a table with an `e_n` axis stores the pair's line through it: the
+/// rebounds are those of `Prepared::new` to the bit (for every `μ`, so `α` over every region,
+/// `γ` inside, outside and clamped); with another table it answers as `Prepared::new`'s; an
+/// `e_n` the table does not answer is refused at once.
+#[test]
+fn a_pair_prepared_on_its_table_gives_the_bits_of_a_plain_one() {
+    let open = |name: &str| {
+        Table::open(format!(
+            "{}/../../tables/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .expect(name)
+    };
+    let (demo, pair_table) = (open("dissipative-demo.h5"), open("dissipative-pair.h5"));
+    let gamma_pair = pair_table.surface().pair_gamma().expect("a pair table");
+    let mut next = rng(41);
+    let mut compared = 0;
+    for case in 0..400 {
+        let (t, other) = if case % 2 == 0 {
+            (&demo, &pair_table)
+        } else {
+            (&pair_table, &demo)
+        };
+        let wall = case % 3 == 0;
+        let pair = pair_of(wall);
+        let gamma = match (case % 2, case % 7) {
+            (1, 0) => gamma_pair * 1.01,
+            (1, _) => gamma_pair,
+            (_, 0) => 2.4,
+            (_, 1) => 0.95,
+            _ => 1.2 + 0.8 * next(),
+        };
+        // μ from 1e-3 to 1e3 (and no slip): α over the line, partial slip, stick.
+        let mu = if case % 11 == 0 {
+            f64::INFINITY
+        } else {
+            10f64.powf(-3.0 + 6.0 * next())
+        };
+        let mut contact = Contact::with_gamma(gamma, mu).with_restitution(0.5 + 0.5 * next());
+        if case % 4 < 2 {
+            contact.outside = OutOfDomain::Clamp;
+        }
+        let bound = t.prepare(&pair, &contact).unwrap();
+        let plain = Prepared::new(&pair, &contact).unwrap();
+        // Without clamping, a γ outside the table's range leaves only the full-slip line.
+        let s = t.surface();
+        let g = s.rule_gamma(gamma);
+        let refused = g < s.gamma_min() || g > s.gamma_max();
+        let refused = refused && contact.outside == OutOfDomain::Error;
+        assert_eq!(bound.table_bytes() == 0, refused, "{case}");
+        for _ in 0..20 {
+            let inc = random_incident(&mut next, wall);
+            let a = t.rebound_3d_prepared(&bound, &inc);
+            let b = t.rebound_3d_prepared(&plain, &inc);
+            assert_eq!(
+                format!("{a:?}"),
+                format!("{b:?}"),
+                "case {case}: γ {gamma}, μ {mu}"
+            );
+            if let (Ok(a), Ok(b)) = (&a, &b) {
+                assert_eq!(a.rebound.p.to_bits(), b.rebound.p.to_bits());
+            }
+            // Through the other table (not the one it was prepared for).
+            let a = other.rebound_3d_prepared(&bound, &inc);
+            let b = other.rebound_3d_prepared(&plain, &inc);
+            assert_eq!(
+                format!("{a:?}"),
+                format!("{b:?}"),
+                "case {case}, other table"
+            );
+            compared += 1;
+        }
+        // A clone of the table is the same table.
+        let clone = t.clone();
+        let inc = random_incident(&mut next, wall);
+        assert_eq!(
+            format!("{:?}", clone.rebound_3d_prepared(&bound, &inc)),
+            format!("{:?}", t.rebound_3d_prepared(&plain, &inc))
+        );
+    }
+    assert_eq!(compared, 8000);
+    // An e_n the table does not answer is refused by prepare, naming e_n.
+    let elastic = table();
+    for (t, e_n) in [(&demo, 0.4), (&pair_table, 1.0 + 1e-12), (&elastic, 0.8)] {
+        let contact = Contact::with_gamma(1.5, 0.3).with_restitution(e_n);
+        match t.prepare(&spheres(), &contact) {
+            Err(LookupError::Query { name, .. }) => assert_eq!(name, "e_n"),
+            other => panic!("e_n {e_n}: {other:?}"),
+        }
+    }
+    // An elastic table: prepare is Prepared::new.
+    let contact = Contact::with_materials(ALUMINA, STEEL, 0.2);
+    let k = elastic.prepare(&spheres(), &contact).unwrap();
+    assert_eq!(k, Prepared::new(&spheres(), &contact).unwrap());
+    assert_eq!(k.table_bytes(), 0);
+}
