@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use oblique_lookup::rebound::{
     Body, Elastic, Incident, Incident3, Motion3, Pair, Rebound, Rebound3, State,
 };
-use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Prepared, Stiffness};
+use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Stiffness};
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::units::{Groups, PhysicalImpact};
 use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request};
@@ -818,9 +818,13 @@ fn rebound_3d<'py>(
         s.check_restitution(t, 0)
             .map_err(|e| lookup_error(e, &[]))?;
     }
-    // One pair and contact for every row: check them once.
+    // One pair and contact for every row: check them once, and prepare the pair for this table
+    // (with an e_n axis: its P(α) at the pair's (γ, e_n), the same bits in fewer operations).
     let prepared = if s.shared() {
-        Some(Prepared::new(&s.pair(0), &s.contact(0)).map_err(|e| lookup_error(e, &[]))?)
+        Some(
+            t.prepare(&s.pair(0), &s.contact(0))
+                .map_err(|e| lookup_error(e, &[]))?,
+        )
     } else {
         None
     };

@@ -25,8 +25,8 @@
 // Threads: an `ObliqueTable` is immutable once `oblique_table_open` returns; any number of
 // threads may use one handle at the same time, without locking, in `oblique_table_domain`,
 // `oblique_p`, `oblique_p_e`, `oblique_p_batch`, `oblique_curve_new`, `oblique_rebound_wall`,
-// `oblique_rebound_spheres`, `oblique_rebound_wall_e`, `oblique_rebound_spheres_e` and
-// `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
+// `oblique_rebound_spheres`, `oblique_rebound_wall_e`, `oblique_rebound_spheres_e`,
+// `oblique_prepare_table` and `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
 // (`oblique_curve_p`) and an `ObliquePrepared` (`oblique_rebound_prepared`) are immutable and
 // may be shared. `oblique_table_open` and `oblique_prepare` may be called by several threads
 // at once (the library serialises its calls into HDF5), and so may `oblique_prepare_e`. Only the functions that free a handle
@@ -58,8 +58,9 @@
 // `oblique_curve_new`, query with `oblique_curve_p`, free with `oblique_curve_free`.
 typedef struct ObliqueCurve ObliqueCurve;
 
-// A pair of bodies with its contact, checked once (opaque): create with `oblique_prepare`, use
-// with `oblique_rebound_prepared` for many impacts, free with `oblique_prepared_free`.
+// A pair of bodies with its contact, checked once (opaque): create with `oblique_prepare`
+// (`oblique_prepare_e`, or `oblique_prepare_table` for one table: faster with an `e_n` axis),
+// use with `oblique_rebound_prepared` for many impacts, free with `oblique_prepared_free`.
 typedef struct ObliquePrepared ObliquePrepared;
 
 // An opened table (opaque). Create with `oblique_table_open`, free with `oblique_table_close`.
@@ -348,6 +349,22 @@ int oblique_prepare_e(const struct ObliqueBody *sphere,
                       const struct ObliqueContact *contact,
                       double e_n,
                       struct ObliquePrepared **prepared);
+
+// `oblique_prepare_e` for rebounds through `table`: an `e_n` the table does not answer is
+// refused at once (`OBLIQUE_ERR_QUERY`). For a table with an `e_n` axis the handle also holds
+// the pair's `P(α)` at its `(γ, e_n)` through that table (a few kB, computed once, about
+// 2 µs), and `oblique_rebound_prepared` with that table answers with the same bits in fewer
+// operations. With another table the handle answers as `oblique_prepare_e`'s. The handle
+// does not keep the table open: close the table after its last use with the handle.
+//
+// # Safety
+// `table` is NULL or a live handle; otherwise as for `oblique_prepare`.
+int oblique_prepare_table(const struct ObliqueTable *table,
+                          const struct ObliqueBody *sphere,
+                          const struct ObliqueBody *other,
+                          const struct ObliqueContact *contact,
+                          double e_n,
+                          struct ObliquePrepared **prepared);
 
 // Free a handle from `oblique_prepare` (NULL is ignored).
 //

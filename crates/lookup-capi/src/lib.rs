@@ -39,8 +39,8 @@ use oblique_lookup::{Curve, LookupError, Prepared, Table};
 /// Threads: an `ObliqueTable` is immutable once `oblique_table_open` returns; any number of
 /// threads may use one handle at the same time, without locking, in `oblique_table_domain`,
 /// `oblique_p`, `oblique_p_e`, `oblique_p_batch`, `oblique_curve_new`, `oblique_rebound_wall`,
-/// `oblique_rebound_spheres`, `oblique_rebound_wall_e`, `oblique_rebound_spheres_e` and
-/// `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
+/// `oblique_rebound_spheres`, `oblique_rebound_wall_e`, `oblique_rebound_spheres_e`,
+/// `oblique_prepare_table` and `oblique_rebound_prepared`. Likewise an `ObliqueCurve`
 /// (`oblique_curve_p`) and an `ObliquePrepared` (`oblique_rebound_prepared`) are immutable and
 /// may be shared. `oblique_table_open` and `oblique_prepare` may be called by several threads
 /// at once (the library serialises its calls into HDF5), and so may `oblique_prepare_e`. Only the functions that free a handle
@@ -68,8 +68,9 @@ pub const OBLIQUE_ERR_INTERNAL: c_int = 5;
 /// every function but `oblique_table_close` (see `OBLIQUE_ABI_VERSION`).
 pub struct ObliqueTable(Table);
 
-/// A pair of bodies with its contact, checked once (opaque): create with `oblique_prepare`, use
-/// with `oblique_rebound_prepared` for many impacts, free with `oblique_prepared_free`.
+/// A pair of bodies with its contact, checked once (opaque): create with `oblique_prepare`
+/// (`oblique_prepare_e`, or `oblique_prepare_table` for one table: faster with an `e_n` axis),
+/// use with `oblique_rebound_prepared` for many impacts, free with `oblique_prepared_free`.
 pub struct ObliquePrepared(Prepared);
 
 /// `P(α)` of a table at one fixed `γ` (opaque; independent of the table once made): create with
@@ -759,6 +760,32 @@ pub unsafe extern "C" fn oblique_prepare_e(
     prepare(sphere, other, contact, e_n, prepared)
 }
 
+/// `oblique_prepare_e` for rebounds through `table`: an `e_n` the table does not answer is
+/// refused at once (`OBLIQUE_ERR_QUERY`). For a table with an `e_n` axis the handle also holds
+/// the pair's `P(α)` at its `(γ, e_n)` through that table (a few kB, computed once, about
+/// 2 µs), and `oblique_rebound_prepared` with that table answers with the same bits in fewer
+/// operations. With another table the handle answers as `oblique_prepare_e`'s. The handle
+/// does not keep the table open: close the table after its last use with the handle.
+///
+/// # Safety
+/// `table` is NULL or a live handle; otherwise as for `oblique_prepare`.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_prepare_table(
+    table: *const ObliqueTable,
+    sphere: *const ObliqueBody,
+    other: *const ObliqueBody,
+    contact: *const ObliqueContact,
+    e_n: f64,
+    prepared: *mut *mut ObliquePrepared,
+) -> c_int {
+    guard(|| {
+        let t = table.as_ref().ok_or_else(|| null("table"))?;
+        prepare_with(sphere, other, contact, e_n, prepared, |pair, c| {
+            t.0.prepare(pair, c)
+        })
+    })
+}
+
 /// Shared part of `oblique_prepare` and `oblique_prepare_e`.
 ///
 /// # Safety
@@ -770,19 +797,32 @@ unsafe fn prepare(
     e_n: f64,
     prepared: *mut *mut ObliquePrepared,
 ) -> c_int {
-    guard(|| {
-        let pair = Pair {
-            sphere: body(&read(sphere, "sphere")?),
-            other: other.as_ref().map(body),
-        };
-        let c = self::contact(&read(contact, "contact")?, e_n)?;
-        if prepared.is_null() {
-            return Err(null("prepared"));
-        }
-        let k = Prepared::new(&pair, &c).map_err(lookup)?;
-        *prepared = Box::into_raw(Box::new(ObliquePrepared(k)));
-        Ok(())
-    })
+    guard(|| prepare_with(sphere, other, contact, e_n, prepared, Prepared::new))
+}
+
+/// The pair and contact read and checked, then `*prepared` from `make`.
+///
+/// # Safety
+/// As for `oblique_prepare`.
+unsafe fn prepare_with(
+    sphere: *const ObliqueBody,
+    other: *const ObliqueBody,
+    contact: *const ObliqueContact,
+    e_n: f64,
+    prepared: *mut *mut ObliquePrepared,
+    make: impl FnOnce(&Pair, &Contact) -> Result<Prepared, LookupError>,
+) -> Result<(), (c_int, String)> {
+    let pair = Pair {
+        sphere: body(&read(sphere, "sphere")?),
+        other: other.as_ref().map(body),
+    };
+    let c = self::contact(&read(contact, "contact")?, e_n)?;
+    if prepared.is_null() {
+        return Err(null("prepared"));
+    }
+    let k = make(&pair, &c).map_err(lookup)?;
+    *prepared = Box::into_raw(Box::new(ObliquePrepared(k)));
+    Ok(())
 }
 
 /// Free a handle from `oblique_prepare` (NULL is ignored).

@@ -50,6 +50,7 @@ fn header_is_up_to_date() {
         "oblique_curve_free",
         "oblique_rebound_wall",
         "oblique_rebound_spheres",
+        "oblique_prepare_table",
         "oblique_last_error",
         "oblique_version",
         "oblique_abi_version",

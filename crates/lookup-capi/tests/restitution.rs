@@ -1,5 +1,6 @@
 //! Rebounds at a normal restitution `e_n` through the C ABI (`oblique_rebound_wall_e`,
-//! `oblique_rebound_spheres_e`, `oblique_prepare_e` + `oblique_rebound_prepared`): the bits of
+//! `oblique_rebound_spheres_e`, `oblique_prepare_e` or `oblique_prepare_table` +
+//! `oblique_rebound_prepared`): the bits of
 //! `Table::rebound_3d` with `Contact::with_restitution` on the shipped table with an `e_n` axis
 //! (`tables/dissipative-demo.h5`), the bits of the elastic functions at `e_n = 1`, and the
 //! refusals (`e_n` outside [0, 1], outside the table's range, an elastic table at `e_n < 1`).
@@ -7,11 +8,11 @@
 use std::ffi::CString;
 
 use oblique::{
-    oblique_prepare, oblique_prepare_e, oblique_prepared_free, oblique_rebound_prepared,
-    oblique_rebound_spheres, oblique_rebound_spheres_e, oblique_rebound_wall,
-    oblique_rebound_wall_e, oblique_table_close, oblique_table_open, ObliqueBody, ObliqueContact,
-    ObliqueMaterial, ObliqueMotion, ObliquePrepared, ObliqueRebound, ObliqueTable,
-    OBLIQUE_ERR_QUERY, OBLIQUE_OK,
+    oblique_prepare, oblique_prepare_e, oblique_prepare_table, oblique_prepared_free,
+    oblique_rebound_prepared, oblique_rebound_spheres, oblique_rebound_spheres_e,
+    oblique_rebound_wall, oblique_rebound_wall_e, oblique_table_close, oblique_table_open,
+    ObliqueBody, ObliqueContact, ObliqueMaterial, ObliqueMotion, ObliquePrepared, ObliqueRebound,
+    ObliqueTable, OBLIQUE_ERR_NULL, OBLIQUE_ERR_QUERY, OBLIQUE_OK,
 };
 use oblique_lookup::rebound::{Body, Incident3, Motion3, Pair};
 use oblique_lookup::{Contact, Table};
@@ -98,7 +99,8 @@ fn same(a: &[f64], b: &[f64]) -> bool {
             .all(|(x, y)| x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()))
 }
 
-/// The three ways of the C ABI to a rebound at `e_n` (`None`: the elastic functions).
+/// The three ways of the C ABI to a rebound at `e_n` (`None`: the elastic functions; the
+/// pair prepared for the table at e_n = 1): direct, prepared, prepared for the table.
 ///
 /// # Safety
 /// `t` is a live table handle.
@@ -108,7 +110,7 @@ unsafe fn c_rebounds(
     contact: &ObliqueContact,
     e_n: Option<f64>,
     s: &Incident3,
-) -> [(i32, ObliqueRebound); 2] {
+) -> [(i32, ObliqueRebound); 3] {
     let b1 = c_body(&pair.sphere);
     let (m1, m2) = (c_motion(&s.sphere), c_motion(&s.other));
     let mut direct = ObliqueRebound::default();
@@ -148,20 +150,23 @@ unsafe fn c_rebounds(
         None => oblique_prepare(&b1, b2p, contact, &mut k),
         Some(e) => oblique_prepare_e(&b1, b2p, contact, e, &mut k),
     };
-    let mut prepared = ObliqueRebound::default();
-    let rc_p = if rc_k == OBLIQUE_OK {
-        let other = if pair.other.is_some() {
-            &m2 as *const ObliqueMotion
-        } else {
-            std::ptr::null()
-        };
-        let rc = oblique_rebound_prepared(t, k, &m1, other, s.normal.as_ptr(), &mut prepared);
-        oblique_prepared_free(k);
-        rc
+    let mut k_t: *mut ObliquePrepared = std::ptr::null_mut();
+    let rc_kt = oblique_prepare_table(t, &b1, b2p, contact, e_n.unwrap_or(1.0), &mut k_t);
+    let other = if pair.other.is_some() {
+        &m2 as *const ObliqueMotion
     } else {
-        rc_k
+        std::ptr::null()
     };
-    [(rc, direct), (rc_p, prepared)]
+    let through = |rc_k: i32, k: *mut ObliquePrepared| {
+        let mut out = ObliqueRebound::default();
+        if rc_k != OBLIQUE_OK {
+            return (rc_k, out);
+        }
+        let rc = oblique_rebound_prepared(t, k, &m1, other, s.normal.as_ptr(), &mut out);
+        oblique_prepared_free(k);
+        (rc, out)
+    };
+    [(rc, direct), through(rc_k, k), through(rc_kt, k_t)]
 }
 
 /// Random incident states (approaching along the normal), random bodies and contacts.
@@ -226,11 +231,11 @@ fn rebounds_at_e_n_give_the_bits_of_the_rust_library() {
         let cc = c_contact(gamma, mu);
         for s in &incidents {
             // SAFETY: `t` is live until the end of the test.
-            let [(rc, direct), (rc_p, prepared)] =
+            let [(rc, direct), (rc_p, prepared), (rc_t, table_prepared)] =
                 unsafe { c_rebounds(t, &pair, &cc, Some(e_n), s) };
             match rust.rebound_3d(&pair, &contact, s) {
                 Ok(a) => {
-                    assert_eq!((rc, rc_p), (OBLIQUE_OK, OBLIQUE_OK));
+                    assert_eq!((rc, rc_p, rc_t), (OBLIQUE_OK, OBLIQUE_OK, OBLIQUE_OK));
                     let b = &a.rebound;
                     let o = b.other.unwrap_or_default();
                     let want: Vec<f64> = [b.sphere.velocity, b.sphere.spin, o.velocity, o.spin]
@@ -255,11 +260,16 @@ fn rebounds_at_e_n_give_the_bits_of_the_rust_library() {
                         .collect();
                     assert!(same(&fields(&direct), &want), "case {case} e_n {e_n:?}");
                     assert!(same(&fields(&prepared), &want), "case {case} e_n {e_n:?}");
+                    assert!(
+                        same(&fields(&table_prepared), &want),
+                        "case {case} e_n {e_n:?}"
+                    );
                     assert_eq!(b.e_n, e_n);
                     compared += 1;
                 }
                 Err(_) => {
-                    assert_eq!((rc, rc_p), (OBLIQUE_ERR_QUERY, OBLIQUE_ERR_QUERY));
+                    let refused_all = (OBLIQUE_ERR_QUERY, OBLIQUE_ERR_QUERY, OBLIQUE_ERR_QUERY);
+                    assert_eq!((rc, rc_p, rc_t), refused_all);
                     refused += 1;
                 }
             }
@@ -282,12 +292,14 @@ fn e_n_1_gives_the_bits_of_the_elastic_functions_and_bad_e_n_is_refused() {
         for s in &incidents {
             // SAFETY: the handles are live until the end of the test.
             unsafe {
-                let [(rc, a), (rc_p, ap)] = c_rebounds(quick, &pair, &cc, Some(1.0), s);
-                let [(rc0, b), (rc0_p, bp)] = c_rebounds(quick, &pair, &cc, None, s);
-                assert_eq!((rc, rc_p), (rc0, rc0_p));
+                let [(rc, a), (rc_p, ap), (rc_t, at)] = c_rebounds(quick, &pair, &cc, Some(1.0), s);
+                let [(rc0, b), (rc0_p, bp), (rc0_t, bt)] = c_rebounds(quick, &pair, &cc, None, s);
+                assert_eq!((rc, rc_p, rc_t), (rc0, rc0_p, rc0_t));
                 if rc == OBLIQUE_OK {
                     assert!(same(&fields(&a), &fields(&b)));
                     assert!(same(&fields(&ap), &fields(&bp)));
+                    assert!(same(&fields(&at), &fields(&bp)));
+                    assert!(same(&fields(&bt), &fields(&bp)));
                 }
                 // e_n outside [0, 1]: refused by every path; an elastic table at e_n < 1, and
                 // the table with the axis below its range, refused when P is needed.
@@ -304,6 +316,22 @@ fn e_n_1_gives_the_bits_of_the_elastic_functions_and_bad_e_n_is_refused() {
             }
         }
     }
+    // A pair prepared for no table: NULL is refused, naming it.
+    let b = c_body(&impacts(1, true, 1).0.sphere);
+    let mut k: *mut ObliquePrepared = std::ptr::null_mut();
+    // SAFETY: valid pointers but the NULL table.
+    let rc = unsafe {
+        oblique_prepare_table(
+            std::ptr::null(),
+            &b,
+            std::ptr::null(),
+            &c_contact(1.5, 0.3),
+            0.8,
+            &mut k,
+        )
+    };
+    assert_eq!(rc, OBLIQUE_ERR_NULL);
+    assert!(k.is_null());
     // SAFETY: the handles from `open`, closed once.
     unsafe {
         oblique_table_close(quick);
