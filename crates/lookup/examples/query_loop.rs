@@ -5,14 +5,15 @@
 //!
 //! `cargo run --release -p oblique-lookup --example query_loop -- TABLE KIND N` with `KIND` one
 //! of `line`, `partial`, `stick`, `no_slip`, `low_gamma`, `partial_g3`, `mixed`, `spheres_3d`,
-//! `spheres_3d_prepared` (the same rebound through [`Prepared`](oblique_lookup::Prepared)),
+//! `spheres_3d_prepared` (the same rebound through
+//! [`Table::prepare`](oblique_lookup::Table::prepare)),
 //! `batch` (the `mixed` stream through `Table::p_batch`, 4096 queries per call; `N` is rounded
 //! down to a multiple of 4096).
 
 use std::hint::black_box;
 use std::process::ExitCode;
 
-use oblique_lookup::{Prepared, Table};
+use oblique_lookup::Table;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().collect();
@@ -77,7 +78,7 @@ fn main() -> ExitCode {
                     .map_or(f64::NAN, |a| a.rebound.energy_lost);
             }
         } else {
-            let prepared = match Prepared::new(&pair, &contact) {
+            let prepared = match table.prepare(&pair, &contact) {
                 Ok(p) => p,
                 Err(e) => {
                     eprintln!("error: {e}");

@@ -14,7 +14,7 @@
 use std::process::ExitCode;
 
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
-use oblique_lookup::{Contact, LookupError, Prepared, Table};
+use oblique_lookup::{Contact, LookupError, Table};
 
 const ALUMINA: Elastic = Elastic {
     youngs_modulus: 370e9,
@@ -90,7 +90,7 @@ fn run(path: &str) -> Result<(), LookupError> {
         other: Some(solid(2e-3, 7850.0)),
     };
     let contact = Contact::with_materials(STEEL, STEEL, 0.3);
-    let prepared = Prepared::new(&pair, &contact)?;
+    let prepared = table.prepare(&pair, &contact)?;
     let curve = table.curve(prepared.gamma(), contact.outside)?;
     let incident = Incident3 {
         sphere: Motion3 {

@@ -11,9 +11,11 @@
 //! - [`Table::rebound`] (2-D, the plane of impact) and [`Table::rebound_3d`] (velocity and spin
 //!   vectors, contact normal) answer sphere–wall and sphere–sphere impacts in SI units, with
 //!   `γ` from the materials ([`Stiffness::Materials`]) or given ([`Stiffness::Gamma`]);
-//!   [`rebound`] is the algebra from `P` to the post-impact state. [`Prepared`] checks a pair
-//!   and contact once for many rebounds ([`Table::rebound_3d_prepared`],
-//!   [`Table::rebound_3d_batch`], [`Table::rebound_3d_batch_par`]).
+//!   [`rebound`] is the algebra from `P` to the post-impact state. [`Table::prepare`] (or
+//!   [`Prepared::new`], without a table) checks a pair and contact once for many rebounds
+//!   ([`Table::rebound_3d_prepared`], [`Table::rebound_3d_batch`],
+//!   [`Table::rebound_3d_batch_par`]); for a table with an `e_n` axis it also computes the
+//!   pair's `P(α)` through the table once.
 //! - [`Table::curve`] precomputes `P(α)` at one fixed `γ` ([`Curve`]) for codes that meet one
 //!   pair of materials many times: the same values, fewer operations per query.
 //! - The C ABI is the crate `oblique-lookup-capi` (header `crates/lookup-capi/include/oblique_lookup.h`).

@@ -2,7 +2,9 @@
 //!
 //! A DEM code meets the same pair of materials, radii and masses over and over; validating them
 //! and computing `γ` from the elastic constants (`E*`, `G*`, a square root) costs more than the
-//! table lookup. [`Prepared::new`] does that once; [`Table::rebound_3d_prepared`] then checks
+//! table lookup. [`Prepared::new`] does that once ([`Table::prepare`] too, and for a table with
+//! an `e_n` axis it also computes the pair's `P(α)` through the table once, [`crate::line`]);
+//! [`Table::rebound_3d_prepared`] then checks
 //! only the incident state and answers with as few divisions and square roots as the algebra
 //! allows (one square root and one division for the normal, one each for the slip direction,
 //! one division for `α`). It computes what [`Pair::plane`] and [`Pair::rebound_3d`] compute,

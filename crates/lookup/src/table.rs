@@ -184,7 +184,7 @@ impl Table {
     /// The error bound this table states for any `P` it answers (absolute, dimensionless):
     /// the largest, over all leaves, of the leaf's predicted interpolation error plus
     /// `Λ_k² ≈ 2.66` (cubic stencil) times the largest solver error estimate of its nodes
-    /// ([`crate::bound`]; `docs/table-format.md`, "The stated error bound"). Derived from the
+    /// ([`oblique_table::bound`]; `docs/table-format.md`, "The stated error bound"). Derived from the
     /// file's `leaf_predicted_error` and `error_estimate` datasets, so it is the same for every
     /// table written by `sweep run`; NaN for a file without `leaf_predicted_error` (it states
     /// no bound).
