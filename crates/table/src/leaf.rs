@@ -207,7 +207,7 @@ fn cubic_sum3(vals: &[f64], first: usize, n1: usize, w: [[f64; 4]; 3]) -> f64 {
     let p1 = sum_plane(&vals[first + s0..][..len], n1, &wc, &we);
     let p2 = sum_plane(&vals[first + 2 * s0..][..len], n1, &wc, &we);
     let p3 = sum_plane(&vals[first + 3 * s0..][..len], n1, &wc, &we);
-    wg[0] * p0 + wg[1] * p1 + wg[2] * p2 + wg[3] * p3
+    weigh4(&wg, [p0, p1, p2, p3])
 }
 
 /// One plane of [`cubic_sum3`] (a fixed `γ` index): `b` its nodes from the first, the rows
@@ -218,7 +218,14 @@ fn sum_plane(b: &[f64], n1: usize, wc: &[f64; 4], we: &[f64; 4]) -> f64 {
     let r1 = sum_row(&b[n1..][..4], we);
     let r2 = sum_row(&b[2 * n1..][..4], we);
     let r3 = sum_row(&b[3 * n1..][..4], we);
-    wc[0] * r0 + wc[1] * r1 + wc[2] * r2 + wc[3] * r3
+    weigh4(wc, [r0, r1, r2, r3])
+}
+
+/// `w₀·x₀ + w₁·x₁ + w₂·x₂ + w₃·x₃`, from the left: one outer level of [`cubic_sum3`] (a plane's
+/// rows over `c`, the planes over `γ`), and of the line of a pair ([`crate::line`]).
+#[inline(always)]
+pub(crate) fn weigh4(w: &[f64; 4], x: [f64; 4]) -> f64 {
+    w[0] * x[0] + w[1] * x[1] + w[2] * x[2] + w[3] * x[3]
 }
 
 /// `v₀·w₀ + v₁·w₁ + v₂·w₂ + v₃·w₃`, from the left.

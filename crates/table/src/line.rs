@@ -13,7 +13,7 @@
 //! what depends on `c`, the rule's own results for the rest, so the rule's bits
 //! ([`Patch::tensor_point`]; tested on every shipped table).
 
-use crate::leaf::{descend_masked, floor_index, locate, stencil4, sum_row};
+use crate::leaf::{descend_masked, floor_index, locate, stencil4, sum_row, weigh4};
 use crate::surface::{bound_p, Patch};
 
 /// Largest number of entries of a line's index along `c` (`2²⁰`, 4 MiB); a line through
@@ -194,13 +194,12 @@ impl PatchLine {
         let rows = &self.rows[s.first + sc..];
         let plane = |i: usize| {
             let r = &rows[i * self.n1..][..4];
-            wc[0] * r[0] + wc[1] * r[1] + wc[2] * r[2] + wc[3] * r[3]
+            weigh4(&wc, [r[0], r[1], r[2], r[3]])
         };
         let p = if self.planes == 1 {
             plane(0)
         } else {
-            let wg = &s.wg;
-            wg[0] * plane(0) + wg[1] * plane(1) + wg[2] * plane(2) + wg[3] * plane(3)
+            weigh4(&s.wg, [plane(0), plane(1), plane(2), plane(3)])
         };
         bound_p(p)
     }
