@@ -591,11 +591,7 @@ impl Layout<'_> {
 
     /// The partial-slip coordinate's map ([`Patch::partial_map`]).
     fn partial_map(&self) -> PartialMap {
-        if self.restitution.is_some() {
-            PartialMap::SqrtBoth
-        } else {
-            PartialMap::SqrtEnd
-        }
+        PartialMap::of_table(self.restitution.is_some())
     }
 
     /// Axes of the tree: 2, or 3 with an `e_n` axis, or 2 (`c`, `e_n`) for one pair.

@@ -132,6 +132,17 @@ pub enum PartialMap {
 }
 
 impl PartialMap {
+    /// The map of a table with an `e_n` axis ([`PartialMap::SqrtBoth`]) or without
+    /// ([`PartialMap::SqrtEnd`]).
+    #[inline(always)]
+    pub fn of_table(has_e_n: bool) -> PartialMap {
+        if has_e_n {
+            PartialMap::SqrtBoth
+        } else {
+            PartialMap::SqrtEnd
+        }
+    }
+
     /// `c` of `ℓ` (`ℓ` outside `[0, 1]` by rounding: the ends).
     #[inline(always)]
     pub fn c_of_l(self, l: f64) -> f64 {
@@ -902,11 +913,7 @@ impl Patch {
     /// The partial-slip coordinate's map: [`PartialMap::SqrtBoth`] with an `e_n` axis,
     /// [`PartialMap::SqrtEnd`] without.
     pub fn partial_map(&self) -> PartialMap {
-        if self.restitution.is_some() {
-            PartialMap::SqrtBoth
-        } else {
-            PartialMap::SqrtEnd
-        }
+        PartialMap::of_table(self.restitution.is_some())
     }
 
     /// Children of a split cell that halves every axis: `2^dims`.
