@@ -2,20 +2,13 @@
 //! holds the same bytes, and bad arguments are refused with exit status 2.
 
 mod common;
+use common::sweep;
 
 use std::path::Path;
-use std::process::Command;
 
 use oblique_lookup::{OutOfDomain, Table};
 
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
-
-fn sweep(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run sweep")
-}
 
 #[test]
 fn export_writes_the_format_crates_bytes_and_a_c_source_of_them() {

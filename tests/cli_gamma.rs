@@ -2,16 +2,10 @@
 //! physics.md, the catalogue it prints, its refusals (an unknown material names the catalogue,
 //! exit status 2), and the groups given for a general body in the help texts and the README.
 
-use std::process::{Command, Output};
-
 use serde_json::Value;
 
-fn sweep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run sweep")
-}
+mod common;
+use common::sweep;
 
 fn json(args: &[&str]) -> Value {
     let o = sweep(&[args, &["--json"]].concat());

@@ -1,15 +1,9 @@
 //! Tests of `sweep impact` through the real binary.
 
-use std::process::{Command, Output};
-
 use oblique_solver::{Request, Resolution};
 
-fn sweep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run the sweep binary")
-}
+mod common;
+use common::sweep;
 
 fn stdout_json(args: &[&str]) -> serde_json::Map<String, serde_json::Value> {
     let out = sweep(args);

@@ -1,13 +1,7 @@
 //! Tests of `sweep kinks` (the fold curve F+) through the real binary.
 
-use std::process::{Command, Output};
-
-fn sweep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run the sweep binary")
-}
+mod common;
+use common::sweep;
 
 fn alpha_c1(g: f64) -> f64 {
     2.0 * g * g / (7.0 * (2.0 * g * g - 1.0))

@@ -4,42 +4,16 @@
 //! single points and batches, and every path that cannot answer `e_n < 1` refuses by name.
 
 mod common;
+use common::{sweep_ok as ok, sweep_refused as refused};
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 use std::sync::OnceLock;
 
 const FULL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5");
 
-fn sweep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run the sweep binary")
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = sweep(args);
-    assert!(
-        out.status.success(),
-        "sweep {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("UTF-8")
-}
-
 fn json(args: &[&str]) -> serde_json::Value {
     serde_json::from_str(&ok(args)).expect("JSON")
-}
-
-/// `sweep ARGS` fails with exit status 2 and a message containing every needle.
-fn refused(args: &[&str], needles: &[&str]) {
-    let out = sweep(args);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "sweep {args:?}: {err}");
-    for n in needles {
-        assert!(err.contains(n), "sweep {args:?}: {err:?} lacks {n:?}");
-    }
 }
 
 /// The small table (built once per test process, a few seconds on 2 cores).

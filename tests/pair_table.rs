@@ -5,9 +5,10 @@
 //! edited files are refused by name.
 
 mod common;
+use common::{sweep_ok as ok, sweep_refused as refused};
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 use std::sync::OnceLock;
 
 use oblique_lookup::{OutOfDomain, Table};
@@ -15,33 +16,6 @@ use oblique_table::surface::PatchId;
 
 /// γ of an alumina-96 sphere on a soda-lime-glass wall (`sweep gamma`).
 const GAMMA: f64 = 1.7497858600774299;
-
-fn sweep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run the sweep binary")
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = sweep(args);
-    assert!(
-        out.status.success(),
-        "sweep {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("UTF-8")
-}
-
-/// `sweep ARGS` fails with exit status 2 and a message containing every needle.
-fn refused(args: &[&str], needles: &[&str]) {
-    let out = sweep(args);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "sweep {args:?}: {err}");
-    for n in needles {
-        assert!(err.contains(n), "sweep {args:?}: {err:?} lacks {n:?}");
-    }
-}
 
 const DOMAIN: &str = "[domain]\ngamma = 1.7497858600774299\ne_n_min = 0.6\ne_n_max = 1.0\n";
 const REST: &str = "[nodes]\ntarget_error = 1e-4\nleaf_intervals = 6\nblocks_coord = 2\n\

@@ -3,19 +3,12 @@
 //! figures, Kharaz's measurements), `--check` finds stale files, and bad arguments exit 2.
 
 mod common;
+use common::sweep;
 
 use std::collections::HashMap;
 use std::path::Path;
-use std::process::Command;
 
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
-
-fn sweep(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run sweep")
-}
 
 /// A CSV written by `sweep reference`: header and rows as strings (comment lines skipped).
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {

@@ -11,6 +11,7 @@ use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 mod common;
+use common::sweep;
 use common::{scratch, subdir};
 
 const CONFIG: &str = r#"# tests/resume_shard.rs
@@ -39,13 +40,6 @@ fn config(name: &str, text: &str) -> PathBuf {
     let p = scratch().join(name);
     std::fs::write(&p, text).expect("write config");
     p
-}
-
-fn sweep(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(args)
-        .output()
-        .expect("run the sweep binary")
 }
 
 fn s(p: &Path) -> &str {

@@ -1,7 +1,41 @@
-//! Scratch directories shared by the end-to-end tests (`mod common;` in each test file).
+//! Scratch directories and the `sweep` binary, shared by the end-to-end tests (`mod common;` in
+//! each test file; each uses a part of it).
+#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
 use std::sync::OnceLock;
+
+/// `sweep ARGS`: the binary under test, run to its end.
+pub fn sweep(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args(args)
+        .output()
+        .expect("run the sweep binary")
+}
+
+/// `sweep ARGS` succeeds: its standard output.
+pub fn sweep_ok(args: &[&str]) -> String {
+    let out = sweep(args);
+    assert!(
+        out.status.success(),
+        "sweep {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("UTF-8")
+}
+
+/// `sweep ARGS` fails with exit status 2, without a panic, and a message containing every
+/// needle.
+pub fn sweep_refused(args: &[&str], needles: &[&str]) {
+    let out = sweep(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "sweep {args:?}: {err}");
+    assert!(!err.contains("panicked"), "sweep {args:?}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "sweep {args:?}: {err:?} lacks {n:?}");
+    }
+}
 
 /// Scratch directory of this test process, `CARGO_TARGET_TMPDIR/NAME-PID` where NAME is the
 /// test file's name; the stale ones of test processes that no longer run are removed first.
