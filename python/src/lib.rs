@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use oblique_lookup::rebound::{
     Body, Elastic, Incident, Incident3, Motion3, Pair, Rebound, Rebound3, State,
 };
-use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Stiffness};
+use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Prepared, Stiffness};
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::units::{Groups, PhysicalImpact};
 use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request};
@@ -818,13 +818,17 @@ fn rebound_3d<'py>(
         s.check_restitution(t, 0)
             .map_err(|e| lookup_error(e, &[]))?;
     }
-    // One pair and contact for every row: check them once, and prepare the pair for this table
-    // (with an e_n axis: its P(α) at the pair's (γ, e_n), the same bits in fewer operations).
+    // One pair and contact for every row: check them once. For many rows, prepare the pair for
+    // this table (with an e_n axis: its P(α) at the pair's (γ, e_n) computed once, 2-9 µs,
+    // then about 15 ns less per row; the same bits).
     let prepared = if s.shared() {
-        Some(
-            t.prepare(&s.pair(0), &s.contact(0))
-                .map_err(|e| lookup_error(e, &[]))?,
-        )
+        let (pair, contact) = (s.pair(0), s.contact(0));
+        let k = if rows >= PREPARE_FOR_TABLE_ROWS {
+            t.prepare(&pair, &contact)
+        } else {
+            Prepared::new(&pair, &contact)
+        };
+        Some(k.map_err(|e| lookup_error(e, &[]))?)
     } else {
         None
     };
@@ -847,6 +851,10 @@ fn rebound_3d<'py>(
         |i, e| row_error(i, &shape, &e.to_string()),
     )
 }
+
+/// Rows of one pair from which `rebound_3d` prepares the pair for the table (`Table::prepare`):
+/// below, its 2-9 µs would cost more than the 15 ns per row it saves.
+const PREPARE_FOR_TABLE_ROWS: usize = 1024;
 
 /// Columns of a 2-D rebound row.
 const REBOUND2: [&str; 19] = [

@@ -227,17 +227,27 @@ def test_rebound_broadcasts_over_e_n(dissipative):
 
 
 def test_shared_e_n_agrees_with_e_n_per_row(dissipative):
-    """A scalar e_n with shared bodies and μ (checked once: the faster path) against the same
-    e_n repeated per impact (the general path)."""
+    """A scalar e_n with shared bodies and μ (checked once: the faster path; from 1024 rows the
+    pair is also prepared for the table) against the same e_n repeated per impact (the general
+    path), and against a few rows of the shared path (prepared without the table)."""
     d = wall_impacts(dissipative, 3000, seed=71)
+    fields = ("velocity", "spin", "p", "alpha", "energy_lost", "e_n", "tangent")
     for e in (0.5, 0.73, 1.0):
         body = Sphere(0.02, 0.008, 0.4)
         kw = dict(normal=d["n"], friction=0.4, gamma=1.9)
         shared = dissipative.rebound(body, d["v"], d["w"], e_n=e, **kw)
         rows = dissipative.rebound(body, d["v"], d["w"], e_n=np.full(len(d["m"]), e), **kw)
-        for f in ("velocity", "spin", "p", "alpha", "energy_lost", "e_n", "tangent"):
+        for f in fields:
             np.testing.assert_array_equal(
                 getattr(shared, f), getattr(rows, f), err_msg=f"{f} at e_n = {e}"
+            )
+        k = slice(0, 10)
+        few = dissipative.rebound(
+            body, d["v"][k], d["w"][k], e_n=e, normal=d["n"][k], friction=0.4, gamma=1.9
+        )
+        for f in fields:
+            np.testing.assert_array_equal(
+                getattr(few, f), getattr(shared, f)[k], err_msg=f"{f} at e_n = {e}, 10 rows"
             )
 
 
