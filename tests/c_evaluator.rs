@@ -1001,6 +1001,57 @@ fn e_n_tables_give_the_same_bits_in_rust_batches_c_and_python_on_a_million_point
     }
 }
 
+/// `oblq_p_e` of the C driver (`pe TABLE CLAMP`) at `pts` against `Table::p_e_with`: the
+/// header line `header`, then per point the Rust bits or `error CODE` with the code Rust's
+/// error maps to. Returns the refusals per status code and the number answered.
+fn pe_against_rust(
+    t: &Table,
+    path: &str,
+    pts: &[(f64, f64, f64)],
+    clamp: u8,
+    header: &str,
+) -> ([usize; 25], usize) {
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
+        .collect();
+    let out = run_ok(gcc_driver(), &["pe", path, &clamp.to_string()], &input);
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some(header));
+    let outside = if clamp == 1 {
+        OutOfDomain::Clamp
+    } else {
+        OutOfDomain::Error
+    };
+    let mut refused = [0usize; 25];
+    let mut answered = 0;
+    for ((g, a, e), line) in pts.iter().zip(lines) {
+        match t.p_e_with(*g, *a, *e, outside) {
+            Ok(r) => {
+                answered += 1;
+                let c: f64 = line.parse().unwrap_or_else(|_| {
+                    panic!("gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {line}")
+                });
+                assert_eq!(
+                    c.to_bits(),
+                    r.to_bits(),
+                    "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}"
+                );
+            }
+            Err(err) => {
+                let code = status_of(&err, *g, *a);
+                refused[code as usize] += 1;
+                assert_eq!(
+                    line,
+                    format!("error {code}"),
+                    "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {err}"
+                );
+            }
+        }
+    }
+    (refused, answered)
+}
+
 #[test]
 fn e_n_clamp_and_refusals_match_the_rust_rule() {
     let (t, path) = dissipative();
@@ -1027,43 +1078,8 @@ fn e_n_clamp_and_refusals_match_the_rust_rule() {
         (1.5, 0.3, 1.000_000_000_000_000_2),
         (0.5, 0.01, 0.5), // on the line, outside the e_n range: refused (e_n is never clamped)
     ]);
-    let input: String = pts
-        .iter()
-        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
-        .collect();
     for clamp in [0, 1] {
-        let out = run_ok(gcc_driver(), &["pe", path, &clamp.to_string()], &input);
-        let mut lines = out.lines();
-        assert_eq!(lines.next(), Some("e_n 1 0.69999999999999996 1"));
-        let outside = if clamp == 1 {
-            OutOfDomain::Clamp
-        } else {
-            OutOfDomain::Error
-        };
-        let mut refused = [0usize; 25];
-        for ((g, a, e), line) in pts.iter().zip(lines) {
-            match t.p_e_with(*g, *a, *e, outside) {
-                Ok(r) => {
-                    let c: f64 = line.parse().unwrap_or_else(|_| {
-                        panic!("gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {line}")
-                    });
-                    assert_eq!(
-                        c.to_bits(),
-                        r.to_bits(),
-                        "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}"
-                    );
-                }
-                Err(err) => {
-                    let code = status_of(&err, *g, *a);
-                    refused[code as usize] += 1;
-                    assert_eq!(
-                        line,
-                        format!("error {code}"),
-                        "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {err}"
-                    );
-                }
-            }
-        }
+        let (refused, _) = pe_against_rust(t, path, &pts, clamp, "e_n 1 0.69999999999999996 1");
         // Refusals of e_n always; of gamma outside the domain only without clamping.
         assert!(refused[24] > 3000, "clamp {clamp}: {refused:?}");
         assert_eq!(refused[9] > 1000, clamp == 0, "clamp {clamp}: {refused:?}");
@@ -1967,48 +1983,16 @@ fn pair_table_refuses_another_gamma_as_rust_does() {
         (3.0, 0.5 * a1, 0.8),                  // on the line at γ = 3: answered
         (3.0, 2.0 * a1, 0.8),                  // above it: refused
     ]);
-    let input: String = pts
-        .iter()
-        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
-        .collect();
-    for clamp in [0, 1] {
-        let out = run_ok(gcc_driver(), &["pe", path, &clamp.to_string()], &input);
-        let mut lines = out.lines();
-        assert_eq!(lines.next(), Some("e_n 1 0.5 1"));
-        let outside = if clamp == 1 {
-            OutOfDomain::Clamp
-        } else {
-            OutOfDomain::Error
-        };
-        let mut refused = [0usize; 25];
-        let mut answered = 0;
-        for ((g, a, e), line) in pts.iter().zip(lines) {
-            match t.p_e_with(*g, *a, *e, outside) {
-                Ok(r) => {
-                    answered += 1;
-                    let c: f64 = line.parse().unwrap_or_else(|_| {
-                        panic!("gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {line}")
-                    });
-                    assert_eq!(
-                        c.to_bits(),
-                        r.to_bits(),
-                        "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}"
-                    );
-                }
-                Err(err) => {
-                    let code = status_of(&err, *g, *a);
-                    if code == 9 {
-                        assert!(err.to_string().contains("1.7497858600774299"), "{err}");
-                    }
-                    refused[code as usize] += 1;
-                    assert_eq!(
-                        line,
-                        format!("error {code}"),
-                        "gamma {g:?} alpha {a:?} e_n {e:?} clamp {clamp}: {err}"
-                    );
-                }
+    // A γ refused names the pair's.
+    for &(g, a, e) in &pts {
+        if let Err(err) = t.p_e_with(g, a, e, OutOfDomain::Error) {
+            if status_of(&err, g, a) == 9 {
+                assert!(err.to_string().contains("1.7497858600774299"), "{err}");
             }
         }
+    }
+    for clamp in [0, 1] {
+        let (refused, answered) = pe_against_rust(t, path, &pts, clamp, "e_n 1 0.5 1");
         // Another γ above the line: refused without clamping, answered at the pair's with it.
         assert_eq!(refused[9] > 8000, clamp == 0, "clamp {clamp}: {refused:?}");
         assert!(refused[24] > 500, "clamp {clamp}: {refused:?}");
