@@ -355,7 +355,7 @@ int oblique_prepare_e(const struct ObliqueBody *sphere,
 // the pair's `P(α)` at its `(γ, e_n)` through that table (a few kB, computed once, about
 // 2 µs), and `oblique_rebound_prepared` with that table answers with the same bits in fewer
 // operations. With another table the handle answers as `oblique_prepare_e`'s. The handle
-// does not keep the table open: close the table after its last use with the handle.
+// owns what it holds: it stays valid after the table is closed.
 //
 // # Safety
 // `table` is NULL or a live handle; otherwise as for `oblique_prepare`.

@@ -13,7 +13,7 @@
 //! what depends on `c`, the rule's own results for the rest, so the rule's bits
 //! ([`Patch::tensor_point`]; tested on every shipped table).
 
-use crate::leaf::{descend_masked, floor_index, locate, stencil4, sum_row, weigh4};
+use crate::leaf::{floor_index, stencil4, sum_row, weigh4};
 use crate::surface::{bound_p, Patch};
 
 /// Largest number of entries of a line's index along `c` (`2²⁰`, 4 MiB); a line through
@@ -78,44 +78,10 @@ impl Patch {
 
     /// [`Patch::line`] at coordinates `x` of `D` axes, `ca` the axis of `c` (`x[ca]` unused).
     fn line_at<const D: usize>(&self, x: [f64; D], ca: usize) -> Option<PatchLine> {
-        let blocks: [usize; D] = std::array::from_fn(|k| self.axis(k).2);
-        let (mut root, mut f) = ([0usize; D], [0.0; D]);
-        for k in (0..D).filter(|&k| k != ca) {
-            (root[k], f[k]) = locate(x[k], blocks[k]);
-        }
-        // The leaves the line crosses: (leaf, positions along the other axes, depth and
-        // origin along c), by the rule's descent with both halves along c.
-        let mut leaves = Vec::new();
-        let mut stack = Vec::new();
-        for b in 0..blocks[ca] {
-            root[ca] = b;
-            let cell = root
-                .iter()
-                .zip(&blocks)
-                .fold(0, |cell, (&a, &bk)| cell * bk + a);
-            stack.push((cell, f, 0u32, b as u64));
-        }
-        let c_bit = 1u8 << (D - 1 - ca);
-        while let Some((cell, f, d, origin)) = stack.pop() {
-            let t = self.tree()[cell];
-            if t < 0 {
-                leaves.push(((-(t as i64) - 1) as usize, f, d, origin));
-                continue;
-            }
-            let (mut f, mask) = (f, self.split_mask(cell));
-            f[ca] = 0.0;
-            let child = t as usize + descend_masked(&mut f, mask);
-            if mask & c_bit == 0 {
-                stack.push((child, f, d, origin));
-            } else {
-                // The upper half along c is 2^(halved axes after c) cells further on.
-                let upper = 1usize << (mask & (c_bit - 1)).count_ones();
-                stack.push((child, f, d + 1, 2 * origin));
-                stack.push((child + upper, f, d + 1, 2 * origin + 1));
-            }
-        }
+        let blocks = self.axis(ca).2;
+        let leaves = self.line_leaves(x, ca);
         let depth = leaves.iter().map(|l| l.2).max()?;
-        let entries = blocks[ca]
+        let entries = blocks
             .checked_shl(depth)
             .filter(|&n| n > 0 && n <= MAX_LINE_ENTRIES && depth < 52)?;
         let n1 = self.leaf_intervals() + 1;
@@ -165,7 +131,7 @@ impl Patch {
             return None;
         }
         Some(PatchLine {
-            blocks: blocks[ca] as f64,
+            blocks: blocks as f64,
             fine: f64::from(depth as i32).exp2(),
             last: entries - 1,
             index,

@@ -1245,6 +1245,23 @@ impl Patch {
     /// [`Patch::line_depth`] at coordinates `x` of `D` axes (`x[ca]`, along `c`, unused; `ca`
     /// the axis of `c`).
     fn line_depth_at<const D: usize>(&self, x: [f64; D], ca: usize) -> u32 {
+        self.line_leaves(x, ca)
+            .iter()
+            .map(|&(_, _, d, _)| d)
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The leaves crossed by the line through the coordinates `x` of `D` axes along `c` (axis
+    /// `ca`; `x[ca]` unused), by the rule's descent along every other axis and both halves
+    /// along `c`: per leaf its number, the positions inside it along the other axes (those of
+    /// the rule; `f[ca]` is 0), its depth `d` along `c` and its integer origin along `c` in
+    /// units of its size (`[origin, origin + 1)·2^−d` root cells).
+    pub(crate) fn line_leaves<const D: usize>(
+        &self,
+        x: [f64; D],
+        ca: usize,
+    ) -> Vec<(usize, [f64; D], u32, u64)> {
         let blocks = self.blocks_of::<D>();
         let (mut root, mut f) = ([0usize; D], [0.0; D]);
         for k in (0..D).filter(|&k| k != ca) {
@@ -1257,31 +1274,30 @@ impl Patch {
                 .iter()
                 .zip(&blocks)
                 .fold(0, |cell, (&a, &bk)| cell * bk + a);
-            stack.push((cell, f, 0));
+            stack.push((cell, f, 0, b as u64));
         }
-        let mut deepest = 0;
-        while let Some((cell, f, d)) = stack.pop() {
+        let c_bit = 1u8 << (D - 1 - ca);
+        let mut leaves = Vec::new();
+        while let Some((cell, f, d, origin)) = stack.pop() {
             let t = self.tree[cell];
             if t < 0 {
-                deepest = deepest.max(d);
+                leaves.push(((-(t as i64) - 1) as usize, f, d, origin));
                 continue;
             }
-            // f[1] = 0 stays 0: the lower half along c; the upper one next to it, which is
+            // f[ca] = 0 stays 0: the lower half along c; the upper one next to it, which is
             // `2^(number of halved axes after c)` further on. A cell that does not halve `c`
             // has one child on the line and adds no depth along `c`.
-            let mut f = f;
-            let mask = self.split_mask(cell);
-            let c_bit = 1u8 << (D - 1 - ca);
+            let (mut f, mask) = (f, self.split_mask(cell));
             let child = t as usize + descend_masked(&mut f, mask);
             if mask & c_bit == 0 {
-                stack.push((child, f, d));
+                stack.push((child, f, d, origin));
             } else {
                 let upper_c = 1usize << (mask & (c_bit - 1)).count_ones();
-                stack.push((child, f, d + 1));
-                stack.push((child + upper_c, f, d + 1));
+                stack.push((child, f, d + 1, 2 * origin));
+                stack.push((child + upper_c, f, d + 1, 2 * origin + 1));
             }
         }
-        deepest
+        leaves
     }
 
     /// Check the patch's warp, if any: [`Warp::validate`], and no leaf straddles its `start`
