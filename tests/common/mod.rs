@@ -14,6 +14,23 @@ pub fn sweep(args: &[&str]) -> Output {
         .expect("run the sweep binary")
 }
 
+/// `dst`: a copy of the table `src` changed by the Python (h5py) statement `edit` (with `f`
+/// the file open for writing) and sealed again, so that only the edit is wrong with it.
+pub fn edited_copy(src: &Path, dst: &Path, edit: &str) {
+    std::fs::copy(src, dst).expect("copy");
+    let script = format!("import h5py, sys; f = h5py.File(sys.argv[1], 'r+'); {edit}");
+    let out = Command::new("python3")
+        .args(["-c", &script, dst.to_str().expect("path")])
+        .output()
+        .expect("python3 with h5py");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    oblique_table::write::seal(dst).expect("seal again");
+}
+
 /// `sweep ARGS` succeeds: its standard output.
 pub fn sweep_ok(args: &[&str]) -> String {
     let out = sweep(args);
