@@ -20,22 +20,13 @@ fn json(args: &[&str]) -> serde_json::Value {
 fn table() -> &'static Path {
     static T: OnceLock<PathBuf> = OnceLock::new();
     T.get_or_init(|| {
-        let dir = common::subdir("dissipative");
-        let out = dir.join("kv.h5");
-        let cfg = dir.join("kv.toml");
-        std::fs::write(
-            &cfg,
-            format!(
-                "output = {:?}\n[domain]\ngamma_min = 1.3\ngamma_max = 1.6\n\
-                 e_n_min = 0.7\ne_n_max = 1.0\n[nodes]\ntarget_error = 4e-4\n\
-                 leaf_intervals = 6\nblocks_coord = 2\n[solver]\ntol = 4e-5\n\
-                 [checks]\nper_patch = 30\n",
-                out.display().to_string()
-            ),
+        common::build_table(
+            "dissipative",
+            "kv",
+            "[domain]\ngamma_min = 1.3\ngamma_max = 1.6\ne_n_min = 0.7\ne_n_max = 1.0\n\
+             [nodes]\ntarget_error = 4e-4\nleaf_intervals = 6\nblocks_coord = 2\n\
+             [solver]\ntol = 4e-5\n[checks]\nper_patch = 30\n",
         )
-        .expect("write config");
-        ok(&["run", cfg.to_str().expect("path"), "--quiet"]);
-        out
     })
 }
 

@@ -23,15 +23,7 @@ const REST: &str = "[nodes]\ntarget_error = 1e-4\nleaf_intervals = 6\nblocks_coo
 /// The small pair table (built once per test process, about a second).
 fn table() -> &'static Path {
     static T: OnceLock<PathBuf> = OnceLock::new();
-    T.get_or_init(|| {
-        let dir = common::subdir("pair");
-        let out = dir.join("pair.h5");
-        let cfg = dir.join("pair.toml");
-        let text = format!("output = {:?}\n{DOMAIN}{REST}", out.display().to_string());
-        std::fs::write(&cfg, text).expect("write config");
-        ok(&["run", cfg.to_str().expect("path"), "--quiet"]);
-        out
-    })
+    T.get_or_init(|| common::build_table("pair", "pair", &format!("{DOMAIN}{REST}")))
 }
 
 fn t() -> &'static str {

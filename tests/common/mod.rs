@@ -31,6 +31,18 @@ pub fn edited_copy(src: &Path, dst: &Path, edit: &str) {
     oblique_table::write::seal(dst).expect("seal again");
 }
 
+/// A table built by `sweep run` from the config `body` (everything but `output`) into
+/// `DIR/STEM.h5`, `DIR` a fresh sub-directory of the scratch directory.
+pub fn build_table(dir: &str, stem: &str, body: &str) -> PathBuf {
+    let dir = subdir(dir);
+    let out = dir.join(format!("{stem}.h5"));
+    let cfg = dir.join(format!("{stem}.toml"));
+    let text = format!("output = {:?}\n{body}", out.display().to_string());
+    std::fs::write(&cfg, text).expect("write config");
+    sweep_ok(&["run", cfg.to_str().expect("path"), "--quiet"]);
+    out
+}
+
 /// `sweep ARGS` succeeds: its standard output.
 pub fn sweep_ok(args: &[&str]) -> String {
     let out = sweep(args);
