@@ -897,6 +897,40 @@ fn module_answers_points_curves_and_rebounds_like_the_rust_library() {
     eprintln!("driver: {:.1} s", start.elapsed().as_secs_f64());
 }
 
+/// The driver's answers `STATUS P` to `pe` lines of `pts` (clamping at odd indexes), read by
+/// `next`, against `Table::p_e_with`: the bits of `P`, or the status Rust's error maps to with
+/// `P` NaN. Returns the number answered and the refusals per status.
+fn pe_lines_against_rust<'a>(
+    t: &Table,
+    pts: &[(f64, f64, f64)],
+    next: &mut impl FnMut() -> &'a str,
+) -> (usize, [usize; 25]) {
+    let (mut answered, mut refused) = (0, [0usize; 25]);
+    for (i, (g, a, e)) in pts.iter().enumerate() {
+        let line = next();
+        let (st, p) = line.split_once(' ').expect("status P");
+        let outside = if i % 2 == 1 {
+            OutOfDomain::Clamp
+        } else {
+            OutOfDomain::Error
+        };
+        match t.p_e_with(*g, *a, *e, outside) {
+            Ok(want) => {
+                answered += 1;
+                assert_eq!(st, "0", "({g:?}, {a:?}, {e:?}): {line}");
+                assert_eq!(num(p).to_bits(), want.to_bits(), "({g:?}, {a:?}, {e:?})");
+            }
+            Err(err) => {
+                let code = status_of(&err, *g, *a);
+                refused[code as usize] += 1;
+                assert!(num(p).is_nan(), "{line}");
+                assert_eq!(st, code.to_string(), "({g:?}, {a:?}, {e:?})");
+            }
+        }
+    }
+    (answered, refused)
+}
+
 /// The module on a table with an `e_n` axis (export layout version 2): `oblique_p_e` (scalar and
 /// elemental) gives the bits of `Table::p_e` and its refusals, `oblique_p` the `e_n = 1` slice,
 /// `oblique_e_n_range` the range; and an elastic export answers `e_n = 1` only.
@@ -924,31 +958,8 @@ fn module_answers_p_of_a_table_with_an_e_n_axis() {
     assert_eq!(next(), "0", "open");
     let r = nums(next());
     assert_eq!(r, [0.0, 0.7, 1.0]);
-    let mut refused = 0;
-    for (i, (g, a, e)) in pts.iter().enumerate() {
-        let line = next();
-        let (st, p) = line.split_once(' ').expect("status P");
-        let outside = if i % 2 == 1 {
-            OutOfDomain::Clamp
-        } else {
-            OutOfDomain::Error
-        };
-        match t.p_e_with(*g, *a, *e, outside) {
-            Ok(want) => {
-                assert_eq!(st, "0", "({g:?}, {a:?}, {e:?}): {line}");
-                assert_eq!(num(p).to_bits(), want.to_bits(), "({g:?}, {a:?}, {e:?})");
-            }
-            Err(err) => {
-                refused += 1;
-                assert!(num(p).is_nan(), "{line}");
-                assert_eq!(
-                    st,
-                    status_of(&err, *g, *a).to_string(),
-                    "({g:?}, {a:?}, {e:?})"
-                );
-            }
-        }
-    }
+    let (_, refused) = pe_lines_against_rust(t, &pts, &mut next);
+    let refused: usize = refused.iter().sum();
     assert!(refused > 2000, "{refused} refused");
     let pv = nums(next());
     assert_eq!(pv[0], 0.0);
@@ -1166,29 +1177,7 @@ fn module_answers_the_table_of_one_pair() {
         "a single gamma"
     );
     assert_eq!(nums(next()), [0.0, 0.5, 1.0]);
-    let (mut answered, mut refused) = (0, [0usize; 25]);
-    for (i, (g, a, e)) in pts.iter().enumerate() {
-        let line = next();
-        let (st, p) = line.split_once(' ').expect("status P");
-        let outside = if i % 2 == 1 {
-            OutOfDomain::Clamp
-        } else {
-            OutOfDomain::Error
-        };
-        match t.p_e_with(*g, *a, *e, outside) {
-            Ok(want) => {
-                answered += 1;
-                assert_eq!(st, "0", "({g:?}, {a:?}, {e:?}): {line}");
-                assert_eq!(num(p).to_bits(), want.to_bits(), "({g:?}, {a:?}, {e:?})");
-            }
-            Err(err) => {
-                let code = status_of(&err, *g, *a);
-                refused[code as usize] += 1;
-                assert!(num(p).is_nan(), "{line}");
-                assert_eq!(st, code.to_string(), "({g:?}, {a:?}, {e:?})");
-            }
-        }
-    }
+    let (answered, refused) = pe_lines_against_rust(&t, &pts, &mut next);
     assert!(
         answered > 10_000 && refused[9] > 2000 && refused[24] > 500,
         "{refused:?}"
