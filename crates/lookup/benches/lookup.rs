@@ -24,6 +24,8 @@
 //!   cores of the rayon pool); throughput in queries/s.
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
 //!   prepared pair through `rebound_3d_batch` / `rebound_3d_batch_par`.
+//! - `open/table`, `open/table_e_n`: one `Table::open` of each table (the file read,
+//!   decompressed, checked and indexed), the cost a program pays once.
 //! - `cycle/dependent_add_x64`: 64 dependent `f64` additions, to read the times above in
 //!   processor cycles (an addition waits 3 cycles for the previous one on the x86-64 cores
 //!   this was measured on, so the cycle is this time / 192).
@@ -90,6 +92,23 @@ fn main() {
         .measurement_time(Duration::from_secs(3))
         .configure_from_args();
 
+    // Opening a table (read, decompress, validate, index).
+    let path_e = std::env::var("LOOKUP_BENCH_TABLE_E_N").unwrap_or_else(|_| {
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../tables/dissipative-demo.h5"
+        )
+        .to_string()
+    });
+    let mut g = c.benchmark_group(format!("open{}", clock.suffix()));
+    g.sample_size(10);
+    for (name, p) in [("table", &path), ("table_e_n", &path_e)] {
+        timed(&mut g, name, clock, || {
+            Table::open(black_box(p)).unwrap_or_else(|e| panic!("{e}"))
+        });
+    }
+    g.finish();
+
     // One P.
     let mut g = c.benchmark_group(format!("p{}", clock.suffix()));
     let points = [
@@ -116,13 +135,6 @@ fn main() {
     // One P(γ, α, e_n) of a table with an e_n axis, at 4096 points cycled (γ, α as in
     // `p/mixed` over its domain, e_n uniform in its range), and the elastic table at the same
     // (γ, α) for the ratio.
-    let path_e = std::env::var("LOOKUP_BENCH_TABLE_E_N").unwrap_or_else(|_| {
-        concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../tables/dissipative-demo.h5"
-        )
-        .to_string()
-    });
     let table_e = Table::open(&path_e).unwrap_or_else(|e| panic!("{e}"));
     let (lo, hi) = table_e.restitution().unwrap_or((1.0, 1.0));
     let (eg, ea) = mixed_points(&table_e, 4096);
