@@ -155,6 +155,7 @@ user_fixable!(
     oblique_output::OutputPathError,
     oblique_sweep::SweepError,
     oblique_sweep::RunError,
+    oblique_sweep::job::JobError,
     oblique_sweep::config::ConfigError,
     oblique_sweep::nodestore::NodeFileError,
     oblique_sweep::nodestore::LockError,

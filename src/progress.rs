@@ -1,8 +1,8 @@
 //! Progress display of `sweep run`: an indicatif bar on a terminal, plain lines otherwise,
 //! nothing with `--quiet`.
 //!
-//! A run is a known list of steps (pre-flight, the stages of `oblique_sweep::stages`, writing),
-//! shown as "step K/N NAME". Counts and an ETA are shown only where the total is known: within
+//! A run is a known list of steps (`oblique_sweep::job::Job::stages`: pre-flight, the stages
+//! of the build, writing), shown as "step K/N NAME", with the job's notes between them. Counts and an ETA are shown only where the total is known: within
 //! one refinement round (its new nodes are placed before it starts) and for the held-out
 //! checks. How many rounds a patch needs is not known in advance, so no ETA is claimed for the
 //! whole run.
@@ -12,12 +12,8 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
+use oblique_sweep::job::Note;
 use oblique_sweep::{Progress, STAGE_CHECKS};
-
-/// The step before the build.
-pub const STEP_PREFLIGHT: &str = "preflight";
-/// The step after the build.
-pub const STEP_WRITING: &str = "writing";
 
 /// Seconds between two plain progress lines within a phase.
 const PLAIN_EVERY: Duration = Duration::from_secs(5);
@@ -187,6 +183,12 @@ impl Progress for CliProgress {
             } else {
                 b.set_message(format!("{} (all from the checkpoint)", s.detail));
             }
+        }
+    }
+
+    fn note(&self, note: &Note<'_>) {
+        if self.state.is_some() {
+            self.println(&note.to_string());
         }
     }
 

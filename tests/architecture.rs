@@ -93,7 +93,7 @@ fn every_written_file_goes_through_the_output_module() {
             "OpenOptions::new().write(true).open(path)?",
         ),
         // A writability probe, created and removed at once.
-        ("src/cmd/run.rs", "std::fs::write(&probe"),
+        ("crates/sweep/src/job.rs", "std::fs::write(&probe"),
         // The built-in table's private scratch copy for HDF5 to open, created new in the
         // temporary folder and removed before returning: no output of the user's.
         ("crates/lookup/src/embedded.rs", "create_new("),

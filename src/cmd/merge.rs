@@ -7,11 +7,12 @@ use crate::failure::Result;
 use clap::Args;
 
 use oblique_output::check_output_not_input;
+use oblique_sweep::job::check_writable;
 use oblique_sweep::nodestore::{Merged, OutputLock};
 use oblique_sweep::{provenance, Config, RunOptions};
 use oblique_table::write::write_table;
 
-use super::run::{check_writable, summary};
+use super::run::summary;
 
 #[derive(Args)]
 pub struct MergeArgs {
@@ -49,7 +50,7 @@ pub fn run(args: MergeArgs) -> Result<()> {
     let wall = start.elapsed().as_secs_f64();
     write_table(&cfg.output, &built, &provenance(&cfg, text, wall))?;
     if !args.quiet {
-        summary(&cfg, &built, wall);
+        summary(&cfg.output, &built, wall);
     }
     Ok(())
 }

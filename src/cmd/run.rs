@@ -1,19 +1,16 @@
-//! `sweep run`: build a table from a config, with checkpoints, resume and shards.
+//! `sweep run`: build a table from a config, with checkpoints, resume and shards: the
+//! arguments, the messages and the exit status around `oblique_sweep::job`.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
 
-use crate::failure::{Context, Failure, Result};
+use crate::failure::{Failure, Result};
 use clap::Args;
 
-use oblique_output::{check_output, check_output_not_input};
-use oblique_sweep::nodestore::{fingerprint, Checkpoint, Header, Kind, NodeFile, OutputLock};
-use oblique_sweep::provenance;
-use oblique_sweep::{Built, Config, Progress, RunError, RunOptions, Shard};
-use oblique_table::write::write_table;
+use oblique_sweep::job::{CheckpointAfter, Earlier, Job, JobError, Outcome, MAX_THREADS};
+use oblique_sweep::{Built, Config, Shard};
 
-use crate::progress::{CliProgress, STEP_PREFLIGHT, STEP_WRITING};
+use crate::progress::CliProgress;
 
 #[derive(Args)]
 pub struct RunArgs {
@@ -71,29 +68,6 @@ fn shell_word(p: &Path) -> String {
 /// Set by the Ctrl-C handler; the sweep stops after its current batch.
 static STOP: AtomicBool = AtomicBool::new(false);
 
-fn checkpoint_path(out: &Path) -> PathBuf {
-    let mut s = out.as_os_str().to_owned();
-    s.push(".ckpt");
-    PathBuf::from(s)
-}
-
-/// Fail early (before hours of work) if the output directory cannot take a file.
-pub(crate) fn check_writable(out: &std::path::Path) -> Result<()> {
-    let dir = out
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(std::path::Path::new("."));
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("output {}: cannot create directory", out.display()))?;
-    let probe = dir.join(format!(".sweep-probe-{}", std::process::id()));
-    // A probe, not an output: created and removed at once (a temporary file and a rename
-    // would only widen the window in which a killed run leaves it).
-    std::fs::write(&probe, b"")
-        .with_context(|| format!("output {}: directory is not writable", out.display()))?;
-    let _ = std::fs::remove_file(probe);
-    Ok(())
-}
-
 /// `sweep run CONFIG -o OUTPUT [--shard K/N] FLAG`, to quote in messages.
 fn run_command(args: &RunArgs, output: &Path, flag: &str) -> String {
     let shard = args
@@ -107,69 +81,59 @@ fn run_command(args: &RunArgs, output: &Path, flag: &str) -> String {
     )
 }
 
-/// Open the checkpoint of this run: continue it (`--resume`), discard it (`--restart`) or
-/// create it. Returns it and whether this run created it.
-fn open_checkpoint(
-    args: &RunArgs,
-    cfg: &Config,
-    ckpt_path: &Path,
-    header: Header,
-    progress: &CliProgress,
-) -> Result<(Checkpoint, bool)> {
-    let exists = std::fs::symlink_metadata(ckpt_path).is_ok();
-    if exists && args.restart {
-        std::fs::remove_file(ckpt_path)
-            .with_context(|| format!("cannot discard the checkpoint {}", ckpt_path.display()))?;
-        if !args.quiet {
-            progress.println(&format!("discarded the checkpoint {}", ckpt_path.display()));
-        }
-    } else if exists {
-        let restart = run_command(args, &cfg.output, "--restart");
-        let (nodes, fits) = match NodeFile::read(ckpt_path) {
-            Ok(f) => (
-                Some(f.records.len()),
-                f.header.kind == Kind::Checkpoint
-                    && f.header.fingerprint == header.fingerprint
-                    && f.header.shard == header.shard,
-            ),
-            Err(_) => (None, false),
-        };
-        let what = match nodes {
-            Some(n) => format!("the checkpoint of an interrupted run ({n} nodes)"),
-            None => "no readable checkpoint".to_string(),
-        };
-        if !fits {
-            let why = if nodes.is_some() {
-                "it was written for a different config or shard (domain, nodes, solver or \
-                 checks differ, or another engine version); resume with the config it was \
-                 started with, or"
-            } else {
-                "it cannot be resumed;"
+/// The error of a job that did not finish, with the commands that go on where there are any.
+fn failure(args: &RunArgs, output: &Path, e: JobError) -> Failure {
+    let resume = || run_command(args, output, "--resume");
+    let restart = || run_command(args, output, "--restart");
+    match e {
+        JobError::CheckpointPending { checkpoint, nodes } => Failure::usage(format!(
+            "{} holds the checkpoint of an interrupted run ({nodes} nodes) of this config: \
+             continue it with\n  {}\nor discard it and start afresh with\n  {}",
+            checkpoint.display(),
+            resume(),
+            restart()
+        )),
+        JobError::CheckpointForeign { checkpoint, nodes } => {
+            let (what, why) = match nodes {
+                Some(n) => (
+                    format!("the checkpoint of an interrupted run ({n} nodes)"),
+                    "it was written for a different config or shard (domain, nodes, solver or \
+                     checks differ, or another engine version); resume with the config it was \
+                     started with, or",
+                ),
+                None => (
+                    "no readable checkpoint".to_string(),
+                    "it cannot be resumed;",
+                ),
             };
-            return Err(Failure::usage(format!(
-                "{} holds {what}: {why} discard it and start afresh with\n  {restart}",
-                ckpt_path.display()
-            )));
+            Failure::usage(format!(
+                "{} holds {what}: {why} discard it and start afresh with\n  {}",
+                checkpoint.display(),
+                restart()
+            ))
         }
-        if !args.resume {
-            return Err(Failure::usage(format!(
-                "{} holds {what} of this config: continue it with\n  {}\nor discard it and \
-                 start afresh with\n  {restart}",
-                ckpt_path.display(),
-                run_command(args, &cfg.output, "--resume")
-            )));
+        JobError::Build {
+            error,
+            checkpoint,
+            after,
+        } => {
+            match after {
+                CheckpointAfter::Removed => {}
+                CheckpointAfter::NotRemoved(r) => {
+                    eprintln!("warning: cannot remove the checkpoint of this run: {r}")
+                }
+                CheckpointAfter::Kept => eprintln!(
+                    "finished nodes are kept in {}; continue with\n  {}\nor discard them \
+                     with\n  {}",
+                    checkpoint.display(),
+                    resume(),
+                    restart()
+                ),
+            }
+            (*error).into()
         }
-        let c = Checkpoint::resume(ckpt_path, header)?;
-        if !args.quiet {
-            progress.println(&format!(
-                "resuming from {}: {} nodes already computed",
-                ckpt_path.display(),
-                c.resumed_nodes()
-            ));
-        }
-        return Ok((c, false));
+        e => e.into(),
     }
-    Ok((Checkpoint::create(ckpt_path, header)?, true))
 }
 
 pub fn run(args: RunArgs) -> Result<()> {
@@ -178,51 +142,25 @@ pub fn run(args: RunArgs) -> Result<()> {
         cfg.output = o.clone();
     }
     if let Some(t) = args.threads {
-        if t > 1024 {
+        if t > MAX_THREADS {
             return Err(Failure::usage(format!(
-                "--threads {t}: must be in [0, 1024] (0 = one per core)"
+                "--threads {t}: must be in [0, {MAX_THREADS}] (0 = one per core)"
             )));
         }
         cfg.run.threads = t;
     }
-    let ckpt_path = checkpoint_path(&cfg.output);
-    check_output_not_input(&cfg.output, &[&args.config])?;
-    check_output(&ckpt_path)?;
-    check_writable(&cfg.output)?;
-    // Held until the run ends (the operating system releases it if the process dies).
-    let lock = OutputLock::acquire(&cfg.output, "sweep run")?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(cfg.run.threads)
-        .build()
-        .context("cannot start worker threads")?;
-    let steps: Vec<String> = std::iter::once(STEP_PREFLIGHT.to_string())
-        .chain(oblique_sweep::stages(&cfg))
-        .chain(std::iter::once(STEP_WRITING.to_string()))
-        .collect();
-    let progress = CliProgress::new(args.quiet, steps);
-    progress.phase(STEP_PREFLIGHT, "probing the hardest points of the domain");
-    let pre = oblique_sweep::preflight(&cfg)?;
-    if !args.quiet {
-        progress.println(&format!(
-            "preflight: tolerances reachable; the slowest node probed took {:.1} ms",
-            pre.slowest_node_s * 1e3
-        ));
-        if pre.check_tol_loosened {
-            progress.println(&format!(
-                "note: checks.tol is not set and solver.tol/10 is out of reach at gamma = {}: \
-                 the held-out checks use checks.tol = {:e} (set checks.tol to choose)",
-                cfg.domain.gamma_max, pre.check_tol
-            ));
-        }
-    }
-    cfg.derived_check_tol = Some(pre.check_tol);
-    let header = Header {
-        kind: Kind::Checkpoint,
-        shard: args.shard,
-        fingerprint: fingerprint(&cfg),
-        config: text.clone(),
+    let output = cfg.output.clone();
+    let mut job = Job::new(cfg, text, "sweep run");
+    job.inputs.push(args.config.clone());
+    job.shard = args.shard;
+    job.earlier = if args.resume {
+        Earlier::Resume
+    } else if args.restart {
+        Earlier::Restart
+    } else {
+        Earlier::Refuse
     };
-    let (ckpt, created) = open_checkpoint(&args, &cfg, &ckpt_path, header, &progress)?;
+    let progress = CliProgress::new(args.quiet, job.stages());
     // A second Ctrl-C (or a handler that cannot be installed) kills the process as usual; the
     // checkpoint is durable after every batch either way.
     let _ = ctrlc::set_handler(|| {
@@ -230,75 +168,42 @@ pub fn run(args: RunArgs) -> Result<()> {
             std::process::exit(130);
         }
     });
-    let opts = RunOptions {
-        store: Some(&ckpt),
-        strict: false,
-        stop: Some(&STOP),
-    };
-    let start = Instant::now();
-    let result = pool.install(|| match args.shard {
-        Some(shard) => oblique_sweep::build_shard(&cfg, &progress, opts, shard).map(|()| None),
-        None => oblique_sweep::build_with(&cfg, &progress, opts).map(Some),
-    });
-    let built = match result {
-        Ok(b) => b,
-        Err(RunError::Interrupted) => {
-            progress.finish();
-            eprintln!(
-                "interrupted: finished nodes are saved in {}; continue with\n  {}",
-                ckpt_path.display(),
-                run_command(&args, &cfg.output, "--resume")
-            );
-            drop(lock);
-            std::process::exit(130);
+    let result = job.run(&progress, &STOP);
+    progress.finish();
+    match result {
+        Ok(Outcome::Table { built, wall_s }) => {
+            if !args.quiet {
+                summary(&output, &built, wall_s);
+            }
+            Ok(())
         }
-        Err(e) => {
-            progress.finish();
-            // A failure the config decides would only repeat on resume: the checkpoint this
-            // run created must not stand in the way of the next run. Other failures (a full
-            // disk) and the checkpoint of an earlier, interrupted run keep their nodes.
-            if created && matches!(e, RunError::Sweep(_)) {
-                if let Err(r) = ckpt.remove() {
-                    eprintln!("warning: cannot remove the checkpoint of this run: {r}");
-                }
-            } else {
+        Ok(Outcome::Part { wall_s }) => {
+            if !args.quiet {
                 eprintln!(
-                    "finished nodes are kept in {}; continue with\n  {}\nor discard them \
-                     with\n  {}",
-                    ckpt_path.display(),
-                    run_command(&args, &cfg.output, "--resume"),
-                    run_command(&args, &cfg.output, "--restart")
+                    "wrote part {} ({wall_s:.1} s); merge all parts with `sweep merge PARTS... -o TABLE`",
+                    output.display()
                 );
             }
-            return Err(e.into());
+            Ok(())
         }
-    };
-    let wall = start.elapsed().as_secs_f64();
-    progress.phase(STEP_WRITING, &cfg.output.display().to_string());
-    let Some(built) = built else {
-        ckpt.finish_part(&cfg.output)?;
-        progress.finish();
-        if !args.quiet {
+        Err(e @ JobError::InterruptedEarly) => {
+            eprintln!("{e}");
+            std::process::exit(130);
+        }
+        Err(JobError::Interrupted { checkpoint }) => {
             eprintln!(
-                "wrote part {} ({wall:.1} s); merge all parts with `sweep merge PARTS... -o TABLE`",
-                cfg.output.display()
+                "interrupted: finished nodes are saved in {}; continue with\n  {}",
+                checkpoint.display(),
+                run_command(&args, &output, "--resume")
             );
+            std::process::exit(130);
         }
-        return Ok(());
-    };
-    let written = write_table(&cfg.output, &built, &provenance(&cfg, text, wall));
-    progress.finish();
-    written?;
-    ckpt.remove()?;
-    drop(lock);
-    if !args.quiet {
-        summary(&cfg, &built, wall);
+        Err(e) => Err(failure(&args, &output, e)),
     }
-    Ok(())
 }
 
-/// What was written: per patch, then the whole table.
-pub(crate) fn summary(cfg: &Config, built: &Built, wall: f64) {
+/// What was written to `output`: per patch, then the whole table.
+pub(crate) fn summary(output: &Path, built: &Built, wall: f64) {
     let nodes: usize = built.patches.iter().map(|p| p.unique_nodes).sum();
     let simulated: usize = built.patches.iter().map(|p| p.simulated).sum();
     for p in &built.patches {
@@ -324,7 +229,7 @@ pub(crate) fn summary(cfg: &Config, built: &Built, wall: f64) {
         .fold(0.0, f64::max);
     eprintln!(
             "wrote {}: {nodes} nodes ({simulated} simulated) + {} held-out checks, max check error {max_err:.2e}, {wall:.1} s",
-            cfg.output.display(),
+            output.display(),
             built.checks.len()
         );
 }

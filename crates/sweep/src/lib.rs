@@ -4,6 +4,7 @@
 //! and shard-part files; the table file itself is written by `oblique_table::write`.
 
 pub mod config;
+pub mod job;
 pub mod nodestore;
 
 use std::collections::HashMap;
@@ -353,12 +354,14 @@ impl Shard {
 /// Points per batch between saves and interruption checks.
 const BATCH: usize = 256;
 
-/// Progress reporting for long runs (implemented by the CLI).
+/// Progress reporting for long runs (implemented by the CLI and the Python package).
 ///
 /// A build goes through the stages of [`stages`] in order; each begins with [`Progress::phase`].
 /// A stage that simulates (a refinement round, the checks) then announces how many impacts it
 /// runs with [`Progress::total`] (known from the moment its nodes are placed; the number of
 /// rounds of a refinement is not known in advance) and reports them with [`Progress::inc`].
+/// A whole [`job::Job`] adds a stage before and after those ([`job::Job::stages`]) and
+/// [`job::Note`]s between them.
 pub trait Progress: Sync {
     /// `stage` (one of [`stages`]) begins or goes on, `detail` says with what (e.g. the round).
     fn phase(&self, stage: &str, detail: &str);
@@ -366,6 +369,11 @@ pub trait Progress: Sync {
     fn total(&self, n: u64);
     /// `n` impacts finished.
     fn inc(&self, n: u64);
+    /// Something a [`job::Job`] tells its user besides progress (its `Display` is the text);
+    /// ignored unless implemented.
+    fn note(&self, note: &job::Note<'_>) {
+        let _ = note;
+    }
 }
 
 /// A progress sink that reports nothing.
