@@ -220,7 +220,7 @@ impl PhysicalImpact {
         }
         let k = 4.0 / 3.0 * g.e_star * g.radius.sqrt();
         let hat = kelvin_voigt::dimensionless_tau(tau, g.normal_mass, k, g.approach_speed);
-        let e_n = kelvin_voigt::unit_bodies(hat).restitution();
+        let e_n = kelvin_voigt::restitution(hat);
         if e_n.is_nan() || e_n < kelvin_voigt::MIN_RESTITUTION {
             return Err(PhysicsError::InvalidParameter {
                 name: "relaxation_time",

@@ -5,7 +5,8 @@
 
 use oblique_physics::regimes;
 use oblique_solver::kelvin_voigt::{
-    damping_number, tau_for_restitution, unit_bodies, C1, MIN_RESTITUTION,
+    damping_number, restitution, tau_for_restitution, unit_bodies, C1, C2_PRIME, MIN_RESTITUTION,
+    SERIES_DAMPING,
 };
 use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request, Resolution};
 
@@ -89,6 +90,67 @@ fn the_restitution_follows_the_small_damping_series() {
     );
     assert!((x[0] - C1).abs() < 2e-5, "C1 fitted {}", x[0]);
     assert!((x[1] - 1.0887).abs() < 5e-3, "C2' fitted {}", x[1]);
+}
+
+#[test]
+fn the_restitution_of_a_tiny_relaxation_time_is_below_one_and_continuous() {
+    // From the smallest positive double to τ̂ = 0.3 (e_n ≈ 0.6), 4 000 log-spaced τ̂: e_n ≤ 1,
+    // strictly below it wherever 1 − e_n is representable, decreasing, no jump (a step in
+    // e_n is at most the first-order change C1 Δb, with room for rounding and the
+    // integration's few 1e-13), and on the series 1 − C1 b + C2′ b² near 0.
+    let n = 4000;
+    let (lo, hi) = (f64::from_bits(1).ln(), 0.3f64.ln());
+    let taus: Vec<f64> = (0..=n)
+        .map(|k| (lo + (hi - lo) * k as f64 / n as f64).exp())
+        .collect();
+    let mut last: Option<(f64, f64)> = None;
+    for &tau in &taus {
+        let e = restitution(tau);
+        let b = damping_number(tau);
+        assert!(e <= 1.0, "τ̂ {tau:e}: e_n = {e} > 1");
+        if C1 * b > 2.0 * f64::EPSILON {
+            assert!(e < 1.0, "τ̂ {tau:e}: e_n = {e}");
+        }
+        if b < 1e-4 {
+            let series = 1.0 - C1 * b + C2_PRIME * b * b;
+            assert!(
+                (e - series).abs() <= 1e-12 + 2.0 * b * b * b,
+                "τ̂ {tau:e}: e_n = {e}, series {series}"
+            );
+        }
+        if let Some((b0, e0)) = last {
+            assert!(e <= e0, "τ̂ {tau:e}: e_n rose from {e0} to {e}");
+            assert!(
+                e0 - e <= 1.0001 * C1 * (b - b0) + 1e-12,
+                "τ̂ {tau:e}: e_n fell by {} over Δb = {}",
+                e0 - e,
+                b - b0
+            );
+        }
+        last = Some((b, e));
+    }
+    // Across the blend the series and the integration agree to the integration's accuracy.
+    for f in [1.0, 1.25, 1.5, 1.75, 2.0] {
+        let tau = f * SERIES_DAMPING / damping_number(1.0);
+        let d = restitution(tau) - unit_bodies(tau).restitution();
+        assert!(d.abs() < 1e-12, "b = {f} x SERIES_DAMPING: {d:e}");
+    }
+    // The inverse follows the first-order law 1 − e_n ≈ C1 b next to 1 (it searched on the
+    // integration, whose error gave τ̂ 10⁴ times too large at e_n = 1 − 1.1e-16).
+    for e in [1.0 - f64::EPSILON / 2.0, 1.0 - 1e-12, 1.0 - 1e-9, 0.999_99] {
+        let tau = tau_for_restitution(e).unwrap();
+        let first = (1.0 - e) / C1 / damping_number(1.0);
+        // e_n is known to its rounding, half an ulp of 1: that much of b is free.
+        let free = f64::EPSILON / C1 / damping_number(1.0);
+        assert!(
+            (tau - first).abs() < 2e-5 * first + free,
+            "e_n = {e}: τ̂ {tau:e}, first order {first:e}"
+        );
+        assert!(
+            (restitution(tau) - e).abs() <= 2.0 * f64::EPSILON,
+            "e_n = {e}"
+        );
+    }
 }
 
 fn kv(g: f64, a: f64, e: f64) -> Request {
@@ -486,6 +548,12 @@ mod physical {
         // First order: 1 − e_n ∝ v^{1/5}, so a factor 10 in speed is 10^{0.2} = 1.585 in 1 − e_n.
         let ratio = (1.0 - e[1]) / (1.0 - e[0]);
         assert!((ratio - 10f64.powf(0.2)).abs() < 0.05, "{ratio}");
+        // Relaxation times far below the contact time are nearly elastic, never more.
+        for tiny in [1e-18, 1e-19, 5e-324] {
+            let out = at(1.0).with_relaxation_time(tiny).simulate(RES).unwrap();
+            assert!(out.e_n <= 1.0, "τ = {tiny:e} s: e_n = {}", out.e_n);
+            assert!(out.e_n > 1.0 - 1e-9, "τ = {tiny:e} s: e_n = {}", out.e_n);
+        }
         for bad in [-1e-7, f64::NAN, f64::INFINITY, 1.0] {
             match at(1.0).with_relaxation_time(bad).simulate(RES) {
                 Err(PhysicsError::InvalidParameter { name, .. }) => {
