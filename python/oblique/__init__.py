@@ -21,6 +21,8 @@ and the answer is ``P = u_after/u_before``, the tangential restitution of the co
 - :func:`impact` simulates ``P(γ, α)`` directly to a tolerance; :func:`simulate` simulates one
   impact in physical units; :func:`groups` gives ``γ`` and ``α`` of an impact;
   :func:`critical` the critical friction groups ``α_c1``, ``α_c2``; :func:`regime` the regime.
+- :func:`build_table` builds a table from a config (a TOML file or a dict), as ``sweep run``
+  does: a table of your own pair of materials in seconds.
 
 Every function takes NumPy arrays or scalars and broadcasts them by NumPy's rules; arrays are
 converted to float64 (integers are accepted; complex, strings, objects, booleans and masked
@@ -33,11 +35,16 @@ from __future__ import annotations
 
 import errno
 import math
+import numbers
 import os
+import re
 import stat
+import sys
+import time
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
-from typing import Any, NamedTuple, Optional, Sequence, Tuple, Union, overload
+from pathlib import Path
+from typing import Any, Callable, List, NamedTuple, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -64,6 +71,8 @@ __all__ = [
     "groups",
     "critical",
     "regime",
+    "build_table",
+    "BuildProgress",
     "REGIMES",
     "EMBEDDED_TABLE",
 ]
@@ -1096,3 +1105,224 @@ def simulate(
         steps=d["steps"],
         groups=Groups(*d["groups"]),
     )
+
+
+# ---------------------------------------------------------------------------------------------
+# Building a table
+
+
+class BuildProgress(NamedTuple):
+    """One report of :func:`build_table` to a ``progress`` callable."""
+
+    kind: str
+    """``"stage"``: a stage (or a refinement round of one) begins; ``"count"``: impacts finished
+    in it (at most every 0.1 s); ``"note"``: a line of information, in ``message``."""
+    step: int
+    """Number of the stage, 1 to ``steps``."""
+    steps: int
+    """Number of stages: the pre-flight, each patch's refinement (preceded by the fold tracing
+    with ``nodes.fold_warp``), the held-out checks, writing."""
+    stage: str
+    """Name of the stage: ``"preflight"``, ``"stick_low refinement"``, ``"held-out checks"``,
+    ``"writing"``, …"""
+    detail: str
+    """What the stage goes on with, e.g. ``"round 2"``, ``"60 points"``, the output path."""
+    done: int
+    """Impacts finished in this stage (or round)."""
+    total: Optional[int]
+    """Impacts this stage (or round) simulates, once known (nodes found in a checkpoint are not
+    counted); ``None`` before."""
+    message: str
+    """The note when ``kind == "note"``, else ``""``."""
+
+
+class _ProgressLines:
+    """The default progress of :func:`build_table`: on ``sys.stderr``, one line per stage or
+    round, the notes, and at most every 2 s the percent done of the stage (or round) with its
+    ETA."""
+
+    EVERY = 2.0
+
+    def __init__(self) -> None:
+        self._start = self._last = time.monotonic()
+
+    def __call__(self, p: BuildProgress) -> None:
+        label = f"[oblique] step {p.step}/{p.steps} {p.stage}"
+        if p.detail:
+            label += f": {p.detail}"
+        now = time.monotonic()
+        if p.kind == "note":
+            line = p.message
+        elif p.kind == "stage":
+            line, self._start, self._last = label, now, now
+        elif p.total and p.done and now - self._last >= self.EVERY:
+            eta = (now - self._start) / p.done * (p.total - p.done)
+            line = f"{label}: {100 * p.done // p.total}% of {p.total} impacts, ETA {eta:.0f} s"
+            self._last = now
+        else:
+            return
+        print(line, file=sys.stderr, flush=True)
+
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+\Z")
+
+
+def _toml_string(s: str) -> str:
+    """``s`` as a TOML basic string."""
+    out = ['"']
+    for ch in s:
+        if ch in '"\\':
+            out.append("\\" + ch)
+        elif ch == "\n":
+            out.append("\\n")
+        elif ch == "\t":
+            out.append("\\t")
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04X}")
+        else:
+            out.append(ch)
+    out.append('"')
+    return "".join(out)
+
+
+def _toml_key(key: object, where: str) -> str:
+    if not isinstance(key, str):
+        raise ValueError(f"config: key {key!r}{where}: keys must be strings")
+    return key if _BARE_KEY.match(key) else _toml_string(key)
+
+
+def _toml_value(v: object, key: str) -> str:
+    """A config value as TOML: strings (and paths), booleans, integers, floats (``inf`` and
+    ``nan`` as TOML writes them), lists of those."""
+    if isinstance(v, (bool, np.bool_)):
+        return "true" if v else "false"
+    if isinstance(v, numbers.Integral):
+        return str(int(v))
+    if isinstance(v, numbers.Real):
+        x = float(v)
+        if math.isnan(x):
+            return "nan"
+        if math.isinf(x):
+            return "inf" if x > 0 else "-inf"
+        return repr(x)
+    if isinstance(v, str):
+        return _toml_string(v)
+    if isinstance(v, os.PathLike):
+        return _toml_string(os.fsdecode(os.fspath(v)))
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x, key) for x in v) + "]"
+    raise ValueError(
+        f"config: `{key}` = {v!r}: must be a string, number, boolean or table (dict)"
+    )
+
+
+def _toml(config: Mapping[str, Any]) -> str:
+    """A config given as nested dicts (``{"output": ..., "domain": {...}, ...}``) as TOML
+    text: each dict value a table ``[name]``, every other value a key of its table."""
+    lines: List[str] = []
+
+    def table(t: Mapping[Any, Any], path: List[str]) -> None:
+        where = f" in [{'.'.join(path)}]" if path else ""
+        subtables = []
+        for key, value in t.items():
+            name = _toml_key(key, where)
+            if isinstance(value, Mapping):
+                subtables.append((path + [name], value))
+            else:
+                dotted = ".".join(path + [str(key)])
+                lines.append(f"{name} = {_toml_value(value, dotted)}")
+        for sub, value in subtables:
+            lines.append("")
+            lines.append(f"[{'.'.join(sub)}]")
+            table(value, sub)
+
+    table(config, [])
+    return "\n".join(lines) + "\n"
+
+
+def build_table(
+    config: Union[str, "os.PathLike[str]", Mapping[str, Any]],
+    output: Optional[Union[str, "os.PathLike[str]"]] = None,
+    *,
+    resume: bool = False,
+    restart: bool = False,
+    threads: Optional[int] = None,
+    progress: Union[bool, Callable[[BuildProgress], object]] = True,
+) -> Path:
+    """Build a table from a config, as ``sweep run CONFIG`` does, and return the path of the
+    table it wrote (open it with :class:`Table`).
+
+    ``config`` is the path of a TOML config (``configs/*.toml``; keys in ``docs/config.md``)
+    or the same as a dict of dicts: ``{"output": "pair.h5", "domain": {"gamma": 1.75, ...},
+    "nodes": {...}, "solver": {...}}`` (``alpha_max`` may be ``"inf"`` or ``math.inf``).
+    ``output`` (a path) replaces the config's ``output``; ``threads`` its ``run.threads``
+    (0 = one per core).
+
+    Finished nodes go to the checkpoint ``OUTPUT.ckpt`` as the build goes; it is removed once
+    the table is written. Ctrl-C (``KeyboardInterrupt``) stops the build after its current
+    batch of impacts, with the checkpoint kept, and raises ``KeyboardInterrupt``;
+    ``resume=True`` continues from the checkpoint (a table the same, bit for bit, as that of an
+    uninterrupted build), ``restart=True`` discards it and starts afresh. Without either an
+    existing checkpoint is refused (``FileExistsError``).
+
+    ``progress=True`` prints a line per stage and refinement round, with the percent done and
+    an ETA at most every 2 s, the notes of ``sweep run`` (the pre-flight's, the nodes resumed,
+    what was written) on ``sys.stderr``; ``False`` prints nothing; a callable is called with a :class:`BuildProgress` instead (an exception it
+    raises stops the build as Ctrl-C does, and is raised).
+
+    A bad key or value raises ``ValueError`` naming the key and the allowed range (also a
+    tolerance the pre-flight finds out of reach, and a refinement past ``nodes.max_nodes``);
+    a config file or output that cannot be read or written raises ``OSError``; another build
+    writing the same output, ``RuntimeError``.
+    """
+    path: Optional[str] = None
+    if isinstance(config, Mapping):
+        text, name = _toml(config), "<dict>"
+    else:
+        given = os.fspath(config)
+        path = os.fsdecode(given) if isinstance(given, bytes) else given
+        # The text as it is (newline=""): it goes into the table's provenance.
+        with open(path, encoding="utf-8", newline="") as f:
+            text = f.read()
+        name = path
+    if threads is not None and (
+        isinstance(threads, bool) or not isinstance(threads, numbers.Integral) or threads < 0
+    ):
+        raise ValueError(f"threads = {threads!r}: must be in [0, 1024] (0 = one per core)")
+    out: Optional[str] = None
+    if output is not None:
+        o = os.fspath(output)
+        out = os.fsdecode(o) if isinstance(o, bytes) else o
+    if progress is True:
+        callback: Optional[Callable[[BuildProgress], object]] = _ProgressLines()
+    elif progress is False or progress is None:
+        callback = None
+    elif callable(progress):
+        callback = progress
+    else:
+        raise TypeError(f"progress: expected True, False or a callable, got {progress!r}")
+
+    def report(
+        kind: str,
+        step: int,
+        steps: int,
+        stage: str,
+        detail: str,
+        done: int,
+        total: Optional[int],
+        message: str,
+    ) -> None:
+        if callback is not None:
+            callback(BuildProgress(kind, step, steps, stage, detail, done, total, message))
+
+    built = _native.build_table(
+        text,
+        name,
+        path,
+        out,
+        bool(resume),
+        bool(restart),
+        None if threads is None else int(threads),
+        None if callback is None else report,
+    )
+    return Path(built)

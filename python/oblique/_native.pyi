@@ -2,7 +2,8 @@
 # functions and classes of `oblique` (python/oblique/__init__.py), which convert, broadcast
 # and check shapes before calling these. Columns are contiguous 1-D float64 arrays of length 1
 # (shared by every row) or rows (3 x rows for vectors).
-from typing import List, Optional, Sequence, Tuple
+from pathlib import Path
+from typing import Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -106,3 +107,14 @@ def simulate(
     tol: float,
     relaxation_time: float,
 ) -> dict: ...
+def build_table(
+    config_text: str,
+    config_name: str,
+    config_path: Optional[str],
+    output: Optional[str],
+    resume: bool,
+    restart: bool,
+    threads: Optional[int],
+    # (kind, step, steps, stage, detail, done, total, message)
+    progress: Optional[Callable[[str, int, int, str, str, int, Optional[int], str], object]],
+) -> Path: ...

@@ -7,6 +7,8 @@
 //! runs with the GIL released, in parallel on rayon's pool for large inputs, and stops at the
 //! first invalid row; the error names the row by its index in the broadcast shape.
 //!
+//! `build_table` ([`build`]) builds a table from a config, as `sweep run` does.
+//!
 //! Symbols and units are those of `physics.md` and `oblique_physics::rebound` (SI).
 
 use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1, PyUntypedArrayMethods};
@@ -23,6 +25,8 @@ use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Prepared, Stiffn
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::units::{Groups, PhysicalImpact};
 use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request};
+
+mod build;
 
 create_exception!(
     oblique,
@@ -1215,5 +1219,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(groups, m)?)?;
     m.add_function(wrap_pyfunction!(impact, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(build::build_table, m)?)?;
     Ok(())
 }
