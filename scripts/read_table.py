@@ -47,6 +47,11 @@ FORMAT_NAME = "oblique-P-table"
 SCHEMA_VERSION = 4
 SCHEMA_VERSIONS = (2, 3, 4)  # v2: v3 without the optional warp; v4: v3 with optional e_n axis
 AXES_PAIR = "alpha,e_n"  # the axes of the table of one pair (schema 4): P(alpha, e_n) at one gamma
+# The contact laws whose tables (with an e_n axis) this reader answers (root attribute 'law').
+LAWS_E_N = ("kelvin-voigt",)
+# A stored node coordinate may differ from where the tree puts the node by this share of its
+# axis's span (rounding is a few ulps; any edit that matters is far larger).
+POSITION_TOL = 1e-9
 PAIR_GAMMA_TOL = 1e-9  # a gamma within this (relative) of the pair's is the pair's
 PATCH_NAMES = ("stick_low", "partial_high", "stick_high")
 PATCH_KINDS = {"stick_low": "stick", "partial_high": "partial-slip", "stick_high": "stick"}
@@ -542,6 +547,15 @@ class Table:
                     raise self._invalid(
                         f"e_n range [{lo}, {hi}]: must satisfy 0 < e_n_min < e_n_max <= 1")
                 self.e_n_range = (lo, hi)
+                try:
+                    law = _str_attr(f.attrs, "law")
+                except (KeyError, TypeError):
+                    raise self._invalid("missing or non-string root attribute 'law'") from None
+                if law not in LAWS_E_N:
+                    raise self._invalid(
+                        f"root attribute 'law' = '{law}': this reader knows the law "
+                        + ", ".join(f"'{x}'" for x in LAWS_E_N)
+                        + "; a table of another law cannot answer this reader's questions")
             elif axes != "gamma,alpha":
                 raise self._invalid(
                     f"root attribute 'axes' = '{axes}': this reader understands 'gamma,alpha', "
@@ -668,6 +682,8 @@ class Table:
         if not np.all(np.isfinite(p)):
             raise self._invalid(f"{where}: non-finite value in 'P'")
         warp = self._warp(g, name, lo, hi, bg, bc, tree, num) if "warp" in g else None
+        self._check_nodes(g, where, lo, hi, bg, bc, be, m, tree, split, dims, pair, leaves,
+                          shape)
         # The stated error bound of the patch (docs/table-format.md, "The stated error bound"):
         # max over leaves of leaf_predicted_error + Lambda_k^dims * max node error_estimate.
         bound = math.nan
@@ -681,6 +697,71 @@ class Table:
         self.bounds[name] = bound
         return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp, be, self.e_n_range, split,
                      pair)
+
+    def _check_nodes(self, g, where, lo, hi, bg, bc, be, m, tree, split, dims, pair, leaves,
+                     shape):
+        """The stored node coordinates (gamma, coord, e_n, alpha) where the tree and the axis
+        attributes put the nodes: within POSITION_TOL of each axis's span (alpha: a number
+        >= 0, inf allowed). A file whose attributes were edited after its build is refused."""
+        names = ["gamma", "coord", "alpha"] + (["e_n"] if be is not None else [])
+        stored = {}
+        for n in names:
+            if n not in g:
+                raise self._invalid(f"{where}: missing dataset '{n}'")
+            d = g[n]
+            if d.shape != shape or d.dtype.kind != "f":
+                raise self._invalid(
+                    f"{where}: dataset '{n}' is {d.dtype}{list(d.shape)}, expected float "
+                    f"{list(shape)}")
+            stored[n] = d[()].astype(np.float64).reshape(leaves, -1)
+        if not np.all(stored["alpha"] >= 0):
+            raise self._invalid(f"{where}: node alphas must be >= 0 (inf allowed)")
+        # The tree's axes: (values, lo, span, root cells) in tree order.
+        if pair:
+            axes = [("coord", 0.0, 1.0, bc),
+                    ("e_n", self.e_n_range[0], self.e_n_range[1] - self.e_n_range[0], be)]
+        else:
+            axes = [("gamma", lo, hi - lo, bg), ("coord", 0.0, 1.0, bc)]
+            if be is not None:
+                axes.append(("e_n", self.e_n_range[0], self.e_n_range[1] - self.e_n_range[0],
+                             be))
+        blocks = [a[3] for a in axes]
+        pos = np.zeros((leaves, dims))
+        depth = np.zeros((leaves, dims))
+        stack = []
+        for r in range(int(np.prod(blocks))):
+            p, rest = [0.0] * dims, r
+            for k in reversed(range(dims)):
+                p[k], rest = float(rest % blocks[k]), rest // blocks[k]
+            stack.append((r, p, [0] * dims))
+        while stack:
+            cell, p, d = stack.pop()
+            t = tree[cell]
+            if t < 0:
+                pos[-t - 1], depth[-t - 1] = p, d
+                continue
+            mask = (1 << dims) - 1 if split is None else split[cell]
+            halved = [k for k in range(dims) if mask >> (dims - 1 - k) & 1]
+            for q in range(1 << len(halved)):
+                pq, dq = list(p), list(d)
+                for j, k in enumerate(halved):
+                    pq[k] = 2.0 * pq[k] + ((q >> (len(halved) - 1 - j)) & 1)
+                    dq[k] += 1
+                stack.append((t + q, pq, dq))
+        idx = np.indices((m + 1,) * dims).reshape(dims, -1)
+        for k, (n, a_lo, span, b) in enumerate(axes):
+            scale = b * np.exp2(depth[:, k])[:, None]
+            want = a_lo + span * (pos[:, k][:, None] + idx[k][None, :] / m) / scale
+            bad = ~(np.abs(stored[n] - want) <= POSITION_TOL * abs(span))
+            if bad.any():
+                leaf, node = np.argwhere(bad)[0]
+                raise self._invalid(
+                    f"{where}: {n}[{leaf * idx.shape[1] + node}] = "
+                    f"{stored[n][leaf, node]!r} where the tree and the axis attributes put the "
+                    f"node at {want[leaf, node]!r} (leaf {leaf}): the attributes do not describe "
+                    "the stored nodes")
+        if pair and not np.all(stored["gamma"] == lo):
+            raise self._invalid(f"{where}: node gammas differ from the pair's gamma {lo!r}")
 
     def _warp(self, g, name, gamma_lo, gamma_hi, bg, bc, tree, num):
         """The optional warp group of a patch, validated as docs/table-format.md states."""

@@ -471,6 +471,54 @@ fn a_table_with_another_partial_slip_map_is_refused() {
     );
 }
 
+/// The axis attributes must describe the stored nodes and the law must be one the readers
+/// know: a table whose `e_n` range or γ edge was changed after the build (it would answer from
+/// values simulated elsewhere: −0.32 where the truth is −0.28), whose node coordinates were set
+/// to NaN, or whose law is unknown is refused by the library and by the reference reader.
+#[test]
+fn edited_axes_node_coordinates_and_unknown_laws_are_refused() {
+    let moved = "the attributes do not describe the stored nodes";
+    let nan_at = |ds: &str| {
+        format!(
+            "d = f['patches/partial_high/{ds}']; v = d[()]; v[0, 1, 1, 1] = float('nan'); \
+             d[...] = v"
+        )
+    };
+    let cases = [
+        (
+            "e_n_min_low.h5",
+            "f.attrs['e_n_min'] = 0.6".to_string(),
+            moved,
+        ),
+        (
+            "e_n_min_high.h5",
+            "f.attrs['e_n_min'] = 0.8".to_string(),
+            moved,
+        ),
+        ("e_n_max.h5", "f.attrs['e_n_max'] = 0.99".to_string(), moved),
+        (
+            "gamma_hi.h5",
+            "f.attrs['gamma_max'] = 1.65; \
+             [f['patches/' + n].attrs.__setitem__('gamma_hi', 1.65) \
+              for n in ('partial_high', 'stick_high')]"
+                .to_string(),
+            moved,
+        ),
+        ("nan_e_n.h5", nan_at("e_n"), moved),
+        ("nan_gamma.h5", nan_at("gamma"), moved),
+        ("nan_coord.h5", nan_at("coord"), moved),
+        ("nan_alpha.h5", nan_at("alpha"), "node alphas must be >= 0"),
+        (
+            "maxwell.h5",
+            "f.attrs['law'] = 'maxwell'".to_string(),
+            "'law' = 'maxwell'",
+        ),
+    ];
+    for (name, edit, needle) in cases {
+        edited_copy_is_refused("dissipative-edited", name, &edit, needle);
+    }
+}
+
 /// Batches (serial and parallel) answer every point with the bits of `Table::p_e`, and name
 /// the first refused point's index.
 #[test]

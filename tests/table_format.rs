@@ -423,7 +423,12 @@ fn check_dataset(g: &hdf5::Group, name: &str, ty: Ty, shape: &[usize]) {
     // (the checksum over the compressed bytes); HDF5 cannot chunk an empty dataset.
     if shape.iter().all(|&d| d > 0) {
         use hdf5::filters::Filter;
-        assert_eq!(ds.chunk().as_deref(), Some(shape), "{}/{name}: chunk", g.name());
+        assert_eq!(
+            ds.chunk().as_deref(),
+            Some(shape),
+            "{}/{name}: chunk",
+            g.name()
+        );
         assert_eq!(
             ds.filters(),
             [Filter::Shuffle, Filter::Deflate(6), Filter::Fletcher32],

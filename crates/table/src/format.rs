@@ -35,6 +35,9 @@ pub const ATTR_E_N_MAX: &str = "e_n_max";
 /// Root attribute (schema 4, with an `e_n` axis): the contact law of the node values
 /// (`kelvin-voigt`).
 pub const ATTR_LAW: &str = "law";
+/// The values of [`ATTR_LAW`] a reader accepts: the contact laws whose tables this engine
+/// builds and answers (`kelvin-voigt`, `physics.md` "Dissipative impacts").
+pub const LAWS_E_N: &[&str] = &["kelvin-voigt"];
 /// Patch attribute (schema 4, partial-slip patch with an `e_n` axis): the map from
 /// `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)` to the patch coordinate; the one value readers accept is
 /// [`PARTIAL_MAP_SQRT_BOTH`].

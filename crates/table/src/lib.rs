@@ -14,6 +14,7 @@ pub mod format;
 pub mod indexed;
 pub mod leaf;
 pub mod line;
+pub mod nodes;
 pub mod read;
 pub mod surface;
 pub mod write;

@@ -306,6 +306,22 @@ impl Reader<'_> {
             split,
         )
         .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
+        // Where the builder simulated each value: the tree and the axis attributes must put
+        // every node there, or the file's attributes were changed after the build.
+        let gamma = self.dataset(&g, DS_GAMMA, &shape)?;
+        let coord = self.dataset(&g, DS_COORD, &shape)?;
+        let alpha = self.dataset(&g, DS_ALPHA, &shape)?;
+        let e_n = match restitution {
+            Some(_) => Some(self.dataset(&g, DS_E_N, &shape)?),
+            None => None,
+        };
+        let stored = crate::nodes::StoredNodes {
+            gamma: &gamma,
+            coord: &coord,
+            alpha: &alpha,
+            e_n: e_n.as_deref(),
+        };
+        crate::nodes::check_positions(name, &patch, stored).map_err(|m| self.invalid(m))?;
         Ok(Some(patch))
     }
 }
@@ -439,6 +455,19 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
                     r.attr_f64(&file, ATTR_E_N_MAX)?,
                 );
                 RestitutionAxis::new(lo, hi, 1).map_err(|m| r.invalid(m))?;
+                let law = r.attr_str(&file, ATTR_LAW)?;
+                if !LAWS_E_N.contains(&law.as_str()) {
+                    return Err(r.invalid(format!(
+                        "root attribute '{ATTR_LAW}' = '{law}': this reader knows the law{} {}; \
+                         a table of another law cannot answer this reader's questions",
+                        if LAWS_E_N.len() == 1 { "" } else { "s" },
+                        LAWS_E_N
+                            .iter()
+                            .map(|l| format!("'{l}'"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )));
+                }
                 Some((lo, hi))
             }
             other => {
