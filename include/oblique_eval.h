@@ -1258,8 +1258,9 @@ OBLQ_FN int oblq_gamma_of(const oblq_body *sphere, const oblq_body *other,
    reverses to e_n times its value: normal impulse (1 + e_n) m* v_z0, and (m* / 2) v_z0^2
    (1 - e_n^2) more energy lost (as Rust's Prepared::new with Contact::with_restitution). The
    rebounds then ask the table for P(gamma, alpha, e_n) (oblq_p_e): e_n must lie in its e_n
-   range, else they return OBLQ_E_E_N (an elastic table: e_n = 1 only; curves: e_n = 1 only).
-   A pure normal impact (u0 = 0) does not consult the table. */
+   range, else they return OBLQ_E_E_N (an elastic table: e_n = 1 only; curves: e_n = 1 only),
+   on every path: a pure normal impact (u0 = 0), whose P is not needed, is refused the same way
+   (as in Rust, Python and the C ABI). */
 OBLQ_FN int oblq_pair_init_e(oblq_pair *k, const oblq_body *sphere, const oblq_body *other,
                              double gamma, double friction, double e_n) {
     double inv_mt, normal_mass, mt;
@@ -1370,8 +1371,10 @@ OBLQ_FN int oblq__rebound_3d(const oblq_table *t, const oblq_curve *cv, const ob
         j = k->tangential_mass * (1.0 - p) * u0;
     } else {
         /* u0 = 0: a pure normal impact; the tangent along the centres' tangential motion, or
-           the axis least aligned with n. */
+           the axis least aligned with n. P is not needed, but an e_n the table does not
+           answer is refused as on every other path. */
         double wl = sqrt(oblq__dot(w0, w0));
+        if (!cv && !(k->e_n >= t->e_n_min && k->e_n <= t->e_n_max)) return OBLQ_E_E_N;
         if (wl > 0.0) {
             for (i = 0; i < 3; i++) tg[i] = w0[i] / wl;
         } else {

@@ -1570,6 +1570,49 @@ fn rebounds_refuse_an_e_n_the_table_or_curve_does_not_answer() {
     }
     let want = vec!["error 24".to_string(); incidents.len()];
     assert_eq!(run(&full, "curve", "rebound", 0.9), want);
+    // A pure normal impact (u0 = 0) needs no P, but an e_n the table does not answer is
+    // refused all the same, by Rust (single, prepared, 2-D) and by the header; one it answers
+    // gives P = NaN and the normal rebound.
+    let normal_only = Incident3 {
+        sphere: Motion3 {
+            velocity: [0.0, 0.0, -2.0],
+            spin: [0.0; 3],
+        },
+        other: Motion3::default(),
+        normal: [0.0, 0.0, -1.0],
+    };
+    let line = incident_line(&normal_only);
+    let header = |e_n: f64| {
+        let args = rebound_args("rebound", path, Some("table"), &pair, 1.6, 0.3, e_n);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        run_ok(gcc_driver(), &args, &line)
+    };
+    let plane = Incident {
+        sphere: State {
+            v_x: 0.0,
+            v_z: 2.0,
+            omega: 0.0,
+        },
+        other: State::default(),
+    };
+    for e_n in [0.6, 0.2, 0.0] {
+        let c = Contact::with_gamma(1.6, 0.3).with_restitution(e_n);
+        let err = t.rebound_3d(&pair, &c, &normal_only).expect_err("refused");
+        assert_eq!(rebound_status(&err), "error 24", "e_n {e_n}");
+        let prepared = Prepared::new(&pair, &c).expect("in [0, 1]");
+        let err = t
+            .rebound_3d_prepared(&prepared, &normal_only)
+            .expect_err("refused");
+        assert_eq!(rebound_status(&err), "error 24", "e_n {e_n}");
+        let err = t.rebound(&pair, &c, &plane).expect_err("refused");
+        assert_eq!(rebound_status(&err), "error 24", "e_n {e_n}");
+        assert_eq!(header(e_n), "error 24\n", "e_n {e_n}");
+    }
+    let c = Contact::with_gamma(1.6, 0.3).with_restitution(0.8);
+    let ok = t.rebound_3d(&pair, &c, &normal_only).expect("answered");
+    assert!(ok.rebound.p.is_nan());
+    let c_line = parse_line(header(0.8).trim());
+    assert!(c_line.iter().any(|x| x.is_nan()), "{c_line:?}");
     // e_n = 1 given explicitly answers as oblq_pair_init (the same bits).
     let one = run(&full, "curve", "rebound", 1.0);
     let args = rebound_args("rebound", &full, Some("curve"), &pair, 2.6, 0.3, 1.0);

@@ -673,9 +673,9 @@ pub unsafe extern "C" fn oblique_rebound_spheres(
 /// `e_n` times its approach speed, `P` is `P(γ, α, e_n)` of the table (`oblique_p_e`: `e_n`
 /// must lie in the table's range, `oblique_table_restitution`; an elastic table answers
 /// `e_n = 1` only), and the normal impulse and the energy lost follow (`ObliqueRebound`). An
-/// `e_n` outside [0, 1] or outside the table's range: `OBLIQUE_ERR_QUERY` (a pure normal
-/// impact, `u0 = 0`, does not consult the table). `e_n = 1`: the answer of
-/// `oblique_rebound_wall`, bit for bit.
+/// `e_n` outside [0, 1] or outside the table's range: `OBLIQUE_ERR_QUERY`, also for a pure
+/// normal impact (`u0 = 0`), whose `P` is not needed (as every binding refuses it).
+/// `e_n = 1`: the answer of `oblique_rebound_wall`, bit for bit.
 ///
 /// # Safety
 /// As for `oblique_rebound_wall`.

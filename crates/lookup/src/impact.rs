@@ -88,7 +88,8 @@ pub struct Answer<R> {
     /// The friction group `α = (2/7)(m*/m_t) μ v_z0/|u0|` (`∞` when `u0 = 0`).
     pub alpha: f64,
     /// The post-impact state ([`Rebound`] or [`Rebound3`]); its `p` is `P(γ, α)` (NaN when
-    /// `u0 = 0`: then the table is not consulted).
+    /// `u0 = 0`: then `P` is not looked up, but an `e_n` the table does not answer is refused
+    /// all the same, [`Table::check_restitution`]).
     pub rebound: R,
 }
 
@@ -102,7 +103,9 @@ impl Table {
         contact: &Contact,
     ) -> Result<f64, LookupError> {
         if pair.slip_velocity(s) == 0.0 {
-            // u0 = 0: a pure normal impact, P is not needed.
+            // u0 = 0: a pure normal impact, P is not needed; an e_n the table does not answer
+            // is refused all the same, as on every other path and in every binding.
+            self.check_restitution(contact.restitution)?;
             return Ok(f64::NAN);
         }
         self.p_e_with(gamma, alpha, contact.restitution, contact.outside)
