@@ -763,10 +763,13 @@ class Table:
         _into(o, lambda f: _native.e_t_into(pf, kf, f, list(shape)), pf, kf)
         return _result(o, out)
 
-    def regime(self, gamma: ArrayLike, alpha: ArrayLike) -> Union[str, NDArray[np.str_]]:
-        """The friction regime of (γ, α): ``'full-slip'``, ``'partial-slip'`` or ``'stick'``
-        (:func:`regime`; exact, from the critical curves, for any γ > 0)."""
-        return regime(gamma, alpha)
+    def regime(
+        self, gamma: ArrayLike, alpha: ArrayLike, e_n: ArrayLike = 1.0
+    ) -> Union[str, NDArray[np.str_]]:
+        """The friction regime of (γ, α) at normal restitution ``e_n`` (1: elastic):
+        ``'full-slip'``, ``'partial-slip'`` or ``'stick'`` (:func:`regime`; exact, from the
+        critical curves α_c1(γ, e_n) and α_c2(γ), for any γ > 0)."""
+        return regime(gamma, alpha, e_n=e_n)
 
     def curve(self, gamma: float) -> Curve:
         """P(α) at one γ, precomputed (≤ 1.4 ms, ≤ 68 KB for ``tables/full.h5``)."""
@@ -948,27 +951,31 @@ def _planar(sphere, v_x, v_z, omega, friction, other, ov_x, ov_z, oomega, g, mat
 # Without a table
 
 
-def regime(gamma: ArrayLike, alpha: ArrayLike) -> Union[str, NDArray[np.str_]]:
-    """The friction regime of (γ, α), exact for any γ > 0, α ≥ 0: ``'full-slip'`` for
-    α ≤ α_c1 (γ > 1) or α ≤ α_c2 (γ ≤ 1), ``'stick'`` for α ≥ α_c2, ``'partial-slip'`` between.
+def regime(
+    gamma: ArrayLike, alpha: ArrayLike, *, e_n: ArrayLike = 1.0
+) -> Union[str, NDArray[np.str_]]:
+    """The friction regime of (γ, α) at normal restitution ``e_n`` (0.3 to 1; 1, the default:
+    elastic), exact for any γ > 0, α ≥ 0: ``'full-slip'`` for α ≤ α_c1(γ, e_n) (γ > 1) or
+    α ≤ α_c2 (γ ≤ 1), ``'stick'`` for α ≥ α_c2, ``'partial-slip'`` between (:func:`critical`).
     Broadcasts; a str for scalar arguments, else an array of str."""
-    g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
-    shape = _shape([("gamma", g.shape), ("alpha", a.shape)])
+    g, a, e = _f64(gamma, "gamma"), _f64(alpha, "alpha"), _f64(e_n, "e_n")
+    shape = _shape([("gamma", g.shape), ("alpha", a.shape), ("e_n", e.shape)])
     codes = np.empty(shape, dtype=np.float64)
-    gc, ac = _column(g, shape), _column(a, shape)
-    _native.regime_into(gc, ac, codes.reshape(-1), list(shape))
+    gc, ac, ec = _column(g, shape), _column(a, shape), _column(e, shape)
+    _native.regime_into(gc, ac, ec, codes.reshape(-1), list(shape))
     names = _REGIME_NAMES[codes.astype(np.intp)]
     return str(names) if names.ndim == 0 else names
 
 
-def critical(gamma: ArrayLike) -> Tuple[Float, Float]:
-    """The critical friction groups ``(α_c1, α_c2)`` at γ > 0 (physics.md):
-    α_c1 = 2γ²/(7(2γ² − 1)) (the end of full slip for γ > 1; negative for γ < 1/√2, where it
-    marks nothing), α_c2 = 2γ²/7 (the start of stick). Broadcasts."""
-    g = _f64(gamma, "gamma")
-    shape = g.shape
+def critical(gamma: ArrayLike, *, e_n: ArrayLike = 1.0) -> Tuple[Float, Float]:
+    """The critical friction groups ``(α_c1, α_c2)`` at γ > 0 and normal restitution ``e_n``
+    (0.3 to 1; 1, the default: elastic; physics.md): α_c1 = 2γ²/(7(γ²(1 + e_n) − e_n)), the end
+    of full slip for γ > 1 (2γ²/(7(2γ² − 1)) at e_n = 1; negative for γ < 1/√2, where it marks
+    nothing), α_c2 = 2γ²/7, the start of stick, which does not move with e_n. Broadcasts."""
+    g, e = _f64(gamma, "gamma"), _f64(e_n, "e_n")
+    shape = _shape([("gamma", g.shape), ("e_n", e.shape)])
     out = np.empty(shape + (2,), dtype=np.float64)
-    _native.critical_into(_column(g, shape), out.reshape(-1), list(shape))
+    _native.critical_into(_column(g, shape), _column(e, shape), out.reshape(-1), list(shape))
     if not shape:
         return float(out[0]), float(out[1])
     return out[..., 0], out[..., 1]

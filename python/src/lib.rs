@@ -489,25 +489,29 @@ fn check_groups(gamma: f64, alpha: f64) -> Result<(), PhysicsError> {
     Ok(())
 }
 
-/// Regime codes: 0 full slip, 1 partial slip, 2 stick.
+/// Regime codes at normal restitution `e_n` (Kelvin–Voigt law; `1`: elastic): 0 full slip
+/// (up to `α_c1(γ, e_n)` for `γ > 1`), 1 partial slip, 2 stick.
 #[pyfunction]
 fn regime_into(
     py: Python<'_>,
     gamma: PyReadonlyArray1<'_, f64>,
     alpha: PyReadonlyArray1<'_, f64>,
+    e_n: PyReadonlyArray1<'_, f64>,
     mut out: PyReadwriteArray1<'_, f64>,
     shape: Vec<usize>,
 ) -> PyResult<()> {
     let n = out.len();
-    let (g, a) = (
+    let (g, a, e) = (
         Col::new("gamma", &gamma, 1, n)?,
         Col::new("alpha", &alpha, 1, n)?,
+        Col::new("e_n", &e_n, 1, n)?,
     );
     let o = slice_mut("out", &mut out)?;
     fill_rows(py, o, 1, CHUNK, |i, r| {
         let (gi, ai) = (g.at(i), a.at(i));
         check_groups(gi, ai)?;
-        r[0] = match Regime::of(gi, ai) {
+        let ei = oblique_solver::kelvin_voigt::check_restitution(e.at(i))?;
+        r[0] = match Regime::of_dissipative(gi, ai, ei) {
             Regime::FullSlip => 0.0,
             Regime::PartialSlip => 1.0,
             Regime::Stick => 2.0,
@@ -517,20 +521,23 @@ fn regime_into(
     .map_err(|(i, e)| row_error(i, &shape, &e.to_string()))
 }
 
-/// `α_c1(γ)`, `α_c2(γ)` into the two columns of `out` (rows of 2).
+/// `α_c1(γ, e_n)`, `α_c2(γ)` into the two columns of `out` (rows of 2).
 #[pyfunction]
 fn critical_into(
     py: Python<'_>,
     gamma: PyReadonlyArray1<'_, f64>,
+    e_n: PyReadonlyArray1<'_, f64>,
     mut out: PyReadwriteArray1<'_, f64>,
     shape: Vec<usize>,
 ) -> PyResult<()> {
     let n = out.len() / 2;
     let g = Col::new("gamma", &gamma, 1, n)?;
+    let e = Col::new("e_n", &e_n, 1, n)?;
     let o = slice_mut("out", &mut out)?;
     fill_rows(py, o, 2, CHUNK, |i, r| {
         let gi = oblique_solver::impact::check_gamma(g.at(i))?;
-        r[0] = regimes::alpha_c1(gi);
+        let ei = oblique_solver::kelvin_voigt::check_restitution(e.at(i))?;
+        r[0] = regimes::alpha_c1_dissipative(gi, ei);
         r[1] = regimes::alpha_c2(gi);
         Ok::<(), PhysicsError>(())
     })

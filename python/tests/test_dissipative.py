@@ -14,6 +14,7 @@ import pytest
 
 import oblique
 from oblique import RIGID, Material, Sphere
+from _oblique_helpers import DISSIPATIVE
 
 NAN = math.nan
 S = Sphere(0.1, 0.01)
@@ -374,3 +375,40 @@ def test_e_n_type_and_shape_errors(dissipative):
                                                        gamma=1.5, e_n=np.full(3, 0.8)),
             re.escape("e_n (3,)"))
     _raises(TypeError, lambda: dissipative.p(1.5, 0.3, e_n=[True]), r"\be_n\b")
+
+
+def test_regimes_and_critical_curves_know_e_n(sweep_bin):
+    """regime, Table.regime and critical take e_n: full slip ends at
+    α_c1(γ, e_n) = 2γ²/(7(γ²(1 + e_n) − e_n)) for γ > 1 (α_c2 = 2γ²/7 does not move), as the
+    CLI's query says; at (1.6, 0.2, e_n = 0.5) both say full slip (Python said partial slip)."""
+    import subprocess
+
+    rng = np.random.default_rng(5)
+    n = 20_000
+    g = rng.uniform(0.2, 4.0, n)
+    a = rng.uniform(0.0, 3.0, n)
+    e = rng.uniform(0.3, 1.0, n)
+    c1 = 2 * g * g / (7 * (g * g * (1 + e) - e))
+    c2 = 2 * g * g / 7
+    full_slip = np.where(g > 1.0, a <= c1, a <= c2)
+    want = np.where(full_slip, "full-slip", np.where(a >= c2, "stick", "partial-slip"))
+    assert np.array_equal(oblique.regime(g, a, e_n=e), want)
+    got1, got2 = oblique.critical(g, e_n=e)
+    assert np.allclose(got1, c1, rtol=1e-14, atol=0) and np.array_equal(got2, c2)
+    # e_n = 1 (the default) is the elastic regime.
+    assert np.array_equal(oblique.regime(g, a), oblique.regime(g, a, e_n=1.0))
+    t = oblique.Table(DISSIPATIVE)
+    assert oblique.regime(1.6, 0.2, e_n=0.5) == "full-slip"
+    assert t.regime(1.6, 0.2, 0.5) == "full-slip"
+    assert t.regime(1.6, 0.2) == "partial-slip"
+    out = subprocess.run(
+        [str(sweep_bin), "query", str(DISSIPATIVE), "--gamma", "1.6", "--alpha", "0.2",
+         "--e-n", "0.5"],
+        capture_output=True, text=True, check=True,
+    ).stdout
+    assert "full-slip" in out, out
+    for bad in (0.2, 1.5, NAN):
+        with pytest.raises(ValueError, match="e_n"):
+            oblique.regime(1.5, 0.3, e_n=bad)
+        with pytest.raises(ValueError, match="e_n"):
+            oblique.critical(1.5, e_n=bad)
