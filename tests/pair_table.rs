@@ -210,6 +210,42 @@ fn every_query_path_gives_the_rule() {
     }
 }
 
+/// `Table::prepare` (C: `oblique_prepare_table`) refuses at once a pair whose `γ` is not the
+/// table's (its rebounds would be refused above the full-slip line); with clamping it
+/// prepares, and its rebounds answer at the pair's `γ`.
+#[test]
+fn prepare_refuses_a_pair_of_another_gamma() {
+    use oblique_lookup::rebound::{Body, Pair};
+    use oblique_lookup::Contact;
+    let table = oblique_lookup::Table::open(table()).expect("open");
+    let pair = Pair {
+        sphere: Body {
+            mass: 2.4e-4,
+            radius: 2.5e-3,
+            kappa: 0.4,
+        },
+        other: None,
+    };
+    let near = Contact::with_gamma(GAMMA * (1.0 + 5e-10), 0.3).with_restitution(0.8);
+    table
+        .prepare(&pair, &near)
+        .expect("within the pair's tolerance");
+    for off in [GAMMA * (1.0 + 1e-6), 1.2, 2.5] {
+        let contact = Contact::with_gamma(off, 0.3).with_restitution(0.8);
+        let e = table.prepare(&pair, &contact).expect_err("another gamma");
+        assert!(
+            matches!(e, oblique_lookup::LookupError::Query { name: "gamma", .. }),
+            "{e}"
+        );
+        assert!(e.to_string().contains("one pair"), "{e}");
+        let clamped = Contact {
+            outside: OutOfDomain::Clamp,
+            ..contact
+        };
+        table.prepare(&pair, &clamped).expect("clamped");
+    }
+}
+
 /// `domain.gamma` replaces `gamma_min` and `gamma_max` and needs an `e_n` range; each
 /// mistake is refused naming the key.
 #[test]

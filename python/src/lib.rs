@@ -835,7 +835,11 @@ fn rebound_3d<'py>(
     let prepared = if s.shared() {
         let (pair, contact) = (s.pair(0), s.contact(0));
         let k = if rows >= PREPARE_FOR_TABLE_ROWS {
+            // A pair that this table does not prepare for (the table of one pair at another
+            // γ) goes the way of fewer rows: its rows are answered or refused one by one, so
+            // the answer does not depend on the number of rows.
             t.prepare(&pair, &contact)
+                .or_else(|_| Prepared::new(&pair, &contact))
         } else {
             Prepared::new(&pair, &contact)
         };

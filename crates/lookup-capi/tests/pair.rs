@@ -231,3 +231,47 @@ fn wall_rebounds_on_the_table_of_one_pair_give_the_bits_of_rust() {
     // SAFETY: the handle from `open`, closed once.
     unsafe { oblique_table_close(t) };
 }
+
+/// `oblique_prepare_table` refuses at once a pair whose γ is not the table's
+/// (`OBLIQUE_ERR_QUERY`, naming `gamma`); at the pair's γ, or clamping, it prepares.
+#[test]
+fn prepare_table_refuses_a_pair_of_another_gamma() {
+    use oblique::{oblique_prepare_table, oblique_prepared_free};
+    let t = open(PAIR);
+    let none = ObliqueMaterial {
+        youngs_modulus: 0.0,
+        poisson_ratio: 0.0,
+    };
+    let b1 = ObliqueBody {
+        mass: 2.4e-4,
+        radius: 2.5e-3,
+        kappa: 0.4,
+    };
+    for (gamma, clamp, want) in [
+        (GAMMA, 0, OBLIQUE_OK),
+        (GAMMA * (1.0 + 1e-6), 0, OBLIQUE_ERR_QUERY),
+        (1.2, 0, OBLIQUE_ERR_QUERY),
+        (1.2, 1, OBLIQUE_OK),
+    ] {
+        let cc = ObliqueContact {
+            gamma,
+            sphere_material: none,
+            other_material: none,
+            friction: 0.3,
+            clamp,
+        };
+        let mut k = std::ptr::null_mut();
+        // SAFETY: a live handle, valid pointers; the handle made is freed below.
+        let rc = unsafe { oblique_prepare_table(t, &b1, std::ptr::null(), &cc, 0.8, &mut k) };
+        assert_eq!(rc, want, "gamma {gamma}, clamp {clamp}: {}", last_error());
+        if rc == OBLIQUE_OK {
+            // SAFETY: the handle made above, freed once.
+            unsafe { oblique_prepared_free(k) };
+        } else {
+            assert!(last_error().contains("gamma"), "{}", last_error());
+            assert!(k.is_null());
+        }
+    }
+    // SAFETY: the handle opened above, closed once.
+    unsafe { oblique_table_close(t) };
+}

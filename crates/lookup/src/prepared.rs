@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 use crate::line::PairLine;
 use crate::rebound::{Frame, Incident3, Motion3, Pair, Rebound3};
-use crate::{Answer, Contact, Curve, LookupError, Table};
+use crate::{Answer, Contact, Curve, LookupError, OutOfDomain, Table};
 use oblique_physics::vec3::{axpy, cross, dot, scale, sub};
 
 /// A pair of bodies with its contact, validated and reduced once, for many 3-D rebounds
@@ -152,7 +152,9 @@ fn all_finite(s: &Incident3) -> bool {
 
 impl Table {
     /// [`Prepared::new`] for rebounds through this table, refusing at once an `e_n` the table
-    /// does not answer ([`Table::p_e`]). For a table with an `e_n` axis it also computes the
+    /// does not answer ([`Table::p_e`]) and, for the table of one pair, a pair of another `γ`
+    /// (unless the contact clamps: then every rebound answers at the pair's `γ`); its rebounds
+    /// would be refused above the full-slip line. For a table with an `e_n` axis it also computes the
     /// pair's `P(α)` at its `(γ, e_n)` once ([`Table::rebound_3d_prepared`] then answers with
     /// the same bits in fewer operations: the leaf's sum over `e_n` and the `γ`- and
     /// `e_n`-only parts of the rule are done here, a few kB per pair,
@@ -160,7 +162,13 @@ impl Table {
     /// this (or its clones) it answers as [`Prepared::new`]'s does.
     pub fn prepare(&self, pair: &Pair, contact: &Contact) -> Result<Prepared, LookupError> {
         let mut k = Prepared::new(pair, contact)?;
-        self.surface().check_e_n(contact.restitution)?;
+        let surface = self.surface();
+        surface.check_e_n(contact.restitution)?;
+        if let (Some(g), OutOfDomain::Error) = (surface.pair_gamma(), contact.outside) {
+            if surface.rule_gamma(k.gamma) != g {
+                return Err(surface.gamma_outside(k.gamma).into());
+            }
+        }
         k.line = PairLine::new(
             self.id(),
             self.surface(),

@@ -168,16 +168,7 @@ impl Table {
     /// for an elastic table; otherwise the error every query with that `e_n` returns (the
     /// field `e_n` and the range). Rebounds check it even where `P` is not needed (`u0 = 0`).
     pub fn check_restitution(&self, e_n: f64) -> Result<(), LookupError> {
-        let range = self.restitution();
-        let ok = match range {
-            None => e_n == 1.0,
-            Some((lo, hi)) => (lo..=hi).contains(&e_n),
-        };
-        if ok {
-            Ok(())
-        } else {
-            Err(oblique_table::surface::e_n_outside(range, e_n).into())
-        }
+        Ok(self.surface.check_e_n(e_n)?)
     }
 
     /// The `e_n` range of a table with a normal-restitution axis (`None`: an elastic table,
