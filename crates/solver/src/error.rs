@@ -17,6 +17,19 @@ pub enum PhysicsError {
         /// The allowed range, in words.
         allowed: &'static str,
     },
+    /// A choice the contact law of the request does not take: the `euler` scheme or a
+    /// discrete row of springs for a Kelvin–Voigt impact (`e_n < 1`).
+    #[error("{name} = {value} is not available {case}: {allowed}")]
+    NotForLaw {
+        /// Parameter name as the user knows it.
+        name: &'static str,
+        /// The value given, as the user wrote it (`euler`, `64`).
+        value: String,
+        /// The case it is not available in (`for e_n < 1`).
+        case: &'static str,
+        /// What the law takes instead, in words.
+        allowed: &'static str,
+    },
     /// A body, material or incident state outside its range (the rebound algebra's check).
     #[error(transparent)]
     Input(#[from] oblique_physics::InvalidInput),

@@ -162,10 +162,12 @@ impl Request {
         let gamma = check_gamma(self.gamma)?;
         let alpha = check_alpha(self.alpha)?;
         if self.scheme != Scheme::Accurate {
-            return Err(PhysicsError::InvalidParameter {
+            return Err(PhysicsError::NotForLaw {
                 name: "scheme",
-                value: f64::NAN,
-                allowed: "accurate for e_n < 1 (the euler scheme is elastic only)",
+                value: self.scheme.name().to_string(),
+                case: "for e_n < 1",
+                allowed: "the Kelvin-Voigt law is solved with the accurate scheme only (euler is \
+                          for elastic impacts)",
             });
         }
         Ok((gamma, alpha, kelvin_voigt::tau_for_restitution(e_n)?))
@@ -180,10 +182,11 @@ impl Request {
     ) -> Result<f64, PhysicsError> {
         let res = res.validate()?;
         if res.springs != 0 {
-            return Err(PhysicsError::InvalidParameter {
+            return Err(PhysicsError::NotForLaw {
                 name: "springs",
-                value: res.springs as f64,
-                allowed: "0 (the continuum row) for e_n < 1",
+                value: res.springs.to_string(),
+                case: "for e_n < 1",
+                allowed: "the Kelvin-Voigt law is solved on the continuum row only (springs 0)",
             });
         }
         let shear = 2.0 / 7.0 * gamma * gamma;

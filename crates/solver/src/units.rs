@@ -295,10 +295,11 @@ impl PhysicalImpact {
         };
         let normal = if self.relaxation_time > 0.0 {
             if res.springs != 0 {
-                return Err(PhysicsError::InvalidParameter {
+                return Err(PhysicsError::NotForLaw {
                     name: "springs",
-                    value: res.springs as f64,
-                    allowed: "0 (the continuum row) for Kelvin-Voigt bodies",
+                    value: res.springs.to_string(),
+                    case: "for Kelvin-Voigt bodies",
+                    allowed: "their law is solved on the continuum row only (springs 0)",
                 });
             }
             let tau = self.relaxation_time;
