@@ -250,7 +250,26 @@ fn default_families_and_bad_families() {
     assert!(g.contains(&1.52) && g.contains(&2.16));
     let a = figures::default_alphas(t);
     assert!(a.last().unwrap().is_infinite());
-    assert!(figures::slices(t, &src(), &g, &a).is_ok());
+    // The sheet holds one curve per γ (P against the compact α, the table's values at the
+    // critical α included) and one per α (P against γ), each |P| ≤ 1.
+    let sheet = figures::slices(t, &src(), &g, &a).expect("slices");
+    assert_eq!(sheet.charts.len(), 2);
+    for (k, &gamma) in g.iter().enumerate() {
+        let curve = &sheet.charts[0].series[k];
+        assert!(curve.points.len() >= figures::SLICE_SAMPLES);
+        for &(y, p) in &curve.points {
+            let want = t.p(gamma, figures::alpha_at(y)).expect("in the domain");
+            assert_eq!(p.to_bits(), want.to_bits(), "gamma {gamma}, y {y}");
+        }
+    }
+    for (k, &alpha) in a.iter().enumerate() {
+        let curve = &sheet.charts[1].series[k];
+        assert!(curve.points.len() >= 341);
+        for &(gamma, p) in &curve.points {
+            assert!(p.abs() <= 1.0);
+            assert_eq!(p.to_bits(), t.p(gamma, alpha).expect("P").to_bits());
+        }
+    }
     for (gs, al, what) in [
         (vec![0.2], a.clone(), "gammas"),
         (vec![2.6], a.clone(), "gammas"),

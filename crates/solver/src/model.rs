@@ -272,7 +272,18 @@ mod tests {
 
     #[test]
     fn the_schemes_name_their_integrators() {
-        assert_eq!(Scheme::Accurate.name(), VelocityVerlet::NAME);
-        assert_eq!(Scheme::Euler.order(), ExplicitEuler::ORDER);
+        // The names the command line, configs and provenance strings use, and the orders the
+        // Richardson estimate divides by (2^order − 1).
+        let named = |s: Scheme| (s.name(), s.order());
+        assert_eq!(named(Scheme::Accurate), ("accurate", 2));
+        assert_eq!(named(Scheme::Euler), ("euler", 1));
+        assert_eq!(
+            (VelocityVerlet::NAME, VelocityVerlet::ORDER),
+            named(Scheme::Accurate)
+        );
+        assert_eq!(
+            (ExplicitEuler::NAME, ExplicitEuler::ORDER),
+            named(Scheme::Euler)
+        );
     }
 }
