@@ -1,5 +1,5 @@
-"""Oblique elastic impacts with friction: the tangential restitution P(γ, α), rebounds and the
-MDR impact solver, from NumPy.
+"""Oblique impacts of spheres with friction, elastic and viscoelastic: the tangential
+restitution P(γ, α, e_n), rebounds, tables and the MDR impact solver, from NumPy.
 
 A sphere hits a wall or another sphere, elastically (normal restitution e_n = 1) or, with a
 table built with an e_n range, dissipatively (e_n < 1), with Coulomb friction μ. What happens

@@ -1,4 +1,5 @@
-//! Interpolator for the universal tangential restitution `P(γ, α)` of oblique elastic impacts.
+//! Interpolator for the universal tangential restitution `P(γ, α)` of oblique impacts (and
+//! `P(γ, α, e_n)` of viscoelastic ones, from tables with an `e_n` axis).
 //!
 //! Reads a table written by `sweep run` (HDF5, schema v3 or v2, see `docs/table-format.md`), keeps it in
 //! memory and evaluates `P` by the documented rule: the exact full-slip line `P = 1 − 7α` below
