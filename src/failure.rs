@@ -19,15 +19,54 @@ macro_rules! outln {
 pub(crate) use outln;
 
 /// Refuse, before any work, an output folder (`flag`, e.g. `-o`) that exists as something other
-/// than a folder: a usage error (exit status 2), where creating it would fail only after
-/// everything was computed.
+/// than a folder, or below such a thing (`notdir/sub`): a usage error (exit status 2), where
+/// creating it would fail only after everything was computed.
 pub fn check_output_folder(path: &std::path::Path, flag: &str) -> Result<()> {
-    match std::fs::metadata(path) {
-        Ok(m) if !m.is_dir() => Err(Failure::usage(format!(
+    match not_a_folder(path) {
+        Some(blocker) => Err(not_a_folder_error(path, &blocker, flag)),
+        None => Ok(()),
+    }
+}
+
+/// Create the output folder `path` (`flag`, e.g. `-o`) and its parents. Something in the way
+/// that is not a folder is a usage error (exit status 2, like [`check_output_folder`]); another
+/// failure (permissions, a full disk) is an I/O error (exit status 1).
+pub fn create_output_folder(path: &std::path::Path, flag: &str) -> Result<()> {
+    std::fs::create_dir_all(path).map_err(|e| match not_a_folder(path) {
+        Some(blocker) => not_a_folder_error(path, &blocker, flag),
+        None => Failure::from(
+            anyhow::Error::new(e)
+                .context(format!("cannot create output folder {}", path.display())),
+        ),
+    })
+}
+
+/// The first of `path` and its parents that exists and is not a folder (following symbolic
+/// links, as creating the folder would).
+fn not_a_folder(path: &std::path::Path) -> Option<std::path::PathBuf> {
+    path.ancestors()
+        .filter(|p| !p.as_os_str().is_empty())
+        .find_map(|p| match std::fs::metadata(p) {
+            Ok(m) if m.is_dir() => Some(None),
+            Ok(_) => Some(Some(p.to_path_buf())),
+            // Missing (or below something that is not a folder): look further up.
+            Err(_) => None,
+        })
+        .flatten()
+}
+
+fn not_a_folder_error(path: &std::path::Path, blocker: &std::path::Path, flag: &str) -> Failure {
+    if blocker == path {
+        Failure::usage(format!(
             "{flag} {}: exists and is not a folder (give a folder, new or existing)",
             path.display()
-        ))),
-        _ => Ok(()),
+        ))
+    } else {
+        Failure::usage(format!(
+            "{flag} {}: {} exists and is not a folder (give a folder, new or existing)",
+            path.display(),
+            blocker.display()
+        ))
     }
 }
 

@@ -88,3 +88,47 @@ fn export_refuses_bad_arguments_with_status_2() {
         assert!(!Path::new(o).exists(), "{args:?} wrote a file");
     }
 }
+
+/// `--name` becomes the array of a C source: a name that a C or C++ compiler refuses (a
+/// keyword, a name <stddef.h> defines, a reserved one) is refused before anything is written,
+/// naming the flag and why.
+#[test]
+fn export_refuses_c_names_a_compiler_would_refuse() {
+    let dir = common::subdir("cli_export_names");
+    let table = Path::new(ROOT).join("tables/quick.h5");
+    let t = table.to_str().expect("path");
+    let o = dir.join("x.c");
+    let o = o.to_str().expect("path");
+    for (name, says) in [
+        ("int", "keyword"),
+        ("while", "keyword"),
+        ("_Bool", "keyword"),
+        ("class", "keyword"),
+        ("xor", "keyword"),
+        ("size_t", "<stddef.h>"),
+        ("__table", "reserved"),
+        ("_Table", "reserved"),
+        ("a-b", "C identifier"),
+        ("", "C identifier"),
+    ] {
+        let r = sweep(&["export", t, "-o", o, "--name", name]);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{name:?}: {err}");
+        assert!(
+            err.contains("--name") && err.contains(says),
+            "{name:?}: {err}"
+        );
+        assert!(!Path::new(o).exists(), "{name:?} wrote a file");
+    }
+    // Names that contain a keyword are names like any other.
+    for name in ["integer", "int_table", "table_int"] {
+        let r = sweep(&["export", t, "-o", o, "--name", name]);
+        assert!(
+            r.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&r.stderr)
+        );
+        let src = std::fs::read_to_string(o).expect("source");
+        assert!(src.contains(&format!("const unsigned long long {name}[")));
+    }
+}

@@ -150,3 +150,45 @@ fn export_names_the_gamma_range_for_a_curve_outside_it() {
     assert!(!err.contains("clamp") && !err.contains("alpha"), "{err}");
     assert!(!out.exists());
 }
+
+/// An output folder that is a file, or below one (`notdir/sub`), is the user's to fix: exit
+/// status 2 and a message saying so, for every command that writes into a folder (`scene` said
+/// "cannot create output folder notdir: File exists" with exit status 1).
+#[test]
+fn an_output_folder_in_the_way_of_a_file_is_a_usage_error() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("output_notdir-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create test directory");
+    let file = dir.join("notdir");
+    std::fs::write(&file, b"keep me").expect("write");
+    let f = file.to_str().expect("utf-8");
+    let below = file.join("sub");
+    let b = below.to_str().expect("utf-8");
+    let table = format!("{root}/tables/quick.h5");
+    let scene = format!("{root}/configs/scenes/steel_on_steel.toml");
+    for out in [f, b] {
+        for args in [
+            vec!["scene", &scene, "--table", &table, "-o", out],
+            vec!["plot", &table, "-o", out],
+            vec!["reference", "mfix-dem05", "-o", out],
+            vec!["accuracy", "--quick", "--out", out],
+        ] {
+            let o = Command::new(env!("CARGO_BIN_EXE_sweep"))
+                .args(&args)
+                .output()
+                .expect("run sweep");
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+            assert!(
+                err.contains(out) && err.contains("exists and is not a folder"),
+                "{args:?}: {err}"
+            );
+            assert!(!err.contains("File exists"), "{args:?}: {err}");
+            assert!(o.stdout.is_empty(), "{args:?} computed first");
+        }
+    }
+    assert_eq!(std::fs::read(&file).unwrap(), b"keep me");
+    let _ = std::fs::remove_dir_all(&dir);
+}

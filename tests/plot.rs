@@ -496,14 +496,14 @@ fn sweep_plot_fails_cleanly_on_bad_input() {
     std::fs::write(&junk, b"not hdf5").unwrap();
     let run = sweep(&["plot", junk.to_str().unwrap(), "-o", o]);
     assert_clean_failure(&run, 2, "not an HDF5 file");
-    // Output folder below a file.
+    // Output folder below a file: the user's to fix.
     let run = sweep(&[
         "plot",
         "tables/quick.h5",
         "-o",
         junk.join("sub").to_str().unwrap(),
     ]);
-    assert_clean_failure(&run, 1, "cannot create output folder");
+    assert_clean_failure(&run, 2, "junk.h5 exists and is not a folder");
     // Usage errors exit with 2, before anything is written.
     let run = sweep(&["plot", "tables/quick.h5", "-o", o, "--format", "jpg"]);
     assert_clean_failure(&run, 2, "jpg");

@@ -43,8 +43,7 @@ fn command_line() -> String {
 }
 
 pub fn run(args: AccuracyArgs) -> Result<()> {
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("--out {}: cannot create directory", args.out.display()))?;
+    crate::failure::create_output_folder(&args.out, "--out")?;
     if args.tables {
         // Fail on a bad config before minutes of scheme ladders.
         for name in ["quick", "isotropic", "full"] {

@@ -35,25 +35,16 @@ pub struct ExportArgs {
     /// Binary or C source [default: c when the output ends in .c or .h, else binary].
     #[arg(long, value_enum)]
     format: Option<Format>,
-    /// Name of the array in a C source (a C identifier).
+    /// Name of the array in a C source: a C identifier that is no C or C++ keyword, nothing
+    /// <stddef.h> defines (size_t, NULL, ...) and not reserved (__x, _X).
     #[arg(long, default_value = "oblique_table")]
     name: String,
 }
 
-fn is_identifier(s: &str) -> bool {
-    let mut chars = s.chars();
-    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
-}
-
 /// Run `sweep export`.
 pub fn run(args: ExportArgs) -> Result<()> {
-    if !is_identifier(&args.name) {
-        return Err(Failure::usage(format!(
-            "--name {:?}: must be a C identifier (letters, digits, _; not starting with a digit)",
-            args.name
-        )));
-    }
+    // Checked whatever the format: a name a compiler refuses is a mistake before any work.
+    export::check_c_name(&args.name).map_err(|e| Failure::usage(format!("--name: {e}")))?;
     if args.output.is_dir() {
         return Err(Failure::usage(format!(
             "--output {}: is a directory; give a file name",
@@ -63,9 +54,14 @@ pub fn run(args: ExportArgs) -> Result<()> {
     if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty()) {
         if !dir.is_dir() {
             return Err(Failure::usage(format!(
-                "--output {}: the folder {} does not exist",
+                "--output {}: the folder {} {}",
                 args.output.display(),
-                dir.display()
+                dir.display(),
+                if dir.exists() {
+                    "exists and is not a folder"
+                } else {
+                    "does not exist"
+                }
             )));
         }
     }
@@ -134,7 +130,9 @@ pub fn run(args: ExportArgs) -> Result<()> {
     );
     let content = match format {
         Format::Binary => bytes.clone(),
-        Format::C => export::c_source(&bytes, &args.name, &what).into_bytes(),
+        Format::C => export::c_source(&bytes, &args.name, &what)
+            .map_err(|e| Failure::usage(format!("--name: {e}")))?
+            .into_bytes(),
     };
     // A temporary file beside the output, synced, then renamed (`oblique_output`); it also
     // removes the temporary files that a killed export of the same output left.

@@ -4,7 +4,7 @@ use crate::failure::outln;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use crate::failure::{Context, Failure, Result};
+use crate::failure::{Failure, Result};
 use clap::{Args, ValueEnum};
 
 use oblique_lookup::Table;
@@ -176,8 +176,7 @@ pub fn run(args: PlotArgs) -> Result<()> {
             Ok((k, sheet))
         })
         .collect::<Result<Vec<_>>>()?;
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("cannot create output folder {}", args.output.display()))?;
+    crate::failure::create_output_folder(&args.output, "-o")?;
     let ext = match args.format {
         FormatArg::Png => "png",
         FormatArg::Svg => "svg",

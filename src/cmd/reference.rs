@@ -169,8 +169,7 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
             }
             continue;
         }
-        std::fs::create_dir_all(&dir)
-            .with_context(|| format!("cannot create output folder {}", dir.display()))?;
+        crate::failure::create_output_folder(&dir, "-o")?;
         // Nothing of a suite is written unless every one of its paths can be.
         for (name, _) in &files {
             oblique_output::check_output(&dir.join(name))?;

@@ -89,6 +89,9 @@ fn check(
 
 pub fn run(args: SceneArgs) -> Result<()> {
     let start = Instant::now();
+    if !args.check {
+        crate::failure::check_output_folder(&args.output, "-o")?;
+    }
     let scene = Scene::load(&args.scene)?;
     let table = match &args.table {
         Some(p) => Some(Table::open(p)?),
@@ -113,8 +116,7 @@ pub fn run(args: SceneArgs) -> Result<()> {
         scene::csv::write(&ev, sphere_sphere, &mut csv).context("cannot format the CSV")?;
         check(&args, &csv, &fig, &paths)?
     } else {
-        std::fs::create_dir_all(&args.output)
-            .with_context(|| format!("cannot create output folder {}", args.output.display()))?;
+        crate::failure::create_output_folder(&args.output, "-o")?;
         // Nothing is written unless every output can be.
         for path in &paths {
             oblique_output::check_output(path)?;

@@ -267,8 +267,13 @@ pub fn export(
 /// The export as a C source file: the bytes as an array of `unsigned long long` words (8-byte
 /// aligned, in the byte order of a little-endian machine) named `name`, and its length in bytes
 /// as `name_size`, for codes that compile the table in (`oblq_open(&t, name, name_size)`).
-pub fn c_source(bytes: &[u8], name: &str, what: &str) -> String {
+/// `what` goes into the opening comment. A `name` that a C or C++ compiler would refuse is
+/// refused ([`check_c_name`]).
+pub fn c_source(bytes: &[u8], name: &str, what: &str) -> Result<String, CNameError> {
     use std::fmt::Write;
+    check_c_name(name)?;
+    // A `*/` in `what` (a file name) would end the comment early.
+    let what = what.replace("*/", "* /");
     let mut s = String::with_capacity(bytes.len() * 3 + 512);
     let words = bytes.len().div_ceil(8);
     let _ = writeln!(
@@ -289,5 +294,226 @@ pub fn c_source(bytes: &[u8], name: &str, what: &str) -> String {
         let _ = write!(s, " 0x{:016x}ULL,", u64::from_le_bytes(w));
     }
     s.push_str("\n};\n");
-    s
+    Ok(s)
+}
+
+/// A name that cannot be the array of a C source ([`c_source`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum CNameError {
+    /// Not a C identifier: letters, digits and `_`, not starting with a digit.
+    #[error("{0:?} is not a C identifier (letters, digits and _, not starting with a digit)")]
+    NotIdentifier(String),
+    /// A keyword of C or C++: a compiler refuses it as a name.
+    #[error("{0:?} is a C or C++ keyword; give another name")]
+    Keyword(String),
+    /// A name that the C source's own `#include <stddef.h>` defines (`size_t`, `NULL`, …).
+    #[error("{0:?} is defined by <stddef.h>, which the C source includes; give another name")]
+    Stddef(String),
+    /// Reserved for the compiler and the standard library: `__x` or `_X`.
+    #[error(
+        "{0:?} is reserved for the compiler (a name starting with two underscores, or an \
+         underscore and a capital letter); give another name"
+    )]
+    Reserved(String),
+}
+
+/// The keywords of C (C23, with the spellings of C99 and C11) and C++ (C++23, with the
+/// alternative tokens), which no declared name may be.
+const C_KEYWORDS: &[&str] = &[
+    // C
+    "alignas",
+    "alignof",
+    "auto",
+    "bool",
+    "break",
+    "case",
+    "char",
+    "const",
+    "constexpr",
+    "continue",
+    "default",
+    "do",
+    "double",
+    "else",
+    "enum",
+    "extern",
+    "false",
+    "float",
+    "for",
+    "goto",
+    "if",
+    "inline",
+    "int",
+    "long",
+    "nullptr",
+    "register",
+    "restrict",
+    "return",
+    "short",
+    "signed",
+    "sizeof",
+    "static",
+    "static_assert",
+    "struct",
+    "switch",
+    "thread_local",
+    "true",
+    "typedef",
+    "typeof",
+    "typeof_unqual",
+    "union",
+    "unsigned",
+    "void",
+    "volatile",
+    "while",
+    "_Alignas",
+    "_Alignof",
+    "_Atomic",
+    "_BitInt",
+    "_Bool",
+    "_Complex",
+    "_Decimal128",
+    "_Decimal32",
+    "_Decimal64",
+    "_Generic",
+    "_Imaginary",
+    "_Noreturn",
+    "_Static_assert",
+    "_Thread_local",
+    "asm",
+    // C++ beyond C
+    "and",
+    "and_eq",
+    "bitand",
+    "bitor",
+    "catch",
+    "char8_t",
+    "char16_t",
+    "char32_t",
+    "class",
+    "co_await",
+    "co_return",
+    "co_yield",
+    "compl",
+    "concept",
+    "consteval",
+    "constinit",
+    "const_cast",
+    "decltype",
+    "delete",
+    "dynamic_cast",
+    "explicit",
+    "export",
+    "friend",
+    "mutable",
+    "namespace",
+    "new",
+    "noexcept",
+    "not",
+    "not_eq",
+    "operator",
+    "or",
+    "or_eq",
+    "private",
+    "protected",
+    "public",
+    "reinterpret_cast",
+    "requires",
+    "static_cast",
+    "template",
+    "this",
+    "throw",
+    "try",
+    "typeid",
+    "typename",
+    "using",
+    "virtual",
+    "wchar_t",
+    "xor",
+    "xor_eq",
+];
+
+/// What `<stddef.h>` defines (C23), which the C source includes.
+const STDDEF_NAMES: &[&str] = &[
+    "size_t",
+    "ptrdiff_t",
+    "wchar_t",
+    "max_align_t",
+    "nullptr_t",
+    "NULL",
+    "offsetof",
+    "unreachable",
+];
+
+/// Check that `name` can be the array of a C source ([`c_source`]) compiled as C or C++: a C
+/// identifier that is no keyword of either language, not defined by `<stddef.h>` and not
+/// reserved for the compiler. (`NAME_size`, the length beside it, is then one too.)
+pub fn check_c_name(name: &str) -> Result<(), CNameError> {
+    let mut chars = name.chars();
+    let identifier = matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if !identifier {
+        return Err(CNameError::NotIdentifier(name.to_string()));
+    }
+    if C_KEYWORDS.contains(&name) {
+        return Err(CNameError::Keyword(name.to_string()));
+    }
+    if STDDEF_NAMES.contains(&name) {
+        return Err(CNameError::Stddef(name.to_string()));
+    }
+    let b = name.as_bytes();
+    if b.len() >= 2 && b[0] == b'_' && (b[1] == b'_' || b[1].is_ascii_uppercase()) {
+        return Err(CNameError::Reserved(name.to_string()));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn c_names_are_identifiers_that_a_compiler_takes() {
+        for ok in [
+            "oblique_table",
+            "t",
+            "_t",
+            "T1",
+            "int_",
+            "integer",
+            "size",
+            "_t_9",
+        ] {
+            assert_eq!(check_c_name(ok), Ok(()), "{ok}");
+            assert!(c_source(&[1, 2, 3], ok, "x").is_ok(), "{ok}");
+        }
+        for (bad, want) in [
+            ("", "not a C identifier"),
+            ("9t", "not a C identifier"),
+            ("a-b", "not a C identifier"),
+            ("é", "not a C identifier"),
+            ("a b", "not a C identifier"),
+            ("int", "keyword"),
+            ("_Bool", "keyword"),
+            ("class", "keyword"),
+            ("and", "keyword"),
+            ("size_t", "<stddef.h>"),
+            ("NULL", "<stddef.h>"),
+            ("__t", "reserved"),
+            ("_Table", "reserved"),
+        ] {
+            let e = check_c_name(bad).expect_err(bad);
+            assert!(e.to_string().contains(want), "{bad}: {e}");
+            assert!(c_source(&[1], bad, "x").is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_comment_of_a_c_source_stays_a_comment() {
+        let s = c_source(&[1], "t", "from a*/b.h5").expect("valid name");
+        let comment_end = s.find("*/").expect("comment");
+        assert!(s[comment_end..].contains("#include <stddef.h>"));
+        assert!(!s[..comment_end].contains("b.h5 *"), "{s}");
+        assert!(s.contains("a* /b.h5"), "{s}");
+    }
 }
