@@ -227,26 +227,30 @@ Suites, parameters, conventions and how to compare a DEM code: docs/reference.md
     Reference(cmd::reference::ReferenceArgs),
 }
 
-/// Die quietly when the reader of our output goes away (`sweep query ... | head`), like other
-/// Unix tools, instead of panicking in `println!` on a broken pipe.
+/// Signal dispositions set at start-up, before any thread exists.
+///
+/// - SIGPIPE: die quietly when the reader of our output goes away (`sweep query ... | head`),
+///   like other Unix tools, instead of panicking in `println!` on a broken pipe.
+/// - SIGXFSZ: ignored, so that a write past the file size limit (`ulimit -f`, RLIMIT_FSIZE)
+///   fails with EFBIG instead of killing the process (exit status 153, no message, temporary
+///   and lock files left behind). The error then goes the way of any failed write: the
+///   output module names the file and the limit, removes its temporary files, the lock is
+///   released, and the command exits with status 1 (the machine's limit, not the command line).
 #[cfg(unix)]
-fn restore_sigpipe() {
-    extern "C" {
-        fn signal(signum: i32, handler: usize) -> usize;
-    }
-    const SIGPIPE: i32 = 13;
-    const SIG_DFL: usize = 0;
-    // SAFETY: setting the default disposition of SIGPIPE at start-up, before any thread exists.
+fn set_signal_dispositions() {
+    // SAFETY: `signal` with the predefined dispositions SIG_DFL and SIG_IGN, called once at the
+    // start of `main`, before any other thread exists; no handler code is installed.
     unsafe {
-        signal(SIGPIPE, SIG_DFL);
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
     }
 }
 
 #[cfg(not(unix))]
-fn restore_sigpipe() {}
+fn set_signal_dispositions() {}
 
 fn main() -> ExitCode {
-    restore_sigpipe();
+    set_signal_dispositions();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Impact(a) => cmd::impact::run(a),
@@ -266,7 +270,14 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {}", failure::error_text(e.error()));
+            // Not `eprintln!`, which panics (exit status 101) when standard error cannot be
+            // written (a file at the size limit, a full disk): the exit status still tells.
+            use std::io::Write as _;
+            let _ = writeln!(
+                std::io::stderr().lock(),
+                "error: {}",
+                failure::error_text(e.error())
+            );
             e.exit_code()
         }
     }

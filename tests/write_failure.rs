@@ -71,7 +71,7 @@ fn check(name: &str, kib: u32, args: impl Fn(&str) -> Vec<String>, sub: &str) {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{a:?}: {err}");
     assert!(
-        err.contains("cannot write") && err.contains("too large"),
+        err.contains("cannot write") && err.contains("file size limit"),
         "{err}"
     );
     let after = files(&dir.join(sub));

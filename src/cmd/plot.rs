@@ -188,8 +188,14 @@ pub fn run(args: PlotArgs) -> Result<()> {
     for path in &paths {
         oblique_output::check_output(path)?;
     }
-    for ((kind, sheet), path) in sheets.iter().zip(&paths) {
-        oblique_plot::render_sheet(sheet, path)?;
+    // The figures are replaced together: all new, or (on a full disk, the file size limit, a
+    // failed drawing) all as they were.
+    let mut files = oblique_output::Files::new();
+    for ((_, sheet), path) in sheets.iter().zip(&paths) {
+        oblique_plot::render_sheet_into(sheet, path, &mut files)?;
+    }
+    files.commit()?;
+    for ((kind, _), path) in sheets.iter().zip(&paths) {
         outln!("wrote {}  ({})", path.display(), kind.describe())?;
     }
     outln!(

@@ -174,14 +174,18 @@ pub fn run(args: ReferenceArgs) -> Result<()> {
         for (name, _) in &files {
             oblique_output::check_output(&dir.join(name))?;
         }
+        // A suite's files are replaced together: all new, or (on a full disk, the file size
+        // limit, a failed drawing) all as they were.
+        let mut set = oblique_output::Files::new();
         for (name, content) in &files {
             let path = dir.join(name);
             match content {
-                Content::Csv(text) => oblique_output::write_bytes(&path, text.as_bytes())?,
-                Content::Figure(fig) => oblique_plot::render(fig, &path)?,
+                Content::Csv(text) => set.write_bytes(&path, text.as_bytes())?,
+                Content::Figure(fig) => oblique_plot::render_into(fig, &path, &mut set)?,
             }
-            written += 1;
         }
+        set.commit()?;
+        written += files.len();
         outln!("  wrote {} files in {}", files.len(), dir.display())?;
     }
     let _ = std::fs::remove_dir_all(&scratch);

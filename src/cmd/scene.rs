@@ -121,12 +121,16 @@ pub fn run(args: SceneArgs) -> Result<()> {
         for path in &paths {
             oblique_output::check_output(path)?;
         }
-        oblique_output::write_with(&csv_path, |mut w| {
+        // The CSV and the figures are replaced together: all new, or (on a full disk, the file
+        // size limit, a failed drawing) all as they were.
+        let mut files = oblique_output::Files::new();
+        files.write_with(&csv_path, |mut w| {
             scene::csv::write(&ev, sphere_sphere, &mut w)
         })?;
         for path in &paths[1..] {
-            oblique_plot::render(&fig, path)?;
+            oblique_plot::render_into(&fig, path, &mut files)?;
         }
+        files.commit()?;
         paths.iter().map(|p| p.display().to_string()).collect()
     };
 

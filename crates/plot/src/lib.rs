@@ -160,7 +160,19 @@ fn register_font() -> Result<(), String> {
 /// Draw a figure to `path`; the format follows the extension (`.png` or `.svg`). The file is
 /// written through `oblique_output`: on any error `path` is left as it was.
 pub fn render(fig: &Figure, path: &Path) -> Result<(), PlotError> {
-    render_with(fig, path, false)
+    let mut files = oblique_output::Files::new();
+    render_into(fig, path, &mut files)?;
+    Ok(files.commit()?)
+}
+
+/// Draw a figure for `path` (`.png` or `.svg`) into a set of files that are put in place
+/// together ([`oblique_output::Files`]): `path` is replaced only when the set is committed.
+pub fn render_into(
+    fig: &Figure,
+    path: &Path,
+    files: &mut oblique_output::Files,
+) -> Result<(), PlotError> {
+    render_with(fig, path, false, files)
 }
 
 /// Draw a figure with logarithmic x and y axes (every panel) to `path` (`.png` or `.svg`).
@@ -168,10 +180,17 @@ pub fn render(fig: &Figure, path: &Path) -> Result<(), PlotError> {
 /// Points with a non-positive or non-finite coordinate are left out; `y_range` and `vlines` are
 /// ignored.
 pub fn render_log_log(fig: &Figure, path: &Path) -> Result<(), PlotError> {
-    render_with(fig, path, true)
+    let mut files = oblique_output::Files::new();
+    render_with(fig, path, true, &mut files)?;
+    Ok(files.commit()?)
 }
 
-fn render_with(fig: &Figure, path: &Path, log_log: bool) -> Result<(), PlotError> {
+fn render_with(
+    fig: &Figure,
+    path: &Path,
+    log_log: bool,
+    files: &mut oblique_output::Files,
+) -> Result<(), PlotError> {
     let shown = path.display().to_string();
     let draw_err = |message: String| PlotError::Draw {
         path: shown.clone(),
@@ -179,7 +198,7 @@ fn render_with(fig: &Figure, path: &Path, log_log: bool) -> Result<(), PlotError
     };
     register_font().map_err(draw_err)?;
     let format = format_of(path)?;
-    oblique_output::write_via_path(path, |tmp| {
+    files.write_via_path(path, |tmp| {
         if format == "png" {
             let root = BitMapBackend::new(tmp, fig.size).into_drawing_area();
             if log_log {

@@ -486,6 +486,18 @@ impl ValueFormatter<f64> for TickedRange {
 /// Draw a sheet to `path`; the format follows the extension (`.png` or `.svg`), written through
 /// `oblique_output` like [`render`](super::render).
 pub fn render_sheet(sheet: &Sheet, path: &Path) -> Result<(), PlotError> {
+    let mut files = oblique_output::Files::new();
+    render_sheet_into(sheet, path, &mut files)?;
+    Ok(files.commit()?)
+}
+
+/// Draw a sheet for `path` (`.png` or `.svg`) into a set of files that are put in place
+/// together ([`oblique_output::Files`]), like [`render_into`](super::render_into).
+pub fn render_sheet_into(
+    sheet: &Sheet,
+    path: &Path,
+    files: &mut oblique_output::Files,
+) -> Result<(), PlotError> {
     let shown = path.display().to_string();
     let draw_err = |message: String| PlotError::Draw {
         path: shown.clone(),
@@ -493,7 +505,7 @@ pub fn render_sheet(sheet: &Sheet, path: &Path) -> Result<(), PlotError> {
     };
     register_font().map_err(draw_err)?;
     let format = super::format_of(path)?;
-    oblique_output::write_via_path(path, |tmp| {
+    files.write_via_path(path, |tmp| {
         if format == "png" {
             let root = BitMapBackend::new(tmp, sheet.size).into_drawing_area();
             draw_sheet(sheet, &root).map_err(draw_err)?;

@@ -396,7 +396,9 @@ impl NodeStore for Checkpoint {
             .out
             .lock()
             .map_err(|_| "checkpoint writer poisoned".to_string())?;
-        let err = |e: std::io::Error| format!("{}: {e}", self.path.display());
+        let err = |e: std::io::Error| {
+            format!("{}: {}", self.path.display(), oblique_output::explain_io(e))
+        };
         for r in records {
             out.write_all(&record_bytes(r)).map_err(err)?;
         }
@@ -569,7 +571,7 @@ impl LockError {
 pub struct OutputLock {
     path: PathBuf,
     /// Held open: the lock lives as long as this descriptor.
-    _file: File,
+    file: File,
 }
 
 /// The lock file of an output: `OUTPUT.lock`.
@@ -628,7 +630,7 @@ impl OutputLock {
         let shown = path.display().to_string();
         let io = |source| LockError::Io {
             path: shown.clone(),
-            source,
+            source: oblique_output::explain_io(source),
         };
         loop {
             let mut file = oblique_output::open_in_place(&path, true).map_err(|e| match e {
@@ -659,11 +661,15 @@ impl OutputLock {
                 std::process::id(),
                 crate::utc_now()
             );
+            let mut lock = OutputLock { path, file };
+            // On an error (a full disk, the file size limit) `lock` is dropped, which removes
+            // the file: no lock file is left behind.
+            let file = &mut lock.file;
             file.set_len(0).map_err(io)?;
             file.seek(SeekFrom::Start(0)).map_err(io)?;
             file.write_all(me.as_bytes()).map_err(io)?;
             file.flush().map_err(io)?;
-            return Ok(OutputLock { path, _file: file });
+            return Ok(lock);
         }
     }
 }
