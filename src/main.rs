@@ -125,10 +125,12 @@ printf '1.75,0.3\\n2,inf\\n' | sweep query tables/full.h5 --batch -\n\n\
 Batch lines are `gamma,alpha`; the output lines are `gamma,alpha,P,e_t` in the same order,\n\
 e_t = (2P + 5)/7 (solid sphere, no spin). A header line `gamma,alpha` (before the first point)\n\
 becomes `gamma,alpha,P,e_t`; blank lines and lines starting with `#` are copied unchanged; a\n\
-UTF-8 byte-order mark is ignored. The whole input is read and checked before anything is\n\
-written (about 25 bytes of memory per line: 10^7 lines peak at 249 MB): a malformed line or a\n\
-point outside the table's domain stops the batch with its line number and no output at all\n\
-(exit 2), whatever the size.\n\
+UTF-8 byte-order mark is ignored; a line holds at most 4096 bytes. The whole input is read and\n\
+checked before anything is written, in 16 bytes of memory per `gamma,alpha` line and 24 per\n\
+`gamma,alpha,e_n` line beside the table (10^7 lines peak at 172 MB and 250 MB with\n\
+tables/dissipative-demo.h5; 194 MB for `gamma,alpha` with tables/full.h5): a malformed line, a\n\
+longer one or a point outside the table's domain stops the batch with its line number and no\n\
+output at all (exit 2), whatever the size.\n\
 --clamp answers points outside the domain at the nearest gamma of the table instead.\n\
 Points on the full-slip line (alpha below alpha_c1, or alpha_c2 for gamma <= 1) are answered\n\
 in closed form, P = 1 - 7 alpha, for any gamma > 0, inside the table's domain or not.\n\

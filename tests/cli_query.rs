@@ -416,3 +416,130 @@ fn without_a_table_the_built_in_one_answers() {
         "{help}"
     );
 }
+
+/// `sweep query ARGS` with `input` on standard input written from a thread (sweep may stop
+/// reading early and close the pipe: a failed write is ignored), killed after `limit`, and
+/// with 4 GiB of address space at most (a reader without a line limit fails there instead of
+/// taking the machine's memory).
+fn sweep_fed(args: &[&str], input: Vec<u8>, limit: std::time::Duration) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_sweep"));
+    cmd.args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::CommandExt;
+        // SAFETY: between fork and exec only setrlimit, async-signal-safe, on a local value.
+        unsafe {
+            cmd.pre_exec(|| {
+                let memory = libc::rlimit {
+                    rlim_cur: 4 << 30,
+                    rlim_max: 4 << 30,
+                };
+                if libc::setrlimit(libc::RLIMIT_AS, &memory) != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                Ok(())
+            });
+        }
+    }
+    let mut child = cmd.spawn().expect("run the sweep binary");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let writer = std::thread::spawn(move || {
+        let _ = stdin.write_all(&input);
+    });
+    // Both outputs are read as they come, so that a long message cannot fill a pipe and stop
+    // the command.
+    let drain = |mut r: Box<dyn std::io::Read + Send>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            let _ = r.read_to_end(&mut v);
+            v
+        })
+    };
+    let stdout = drain(Box::new(child.stdout.take().expect("stdout")));
+    let stderr = drain(Box::new(child.stderr.take().expect("stderr")));
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break status;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("sweep {args:?} still running after {limit:?}");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    writer.join().expect("writer");
+    Output {
+        status,
+        stdout: stdout.join().expect("stdout reader"),
+        stderr: stderr.join().expect("stderr reader"),
+    }
+}
+
+/// A batch without line ends (`/dev/zero`) is refused after its first 4096 bytes, with the
+/// limit in the message, instead of being read into memory without bound.
+#[cfg(unix)]
+#[test]
+fn a_batch_line_longer_than_the_limit_is_refused_without_reading_it() {
+    let out = sweep_fed(
+        &["query", TABLE, "--batch", "/dev/zero"],
+        Vec::new(),
+        std::time::Duration::from_secs(20),
+    );
+    refused(&out, &["batch line 1", "4096 bytes"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.len() < 400, "{} bytes: {stderr}", stderr.len());
+    // At the limit a line is read (spaces around a field are allowed); one byte more is not.
+    let line = |len: usize| format!("1.5,0.3{}\n", " ".repeat(len - "1.5,0.3".len()));
+    let out = sweep(&["query", TABLE, "--batch", "-"], Some(&line(4096)));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = sweep_fed(
+        &["query", TABLE, "--batch", "-"],
+        format!("1.5,0.3\n{}", line(4097)).into_bytes(),
+        std::time::Duration::from_secs(20),
+    );
+    refused(&out, &["batch line 2", "4096 bytes"]);
+}
+
+/// A bad line is quoted in part: a message of a few hundred bytes, whatever the line's length.
+#[test]
+fn a_long_bad_line_gives_a_short_message() {
+    let long = "7".repeat(4000);
+    for (input, needles) in [
+        // A megabyte on one line.
+        (
+            format!("1.5,0.3\n1.5,{}\n", "x".repeat(1 << 20)),
+            vec!["batch line 2", "4096 bytes"],
+        ),
+        // Under the limit: a long field, too many fields, a long comment-free line.
+        (
+            format!("1.5,x{long}\n"),
+            vec!["batch line 1", "alpha", "4001 bytes"],
+        ),
+        (
+            format!("1.5,0.3,1,{long}\n"),
+            vec!["batch line 1", "4 field"],
+        ),
+        (
+            format!("{}\n", ",".repeat(4000)),
+            vec!["batch line 1", "4001 field"],
+        ),
+    ] {
+        let out = sweep_fed(
+            &["query", TABLE, "--batch", "-"],
+            input.into_bytes(),
+            std::time::Duration::from_secs(20),
+        );
+        refused(&out, &needles);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.len() < 400, "{} bytes: {stderr}", stderr.len());
+    }
+}

@@ -142,8 +142,27 @@ pub fn run(args: QueryArgs) -> Result<()> {
     Ok(())
 }
 
+/// The longest batch line, in bytes before its line end: a longer one is refused after reading
+/// at most this many bytes of it (`--batch /dev/zero` has no line end at all).
+const MAX_LINE: usize = 4096;
+
+/// The most characters of a line or field that a message quotes.
+const QUOTE_CHARS: usize = 60;
+
+/// Points answered at a time: the answers of one chunk are held, never a whole column of them.
+const CHUNK: usize = 1 << 16;
+
+/// `text` as a message quotes it: whole when short, else its first [`QUOTE_CHARS`] characters
+/// and its length.
+fn excerpt(text: &str) -> String {
+    match text.char_indices().nth(QUOTE_CHARS) {
+        None => text.to_string(),
+        Some((end, _)) => format!("{}... ({} bytes)", &text[..end], text.len()),
+    }
+}
+
 /// Parse one batch line `gamma,alpha` (`fields = 2`) or `gamma,alpha,e_n` (`fields = 3`)
-/// (1-based `number` for messages).
+/// (1-based `number` for messages, which quote at most [`QUOTE_CHARS`] characters of it).
 fn parse_line(line: &str, number: usize, fields: usize) -> Result<(f64, f64, f64)> {
     let expected = if fields == 3 {
         "`gamma,alpha,e_n` like the first line (e.g. `1.75,0.3,0.8`, alpha may be `inf`)"
@@ -153,26 +172,75 @@ fn parse_line(line: &str, number: usize, fields: usize) -> Result<(f64, f64, f64
     };
     let bad =
         |what: String| Failure::usage(format!("batch line {number}: {what}; expected {expected}"));
-    let parts: Vec<&str> = line.split(',').collect();
-    if parts.len() != fields {
-        return Err(bad(format!("{} field(s) in {line:?}", parts.len())));
+    let count = line.split(',').count();
+    if count != fields {
+        return Err(bad(format!("{count} field(s) in {:?}", excerpt(line))));
     }
-    let g = crate::args::parse_f64(parts[0]).map_err(|e| bad(format!("gamma: {e}")))?;
-    let a = crate::args::parse_f64(parts[1]).map_err(|e| bad(format!("alpha: {e}")))?;
-    let e = match parts.get(2) {
-        Some(e) => crate::args::parse_f64(e).map_err(|e| bad(format!("e_n: {e}")))?,
-        None => 1.0,
+    let mut parts = line.split(',');
+    let mut field = |name: &str| {
+        let text = parts.next().unwrap_or_default();
+        // The message quotes the field: a long one only in part.
+        crate::args::parse_f64(text)
+            .map_err(|e| bad(format!("{name}: {}", e.replacen(text, &excerpt(text), 1))))
     };
+    let g = field("gamma")?;
+    let a = field("alpha")?;
+    let e = if fields == 3 { field("e_n")? } else { 1.0 };
     Ok((g, a, e))
+}
+
+/// What [`read_line`] found.
+enum LineRead {
+    /// A line, in the buffer without its `\n`.
+    Line,
+    /// Longer than the limit (the buffer holds a part of it at most).
+    TooLong,
+    /// The end of the input.
+    End,
+}
+
+/// Read the next line of `input` into `buf` (without its `\n`), holding at most `max` bytes of
+/// it: a longer line is [`LineRead::TooLong`], and the rest of it is not read.
+fn read_line(input: &mut dyn BufRead, buf: &mut Vec<u8>, max: usize) -> std::io::Result<LineRead> {
+    buf.clear();
+    loop {
+        let available = match input.fill_buf() {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(e),
+        };
+        if available.is_empty() {
+            return Ok(if buf.is_empty() {
+                LineRead::End
+            } else {
+                LineRead::Line
+            });
+        }
+        let (take, end) = match available.iter().position(|&b| b == b'\n') {
+            Some(i) => (i, true),
+            None => (available.len(), false),
+        };
+        if buf.len() + take > max {
+            return Ok(LineRead::TooLong);
+        }
+        buf.extend_from_slice(&available[..take]);
+        input.consume(take + usize::from(end));
+        if end {
+            return Ok(LineRead::Line);
+        }
+    }
 }
 
 /// Read a whole batch: every line is checked before anything is answered, so a bad line anywhere
 /// (or a point outside the domain) stops the batch with no output at all, whatever its size.
 ///
-/// Memory: the points are held as two arrays of `f64` (16 bytes a point, up to twice that
-/// while they grow) and the answers as a third (8 bytes); the rare lines copied unchanged
-/// (blank, `#`, the header) are kept with their position, and a point's line number is derived
-/// from them when a message needs it.
+/// Memory: the points are held as columns of `f64`, two for `gamma,alpha` lines and three for
+/// `gamma,alpha,e_n` (16 or 24 bytes a point; the columns grow by reallocation, which on Linux
+/// moves pages instead of copying them, and pages not yet written take no memory); the rare
+/// lines copied unchanged (blank, `#`, the header) are kept with their position, and a point's
+/// line number is derived from them when a message needs it. The answers are computed twice, a
+/// chunk at a time: once to check every point, once to write them, so that no column of
+/// answers is held.
 fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
     let input: Box<dyn BufRead> = if path.as_os_str() == "-" {
         Box::new(std::io::stdin().lock())
@@ -187,19 +255,31 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
     // (line index, text) of the lines copied unchanged, in order.
     let mut verbatim: Vec<(usize, String)> = Vec::new();
     let mut header_allowed = true;
-    let mut buf = String::new();
+    let mut buf = Vec::new();
     let mut input = input;
     let mut i = 0usize;
     loop {
-        buf.clear();
         let number = i + 1;
-        let read = input
-            .read_line(&mut buf)
+        let read = read_line(&mut *input, &mut buf, MAX_LINE)
             .map_err(|e| Failure::usage(format!("batch line {number}: cannot read: {e}")))?;
-        if read == 0 {
-            break;
+        match read {
+            LineRead::End => break,
+            LineRead::TooLong => {
+                return Err(Failure::usage(format!(
+                    "batch line {number}: longer than {MAX_LINE} bytes, the limit of a batch \
+                     line (the rest of it is not read); a line is `gamma,alpha` or \
+                     `gamma,alpha,e_n`"
+                )))
+            }
+            LineRead::Line => {}
         }
-        let line = buf.trim_end_matches(['\n', '\r']);
+        let line = std::str::from_utf8(&buf).map_err(|e| {
+            Failure::usage(format!(
+                "batch line {number}: not UTF-8 text (byte {} of the line)",
+                e.valid_up_to() + 1
+            ))
+        })?;
+        let line = line.strip_suffix('\r').unwrap_or(line);
         let line = if number == 1 {
             line.strip_prefix('\u{feff}').unwrap_or(line)
         } else {
@@ -234,6 +314,7 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
     }
     gammas.shrink_to_fit();
     alphas.shrink_to_fit();
+    e_ns.shrink_to_fit();
     // The line number of point `k`: its index plus the copied lines before it, plus one.
     let line_of = |k: usize| {
         let mut line = k;
@@ -246,29 +327,47 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
         }
         line + 1
     };
-    let mut ps = vec![0.0; gammas.len()];
     let with_e_n = fields == Some(3);
-    let answered = if with_e_n {
-        // Point by point by the rule (a table with an e_n axis has no batch path yet).
-        gammas
-            .iter()
-            .zip(&alphas)
-            .zip(&e_ns)
-            .zip(ps.iter_mut())
-            .enumerate()
-            .try_for_each(|(k, (((&g, &a), &e), p))| {
-                *p = table
-                    .p_e_with(g, a, e, outside)
-                    .map_err(|source| LookupError::Batch {
-                        index: k,
-                        source: Box::new(source),
-                    })?;
-                Ok(())
-            })
-    } else {
-        table.p_batch_par(&gammas, &alphas, &mut ps, outside)
+    // P of the points `start..start + out.len()` into `out`; an error names the point's index
+    // in the whole batch.
+    let answer = |start: usize, out: &mut [f64]| -> std::result::Result<(), LookupError> {
+        let end = start + out.len();
+        let result = if with_e_n {
+            // Point by point by the rule, in parallel; the error of the lowest index.
+            use rayon::prelude::*;
+            let first_error = out
+                .par_iter_mut()
+                .enumerate()
+                .filter_map(|(k, p)| {
+                    let at = start + k;
+                    match table.p_e_with(gammas[at], alphas[at], e_ns[at], outside) {
+                        Ok(v) => {
+                            *p = v;
+                            None
+                        }
+                        Err(e) => Some((k, e)),
+                    }
+                })
+                .min_by_key(|(k, _)| *k);
+            match first_error {
+                None => Ok(()),
+                Some((index, source)) => Err(LookupError::Batch {
+                    index,
+                    source: Box::new(source),
+                }),
+            }
+        } else {
+            table.p_batch_par(&gammas[start..end], &alphas[start..end], out, outside)
+        };
+        result.map_err(|e| match e {
+            LookupError::Batch { index, source } => LookupError::Batch {
+                index: start + index,
+                source,
+            },
+            other => other,
+        })
     };
-    answered.map_err(|e| match e {
+    let failed = |e: LookupError| match e {
         LookupError::Batch { index, source } => {
             // e_n is never clamped: no hint for it.
             let hint = match *source {
@@ -278,11 +377,16 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
             Failure::usage(format!("batch line {}: {source}{hint}", line_of(index)))
         }
         other => usage(other),
-    })?;
+    };
+    let mut ps = vec![0.0; CHUNK.min(gammas.len())];
+    // Every point first: a point the table refuses stops the batch before any output.
+    for start in (0..gammas.len()).step_by(CHUNK) {
+        let n = CHUNK.min(gammas.len() - start);
+        answer(start, &mut ps[..n]).map_err(failed)?;
+    }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
     let mut copied = verbatim.iter().peekable();
-    let mut points = gammas.iter().zip(&alphas).zip(&ps);
     let mut done = 0usize;
     for index in 0..i {
         if copied.peek().is_some_and(|(at, _)| *at == index) {
@@ -291,23 +395,31 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
             }
             continue;
         }
-        if let Some(((g, a), p)) = points.next() {
-            let e_n = if with_e_n {
-                format!(",{}", crate::args::fmt_num(e_ns[done]))
-            } else {
-                String::new()
-            };
-            done += 1;
-            writeln!(
-                out,
-                "{},{}{e_n},{},{}",
-                crate::args::fmt_num(*g),
-                crate::args::fmt_num(*a),
-                crate::args::fmt_num(*p),
-                crate::args::fmt_num(tangential_restitution(*p))
-            )
-            .context("writing the output")?;
+        if done >= gammas.len() {
+            // Every line is a copied one or a point: not reached.
+            continue;
         }
+        let k = done % CHUNK;
+        if k == 0 {
+            let n = CHUNK.min(gammas.len() - done);
+            answer(done, &mut ps[..n]).map_err(failed)?;
+        }
+        let (g, a, p) = (gammas[done], alphas[done], ps[k]);
+        let e_n = if with_e_n {
+            format!(",{}", crate::args::fmt_num(e_ns[done]))
+        } else {
+            String::new()
+        };
+        done += 1;
+        writeln!(
+            out,
+            "{},{}{e_n},{},{}",
+            crate::args::fmt_num(g),
+            crate::args::fmt_num(a),
+            crate::args::fmt_num(p),
+            crate::args::fmt_num(tangential_restitution(p))
+        )
+        .context("writing the output")?;
     }
     out.flush().context("writing the output")?;
     Ok(())
