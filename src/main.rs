@@ -17,9 +17,11 @@ use cmd::{accuracy as accuracy_cmd, plot as plot_cmd, query as query_cmd, scene 
 #[command(
     name = "sweep",
     version,
-    about = "Oblique elastic impacts with friction: the universal tangential restitution P(gamma, alpha)",
-    long_about = "Oblique elastic impacts with friction by the method of dimensionality reduction \
-(Hertz normal contact, Cattaneo-Mindlin partial slip).\n\n\
+    about = "Oblique impacts of spheres with friction, elastic and viscoelastic: the universal \
+tangential restitution P(gamma, alpha, e_n)",
+    long_about = "Oblique impacts of spheres with friction by the method of dimensionality \
+reduction (Hertz normal contact, Cattaneo-Mindlin partial slip), elastic or viscoelastic \
+(every spring a Kelvin-Voigt element; normal restitution e_n from 0.3 to 1, --e-n).\n\n\
 Every rebound of a sphere on a half-space is decided by one function P(gamma, alpha):\n  \
 gamma = sqrt((m*/m_t) G*/E*)        material group\n  \
 alpha = (2/7)(m*/m_t) mu v_z0/|u0|  friction group (alpha = inf: no slip)\n  \

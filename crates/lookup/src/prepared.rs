@@ -166,7 +166,7 @@ impl Table {
         surface.check_e_n(contact.restitution)?;
         if let (Some(g), OutOfDomain::Error) = (surface.pair_gamma(), contact.outside) {
             if surface.rule_gamma(k.gamma) != g {
-                return Err(surface.gamma_outside(k.gamma).into());
+                return Err(surface.gamma_outside(k.gamma));
             }
         }
         k.line = PairLine::new(

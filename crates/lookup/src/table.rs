@@ -168,7 +168,7 @@ impl Table {
     /// for an elastic table; otherwise the error every query with that `e_n` returns (the
     /// field `e_n` and the range). Rebounds check it even where `P` is not needed (`u0 = 0`).
     pub fn check_restitution(&self, e_n: f64) -> Result<(), LookupError> {
-        Ok(self.surface.check_e_n(e_n)?)
+        self.surface.check_e_n(e_n)
     }
 
     /// The `e_n` range of a table with a normal-restitution axis (`None`: an elastic table,
