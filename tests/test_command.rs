@@ -62,7 +62,15 @@ fn scripts_install_python_packages_only_into_their_own_environment() {
         }
     }
     let test = read("scripts/test");
-    let lines = code_lines(&test);
+    // A step run through the timer, `step "NAME" COMMAND...`, is its command.
+    let lines: Vec<String> = code_lines(&test)
+        .into_iter()
+        .map(|l| {
+            l.strip_prefix("step \"")
+                .and_then(|rest| rest.split_once("\" "))
+                .map_or(l.clone(), |(_, command)| command.to_string())
+        })
+        .collect();
     let venv = lines
         .iter()
         .position(|l| *l == "source scripts/venv.sh")
