@@ -93,19 +93,8 @@ fn failure(args: &RunArgs, output: &Path, e: JobError) -> Failure {
             resume(),
             restart()
         )),
-        JobError::CheckpointForeign { checkpoint, nodes } => {
-            let (what, why) = match nodes {
-                Some(n) => (
-                    format!("the checkpoint of an interrupted run ({n} nodes)"),
-                    "it was written for a different config or shard (domain, nodes, solver or \
-                     checks differ, or another engine version); resume with the config it was \
-                     started with, or",
-                ),
-                None => (
-                    "no readable checkpoint".to_string(),
-                    "it cannot be resumed;",
-                ),
-            };
+        ref e @ JobError::CheckpointForeign { ref checkpoint, .. } => {
+            let (what, why) = e.foreign_checkpoint_words().unwrap_or_default();
             Failure::usage(format!(
                 "{} holds {what}: {why} discard it and start afresh with\n  {}",
                 checkpoint.display(),

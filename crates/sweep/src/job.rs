@@ -255,6 +255,27 @@ pub enum JobError {
 }
 
 impl JobError {
+    /// For [`JobError::CheckpointForeign`] with `nodes` (`None`: unreadable): what the
+    /// checkpoint holds and why this job cannot continue it, in words that end where the
+    /// caller names how to discard it (`None` for any other error).
+    pub fn foreign_checkpoint_words(&self) -> Option<(String, &'static str)> {
+        let JobError::CheckpointForeign { nodes, .. } = self else {
+            return None;
+        };
+        Some(match nodes {
+            Some(n) => (
+                format!("the checkpoint of an interrupted run ({n} nodes)"),
+                "it was written for a different config or shard (domain, nodes, solver or \
+                 checks differ, or another engine version); resume with the config it was \
+                 started with, or",
+            ),
+            None => (
+                "no readable checkpoint".to_string(),
+                "it cannot be resumed;",
+            ),
+        })
+    }
+
     /// Whether the caller can fix the cause (the config, the arguments, the output path, an
     /// earlier run's checkpoint or another run on the output), as opposed to a failure of the
     /// machine or an interruption.
