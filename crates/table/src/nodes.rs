@@ -109,20 +109,26 @@ pub fn check_positions(name: &str, patch: &Patch, stored: StoredNodes<'_>) -> Re
     let dims = patch.dims() as usize;
     let m = patch.leaf_intervals();
     let n1 = m + 1;
-    // The dataset and value range of each tree axis: (values, lo, span).
-    let axis_data: Vec<(&str, &[f64], f64, f64)> = (0..dims)
+    // The dataset, value range and root cells of each tree axis: (name, values, lo, span,
+    // blocks).
+    let axis_data: Vec<(&str, &[f64], f64, f64, f64)> = (0..dims)
         .map(|k| {
-            let (lo, width, _) = patch.axis(k);
+            let (lo, width, blocks) = patch.axis(k);
             let ds = match (patch.is_pair(), k) {
                 (false, 0) => ("gamma", stored.gamma),
                 (false, 1) | (true, 0) => ("coord", stored.coord),
                 _ => ("e_n", stored.e_n.unwrap_or(&[])),
             };
-            (ds.0, ds.1, lo, width)
+            (ds.0, ds.1, lo, width, blocks as f64)
         })
         .collect();
     let boxes = leaf_boxes(patch);
     for (leaf, (pos, depth)) in boxes.iter().enumerate() {
+        // Root cells per unit of the axis coordinate at this leaf's depth, per axis.
+        let mut scale = [1.0; 3];
+        for (k, &(.., blocks)) in axis_data.iter().enumerate() {
+            scale[k] = blocks * f64::from(depth[k].min(1000) as i32).exp2();
+        }
         for node in 0..size {
             let at = leaf * size + node;
             // Node index along axis k: digit k of `node` in base m + 1, axis 0 outermost.
@@ -132,10 +138,8 @@ pub fn check_positions(name: &str, patch: &Patch, stored: StoredNodes<'_>) -> Re
                 idx[k] = rest % n1;
                 rest /= n1;
             }
-            for (k, &(ds, values, lo, span)) in axis_data.iter().enumerate() {
-                let blocks = patch.axis(k).2 as f64;
-                let scale = blocks * f64::from(depth[k].min(1000) as i32).exp2();
-                let x = (pos[k] + idx[k] as f64 / m as f64) / scale;
+            for (k, &(ds, values, lo, span, _)) in axis_data.iter().enumerate() {
+                let x = (pos[k] + idx[k] as f64 / m as f64) / scale[k];
                 let want = lo + span * x;
                 let got = values[at];
                 let off = (got - want).abs();
