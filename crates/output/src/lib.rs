@@ -684,6 +684,15 @@ mod tests {
         dir
     }
 
+    /// The process id of a child that has exited (a writer killed before it cleaned up).
+    #[cfg(target_os = "linux")]
+    fn dead_pid() -> u32 {
+        let mut child = std::process::Command::new("true").spawn().expect("spawn");
+        let pid = child.id();
+        child.wait().expect("wait");
+        pid
+    }
+
     fn names(dir: &Path) -> Vec<String> {
         let mut v: Vec<String> = std::fs::read_dir(dir)
             .expect("read folder")
@@ -824,9 +833,7 @@ mod tests {
     #[test]
     fn temporaries_of_killed_writers_are_removed_and_others_kept() {
         let dir = scratch("stale");
-        let mut child = std::process::Command::new("true").spawn().expect("spawn");
-        let dead = child.id();
-        child.wait().expect("wait");
+        let dead = dead_pid();
         let target = dir.join("t.h5");
         let stale = [
             format!(".t.h5.tmp-{dead}"),
@@ -997,9 +1004,7 @@ mod tests {
     #[test]
     fn links_to_previous_files_left_by_a_killed_commit_are_removed() {
         let dir = scratch("oldlink");
-        let mut child = std::process::Command::new("true").spawn().expect("spawn");
-        let dead = child.id();
-        child.wait().expect("wait");
+        let dead = dead_pid();
         std::fs::write(dir.join(format!(".s.csv.tmp-{dead}-old")), b"old").expect("write");
         write_bytes(&dir.join("s.csv"), b"new").expect("write");
         assert_eq!(names(&dir), ["s.csv"]);
