@@ -5,10 +5,11 @@ use crate::rebound::{Body, Elastic, Incident3, Motion3, Pair};
 use crate::{Contact, Table};
 use oblique_table::Surface;
 
-/// Held while a test starts a child process and while it has an HDF5 file open for writing: a
-/// child inherits the parent's open descriptors, and with them HDF5's lock on a file being
-/// written (`flock`, kept until the child exits), so a later open of that file in the test
-/// process fails with "unable to lock file" (seen under load). Reads need no guard.
+/// Held while a test starts a child process and while the test itself has an HDF5 file open
+/// for writing with the `hdf5` crate (an edit of a table on purpose): a child inherits the
+/// parent's open descriptors, and with them HDF5's lock on a file being written (`flock`, kept
+/// until the child exits), so a later edit of that file in the test process fails with "unable
+/// to lock file". The workspace's own reader and writer take no lock and need no guard.
 pub fn fork_guard() -> std::sync::MutexGuard<'static, ()> {
     static GUARD: std::sync::Mutex<()> = std::sync::Mutex::new(());
     GUARD.lock().unwrap_or_else(|e| e.into_inner())

@@ -395,10 +395,16 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
     }
     crate::format::verify_seal(&bytes).map_err(|m| r.invalid(m))?;
     drop(bytes);
-    let file = hdf5::File::open(path_ref).map_err(|e| TableError::Io {
-        path: path_str.clone(),
-        message: format!("not an HDF5 file, or truncated/corrupted (HDF5: {e})"),
-    })?;
+    // No HDF5 file lock: a table is never written in place (a writer renames a complete file
+    // over it), and a lock held by another process on the same file (an h5py session, or a
+    // child process that inherited a writer's descriptor) must not make a read fail.
+    let file = hdf5::File::with_options()
+        .with_fapl(|p| p.file_locking(false))
+        .open(path_ref)
+        .map_err(|e| TableError::Io {
+            path: path_str.clone(),
+            message: format!("not an HDF5 file, or truncated/corrupted (HDF5: {e})"),
+        })?;
     let format = r.attr_str(&file, ATTR_FORMAT).map_err(|_| {
         r.invalid(format!(
             "not a P table (root attribute '{ATTR_FORMAT}' = '{FORMAT_NAME}' missing)"

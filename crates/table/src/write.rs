@@ -248,7 +248,9 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     // A user block for the seal (`crate::format::seal_of`), written after the file is
     // closed.
     let file = hdf5::File::with_options()
-        .with_fapl(|p| p.libver_v110())
+        // No HDF5 file lock: `tmp` is this process's own file, and a lock on it would pass to
+        // any child process started while it is open, which then keeps it after the rename.
+        .with_fapl(|p| p.libver_v110().file_locking(false))
         .with_fcpl(|p| p.userblock(USERBLOCK as u64))
         .create(tmp)
         .map_err(w.e("create file"))?;
