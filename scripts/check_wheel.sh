@@ -74,11 +74,14 @@ import oblique
 
 p = oblique.Table().p(1.754, 1.0)
 assert abs(p - 0.098791819) < 2e-5, p
+# Normal restitution 0.8 (Kelvin-Voigt law): -0.0427926 by simulation at tol 1e-9.
+p8 = oblique.Table().p(1.754, 1.0, e_n=0.8)
+assert abs(p8 + 0.0427926) < 2e-5, p8
 maps = [line.split()[-1] for line in open("/proc/self/maps") if "hdf5" in line.lower()]
 assert maps, "no HDF5 library mapped"
 outside = sorted({m for m in maps if "oblique.libs" not in m})
 assert not outside, f"HDF5 from outside the wheel: {outside}"
-print(f"oblique.Table().p(1.754, 1.0) = {p:.9f} (built-in table; HDF5 from the wheel)")
+print(f"oblique.Table().p(1.754, 1.0) = {p:.9f}, e_n=0.8: {p8:.9f} (built-in table; HDF5 from the wheel)")
 EOF
 run=(env -i HOME="$work" PATH=/usr/bin:/bin LANG=C.UTF-8 "$work/venv/bin/python3" "$work/use.py")
 env -i PATH=/usr/bin:/bin bash -c 'command -v cargo' >/dev/null 2>&1 &&

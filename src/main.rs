@@ -119,7 +119,8 @@ caption names the table, its provenance and the command. More: docs/figures.md."
     Plot(plot_cmd::PlotArgs),
     /// Answer P(gamma, alpha) from a table without simulating: one point, or a batch of lines.
     #[command(after_help = "Examples:\n  \
-sweep query --gamma 1.754 --alpha 1              (the built-in tables/isotropic.h5)\n  \
+sweep query --gamma 1.754 --alpha 1              (the built-in tables/default.h5)\n  \
+sweep query --gamma 1.754 --alpha 1 --e-n 0.8    (normal restitution 0.8, Kelvin-Voigt law)\n  \
 sweep query tables/full.h5 --gamma 1.754 --alpha 1\n  \
 sweep query tables/full.h5 --gamma 1.754 --alpha inf --json\n  \
 sweep query tables/full.h5 --batch points.csv > answers.csv\n  \
@@ -136,8 +137,9 @@ output at all (exit 2), whatever the size.\n\
 --clamp answers points outside the domain at the nearest gamma of the table instead.\n\
 Points on the full-slip line (alpha below alpha_c1, or alpha_c2 for gamma <= 1) are answered\n\
 in closed form, P = 1 - 7 alpha, for any gamma > 0, inside the table's domain or not.\n\
-Without TABLE, the table built into sweep answers: tables/isotropic.h5 (one isotropic\n\
-material, 1.52 <= gamma <= 2.16; give tables/full.h5 for 0.1 <= gamma <= 3.5).")]
+Without TABLE, the table built into sweep answers: tables/default.h5 (Kelvin-Voigt law,\n\
+1.3 <= gamma <= 2.2, 0.3 <= e_n <= 1: every body of the material catalogue; give\n\
+tables/full.h5 for 0.1 <= gamma <= 3.5 at e_n = 1).")]
     Query(query_cmd::QueryArgs),
     /// Accuracy against cost: error of each scheme over a ladder of resolutions against a tight
     /// reference, time per impact, CSV and log-log plot; optionally the table-level trade.

@@ -366,12 +366,12 @@ fn query_answers_no_p_beyond_one() {
 }
 
 /// Without a table, `sweep query` answers from the table built into the binary
-/// (tables/isotropic.h5), in any directory; `--help` names it; outside its domain the message
-/// points to tables/full.h5.
+/// (tables/default.h5), in any directory, at e_n = 1 and below; `--help` names it; outside its
+/// domain the message points to tables/full.h5.
 #[test]
 fn without_a_table_the_built_in_one_answers() {
-    let isotropic = Table::open(concat!(env!("CARGO_MANIFEST_DIR"), "/tables/isotropic.h5"))
-        .expect("isotropic.h5");
+    let shipped =
+        Table::open(concat!(env!("CARGO_MANIFEST_DIR"), "/tables/default.h5")).expect("default.h5");
     let dir = std::env::temp_dir();
     let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
         .args(["query", "--gamma", "1.754", "--alpha", "1", "--json"])
@@ -384,9 +384,26 @@ fn without_a_table_the_built_in_one_answers() {
         String::from_utf8_lossy(&out.stderr)
     );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
-    let want = isotropic.p(1.754, 1.0).unwrap();
+    let want = shipped.p(1.754, 1.0).unwrap();
     assert_eq!(v["P"].as_f64().unwrap().to_bits(), want.to_bits());
-    assert_eq!(v["table"], "built-in tables/isotropic.h5");
+    assert_eq!(v["table"], "built-in tables/default.h5");
+    // A dissipative impact, with no table file.
+    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .args([
+            "query", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.8", "--json",
+        ])
+        .current_dir(&dir)
+        .output()
+        .expect("run");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let want = shipped.p_e(1.754, 1.0, 0.8).unwrap();
+    assert_eq!(v["P"].as_f64().unwrap().to_bits(), want.to_bits());
+    assert_ne!(want, shipped.p(1.754, 1.0).unwrap());
     let out = sweep(&["query", "--batch", "-"], Some("1.75,0.3\n2,inf\n"));
     assert!(
         out.status.success(),
@@ -403,16 +420,23 @@ fn without_a_table_the_built_in_one_answers() {
         .unwrap()
         .parse()
         .unwrap();
-    assert_eq!(p.to_bits(), isotropic.p(1.75, 0.3).unwrap().to_bits());
+    assert_eq!(p.to_bits(), shipped.p(1.75, 0.3).unwrap().to_bits());
     refused(
         &sweep(&["query", "--gamma", "3", "--alpha", "1"], None),
-        &["built-in table is tables/isotropic.h5", "tables/full.h5"],
+        &["built-in table is tables/default.h5", "tables/full.h5"],
+    );
+    refused(
+        &sweep(
+            &["query", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.2"],
+            None,
+        ),
+        &["--e-n", "0.2"],
     );
     let help = sweep(&["query", "--help"], None);
     let help = String::from_utf8_lossy(&help.stdout);
     assert!(help.contains("[TABLE]"), "{help}");
     assert!(
-        help.contains("Default: the table built into sweep, tables/isotropic.h5"),
+        help.contains("Default: the table built into sweep, tables/default.h5"),
         "{help}"
     );
 }

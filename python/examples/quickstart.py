@@ -3,7 +3,7 @@ and the solver for a point checked against the table.
 
     python3 python/examples/quickstart.py [TABLE]
 
-TABLE defaults to the table built into the package (tables/isotropic.h5); runs from any
+TABLE defaults to the table built into the package (tables/default.h5); runs from any
 directory.
 """
 
@@ -23,6 +23,10 @@ print("alpha :", alpha)
 print("P     :", np.round(table.p(1.754, alpha), 6))
 print("e_t   :", np.round(table.e_t(1.754, alpha), 6))
 print("regime:", table.regime(1.754, alpha))
+# Normal restitution e_n = 0.8 (Kelvin-Voigt law), where the table has an e_n axis (the
+# built-in one has: 0.3 <= e_n <= 1).
+if "e_n" in table.info["axes"]:
+    print("P at e_n = 0.8:", np.round(table.p(1.754, alpha, e_n=0.8), 6))
 
 # A 5 mm alumina sphere hits a glass plate at 3.9 m/s, 30 degrees from the normal.
 alumina = oblique.Material(youngs_modulus=370e9, poisson_ratio=0.25)

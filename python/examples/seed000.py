@@ -2,7 +2,7 @@
 
     python3 python/examples/seed000.py [TABLE] [FIGURE]
 
-TABLE defaults to the table built into the package (tables/isotropic.h5), FIGURE to
+TABLE defaults to the table built into the package (tables/default.h5), FIGURE to
 seed000_alumina_on_glass.png in the current directory. Needs matplotlib.
 """
 

@@ -80,7 +80,7 @@ __all__ = [
 __version__: str = _native.VERSION
 
 #: The table built into the package, opened by ``Table()`` without a path (as the repository
-#: names it: one isotropic material, 1.52 ≤ γ ≤ 2.16).
+#: names it: the Kelvin–Voigt law, 1.3 ≤ γ ≤ 2.2, 0.3 ≤ e_n ≤ 1).
 EMBEDDED_TABLE: str = _native.EMBEDDED_TABLE
 
 #: Names of the friction regimes, indexed by the codes the native layer returns.
@@ -606,9 +606,10 @@ class Table:
 
     ``path``: a ``str``, ``bytes`` or ``os.PathLike`` (``pathlib.Path``); ``None`` (the
     default, ``oblique.Table()``) opens the table built into the package,
-    :data:`EMBEDDED_TABLE` (``tables/isotropic.h5``: one isotropic material,
-    1.52 ≤ γ ≤ 2.16, α from 0 to ∞, stated error bound 8.96e-6); give ``tables/full.h5`` of
-    the repository for 0.1 ≤ γ ≤ 3.5.
+    :data:`EMBEDDED_TABLE` (``tables/default.h5``: the Kelvin–Voigt law, 1.3 ≤ γ ≤ 2.2, α
+    from 0 to ∞, 0.3 ≤ e_n ≤ 1, stated error bound 9.8e-6; every body of the material
+    catalogue, solid spheres, thin shells and pairs of them); give ``tables/full.h5`` of the
+    repository for 0.1 ≤ γ ≤ 3.5 at e_n = 1.
 
     Immutable; one table may be used by many threads. Raises ``FileNotFoundError`` (and the other
     ``OSError`` subclasses) when the file cannot be opened, :class:`TableError` when it is not a

@@ -41,7 +41,7 @@ def test_quickstart_example_runs_from_any_directory(tmp_path):
     )
     assert r.returncode == 0, r.stderr
     assert "simulated P(1.754, 0.3)" in r.stdout
-    assert "built-in tables/isotropic.h5" in r.stdout
+    assert "built-in tables/default.h5" in r.stdout
 
 
 def test_first_example_runs_from_any_directory(tmp_path):

@@ -12,7 +12,9 @@ import pytest
 
 import oblique
 from _oblique_helpers import (
+    DISSIPATIVE,
     SHIPPED,
+    TABLES,
     alpha_c1,
     alpha_c2,
     alpha_lin,
@@ -461,20 +463,37 @@ def test_a_table_path_as_str_bytes_or_path(table_paths):
 
 
 def test_no_path_opens_the_built_in_table(tables):
-    # The table built into the package is tables/isotropic.h5, answered to the same bits.
+    # The table built into the package is tables/default.h5, answered to the same bits, at
+    # e_n = 1 (no e_n given) and below.
     built_in = oblique.Table()
-    assert oblique.EMBEDDED_TABLE == "tables/isotropic.h5"
-    info, shipped = built_in.info, tables["isotropic"].info
-    assert info["path"] == "built-in tables/isotropic.h5"
-    for key in ("gamma_min", "gamma_max", "alpha_max", "error_bound", "git_commit", "created"):
+    assert oblique.EMBEDDED_TABLE == "tables/default.h5"
+    default = oblique.Table(TABLES / "default.h5")
+    demo = oblique.Table(DISSIPATIVE)
+    info, shipped = built_in.info, default.info
+    assert info["path"] == "built-in tables/default.h5"
+    for key in ("gamma_min", "gamma_max", "alpha_max", "e_n_min", "e_n_max", "law",
+                "error_bound", "git_commit", "created"):
         assert info[key] == shipped[key], key
+    assert (info["e_n_min"], info["e_n_max"], info["law"]) == (0.3, 1.0, "kelvin-voigt")
+    assert info["error_bound"] <= 1e-5
     gamma, alpha = domain_points(built_in, 2000, 5)
-    assert np.array_equal(built_in.p(gamma, alpha), tables["isotropic"].p(gamma, alpha))
-    assert abs(built_in.p(1.754, 1.0) - tables["full"].p(1.754, 1.0)) < 2e-5
+    e_n = np.random.default_rng(6).uniform(0.3, 1.0, gamma.shape)
+    assert np.array_equal(built_in.p(gamma, alpha), default.p(gamma, alpha))
+    assert np.array_equal(built_in.p(gamma, alpha, e_n=e_n),
+                          default.p(gamma, alpha, e_n=e_n))
+    assert np.array_equal(built_in.p(gamma, alpha), built_in.p(gamma, alpha, e_n=1.0))
+    # Both within their stated bounds of the same truth.
+    bound = info["error_bound"] + tables["full"].info["error_bound"]
+    assert abs(built_in.p(1.754, 1.0) - tables["full"].p(1.754, 1.0)) < bound
+    bound = info["error_bound"] + demo.info["error_bound"]
+    want = demo.p(1.754, 1.0, e_n=0.8)
+    assert abs(built_in.p(1.754, 1.0, e_n=0.8) - want) < bound
     with pytest.raises(ValueError, match="gamma"):
         built_in.p(3.0, 1.0)
+    with pytest.raises(ValueError, match="e_n"):
+        built_in.p(1.754, 1.0, e_n=0.2)
     assert oblique.Table(clamp=True).clamp
-    assert "built-in tables/isotropic.h5" in repr(built_in)
+    assert "built-in tables/default.h5" in repr(built_in)
 
 
 def test_curve_on_a_finite_alpha_max_table(finite_table, finite_table_path):

@@ -17,8 +17,8 @@ use oblique_table::surface::{Region, Surface};
 #[derive(Args)]
 pub struct QueryArgs {
     /// Table file written by `sweep run` (HDF5, schema v2 to v4). Default: the table built into
-    /// sweep, tables/isotropic.h5 (one isotropic material: 1.52 <= gamma <= 2.16, alpha from 0
-    /// to inf, stated error bound 8.96e-6).
+    /// sweep, tables/default.h5 (Kelvin-Voigt law: 1.3 <= gamma <= 2.2, alpha from 0 to inf,
+    /// 0.3 <= e_n <= 1; every body of the material catalogue; stated error bound 9.8e-6).
     table: Option<PathBuf>,
     /// Material group gamma = sqrt((m*/m_t) G*/E*) (`sweep gamma`); a finite number > 0.
     #[arg(long, value_parser = crate::args::parse_table_gamma, allow_hyphen_values = true,
@@ -98,8 +98,8 @@ pub fn run(args: QueryArgs) -> Result<()> {
             LookupError::Query { name: "e_n", .. } => Failure::usage(format!("--e-n: {e}")),
             LookupError::Query { name: "gamma", .. } if args.table.is_none() => {
                 Failure::usage(format!(
-                    "{e} (--clamp); the built-in table is {} (one isotropic material): give \
-                     tables/full.h5 of the repository for 0.1 <= gamma <= 3.5",
+                    "{e} (--clamp); the built-in table is {} (1.3 <= gamma <= 2.2): give \
+                     tables/full.h5 of the repository for 0.1 <= gamma <= 3.5 (e_n = 1)",
                     oblique_lookup::EMBEDDED_TABLE
                 ))
             }

@@ -1,7 +1,9 @@
-//! The default table, built into the library: `tables/isotropic.h5` (one isotropic material,
-//! `1.52 ≤ γ ≤ 2.16`, every α from 0 to ∞; about 1 MB), so that a program answers `P` with no
-//! table file at hand ([`Table::embedded`]): `sweep query` without a table, and the Python
-//! package's `oblique.Table()`.
+//! The default table, built into the library: `tables/default.h5` (`configs/default.toml`:
+//! `P(γ, α, e_n)` of the Kelvin–Voigt law for `1.3 ≤ γ ≤ 2.2`, every α from 0 to ∞ and
+//! `0.3 ≤ e_n ≤ 1`; about 3.6 MB), so that a program answers `P` with no table file at hand
+//! ([`Table::embedded`]): `sweep query` without a table, and the Python package's
+//! `oblique.Table()`. That γ range holds every body of the material catalogue (solid spheres,
+//! thin shells and pairs of them) and every solid sphere of one isotropic material.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -10,19 +12,20 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use crate::{LookupError, Table};
 
 /// The shipped table built in, as the repository names it.
-pub const EMBEDDED_TABLE: &str = "tables/isotropic.h5";
+pub const EMBEDDED_TABLE: &str = "tables/default.h5";
 
 /// Its bytes (the HDF5 file as committed).
-static BYTES: &[u8] = include_bytes!("../../../tables/isotropic.h5");
+static BYTES: &[u8] = include_bytes!("../../../tables/default.h5");
 
-/// How the built-in table is named in messages and provenance: `built-in tables/isotropic.h5`.
+/// How the built-in table is named in messages and provenance: `built-in tables/default.h5`.
 pub fn embedded_name() -> String {
     format!("built-in {EMBEDDED_TABLE}")
 }
 
 impl Table {
-    /// The table built into the library ([`EMBEDDED_TABLE`]: one isotropic material,
-    /// `1.52 ≤ γ ≤ 2.16`, α in `[0, ∞]`, stated error bound 8.96e-6), loaded and validated as
+    /// The table built into the library ([`EMBEDDED_TABLE`]: the Kelvin–Voigt law,
+    /// `1.3 ≤ γ ≤ 2.2`, α in `[0, ∞]`, `0.3 ≤ e_n ≤ 1`, stated error bound 9.8e-6; `e_n = 1`
+    /// is the elastic surface), loaded and validated as
     /// [`Table::open`] does. The HDF5 library reads files only, so the bytes are written to a
     /// private temporary file (in [`std::env::temp_dir`], created new, removed before this
     /// returns) and opened from there; a few milliseconds.

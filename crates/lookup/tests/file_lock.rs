@@ -50,7 +50,10 @@ fn a_table_locked_by_another_process_still_opens() {
         assert!(child.wait().expect("wait").success());
         let t = opened.unwrap_or_else(|e| panic!("{name} locked elsewhere: {e}"));
         let shipped = Table::open(repo().join("tables").join(name)).expect(name);
-        assert_eq!(format!("{:?}", t.surface()), format!("{:?}", shipped.surface()));
+        assert_eq!(
+            format!("{:?}", t.surface()),
+            format!("{:?}", shipped.surface())
+        );
     }
     std::fs::remove_dir_all(&dir).expect("remove the scratch directory");
 }

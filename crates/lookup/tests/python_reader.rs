@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
-use oblique_lookup::Table;
+use oblique_lookup::{Table, EMBEDDED_TABLE};
 
 fn repo() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
@@ -304,6 +304,82 @@ fn python_reader_gives_the_bits_of_p_e_on_a_table_with_an_e_n_axis() {
          Python {py_time:.1} s)"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The table built into the library (`Table::embedded`, `tables/default.h5`): the Python
+/// reader, reading the shipped file, gives the bits of the built-in table's `p_e` at 50 000
+/// points over its domain (γ, α and e_n uniform, with the ends of each range, α on and next to
+/// the critical curves), and refuses the same points outside it.
+#[test]
+fn python_reader_gives_the_bits_of_the_built_in_table() {
+    let t = Table::embedded().expect("the built-in table");
+    let s = t.surface();
+    let (g_lo, g_hi) = (s.gamma_min(), s.gamma_max());
+    let (lo, hi) = t.restitution().expect("an e_n axis");
+    let mut next = oblique_lookup::testing::uniform(0xDEFA_0017);
+    let n = 50_000;
+    let mut points = Vec::with_capacity(n);
+    for i in 0..n {
+        let g = match i % 53 {
+            0 => g_lo,
+            1 => g_hi,
+            2 => g_hi + 0.01 * next(),
+            _ => g_lo + (g_hi - g_lo) * next(),
+        };
+        let e = match i % 37 {
+            0 => lo,
+            1 => hi,
+            2 => lo - 0.01 * next(),
+            _ => lo + (hi - lo) * next(),
+        };
+        let (c1, c2) = (
+            oblique_table::surface::alpha_c1_dissipative(g, e),
+            oblique_table::surface::alpha_c2(g),
+        );
+        let a = match i % 23 {
+            0 => f64::INFINITY,
+            1 => 0.0,
+            2 => c2,
+            3 => c1,
+            4 => c1 * (1.0 + 1e-3 * next()),
+            5 => c2 * (1.0 - 1e-3 * next()),
+            6 => c2 * (1.0 + 1e-3 * next()),
+            _ => 3.0 * next() * next(),
+        };
+        points.push((g, a, e));
+    }
+    let input: String = points
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect();
+    let lines = python_lines(P_E_LINES, &repo().join(EMBEDDED_TABLE), input);
+    assert_eq!(lines.len(), n + 2);
+    let bound: f64 = lines[1].parse().expect("bound");
+    assert!((bound - t.error_bound()).abs() <= 1e-12 * t.error_bound());
+    let (mut answered, mut refused) = (0, 0);
+    for (&(g, a, e), line) in points.iter().zip(&lines[2..]) {
+        match t.p_e(g, a, e) {
+            Ok(p) => {
+                let r: f64 = line
+                    .parse()
+                    .unwrap_or_else(|_| panic!("({g:?}, {a:?}, {e:?}): Rust {p:?}, Python {line}"));
+                assert_eq!(p.to_bits(), r.to_bits(), "({g:?}, {a:?}, {e:?})");
+                answered += 1;
+            }
+            Err(oblique_lookup::LookupError::Query { name, .. }) => {
+                assert!(
+                    line.starts_with(&format!("error {name}")),
+                    "({g:?}, {a:?}, {e:?}): {line}"
+                );
+                refused += 1;
+            }
+            Err(other) => panic!("({g:?}, {a:?}, {e:?}): {other}"),
+        }
+    }
+    assert!(
+        answered > n * 9 / 10 && refused > n / 100,
+        "{answered} answered, {refused} refused"
+    );
 }
 
 /// The script that answers `gamma,alpha,e_n` lines with `read_table.py`'s `Table.p_e`: `P`
