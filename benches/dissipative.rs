@@ -20,6 +20,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion};
+use oblique_bench::ClockIter;
 use oblique_clock::Clock;
 use oblique_solver::kelvin_voigt::{tau_for_restitution, unit_bodies};
 use oblique_solver::{Accuracy, Request};

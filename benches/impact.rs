@@ -28,6 +28,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{BenchmarkId, Criterion, SamplingMode};
+use oblique_bench::ClockIter;
 use oblique_clock::Clock;
 use oblique_physics::regimes;
 use oblique_solver::hertz::NormalBodies;

@@ -11,7 +11,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::Criterion;
-use oblique_clock::{timed, Clock};
+use oblique_bench::timed;
+use oblique_clock::Clock;
 use oblique_lookup::Table;
 use oblique_solver::{Accuracy, Request};
 

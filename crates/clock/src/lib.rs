@@ -1,7 +1,7 @@
 //! Clocks that other processes on a shared machine do not inflate: the CPU time of the calling
 //! thread or of the whole process (`clock_gettime`, 64-bit Linux; `None` elsewhere), and a
-//! [`Clock`] that a benchmark selects from the environment. With the `criterion` feature,
-//! [`timed`] measures a closure with that clock inside a criterion group.
+//! [`Clock`] that a benchmark selects from the environment (criterion timing with it:
+//! `oblique-bench`).
 
 use std::time::{Duration, Instant};
 
@@ -107,48 +107,6 @@ impl Clock {
         };
         cpu.unwrap_or_else(elapsed_since_start)
     }
-
-    /// Criterion's iteration with this clock: `b.iter` for elapsed time, else the CPU time of
-    /// the iterations.
-    #[cfg(feature = "criterion")]
-    pub fn iter<M, R>(self, b: &mut criterion::Bencher<'_, M>, mut f: impl FnMut() -> R)
-    where
-        M: criterion::measurement::Measurement<Value = Duration>,
-    {
-        match self {
-            Clock::Wall => b.iter(f),
-            _ => b.iter_custom(|iters| {
-                let start = self.now();
-                for _ in 0..iters {
-                    std::hint::black_box(f());
-                }
-                self.now() - start
-            }),
-        }
-    }
-}
-
-/// Time `f` per iteration with `clock`, as the benchmark `name` of the group `g`.
-///
-/// The loop calls `f` directly (not through `&mut f`), so a nanosecond-scale `f` is inlined
-/// into it: through a reference it was called out of line and its result copied through the
-/// stack, which tripled the time of a 3 ns query.
-#[cfg(feature = "criterion")]
-pub fn timed<M: criterion::measurement::Measurement<Value = Duration>, O>(
-    g: &mut criterion::BenchmarkGroup<'_, M>,
-    name: &str,
-    clock: Clock,
-    mut f: impl FnMut() -> O,
-) {
-    g.bench_function(name, |b| {
-        b.iter_custom(|iters| {
-            let start = clock.now();
-            for _ in 0..iters {
-                std::hint::black_box(f());
-            }
-            clock.now() - start
-        })
-    });
 }
 
 #[cfg(test)]

@@ -41,7 +41,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, Throughput};
-use oblique_clock::{timed, Clock};
+use oblique_bench::timed;
+use oblique_clock::Clock;
 use oblique_lookup::rebound::{Incident, Incident3, Motion3, Pair, State};
 use oblique_lookup::{testing, Answer, OutOfDomain, Prepared, Table};
 
