@@ -57,3 +57,17 @@ fn a_table_locked_by_another_process_still_opens() {
     }
     std::fs::remove_dir_all(&dir).expect("remove the scratch directory");
 }
+
+/// A table that this process has open through the `hdf5` crate (HDF5's default locking)
+/// opens too: HDF5 refuses a second open of one file with another locking setting, so the
+/// reader keeps the default unless a lock is in the way.
+#[test]
+fn a_table_open_in_this_process_through_hdf5_still_opens() {
+    let path = repo().join("tables/quick.h5");
+    let held = hdf5::File::open(&path).expect("open with the hdf5 crate");
+    let group = held.group("patches").expect("a group, which keeps the file open");
+    drop(held);
+    let t = Table::open(&path).unwrap_or_else(|e| panic!("quick.h5 open elsewhere: {e}"));
+    assert!(t.p(1.5, 1.0).is_ok());
+    drop(group);
+}

@@ -395,12 +395,22 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
     }
     crate::format::verify_seal(&bytes).map_err(|m| r.invalid(m))?;
     drop(bytes);
-    // No HDF5 file lock: a table is never written in place (a writer renames a complete file
-    // over it), and a lock held by another process on the same file (an h5py session, or a
-    // child process that inherited a writer's descriptor) must not make a read fail.
-    let file = hdf5::File::with_options()
-        .with_fapl(|p| p.file_locking(false))
-        .open(path_ref)
+    // HDF5 locks the file it opens (`flock`). A lock held by another process (an h5py session
+    // writing it, or a child process that inherited a writer's descriptor) must not make a
+    // read fail: a table is never written in place (a writer renames a complete file over
+    // it), so the read is then retried without the lock. The first attempt keeps HDF5's
+    // default, which a file already open in this process through the `hdf5` crate shares
+    // (HDF5 refuses a second open of a file with another locking setting).
+    let file = hdf5::File::open(path_ref)
+        .or_else(|e| {
+            if e.to_string().contains("unable to lock file") {
+                hdf5::File::with_options()
+                    .with_fapl(|p| p.file_locking(false))
+                    .open(path_ref)
+            } else {
+                Err(e)
+            }
+        })
         .map_err(|e| TableError::Io {
             path: path_str.clone(),
             message: format!("not an HDF5 file, or truncated/corrupted (HDF5: {e})"),
