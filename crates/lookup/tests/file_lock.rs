@@ -65,7 +65,9 @@ fn a_table_locked_by_another_process_still_opens() {
 fn a_table_open_in_this_process_through_hdf5_still_opens() {
     let path = repo().join("tables/quick.h5");
     let held = hdf5::File::open(&path).expect("open with the hdf5 crate");
-    let group = held.group("patches").expect("a group, which keeps the file open");
+    let group = held
+        .group("patches")
+        .expect("a group, which keeps the file open");
     drop(held);
     let t = Table::open(&path).unwrap_or_else(|e| panic!("quick.h5 open elsewhere: {e}"));
     assert!(t.p(1.5, 1.0).is_ok());
