@@ -156,9 +156,14 @@ def note_taker(notes: List[str]) -> Callable[[oblique.BuildProgress], None]:
 
 
 def _interrupt_by_signal(report: oblique.BuildProgress) -> None:
-    """Ctrl-C as a terminal sends it: SIGINT to this process, from another thread."""
+    """Ctrl-C as a terminal sends it: SIGINT to this process, from another thread. The thread
+    is joined, so that the signal is delivered before the build can end (a thread started and
+    left alone ran too late once on a loaded machine: the build had finished); its handler
+    then runs in this callback or at the build's next check for signals."""
     if report.kind == "stage" and report.step == 3:
-        threading.Thread(target=os.kill, args=(os.getpid(), signal.SIGINT)).start()
+        sender = threading.Thread(target=os.kill, args=(os.getpid(), signal.SIGINT))
+        sender.start()
+        sender.join()
 
 
 def _interrupt_by_raising(report: oblique.BuildProgress) -> None:

@@ -25,7 +25,8 @@
 //! - `rebound_batch/serial`, `rebound_batch/rayon`: 2¹⁶ random sphere–sphere impacts of one
 //!   prepared pair through `rebound_3d_batch` / `rebound_3d_batch_par`.
 //! - `open/table`, `open/table_e_n`: one `Table::open` of each table (the file read,
-//!   decompressed, checked and indexed), the cost a program pays once.
+//!   decompressed, checked and indexed), the cost a program pays once; `open/embedded`: one
+//!   `Table::embedded` (the built-in table written to a temporary file and opened).
 //! - `cycle/dependent_add_x64`: 64 dependent `f64` additions, to read the times above in
 //!   processor cycles (an addition waits 3 cycles for the previous one on the x86-64 cores
 //!   this was measured on, so the cycle is this time / 192).
@@ -108,6 +109,9 @@ fn main() {
             Table::open(black_box(p)).unwrap_or_else(|e| panic!("{e}"))
         });
     }
+    timed(&mut g, "embedded", clock, || {
+        Table::embedded().unwrap_or_else(|e| panic!("{e}"))
+    });
     g.finish();
 
     // One P.
