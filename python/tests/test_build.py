@@ -157,9 +157,8 @@ def note_taker(notes: List[str]) -> Callable[[oblique.BuildProgress], None]:
 
 def _interrupt_by_signal(report: oblique.BuildProgress) -> None:
     """Ctrl-C as a terminal sends it: SIGINT to this process, from another thread. The thread
-    is joined, so that the signal is delivered before the build can end (a thread started and
-    left alone ran too late once on a loaded machine: the build had finished); its handler
-    then runs in this callback or at the build's next check for signals."""
+    is joined, so that the signal is delivered before the build can end; its handler then runs
+    in this callback or at the build's next check for signals."""
     if report.kind == "stage" and report.step == 3:
         sender = threading.Thread(target=os.kill, args=(os.getpid(), signal.SIGINT))
         sender.start()
@@ -181,8 +180,14 @@ def test_an_interrupted_build_resumes_to_the_uninterrupted_table(tmp_path, cli_t
         seen.append(report)
         interrupt(report)
 
-    with pytest.raises(KeyboardInterrupt, match=r"resume=True"):
-        oblique.build_table(QUICK, out, progress=progress)
+    # Python's own Ctrl-C handler, even where the test runner was started with SIGINT ignored
+    # (a background job of a non-interactive shell: Python then keeps SIG_IGN).
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt, match=r"resume=True"):
+            oblique.build_table(QUICK, out, progress=progress)
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert ckpt.is_file() and not out.exists()
     assert not (tmp_path / "t.h5.lock").exists(), "the lock is released"
     assert [r.stage for r in seen if r.kind == "stage"][:2] == ["preflight", "stick_low refinement"]
