@@ -432,6 +432,17 @@ fn without_a_table_the_built_in_one_answers() {
         ),
         &["--e-n", "0.2"],
     );
+    // Outside its gamma range below e_n = 1: where a table for that gamma comes from.
+    refused(
+        &sweep(
+            &["query", "--gamma", "2.5", "--alpha", "1", "--e-n", "0.8"],
+            None,
+        ),
+        &[
+            "built-in table is tables/default.h5",
+            "configs/dissipative.toml",
+        ],
+    );
     let help = sweep(&["query", "--help"], None);
     let help = String::from_utf8_lossy(&help.stdout);
     assert!(help.contains("[TABLE]"), "{help}");

@@ -97,9 +97,14 @@ pub fn run(args: QueryArgs) -> Result<()> {
         .map_err(|e| match e {
             LookupError::Query { name: "e_n", .. } => Failure::usage(format!("--e-n: {e}")),
             LookupError::Query { name: "gamma", .. } if args.table.is_none() => {
+                let other = if e_n < 1.0 {
+                    "build a table with an e_n range that holds this gamma (sweep run \
+                     configs/dissipative.toml: 1 <= gamma <= 2.6, or your own config)"
+                } else {
+                    "give tables/full.h5 of the repository for 0.1 <= gamma <= 3.5"
+                };
                 Failure::usage(format!(
-                    "{e} (--clamp); the built-in table is {} (1.3 <= gamma <= 2.2): give \
-                     tables/full.h5 of the repository for 0.1 <= gamma <= 3.5 (e_n = 1)",
+                    "{e} (--clamp); the built-in table is {} (1.3 <= gamma <= 2.2): {other}",
                     oblique_lookup::EMBEDDED_TABLE
                 ))
             }
