@@ -372,35 +372,28 @@ fn query_answers_no_p_beyond_one() {
 fn without_a_table_the_built_in_one_answers() {
     let shipped =
         Table::open(concat!(env!("CARGO_MANIFEST_DIR"), "/tables/default.h5")).expect("default.h5");
-    let dir = std::env::temp_dir();
-    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args(["query", "--gamma", "1.754", "--alpha", "1", "--json"])
-        .current_dir(&dir)
-        .output()
-        .expect("run");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    // `sweep query ARGS --json` run in a folder without tables: its JSON answer.
+    let answer = |args: &[&str]| -> serde_json::Value {
+        let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .arg("query")
+            .args(args)
+            .arg("--json")
+            .current_dir(std::env::temp_dir())
+            .output()
+            .expect("run");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).expect("json")
+    };
+    let v = answer(&["--gamma", "1.754", "--alpha", "1"]);
     let want = shipped.p(1.754, 1.0).unwrap();
     assert_eq!(v["P"].as_f64().unwrap().to_bits(), want.to_bits());
     assert_eq!(v["table"], "built-in tables/default.h5");
     // A dissipative impact, with no table file.
-    let out = Command::new(env!("CARGO_BIN_EXE_sweep"))
-        .args([
-            "query", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.8", "--json",
-        ])
-        .current_dir(&dir)
-        .output()
-        .expect("run");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let v = answer(&["--gamma", "1.754", "--alpha", "1", "--e-n", "0.8"]);
     let want = shipped.p_e(1.754, 1.0, 0.8).unwrap();
     assert_eq!(v["P"].as_f64().unwrap().to_bits(), want.to_bits());
     assert_ne!(want, shipped.p(1.754, 1.0).unwrap());

@@ -183,6 +183,15 @@ fn dissipative_table(dir: &std::path::Path) -> PathBuf {
     out
 }
 
+/// The points as `gamma,alpha,e_n` lines, each number as the shortest decimal that reads back
+/// to the same f64.
+fn p_e_input(points: &[(f64, f64, f64)]) -> String {
+    points
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect()
+}
+
 /// Every line `script` prints when run by python3 with the arguments `scripts/`, `table` and
 /// `input` on its standard input.
 fn python_lines(script: &str, table: &std::path::Path, input: String) -> Vec<String> {
@@ -247,10 +256,7 @@ fn python_reader_gives_the_bits_of_p_e_on_a_table_with_an_e_n_axis() {
         };
         points.push((g, a, e));
     }
-    let input: String = points
-        .iter()
-        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
-        .collect();
+    let input = p_e_input(&points);
     let script = "import sys\n\
                   sys.path.insert(0, sys.argv[1])\n\
                   from read_table import Table, DomainError\n\
@@ -348,10 +354,7 @@ fn python_reader_gives_the_bits_of_the_built_in_table() {
         };
         points.push((g, a, e));
     }
-    let input: String = points
-        .iter()
-        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
-        .collect();
+    let input = p_e_input(&points);
     let lines = python_lines(P_E_LINES, &repo().join(EMBEDDED_TABLE), input);
     assert_eq!(lines.len(), n + 2);
     let bound: f64 = lines[1].parse().expect("bound");
@@ -438,10 +441,7 @@ fn python_reader_gives_the_bits_of_p_e_on_the_table_of_one_pair() {
         };
         points.push((g, a, e));
     }
-    let input: String = points
-        .iter()
-        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
-        .collect();
+    let input = p_e_input(&points);
     let lines = python_lines(P_E_LINES, &path, input);
     assert_eq!(lines.len(), n + 2);
     assert_eq!(lines[0], format!("{gamma:?}"), "Table.pair_gamma");
@@ -587,10 +587,7 @@ fn the_line_at_overflowing_gamma_in_rust_and_python() {
         .iter()
         .flat_map(|&g| [(g, 0.1, 0.6), (g, 0.17, 0.6), (g, 0.14, 1.0), (g, 0.2, 0.6)])
         .collect();
-    let input: String = points
-        .iter()
-        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
-        .collect();
+    let input = p_e_input(&points);
     let lines = python_lines(script, &path, input);
     assert_eq!(lines.len(), points.len());
     for (&(g, a, e), line) in points.iter().zip(&lines) {
