@@ -147,19 +147,6 @@ impl Piece {
         let z = y - self.y_ref;
         self.a + z * (self.b + self.q * z)
     }
-
-    /// `∫ ũ dx` of a limit piece at indentation `d` with limit factor `c` (m²).
-    fn limit_integral(&self, c: f64, d: f64, radius: f64) -> f64 {
-        let dx = self.x1 - self.x0;
-        // ±c ∫ (d − x²/R) dx, with x1³ − x0³ = dx (x0² + x0 x1 + x1²).
-        let cube = dx * (self.x0 * self.x0 + self.x0 * self.x1 + self.x1 * self.x1);
-        let v = c * (d * dx - cube / (3.0 * radius));
-        if self.kind == Kind::Plus {
-            v
-        } else {
-            -v
-        }
-    }
 }
 
 /// Roots of `A + B z + Q z² = 0` strictly inside `(lo, hi)`, appended to `out`.
@@ -190,19 +177,141 @@ pub(crate) fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut V
     }
 }
 
-/// Consecutive pieces with the sums the step needs, so that a chunk of stuck pieces that stays
-/// inside the limits costs O(1) per step.
-#[derive(Debug, Clone, Default)]
-struct Chunk {
-    pieces: Vec<Piece>,
-    /// Whether some piece is at a limit (those change every step).
-    has_limit: bool,
+/// Sums over a run of pieces that a step needs.
+#[derive(Debug, Clone, Copy)]
+struct Sums {
     /// `Σ ∫ (ũ − W) dx` and `Σ Δx` over the stuck pieces (m², m).
     rel_integral: f64,
     stuck_length: f64,
     /// `max upper` and `min lower` over the stuck pieces (m).
     upper: f64,
     lower: f64,
+    /// Number of pieces at the `+` and `−` limit.
+    slipping: [u32; 2],
+    /// `Σ Δx` and `Σ Δ(x³)` over the pieces at the `+` and `−` limit (m, m³): their integral
+    /// at indentation `d` is `± c (d Σ Δx − Σ Δ(x³)/(3 R*))`.
+    slip_length: [f64; 2],
+    slip_cube: [f64; 2],
+}
+
+impl Sums {
+    /// The sums of no piece.
+    const EMPTY: Sums = Sums {
+        rel_integral: 0.0,
+        stuck_length: 0.0,
+        upper: f64::NEG_INFINITY,
+        lower: f64::INFINITY,
+        slipping: [0; 2],
+        slip_length: [0.0; 2],
+        slip_cube: [0.0; 2],
+    };
+
+    /// These sums with one more piece.
+    #[inline]
+    fn with(mut self, p: &Piece) -> Sums {
+        let dx = p.x1 - p.x0;
+        if p.kind == Kind::Stuck {
+            self.rel_integral += p.rel_integral;
+            self.stuck_length += dx;
+            self.upper = self.upper.max(p.upper);
+            self.lower = self.lower.min(p.lower);
+        } else {
+            let i = usize::from(p.kind == Kind::Minus);
+            self.slipping[i] += 1;
+            self.slip_length[i] += dx;
+            self.slip_cube[i] += dx * (p.x0 * p.x0 + p.x0 * p.x1 + p.x1 * p.x1);
+        }
+        self
+    }
+
+    /// The sums over two runs of pieces.
+    #[inline]
+    fn merge(self, o: &Sums) -> Sums {
+        Sums {
+            rel_integral: self.rel_integral + o.rel_integral,
+            stuck_length: self.stuck_length + o.stuck_length,
+            upper: self.upper.max(o.upper),
+            lower: self.lower.min(o.lower),
+            slipping: [
+                self.slipping[0] + o.slipping[0],
+                self.slipping[1] + o.slipping[1],
+            ],
+            slip_length: [
+                self.slip_length[0] + o.slip_length[0],
+                self.slip_length[1] + o.slip_length[1],
+            ],
+            slip_cube: [
+                self.slip_cube[0] + o.slip_cube[0],
+                self.slip_cube[1] + o.slip_cube[1],
+            ],
+        }
+    }
+
+    /// Whether a run with these sums changes in a step: a slipping piece sticks again
+    /// (`resticks`, per sign) or a stuck piece crosses a limit (`upper > t_plus` or
+    /// `lower < t_minus`).
+    #[inline]
+    fn changes(&self, resticks: [bool; 2], t_plus: f64, t_minus: f64) -> bool {
+        (self.slipping[0] > 0 && resticks[0])
+            || (self.slipping[1] > 0 && resticks[1])
+            || self.upper > t_plus
+            || self.lower < t_minus
+    }
+
+    /// `∫ ũ dx` over the run at indentation `d`, offset `W`, limit factor `c` (every piece
+    /// lies below `d`).
+    #[inline]
+    fn integral(&self, w: f64, c: f64, d: f64, radius: f64) -> f64 {
+        let mut total = self.rel_integral + w * self.stuck_length;
+        if self.slipping[0] + self.slipping[1] > 0 {
+            let slip =
+                |i: usize| c * (d * self.slip_length[i] - self.slip_cube[i] / (3.0 * radius));
+            total += slip(0) - slip(1);
+        }
+        total
+    }
+
+    /// These sums without a piece they hold (`upper` and `lower` are left as they are: still
+    /// bounds).
+    #[inline]
+    fn without(mut self, p: &Piece) -> Sums {
+        let dx = p.x1 - p.x0;
+        if p.kind == Kind::Stuck {
+            self.rel_integral -= p.rel_integral;
+            self.stuck_length -= dx;
+        } else {
+            let i = usize::from(p.kind == Kind::Minus);
+            self.slipping[i] -= 1;
+            if self.slipping[i] == 0 {
+                // Exactly nothing, not the rounding left by the subtraction.
+                self.slip_length[i] = 0.0;
+                self.slip_cube[i] = 0.0;
+            } else {
+                self.slip_length[i] -= dx;
+                self.slip_cube[i] -= dx * (p.x0 * p.x0 + p.x0 * p.x1 + p.x1 * p.x1);
+            }
+        }
+        self
+    }
+}
+
+/// Consecutive pieces with the sums the step needs, so that a chunk of stuck pieces that stays
+/// inside the limits costs O(1) per step.
+///
+/// A piece appended at the outer end (every compression step) or removed or cut there (every
+/// restitution step) updates the sums in O(1): added or subtracted, with `upper` and `lower`
+/// left as they were on a removal (still bounds, so at worst the chunk is updated and summed
+/// again one step early); a chunk whose pieces change inside is summed again.
+#[derive(Debug, Clone, Default)]
+struct Chunk {
+    pieces: Vec<Piece>,
+    sums: Sums,
+}
+
+impl Default for Sums {
+    fn default() -> Self {
+        Sums::EMPTY
+    }
 }
 
 /// Pieces per chunk above which a chunk is split in two.
@@ -216,6 +325,15 @@ pub(crate) trait PieceChunk: Default {
     fn pieces_mut(&mut self) -> &mut Vec<Self::Piece>;
     /// Recompute the sums after the pieces changed.
     fn summarize(&mut self);
+    /// Remove the last piece and update the sums.
+    fn remove_last(&mut self) {
+        self.pieces_mut().pop();
+        self.summarize();
+    }
+    /// Update the sums after the last piece, `old` before, changed.
+    fn replace_last(&mut self, _old: &Self::Piece) {
+        self.summarize();
+    }
 }
 
 impl PieceChunk for Chunk {
@@ -224,7 +342,17 @@ impl PieceChunk for Chunk {
         &mut self.pieces
     }
     fn summarize(&mut self) {
-        Chunk::summarize(self);
+        self.sums = self.pieces.iter().fold(Sums::EMPTY, Sums::with);
+    }
+    fn remove_last(&mut self) {
+        if let Some(p) = self.pieces.pop() {
+            self.sums = self.sums.without(&p);
+        }
+    }
+    fn replace_last(&mut self, old: &Piece) {
+        if let Some(p) = self.pieces.last() {
+            self.sums = self.sums.without(old).with(p);
+        }
     }
 }
 
@@ -237,25 +365,21 @@ pub(crate) fn truncate<C: PieceChunk<Piece = Piece>>(
     refresh: impl Fn(&mut Piece),
 ) {
     while let Some(ch) = chunks.last_mut() {
-        let pieces = ch.pieces_mut();
-        while pieces.last().is_some_and(|p| p.y0 >= top) {
-            pieces.pop();
+        while ch.pieces_mut().last().is_some_and(|p| p.y0 >= top) {
+            ch.remove_last();
         }
-        if pieces.is_empty() {
+        if ch.pieces_mut().is_empty() {
             chunks.pop();
             continue;
         }
-        let mut cut = false;
-        if let Some(p) = pieces.last_mut() {
+        if let Some(p) = ch.pieces_mut().last_mut() {
             if p.y1 > top {
+                let old = *p;
                 p.y1 = top;
                 p.x1 = (radius * top).sqrt();
                 refresh(p);
-                cut = true;
+                ch.replace_last(&old);
             }
-        }
-        if cut {
-            ch.summarize();
         }
         break;
     }
@@ -297,35 +421,22 @@ pub(crate) fn install<C: PieceChunk>(
 }
 
 impl Chunk {
-    fn summarize(&mut self) {
-        self.has_limit = false;
-        self.rel_integral = 0.0;
-        self.stuck_length = 0.0;
-        self.upper = f64::NEG_INFINITY;
-        self.lower = f64::INFINITY;
-        for p in &self.pieces {
-            if p.kind == Kind::Stuck {
-                self.rel_integral += p.rel_integral;
-                self.stuck_length += p.x1 - p.x0;
-                self.upper = self.upper.max(p.upper);
-                self.lower = self.lower.min(p.lower);
-            } else {
-                self.has_limit = true;
-            }
+    /// Append one piece ([`push_merged`]) and add it to the sums.
+    fn push(&mut self, p: Piece, radius: f64) {
+        if p.x1 <= p.x0 {
+            return;
         }
-    }
-
-    /// `∫ ũ dx` over the chunk at indentation `d`, offset `W`.
-    fn integral(&self, w: f64, c: f64, d: f64, radius: f64) -> f64 {
-        let mut total = self.rel_integral + w * self.stuck_length;
-        if self.has_limit {
-            for p in &self.pieces {
-                if p.kind != Kind::Stuck {
-                    total += p.limit_integral(c, d, radius);
-                }
-            }
+        let merged = self
+            .pieces
+            .last()
+            .filter(|last| p.kind != Kind::Stuck && last.kind == p.kind)
+            .copied();
+        push_merged(&mut self.pieces, p, radius);
+        if let Some(old) = merged {
+            self.replace_last(&old);
+        } else {
+            self.sums = self.sums.with(&p);
         }
-        total
     }
 }
 
@@ -337,6 +448,15 @@ pub struct ContinuumRow {
     /// Accumulated increment `W = Σ Δw` (m), the common offset of the stuck pieces.
     offset: f64,
     spare: Vec<Piece>,
+    /// Scratch for the clipped parts of the entry piece.
+    entry: Vec<Piece>,
+    /// The first `frozen` chunks (never the last one, which the entry piece extends) are
+    /// summed in `frozen_sums`: while those sums say that none of them changes in a step,
+    /// the step neither visits nor integrates them one by one.
+    frozen: usize,
+    frozen_sums: Sums,
+    /// Whether `frozen_sums` must be summed again (a frozen chunk changed).
+    frozen_dirty: bool,
     cuts: Vec<f64>,
     at_limit: (bool, bool),
 }
@@ -361,8 +481,31 @@ impl ContinuumRow {
             chunks: Vec::new(),
             offset: 0.0,
             spare: Vec::new(),
+            entry: Vec::new(),
+            frozen: 0,
+            frozen_sums: Sums::EMPTY,
+            frozen_dirty: false,
             cuts: Vec::new(),
             at_limit: (false, false),
+        }
+    }
+
+    /// Append the parts of the entry piece at the outer end of the field: into the last chunk
+    /// with its sums updated in place (a whole re-summation per step cost a quarter of the
+    /// solve), or into a new chunk once the last one is full.
+    fn append(&mut self, parts: &[Piece]) {
+        let radius = self.radius;
+        for &p in parts {
+            if self
+                .chunks
+                .last()
+                .is_none_or(|ch| ch.pieces.len() >= CHUNK_MAX)
+            {
+                self.chunks.push(Chunk::default());
+            }
+            if let Some(ch) = self.chunks.last_mut() {
+                ch.push(p, radius);
+            }
         }
     }
 
@@ -419,10 +562,22 @@ impl ContinuumRow {
         } else {
             (f64::INFINITY, f64::NEG_INFINITY)
         };
-        let mut k = 0;
+        let resticks = [dw < c * (d1 - d0), -dw < c * (d1 - d0)];
+        // The frozen chunks are visited only when their sums say that one of them changes.
+        let mut k = if self.frozen_sums.changes(resticks, t_plus, t_minus) {
+            0
+        } else {
+            self.frozen
+        };
         while k < self.chunks.len() {
-            let ch = &self.chunks[k];
-            k += if ch.has_limit || ch.upper > t_plus || ch.lower < t_minus {
+            // Slipping pieces stick again (all of one sign at once) when the increment falls
+            // behind the limit's own change; otherwise they stay at the limit and the chunk
+            // changes only where a stuck piece crosses a limit.
+            k += if self.chunks[k].sums.changes(resticks, t_plus, t_minus) {
+                if k < self.frozen {
+                    self.frozen = k;
+                    self.frozen_dirty = true;
+                }
                 self.update_chunk(k, &up, t_plus, t_minus)
             } else {
                 1
@@ -442,35 +597,35 @@ impl ContinuumRow {
                 c,
                 radius,
             );
-            if self.chunks.is_empty() {
-                self.chunks.push(Chunk::default());
-            }
-            let mut out = std::mem::take(&mut self.spare);
-            out.clear();
-            let last = self.chunks.len() - 1;
-            out.append(&mut self.chunks[last].pieces);
-            self.clip(entry, &up, &mut out);
-            let _ = self.install(last, out);
+            let mut parts = std::mem::take(&mut self.entry);
+            parts.clear();
+            self.clip(entry, &up, &mut parts);
+            self.append(&parts);
+            self.entry = parts;
         }
-        let (mut any_plus, mut any_minus) = (false, false);
-        let mut integral = 0.0;
-        for ch in &self.chunks {
-            integral += ch.integral(w, c, d1, radius);
-            if ch.has_limit {
-                for p in &ch.pieces {
-                    let positive = p.y0 < d1;
-                    any_plus |= p.kind == Kind::Plus && positive;
-                    any_minus |= p.kind == Kind::Minus && positive;
-                }
-            }
+        // Freeze every chunk but the last.
+        let last = self.chunks.len().saturating_sub(1);
+        if self.frozen_dirty {
+            self.frozen = 0;
+            self.frozen_sums = Sums::EMPTY;
+            self.frozen_dirty = false;
         }
+        for ch in &self.chunks[self.frozen.min(last)..last] {
+            self.frozen_sums = self.frozen_sums.merge(&ch.sums);
+        }
+        self.frozen = last;
+        let total = self.chunks[last..]
+            .iter()
+            .fold(self.frozen_sums, |s, ch| s.merge(&ch.sums));
+        let integral = total.integral(w, c, d1, radius);
+        let (any_plus, any_minus) = (total.slipping[0] > 0, total.slipping[1] > 0);
         self.at_limit = if finite {
             (any_plus, any_minus)
         } else {
             (false, false)
         };
         let a1 = (radius * d1.max(0.0)).sqrt();
-        let mean = if a1 > 0.0 && self.pieces() > 0 {
+        let mean = if a1 > 0.0 && self.chunks.iter().any(|ch| !ch.pieces.is_empty()) {
             integral / a1
         } else if finite {
             // Contact vanished: the Coulomb limit at the last point in contact is zero.
@@ -490,6 +645,12 @@ impl ContinuumRow {
                 p.refresh(c, radius);
             }
         });
+        // The last chunk is never frozen: a chunk that became the last leaves the frozen ones.
+        let last = self.chunks.len().saturating_sub(1);
+        if self.frozen > last {
+            self.frozen = last;
+            self.frozen_dirty = true;
+        }
     }
 
     /// Apply the step to every piece of chunk `k` (after the offset moved by `dw`); returns the

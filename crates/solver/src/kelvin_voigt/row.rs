@@ -99,7 +99,9 @@ struct Chunk {
     stuck_length: f64,
     upper: f64,
     lower: f64,
-    /// Slipping at `+`/`−`: `Σ Δx`, `Σ Δ(x³)`, `min δ̃` (`+`) and `max δ̃` (`−`).
+    /// Slipping at `+`/`−`: number of pieces, `Σ Δx`, `Σ Δ(x³)`, `min δ̃` (`+`) and `max δ̃`
+    /// (`−`).
+    slipping: [u32; 2],
     slip_length: [f64; 2],
     slip_cube: [f64; 2],
     plus_min: f64,
@@ -121,6 +123,17 @@ impl PieceChunk for Chunk {
     fn summarize(&mut self) {
         Chunk::summarize(self);
     }
+    fn remove_last(&mut self) {
+        if let Some(p) = self.pieces.pop() {
+            self.remove(&p);
+        }
+    }
+    fn replace_last(&mut self, old: &Piece) {
+        if let Some(&p) = self.pieces.last() {
+            self.remove(old);
+            self.add(&p);
+        }
+    }
 }
 
 impl Chunk {
@@ -129,29 +142,81 @@ impl Chunk {
         self.stuck_length = 0.0;
         self.upper = f64::NEG_INFINITY;
         self.lower = f64::INFINITY;
+        self.slipping = [0; 2];
         self.slip_length = [0.0; 2];
         self.slip_cube = [0.0; 2];
         self.plus_min = f64::INFINITY;
         self.minus_max = f64::NEG_INFINITY;
-        for p in &self.pieces {
-            match p.kind {
-                Kind::Stuck => {
-                    self.rel_integral += p.rel_integral;
-                    self.stuck_length += p.x1 - p.x0;
-                    self.upper = self.upper.max(p.upper);
-                    self.lower = self.lower.min(p.lower);
-                }
-                Kind::Plus => {
-                    self.slip_length[0] += p.x1 - p.x0;
-                    self.slip_cube[0] += cube(p);
-                    self.plus_min = self.plus_min.min(p.lower);
-                }
-                Kind::Minus => {
-                    self.slip_length[1] += p.x1 - p.x0;
-                    self.slip_cube[1] += cube(p);
-                    self.minus_max = self.minus_max.max(p.upper);
+        let pieces = std::mem::take(&mut self.pieces);
+        for p in &pieces {
+            self.add(p);
+        }
+        self.pieces = pieces;
+    }
+
+    /// Add a piece to the sums.
+    #[inline]
+    fn add(&mut self, p: &Piece) {
+        match p.kind {
+            Kind::Stuck => {
+                self.rel_integral += p.rel_integral;
+                self.stuck_length += p.x1 - p.x0;
+                self.upper = self.upper.max(p.upper);
+                self.lower = self.lower.min(p.lower);
+            }
+            Kind::Plus => {
+                self.slipping[0] += 1;
+                self.slip_length[0] += p.x1 - p.x0;
+                self.slip_cube[0] += cube(p);
+                self.plus_min = self.plus_min.min(p.lower);
+            }
+            Kind::Minus => {
+                self.slipping[1] += 1;
+                self.slip_length[1] += p.x1 - p.x0;
+                self.slip_cube[1] += cube(p);
+                self.minus_max = self.minus_max.max(p.upper);
+            }
+        }
+    }
+
+    /// Take a piece the sums hold out of them; the bounds (`upper`, `lower`, `plus_min`,
+    /// `minus_max`) stay as they are, still bounds: at worst the chunk is updated and summed
+    /// again one step early.
+    #[inline]
+    fn remove(&mut self, p: &Piece) {
+        match p.kind {
+            Kind::Stuck => {
+                self.rel_integral -= p.rel_integral;
+                self.stuck_length -= p.x1 - p.x0;
+            }
+            Kind::Plus | Kind::Minus => {
+                let i = sign_index(p.kind);
+                self.slipping[i] -= 1;
+                if self.slipping[i] == 0 {
+                    // Exactly nothing, not the rounding left by the subtraction.
+                    self.slip_length[i] = 0.0;
+                    self.slip_cube[i] = 0.0;
+                } else {
+                    self.slip_length[i] -= p.x1 - p.x0;
+                    self.slip_cube[i] -= cube(p);
                 }
             }
+        }
+    }
+
+    /// Append one piece at the outer end ([`push_slip`] for a slipping one) and update the
+    /// sums.
+    fn push(&mut self, p: Piece, c: f64, r: f64) {
+        let before = self.pieces.last().copied();
+        let len = self.pieces.len();
+        if p.kind == Kind::Stuck {
+            self.pieces.push(p);
+        } else {
+            push_slip(&mut self.pieces, p, c, r);
+        }
+        match before {
+            Some(old) if self.pieces.len() == len => self.replace_last(&old),
+            _ => self.add(&p),
         }
     }
 }
@@ -332,6 +397,8 @@ pub struct ViscoelasticRow {
     at_limit: (bool, bool),
     cuts: Vec<f64>,
     spare: Vec<Piece>,
+    /// Scratch for the pieces of the springs entering contact in a step.
+    entering: Vec<Piece>,
 }
 
 impl ViscoelasticRow {
@@ -352,6 +419,7 @@ impl ViscoelasticRow {
             at_limit: (false, false),
             cuts: Vec::new(),
             spare: Vec::new(),
+            entering: Vec::new(),
         }
     }
 
@@ -433,9 +501,8 @@ impl ViscoelasticRow {
         let mut k = 0;
         while k < self.chunks.len() {
             let ch = &self.chunks[k];
-            let release = (ch.slip_length[0] > 0.0
-                && self.frames[0].scale * ch.plus_min <= releases[0])
-                || (ch.slip_length[1] > 0.0 && self.frames[1].scale * ch.minus_max >= releases[1]);
+            let release = (ch.slipping[0] > 0 && self.frames[0].scale * ch.plus_min <= releases[0])
+                || (ch.slipping[1] > 0 && self.frames[1].scale * ch.minus_max >= releases[1]);
             k += if release || ch.upper > t_plus || ch.lower < t_minus {
                 self.update_chunk(k, &up, t_plus, t_minus)
             } else {
@@ -456,8 +523,8 @@ impl ViscoelasticRow {
             if finite {
                 let lim = |i: usize| c * (load1 * ch.slip_length[i] - ch.slip_cube[i] / (3.0 * r));
                 integral += lim(0) - lim(1);
-                any_plus |= ch.slip_length[0] > 0.0;
-                any_minus |= ch.slip_length[1] > 0.0;
+                any_plus |= ch.slipping[0] > 0;
+                any_minus |= ch.slipping[1] > 0;
             }
         }
         self.at_limit = (any_plus, any_minus);
@@ -510,13 +577,8 @@ impl ViscoelasticRow {
         cuts.sort_by(|a, b| a.total_cmp(b));
         let k1 = h * vel + acc * h * h;
         let k2 = 0.5 * acc * h * h;
-        if self.chunks.is_empty() {
-            self.chunks.push(Chunk::default());
-        }
-        let mut out = std::mem::take(&mut self.spare);
+        let mut out = std::mem::take(&mut self.entering);
         out.clear();
-        let last = self.chunks.len() - 1;
-        out.append(&mut self.chunks[last].pieces);
         for pair in cuts.windows(2) {
             let (t0, t1) = (pair[0], pair[1]);
             if t1 <= t0 {
@@ -538,7 +600,24 @@ impl ViscoelasticRow {
                 self.clip(stuck, up, &mut out);
             }
         }
-        self.install(last, out);
+        // Into the last chunk with its sums updated in place (a whole re-summation per step
+        // cost about a quarter of a solve in the elastic row), or into a new one once it is
+        // full.
+        for &p in &out {
+            if self
+                .chunks
+                .last()
+                .is_none_or(|ch| ch.pieces.len() >= CHUNK_MAX)
+            {
+                let mut fresh = Chunk::default();
+                fresh.summarize();
+                self.chunks.push(fresh);
+            }
+            if let Some(ch) = self.chunks.last_mut() {
+                ch.push(p, c, r);
+            }
+        }
+        self.entering = out;
     }
 
     /// `u` at the centre (for the no-slip end of contact).
