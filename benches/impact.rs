@@ -5,7 +5,7 @@
 //! applies; none of these nine does):
 //! - `accurate_1e-6`: `Request::new(γ, α).accuracy(Tolerance(1e-6)).scheme(Accurate).forced(force_simulation = true).solve()`, the
 //!   whole automatic refinement (every level, coarsest first) down to an estimated error ≤ 1e-6.
-//!   The dimensionless normal trajectory is cached per thread, so after the first call (done
+//!   The dimensionless normal trajectory is cached per process, so after the first call (done
 //!   before timing) only the tangential contact is timed: the situation of a sweep.
 //! - `accurate_1e-5`: the same with tolerance 1e-5 (equal accuracy with the Euler baseline).
 //! - `euler`: one `Request::new(γ, α).scheme(Euler).simulate(res)` at the resolution in [`EULER_1E5`], the cheapest
@@ -296,7 +296,7 @@ fn bench_accurate(c: &mut Criterion, clock: Clock, name: &str, tol: f64) {
     group.finish();
 }
 
-/// The one-off cost the per-thread cache saves: the dimensionless Hertz trajectory
+/// The one-off cost the process-wide cache saves: the dimensionless Hertz trajectory
 /// (what `dimensionless_normal(steps)` computes on its first call for `steps`).
 fn bench_normal(c: &mut Criterion, clock: Clock) {
     let mut group = c.benchmark_group(format!("normal_trajectory{}", clock.suffix()));

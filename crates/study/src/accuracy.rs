@@ -193,7 +193,7 @@ pub struct Row {
     pub error_estimate: Option<f64>,
     /// Reference error estimate (the floor below which `error` is not meaningful).
     pub reference_error: f64,
-    /// CPU time per impact (s), warm per-thread trajectory cache.
+    /// CPU time per impact (s), warm trajectory cache.
     pub time_s: f64,
     /// Calls timed.
     pub calls: usize,
