@@ -154,6 +154,38 @@ impl Chunk {
         self.pieces = pieces;
     }
 
+    /// A chunk of no piece, its sums those of nothing.
+    fn empty() -> Self {
+        let mut ch = Chunk::default();
+        ch.summarize();
+        ch
+    }
+
+    /// Add the sums of another chunk to these.
+    fn absorb(&mut self, o: &Chunk) {
+        self.rel_integral += o.rel_integral;
+        self.stuck_length += o.stuck_length;
+        self.upper = self.upper.max(o.upper);
+        self.lower = self.lower.min(o.lower);
+        for i in 0..2 {
+            self.slipping[i] += o.slipping[i];
+            self.slip_length[i] += o.slip_length[i];
+            self.slip_cube[i] += o.slip_cube[i];
+        }
+        self.plus_min = self.plus_min.min(o.plus_min);
+        self.minus_max = self.minus_max.max(o.minus_max);
+    }
+
+    /// Whether a step changes a chunk with these sums: a slipping piece may stick again
+    /// (`scale · δ̃` past `release`, per sign) or a stuck piece crosses a limit.
+    #[inline]
+    fn changes(&self, frames: &[Frame; 2], releases: [f64; 2], t_plus: f64, t_minus: f64) -> bool {
+        (self.slipping[0] > 0 && frames[0].scale * self.plus_min <= releases[0])
+            || (self.slipping[1] > 0 && frames[1].scale * self.minus_max >= releases[1])
+            || self.upper > t_plus
+            || self.lower < t_minus
+    }
+
     /// Add a piece to the sums.
     #[inline]
     fn add(&mut self, p: &Piece) {
@@ -399,6 +431,13 @@ pub struct ViscoelasticRow {
     spare: Vec<Piece>,
     /// Scratch for the pieces of the springs entering contact in a step.
     entering: Vec<Piece>,
+    /// The first `frozen` chunks (never the last one) summed in `frozen_sums` (which holds
+    /// no pieces): while those sums say that none of them changes, a step neither visits
+    /// nor integrates them one by one.
+    frozen: usize,
+    frozen_sums: Chunk,
+    /// Whether `frozen_sums` must be summed again (a frozen chunk changed).
+    frozen_dirty: bool,
 }
 
 impl ViscoelasticRow {
@@ -420,6 +459,9 @@ impl ViscoelasticRow {
             cuts: Vec::new(),
             spare: Vec::new(),
             entering: Vec::new(),
+            frozen: 0,
+            frozen_sums: Chunk::empty(),
+            frozen_dirty: false,
         }
     }
 
@@ -498,12 +540,18 @@ impl ViscoelasticRow {
             -up.viscous - self.frames[0].shift,
             -up.viscous - self.frames[1].shift,
         ];
-        let mut k = 0;
+        let frames = self.frames;
+        let mut k = if self.frozen_sums.changes(&frames, releases, t_plus, t_minus) {
+            0
+        } else {
+            self.frozen
+        };
         while k < self.chunks.len() {
-            let ch = &self.chunks[k];
-            let release = (ch.slipping[0] > 0 && self.frames[0].scale * ch.plus_min <= releases[0])
-                || (ch.slipping[1] > 0 && self.frames[1].scale * ch.minus_max >= releases[1]);
-            k += if release || ch.upper > t_plus || ch.lower < t_minus {
+            k += if self.chunks[k].changes(&frames, releases, t_plus, t_minus) {
+                if k < self.frozen {
+                    self.frozen = k;
+                    self.frozen_dirty = true;
+                }
                 self.update_chunk(k, &up, t_plus, t_minus)
             } else {
                 1
@@ -514,18 +562,29 @@ impl ViscoelasticRow {
         }
         self.reach = reach1;
         let r = self.radius;
+        // Freeze every chunk but the last, and sum the rest onto the frozen sums.
+        let last = self.chunks.len().saturating_sub(1);
+        if self.frozen_dirty {
+            self.frozen = 0;
+            self.frozen_sums = Chunk::empty();
+            self.frozen_dirty = false;
+        }
+        for ch in &self.chunks[self.frozen.min(last)..last] {
+            self.frozen_sums.absorb(ch);
+        }
+        self.frozen = last;
+        let mut all = self.frozen_sums.clone();
+        for ch in &self.chunks[last..] {
+            all.absorb(ch);
+        }
+        let mut integral = all.rel_integral + (w + up.viscous) * all.stuck_length;
+        let stuck = all.stuck_length;
         let (mut any_plus, mut any_minus) = (false, false);
-        let mut integral = 0.0;
-        let mut stuck = 0.0;
-        for ch in &self.chunks {
-            integral += ch.rel_integral + (w + up.viscous) * ch.stuck_length;
-            stuck += ch.stuck_length;
-            if finite {
-                let lim = |i: usize| c * (load1 * ch.slip_length[i] - ch.slip_cube[i] / (3.0 * r));
-                integral += lim(0) - lim(1);
-                any_plus |= ch.slipping[0] > 0;
-                any_minus |= ch.slipping[1] > 0;
-            }
+        if finite {
+            let lim = |i: usize| c * (load1 * all.slip_length[i] - all.slip_cube[i] / (3.0 * r));
+            integral += lim(0) - lim(1);
+            any_plus = all.slipping[0] > 0;
+            any_minus = all.slipping[1] > 0;
         }
         self.at_limit = (any_plus, any_minus);
         self.stuck = stuck;
@@ -679,6 +738,8 @@ impl ViscoelasticRow {
             }
             ch.summarize();
         }
+        self.frozen = 0;
+        self.frozen_dirty = true;
         for (i, s) in [(0, 1.0), (1, -1.0)] {
             self.entry[i] = e * frames[i].actual(self.entry[i]) + s * k;
         }
@@ -689,6 +750,12 @@ impl ViscoelasticRow {
     fn truncate(&mut self, top: f64, c: f64) {
         let r = self.radius;
         truncate(&mut self.chunks, top, r, |p| refresh(p, c, r));
+        // The last chunk is never frozen: a chunk that became the last leaves the frozen ones.
+        let last = self.chunks.len().saturating_sub(1);
+        if self.frozen > last {
+            self.frozen = last;
+            self.frozen_dirty = true;
+        }
     }
 
     fn update_chunk(&mut self, k: usize, up: &Update, t_plus: f64, t_minus: f64) -> usize {
