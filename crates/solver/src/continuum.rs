@@ -420,6 +420,73 @@ pub(crate) fn install<C: PieceChunk>(
     count
 }
 
+/// The first chunks of a row, every one but the last (which the entry piece extends), summed
+/// into one `S`: while those sums say that none of them changes in a step, the step neither
+/// visits nor integrates them one by one. Shared by the elastic and the Kelvin–Voigt row.
+#[derive(Debug, Clone)]
+pub(crate) struct Frozen<S> {
+    /// Number of frozen chunks.
+    count: usize,
+    sums: S,
+    /// Whether `sums` must be summed again (a frozen chunk changed).
+    dirty: bool,
+}
+
+impl<S: Clone> Frozen<S> {
+    /// No frozen chunk; `empty` is the sums of none.
+    pub(crate) fn new(empty: S) -> Self {
+        Self {
+            count: 0,
+            sums: empty,
+            dirty: false,
+        }
+    }
+
+    /// The sums of the frozen chunks.
+    pub(crate) fn sums(&self) -> &S {
+        &self.sums
+    }
+
+    /// The first chunk a step visits: 0 where the frozen sums say that one of them changes
+    /// (`changes`), else the first chunk after them.
+    pub(crate) fn first_visited(&self, changes: bool) -> usize {
+        if changes {
+            0
+        } else {
+            self.count
+        }
+    }
+
+    /// Chunk `k` changes (or every chunk, `k = 0`): it and those after it leave the frozen
+    /// ones.
+    pub(crate) fn thaw(&mut self, k: usize) {
+        if k < self.count {
+            self.count = k;
+            self.dirty = true;
+        }
+    }
+
+    /// After the step: freeze every chunk of `chunks` but the last (summed again from `empty`
+    /// where one of them changed, or where the row lost chunks so that a frozen one became
+    /// the last) and return the sums of all of them; `add` adds a chunk's sums.
+    pub(crate) fn total<C>(&mut self, chunks: &[C], empty: S, add: impl Fn(&mut S, &C)) -> S {
+        let last = chunks.len().saturating_sub(1);
+        self.thaw(last);
+        if self.dirty {
+            (self.count, self.sums, self.dirty) = (0, empty, false);
+        }
+        for ch in &chunks[self.count..last] {
+            add(&mut self.sums, ch);
+        }
+        self.count = last;
+        let mut all = self.sums.clone();
+        for ch in &chunks[last..] {
+            add(&mut all, ch);
+        }
+        all
+    }
+}
+
 impl Chunk {
     /// Append one piece ([`push_merged`]) and add it to the sums.
     fn push(&mut self, p: Piece, radius: f64) {
@@ -450,13 +517,8 @@ pub struct ContinuumRow {
     spare: Vec<Piece>,
     /// Scratch for the clipped parts of the entry piece.
     entry: Vec<Piece>,
-    /// The first `frozen` chunks (never the last one, which the entry piece extends) are
-    /// summed in `frozen_sums`: while those sums say that none of them changes in a step,
-    /// the step neither visits nor integrates them one by one.
-    frozen: usize,
-    frozen_sums: Sums,
-    /// Whether `frozen_sums` must be summed again (a frozen chunk changed).
-    frozen_dirty: bool,
+    /// The chunks before the last, summed ([`Frozen`]).
+    frozen: Frozen<Sums>,
     cuts: Vec<f64>,
     at_limit: (bool, bool),
 }
@@ -482,9 +544,7 @@ impl ContinuumRow {
             offset: 0.0,
             spare: Vec::new(),
             entry: Vec::new(),
-            frozen: 0,
-            frozen_sums: Sums::EMPTY,
-            frozen_dirty: false,
+            frozen: Frozen::new(Sums::EMPTY),
             cuts: Vec::new(),
             at_limit: (false, false),
         }
@@ -564,20 +624,15 @@ impl ContinuumRow {
         };
         let resticks = [dw < c * (d1 - d0), -dw < c * (d1 - d0)];
         // The frozen chunks are visited only when their sums say that one of them changes.
-        let mut k = if self.frozen_sums.changes(resticks, t_plus, t_minus) {
-            0
-        } else {
-            self.frozen
-        };
+        let mut k = self
+            .frozen
+            .first_visited(self.frozen.sums().changes(resticks, t_plus, t_minus));
         while k < self.chunks.len() {
             // Slipping pieces stick again (all of one sign at once) when the increment falls
             // behind the limit's own change; otherwise they stay at the limit and the chunk
             // changes only where a stuck piece crosses a limit.
             k += if self.chunks[k].sums.changes(resticks, t_plus, t_minus) {
-                if k < self.frozen {
-                    self.frozen = k;
-                    self.frozen_dirty = true;
-                }
+                self.frozen.thaw(k);
                 self.update_chunk(k, &up, t_plus, t_minus)
             } else {
                 1
@@ -603,20 +658,9 @@ impl ContinuumRow {
             self.append(&parts);
             self.entry = parts;
         }
-        // Freeze every chunk but the last.
-        let last = self.chunks.len().saturating_sub(1);
-        if self.frozen_dirty {
-            self.frozen = 0;
-            self.frozen_sums = Sums::EMPTY;
-            self.frozen_dirty = false;
-        }
-        for ch in &self.chunks[self.frozen.min(last)..last] {
-            self.frozen_sums = self.frozen_sums.merge(&ch.sums);
-        }
-        self.frozen = last;
-        let total = self.chunks[last..]
-            .iter()
-            .fold(self.frozen_sums, |s, ch| s.merge(&ch.sums));
+        let total = self
+            .frozen
+            .total(&self.chunks, Sums::EMPTY, |s, ch| *s = s.merge(&ch.sums));
         let integral = total.integral(w, c, d1, radius);
         let (any_plus, any_minus) = (total.slipping[0] > 0, total.slipping[1] > 0);
         self.at_limit = if finite {
@@ -645,12 +689,6 @@ impl ContinuumRow {
                 p.refresh(c, radius);
             }
         });
-        // The last chunk is never frozen: a chunk that became the last leaves the frozen ones.
-        let last = self.chunks.len().saturating_sub(1);
-        if self.frozen > last {
-            self.frozen = last;
-            self.frozen_dirty = true;
-        }
     }
 
     /// Apply the step to every piece of chunk `k` (after the offset moved by `dw`); returns the

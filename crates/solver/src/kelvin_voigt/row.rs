@@ -22,7 +22,7 @@
 //! `∫ v dx` is integrated exactly. Transitions happen at the end of a step (local error O(h²)
 //! once per spring: second order overall).
 
-use crate::continuum::{install, roots_inside, truncate, Kind, Piece, PieceChunk};
+use crate::continuum::{install, roots_inside, truncate, Frozen, Kind, Piece, PieceChunk};
 use crate::springs::{StepMotion, StepResult};
 
 /// A piece of this row on `[y0, y1]` with `z = y − y_ref` (the elastic row's [`Piece`]): a
@@ -431,13 +431,8 @@ pub struct ViscoelasticRow {
     spare: Vec<Piece>,
     /// Scratch for the pieces of the springs entering contact in a step.
     entering: Vec<Piece>,
-    /// The first `frozen` chunks (never the last one) summed in `frozen_sums` (which holds
-    /// no pieces): while those sums say that none of them changes, a step neither visits
-    /// nor integrates them one by one.
-    frozen: usize,
-    frozen_sums: Chunk,
-    /// Whether `frozen_sums` must be summed again (a frozen chunk changed).
-    frozen_dirty: bool,
+    /// The chunks before the last, summed ([`Frozen`]; its sums hold no pieces).
+    frozen: Frozen<Chunk>,
 }
 
 impl ViscoelasticRow {
@@ -459,9 +454,7 @@ impl ViscoelasticRow {
             cuts: Vec::new(),
             spare: Vec::new(),
             entering: Vec::new(),
-            frozen: 0,
-            frozen_sums: Chunk::empty(),
-            frozen_dirty: false,
+            frozen: Frozen::new(Chunk::empty()),
         }
     }
 
@@ -541,17 +534,14 @@ impl ViscoelasticRow {
             -up.viscous - self.frames[1].shift,
         ];
         let frames = self.frames;
-        let mut k = if self.frozen_sums.changes(&frames, releases, t_plus, t_minus) {
-            0
-        } else {
+        let mut k = self.frozen.first_visited(
             self.frozen
-        };
+                .sums()
+                .changes(&frames, releases, t_plus, t_minus),
+        );
         while k < self.chunks.len() {
             k += if self.chunks[k].changes(&frames, releases, t_plus, t_minus) {
-                if k < self.frozen {
-                    self.frozen = k;
-                    self.frozen_dirty = true;
-                }
+                self.frozen.thaw(k);
                 self.update_chunk(k, &up, t_plus, t_minus)
             } else {
                 1
@@ -562,21 +552,9 @@ impl ViscoelasticRow {
         }
         self.reach = reach1;
         let r = self.radius;
-        // Freeze every chunk but the last, and sum the rest onto the frozen sums.
-        let last = self.chunks.len().saturating_sub(1);
-        if self.frozen_dirty {
-            self.frozen = 0;
-            self.frozen_sums = Chunk::empty();
-            self.frozen_dirty = false;
-        }
-        for ch in &self.chunks[self.frozen.min(last)..last] {
-            self.frozen_sums.absorb(ch);
-        }
-        self.frozen = last;
-        let mut all = self.frozen_sums.clone();
-        for ch in &self.chunks[last..] {
-            all.absorb(ch);
-        }
+        let all = self
+            .frozen
+            .total(&self.chunks, Chunk::empty(), |s, ch| s.absorb(ch));
         let mut integral = all.rel_integral + (w + up.viscous) * all.stuck_length;
         let stuck = all.stuck_length;
         let (mut any_plus, mut any_minus) = (false, false);
@@ -738,8 +716,7 @@ impl ViscoelasticRow {
             }
             ch.summarize();
         }
-        self.frozen = 0;
-        self.frozen_dirty = true;
+        self.frozen.thaw(0);
         for (i, s) in [(0, 1.0), (1, -1.0)] {
             self.entry[i] = e * frames[i].actual(self.entry[i]) + s * k;
         }
@@ -750,12 +727,6 @@ impl ViscoelasticRow {
     fn truncate(&mut self, top: f64, c: f64) {
         let r = self.radius;
         truncate(&mut self.chunks, top, r, |p| refresh(p, c, r));
-        // The last chunk is never frozen: a chunk that became the last leaves the frozen ones.
-        let last = self.chunks.len().saturating_sub(1);
-        if self.frozen > last {
-            self.frozen = last;
-            self.frozen_dirty = true;
-        }
     }
 
     fn update_chunk(&mut self, k: usize, up: &Update, t_plus: f64, t_minus: f64) -> usize {
