@@ -95,36 +95,18 @@ fn sample(table: &Table, n: usize, seed: u64, near_curves: bool) -> Vec<Point> {
         .collect()
 }
 
-/// The `n` points of `--near-curves`: γ and `e_n` as [`sample`] draws them, `α` at
-/// `α_k (1 + s·r)` with `α_k` alternately `α_c1(γ, e_n)` (`α_c2` for `γ ≤ 1`) and `α_c2(γ)`,
-/// `s = ±1` and `r = 10^u`, `u` uniform in `[−4, −1]`; a point beyond `alpha_max` is drawn
-/// again.
+/// The `n` points of `--near-curves`: [`oblique_sweep::near_curve_points`] over the table's
+/// domain.
 fn sample_near_curves(table: &Table, n: usize, seed: u64) -> Vec<Point> {
-    use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
-    let s = &table.surface();
-    let mut rng = oblique_sweep::SplitMix(seed);
-    let mut out = Vec::with_capacity(n);
-    while out.len() < n {
-        let i = out.len();
-        let gamma =
-            (s.gamma_min() + (s.gamma_max() - s.gamma_min()) * rng.uniform()).min(s.gamma_max());
-        let e_n = match s.restitution() {
-            Some((lo, hi)) => (lo + (hi - lo) * rng.uniform()).min(hi),
-            None => 1.0,
-        };
-        let curve = if i % 2 == 0 && gamma > 1.0 {
-            alpha_c1_dissipative(gamma, e_n)
-        } else {
-            alpha_c2(gamma)
-        };
-        let r = 10f64.powf(-4.0 + 3.0 * rng.uniform());
-        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-        let alpha = curve * (1.0 + sign * r);
-        if alpha <= s.alpha_max() {
-            out.push(Point::new(gamma, alpha, e_n));
-        }
-    }
-    out
+    let s = table.surface();
+    oblique_sweep::near_curve_points(
+        s.gamma_min(),
+        s.gamma_max(),
+        s.restitution(),
+        s.alpha_max(),
+        n,
+        seed,
+    )
 }
 
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.

@@ -232,6 +232,12 @@ pub struct Checks {
     /// Random check points per patch, 1 to 100000.
     #[serde(default = "default_checks")]
     pub per_patch: usize,
+    /// Held-out points next to the critical curves (0 to 100000, default 0), in addition to
+    /// the random ones: `α = α_k (1 ± r)` with `α_k` alternately `α_c1(γ, e_n)` and `α_c2(γ)`
+    /// and `r` log-uniform in `[1e-4, 0.1]` ([`crate::near_curve_points`]), where `P` has its
+    /// kinks and a random sample rarely lands.
+    #[serde(default)]
+    pub near_curves: usize,
     /// Seed of the deterministic generator that places them.
     #[serde(default = "default_seed")]
     pub seed: u64,
@@ -253,6 +259,7 @@ impl Default for Checks {
     fn default() -> Self {
         Self {
             per_patch: default_checks(),
+            near_curves: 0,
             seed: default_seed(),
             tol: None,
         }
@@ -575,6 +582,13 @@ impl Config {
                 "checks.per_patch",
                 self.checks.per_patch.to_string(),
                 "in [1, 100000] (the held-out checks measure the table's error)".into(),
+            ));
+        }
+        if self.checks.near_curves > 100_000 {
+            return Err(err(
+                "checks.near_curves",
+                self.checks.near_curves.to_string(),
+                "in [0, 100000]".into(),
             ));
         }
         if self.run.threads > 1024 {

@@ -1334,8 +1334,49 @@ pub fn build_shard(
     Ok(())
 }
 
+/// `n` points next to the critical curves, where `P` has its kinks: `γ` uniform in
+/// `[gamma_min, gamma_max]`, `e_n` uniform in `e_range` (1 without), `α = α_k (1 + s·r)` with
+/// `α_k` alternately `α_c1(γ, e_n)` (`α_c2` for `γ ≤ 1`) and `α_c2(γ)`, `s = ±1` and
+/// `r = 10^u`, `u` uniform in `[−4, −1]`; a point beyond `alpha_max` is drawn again. The same
+/// `seed` gives the same points (`sweep verify --near-curves` and the held-out checks of
+/// `checks.near_curves`).
+pub fn near_curve_points(
+    gamma_min: f64,
+    gamma_max: f64,
+    e_range: Option<(f64, f64)>,
+    alpha_max: f64,
+    n: usize,
+    seed: u64,
+) -> Vec<Point> {
+    use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
+    let mut rng = SplitMix(seed);
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let i = out.len();
+        let gamma = (gamma_min + (gamma_max - gamma_min) * rng.uniform()).min(gamma_max);
+        let e_n = match e_range {
+            Some((lo, hi)) => (lo + (hi - lo) * rng.uniform()).min(hi),
+            None => 1.0,
+        };
+        let curve = if i % 2 == 0 && gamma > 1.0 {
+            alpha_c1_dissipative(gamma, e_n)
+        } else {
+            alpha_c2(gamma)
+        };
+        let r = 10f64.powf(-4.0 + 3.0 * rng.uniform());
+        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        let alpha = curve * (1.0 + sign * r);
+        if alpha <= alpha_max {
+            out.push(Point::new(gamma, alpha, e_n));
+        }
+    }
+    out
+}
+
 /// Held-out points: uniform in each patch's (γ, c), and in `e_n` over its range for a
-/// dissipative table, strictly inside (c < 1 keeps α finite).
+/// dissipative table, strictly inside (c < 1 keeps α finite); then `checks.near_curves` points
+/// next to the critical curves ([`near_curve_points`], from a seed derived from
+/// `checks.seed`, so that the random points stay where they were).
 fn check_points(cfg: &Config) -> Vec<Point> {
     let mut rng = SplitMix(cfg.checks.seed);
     let mut points = Vec::new();
@@ -1358,5 +1399,69 @@ fn check_points(cfg: &Config) -> Vec<Point> {
             points.push(Point::new(gamma, alpha, e_n));
         }
     }
+    points.extend(near_curve_points(
+        cfg.domain.gamma_min,
+        cfg.domain.gamma_max,
+        range,
+        cfg.domain.alpha_max,
+        cfg.checks.near_curves,
+        cfg.checks.seed ^ NEAR_CURVE_SEED,
+    ));
     points
+}
+
+/// Mixed into `checks.seed` for the points next to the critical curves.
+const NEAR_CURVE_SEED: u64 = 0x6e65_6172_6375_7276;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn config(near: usize) -> Config {
+        Config::parse(
+            &format!(
+                "output = \"t.h5\"\n[domain]\ngamma_min = 0.5\ngamma_max = 3.0\n\
+                 alpha_max = \"inf\"\n[nodes]\ntarget_error = 1e-4\n[solver]\ntol = 1e-5\n\
+                 [checks]\nper_patch = 7\nnear_curves = {near}\n"
+            ),
+            "t.toml",
+        )
+        .expect("a valid config")
+    }
+
+    #[test]
+    fn near_curve_checks_follow_the_random_ones_and_lie_next_to_a_curve() {
+        use oblique_physics::regimes::{alpha_c1, alpha_c2};
+        let plain = check_points(&config(0));
+        let with = check_points(&config(40));
+        assert_eq!(with.len(), plain.len() + 40);
+        // The random points do not move.
+        for (a, b) in plain.iter().zip(&with) {
+            assert_eq!((a.gamma, a.alpha), (b.gamma, b.alpha));
+        }
+        for pt in &with[plain.len()..] {
+            assert!((0.5..=3.0).contains(&pt.gamma), "{pt:?}");
+            let near = |k: f64| {
+                let r = (pt.alpha / k - 1.0).abs();
+                (0.99e-4..=0.1001).contains(&r)
+            };
+            let c1 = pt.gamma > 1.0 && near(alpha_c1(pt.gamma));
+            assert!(c1 || near(alpha_c2(pt.gamma)), "{pt:?}");
+        }
+        // Both curves are visited.
+        let on_c2 = with[plain.len()..]
+            .iter()
+            .filter(|p| (p.alpha / alpha_c2(p.gamma) - 1.0).abs() <= 0.1001)
+            .count();
+        assert!(on_c2 > 5 && on_c2 < 40, "{on_c2}");
+    }
+
+    #[test]
+    fn too_many_near_curve_checks_are_refused_naming_the_key() {
+        let text = "output = \"t.h5\"\n[domain]\ngamma_min = 0.5\ngamma_max = 3.0\n\
+                    [nodes]\ntarget_error = 1e-4\n[solver]\ntol = 1e-5\n\
+                    [checks]\nnear_curves = 100001\n";
+        let e = Config::parse(text, "t.toml").expect_err("refused");
+        assert!(e.to_string().contains("checks.near_curves"), "{e}");
+    }
 }

@@ -1,0 +1,78 @@
+//! A table against direct simulation at given points (a scratch tool for studies of the stated
+//! bound): `probe TABLE TOL < points.csv > out.csv`. Each input line is `tag,gamma,alpha,e_n`
+//! (`e_n` 1 for an elastic table); each output line `tag,gamma,alpha,e_n,p_table,p_sim,est,err`
+//! with `err = |p_table − p_sim|`. Points are simulated at `TOL` in parallel (rayon).
+use oblique_lookup::Table;
+use oblique_solver::{Accuracy, Request};
+use oblique_table::surface::{partial_coord, stick_coord, PatchKind, Region};
+use rayon::prelude::*;
+use std::io::BufRead;
+
+/// `patch:leaf` of an elastic table's point (`-` outside the patches).
+fn leaf_of(table: &Table, g: f64, a: f64) -> String {
+    let surface = table.surface();
+    let region = Region::of(g, a);
+    let Some(id) = region.patch_id() else {
+        return "-".into();
+    };
+    let Some(patch) = surface.patch_by_id(id) else {
+        return "-".into();
+    };
+    let c = match patch.kind() {
+        PatchKind::PartialSlip => partial_coord(g, a),
+        _ => stick_coord(g, a, surface.alpha_max()),
+    };
+    let (leaf, _, _) = patch.find_leaf(g, patch.warped(g, c));
+    format!("{}:{leaf}", id.name())
+}
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let table = Table::open(args.first().map_or("tables/full.h5", String::as_str))?;
+    let tol: f64 = args.get(1).map_or(Ok(1e-9), |s| s.parse())?;
+    let mut pts = Vec::new();
+    for line in std::io::stdin().lock().lines() {
+        let line = line?;
+        let f: Vec<&str> = line.trim().split(',').collect();
+        if f.len() < 4 {
+            continue;
+        }
+        let (Ok(g), Ok(a), Ok(e)) = (
+            f[1].parse::<f64>(),
+            f[2].parse::<f64>(),
+            f[3].parse::<f64>(),
+        ) else {
+            continue;
+        };
+        pts.push((f[0].to_string(), g, a, e));
+    }
+    let has_e = table.restitution().is_some();
+    let out: Vec<String> = pts
+        .par_iter()
+        .map(|(tag, g, a, e)| {
+            let pt = if has_e {
+                table.p_e(*g, *a, *e)
+            } else {
+                table.p(*g, *a)
+            };
+            let sol = Request::new(*g, *a)
+                .e_n(*e)
+                .accuracy(Accuracy::Tolerance(tol))
+                .solve();
+            match (pt, sol) {
+                (Ok(pt), Ok(s)) => format!(
+                    "{tag},{g:.17e},{a:.17e},{e},{pt:.17e},{:.17e},{:.3e},{:.4e},{}",
+                    s.p,
+                    s.error_estimate,
+                    (pt - s.p).abs(),
+                    leaf_of(&table, *g, *a)
+                ),
+                (t, s) => format!("{tag},{g},{a},{e},ERR,{:?},{:?}", t.err(), s.err()),
+            }
+        })
+        .collect();
+    for l in out {
+        println!("{l}");
+    }
+    Ok(())
+}
