@@ -358,8 +358,35 @@ pub struct FoldCurve {
 /// or downwards while it fails, until it changes; then bisect with [`locate_change`] to ≈1e-10
 /// in `ln α`. `None` if no change is found within a factor `e^{±1}` of `guess`.
 pub fn fold_plus_at(gamma: f64, guess: f64, steps: usize) -> Result<Option<f64>, PhysicsError> {
+    fold_at(gamma, guess, steps, has_restitution_plus)
+}
+
+/// The predicate of the fold curve F₋: an interior `−μF_N` episode starts in the restitution
+/// phase ([`RESTITUTION_WINDOW`]) and ends before [`INTERIOR_END`]. It holds on an interval of
+/// α below F₋ (from where the episode stops running into the separation: at γ = 2.45,
+/// α = 0.4832 to F₋ at 0.5002, 2048 steps) and fails just above it.
+pub fn has_restitution_minus(h: &SlipHistory) -> bool {
+    h.has_interior(SlipSign::Minus, RESTITUTION_WINDOW)
+}
+
+/// Locate the fold curve F₋ (`docs/solver.md`, "Kink curves": a `−μF_N` episode at
+/// t ≈ 0.8–0.94 t_c vanishes as α grows; γ ≳ 2.39) at `gamma` by continuation from `guess`, as
+/// [`fold_plus_at`] does with [`has_restitution_minus`]. The guess must lie below F₋ within the
+/// predicate's interval, or above F₋ (within a factor `e`): from below that interval the
+/// continuation finds nothing (`None`).
+pub fn fold_minus_at(gamma: f64, guess: f64, steps: usize) -> Result<Option<f64>, PhysicsError> {
+    fold_at(gamma, guess, steps, has_restitution_minus)
+}
+
+/// The continuation of [`fold_plus_at`] for a fold whose `present` predicate holds below it.
+fn fold_at(
+    gamma: f64,
+    guess: f64,
+    steps: usize,
+    present: fn(&SlipHistory) -> bool,
+) -> Result<Option<f64>, PhysicsError> {
     let steps = check_fold_steps(steps)?;
-    let at = |a: f64| slip_history(gamma, a, steps).map(|h| has_restitution_plus(&h));
+    let at = |a: f64| slip_history(gamma, a, steps).map(|h| present(&h));
     let holds = at(guess)?;
     let (mut near, mut d) = (guess, 1e-3_f64);
     while d < 1.0 {
@@ -381,7 +408,7 @@ pub fn fold_plus_at(gamma: f64, guess: f64, steps: usize) -> Result<Option<f64>,
                 bracket,
                 steps,
                 (iterations as usize).min(FOLD_BISECTIONS + 20),
-                has_restitution_plus,
+                present,
             );
         }
         near = far;
@@ -573,6 +600,28 @@ mod tests {
             .unwrap()
             .unwrap();
         assert!((r - 1.3430974).abs() < 1e-6, "{r}");
+    }
+
+    #[test]
+    fn the_fold_minus_is_where_kinkmap_sees_its_episode_vanish() {
+        // `kinkmap -- 3.2 3.2 0.1 2048`: α = 0.344692; `-- 2.45 2.45 0.1 2048`: 0.500226.
+        for (gamma, guesses, want) in [
+            (3.2, [0.343, 0.36], 0.344692),
+            (2.45, [0.49, 0.52], 0.500226),
+        ] {
+            for guess in guesses {
+                let a = fold_minus_at(gamma, guess, 2048).unwrap().expect("found");
+                assert!((a - want).abs() < 2e-6, "{a} at {gamma} from {guess}");
+            }
+        }
+        // Below the predicate's interval (at γ = 2.45 it starts at 0.4832) there is nothing to
+        // continue from.
+        assert_eq!(fold_minus_at(2.45, 0.3, 2048).unwrap(), None);
+        // The located α separates the two signatures to 1e-6 (relative).
+        let a = fold_minus_at(3.2, 0.345, 2048).unwrap().unwrap();
+        let below = slip_history(3.2, a * (1.0 - 1e-6), 2048).unwrap();
+        let above = slip_history(3.2, a * (1.0 + 1e-6), 2048).unwrap();
+        assert!(has_restitution_minus(&below) && !has_restitution_minus(&above));
     }
 
     #[test]
