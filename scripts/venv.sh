@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Python of the checks: a virtual environment of the project's own, target/venv (git-ignored;
 # OBLIQUE_VENV names another folder), created once with `python3 -m venv` and reused, holding
-# h5py, numpy, pytest, matplotlib and mypy (and, installed by scripts/test, the package ./python).
+# h5py, numpy, pytest, matplotlib and mypy (and, installed by scripts/test, the package as its
+# portable wheel).
 # Nothing is installed into the user's Python: this works where that Python refuses pip
 # (Debian 12's /usr/lib/python3.11/EXTERNALLY-MANAGED, PEP 668). On Debian, `python3 -m venv`
 # needs the python3-venv package, installed with apt-get (scripts/setup.sh) when it is missing.

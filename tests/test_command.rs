@@ -83,18 +83,34 @@ fn scripts_install_python_packages_only_into_their_own_environment() {
         venv < first_python,
         "scripts/test must source scripts/venv.sh before its first Python step and the Rust tests"
     );
-    // The wheel a user installs without Rust or HDF5 is built and checked after the package.
-    let install = lines
-        .iter()
-        .position(|l| l.contains("pip install") && l.contains("./python"))
-        .expect("scripts/test installs ./python");
-    let wheel = lines
-        .iter()
-        .position(|l| l == "bash scripts/check_wheel.sh")
-        .expect("scripts/test runs scripts/check_wheel.sh");
+    // The portable wheel is built once: installed into the environment for pytest, then checked
+    // in a fresh one (the same file, not a second build).
+    let position = |what: &str, f: &dyn Fn(&str) -> bool| {
+        lines
+            .iter()
+            .position(|l| f(l))
+            .unwrap_or_else(|| panic!("scripts/test {what}"))
+    };
+    let build = position("builds the wheel (scripts/build_wheel.sh)", &|l| {
+        l.starts_with("background ") && l.ends_with(" bash scripts/build_wheel.sh")
+    });
+    let wait = position("waits for the wheel", &|l| {
+        l == "finish \"scripts/build_wheel.sh\""
+    });
+    let install = position("installs the wheel it built", &|l| {
+        l.contains("pip install") && l.ends_with("\"$wheel\"")
+    });
+    let pytest = position("runs pytest", &|l| l.contains("-m pytest"));
+    let check = position("checks the wheel it built", &|l| {
+        l == "bash scripts/check_wheel.sh \"$wheel\""
+    });
     assert!(
-        install < wheel,
-        "check_wheel.sh reuses the package's build: run it after"
+        build < wait && wait < install && install < pytest && install < check,
+        "scripts/test: build the wheel, install it, then pytest; check_wheel.sh checks that wheel"
+    );
+    assert!(
+        !lines.iter().any(|l| l.contains("./python")),
+        "scripts/test builds the package once (scripts/build_wheel.sh), not again from ./python"
     );
     let venv_sh = read("scripts/venv.sh");
     assert!(venv_sh.contains("-m venv"), "scripts/venv.sh makes a venv");
@@ -133,4 +149,39 @@ fn python3_of_the_test_command_is_its_own_environment() {
     let venv = Path::new(&venv).canonicalize().unwrap();
     assert_eq!(prefix, venv, "python3 on PATH is not the environment's");
     assert_ne!(prefix, base, "python3 is not in a virtual environment");
+}
+
+/// scripts/build_wheel.sh teaches with --help (what it builds: the manylinux_2_28 tag, and how)
+/// and refuses a bad argument with exit 2 before installing or building anything.
+#[test]
+fn build_wheel_script_teaches_and_refuses_bad_arguments() {
+    let script = root().join("scripts/build_wheel.sh");
+    let run = |args: &[&str]| {
+        Command::new("bash")
+            .arg(&script)
+            .args(args)
+            .output()
+            .expect("bash runs")
+    };
+    let help = run(&["--help"]);
+    assert!(help.status.success(), "--help: {}", help.status);
+    let text = String::from_utf8_lossy(&help.stdout);
+    for word in [
+        "manylinux_2_28",
+        "glibc 2.28",
+        "static-hdf5",
+        "OUT_DIR",
+        "auditwheel show",
+    ] {
+        assert!(
+            text.contains(word),
+            "--help does not mention {word}:\n{text}"
+        );
+    }
+    for bad in [&["--bogus"][..], &["a", "b"][..]] {
+        let out = run(bad);
+        assert_eq!(out.status.code(), Some(2), "{bad:?}: {}", out.status);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("see --help"), "{bad:?}: {err}");
+    }
 }
