@@ -259,18 +259,22 @@ fn check_momentum(imp: &PhysicalImpact, out: &PhysicalOutcome, label: &str) {
 
 const GAMMAS: [f64; 5] = [0.5, 0.8, 1.2, 1.754, 3.0];
 
-/// Resolution at which the accurate scheme is within a few 1e-9 of the full-slip line.
+/// The accurate scheme's answer on the full-slip line, extrapolated to infinite resolution.
 ///
 /// In full slip the scheme is not exact: the trapezoid rule on the parabolic Coulomb limit and the
-/// time quadrature of the impulse leave a second-order error of about 20 α/N² with N springs =
-/// N steps (measured: 4.0e-9 at α = 0.219, N = 32768). Square resolutions are the cheapest for
-/// this error; the closed form is the reference.
-fn line_resolution(alpha: f64) -> Resolution {
-    if alpha <= 0.08 {
-        res(16384, 16384)
-    } else {
-        res(32768, 32768)
-    }
+/// time quadrature of the impulse leave a second-order error `C α / N²` with `N` springs = `N`
+/// steps, and `C` is the same everywhere on the line (measured: 19.01 at N = 1024 to 19.02 at
+/// N = 8192, for γ from 0.5 to 3 and α up to the limit). Richardson's extrapolation of N = 2048
+/// and 4096 then lands within about 1e-11 of the limit. Returns the extrapolated `P`, and the
+/// ratio of the errors against the line at N and 2N (4 for a second-order error).
+fn line_extrapolated(g: f64, a: f64) -> (f64, f64) {
+    let n = 2048;
+    let p = |n: usize| Request::new(g, a).scheme(ACC).simulate(res(n, n)).unwrap();
+    let (coarse, fine) = (p(n), p(2 * n));
+    (
+        (4.0 * fine - coarse) / 3.0,
+        (coarse - line(a)) / (fine - line(a)),
+    )
 }
 
 #[test]
@@ -281,13 +285,11 @@ fn full_slip_line_is_exact_below_the_linear_limit() {
         assert_eq!(limit, expected_limit, "linear limit at gamma = {g}");
         for &frac in &[0.25, 0.6] {
             let a = frac * limit;
-            let p = Request::new(g, a)
-                .scheme(ACC)
-                .simulate(line_resolution(a))
-                .unwrap();
+            let (p, ratio) = line_extrapolated(g, a);
             assert!(
-                (p - line(a)).abs() < 1e-8,
-                "gamma = {g}, alpha = {a}: P = {p}, 1 - 7 alpha = {}, diff {:e}",
+                (p - line(a)).abs() < 1e-9 && (ratio - 4.0).abs() < 0.01,
+                "gamma = {g}, alpha = {a}: P (extrapolated) = {p}, 1 - 7 alpha = {}, diff {:e}, \
+                 error ratio N/2N {ratio}",
                 line(a),
                 p - line(a)
             );
@@ -464,13 +466,11 @@ fn line_holds_just_below_the_limit_and_departs_above() {
         let below = 0.999 * limit;
         assert_eq!(Regime::of(g, below), Regime::FullSlip);
         assert_eq!(closed_form(g, below), Some(line(below)));
-        let p = Request::new(g, below)
-            .scheme(ACC)
-            .simulate(line_resolution(below))
-            .unwrap();
+        let (p, ratio) = line_extrapolated(g, below);
         assert!(
-            (p - line(below)).abs() < 1e-8,
-            "gamma = {g}, alpha = 0.999 limit = {below}: P - (1 - 7 alpha) = {:e}",
+            (p - line(below)).abs() < 1e-9 && (ratio - 4.0).abs() < 0.01,
+            "gamma = {g}, alpha = 0.999 limit = {below}: P (extrapolated) - (1 - 7 alpha) = {:e}, \
+             error ratio N/2N {ratio}",
             p - line(below)
         );
 
