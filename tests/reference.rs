@@ -65,7 +65,12 @@ fn mapping_and_direct_simulation_agree_within_their_bounds() {
     let (a, b) = (dir.join("mapping"), dir.join("direct"));
     let out = run_all(&a, &[]);
     assert!(!out.contains("FAIL"), "{out}");
-    run_all(&b, &["--direct"]);
+    // The direct two-body simulations at tol 1e-7 (4 s; 15 s at the default 1e-8): each number
+    // has its own bound, and the two must agree within the sum of the bounds. At this tol the
+    // refinement stops at coarse levels where the differences of P still turn or shrink slowly
+    // (Chung & Ooi test 5, polyethylene at 0.2916; seed 000 at 4.218°), which the estimate of a
+    // plain value has to cover.
+    run_all(&b, &["--direct", "--tol", "1e-7"]);
     let mut compared = 0;
     let mut sphere_sphere = 0;
     for fa in test_csvs(&a) {
