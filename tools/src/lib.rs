@@ -42,3 +42,23 @@ pub fn point(s: &str) -> Result<(f64, f64)> {
 pub fn args() -> Vec<String> {
     std::env::args().skip(1).collect()
 }
+
+/// The rows `tag,x_1,…,x_n[,…]` of standard input with `n` numbers after the tag: each as the
+/// tag and its first `n` numbers; a line with fewer fields or a number that does not parse (a
+/// header, a comment) is skipped.
+pub fn tagged_rows(n: usize) -> Result<Vec<(String, Vec<f64>)>> {
+    use std::io::BufRead;
+    let mut rows = Vec::new();
+    for line in std::io::stdin().lock().lines() {
+        let line = line.context("reading standard input")?;
+        let f: Vec<&str> = line.trim().split(',').collect();
+        if f.len() <= n {
+            continue;
+        }
+        let Ok(x) = f[1..=n].iter().map(|s| s.parse::<f64>()).collect() else {
+            continue;
+        };
+        rows.push((f[0].to_string(), x));
+    }
+    Ok(rows)
+}

@@ -6,7 +6,6 @@ use oblique_lookup::Table;
 use oblique_solver::{Accuracy, Request};
 use oblique_table::surface::{partial_coord, stick_coord, PatchKind, Region};
 use rayon::prelude::*;
-use std::io::BufRead;
 
 /// `patch:leaf` of an elastic table's point (`-` outside the patches).
 fn leaf_of(table: &Table, g: f64, a: f64) -> String {
@@ -30,22 +29,10 @@ fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let table = Table::open(args.first().map_or("tables/full.h5", String::as_str))?;
     let tol: f64 = args.get(1).map_or(Ok(1e-9), |s| s.parse())?;
-    let mut pts = Vec::new();
-    for line in std::io::stdin().lock().lines() {
-        let line = line?;
-        let f: Vec<&str> = line.trim().split(',').collect();
-        if f.len() < 4 {
-            continue;
-        }
-        let (Ok(g), Ok(a), Ok(e)) = (
-            f[1].parse::<f64>(),
-            f[2].parse::<f64>(),
-            f[3].parse::<f64>(),
-        ) else {
-            continue;
-        };
-        pts.push((f[0].to_string(), g, a, e));
-    }
+    let pts: Vec<(String, f64, f64, f64)> = oblique_tools::tagged_rows(3)?
+        .into_iter()
+        .map(|(tag, x)| (tag, x[0], x[1], x[2]))
+        .collect();
     let has_e = table.restitution().is_some();
     let out: Vec<String> = pts
         .par_iter()

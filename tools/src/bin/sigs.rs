@@ -6,7 +6,6 @@
 //! separation (as `kinkmap` writes them). Points are run in parallel (rayon).
 use oblique_solver::history::{slip_history, Episode, SlipSign};
 use rayon::prelude::*;
-use std::io::BufRead;
 
 fn mark(e: &Episode) -> String {
     let s = if e.sign == SlipSign::Plus { '+' } else { '-' };
@@ -17,18 +16,10 @@ fn mark(e: &Episode) -> String {
 
 fn main() -> anyhow::Result<()> {
     let steps: usize = std::env::args().nth(1).map_or(Ok(1024), |s| s.parse())?;
-    let mut pts = Vec::new();
-    for line in std::io::stdin().lock().lines() {
-        let line = line?;
-        let f: Vec<&str> = line.trim().split(',').collect();
-        if f.len() < 3 {
-            continue;
-        }
-        let (Ok(g), Ok(a)) = (f[1].parse::<f64>(), f[2].parse::<f64>()) else {
-            continue;
-        };
-        pts.push((f[0].to_string(), g, a));
-    }
+    let pts: Vec<(String, f64, f64)> = oblique_tools::tagged_rows(2)?
+        .into_iter()
+        .map(|(tag, x)| (tag, x[0], x[1]))
+        .collect();
     let out: Vec<String> = pts
         .par_iter()
         .map(|(tag, g, a)| match slip_history(*g, *a, steps) {
