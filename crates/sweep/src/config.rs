@@ -147,6 +147,11 @@ pub struct Nodes {
     /// first (a few seconds); no effect when the partial-slip patch ends below γ ≈ 2.95.
     #[serde(default)]
     pub fold_warp: bool,
+    /// Trace the kink curves of `P` whose leaves the quarter-surplus prediction cannot be trusted
+    /// on (the fold curve F₋ of the partial-slip patch, γ ≥ 2.40) and measure every leaf one
+    /// crosses by direct simulations next to it before accepting it (an elastic table only).
+    #[serde(default)]
+    pub probe_kinks: bool,
 }
 
 fn default_placement() -> String {
@@ -500,6 +505,13 @@ impl Config {
                 "false for a table with an e_n range".into(),
             ));
         }
+        if d.e_n_range().is_some() && n.probe_kinks {
+            return Err(err(
+                "nodes.probe_kinks",
+                "true".into(),
+                "false for a table with an e_n range".into(),
+            ));
+        }
         if n.placement != "aligned" {
             return Err(err(
                 "nodes.placement",
@@ -678,5 +690,30 @@ tol = 1e-6
                 .to_string();
             assert!(e.contains(needle), "{text}: {e}");
         }
+    }
+
+    #[test]
+    fn kink_probes_are_for_elastic_tables_only() {
+        let probe = GOOD.replace(
+            "target_error = 1e-5",
+            "target_error = 1e-5\nprobe_kinks = true",
+        );
+        assert!(
+            Config::parse(&probe, "x.toml")
+                .expect("elastic")
+                .nodes
+                .probe_kinks
+        );
+        let dissipative = probe.replace(
+            "alpha_max = \"inf\"",
+            "alpha_max = \"inf\"\ne_n_min = 0.5\ne_n_max = 1.0",
+        );
+        let e = Config::parse(&dissipative, "x.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("nodes.probe_kinks") && e.contains("e_n range"),
+            "{e}"
+        );
     }
 }
