@@ -479,7 +479,7 @@ pub fn dimensionless_normal(steps: usize) -> Arc<NormalTrajectory> {
 /// rounding of `d − x²/R*`, and the clamp near the contact edge is decided by rounding: 5e-6
 /// errors at α = 3.9e11 and |P| ≈ 1e82 at α = 4e99 (u0 = 1e-100 m/s in physical units) were
 /// measured before this cut-off. The no-slip limit is what such an impact tends to: at γ = 0.5,
-/// `P(1e9)` and `P(∞)` agree to 1e-9 (8192 steps, `tests/extremes.rs`), and the gap shrinks
+/// `P(1e9)` and `P(∞)` agree to 1e-9 (8192 steps, `crates/solver/tests/extremes.rs`), and the gap shrinks
 /// as `α` grows (7e-4 at α = 390, 6e-6 at 3.9e5).
 pub const ALPHA_NO_SLIP: f64 = 1e10;
 
