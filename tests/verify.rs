@@ -134,3 +134,42 @@ fn near_curves_draws_alpha_next_to_the_critical_curves() {
         "{worst}: alpha_c1 {c1}, alpha_c2 {c2}"
     );
 }
+
+/// `--near-fold` draws (γ, α) next to the fold curve F₋ of an elastic table that reaches
+/// γ ≥ 2.43, and `tables/full.h5` holds its bound there; a table without F₋ is refused (exit 2).
+#[test]
+fn near_fold_draws_points_next_to_fold_minus() {
+    let out = sweep(&[
+        "verify",
+        FULL,
+        "--points",
+        "24",
+        "--seed",
+        "4",
+        "--near-fold",
+        "--quiet",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stdout}{stderr}");
+    assert!(
+        stderr.contains("gamma uniform in [2.4, 3.5], alpha within 1e-4 to 1e-2 (relative) of the fold curve F-"),
+        "{stderr}"
+    );
+    assert!(stdout.contains("points above it: 0"), "{stdout}");
+    for (table, needle) in [
+        ("tables/default.h5", "an e_n axis"),
+        ("tables/isotropic.h5", "gamma in [1.52, 2.16]"),
+    ] {
+        let path = format!("{}/{table}", env!("CARGO_MANIFEST_DIR"));
+        let out = sweep(&["verify", &path, "--points", "3", "--near-fold"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{table}: {err}");
+        assert!(
+            err.contains("--near-fold") && err.contains(needle),
+            "{table}: {err}"
+        );
+    }
+    let out = sweep(&["verify", FULL, "--near-fold", "--near-curves"]);
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -43,6 +43,12 @@ pub struct VerifyArgs {
     /// are drawn again).
     #[arg(long)]
     near_curves: bool,
+    /// Draw (gamma, alpha) next to the fold curve F- instead (elastic tables reaching gamma
+    /// 2.43 or more): gamma uniform over the table's range above 2.40, alpha = alpha_F(gamma)
+    /// times 1 + s·r, s = +1 or -1, r log-uniform in [1e-4, 1e-2], where the surface leaves its
+    /// smooth continuation like (alpha - alpha_F)^(3/2) (F- is traced first, about 1 s).
+    #[arg(long, conflicts_with = "near_curves")]
+    near_fold: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
@@ -109,6 +115,40 @@ fn sample_near_curves(table: &Table, n: usize, seed: u64) -> Vec<Point> {
     )
 }
 
+/// The `n` points of `--near-fold`: [`oblique_sweep::kink::near_fold_minus_points`] over the
+/// part of an elastic table's γ range where F₋ is traced.
+fn sample_near_fold(
+    table: &Table,
+    path: &std::path::Path,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<Point>> {
+    let s = table.surface();
+    let reach = oblique_sweep::kink::FOLD_MINUS_FROM + 3.0 * oblique_sweep::kink::STEP;
+    if table.restitution().is_some() || s.pair_gamma().is_some() || s.gamma_max() < reach {
+        return Err(Failure::usage(format!(
+            "--near-fold: {} has {}; the fold curve F- is traced for elastic tables whose gamma \
+             range reaches {reach} or more",
+            path.display(),
+            if table.restitution().is_some() {
+                "an e_n axis".to_string()
+            } else {
+                format!("gamma in [{}, {}]", s.gamma_min(), s.gamma_max())
+            }
+        )));
+    }
+    let curve = oblique_sweep::kink::fold_minus_curve(s.gamma_min(), s.gamma_max())
+        .context("tracing the fold curve F-")?
+        .context("the fold curve F- is not in the table's gamma range")?;
+    Ok(oblique_sweep::kink::near_fold_minus_points(
+        &curve,
+        s.gamma_min(),
+        s.gamma_max(),
+        n,
+        seed,
+    ))
+}
+
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
 #[derive(Clone, Copy)]
 struct Outcome {
@@ -155,7 +195,11 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         )
         .into());
     }
-    let points = sample(&table, args.points, args.seed, args.near_curves);
+    let points = if args.near_fold {
+        sample_near_fold(&table, &args.table, args.points, args.seed)?
+    } else {
+        sample(&table, args.points, args.seed, args.near_curves)
+    };
     // The law of the table's node values (an elastic table: elastic).
     let law = match table.restitution() {
         Some(_) => Law::from_name(&table.provenance().law).map_err(|e| {
@@ -178,13 +222,23 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         points.len(),
         match table.surface().pair_gamma() {
             Some(g) => format!("gamma = {g}, the table's one pair"),
+            None if args.near_fold => format!(
+                "gamma uniform in [{}, {}]",
+                table
+                    .surface()
+                    .gamma_min()
+                    .max(oblique_sweep::kink::FOLD_MINUS_FROM),
+                table.surface().gamma_max()
+            ),
             None => format!(
                 "gamma uniform in [{}, {}]",
                 table.surface().gamma_min(),
                 table.surface().gamma_max()
             ),
         },
-        if args.near_curves {
+        if args.near_fold {
+            "alpha within 1e-4 to 1e-2 (relative) of the fold curve F-"
+        } else if args.near_curves {
             "alpha within 1e-4 to 0.1 (relative) of alpha_c1(gamma, e_n) and alpha_c2(gamma), \
              alternately"
         } else {
@@ -194,7 +248,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             Some((lo, hi)) => format!(", e_n uniform in [{lo}, {hi}], law {}", law.name()),
             None => String::new(),
         },
-        if table.surface().alpha_max().is_infinite() && !args.near_curves {
+        if table.surface().alpha_max().is_infinite() && !args.near_curves && !args.near_fold {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {
             String::new()

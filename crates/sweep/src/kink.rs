@@ -121,6 +121,40 @@ pub fn fold_minus_curve(gamma_lo: f64, gamma_hi: f64) -> Result<Option<KinkCurve
 /// γ = 3.276 in a leaf of depth 7, 4.6e-6 at 0.8 above; under 2e-7 beyond 1.5 intervals).
 pub const PROBE_OFFSETS: [f64; 7] = [-0.7, -0.35, 0.0, 0.35, 0.7, 1.05, 1.4];
 
+/// `n` points next to the fold curve F₋ (`curve`, from [`fold_minus_curve`]): `γ` uniform over
+/// the curve's range within `[gamma_min, gamma_max]`, `α = α_F(γ)(1 + s·r)` with `s = ±1` and
+/// `r = 10^u`, `u` uniform in `[−4, −2]` (the finest leaves next to F₋ are about 1e-3 wide in
+/// `α/α_F`), `e_n = 1`. The same `seed` gives the same points (`sweep verify --near-fold`).
+pub fn near_fold_minus_points(
+    curve: &KinkCurve,
+    gamma_min: f64,
+    gamma_max: f64,
+    n: usize,
+    seed: u64,
+) -> Vec<oblique_table::surface::Point> {
+    let (c_lo, c_hi) = curve.gamma_range();
+    let (lo, hi) = (gamma_min.max(c_lo), gamma_max.min(c_hi));
+    // An empty range (or a NaN edge) gives no points.
+    if lo > hi || lo.is_nan() || hi.is_nan() {
+        return Vec::new();
+    }
+    let mut rng = oblique_physics::sample::SplitMix(seed);
+    let mut out = Vec::with_capacity(n);
+    while out.len() < n {
+        let gamma = (lo + (hi - lo) * rng.uniform()).min(hi);
+        let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        if let Some(alpha_f) = curve.alpha_at(gamma) {
+            out.push(oblique_table::surface::Point::new(
+                gamma,
+                alpha_f * (1.0 + sign * r),
+                1.0,
+            ));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -144,5 +178,22 @@ mod tests {
         assert_eq!(curve.alpha_at(2.39), None);
         assert_eq!(curve.alpha_at(3.4), None);
         assert!(fold_minus_curve(1.0, 2.42).unwrap().is_none());
+        // Points next to it: within 1e-2 (relative) of the curve, both sides, over the range
+        // asked for; the same seed, the same points.
+        let pts = near_fold_minus_points(&curve, 2.3, 3.0, 200, 5);
+        assert_eq!(pts.len(), 200);
+        assert_eq!(pts, near_fold_minus_points(&curve, 2.3, 3.0, 200, 5));
+        let d: Vec<f64> = pts
+            .iter()
+            .map(|p| p.alpha / curve.alpha_at(p.gamma).unwrap() - 1.0)
+            .collect();
+        assert!(pts
+            .iter()
+            .all(|p| (2.4..=3.0).contains(&p.gamma) && p.e_n == 1.0));
+        assert!(d
+            .iter()
+            .all(|d| (1e-4 - 1e-15..=1e-2 + 1e-15).contains(&d.abs())));
+        assert!(d.iter().any(|&d| d < 0.0) && d.iter().any(|&d| d > 0.0));
+        assert!(near_fold_minus_points(&curve, 1.0, 2.0, 10, 5).is_empty());
     }
 }
