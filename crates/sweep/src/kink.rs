@@ -56,6 +56,19 @@ impl KinkCurve {
     }
 }
 
+/// The piecewise-linear interpolant of `table` (`(x, y)` pairs, `x` increasing) at `x`, held
+/// constant beyond the first and the last pair: the first guesses of the fold tracings.
+pub(crate) fn lerp_table(table: &[(f64, f64)], x: f64) -> f64 {
+    match table.iter().position(|&(t, _)| t >= x) {
+        Some(0) => table[0].1,
+        Some(i) => {
+            let ((x0, y0), (x1, y1)) = (table[i - 1], table[i]);
+            y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+        }
+        None => table[table.len() - 1].1,
+    }
+}
+
 /// `α_F` of F₋ at a few γ (`docs/solver.md`, "Kink curves"), linearly interpolated and raised by
 /// 1 %: the first guess of each point's search, which must lie above F₋ (within a factor `e`)
 /// or inside the narrow interval below it where the tracing predicate holds.
@@ -71,14 +84,7 @@ fn first_guess(gamma: f64) -> f64 {
         (3.2, 0.3447),
         (3.5, 0.3144),
     ];
-    let a = match TABLE.iter().position(|&(g, _)| g >= gamma) {
-        Some(0) => TABLE[0].1,
-        Some(i) => {
-            let ((g0, a0), (g1, a1)) = (TABLE[i - 1], TABLE[i]);
-            a0 + (a1 - a0) * (gamma - g0) / (g1 - g0)
-        }
-        None => TABLE[TABLE.len() - 1].1,
-    };
+    let a = lerp_table(&TABLE, gamma);
     1.01 * a
 }
 

@@ -47,14 +47,7 @@ fn first_guess(gamma: f64) -> f64 {
         (3.3, 0.3872),
         (3.5, 0.2856),
     ];
-    let ratio = match TABLE.iter().position(|&(g, _)| g >= gamma) {
-        Some(0) => TABLE[0].1,
-        Some(i) => {
-            let ((g0, r0), (g1, r1)) = (TABLE[i - 1], TABLE[i]);
-            r0 + (r1 - r0) * (gamma - g0) / (g1 - g0)
-        }
-        None => TABLE[TABLE.len() - 1].1,
-    };
+    let ratio = crate::kink::lerp_table(&TABLE, gamma);
     // Slightly below the fold: the continuation steps up from there.
     0.98 * ratio * alpha_c2(gamma)
 }
