@@ -2,7 +2,7 @@
 
 use thiserror::Error;
 
-use super::impact::Resolution;
+use crate::resolution::Resolution;
 
 /// Errors returned by the physics core. Messages name the parameter and the allowed range.
 #[derive(Debug, Error, Clone, PartialEq)]

@@ -15,6 +15,7 @@ use super::hertz::{HertzClosedForm, NormalBodies, NormalTrajectory};
 use super::law::Law;
 use super::model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
 use super::springs::{SpringRow, StepMotion};
+pub use crate::resolution::Resolution;
 use oblique_physics::regimes;
 
 /// Numerical scheme of an impact simulation.
@@ -60,38 +61,8 @@ impl Scheme {
     }
 }
 
-/// Spatial and temporal resolution of one simulation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Resolution {
-    /// Springs on the half-row `[0, a_max]`; `0` selects the continuum limit of the row
-    /// ([`super::continuum::ContinuumRow`], exact in space: the default of the accurate
-    /// scheme's automatic refinement). The Euler scheme needs at least 2.
-    pub springs: usize,
-    /// Time steps per contact time.
-    pub steps: usize,
-}
-
-/// `"N springs x M steps"`, or `"continuum row x M steps"` for the continuum row
-/// (`springs = 0`); the wording of the error messages.
-impl std::fmt::Display for Resolution {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.springs == 0 {
-            write!(f, "continuum row x {} steps", self.steps)
-        } else {
-            write!(f, "{} springs x {} steps", self.springs, self.steps)
-        }
-    }
-}
-
+/// The checks of a [`Resolution`] live with the loop that runs it.
 impl Resolution {
-    /// Both counts multiplied by `2^k`.
-    pub fn doubled(self, k: u32) -> Self {
-        Self {
-            springs: self.springs << k,
-            steps: self.steps << k,
-        }
-    }
-
     /// Validate the counts (springs 0 (continuum) or ≥ 2, steps ≥ 8).
     pub fn validate(self) -> Result<Self, PhysicsError> {
         if self.springs == 1 {

@@ -8,6 +8,23 @@ use serde::Serialize;
 
 use crate::error::PhysicsError;
 
+/// Smallest normal restitution the solver takes (the Kelvin–Voigt law's range is
+/// `[MIN_RESTITUTION, 1]`).
+pub const MIN_RESTITUTION: f64 = 0.3;
+
+/// Check a normal restitution: finite, in `[0.3, 1]` (`[MIN_RESTITUTION, 1]`).
+pub fn check_restitution(e_n: f64) -> Result<f64, PhysicsError> {
+    if (MIN_RESTITUTION..=1.0).contains(&e_n) {
+        Ok(e_n)
+    } else {
+        Err(PhysicsError::InvalidParameter {
+            name: "e_n",
+            value: e_n,
+            allowed: "a number in [0.3, 1] (1: elastic)",
+        })
+    }
+}
+
 /// A dissipation law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default, Hash)]
 #[serde(rename_all = "kebab-case")]
@@ -62,7 +79,7 @@ impl Law {
                 value: e_n,
                 allowed: "1 for the elastic law (name the kelvin-voigt law for e_n < 1)",
             }),
-            Law::KelvinVoigt => crate::kelvin_voigt::check_restitution(e_n),
+            Law::KelvinVoigt => check_restitution(e_n),
         }
     }
 }

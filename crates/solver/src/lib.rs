@@ -15,6 +15,7 @@ pub mod law;
 pub mod model;
 pub mod preset;
 pub mod request;
+pub mod resolution;
 pub mod springs;
 pub mod units;
 

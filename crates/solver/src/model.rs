@@ -100,23 +100,23 @@ pub trait Integrator {
     const RICHARDSON: bool;
     /// The base level of the refinement for a `γ` whose tangential frequency asks for `scale`
     /// times the steps of `γ ≤ 1` (a power of two).
-    fn base_resolution(scale: f64) -> crate::impact::Resolution;
+    fn base_resolution(scale: f64) -> crate::resolution::Resolution;
     /// The first level the refinement runs, from its base.
-    fn ladder_start(base: crate::impact::Resolution) -> crate::impact::Resolution;
+    fn ladder_start(base: crate::resolution::Resolution) -> crate::resolution::Resolution;
     /// Memory (bytes) the scheme holds of the normal motion at `res`.
-    fn normal_memory(res: crate::impact::Resolution) -> f64;
+    fn normal_memory(res: crate::resolution::Resolution) -> f64;
     /// Predicted raw error (difference between the first two levels) at `γ` with base `base`.
-    fn base_error(gamma: f64, base: crate::impact::Resolution) -> f64;
+    fn base_error(gamma: f64, base: crate::resolution::Resolution) -> f64;
     /// Refuse a resolution the scheme cannot run.
     fn check(
-        res: crate::impact::Resolution,
-    ) -> Result<crate::impact::Resolution, crate::PhysicsError> {
+        res: crate::resolution::Resolution,
+    ) -> Result<crate::resolution::Resolution, crate::PhysicsError> {
         Ok(res)
     }
     /// `P` of the dimensionless impact of one solid sphere (`m* = R* = E* = v_z0 = 1`,
     /// `u0 = 1`) at resolution `res`, with `G* = shear = (2/7)γ²` and Coulomb limit
     /// `c = limit` (`∞` for no slip). `res` is valid for the scheme.
-    fn dimensionless_p(shear: f64, limit: f64, res: crate::impact::Resolution) -> f64;
+    fn dimensionless_p(shear: f64, limit: f64, res: crate::resolution::Resolution) -> f64;
 }
 
 /// The accurate scheme: velocity Verlet for the bodies, product integration of the friction

@@ -26,8 +26,8 @@ use row::ViscoelasticRow;
 /// α = 0.98 α_c2, e_n = 0.3 (7.1e-9 for 2.2e-8); both in `crates/solver/tests/kelvin_voigt.rs`.
 pub const RAW_FLOOR: Floor = Floor::fixed(0.5);
 
-/// Smallest normal restitution the solver takes.
-pub const MIN_RESTITUTION: f64 = 0.3;
+/// Smallest normal restitution the solver takes ([`crate::law`] owns the range).
+pub use crate::law::MIN_RESTITUTION;
 
 /// `C1 = √π Γ(3/5) / (2^{1/5} 5^{2/5} Γ(21/10))` of `e_n = 1 − C1 b + C2′ b² + …`
 /// (Schwager & Pöschel 2008), to the double nearest the closed form.
@@ -135,18 +135,8 @@ pub fn tau_guess(e_n: f64) -> f64 {
     x * (u * b1 - b2 + TAU_GUESS[0])
 }
 
-/// Check a normal restitution: finite, in `[0.3, 1]`.
-pub fn check_restitution(e_n: f64) -> Result<f64, PhysicsError> {
-    if (MIN_RESTITUTION..=1.0).contains(&e_n) {
-        Ok(e_n)
-    } else {
-        Err(PhysicsError::InvalidParameter {
-            name: "e_n",
-            value: e_n,
-            allowed: "a number in [0.3, 1] (1: elastic)",
-        })
-    }
-}
+/// Check a normal restitution: finite, in `[0.3, 1]` ([`crate::law`] owns the range).
+pub use crate::law::check_restitution;
 
 thread_local! {
     static TAU_CACHE: RefCell<HashMap<u64, f64>> = RefCell::new(HashMap::new());
