@@ -38,19 +38,8 @@ use std::io::Write;
 
 use super::eval::{Evaluation, Row, RowMethod};
 
-/// Format a number so that it reads back exactly (`NaN`, `inf` spelled out; the CSV itself
-/// writes undefined values as empty fields, [`defined`]).
-pub fn num(v: f64) -> String {
-    if v.is_nan() {
-        "NaN".into()
-    } else if v.is_infinite() {
-        if v > 0.0 { "inf" } else { "-inf" }.into()
-    } else if v == 0.0 || (1e-4..1e7).contains(&v.abs()) {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
-    }
-}
+/// Numbers as the scene files spell them ([`super::spec::num`]).
+pub use super::spec::num;
 
 fn opt(v: Option<f64>) -> String {
     v.map(num).unwrap_or_default()
