@@ -14,6 +14,7 @@
 pub mod csv;
 mod eval;
 pub mod figure;
+mod format;
 /// The material catalogue (it lives in `oblique-physics`, where Python reads it too).
 pub use oblique_physics::materials;
 pub mod measured;

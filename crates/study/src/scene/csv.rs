@@ -38,8 +38,8 @@ use std::io::Write;
 
 use super::eval::{Evaluation, Row, RowMethod};
 
-/// Numbers as the scene files spell them ([`super::spec::num`]).
-pub use super::spec::num;
+/// Numbers as the scene files spell them ([`super::format::num`]).
+pub use super::format::num;
 
 fn opt(v: Option<f64>) -> String {
     v.map(num).unwrap_or_default()

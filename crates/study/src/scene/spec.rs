@@ -450,7 +450,7 @@ impl Validator<'_> {
     /// [`Self::invalid`] for a number, shown in exponent notation when very large or small (not
     /// as hundreds of digits).
     fn invalid_num(&self, key: impl Into<String>, v: f64, allowed: &str) -> SceneError {
-        self.invalid(key, num(v), allowed)
+        self.invalid(key, super::format::num(v), allowed)
     }
 
     /// `v` in `[lo, hi]` (unit `unit`), else an error naming the key and the range.
@@ -593,7 +593,7 @@ impl Validator<'_> {
                         "values for which sphere 1 approaches the target at >= \
                          {MIN_APPROACH_SPEED:e} m/s: the relative normal speed is {} m/s there \
                          (target.v_z must be < sphere 1's v_z)",
-                        num(v)
+                        super::format::num(v)
                     ),
                 ));
             }
@@ -1015,19 +1015,5 @@ fn x_key(kind: CaseKind) -> &'static str {
         CaseKind::Angles => "angles_deg",
         CaseKind::TangentialSpeed => "tangential_speed",
         CaseKind::Spin => "omega0",
-    }
-}
-
-/// Format a number so that it reads back exactly (`NaN`, `inf` spelled out; the CSV itself
-/// writes undefined values as empty fields, [`super::csv::defined`]).
-pub fn num(v: f64) -> String {
-    if v.is_nan() {
-        "NaN".into()
-    } else if v.is_infinite() {
-        if v > 0.0 { "inf" } else { "-inf" }.into()
-    } else if v == 0.0 || (1e-4..1e7).contains(&v.abs()) {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
     }
 }
