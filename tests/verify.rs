@@ -135,8 +135,9 @@ fn near_curves_draws_alpha_next_to_the_critical_curves() {
     );
 }
 
-/// `--near-fold` draws (γ, α) next to the fold curve F₋ of an elastic table that reaches
-/// γ ≥ 2.43, and `tables/full.h5` holds its bound there; a table without F₋ is refused (exit 2).
+/// `--near-fold` draws (γ, α) next to the fold curve F₋ of an elastic table whose γ range spans
+/// 0.03 or more above 2.40, and `tables/full.h5` holds its bound there; a table without F₋ is
+/// refused (exit 2).
 #[test]
 fn near_fold_draws_points_next_to_fold_minus() {
     let out = sweep(&[

@@ -43,8 +43,8 @@ pub struct VerifyArgs {
     /// are drawn again).
     #[arg(long)]
     near_curves: bool,
-    /// Draw (gamma, alpha) next to the fold curve F- instead (elastic tables reaching gamma
-    /// 2.43 or more): gamma uniform over the table's range above 2.40, alpha = alpha_F(gamma)
+    /// Draw (gamma, alpha) next to the fold curve F- instead (elastic tables whose gamma range
+    /// spans 0.03 or more above 2.40): gamma uniform over the table's range above 2.40, alpha = alpha_F(gamma)
     /// times 1 + s·r, s = +1 or -1, r log-uniform in [1e-4, 1e-2], where the surface leaves its
     /// smooth continuation like (alpha - alpha_F)^(3/2) (F- is traced first, about 1 s).
     #[arg(long, conflicts_with = "near_curves")]
@@ -124,22 +124,23 @@ fn sample_near_fold(
     seed: u64,
 ) -> Result<Vec<Point>> {
     let s = table.surface();
-    let reach = oblique_sweep::kink::FOLD_MINUS_FROM + 3.0 * oblique_sweep::kink::STEP;
-    if table.restitution().is_some() || s.pair_gamma().is_some() || s.gamma_max() < reach {
-        return Err(Failure::usage(format!(
-            "--near-fold: {} has {}; the fold curve F- is traced for elastic tables whose gamma \
-             range reaches {reach} or more",
+    let refuse = |has: String| {
+        Failure::usage(format!(
+            "--near-fold: {} has {has}; the fold curve F- is traced for elastic tables whose \
+             gamma range spans {} or more above {}",
             path.display(),
-            if table.restitution().is_some() {
-                "an e_n axis".to_string()
-            } else {
-                format!("gamma in [{}, {}]", s.gamma_min(), s.gamma_max())
-            }
-        )));
+            3.0 * oblique_sweep::kink::STEP,
+            oblique_sweep::kink::FOLD_MINUS_FROM
+        ))
+    };
+    // A table with an e_n axis (the table of one pair has one too) is not traced.
+    if table.restitution().is_some() {
+        return Err(refuse("an e_n axis".into()));
     }
+    // `None` when the range spans less than three tracing steps above 2.40.
     let curve = oblique_sweep::kink::fold_minus_curve(s.gamma_min(), s.gamma_max())
         .context("tracing the fold curve F-")?
-        .context("the fold curve F- is not in the table's gamma range")?;
+        .ok_or_else(|| refuse(format!("gamma in [{}, {}]", s.gamma_min(), s.gamma_max())))?;
     Ok(oblique_sweep::kink::near_fold_minus_points(
         &curve,
         s.gamma_min(),

@@ -120,8 +120,8 @@ pub fn fold_minus_curve(gamma_lo: f64, gamma_hi: f64) -> Result<Option<KinkCurve
     }))
 }
 
-/// Where a leaf crossed by a kink is measured, in node intervals from the kink along the patch
-/// coordinate, on every node row and half row along γ: the cubic's error is largest within
+/// Where a leaf next to a kink is measured, in node intervals from the kink along the patch
+/// coordinate, on every node row along γ: the cubic's error is largest within
 /// about one interval of the kink, on either side (across F₋, measured against direct
 /// simulations: at γ = 3.3589 in a leaf of depth 6, 1.6e-5 at 0.35 intervals below it; at
 /// γ = 3.276 in a leaf of depth 7, 4.6e-6 at 0.8 above; under 2e-7 beyond 1.5 intervals).

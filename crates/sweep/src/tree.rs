@@ -160,20 +160,25 @@ impl Layout<'_> {
     /// `(γ, c, α)` and the point `(γ, α, e_n)` of a lattice node (computed from the key
     /// alone, so shared nodes agree).
     fn point(&self, key: Key) -> (f64, f64, Point) {
-        let ng = self.bg as u64 * self.fine();
         let nc = self.bc as u64 * self.fine();
-        let xg = key.0 as f64 / ng as f64;
-        let gamma = if key.0 == ng {
-            self.spec.gamma_hi
-        } else {
-            self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * xg
-        };
+        let gamma = self.gamma_of_row(key.0);
         let c = key.1 as f64 / nc as f64;
         let e_n = match self.restitution {
             Some(r) => r.e_n(key.2 as f64 / (self.be() as u64 * self.fine()) as f64),
             None => 1.0,
         };
         (gamma, c, self.point_at(gamma, c, e_n, key.3))
+    }
+
+    /// γ of the lattice row `k` (`gamma_hi` exactly on the last row).
+    fn gamma_of_row(&self, k: u64) -> f64 {
+        let ng = self.bg as u64 * self.fine();
+        if k == ng {
+            self.spec.gamma_hi
+        } else {
+            let xg = k as f64 / ng as f64;
+            self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * xg
+        }
     }
 
     /// The point at `γ`, lattice coordinate `c` (`c'` where `warped`) and `e_n`.
@@ -189,23 +194,20 @@ impl Layout<'_> {
         Point::new(gamma, alpha, e_n)
     }
 
-    /// Where a cell of an elastic partial-slip patch crossed by the kink curve `curve` is
-    /// measured ([`kink::PROBE_OFFSETS`] from the kink along the coordinate, on every node row
-    /// and half row along γ where the curve lies within the cell): `(u, v, point)` with `u`, `v`
-    /// the position in node intervals of the cell. Empty when the curve misses the cell.
+    /// Where a cell of an elastic partial-slip patch next to the kink curve `curve` is measured
+    /// ([`kink::PROBE_OFFSETS`] from the kink along the coordinate, on every node row along γ,
+    /// those that land inside the cell): `(u, v, point)` with `u`, `v` the position in node
+    /// intervals of the cell. Empty when the curve passes far from the cell.
     fn kink_probes(&self, cell: Cell, curve: &kink::KinkCurve) -> Vec<Probe> {
         let m = self.m as f64;
-        let ng = (self.bg as u64 * self.fine()) as f64;
         let nc = (self.bc as u64 * self.fine()) as f64;
-        let sg = (1u64 << (MAX_DEPTH - cell.d[0])) as f64;
+        let sg = 1u64 << (MAX_DEPTH - cell.d[0]);
         let sc = (1u64 << (MAX_DEPTH - cell.d[1])) as f64;
         let warped = self.warped(cell);
-        let (lo, hi) = (self.spec.gamma_lo, self.spec.gamma_hi);
         let mut out = Vec::new();
-        for i in 0..=self.m {
+        for i in 0..=self.m as u64 {
             let u = i as f64;
-            let xg = (cell.ig as f64 * m + u) * sg / ng;
-            let gamma = if xg >= 1.0 { hi } else { lo + (hi - lo) * xg };
+            let gamma = self.gamma_of_row((cell.ig * self.m as u64 + i) * sg);
             let Some(alpha_k) = curve.alpha_at(gamma) else {
                 continue;
             };
@@ -217,11 +219,9 @@ impl Layout<'_> {
                 Some(w) if warped => w.apply(gamma, c_k),
                 _ => c_k,
             };
+            // The offsets that land inside the cell: also when the kink lies just outside it
+            // (up to 1.4 intervals below, 0.7 above), whose first intervals see the steep side.
             let v_k = lattice * nc / sc - cell.ic as f64 * m;
-            // Also a cell whose edge is near the kink: its first intervals see the steep side.
-            if !(-kink::PROBE_OFFSETS[6]..=m - kink::PROBE_OFFSETS[0]).contains(&v_k) {
-                continue;
-            }
             for d in kink::PROBE_OFFSETS {
                 let v = v_k + d;
                 if (0.0..=m).contains(&v) {
@@ -537,7 +537,7 @@ pub(crate) fn build_patch(
                 .collect()
         };
         let mut split = vec![false; open.len()];
-        let mut probed: Vec<(usize, Vec<Probe>)> = Vec::new();
+        let mut probed: Vec<(usize, Vec<f64>, Vec<Probe>)> = Vec::new();
         for (o, &c) in open.iter().enumerate() {
             // A cell across the warp's start is split without being evaluated: no leaf may
             // straddle it.
@@ -552,7 +552,7 @@ pub(crate) fn build_patch(
                 if let Some(curve) = &kinks {
                     let probes = layout.kink_probes(cells[c], curve);
                     if !probes.is_empty() {
-                        probed.push((o, probes));
+                        probed.push((o, vals, probes));
                     }
                 }
                 continue;
@@ -570,7 +570,7 @@ pub(crate) fn build_patch(
             // estimate) is within the target too; that error becomes its prediction.
             let points: Vec<Point> = probed
                 .iter()
-                .flat_map(|(_, probes)| probes.iter().map(|p| p.2))
+                .flat_map(|(_, _, probes)| probes.iter().map(|p| p.2))
                 .collect();
             progress.phase(
                 &stage_refine(spec.name),
@@ -583,9 +583,8 @@ pub(crate) fn build_patch(
             );
             let mut values =
                 solve_points_with(&points, cfg.solver.tol, law, progress, opts)?.into_iter();
-            for (o, probes) in probed {
+            for (o, vals, probes) in probed {
                 let c = open[o];
-                let vals = values_of(cells[c]);
                 let measured = probes
                     .iter()
                     .zip(values.by_ref())
