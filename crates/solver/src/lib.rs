@@ -6,6 +6,7 @@
 //! `α = μ v_z0 / |u0|` (generally `α = (2/7)(m*/m_t) μ v_z0/|u0|`), `P = u_after/u_before`.
 
 pub mod continuum;
+pub mod elastic;
 pub mod error;
 pub mod hertz;
 pub mod history;

@@ -7,8 +7,9 @@
 //! Today's models: Hertz normal contact, elastic (`e_n = 1`), tabulated on the contact's time
 //! grid ([`crate::hertz::NormalTrajectory`]); the MDR continuum row
 //! ([`crate::continuum::ContinuumRow`], exact in space) and the seed's row of springs
-//! ([`crate::springs::SpringRow`]); the accurate scheme ([`VelocityVerlet`]) and the seed's
-//! explicit Euler scheme ([`ExplicitEuler`]). A dissipative normal model, another tangential
+//! ([`crate::springs::SpringRow`]), which the elastic law ([`crate::elastic`]) implements these
+//! traits for; the Kelvin–Voigt law's own models ([`crate::kelvin_voigt`]); the accurate scheme
+//! ([`VelocityVerlet`]) and the seed's explicit Euler scheme ([`ExplicitEuler`]). A dissipative normal model, another tangential
 //! profile or another scheme is one more implementation of a trait, not a change of the loop.
 
 use crate::springs::{StepMotion, StepResult};
@@ -129,28 +130,6 @@ pub struct VelocityVerlet;
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ExplicitEuler;
 
-impl TangentialModel for crate::continuum::ContinuumRow {
-    #[inline(always)]
-    fn at_limit(&self) -> (bool, bool) {
-        crate::continuum::ContinuumRow::at_limit(self)
-    }
-    #[inline(always)]
-    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
-        crate::continuum::ContinuumRow::step_accurate(self, m, d1, c)
-    }
-}
-
-impl TangentialModel for crate::springs::SpringRow {
-    #[inline(always)]
-    fn at_limit(&self) -> (bool, bool) {
-        crate::springs::SpringRow::at_limit(self)
-    }
-    #[inline(always)]
-    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
-        crate::springs::SpringRow::step_accurate(self, m, d1, c)
-    }
-}
-
 /// The grid accessors of [`NormalModel`] for a trajectory tabulated in the fields
 /// `indentation`, `rate`, `dt`, `contact_time` and `max_indentation` (the Hertz and the
 /// Kelvin–Voigt trajectories).
@@ -183,19 +162,6 @@ macro_rules! grid_accessors {
     };
 }
 pub(crate) use grid_accessors;
-
-/// Hertz, elastic: `d̈ = −k (1/m1 + 1/m2) d^{3/2}`, tabulated on the contact's grid.
-impl NormalModel for crate::hertz::NormalTrajectory {
-    grid_accessors!();
-    #[inline(always)]
-    fn acceleration(&self, d: f64, _rate: f64) -> f64 {
-        -self.accel_factor * d * d.max(0.0).sqrt()
-    }
-    #[inline(always)]
-    fn within_step(&self, n: usize, t: f64) -> (f64, f64) {
-        crate::hertz::NormalTrajectory::within_step(self, n, t)
-    }
-}
 
 #[cfg(test)]
 mod tests {
