@@ -25,6 +25,27 @@ pub fn check_restitution(e_n: f64) -> Result<f64, PhysicsError> {
     }
 }
 
+/// The floor of the Richardson estimate as a share of the last raw difference
+/// `|P_k − P_{k−1}|`: `regular` where the last two ratios of successive differences are within
+/// `[0.75, 1.375] · 2^p` (clean convergence at order `p`), `irregular` elsewhere.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Floor {
+    /// Share where the convergence is regular.
+    pub regular: f64,
+    /// Share elsewhere (and while fewer than four values exist).
+    pub irregular: f64,
+}
+
+impl Floor {
+    /// One share whatever the convergence.
+    pub const fn fixed(share: f64) -> Self {
+        Floor {
+            regular: share,
+            irregular: share,
+        }
+    }
+}
+
 /// A dissipation law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default, Hash)]
 #[serde(rename_all = "kebab-case")]

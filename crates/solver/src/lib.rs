@@ -15,14 +15,16 @@ pub mod kelvin_voigt;
 pub mod law;
 pub mod model;
 pub mod preset;
+pub mod refine;
 pub mod request;
 pub mod resolution;
 pub mod springs;
 pub mod units;
 
 pub use error::PhysicsError;
-pub use impact::{Accuracy, Method, NoEstimate, RefineEvent, Resolution, Scheme, Solution};
+pub use impact::{Resolution, Scheme};
 pub use law::Law;
 pub use model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
 pub use preset::Preset;
+pub use refine::{Accuracy, Method, NoEstimate, RefineEvent, Solution};
 pub use request::Request;

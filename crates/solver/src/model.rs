@@ -2,7 +2,7 @@
 //! a normal model (the motion along the common normal), a tangential model (the field of
 //! tangential displacements in the contact and the force it exerts) and an integrator (the
 //! time scheme). [`crate::impact::run_contact`] composes them; the error-controlled driver
-//! ([`crate::impact::refine`], [`crate::Request::solve`]) sits on top.
+//! ([`crate::refine::refine`], [`crate::Request::solve`]) sits on top.
 //!
 //! Today's models: Hertz normal contact, elastic (`e_n = 1`), tabulated on the contact's time
 //! grid ([`crate::hertz::NormalTrajectory`]); the MDR continuum row

@@ -14,12 +14,12 @@ use oblique_physics::regimes;
 
 use crate::error::PhysicsError;
 use crate::impact::{
-    check_alpha, check_gamma, simulate_elastic, solve_core, solve_elastic, Accuracy, Limits,
-    RefineEvent, Resolution, Scheme, Solution, ALPHA_NO_SLIP,
+    check_alpha, check_gamma, simulate_elastic, Limits, Resolution, Scheme, ALPHA_NO_SLIP,
 };
 use crate::kelvin_voigt;
 use crate::law::Law;
 use crate::preset::Preset;
+use crate::refine::{solve_core, solve_elastic, Accuracy, RefineEvent, Solution};
 
 /// An impact to solve and how.
 #[derive(Debug, Clone, Copy, PartialEq)]

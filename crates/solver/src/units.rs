@@ -12,8 +12,9 @@ use serde::Serialize;
 
 use super::error::PhysicsError;
 use super::hertz::NormalBodies;
-use super::impact::{refine, run_contact, run_contact_with, Limits, Resolution, TangentialBodies};
+use super::impact::{run_contact, run_contact_with, Limits, Resolution, TangentialBodies};
 use super::kelvin_voigt::{self, normal::ViscoelasticBodies, row::ViscoelasticRow};
+use super::refine::refine;
 
 /// One impact in physical units, in the vocabulary of the lookup ([`oblique_physics::rebound`]):
 /// the same [`Pair`], materials and [`Incident`] state that a table query takes.

@@ -10,7 +10,8 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use crate::error::PhysicsError;
-use crate::impact::{run_contact_with, ContactPoint, Floor, Resolution};
+use crate::impact::{run_contact_with, ContactPoint, Resolution};
+use crate::law::Floor;
 use crate::model::{NormalModel, TangentialModel};
 use crate::springs::{StepMotion, StepResult};
 use normal::{FineMotion, ViscoelasticBodies, ViscoelasticTrajectory};
