@@ -3,10 +3,18 @@
 //! time in the normal and tangential direction, non-adhesive unloading; `physics.md`,
 //! "Dissipative impacts"). Within a law, `P` depends on `(γ, α, e_n)` only; across laws it
 //! does not, so every answer names its law.
+//!
+//! What a law is: the [`ContactLaw`] trait (its parameters, closed forms, the floor of its error
+//! estimate, its simulation at a resolution, in dimensionless form and for physical bodies),
+//! implemented by each law's folder ([`crate::elastic`], [`crate::kelvin_voigt`]). Which laws
+//! there are and which one answers a request: [`crate::registry`]. The range of `e_n` the
+//! solver takes, whatever the law: [`MIN_RESTITUTION`], [`check_restitution`].
 
 use serde::Serialize;
 
 use crate::error::PhysicsError;
+use crate::impact::{Scheme, TangentialBodies};
+use crate::resolution::Resolution;
 
 /// Smallest normal restitution the solver takes (the Kelvin–Voigt law's range is
 /// `[MIN_RESTITUTION, 1]`).
@@ -90,38 +98,87 @@ impl Law {
             Law::KelvinVoigt
         }
     }
-
-    /// Check `e_n` for this law: exactly 1 for the elastic law, `[0.3, 1]` for Kelvin–Voigt.
-    pub fn check_restitution(self, e_n: f64) -> Result<f64, PhysicsError> {
-        match self {
-            Law::Elastic if e_n == 1.0 => Ok(e_n),
-            Law::Elastic => Err(PhysicsError::InvalidParameter {
-                name: "e_n",
-                value: e_n,
-                allowed: "1 for the elastic law (name the kelvin-voigt law for e_n < 1)",
-            }),
-            Law::KelvinVoigt => check_restitution(e_n),
-        }
-    }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+/// A contact law: what the solver needs of it to answer a request. Implemented once per law,
+/// in the law's folder, by a unit type ([`crate::elastic::Elastic`],
+/// [`crate::kelvin_voigt::KelvinVoigt`]); [`crate::registry`] picks one by name and `e_n`.
+/// Dimensionless units as in [`crate::impact`] (`m* = R* = E* = v_z0 = 1`, `G* = (2/7)γ²`).
+pub trait ContactLaw {
+    /// The law's dimensionless parameters for one `e_n` (none for the elastic law; the
+    /// relaxation time `τ̂` for the Kelvin–Voigt law), as its answers report them.
+    type Parameters: Copy;
 
-    #[test]
-    fn names_round_trip_and_the_elastic_law_takes_only_one() {
-        for l in Law::ALL {
-            assert_eq!(Law::from_name(l.name()), Ok(l));
-            assert_eq!(Law::from_name(&l.name().to_uppercase()), Ok(l));
-        }
-        assert!(Law::from_name("viscous").is_err());
-        assert!(Law::Elastic.check_restitution(0.9).is_err());
-        assert_eq!(Law::Elastic.check_restitution(1.0), Ok(1.0));
-        for bad in [0.29, 1.01, f64::NAN, f64::INFINITY, -0.5] {
-            assert!(Law::KelvinVoigt.check_restitution(bad).is_err(), "{bad}");
-        }
-        assert_eq!(Law::for_restitution(0.9), Law::KelvinVoigt);
-        assert_eq!(Law::for_restitution(1.0), Law::Elastic);
-    }
+    /// The floor of the Richardson error estimate as a share of the last raw difference
+    /// between levels: the law's estimate policy, set by how regularly it converges.
+    const FLOOR: Floor;
+
+    /// Check the normal restitution `e_n` for this law (the elastic law takes 1 only).
+    fn check_restitution(e_n: f64) -> Result<f64, PhysicsError>;
+
+    /// The parameters that give a checked `e_n`.
+    fn parameters(e_n: f64) -> Result<Self::Parameters, PhysicsError>;
+
+    /// Check `γ` (> 0), `α` (≥ 0, `∞` for no slip) and the scheme of a request at a checked
+    /// `e_n`: the checked `(γ, α)` and the law's parameters.
+    fn prepare(
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        scheme: Scheme,
+    ) -> Result<(f64, f64, Self::Parameters), PhysicsError>;
+
+    /// `P(γ, α, e_n)` where it is exact without simulation (`None` elsewhere); `γ`, `α` checked.
+    fn closed_form(gamma: f64, alpha: f64, e_n: f64) -> Option<f64>;
+
+    /// `P` of the dimensionless impact at resolution `res` (no closed form, no estimate), with
+    /// the checked `(γ, α)` and parameters of [`ContactLaw::prepare`].
+    fn simulate(
+        gamma: f64,
+        alpha: f64,
+        parameters: Self::Parameters,
+        res: Resolution,
+        scheme: Scheme,
+    ) -> Result<f64, PhysicsError>;
+
+    /// Run the contact of physical bodies (SI) at resolution `res` with the accurate scheme:
+    /// the law's normal motion of `normal`, and its tangential row driving `bodies` with
+    /// effective radius `R*` (m), shear modulus `G*` (Pa) and Coulomb limit factor
+    /// `c = μ E*/G*` (`∞`: no slip), `contact = (R*, G*, c)`.
+    fn run_bodies<B: TangentialBodies>(
+        bodies: &mut B,
+        normal: &BodiesNormal,
+        res: Resolution,
+        contact: (f64, f64, f64),
+    ) -> Result<NormalSummary, PhysicsError>;
+}
+
+/// The normal constants of two physical bodies, from which a law builds its normal motion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodiesNormal {
+    /// `1/m1` (1/kg).
+    pub inv_mass1: f64,
+    /// `1/m2` (1/kg); 0 for a wall.
+    pub inv_mass2: f64,
+    /// Hertz stiffness `k = (4/3) E* √R*` (N/m^{3/2}).
+    pub stiffness: f64,
+    /// Approach speed `v_z0` at first touch (m/s), > 0.
+    pub approach_speed: f64,
+    /// Relaxation time `τ` (s) of the Kelvin–Voigt law, > 0 (unused by the elastic law).
+    pub relaxation_time: f64,
+}
+
+/// What the outcome of a physical impact needs of the normal motion a law ran.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NormalSummary {
+    /// Contact time `t_c` (s).
+    pub contact_time: f64,
+    /// Peak normal force (N).
+    pub peak_force: f64,
+    /// Maximum indentation `d_max` (m).
+    pub max_indentation: f64,
+    /// Change of sphere 1's normal velocity over the contact (m/s).
+    pub delta_v1: f64,
+    /// Change of sphere 2's normal velocity over the contact (m/s; 0 for a wall).
+    pub delta_v2: f64,
 }

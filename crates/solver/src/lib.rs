@@ -16,6 +16,7 @@ pub mod law;
 pub mod model;
 pub mod preset;
 pub mod refine;
+pub mod registry;
 pub mod request;
 pub mod resolution;
 pub mod springs;

@@ -5,14 +5,11 @@
 
 use serde::Serialize;
 
+use crate::elastic::RAW_FLOOR;
 use crate::error::{positive, PhysicsError};
-use crate::impact::{
-    check_alpha, check_gamma, ladder_start, memory_bytes, plan, simulate_elastic, work, Limits,
-    Scheme,
-};
+use crate::impact::{ladder_start, memory_bytes, plan, work, Limits, Scheme};
 use crate::law::{Floor, Law};
 use crate::resolution::Resolution;
-use oblique_physics::regimes;
 
 /// How the accuracy of a result is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -313,10 +310,6 @@ pub fn refine_observed(
     )
 }
 
-/// The share of the last raw difference `|P_k − P_{k−1}|` below which the Richardson estimate
-/// of the elastic law never falls ([`extrapolate`]).
-pub const RAW_FLOOR: f64 = 0.1;
-
 /// [`refine_observed`] with the floor of the Richardson estimate as a share of the last raw
 /// difference (`(order, floor)`), which a law sets by how regularly it converges.
 pub(crate) fn refine_core(
@@ -401,29 +394,44 @@ pub(crate) fn refine_core(
     unreachable!("the refinement loop only exits by returning")
 }
 
-/// `P(γ, α)` of the elastic law to the requested accuracy ([`crate::Request`] is the public
-/// door): the closed form where it is exact unless `force_simulation` is set; each level of
-/// the automatic refinement is reported to `observer` (before it runs and after, with the
-/// estimate reached). A fixed resolution or a closed form reports nothing.
-pub(crate) fn solve_elastic(
+/// The ladder of one automatic refinement: its first level, the order of its scheme, the floor
+/// of its Richardson estimate (a law's, [`crate::law::ContactLaw::FLOOR`]) and whether it
+/// reports the Richardson value (else the finest value with the plain [`estimate`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Ladder {
+    /// First level.
+    pub start: Resolution,
+    /// Order of convergence in the resolution.
+    pub order: i32,
+    /// Floor of the Richardson estimate.
+    pub floor: Floor,
+    /// Whether the Richardson value is reported.
+    pub richardson: bool,
+}
+
+/// The refinement to `tol` of every solve, dimensionless ([`solve_core`]) or in physical units
+/// ([`crate::units::PhysicalImpact::solve`]): refuses first what cannot fit the limits even in
+/// the best case at `γ` ([`plan`]), then refines `run` along `ladder` ([`refine_core`]);
+/// errors carry `γ`. Returns `(value, estimate, resolution)`.
+pub(crate) fn refine_to(
     gamma: f64,
-    alpha: f64,
-    accuracy: Accuracy,
-    scheme: Scheme,
-    force_simulation: bool,
-    limits: Limits,
+    tol: f64,
+    (scheme, limits): (Scheme, Limits),
+    ladder: Ladder,
+    run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
-) -> Result<Solution, PhysicsError> {
-    let gamma = check_gamma(gamma)?;
-    let alpha = check_alpha(alpha)?;
-    let closed = regimes::closed_form(gamma, alpha);
-    solve_core(
-        (gamma, accuracy, scheme, force_simulation, limits),
-        Floor::fixed(RAW_FLOOR),
-        closed,
-        |res| simulate_elastic(gamma, alpha, res, scheme),
+) -> Result<(f64, f64, Resolution), PhysicsError> {
+    plan(gamma, tol, scheme, limits)?;
+    refine_core(
+        ladder.start,
+        (ladder.order, ladder.floor),
+        tol,
+        ladder.richardson,
+        limits,
+        run,
         observer,
     )
+    .map_err(|e| e.with_gamma(gamma))
 }
 
 /// The error-controlled driver shared by every law: checks the accuracy, answers `closed`
@@ -462,22 +470,17 @@ pub(crate) fn solve_core(
             });
         }
     }
-    if let Accuracy::Tolerance(tol) = accuracy {
-        // Refuse before simulating what cannot fit the limits even in the best case.
-        plan(gamma, tol, scheme, limits)?;
-    }
     let mut no_estimate = None;
     let (p, error_estimate, resolution) = match accuracy {
-        Accuracy::Tolerance(tol) => refine_core(
-            ladder_start(gamma, scheme),
-            (scheme.order(), floor),
-            tol,
-            scheme.richardson(),
-            limits,
-            run,
-            observer,
-        )
-        .map_err(|e| e.with_gamma(gamma))?,
+        Accuracy::Tolerance(tol) => {
+            let ladder = Ladder {
+                start: ladder_start(gamma, scheme),
+                order: scheme.order(),
+                floor,
+                richardson: scheme.richardson(),
+            };
+            refine_to(gamma, tol, (scheme, limits), ladder, run, observer)?
+        }
         Accuracy::Fixed(res) => {
             let res = res.validate()?;
             let fine = run(res)?;

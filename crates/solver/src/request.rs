@@ -10,16 +10,13 @@
 //! # Ok::<(), oblique_solver::PhysicsError>(())
 //! ```
 
-use oblique_physics::regimes;
-
 use crate::error::PhysicsError;
-use crate::impact::{
-    check_alpha, check_gamma, simulate_elastic, Limits, Resolution, Scheme, ALPHA_NO_SLIP,
-};
+use crate::impact::{Limits, Resolution, Scheme};
 use crate::kelvin_voigt;
-use crate::law::Law;
+use crate::law::{ContactLaw, Law};
 use crate::preset::Preset;
-use crate::refine::{solve_core, solve_elastic, Accuracy, RefineEvent, Solution};
+use crate::refine::{solve_core, Accuracy, RefineEvent, Solution};
+use crate::registry::with_law;
 
 /// An impact to solve and how.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,31 +100,47 @@ impl Request {
 
     /// [`Request::solve`], reporting each level of the automatic refinement to `observer`.
     ///
-    /// `e_n = 1` is answered by the elastic solver whatever the law (the same operations, the
-    /// same bits). Below it, the Kelvin–Voigt law finds the relaxation time `τ̂` that gives
-    /// `e_n` ([`kelvin_voigt::tau_for_restitution`]) and refines its simulation like the
-    /// elastic one; closed forms where they are exact ([`dissipative_closed_form`]).
+    /// The registry picks the law once ([`Law::answering`]): `e_n = 1` is answered by the
+    /// elastic law whatever the law named (the same operations, the same bits); below it, the
+    /// named law. That law checks the request and finds its parameters
+    /// ([`ContactLaw::prepare`]: the Kelvin–Voigt law the relaxation time `τ̂` that gives `e_n`,
+    /// [`kelvin_voigt::tau_for_restitution`]), answers in closed form where that is exact
+    /// ([`ContactLaw::closed_form`]) and otherwise has its simulation refined to the accuracy
+    /// asked, with its own floor of the estimate ([`ContactLaw::FLOOR`]).
     pub fn solve_observed(
         &self,
         observer: &mut dyn FnMut(RefineEvent),
     ) -> Result<Solution, PhysicsError> {
         let e_n = self.law.check_restitution(self.e_n)?;
-        if e_n == 1.0 {
-            let mut s = solve_elastic(
-                self.gamma,
-                self.alpha,
-                self.accuracy,
-                self.scheme,
-                self.force_simulation,
-                self.limits,
-                observer,
-            )?;
-            s.law = self.law;
-            return Ok(s);
+        let answering = self.law.answering(e_n);
+        let mut s = with_law!(answering, L => self.solve_with::<L>(e_n, observer))?;
+        s.law = self.law;
+        s.e_n = e_n;
+        if answering == Law::KelvinVoigt {
+            s.tau = kelvin_voigt::tau_for_restitution(e_n)?;
         }
-        let (gamma, alpha, tau) = self.dissipative(e_n)?;
-        let closed = dissipative_closed_form(gamma, alpha, e_n);
-        let mut s = solve_core(
+        Ok(s)
+    }
+
+    /// `P` at a fixed resolution, simulated (no closed form, no estimate), by the law the
+    /// registry picks ([`Request::solve_observed`]).
+    pub fn simulate(&self, res: Resolution) -> Result<f64, PhysicsError> {
+        let e_n = self.law.check_restitution(self.e_n)?;
+        with_law!(self.law.answering(e_n), L => {
+            let (gamma, alpha, parameters) = L::prepare(self.gamma, self.alpha, e_n, self.scheme)?;
+            L::simulate(gamma, alpha, parameters, res, self.scheme)
+        })
+    }
+
+    /// [`Request::solve_observed`] by the law `L` at a checked `e_n`.
+    fn solve_with<L: ContactLaw>(
+        &self,
+        e_n: f64,
+        observer: &mut dyn FnMut(RefineEvent),
+    ) -> Result<Solution, PhysicsError> {
+        let (gamma, alpha, parameters) = L::prepare(self.gamma, self.alpha, e_n, self.scheme)?;
+        let closed = L::closed_form(gamma, alpha, e_n);
+        solve_core(
             (
                 gamma,
                 self.accuracy,
@@ -135,81 +148,78 @@ impl Request {
                 self.force_simulation,
                 self.limits,
             ),
-            kelvin_voigt::RAW_FLOOR,
+            L::FLOOR,
             closed,
-            |res| self.simulate_with(gamma, alpha, tau, res),
+            |res| L::simulate(gamma, alpha, parameters, res, self.scheme),
             observer,
-        )?;
-        s.law = self.law;
-        s.e_n = e_n;
-        s.tau = tau;
-        Ok(s)
-    }
-
-    /// `P` at a fixed resolution, simulated (no closed form, no estimate).
-    pub fn simulate(&self, res: Resolution) -> Result<f64, PhysicsError> {
-        let e_n = self.law.check_restitution(self.e_n)?;
-        if e_n == 1.0 {
-            return simulate_elastic(self.gamma, self.alpha, res, self.scheme);
-        }
-        let (gamma, alpha, tau) = self.dissipative(e_n)?;
-        self.simulate_with(gamma, alpha, tau, res)
-    }
-
-    /// The checked `(γ, α)` of a Kelvin–Voigt request (`e_n < 1`, checked) and the relaxation
-    /// time `τ̂` of its `e_n`; the scheme must be the accurate one.
-    fn dissipative(&self, e_n: f64) -> Result<(f64, f64, f64), PhysicsError> {
-        let gamma = check_gamma(self.gamma)?;
-        let alpha = check_alpha(self.alpha)?;
-        if self.scheme != Scheme::Accurate {
-            return Err(PhysicsError::NotForLaw {
-                name: "scheme",
-                value: self.scheme.name().to_string(),
-                case: "for e_n < 1",
-                allowed: "the Kelvin-Voigt law is solved with the accurate scheme only (euler is \
-                          for elastic impacts)",
-            });
-        }
-        Ok((gamma, alpha, kelvin_voigt::tau_for_restitution(e_n)?))
-    }
-
-    fn simulate_with(
-        &self,
-        gamma: f64,
-        alpha: f64,
-        tau: f64,
-        res: Resolution,
-    ) -> Result<f64, PhysicsError> {
-        let res = res.validate()?;
-        if res.springs != 0 {
-            return Err(PhysicsError::NotForLaw {
-                name: "springs",
-                value: res.springs.to_string(),
-                case: "for e_n < 1",
-                allowed: "the Kelvin-Voigt law is solved on the continuum row only (springs 0)",
-            });
-        }
-        let shear = 2.0 / 7.0 * gamma * gamma;
-        let limit = if alpha > ALPHA_NO_SLIP {
-            f64::INFINITY
-        } else {
-            alpha / shear
-        };
-        Ok(kelvin_voigt::dimensionless_p(shear, limit, tau, res))
+        )
     }
 }
 
-/// `P(γ, α, e_n)` where it is exact without simulation: the full-slip line
-/// `1 − (7/2)(1 + e_n) α` for `α ≤` [`regimes::linear_limit_dissipative`] (`α_c1(e_n)` for
-/// `γ > 1`, `α_c2` for `γ ≤ 1`; `physics.md`), and the `γ = 1` plateau `P = −e_n` for
-/// `α ≥ 2/7` (measured: within 2e-7 at 4096 steps for e_n = 0.7, α = 1.01–3 × 2/7; at γ = 1
-/// the stuck tangential motion is the normal motion, damping included).
-pub fn dissipative_closed_form(gamma: f64, alpha: f64, e_n: f64) -> Option<f64> {
-    if alpha <= regimes::linear_limit_dissipative(gamma, e_n) {
-        Some(regimes::full_slip_line(alpha, e_n))
-    } else if gamma == 1.0 && alpha >= 2.0 / 7.0 {
-        Some(-e_n)
-    } else {
-        None
+/// `P(γ, α, e_n)` of the Kelvin–Voigt law where it is exact without simulation (its
+/// [`ContactLaw::closed_form`]).
+pub use crate::kelvin_voigt::dissipative_closed_form;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn at_e_n_1_the_kelvin_voigt_name_takes_the_elastic_law_to_the_bit() {
+        for (gamma, alpha) in [(1.754, 1.0), (0.7, 0.9), (3.2, f64::INFINITY), (2.0, 0.05)] {
+            let elastic = Request::new(gamma, alpha);
+            let named = elastic.e_n(1.0).law(Law::KelvinVoigt);
+            let (a, b) = (elastic.solve().unwrap(), named.solve().unwrap());
+            assert_eq!(a.p.to_bits(), b.p.to_bits(), "γ {gamma}, α {alpha}");
+            assert_eq!(a.error_estimate.to_bits(), b.error_estimate.to_bits());
+            assert_eq!((a.resolution, a.method), (b.resolution, b.method));
+            assert_eq!((a.law, b.law), (Law::Elastic, Law::KelvinVoigt));
+            assert_eq!((b.e_n, b.tau), (1.0, 0.0));
+            let res = Resolution {
+                springs: 0,
+                steps: 256,
+            };
+            assert_eq!(
+                elastic.simulate(res).unwrap().to_bits(),
+                named.simulate(res).unwrap().to_bits()
+            );
+            // The Euler scheme too: at e_n = 1 no Kelvin–Voigt check applies.
+            let euler = Resolution {
+                springs: 64,
+                steps: 256,
+            };
+            assert_eq!(
+                elastic
+                    .scheme(Scheme::Euler)
+                    .simulate(euler)
+                    .unwrap()
+                    .to_bits(),
+                named
+                    .scheme(Scheme::Euler)
+                    .simulate(euler)
+                    .unwrap()
+                    .to_bits()
+            );
+        }
+    }
+
+    #[test]
+    fn below_1_the_named_law_answers_and_the_elastic_law_refuses() {
+        let r = Request::new(1.754, 1.0).e_n(0.9);
+        assert_eq!(r.law, Law::KelvinVoigt);
+        let s = r.solve().unwrap();
+        assert_eq!(s.law, Law::KelvinVoigt);
+        assert_eq!(
+            s.tau.to_bits(),
+            kelvin_voigt::tau_for_restitution(0.9).unwrap().to_bits()
+        );
+        assert!(matches!(
+            r.law(Law::Elastic).solve(),
+            Err(PhysicsError::InvalidParameter { name: "e_n", .. })
+        ));
+        assert!(matches!(
+            r.scheme(Scheme::Euler).solve(),
+            Err(PhysicsError::NotForLaw { name: "scheme", .. })
+        ));
     }
 }

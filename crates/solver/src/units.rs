@@ -10,11 +10,13 @@
 use oblique_physics::rebound::{effective_moduli, Body, Elastic, Incident, Pair, State};
 use serde::Serialize;
 
+use super::elastic::RAW_FLOOR;
 use super::error::PhysicsError;
-use super::hertz::NormalBodies;
-use super::impact::{run_contact, run_contact_with, Limits, Resolution, TangentialBodies};
-use super::kelvin_voigt::{self, normal::ViscoelasticBodies, row::ViscoelasticRow};
-use super::refine::refine;
+use super::impact::{Limits, Resolution, Scheme, TangentialBodies};
+use super::kelvin_voigt;
+use super::law::{BodiesNormal, ContactLaw, Floor, Law};
+use super::refine::{refine_to, Ladder};
+use super::registry::with_law;
 
 /// One impact in physical units, in the vocabulary of the lookup ([`oblique_physics::rebound`]):
 /// the same [`Pair`], materials and [`Incident`] state that a table query takes.
@@ -89,28 +91,6 @@ pub struct PhysicalOutcome {
     pub groups: Groups,
     /// Resolution of the run reported.
     pub resolution: Resolution,
-}
-
-/// The [`NormalSummary`] of a normal trajectory (Hertz or Kelvin–Voigt: the same fields).
-macro_rules! summary {
-    ($n:expr) => {
-        NormalSummary {
-            contact_time: $n.contact_time,
-            peak_force: $n.peak_force,
-            max_indentation: $n.max_indentation,
-            delta_v1: $n.delta_v1,
-            delta_v2: $n.delta_v2,
-        }
-    };
-}
-
-/// What the tangential contact and the outcome need of a normal motion.
-struct NormalSummary {
-    contact_time: f64,
-    peak_force: f64,
-    max_indentation: f64,
-    delta_v1: f64,
-    delta_v2: f64,
 }
 
 /// Tangential degrees of freedom of the two bodies (body 2 absent for a wall).
@@ -294,52 +274,18 @@ impl PhysicalImpact {
         } else {
             self.friction * groups.e_star / groups.g_star
         };
-        let normal = if self.relaxation_time > 0.0 {
-            if res.springs != 0 {
-                return Err(PhysicsError::NotForLaw {
-                    name: "springs",
-                    value: res.springs.to_string(),
-                    case: "for Kelvin-Voigt bodies",
-                    allowed: "their law is solved on the continuum row only (springs 0)",
-                });
-            }
-            let tau = self.relaxation_time;
-            let normal = ViscoelasticBodies {
-                inv_mass1: bodies.inv_m1,
-                inv_mass2: bodies.inv_m2,
-                stiffness,
-                approach_speed: groups.approach_speed,
-                tau,
-            }
-            .trajectory(res.steps);
-            let row = ViscoelasticRow::new(groups.radius, tau);
-            run_contact_with(
-                &mut bodies,
-                &normal,
-                row,
-                groups.radius,
-                groups.g_star,
-                limit,
-            );
-            summary!(normal)
-        } else {
-            let normal = NormalBodies {
-                inv_mass1: bodies.inv_m1,
-                inv_mass2: bodies.inv_m2,
-                stiffness,
-                approach_speed: groups.approach_speed,
-            }
-            .trajectory(res.steps);
-            run_contact(
-                &mut bodies,
-                &normal,
-                res.springs,
-                groups.radius,
-                groups.g_star,
-                limit,
-            );
-            summary!(normal)
+        let normal = BodiesNormal {
+            inv_mass1: bodies.inv_m1,
+            inv_mass2: bodies.inv_m2,
+            stiffness,
+            approach_speed: groups.approach_speed,
+            relaxation_time: self.relaxation_time,
         };
+        let contact = (groups.radius, groups.g_star, limit);
+        // The registry picks the law of the bodies: Kelvin–Voigt where they relax.
+        let normal = with_law!(Law::of_relaxation_time(self.relaxation_time), L => {
+            L::run_bodies(&mut bodies, &normal, res, contact)?
+        });
         let u0 = groups.slip_velocity;
         let p = (u0 != 0.0).then(|| bodies.slip_velocity() / u0);
         let sphere = State {
@@ -371,25 +317,32 @@ impl PhysicalImpact {
     /// For `u0 = 0` a single run at the base resolution is returned (nothing tangential happens).
     pub fn solve(&self, tol: f64) -> Result<PhysicalOutcome, PhysicsError> {
         let groups = self.groups()?;
-        let base = super::impact::base_resolution(groups.gamma, super::Scheme::Accurate);
+        let base = super::impact::base_resolution(groups.gamma, Scheme::Accurate);
         if groups.slip_velocity == 0.0 {
             return self.simulate(base);
         }
-        // Refuse before simulating what cannot fit the limits even in the best case.
-        super::impact::plan(
+        // The driver of every solve ([`refine_to`]), from the base level with the plain
+        // estimate of the finest value (no Richardson value: the outcome reported is one run's).
+        let ladder = Ladder {
+            start: base,
+            order: 2,
+            floor: Floor::fixed(RAW_FLOOR),
+            richardson: false,
+        };
+        let mut last = None;
+        let (_, est, _) = refine_to(
             groups.gamma,
             tol,
-            super::Scheme::Accurate,
-            Limits::default(),
+            (Scheme::Accurate, Limits::default()),
+            ladder,
+            |res| {
+                let out = self.simulate(res)?;
+                let p = out.p.unwrap_or(0.0);
+                last = Some(out);
+                Ok(p)
+            },
+            &mut |_| {},
         )?;
-        let mut last = None;
-        let (_, est, _) = refine(base, 2, tol, false, Limits::default(), |res| {
-            let out = self.simulate(res)?;
-            let p = out.p.unwrap_or(0.0);
-            last = Some(out);
-            Ok(p)
-        })
-        .map_err(|e| e.with_gamma(groups.gamma))?;
         let mut out = last.expect("refine runs at least three levels");
         out.error_estimate = est;
         Ok(out)

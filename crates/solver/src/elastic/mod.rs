@@ -5,3 +5,98 @@
 //! the Kelvin–Voigt law ([`crate::kelvin_voigt`]) builds on and so stay in the crate's root.
 
 pub mod models;
+
+use oblique_physics::regimes;
+
+use crate::error::PhysicsError;
+use crate::hertz::NormalBodies;
+use crate::impact::{check_alpha, check_gamma, run_contact, simulate_elastic};
+use crate::impact::{Scheme, TangentialBodies};
+use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary};
+use crate::resolution::Resolution;
+
+/// The share of the last raw difference `|P_k − P_{k−1}|` below which the Richardson estimate
+/// of the elastic law never falls (`refine::extrapolate`); the default of
+/// [`crate::refine::refine`].
+pub const RAW_FLOOR: f64 = 0.1;
+
+/// The elastic law ([`ContactLaw`]): `e_n = 1`, no parameters.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Elastic;
+
+/// The elastic law's parameters: none (`e_n = 1`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Parameters;
+
+impl ContactLaw for Elastic {
+    type Parameters = Parameters;
+
+    const FLOOR: Floor = Floor::fixed(RAW_FLOOR);
+
+    fn check_restitution(e_n: f64) -> Result<f64, PhysicsError> {
+        if e_n == 1.0 {
+            Ok(e_n)
+        } else {
+            Err(PhysicsError::InvalidParameter {
+                name: "e_n",
+                value: e_n,
+                allowed: "1 for the elastic law (name the kelvin-voigt law for e_n < 1)",
+            })
+        }
+    }
+
+    fn parameters(_e_n: f64) -> Result<Parameters, PhysicsError> {
+        Ok(Parameters)
+    }
+
+    /// Every scheme (accurate and Euler).
+    fn prepare(
+        gamma: f64,
+        alpha: f64,
+        _e_n: f64,
+        _scheme: Scheme,
+    ) -> Result<(f64, f64, Parameters), PhysicsError> {
+        Ok((check_gamma(gamma)?, check_alpha(alpha)?, Parameters))
+    }
+
+    /// The full-slip line, the `γ = 1` plateau and `α = 0` ([`regimes::closed_form`]).
+    fn closed_form(gamma: f64, alpha: f64, _e_n: f64) -> Option<f64> {
+        regimes::closed_form(gamma, alpha)
+    }
+
+    /// Hertz normal motion and the row of the scheme ([`simulate_elastic`]).
+    fn simulate(
+        gamma: f64,
+        alpha: f64,
+        _parameters: Parameters,
+        res: Resolution,
+        scheme: Scheme,
+    ) -> Result<f64, PhysicsError> {
+        simulate_elastic(gamma, alpha, res, scheme)
+    }
+
+    /// The Hertz motion of the bodies and the continuum row (`res.springs = 0`) or a row of
+    /// `res.springs` springs ([`run_contact`]).
+    fn run_bodies<B: TangentialBodies>(
+        bodies: &mut B,
+        normal: &BodiesNormal,
+        res: Resolution,
+        (radius, shear_modulus, limit): (f64, f64, f64),
+    ) -> Result<NormalSummary, PhysicsError> {
+        let normal = NormalBodies {
+            inv_mass1: normal.inv_mass1,
+            inv_mass2: normal.inv_mass2,
+            stiffness: normal.stiffness,
+            approach_speed: normal.approach_speed,
+        }
+        .trajectory(res.steps);
+        run_contact(bodies, &normal, res.springs, radius, shear_modulus, limit);
+        Ok(NormalSummary {
+            contact_time: normal.contact_time,
+            peak_force: normal.peak_force,
+            max_indentation: normal.max_indentation,
+            delta_v1: normal.delta_v1,
+            delta_v2: normal.delta_v2,
+        })
+    }
+}

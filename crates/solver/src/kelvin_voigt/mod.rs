@@ -9,9 +9,15 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 use std::rc::Rc;
 
+use oblique_physics::regimes;
+use serde::Serialize;
+
 use crate::error::PhysicsError;
-use crate::impact::{run_contact_with, ContactPoint, Resolution};
-use crate::law::Floor;
+use crate::impact::{
+    check_alpha, check_gamma, run_contact_with, ContactPoint, Resolution, Scheme, TangentialBodies,
+    ALPHA_NO_SLIP,
+};
+use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary};
 use crate::model::{NormalModel, TangentialModel};
 use crate::springs::{StepMotion, StepResult};
 use normal::{FineMotion, ViscoelasticBodies, ViscoelasticTrajectory};
@@ -353,5 +359,137 @@ impl TangentialModel for ViscoelasticRow {
         } else {
             v.clamp(-lim, lim)
         }
+    }
+}
+
+/// The Kelvin–Voigt law ([`ContactLaw`]): `e_n ∈ [0.3, 1]`, the relaxation time `τ̂` that gives
+/// it, the accurate scheme on the continuum row only.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct KelvinVoigt;
+
+/// The Kelvin–Voigt law's parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Parameters {
+    /// Dimensionless relaxation time `τ̂` that gives the impact's `e_n` (0 at `e_n = 1`; time
+    /// unit `(m*/k)^{2/5} v_z0^{-1/5} (4/3)^{2/5}`, `k = (4/3) E* √R*`).
+    pub tau: f64,
+}
+
+impl ContactLaw for KelvinVoigt {
+    type Parameters = Parameters;
+
+    const FLOOR: Floor = RAW_FLOOR;
+
+    fn check_restitution(e_n: f64) -> Result<f64, PhysicsError> {
+        check_restitution(e_n)
+    }
+
+    /// `τ̂` by [`tau_for_restitution`].
+    fn parameters(e_n: f64) -> Result<Parameters, PhysicsError> {
+        Ok(Parameters {
+            tau: tau_for_restitution(e_n)?,
+        })
+    }
+
+    /// The accurate scheme only.
+    fn prepare(
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        scheme: Scheme,
+    ) -> Result<(f64, f64, Parameters), PhysicsError> {
+        let gamma = check_gamma(gamma)?;
+        let alpha = check_alpha(alpha)?;
+        if scheme != Scheme::Accurate {
+            return Err(PhysicsError::NotForLaw {
+                name: "scheme",
+                value: scheme.name().to_string(),
+                case: "for e_n < 1",
+                allowed: "the Kelvin-Voigt law is solved with the accurate scheme only (euler is \
+                          for elastic impacts)",
+            });
+        }
+        Ok((gamma, alpha, Self::parameters(e_n)?))
+    }
+
+    fn closed_form(gamma: f64, alpha: f64, e_n: f64) -> Option<f64> {
+        dissipative_closed_form(gamma, alpha, e_n)
+    }
+
+    /// The continuum row only ([`dimensionless_p`]).
+    fn simulate(
+        gamma: f64,
+        alpha: f64,
+        parameters: Parameters,
+        res: Resolution,
+        _scheme: Scheme,
+    ) -> Result<f64, PhysicsError> {
+        let res = res.validate()?;
+        if res.springs != 0 {
+            return Err(PhysicsError::NotForLaw {
+                name: "springs",
+                value: res.springs.to_string(),
+                case: "for e_n < 1",
+                allowed: "the Kelvin-Voigt law is solved on the continuum row only (springs 0)",
+            });
+        }
+        let shear = 2.0 / 7.0 * gamma * gamma;
+        let limit = if alpha > ALPHA_NO_SLIP {
+            f64::INFINITY
+        } else {
+            alpha / shear
+        };
+        Ok(dimensionless_p(shear, limit, parameters.tau, res))
+    }
+
+    /// The viscoelastic motion of the bodies with relaxation time `τ` (s) and its row, on the
+    /// continuum row only (`res.springs = 0`).
+    fn run_bodies<B: TangentialBodies>(
+        bodies: &mut B,
+        normal: &BodiesNormal,
+        res: Resolution,
+        (radius, shear_modulus, limit): (f64, f64, f64),
+    ) -> Result<NormalSummary, PhysicsError> {
+        if res.springs != 0 {
+            return Err(PhysicsError::NotForLaw {
+                name: "springs",
+                value: res.springs.to_string(),
+                case: "for Kelvin-Voigt bodies",
+                allowed: "their law is solved on the continuum row only (springs 0)",
+            });
+        }
+        let tau = normal.relaxation_time;
+        let normal = ViscoelasticBodies {
+            inv_mass1: normal.inv_mass1,
+            inv_mass2: normal.inv_mass2,
+            stiffness: normal.stiffness,
+            approach_speed: normal.approach_speed,
+            tau,
+        }
+        .trajectory(res.steps);
+        let row = ViscoelasticRow::new(radius, tau);
+        run_contact_with(bodies, &normal, row, radius, shear_modulus, limit);
+        Ok(NormalSummary {
+            contact_time: normal.contact_time,
+            peak_force: normal.peak_force,
+            max_indentation: normal.max_indentation,
+            delta_v1: normal.delta_v1,
+            delta_v2: normal.delta_v2,
+        })
+    }
+}
+
+/// `P(γ, α, e_n)` where it is exact without simulation: the full-slip line
+/// `1 − (7/2)(1 + e_n) α` for `α ≤` [`regimes::linear_limit_dissipative`] (`α_c1(e_n)` for
+/// `γ > 1`, `α_c2` for `γ ≤ 1`; `physics.md`), and the `γ = 1` plateau `P = −e_n` for
+/// `α ≥ 2/7` (measured: within 2e-7 at 4096 steps for e_n = 0.7, α = 1.01–3 × 2/7; at γ = 1
+/// the stuck tangential motion is the normal motion, damping included).
+pub fn dissipative_closed_form(gamma: f64, alpha: f64, e_n: f64) -> Option<f64> {
+    if alpha <= regimes::linear_limit_dissipative(gamma, e_n) {
+        Some(regimes::full_slip_line(alpha, e_n))
+    } else if gamma == 1.0 && alpha >= 2.0 / 7.0 {
+        Some(-e_n)
+    } else {
+        None
     }
 }
