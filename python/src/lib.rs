@@ -24,7 +24,7 @@ use oblique_lookup::rebound::{
 use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Prepared, Stiffness};
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::units::{Groups, PhysicalImpact};
-use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request};
+use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request, PARAMETER_KEYS};
 
 mod build;
 
@@ -1086,7 +1086,7 @@ fn groups<'py>(
     )
 }
 
-/// Columns of an impact row.
+/// Columns of an impact row: the law's parameters ([`PARAMETER_KEYS`]) last.
 const IMPACT: [&str; 7] = [
     "p",
     "error_estimate",
@@ -1138,15 +1138,18 @@ fn impact<'py>(
                 None => req,
             };
             let s = req.solve()?;
-            r.copy_from_slice(&[
+            let head = [
                 s.p,
                 s.error_estimate,
                 f64::from(u8::from(s.method == Method::ClosedForm)),
                 s.resolution.springs as f64,
                 s.resolution.steps as f64,
                 s.e_n,
-                s.tau,
-            ]);
+            ];
+            // The law's parameters (`tau`) last, through the law.
+            let (front, back) = r.split_at_mut(head.len());
+            front.copy_from_slice(&head);
+            back.copy_from_slice(&s.law.values());
             Ok::<(), PhysicsError>(())
         },
         |i, e| physics_error(e, i, &shape),
@@ -1185,7 +1188,9 @@ fn simulate<'py>(
     d.set_item("peak_force", out.peak_force)?;
     d.set_item("max_indentation", out.max_indentation)?;
     d.set_item("e_n", out.e_n)?;
-    d.set_item("tau", out.tau)?;
+    for (key, value) in PARAMETER_KEYS.into_iter().zip(out.law.values()) {
+        d.set_item(key, value)?;
+    }
     d.set_item("springs", out.resolution.springs)?;
     d.set_item("steps", out.resolution.steps)?;
     d.set_item("groups", groups_row(&out.groups))?;

@@ -11,7 +11,7 @@ use serde_json::json;
 use oblique_physics::regimes;
 use oblique_solver::history::{slip_history, Episode, SlipSign};
 use oblique_solver::impact::{Limits, ALPHA_NO_SLIP};
-use oblique_solver::{Accuracy, Law, Method, Preset, Request, Resolution, Scheme};
+use oblique_solver::{Accuracy, Law, Method, Preset, Request, Resolution, Scheme, PARAMETER_KEYS};
 
 use crate::args::{
     fmt_num, json_number, parse_alpha, parse_e_n, parse_gamma, parse_law, parse_preset,
@@ -180,7 +180,6 @@ pub fn run(args: ImpactArgs) -> Result<()> {
             "alpha": json_number(args.alpha),
             "e_n": e_n,
             "law": sol.law.name(),
-            "tau": sol.tau,
             "P": sol.p,
             "e_t": e_t,
             "error_estimate": sol.estimate(),
@@ -195,6 +194,10 @@ pub fn run(args: ImpactArgs) -> Result<()> {
             "elapsed_s": elapsed,
         });
         let mut out = out;
+        // The law's parameters under their keys (`tau`), through the law.
+        for (key, value) in PARAMETER_KEYS.into_iter().zip(sol.law.values()) {
+            out[key] = json!(value);
+        }
         if let Some(why) = sol.no_estimate {
             out["no_estimate_reason"] = json!(why.to_string());
         }
@@ -209,7 +212,7 @@ pub fn run(args: ImpactArgs) -> Result<()> {
         }
         outln!("{out}")?;
     } else {
-        let head = if e_n == 1.0 && sol.law == Law::Elastic {
+        let head = if e_n == 1.0 && sol.law.law() == Law::Elastic {
             format!(
                 "P(gamma = {}, alpha = {}) = {:.9}",
                 fmt_num(args.gamma),
@@ -231,13 +234,8 @@ pub fn run(args: ImpactArgs) -> Result<()> {
             (None, None) => outln!("{head}  (no error estimate)")?,
         }
         outln!("e_t = (2P + 5)/7 = {e_t:.9}   (solid sphere, no initial spin)")?;
-        if sol.law != Law::Elastic {
-            outln!(
-                "law {} (relaxation time tau = {:.9} in units of (m*/k)^(2/5) v_z0^(-1/5) \
-                 (4/3)^(2/5))",
-                sol.law.name(),
-                sol.tau
-            )?;
+        if let Some(parameters) = sol.law.describe() {
+            outln!("law {} ({parameters})", sol.law.name())?;
         }
         match alpha_c1 {
             Some(c1) => outln!(

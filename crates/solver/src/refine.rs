@@ -8,7 +8,8 @@ use serde::Serialize;
 use crate::elastic::RAW_FLOOR;
 use crate::error::{positive, PhysicsError};
 use crate::impact::{ladder_start, memory_bytes, plan, work, Limits, Scheme};
-use crate::law::{Floor, Law};
+use crate::law::Floor;
+use crate::registry::LawParameters;
 use crate::resolution::Resolution;
 
 /// How the accuracy of a result is chosen.
@@ -49,13 +50,12 @@ pub struct Solution {
     pub scheme: Scheme,
     /// Closed form or simulation.
     pub method: Method,
-    /// The dissipation law.
-    pub law: Law,
+    /// The dissipation law asked for, with its parameters for `e_n` (the Kelvin–Voigt law's
+    /// relaxation time `τ̂`, 0 at `e_n = 1`); outputs print them through it
+    /// ([`LawParameters::values`], [`LawParameters::describe`]).
+    pub law: LawParameters,
     /// Normal restitution `e_n` of the impact (1 for the elastic law).
     pub e_n: f64,
-    /// Dimensionless relaxation time `τ̂` of the Kelvin–Voigt law that gives `e_n` (0 for the
-    /// elastic law; time unit `(m*/k)^{2/5} v_z0^{-1/5} (4/3)^{2/5}`, `k = (4/3) E* √R*`).
-    pub tau: f64,
 }
 
 impl Solution {
@@ -436,9 +436,11 @@ pub(crate) fn refine_to(
 
 /// The error-controlled driver shared by every law: checks the accuracy, answers `closed`
 /// (a closed form, unless the simulation is forced), or refines `run` (`P` at a resolution)
-/// to the tolerance, or runs a fixed resolution with its estimate. `γ` and `α` are checked.
+/// to the tolerance, or runs a fixed resolution with its estimate. `γ` and `α` are checked;
+/// the answer reports the law `law` at `e_n`.
 pub(crate) fn solve_core(
     (gamma, accuracy, scheme, force_simulation, limits): (f64, Accuracy, Scheme, bool, Limits),
+    (law, e_n): (LawParameters, f64),
     floor: Floor,
     closed: Option<f64>,
     mut run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
@@ -464,9 +466,8 @@ pub(crate) fn solve_core(
                 scheme,
                 method: Method::ClosedForm,
                 no_estimate: None,
-                law: Law::Elastic,
-                e_n: 1.0,
-                tau: 0.0,
+                law,
+                e_n,
             });
         }
     }
@@ -522,9 +523,8 @@ pub(crate) fn solve_core(
         scheme,
         method: Method::Simulated,
         no_estimate,
-        law: Law::Elastic,
-        e_n: 1.0,
-        tau: 0.0,
+        law,
+        e_n,
     })
 }
 

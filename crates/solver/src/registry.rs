@@ -4,8 +4,11 @@
 //! `e_n = 1` ([`Law::answering`]). A new law is one more arm of [`with_law!`] (and its name in
 //! [`Law`]).
 
+use serde::Serialize;
+
 use crate::error::PhysicsError;
 use crate::law::{ContactLaw, Law};
+use crate::{elastic, kelvin_voigt};
 
 /// `$body` with `$L` the [`ContactLaw`] implementation of the law `$law`: the one place a
 /// law's name picks its implementation.
@@ -32,6 +35,11 @@ impl Law {
         with_law!(self, L => L::check_restitution(e_n))
     }
 
+    /// This law with its parameters for a checked `e_n` ([`ContactLaw::parameters`]).
+    pub fn parameters(self, e_n: f64) -> Result<LawParameters, PhysicsError> {
+        with_law!(self, L => L::parameters(e_n).map(LawParameters::from))
+    }
+
     /// The law whose solver answers a request for this law at a checked `e_n`: the elastic law
     /// at `e_n = 1` whatever the name (every law here is the elastic one there: the same
     /// operations, the same bits), this law below.
@@ -50,6 +58,76 @@ impl Law {
             Law::KelvinVoigt
         } else {
             Law::Elastic
+        }
+    }
+}
+
+/// A law with its parameters, as answers report them ([`crate::Solution::law`],
+/// [`crate::units::PhysicalOutcome::law`]): each law's own typed value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LawParameters {
+    /// The elastic law (no parameters).
+    Elastic(elastic::Parameters),
+    /// The Kelvin–Voigt law with its relaxation time `τ̂`.
+    KelvinVoigt(kelvin_voigt::Parameters),
+}
+
+impl From<elastic::Parameters> for LawParameters {
+    fn from(p: elastic::Parameters) -> Self {
+        LawParameters::Elastic(p)
+    }
+}
+
+impl From<kelvin_voigt::Parameters> for LawParameters {
+    fn from(p: kelvin_voigt::Parameters) -> Self {
+        LawParameters::KelvinVoigt(p)
+    }
+}
+
+/// The keys under which outputs report the laws' parameters, one layout for every law so that
+/// answers of different laws share their columns (the JSON of `sweep impact`, the columns of
+/// Python's `impact`, the dict of its `simulate`): `tau`, the dimensionless relaxation time
+/// `τ̂` (0 for the elastic law, which is the Kelvin–Voigt law at `τ̂ = 0`).
+pub const PARAMETER_KEYS: [&str; 1] = ["tau"];
+
+impl LawParameters {
+    /// The law.
+    pub fn law(&self) -> Law {
+        match self {
+            LawParameters::Elastic(_) => Law::Elastic,
+            LawParameters::KelvinVoigt(_) => Law::KelvinVoigt,
+        }
+    }
+
+    /// The law's name ([`Law::name`]).
+    pub fn name(&self) -> &'static str {
+        self.law().name()
+    }
+
+    /// The values of [`PARAMETER_KEYS`], in their order.
+    pub fn values(&self) -> [f64; PARAMETER_KEYS.len()] {
+        match self {
+            LawParameters::Elastic(_) => [0.0],
+            LawParameters::KelvinVoigt(p) => [p.tau],
+        }
+    }
+
+    /// The parameters in words with their units, for a line of text (`None` for the elastic
+    /// law, which has none).
+    pub fn describe(&self) -> Option<String> {
+        match self {
+            LawParameters::Elastic(_) => None,
+            LawParameters::KelvinVoigt(p) => Some(p.to_string()),
+        }
+    }
+
+    /// The parameters of physical bodies with relaxation time `τ` (s) whose dimensionless
+    /// relaxation time is `τ̂`: the law of [`Law::of_relaxation_time`] with `τ̂`.
+    pub fn of_bodies(relaxation_time: f64, tau_hat: f64) -> Self {
+        match Law::of_relaxation_time(relaxation_time) {
+            Law::Elastic => elastic::Parameters.into(),
+            Law::KelvinVoigt => kelvin_voigt::Parameters { tau: tau_hat }.into(),
         }
     }
 }

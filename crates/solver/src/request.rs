@@ -12,7 +12,6 @@
 
 use crate::error::PhysicsError;
 use crate::impact::{Limits, Resolution, Scheme};
-use crate::kelvin_voigt;
 use crate::law::{ContactLaw, Law};
 use crate::preset::Preset;
 use crate::refine::{solve_core, Accuracy, RefineEvent, Solution};
@@ -104,7 +103,7 @@ impl Request {
     /// elastic law whatever the law named (the same operations, the same bits); below it, the
     /// named law. That law checks the request and finds its parameters
     /// ([`ContactLaw::prepare`]: the Kelvin–Voigt law the relaxation time `τ̂` that gives `e_n`,
-    /// [`kelvin_voigt::tau_for_restitution`]), answers in closed form where that is exact
+    /// [`crate::kelvin_voigt::tau_for_restitution`]), answers in closed form where that is exact
     /// ([`ContactLaw::closed_form`]) and otherwise has its simulation refined to the accuracy
     /// asked, with its own floor of the estimate ([`ContactLaw::FLOOR`]).
     pub fn solve_observed(
@@ -112,14 +111,7 @@ impl Request {
         observer: &mut dyn FnMut(RefineEvent),
     ) -> Result<Solution, PhysicsError> {
         let e_n = self.law.check_restitution(self.e_n)?;
-        let answering = self.law.answering(e_n);
-        let mut s = with_law!(answering, L => self.solve_with::<L>(e_n, observer))?;
-        s.law = self.law;
-        s.e_n = e_n;
-        if answering == Law::KelvinVoigt {
-            s.tau = kelvin_voigt::tau_for_restitution(e_n)?;
-        }
-        Ok(s)
+        with_law!(self.law.answering(e_n), L => self.solve_with::<L>(e_n, observer))
     }
 
     /// `P` at a fixed resolution, simulated (no closed form, no estimate), by the law the
@@ -132,7 +124,8 @@ impl Request {
         })
     }
 
-    /// [`Request::solve_observed`] by the law `L` at a checked `e_n`.
+    /// [`Request::solve_observed`] by the law `L` at a checked `e_n`; the answer reports the law
+    /// named, with its parameters for `e_n` ([`Law::parameters`]).
     fn solve_with<L: ContactLaw>(
         &self,
         e_n: f64,
@@ -140,6 +133,7 @@ impl Request {
     ) -> Result<Solution, PhysicsError> {
         let (gamma, alpha, parameters) = L::prepare(self.gamma, self.alpha, e_n, self.scheme)?;
         let closed = L::closed_form(gamma, alpha, e_n);
+        let law = self.law.parameters(e_n)?;
         solve_core(
             (
                 gamma,
@@ -148,6 +142,7 @@ impl Request {
                 self.force_simulation,
                 self.limits,
             ),
+            (law, e_n),
             L::FLOOR,
             closed,
             |res| L::simulate(gamma, alpha, parameters, res, self.scheme),
@@ -163,6 +158,8 @@ pub use crate::kelvin_voigt::dissipative_closed_form;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kelvin_voigt;
+    use crate::registry::LawParameters;
 
     #[test]
     fn at_e_n_1_the_kelvin_voigt_name_takes_the_elastic_law_to_the_bit() {
@@ -173,8 +170,8 @@ mod tests {
             assert_eq!(a.p.to_bits(), b.p.to_bits(), "γ {gamma}, α {alpha}");
             assert_eq!(a.error_estimate.to_bits(), b.error_estimate.to_bits());
             assert_eq!((a.resolution, a.method), (b.resolution, b.method));
-            assert_eq!((a.law, b.law), (Law::Elastic, Law::KelvinVoigt));
-            assert_eq!((b.e_n, b.tau), (1.0, 0.0));
+            assert_eq!((a.law.law(), b.law.law()), (Law::Elastic, Law::KelvinVoigt));
+            assert_eq!((b.e_n, b.law.values()), (1.0, [0.0]));
             let res = Resolution {
                 springs: 0,
                 steps: 256,
@@ -208,10 +205,10 @@ mod tests {
         let r = Request::new(1.754, 1.0).e_n(0.9);
         assert_eq!(r.law, Law::KelvinVoigt);
         let s = r.solve().unwrap();
-        assert_eq!(s.law, Law::KelvinVoigt);
+        let tau = kelvin_voigt::tau_for_restitution(0.9).unwrap();
         assert_eq!(
-            s.tau.to_bits(),
-            kelvin_voigt::tau_for_restitution(0.9).unwrap().to_bits()
+            s.law,
+            LawParameters::KelvinVoigt(kelvin_voigt::Parameters { tau })
         );
         assert!(matches!(
             r.law(Law::Elastic).solve(),

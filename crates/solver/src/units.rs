@@ -16,7 +16,7 @@ use super::impact::{Limits, Resolution, Scheme, TangentialBodies};
 use super::kelvin_voigt;
 use super::law::{BodiesNormal, ContactLaw, Floor, Law};
 use super::refine::{refine_to, Ladder};
-use super::registry::with_law;
+use super::registry::{with_law, LawParameters};
 
 /// One impact in physical units, in the vocabulary of the lookup ([`oblique_physics::rebound`]):
 /// the same [`Pair`], materials and [`Incident`] state that a table query takes.
@@ -84,9 +84,9 @@ pub struct PhysicalOutcome {
     /// Normal restitution `e_n` of the impact (1 for elastic bodies): the relative normal
     /// speed after over before.
     pub e_n: f64,
-    /// Dimensionless relaxation time `τ̂` of the Kelvin–Voigt law (0 for elastic bodies): the
-    /// `τ̂` of the dimensionless impact with the same `(γ, α, e_n)`.
-    pub tau: f64,
+    /// The law of the bodies with its parameters: for Kelvin–Voigt bodies the dimensionless
+    /// relaxation time `τ̂`, that of the dimensionless impact with the same `(γ, α, e_n)`.
+    pub law: LawParameters,
     /// Dimensionless groups.
     pub groups: Groups,
     /// Resolution of the run reported.
@@ -307,7 +307,7 @@ impl PhysicalImpact {
             peak_force: normal.peak_force,
             max_indentation: normal.max_indentation,
             e_n,
-            tau: tau_hat,
+            law: LawParameters::of_bodies(self.relaxation_time, tau_hat),
             groups,
             resolution: res,
         })

@@ -7,6 +7,7 @@
 pub mod models;
 
 use oblique_physics::regimes;
+use serde::Serialize;
 
 use crate::error::PhysicsError;
 use crate::hertz::NormalBodies;
@@ -25,7 +26,7 @@ pub const RAW_FLOOR: f64 = 0.1;
 pub struct Elastic;
 
 /// The elastic law's parameters: none (`e_n = 1`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub struct Parameters;
 
 impl ContactLaw for Elastic {

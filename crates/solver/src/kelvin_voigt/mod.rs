@@ -375,6 +375,18 @@ pub struct Parameters {
     pub tau: f64,
 }
 
+/// `relaxation time tau = τ̂ in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(2/5)` (`τ̂` to 9
+/// decimals), the wording of answers in text.
+impl std::fmt::Display for Parameters {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "relaxation time tau = {:.9} in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(2/5)",
+            self.tau
+        )
+    }
+}
+
 impl ContactLaw for KelvinVoigt {
     type Parameters = Parameters;
 
