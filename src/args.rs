@@ -91,7 +91,7 @@ pub(crate) fn parse_tol(s: &str) -> Result<f64, String> {
 /// Normal restitution `e_n`: a number in [0.3, 1] (1: elastic).
 pub(crate) fn parse_e_n(s: &str) -> Result<f64, String> {
     let v = parse_f64(s)?;
-    oblique_solver::kelvin_voigt::check_restitution(v).map_err(|_| {
+    oblique_solver::law::check_restitution(v).map_err(|_| {
         "e-n (the normal restitution) must be a number from 0.3 to 1 (1: elastic)".into()
     })
 }

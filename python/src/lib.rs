@@ -510,7 +510,7 @@ fn regime_into(
     fill_rows(py, o, 1, CHUNK, |i, r| {
         let (gi, ai) = (g.at(i), a.at(i));
         check_groups(gi, ai)?;
-        let ei = oblique_solver::kelvin_voigt::check_restitution(e.at(i))?;
+        let ei = oblique_solver::law::check_restitution(e.at(i))?;
         r[0] = match Regime::of_dissipative(gi, ai, ei) {
             Regime::FullSlip => 0.0,
             Regime::PartialSlip => 1.0,
@@ -536,7 +536,7 @@ fn critical_into(
     let o = slice_mut("out", &mut out)?;
     fill_rows(py, o, 2, CHUNK, |i, r| {
         let gi = oblique_solver::impact::check_gamma(g.at(i))?;
-        let ei = oblique_solver::kelvin_voigt::check_restitution(e.at(i))?;
+        let ei = oblique_solver::law::check_restitution(e.at(i))?;
         r[0] = regimes::alpha_c1_dissipative(gi, ei);
         r[1] = regimes::alpha_c2(gi);
         Ok::<(), PhysicsError>(())

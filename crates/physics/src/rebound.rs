@@ -478,7 +478,9 @@ struct Core {
     energy_lost: f64,
 }
 
-/// Check a normal restitution for the rebound algebra: finite, in `[0, 1]`.
+/// Check a normal restitution for the rebound algebra: finite, in `[0, 1]`. Not the solver's
+/// range (`oblique_solver::law::check_restitution`, `[0.3, 1]`): the algebra holds for any
+/// `e_n` a caller brings, e.g. from a measurement, and this crate sits below the solver.
 fn check_restitution(e_n: f64) -> Result<f64, InvalidInput> {
     if (0.0..=1.0).contains(&e_n) {
         Ok(e_n)

@@ -202,7 +202,8 @@ impl PhysicalImpact {
         let k = 4.0 / 3.0 * g.e_star * g.radius.sqrt();
         let hat = kelvin_voigt::dimensionless_tau(tau, g.normal_mass, k, g.approach_speed);
         let e_n = kelvin_voigt::restitution(hat);
-        if e_n.is_nan() || e_n < kelvin_voigt::MIN_RESTITUTION {
+        // `restitution` is ≤ 1: outside the solver's range means NaN or below 0.3.
+        if crate::law::check_restitution(e_n).is_err() {
             return Err(PhysicsError::InvalidParameter {
                 name: "relaxation_time",
                 value: tau,

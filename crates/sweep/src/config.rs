@@ -444,8 +444,9 @@ impl Config {
         match (d.e_n_min, d.e_n_max) {
             (None, None) => {}
             (Some(lo), Some(hi)) => {
-                let min = oblique_solver::kelvin_voigt::MIN_RESTITUTION;
-                if !(lo >= min && lo < 1.0) {
+                // The solver's range of e_n, less its elastic end.
+                let min = oblique_solver::law::MIN_RESTITUTION;
+                if !(oblique_solver::law::check_restitution(lo).is_ok() && lo < 1.0) {
                     return Err(err(
                         "domain.e_n_min",
                         lo.to_string(),

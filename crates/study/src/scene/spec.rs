@@ -606,7 +606,8 @@ impl Validator<'_> {
         e_n: Option<f64>,
         relaxation_time: Option<f64>,
     ) -> Result<Dissipation, SceneError> {
-        let lo = oblique_solver::kelvin_voigt::MIN_RESTITUTION;
+        let lo = oblique_solver::law::MIN_RESTITUTION;
+        let in_range = |e: f64| oblique_solver::law::check_restitution(e).is_ok();
         match (e_n, relaxation_time) {
             (Some(_), Some(_)) => Err(self.invalid(
                 "relaxation_time",
@@ -614,7 +615,7 @@ impl Validator<'_> {
                 "either e_n (constant) or relaxation_time (s; e_n then follows from each case's \
                  impact speed), not both",
             )),
-            (Some(e), None) if (lo..=1.0).contains(&e) => Ok(Dissipation::Restitution(e)),
+            (Some(e), None) if in_range(e) => Ok(Dissipation::Restitution(e)),
             (Some(e), None) => Err(self.invalid_num(
                 "e_n",
                 e,
