@@ -12,8 +12,11 @@ use serde::Serialize;
 use super::continuum::ContinuumRow;
 use super::error::{positive, PhysicsError};
 use super::hertz::{HertzClosedForm, NormalBodies, NormalTrajectory};
-use super::model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
+use super::model::{
+    ExplicitEuler, Integrator, NormalModel, StepEnd, TangentialModel, VelocityVerlet,
+};
 use super::springs::{SpringRow, StepMotion};
+pub use crate::model::TangentialBodies;
 pub use crate::resolution::Resolution;
 
 /// Numerical scheme of an impact simulation.
@@ -105,19 +108,6 @@ pub fn check_alpha(alpha: f64) -> Result<f64, PhysicsError> {
     }
 }
 
-/// The tangential degrees of freedom driven by the friction force `F_f` through the springs.
-///
-/// Implemented once for the dimensionless contact point and once for two bodies in physical
-/// units; the time stepping ([`run_contact`]) is shared.
-pub trait TangentialBodies {
-    /// Relative tangential velocity of the contact points `u` (m/s).
-    fn slip_velocity(&self) -> f64;
-    /// `du/dt` produced by a friction force `f` (N), from each body's equations of motion.
-    fn slip_acceleration(&self, f: f64) -> f64;
-    /// Advance every velocity by `h` under the constant friction force `f`.
-    fn kick(&mut self, h: f64, f: f64);
-}
-
 /// The contact-point coordinate of one solid sphere in dimensionless units (`m_t = 2/7`).
 pub(crate) struct ContactPoint {
     /// Slip velocity `u` (`u0 = 1` at the start).
@@ -199,27 +189,19 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
         } else {
             step.mean
         };
-        if T::END_STATE && b1 > 0.0 {
-            // The viscous part of the end force, τ ẇ₁ over the stuck length ℓ_s, was taken at
-            // the predicted ẇ₁ = ẇ₀ + h ẅ₀: solve the trapezoid rule for ẇ₁ instead (linear),
-            // f = A (M + τ σ (ẇ₁ − ŵ)), ẇ₁ = ẇ₀ + h a_b f, σ = ℓ_s/a₁.
-            let (tau, stuck) = self.row.viscous();
-            let a1 = (self.radius * b1).sqrt();
-            let sigma = stuck / a1;
-            let predicted = motion.slip_velocity + h * motion.slip_accel;
-            let a = self.shear_modulus * mean_radius;
-            let response = bodies.slip_acceleration(1.0);
-            let f = a * (self.mean + end_mean + tau * sigma * (motion.slip_velocity - predicted))
-                / (1.0 - a * tau * sigma * h * response);
-            bodies.kick(h, f);
-            let delta = bodies.slip_velocity() - predicted;
-            self.force = 2.0 * self.shear_modulus * (step.integral + tau * stuck * delta);
-            self.mean = step.mean + tau * sigma * delta;
-            return;
-        }
-        bodies.kick(h, self.shear_modulus * mean_radius * (self.mean + end_mean));
-        self.force = 2.0 * self.shear_modulus * step.integral;
-        self.mean = step.mean;
+        // The impulse over the step and the force and mean at its end: the model's
+        // ([`TangentialModel::close_step`]; the elastic rule by default).
+        let end = StepEnd {
+            motion: &motion,
+            step,
+            radius: self.radius,
+            shear_modulus: self.shear_modulus,
+            mean_radius,
+            mean0: self.mean,
+            end_mean,
+            reach1: b1,
+        };
+        (self.force, self.mean) = self.row.close_step(bodies, &end);
     }
 
     /// Grid step `n`, split at the release instant of the springs at a Coulomb limit when it

@@ -14,6 +14,52 @@
 
 use crate::springs::{StepMotion, StepResult};
 
+/// The tangential degrees of freedom driven by the friction force `F_f` through the springs.
+///
+/// Implemented once for the dimensionless contact point and once for two bodies in physical
+/// units; the time stepping ([`run_contact`]) is shared.
+pub trait TangentialBodies {
+    /// Relative tangential velocity of the contact points `u` (m/s).
+    fn slip_velocity(&self) -> f64;
+    /// `du/dt` produced by a friction force `f` (N), from each body's equations of motion.
+    fn slip_acceleration(&self, f: f64) -> f64;
+    /// Advance every velocity by `h` under the constant friction force `f`.
+    fn kick(&mut self, h: f64, f: f64);
+}
+
+/// One step of the accurate scheme as the row has taken it, for [`TangentialModel::close_step`].
+pub struct StepEnd<'a> {
+    /// The motion over the step (its length `h`, start state and slip).
+    pub motion: &'a StepMotion,
+    /// What the row returned for the step.
+    pub step: StepResult,
+    /// Effective radius `R*` (m).
+    pub radius: f64,
+    /// Shear modulus `G*` (Pa).
+    pub shear_modulus: f64,
+    /// Mean contact radius over the step, `∫ a dt / h` (m).
+    pub mean_radius: f64,
+    /// Mean displacement at the start of the step (m).
+    pub mean0: f64,
+    /// Mean displacement at its end for the product rule (m; the separation's value in the
+    /// step where the contact vanishes).
+    pub end_mean: f64,
+    /// The contact's reach at the end of the step (m; ≤ 0 once it has vanished).
+    pub reach1: f64,
+}
+
+/// The elastic end of a step: the product rule `h G* ā (m₀ + m₁)` for the impulse, the row's
+/// integral and mean at the end.
+#[inline(always)]
+pub fn close_step_elastic<B: TangentialBodies>(bodies: &mut B, end: &StepEnd) -> (f64, f64) {
+    let h = end.motion.h;
+    bodies.kick(
+        h,
+        end.shear_modulus * end.mean_radius * (end.mean0 + end.end_mean),
+    );
+    (2.0 * end.shear_modulus * end.step.integral, end.step.mean)
+}
+
 /// The normal motion of one impact on the uniform time grid of the contact: node 0 is first
 /// touch, node [`NormalModel::steps`] is separation.
 pub trait NormalModel {
@@ -60,13 +106,13 @@ pub trait TangentialModel {
     fn touch_mean(&self, _slip_velocity: f64, _rate0: f64, _c: f64) -> f64 {
         0.0
     }
-    /// The relaxation time `τ` (s) of a viscous row whose stuck springs carry `τ ẇ` (0 for an
-    /// elastic row), and the length `ℓ_s` (m) of the half-row stuck after the last step: the
-    /// returned integral grows by `τ ℓ_s Δẇ` when the end velocity `ẇ₁` moves by `Δẇ`. The
-    /// stepper then solves for `ẇ₁` implicitly (trapezoid rule on the viscous force).
+    /// Close a step the row has just taken ([`StepEnd`]): kick `bodies` by the friction impulse
+    /// over it and return the friction force (N) and the mean displacement (m) at its end. The
+    /// default is the elastic rule ([`close_step_elastic`]); a viscous row solves for the end
+    /// velocity implicitly.
     #[inline(always)]
-    fn viscous(&self) -> (f64, f64) {
-        (0.0, 0.0)
+    fn close_step<B: TangentialBodies>(&self, bodies: &mut B, end: &StepEnd) -> (f64, f64) {
+        close_step_elastic(bodies, end)
     }
     /// Whether the model reads the end state of the normal motion ([`StepMotion::rate1`],
     /// [`StepMotion::accel1`]); without it the stepper leaves `accel1` at 0.

@@ -18,7 +18,7 @@ use crate::impact::{
     ALPHA_NO_SLIP,
 };
 use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary};
-use crate::model::{NormalModel, TangentialModel};
+use crate::model::{close_step_elastic, NormalModel, StepEnd, TangentialModel};
 use crate::springs::{StepMotion, StepResult};
 use normal::{FineMotion, ViscoelasticBodies, ViscoelasticTrajectory};
 use row::ViscoelasticRow;
@@ -345,9 +345,31 @@ impl TangentialModel for ViscoelasticRow {
     fn release_time(&self, _m: &StepMotion, _c: f64) -> Option<f64> {
         None
     }
+    /// While in contact: the viscous part of the end force, `τ ẇ₁` over the stuck length `ℓ_s`,
+    /// was taken at the predicted `ẇ₁ = ẇ₀ + h ẅ₀`; solve the trapezoid rule for `ẇ₁` instead
+    /// (linear): `f = A (M + τ σ (ẇ₁ − ŵ))`, `ẇ₁ = ẇ₀ + h a_b f`, `σ = ℓ_s/a₁`. The row's
+    /// integral then grows by `τ ℓ_s Δẇ` and its mean by `τ σ Δẇ`. The elastic rule in the step
+    /// where the contact vanishes.
     #[inline(always)]
-    fn viscous(&self) -> (f64, f64) {
-        (self.tau(), self.stuck_length())
+    fn close_step<B: TangentialBodies>(&self, bodies: &mut B, end: &StepEnd) -> (f64, f64) {
+        if end.reach1 <= 0.0 {
+            return close_step_elastic(bodies, end);
+        }
+        let (motion, h) = (end.motion, end.motion.h);
+        let (tau, stuck) = (self.tau(), self.stuck_length());
+        let a1 = (end.radius * end.reach1).sqrt();
+        let sigma = stuck / a1;
+        let predicted = motion.slip_velocity + h * motion.slip_accel;
+        let a = end.shear_modulus * end.mean_radius;
+        let response = bodies.slip_acceleration(1.0);
+        let f = a * (end.mean0 + end.end_mean + tau * sigma * (motion.slip_velocity - predicted))
+            / (1.0 - a * tau * sigma * h * response);
+        bodies.kick(h, f);
+        let delta = bodies.slip_velocity() - predicted;
+        (
+            2.0 * end.shear_modulus * (end.step.integral + tau * stuck * delta),
+            end.step.mean + tau * sigma * delta,
+        )
     }
     /// At first touch every spring in contact carries `v = τ ẇ₀` within the limit `c τ ḋ₀`
     /// (`D = τ ḋ₀` at `d = 0`): the viscous force does not start from zero.
