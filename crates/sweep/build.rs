@@ -2,7 +2,10 @@
 //!
 //! Reruns only when the repository's HEAD, index or refs change: the paths are the git
 //! directory's own (absolute), so that cargo finds them; relative to this crate's folder they
-//! would never exist and the script would rerun, and the binary relink, on every build.
+//! would never exist and the script would rerun, and the binary relink, on every build. A
+//! commit rewrites the branch's ref file (`refs/heads/NAME`) and appends to `logs/HEAD`, but
+//! changes neither `HEAD` nor the mtime of the folder `refs`: both are watched too, or a binary
+//! built before a commit would keep naming the earlier commit.
 use std::process::Command;
 
 fn git(args: &[&str]) -> Option<String> {
@@ -25,7 +28,9 @@ fn main() {
     println!("cargo:rustc-env=OBLIQUE_GIT_COMMIT={commit}{suffix}");
     println!("cargo:rerun-if-changed=build.rs");
     if let Some(dir) = git(&["rev-parse", "--absolute-git-dir"]) {
-        for name in ["HEAD", "index", "refs", "packed-refs"] {
+        let branch = git(&["symbolic-ref", "-q", "HEAD"]);
+        let names = ["HEAD", "index", "refs", "packed-refs", "logs/HEAD"];
+        for name in names.iter().copied().chain(branch.as_deref()) {
             let path = std::path::Path::new(&dir).join(name);
             if path.exists() {
                 println!("cargo:rerun-if-changed={}", path.display());
