@@ -6,7 +6,8 @@ command, up to the next command or the end of the block, are what it prints (sta
 standard error together). Each command runs under bash in a scratch folder holding copies of
 `configs/`, `tables/`, `include/`, `examples/` and `python/examples/` (so nothing in the checkout is written), with `target/release` and
 `target/release/examples` first on PATH, so `sweep` and the Rust examples are the binaries under
-test.
+test. A command whose first word is `git` (a `git grep` that counts the files a change touches)
+runs in the repository itself instead, and only reads it.
 
 A code block whose opening fence is preceded by a line `<!-- file: PATH -->` shows the file PATH
 (relative to the repository root) and must equal it, so that the code shown is the code that
@@ -142,9 +143,11 @@ def shown_files(path, update):
 
 
 def run(command, scratch, env):
+    # `git` commands read the repository (the scratch folder is none); the rest run in scratch.
+    where = ROOT if command.split()[:1] == ["git"] else scratch
     r = subprocess.run(
         ["bash", "-o", "pipefail", "-c", command],
-        cwd=scratch,
+        cwd=where,
         env=env,
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
