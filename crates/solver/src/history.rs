@@ -701,6 +701,32 @@ pub fn fold_minus_birth_e(
     Ok(Some((g_hi, alpha)))
 }
 
+/// Where F₋ is measured to be born for the Kelvin–Voigt law (`fold_minus_e` example, 2048
+/// steps, bisection to ±0.005 in γ): `(e_n, γ)` with no F₋ below γ at that `e_n`, the lower end
+/// of each bracket, by falling `e_n`. Below `e_n` = 0.9 none was found up to γ = 3.6.
+const FOLD_MINUS_BIRTHS: [(f64, f64); 7] = [
+    (1.0, 2.3666),
+    (0.999, 2.3736),
+    (0.99, 2.4017),
+    (0.97, 2.4650),
+    (0.95, 2.5494),
+    (0.9, 2.9220),
+    (0.8, 3.6),
+];
+
+/// A γ below which the surface `P(γ, α, e)` has no fold curve F₋ for any `e ≤ e_n_max`
+/// (Kelvin–Voigt law, `e_n_max` in `[0.3, 1]`): damping moves F₋'s birth to larger γ
+/// (measured at seven `e_n`, [`fold_minus_birth_e`]), so the birth at the nearest measured
+/// `e_n` at or above `e_n_max` bounds it from below. 3.6 for `e_n_max ≤ 0.8` (none measured
+/// up to there). A table that reaches F₋ must measure its leaves next to it.
+pub fn fold_minus_free_below(e_n_max: f64) -> f64 {
+    FOLD_MINUS_BIRTHS
+        .iter()
+        .rev()
+        .find(|&&(e, _)| e >= e_n_max)
+        .map_or(FOLD_MINUS_BIRTHS[0].1, |&(_, g)| g)
+}
+
 /// The continuation of [`fold_plus_at`] for a fold whose `present` predicate holds below it.
 fn fold_at(
     gamma: f64,
@@ -1141,6 +1167,28 @@ mod tests {
                 let ep = ep.expect("an episode just below");
                 assert!(ep.start > 0.999, "{a} {ep:?}");
             }
+        }
+    }
+
+    #[test]
+    fn the_fold_free_gamma_bounds_the_birth_from_below() {
+        assert_eq!(fold_minus_free_below(1.0), 2.3666);
+        assert_eq!(fold_minus_free_below(0.995), 2.3736);
+        assert_eq!(fold_minus_free_below(0.99), 2.4017);
+        assert_eq!(fold_minus_free_below(0.85), 2.9220);
+        assert_eq!(fold_minus_free_below(0.5), 3.6);
+        // Falling with e_n_max, and no F₋ just below it where one was measured.
+        for w in FOLD_MINUS_BIRTHS.windows(2) {
+            assert!(w[0].1 < w[1].1, "{w:?}");
+        }
+        for e_n in [1.0, 0.97] {
+            let g = fold_minus_free_below(e_n) - 0.002;
+            assert!(
+                restitution_minus_somewhere_e(g, e_n, (0.3, 0.8), 2048)
+                    .unwrap()
+                    .is_none(),
+                "{e_n}"
+            );
         }
     }
 

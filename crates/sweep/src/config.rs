@@ -506,6 +506,28 @@ impl Config {
                 "false for a table with an e_n range".into(),
             ));
         }
+        if let Some((_, hi)) = d.e_n_range() {
+            // Next to the fold curve F₋ the leaves' predictions miss how P leaves its smooth
+            // continuation (docs/accuracy.md, "Tables with an e_n axis"); a table with an e_n
+            // range does not measure those leaves yet, so its bound would not hold there.
+            let free = oblique_solver::history::fold_minus_free_below(hi);
+            if d.gamma_max >= free {
+                return Err(err(
+                    if pair {
+                        "domain.gamma"
+                    } else {
+                        "domain.gamma_max"
+                    },
+                    d.gamma_max.to_string(),
+                    format!(
+                        "< {free} with e_n_max = {hi}: from there on P has the fold curve F- \
+                         (born at gamma 2.37 for e_n = 1, later for lower e_n, none up to 3.6 \
+                         for e_n <= 0.8), next to which a table with an e_n range cannot yet \
+                         hold its stated bound; lower it or e_n_max"
+                    ),
+                ));
+            }
+        }
         if d.e_n_range().is_some() && n.probe_kinks {
             return Err(err(
                 "nodes.probe_kinks",
@@ -694,6 +716,48 @@ tol = 1e-6
     }
 
     #[test]
+    fn an_e_n_range_stops_below_the_fold_curve_f_minus() {
+        let with = |gamma: &str, e_n: &str| {
+            let text = GOOD
+                .replace("gamma_min = 0.1\ngamma_max = 3.5", gamma)
+                .replace(
+                    "alpha_max = \"inf\"",
+                    &format!("alpha_max = \"inf\"\n{e_n}"),
+                )
+                .replace("tol = 1e-6", "tol = 1e-6\nlaw = \"kelvin-voigt\"");
+            Config::parse(&text, "x.toml").map_err(|e| e.to_string())
+        };
+        let near_one = "e_n_min = 0.5\ne_n_max = 1.0";
+        assert!(with("gamma_min = 1.0\ngamma_max = 2.3", near_one).is_ok());
+        // F₋ is born at γ ≈ 2.37 for e_n = 1.
+        let e = with("gamma_min = 1.0\ngamma_max = 2.6", near_one).unwrap_err();
+        assert!(
+            e.contains("domain.gamma_max") && e.contains("< 2.3666") && e.contains("F-"),
+            "{e}"
+        );
+        // For e_n <= 0.8 none up to γ = 3.6; at 0.95 from γ ≈ 2.55.
+        assert!(with(
+            "gamma_min = 1.0\ngamma_max = 2.6",
+            "e_n_min = 0.3\ne_n_max = 0.8"
+        )
+        .is_ok());
+        assert!(with(
+            "gamma_min = 1.0\ngamma_max = 2.5",
+            "e_n_min = 0.3\ne_n_max = 0.95"
+        )
+        .is_ok());
+        assert!(with(
+            "gamma_min = 1.0\ngamma_max = 2.6",
+            "e_n_min = 0.3\ne_n_max = 0.95"
+        )
+        .is_err());
+        // The table of one pair names its single gamma.
+        let e = with("gamma = 2.5", near_one).unwrap_err();
+        assert!(e.contains("`domain.gamma` = 2.5"), "{e}");
+        assert!(!e.contains("domain.gamma_max"), "{e}");
+    }
+
+    #[test]
     fn kink_probes_are_for_elastic_tables_only() {
         let probe = GOOD.replace(
             "target_error = 1e-5",
@@ -705,7 +769,7 @@ tol = 1e-6
                 .nodes
                 .probe_kinks
         );
-        let dissipative = probe.replace(
+        let dissipative = probe.replace("gamma_max = 3.5", "gamma_max = 2.0").replace(
             "alpha_max = \"inf\"",
             "alpha_max = \"inf\"\ne_n_min = 0.5\ne_n_max = 1.0",
         );
