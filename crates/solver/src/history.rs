@@ -93,11 +93,10 @@ fn indentation_at(nt: &NormalTrajectory, t: f64) -> f64 {
     nt.indentation[j] * (1.0 - s) + nt.indentation[j + 1] * s
 }
 
-/// Run one impact with the continuum row on `steps` steps and record its gross-slip episodes.
-///
-/// `γ` must be finite and positive, `α` finite and positive (with `α = ∞` or above
-/// [`ALPHA_NO_SLIP`] nothing ever slips, so that is refused as meaningless here), `steps ≥ 8`.
-pub fn slip_history(gamma: f64, alpha: f64, steps: usize) -> Result<SlipHistory, PhysicsError> {
+/// The checked `(γ, α)` of a gross-slip history: `γ` finite and positive, `α` finite and
+/// positive (with `α = ∞` or above [`ALPHA_NO_SLIP`] nothing ever slips, so that is refused as
+/// meaningless here), `steps ≥ 8`.
+fn check_history_input(gamma: f64, alpha: f64, steps: usize) -> Result<(f64, f64), PhysicsError> {
     let gamma = check_gamma(gamma)?;
     let alpha = check_alpha(alpha)?;
     if !(alpha > 0.0 && alpha <= ALPHA_NO_SLIP) {
@@ -114,6 +113,15 @@ pub fn slip_history(gamma: f64, alpha: f64, steps: usize) -> Result<SlipHistory,
             allowed: ">= 8",
         });
     }
+    Ok((gamma, alpha))
+}
+
+/// Run one impact with the continuum row on `steps` steps and record its gross-slip episodes.
+///
+/// `γ` must be finite and positive, `α` finite and positive (with `α = ∞` or above
+/// [`ALPHA_NO_SLIP`] nothing ever slips, so that is refused as meaningless here), `steps ≥ 8`.
+pub fn slip_history(gamma: f64, alpha: f64, steps: usize) -> Result<SlipHistory, PhysicsError> {
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
     let shear = 2.0 / 7.0 * gamma * gamma;
     let nt = dimensionless_normal(steps);
     let mut rec = Recorder {
@@ -228,22 +236,7 @@ pub fn slip_history_e(
     if Law::KelvinVoigt.answering(e_n) == Law::Elastic {
         return slip_history(gamma, alpha, steps);
     }
-    let gamma = check_gamma(gamma)?;
-    let alpha = check_alpha(alpha)?;
-    if !(alpha > 0.0 && alpha <= ALPHA_NO_SLIP) {
-        return Err(PhysicsError::InvalidParameter {
-            name: "alpha",
-            value: alpha,
-            allowed: "> 0 and <= 1e10 (above, the impact is simulated as no slip)",
-        });
-    }
-    if steps < 8 {
-        return Err(PhysicsError::InvalidParameter {
-            name: "steps",
-            value: steps as f64,
-            allowed: ">= 8",
-        });
-    }
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
     let tau = tau_for_restitution(e_n)?;
     let shear = 2.0 / 7.0 * gamma * gamma;
     let normal = kv_normal(steps, tau);
