@@ -108,6 +108,16 @@ fn nan_negative_and_inverted_ranges() {
         &GOOD.replace("alpha_max = \"inf\"", "alpha_max = 0.1"),
         &["domain.alpha_max", "alpha_c2"],
     );
+    // An e_n range whose gamma reaches the fold curve F- (born at gamma 2.3666 for e_n = 1),
+    // next to which such a table cannot yet hold its bound; the file in place is kept.
+    refused(
+        "e_n_range_into_fold_minus",
+        &GOOD.replace("gamma_max = 1.6", "gamma_max = 2.6").replace(
+            "alpha_max = \"inf\"",
+            "alpha_max = \"inf\"\ne_n_min = 0.5\ne_n_max = 1.0",
+        ),
+        &["domain.gamma_max", "< 2.3666", "fold curve F-"],
+    );
 }
 
 #[test]
