@@ -140,20 +140,39 @@ pub fn fold_minus_scan_e(
     n: usize,
     steps: usize,
 ) -> Result<Vec<f64>, PhysicsError> {
+    falling_edges_e(
+        gamma,
+        e_n,
+        (alpha_lo, alpha_hi),
+        n,
+        steps,
+        has_restitution_minus,
+    )
+}
+
+/// Every α in `[alpha_lo, alpha_hi]` where `present` goes from holding to failing as α grows,
+/// on the Kelvin–Voigt histories at `e_n` and γ, in increasing α: a log grid of `n`
+/// intervals, each change bisected to ≈1e-10 in `ln α`.
+fn falling_edges_e(
+    gamma: f64,
+    e_n: f64,
+    (alpha_lo, alpha_hi): (f64, f64),
+    n: usize,
+    steps: usize,
+    present: fn(&SlipHistory) -> bool,
+) -> Result<Vec<f64>, PhysicsError> {
     let steps = check_fold_steps(steps)?;
     let e_n = check_restitution(e_n)?;
     check_alpha_range(alpha_lo, alpha_hi, n)?;
     let history = |a: f64| slip_history_e(gamma, a, e_n, steps);
     let xs: Vec<f64> = log_grid(alpha_lo, alpha_hi, n).collect();
     let mut edges = Vec::new();
-    let mut prev = has_restitution_minus(&history(xs[0])?);
+    let mut prev = present(&history(xs[0])?);
     for w in xs.windows(2) {
-        let now = has_restitution_minus(&history(w[1])?);
+        let now = present(&history(w[1])?);
         if prev && !now {
             let iterations = ((w[1] / w[0]).ln() / 1e-10).log2().ceil().max(1.0) as usize;
-            if let Some(a) =
-                locate_change_with(history, (w[0], w[1]), iterations, has_restitution_minus)?
-            {
+            if let Some(a) = locate_change_with(history, (w[0], w[1]), iterations, present)? {
                 edges.push(a);
             }
         }
@@ -209,27 +228,21 @@ pub fn restitution_minus_edges_e(
     n: usize,
     steps: usize,
 ) -> Result<Vec<(f64, Option<Episode>)>, PhysicsError> {
-    let steps = check_fold_steps(steps)?;
-    let e_n = check_restitution(e_n)?;
-    check_alpha_range(alpha_lo, alpha_hi, n)?;
-    let history = |a: f64| slip_history_e(gamma, a, e_n, steps);
-    let xs: Vec<f64> = log_grid(alpha_lo, alpha_hi, n).collect();
-    let mut edges = Vec::new();
-    let mut prev = has_restitution_minus_any(&history(xs[0])?);
-    for w in xs.windows(2) {
-        let now = has_restitution_minus_any(&history(w[1])?);
-        if prev && !now {
-            let iterations = ((w[1] / w[0]).ln() / 1e-10).log2().ceil().max(1.0) as usize;
-            if let Some(a) =
-                locate_change_with(history, (w[0], w[1]), iterations, has_restitution_minus_any)?
-            {
-                let below = history(a * (1.0 - 1e-9))?;
-                edges.push((a, restitution_minus_episode(&below)));
-            }
-        }
-        prev = now;
-    }
-    Ok(edges)
+    let edges = falling_edges_e(
+        gamma,
+        e_n,
+        (alpha_lo, alpha_hi),
+        n,
+        steps,
+        has_restitution_minus_any,
+    )?;
+    edges
+        .into_iter()
+        .map(|a| {
+            let below = slip_history_e(gamma, a * (1.0 - 1e-9), e_n, steps)?;
+            Ok((a, restitution_minus_episode(&below)))
+        })
+        .collect()
 }
 
 /// Some `α` in `[alpha_lo, alpha_hi]` at which [`has_restitution_minus`] holds for the
