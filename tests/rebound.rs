@@ -260,7 +260,7 @@ fn seed_000_sphere_on_glass_at_several_angles() {
                 other: State::default(),
             },
             friction: 0.092,
-            relaxation_time: 0.0,
+            law: Default::default(),
         });
     }
 }
@@ -286,7 +286,7 @@ fn hollow_spinning_sphere_on_a_wall() {
             other: State::default(),
         },
         friction: 0.3,
-        relaxation_time: 0.0,
+        law: Default::default(),
     });
 }
 
@@ -315,6 +315,6 @@ fn two_spheres_of_different_size_material_and_spin() {
             },
         },
         friction: 0.15,
-        relaxation_time: 0.0,
+        law: Default::default(),
     });
 }

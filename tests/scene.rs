@@ -230,7 +230,7 @@ fn scene_cases_agree_with_a_direct_physical_units_simulation() {
                     other: other_motion,
                 },
                 friction: s.friction,
-                relaxation_time: 0.0,
+                law: Default::default(),
             };
             let phys = imp.solve(1e-6).unwrap();
             let g = phys.groups;

@@ -1051,7 +1051,7 @@ fn physical(s: &Setup<'_>, incident: &Incident, i: usize) -> PhysicalImpact {
         materials,
         incident: *incident,
         friction: s.friction.at(i),
-        relaxation_time: 0.0,
+        law: Default::default(),
     }
 }
 

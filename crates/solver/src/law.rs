@@ -7,8 +7,12 @@
 //! What a law is: the [`ContactLaw`] trait (its parameters, closed forms, the floor of its error
 //! estimate, its simulation at a resolution, in dimensionless form and for physical bodies),
 //! implemented by each law's folder ([`crate::elastic`], [`crate::kelvin_voigt`]). Which laws
-//! there are and which one answers a request: [`crate::registry`]. The range of `e_n` the
-//! solver takes, whatever the law: [`MIN_RESTITUTION`], [`check_restitution`].
+//! there are (the [`crate::registry::Law`] names) and which one answers a request:
+//! [`crate::registry`]. The range of `e_n` the solver takes, whatever the law:
+//! [`MIN_RESTITUTION`], [`check_restitution`]; the one output layout of every law's
+//! parameters: [`PARAMETER_KEYS`].
+
+use std::fmt::Debug;
 
 use serde::Serialize;
 
@@ -54,60 +58,27 @@ impl Floor {
     }
 }
 
-/// A dissipation law.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default, Hash)]
-#[serde(rename_all = "kebab-case")]
-pub enum Law {
-    /// Perfectly elastic springs: `e_n = 1`.
-    #[default]
-    Elastic,
-    /// Kelvin–Voigt springs, one relaxation time `τ` in both directions, non-adhesive:
-    /// `e_n ∈ [0.3, 1]` (`e_n = 1` is the elastic law exactly).
-    KelvinVoigt,
-}
-
-impl Law {
-    /// Every law.
-    pub const ALL: [Law; 2] = [Law::Elastic, Law::KelvinVoigt];
-
-    /// Name as used on the command line, in configs and in outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            Law::Elastic => "elastic",
-            Law::KelvinVoigt => "kelvin-voigt",
-        }
-    }
-
-    /// Parse a law name (`elastic`, `kelvin-voigt`; case-insensitive).
-    pub fn from_name(name: &str) -> Result<Self, PhysicsError> {
-        let n = name.trim().to_ascii_lowercase();
-        Self::ALL
-            .into_iter()
-            .find(|l| l.name() == n)
-            .ok_or_else(|| PhysicsError::UnknownLaw {
-                name: name.to_string(),
-                allowed: "elastic or kelvin-voigt",
-            })
-    }
-
-    /// The law an `e_n` implies when none is named: elastic at 1, Kelvin–Voigt below.
-    pub fn for_restitution(e_n: f64) -> Self {
-        if e_n == 1.0 {
-            Law::Elastic
-        } else {
-            Law::KelvinVoigt
-        }
-    }
-}
+/// The keys under which outputs report the laws' parameters, one layout for every law so that
+/// answers of different laws share their columns (the JSON of `sweep impact`, the columns of
+/// Python's `impact`, the dict of its `simulate`): `tau`, the dimensionless relaxation time
+/// `τ̂` (0 for the elastic law, which is the Kelvin–Voigt law at `τ̂ = 0`). A law with other
+/// parameters adds its keys here ([`ContactLaw::values`] gives every key a value).
+pub const PARAMETER_KEYS: [&str; 1] = ["tau"];
 
 /// A contact law: what the solver needs of it to answer a request. Implemented once per law,
 /// in the law's folder, by a unit type ([`crate::elastic::Elastic`],
-/// [`crate::kelvin_voigt::KelvinVoigt`]); [`crate::registry`] picks one by name and `e_n`.
-/// Dimensionless units as in [`crate::impact`] (`m* = R* = E* = v_z0 = 1`, `G* = (2/7)γ²`).
+/// [`crate::kelvin_voigt::KelvinVoigt`]) and registered by one line of [`crate::registry`],
+/// which picks one by name and `e_n`. Dimensionless units as in [`crate::impact`]
+/// (`m* = R* = E* = v_z0 = 1`, `G* = (2/7)γ²`).
 pub trait ContactLaw {
     /// The law's dimensionless parameters for one `e_n` (none for the elastic law; the
     /// relaxation time `τ̂` for the Kelvin–Voigt law), as its answers report them.
-    type Parameters: Copy;
+    type Parameters: Copy + PartialEq + Debug + Serialize;
+
+    /// The law's parameters of physical bodies, in SI units (none for the elastic law; the
+    /// relaxation time `τ` (s) for the Kelvin–Voigt law), from which
+    /// [`ContactLaw::of_bodies`] finds `e_n` at an impact's speed.
+    type BodiesParameters: Copy + PartialEq + Debug;
 
     /// The floor of the Richardson error estimate as a share of the last raw difference
     /// between levels: the law's estimate policy, set by how regularly it converges.
@@ -141,13 +112,30 @@ pub trait ContactLaw {
         scheme: Scheme,
     ) -> Result<f64, PhysicsError>;
 
-    /// Run the contact of physical bodies (SI) at resolution `res` with the accurate scheme:
-    /// the law's normal motion of `normal`, and its tangential row driving `bodies` with
-    /// effective radius `R*` (m), shear modulus `G*` (Pa) and Coulomb limit factor
-    /// `c = μ E*/G*` (`∞`: no slip), `contact = (R*, G*, c)`.
+    /// The values of [`PARAMETER_KEYS`] for `parameters`, in their order (0 for a key that is
+    /// not this law's).
+    fn values(parameters: &Self::Parameters) -> [f64; PARAMETER_KEYS.len()];
+
+    /// The parameters in words with their units, for a line of text (`None` for a law without
+    /// parameters).
+    fn describe(parameters: &Self::Parameters) -> Option<String>;
+
+    /// Check the parameters of physical bodies and find, for the bodies' normal constants
+    /// `normal` and their approach speed, the dimensionless parameters and `e_n` of the impact
+    /// (`e_n` in the law's range; an error names the physical parameter otherwise).
+    fn of_bodies(
+        parameters: Self::BodiesParameters,
+        normal: &BodiesNormal,
+    ) -> Result<(Self::Parameters, f64), PhysicsError>;
+
+    /// Run the contact of physical bodies (SI) with checked `parameters` at resolution `res`
+    /// with the accurate scheme: the law's normal motion of `normal`, and its tangential row
+    /// driving `bodies` with effective radius `R*` (m), shear modulus `G*` (Pa) and Coulomb
+    /// limit factor `c = μ E*/G*` (`∞`: no slip), `contact = (R*, G*, c)`.
     fn run_bodies<B: TangentialBodies>(
         bodies: &mut B,
         normal: &BodiesNormal,
+        parameters: Self::BodiesParameters,
         res: Resolution,
         contact: (f64, f64, f64),
     ) -> Result<NormalSummary, PhysicsError>;
@@ -160,12 +148,12 @@ pub struct BodiesNormal {
     pub inv_mass1: f64,
     /// `1/m2` (1/kg); 0 for a wall.
     pub inv_mass2: f64,
+    /// Normal reduced mass `m*` (kg).
+    pub normal_mass: f64,
     /// Hertz stiffness `k = (4/3) E* √R*` (N/m^{3/2}).
     pub stiffness: f64,
     /// Approach speed `v_z0` at first touch (m/s), > 0.
     pub approach_speed: f64,
-    /// Relaxation time `τ` (s) of the Kelvin–Voigt law, > 0 (unused by the elastic law).
-    pub relaxation_time: f64,
 }
 
 /// What the outcome of a physical impact needs of the normal motion a law ran.

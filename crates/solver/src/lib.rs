@@ -24,9 +24,9 @@ pub mod units;
 
 pub use error::PhysicsError;
 pub use impact::{Resolution, Scheme};
-pub use law::{ContactLaw, Law};
+pub use law::{ContactLaw, PARAMETER_KEYS};
 pub use model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, VelocityVerlet};
 pub use preset::Preset;
 pub use refine::{Accuracy, Method, NoEstimate, RefineEvent, Solution};
-pub use registry::{LawParameters, PARAMETER_KEYS};
+pub use registry::{BodiesLaw, Law, LawParameters};
 pub use request::Request;

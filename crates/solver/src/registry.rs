@@ -1,43 +1,179 @@
-//! The registry of contact laws: the one place a [`Law`] name picks its implementation of
-//! [`ContactLaw`] ([`with_law!`]), and the rules that pick the law once for a request: by name,
-//! by `e_n` where none is named ([`Law::for_restitution`]), and the elastic solver wherever
-//! `e_n = 1` ([`Law::answering`]). A new law is one more arm of [`with_law!`] (and its name in
-//! [`Law`]).
+//! The registry of contact laws: the one list of the laws ([`laws!`], one line per law), from
+//! which their names ([`Law`]), the one place a name picks its implementation of
+//! [`ContactLaw`] ([`with_law!`]), their parameters as answers report them
+//! ([`LawParameters`]) and as physical bodies take them ([`BodiesLaw`]) are generated; and the
+//! rules that pick the law once for a request: by name, by `e_n` where none is named
+//! ([`Law::for_restitution`]), and the elastic solver wherever `e_n = 1` ([`Law::answering`]).
+//! A new law is its folder and one more line of the list below.
 
 use serde::Serialize;
 
 use crate::error::PhysicsError;
-use crate::law::{ContactLaw, Law};
+use crate::law::{BodiesNormal, ContactLaw, PARAMETER_KEYS};
 use crate::{elastic, kelvin_voigt};
 
-/// `$body` with `$L` the [`ContactLaw`] implementation of the law `$law`: the one place a
-/// law's name picks its implementation.
-macro_rules! with_law {
-    ($law:expr, $L:ident => $body:expr) => {
-        match $law {
-            $crate::law::Law::Elastic => {
-                type $L = $crate::elastic::Elastic;
-                $body
+/// `"a"`, `"a or b"`, `"a, b or c"`: the names of a list in words, at compile time.
+macro_rules! or_list {
+    ($a:literal) => { $a };
+    ($a:literal, $b:literal) => { concat!($a, " or ", $b) };
+    ($a:literal, $($rest:literal),+) => { concat!($a, ", ", or_list!($($rest),+)) };
+}
+
+/// The laws, one line each: `Variant => implementation of ContactLaw, "name";` (with the
+/// variant's doc comment). `$d` is `$`, for the macro it defines ([`with_law!`]).
+macro_rules! laws {
+    ($d:tt $( $(#[$doc:meta])* $variant:ident => $imp:ty, $name:literal; )+) => {
+        /// A contact law, by name (`physics.md`: the elastic model and its dissipative laws).
+        /// Within a law `P` depends on `(γ, α, e_n)` only; across laws it does not, so every
+        /// answer names its law.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Hash)]
+        #[serde(rename_all = "kebab-case")]
+        pub enum Law {
+            $( $(#[$doc])* $variant, )+
+        }
+
+        impl Law {
+            /// Every law.
+            pub const ALL: [Law; [$( Law::$variant ),+].len()] = [$( Law::$variant ),+];
+
+            /// The names of the laws in words (`"elastic or kelvin-voigt"`), for messages.
+            pub const NAMES: &'static str = or_list!($( $name ),+);
+
+            /// Name as used on the command line, in configs and in outputs.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $( Law::$variant => $name, )+
+                }
             }
-            $crate::law::Law::KelvinVoigt => {
-                type $L = $crate::kelvin_voigt::KelvinVoigt;
-                $body
+
+            /// This law with its parameters for a checked `e_n` ([`ContactLaw::parameters`]).
+            pub fn parameters(self, e_n: f64) -> Result<LawParameters, PhysicsError> {
+                match self {
+                    $( Law::$variant => <$imp>::parameters(e_n).map(LawParameters::$variant), )+
+                }
             }
+        }
+
+        /// `$body` with `$L` the [`ContactLaw`] implementation of the law `$law`: the one place
+        /// a law's name picks its implementation.
+        macro_rules! with_law {
+            ($d law:expr, $d L:ident => $d body:expr) => {
+                match $d law {
+                    $( $crate::registry::Law::$variant => {
+                        type $d L = $imp;
+                        $d body
+                    } )+
+                }
+            };
+        }
+
+        /// A law with its parameters, as answers report them ([`crate::Solution::law`],
+        /// [`crate::units::PhysicalOutcome::law`]): each law's own typed value.
+        #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+        #[serde(rename_all = "kebab-case")]
+        pub enum LawParameters {
+            $( $(#[$doc])* $variant(<$imp as ContactLaw>::Parameters), )+
+        }
+
+        impl LawParameters {
+            /// The law.
+            pub fn law(&self) -> Law {
+                match self {
+                    $( LawParameters::$variant(_) => Law::$variant, )+
+                }
+            }
+
+            /// The values of [`PARAMETER_KEYS`], in their order ([`ContactLaw::values`]).
+            pub fn values(&self) -> [f64; PARAMETER_KEYS.len()] {
+                match self {
+                    $( LawParameters::$variant(p) => <$imp>::values(p), )+
+                }
+            }
+
+            /// The parameters in words with their units, for a line of text (`None` for a law
+            /// without parameters; [`ContactLaw::describe`]).
+            pub fn describe(&self) -> Option<String> {
+                match self {
+                    $( LawParameters::$variant(p) => <$imp>::describe(p), )+
+                }
+            }
+        }
+
+        /// A law with the parameters physical bodies take in SI units
+        /// ([`crate::units::PhysicalImpact::law`]; [`ContactLaw::BodiesParameters`]).
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum BodiesLaw {
+            $( $(#[$doc])* $variant(<$imp as ContactLaw>::BodiesParameters), )+
+        }
+
+        impl BodiesLaw {
+            /// The law.
+            pub fn law(&self) -> Law {
+                match self {
+                    $( BodiesLaw::$variant(_) => Law::$variant, )+
+                }
+            }
+
+            /// Check the parameters and find, for the bodies' normal constants, the law's
+            /// dimensionless parameters and the impact's `e_n` ([`ContactLaw::of_bodies`]).
+            pub fn of_bodies(&self, normal: &BodiesNormal) -> Result<(LawParameters, f64), PhysicsError> {
+                match *self {
+                    $( BodiesLaw::$variant(p) => <$imp>::of_bodies(p, normal)
+                        .map(|(q, e_n)| (LawParameters::$variant(q), e_n)), )+
+                }
+            }
+        }
+
+        /// `$body` with `$L` the [`ContactLaw`] implementation of the law of the physical
+        /// parameters `$bodies` ([`BodiesLaw`]) and `$p` those parameters.
+        macro_rules! with_bodies_law {
+            ($d bodies:expr, $d L:ident, $d p:ident => $d body:expr) => {
+                match $d bodies {
+                    $( $crate::registry::BodiesLaw::$variant($d p) => {
+                        type $d L = $imp;
+                        $d body
+                    } )+
+                }
+            };
         }
     };
 }
-pub(crate) use with_law;
+
+laws! { $
+    /// Perfectly elastic springs: `e_n = 1`.
+    Elastic => crate::elastic::Elastic, "elastic";
+    /// Kelvin–Voigt springs, one relaxation time `τ` in both directions, non-adhesive:
+    /// `e_n ∈ [0.3, 1]` (`e_n = 1` is the elastic law exactly).
+    KelvinVoigt => crate::kelvin_voigt::KelvinVoigt, "kelvin-voigt";
+}
+pub(crate) use {with_bodies_law, with_law};
 
 impl Law {
+    /// Parse a law name (case-insensitive; [`Law::NAMES`]).
+    pub fn from_name(name: &str) -> Result<Self, PhysicsError> {
+        let n = name.trim().to_ascii_lowercase();
+        Self::ALL
+            .into_iter()
+            .find(|l| l.name() == n)
+            .ok_or_else(|| PhysicsError::UnknownLaw {
+                name: name.to_string(),
+                allowed: Law::NAMES,
+            })
+    }
+
+    /// The law an `e_n` implies when none is named: elastic at 1, Kelvin–Voigt below.
+    pub fn for_restitution(e_n: f64) -> Self {
+        if e_n == 1.0 {
+            Law::Elastic
+        } else {
+            Law::KelvinVoigt
+        }
+    }
+
     /// Check `e_n` for this law ([`ContactLaw::check_restitution`]): exactly 1 for the elastic
     /// law, `[0.3, 1]` for Kelvin–Voigt.
     pub fn check_restitution(self, e_n: f64) -> Result<f64, PhysicsError> {
         with_law!(self, L => L::check_restitution(e_n))
-    }
-
-    /// This law with its parameters for a checked `e_n` ([`ContactLaw::parameters`]).
-    pub fn parameters(self, e_n: f64) -> Result<LawParameters, PhysicsError> {
-        with_law!(self, L => L::parameters(e_n).map(LawParameters::from))
     }
 
     /// The law whose solver answers a request for this law at a checked `e_n`: the elastic law
@@ -50,85 +186,40 @@ impl Law {
             self
         }
     }
-
-    /// The law of physical bodies with relaxation time `τ` (s, checked ≥ 0): Kelvin–Voigt for
-    /// `τ > 0`, elastic for `τ = 0`.
-    pub fn of_relaxation_time(tau: f64) -> Law {
-        if tau > 0.0 {
-            Law::KelvinVoigt
-        } else {
-            Law::Elastic
-        }
-    }
 }
-
-/// A law with its parameters, as answers report them ([`crate::Solution::law`],
-/// [`crate::units::PhysicalOutcome::law`]): each law's own typed value.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum LawParameters {
-    /// The elastic law (no parameters).
-    Elastic(elastic::Parameters),
-    /// The Kelvin–Voigt law with its relaxation time `τ̂`.
-    KelvinVoigt(kelvin_voigt::Parameters),
-}
-
-impl From<elastic::Parameters> for LawParameters {
-    fn from(p: elastic::Parameters) -> Self {
-        LawParameters::Elastic(p)
-    }
-}
-
-impl From<kelvin_voigt::Parameters> for LawParameters {
-    fn from(p: kelvin_voigt::Parameters) -> Self {
-        LawParameters::KelvinVoigt(p)
-    }
-}
-
-/// The keys under which outputs report the laws' parameters, one layout for every law so that
-/// answers of different laws share their columns (the JSON of `sweep impact`, the columns of
-/// Python's `impact`, the dict of its `simulate`): `tau`, the dimensionless relaxation time
-/// `τ̂` (0 for the elastic law, which is the Kelvin–Voigt law at `τ̂ = 0`).
-pub const PARAMETER_KEYS: [&str; 1] = ["tau"];
 
 impl LawParameters {
-    /// The law.
-    pub fn law(&self) -> Law {
-        match self {
-            LawParameters::Elastic(_) => Law::Elastic,
-            LawParameters::KelvinVoigt(_) => Law::KelvinVoigt,
-        }
-    }
-
     /// The law's name ([`Law::name`]).
     pub fn name(&self) -> &'static str {
         self.law().name()
     }
+}
 
-    /// The values of [`PARAMETER_KEYS`], in their order.
-    pub fn values(&self) -> [f64; PARAMETER_KEYS.len()] {
-        match self {
-            LawParameters::Elastic(_) => [0.0],
-            LawParameters::KelvinVoigt(p) => [p.tau],
+impl BodiesLaw {
+    /// Bodies of the Kelvin–Voigt law with relaxation time `τ` (s), elastic ones for `τ = 0`
+    /// (any other value, NaN and negatives included, is the Kelvin–Voigt law's to check).
+    pub fn of_relaxation_time(tau: f64) -> BodiesLaw {
+        if tau == 0.0 {
+            BodiesLaw::default()
+        } else {
+            BodiesLaw::KelvinVoigt(kelvin_voigt::BodiesParameters {
+                relaxation_time: tau,
+            })
         }
     }
+}
 
-    /// The parameters in words with their units, for a line of text (`None` for the elastic
-    /// law, which has none).
-    pub fn describe(&self) -> Option<String> {
-        match self {
-            LawParameters::Elastic(_) => None,
-            LawParameters::KelvinVoigt(p) => Some(p.to_string()),
-        }
+/// The elastic law.
+impl Default for Law {
+    fn default() -> Self {
+        Law::Elastic
     }
+}
 
-    /// The parameters of physical bodies with relaxation time `τ` (s) whose dimensionless
-    /// relaxation time is `τ̂`: the law of [`Law::of_relaxation_time`] with `τ̂`.
-    pub fn of_bodies(relaxation_time: f64, tau_hat: f64) -> Self {
-        match Law::of_relaxation_time(relaxation_time) {
-            Law::Elastic => elastic::Parameters.into(),
-            Law::KelvinVoigt => kelvin_voigt::Parameters { tau: tau_hat }.into(),
-        }
+/// Elastic bodies.
+impl Default for BodiesLaw {
+    fn default() -> Self {
+        BodiesLaw::Elastic(elastic::Parameters)
     }
 }
 
@@ -169,8 +260,13 @@ mod tests {
             assert_eq!(law.answering(1.0), Law::Elastic, "{law:?}");
         }
         assert_eq!(Law::KelvinVoigt.answering(0.9), Law::KelvinVoigt);
-        assert_eq!(Law::of_relaxation_time(1e-6), Law::KelvinVoigt);
-        assert_eq!(Law::of_relaxation_time(0.0), Law::Elastic);
+        assert_eq!(BodiesLaw::of_relaxation_time(1e-6).law(), Law::KelvinVoigt);
+        assert_eq!(BodiesLaw::of_relaxation_time(0.0).law(), Law::Elastic);
+        assert_eq!(
+            BodiesLaw::of_relaxation_time(f64::NAN).law(),
+            Law::KelvinVoigt
+        );
+        assert_eq!(Law::NAMES, "elastic or kelvin-voigt");
         assert_eq!(
             Law::from_name("plastic"),
             Err(PhysicsError::UnknownLaw {

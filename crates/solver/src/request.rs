@@ -12,10 +12,11 @@
 
 use crate::error::PhysicsError;
 use crate::impact::{Limits, Resolution, Scheme};
-use crate::law::{ContactLaw, Law};
+use crate::law::ContactLaw;
 use crate::preset::Preset;
 use crate::refine::{solve_core, Accuracy, RefineEvent, Solution};
 use crate::registry::with_law;
+use crate::registry::Law;
 
 /// An impact to solve and how.
 #[derive(Debug, Clone, Copy, PartialEq)]

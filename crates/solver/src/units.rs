@@ -13,10 +13,9 @@ use serde::Serialize;
 use super::elastic::RAW_FLOOR;
 use super::error::PhysicsError;
 use super::impact::{Limits, Resolution, Scheme, TangentialBodies};
-use super::kelvin_voigt;
-use super::law::{BodiesNormal, ContactLaw, Floor, Law};
+use super::law::{BodiesNormal, ContactLaw, Floor};
 use super::refine::{refine_to, Ladder};
-use super::registry::{with_law, LawParameters};
+use super::registry::{with_bodies_law, BodiesLaw, LawParameters};
 
 /// One impact in physical units, in the vocabulary of the lookup ([`oblique_physics::rebound`]):
 /// the same [`Pair`], materials and [`Incident`] state that a table query takes.
@@ -33,11 +32,10 @@ pub struct PhysicalImpact {
     pub incident: Incident,
     /// Coulomb friction coefficient `μ` (≥ 0; `∞` for no slip).
     pub friction: f64,
-    /// Relaxation time `τ` (s) of the Kelvin–Voigt law (`physics.md`, "Dissipative impacts"),
-    /// the same as Brilliantov's dissipative constant `A` for this law; 0 for elastic bodies.
-    /// The normal restitution it gives depends on the impact speed
-    /// ([`PhysicalOutcome::e_n`]; `1 − e_n ∝ τ v_z0^{1/5}` at first order).
-    pub relaxation_time: f64,
+    /// The bodies' contact law with its physical parameters (elastic by default; e.g. the
+    /// Kelvin–Voigt law with a relaxation time, [`PhysicalImpact::with_relaxation_time`]). The
+    /// normal restitution it gives may depend on the impact speed ([`PhysicalOutcome::e_n`]).
+    pub law: BodiesLaw,
 }
 
 /// Dimensionless groups of an impact (physics.md): `γ² = (m*/m_t) G*/E*`,
@@ -146,7 +144,7 @@ impl PhysicalImpact {
                 other: State::default(),
             },
             friction,
-            relaxation_time: 0.0,
+            law: BodiesLaw::default(),
         }
     }
 
@@ -170,48 +168,40 @@ impl PhysicalImpact {
                 other: other_motion,
             },
             friction,
-            relaxation_time: 0.0,
+            law: BodiesLaw::default(),
         }
     }
 
-    /// The same impact with Kelvin–Voigt bodies of relaxation time `τ` (s).
-    pub fn with_relaxation_time(mut self, tau: f64) -> PhysicalImpact {
-        self.relaxation_time = tau;
+    /// The same impact with bodies of the contact law `law` ([`BodiesLaw`]).
+    pub fn with_law(mut self, law: BodiesLaw) -> PhysicalImpact {
+        self.law = law;
         self
     }
 
-    /// The relaxation time checked (finite, ≥ 0) with the dimensionless `τ̂` it gives at this
-    /// impact's speed and the normal restitution of that `τ̂` (in `[0.3, 1]`).
-    pub fn restitution(&self) -> Result<(f64, f64), PhysicsError> {
-        let g = self.groups()?;
-        self.dissipation(&g)
+    /// The same impact with Kelvin–Voigt bodies of relaxation time `τ` (s; `physics.md`,
+    /// "Dissipative impacts"), elastic ones for `τ = 0` ([`BodiesLaw::of_relaxation_time`]).
+    pub fn with_relaxation_time(self, tau: f64) -> PhysicalImpact {
+        self.with_law(BodiesLaw::of_relaxation_time(tau))
     }
 
-    fn dissipation(&self, g: &Groups) -> Result<(f64, f64), PhysicsError> {
-        let tau = self.relaxation_time;
-        if !(tau.is_finite() && tau >= 0.0) {
-            return Err(PhysicsError::InvalidParameter {
-                name: "relaxation_time",
-                value: tau,
-                allowed: "a finite number >= 0 (s; 0 for elastic bodies)",
-            });
+    /// The bodies' law checked, with its dimensionless parameters at this impact's speed
+    /// (for Kelvin–Voigt bodies `τ̂`) and the normal restitution `e_n` they give (in the law's
+    /// range).
+    pub fn restitution(&self) -> Result<(LawParameters, f64), PhysicsError> {
+        let g = self.groups()?;
+        self.law.of_bodies(&self.normal(&g))
+    }
+
+    /// The normal constants of the bodies.
+    fn normal(&self, g: &Groups) -> BodiesNormal {
+        let bodies = self.bodies();
+        BodiesNormal {
+            inv_mass1: bodies.inv_m1,
+            inv_mass2: bodies.inv_m2,
+            normal_mass: g.normal_mass,
+            stiffness: 4.0 / 3.0 * g.e_star * g.radius.sqrt(),
+            approach_speed: g.approach_speed,
         }
-        if tau == 0.0 {
-            return Ok((0.0, 1.0));
-        }
-        let k = 4.0 / 3.0 * g.e_star * g.radius.sqrt();
-        let hat = kelvin_voigt::dimensionless_tau(tau, g.normal_mass, k, g.approach_speed);
-        let e_n = kelvin_voigt::restitution(hat);
-        // `restitution` is ≤ 1: outside the solver's range means NaN or below 0.3.
-        if crate::law::check_restitution(e_n).is_err() {
-            return Err(PhysicsError::InvalidParameter {
-                name: "relaxation_time",
-                value: tau,
-                allowed: "a time whose normal restitution at this impact speed is >= 0.3 (a \
-                          shorter relaxation time, or a slower impact)",
-            });
-        }
-        Ok((hat, e_n))
     }
 
     fn bodies(&self) -> TwoBodies {
@@ -266,26 +256,19 @@ impl PhysicalImpact {
     pub fn simulate(&self, res: Resolution) -> Result<PhysicalOutcome, PhysicsError> {
         let res = res.validate()?;
         let groups = self.groups()?;
-        let (tau_hat, e_n) = self.dissipation(&groups)?;
+        let normal = self.normal(&groups);
+        let (law, e_n) = self.law.of_bodies(&normal)?;
         let mut bodies = self.bodies();
-        let stiffness = 4.0 / 3.0 * groups.e_star * groups.radius.sqrt();
         // Beyond ALPHA_NO_SLIP the finite-μ clamp is decided by rounding: simulate no slip.
         let limit = if groups.alpha > super::impact::ALPHA_NO_SLIP {
             f64::INFINITY
         } else {
             self.friction * groups.e_star / groups.g_star
         };
-        let normal = BodiesNormal {
-            inv_mass1: bodies.inv_m1,
-            inv_mass2: bodies.inv_m2,
-            stiffness,
-            approach_speed: groups.approach_speed,
-            relaxation_time: self.relaxation_time,
-        };
         let contact = (groups.radius, groups.g_star, limit);
-        // The registry picks the law of the bodies: Kelvin–Voigt where they relax.
-        let normal = with_law!(Law::of_relaxation_time(self.relaxation_time), L => {
-            L::run_bodies(&mut bodies, &normal, res, contact)?
+        // The registry picks the implementation of the bodies' law.
+        let normal = with_bodies_law!(self.law, L, p => {
+            L::run_bodies(&mut bodies, &normal, p, res, contact)?
         });
         let u0 = groups.slip_velocity;
         let p = (u0 != 0.0).then(|| bodies.slip_velocity() / u0);
@@ -308,7 +291,7 @@ impl PhysicalImpact {
             peak_force: normal.peak_force,
             max_indentation: normal.max_indentation,
             e_n,
-            law: LawParameters::of_bodies(self.relaxation_time, tau_hat),
+            law,
             groups,
             resolution: res,
         })

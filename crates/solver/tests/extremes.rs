@@ -259,7 +259,7 @@ fn corner_cases() -> Vec<(String, PhysicalImpact)> {
                     },
                 },
                 friction: 0.5,
-                relaxation_time: 0.0,
+                law: Default::default(),
             };
             out.push((format!("sphere-sphere R = {r} m, v = {v} m/s"), imp));
         }

@@ -124,7 +124,7 @@ fn random_impact(rng: &mut XorShift, i: usize) -> PhysicalImpact {
             other: other_motion,
         },
         friction: rng.uniform(0.01, 2.0),
-        relaxation_time: 0.0,
+        law: Default::default(),
     }
 }
 

@@ -13,7 +13,7 @@ use crate::error::PhysicsError;
 use crate::hertz::NormalBodies;
 use crate::impact::{check_alpha, check_gamma, run_contact, simulate_elastic};
 use crate::impact::{Scheme, TangentialBodies};
-use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary};
+use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary, PARAMETER_KEYS};
 use crate::resolution::Resolution;
 
 /// The share of the last raw difference `|P_k − P_{k−1}|` below which the Richardson estimate
@@ -31,6 +31,9 @@ pub struct Parameters;
 
 impl ContactLaw for Elastic {
     type Parameters = Parameters;
+
+    /// Elastic bodies take no parameters.
+    type BodiesParameters = Parameters;
 
     const FLOOR: Floor = Floor::fixed(RAW_FLOOR);
 
@@ -76,11 +79,29 @@ impl ContactLaw for Elastic {
         simulate_elastic(gamma, alpha, res, scheme)
     }
 
+    /// `τ̂ = 0` (the elastic law is the Kelvin–Voigt law without relaxation).
+    fn values(_parameters: &Parameters) -> [f64; PARAMETER_KEYS.len()] {
+        [0.0]
+    }
+
+    fn describe(_parameters: &Parameters) -> Option<String> {
+        None
+    }
+
+    /// `e_n = 1` at every speed.
+    fn of_bodies(
+        parameters: Parameters,
+        _normal: &BodiesNormal,
+    ) -> Result<(Parameters, f64), PhysicsError> {
+        Ok((parameters, 1.0))
+    }
+
     /// The Hertz motion of the bodies and the continuum row (`res.springs = 0`) or a row of
     /// `res.springs` springs ([`run_contact`]).
     fn run_bodies<B: TangentialBodies>(
         bodies: &mut B,
         normal: &BodiesNormal,
+        _parameters: Parameters,
         res: Resolution,
         (radius, shear_modulus, limit): (f64, f64, f64),
     ) -> Result<NormalSummary, PhysicsError> {

@@ -7,8 +7,9 @@ use super::*;
 use crate::kelvin_voigt::dimensionless_normal as kv_normal;
 use crate::kelvin_voigt::row::ViscoelasticRow;
 use crate::kelvin_voigt::tau_for_restitution;
-use crate::law::{check_restitution, Law};
+use crate::law::check_restitution;
 use crate::model::{StepEnd, TangentialModel};
+use crate::registry::Law;
 use crate::springs::{StepMotion, StepResult};
 
 /// The Kelvin–Voigt row ([`ViscoelasticRow`]) that logs the normal state of every step it

@@ -17,7 +17,7 @@ use crate::impact::{
     check_alpha, check_gamma, run_contact_with, ContactPoint, Resolution, Scheme, TangentialBodies,
     ALPHA_NO_SLIP,
 };
-use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary};
+use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary, PARAMETER_KEYS};
 use crate::model::{close_step_elastic, NormalModel, StepEnd, TangentialModel};
 use crate::springs::{StepMotion, StepResult};
 use normal::{FineMotion, ViscoelasticBodies, ViscoelasticTrajectory};
@@ -409,8 +409,19 @@ impl std::fmt::Display for Parameters {
     }
 }
 
+/// The Kelvin–Voigt law's parameters of physical bodies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodiesParameters {
+    /// Relaxation time `τ` (s), > 0 (Brilliantov's dissipative constant `A` for this law). The
+    /// normal restitution it gives depends on the impact speed (`1 − e_n ∝ τ v_z0^{1/5}` at
+    /// first order).
+    pub relaxation_time: f64,
+}
+
 impl ContactLaw for KelvinVoigt {
     type Parameters = Parameters;
+
+    type BodiesParameters = BodiesParameters;
 
     const FLOOR: Floor = RAW_FLOOR;
 
@@ -476,11 +487,54 @@ impl ContactLaw for KelvinVoigt {
         Ok(dimensionless_p(shear, limit, parameters.tau, res))
     }
 
+    /// `[τ̂]`.
+    fn values(parameters: &Parameters) -> [f64; PARAMETER_KEYS.len()] {
+        [parameters.tau]
+    }
+
+    fn describe(parameters: &Parameters) -> Option<String> {
+        Some(parameters.to_string())
+    }
+
+    /// `τ̂` of the bodies' `τ` at their speed ([`dimensionless_tau`]) and its `e_n`
+    /// ([`restitution`]), which must lie in `[0.3, 1]`.
+    fn of_bodies(
+        parameters: BodiesParameters,
+        normal: &BodiesNormal,
+    ) -> Result<(Parameters, f64), PhysicsError> {
+        let tau = parameters.relaxation_time;
+        if !(tau.is_finite() && tau >= 0.0) {
+            return Err(PhysicsError::InvalidParameter {
+                name: "relaxation_time",
+                value: tau,
+                allowed: "a finite number >= 0 (s; 0 for elastic bodies)",
+            });
+        }
+        let hat = dimensionless_tau(
+            tau,
+            normal.normal_mass,
+            normal.stiffness,
+            normal.approach_speed,
+        );
+        let e_n = restitution(hat);
+        // `restitution` is ≤ 1: outside the solver's range means NaN or below 0.3.
+        if check_restitution(e_n).is_err() {
+            return Err(PhysicsError::InvalidParameter {
+                name: "relaxation_time",
+                value: tau,
+                allowed: "a time whose normal restitution at this impact speed is >= 0.3 (a \
+                          shorter relaxation time, or a slower impact)",
+            });
+        }
+        Ok((Parameters { tau: hat }, e_n))
+    }
+
     /// The viscoelastic motion of the bodies with relaxation time `τ` (s) and its row, on the
     /// continuum row only (`res.springs = 0`).
     fn run_bodies<B: TangentialBodies>(
         bodies: &mut B,
         normal: &BodiesNormal,
+        parameters: BodiesParameters,
         res: Resolution,
         (radius, shear_modulus, limit): (f64, f64, f64),
     ) -> Result<NormalSummary, PhysicsError> {
@@ -492,7 +546,7 @@ impl ContactLaw for KelvinVoigt {
                 allowed: "their law is solved on the continuum row only (springs 0)",
             });
         }
-        let tau = normal.relaxation_time;
+        let tau = parameters.relaxation_time;
         let normal = ViscoelasticBodies {
             inv_mass1: normal.inv_mass1,
             inv_mass2: normal.inv_mass2,

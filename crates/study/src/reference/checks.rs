@@ -245,7 +245,7 @@ pub fn no_slip(
                     materials: [a, b],
                     incident: Default::default(),
                     friction: f64::INFINITY,
-                    relaxation_time: 0.0,
+                    law: Default::default(),
                 };
                 imp.incident.sphere = oblique_lookup::rebound::State {
                     v_x: 1.0,

@@ -7,7 +7,7 @@ use oblique_physics::regimes::{self, Regime};
 use oblique_solver::hertz::{HertzClosedForm, NormalBodies};
 use oblique_solver::request::dissipative_closed_form;
 use oblique_solver::units::PhysicalImpact;
-use oblique_solver::{Accuracy, Method as SolverMethod, Request, Resolution};
+use oblique_solver::{Accuracy, BodiesLaw, Method as SolverMethod, Request, Resolution};
 use rayon::prelude::*;
 
 use super::spec::{Case, NormalTest, ObliqueTest, Setup};
@@ -149,7 +149,7 @@ pub fn outcome_e(
                 materials: [a, b],
                 incident: *inc,
                 friction: setup.friction,
-                relaxation_time: relaxation_time(setup, inc, e_n)?,
+                law: BodiesLaw::of_relaxation_time(relaxation_time(setup, inc, e_n)?),
             };
             let out = imp.solve(*tol)?;
             let post = Post {
@@ -326,7 +326,7 @@ pub fn normal(test: &NormalTest, method: &Method) -> Result<Vec<NormalOutcome>, 
                     materials: [a, b],
                     incident: *inc,
                     friction: setup.friction,
-                    relaxation_time: 0.0,
+                    law: Default::default(),
                 };
                 let run = |steps| -> Result<NormalValues, ReferenceError> {
                     let out = imp.simulate(Resolution { springs: 0, steps })?;
