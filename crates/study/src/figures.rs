@@ -16,6 +16,9 @@
 //! | [`regimes`] | `regimes` | full slip / partial slip / stick in the `(γ, α)` plane |
 //! | [`quality`] | `check_errors` | interpolation error at the held-out checks, over the quadtree leaves |
 //! | [`restitution`] | `p_restitution` | `P` against `α` at fixed `γ` for several `e_n` beside the elastic curve (a table with an `e_n` axis; on request only) |
+//!
+//! What every figure shares (axes, overlays, caption) is in `figures/parts.rs`, the maps of the
+//! `(γ, α)` plane in `figures/plane.rs`, the curves in `figures/curves.rs`.
 
 mod curves;
 mod parts;

@@ -1,8 +1,7 @@
 //! The impact in its plane: the 2-D states of both bodies, the groups `γ` and `α` of a pair,
 //! and the rebound from `P` (impulses, restitution of the centres, angles, energy lost).
 
-use super::effective_moduli;
-use super::{query, Body, Elastic, InvalidInput};
+use super::{effective_moduli, query, Body, Elastic, InvalidInput};
 
 /// Translational and rotational state of one body in the plane of the impact.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
