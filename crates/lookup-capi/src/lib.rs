@@ -17,6 +17,7 @@ use std::cell::RefCell;
 use std::ffi::{c_char, c_int, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
+use oblique_lookup::columns::{Column, PointColumns};
 use oblique_lookup::impact::{Contact, Stiffness};
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair, Rebound3};
 use oblique_lookup::OutOfDomain;
@@ -449,7 +450,10 @@ pub unsafe extern "C" fn oblique_p_batch(
         let g = std::slice::from_raw_parts(gamma, n);
         let a = std::slice::from_raw_parts(alpha, n);
         let out = std::slice::from_raw_parts_mut(p, n);
-        t.0.p_batch(g, a, out, outside).map_err(lookup)
+        let points =
+            PointColumns::new(Column::scalar("gamma", g), Column::scalar("alpha", a), None)
+                .map_err(|e| (OBLIQUE_ERR_QUERY, e.to_string()))?;
+        t.0.p_columns(&points, out, outside).map_err(lookup)
     })
 }
 
