@@ -3,25 +3,29 @@
 //! Flat functions over contiguous one-dimensional float64 arrays; the Python layer
 //! (`python/oblique/__init__.py`) converts, broadcasts and reshapes, and gives the public API
 //! its names and documentation. A column here is the data of one argument: length 1 (the same
-//! value for every row) or the number of rows (`3 ×` that for a vector). Every loop over rows
-//! runs with the GIL released, in parallel on rayon's pool for large inputs, and stops at the
-//! first invalid row; the error names the row by its index in the broadcast shape.
+//! value for every row) or the number of rows (`3 ×` that for a vector), read as an
+//! `oblique_lookup::columns::Column`; the batches, their row loops and the layout of a
+//! rebound's row are those of `oblique_lookup::columns`. Every loop over rows runs with the GIL
+//! released, in parallel on rayon's pool for large inputs, and stops at the first invalid row;
+//! the error names the row by its index in the broadcast shape.
 //!
 //! `build_table` ([`build`]) builds a table from a config, as `sweep run` does.
 //!
 //! Symbols and units are those of `physics.md` and `oblique_physics::rebound` (SI).
 
-use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1, PyUntypedArrayMethods};
+use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 
-use oblique_lookup::rebound::{
-    Body, Elastic, Incident, Incident3, Motion3, Pair, Rebound, Rebound3, State,
+use oblique_lookup::columns::{
+    self, BodyColumns, Column, ColumnError, ElasticColumns, Motions, PairColumns, PlaneColumns,
+    PointColumns, ReboundColumns, SpaceColumns, StiffnessColumns,
 };
-use oblique_lookup::{Answer, Contact, LookupError, OutOfDomain, Prepared, Stiffness};
+use oblique_lookup::rebound::{Elastic, Incident, State};
+use oblique_lookup::{LookupError, OutOfDomain, Stiffness};
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::units::{Groups, PhysicalImpact};
 use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request, PARAMETER_KEYS};
@@ -35,9 +39,6 @@ create_exception!(
     "A file that is not a readable, valid P table (damaged, truncated, not a table, a newer \
      schema). The message names the file and the problem."
 );
-
-/// Rows per parallel task; below two chunks the loop runs on the calling thread.
-const CHUNK: usize = 4096;
 
 fn outside(clamp: bool) -> OutOfDomain {
     if clamp {
@@ -103,87 +104,15 @@ fn physics_error(e: PhysicsError, index: usize, shape: &[usize]) -> PyErr {
     }
 }
 
-/// One argument's data: one value for every row, or one per row (`width` values each).
-#[derive(Clone, Copy)]
-struct Col<'a> {
-    data: &'a [f64],
-    width: usize,
-}
-
-impl<'a> Col<'a> {
-    fn new(
-        name: &str,
-        a: &'a PyReadonlyArray1<'_, f64>,
-        width: usize,
-        rows: usize,
-    ) -> PyResult<Col<'a>> {
-        let data = a.as_slice().map_err(|_| {
-            PyValueError::new_err(format!("{name}: expected a contiguous float64 array"))
-        })?;
-        if data.len() != width && data.len() != width * rows {
-            return Err(PyValueError::new_err(format!(
-                "{name}: {} values, expected {width} or {}",
-                data.len(),
-                width * rows
-            )));
-        }
-        Ok(Col { data, width })
-    }
-
-    /// Whether every row has the same value.
-    fn shared(&self) -> bool {
-        self.data.len() == self.width
-    }
-
-    #[inline]
-    fn at(&self, row: usize) -> f64 {
-        if self.shared() {
-            self.data[0]
-        } else {
-            self.data[row]
-        }
-    }
-
-    #[inline]
-    fn vec(&self, row: usize) -> [f64; 3] {
-        let k = if self.shared() { 0 } else { 3 * row };
-        [self.data[k], self.data[k + 1], self.data[k + 2]]
-    }
-}
-
-/// Fill `out` (rows of `width` values) by `row(i, that_row)` for every row, `chunk` rows per
-/// parallel task (on the calling thread below two tasks), GIL released; the error of the lowest
-/// failing row.
+/// `row(i, row i of out)` for every row of `width` values, GIL released, in parallel for many
+/// rows (`columns::fill_rows_par`); the error of the lowest failing row.
 fn fill_rows<E: Send>(
     py: Python<'_>,
     out: &mut [f64],
     width: usize,
-    chunk: usize,
     row: impl Fn(usize, &mut [f64]) -> Result<(), E> + Sync + Send,
 ) -> Result<(), (usize, E)> {
-    let rows = out.len() / width.max(1);
-    py.detach(|| {
-        let run = |(k, block): (usize, &mut [f64])| -> Result<(), (usize, E)> {
-            for (j, r) in block.chunks_mut(width).enumerate() {
-                let i = k * chunk + j;
-                row(i, r).map_err(|e| (i, e))?;
-            }
-            Ok(())
-        };
-        if rows < 2 * chunk {
-            out.chunks_mut(chunk * width).enumerate().try_for_each(run)
-        } else {
-            let errors: Vec<(usize, E)> = out
-                .par_chunks_mut(chunk * width)
-                .enumerate()
-                .filter_map(|x| run(x).err())
-                .collect();
-            match errors.into_iter().min_by_key(|(i, _)| *i) {
-                None => Ok(()),
-                Some(e) => Err(e),
-            }
-        }
-    })
+    py.detach(|| columns::fill_rows_par(out, width, row))
 }
 
 /// [`new_rows`] for rows that each cost milliseconds or more (simulations): the rows run in
@@ -242,12 +171,11 @@ fn new_rows<'py, E: Send>(
     py: Python<'py>,
     rows: usize,
     width: usize,
-    chunk: usize,
     row: impl Fn(usize, &mut [f64]) -> Result<(), E> + Sync + Send,
     error: impl FnOnce(usize, E) -> PyErr,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     new_array(py, rows, width, |o| {
-        fill_rows(py, o, width, chunk, row).map_err(|(i, e)| error(i, e))
+        fill_rows(py, o, width, row).map_err(|(i, e)| error(i, e))
     })
 }
 
@@ -261,14 +189,24 @@ fn slice<'a>(name: &str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]
         .map_err(|_| PyValueError::new_err(format!("{name}: expected a contiguous float64 array")))
 }
 
-fn same_length(name: &str, len: usize, expected: usize) -> PyResult<()> {
-    if len == expected {
-        Ok(())
-    } else {
-        Err(PyValueError::new_err(format!(
-            "{name}: length {len}, expected {expected}"
-        )))
-    }
+/// The argument `name` as a column of one number per row (or one for every row).
+fn column<'a>(name: &'static str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<Column<'a>> {
+    Ok(Column::scalar(name, slice(name, a)?))
+}
+
+/// The argument `name` as a column of 3-vectors.
+fn vector<'a>(name: &'static str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<Column<'a>> {
+    Ok(Column::vector(name, slice(name, a)?))
+}
+
+/// Columns that do not broadcast, as a `ValueError` naming one and both lengths.
+fn column_error(e: ColumnError) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// `Ok` when every column has one row or `rows`.
+fn check_rows<'a>(cols: impl IntoIterator<Item = Column<'a>>, rows: usize) -> PyResult<()> {
+    columns::check_rows(cols, rows).map_err(column_error)
 }
 
 /// A loaded table (`oblique_lookup::Table`): immutable, shared by threads.
@@ -317,23 +255,12 @@ impl PyTable {
         py: Python<'_>,
         gamma: PyReadonlyArray1<'_, f64>,
         alpha: PyReadonlyArray1<'_, f64>,
-        mut out: PyReadwriteArray1<'_, f64>,
+        out: PyReadwriteArray1<'_, f64>,
         clamp: bool,
         shape: Vec<usize>,
     ) -> PyResult<()> {
-        let (g, a) = (slice("gamma", &gamma)?, slice("alpha", &alpha)?);
-        let o = slice_mut("out", &mut out)?;
-        same_length("alpha", a.len(), g.len())?;
-        same_length("out", o.len(), g.len())?;
-        let t = &self.inner;
-        let r = py.detach(|| {
-            if g.len() < 2 * CHUNK {
-                t.p_batch(g, a, o, outside(clamp))
-            } else {
-                t.p_batch_par(g, a, o, outside(clamp))
-            }
-        });
-        r.map_err(|e| lookup_error(e, &shape))
+        let points = PointColumns::new(column("gamma", &gamma)?, column("alpha", &alpha)?, None);
+        self.p_columns(py, points, out, clamp, &shape)
     }
 
     /// `P(γ, α, e_n)` of one point.
@@ -351,28 +278,13 @@ impl PyTable {
         gamma: PyReadonlyArray1<'_, f64>,
         alpha: PyReadonlyArray1<'_, f64>,
         e_n: PyReadonlyArray1<'_, f64>,
-        mut out: PyReadwriteArray1<'_, f64>,
+        out: PyReadwriteArray1<'_, f64>,
         clamp: bool,
         shape: Vec<usize>,
     ) -> PyResult<()> {
-        let (g, a, e) = (
-            slice("gamma", &gamma)?,
-            slice("alpha", &alpha)?,
-            slice("e_n", &e_n)?,
-        );
-        let o = slice_mut("out", &mut out)?;
-        same_length("alpha", a.len(), g.len())?;
-        same_length("e_n", e.len(), g.len())?;
-        same_length("out", o.len(), g.len())?;
-        let t = &self.inner;
-        let r = py.detach(|| {
-            if g.len() < 2 * CHUNK {
-                t.p_e_batch(g, a, e, o, outside(clamp))
-            } else {
-                t.p_e_batch_par(g, a, e, o, outside(clamp))
-            }
-        });
-        r.map_err(|e| lookup_error(e, &shape))
+        let (g, a) = (column("gamma", &gamma)?, column("alpha", &alpha)?);
+        let points = PointColumns::new(g, a, Some(column("e_n", &e_n)?));
+        self.p_columns(py, points, out, clamp, &shape)
     }
 
     /// A per-γ curve.
@@ -433,6 +345,24 @@ impl PyTable {
     }
 }
 
+impl PyTable {
+    /// `P` of every row of `points` into `out` (`Table::p_columns_par`), GIL released.
+    fn p_columns(
+        &self,
+        py: Python<'_>,
+        points: Result<PointColumns<'_>, ColumnError>,
+        mut out: PyReadwriteArray1<'_, f64>,
+        clamp: bool,
+        shape: &[usize],
+    ) -> PyResult<()> {
+        let points = points.map_err(column_error)?;
+        let o = slice_mut("out", &mut out)?;
+        let t = &self.inner;
+        py.detach(|| t.p_columns_par(&points, o, outside(clamp)))
+            .map_err(|e| lookup_error(e, shape))
+    }
+}
+
 /// `P(α)` at one fixed `γ` (`oblique_lookup::Curve`).
 #[pyclass(frozen, module = "oblique._native", name = "Curve")]
 struct PyCurve {
@@ -470,12 +400,12 @@ impl PyCurve {
         mut out: PyReadwriteArray1<'_, f64>,
         shape: Vec<usize>,
     ) -> PyResult<()> {
-        let a = slice("alpha", &alpha)?;
+        let a = column("alpha", &alpha)?;
         let o = slice_mut("out", &mut out)?;
-        same_length("out", o.len(), a.len())?;
+        check_rows([a], o.len())?;
         let c = &self.inner;
-        fill_rows(py, o, 1, CHUNK, |i, r| {
-            r[0] = c.p(a[i])?;
+        fill_rows(py, o, 1, |i, r| {
+            r[0] = c.p(a.at(i))?;
             Ok::<(), LookupError>(())
         })
         .map_err(|(i, e)| row_error(i, &shape, &e.to_string()))
@@ -500,14 +430,14 @@ fn regime_into(
     mut out: PyReadwriteArray1<'_, f64>,
     shape: Vec<usize>,
 ) -> PyResult<()> {
-    let n = out.len();
     let (g, a, e) = (
-        Col::new("gamma", &gamma, 1, n)?,
-        Col::new("alpha", &alpha, 1, n)?,
-        Col::new("e_n", &e_n, 1, n)?,
+        column("gamma", &gamma)?,
+        column("alpha", &alpha)?,
+        column("e_n", &e_n)?,
     );
     let o = slice_mut("out", &mut out)?;
-    fill_rows(py, o, 1, CHUNK, |i, r| {
+    check_rows([g, a, e], o.len())?;
+    fill_rows(py, o, 1, |i, r| {
         let (gi, ai) = (g.at(i), a.at(i));
         check_groups(gi, ai)?;
         let ei = oblique_solver::law::check_restitution(e.at(i))?;
@@ -530,11 +460,10 @@ fn critical_into(
     mut out: PyReadwriteArray1<'_, f64>,
     shape: Vec<usize>,
 ) -> PyResult<()> {
-    let n = out.len() / 2;
-    let g = Col::new("gamma", &gamma, 1, n)?;
-    let e = Col::new("e_n", &e_n, 1, n)?;
+    let (g, e) = (column("gamma", &gamma)?, column("e_n", &e_n)?);
     let o = slice_mut("out", &mut out)?;
-    fill_rows(py, o, 2, CHUNK, |i, r| {
+    check_rows([g, e], o.len() / 2)?;
+    fill_rows(py, o, 2, |i, r| {
         let gi = oblique_solver::impact::check_gamma(g.at(i))?;
         let ei = oblique_solver::law::check_restitution(e.at(i))?;
         r[0] = regimes::alpha_c1_dissipative(gi, ei);
@@ -553,105 +482,21 @@ fn e_t_into(
     mut out: PyReadwriteArray1<'_, f64>,
     shape: Vec<usize>,
 ) -> PyResult<()> {
-    let n = out.len();
-    let (p, k) = (Col::new("p", &p, 1, n)?, Col::new("kappa", &kappa, 1, n)?);
+    let (p, k) = (column("p", &p)?, column("kappa", &kappa)?);
     let o = slice_mut("out", &mut out)?;
-    fill_rows(py, o, 1, CHUNK, |i, r| {
+    check_rows([p, k], o.len())?;
+    fill_rows(py, o, 1, |i, r| {
         r[0] = regimes::centre_restitution(p.at(i), k.at(i))?;
         Ok::<(), oblique_physics::InvalidInput>(())
     })
     .map_err(|(i, e)| row_error(i, &shape, &e.to_string()))
 }
 
-/// What sets `γ` for every row: given, or the elastic constants of both bodies.
-enum Stiff<'a> {
-    Gamma(Col<'a>),
-    Materials([Col<'a>; 4]),
-}
-
-impl Stiff<'_> {
-    fn at(&self, i: usize) -> Stiffness {
-        match self {
-            Stiff::Gamma(g) => Stiffness::Gamma(g.at(i)),
-            Stiff::Materials([e1, n1, e2, n2]) => Stiffness::Materials(
-                Elastic {
-                    youngs_modulus: e1.at(i),
-                    poisson_ratio: n1.at(i),
-                },
-                Elastic {
-                    youngs_modulus: e2.at(i),
-                    poisson_ratio: n2.at(i),
-                },
-            ),
-        }
-    }
-
-    fn shared(&self) -> bool {
-        match self {
-            Stiff::Gamma(g) => g.shared(),
-            Stiff::Materials(c) => c.iter().all(Col::shared),
-        }
-    }
-}
-
-/// Bodies (`mass`, `radius`, `kappa` of sphere 1, then of sphere 2 unless a wall) and contact.
-struct Setup<'a> {
-    sphere: [Col<'a>; 3],
-    other: Option<[Col<'a>; 3]>,
-    stiffness: Stiff<'a>,
-    friction: Col<'a>,
-    /// Normal restitution `e_n` (1 for the callers that take none).
-    restitution: Col<'a>,
-    clamp: bool,
-}
-
-impl Setup<'_> {
-    fn pair(&self, i: usize) -> Pair {
-        let body = |c: &[Col; 3]| Body {
-            mass: c[0].at(i),
-            radius: c[1].at(i),
-            kappa: c[2].at(i),
-        };
-        Pair {
-            sphere: body(&self.sphere),
-            other: self.other.as_ref().map(body),
-        }
-    }
-
-    fn contact(&self, i: usize) -> Contact {
-        Contact {
-            stiffness: self.stiffness.at(i),
-            friction: self.friction.at(i),
-            outside: outside(self.clamp),
-            restitution: self.restitution.at(i),
-        }
-    }
-
-    /// `Ok` when `table` answers the `e_n` of row `i` (exactly 1 for an elastic table, inside
-    /// its range for one with an `e_n` axis): checked for every row, also where the contact
-    /// point does not slip and the table is not consulted.
-    fn check_restitution(
-        &self,
-        table: &oblique_lookup::Table,
-        i: usize,
-    ) -> Result<(), LookupError> {
-        table.surface().check_e_n(self.restitution.at(i))
-    }
-
-    fn shared(&self) -> bool {
-        self.sphere.iter().all(Col::shared)
-            && self.other.iter().flatten().all(Col::shared)
-            && self.stiffness.shared()
-            && self.friction.shared()
-            && self.restitution.shared()
-    }
-}
-
-/// Reads the body and contact columns (see `Setup`); `rows` is the number of rows, `e_n` the
-/// normal restitution (`None`: 1 for every row).
-#[allow(clippy::too_many_arguments)]
-fn setup<'a>(
-    rows: usize,
+/// The body and contact columns (`oblique_lookup::columns::PairColumns`): `sphere` and `other`
+/// (empty for a wall) the `mass`, `radius`, `kappa` of each body, `γ` given (`gamma`) or from
+/// `materials` (E and ν of both bodies), `e_n` the normal restitution (`None`: 1 for every
+/// row).
+fn pair_columns<'a>(
     sphere: &'a [PyReadonlyArray1<'_, f64>],
     other: &'a [PyReadonlyArray1<'_, f64>],
     gamma: &'a Option<PyReadonlyArray1<'_, f64>>,
@@ -659,119 +504,84 @@ fn setup<'a>(
     friction: &'a PyReadonlyArray1<'_, f64>,
     e_n: Option<&'a PyReadonlyArray1<'_, f64>>,
     clamp: bool,
-) -> PyResult<Setup<'a>> {
-    let three = |name: &str, v: &'a [PyReadonlyArray1<'_, f64>]| -> PyResult<[Col<'a>; 3]> {
-        if v.len() != 3 {
-            return Err(PyValueError::new_err(format!(
-                "{name}: expected mass, radius, kappa"
-            )));
-        }
-        Ok([
-            Col::new("mass", &v[0], 1, rows)?,
-            Col::new("radius", &v[1], 1, rows)?,
-            Col::new("kappa", &v[2], 1, rows)?,
-        ])
+) -> PyResult<PairColumns<'a>> {
+    let body = |names: [&'static str; 3], v: &'a [PyReadonlyArray1<'_, f64>]| match v {
+        [m, r, k] => Ok(BodyColumns {
+            mass: column(names[0], m)?,
+            radius: column(names[1], r)?,
+            kappa: column(names[2], k)?,
+        }),
+        _ => Err(PyValueError::new_err(format!(
+            "{}: expected mass, radius, kappa",
+            names[0]
+        ))),
     };
-    let stiffness = match gamma {
-        Some(g) => Stiff::Gamma(Col::new("gamma", g, 1, rows)?),
-        None => {
-            if materials.len() != 4 {
-                return Err(PyValueError::new_err(
-                    "materials: expected E and nu of both bodies",
-                ));
-            }
-            Stiff::Materials([
-                Col::new("youngs_modulus", &materials[0], 1, rows)?,
-                Col::new("poisson_ratio", &materials[1], 1, rows)?,
-                Col::new("other youngs_modulus", &materials[2], 1, rows)?,
-                Col::new("other poisson_ratio", &materials[3], 1, rows)?,
-            ])
+    let stiffness = match (gamma, materials) {
+        (Some(g), _) => StiffnessColumns::Gamma(column("gamma", g)?),
+        (None, [e1, n1, e2, n2]) => StiffnessColumns::Materials(
+            ElasticColumns {
+                youngs_modulus: column("youngs_modulus", e1)?,
+                poisson_ratio: column("poisson_ratio", n1)?,
+            },
+            ElasticColumns {
+                youngs_modulus: column("other youngs_modulus", e2)?,
+                poisson_ratio: column("other poisson_ratio", n2)?,
+            },
+        ),
+        (None, _) => {
+            return Err(PyValueError::new_err(
+                "materials: expected E and nu of both bodies",
+            ))
         }
     };
-    Ok(Setup {
-        sphere: three("sphere", sphere)?,
+    Ok(PairColumns {
+        sphere: body(["mass", "radius", "kappa"], sphere)?,
         other: if other.is_empty() {
             None
         } else {
-            Some(three("other", other)?)
+            Some(body(["other mass", "other radius", "other kappa"], other)?)
         },
         stiffness,
-        friction: Col::new("friction", friction, 1, rows)?,
+        friction: column("friction", friction)?,
         restitution: match e_n {
-            Some(e) => Col::new("e_n", e, 1, rows)?,
-            None => Col {
-                data: &[1.0],
-                width: 1,
-            },
+            Some(e) => column("e_n", e)?,
+            None => Column::scalar("e_n", &[1.0]),
         },
-        clamp,
+        outside: outside(clamp),
     })
 }
 
-/// Columns of a 3-D rebound row.
-const REBOUND3: [&str; 31] = [
-    "velocity_x",
-    "velocity_y",
-    "velocity_z",
-    "spin_x",
-    "spin_y",
-    "spin_z",
-    "other_velocity_x",
-    "other_velocity_y",
-    "other_velocity_z",
-    "other_spin_x",
-    "other_spin_y",
-    "other_spin_z",
-    "gamma",
-    "alpha",
-    "p",
-    "e_t",
-    "slip_before",
-    "slip_after",
-    "tangential_impulse",
-    "normal_impulse",
-    "e_n",
-    "approach_speed",
-    "centre_speed_before",
-    "centre_speed_after",
-    "energy_lost",
-    "tangent_x",
-    "tangent_y",
-    "tangent_z",
-    "incidence_angle",
-    "rebound_angle_centre",
-    "rebound_angle_contact",
-];
+/// The 2-D incident states: `(v_x, v_z, ω)` of sphere 1, then of sphere 2.
+fn plane_columns<'a>(motion: &'a [PyReadonlyArray1<'_, f64>]) -> PyResult<PlaneColumns<'a>> {
+    let [v_x, v_z, omega, ov_x, ov_z, oomega] = motion else {
+        return Err(PyValueError::new_err("motion: expected six columns"));
+    };
+    Ok(PlaneColumns {
+        v_x: column("v_x", v_x)?,
+        v_z: column("v_z", v_z)?,
+        omega: column("omega", omega)?,
+        other_v_x: column("other_v_x", ov_x)?,
+        other_v_z: column("other_v_z", ov_z)?,
+        other_omega: column("other_omega", oomega)?,
+    })
+}
 
-fn write3(a: &Answer<Rebound3>, r: &mut [f64]) {
-    let b = &a.rebound;
-    r[0..3].copy_from_slice(&b.sphere.velocity);
-    r[3..6].copy_from_slice(&b.sphere.spin);
-    let o = b.other.unwrap_or(Motion3 {
-        velocity: [f64::NAN; 3],
-        spin: [f64::NAN; 3],
-    });
-    r[6..9].copy_from_slice(&o.velocity);
-    r[9..12].copy_from_slice(&o.spin);
-    r[12..25].copy_from_slice(&[
-        a.gamma,
-        a.alpha,
-        b.p,
-        b.e_t,
-        b.slip_before,
-        b.slip_after,
-        b.tangential_impulse,
-        b.normal_impulse,
-        b.e_n,
-        b.approach_speed,
-        b.centre_speed_before,
-        b.centre_speed_after,
-        b.energy_lost,
-    ]);
-    r[25..28].copy_from_slice(&b.frame.tangent);
-    r[28] = b.incidence_angle();
-    r[29] = b.rebound_angle_centre();
-    r[30] = b.rebound_angle_contact();
+/// The rebounds of `rows` impacts (`Table::rebound_columns_par`, GIL released): an array of
+/// `(rows, len(M::COLUMNS))`; `shape` names a failing row.
+fn rebounds<'py, M: Motions>(
+    py: Python<'py>,
+    table: &PyTable,
+    rows: usize,
+    shape: &[usize],
+    pairs: PairColumns<'_>,
+    motions: M,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let batch = ReboundColumns::new(pairs, motions).map_err(column_error)?;
+    let t = &table.inner;
+    new_array(py, rows, M::COLUMNS.len(), |o| {
+        py.detach(|| t.rebound_columns_par(&batch, o))
+            .map_err(|e| lookup_error(e, shape))
+    })
 }
 
 /// 3-D rebounds of `rows` impacts; returns `(rows, len(REBOUND3))`.
@@ -796,8 +606,7 @@ fn rebound_3d<'py>(
     e_n: PyReadonlyArray1<'_, f64>,
     clamp: bool,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let s = setup(
-        rows,
+    let pairs = pair_columns(
         &sphere,
         &other,
         &gamma,
@@ -806,157 +615,14 @@ fn rebound_3d<'py>(
         Some(&e_n),
         clamp,
     )?;
-    let v1 = Col::new("velocity", &velocity, 3, rows)?;
-    let w1 = Col::new("spin", &spin, 3, rows)?;
-    let v2 = Col::new("other_velocity", &other_velocity, 3, rows)?;
-    let w2 = Col::new("other_spin", &other_spin, 3, rows)?;
-    let n = Col::new("normal", &normal, 3, rows)?;
-    let incident = |i: usize| Incident3 {
-        sphere: Motion3 {
-            velocity: v1.vec(i),
-            spin: w1.vec(i),
-        },
-        other: Motion3 {
-            velocity: v2.vec(i),
-            spin: w2.vec(i),
-        },
-        normal: n.vec(i),
+    let motions = SpaceColumns {
+        velocity: vector("velocity", &velocity)?,
+        spin: vector("spin", &spin)?,
+        other_velocity: vector("other_velocity", &other_velocity)?,
+        other_spin: vector("other_spin", &other_spin)?,
+        normal: vector("normal", &normal)?,
     };
-    let t = &table.inner;
-    // One e_n for every row: check it once (no index), else row by row.
-    let each_e_n = !s.restitution.shared();
-    if !each_e_n {
-        s.check_restitution(t, 0)
-            .map_err(|e| lookup_error(e, &[]))?;
-    }
-    // One pair and contact for every row: check them once. For many rows, prepare the pair for
-    // this table (with an e_n axis: its P(α) at the pair's (γ, e_n) computed once, 2-9 µs,
-    // then about 15 ns less per row; the same bits).
-    let prepared = if s.shared() {
-        let (pair, contact) = (s.pair(0), s.contact(0));
-        let k = if rows >= PREPARE_FOR_TABLE_ROWS {
-            // A pair that this table does not prepare for (the table of one pair at another
-            // γ) goes the way of fewer rows: its rows are answered or refused one by one, so
-            // the answer does not depend on the number of rows.
-            t.prepare(&pair, &contact)
-                .or_else(|_| Prepared::new(&pair, &contact))
-        } else {
-            Prepared::new(&pair, &contact)
-        };
-        Some(k.map_err(|e| lookup_error(e, &[]))?)
-    } else {
-        None
-    };
-    new_rows(
-        py,
-        rows,
-        REBOUND3.len(),
-        CHUNK,
-        |i, r| {
-            if each_e_n {
-                s.check_restitution(t, i)?;
-            }
-            let answer = match &prepared {
-                Some(k) => t.rebound_3d_prepared(k, &incident(i))?,
-                None => t.rebound_3d(&s.pair(i), &s.contact(i), &incident(i))?,
-            };
-            write3(&answer, r);
-            Ok::<(), LookupError>(())
-        },
-        |i, e| row_error(i, &shape, &e.to_string()),
-    )
-}
-
-/// Rows of one pair from which `rebound_3d` prepares the pair for the table (`Table::prepare`):
-/// below, its 2-9 µs would cost more than the 15 ns per row it saves.
-const PREPARE_FOR_TABLE_ROWS: usize = 1024;
-
-/// Columns of a 2-D rebound row.
-const REBOUND2: [&str; 19] = [
-    "v_x",
-    "v_z",
-    "omega",
-    "other_v_x",
-    "other_v_z",
-    "other_omega",
-    "gamma",
-    "alpha",
-    "p",
-    "e_t",
-    "slip_before",
-    "slip_after",
-    "tangential_impulse",
-    "normal_impulse",
-    "e_n",
-    "incidence_angle",
-    "rebound_angle_centre",
-    "rebound_angle_contact",
-    "energy_lost",
-];
-
-fn write2(a: &Answer<Rebound>, r: &mut [f64]) {
-    let b = &a.rebound;
-    let o = b.other.unwrap_or(State {
-        v_x: f64::NAN,
-        v_z: f64::NAN,
-        omega: f64::NAN,
-    });
-    r.copy_from_slice(&[
-        b.sphere.v_x,
-        b.sphere.v_z,
-        b.sphere.omega,
-        o.v_x,
-        o.v_z,
-        o.omega,
-        a.gamma,
-        a.alpha,
-        b.p,
-        b.e_t,
-        b.slip_before,
-        b.slip_after,
-        b.tangential_impulse,
-        b.normal_impulse,
-        b.e_n,
-        b.incidence_angle,
-        b.rebound_angle_centre,
-        b.rebound_angle_contact,
-        b.energy_lost,
-    ]);
-}
-
-/// The 2-D incident states: `(v_x, v_z, ω)` of sphere 1, then of sphere 2.
-fn states<'a>(
-    rows: usize,
-    motion: &'a [PyReadonlyArray1<'_, f64>],
-) -> PyResult<impl Fn(usize) -> Incident + Sync + 'a> {
-    const NAMES: [&str; 6] = [
-        "v_x",
-        "v_z",
-        "omega",
-        "other_v_x",
-        "other_v_z",
-        "other_omega",
-    ];
-    if motion.len() != 6 {
-        return Err(PyValueError::new_err("motion: expected six columns"));
-    }
-    let c: Vec<Col<'a>> = NAMES
-        .iter()
-        .zip(motion)
-        .map(|(name, a)| Col::new(name, a, 1, rows))
-        .collect::<PyResult<_>>()?;
-    Ok(move |i: usize| Incident {
-        sphere: State {
-            v_x: c[0].at(i),
-            v_z: c[1].at(i),
-            omega: c[2].at(i),
-        },
-        other: State {
-            v_x: c[3].at(i),
-            v_z: c[4].at(i),
-            omega: c[5].at(i),
-        },
-    })
+    rebounds(py, table, rows, &shape, pairs, motions)
 }
 
 /// 2-D rebounds (in the plane of impact) of `rows` impacts; returns `(rows, len(REBOUND2))`.
@@ -977,8 +643,7 @@ fn rebound_2d<'py>(
     e_n: PyReadonlyArray1<'_, f64>,
     clamp: bool,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let s = setup(
-        rows,
+    let pairs = pair_columns(
         &sphere,
         &other,
         &gamma,
@@ -987,28 +652,7 @@ fn rebound_2d<'py>(
         Some(&e_n),
         clamp,
     )?;
-    let incident = states(rows, &motion)?;
-    let t = &table.inner;
-    // One e_n for every row: check it once (no index), else row by row.
-    let each_e_n = !s.restitution.shared();
-    if !each_e_n {
-        s.check_restitution(t, 0)
-            .map_err(|e| lookup_error(e, &[]))?;
-    }
-    new_rows(
-        py,
-        rows,
-        REBOUND2.len(),
-        CHUNK,
-        |i, r| {
-            if each_e_n {
-                s.check_restitution(t, i)?;
-            }
-            write2(&t.rebound(&s.pair(i), &s.contact(i), &incident(i))?, r);
-            Ok::<(), LookupError>(())
-        },
-        |i, e| row_error(i, &shape, &e.to_string()),
-    )
+    rebounds(py, table, rows, &shape, pairs, plane_columns(&motion)?)
 }
 
 /// Columns of a groups row.
@@ -1040,19 +684,36 @@ fn groups_row(g: &Groups) -> [f64; 9] {
 }
 
 /// The impact in physical units of row `i`.
-fn physical(s: &Setup<'_>, incident: &Incident, i: usize) -> PhysicalImpact {
-    let materials = match s.stiffness.at(i) {
+fn physical(pairs: &PairColumns<'_>, incident: Incident, i: usize) -> PhysicalImpact {
+    let contact = pairs.contact(i);
+    let materials = match contact.stiffness {
         Stiffness::Materials(a, b) => [a, b],
         // `physical_*` callers always pass materials.
         Stiffness::Gamma(_) => [Elastic::RIGID; 2],
     };
     PhysicalImpact {
-        pair: s.pair(i),
+        pair: pairs.pair(i),
         materials,
-        incident: *incident,
-        friction: s.friction.at(i),
+        incident,
+        friction: contact.friction,
         law: Default::default(),
     }
+}
+
+/// The bodies, materials and incident states of `rows` 2-D impacts in physical units, each
+/// column of one row or `rows`.
+fn physical_columns<'a>(
+    rows: usize,
+    motion: &'a [PyReadonlyArray1<'_, f64>],
+    sphere: &'a [PyReadonlyArray1<'_, f64>],
+    other: &'a [PyReadonlyArray1<'_, f64>],
+    materials: &'a [PyReadonlyArray1<'_, f64>],
+    friction: &'a PyReadonlyArray1<'_, f64>,
+) -> PyResult<(PairColumns<'a>, PlaneColumns<'a>)> {
+    let pairs = pair_columns(sphere, other, &None, materials, friction, None, false)?;
+    let states = plane_columns(motion)?;
+    check_rows(pairs.columns().into_iter().chain(states.columns()), rows)?;
+    Ok((pairs, states))
 }
 
 /// `γ`, `α` and the effective quantities of `rows` 2-D impacts; returns `(rows, len(GROUPS))`.
@@ -1069,17 +730,15 @@ fn groups<'py>(
     materials: Vec<PyReadonlyArray1<'_, f64>>,
     friction: PyReadonlyArray1<'_, f64>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let s = setup(
-        rows, &sphere, &other, &None, &materials, &friction, None, false,
-    )?;
-    let incident = states(rows, &motion)?;
+    let (pairs, states) = physical_columns(rows, &motion, &sphere, &other, &materials, &friction)?;
     new_rows(
         py,
         rows,
         GROUPS.len(),
-        CHUNK,
         |i, r| {
-            r.copy_from_slice(&groups_row(&physical(&s, &incident(i), i).groups()?));
+            r.copy_from_slice(&groups_row(
+                &physical(&pairs, states.incident(i), i).groups()?,
+            ));
             Ok::<(), PhysicsError>(())
         },
         |i, e| physics_error(e, i, &shape),
@@ -1114,10 +773,11 @@ fn impact<'py>(
     law: Option<&str>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let (g, a, e) = (
-        Col::new("gamma", &gamma, 1, rows)?,
-        Col::new("alpha", &alpha, 1, rows)?,
-        Col::new("e_n", &e_n, 1, rows)?,
+        column("gamma", &gamma)?,
+        column("alpha", &alpha)?,
+        column("e_n", &e_n)?,
     );
+    check_rows([g, a, e], rows)?;
     let law = law
         .map(Law::from_name)
         .transpose()
@@ -1170,11 +830,8 @@ fn simulate<'py>(
     tol: f64,
     relaxation_time: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let s = setup(
-        1, &sphere, &other, &None, &materials, &friction, None, false,
-    )?;
-    let incident = states(1, &motion)?;
-    let imp = physical(&s, &incident(0), 0).with_relaxation_time(relaxation_time);
+    let (pairs, states) = physical_columns(1, &motion, &sphere, &other, &materials, &friction)?;
+    let imp = physical(&pairs, states.incident(0), 0).with_relaxation_time(relaxation_time);
     let out = py
         .detach(|| imp.solve(tol))
         .map_err(|e| physics_error(e, 0, &[]))?;
@@ -1220,8 +877,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyTable>()?;
     m.add_class::<PyCurve>()?;
     m.add("TableError", m.py().get_type::<TableError>())?;
-    m.add("REBOUND3", REBOUND3.to_vec())?;
-    m.add("REBOUND2", REBOUND2.to_vec())?;
+    m.add("REBOUND3", columns::REBOUND_3D_COLUMNS.to_vec())?;
+    m.add("REBOUND2", columns::REBOUND_COLUMNS.to_vec())?;
     m.add("GROUPS", GROUPS.to_vec())?;
     m.add("IMPACT", IMPACT.to_vec())?;
     m.add("VERSION", env!("CARGO_PKG_VERSION"))?;

@@ -11,6 +11,7 @@ use crate::failure::{Context, Failure, Result};
 use clap::Args;
 use serde_json::json;
 
+use oblique_lookup::columns::{Column, PointColumns};
 use oblique_lookup::{LookupError, OutOfDomain, Table};
 use oblique_table::surface::{Region, Surface};
 
@@ -333,45 +334,6 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
         line + 1
     };
     let with_e_n = fields == Some(3);
-    // P of the points `start..start + out.len()` into `out`; an error names the point's index
-    // in the whole batch.
-    let answer = |start: usize, out: &mut [f64]| -> std::result::Result<(), LookupError> {
-        let end = start + out.len();
-        let result = if with_e_n {
-            // Point by point by the rule, in parallel; the error of the lowest index.
-            use rayon::prelude::*;
-            let first_error = out
-                .par_iter_mut()
-                .enumerate()
-                .filter_map(|(k, p)| {
-                    let at = start + k;
-                    match table.p_e_with(gammas[at], alphas[at], e_ns[at], outside) {
-                        Ok(v) => {
-                            *p = v;
-                            None
-                        }
-                        Err(e) => Some((k, e)),
-                    }
-                })
-                .min_by_key(|(k, _)| *k);
-            match first_error {
-                None => Ok(()),
-                Some((index, source)) => Err(LookupError::Batch {
-                    index,
-                    source: Box::new(source),
-                }),
-            }
-        } else {
-            table.p_batch_par(&gammas[start..end], &alphas[start..end], out, outside)
-        };
-        result.map_err(|e| match e {
-            LookupError::Batch { index, source } => LookupError::Batch {
-                index: start + index,
-                source,
-            },
-            other => other,
-        })
-    };
     let failed = |e: LookupError| match e {
         LookupError::Batch { index, source } => {
             // e_n is never clamped: no hint for it.
@@ -383,11 +345,32 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
         }
         other => usage(other),
     };
+    // P of the points `start..start + out.len()` into `out` (`Table::p_columns_par`); an error
+    // names the point's line.
+    let answer = |start: usize, out: &mut [f64]| -> Result<()> {
+        let end = start + out.len();
+        let points = PointColumns::new(
+            Column::scalar("gamma", &gammas[start..end]),
+            Column::scalar("alpha", &alphas[start..end]),
+            with_e_n.then(|| Column::scalar("e_n", &e_ns[start..end])),
+        )
+        .map_err(anyhow::Error::from)?;
+        table
+            .p_columns_par(&points, out, outside)
+            .map_err(|e| match e {
+                LookupError::Batch { index, source } => LookupError::Batch {
+                    index: start + index,
+                    source,
+                },
+                other => other,
+            })
+            .map_err(failed)
+    };
     let mut ps = vec![0.0; CHUNK.min(gammas.len())];
     // Every point first: a point the table refuses stops the batch before any output.
     for start in (0..gammas.len()).step_by(CHUNK) {
         let n = CHUNK.min(gammas.len() - start);
-        answer(start, &mut ps[..n]).map_err(failed)?;
+        answer(start, &mut ps[..n])?;
     }
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
@@ -407,7 +390,7 @@ fn batch(table: &Table, path: &PathBuf, outside: OutOfDomain) -> Result<()> {
         let k = done % CHUNK;
         if k == 0 {
             let n = CHUNK.min(gammas.len() - done);
-            answer(done, &mut ps[..n]).map_err(failed)?;
+            answer(done, &mut ps[..n])?;
         }
         let (g, a, p) = (gammas[done], alphas[done], ps[k]);
         let e_n = if with_e_n {

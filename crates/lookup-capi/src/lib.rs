@@ -17,6 +17,7 @@ use std::cell::RefCell;
 use std::ffi::{c_char, c_int, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
+use oblique_lookup::columns::{Column, PointColumns};
 use oblique_lookup::impact::{Contact, Stiffness};
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair, Rebound3};
 use oblique_lookup::OutOfDomain;
@@ -357,14 +358,8 @@ pub unsafe extern "C" fn oblique_p(
     clamp: c_int,
     p: *mut f64,
 ) -> c_int {
-    guard(|| {
-        let t = table.as_ref().ok_or_else(|| null("table"))?;
-        if p.is_null() {
-            return Err(null("p"));
-        }
-        *p = t.0.p_with(gamma, alpha, outside(clamp)?).map_err(lookup)?;
-        Ok(())
-    })
+    // `Table::p_e_with` at e_n = 1 is `Table::p_with`, on every path.
+    point(table, gamma, alpha, 1.0, clamp, p)
 }
 
 /// `*p = P(γ, α, e_n)` (dimensionless) at normal restitution `e_n`: `oblique_p` for a table
@@ -380,6 +375,21 @@ pub unsafe extern "C" fn oblique_p(
 /// `table` is NULL or a live handle; `p` is NULL or valid for writes.
 #[no_mangle]
 pub unsafe extern "C" fn oblique_p_e(
+    table: *const ObliqueTable,
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    clamp: c_int,
+    p: *mut f64,
+) -> c_int {
+    point(table, gamma, alpha, e_n, clamp, p)
+}
+
+/// Shared part of `oblique_p` and `oblique_p_e`.
+///
+/// # Safety
+/// As for `oblique_p_e`.
+unsafe fn point(
     table: *const ObliqueTable,
     gamma: f64,
     alpha: f64,
@@ -449,7 +459,10 @@ pub unsafe extern "C" fn oblique_p_batch(
         let g = std::slice::from_raw_parts(gamma, n);
         let a = std::slice::from_raw_parts(alpha, n);
         let out = std::slice::from_raw_parts_mut(p, n);
-        t.0.p_batch(g, a, out, outside).map_err(lookup)
+        let points =
+            PointColumns::new(Column::scalar("gamma", g), Column::scalar("alpha", a), None)
+                .map_err(|e| (OBLIQUE_ERR_QUERY, e.to_string()))?;
+        t.0.p_columns(&points, out, outside).map_err(lookup)
     })
 }
 

@@ -19,12 +19,18 @@
 //!   pair's `P(α)` through the table once.
 //! - [`Table::curve`] precomputes `P(α)` at one fixed `γ` ([`Curve`]) for codes that meet one
 //!   pair of materials many times: the same values, fewer operations per query.
+//! - [`columns`]: batches as columns of one value per row or one for every row (NumPy's
+//!   broadcasting), answered by the functions above: `P` ([`Table::p_columns`]) and rebounds
+//!   ([`Table::rebound_columns`]) as rows of named numbers ([`columns::REBOUND_COLUMNS`],
+//!   [`columns::REBOUND_3D_COLUMNS`]); what the Python module, the C ABI and `sweep query
+//!   --batch` run.
 //! - The C ABI is the crate `oblique-lookup-capi` (header `crates/lookup-capi/include/oblique_lookup.h`).
 //!
 //! Symbols (as in `physics.md`): `γ = √((7/2) G*/E*)`, `α = μ v_z0/|u0|`, `P = u_after/u_before`,
 //! `α_c1 = 2γ²/(7(2γ² − 1))`, `α_c2 = 2γ²/7`.
 
 mod batch;
+pub mod columns;
 mod curve;
 mod embedded;
 mod fast;
