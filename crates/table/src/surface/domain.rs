@@ -147,7 +147,7 @@ impl Surface {
         restitution: Option<(f64, f64)>,
     ) -> Result<Surface, String> {
         if let Some((lo, hi)) = restitution {
-            RestitutionAxis::new(lo, hi, 1)?;
+            Axis::restitution(lo, hi, 1)?;
         }
         let pair = gamma_min == gamma_max && restitution.is_some();
         if !(gamma_min > 0.0 && (gamma_max > gamma_min || pair) && gamma_max.is_finite()) {
@@ -284,18 +284,21 @@ impl Surface {
                 name: AxisName::Gamma,
                 lo: self.gamma_min,
                 hi: self.gamma_max,
+                blocks: 1,
             });
         }
         axes.extend([Axis {
             name: AxisName::Alpha,
             lo: 0.0,
             hi: self.alpha_max,
+            blocks: 1,
         }]);
         if let Some((lo, hi)) = self.restitution {
             axes.push(Axis {
                 name: AxisName::RestitutionN,
                 lo,
                 hi,
+                blocks: 1,
             });
         }
         axes
@@ -580,7 +583,7 @@ impl Surface {
     #[inline]
     pub fn eval_in(&self, region: Region, gamma: f64, alpha: f64, e_n: f64) -> f64 {
         match self.patch(region) {
-            Some(patch) if patch.restitution.is_none() => {
+            Some(patch) if patch.restitution().is_none() => {
                 let c = match patch.kind {
                     PatchKind::PartialSlip => partial_coord(gamma, alpha),
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
