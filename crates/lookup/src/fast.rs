@@ -117,14 +117,13 @@ impl<const D: usize> Accel<D> {
         e_n: f64,
         outside: OutOfDomain,
     ) -> Result<f64, LookupError> {
-        oblique_table::surface::check_query(gamma, alpha)?;
         let region = if D == 2 {
             // An elastic table answers `e_n = 1` only (checked by the caller), where
-            // `Region::of_e` is `Region::of`, bit for bit.
+            // `Region::of_e` is `Region::of`, bit for bit, and `check_e_n` passes.
+            oblique_table::surface::check_query(gamma, alpha)?;
             Region::of(gamma, alpha)
         } else {
-            surface.check_e_n(e_n)?;
-            Region::of_e(gamma, alpha, e_n)
+            surface.region_of(gamma, alpha, e_n)?
         };
         if region == Region::Line {
             return Ok(full_slip_line(alpha, e_n));

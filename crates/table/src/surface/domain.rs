@@ -476,15 +476,25 @@ impl Surface {
         outside: OutOfDomain,
     ) -> Result<f64, TableError> {
         let gamma = self.rule_gamma(gamma);
-        check_query(gamma, alpha)?;
-        self.check_e_n(e_n)?;
-        let region = Region::of_e(gamma, alpha, e_n);
+        let region = self.region_of(gamma, alpha, e_n)?;
         if region == Region::Line {
             return Ok(full_slip_line(alpha, e_n));
         }
         self.apply_domain_e(region, gamma, alpha, e_n, outside, |r, g, a| {
             self.eval_in(r, g, a, e_n)
         })
+    }
+
+    /// Steps 1 to 3 of the rule for a query at normal restitution `e_n`: the checks of the
+    /// query ([`check_query`], [`Surface::check_e_n`]) and its region ([`Region::of_e`]). The
+    /// rule ([`Surface::eval_point`]) and the indexed query path of a table with an `e_n`
+    /// axis begin with it; on [`Region::Line`] both answer the full-slip line, elsewhere both
+    /// go through [`Surface::apply_domain_e`].
+    #[inline(always)]
+    pub fn region_of(&self, gamma: f64, alpha: f64, e_n: f64) -> Result<Region, TableError> {
+        check_query(gamma, alpha)?;
+        self.check_e_n(e_n)?;
+        Ok(Region::of_e(gamma, alpha, e_n))
     }
 
     /// `Ok` when the table answers at normal restitution `e_n`: exactly 1 for an elastic
