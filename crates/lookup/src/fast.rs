@@ -17,20 +17,32 @@
 //! chooses the patch and its coordinate and applies the domain policy. Only the shipped
 //! stencil (`k = 4`) takes this path; other stencils use [`Surface`] directly.
 //!
+//! One structure for every number of axes ([`Accel`] over `D` axes: 2 for an elastic table,
+//! 3 with an `e_n` axis) and one query sequence ([`Accel::eval`]): the checks, the region, the
+//! full-slip line, the domain policy ([`Surface::apply_domain_e`]), the patch coordinate, the
+//! leaf. The number of axes is a constant of each instance, so the branches on it cost nothing.
+//!
 //! Batches ([`Accel::eval_batch`], in `fast/batch.rs`) run the same operations in passes over
 //! arrays (classification, coordinates, index, stencils, tensor product) that the compiler
 //! vectorizes, in a baseline x86-64 build and an AVX2 build chosen at run time; both return the
-//! same bits as the single-query path (tested on both builds and all shipped tables).
+//! same bits as the single-query path (tested on both builds and all shipped tables). They are
+//! written out for the two axes of an elastic table: the passes keep one query per vector lane
+//! and cannot share the scalar sequence. A batch at normal restitution `e_n < 1` is answered
+//! query by query. The per-γ curves (`curve.rs`) and the lines of a prepared pair (`line.rs`)
+//! keep the sequence's order with the `γ`-only parts computed once (their comments say where).
 
 use crate::LookupError;
 use oblique_table::indexed::IndexedPatch;
-use oblique_table::surface::{full_slip_line, partial_coord, stick_coord};
+use oblique_table::leaf::cubic_tensor;
+#[cfg(target_arch = "x86_64")]
+use oblique_table::leaf::cubic_tensor3_avx;
+use oblique_table::surface::{full_slip_line, partial_coord, partial_coord_e, stick_coord};
 use oblique_table::surface::{OutOfDomain, PatchKind, Region, Surface};
 
 mod batch;
-mod restitution;
 
-pub(crate) use restitution::Accel3;
+/// The structure of a table with an `e_n` axis: [`Accel`] over `(γ, c, e_n)`.
+pub(crate) type Accel3 = Accel<3>;
 
 /// Largest number of entries of one patch's fine index (`Patch::fine_index`). A full-depth
 /// index for `partial_high` of `tables/full.h5` (327 680 entries, 1.3 MB) answered a repeated
@@ -41,31 +53,35 @@ pub(crate) use oblique_table::surface::MAX_INDEX_ENTRIES;
 /// Queries per chunk of [`Accel::eval_batch`] (fits its `u16` query numbers).
 const BATCH: usize = 256;
 
-/// The acceleration structure of a table: its three patches with their fine indexes.
+/// The acceleration structure of a table: its three patches with their fine indexes over `D`
+/// axes (`γ`, `c`, and `e_n` when `D = 3`).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Accel {
+pub(crate) struct Accel<const D: usize> {
     gamma_min: f64,
     gamma_max: f64,
     alpha_max: f64,
     /// The patches with their indexes, indexed by [`PatchId::index`].
-    patches: [Option<IndexedPatch<2>>; 3],
+    ///
+    /// [`PatchId::index`]: oblique_table::surface::PatchId::index
+    patches: [Option<IndexedPatch<D>>; 3],
     /// Every patch passes [`IndexedPatch::fits_u32`] (the batch path's 32-bit positions).
     batch_u32: bool,
 }
 
-impl Accel {
+impl<const D: usize> Accel<D> {
     /// The structure for `surface`, or `None` when its stencil is not the cubic one (those
-    /// tables are answered by [`Surface::eval_with`]).
-    pub(crate) fn new(surface: &Surface) -> Option<Accel> {
+    /// tables are answered by [`Surface::eval_point`]) or its patches do not have `D` axes
+    /// (`D = 3`: only for a table with an `e_n` axis).
+    pub(crate) fn new(surface: &Surface) -> Option<Accel<D>> {
         Accel::with_budget(surface, MAX_INDEX_ENTRIES)
     }
 
     /// [`Accel::new`] with at most `max_entries` index entries per patch.
-    fn with_budget(surface: &Surface, max_entries: usize) -> Option<Accel> {
-        if surface.stencil() != 4 {
+    fn with_budget(surface: &Surface, max_entries: usize) -> Option<Accel<D>> {
+        if surface.stencil() != 4 || (D == 3 && surface.restitution().is_none()) {
             return None;
         }
-        let mut patches: [Option<IndexedPatch<2>>; 3] = [None, None, None];
+        let mut patches: [Option<IndexedPatch<D>>; 3] = [None, None, None];
         for (id, p) in surface.patches() {
             patches[id.index()] = Some(IndexedPatch::new(p, max_entries)?);
         }
@@ -88,8 +104,109 @@ impl Accel {
             .sum()
     }
 
-    /// [`Surface::eval_with`], bit for bit. The checks and the full-slip line are inlined into
-    /// the caller; the patches are answered out of line ([`Accel::eval_off_line`]).
+    /// [`Surface::eval_point`], bit for bit (`e_n` must be 1 when `D = 2`: the caller's). The
+    /// checks and the full-slip line are inlined into the caller; the patches are answered out
+    /// of line ([`Accel::eval_off_line`]; with `D = 3` compiled for AVX where the processor
+    /// has it, [`Accel::eval_off_line_avx`]).
+    #[inline(always)]
+    pub(crate) fn eval(
+        &self,
+        surface: &Surface,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        let region = if D == 2 {
+            // An elastic table answers `e_n = 1` only (checked by the caller), where
+            // `Region::of_e` is `Region::of`, bit for bit, and `check_e_n` passes.
+            oblique_table::surface::check_query(gamma, alpha)?;
+            Region::of(gamma, alpha)
+        } else {
+            surface.region_of(gamma, alpha, e_n)?
+        };
+        if region == Region::Line {
+            return Ok(full_slip_line(alpha, e_n));
+        }
+        #[cfg(target_arch = "x86_64")]
+        if D == 3 && (cfg!(target_feature = "avx") || std::is_x86_feature_detected!("avx")) {
+            // SAFETY: the processor has AVX (checked just above, or enabled for the build).
+            return unsafe { self.eval_off_line_avx(surface, region, gamma, alpha, e_n, outside) };
+        }
+        self.eval_off_line(surface, region, gamma, alpha, e_n, outside)
+    }
+
+    /// [`Accel::eval`] for a valid query above the full-slip line.
+    #[inline(never)]
+    fn eval_off_line(
+        &self,
+        surface: &Surface,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        let e_n = if D == 2 { 1.0 } else { e_n };
+        surface.apply_domain_e(region, gamma, alpha, e_n, outside, |r, g, a| {
+            self.eval_in(r, g, a, e_n, cubic_tensor)
+        })
+    }
+
+    /// [`Accel::eval_off_line`] of three axes compiled for AVX, with the leaf's sum in 256-bit
+    /// vectors ([`cubic_tensor3_avx`], inlined here): the same operations, so the same bits (no
+    /// product is fused with a sum: FMA is not enabled). Called only when `D = 3`.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    #[inline(never)]
+    fn eval_off_line_avx(
+        &self,
+        surface: &Surface,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        surface.apply_domain_e(region, gamma, alpha, e_n, outside, |r, g, a| {
+            self.eval_in(r, g, a, e_n, |vals, n1, f| {
+                cubic_tensor3_avx(vals, n1, std::array::from_fn(|k| f[k]))
+            })
+        })
+    }
+
+    /// In a known non-line region: the patch's coordinate, then its tensor product from
+    /// `tensor` ([`IndexedPatch::interpolate_by`]) at `(γ, c)` or `(γ, c, e_n)`.
+    #[inline(always)]
+    fn eval_in(
+        &self,
+        region: Region,
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        tensor: impl Fn(&[f64], usize, [f64; D]) -> f64,
+    ) -> f64 {
+        let patch = match region.patch_id() {
+            Some(id) => self.patches[id.index()].as_ref(),
+            None => None,
+        };
+        match patch {
+            Some(patch) => {
+                let c = match patch.kind() {
+                    PatchKind::PartialSlip if D == 2 => partial_coord(gamma, alpha),
+                    PatchKind::PartialSlip => partial_coord_e(gamma, alpha, e_n),
+                    PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
+                };
+                let point = [gamma, c.clamp(0.0, 1.0), e_n];
+                patch.interpolate_by(std::array::from_fn(|k| point[k]), tensor)
+            }
+            None => -e_n,
+        }
+    }
+}
+
+impl Accel<2> {
+    /// [`Accel::eval`] of an elastic table (`e_n = 1`): [`Surface::eval_with`], bit for bit.
     #[inline(always)]
     pub(crate) fn eval_with(
         &self,
@@ -98,47 +215,7 @@ impl Accel {
         alpha: f64,
         outside: OutOfDomain,
     ) -> Result<f64, LookupError> {
-        oblique_table::surface::check_query(gamma, alpha)?;
-        let region = Region::of(gamma, alpha);
-        if region == Region::Line {
-            return Ok(full_slip_line(alpha, 1.0));
-        }
-        self.eval_off_line(surface, region, gamma, alpha, outside)
-    }
-
-    /// [`Accel::eval_with`] for a valid query above the full-slip line.
-    #[inline(never)]
-    fn eval_off_line(
-        &self,
-        surface: &Surface,
-        region: Region,
-        gamma: f64,
-        alpha: f64,
-        outside: OutOfDomain,
-    ) -> Result<f64, LookupError> {
-        surface.apply_domain(region, gamma, alpha, outside, |r, g, a| {
-            self.eval_in(r, g, a)
-        })
-    }
-
-    #[inline(always)]
-    fn eval_in(&self, region: Region, gamma: f64, alpha: f64) -> f64 {
-        let patch = match region {
-            Region::Line => None,
-            Region::StickLow => self.patches[0].as_ref(),
-            Region::PartialHigh => self.patches[1].as_ref(),
-            Region::StickHigh => self.patches[2].as_ref(),
-        };
-        match patch {
-            Some(patch) => {
-                let c = match patch.kind() {
-                    PatchKind::PartialSlip => partial_coord(gamma, alpha),
-                    PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
-                };
-                patch.interpolate([gamma, c.clamp(0.0, 1.0)])
-            }
-            None => -1.0,
-        }
+        self.eval(surface, gamma, alpha, 1.0, outside)
     }
 }
 
@@ -223,7 +300,7 @@ mod tests {
             let s = &t.surface();
             // Full depth, and capped depths from which the descent continues.
             for budget in [1 << 20, MAX_INDEX_ENTRIES, 64, 1] {
-                let accel = Accel::with_budget(s, budget).expect("cubic table");
+                let accel = Accel::<2>::with_budget(s, budget).expect("cubic table");
                 for &(g, a) in &points(&t) {
                     for o in [OutOfDomain::Error, OutOfDomain::Clamp] {
                         let fast = accel.eval_with(s, g, a, o).ok().map(f64::to_bits);
@@ -244,7 +321,7 @@ mod tests {
 
     fn batches_give_the_bits_of_single_queries(t: &Table) {
         let s = &t.surface();
-        let accel = Accel::new(s).expect("cubic table");
+        let accel = Accel::<2>::new(s).expect("cubic table");
         let mut pts = points(t);
         // Outside the domain, on the line outside it, at γ = 1.
         pts.extend([
@@ -356,7 +433,7 @@ mod tests {
         let bytes = t.index_bytes();
         // At most 3 × 128 KiB of index plus 32 bytes per quadtree cell; far below 16 MiB.
         assert!(bytes > 0 && bytes <= 16 << 20, "{bytes} bytes");
-        let accel = Accel::new(t.surface()).expect("cubic table");
+        let accel = Accel::<2>::new(t.surface()).expect("cubic table");
         let s = &t.surface();
         for id in PatchId::ALL {
             let (Some(patch), Some(fast)) = (s.patch_by_id(id), &accel.patches[id.index()]) else {

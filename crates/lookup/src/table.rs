@@ -28,7 +28,7 @@ pub struct Table {
     /// The stated error bound ([`Table::error_bound`]).
     error_bound: f64,
     /// The query path's acceleration structure (`None`: answered by `surface` directly).
-    accel: Option<Accel>,
+    accel: Option<Accel<2>>,
     /// The same for a table with an `e_n` axis.
     accel3: Option<Accel3>,
     /// This table's identity (kept by its clones), named by what [`Table::prepare`] stores
@@ -72,7 +72,7 @@ impl Table {
         checks: Vec<Check>,
         error_bound: f64,
     ) -> Table {
-        let accel = Accel::new(&surface);
+        let accel = Accel::<2>::new(&surface);
         let accel3 = Accel3::new(&surface);
         Table {
             surface,
@@ -92,7 +92,7 @@ impl Table {
     }
 
     /// The acceleration structure, if the table has one.
-    pub(crate) fn accel(&self) -> Option<&Accel> {
+    pub(crate) fn accel(&self) -> Option<&Accel<2>> {
         self.accel.as_ref()
     }
 
@@ -114,7 +114,7 @@ impl Table {
     /// Bytes of the acceleration structure's leaf indexes (0 when the table is answered by the
     /// quadtree descent of [`Surface::eval_with`], as for stencils other than 4 points).
     pub fn index_bytes(&self) -> usize {
-        self.accel.as_ref().map_or(0, Accel::index_bytes)
+        self.accel.as_ref().map_or(0, Accel::<2>::index_bytes)
             + self.accel3.as_ref().map_or(0, Accel3::index_bytes)
     }
 

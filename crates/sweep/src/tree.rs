@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use oblique_table::surface::{
-    stencil, PartialMap, Patch, PatchId, PatchKind, Point, RestitutionAxis, Warp,
+    stencil, Axis, PartialMap, Patch, PatchData, PatchId, PatchKind, Point, Warp,
 };
 use oblique_table::write::BuiltPatch;
 
@@ -55,10 +55,10 @@ pub(crate) fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
 }
 
 /// The `e_n` axis of every patch of a dissipative table (`None`: elastic).
-fn restitution_axis(cfg: &Config) -> Result<Option<RestitutionAxis>, SweepError> {
+fn restitution_axis(cfg: &Config) -> Result<Option<Axis>, SweepError> {
     cfg.domain
         .e_n_range()
-        .map(|(lo, hi)| RestitutionAxis::new(lo, hi, cfg.blocks_e_n()).map_err(SweepError::Model))
+        .map(|(lo, hi)| Axis::restitution(lo, hi, cfg.blocks_e_n()).map_err(SweepError::Model))
         .transpose()
 }
 
@@ -89,7 +89,7 @@ struct Layout<'a> {
     /// Fold warp of the partial-slip patch: the lattice is in `c'`, α comes from `c`.
     warp: Option<&'a Warp>,
     /// The `e_n` axis of a dissipative table: the lattice has a third axis.
-    restitution: Option<RestitutionAxis>,
+    restitution: Option<Axis>,
 }
 
 /// A node on the finest lattice of a patch: `(γ index, c index, e_n index, warped)`. A node on
@@ -164,7 +164,7 @@ impl Layout<'_> {
         let gamma = self.gamma_of_row(key.0);
         let c = key.1 as f64 / nc as f64;
         let e_n = match self.restitution {
-            Some(r) => r.e_n(key.2 as f64 / (self.be() as u64 * self.fine()) as f64),
+            Some(r) => r.at(key.2 as f64 / (self.be() as u64 * self.fine()) as f64),
             None => 1.0,
         };
         (gamma, c, self.point_at(gamma, c, e_n, key.3))
@@ -675,19 +675,23 @@ pub(crate) fn build_patch(
     let simulated = cache.values().filter(|(_, e)| *e > 0.0).count();
     Ok(Some(BuiltPatch {
         name: spec.name,
-        patch: Patch::with_split(
+        patch: Patch::new(
             spec.kind,
-            spec.gamma_lo,
-            spec.gamma_hi,
-            layout.bg,
-            layout.bc,
-            m,
-            tree,
-            p,
-            err,
-            warp.clone(),
-            layout.restitution,
-            layout.restitution.is_some().then_some(mask),
+            [
+                Axis::gamma(spec.gamma_lo, spec.gamma_hi, layout.bg),
+                Axis::coord(layout.bc),
+            ]
+            .into_iter()
+            .chain(layout.restitution)
+            .collect(),
+            PatchData {
+                leaf_intervals: m,
+                tree,
+                split: layout.restitution.is_some().then_some(mask),
+                p,
+                error_estimate: err,
+                warp: warp.clone(),
+            },
         )
         .map_err(|m| SweepError::Model(format!("patch '{}': {m}", spec.name)))?,
         gamma,

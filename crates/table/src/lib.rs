@@ -21,8 +21,8 @@ pub mod write;
 
 pub use read::{Check, Contents, Provenance};
 pub use surface::{
-    Axis, AxisName, OutOfDomain, PartialMap, Patch, PatchKind, Point, Region, RestitutionAxis,
-    Surface, Warp,
+    Axis, AxisName, OutOfDomain, PartialMap, Patch, PatchData, PatchKind, Point, Region, Surface,
+    Warp,
 };
 
 use thiserror::Error;

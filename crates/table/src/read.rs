@@ -5,7 +5,7 @@ use std::path::Path;
 use hdf5::types::VarLenUnicode;
 
 use crate::format::*;
-use crate::surface::{Patch, PatchId, PatchKind, RestitutionAxis, Surface, Warp};
+use crate::surface::{Axis, Patch, PatchData, PatchId, PatchKind, Surface, Warp};
 use crate::TableError;
 
 /// Where a table came from (root attributes).
@@ -253,7 +253,7 @@ impl Reader<'_> {
                 }
                 let be = self.count_attr(&g, ATTR_BLOCKS_E_N, 1 << 16)?;
                 Some(
-                    RestitutionAxis::new(lo, hi, be)
+                    Axis::restitution(lo, hi, be)
                         .map_err(|m| self.invalid(format!("patch '{name}': {m}")))?,
                 )
             }
@@ -291,19 +291,21 @@ impl Reader<'_> {
         let warp = self.warp(&g, name, version)?;
         // The checks above name the datasets as the file has them; what remains (the warp's
         // rules against the patch) is the model's own check.
-        let patch = Patch::with_split(
+        let axes = [Axis::gamma(gamma_lo, gamma_hi, bg), Axis::coord(bc)]
+            .into_iter()
+            .chain(restitution)
+            .collect();
+        let patch = Patch::new(
             kind,
-            gamma_lo,
-            gamma_hi,
-            bg,
-            bc,
-            m,
-            tree,
-            p,
-            err,
-            warp,
-            restitution,
-            split,
+            axes,
+            PatchData {
+                leaf_intervals: m,
+                tree,
+                split,
+                p,
+                error_estimate: err,
+                warp,
+            },
         )
         .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
         // Where the builder simulated each value: the tree and the axis attributes must put
@@ -470,7 +472,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
                     r.attr_f64(&file, ATTR_E_N_MIN)?,
                     r.attr_f64(&file, ATTR_E_N_MAX)?,
                 );
-                RestitutionAxis::new(lo, hi, 1).map_err(|m| r.invalid(m))?;
+                Axis::restitution(lo, hi, 1).map_err(|m| r.invalid(m))?;
                 let law = r.attr_str(&file, ATTR_LAW)?;
                 if !LAWS_E_N.contains(&law.as_str()) {
                     return Err(r.invalid(format!(

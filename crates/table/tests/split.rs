@@ -2,7 +2,7 @@
 //! the masks are checked, the rule descends them, and the fine index finds the same leaves.
 
 use oblique_table::indexed::IndexedPatch;
-use oblique_table::surface::{check_split, Patch, PatchKind, RestitutionAxis};
+use oblique_table::surface::{check_split, Axis, Patch, PatchData, PatchKind};
 
 const M: usize = 6;
 
@@ -29,19 +29,21 @@ fn patch(tree: Vec<i32>, split: Vec<u8>, boxes: &[[(f64, f64); 3]]) -> Result<Pa
         }
     }
     let err = vec![0.0; p.len()];
-    Patch::with_split(
+    Patch::new(
         PatchKind::Stick,
-        1.5,
-        2.5,
-        1,
-        1,
-        M,
-        tree,
-        p,
-        err,
-        None,
-        Some(RestitutionAxis::new(0.5, 1.0, 1)?),
-        Some(split),
+        vec![
+            Axis::gamma(1.5, 2.5, 1),
+            Axis::coord(1),
+            Axis::restitution(0.5, 1.0, 1)?,
+        ],
+        PatchData {
+            leaf_intervals: M,
+            tree,
+            split: Some(split),
+            p,
+            error_estimate: err,
+            warp: None,
+        },
     )
 }
 

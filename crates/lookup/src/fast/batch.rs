@@ -150,7 +150,7 @@ fn interpolate_lanes<const AVX2: bool>(
     }
 }
 
-impl Accel {
+impl Accel<2> {
     /// `out[i] = P(gamma[i], alpha[i])` ([`Accel::eval_with`] for each `i`, the same bits),
     /// in chunks of [`BATCH`] queries sorted by region first: the full-slip line is answered in
     /// the classifying pass, then each patch's queries in passes of their own, so that the
@@ -418,7 +418,7 @@ mod tests {
     /// `out` of [`Accel::eval_batch_on`] (`None` and `out` untouched on an error), and the
     /// error's index.
     fn run(
-        accel: &Accel,
+        accel: &Accel<2>,
         s: &Surface,
         avx2: bool,
         g: &[f64],
@@ -443,7 +443,7 @@ mod tests {
             let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
             // Full index depth, and a capped one from which the descent continues.
             for budget in [MAX_INDEX_ENTRIES, 64] {
-                let accel = Accel::with_budget(s, budget).expect("cubic table");
+                let accel = Accel::<2>::with_budget(s, budget).expect("cubic table");
                 assert!(accel.batch_u32);
                 for avx2 in [false, true] {
                     let (out, err) = run(&accel, s, avx2, &g, &a, OutOfDomain::Clamp);
@@ -506,7 +506,7 @@ mod tests {
         let s = &t.surface();
         let pts = crate::testing::domain_points(s, 100_000, 17);
         let (g, a): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
-        let accel = Accel::new(s).expect("cubic table");
+        let accel = Accel::<2>::new(s).expect("cubic table");
         for avx2 in [false, true] {
             let (out, err) = run(&accel, s, avx2, &g, &a, OutOfDomain::Error);
             assert_eq!(err, None);

@@ -1,70 +1,5 @@
-//! The axes of a table: the normal-restitution axis of a patch ([`RestitutionAxis`]), a point
-//! of the domain ([`Point`]) and the named axes ([`AxisName`], [`Axis`]).
-
-/// The normal-restitution axis of a patch (schema 4): `e_n` from `lo` to `hi`, cut into
-/// `blocks` equal root cells; the patch's third coordinate is `x_e = (e_n − lo)/(hi − lo)`.
-///
-/// With it a patch is `blocks_gamma × blocks_coord × blocks` root cells, numbered row-major
-/// (`γ` outer, `e_n` inner), each the root of an octree: a split cell's children are the cells
-/// `tree[i] + 4·q_γ + 2·q_c + q_e`, and every leaf stores `(m + 1)³` nodes,
-/// `p[leaf·(m+1)³ + (i_γ·(m+1) + i_c)·(m+1) + i_e]`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RestitutionAxis {
-    /// Lowest `e_n`.
-    pub(super) lo: f64,
-    /// Highest `e_n`.
-    pub(super) hi: f64,
-    /// Root cells along `e_n`.
-    pub(super) blocks: usize,
-}
-
-impl RestitutionAxis {
-    /// The axis from its stored values: `0 < lo < hi ≤ 1` and `1 ≤ blocks ≤ 2¹⁶`. `Err` names
-    /// the attribute and the allowed range.
-    pub fn new(lo: f64, hi: f64, blocks: usize) -> Result<RestitutionAxis, String> {
-        if !(lo > 0.0 && hi > lo && hi <= 1.0) {
-            return Err(format!(
-                "e_n range [{lo}, {hi}]: must satisfy 0 < e_n_lo < e_n_hi <= 1"
-            ));
-        }
-        if !(1..=1 << 16).contains(&blocks) {
-            return Err(format!(
-                "blocks_e_n = {blocks}: must be an integer in [1, 65536]"
-            ));
-        }
-        Ok(RestitutionAxis { lo, hi, blocks })
-    }
-
-    /// Lowest `e_n`.
-    pub fn lo(&self) -> f64 {
-        self.lo
-    }
-
-    /// Highest `e_n`.
-    pub fn hi(&self) -> f64 {
-        self.hi
-    }
-
-    /// Root cells along `e_n`.
-    pub fn blocks(&self) -> usize {
-        self.blocks
-    }
-
-    /// The coordinate `x_e = (e_n − lo)/(hi − lo)` of `e_n`.
-    #[inline(always)]
-    pub fn x(&self, e_n: f64) -> f64 {
-        (e_n - self.lo) / (self.hi - self.lo)
-    }
-
-    /// `e_n` at coordinate `x` (`hi` exactly at `x = 1`).
-    pub fn e_n(&self, x: f64) -> f64 {
-        if x >= 1.0 {
-            self.hi
-        } else {
-            self.lo + (self.hi - self.lo) * x
-        }
-    }
-}
+//! The axes of a table and of its patches ([`AxisName`], [`Axis`]) and a point of the domain
+//! ([`Point`]).
 
 /// A point of a table's domain: `(γ, α, e_n)`, dimensionless (`physics.md`); `e_n = 1` is
 /// an elastic impact.
@@ -112,7 +47,20 @@ impl AxisName {
     }
 }
 
-/// One axis of a table: its name and range (`hi = ∞` for `α` with no slip included).
+/// One axis of a table or of a patch's tree: which quantity, its range and its root cells.
+///
+/// A patch lists its axes in the order of its tree ([`crate::surface::Patch::axes`]): `γ` from
+/// `gamma_lo` to `gamma_hi` (equal in the patch of one pair), the patch coordinate `c` of `α`
+/// ([`AxisName::Alpha`] from 0 to 1: `c` is its own coordinate), and `e_n` (schema 4) when the
+/// table has one. Each is cut into `blocks` equal root cells; its coordinate is
+/// `x = (value − lo)/(hi − lo)` ([`Axis::x`]). With an `e_n` axis a patch is
+/// `blocks_gamma × blocks_coord × blocks_e_n` root cells, numbered row-major (`γ` outer,
+/// `e_n` inner), each the root of an octree: a split cell's children are the cells
+/// `tree[i] + 4·q_γ + 2·q_c + q_e`, and every leaf stores `(m + 1)³` nodes,
+/// `p[leaf·(m+1)³ + (i_γ·(m+1) + i_c)·(m+1) + i_e]`.
+///
+/// The axes of a table ([`crate::surface::Surface::axes`]) are its query's: `γ`, `α` from 0 to
+/// `alpha_max` (`hi = ∞` with no slip included) and `e_n`, each with one block.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Axis {
     /// Which quantity.
@@ -121,4 +69,80 @@ pub struct Axis {
     pub lo: f64,
     /// Highest value.
     pub hi: f64,
+    /// Root cells along the axis.
+    pub blocks: usize,
+}
+
+impl Axis {
+    /// The `γ` axis of a patch over `[lo, hi]` with `blocks` root cells (checked by
+    /// [`crate::surface::Patch::new`]).
+    pub fn gamma(lo: f64, hi: f64, blocks: usize) -> Axis {
+        Axis {
+            name: AxisName::Gamma,
+            lo,
+            hi,
+            blocks,
+        }
+    }
+
+    /// The patch coordinate `c ∈ [0, 1]` of `α`, with `blocks` root cells.
+    pub fn coord(blocks: usize) -> Axis {
+        Axis {
+            name: AxisName::Alpha,
+            lo: 0.0,
+            hi: 1.0,
+            blocks,
+        }
+    }
+
+    /// The normal-restitution axis from its stored values: `0 < lo < hi ≤ 1` and
+    /// `1 ≤ blocks ≤ 2¹⁶`. `Err` names the attribute and the allowed range.
+    pub fn restitution(lo: f64, hi: f64, blocks: usize) -> Result<Axis, String> {
+        if !(lo > 0.0 && hi > lo && hi <= 1.0) {
+            return Err(format!(
+                "e_n range [{lo}, {hi}]: must satisfy 0 < e_n_lo < e_n_hi <= 1"
+            ));
+        }
+        if !(1..=1 << 16).contains(&blocks) {
+            return Err(format!(
+                "blocks_e_n = {blocks}: must be an integer in [1, 65536]"
+            ));
+        }
+        Ok(Axis {
+            name: AxisName::RestitutionN,
+            lo,
+            hi,
+            blocks,
+        })
+    }
+
+    /// Lowest value.
+    pub fn lo(&self) -> f64 {
+        self.lo
+    }
+
+    /// Highest value.
+    pub fn hi(&self) -> f64 {
+        self.hi
+    }
+
+    /// Root cells along the axis.
+    pub fn blocks(&self) -> usize {
+        self.blocks
+    }
+
+    /// The coordinate `x = (value − lo)/(hi − lo)` of `value`.
+    #[inline(always)]
+    pub fn x(&self, value: f64) -> f64 {
+        (value - self.lo) / (self.hi - self.lo)
+    }
+
+    /// The value at coordinate `x` (`hi` exactly at `x = 1`).
+    pub fn at(&self, x: f64) -> f64 {
+        if x >= 1.0 {
+            self.hi
+        } else {
+            self.lo + (self.hi - self.lo) * x
+        }
+    }
 }

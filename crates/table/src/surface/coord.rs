@@ -32,6 +32,13 @@ impl PatchKind {
     /// (where the full-slip line ends, `physics.md`) to `α_c2`, which does not move with
     /// `e_n`; the stick coordinate does not depend on `e_n`. [`PartialMap::SqrtEnd`] at
     /// `e_n = 1` is the elastic coordinate, bit for bit.
+    ///
+    /// This is the builder's statement (the warp's knot values, the kink probes). The readers'
+    /// ([`partial_coord_from`], [`stick_coord_from`]) has fewer divisions and the same value up
+    /// to rounding, not the same bits: a third of random points differ in their last bits, and
+    /// [`partial_coord_from`] here would change 53 of the 239 knot values of
+    /// `tables/full.h5` (by up to 5 ulp), so a rebuild would no longer reproduce the shipped
+    /// file. The readers answer from the stored knots and node coordinates, never from this.
     pub fn coord_at(
         self,
         map: PartialMap,

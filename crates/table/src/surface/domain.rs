@@ -147,7 +147,7 @@ impl Surface {
         restitution: Option<(f64, f64)>,
     ) -> Result<Surface, String> {
         if let Some((lo, hi)) = restitution {
-            RestitutionAxis::new(lo, hi, 1)?;
+            Axis::restitution(lo, hi, 1)?;
         }
         let pair = gamma_min == gamma_max && restitution.is_some();
         if !(gamma_min > 0.0 && (gamma_max > gamma_min || pair) && gamma_max.is_finite()) {
@@ -284,18 +284,21 @@ impl Surface {
                 name: AxisName::Gamma,
                 lo: self.gamma_min,
                 hi: self.gamma_max,
+                blocks: 1,
             });
         }
         axes.extend([Axis {
             name: AxisName::Alpha,
             lo: 0.0,
             hi: self.alpha_max,
+            blocks: 1,
         }]);
         if let Some((lo, hi)) = self.restitution {
             axes.push(Axis {
                 name: AxisName::RestitutionN,
                 lo,
                 hi,
+                blocks: 1,
             });
         }
         axes
@@ -473,15 +476,25 @@ impl Surface {
         outside: OutOfDomain,
     ) -> Result<f64, TableError> {
         let gamma = self.rule_gamma(gamma);
-        check_query(gamma, alpha)?;
-        self.check_e_n(e_n)?;
-        let region = Region::of_e(gamma, alpha, e_n);
+        let region = self.region_of(gamma, alpha, e_n)?;
         if region == Region::Line {
             return Ok(full_slip_line(alpha, e_n));
         }
         self.apply_domain_e(region, gamma, alpha, e_n, outside, |r, g, a| {
             self.eval_in(r, g, a, e_n)
         })
+    }
+
+    /// Steps 1 to 3 of the rule for a query at normal restitution `e_n`: the checks of the
+    /// query ([`check_query`], [`Surface::check_e_n`]) and its region ([`Region::of_e`]). The
+    /// rule ([`Surface::eval_point`]) and the indexed query path of a table with an `e_n`
+    /// axis begin with it; on [`Region::Line`] both answer the full-slip line, elsewhere both
+    /// go through [`Surface::apply_domain_e`].
+    #[inline(always)]
+    pub fn region_of(&self, gamma: f64, alpha: f64, e_n: f64) -> Result<Region, TableError> {
+        check_query(gamma, alpha)?;
+        self.check_e_n(e_n)?;
+        Ok(Region::of_e(gamma, alpha, e_n))
     }
 
     /// `Ok` when the table answers at normal restitution `e_n`: exactly 1 for an elastic
@@ -580,7 +593,7 @@ impl Surface {
     #[inline]
     pub fn eval_in(&self, region: Region, gamma: f64, alpha: f64, e_n: f64) -> f64 {
         match self.patch(region) {
-            Some(patch) if patch.restitution.is_none() => {
+            Some(patch) if patch.restitution().is_none() => {
                 let c = match patch.kind {
                     PatchKind::PartialSlip => partial_coord(gamma, alpha),
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),

@@ -165,10 +165,7 @@ mod tests {
     fn the_warp_applies_from_its_start_row_on() {
         let patch = Patch {
             kind: PatchKind::PartialSlip,
-            gamma_lo: 1.0,
-            gamma_hi: 3.5,
-            blocks_gamma: 5,
-            blocks_coord: 4,
+            axes: vec![Axis::gamma(1.0, 3.5, 5), Axis::coord(4)],
             leaf_intervals: 8,
             tree: (0..20).map(|i| -(i + 1)).collect(),
             p: vec![0.0; 20 * 81],
@@ -180,7 +177,6 @@ mod tests {
                 c_star: 0.5,
                 knot: vec![0.6; 61],
             }),
-            restitution: None,
             split: None,
         };
         // γ(start) = 2.90625: unwarped below, warped from it on.

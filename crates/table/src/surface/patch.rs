@@ -58,14 +58,9 @@ pub struct FineIndex {
 pub struct Patch {
     /// Region and coordinate.
     pub(super) kind: PatchKind,
-    /// Lower γ edge.
-    pub(super) gamma_lo: f64,
-    /// Upper γ edge.
-    pub(super) gamma_hi: f64,
-    /// Root cells along γ.
-    pub(super) blocks_gamma: usize,
-    /// Root cells along `c`.
-    pub(super) blocks_coord: usize,
+    /// The axes, in order: `γ`, the coordinate `c` of `α`, and `e_n` (schema 4) if the table
+    /// has one; with it the tree is an octree over `(x, c, x_e)` (see [`Axis`]).
+    pub(super) axes: Vec<Axis>,
     /// Intervals per axis of every leaf's grid (`m`).
     pub(super) leaf_intervals: usize,
     /// The quadtree, see the type's documentation.
@@ -77,9 +72,6 @@ pub struct Patch {
     /// Optional warp of the coordinate (only `partial_high`, schema 3): when present, the
     /// quadtree is over `(x, c')` with `c' =` [`Warp::apply`]`(γ, c)` instead of `(x, c)`.
     pub(super) warp: Option<Warp>,
-    /// The third axis, normal restitution `e_n` (schema 4), if the table has one: the tree is
-    /// then an octree over `(x, c, x_e)` (see [`RestitutionAxis`]).
-    pub(super) restitution: Option<RestitutionAxis>,
     /// Which axes each split cell halves (schema 4, optional; see [`check_split`]): bit
     /// `dims − 1 − k` for axis `k` (`γ`, `c`, `e_n`), non-zero exactly for the split cells.
     /// The children of cell `i` are the `2^popcount` cells from `tree[i]`, numbered row-major
@@ -87,89 +79,63 @@ pub struct Patch {
     pub(super) split: Option<Vec<u8>>,
 }
 
+/// Everything of a patch but its kind and axes ([`Patch::new`]): its tree and the values at
+/// its nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchData {
+    /// Intervals per axis of every leaf's grid (`m`).
+    pub leaf_intervals: usize,
+    /// The tree (see [`Patch`]).
+    pub tree: Vec<i32>,
+    /// Which axes each split cell halves ([`check_split`]; only with an `e_n` axis), or `None`
+    /// when every split halves every axis.
+    pub split: Option<Vec<u8>>,
+    /// `P` at the nodes, leaf by leaf, `[leaves, m + 1, …]` row-major.
+    pub p: Vec<f64>,
+    /// Solver error estimate of each node, same layout.
+    pub error_estimate: Vec<f64>,
+    /// The warp of the coordinate, if any (only without an `e_n` axis).
+    pub warp: Option<Warp>,
+}
+
 impl Patch {
-    /// A patch of an elastic table from its stored values: [`Patch::with_restitution`]
-    /// without an `e_n` axis.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        kind: PatchKind,
-        gamma_lo: f64,
-        gamma_hi: f64,
-        blocks_gamma: usize,
-        blocks_coord: usize,
-        leaf_intervals: usize,
-        tree: Vec<i32>,
-        p: Vec<f64>,
-        error_estimate: Vec<f64>,
-        warp: Option<Warp>,
-    ) -> Result<Patch, String> {
-        Patch::with_restitution(
-            kind,
-            gamma_lo,
-            gamma_hi,
-            blocks_gamma,
-            blocks_coord,
+    /// A patch from its stored values, checked: the axes `γ`, `c` ([`Axis::coord`]) and
+    /// optionally `e_n` ([`Axis::restitution`]) in that order; finite increasing γ edges
+    /// `> 0` (equal only in the patch of one pair: an `e_n` axis and one root cell along γ), at
+    /// least one root cell per axis, `m ≥ 1`, a valid tree ([`check_tree_of`]: a quadtree, or
+    /// an octree with an `e_n` axis; [`check_split`] with `split`), `(m + 1)^dims` finite
+    /// node values of `P` (each `|P| ≤ 1 + 1e-6`) and of the error estimate per leaf, and a
+    /// valid warp ([`Patch::check_warp`]; a patch with an `e_n` axis has none). `Err` names
+    /// the value and the rule.
+    pub fn new(kind: PatchKind, axes: Vec<Axis>, data: PatchData) -> Result<Patch, String> {
+        let PatchData {
             leaf_intervals,
             tree,
+            split,
             p,
             error_estimate,
             warp,
-            None,
-        )
-    }
-
-    /// A patch from its stored values, checked: finite increasing γ edges `> 0`, at least one
-    /// root cell per axis, `m ≥ 1`, a valid tree ([`check_tree_of`]: a quadtree, or an octree
-    /// with an `e_n` axis), `(m + 1)^dims` finite node values of `P` (each `|P| ≤ 1 + 1e-6`)
-    /// and of the error estimate per leaf, and a valid warp ([`Patch::check_warp`]; a patch
-    /// with an `e_n` axis has none). `Err` names the value and the rule.
-    #[allow(clippy::too_many_arguments)]
-    pub fn with_restitution(
-        kind: PatchKind,
-        gamma_lo: f64,
-        gamma_hi: f64,
-        blocks_gamma: usize,
-        blocks_coord: usize,
-        leaf_intervals: usize,
-        tree: Vec<i32>,
-        p: Vec<f64>,
-        error_estimate: Vec<f64>,
-        warp: Option<Warp>,
-        restitution: Option<RestitutionAxis>,
-    ) -> Result<Patch, String> {
-        Patch::with_split(
-            kind,
-            gamma_lo,
-            gamma_hi,
-            blocks_gamma,
-            blocks_coord,
-            leaf_intervals,
-            tree,
-            p,
-            error_estimate,
-            warp,
-            restitution,
-            None,
-        )
-    }
-
-    /// [`Patch::with_restitution`] with the axes each split cell halves (`split`, checked by
-    /// [`check_split`]; only with an `e_n` axis), or `None` when every split halves every axis.
-    #[allow(clippy::too_many_arguments)]
-    pub fn with_split(
-        kind: PatchKind,
-        gamma_lo: f64,
-        gamma_hi: f64,
-        blocks_gamma: usize,
-        blocks_coord: usize,
-        leaf_intervals: usize,
-        tree: Vec<i32>,
-        p: Vec<f64>,
-        error_estimate: Vec<f64>,
-        warp: Option<Warp>,
-        restitution: Option<RestitutionAxis>,
-        split: Option<Vec<u8>>,
-    ) -> Result<Patch, String> {
+        } = data;
+        let restitution = match axes.as_slice() {
+            [g, c] | [g, c, _] if g.name != AxisName::Gamma || *c != Axis::coord(c.blocks) => {
+                return Err("the axes must be gamma, the patch coordinate of alpha and \
+                            optionally e_n, in this order"
+                    .into())
+            }
+            [_, _] => None,
+            [_, _, e] if e.name == AxisName::RestitutionN => {
+                Some(Axis::restitution(e.lo, e.hi, e.blocks)?)
+            }
+            _ => {
+                return Err(format!(
+                    "{} axes: a patch has gamma, the patch coordinate of alpha and \
+                     optionally e_n",
+                    axes.len()
+                ))
+            }
+        };
+        let (gamma_lo, gamma_hi) = (axes[0].lo, axes[0].hi);
+        let (blocks_gamma, blocks_coord) = (axes[0].blocks, axes[1].blocks);
         if !(gamma_lo.is_finite() && gamma_hi.is_finite() && gamma_lo > 0.0 && gamma_hi >= gamma_lo)
         {
             return Err(format!(
@@ -196,7 +162,7 @@ impl Patch {
             return Err("a patch with an e_n axis cannot have a warp".into());
         }
         let dims = tree_dims(restitution.is_some(), pair);
-        let roots = blocks_gamma * blocks_coord * restitution.map_or(1, |r| r.blocks);
+        let roots = axes.iter().map(|a| a.blocks).product();
         let leaves = match &split {
             None => check_tree_of(&tree, roots, 1 << dims),
             Some(split) => {
@@ -226,16 +192,12 @@ impl Patch {
         }
         let patch = Patch {
             kind,
-            gamma_lo,
-            gamma_hi,
-            blocks_gamma,
-            blocks_coord,
+            axes,
             leaf_intervals,
             tree,
             p,
             error_estimate,
             warp,
-            restitution,
             split,
         };
         patch.check_warp()?;
@@ -243,26 +205,24 @@ impl Patch {
     }
 
     /// The same patch with other node values and error estimates, checked as by
-    /// [`Patch::with_restitution`].
+    /// [`Patch::new`].
     fn remade(
         &self,
         p: Vec<f64>,
         error_estimate: Vec<f64>,
         warp: Option<Warp>,
     ) -> Result<Patch, String> {
-        Patch::with_split(
+        Patch::new(
             self.kind,
-            self.gamma_lo,
-            self.gamma_hi,
-            self.blocks_gamma,
-            self.blocks_coord,
-            self.leaf_intervals,
-            self.tree.clone(),
-            p,
-            error_estimate,
-            warp,
-            self.restitution,
-            self.split.clone(),
+            self.axes.clone(),
+            PatchData {
+                leaf_intervals: self.leaf_intervals,
+                tree: self.tree.clone(),
+                split: self.split.clone(),
+                p,
+                error_estimate,
+                warp,
+            },
         )
     }
 
@@ -294,15 +254,26 @@ impl Patch {
         self.remade(self.p.clone(), self.error_estimate.clone(), warp)
     }
 
+    /// The axes, in order: `γ`, the coordinate `c` of `α`, and `e_n` if the patch has one.
+    pub fn axes(&self) -> &[Axis] {
+        &self.axes
+    }
+
     /// The `e_n` axis, if the patch has one.
-    pub fn restitution(&self) -> Option<&RestitutionAxis> {
-        self.restitution.as_ref()
+    #[inline(always)]
+    pub fn restitution(&self) -> Option<&Axis> {
+        self.axes.get(2)
+    }
+
+    /// The axes of the tree: [`Patch::axes`] without `γ` in the patch of one pair.
+    fn tree_axes(&self) -> &[Axis] {
+        &self.axes[usize::from(self.is_pair())..]
     }
 
     /// Number of axes of the tree: 2 (`γ`, `c`), 3 with an `e_n` axis (`γ`, `c`, `e_n`), or 2
     /// in the patch of one pair (`c`, `e_n`; [`Patch::is_pair`]).
     pub fn dims(&self) -> u32 {
-        tree_dims(self.restitution.is_some(), self.is_pair())
+        self.tree_axes().len() as u32
     }
 
     /// Whether this is the patch of one pair of materials: a single `γ` (`gamma_lo =
@@ -311,13 +282,13 @@ impl Patch {
     /// halve `γ` and whose leaves have one node along it.
     #[inline(always)]
     pub fn is_pair(&self) -> bool {
-        self.gamma_lo == self.gamma_hi
+        self.axes[0].lo == self.axes[0].hi
     }
 
     /// The partial-slip coordinate's map: [`PartialMap::SqrtBoth`] with an `e_n` axis,
     /// [`PartialMap::SqrtEnd`] without.
     pub fn partial_map(&self) -> PartialMap {
-        PartialMap::of_table(self.restitution.is_some())
+        PartialMap::of_table(self.restitution().is_some())
     }
 
     /// Children of a split cell that halves every axis: `2^dims`.
@@ -348,12 +319,12 @@ impl Patch {
 
     /// Root cells along `e_n` (1 without an `e_n` axis).
     pub fn blocks_e_n(&self) -> usize {
-        self.restitution.map_or(1, |r| r.blocks)
+        self.restitution().map_or(1, |r| r.blocks)
     }
 
-    /// Root cells of the tree.
+    /// Root cells of the tree: the product over the axes.
     pub fn roots(&self) -> usize {
-        self.blocks_gamma * self.blocks_coord * self.blocks_e_n()
+        self.axes.iter().map(|a| a.blocks).product()
     }
 
     /// Nodes per leaf, `(m + 1)^dims`.
@@ -367,23 +338,25 @@ impl Patch {
     }
 
     /// Lower γ edge.
+    #[inline(always)]
     pub fn gamma_lo(&self) -> f64 {
-        self.gamma_lo
+        self.axes[0].lo
     }
 
     /// Upper γ edge.
+    #[inline(always)]
     pub fn gamma_hi(&self) -> f64 {
-        self.gamma_hi
+        self.axes[0].hi
     }
 
     /// Root cells along γ.
     pub fn blocks_gamma(&self) -> usize {
-        self.blocks_gamma
+        self.axes[0].blocks
     }
 
     /// Root cells along `c`.
     pub fn blocks_coord(&self) -> usize {
-        self.blocks_coord
+        self.axes[1].blocks
     }
 
     /// Intervals per axis of every leaf's grid (`m`).
@@ -420,7 +393,7 @@ impl Patch {
     /// `None` for a grid too small for the cubic stencil (`m < 3`), a tree deeper than 30, or
     /// a patch with an `e_n` axis (see [`Patch::fine_index3`]).
     pub fn fine_index(&self, max_entries: usize) -> Option<FineIndex> {
-        if self.restitution.is_some() {
+        if self.restitution().is_some() {
             return None;
         }
         self.fine_index_any(max_entries)
@@ -430,7 +403,7 @@ impl Patch {
     /// (`layers` entries along `e_n`), or `None` as [`Patch::fine_index`] (and for a patch
     /// without the axis).
     pub fn fine_index3(&self, max_entries: usize) -> Option<FineIndex> {
-        self.restitution?;
+        self.restitution()?;
         self.fine_index_any(max_entries)
     }
 
@@ -573,7 +546,7 @@ impl Patch {
     /// `x = (γ − gamma_lo)/(gamma_hi − gamma_lo)`, the patch's coordinate along γ.
     #[inline(always)]
     pub fn x_gamma(&self, gamma: f64) -> f64 {
-        (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo)
+        self.axes[0].x(gamma)
     }
 
     /// Root cells along each of the first `D` axes (`γ`, `c`, `e_n`; 1 beyond the patch's).
@@ -586,23 +559,9 @@ impl Patch {
     /// coordinate `x = (value − lo)/width` (`c` is its own coordinate: `(0, 1)`) and its root
     /// cells; `(0, 1, 1)` beyond the patch's axes.
     pub fn axis(&self, k: usize) -> (f64, f64, usize) {
-        if let (true, Some(r)) = (self.is_pair(), &self.restitution) {
-            // The patch of one pair: `(c, e_n)`.
-            return match k {
-                0 => (0.0, 1.0, self.blocks_coord),
-                1 => (r.lo, r.hi - r.lo, r.blocks),
-                _ => (0.0, 1.0, 1),
-            };
-        }
-        match (k, &self.restitution) {
-            (0, _) => (
-                self.gamma_lo,
-                self.gamma_hi - self.gamma_lo,
-                self.blocks_gamma,
-            ),
-            (1, _) => (0.0, 1.0, self.blocks_coord),
-            (2, Some(r)) => (r.lo, r.hi - r.lo, r.blocks),
-            _ => (0.0, 1.0, 1),
+        match self.tree_axes().get(k) {
+            Some(a) => (a.lo, a.hi - a.lo, a.blocks),
+            None => (0.0, 1.0, 1),
         }
     }
 
@@ -639,7 +598,7 @@ impl Patch {
     /// along `c`.
     pub fn line_depth(&self, gamma: f64, e_n: f64) -> u32 {
         let xg = self.x_gamma(gamma);
-        match &self.restitution {
+        match self.restitution() {
             None => self.line_depth_at([xg, 0.0], 1),
             Some(r) if self.is_pair() => self.line_depth_at([0.0, r.x(e_n)], 0),
             Some(r) => self.line_depth_at([xg, 0.0, r.x(e_n)], 1),
@@ -711,7 +670,7 @@ impl Patch {
         let Some(w) = &self.warp else {
             return Ok(());
         };
-        w.validate(self.gamma_lo, self.gamma_hi, self.blocks_gamma)?;
+        w.validate(self.gamma_lo(), self.gamma_hi(), self.blocks_gamma())?;
         for (leaf, (lo, hi)) in self.leaf_gamma_spans().into_iter().enumerate() {
             if lo < w.start && w.start < hi {
                 return Err(format!(
@@ -728,7 +687,7 @@ impl Patch {
     /// `d` with integer position `a` (exact dyadic values), leaf by leaf.
     pub fn leaf_gamma_spans(&self) -> Vec<(f64, f64)> {
         let mut spans = vec![(0.0, 0.0); self.leaves()];
-        let per_row = self.blocks_coord * self.blocks_e_n();
+        let per_row = self.blocks_coord() * self.blocks_e_n();
         let mut stack: Vec<(usize, u32, u64)> = (0..self.roots())
             .map(|i| (i, 0, (i / per_row) as u64))
             .collect();
@@ -754,7 +713,7 @@ impl Patch {
     pub fn warp_at(&self, gamma: f64) -> Option<&Warp> {
         let w = self.warp.as_ref()?;
         let xg = self.x_gamma(gamma);
-        let bg = self.blocks_gamma as f64;
+        let bg = self.blocks_gamma() as f64;
         ((xg * bg).clamp(0.0, bg) >= w.start).then_some(w)
     }
 
@@ -804,7 +763,7 @@ impl Patch {
     #[inline]
     pub fn tensor_point(&self, gamma: f64, c: f64, e_n: f64, k: usize) -> f64 {
         let xg = self.x_gamma(gamma);
-        match &self.restitution {
+        match self.restitution() {
             None => self.tensor_at([xg, c], k),
             Some(r) if self.is_pair() => self.tensor_at([c, r.x(e_n)], k),
             Some(r) => self.tensor_at([xg, c, r.x(e_n)], k),
