@@ -33,12 +33,9 @@ impl PatchKind {
     /// `e_n`; the stick coordinate does not depend on `e_n`. [`PartialMap::SqrtEnd`] at
     /// `e_n = 1` is the elastic coordinate, bit for bit.
     ///
-    /// This is the builder's statement (the warp's knot values, the kink probes). The readers'
-    /// ([`partial_coord_from`], [`stick_coord_from`]) has fewer divisions and the same value up
-    /// to rounding, not the same bits: a third of random points differ in their last bits, and
-    /// [`partial_coord_from`] here would change 53 of the 239 knot values of
-    /// `tables/full.h5` (by up to 5 ulp), so a rebuild would no longer reproduce the shipped
-    /// file. The readers answer from the stored knots and node coordinates, never from this.
+    /// The builder (the warp's knot values, the kink probes) and the readers compute `c` with
+    /// the same operations: this is [`partial_coord_from`] with [`partial_ratio_e`], and
+    /// [`stick_coord`].
     pub fn coord_at(
         self,
         map: PartialMap,
@@ -49,23 +46,10 @@ impl PatchKind {
     ) -> f64 {
         match self {
             PatchKind::PartialSlip => {
-                let c1 = alpha_c1_dissipative(gamma, e_n);
-                let l = (alpha / c1).ln() / (alpha_c2(gamma) / c1).ln();
-                map.c_of_l(l)
+                let (ratio, two_g2) = partial_ratio_e(gamma, e_n);
+                partial_coord_from(map, alpha, ratio, two_g2, ratio.ln())
             }
-            PatchKind::Stick => {
-                let rho = stick_scale(gamma);
-                let squash = |alpha: f64| {
-                    let r = alpha / alpha_c2(gamma) - 1.0;
-                    // r = ∞ also for finite α near f64::MAX (found by tests/fuzz.rs: NaN).
-                    if r.is_infinite() {
-                        1.0
-                    } else {
-                        r / (r + rho)
-                    }
-                };
-                squash(alpha) / squash(alpha_max)
-            }
+            PatchKind::Stick => stick_coord(gamma, alpha, alpha_max),
         }
     }
 

@@ -588,8 +588,8 @@ impl Surface {
     }
 
     /// Evaluate in a known non-line region at `e_n` (no checks: `γ` inside the table's range,
-    /// `α ≤ alpha_max`, `e_n` one the table answers). The patch coordinate is computed with
-    /// fewer divisions than [`PatchKind::coord_at`] (same value up to rounding).
+    /// `α ≤ alpha_max`, `e_n` one the table answers). The patch coordinate is
+    /// [`PatchKind::coord_at`]'s, from the `γ`-only parts.
     #[inline]
     pub fn eval_in(&self, region: Region, gamma: f64, alpha: f64, e_n: f64) -> f64 {
         match self.patch(region) {
