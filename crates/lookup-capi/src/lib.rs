@@ -197,9 +197,11 @@ fn code_of(e: &LookupError) -> c_int {
     match e {
         LookupError::Io { .. } => OBLIQUE_ERR_IO,
         LookupError::Invalid { .. } => OBLIQUE_ERR_TABLE,
-        LookupError::Query { .. } | LookupError::Batch { .. } | LookupError::Length { .. } => {
-            OBLIQUE_ERR_QUERY
-        }
+        LookupError::Query { .. }
+        | LookupError::Batch { .. }
+        | LookupError::Length { .. }
+        | LookupError::Point { .. }
+        | LookupError::Axis { .. } => OBLIQUE_ERR_QUERY,
     }
 }
 
