@@ -175,8 +175,8 @@ impl Table {
             .collect()
     }
 
-    /// The table's axes beyond `γ` and `α` with their ranges `[lo, hi]`, in
-    /// [`oblique_table::format::EXTRA_AXES`] order (empty for an elastic table).
+    /// The table's axes beyond `γ` and `α`, in [`oblique_table::format::EXTRA_AXES`] order
+    /// (empty for an elastic table); their ranges are [`Table::axis_range`].
     pub fn extra_axes(&self) -> Vec<&'static ExtraAxis> {
         EXTRA_AXES
             .iter()
