@@ -34,6 +34,7 @@ module oblique_eval
    public :: c_int, c_double
    public :: oblique_table, oblique_curve
    public :: oblique_open, oblique_close, oblique_info, oblique_p, oblique_p_e
+   public :: oblique_p_at, oblique_axis_count, oblique_axis_name
    public :: oblique_e_n_range
    public :: oblique_curve_find, oblique_curve_p, oblique_curve_free
    public :: oblique_rebound_3d, oblique_rebound_3d_curve, oblique_gamma_of, oblique_message
@@ -65,6 +66,7 @@ module oblique_eval
    integer(c_int), parameter, public :: OBLQ_E_P_RANGE = 23      ! P outside [-1, 1]
    integer(c_int), parameter, public :: OBLQ_E_KAPPA_P = 23      ! deprecated: OBLQ_E_P_RANGE
    integer(c_int), parameter, public :: OBLQ_E_E_N = 24          ! e_n outside the table's range
+   integer(c_int), parameter, public :: OBLQ_E_AXES = 28         ! a point of another size
    ! The codes of the header's file loader oblq_load_file (the module reads files through the
    ! shim, whose codes are the OBLQF_E_* below).
    integer(c_int), parameter, public :: OBLQ_E_FILE = 25         ! the file cannot be read
@@ -122,6 +124,29 @@ module oblique_eval
          integer(c_int), value :: clamp
          real(c_double), intent(out) :: p
       end function oblqf_p_e
+
+      integer(c_int) function oblqf_p_at(handle, x, n, clamp, p) bind(C, name='oblqf_p_at')
+         import :: c_int, c_double, c_ptr
+         type(c_ptr), value :: handle
+         real(c_double), intent(in) :: x(*)
+         integer(c_int), value :: n, clamp
+         real(c_double), intent(out) :: p
+      end function oblqf_p_at
+
+      integer(c_int) function oblqf_axis_count(handle, n) bind(C, name='oblqf_axis_count')
+         import :: c_int, c_ptr
+         type(c_ptr), value :: handle
+         integer(c_int), intent(out) :: n
+      end function oblqf_axis_count
+
+      integer(c_int) function oblqf_axis_name(handle, i, name, cap, length) &
+         bind(C, name='oblqf_axis_name')
+         import :: c_int, c_char, c_ptr
+         type(c_ptr), value :: handle
+         integer(c_int), value :: i, cap
+         character(kind=c_char), intent(out) :: name(*)
+         integer(c_int), intent(out) :: length
+      end function oblqf_axis_name
 
       integer(c_int) function oblqf_e_n_range(handle, e_n_min, e_n_max) &
          bind(C, name='oblqf_e_n_range')
@@ -300,6 +325,51 @@ contains
       status = oblqf_p_e(table%handle, gamma, alpha, e_n, clamp_flag(clamp), p)
       if (status /= OBLQ_OK) p = nan()
    end subroutine oblique_p_e
+
+   !> P at the point x, one value per axis of the table in order (oblique_axis_count,
+   !> oblique_axis_name: gamma, alpha, and e_n for a table with that axis): oblique_p or
+   !> oblique_p_e with the same bits; a point of another size is OBLQ_E_AXES.
+   subroutine oblique_p_at(table, x, p, status, clamp)
+      type(oblique_table), intent(in) :: table
+      real(c_double), intent(in) :: x(:)
+      real(c_double), intent(out) :: p
+      integer(c_int), intent(out) :: status
+      logical, intent(in), optional :: clamp
+      real(c_double) :: copy(max(size(x), 1))
+      copy = 0
+      copy(1:size(x)) = x
+      status = oblqf_p_at(table%handle, copy, int(size(x), c_int), clamp_flag(clamp), p)
+      if (status /= OBLQ_OK) p = nan()
+   end subroutine oblique_p_at
+
+   !> The number of axes of a point of the table (2, or 3 with an e_n axis).
+   subroutine oblique_axis_count(table, n, status)
+      type(oblique_table), intent(in) :: table
+      integer(c_int), intent(out) :: n
+      integer(c_int), intent(out) :: status
+      status = oblqf_axis_count(table%handle, n)
+      if (status /= OBLQ_OK) n = 0
+   end subroutine oblique_axis_count
+
+   !> The name of axis i (1-based, as Fortran counts) of a point of the table: 'gamma',
+   !> 'alpha', 'e_n'; OBLQ_E_AXES for another i.
+   subroutine oblique_axis_name(table, i, name, status)
+      type(oblique_table), intent(in) :: table
+      integer, intent(in) :: i
+      character(len=*), intent(out) :: name
+      integer(c_int), intent(out) :: status
+      character(kind=c_char) :: buf(max(len(name), 1))
+      integer(c_int) :: length
+      integer :: k
+      status = oblqf_axis_name(table%handle, int(i - 1, c_int), buf, int(len(name), c_int), &
+                               length)
+      name = ''
+      if (status == OBLQ_OK) then
+         do k = 1, min(int(length), len(name))
+            name(k:k) = buf(k)
+         end do
+      end if
+   end subroutine oblique_axis_name
 
    !> The e_n range [e_n_min, e_n_max] the table answers (1, 1 for an elastic table).
    subroutine oblique_e_n_range(table, e_n_min, e_n_max, status)

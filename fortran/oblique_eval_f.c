@@ -46,6 +46,9 @@ int oblqf_info(const void *handle, double *gamma_min, double *gamma_max, double 
 int oblqf_p(const void *handle, double gamma, double alpha, int clamp, double *p);
 int oblqf_p_e(const void *handle, double gamma, double alpha, double e_n, int clamp, double *p);
 int oblqf_e_n_range(const void *handle, double *e_n_min, double *e_n_max);
+int oblqf_p_at(const void *handle, const double *x, int n, int clamp, double *p);
+int oblqf_axis_count(const void *handle, int *n);
+int oblqf_axis_name(const void *handle, int i, char *name, int cap, int *len);
 int oblqf_curve_find(const void *handle, double gamma, double rel_tol, void **curve,
                      double *found_gamma);
 void oblqf_curve_free(void *curve);
@@ -190,6 +193,29 @@ int oblqf_p(const void *handle, double gamma, double alpha, int clamp, double *p
    an elastic table answers e_n = 1 only). */
 int oblqf_p_e(const void *handle, double gamma, double alpha, double e_n, int clamp, double *p) {
     return oblq_p_e(oblqf__table(handle), gamma, alpha, e_n, clamp, p);
+}
+
+/* P at the point x[0..n), one value per axis of the table (oblq_p_at). */
+int oblqf_p_at(const void *handle, const double *x, int n, int clamp, double *p) {
+    return oblq_p_at(oblqf__table(handle), x, n, clamp, p);
+}
+
+/* The number of axes of a point of the table (oblq_axis_count). */
+int oblqf_axis_count(const void *handle, int *n) {
+    return oblq_axis_count(oblqf__table(handle), n);
+}
+
+/* The name of axis i (0-based) into name[0..cap) blank-padded (Fortran's character), *len its
+   length; OBLQ_E_AXES for another i. */
+int oblqf_axis_name(const void *handle, int i, char *name, int cap, int *len) {
+    const char *s = oblq_axis_name(oblqf__table(handle), i);
+    int k = 0;
+    if (!name || !len) return OBLQ_E_NULL;
+    if (!s) return oblqf__table(handle) ? OBLQ_E_AXES : OBLQ_E_NULL;
+    for (; s[k] && k < cap; k++) name[k] = s[k];
+    *len = k;
+    for (; k < cap; k++) name[k] = ' ';
+    return OBLQ_OK;
 }
 
 /* The e_n range the table answers (1, 1 for an elastic table). */

@@ -14,6 +14,8 @@
  *   double p;
  *   rc = oblq_p(&t, 1.754, 0.3, 0, &p);           // P(gamma, alpha); rc = OBLQ_OK or an error
  *   rc = oblq_p_e(&t, 1.45, 0.3, 0.8, 0, &p);     // P(gamma, alpha, e_n): a table with the axis
+ *   double x[3] = {1.45, 0.3, 0.8};               // or a point, one value per axis:
+ *   rc = oblq_p_at(&t, x, 3, 0, &p);              // oblq_axis_count, oblq_axis_name list them
  *
  * Symbols and units (SI) as in the project's physics.md: gamma = sqrt((m* / m_t) G* / E*),
  * alpha = (2/7)(m* / m_t) mu v_z0/|u0|, P = u_after/u_before (the tangential restitution of the
@@ -127,7 +129,8 @@ enum {
     OBLQ_E_APPROACH = 21,     /* the bodies do not approach along the normal (v_z0 <= 0) */
     OBLQ_E_WALL_MOTION = 22,  /* a wall (other = NULL) given a non-zero motion */
     OBLQ_E_P_RANGE = 23,      /* P outside [-1, 1] given to oblq_e_t */
-    OBLQ_E_E_N = 24           /* e_n outside the table's e_n range (elastic: e_n != 1) */
+    OBLQ_E_E_N = 24,          /* e_n outside the table's e_n range (elastic: e_n != 1) */
+    OBLQ_E_AXES = 28          /* a point of another number of values than the table's axes */
 };
 
 /* Deprecated: the old name of OBLQ_E_P_RANGE (kept for source compatibility). */
@@ -635,6 +638,7 @@ OBLQ_FN const char *oblq_error_message(int code) {
     case OBLQ_E_WALL_MOTION: return "invalid other motion: must be zero for a fixed wall";
     case OBLQ_E_P_RANGE: return "invalid P: must be in [-1, 1]";
     case OBLQ_E_E_N: return "invalid e_n: must be in the table's e_n range [e_n_min, e_n_max] (never clamped); an elastic table answers e_n = 1 only";
+    case OBLQ_E_AXES: return "invalid point: must have one value per axis of the table (oblq_axis_count, oblq_axis_name): gamma, alpha, and e_n for a table with that axis";
     default: return "unknown status code";
     }
 }
@@ -1007,6 +1011,31 @@ OBLQ_FN int oblq_p_e(const oblq_table *t, double gamma, double alpha, double e_n
 OBLQ_FN int oblq_p(const oblq_table *t, double gamma, double alpha, int clamp, double *p) {
     if (t && t->has_e_n) return oblq_p_e(t, gamma, alpha, 1.0, clamp, p);
     return oblq__p_elastic(t, gamma, alpha, clamp, p);
+}
+
+/* The number of axes of a point of the table (oblq_p_at): 2 (gamma, alpha), 3 with an e_n
+   axis (gamma, alpha, e_n). */
+OBLQ_FN int oblq_axis_count(const oblq_table *t, int *n) {
+    if (!t || !n) return OBLQ_E_NULL;
+    *n = 2 + (t->has_e_n != 0);
+    return OBLQ_OK;
+}
+
+/* The name of axis i of a point of the table (0 <= i < oblq_axis_count): "gamma", "alpha",
+   "e_n"; NULL for another i (or t NULL). A static string. */
+OBLQ_FN const char *oblq_axis_name(const oblq_table *t, int i) {
+    if (!t || i < 0 || i >= 2 + (t->has_e_n != 0)) return (const char *)0;
+    return i == 0 ? "gamma" : i == 1 ? "alpha" : "e_n";
+}
+
+/* P at the point x[0..n), one value per axis of the table in order (oblq_axis_name): oblq_p
+   for {gamma, alpha} of an elastic table, oblq_p_e for {gamma, alpha, e_n} of a table with an
+   e_n axis, the same bits; another n is OBLQ_E_AXES. */
+OBLQ_FN int oblq_p_at(const oblq_table *t, const double *x, int n, int clamp, double *p) {
+    if (!t || !x || !p) return OBLQ_E_NULL;
+    if (n != 2 + (t->has_e_n != 0)) return OBLQ_E_AXES;
+    if (n == 2) return oblq_p(t, x[0], x[1], clamp, p);
+    return oblq_p_e(t, x[0], x[1], x[2], clamp, p);
 }
 
 /* The e_n range [e_n_min, e_n_max] the table answers (oblq_p_e): 1, 1 for an elastic table. */

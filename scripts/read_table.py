@@ -23,6 +23,7 @@ As a library:
     t.p(1.754, 1.0), t.p(0.8, float("inf"))
     t = Table("kv.h5")                 # a table with an e_n axis (schema 4)
     t.e_n_range, t.p_e(1.45, 0.3, 0.8)
+    t.axes, t.p_at([1.45, 0.3, 0.8])   # ('gamma', 'alpha', 'e_n'): a point of any table
     t = Table("tables/dissipative-pair.h5")   # the table of one pair: P(alpha, e_n) at one gamma
     t.pair_gamma, t.p_e(t.pair_gamma, 0.3, 0.8)
 """
@@ -49,6 +50,10 @@ SCHEMA_VERSIONS = (2, 3, 4)  # v2: v3 without the optional warp; v4: v3 with opt
 AXES_PAIR = "alpha,e_n"  # the axes of the table of one pair (schema 4): P(alpha, e_n) at one gamma
 # The contact laws whose tables (with an e_n axis) this reader answers (root attribute 'law').
 LAWS_E_N = ("kelvin-voigt",)
+# The axes a table may have beyond gamma and alpha (schema 4), each with the bounds of its range,
+# bound_lo < NAME_min < NAME_max <= bound_hi; the file names its range NAME_min, NAME_max (root)
+# and its root cells blocks_NAME (patch).
+EXTRA_AXES = {"e_n": (0.0, 1.0)}
 # A stored node coordinate may differ from where the tree puts the node by this share of its
 # axis's span (rounding is a few ulps; any edit that matters is far larger).
 POSITION_TOL = 1e-9
@@ -542,10 +547,14 @@ class Table:
             except (KeyError, TypeError):
                 raise self._invalid("missing or non-string root attribute 'axes'") from None
             if axes in ("gamma,alpha,e_n", AXES_PAIR):
-                lo, hi = num(f.attrs, "e_n_min"), num(f.attrs, "e_n_max")
-                if not 0 < lo < hi <= 1:
+                # The extra axis's range: root attributes NAME_min, NAME_max.
+                name = axes.split(",")[-1]
+                b0, b1 = EXTRA_AXES[name]
+                lo, hi = num(f.attrs, f"{name}_min"), num(f.attrs, f"{name}_max")
+                if not b0 < lo < hi <= b1:
                     raise self._invalid(
-                        f"e_n range [{lo}, {hi}]: must satisfy 0 < e_n_min < e_n_max <= 1")
+                        f"{name} range [{lo}, {hi}]: must satisfy {b0:g} < {name}_min < "
+                        f"{name}_max <= {b1:g}")
                 self.e_n_range = (lo, hi)
                 try:
                     law = _str_attr(f.attrs, "law")
@@ -569,6 +578,10 @@ class Table:
                 "gamma_min < gamma_max")
         # The single gamma of the table of one pair, None for a table over a range of gamma.
         self.pair_gamma = self.gamma_min if pair else None
+        # The axes of a query's point (p_at), from the file's 'axes': gamma, alpha, then the
+        # extra axes (the table of one pair takes its gamma too).
+        self.axes = ("gamma", "alpha") + tuple(
+            a for a in axes.split(",") if a not in ("gamma", "alpha"))
         if "patches" not in f or not isinstance(f["patches"], h5py.Group):
             raise self._invalid("missing group '/patches'")
         self.patches = {}
@@ -625,10 +638,12 @@ class Table:
                 f"{where}: leaf_intervals = {m} gives fewer nodes than stencil_points")
         be = None
         if self.e_n_range is not None:
-            be = num(g.attrs, "blocks_e_n", where)
+            # Root cells along the extra axis: patch attribute blocks_NAME.
+            key = f"blocks_{self.axes[2]}"
+            be = num(g.attrs, key, where)
             if be != int(be) or not 1 <= be <= 65536:
                 raise self._invalid(
-                    f"{where}: attribute 'blocks_e_n' = {be}: must be an integer in [1, 65536]")
+                    f"{where}: attribute '{key}' = {be}: must be an integer in [1, 65536]")
             be = int(be)
             if self.stencil != 4:
                 raise self._invalid(
@@ -858,6 +873,17 @@ class Table:
         if alpha > self.alpha_max:
             raise DomainError(
                 f"alpha = {alpha} above the table's alpha_max = {self.alpha_max}", "alpha")
+
+    def p_at(self, point):
+        """P at `point`, one value per axis of self.axes in that order: p(gamma, alpha) of an
+        elastic table, p_e(gamma, alpha, e_n) of a table with an e_n axis. A point of another
+        length raises ValueError naming the axes."""
+        point = [float(x) for x in point]
+        if len(point) != len(self.axes):
+            raise ValueError(
+                f"a point of this table has {len(self.axes)} values ({', '.join(self.axes)}), "
+                f"not {len(point)}")
+        return self.p(*point) if len(point) == 2 else self.p_e(*point)
 
     def p_e(self, gamma, alpha, e_n):
         """P(gamma, alpha, e_n) at normal restitution e_n (schema v4). e_n must lie in the

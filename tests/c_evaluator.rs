@@ -2253,3 +2253,88 @@ fn damaged_pair_exports_are_refused() {
         assert!(said.starts_with("6 "), "{name}: {said}");
     }
 }
+
+/// `oblq_p_at` of the C header (driver `pat TABLE CLAMP N`, lines of `N` values) on the exports
+/// of `tables/default.h5` (axes γ, α, e_n) and `tables/full.h5` (γ, α): the axes it lists are
+/// `Table::axes`, and every point gets the bits of `Table::p_at_with` (itself those of `p` and
+/// `p_e`, `crates/lookup/tests/point.rs`) or its refusal's code; a point of another number of
+/// values is `OBLQ_E_AXES` (28).
+#[test]
+fn p_at_gives_the_bits_of_the_rust_point_query() {
+    for name in ["default", "full"] {
+        let t = Table::open(root(&format!("tables/{name}.h5"))).expect("shipped table");
+        let path = dir().join(format!("{name}_p_at.oblq"));
+        std::fs::write(
+            &path,
+            export::export(t.surface(), t.error_bound(), true, &[]),
+        )
+        .expect("write export");
+        let path = path.to_str().expect("path");
+        let s = t.surface();
+        let (g0, g1) = (s.gamma_min(), s.gamma_max());
+        let e = t.restitution().unwrap_or((1.0, 1.0));
+        // γ a little beyond the domain at both ends.
+        let pts = points_e(
+            100_000,
+            52,
+            (g0 - 0.05 * (g1 - g0), g1 + 0.05 * (g1 - g0)),
+            e,
+        );
+        let n = t.axes().len();
+        let header = format!("axes {}", t.axes().join(" "));
+        let row = |&(g, a, e): &(f64, f64, f64)| -> Vec<f64> { [g, a, e][..n].to_vec() };
+        for clamp in [0u8, 1] {
+            let input: String = pts
+                .iter()
+                .map(|p| {
+                    let v: Vec<String> = row(p).iter().map(|x| format!("{x:?}")).collect();
+                    v.join(" ") + "\n"
+                })
+                .collect();
+            let out = run_ok(
+                gcc_driver(),
+                &["pat", path, &clamp.to_string(), &n.to_string()],
+                &input,
+            );
+            let mut lines = out.lines();
+            assert_eq!(lines.next(), Some(header.as_str()), "{name}");
+            let outside = if clamp == 1 {
+                OutOfDomain::Clamp
+            } else {
+                OutOfDomain::Error
+            };
+            let mut count = 0;
+            for (p, line) in pts.iter().zip(lines) {
+                count += 1;
+                match t.p_at_with(&row(p), outside) {
+                    Ok(r) => assert_eq!(
+                        line.parse::<f64>().map(f64::to_bits),
+                        Ok(r.to_bits()),
+                        "{name} {p:?} clamp {clamp}"
+                    ),
+                    Err(err) => assert_eq!(
+                        line,
+                        format!("error {}", status_of(&err, p.0, p.1)),
+                        "{name} {p:?} clamp {clamp}: {err}"
+                    ),
+                }
+            }
+            assert_eq!(count, pts.len(), "{name}");
+        }
+        for wrong in [n - 1, n + 1] {
+            let input = "1.5 0.3 0.9 1.0\n".repeat(3);
+            let out = run_ok(
+                gcc_driver(),
+                &["pat", path, "0", &wrong.to_string()],
+                &input,
+            );
+            let refused: Vec<&str> = out.lines().skip(1).collect();
+            assert!(!refused.is_empty(), "{name}: {out}");
+            assert!(
+                refused.iter().all(|l| *l == "error 28"),
+                "{name} n = {wrong}: {out}"
+            );
+            assert!(t.p_at(&[1.5, 0.3, 0.9, 1.0][..wrong]).is_err());
+        }
+    }
+}

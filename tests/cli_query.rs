@@ -571,3 +571,44 @@ fn a_long_bad_line_gives_a_short_message() {
         assert!(stderr.len() < 400, "{} bytes: {stderr}", stderr.len());
     }
 }
+
+/// `--at NAME=VALUE` takes an axis beyond gamma and alpha by its name: `--at e_n=0.8` prints
+/// what `--e-n 0.8` prints; an unknown axis, a repeated one, a value the table does not answer
+/// and a malformed argument exit with status 2 and name the axes or the range.
+#[test]
+fn at_takes_an_extra_axis_by_name() {
+    for json in [false, true] {
+        let mut at = vec![
+            "query", "--gamma", "1.5", "--alpha", "0.3", "--at", "e_n=0.8",
+        ];
+        let mut e_n = vec!["query", "--gamma", "1.5", "--alpha", "0.3", "--e-n", "0.8"];
+        if json {
+            at.push("--json");
+            e_n.push("--json");
+        }
+        let (x, y) = (sweep(&at, None), sweep(&e_n, None));
+        assert!(x.status.success(), "{}", String::from_utf8_lossy(&x.stderr));
+        assert_eq!(x.stdout, y.stdout);
+    }
+    let q = ["query", "--gamma", "1.5", "--alpha", "0.3"];
+    let with = |extra: &[&str]| sweep(&[&q[..], extra].concat(), None);
+    let out = with(&["--at", "e_t=0.8"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("unknown axis `e_t`") && stderr.contains("e_n"),
+        "{stderr}"
+    );
+    let out = with(&["--at", "0.8"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("AXIS=VALUE"));
+    refused(
+        &with(&["--at", "e_n=0.8", "--e-n", "0.8"]),
+        &["--at", "'e_n'"],
+    );
+    refused(&with(&["--at", "e_n=nan"]), &["--at", "e_n", "[0.3, 1]"]);
+    refused(
+        &sweep(&[&q[..], &[TABLE, "--at", "e_n=0.8"]].concat(), None),
+        &["--at", "e_n", "elastic"],
+    );
+}

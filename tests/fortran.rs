@@ -270,7 +270,9 @@ const DRIVER: &str = r#"program driver
    logical :: surface
    real(c_double) :: g, a, p, m1, r1, k1, m2, r2, k2, mu, e1, nu1, e2, nu2, e_t, lost, alpha
    real(c_double) :: v1(3), w1(3), v2(3), w2(3), nrm(3), v1a(3), w1a(3), v2a(3), w2a(3)
-   real(c_double) :: g3(3), a3(3), p3(3), e3(3), gmin, gmax, amax, bound, e
+   real(c_double) :: g3(3), a3(3), p3(3), e3(3), gmin, gmax, amax, bound, e, xs(8)
+   integer :: k
+   character(len=16) :: name
    call get_command_argument(1, length=length)
    allocate (character(len=length) :: path)
    call get_command_argument(1, path)
@@ -298,6 +300,20 @@ const DRIVER: &str = r#"program driver
          read (line, *) cmd, (g3(n), a3(n), e3(n), n = 1, 3)
          call oblique_p_e(t, g3, a3, e3, p3, st3)
          write (*, '(3(I0,1X,G0.17,:,1X))') (st3(n), p3(n), n = 1, 3)
+      case ('pat')
+         ! A point of n values (any number of axes): oblique_p_at.
+         read (line, *) cmd, n
+         read (line, *) cmd, n, (xs(k), k = 1, n), clamp
+         call oblique_p_at(t, xs(1:n), p, status, clamp=clamp /= 0)
+         write (*, '(I0,1X,G0.17)') status, p
+      case ('axes')
+         call oblique_axis_count(t, n, status)
+         write (*, '(I0,1X,I0)', advance='no') status, n
+         do k = 1, n + 1
+            call oblique_axis_name(t, k, name, status)
+            write (*, '(1X,I0,":",A)', advance='no') status, trim(name)
+         end do
+         write (*, '(A)') ''
       case ('erange')
          call oblique_e_n_range(t, gmin, gmax, status)
          write (*, '(I0,2(1X,G0.17))') status, gmin, gmax
@@ -994,6 +1010,63 @@ fn module_answers_p_of_a_table_with_an_e_n_axis() {
         pts.len(),
         start.elapsed().as_secs_f64()
     );
+}
+
+/// `oblique_p_at` of the module gives the bits of `Table::p_at_with` (itself those of
+/// `oblique_p` / `oblique_p_e`: `Table::p`, `Table::p_e`) on the export with an `e_n` axis and on
+/// an elastic one, with its refusals' codes; a point of another size is `OBLQ_E_AXES` (28);
+/// `oblique_axis_count` and `oblique_axis_name` list `Table::axes`.
+#[test]
+fn module_p_at_gives_the_bits_of_the_rust_point_query() {
+    let (t, export) = dissipative();
+    let elastic = (table(), export_file().to_path_buf());
+    for (t, export) in [(t, export), (elastic.0, &elastic.1)] {
+        let s = t.surface();
+        let e = t.restitution().unwrap_or((1.0, 1.0));
+        let pts = points_e(5_000, 52, (0.8 * s.gamma_min(), 1.1 * s.gamma_max()), e);
+        let n = t.axes().len();
+        let mut input = String::from("axes\n");
+        for (i, (g, a, e)) in pts.iter().enumerate() {
+            let x = [*g, *a, *e];
+            let v: Vec<String> = x[..n].iter().map(|v| f(*v)).collect();
+            input += &format!("pat {n} {} {}\n", v.join(" "), i % 2);
+        }
+        for k in [n + 1, n - 1] {
+            let v: Vec<String> = [1.5, 0.3, 0.9, 1.0][..k].iter().map(|v| f(*v)).collect();
+            input += &format!("pat {k} {} 0\n", v.join(" "));
+        }
+        let out = run_ok(&builds()[0].1, &[&path_str(export)], &input);
+        let mut lines = out.lines();
+        assert_eq!(lines.next(), Some("0"), "open");
+        let names: Vec<String> = t.axes().iter().map(|a| format!("0:{a}")).collect();
+        assert_eq!(
+            lines.next(),
+            Some(format!("0 {n} {} 28:", names.join(" ")).as_str())
+        );
+        for (i, (g, a, e)) in pts.iter().enumerate() {
+            let line = lines.next().expect("an answer per line");
+            let (st, p) = line.split_once(' ').expect("status P");
+            let outside = if i % 2 == 1 {
+                OutOfDomain::Clamp
+            } else {
+                OutOfDomain::Error
+            };
+            match t.p_at_with(&[*g, *a, *e][..n], outside) {
+                Ok(want) => {
+                    assert_eq!(st, "0", "({g:?}, {a:?}, {e:?}): {line}");
+                    assert_eq!(num(p).to_bits(), want.to_bits(), "({g:?}, {a:?}, {e:?})");
+                }
+                Err(err) => {
+                    assert_eq!(st, status_of(&err, *g, *a).to_string(), "{line}: {err}");
+                    assert!(num(p).is_nan(), "{line}");
+                }
+            }
+        }
+        for _ in 0..2 {
+            let line = lines.next().expect("wrong size");
+            assert!(line.starts_with("28 "), "{line}");
+        }
+    }
 }
 
 #[test]

@@ -250,6 +250,25 @@ def _shape(args: Sequence[Tuple[str, Tuple[int, ...]]]) -> Tuple[int, ...]:
         raise ValueError(f"shapes do not broadcast together: {listed}") from None
 
 
+def _extra_axes(function: str, axes: dict) -> List[Tuple[str, Any]]:
+    """The keyword arguments ``axes`` of ``function`` as ``(name, value)`` in the order of
+    ``_native.EXTRA_AXES`` (the axes a table may have beyond γ and α), leaving out a scalar at
+    the axis's fixed value (e_n = 1); a keyword of no axis is a ``TypeError`` naming them."""
+    known = dict(_native.EXTRA_AXES)
+    for name in axes:
+        if name not in known:
+            names = ", ".join(known)
+            raise TypeError(
+                f"{function}() got an unexpected keyword argument '{name}': the axes beyond "
+                f"gamma and alpha are {names}"
+            )
+    return [
+        (n, axes[n])
+        for n in known
+        if n in axes and not (type(axes[n]) in _NUMBER and axes[n] == known[n])
+    ]
+
+
 def _column(a: NDArray[np.float64], shape: Tuple[int, ...], width: int = 1) -> NDArray[np.float64]:
     """A contiguous 1-D column: the value(s) once when shared by every row, else one per row."""
     if a.size == width:
@@ -595,7 +614,7 @@ class Curve:
 
 class Table:
     """A table of P(γ, α) written by ``sweep run`` (HDF5), loaded into memory and checked; of
-    P(γ, α, e_n) for a table built with an e_n range (schema 4, ``info["e_n_min"]`` < 1); of
+    P(γ, α, e_n) for a table built with an e_n range (schema 4, ``e_n_min`` of :attr:`info` < 1); of
     P(α, e_n) at a single γ for the table of one pair of materials (:attr:`pair_gamma`; such a
     table answers that γ only, within a relative 1e-9, and the full-slip line at any γ).
 
@@ -681,9 +700,16 @@ class Table:
         g = self.info["pair_gamma"]
         return None if g is None else float(g)
 
+    @property
+    def axes(self) -> Tuple[str, ...]:
+        """The names of the axes of a point of this table, in order: ``("gamma", "alpha")``,
+        then its extra axes (``"e_n"`` for a table built with an e_n range). :meth:`p` takes
+        every extra axis as a keyword argument of that name."""
+        return tuple(self._t.axes())
+
     @overload
     def p(
-        self, gamma: float, alpha: float, out: None = None, *, e_n: float = 1.0
+        self, gamma: float, alpha: float, out: None = None, *, e_n: float = 1.0, **axes: float
     ) -> float: ...
     @overload
     def p(
@@ -693,24 +719,26 @@ class Table:
         out: Optional[np.ndarray] = None,
         *,
         e_n: ArrayLike = 1.0,
+        **axes: ArrayLike,
     ) -> NDArray[np.float64]: ...
     def p(
         self,
         gamma: ArrayLike,
         alpha: ArrayLike,
         out: Optional[np.ndarray] = None,
-        *,
-        e_n: ArrayLike = 1.0,
+        **axes: ArrayLike,
     ) -> Float:
         """P(γ, α, e_n), the tangential restitution of the contact point, by the table's
         interpolation rule. γ finite > 0, α ≥ 0 (``inf``: no slip), e_n the normal restitution:
-        1 (the default) for an elastic table, inside ``info["e_n_min"] … info["e_n_max"]`` for
-        a table built with an e_n range (never clamped: ``ValueError`` outside). The table of
+        1 (the default) for an elastic table, inside ``e_n_min`` … ``e_n_max`` of :attr:`info` for
+        a table built with an e_n range (never clamped: ``ValueError`` outside). Every axis
+        beyond γ and α (:attr:`axes`) is a keyword argument of its name, at its fixed value
+        (e_n = 1) when not given; another keyword is a ``TypeError`` naming the axes. The table of
         one pair answers γ = :attr:`pair_gamma` only (``ValueError`` naming γ and the pair's
-        γ elsewhere, except on the full-slip line). Broadcasts over all three; returns a float
-        for scalar arguments. |P| ≤ 1 everywhere."""
-        scalar_e = type(e_n) in _NUMBER
-        if scalar_e and e_n == 1.0:
+        γ elsewhere, except on the full-slip line). Broadcasts over all arguments; returns a
+        float for scalar arguments. |P| ≤ 1 everywhere."""
+        extra = _extra_axes("p", axes)
+        if not extra:
             if out is None and type(gamma) in _NUMBER and type(alpha) in _NUMBER:
                 return self._t.p(gamma, alpha, self._clamp)  # type: ignore[arg-type]  # checked above
             g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
@@ -719,18 +747,27 @@ class Table:
             gf, af = _full(g, shape), _full(a, shape)
             _into(o, lambda f: self._t.p_into(gf, af, f, self._clamp, list(shape)), gf, af)
             return _result(o, out)
-        if out is None and scalar_e and type(gamma) in _NUMBER and type(alpha) in _NUMBER:
-            return self._t.p_e(gamma, alpha, e_n, self._clamp)  # type: ignore[arg-type]  # checked above
-        g, a, e = _f64(gamma, "gamma"), _f64(alpha, "alpha"), _f64(e_n, "e_n")
-        shape = _shape([("gamma", g.shape), ("alpha", a.shape), ("e_n", e.shape)])
+        names = [n for n, _ in extra]
+        if (
+            out is None
+            and all(type(v) in _NUMBER for _, v in extra)
+            and type(gamma) in _NUMBER
+            and type(alpha) in _NUMBER
+        ):
+            values = [v for _, v in extra]
+            return self._t.p_axes(gamma, alpha, names, values, self._clamp)  # type: ignore[arg-type]  # checked above
+        g, a = _f64(gamma, "gamma"), _f64(alpha, "alpha")
+        xs = [_f64(v, n) for n, v in extra]
+        shape = _shape([("gamma", g.shape), ("alpha", a.shape)] + [(n, x.shape) for n, x in zip(names, xs)])
         o = _output(out, shape)
-        gf, af, ef = _full(g, shape), _full(a, shape), _full(e, shape)
+        gf, af = _full(g, shape), _full(a, shape)
+        xf = [_full(x, shape) for x in xs]
         _into(
             o,
-            lambda f: self._t.p_e_into(gf, af, ef, f, self._clamp, list(shape)),
+            lambda f: self._t.p_axes_into(gf, af, names, xf, f, self._clamp, list(shape)),
             gf,
             af,
-            ef,
+            *xf,
         )
         return _result(o, out)
 
@@ -800,7 +837,7 @@ class Table:
         wall's or sphere 2's Material)`` with the pair's masses and κ, or is given as
         ``gamma=``. ``e_n`` is the normal restitution (dimensionless): the relative normal
         velocity reverses to ``e_n`` times its value, and P is the table's P(γ, α, e_n); 1 (the
-        default, elastic) for an elastic table, inside ``info["e_n_min"] … info["e_n_max"]``
+        default, elastic) for an elastic table, inside ``e_n_min`` … ``e_n_max`` of :attr:`info`
         for a table built with an e_n range (never clamped: ``ValueError`` outside, also for
         impacts without slip). With the table of one pair the γ of every impact (from
         ``materials`` or ``gamma``) must be its :attr:`pair_gamma`. Every argument (the fields of :class:`Sphere` and
@@ -923,7 +960,7 @@ class Table:
         return (
             f"<oblique.Table {i['path']!r}: {gamma}, "
             f"alpha <= {i['alpha_max']}, "
-            + (f"e_n in [{i['e_n_min']}, {i['e_n_max']}], " if i["law"] != "elastic" else "")
+            + "".join(f"{n} in [{i[n + '_min']}, {i[n + '_max']}], " for n in self.axes[2:])
             + f"error bound {i['error_bound']:.2g}"
             + (", clamped" if self._clamp else "")
             + ">"

@@ -16,6 +16,8 @@ REBOUND3: List[str]
 REBOUND2: List[str]
 GROUPS: List[str]
 IMPACT: List[str]
+# The axes a table may have beyond gamma and alpha: (name, the value where a table lacks it).
+EXTRA_AXES: List[Tuple[str, float]]
 # (name, E (Pa), nu, density (kg/m^3) or None, source), in catalogue order.
 MATERIALS: List[Tuple[str, float, float, Optional[float], str]]
 
@@ -29,9 +31,19 @@ class Table:
     def p_into(
         self, gamma: _F, alpha: _F, out: _F, clamp: bool, shape: Sequence[int]
     ) -> None: ...
-    def p_e(self, gamma: float, alpha: float, e_n: float, clamp: bool) -> float: ...
-    def p_e_into(
-        self, gamma: _F, alpha: _F, e_n: _F, out: _F, clamp: bool, shape: Sequence[int]
+    def axes(self) -> List[str]: ...
+    def p_axes(
+        self, gamma: float, alpha: float, names: List[str], values: List[float], clamp: bool
+    ) -> float: ...
+    def p_axes_into(
+        self,
+        gamma: _F,
+        alpha: _F,
+        names: List[str],
+        columns: List[_F],
+        out: _F,
+        clamp: bool,
+        shape: Sequence[int],
     ) -> None: ...
     def curve(self, gamma: float, clamp: bool) -> Curve: ...
     def info(self) -> dict: ...

@@ -263,27 +263,51 @@ impl PyTable {
         self.p_columns(py, points, out, clamp, &shape)
     }
 
-    /// `P(γ, α, e_n)` of one point.
-    fn p_e(&self, gamma: f64, alpha: f64, e_n: f64, clamp: bool) -> PyResult<f64> {
+    /// The names of the axes of a point of this table: `gamma`, `alpha`, then its extra axes.
+    fn axes(&self) -> Vec<&'static str> {
+        self.inner.axes()
+    }
+
+    /// `P` at `γ`, `α` and the extra axes `names` at `values` (an axis not named at its
+    /// fixed value).
+    fn p_axes(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        names: Vec<String>,
+        values: Vec<f64>,
+        clamp: bool,
+    ) -> PyResult<f64> {
+        let extra: Vec<(&str, f64)> = names.iter().map(String::as_str).zip(values).collect();
         self.inner
-            .p_e_with(gamma, alpha, e_n, outside(clamp))
+            .p_axes_with(gamma, alpha, &extra, outside(clamp))
             .map_err(|e| lookup_error(e, &[]))
     }
 
-    /// `out[i] = P(gamma[i], alpha[i], e_n[i])`; `shape` names a failing index.
+    /// `out[i] = P(gamma[i], alpha[i], columns[k][i] for the axes names[k])`; `shape` names a
+    /// failing index.
     #[allow(clippy::too_many_arguments)]
-    fn p_e_into(
+    fn p_axes_into(
         &self,
         py: Python<'_>,
         gamma: PyReadonlyArray1<'_, f64>,
         alpha: PyReadonlyArray1<'_, f64>,
-        e_n: PyReadonlyArray1<'_, f64>,
+        names: Vec<String>,
+        columns: Vec<PyReadonlyArray1<'_, f64>>,
         out: PyReadwriteArray1<'_, f64>,
         clamp: bool,
         shape: Vec<usize>,
     ) -> PyResult<()> {
         let (g, a) = (column("gamma", &gamma)?, column("alpha", &alpha)?);
-        let points = PointColumns::new(g, a, Some(column("e_n", &e_n)?));
+        let extra = names
+            .iter()
+            .zip(&columns)
+            .map(|(n, c)| match oblique_lookup::ExtraAxis::named(n) {
+                Some(axis) => column(axis.name, c),
+                None => Err(lookup_error(oblique_lookup::axis_error(n), &[])),
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        let points = PointColumns::with_axes(g, a, &extra);
         self.p_columns(py, points, out, clamp, &shape)
     }
 
@@ -311,10 +335,13 @@ impl PyTable {
         d.set_item("pair_gamma", s.pair_gamma())?;
         let axes: Vec<&str> = s.axes().iter().map(|a| a.name.name()).collect();
         d.set_item("axes", axes)?;
-        // The e_n range ([1, 1] for an elastic table) and the law of the node values.
-        let (e_lo, e_hi) = s.restitution().unwrap_or((1.0, 1.0));
-        d.set_item("e_n_min", e_lo)?;
-        d.set_item("e_n_max", e_hi)?;
+        // The range of every extra axis (its fixed value at both ends where the table has no
+        // such axis: e_n in [1, 1] for an elastic table) and the law of the node values.
+        for a in oblique_lookup::EXTRA_AXES {
+            let (lo, hi) = t.axis_range(a.name).unwrap_or((a.fixed, a.fixed));
+            d.set_item(a.attr_min, lo)?;
+            d.set_item(a.attr_max, hi)?;
+        }
         d.set_item(
             "law",
             if s.restitution().is_some() {
@@ -878,6 +905,13 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyCurve>()?;
     m.add("TableError", m.py().get_type::<TableError>())?;
     m.add("REBOUND3", columns::REBOUND_3D_COLUMNS.to_vec())?;
+    // The axes a table may have beyond gamma and alpha, and the value of each where a table
+    // lacks it.
+    let extra: Vec<(&str, f64)> = oblique_lookup::EXTRA_AXES
+        .iter()
+        .map(|a| (a.name, a.fixed))
+        .collect();
+    m.add("EXTRA_AXES", extra)?;
     m.add("REBOUND2", columns::REBOUND_COLUMNS.to_vec())?;
     m.add("GROUPS", GROUPS.to_vec())?;
     m.add("IMPACT", IMPACT.to_vec())?;

@@ -8,7 +8,7 @@ use crate::failure::Result;
 use clap::Args;
 use serde_json::json;
 
-use oblique_lookup::Table;
+use oblique_lookup::{Table, EXTRA_AXES};
 
 #[derive(Args)]
 pub struct InspectArgs {
@@ -41,10 +41,9 @@ pub fn run(args: InspectArgs) -> Result<()> {
             .iter()
             .map(|(n, p)| {
                 let depth = p.leaf_depths();
-                json!({
+                let mut patch = json!({
                     "name": n, "kind": p.kind().name(), "gamma_lo": p.gamma_lo(), "gamma_hi": p.gamma_hi(),
                     "blocks_gamma": p.blocks_gamma(), "blocks_coord": p.blocks_coord(),
-                    "blocks_e_n": p.blocks_e_n(),
                     "leaf_intervals": p.leaf_intervals(),
                     "leaves": p.leaves(),
                     "depth_min": depth.iter().min(), "depth_max": depth.iter().max(),
@@ -57,16 +56,21 @@ pub fn run(args: InspectArgs) -> Result<()> {
                         "c_star": w.c_star(), "gamma_0": w.gamma_0(), "gamma_step": w.gamma_step(),
                         "knots": w.knot().len(),
                     })),
-                })
+                });
+                // Root cells along each extra axis (1 where the patch has none).
+                for a in EXTRA_AXES {
+                    let blocks = p.axes().iter().find(|x| x.name.name() == a.name);
+                    patch[a.attr_blocks] = json!(blocks.map_or(1, |x| x.blocks()));
+                }
+                patch
             })
             .collect();
-        let out = json!({
+        let mut out = json!({
             "path": args.table.display().to_string(),
             "schema_version": pv.schema_version,
             "gamma_min": s.gamma_min(), "gamma_max": s.gamma_max(),
             "alpha_max": if s.alpha_max().is_finite() { json!(s.alpha_max()) } else { json!("inf") },
             "axes": s.axes().iter().map(|a| a.name.name()).collect::<Vec<_>>(),
-            "e_n_min": s.restitution().map(|r| r.0), "e_n_max": s.restitution().map(|r| r.1),
             "law": if s.restitution().is_some() { pv.law.as_str() } else { "elastic" },
             "stencil_points": s.stencil(),
             "nodes": patches.iter().map(|(_, p)| p.p().len()).sum::<usize>(),
@@ -79,13 +83,27 @@ pub fn run(args: InspectArgs) -> Result<()> {
                 "node_tol": pv.node_tol, "check_tol": pv.check_tol, "target_error": pv.target_error, "config": pv.config,
             }
         });
+        // The range of each extra axis (null where the table has none).
+        let axes = s.axes();
+        for a in EXTRA_AXES {
+            let range = axes.iter().find(|x| x.name.name() == a.name);
+            out[a.attr_min] = json!(range.map(|x| x.lo()));
+            out[a.attr_max] = json!(range.map(|x| x.hi()));
+        }
         outln!("{out}")?;
         return Ok(());
     }
     outln!("table {}", args.table.display())?;
-    let e_n = match s.restitution() {
-        Some((lo, hi)) => format!(", e_n in [{lo}, {hi}] ({} law)", pv.law),
-        None => String::new(),
+    // The extra axes and their ranges, then the law of the node values.
+    let extra: Vec<String> = s
+        .axes()
+        .iter()
+        .filter(|a| a.name.extra().is_some())
+        .map(|a| format!(", {} in [{}, {}]", a.name.name(), a.lo(), a.hi()))
+        .collect();
+    let e_n = match extra.is_empty() {
+        false => format!("{} ({} law)", extra.concat(), pv.law),
+        true => String::new(),
     };
     let gamma = match s.pair_gamma() {
         Some(g) => format!("gamma = {g} (one pair of materials)"),
@@ -99,15 +117,12 @@ pub fn run(args: InspectArgs) -> Result<()> {
     )?;
     for (n, p) in &patches {
         let depth = p.leaf_depths();
-        let roots = match p.restitution() {
-            Some(r) => format!(
-                "{} x {} x {}",
-                p.blocks_gamma(),
-                p.blocks_coord(),
-                r.blocks()
-            ),
-            None => format!("{} x {}", p.blocks_gamma(), p.blocks_coord()),
-        };
+        let roots = p
+            .axes()
+            .iter()
+            .map(|a| a.blocks().to_string())
+            .collect::<Vec<_>>()
+            .join(" x ");
         outln!(
             "  {n:13} {:12} gamma [{:.4}, {:.4}]  {roots} roots, {} leaves at depth {}..{}, {} nodes stored (shared leaf edges once per leaf), max node error estimate {:.1e}",
             p.kind().name(),

@@ -34,6 +34,12 @@ pub struct QueryArgs {
     #[arg(long = "e-n", value_name = "E_N", value_parser = crate::args::parse_f64, allow_hyphen_values = true,
           conflicts_with = "batch")]
     e_n: Option<f64>,
+    /// The value of an axis beyond gamma and alpha, AXIS=VALUE (repeatable; `sweep inspect`
+    /// lists a table's axes): `--at e_n=0.8` is `--e-n 0.8`. An axis not given is at its
+    /// fixed value (e_n = 1).
+    #[arg(long = "at", value_name = "AXIS=VALUE", value_parser = parse_at,
+          conflicts_with = "batch")]
+    at: Vec<(&'static str, f64)>,
     /// Read lines `gamma,alpha` (or `gamma,alpha,e_n`) from FILE (`-` for stdin) and write
     /// lines `gamma,alpha,P,e_t` (or `gamma,alpha,e_n,P,e_t`) in the same order.
     #[arg(long, value_name = "FILE")]
@@ -45,6 +51,31 @@ pub struct QueryArgs {
     /// Print one JSON object (single query only; alpha = inf is written as the string "inf").
     #[arg(long, conflicts_with = "batch")]
     json: bool,
+}
+
+/// `--at AXIS=VALUE`: an axis of [`oblique_lookup::EXTRA_AXES`] and a number.
+fn parse_at(s: &str) -> std::result::Result<(&'static str, f64), String> {
+    let names = || {
+        oblique_lookup::EXTRA_AXES
+            .iter()
+            .map(|a| a.name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let Some((name, value)) = s.split_once('=') else {
+        return Err(format!(
+            "`{s}` is not AXIS=VALUE (e.g. e_n=0.8); the axes beyond gamma and alpha are {}",
+            names()
+        ));
+    };
+    let axis = oblique_lookup::ExtraAxis::named(name.trim()).ok_or_else(|| {
+        format!(
+            "unknown axis `{name}`: the axes beyond gamma and alpha are {} (gamma and alpha \
+             are --gamma and --alpha)",
+            names()
+        )
+    })?;
+    Ok((axis.name, crate::args::parse_f64(value)?))
 }
 
 /// A bad query or batch line: exit status 2 (as for a table that cannot be read). The
@@ -92,11 +123,23 @@ pub fn run(args: QueryArgs) -> Result<()> {
                 .into(),
         ));
     };
-    let e_n = args.e_n.unwrap_or(1.0);
+    // The extra axes: `--e-n` is `--at e_n=`.
+    let extra: Vec<(&str, f64)> = args
+        .e_n
+        .map(|e| (oblique_lookup::E_N.name, e))
+        .into_iter()
+        .chain(args.at.iter().copied())
+        .collect();
+    let e_n = extra
+        .iter()
+        .find(|a| a.0 == oblique_lookup::E_N.name)
+        .map_or(1.0, |a| a.1);
+    let e_n_flag = if args.e_n.is_some() { "--e-n" } else { "--at" };
     let p = table
-        .p_e_with(gamma, alpha, e_n, outside)
+        .p_axes_with(gamma, alpha, &extra, outside)
         .map_err(|e| match e {
-            LookupError::Query { name: "e_n", .. } => Failure::usage(format!("--e-n: {e}")),
+            LookupError::Query { name: "e_n", .. } => Failure::usage(format!("{e_n_flag}: {e}")),
+            LookupError::Axis { .. } => Failure::usage(format!("--at: {e}")),
             LookupError::Query { name: "gamma", .. } if args.table.is_none() => {
                 let other = if e_n < 1.0 {
                     "build a table with an e_n range that holds this gamma (sweep run \
@@ -130,10 +173,10 @@ pub fn run(args: QueryArgs) -> Result<()> {
         });
         outln!("{out}")?;
     } else {
-        let e_n_words = match args.e_n {
-            Some(e) => format!(", e_n = {}", crate::args::fmt_num(e)),
-            None => String::new(),
-        };
+        let e_n_words: String = extra
+            .iter()
+            .map(|(n, v)| format!(", {n} = {}", crate::args::fmt_num(*v)))
+            .collect();
         outln!(
             "P(gamma = {}, alpha = {}{e_n_words}) = {p:.9}  +/- {error:.1e}",
             crate::args::fmt_num(gamma),

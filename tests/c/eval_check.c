@@ -484,6 +484,31 @@ int main(int argc, char **argv) {
             else printf("error %d", rc);
             printf("\n");
         }
+    } else if (!strcmp(argv[1], "pat") && argc == 5) {
+        /* oblq_p_at: lines of N values (N from the command line, any number of axes). */
+        double x[8], p;
+        int clamp = atoi(argv[3]), k = atoi(argv[4]), i, axes = 0;
+        open_moved(&t, &d, n, -1, NULL);
+        if (k < 0 || k > 8 || oblq_axis_count(&t, &axes) != OBLQ_OK ||
+            oblq_axis_name(&t, axes) != NULL || oblq_axis_name(&t, -1) != NULL ||
+            oblq_p_at(NULL, x, 2, 0, &p) != OBLQ_E_NULL ||
+            oblq_p_at(&t, x, 2, 0, NULL) != OBLQ_E_NULL) {
+            fprintf(stderr, "eval_check: oblq_axis_* or oblq_p_at: wrong status\n");
+            exit(4);
+        }
+        printf("axes");
+        for (i = 0; i < axes; i++) printf(" %s", oblq_axis_name(&t, i));
+        printf("\n");
+        for (;;) {
+            int rc;
+            for (i = 0; i < k; i++)
+                if (scanf("%lf", &x[i]) != 1) break;
+            if (i < k) break;
+            rc = oblq_p_at(&t, x, k, clamp, &p);
+            if (rc == OBLQ_OK) g17(p);
+            else printf("error %d", rc);
+            printf("\n");
+        }
     } else if (!strcmp(argv[1], "curve") && argc == 5) {
         oblq_curve c;
         double a, p;

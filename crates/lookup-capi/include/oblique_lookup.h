@@ -216,6 +216,38 @@ int oblique_p_e(const struct ObliqueTable *table,
                 int clamp,
                 double *p);
 
+// `*p = P(point)` (dimensionless) at a point of `n` values, one per axis of the table in
+// order (`oblique_table_axes`: `gamma`, `alpha`, then the table's extra axes, such as `e_n`):
+// `oblique_p` for `{γ, α}` of an elastic table, `oblique_p_e` for `{γ, α, e_n}` of a table
+// with an `e_n` axis, with the same bits. Another `n` is `OBLIQUE_ERR_QUERY` naming the
+// table's axes; `clamp` as for `oblique_p` (an extra axis is never clamped).
+//
+// # Safety
+// `table` is NULL or a live handle; `point` is NULL or valid for `n` reads; `p` is NULL or
+// valid for writes.
+int oblique_p_at(const struct ObliqueTable *table,
+                 const double *point,
+                 uintptr_t n,
+                 int clamp,
+                 double *p);
+
+// The axes of a table's point (`oblique_p_at`): `*n` is their number (2 for an elastic table,
+// 3 with an `e_n` axis); for `i < *n`, `names[i]` (when `names` is not NULL and `i < cap`) is
+// the name of axis `i`, a static NUL-terminated string (`gamma`, `alpha`, `e_n`; do not free
+// it), and `lo[i]`, `hi[i]` (each when not NULL and `i < cap`) its range: `γ` over the
+// domain, `α` over `[0, alpha_max]`, an extra axis over the table's range. Call with `cap` = 0
+// to learn `*n`.
+//
+// # Safety
+// `table` is NULL or a live handle; `n` is NULL or valid for writes; `names`, `lo`, `hi` are
+// each NULL or valid for `cap` writes.
+int oblique_table_axes(const struct ObliqueTable *table,
+                       uintptr_t *n,
+                       const char **names,
+                       double *lo,
+                       double *hi,
+                       uintptr_t cap);
+
 // The `e_n` range of a table: `[e_n_min, e_n_max]` for a table with an `e_n` axis, `[1, 1]`
 // for an elastic table. Any out-pointer may be NULL.
 //

@@ -197,9 +197,11 @@ fn code_of(e: &LookupError) -> c_int {
     match e {
         LookupError::Io { .. } => OBLIQUE_ERR_IO,
         LookupError::Invalid { .. } => OBLIQUE_ERR_TABLE,
-        LookupError::Query { .. } | LookupError::Batch { .. } | LookupError::Length { .. } => {
-            OBLIQUE_ERR_QUERY
-        }
+        LookupError::Query { .. }
+        | LookupError::Batch { .. }
+        | LookupError::Length { .. }
+        | LookupError::Point { .. }
+        | LookupError::Axis { .. } => OBLIQUE_ERR_QUERY,
     }
 }
 
@@ -405,6 +407,106 @@ unsafe fn point(
         *p =
             t.0.p_e_with(gamma, alpha, e_n, outside(clamp)?)
                 .map_err(lookup)?;
+        Ok(())
+    })
+}
+
+/// `*p = P(point)` (dimensionless) at a point of `n` values, one per axis of the table in
+/// order (`oblique_table_axes`: `gamma`, `alpha`, then the table's extra axes, such as `e_n`):
+/// `oblique_p` for `{γ, α}` of an elastic table, `oblique_p_e` for `{γ, α, e_n}` of a table
+/// with an `e_n` axis, with the same bits. Another `n` is `OBLIQUE_ERR_QUERY` naming the
+/// table's axes; `clamp` as for `oblique_p` (an extra axis is never clamped).
+///
+/// # Safety
+/// `table` is NULL or a live handle; `point` is NULL or valid for `n` reads; `p` is NULL or
+/// valid for writes.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_p_at(
+    table: *const ObliqueTable,
+    point: *const f64,
+    n: usize,
+    clamp: c_int,
+    p: *mut f64,
+) -> c_int {
+    guard(|| {
+        let t = table.as_ref().ok_or_else(|| null("table"))?;
+        if point.is_null() {
+            return Err(null("point"));
+        }
+        if p.is_null() {
+            return Err(null("p"));
+        }
+        // More values than any table has axes are refused before they are read.
+        let axes = 2 + oblique_lookup::EXTRA_AXES.len();
+        let values = std::slice::from_raw_parts(point, n.min(axes));
+        *p = match n <= axes {
+            true => t.0.p_at_with(values, outside(clamp)?),
+            false => Err(t.0.point_error(n)),
+        }
+        .map_err(lookup)?;
+        Ok(())
+    })
+}
+
+/// The names of every axis a table may have, NUL-terminated, built once: `gamma`, `alpha`, then
+/// the extra axes in their order.
+fn axis_names() -> &'static [CString] {
+    static NAMES: std::sync::OnceLock<Vec<CString>> = std::sync::OnceLock::new();
+    NAMES.get_or_init(|| {
+        ["gamma", "alpha"]
+            .into_iter()
+            .chain(oblique_lookup::EXTRA_AXES.iter().map(|a| a.name))
+            .map(|n| CString::new(n).unwrap_or_default())
+            .collect()
+    })
+}
+
+/// The axes of a table's point (`oblique_p_at`): `*n` is their number (2 for an elastic table,
+/// 3 with an `e_n` axis); for `i < *n`, `names[i]` (when `names` is not NULL and `i < cap`) is
+/// the name of axis `i`, a static NUL-terminated string (`gamma`, `alpha`, `e_n`; do not free
+/// it), and `lo[i]`, `hi[i]` (each when not NULL and `i < cap`) its range: `γ` over the
+/// domain, `α` over `[0, alpha_max]`, an extra axis over the table's range. Call with `cap` = 0
+/// to learn `*n`.
+///
+/// # Safety
+/// `table` is NULL or a live handle; `n` is NULL or valid for writes; `names`, `lo`, `hi` are
+/// each NULL or valid for `cap` writes.
+#[no_mangle]
+pub unsafe extern "C" fn oblique_table_axes(
+    table: *const ObliqueTable,
+    n: *mut usize,
+    names: *mut *const c_char,
+    lo: *mut f64,
+    hi: *mut f64,
+    cap: usize,
+) -> c_int {
+    guard(|| {
+        let t = table.as_ref().ok_or_else(|| null("table"))?;
+        if n.is_null() {
+            return Err(null("n"));
+        }
+        let s = t.0.surface();
+        let axes = t.0.axes();
+        *n = axes.len();
+        for (i, name) in axes.iter().enumerate().take(cap) {
+            let range = match i {
+                0 => (s.gamma_min(), s.gamma_max()),
+                1 => (0.0, s.alpha_max()),
+                _ => t.0.axis_range(name).unwrap_or((f64::NAN, f64::NAN)),
+            };
+            if !names.is_null() {
+                let c = axis_names()
+                    .iter()
+                    .find(|c| c.to_bytes() == name.as_bytes());
+                *names.add(i) = c.map_or(std::ptr::null(), |c| c.as_ptr());
+            }
+            if !lo.is_null() {
+                *lo.add(i) = range.0;
+            }
+            if !hi.is_null() {
+                *hi.add(i) = range.1;
+            }
+        }
         Ok(())
     })
 }

@@ -19,6 +19,7 @@
 use std::borrow::Cow;
 
 use crate::{LookupError, Table};
+use oblique_table::format::{EXTRA_AXES, E_N};
 use oblique_table::surface::OutOfDomain;
 use thiserror::Error;
 
@@ -46,6 +47,17 @@ pub enum ColumnError {
         len: usize,
         /// Values per row.
         width: usize,
+    },
+    /// A column of a point names no extra axis ([`oblique_table::format::EXTRA_AXES`]), or
+    /// the same axis as another column.
+    #[error(
+        "column '{name}' is not an axis of a point, or repeats one: the extra axes are {allowed}"
+    )]
+    Axis {
+        /// The column's name.
+        name: &'static str,
+        /// The names of the extra axes, separated by commas.
+        allowed: String,
     },
     /// Two columns of more than one row differ in their number of rows.
     #[error(
@@ -220,6 +232,34 @@ impl<'a> PointColumns<'a> {
             e_n,
             rows,
         })
+    }
+
+    /// The points of `gamma`, `alpha` and the columns `extra`, each named by its axis
+    /// ([`oblique_table::format::EXTRA_AXES`]: `e_n`); an axis without a column is at its
+    /// fixed value (`e_n = 1`). A column of another name, or two of one name, is
+    /// [`ColumnError::Axis`].
+    pub fn with_axes(
+        gamma: Column<'a>,
+        alpha: Column<'a>,
+        extra: &[Column<'a>],
+    ) -> Result<PointColumns<'a>, ColumnError> {
+        let mut e_n = None;
+        for c in extra {
+            match c.name {
+                n if n == E_N.name && e_n.is_none() => e_n = Some(*c),
+                n => {
+                    return Err(ColumnError::Axis {
+                        name: n,
+                        allowed: EXTRA_AXES
+                            .iter()
+                            .map(|a| a.name)
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                    })
+                }
+            }
+        }
+        PointColumns::new(gamma, alpha, e_n)
     }
 
     /// The number of points.

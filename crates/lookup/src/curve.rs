@@ -365,6 +365,31 @@ impl Table {
     ) -> Result<Curve, LookupError> {
         Curve::new(self.surface(), gamma, e_n, outside)
     }
+
+    /// `P(α)` at one fixed `γ` and fixed values `extra` of the table's extra axes
+    /// ([`Table::extra_axes`], in that order: empty for an elastic table, `[e_n]` for a table
+    /// with an `e_n` axis): [`Table::curve`] / [`Table::curve_e`] with the same bits. Another
+    /// number of values is [`LookupError::Point`] (naming `gamma` and the extra axes).
+    pub fn curve_at(
+        &self,
+        gamma: f64,
+        extra: &[f64],
+        outside: OutOfDomain,
+    ) -> Result<Curve, LookupError> {
+        let axes = self.extra_axes();
+        if extra.len() != axes.len() {
+            return Err(LookupError::Point {
+                len: 1 + extra.len(),
+                expected: 1 + axes.len(),
+                axes: std::iter::once("gamma")
+                    .chain(axes.iter().map(|a| a.name))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        }
+        let e_n = extra.first().copied().unwrap_or(1.0);
+        Curve::new(self.surface(), gamma, e_n, outside)
+    }
 }
 
 #[cfg(test)]

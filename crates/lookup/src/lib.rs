@@ -44,9 +44,10 @@ pub mod testing;
 pub use curve::Curve;
 pub use embedded::{embedded_name, EMBEDDED_TABLE};
 pub use impact::{Answer, Contact, Stiffness};
+pub use oblique_table::format::{ExtraAxis, EXTRA_AXES, E_N};
 pub use oblique_table::{Check, OutOfDomain, Provenance};
 pub use prepared::Prepared;
-pub use table::Table;
+pub use table::{axis_error, Table};
 
 /// The rebound algebra and the bodies, from `oblique-physics` (one vocabulary with the
 /// simulator).

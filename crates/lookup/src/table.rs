@@ -4,6 +4,7 @@
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use oblique_table::format::{ExtraAxis, EXTRA_AXES, E_N as E_N_AXIS};
 use oblique_table::read::Contents;
 use oblique_table::surface::{OutOfDomain, Surface};
 use oblique_table::{Check, Provenance};
@@ -164,6 +165,87 @@ impl Table {
         }
     }
 
+    /// The names of the axes of a query's point, in order: `gamma`, `alpha`, then the table's
+    /// extra axes ([`oblique_table::format::EXTRA_AXES`] order; `e_n` for a table with a
+    /// normal-restitution axis). The table of one pair takes a `γ` too (its own).
+    pub fn axes(&self) -> Vec<&'static str> {
+        ["gamma", "alpha"]
+            .into_iter()
+            .chain(self.extra_axes().into_iter().map(|a| a.name))
+            .collect()
+    }
+
+    /// The table's axes beyond `γ` and `α`, in [`oblique_table::format::EXTRA_AXES`] order
+    /// (empty for an elastic table); their ranges are [`Table::axis_range`].
+    pub fn extra_axes(&self) -> Vec<&'static ExtraAxis> {
+        EXTRA_AXES
+            .iter()
+            .filter(|a| self.axis_range(a.name).is_some())
+            .collect()
+    }
+
+    /// The range `[lo, hi]` of the table's extra axis `name` (`None`: the table has no such
+    /// axis).
+    pub fn axis_range(&self, name: &str) -> Option<(f64, f64)> {
+        match name {
+            n if n == E_N_AXIS.name => self.surface.restitution(),
+            _ => None,
+        }
+    }
+
+    /// `P` (dimensionless) at `point`, one value per axis of [`Table::axes`] in that order
+    /// (`[γ, α]`, or `[γ, α, e_n]` for a table with an `e_n` axis), refusing points outside the
+    /// table's domain. The same bits as [`Table::p`] and [`Table::p_e`] at the same point.
+    #[inline]
+    pub fn p_at(&self, point: &[f64]) -> Result<f64, LookupError> {
+        self.p_at_with(point, OutOfDomain::Error)
+    }
+
+    /// [`Table::p_at`] with the caller's choice for `γ` and `α` outside the domain
+    /// ([`OutOfDomain::Clamp`]; an extra axis is never clamped). A point of another length
+    /// than [`Table::axes`] is [`LookupError::Point`].
+    #[inline]
+    pub fn p_at_with(&self, point: &[f64], outside: OutOfDomain) -> Result<f64, LookupError> {
+        match (point, self.surface.restitution()) {
+            (&[g, a], None) => self.p_with(g, a, outside),
+            (&[g, a, e], Some(_)) => self.p_e_with(g, a, e, outside),
+            _ => Err(self.point_error(point.len())),
+        }
+    }
+
+    /// `P` (dimensionless) at `γ`, `α` and the values `extra` of extra axes, each named by its
+    /// axis ([`oblique_table::format::EXTRA_AXES`]: `("e_n", 0.8)`), as the bindings' keyword
+    /// arguments take them: an axis not named is at its fixed value (`e_n = 1`), and a table
+    /// without the axis answers that value only ([`Table::p_e_with`] with the same bits). A
+    /// name of no extra axis, or one named twice, is [`LookupError::Axis`].
+    pub fn p_axes_with(
+        &self,
+        gamma: f64,
+        alpha: f64,
+        extra: &[(&str, f64)],
+        outside: OutOfDomain,
+    ) -> Result<f64, LookupError> {
+        let mut e_n = None;
+        for &(name, value) in extra {
+            match name {
+                n if n == E_N_AXIS.name && e_n.is_none() => e_n = Some(value),
+                _ => return Err(axis_error(name)),
+            }
+        }
+        self.p_e_with(gamma, alpha, e_n.unwrap_or(E_N_AXIS.fixed), outside)
+    }
+
+    /// [`LookupError::Point`] for a point of `len` values.
+    #[cold]
+    pub fn point_error(&self, len: usize) -> LookupError {
+        let axes = self.axes();
+        LookupError::Point {
+            len,
+            expected: axes.len(),
+            axes: axes.join(", "),
+        }
+    }
+
     /// `Ok` for a normal restitution `e_n` this table answers: in its `e_n` range, or `1`
     /// for an elastic table; otherwise the error every query with that `e_n` returns (the
     /// field `e_n` and the range). Rebounds check it even where `P` is not needed (`u0 = 0`).
@@ -203,5 +285,18 @@ impl Table {
     /// table whose own checks contradict its bound; `sweep run` refuses to write one).
     pub fn contradicting_check(&self) -> Option<&Check> {
         oblique_table::bound::contradicting_check(&self.checks, self.error_bound)
+    }
+}
+
+/// [`LookupError::Axis`] for `name`, not an extra axis (or named twice).
+#[cold]
+pub fn axis_error(name: &str) -> LookupError {
+    LookupError::Axis {
+        name: name.to_string(),
+        allowed: EXTRA_AXES
+            .iter()
+            .map(|a| a.name)
+            .collect::<Vec<_>>()
+            .join(", "),
     }
 }

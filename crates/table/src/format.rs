@@ -29,9 +29,9 @@ pub const ATTR_AXES: &str = "axes";
 /// `gamma_min = gamma_max`; its patches' trees are over `(c, e_n)`.
 pub const AXES_PAIR: &str = "alpha,e_n";
 /// Root attribute (schema 4, with an `e_n` axis): lowest normal restitution `e_n`.
-pub const ATTR_E_N_MIN: &str = "e_n_min";
+pub const ATTR_E_N_MIN: &str = E_N.attr_min;
 /// Root attribute (schema 4, with an `e_n` axis): highest normal restitution `e_n`.
-pub const ATTR_E_N_MAX: &str = "e_n_max";
+pub const ATTR_E_N_MAX: &str = E_N.attr_max;
 /// Root attribute (schema 4, with an `e_n` axis): the contact law of the node values
 /// (`kelvin-voigt`).
 pub const ATTR_LAW: &str = "law";
@@ -45,10 +45,87 @@ pub const ATTR_COORDINATE: &str = "coordinate";
 /// Value of [`ATTR_COORDINATE`]: `c = 1 − √(1 − √ℓ)` ([`crate::surface::PartialMap::SqrtBoth`]).
 pub const PARTIAL_MAP_SQRT_BOTH: &str = "1-sqrt(1-sqrt(l))";
 /// Patch attribute (schema 4, with an `e_n` axis): number of root cells along `e_n`.
-pub const ATTR_BLOCKS_E_N: &str = "blocks_e_n";
+pub const ATTR_BLOCKS_E_N: &str = E_N.attr_blocks;
 /// Node dataset (schema 4, with an `e_n` axis; `[leaves, m+1, m+1, m+1]`): `e_n` of every
 /// node; also the check dataset of the held-out points' `e_n`, and a no-slip dataset.
-pub const DS_E_N: &str = "e_n";
+pub const DS_E_N: &str = E_N.name;
+
+/// An axis a table may have beyond `γ` and `α` (schema 4): its name, how the file stores its
+/// range and layout, and the values it takes. [`EXTRA_AXES`] lists every such axis; the reader,
+/// the writer, the node check, the exporter and the bindings take the names from there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExtraAxis {
+    /// Name in the `axes` attribute, in queries and messages; also the name of the node
+    /// dataset of a patch (`[leaves, m+1, m+1, m+1]`), of the checks' and of a no-slip
+    /// dataset.
+    pub name: &'static str,
+    /// What the axis is, for messages and help (`normal restitution`).
+    pub quantity: &'static str,
+    /// Root attribute: lowest value of the table's range.
+    pub attr_min: &'static str,
+    /// Root attribute: highest value of the table's range.
+    pub attr_max: &'static str,
+    /// Patch attribute: number of root cells along the axis.
+    pub attr_blocks: &'static str,
+    /// Every range `[lo, hi]` satisfies `bound_lo < lo < hi ≤ bound_hi` (the axis's units).
+    pub bound_lo: f64,
+    /// See [`ExtraAxis::bound_lo`].
+    pub bound_hi: f64,
+    /// The value a table without this axis answers (and the only one): `e_n = 1`, elastic.
+    pub fixed: f64,
+}
+
+impl ExtraAxis {
+    /// `Ok` for a range `[lo, hi]` this axis allows; `Err` names the axis and the rule.
+    pub fn check_range(&self, lo: f64, hi: f64) -> Result<(), String> {
+        if !(lo > self.bound_lo && hi > lo && hi <= self.bound_hi) {
+            let n = self.name;
+            return Err(format!(
+                "{n} range [{lo}, {hi}]: must satisfy {} < {n}_lo < {n}_hi <= {}",
+                self.bound_lo, self.bound_hi
+            ));
+        }
+        Ok(())
+    }
+
+    /// The axis named `name` in [`EXTRA_AXES`].
+    pub fn named(name: &str) -> Option<&'static ExtraAxis> {
+        EXTRA_AXES.iter().find(|a| a.name == name)
+    }
+}
+
+/// The normal-restitution axis `e_n` (dimensionless, `0 < e_n ≤ 1`; `physics.md`, "Dissipative
+/// impacts").
+pub const E_N: ExtraAxis = ExtraAxis {
+    name: "e_n",
+    quantity: "normal restitution",
+    attr_min: "e_n_min",
+    attr_max: "e_n_max",
+    attr_blocks: "blocks_e_n",
+    bound_lo: 0.0,
+    bound_hi: 1.0,
+    fixed: 1.0,
+};
+
+/// Every axis a table may have beyond `γ` and `α`, in the order of the `axes` attribute and of
+/// a query's point: one line per axis.
+pub const EXTRA_AXES: &[ExtraAxis] = &[E_N];
+
+/// The value of [`ATTR_AXES`] for a table with the extra axes `extra` (in [`EXTRA_AXES`]
+/// order): `gamma,alpha` then their names, or without `gamma` for the table of one pair.
+pub fn axes_attr<'a>(extra: impl IntoIterator<Item = &'a ExtraAxis>, pair: bool) -> String {
+    let head: &[&str] = if pair {
+        &["alpha"]
+    } else {
+        &["gamma", "alpha"]
+    };
+    head.iter()
+        .copied()
+        .chain(extra.into_iter().map(|a| a.name))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
 /// Root attribute: engine version.
 pub const ATTR_ENGINE_VERSION: &str = "engine_version";
 /// Root attribute: git commit of the engine (or "unknown").

@@ -74,6 +74,24 @@ pub enum TableError {
         /// The length of the first input slice (`gamma`, or `incidents`).
         expected: usize,
     },
+    /// A value named by an axis that is no extra axis of a table, or named twice.
+    #[error("unknown or repeated axis '{name}': the axes beyond gamma and alpha are {allowed}")]
+    Axis {
+        /// The name given.
+        name: String,
+        /// The names of the extra axes, separated by commas.
+        allowed: String,
+    },
+    /// A point whose number of values is not the number of the table's axes.
+    #[error("a point of this table has {expected} values ({axes}), not {len}")]
+    Point {
+        /// The number of values given.
+        len: usize,
+        /// The number of the table's axes.
+        expected: usize,
+        /// The table's axes in query order, separated by commas (`gamma, alpha, e_n`).
+        axes: String,
+    },
 }
 
 impl TableError {

@@ -6,6 +6,7 @@
 //! value. A file whose attributes were edited after the build (an `e_n` range moved, a γ edge
 //! shifted) would answer every query with values from other places: the check refuses it.
 
+use crate::format::E_N;
 use crate::surface::Patch;
 
 /// Relative tolerance of a stored coordinate, as a share of its axis's span: far above the
@@ -79,7 +80,7 @@ pub fn check_positions(name: &str, patch: &Patch, stored: StoredNodes<'_>) -> Re
         ("gamma", Some(stored.gamma.len())),
         ("coord", Some(stored.coord.len())),
         ("alpha", Some(stored.alpha.len())),
-        ("e_n", stored.e_n.map(<[f64]>::len)),
+        (E_N.name, stored.e_n.map(<[f64]>::len)),
     ];
     for (ds, len) in lens {
         if let Some(len) = len {
@@ -91,12 +92,13 @@ pub fn check_positions(name: &str, patch: &Patch, stored: StoredNodes<'_>) -> Re
         }
     }
     if patch.restitution().is_some() != stored.e_n.is_some() {
+        let e = E_N.name;
         return Err(format!(
-            "patch '{name}': dataset 'e_n' {}",
+            "patch '{name}': dataset '{e}' {}",
             if stored.e_n.is_some() {
-                "present in a patch without an e_n axis"
+                format!("present in a patch without an {e} axis")
             } else {
-                "missing (the patch has an e_n axis)"
+                format!("missing (the patch has an {e} axis)")
             }
         ));
     }
@@ -117,7 +119,7 @@ pub fn check_positions(name: &str, patch: &Patch, stored: StoredNodes<'_>) -> Re
             let ds = match (patch.is_pair(), k) {
                 (false, 0) => ("gamma", stored.gamma),
                 (false, 1) | (true, 0) => ("coord", stored.coord),
-                _ => ("e_n", stored.e_n.unwrap_or(&[])),
+                _ => (E_N.name, stored.e_n.unwrap_or(&[])),
             };
             (ds.0, ds.1, lo, width, blocks as f64)
         })

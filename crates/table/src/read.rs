@@ -251,9 +251,9 @@ impl Reader<'_> {
                         )));
                     }
                 }
-                let be = self.count_attr(&g, ATTR_BLOCKS_E_N, 1 << 16)?;
+                let be = self.count_attr(&g, E_N.attr_blocks, 1 << 16)?;
                 Some(
-                    Axis::restitution(lo, hi, be)
+                    Axis::extra(&E_N, lo, hi, be)
                         .map_err(|m| self.invalid(format!("patch '{name}': {m}")))?,
                 )
             }
@@ -314,7 +314,7 @@ impl Reader<'_> {
         let coord = self.dataset(&g, DS_COORD, &shape)?;
         let alpha = self.dataset(&g, DS_ALPHA, &shape)?;
         let e_n = match restitution {
-            Some(_) => Some(self.dataset(&g, DS_E_N, &shape)?),
+            Some(_) => Some(self.dataset(&g, E_N.name, &shape)?),
             None => None,
         };
         let stored = crate::nodes::StoredNodes {
@@ -460,19 +460,44 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
     if alpha_max.is_nan() || alpha_max <= 0.0 {
         return Err(r.invalid(format!("alpha_max = {alpha_max} must be > 0 or inf")));
     }
-    // Schema 4 names its axes; an `e_n` axis brings its range.
+    // Schema 4 names its axes; each extra axis brings its range.
     let mut pair = false;
     let e_range = if version >= 4 {
         let axes = r.attr_str(&file, ATTR_AXES)?;
-        pair = axes == AXES_PAIR;
-        match axes.as_str() {
-            "gamma,alpha" => None,
-            "gamma,alpha,e_n" | AXES_PAIR => {
+        let names: Vec<&str> = axes.split(',').collect();
+        let (head, extra) = match names.as_slice() {
+            ["gamma", "alpha", rest @ ..] => (false, Some(rest)),
+            ["alpha", rest @ ..] if !rest.is_empty() => (true, Some(rest)),
+            _ => (false, None),
+        };
+        pair = head;
+        let extra: Option<Vec<&ExtraAxis>> =
+            extra.and_then(|e| e.iter().map(|n| ExtraAxis::named(n)).collect());
+        // The rule answers at most one extra axis (the tree of a patch has at most 3 axes).
+        let extra = match extra {
+            Some(e) if e.len() <= 1 => e,
+            _ => {
+                let known: Vec<String> = std::iter::once(axes_attr([], false))
+                    .chain(EXTRA_AXES.iter().map(|a| axes_attr([a], false)))
+                    .chain(EXTRA_AXES.iter().map(|a| axes_attr([a], true)))
+                    .map(|a| format!("'{a}'"))
+                    .collect();
+                let (last, rest) = known.split_last().expect("at least one");
+                return Err(r.invalid(format!(
+                    "root attribute '{ATTR_AXES}' = '{axes}': this reader understands {} and \
+                     {last}",
+                    rest.join(", ")
+                )));
+            }
+        };
+        match extra.first() {
+            None => None,
+            Some(spec) => {
                 let (lo, hi) = (
-                    r.attr_f64(&file, ATTR_E_N_MIN)?,
-                    r.attr_f64(&file, ATTR_E_N_MAX)?,
+                    r.attr_f64(&file, spec.attr_min)?,
+                    r.attr_f64(&file, spec.attr_max)?,
                 );
-                Axis::restitution(lo, hi, 1).map_err(|m| r.invalid(m))?;
+                spec.check_range(lo, hi).map_err(|m| r.invalid(m))?;
                 let law = r.attr_str(&file, ATTR_LAW)?;
                 if !LAWS_E_N.contains(&law.as_str()) {
                     return Err(r.invalid(format!(
@@ -487,12 +512,6 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
                     )));
                 }
                 Some((lo, hi))
-            }
-            other => {
-                return Err(r.invalid(format!(
-                    "root attribute '{ATTR_AXES}' = '{other}': this reader understands \
-                     'gamma,alpha', 'gamma,alpha,e_n' and '{AXES_PAIR}'"
-                )))
             }
         }
     } else {
@@ -573,7 +592,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
             let col = |name: &str| r.dataset(&g, name, &[n]);
             let (gm, al) = (col(DS_GAMMA)?, col(DS_ALPHA)?);
             let en = if e_range.is_some() {
-                col(DS_E_N)?
+                col(E_N.name)?
             } else {
                 vec![1.0; n]
             };

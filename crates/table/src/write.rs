@@ -263,14 +263,10 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     };
     w.attr_f64(&file, ATTR_SCHEMA, version as f64)?;
     if let Some((lo, hi)) = e_range {
-        let axes = if s.pair_gamma().is_some() {
-            AXES_PAIR
-        } else {
-            "gamma,alpha,e_n"
-        };
-        w.attr_str(&file, ATTR_AXES, axes)?;
-        w.attr_f64(&file, ATTR_E_N_MIN, lo)?;
-        w.attr_f64(&file, ATTR_E_N_MAX, hi)?;
+        let axes = axes_attr([&E_N], s.pair_gamma().is_some());
+        w.attr_str(&file, ATTR_AXES, &axes)?;
+        w.attr_f64(&file, E_N.attr_min, lo)?;
+        w.attr_f64(&file, E_N.attr_max, hi)?;
         w.attr_str(&file, ATTR_LAW, &prov.law)?;
     }
     w.attr_f64(&file, ATTR_STENCIL, s.stencil() as f64)?;
@@ -298,7 +294,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.attr_f64(&g, ATTR_BLOCKS_COORD, p.blocks_coord() as f64)?;
         w.attr_f64(&g, ATTR_LEAF_INTERVALS, p.leaf_intervals() as f64)?;
         if let Some(r) = p.restitution() {
-            w.attr_f64(&g, ATTR_BLOCKS_E_N, r.blocks() as f64)?;
+            w.attr_f64(&g, E_N.attr_blocks, r.blocks() as f64)?;
             if p.kind() == PatchKind::PartialSlip {
                 w.attr_str(&g, ATTR_COORDINATE, PARTIAL_MAP_SQRT_BOTH)?;
             }
@@ -319,7 +315,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.ds(&g, DS_COORD, &bp.coord, &n)?;
         w.ds(&g, DS_ALPHA, &bp.alpha, &n)?;
         if p.restitution().is_some() {
-            w.ds(&g, DS_E_N, &bp.e_n, &n)?;
+            w.ds(&g, E_N.name, &bp.e_n, &n)?;
         }
         w.ds(&g, DS_P, p.p(), &n)?;
         w.ds(&g, DS_ERROR, p.error_estimate(), &n)?;
@@ -372,7 +368,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         let col = |f: fn(&(f64, f64, f64, f64)) -> f64| rows.iter().map(f).collect::<Vec<f64>>();
         w.ds(&g, DS_GAMMA, &col(|r| r.0), &[rows.len()])?;
         if e_range.is_some() {
-            w.ds(&g, DS_E_N, &col(|r| r.1), &[rows.len()])?;
+            w.ds(&g, E_N.name, &col(|r| r.1), &[rows.len()])?;
         }
         w.ds(&g, DS_P, &col(|r| r.2), &[rows.len()])?;
         w.ds(&g, DS_ERROR, &col(|r| r.3), &[rows.len()])?;
@@ -407,7 +403,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
                 .map(|i| lo + (hi - lo) * i as f64 / (rows - 1) as f64)
                 .collect();
             let c1: Vec<f64> = e.iter().flat_map(|&e| c1_at(e)).collect();
-            w.ds(&g, DS_E_N, &e, &[rows])?;
+            w.ds(&g, E_N.name, &e, &[rows])?;
             w.ds(&g, DS_ALPHA_C1, &c1, &[rows, n])?;
         }
     }
@@ -419,7 +415,7 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     w.ds(&g, DS_GAMMA, &col(|c| c.gamma), &[ch.len()])?;
     w.ds(&g, DS_ALPHA, &col(|c| c.alpha), &[ch.len()])?;
     if e_range.is_some() {
-        w.ds(&g, DS_E_N, &col(|c| c.e_n), &[ch.len()])?;
+        w.ds(&g, E_N.name, &col(|c| c.e_n), &[ch.len()])?;
     }
     w.ds(&g, DS_P_SIMULATED, &col(|c| c.p_simulated), &[ch.len()])?;
     w.ds(

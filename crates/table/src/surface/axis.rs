@@ -1,6 +1,8 @@
 //! The axes of a table and of its patches ([`AxisName`], [`Axis`]) and a point of the domain
 //! ([`Point`]).
 
+use crate::format::{ExtraAxis, E_N};
+
 /// A point of a table's domain: `(γ, α, e_n)`, dimensionless (`physics.md`); `e_n = 1` is
 /// an elastic impact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,17 +34,28 @@ pub enum AxisName {
     Gamma,
     /// `α = μ v_z0/|u0|`.
     Alpha,
-    /// Normal restitution `e_n`.
-    RestitutionN,
+    /// An axis of [`crate::format::EXTRA_AXES`], by its name (`e_n`: [`AxisName::RESTITUTION_N`]).
+    Extra(&'static str),
 }
 
 impl AxisName {
+    /// Normal restitution `e_n`.
+    pub const RESTITUTION_N: AxisName = AxisName::Extra(E_N.name);
+
     /// The name stored in the file and used in messages.
     pub fn name(self) -> &'static str {
         match self {
             AxisName::Gamma => "gamma",
             AxisName::Alpha => "alpha",
-            AxisName::RestitutionN => "e_n",
+            AxisName::Extra(name) => name,
+        }
+    }
+
+    /// The entry of [`crate::format::EXTRA_AXES`] of an extra axis (`None` for `γ` and `α`).
+    pub fn extra(self) -> Option<&'static ExtraAxis> {
+        match self {
+            AxisName::Extra(name) => ExtraAxis::named(name),
+            _ => None,
         }
     }
 }
@@ -95,21 +108,24 @@ impl Axis {
         }
     }
 
-    /// The normal-restitution axis from its stored values: `0 < lo < hi ≤ 1` and
-    /// `1 ≤ blocks ≤ 2¹⁶`. `Err` names the attribute and the allowed range.
+    /// The normal-restitution axis from its stored values ([`Axis::extra`] of [`E_N`]):
+    /// `0 < lo < hi ≤ 1` and `1 ≤ blocks ≤ 2¹⁶`.
     pub fn restitution(lo: f64, hi: f64, blocks: usize) -> Result<Axis, String> {
-        if !(lo > 0.0 && hi > lo && hi <= 1.0) {
-            return Err(format!(
-                "e_n range [{lo}, {hi}]: must satisfy 0 < e_n_lo < e_n_hi <= 1"
-            ));
-        }
+        Axis::extra(&E_N, lo, hi, blocks)
+    }
+
+    /// The extra axis `spec` from its stored values: a range [`ExtraAxis::check_range`]
+    /// allows and `1 ≤ blocks ≤ 2¹⁶`. `Err` names the attribute and the allowed range.
+    pub fn extra(spec: &ExtraAxis, lo: f64, hi: f64, blocks: usize) -> Result<Axis, String> {
+        spec.check_range(lo, hi)?;
         if !(1..=1 << 16).contains(&blocks) {
             return Err(format!(
-                "blocks_e_n = {blocks}: must be an integer in [1, 65536]"
+                "{} = {blocks}: must be an integer in [1, 65536]",
+                spec.attr_blocks
             ));
         }
         Ok(Axis {
-            name: AxisName::RestitutionN,
+            name: AxisName::Extra(spec.name),
             lo,
             hi,
             blocks,

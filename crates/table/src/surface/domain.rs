@@ -295,7 +295,7 @@ impl Surface {
         }]);
         if let Some((lo, hi)) = self.restitution {
             axes.push(Axis {
-                name: AxisName::RestitutionN,
+                name: AxisName::RESTITUTION_N,
                 lo,
                 hi,
                 blocks: 1,

@@ -123,9 +123,11 @@ impl Patch {
                     .into())
             }
             [_, _] => None,
-            [_, _, e] if e.name == AxisName::RestitutionN => {
-                Some(Axis::restitution(e.lo, e.hi, e.blocks)?)
-            }
+            [_, _, e] if e.name.extra().is_some() => e
+                .name
+                .extra()
+                .map(|spec| Axis::extra(spec, e.lo, e.hi, e.blocks))
+                .transpose()?,
             _ => {
                 return Err(format!(
                     "{} axes: a patch has gamma, the patch coordinate of alpha and \
