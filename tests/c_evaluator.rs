@@ -1,5 +1,5 @@
 //! The dependency-free evaluator `include/oblique_eval.h` against the Rust library: the same P
-//! on a million points, the same curves and rebounds, the conservation laws, every refusal, and
+//! on random points (10⁶ in the release check, `common::size`), the same curves and rebounds, the conservation laws, every refusal, and
 //! mutated exports under AddressSanitizer and UndefinedBehaviorSanitizer. The C side is
 //! `examples/c/query.c` and the driver `tests/c/eval_check.c`, compiled here with gcc, g++ and
 //! clang (scripts/setup.sh installs clang; a missing compiler fails the test).
@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
+use common::size::sized;
 use evaluator::{points_e, random_body, random_impact, rebound_fields, run_ok, status_of};
 use oblique_lookup::rebound::{Body, Incident, Incident3, Motion3, Pair, State};
 use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
@@ -61,6 +62,17 @@ fn gcc_driver() -> &'static Path {
         let mut f = vec!["-std=c99"];
         f.extend(WARNINGS);
         compile("gcc", &f, "tests/c/eval_check.c", "eval_check")
+    })
+}
+
+/// `examples/c/query.c` compiled once with gcc (C99, the warnings as errors), shared by the
+/// comparisons on random points.
+fn query_program() -> &'static Path {
+    static EXE: OnceLock<PathBuf> = OnceLock::new();
+    EXE.get_or_init(|| {
+        let mut f = vec!["-std=c99"];
+        f.extend(WARNINGS);
+        compile("gcc", &f, "examples/c/query.c", "query")
     })
 }
 
@@ -149,13 +161,14 @@ fn header_compiles_without_warnings_as_c99_cxx11_and_with_clang() {
     }
 }
 
+/// `examples/c/query.c` links libm and libc only and gives the bits of `Table::p` on random
+/// points: 10⁶ of the shipped table and 10⁵ of the quick one in the release check, 10⁵ and
+/// 2·10⁴ otherwise.
 #[test]
-fn query_example_gives_the_bits_of_the_rust_rule_on_a_million_points() {
-    let mut f = vec!["-std=c99"];
-    f.extend(WARNINGS);
-    let query = compile("gcc", &f, "examples/c/query.c", "query");
+fn query_example_gives_the_bits_of_the_rust_rule_on_random_points() {
+    let query = query_program();
     // ldd: libm and libc only (and the loader).
-    let ldd = Command::new("ldd").arg(&query).output().expect("ldd");
+    let ldd = Command::new("ldd").arg(query).output().expect("ldd");
     let libs = String::from_utf8_lossy(&ldd.stdout).to_string();
     for line in libs.lines() {
         let lib = line.trim();
@@ -166,13 +179,16 @@ fn query_example_gives_the_bits_of_the_rust_rule_on_a_million_points() {
             "query links {lib}:\n{libs}"
         );
     }
-    for (name, n) in [("full", 1_000_000), ("quick", 100_000)] {
+    for (name, n) in [
+        ("full", sized(100_000, 1_000_000)),
+        ("quick", sized(20_000, 100_000)),
+    ] {
         let t = table(name);
         let s = t.surface();
         let pts = points(n, 7, s.gamma_min(), s.gamma_max());
         let input: String = pts.iter().map(|(g, a)| format!("{g:?},{a:?}\n")).collect();
         let path = export_file(name, false);
-        let out = run_ok(&query, &[path.to_str().expect("path")], &input);
+        let out = run_ok(query, &[path.to_str().expect("path")], &input);
         let mut differ = 0;
         let mut lines = 0;
         for ((g, a), line) in pts.iter().zip(out.lines()) {
@@ -649,6 +665,9 @@ fn the_line_at_overflowing_gamma_as_in_rust() {
     }
 }
 
+/// Mutated exports (2000 to 3000 per file in the release check, a quarter otherwise) and
+/// 2·10⁴ points (5·10³ otherwise) through the driver compiled with AddressSanitizer and
+/// UndefinedBehaviorSanitizer.
 #[test]
 fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
     let mut f = vec![
@@ -660,13 +679,13 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
     f.extend(WARNINGS);
     let exe = compile("gcc", &f, "tests/c/eval_check.c", "eval_check_asan");
     for (path, n) in [
-        (export_file("quick", false), "2000"),
-        (export_file("full", true), "3000"),
-        (dissipative().1.clone(), "2000"),
-        (pair_table().1.clone(), "2000"),
+        (export_file("quick", false), sized(500, 2000)),
+        (export_file("full", true), sized(750, 3000)),
+        (dissipative().1.clone(), sized(500, 2000)),
+        (pair_table().1.clone(), sized(500, 2000)),
     ] {
         let out = Command::new(&exe)
-            .args(["fuzz", path.to_str().expect("path"), n, "17"])
+            .args(["fuzz", path.to_str().expect("path"), &n.to_string(), "17"])
             .output()
             .expect("run");
         assert!(
@@ -696,14 +715,14 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
         let said = run_ok(gcc_driver(), &["headers", path.to_str().expect("path")], "");
         assert!(said.contains("refused"), "{said}");
     }
-    // The million-point comparison once more, under the sanitizers, on a sample.
+    // The comparison on random points once more, under the sanitizers, on a sample.
     let path = export_file("full", false);
-    let pts = points(20_000, 4, 0.1, 3.5);
+    let pts = points(sized(5_000, 20_000), 4, 0.1, 3.5);
     let input: String = pts.iter().map(|(g, a)| format!("{g:?} {a:?}\n")).collect();
     let out = run_ok(&exe, &["p", path.to_str().expect("path"), "0"], &input);
     assert_eq!(out.lines().count(), pts.len());
     // And P(γ, α, e_n) of the table with an e_n axis, inside and outside its domain.
-    let pts = points_e(20_000, 5, (0.1, 3.5), (0.6, 1.05));
+    let pts = points_e(sized(5_000, 20_000), 5, (0.1, 3.5), (0.6, 1.05));
     let input: String = pts
         .iter()
         .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
@@ -905,19 +924,18 @@ fn python_p_e(table: &Path, pts: &[(f64, f64, f64)]) -> Vec<f64> {
 
 /// `P(γ, α, e_n)` with the same bits from every path: `Table::p_e`, the batches
 /// `p_e_batch` and `p_e_batch_par`, `oblq_p_e` of the C header on the export, and on every
-/// 40th point the reference reader `scripts/read_table.py`. 10⁶ random points over the
-/// domain of the shipped `tables/dissipative-demo.h5` (α = 0, ∞, α_c2, α_c1(γ, e_n) and
-/// just above it in the mix, the ends of the e_n range), 10⁵ on the small table built here.
+/// 40th point the reference reader `scripts/read_table.py`. Random points over the domain of
+/// the shipped `tables/dissipative-demo.h5` (α = 0, ∞, α_c2, α_c1(γ, e_n) and just above it in
+/// the mix, the ends of the e_n range) and of the small table built here: 10⁶ and 10⁵ in the
+/// release check, 10⁵ and 2·10⁴ otherwise.
 #[test]
-fn e_n_tables_give_the_same_bits_in_rust_batches_c_and_python_on_a_million_points() {
+fn e_n_tables_give_the_same_bits_in_rust_batches_c_and_python_on_random_points() {
     let start = std::time::Instant::now();
-    let mut f = vec!["-std=c99"];
-    f.extend(WARNINGS);
-    let query = compile("gcc", &f, "examples/c/query.c", "query_e");
+    let query = query_program();
     let shipped = dissipative_demo();
     let tables = [
-        ("dissipative-demo", shipped, 1_000_000, true),
-        ("built here", dissipative(), 100_000, false),
+        ("dissipative-demo", shipped, sized(100_000, 1_000_000), true),
+        ("built here", dissipative(), sized(20_000, 100_000), false),
     ];
     for (name, (t, export), n, python) in tables {
         let s = t.surface();
@@ -943,7 +961,7 @@ fn e_n_tables_give_the_same_bits_in_rust_batches_c_and_python_on_a_million_point
             .iter()
             .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
             .collect();
-        let out = run_ok(&query, &[export.to_str().expect("path")], &input);
+        let out = run_ok(query, &[export.to_str().expect("path")], &input);
         let c: Vec<f64> = out
             .lines()
             .map(|l| l.rsplit(',').next().expect("P").parse().expect("P"))
@@ -1895,11 +1913,12 @@ fn pair_points(n: usize, seed: u64, e: (f64, f64)) -> Vec<(f64, f64, f64)> {
 }
 
 /// `P(γ, α, e_n)` of the table of one pair with the same bits in Rust (`Table::p_e`) and in C
-/// (`oblq_p_e` of `examples/c/query.c` on the export of `sweep export`): 10⁶ random points
-/// `(α, e_n)` at the pair's γ, and at γ within 5e-10 (relative) of it, which both take as the
-/// pair's. The export is layout version 3, the format crate's bytes.
+/// (`oblq_p_e` of `examples/c/query.c` on the export of `sweep export`): random points `(α,
+/// e_n)` (10⁶ in the release check, 10⁵ otherwise) at the pair's γ, and at γ within 5e-10
+/// (relative) of it, which both take as the pair's. The export is layout version 3, the format
+/// crate's bytes.
 #[test]
-fn pair_table_gives_the_same_bits_in_rust_and_c_on_a_million_points() {
+fn pair_table_gives_the_same_bits_in_rust_and_c_on_random_points() {
     let start = std::time::Instant::now();
     let (t, path) = pair_table();
     let s = t.surface();
@@ -1912,11 +1931,9 @@ fn pair_table_gives_the_same_bits_in_rust_and_c_on_a_million_points() {
         "version 3, 112-byte header"
     );
     assert_eq!(bytes[32..40], bytes[40..48], "gamma_min == gamma_max");
-    let mut f = vec!["-std=c99"];
-    f.extend(WARNINGS);
-    let query = compile("gcc", &f, "examples/c/query.c", "query_pair");
+    let query = query_program();
     let range = t.restitution().expect("an e_n axis");
-    let n = 1_000_000;
+    let n = sized(100_000, 1_000_000);
     let mut pts = pair_points(n, 53, range);
     // Every 20th point at a γ within 5e-10 (relative) of the pair's: the pair's answer.
     let near = |i: usize| match i % 80 {
@@ -1939,7 +1956,7 @@ fn pair_table_gives_the_same_bits_in_rust_and_c_on_a_million_points() {
         .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
         .collect();
     let c_start = std::time::Instant::now();
-    let out = run_ok(&query, &[path.to_str().expect("path")], &input);
+    let out = run_ok(query, &[path.to_str().expect("path")], &input);
     let c_s = c_start.elapsed().as_secs_f64();
     let c: Vec<f64> = out
         .lines()
@@ -2275,7 +2292,7 @@ fn p_at_gives_the_bits_of_the_rust_point_query() {
         let e = t.restitution().unwrap_or((1.0, 1.0));
         // γ a little beyond the domain at both ends.
         let pts = points_e(
-            100_000,
+            sized(20_000, 100_000),
             52,
             (g0 - 0.05 * (g1 - g0), g1 + 0.05 * (g1 - g0)),
             e,

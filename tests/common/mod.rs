@@ -2,6 +2,8 @@
 //! each test file; each uses a part of it).
 #![allow(dead_code)]
 
+pub mod size;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::OnceLock;
