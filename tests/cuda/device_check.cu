@@ -16,13 +16,17 @@ __global__ void every_function(const unsigned char *data, size_t size, double *o
     oblq_state s1 = {0.1, 1.0, 0.0}, s2 = {0.0, 0.0, 0.0};
     oblq_rebound2 r2;
     double gamma = 0.0, p = 0.0, e_t = 0.0, e_lo = 0.0, e_hi = 0.0;
-    int regime = 0, k = 0;
+    double x[3] = {1.45, 0.3, 0.8};
+    int regime = 0, k = 0, axes = 0;
     rc[k++] = oblq_open(&t, data, size);
     moved = t;
     rc[k++] = oblq_rebase(&moved, data);
     rc[k++] = oblq_p(&t, 1.754, 0.3, 0, &p);
     rc[k++] = oblq_p_e(&t, 1.45, 0.3, 0.8, 1, &p);
     rc[k++] = oblq_e_n_range(&t, &e_lo, &e_hi);
+    rc[k++] = oblq_axis_count(&t, &axes);
+    rc[k++] = oblq_axis_name(&t, axes - 1)[0];
+    rc[k++] = oblq_p_at(&t, x, axes, 1, &p);
     rc[k++] = oblq_curve_get(&t, 0, &c);
     rc[k++] = oblq_curve_find(&t, 1.75, 1e-12, &found);
     rc[k++] = oblq_curve_rebase(&found, &t, &moved);
