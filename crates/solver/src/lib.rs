@@ -20,6 +20,7 @@ pub mod registry;
 pub mod request;
 pub mod resolution;
 pub mod springs;
+pub mod thornton;
 pub mod units;
 
 pub use error::PhysicsError;

@@ -1,0 +1,203 @@
+//! The line density of Thornton's loading pressure in the MDR: what bounds each tangential
+//! spring (`physics.md`, "Elastic–plastic impacts", tangential part).
+//!
+//! The MDR spring at `x` is pressed by `s = d − x²/R*` (its normal displacement). Under a Hertz
+//! pressure the line density of the pressure is `q(x) = E* s`; truncated at the limiting
+//! pressure `p_y` it is `q = E* Q(s)` with, in `d_y` (the yield indentation) alone,
+//!
+//! `Q(s) = s` for `s ≤ d_y`, and `Q(s) = s (1 − 2θ/π) + (2/π) √(d_y (s − d_y))`,
+//! `θ = arctan √((s − d_y)/d_y)`, beyond:
+//!
+//! `physics.md`'s form in `(a, r_y, θ)` written in the spring's own `s` (`a² − x² = R* s`,
+//! `r_y² − x² = R* (s − d_y)`). `Q` is concave, `Q′(s) = 1 − 2θ/π = (2/π) arcsin √(d_y/s)`
+//! (continuous at `d_y`, where `Q″` has a `(s − d_y)^{−1/2}` singularity). In unloading the
+//! density is `E* (reach − y)/ρ` ([`super::normal::Unloading::reach`]), linear in `y = x²/R*`.
+
+use std::f64::consts::FRAC_2_PI;
+
+/// The truncated line density `Q(s)` of one yield indentation `d_y` (m; `∞` for no truncation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Truncated {
+    /// Yield indentation `d_y` (m).
+    pub yield_indentation: f64,
+}
+
+impl Truncated {
+    /// `Q(s)` (m): `s` up to `d_y`, the truncated density beyond; `0` for `s ≤ 0`.
+    pub fn value(&self, s: f64) -> f64 {
+        let dy = self.yield_indentation;
+        if s <= dy {
+            return s.max(0.0);
+        }
+        let excess = s - dy;
+        let theta = (excess / dy).sqrt().atan();
+        s * (1.0 - FRAC_2_PI * theta) + FRAC_2_PI * (dy * excess).sqrt()
+    }
+
+    /// `Q′(s) = 1 − 2θ/π` (1 up to `d_y`; 0 for `s ≤ 0`).
+    pub fn slope(&self, s: f64) -> f64 {
+        let dy = self.yield_indentation;
+        if s <= 0.0 {
+            0.0
+        } else if s <= dy {
+            1.0
+        } else {
+            1.0 - FRAC_2_PI * ((s - dy) / dy).sqrt().atan()
+        }
+    }
+
+    /// `∫₀^X Q(D − x²/R) dx` (m²) for `0 ≤ X ≤ √(R D)` (the springs of a contact of reach `D`
+    /// up to `X`), in closed form: `∫ s dx` less the truncated part
+    /// `E(s) = s − Q(s) = (2/π)[s θ − √(d_y (s − d_y))]` over `x² < R (D − d_y)`, integrated by
+    /// parts (`t = √(ρ² − x²)`, `ρ² = D − d_y`, `β = √d_y`, `M = D`, in `x/√R`):
+    /// `∫₀^X s θ dx = A(X) θ(X) + β [I₂/3 − (2M/3) I₀ + (2M²/3) I_M]`, `A = M x − x³/3`,
+    /// `I₀ = arcsin(X/ρ)`, `I₂ = (ρ² I₀ − X t)/2`, `I_M = arctan(X β/(√M t))/(β √M)`.
+    pub fn integral(&self, reach: f64, x: f64, radius: f64) -> f64 {
+        let sr = radius.sqrt();
+        let big = reach;
+        let xs = (x / sr).clamp(0.0, big.max(0.0).sqrt());
+        let plain = big * xs - xs * xs * xs / 3.0;
+        let dy = self.yield_indentation;
+        if big.is_nan() || big <= dy || !dy.is_finite() {
+            return sr * plain;
+        }
+        let rho2 = big - dy;
+        let rho = rho2.sqrt();
+        let xc = xs.min(rho);
+        // (ρ − x)(ρ + x): exactly 0 at x = ρ (ρ² − x² would leave a rounding there, which the
+        // square root amplifies).
+        let t = ((rho - xc) * (rho + xc)).max(0.0).sqrt();
+        let beta = dy.sqrt();
+        let theta = (t / beta).atan();
+        let i0 = (xc / rho).min(1.0).asin();
+        let i2 = 0.5 * (rho2 * i0 - xc * t);
+        let sm = big.sqrt();
+        let im = (xc * beta).atan2(sm * t) / (beta * sm);
+        let a = big * xc - xc * xc * xc / 3.0;
+        let s_theta =
+            a * theta + beta * (i2 / 3.0 - 2.0 * big / 3.0 * i0 + 2.0 * big * big / 3.0 * im);
+        let root = beta * 0.5 * (xc * t + rho2 * i0);
+        sr * (plain - FRAC_2_PI * (s_theta - root))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// `physics.md`'s form: `q = (a² − x²) − 2[(a² − x²)(θ + sin θ cos θ)/π − p_y √(r_y² − x²)]`,
+    /// `sin²θ = (r_y² − x²)/(a² − x²)`, `R* = E* = 1`, `p_y = (2/π)√d_y`, `r_y² = a² − d_y`.
+    fn physics_md(a2: f64, dy: f64, x: f64) -> f64 {
+        let ry2 = a2 - dy;
+        let base = a2 - x * x;
+        if x * x >= ry2 {
+            return base;
+        }
+        let py = 2.0 / PI * dy.sqrt();
+        let th = ((ry2 - x * x) / base).sqrt().asin();
+        base - 2.0 * (base * (th + th.sin() * th.cos()) / PI - py * (ry2 - x * x).sqrt())
+    }
+
+    /// `q(x) = 2 ∫_x^a r p(r)/√(r² − x²) dr` with `p = min((2/π)√(a² − r²), p_y)`, by the
+    /// substitution `r = √(x² + u²)` (`dr r/√(r² − x²) = du`): `q = 2 ∫₀^{√(a² − x²)} p du`,
+    /// midpoint rule on 2·10⁵ points.
+    fn numeric(a2: f64, dy: f64, x: f64) -> f64 {
+        let py = 2.0 / PI * dy.sqrt();
+        let top = (a2 - x * x).max(0.0).sqrt();
+        let n = 200_000;
+        let h = top / n as f64;
+        2.0 * (0..n)
+            .map(|i| {
+                let u = (i as f64 + 0.5) * h;
+                let r2 = x * x + u * u;
+                (2.0 / PI * (a2 - r2).max(0.0).sqrt()).min(py)
+            })
+            .sum::<f64>()
+            * h
+    }
+
+    #[test]
+    fn the_density_is_physics_md_and_the_pressure_it_integrates() {
+        let q = Truncated {
+            yield_indentation: 0.3,
+        };
+        for d in [0.2f64, 0.31, 0.5, 1.3] {
+            for i in 0..=20 {
+                let x = d.sqrt() * i as f64 / 20.0;
+                let got = q.value(d - x * x);
+                let want = physics_md(d, 0.3, x);
+                assert!((got - want).abs() < 2e-15, "d {d} x {x}: {got} {want}");
+                let direct = numeric(d, 0.3, x);
+                assert!((got - direct).abs() < 2e-8, "d {d} x {x}: {got} {direct}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_slope_is_the_derivative() {
+        let q = Truncated {
+            yield_indentation: 0.3,
+        };
+        for s in [0.1, 0.29, 0.31, 0.5, 2.0, 40.0] {
+            let h = 1e-6;
+            let numeric = (q.value(s + h) - q.value(s - h)) / (2.0 * h);
+            assert!((numeric - q.slope(s)).abs() < 1e-8, "s {s}");
+        }
+        assert_eq!(q.slope(0.3), 1.0);
+        assert!(q.slope(1e6) > 0.0 && q.slope(1e6) < 1e-2);
+    }
+
+    /// The density over the whole contact, `2 ∫₀^a q dx`, is the loading force `F(d)` of
+    /// [`super::super::normal::Loading`] (`R* = E* = 1`, `k = 4/3`); and the closed-form integral
+    /// against a midpoint quadrature of `Q` on parts of the contact.
+    #[test]
+    fn the_integral_is_the_force_and_the_quadrature() {
+        for (dy, d) in [
+            (0.3f64, 0.2f64),
+            (0.3, 0.5),
+            (0.01, 0.8),
+            (0.3, 0.300001),
+            (1e-4, 2.0),
+        ] {
+            let q = Truncated {
+                yield_indentation: dy,
+            };
+            let loading = crate::thornton::normal::Loading {
+                stiffness: 4.0 / 3.0,
+                yield_indentation: dy,
+            };
+            let total = 2.0 * q.integral(d, d.sqrt(), 1.0);
+            let force = loading.force(d);
+            assert!(
+                (total - force).abs() < 1e-14 * force.max(1.0),
+                "d_y {dy} d {d}: {total} {force}"
+            );
+            for radius in [1.0, 2.5e-3] {
+                let a = (radius * d).sqrt();
+                for (lo, hi) in [(0.0, 0.3), (0.2, 0.9), (0.5, 1.0)] {
+                    let (x0, x1) = (lo * a, hi * a);
+                    let n = 100_000;
+                    let h = (x1 - x0) / n as f64;
+                    let quad: f64 = (0..n)
+                        .map(|i| {
+                            let x = x0 + (i as f64 + 0.5) * h;
+                            q.value(d - x * x / radius)
+                        })
+                        .sum::<f64>()
+                        * h;
+                    let exact = q.integral(d, x1, radius) - q.integral(d, x0, radius);
+                    assert!(
+                        (quad - exact).abs() < 1e-9 * (d * a),
+                        "d_y {dy} d {d} R {radius} [{lo}, {hi}]: {quad} {exact}"
+                    );
+                }
+            }
+        }
+        // Without truncation: ∫₀^X (D − x²) dx.
+        let q = Truncated {
+            yield_indentation: f64::INFINITY,
+        };
+        assert_eq!(q.integral(1.0, 0.5, 1.0), 0.5 - 0.125 / 3.0);
+    }
+}
