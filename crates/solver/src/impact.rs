@@ -209,9 +209,15 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
     /// trapezoid impulse across a kink is only first order locally.
     fn grid_step<B: TangentialBodies>(&mut self, bodies: &mut B, n: usize) {
         let nt = self.normal;
-        let h = nt.dt();
+        let h = nt.step_length(n);
         let start = (nt.indentation(n), nt.rate(n));
         let end = (nt.indentation(n + 1), nt.rate(n + 1));
+        // A jump of the field at this node ([`TangentialModel::jump`]): the step starts from
+        // the new force.
+        if let Some(j) = self.row.jump(start, end, self.limit) {
+            self.force = 2.0 * self.shear_modulus * j.integral;
+            self.mean = j.mean;
+        }
         let split = self
             .row
             .release_time(&self.motion(bodies, h, start, end), self.limit);
@@ -243,7 +249,9 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
     /// substeps, in a contact that is small by then.
     fn graded_end<B: TangentialBodies>(&mut self, bodies: &mut B, first: usize) {
         let nt = self.normal;
-        let h = nt.dt();
+        // The steps from `first` to the separation are of one length (the last part of the
+        // grid: the graded span lies after any event node).
+        let h = nt.step_length(first);
         let steps = nt.steps();
         let span = (GRADED_SPAN * nt.contact_time()).max(h);
         // Grid step `n`, time `s` into it; `d`, `rate` at that instant.

@@ -65,8 +65,17 @@ pub fn close_step_elastic<B: TangentialBodies>(bodies: &mut B, end: &StepEnd) ->
 pub trait NormalModel {
     /// Number of grid steps over the contact.
     fn steps(&self) -> usize;
-    /// Time step `dt = t_c / steps` (s).
+    /// Time step `dt = t_c / steps` (s) of a uniform grid; for a grid of two uniform parts
+    /// (an event at the node between them: [`NormalModel::step_length`]) the step of the last
+    /// part.
     fn dt(&self) -> f64;
+    /// Length of grid step `n` (s): [`NormalModel::dt`] on a uniform grid. A law whose motion
+    /// changes its law at an instant (Thornton's switch from loading to unloading) makes that
+    /// instant a node, with uniform steps on either side.
+    #[inline(always)]
+    fn step_length(&self, _n: usize) -> f64 {
+        self.dt()
+    }
     /// Contact time `t_c` (s).
     fn contact_time(&self) -> f64;
     /// Maximum indentation `d_max` (m).
@@ -113,6 +122,16 @@ pub trait TangentialModel {
     #[inline(always)]
     fn close_step<B: TangentialBodies>(&self, bodies: &mut B, end: &StepEnd) -> (f64, f64) {
         close_step_elastic(bodies, end)
+    }
+    /// A jump of the field at the start of a grid step: a law whose Coulomb limits change at
+    /// an instant (Thornton's switch from loading to unloading, a node of the grid) clips the
+    /// field there and returns the new `∫₀^a ũ dx` (m²) and mean displacement (m), with which
+    /// the step starts: the friction force jumps with them. `start` and `end` are the normal
+    /// states `(d, ḋ)` at the ends of the step, `c` the limit factor. `None` (the default):
+    /// the field is continuous.
+    #[inline(always)]
+    fn jump(&mut self, _start: (f64, f64), _end: (f64, f64), _c: f64) -> Option<StepResult> {
+        None
     }
     /// Whether the model reads the end state of the normal motion ([`StepMotion::rate1`],
     /// [`StepMotion::accel1`]); without it the stepper leaves `accel1` at 0.

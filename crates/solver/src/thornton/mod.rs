@@ -12,8 +12,14 @@
 
 pub mod line;
 pub mod normal;
+pub mod row;
 
 use crate::error::PhysicsError;
+use crate::impact::{run_contact_with, ContactPoint};
+use crate::model::{NormalModel, TangentialModel};
+use crate::springs::{StepMotion, StepResult};
+use normal::{Loading, Motion, Trajectory};
+use row::ThorntonRow;
 
 /// The peak Hertz pressure of the elastic impact at `v_z0 = 1`,
 /// `p_0 = (2/π)(15/16)^{1/5}` (units of `E*`): a limiting pressure `p_y ≥ p_0` leaves the
@@ -95,6 +101,103 @@ pub fn yield_pressure_for_restitution(e_n: f64) -> Result<f64, PhysicsError> {
 pub fn yield_indentation(yield_pressure: f64, radius: f64, modulus: f64) -> f64 {
     let a = std::f64::consts::FRAC_PI_2 * yield_pressure * radius / modulus;
     a * a / radius
+}
+
+/// The dimensionless motion (`m* = R* = E* = v_z0 = 1`, `k = 4/3`) with limiting pressure `p_y`
+/// (units of `E*`).
+pub fn dimensionless_motion(yield_pressure: f64) -> Motion {
+    let loading = Loading {
+        stiffness: 4.0 / 3.0,
+        yield_indentation: yield_indentation(yield_pressure, 1.0, 1.0),
+    };
+    Motion::new(loading, 1.0, 1.0)
+}
+
+/// `P` of the dimensionless impact (`u0 = 1`, `m_t = 2/7`) of `motion` on `steps` steps, with
+/// `G* = shear` and Coulomb limit factor `limit` (`∞`: no slip).
+pub fn dimensionless_p(shear: f64, limit: f64, motion: &Motion, steps: usize) -> f64 {
+    let trajectory = motion.trajectory(steps);
+    let row = ThorntonRow::new(
+        1.0,
+        motion.loading.yield_indentation,
+        motion.unloading.ratio,
+        motion.unloading.plastic_indentation,
+    );
+    let mut cp = ContactPoint { u: 1.0 };
+    run_contact_with(&mut cp, &trajectory, row, 1.0, shear, limit);
+    cp.u
+}
+
+impl NormalModel for Trajectory {
+    #[inline(always)]
+    fn steps(&self) -> usize {
+        self.indentation.len() - 1
+    }
+    /// The unloading's step (the grid's last part).
+    #[inline(always)]
+    fn dt(&self) -> f64 {
+        self.unloading_step
+    }
+    #[inline(always)]
+    fn step_length(&self, n: usize) -> f64 {
+        Trajectory::step_length(self, n)
+    }
+    #[inline(always)]
+    fn contact_time(&self) -> f64 {
+        self.motion.contact_time
+    }
+    #[inline(always)]
+    fn max_indentation(&self) -> f64 {
+        self.motion.max_indentation
+    }
+    #[inline(always)]
+    fn indentation(&self, n: usize) -> f64 {
+        self.indentation[n]
+    }
+    #[inline(always)]
+    fn rate(&self, n: usize) -> f64 {
+        self.rate[n]
+    }
+    /// The loading force while `ḋ ≥ 0`, the unloading force after (they agree at `d_max`).
+    #[inline(always)]
+    fn acceleration(&self, d: f64, rate: f64) -> f64 {
+        let m = &self.motion;
+        let f = if rate < 0.0 {
+            m.unloading.force(d)
+        } else {
+            m.loading.force(d)
+        };
+        -f * m.inv_mass
+    }
+    #[inline(always)]
+    fn within_step(&self, n: usize, t: f64) -> (f64, f64) {
+        Trajectory::within_step(self, n, t)
+    }
+    /// `d` in loading, `ρ (d − d_p)` in unloading.
+    #[inline(always)]
+    fn reach(&self, (d, rate): (f64, f64)) -> f64 {
+        if rate < 0.0 {
+            self.motion.unloading.reach(d)
+        } else {
+            d
+        }
+    }
+}
+
+impl TangentialModel for ThorntonRow {
+    const END_STATE: bool = true;
+    #[inline(always)]
+    fn at_limit(&self) -> (bool, bool) {
+        ThorntonRow::at_limit(self)
+    }
+    #[inline(always)]
+    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        self.step(m, d1, c)
+    }
+    #[inline(always)]
+    fn jump(&mut self, start: (f64, f64), end: (f64, f64), c: f64) -> Option<StepResult> {
+        ThorntonRow::jump(self, start, end, c)
+    }
 }
 
 #[cfg(test)]
