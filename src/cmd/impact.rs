@@ -37,13 +37,17 @@ pub struct ImpactArgs {
     #[arg(long, value_parser = parse_alpha, allow_hyphen_values = true)]
     alpha: f64,
     /// Normal restitution e_n of the impact, from 0.3 to 1 (1: elastic, the default). Below 1
-    /// the springs are Kelvin-Voigt elements (one relaxation time in the normal and tangential
-    /// direction, non-adhesive), and the relaxation time that gives this e_n is found first; the
-    /// JSON output reports it as `tau` (in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(2/5)).
+    /// the law's parameter that gives this e_n is found first: with the kelvin-voigt law (the
+    /// default) the springs are Kelvin-Voigt elements (one relaxation time in the normal and
+    /// tangential direction, non-adhesive), and the JSON output reports their relaxation time as
+    /// `tau` (in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(2/5)); with the thornton law the
+    /// pressure is capped at a limiting pressure (elastic-perfectly plastic), reported as
+    /// `yield_pressure` (in units of E* (m* v_z0^2/(E* R*^3))^(1/5)).
     #[arg(long = "e-n", value_parser = parse_e_n, default_value = "1", allow_hyphen_values = true)]
     e_n: f64,
-    /// Dissipation law: elastic (e_n = 1 only) or kelvin-voigt. Default: elastic at e_n = 1,
-    /// kelvin-voigt below. P at e_n < 1 depends on the law; answers name theirs.
+    /// Dissipation law: elastic (e_n = 1 only), kelvin-voigt (viscoelastic springs) or thornton
+    /// (elastic-perfectly plastic, Thornton 1997: metals, ceramics). Default: elastic at
+    /// e_n = 1, kelvin-voigt below. P at e_n < 1 depends on the law; answers name theirs.
     #[arg(long, value_parser = parse_law)]
     law: Option<Law>,
     /// Target absolute error of P, > 0 and <= 1e-2; the resolution is doubled until the error

@@ -61,9 +61,11 @@ impl Floor {
 /// The keys under which outputs report the laws' parameters, one layout for every law so that
 /// answers of different laws share their columns (the JSON of `sweep impact`, the columns of
 /// Python's `impact`, the dict of its `simulate`): `tau`, the dimensionless relaxation time
-/// `τ̂` (0 for the elastic law, which is the Kelvin–Voigt law at `τ̂ = 0`). A law with other
-/// parameters adds its keys here ([`ContactLaw::values`] gives every key a value).
-pub const PARAMETER_KEYS: [&str; 1] = ["tau"];
+/// `τ̂` (0 for the elastic law, which is the Kelvin–Voigt law at `τ̂ = 0`), and
+/// `yield_pressure`, Thornton's dimensionless limiting pressure `p̂_y` (0 for the other laws). A
+/// law with other parameters adds its keys here ([`ContactLaw::values`] gives every key a
+/// value).
+pub const PARAMETER_KEYS: [&str; 2] = ["tau", "yield_pressure"];
 
 /// A contact law: what the solver needs of it to answer a request. Implemented once per law,
 /// in the law's folder, by a unit type ([`crate::elastic::Elastic`],
@@ -152,6 +154,8 @@ pub struct BodiesNormal {
     pub normal_mass: f64,
     /// Hertz stiffness `k = (4/3) E* √R*` (N/m^{3/2}).
     pub stiffness: f64,
+    /// Effective radius `R*` (m).
+    pub radius: f64,
     /// Approach speed `v_z0` at first touch (m/s), > 0.
     pub approach_speed: f64,
 }

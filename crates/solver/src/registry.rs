@@ -145,6 +145,10 @@ laws! { $
     /// Kelvin–Voigt springs, one relaxation time `τ` in both directions, non-adhesive:
     /// `e_n ∈ [0.3, 1]` (`e_n = 1` is the elastic law exactly).
     KelvinVoigt => crate::kelvin_voigt::KelvinVoigt, "kelvin-voigt";
+    /// Thornton's elastic–perfectly plastic law (Thornton 1997): Hertz up to the limiting
+    /// pressure `p_y`, the pressure capped at `p_y` beyond, Hertz unloading of a larger radius:
+    /// `e_n ∈ [0.3, 1]` (`e_n = 1` is the elastic law exactly).
+    Thornton => crate::thornton::Thornton, "thornton";
 }
 pub(crate) use {with_bodies_law, with_law};
 
@@ -234,6 +238,7 @@ mod tests {
     use super::*;
     use crate::elastic::Elastic;
     use crate::kelvin_voigt::KelvinVoigt;
+    use crate::thornton::Thornton;
 
     #[test]
     fn names_round_trip_and_the_elastic_law_takes_only_one() {
@@ -266,12 +271,14 @@ mod tests {
             BodiesLaw::of_relaxation_time(f64::NAN).law(),
             Law::KelvinVoigt
         );
-        assert_eq!(Law::NAMES, "elastic or kelvin-voigt");
+        assert!(picks::<Thornton>(Law::Thornton));
+        assert_eq!(Law::Thornton.answering(0.9), Law::Thornton);
+        assert_eq!(Law::NAMES, "elastic, kelvin-voigt or thornton");
         assert_eq!(
             Law::from_name("plastic"),
             Err(PhysicsError::UnknownLaw {
                 name: "plastic".into(),
-                allowed: "elastic or kelvin-voigt",
+                allowed: "elastic, kelvin-voigt or thornton",
             })
         );
     }

@@ -172,7 +172,7 @@ mod tests {
             assert_eq!(a.error_estimate.to_bits(), b.error_estimate.to_bits());
             assert_eq!((a.resolution, a.method), (b.resolution, b.method));
             assert_eq!((a.law.law(), b.law.law()), (Law::Elastic, Law::KelvinVoigt));
-            assert_eq!((b.e_n, b.law.values()), (1.0, [0.0]));
+            assert_eq!((b.e_n, b.law.values()), (1.0, [0.0, 0.0]));
             let res = Resolution {
                 springs: 0,
                 steps: 256,

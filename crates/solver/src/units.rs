@@ -200,6 +200,7 @@ impl PhysicalImpact {
             inv_mass2: bodies.inv_m2,
             normal_mass: g.normal_mass,
             stiffness: 4.0 / 3.0 * g.e_star * g.radius.sqrt(),
+            radius: g.radius,
             approach_speed: g.approach_speed,
         }
     }

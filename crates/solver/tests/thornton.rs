@@ -81,3 +81,124 @@ fn below_the_yield_speed_the_row_is_the_elastic_one() {
         );
     }
 }
+
+mod physical {
+    use super::*;
+    use oblique_physics::rebound::{Body, Elastic, State};
+    use oblique_solver::thornton;
+    use oblique_solver::units::PhysicalImpact;
+    use oblique_solver::BodiesLaw;
+
+    const STEEL: Elastic = Elastic {
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.29,
+    };
+
+    fn solid(radius: f64, density: f64) -> Body {
+        Body {
+            mass: density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
+            radius,
+            kappa: 0.4,
+        }
+    }
+
+    const RES: Resolution = Resolution {
+        springs: 0,
+        steps: 2048,
+    };
+
+    /// The limiting pressure (Pa) whose dimensionless value is `hat` for impact `imp`:
+    /// `p_y = p̂_y E* (m* v_z0²/(E* R*³))^{1/5}`.
+    fn pressure_for(imp: &PhysicalImpact, hat: f64) -> f64 {
+        let g = imp.groups().unwrap();
+        let unit = g.e_star
+            * (g.normal_mass * g.approach_speed.powi(2) / (g.e_star * g.radius.powi(3))).powf(0.2);
+        hat * unit
+    }
+
+    fn thornton(p: f64) -> BodiesLaw {
+        BodiesLaw::Thornton(thornton::BodiesParameters { yield_pressure: p })
+    }
+
+    /// Steel shot on a steel wall: three sizes, speeds, spins and limiting pressures with equal
+    /// `(γ, α, e_n)` give the dimensionless impact's `P` to 1e-8, and the normal velocity
+    /// reverses with `e_n`.
+    #[test]
+    fn p_depends_on_gamma_alpha_and_e_n_only() {
+        let hat = yield_pressure_for_restitution(0.8).unwrap();
+        let (mu, alpha) = (0.3, 0.6);
+        let mut ps = Vec::new();
+        for (radius, v_z, omega) in [(1e-3, 0.5, 0.0), (5e-3, 3.0, 200.0), (2e-2, 20.0, -50.0)] {
+            let body = solid(radius, 7800.0);
+            let u0 = mu * v_z / alpha;
+            let motion = State {
+                v_x: u0 - radius * omega,
+                v_z,
+                omega,
+            };
+            let imp = PhysicalImpact::sphere_on_wall((body, STEEL), STEEL, motion, mu);
+            let imp = imp.with_law(thornton(pressure_for(&imp, hat)));
+            let out = imp.simulate(RES).unwrap();
+            assert!((out.e_n - 0.8).abs() < 1e-12, "{}", out.e_n);
+            let [_, p_hat] = out.law.values();
+            assert!((p_hat - hat).abs() < 1e-12 * hat, "{p_hat} {hat}");
+            assert!(
+                (out.sphere.v_z + 0.8 * v_z).abs() < 1e-9 * v_z,
+                "{:?}",
+                out.sphere
+            );
+            ps.push((out.groups.gamma, out.groups.alpha, out.p.unwrap()));
+        }
+        let g = ps[0].0;
+        let shear = 2.0 / 7.0 * g * g;
+        let dimensionless = dimensionless_p(shear, alpha / shear, &dimensionless_motion(hat), 2048);
+        for (gamma, a, p) in ps {
+            assert!((gamma - g).abs() < 1e-14 && (a - alpha).abs() < 1e-12);
+            assert!((p - dimensionless).abs() < 1e-8, "{p} vs {dimensionless}");
+        }
+    }
+
+    /// At or below the yield speed the bodies are elastic: `e_n = 1` and the elastic law's
+    /// outcome bit for bit; above it `e_n` falls with the speed as Thornton's closed form of
+    /// `V_y/V`; a limiting pressure that is not a positive number is refused by name.
+    #[test]
+    fn the_yield_speed_separates_elastic_and_plastic_impacts() {
+        let body = solid(5e-3, 7800.0);
+        let at = |v_z: f64| State {
+            v_x: 0.3,
+            v_z,
+            omega: 0.0,
+        };
+        let slow = PhysicalImpact::sphere_on_wall((body, STEEL), STEEL, at(0.01), 0.3);
+        // The limiting pressure that the Hertz peak pressure reaches at 0.02 m/s.
+        let p_y = pressure_for(&slow, elastic_peak_pressure()) * 2f64.powf(0.4);
+        let plastic = slow.with_law(thornton(p_y)).simulate(RES).unwrap();
+        let elastic = slow.simulate(RES).unwrap();
+        assert_eq!(plastic.e_n, 1.0);
+        assert_eq!(plastic.p.unwrap().to_bits(), elastic.p.unwrap().to_bits());
+        assert_eq!(plastic.sphere, elastic.sphere);
+        // Ten and a hundred times the yield speed.
+        for factor in [10.0, 100.0] {
+            let fast = PhysicalImpact::sphere_on_wall((body, STEEL), STEEL, at(0.02 * factor), 0.3)
+                .with_law(thornton(p_y));
+            let (_, e_n) = fast.restitution().unwrap();
+            let closed = thornton::restitution(1.0 / factor);
+            assert!(
+                (e_n - closed).abs() < 1e-12,
+                "V/V_y {factor}: {e_n} {closed}"
+            );
+            let out = fast.simulate(RES).unwrap();
+            assert!((out.sphere.v_z + e_n * 0.02 * factor).abs() < 1e-9 * factor);
+        }
+        for bad in [0.0, -1e9, f64::NAN, f64::INFINITY] {
+            let err = slow.with_law(thornton(bad)).simulate(RES).unwrap_err();
+            assert!(err.to_string().contains("yield_pressure"), "{err}");
+        }
+        // A speed so far above the yield speed that e_n < 0.3.
+        let err = PhysicalImpact::sphere_on_wall((body, STEEL), STEEL, at(0.02 * 1e4), 0.3)
+            .with_law(thornton(p_y))
+            .simulate(RES)
+            .unwrap_err();
+        assert!(err.to_string().contains("yield_pressure"), "{err}");
+    }
+}

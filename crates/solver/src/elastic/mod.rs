@@ -81,7 +81,7 @@ impl ContactLaw for Elastic {
 
     /// `τ̂ = 0` (the elastic law is the Kelvin–Voigt law without relaxation).
     fn values(_parameters: &Parameters) -> [f64; PARAMETER_KEYS.len()] {
-        [0.0]
+        [0.0, 0.0]
     }
 
     fn describe(_parameters: &Parameters) -> Option<String> {

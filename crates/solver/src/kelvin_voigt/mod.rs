@@ -487,9 +487,9 @@ impl ContactLaw for KelvinVoigt {
         Ok(dimensionless_p(shear, limit, parameters.tau, res))
     }
 
-    /// `[τ̂]`.
+    /// `[τ̂, 0]`.
     fn values(parameters: &Parameters) -> [f64; PARAMETER_KEYS.len()] {
-        [parameters.tau]
+        [parameters.tau, 0.0]
     }
 
     fn describe(parameters: &Parameters) -> Option<String> {

@@ -14,11 +14,18 @@ pub mod line;
 pub mod normal;
 pub mod row;
 
+use serde::Serialize;
+
 use crate::error::PhysicsError;
-use crate::impact::{run_contact_with, ContactPoint};
+use crate::impact::{
+    check_alpha, check_gamma, run_contact_with, ContactPoint, Scheme, TangentialBodies,
+    ALPHA_NO_SLIP,
+};
+use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary, PARAMETER_KEYS};
 use crate::model::{NormalModel, TangentialModel};
+use crate::resolution::Resolution;
 use crate::springs::{StepMotion, StepResult};
-use normal::{Loading, Motion, Trajectory};
+use normal::{HertzPhase, Loading, Motion, Trajectory};
 use row::ThorntonRow;
 
 /// The peak Hertz pressure of the elastic impact at `v_z0 = 1`,
@@ -126,6 +133,236 @@ pub fn dimensionless_p(shear: f64, limit: f64, motion: &Motion, steps: usize) ->
     let mut cp = ContactPoint { u: 1.0 };
     run_contact_with(&mut cp, &trajectory, row, 1.0, shear, limit);
     cp.u
+}
+
+/// Thornton's law ([`ContactLaw`]): `e_n ∈ [0.3, 1]`, the limiting pressure that gives it, the
+/// accurate scheme on the continuum row only.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Thornton;
+
+/// Thornton's law's parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Parameters {
+    /// Dimensionless limiting pressure `p̂_y` that gives the impact's `e_n`: `p_y` in units of
+    /// `E* (m* v_z0²/(E* R*³))^{1/5}`, the unit in which the elastic impact's peak pressure is
+    /// `p_0 = (2/π)(15/16)^{1/5}` ([`elastic_peak_pressure`]; `p̂_y = p_0` at `e_n = 1`).
+    pub yield_pressure: f64,
+}
+
+/// `limiting pressure p_y = p̂_y in units of E* (m* v_z0^2/(E* R*^3))^(1/5)` (`p̂_y` to 9
+/// decimals), the wording of answers in text.
+impl std::fmt::Display for Parameters {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "limiting pressure p_y = {:.9} in units of E* (m* v_z0^2/(E* R*^3))^(1/5)",
+            self.yield_pressure
+        )
+    }
+}
+
+/// Thornton's law's parameters of physical bodies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodiesParameters {
+    /// Limiting contact pressure `p_y` (Pa), > 0: the pressure at which the bodies flow
+    /// plastically (about 1.6 times the yield stress of the softer body for an
+    /// elastic–perfectly plastic sphere; Johnson 1985, §6.2). The impact stays elastic
+    /// (`e_n = 1`) up to the yield speed `V_y` at which the Hertz peak pressure reaches it.
+    pub yield_pressure: f64,
+}
+
+/// The estimate's floor: the elastic law's 0.1 where the convergence is regular, 0.5
+/// elsewhere (the switch to unloading and the curved limits can make it irregular at coarse
+/// levels).
+pub const RAW_FLOOR: Floor = Floor {
+    regular: 0.1,
+    irregular: 0.5,
+};
+
+impl ContactLaw for Thornton {
+    type Parameters = Parameters;
+
+    type BodiesParameters = BodiesParameters;
+
+    const FLOOR: Floor = RAW_FLOOR;
+
+    fn check_restitution(e_n: f64) -> Result<f64, PhysicsError> {
+        crate::law::check_restitution(e_n)
+    }
+
+    /// `p̂_y` by [`yield_pressure_for_restitution`].
+    fn parameters(e_n: f64) -> Result<Parameters, PhysicsError> {
+        let e_n = crate::law::check_restitution(e_n)?;
+        Ok(Parameters {
+            yield_pressure: yield_pressure_for_restitution(e_n)?,
+        })
+    }
+
+    /// The accurate scheme only.
+    fn prepare(
+        gamma: f64,
+        alpha: f64,
+        e_n: f64,
+        scheme: Scheme,
+    ) -> Result<(f64, f64, Parameters), PhysicsError> {
+        let gamma = check_gamma(gamma)?;
+        let alpha = check_alpha(alpha)?;
+        if scheme != Scheme::Accurate {
+            return Err(PhysicsError::NotForLaw {
+                name: "scheme",
+                value: scheme.name().to_string(),
+                case: "for Thornton's law",
+                allowed: "it is solved with the accurate scheme only (euler is for elastic \
+                          impacts)",
+            });
+        }
+        Ok((gamma, alpha, Self::parameters(e_n)?))
+    }
+
+    /// `P = 1` at `α = 0` only: the limits jump at the switch to unloading, so `P` leaves the
+    /// full-slip line at every `α > 0` (`physics.md`), and the γ = 1 plateau of the other laws
+    /// does not hold (the tangential stiffness no longer follows the normal one).
+    fn closed_form(_gamma: f64, alpha: f64, _e_n: f64) -> Option<f64> {
+        (alpha == 0.0).then_some(1.0)
+    }
+
+    /// The continuum row only ([`dimensionless_p`]).
+    fn simulate(
+        gamma: f64,
+        alpha: f64,
+        parameters: Parameters,
+        res: Resolution,
+        _scheme: Scheme,
+    ) -> Result<f64, PhysicsError> {
+        let res = res.validate()?;
+        if res.springs != 0 {
+            return Err(PhysicsError::NotForLaw {
+                name: "springs",
+                value: res.springs.to_string(),
+                case: "for Thornton's law",
+                allowed: "it is solved on the continuum row only (springs 0)",
+            });
+        }
+        let shear = 2.0 / 7.0 * gamma * gamma;
+        let limit = if alpha > ALPHA_NO_SLIP {
+            f64::INFINITY
+        } else {
+            alpha / shear
+        };
+        let motion = dimensionless_motion(parameters.yield_pressure);
+        Ok(dimensionless_p(shear, limit, &motion, res.steps))
+    }
+
+    /// `[0, p̂_y]`.
+    fn values(parameters: &Parameters) -> [f64; PARAMETER_KEYS.len()] {
+        [0.0, parameters.yield_pressure]
+    }
+
+    fn describe(parameters: &Parameters) -> Option<String> {
+        Some(parameters.to_string())
+    }
+
+    /// The bodies' yield speed `V_y` (`½ m* V_y² = (2/5) k d_y^{5/2}`, `d_y` of `p_y` with the
+    /// bodies' `R*` and `E*`), `e_n` = Thornton's closed form of `V_y/V` (1 at or below `V_y`),
+    /// and `p̂_y = p_0 (V_y/V)^{2/5}` (`p_0` at or below `V_y`); `e_n` must be at least 0.3.
+    fn of_bodies(
+        parameters: BodiesParameters,
+        normal: &BodiesNormal,
+    ) -> Result<(Parameters, f64), PhysicsError> {
+        let ratio = speed_ratio_of_bodies(parameters, normal)?;
+        let r = ratio.min(1.0);
+        let e_n = restitution(r);
+        if crate::law::check_restitution(e_n).is_err() {
+            return Err(PhysicsError::InvalidParameter {
+                name: "yield_pressure",
+                value: parameters.yield_pressure,
+                allowed: "a pressure whose normal restitution at this impact speed is >= 0.3 (a \
+                          higher limiting pressure, or a slower impact)",
+            });
+        }
+        Ok((
+            Parameters {
+                yield_pressure: elastic_peak_pressure() * r.powf(0.4),
+            },
+            e_n,
+        ))
+    }
+
+    /// Thornton's motion of the bodies and its row (continuum only); the elastic law's run,
+    /// bit for bit, at or below the yield speed.
+    fn run_bodies<B: TangentialBodies>(
+        bodies: &mut B,
+        normal: &BodiesNormal,
+        parameters: BodiesParameters,
+        res: Resolution,
+        (radius, shear_modulus, limit): (f64, f64, f64),
+    ) -> Result<NormalSummary, PhysicsError> {
+        if speed_ratio_of_bodies(parameters, normal)? >= 1.0 {
+            return crate::elastic::Elastic::run_bodies(
+                bodies,
+                normal,
+                crate::elastic::Parameters,
+                res,
+                (radius, shear_modulus, limit),
+            );
+        }
+        if res.springs != 0 {
+            return Err(PhysicsError::NotForLaw {
+                name: "springs",
+                value: res.springs.to_string(),
+                case: "for Thornton bodies",
+                allowed: "their law is solved on the continuum row only (springs 0)",
+            });
+        }
+        let inv_mass = normal.inv_mass1 + normal.inv_mass2;
+        let loading = Loading {
+            stiffness: normal.stiffness,
+            yield_indentation: bodies_yield_indentation(parameters, normal),
+        };
+        let motion = Motion::new(loading, inv_mass, normal.approach_speed);
+        let trajectory = motion.trajectory(res.steps);
+        let row = ThorntonRow::new(
+            radius,
+            loading.yield_indentation,
+            motion.unloading.ratio,
+            motion.unloading.plastic_indentation,
+        );
+        run_contact_with(bodies, &trajectory, row, radius, shear_modulus, limit);
+        // The normal impulse J = (V + v_r) m*: each body's normal velocity changes by J/m_i.
+        let change = (motion.approach_speed + motion.rebound.speed) / inv_mass;
+        Ok(NormalSummary {
+            contact_time: motion.contact_time,
+            peak_force: motion.peak_force,
+            max_indentation: motion.max_indentation,
+            delta_v1: -change * normal.inv_mass1,
+            delta_v2: change * normal.inv_mass2,
+        })
+    }
+}
+
+/// `d_y = R* (π p_y/(2 E*))²` of the bodies (`E* = 3k/(4√R*)`).
+fn bodies_yield_indentation(parameters: BodiesParameters, normal: &BodiesNormal) -> f64 {
+    let modulus = 0.75 * normal.stiffness / normal.radius.sqrt();
+    yield_indentation(parameters.yield_pressure, normal.radius, modulus)
+}
+
+/// `V_y/V` of the bodies (≥ 1: no plastic flow), with `p_y` checked.
+fn speed_ratio_of_bodies(
+    parameters: BodiesParameters,
+    normal: &BodiesNormal,
+) -> Result<f64, PhysicsError> {
+    let p = parameters.yield_pressure;
+    if !(p.is_finite() && p > 0.0) {
+        return Err(PhysicsError::InvalidParameter {
+            name: "yield_pressure",
+            value: p,
+            allowed: "a finite pressure > 0 (Pa)",
+        });
+    }
+    let dy = bodies_yield_indentation(parameters, normal);
+    // ½ m* V_y² = (2/5) k d_y^{5/2}: the Hertz approach reaches d_y with speed 0.
+    let top = HertzPhase::new(normal.stiffness / normal.normal_mass, normal.approach_speed).top;
+    Ok((dy / top).powf(1.25))
 }
 
 impl NormalModel for Trajectory {
