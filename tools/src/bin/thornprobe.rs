@@ -32,6 +32,19 @@ fn main() -> anyhow::Result<()> {
         f64::INFINITY
     };
     let line = 1.0 - 3.5 * (1.0 + e_n) * alpha;
+    if std::env::var("THORN_TIMING").is_ok() {
+        for &n in &steps {
+            let t = std::time::Instant::now();
+            let reps = 20;
+            for _ in 0..reps {
+                std::hint::black_box(motion.trajectory(n));
+            }
+            println!(
+                "trajectory({n}): {:.3} ms",
+                t.elapsed().as_secs_f64() * 1e3 / reps as f64
+            );
+        }
+    }
     let mut last: Option<f64> = None;
     let mut diffs = Vec::new();
     for &n in &steps {

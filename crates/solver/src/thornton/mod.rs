@@ -14,6 +14,10 @@ pub mod line;
 pub mod normal;
 pub mod row;
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::rc::Rc;
+
 use serde::Serialize;
 
 use crate::error::PhysicsError;
@@ -120,10 +124,35 @@ pub fn dimensionless_motion(yield_pressure: f64) -> Motion {
     Motion::new(loading, 1.0, 1.0)
 }
 
+thread_local! {
+    /// The dimensionless trajectories of the last limiting pressures and levels.
+    static TRAJECTORY_CACHE: RefCell<HashMap<(usize, u64), Rc<Trajectory>>> =
+        RefCell::new(HashMap::new());
+}
+
+/// The dimensionless trajectory of `motion` on `steps` steps, cached per thread by its limiting
+/// pressure (a table's nodes share a few `e_n`).
+fn dimensionless_trajectory(motion: &Motion, steps: usize) -> Rc<Trajectory> {
+    let key = (steps, motion.loading.yield_indentation.to_bits());
+    TRAJECTORY_CACHE.with(|cache| {
+        let mut cache = cache.borrow_mut();
+        if let Some(t) = cache.get(&key) {
+            return Rc::clone(t);
+        }
+        if cache.len() > 64 {
+            cache.clear();
+        }
+        let t = Rc::new(motion.trajectory(steps));
+        cache.insert(key, Rc::clone(&t));
+        t
+    })
+}
+
 /// `P` of the dimensionless impact (`u0 = 1`, `m_t = 2/7`) of `motion` on `steps` steps, with
-/// `G* = shear` and Coulomb limit factor `limit` (`∞`: no slip).
+/// `G* = shear` and Coulomb limit factor `limit` (`∞`: no slip). The motion must be a
+/// dimensionless one ([`dimensionless_motion`]: its trajectories are cached by `d_y`).
 pub fn dimensionless_p(shear: f64, limit: f64, motion: &Motion, steps: usize) -> f64 {
-    let trajectory = motion.trajectory(steps);
+    let trajectory = dimensionless_trajectory(motion, steps);
     let row = ThorntonRow::new(
         1.0,
         motion.loading.yield_indentation,
@@ -131,7 +160,7 @@ pub fn dimensionless_p(shear: f64, limit: f64, motion: &Motion, steps: usize) ->
         motion.unloading.plastic_indentation,
     );
     let mut cp = ContactPoint { u: 1.0 };
-    run_contact_with(&mut cp, &trajectory, row, 1.0, shear, limit);
+    run_contact_with(&mut cp, &*trajectory, row, 1.0, shear, limit);
     cp.u
 }
 

@@ -39,29 +39,43 @@ pub fn hertz_time(xi: f64) -> f64 {
     }
 }
 
-/// `Σ (1/2)_n/n! · (2/5)/(2/5 + n) · x^n` (Horner over [`TERMS`] terms) and its derivative in `x`.
-fn lower_series(x: f64) -> f64 {
+/// Coefficients `(1/2)_n/n! · (2/5)/(2/5 + n)` of the lower series of [`hertz_time`].
+const LOWER: [f64; TERMS] = {
+    let mut out = [0.0; TERMS];
     let mut c = 1.0;
-    let mut coef = [0.0; TERMS];
-    for (n, k) in coef.iter_mut().enumerate() {
-        let n = n as f64;
-        *k = c * 0.4 / (0.4 + n);
-        c *= (n + 0.5) / (n + 1.0);
+    let mut n = 0;
+    while n < TERMS {
+        let nf = n as f64;
+        out[n] = c * 0.4 / (0.4 + nf);
+        c *= (nf + 0.5) / (nf + 1.0);
+        n += 1;
     }
-    coef.iter().rev().fold(0.0, |acc, &k| acc * x + k)
+    out
+};
+
+/// Coefficients `(3/5)_n/n! / (1/2 + n)` of the upper series `G` of [`hertz_time`].
+const UPPER: [f64; TERMS] = {
+    let mut out = [0.0; TERMS];
+    let mut c = 1.0;
+    let mut n = 0;
+    while n < TERMS {
+        let nf = n as f64;
+        out[n] = c / (0.5 + nf);
+        c *= (nf + 0.6) / (nf + 1.0);
+        n += 1;
+    }
+    out
+};
+
+/// `Σ (1/2)_n/n! · (2/5)/(2/5 + n) · x^n` (Horner over [`TERMS`] terms).
+fn lower_series(x: f64) -> f64 {
+    LOWER.iter().rev().fold(0.0, |acc, &k| acc * x + k)
 }
 
 /// `G(y) = Σ (3/5)_n/n! · y^n/(1/2 + n)` and `G′(y)` (Horner over [`TERMS`] terms).
 fn upper_series_with_slope(y: f64) -> (f64, f64) {
-    let mut c = 1.0;
-    let mut coef = [0.0; TERMS];
-    for (n, k) in coef.iter_mut().enumerate() {
-        let n = n as f64;
-        *k = c / (0.5 + n);
-        c *= (n + 0.6) / (n + 1.0);
-    }
-    let value = coef.iter().rev().fold(0.0, |acc, &k| acc * y + k);
-    let slope = coef
+    let value = UPPER.iter().rev().fold(0.0, |acc, &k| acc * y + k);
+    let slope = UPPER
         .iter()
         .enumerate()
         .skip(1)

@@ -58,6 +58,17 @@ struct Piece {
     k: f64,
     /// `D_f` of the curved part (m).
     top: f64,
+    /// `∫ (ũ − W) dx` over a stuck piece (m²).
+    rel: f64,
+    /// Bounds of `ũ − W` over a stuck piece: `lo ≤ ũ − W ≤ hi`.
+    lo: f64,
+    hi: f64,
+    /// `upper ≥ max (ũ − W + s y)` and `lower ≤ min (ũ − W − s y)` over a stuck piece for the
+    /// limit slope `s = slope` (NaN until computed): it is inside the linear limits
+    /// `±s (D − y)` while `upper ≤ s D − W` and `lower ≥ −s D − W`.
+    upper: f64,
+    lower: f64,
+    slope: f64,
 }
 
 impl Piece {
@@ -92,7 +103,14 @@ impl Piece {
             q,
             k,
             top,
+            rel: 0.0,
+            lo: 0.0,
+            hi: 0.0,
+            upper: 0.0,
+            lower: 0.0,
+            slope: f64::NAN,
         }
+        .refreshed(line, radius)
     }
 
     fn limit(kind: Kind, y0: f64, y1: f64, radius: f64) -> Self {
@@ -108,18 +126,85 @@ impl Piece {
             q: 0.0,
             k: 0.0,
             top: 0.0,
+            rel: 0.0,
+            lo: 0.0,
+            hi: 0.0,
+            upper: 0.0,
+            lower: 0.0,
+            slope: f64::NAN,
         }
     }
 
-    /// The same piece on `[y0, y1]`.
-    fn part(&self, y0: f64, y1: f64, radius: f64) -> Self {
-        Piece {
+    /// The same piece on `[y0, y1]` (a stuck one with its sums recomputed).
+    fn part(&self, y0: f64, y1: f64, line: &Truncated, radius: f64) -> Self {
+        let p = Piece {
             y0,
             y1,
             x0: (radius * y0).sqrt(),
             x1: (radius * y1).sqrt(),
+            slope: f64::NAN,
             ..*self
+        };
+        if p.kind == Kind::Stuck {
+            p.refreshed(line, radius)
+        } else {
+            p
         }
+    }
+
+    /// A stuck piece with its integral and range computed.
+    fn refreshed(mut self, line: &Truncated, radius: f64) -> Self {
+        self.rel = self.integral(line, radius);
+        (self.lo, self.hi) = self.range(line);
+        self.slope = f64::NAN;
+        self
+    }
+
+    /// A stuck piece with its bounds for the limit slope `s` ([`Piece::upper`]).
+    fn bounded(mut self, s: f64, line: &Truncated) -> Self {
+        // The curved part k Q(D_f − y) between two lines: its chord and its tangent at the
+        // middle (Q(D_f − y) is concave in y; k < 0 swaps them).
+        let (cu, cl) = if self.k == 0.0 {
+            ((0.0, 0.0), (0.0, 0.0))
+        } else {
+            let (y0, y1) = (self.y0, self.y1);
+            let ym = 0.5 * (y0 + y1);
+            let (v0, v1) = (
+                self.k * line.value(self.top - y0),
+                self.k * line.value(self.top - y1),
+            );
+            let chord_slope = if y1 > y0 { (v1 - v0) / (y1 - y0) } else { 0.0 };
+            let chord = (v0 - chord_slope * (y0 - self.y_ref), chord_slope);
+            let t_slope = -self.k * line.slope(self.top - ym);
+            let tangent = (
+                self.k * line.value(self.top - ym) - t_slope * (ym - self.y_ref),
+                t_slope,
+            );
+            if self.k > 0.0 {
+                (tangent, chord)
+            } else {
+                (chord, tangent)
+            }
+        };
+        // max of (a + cu.0) + (b + cu.1 + s) z + q z², min of (a + cl.0) + (b + cl.1 − s) z + q z².
+        let ext = |a: f64, b: f64, max: bool| {
+            let (z0, z1) = (self.y0 - self.y_ref, self.y1 - self.y_ref);
+            let f = |z: f64| a + z * (b + self.q * z);
+            let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
+            let mut best = pick(f(z0), f(z1));
+            if self.q != 0.0 {
+                let z = -b / (2.0 * self.q);
+                if z > z0 && z < z1 {
+                    best = pick(best, f(z));
+                }
+            }
+            best
+        };
+        let y_ref_term = s * self.y_ref;
+        self.upper = ext(self.a + cu.0 + y_ref_term, self.b + cu.1 + s, true);
+        self.lower = ext(self.a + cl.0 - y_ref_term, self.b + cl.1 - s, false);
+        self.slope = s;
+        self
     }
 
     /// `ũ − W` of a stuck piece at `y`.
@@ -223,13 +308,86 @@ pub struct ThorntonRow {
     ratio: f64,
     /// Plastic indentation `d_p` (m).
     plastic_indentation: f64,
-    pieces: Vec<Piece>,
+    /// The field, in chunks of at most [`CHUNK_MAX`] pieces: a step visits only the chunks
+    /// whose sums say that something may change.
+    chunks: Vec<Chunk>,
     spare: Vec<Piece>,
     /// Accumulated increment `W` (m).
     offset: f64,
     unloading: bool,
     at_limit: (bool, bool),
     cuts: Vec<f64>,
+}
+
+/// Pieces per chunk above which a chunk is split.
+const CHUNK_MAX: usize = 24;
+
+/// Consecutive pieces with the sums a step needs.
+#[derive(Debug, Clone, Default)]
+struct Chunk {
+    pieces: Vec<Piece>,
+    /// Over the stuck pieces: `Σ Δx`, `Σ ∫ (ũ − W) dx`, `min lo`, `max hi`, `max upper`,
+    /// `min lower` (the bounds for the limit slope `slope`).
+    stuck_length: f64,
+    rel: f64,
+    lo: f64,
+    hi: f64,
+    upper: f64,
+    lower: f64,
+    slope: f64,
+    /// Whether some piece is at a limit.
+    limits: bool,
+}
+
+impl Chunk {
+    /// The chunk of `pieces` with its sums, the stuck pieces bounded for the slope `s`.
+    fn new(mut pieces: Vec<Piece>, s: f64, line: &Truncated) -> Self {
+        let mut ch = Chunk {
+            stuck_length: 0.0,
+            rel: 0.0,
+            lo: f64::INFINITY,
+            hi: f64::NEG_INFINITY,
+            upper: f64::NEG_INFINITY,
+            lower: f64::INFINITY,
+            slope: s,
+            limits: false,
+            pieces: Vec::new(),
+        };
+        for p in &mut pieces {
+            if p.kind == Kind::Stuck {
+                if p.slope != s {
+                    *p = p.bounded(s, line);
+                }
+                ch.stuck_length += p.x1 - p.x0;
+                ch.rel += p.rel;
+                ch.lo = ch.lo.min(p.lo);
+                ch.hi = ch.hi.max(p.hi);
+                ch.upper = ch.upper.max(p.upper);
+                ch.lower = ch.lower.min(p.lower);
+            } else {
+                ch.limits = true;
+            }
+        }
+        ch.pieces = pieces;
+        ch
+    }
+
+    /// Whether the step may change the chunk: it holds a piece at a limit, or its stuck
+    /// pieces may cross the limit `lim` with the offset `w`.
+    fn changes(&self, lim: &Limit, w: f64) -> bool {
+        let (Some(first), Some(last)) = (self.pieces.first(), self.pieces.last()) else {
+            return false;
+        };
+        if self.limits || !lim.c.is_finite() {
+            return self.limits;
+        }
+        if lim.linear_from(first.y0) && self.slope == lim.c {
+            let top = lim.c * lim.reach;
+            return !(self.upper <= top - w && self.lower >= -top - w);
+        }
+        let floor = lim.at(last.y1);
+        !(w + self.hi < floor && w + self.lo > -floor)
+    }
 }
 
 /// Samples per stretch between kinks when bracketing a crossing with a curved limit or piece.
@@ -244,7 +402,7 @@ impl ThorntonRow {
             line: Truncated { yield_indentation },
             ratio,
             plastic_indentation,
-            pieces: Vec::new(),
+            chunks: Vec::new(),
             spare: Vec::new(),
             offset: 0.0,
             unloading: false,
@@ -260,7 +418,40 @@ impl ThorntonRow {
 
     /// Number of pieces (diagnostics).
     pub fn pieces(&self) -> usize {
-        self.pieces.len()
+        self.chunks.iter().map(|c| c.pieces.len()).sum()
+    }
+
+    /// Put `pieces` in place of chunk `k` (split in chunks of at most [`CHUNK_MAX`], none if
+    /// empty), with their sums for the limit slope `s`; returns the number of chunks now there.
+    fn install(&mut self, k: usize, pieces: Vec<Piece>, s: f64) -> usize {
+        let line = self.line;
+        let mut parts: Vec<Chunk> = pieces
+            .chunks(CHUNK_MAX)
+            .map(|c| Chunk::new(c.to_vec(), s, &line))
+            .collect();
+        let n = parts.len();
+        match n {
+            0 => {
+                self.chunks.remove(k);
+            }
+            _ => {
+                let first = parts.remove(0);
+                self.chunks[k] = first;
+                for (i, ch) in parts.into_iter().enumerate() {
+                    self.chunks.insert(k + 1 + i, ch);
+                }
+            }
+        }
+        n
+    }
+
+    /// The pieces of every chunk, in order (the chunks emptied).
+    fn take_all(&mut self) -> Vec<Piece> {
+        let mut all = Vec::new();
+        for ch in self.chunks.drain(..) {
+            all.extend(ch.pieces);
+        }
+        all
     }
 
     /// The limit of the current phase at indentation `d` with factor `c`.
@@ -301,18 +492,24 @@ impl ThorntonRow {
         let w_old = self.offset;
         self.offset += dw;
         self.truncate(lim1.reach);
-        let old = std::mem::take(&mut self.pieces);
-        let mut out = std::mem::take(&mut self.spare);
-        out.clear();
-        for &p in &old {
-            match p.kind {
-                Kind::Stuck => self.clip(p, &lim1, &mut out),
-                Kind::Plus | Kind::Minus => {
-                    self.slip(p, (&lim0, &lim1), rates, m, w_old, &mut out);
+        let mut k = 0;
+        while k < self.chunks.len() {
+            if !self.chunks[k].changes(&lim1, self.offset) {
+                k += 1;
+                continue;
+            }
+            let old = std::mem::take(&mut self.chunks[k].pieces);
+            let mut out = Vec::with_capacity(old.len() + 4);
+            for &p in &old {
+                match p.kind {
+                    Kind::Stuck => self.clip(p, &lim1, &mut out),
+                    Kind::Plus | Kind::Minus => {
+                        self.slip(p, (&lim0, &lim1), rates, m, w_old, &mut out);
+                    }
                 }
             }
+            k += self.install(k, out, lim1.c);
         }
-        self.spare = old;
         // Points entering contact: ũ = w(h) − w(θh), θ = (y − D0)/(D1 − D0).
         let (r0, r1) = (lim0.reach, lim1.reach);
         if r1 > r0 {
@@ -330,21 +527,32 @@ impl ThorntonRow {
                 &self.line,
                 self.radius,
             );
+            let mut out = std::mem::take(&mut self.spare);
+            out.clear();
             self.clip(entry, &lim1, &mut out);
+            // Into the last chunk while it has room.
+            let last = self.chunks.len();
+            if last > 0 && self.chunks[last - 1].pieces.len() + out.len() <= CHUNK_MAX {
+                let mut pieces = std::mem::take(&mut self.chunks[last - 1].pieces);
+                for &p in &out {
+                    push_merged(&mut pieces, p);
+                }
+                self.install(last - 1, pieces, lim1.c);
+            } else if !out.is_empty() {
+                self.chunks.push(Chunk::default());
+                self.install(last, out.clone(), lim1.c);
+            }
+            self.spare = out;
         }
-        self.pieces = out;
         let integral = self.integral(&lim1);
         let finite = c.is_finite();
         self.at_limit = if finite {
-            (
-                self.pieces.iter().any(|p| p.kind == Kind::Plus),
-                self.pieces.iter().any(|p| p.kind == Kind::Minus),
-            )
+            self.limits_held()
         } else {
             (false, false)
         };
         let a1 = (self.radius * lim1.reach).sqrt();
-        let mean = if a1 > 0.0 && !self.pieces.is_empty() {
+        let mean = if a1 > 0.0 && self.chunks.iter().any(|ch| !ch.pieces.is_empty()) {
             integral / a1
         } else if finite {
             0.0
@@ -365,10 +573,7 @@ impl ThorntonRow {
         let lim = self.limit(start.0, c);
         let integral = self.integral(&lim);
         let a = (self.radius * lim.reach).sqrt();
-        self.at_limit = (
-            self.pieces.iter().any(|p| p.kind == Kind::Plus),
-            self.pieces.iter().any(|p| p.kind == Kind::Minus),
-        );
+        self.at_limit = self.limits_held();
         Some(StepResult {
             integral,
             mean: if a > 0.0 { integral / a } else { 0.0 },
@@ -382,9 +587,8 @@ impl ThorntonRow {
         let old_limit = self.limit(max_indentation, c);
         self.unloading = true;
         let new_limit = self.limit(max_indentation, c);
-        let old = std::mem::take(&mut self.pieces);
-        let mut out = std::mem::take(&mut self.spare);
-        out.clear();
+        let old = self.take_all();
+        let mut out = Vec::with_capacity(old.len() + 8);
         let w = self.offset;
         for &p in &old {
             let stuck = match p.kind {
@@ -405,8 +609,8 @@ impl ThorntonRow {
             };
             self.clip(stuck, &new_limit, &mut out);
         }
-        self.spare = old;
-        self.pieces = out;
+        self.chunks.push(Chunk::default());
+        self.install(0, out, new_limit.c);
     }
 
     /// A run at the limit of sign `s` through the step: cut where the rate gap
@@ -498,24 +702,55 @@ impl ThorntonRow {
         let w = self.offset;
         let line = self.line;
         self.cuts.clear();
-        if p.k == 0.0 && lim.linear_from(p.y0) {
-            // ũ ∓ c(D − y) in z: (a + W ∓ c(D − y_ref)) + (b ± c) z + q z².
-            let lim_ref = lim.c * (lim.reach - p.y_ref);
-            let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
-            let abs_a = p.a + w;
-            let start = self.cuts.len();
-            roots_inside(abs_a - lim_ref, p.b + lim.c, p.q, z0, z1, &mut self.cuts);
-            roots_inside(abs_a + lim_ref, p.b - lim.c, p.q, z0, z1, &mut self.cuts);
-            for z in &mut self.cuts[start..] {
-                *z += p.y_ref;
+        let mut p = p;
+        let general = if lim.linear_from(p.y0) {
+            // Linear limits ±s (D − y): the piece's bounds for slope s decide most steps.
+            if p.slope != lim.c {
+                p = p.bounded(lim.c, &line);
             }
-        } else {
-            let (lo, hi) = p.range(&line);
-            let floor = lim.at(p.y1);
-            if w + hi < floor && w + lo > -floor {
+            let top = lim.c * lim.reach;
+            if p.upper <= top - w && p.lower >= -top - w {
                 out.push(p);
                 return;
             }
+            if p.k == 0.0 {
+                // ũ ∓ c(D − y) in z: (a + W ∓ c(D − y_ref)) + (b ± c) z + q z².
+                let lim_ref = lim.c * (lim.reach - p.y_ref);
+                let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
+                let abs_a = p.a + w;
+                roots_inside(abs_a - lim_ref, p.b + lim.c, p.q, z0, z1, &mut self.cuts);
+                roots_inside(abs_a + lim_ref, p.b - lim.c, p.q, z0, z1, &mut self.cuts);
+                for z in &mut self.cuts {
+                    *z += p.y_ref;
+                }
+                false
+            } else {
+                true
+            }
+        } else {
+            // A curved limit: above its smallest value on the piece, and above its chord (it
+            // is concave in y), which is a linear limit of slope s through (y1, L(y1)).
+            let floor = lim.at(p.y1);
+            if w + p.hi < floor && w + p.lo > -floor {
+                out.push(p);
+                return;
+            }
+            let span = p.y1 - p.y0;
+            let s = if span > 0.0 {
+                (lim.at(p.y0) - floor) / span
+            } else {
+                0.0
+            };
+            let b = p.bounded(s, &line);
+            let top = floor + s * p.y1;
+            p.slope = f64::NAN;
+            if b.upper <= top - w && b.lower >= -top - w {
+                out.push(p);
+                return;
+            }
+            true
+        };
+        if general {
             let kinks = [
                 p.top - line.yield_indentation,
                 lim.reach - lim.line.yield_indentation,
@@ -551,7 +786,7 @@ impl ThorntonRow {
                 } else if lo == p.y0 && hi == p.y1 {
                     p
                 } else {
-                    p.part(lo, hi, self.radius)
+                    p.part(lo, hi, &line, self.radius)
                 };
                 push_merged(out, part);
             }
@@ -561,18 +796,48 @@ impl ThorntonRow {
 
     /// Drop everything at `y ≥ top` (springs leaving contact drop their state).
     fn truncate(&mut self, top: f64) {
-        let radius = self.radius;
-        self.pieces.retain(|p| p.y0 < top);
-        if let Some(last) = self.pieces.last_mut() {
-            if last.y1 > top {
-                *last = last.part(last.y0, top, radius);
+        let line = self.line;
+        while self
+            .chunks
+            .last()
+            .is_some_and(|ch| ch.pieces.first().is_none_or(|p| p.y0 >= top))
+        {
+            self.chunks.pop();
+        }
+        let k = self.chunks.len();
+        if k == 0 {
+            return;
+        }
+        let needs = self.chunks[k - 1].pieces.last().is_some_and(|p| p.y1 > top);
+        if needs {
+            let mut pieces = std::mem::take(&mut self.chunks[k - 1].pieces);
+            pieces.retain(|p| p.y0 < top);
+            if let Some(last) = pieces.last_mut() {
+                if last.y1 > top {
+                    *last = last.part(last.y0, top, &line, self.radius);
+                }
+            }
+            let s = self.chunks[k - 1].slope;
+            self.install(k - 1, pieces, s);
+        }
+    }
+
+    /// Whether some piece sits at the `+` / `−` limit.
+    fn limits_held(&self) -> (bool, bool) {
+        let mut held = (false, false);
+        for ch in self.chunks.iter().filter(|ch| ch.limits) {
+            for p in &ch.pieces {
+                held.0 |= p.kind == Kind::Plus;
+                held.1 |= p.kind == Kind::Minus;
             }
         }
+        held
     }
 
     /// `ũ` at the centre.
     fn center(&self, lim: &Limit) -> f64 {
-        self.pieces.first().map_or(0.0, |p| match p.kind {
+        let first = self.chunks.first().and_then(|ch| ch.pieces.first());
+        first.map_or(0.0, |p| match p.kind {
             Kind::Stuck => self.offset + p.value(0.0, &self.line),
             Kind::Plus => lim.at(0.0),
             Kind::Minus => -lim.at(0.0),
@@ -582,14 +847,20 @@ impl ThorntonRow {
     /// `∫₀^a ũ dx` (m²) of the field under the limit `lim`.
     fn integral(&self, lim: &Limit) -> f64 {
         let w = self.offset;
-        self.pieces
-            .iter()
-            .map(|p| match p.kind {
-                Kind::Stuck => w * (p.x1 - p.x0) + p.integral(&self.line, self.radius),
-                Kind::Plus => lim.integral(p.x0, p.x1, self.radius),
-                Kind::Minus => -lim.integral(p.x0, p.x1, self.radius),
-            })
-            .sum()
+        let mut total = 0.0;
+        for ch in &self.chunks {
+            total += w * ch.stuck_length + ch.rel;
+            if ch.limits {
+                for p in &ch.pieces {
+                    match p.kind {
+                        Kind::Stuck => {}
+                        Kind::Plus => total += lim.integral(p.x0, p.x1, self.radius),
+                        Kind::Minus => total -= lim.integral(p.x0, p.x1, self.radius),
+                    }
+                }
+            }
+        }
+        total
     }
 }
 
