@@ -8,6 +8,7 @@ use crate::failure::{Context, Result};
 use clap::Args;
 
 use oblique_plot::{Figure, Legend, Panel, Series, Style};
+use oblique_solver::Law;
 use oblique_study::accuracy::{self, Settings};
 use oblique_sweep::provenance;
 use oblique_sweep::{Config, Silent};
@@ -35,6 +36,10 @@ pub struct AccuracyArgs {
     /// Euler series, so the comparison with the seed scheme is left out.
     #[arg(long = "e-n", value_parser = crate::args::parse_e_n, default_value = "1", conflicts_with = "tables")]
     e_n: f64,
+    /// The dissipative law of the study below e_n = 1: kelvin-voigt (the default) or thornton
+    /// (elastic-perfectly plastic).
+    #[arg(long, value_parser = crate::args::parse_law)]
+    law: Option<Law>,
 }
 
 fn command_line() -> String {
@@ -52,6 +57,7 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
     }
     let set = Settings {
         e_n: args.e_n,
+        law: args.law,
         ..if args.quick {
             Settings::quick()
         } else {
@@ -67,7 +73,13 @@ pub fn run(args: AccuracyArgs) -> Result<()> {
         "{} points{}; reference: accurate scheme to {} steps (Richardson); times are thread CPU time",
         points.len(),
         if set.e_n < 1.0 {
-            format!(", e_n = {} (kelvin-voigt)", set.e_n)
+            format!(
+                ", e_n = {} ({})",
+                set.e_n,
+                set.law
+                    .unwrap_or_else(|| Law::for_restitution(set.e_n))
+                    .name()
+            )
         } else {
             String::new()
         },

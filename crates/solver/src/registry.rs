@@ -180,6 +180,12 @@ impl Law {
         with_law!(self, L => L::check_restitution(e_n))
     }
 
+    /// `P(γ, α, e_n)` where this law has it exactly without simulation (`None` elsewhere;
+    /// [`ContactLaw::closed_form`]); `γ`, `α` and `e_n` checked.
+    pub fn closed_form(self, gamma: f64, alpha: f64, e_n: f64) -> Option<f64> {
+        with_law!(self.answering(e_n), L => L::closed_form(gamma, alpha, e_n))
+    }
+
     /// The law whose solver answers a request for this law at a checked `e_n`: the elastic law
     /// at `e_n = 1` whatever the name (every law here is the elastic one there: the same
     /// operations, the same bits), this law below.

@@ -202,3 +202,53 @@ mod physical {
         assert!(err.to_string().contains("yield_pressure"), "{err}");
     }
 }
+
+/// The extremes: γ from 0.01 to 5, α from 1e-9 to ∞, e_n at 0.3 and next to 1: every answer
+/// finite with `|P| ≤ 1` and an error estimate within the tolerance; as `e_n → 1` the law
+/// tends to the elastic one (`physics.md`: the plastic loss is second order in `1 − V_y/V`).
+#[test]
+fn the_extremes_are_bounded_and_e_n_1_is_the_limit() {
+    use oblique_solver::{Accuracy, Law};
+    let solve = |g: f64, a: f64, e: f64| {
+        Request::new(g, a)
+            .e_n(e)
+            .law(Law::Thornton)
+            .accuracy(Accuracy::Tolerance(1e-5))
+            .solve()
+            .unwrap_or_else(|err| panic!("γ {g} α {a} e_n {e}: {err}"))
+    };
+    for g in [0.01, 0.1, 1.0, 2.16, 5.0] {
+        for a in [1e-9, 0.01, 1.0, 1e3, 1e9, f64::INFINITY] {
+            for e in [0.3, 0.999_999_999_9] {
+                if g == 5.0 && e == 0.3 && a >= 1e3 {
+                    continue; // 32 768 steps: covered at tol 1e-6 by the closing note's runs.
+                }
+                let s = solve(g, a, e);
+                assert!(
+                    s.p.is_finite() && s.p.abs() <= 1.0,
+                    "γ {g} α {a} e_n {e}: P {}",
+                    s.p
+                );
+                assert!(s.error_estimate <= 1e-5, "γ {g} α {a} e_n {e}");
+            }
+        }
+    }
+    for (g, a) in [(0.1, 1.0), (5.0, 1e3)] {
+        let elastic = Request::new(g, a)
+            .accuracy(Accuracy::Tolerance(1e-6))
+            .solve()
+            .unwrap();
+        let near = Request::new(g, a)
+            .e_n(1.0 - 1e-10)
+            .law(Law::Thornton)
+            .accuracy(Accuracy::Tolerance(1e-6))
+            .solve()
+            .unwrap();
+        assert!(
+            (near.p - elastic.p).abs() < 1e-9,
+            "γ {g} α {a}: {} {}",
+            near.p,
+            elastic.p
+        );
+    }
+}

@@ -8,11 +8,10 @@
 
 use serde::Serialize;
 
-use oblique_physics::regimes::{self, alpha_c1, alpha_c2};
+use oblique_physics::regimes::{alpha_c1, alpha_c2};
 use oblique_plot::{Figure, Legend, Panel, Series, Style};
 use oblique_solver::impact::{base_resolution, dimensionless_normal};
-use oblique_solver::request::dissipative_closed_form;
-use oblique_solver::{Accuracy, PhysicsError, Preset, Request, Resolution, Scheme};
+use oblique_solver::{Accuracy, Law, PhysicsError, Preset, Request, Resolution, Scheme};
 
 /// One point of the study.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -99,19 +98,17 @@ pub const REFERENCE_STEPS: usize = 1 << 15;
 /// (`R_k = P_k + (P_k − P_{k−1})/3`), with the estimate `max(|R_k − R_{k−1}|, 0.1 |P_k − P_{k−1}|)`
 /// of the solver itself.
 ///
-/// For `e_n < 1` (Kelvin–Voigt law) the closed forms are the dissipative ones and the levels run
-/// the continuum row (the only row of that law).
+/// For `e_n < 1` the closed forms are those of the law (`law`, or Kelvin–Voigt where none is
+/// named) and the levels run the continuum row (the only row of the dissipative laws).
 pub fn reference(
     gamma: f64,
     alpha: f64,
     e_n: f64,
+    law: Option<Law>,
     steps: usize,
 ) -> Result<Reference, PhysicsError> {
-    let closed = if e_n < 1.0 {
-        dissipative_closed_form(gamma, alpha, e_n)
-    } else {
-        regimes::closed_form(gamma, alpha)
-    };
+    let law = law.unwrap_or_else(|| Law::for_restitution(e_n));
+    let closed = law.closed_form(gamma, alpha, e_n);
     if let Some(p) = closed {
         return Ok(Reference {
             p,
@@ -129,6 +126,7 @@ pub fn reference(
         values.push(
             Request::new(gamma, alpha)
                 .e_n(e_n)
+                .law(law)
                 .simulate(Resolution { springs, steps: s })?,
         );
     }
@@ -216,9 +214,11 @@ pub struct Settings {
     pub reference_steps: usize,
     /// Minimum CPU time spent timing one row (s).
     pub min_time: f64,
-    /// Normal restitution of every impact of the study (1: elastic; below, the Kelvin–Voigt
-    /// law, whose only scheme is the accurate one: no Euler series then).
+    /// Normal restitution of every impact of the study (1: elastic; below, a dissipative law,
+    /// whose only scheme is the accurate one: no Euler series then).
     pub e_n: f64,
+    /// The law of the study below `e_n = 1` (`None`: Kelvin–Voigt, the default law there).
+    pub law: Option<Law>,
 }
 
 impl Default for Settings {
@@ -232,6 +232,7 @@ impl Default for Settings {
             reference_steps: REFERENCE_STEPS,
             min_time: 0.05,
             e_n: 1.0,
+            law: None,
         }
     }
 }
@@ -248,6 +249,7 @@ impl Settings {
             reference_steps: 1 << 13,
             min_time: 0.005,
             e_n: 1.0,
+            law: None,
         }
     }
 }
@@ -268,8 +270,11 @@ pub fn fixed_ladder(gamma: f64, max_steps: usize) -> Vec<Resolution> {
 
 /// Run the study at one point: the reference, then every ladder.
 pub fn study_point(pt: &StudyPoint, set: &Settings) -> Result<(Reference, Vec<Row>), PhysicsError> {
-    let reference = reference(pt.gamma, pt.alpha, set.e_n, set.reference_steps)?;
-    let request = Request::new(pt.gamma, pt.alpha).e_n(set.e_n);
+    let reference = reference(pt.gamma, pt.alpha, set.e_n, set.law, set.reference_steps)?;
+    let mut request = Request::new(pt.gamma, pt.alpha).e_n(set.e_n);
+    if let Some(law) = set.law {
+        request = request.law(law);
+    }
     let mut rows = Vec::new();
     let row = |series, tol, res: Resolution, p: f64, est, time_s, calls| Row {
         point: pt.label,
@@ -601,6 +606,7 @@ mod tests {
             reference_steps: 1 << 11,
             min_time: 0.0,
             e_n: 1.0,
+            law: None,
         };
         let (reference, rows) = study_point(&pt, &set).expect("study");
         assert!(reference.error_estimate < 1e-6, "{reference:?}");
@@ -642,6 +648,16 @@ mod tests {
             .unwrap();
         assert!((reference.p - elastic.p).abs() > 0.01, "{reference:?}");
         assert!(rows.iter().all(|r| r.series != "euler"));
+        for r in rows.iter().filter(|r| r.series == "accurate-tol") {
+            assert!(r.error.abs() <= r.tol.unwrap(), "{r:?}");
+        }
+        // Thornton's law at the same e_n: its own reference (another P), its tolerances kept.
+        let set = Settings {
+            law: Some(Law::Thornton),
+            ..set
+        };
+        let (thornton, rows) = study_point(&pt, &set).expect("study");
+        assert!((thornton.p - reference.p).abs() > 1e-3, "{thornton:?}");
         for r in rows.iter().filter(|r| r.series == "accurate-tol") {
             assert!(r.error.abs() <= r.tol.unwrap(), "{r:?}");
         }
