@@ -416,6 +416,49 @@ fn a_dissipative_impact_names_its_law_e_n_and_relaxation_time() {
 }
 
 #[test]
+fn a_thornton_impact_names_its_limiting_pressure_and_no_regime() {
+    let map = stdout_json(&[
+        "impact", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.8", "--law", "thornton", "--json",
+    ]);
+    assert_eq!(map["law"], "thornton");
+    // physics.md: p_y = 0.350980351 gives e_n = 0.8.
+    let p_y = num(&map, "yield_pressure");
+    assert!((p_y - 0.350980351).abs() < 1e-9, "{p_y}");
+    assert_eq!(num(&map, "tau"), 0.0);
+    // Its full-slip line is not exact, so no closed-form regime is named.
+    assert!(
+        map["regime"].is_null() && map["alpha_c1"].is_null(),
+        "{map:?}"
+    );
+    let (p, est, steps) = (
+        num(&map, "P"),
+        num(&map, "error_estimate"),
+        count(&map, "steps"),
+    );
+    let fine = Request::new(1.754, 1.0)
+        .e_n(0.8)
+        .law(oblique_solver::Law::Thornton)
+        .simulate(Resolution {
+            springs: 0,
+            steps: 8 * steps,
+        })
+        .unwrap();
+    assert!((p - fine).abs() <= est, "{p} vs {fine} ± {est}");
+    // Another law at the same e_n: another P.
+    let kv = stdout_json(&[
+        "impact", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.8", "--json",
+    ]);
+    assert!((num(&kv, "P") - p).abs() > 0.1);
+    // Thornton's law takes the accurate scheme and the continuum row only.
+    let out = sweep(&[
+        "impact", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.8", "--law", "thornton",
+        "--scheme", "euler",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("scheme"));
+}
+
+#[test]
 fn bad_dissipation_input_is_refused_with_exit_2() {
     for (args, needle) in [
         (vec!["--e-n", "0.2"], "e-n"),

@@ -773,7 +773,7 @@ fn groups<'py>(
 }
 
 /// Columns of an impact row: the law's parameters ([`PARAMETER_KEYS`]) last.
-const IMPACT: [&str; 7] = [
+const IMPACT: [&str; 8] = [
     "p",
     "error_estimate",
     "closed_form",
@@ -781,10 +781,11 @@ const IMPACT: [&str; 7] = [
     "steps",
     "e_n",
     "tau",
+    "yield_pressure",
 ];
 
 /// `P(γ, α, e_n)` simulated to `tol` (or in closed form) for every row, with the law `law`
-/// (`None`: elastic at e_n = 1, Kelvin–Voigt below); returns `(rows, 7)`.
+/// (`None`: elastic at e_n = 1, Kelvin–Voigt below); returns `(rows, 8)`.
 #[pyfunction]
 #[pyo3(signature = (gamma, alpha, e_n, rows, shape, tol, simulate, law))]
 #[allow(clippy::too_many_arguments)]

@@ -153,7 +153,11 @@ pub fn run(args: ImpactArgs) -> Result<()> {
     let e_n = sol.e_n;
     // α_c1(e_n) marks the end of the full-slip line only for γ > 1; below, the line ends at
     // α_c2 and the formula for α_c1 means nothing (negative for γ < 1/√2; physics.md).
-    let alpha_c1 = (args.gamma >= 1.0).then(|| regimes::alpha_c1_dissipative(args.gamma, e_n));
+    // Thornton's law (below e_n = 1) leaves the full-slip line at every α > 0 (its limits jump
+    // at the switch to unloading): it has no closed-form regimes, so none is named.
+    let classified = sol.law.law() != Law::Thornton || e_n == 1.0;
+    let alpha_c1 =
+        (classified && args.gamma >= 1.0).then(|| regimes::alpha_c1_dissipative(args.gamma, e_n));
     let alpha_c2 = regimes::alpha_c2(args.gamma);
     // The continuum row has no spring count; a closed form has no resolution at all.
     let (springs, steps, row) = match sol.method {
@@ -168,7 +172,7 @@ pub fn run(args: ImpactArgs) -> Result<()> {
         ),
     };
     let e_t = regimes::tangential_restitution(sol.p);
-    let regime = regimes::Regime::of_dissipative(args.gamma, args.alpha, e_n);
+    let regime = classified.then(|| regimes::Regime::of_dissipative(args.gamma, args.alpha, e_n));
     let method = match sol.method {
         Method::ClosedForm => "closed-form",
         Method::Simulated => "simulated",
@@ -192,7 +196,7 @@ pub fn run(args: ImpactArgs) -> Result<()> {
             "row": row,
             "scheme": sol.scheme.name(),
             "method": method,
-            "regime": regime.name(),
+            "regime": regime.map(|r| r.name()),
             "alpha_c1": alpha_c1,
             "alpha_c2": alpha_c2,
             "elapsed_s": elapsed,
@@ -241,15 +245,19 @@ pub fn run(args: ImpactArgs) -> Result<()> {
         if let Some(parameters) = sol.law.describe() {
             outln!("law {} ({parameters})", sol.law.name())?;
         }
-        match alpha_c1 {
-            Some(c1) => outln!(
+        match (regime, alpha_c1) {
+            (Some(r), Some(c1)) => outln!(
                 "regime {} (alpha_c1 = {c1:.6}, alpha_c2 = {alpha_c2:.6})",
-                regime.name()
+                r.name()
             )?,
-            None => outln!(
+            (Some(r), None) => outln!(
                 "regime {} (alpha_c2 = {alpha_c2:.6}; for gamma < 1 the full-slip line ends at \
                  alpha_c2, alpha_c1 does not apply)",
-                regime.name()
+                r.name()
+            )?,
+            (None, _) => outln!(
+                "regime not classified (the thornton law leaves the full-slip line at every \
+                 alpha > 0; alpha_c2 = {alpha_c2:.6})"
             )?,
         }
         match sol.method {
