@@ -449,6 +449,26 @@ fn a_thornton_impact_names_its_limiting_pressure_and_no_regime() {
         "impact", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.8", "--json",
     ]);
     assert!((num(&kv, "P") - p).abs() > 0.1);
+    // The variant with the MDR's own unloading keeps the full-slip line, within its estimate.
+    let mdr = stdout_json(&[
+        "impact",
+        "--gamma",
+        "1.754",
+        "--alpha",
+        "0.1",
+        "--e-n",
+        "0.8",
+        "--law",
+        "thornton-mdr",
+        "--json",
+    ]);
+    assert_eq!(mdr["law"], "thornton-mdr");
+    assert!(mdr["regime"].is_null());
+    let line = 1.0 - 3.5 * 1.8 * 0.1;
+    assert!(
+        (num(&mdr, "P") - line).abs() <= num(&mdr, "error_estimate"),
+        "{mdr:?}"
+    );
     // Thornton's law takes the accurate scheme and the continuum row only.
     let out = sweep(&[
         "impact", "--gamma", "1.754", "--alpha", "1", "--e-n", "0.8", "--law", "thornton",

@@ -45,9 +45,10 @@ pub struct ImpactArgs {
     /// `yield_pressure` (in units of E* (m* v_z0^2/(E* R*^3))^(1/5)).
     #[arg(long = "e-n", value_parser = parse_e_n, default_value = "1", allow_hyphen_values = true)]
     e_n: f64,
-    /// Dissipation law: elastic (e_n = 1 only), kelvin-voigt (viscoelastic springs) or thornton
-    /// (elastic-perfectly plastic, Thornton 1997: metals, ceramics). Default: elastic at
-    /// e_n = 1, kelvin-voigt below. P at e_n < 1 depends on the law; answers name theirs.
+    /// Dissipation law: elastic (e_n = 1 only), kelvin-voigt (viscoelastic springs), thornton
+    /// (elastic-perfectly plastic, Thornton 1997: metals, ceramics) or thornton-mdr (its loading
+    /// with the MDR's own unloading, for comparison). Default: elastic at e_n = 1, kelvin-voigt
+    /// below. P at e_n < 1 depends on the law; answers name theirs.
     #[arg(long, value_parser = parse_law)]
     law: Option<Law>,
     /// Target absolute error of P, > 0 and <= 1e-2; the resolution is doubled until the error
@@ -154,8 +155,9 @@ pub fn run(args: ImpactArgs) -> Result<()> {
     // α_c1(e_n) marks the end of the full-slip line only for γ > 1; below, the line ends at
     // α_c2 and the formula for α_c1 means nothing (negative for γ < 1/√2; physics.md).
     // Thornton's law (below e_n = 1) leaves the full-slip line at every α > 0 (its limits jump
-    // at the switch to unloading): it has no closed-form regimes, so none is named.
-    let classified = sol.law.law() != Law::Thornton || e_n == 1.0;
+    // at the switch to unloading), and its MDR-unloading variant's critical α has no closed
+    // form: no closed-form regime is named for either.
+    let classified = !matches!(sol.law.law(), Law::Thornton | Law::ThorntonMdr) || e_n == 1.0;
     let alpha_c1 =
         (classified && args.gamma >= 1.0).then(|| regimes::alpha_c1_dissipative(args.gamma, e_n));
     let alpha_c2 = regimes::alpha_c2(args.gamma);
@@ -256,8 +258,9 @@ pub fn run(args: ImpactArgs) -> Result<()> {
                 r.name()
             )?,
             (None, _) => outln!(
-                "regime not classified (the thornton law leaves the full-slip line at every \
-                 alpha > 0; alpha_c2 = {alpha_c2:.6})"
+                "regime not classified (the {} law has no closed-form slip regimes; alpha_c2 = \
+                 {alpha_c2:.6})",
+                sol.law.name()
             )?,
         }
         match sol.method {

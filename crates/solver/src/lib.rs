@@ -21,6 +21,7 @@ pub mod request;
 pub mod resolution;
 pub mod springs;
 pub mod thornton;
+pub mod thornton_mdr;
 pub mod units;
 
 pub use error::PhysicsError;

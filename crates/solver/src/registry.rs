@@ -149,6 +149,10 @@ laws! { $
     /// pressure `p_y`, the pressure capped at `p_y` beyond, Hertz unloading of a larger radius:
     /// `e_n ∈ [0.3, 1]` (`e_n = 1` is the elastic law exactly).
     Thornton => crate::thornton::Thornton, "thornton";
+    /// Thornton's loading with the MDR's own unloading (every spring shortens by the same
+    /// `d_max − d`): its limits do not jump at the switch. For comparison with Thornton's law
+    /// (solver only): `e_n ∈ [0.3, 1]`.
+    ThorntonMdr => crate::thornton_mdr::ThorntonMdr, "thornton-mdr";
 }
 pub(crate) use {with_bodies_law, with_law};
 
@@ -279,12 +283,15 @@ mod tests {
         );
         assert!(picks::<Thornton>(Law::Thornton));
         assert_eq!(Law::Thornton.answering(0.9), Law::Thornton);
-        assert_eq!(Law::NAMES, "elastic, kelvin-voigt or thornton");
+        assert_eq!(
+            Law::NAMES,
+            "elastic, kelvin-voigt, thornton or thornton-mdr"
+        );
         assert_eq!(
             Law::from_name("plastic"),
             Err(PhysicsError::UnknownLaw {
                 name: "plastic".into(),
-                allowed: "elastic, kelvin-voigt or thornton",
+                allowed: "elastic, kelvin-voigt, thornton or thornton-mdr",
             })
         );
     }

@@ -252,3 +252,40 @@ fn the_extremes_are_bounded_and_e_n_1_is_the_limit() {
         );
     }
 }
+
+/// The variant with the MDR's own unloading (`physics.md`): its limits do not jump at the
+/// switch, so it keeps the full-slip line up to its critical α (to 3e-8 in physics.md's
+/// prototype; here to 1e-8, Richardson of 2 048 and 4 096 steps), and it converges at second
+/// order elsewhere.
+#[test]
+fn the_mdr_unloading_keeps_the_full_slip_line() {
+    use oblique_solver::thornton_mdr;
+    let e_n = 0.8;
+    let motion = thornton_mdr::dimensionless_motion(
+        thornton_mdr::yield_pressure_for_restitution_mdr(e_n).unwrap(),
+    );
+    assert!((motion.restitution() - e_n).abs() < 1e-12);
+    let gamma: f64 = 1.754;
+    let shear = 2.0 / 7.0 * gamma * gamma;
+    let p = |alpha: f64, steps| thornton_mdr::dimensionless_p(shear, alpha / shear, &motion, steps);
+    for alpha in [0.01, 0.1, 0.15] {
+        let line = 1.0 - 3.5 * (1.0 + e_n) * alpha;
+        let (a, b) = (p(alpha, 2048), p(alpha, 4096));
+        let got = b + (b - a) / 3.0;
+        assert!((got - line).abs() < 1e-8, "α {alpha}: {got} against {line}");
+    }
+    // Beyond the critical α it leaves the line; and converges at second order (γ = 1.2,
+    // α = 0.5, e_n = 0.9; below 1e-9 the integrated unloading's own error shows, first order
+    // at a few 1e-10 at γ = 1.754, α = 1, e_n = 0.8).
+    assert!(p(0.2, 2048) - (1.0 - 3.5 * 1.8 * 0.2) > 1e-3);
+    let motion = thornton_mdr::dimensionless_motion(
+        thornton_mdr::yield_pressure_for_restitution_mdr(0.9).unwrap(),
+    );
+    let shear = 2.0 / 7.0 * 1.2 * 1.2;
+    let v: Vec<f64> = [2048, 4096, 8192]
+        .iter()
+        .map(|&n| thornton_mdr::dimensionless_p(shear, 0.5 / shear, &motion, n))
+        .collect();
+    let ratio = (v[1] - v[0]) / (v[2] - v[1]);
+    assert!((3.3..=4.7).contains(&ratio), "ratio {ratio} ({v:?})");
+}

@@ -49,7 +49,14 @@ fn main() -> anyhow::Result<()> {
     let mut diffs = Vec::new();
     for &n in &steps {
         let t = std::time::Instant::now();
-        let p = dimensionless_p(shear, limit, &motion, n);
+        let p = if std::env::var("THORN_MDR").is_ok() {
+            let m = oblique_solver::thornton_mdr::dimensionless_motion(
+                oblique_solver::thornton_mdr::yield_pressure_for_restitution_mdr(e_n)?,
+            );
+            oblique_solver::thornton_mdr::dimensionless_p(shear, limit, &m, n)
+        } else {
+            dimensionless_p(shear, limit, &motion, n)
+        };
         let el = t.elapsed().as_secs_f64();
         let d = last.map(|l| p - l);
         if let Some(d) = d {

@@ -46,6 +46,24 @@ impl Truncated {
         }
     }
 
+    /// `s` with `Q(s) = q` (`q ≥ 0`): `q` up to `d_y`, beyond by Newton from below (`Q` is
+    /// concave and increasing there, so the iterates rise monotonically to the root).
+    pub fn inverse(&self, q: f64) -> f64 {
+        let dy = self.yield_indentation;
+        if q <= dy {
+            return q.max(0.0);
+        }
+        let mut s = q;
+        for _ in 0..100 {
+            let next = s + (q - self.value(s)) / self.slope(s);
+            if next.is_nan() || next <= s {
+                break;
+            }
+            s = next;
+        }
+        s
+    }
+
     /// `∫₀^X Q(D − x²/R) dx` (m²) for `0 ≤ X ≤ √(R D)` (the springs of a contact of reach `D`
     /// up to `X`), in closed form: `∫ s dx` less the truncated part
     /// `E(s) = s − Q(s) = (2/π)[s θ − √(d_y (s − d_y))]` over `x² < R (D − d_y)`, integrated by
@@ -146,6 +164,10 @@ mod tests {
         }
         assert_eq!(q.slope(0.3), 1.0);
         assert!(q.slope(1e6) > 0.0 && q.slope(1e6) < 1e-2);
+        for s in [0.0, 0.1, 0.3, 0.300001, 0.7, 5.0, 1e4] {
+            let back = q.inverse(q.value(s));
+            assert!((back - s).abs() <= 1e-13 * s.max(1.0), "s {s}: {back}");
+        }
     }
 
     /// The density over the whole contact, `2 ∫₀^a q dx`, is the loading force `F(d)` of

@@ -274,15 +274,28 @@ impl Piece {
 struct Limit {
     /// `c κ`: `c` in loading, `c/ρ` in unloading.
     c: f64,
-    /// The reach `D` (m): `d` in loading, `ρ (d − d_p)` in unloading.
+    /// The reach `D` (m): `d` in loading, `ρ (d − d_p)` in Thornton's unloading, `d_max` in
+    /// the MDR unloading.
     reach: f64,
+    /// The uniform shortening `σ` of every spring (m): `d_max − d` in the MDR unloading, 0
+    /// elsewhere; the limit is `c_κ (Q(D − y) − σ)`.
+    shift: f64,
     /// The line density's truncation (none in unloading).
     line: Truncated,
 }
 
 impl Limit {
     fn at(&self, y: f64) -> f64 {
-        self.c * self.line.value(self.reach - y)
+        self.c * (self.line.value(self.reach - y) - self.shift)
+    }
+
+    /// The profile height where the limit falls to 0: the contact's edge.
+    fn edge(&self) -> f64 {
+        if self.shift > 0.0 {
+            (self.reach - self.line.inverse(self.shift)).max(0.0)
+        } else {
+            self.reach
+        }
     }
 
     /// Whether the limit is linear in `y` from `y0` on (`D − y0 ≤ d_y`).
@@ -294,7 +307,8 @@ impl Limit {
     fn integral(&self, x0: f64, x1: f64, radius: f64) -> f64 {
         self.c
             * (self.line.integral(self.reach, x1, radius)
-                - self.line.integral(self.reach, x0, radius))
+                - self.line.integral(self.reach, x0, radius)
+                - self.shift * (x1 - x0))
     }
 }
 
@@ -304,10 +318,13 @@ pub struct ThorntonRow {
     radius: f64,
     /// The loading's line density (its yield indentation `d_y`).
     line: Truncated,
-    /// `ρ = R_p/R*` of the unloading.
+    /// `ρ = R_p/R*` of Thornton's unloading.
     ratio: f64,
-    /// Plastic indentation `d_p` (m).
+    /// Plastic indentation `d_p` (m) of Thornton's unloading.
     plastic_indentation: f64,
+    /// The maximum indentation (m) of an unloading by the MDR rule (every spring shortens by
+    /// `d_max − d`; NaN for Thornton's unloading).
+    mdr_from: f64,
     /// The field, in chunks of at most [`CHUNK_MAX`] pieces: a step visits only the chunks
     /// whose sums say that something may change.
     chunks: Vec<Chunk>,
@@ -382,7 +399,7 @@ impl Chunk {
             return self.limits;
         }
         if lim.linear_from(first.y0) && self.slope == lim.c {
-            let top = lim.c * lim.reach;
+            let top = lim.c * (lim.reach - lim.shift);
             return !(self.upper <= top - w && self.lower >= -top - w);
         }
         let floor = lim.at(last.y1);
@@ -402,12 +419,23 @@ impl ThorntonRow {
             line: Truncated { yield_indentation },
             ratio,
             plastic_indentation,
+            mdr_from: f64::NAN,
             chunks: Vec::new(),
             spare: Vec::new(),
             offset: 0.0,
             unloading: false,
             at_limit: (false, false),
             cuts: Vec::new(),
+        }
+    }
+
+    /// An unloaded row of the same loading whose unloading follows the MDR rule from the
+    /// maximum indentation `d_max` (m): the limit of the spring at `y` is
+    /// `c (Q(d_max − y) − (d_max − d))`, continuous at the switch.
+    pub fn with_mdr_unloading(radius: f64, yield_indentation: f64, max_indentation: f64) -> Self {
+        ThorntonRow {
+            mdr_from: max_indentation,
+            ..Self::new(radius, yield_indentation, 1.0, 0.0)
         }
     }
 
@@ -456,10 +484,18 @@ impl ThorntonRow {
 
     /// The limit of the current phase at indentation `d` with factor `c`.
     fn limit(&self, d: f64, c: f64) -> Limit {
-        if self.unloading {
+        if !self.unloading {
+            Limit {
+                c,
+                reach: d.max(0.0),
+                shift: 0.0,
+                line: self.line,
+            }
+        } else if self.mdr_from.is_nan() {
             Limit {
                 c: c / self.ratio,
                 reach: (self.ratio * (d - self.plastic_indentation)).max(0.0),
+                shift: 0.0,
                 line: Truncated {
                     yield_indentation: f64::INFINITY,
                 },
@@ -467,9 +503,21 @@ impl ThorntonRow {
         } else {
             Limit {
                 c,
-                reach: d.max(0.0),
+                reach: self.mdr_from,
+                shift: (self.mdr_from - d).max(0.0),
                 line: self.line,
             }
+        }
+    }
+
+    /// The rates `(Ḋ, σ̇)` of the limit's reach and shift at the indentation rate `ḋ`.
+    fn limit_rates(&self, rate: f64) -> (f64, f64) {
+        if !self.unloading {
+            (rate, 0.0)
+        } else if self.mdr_from.is_nan() {
+            (self.ratio * rate, 0.0)
+        } else {
+            (0.0, -rate)
         }
     }
 
@@ -477,21 +525,21 @@ impl ThorntonRow {
     /// `c` (`∞`: no slip). Returns `∫₀^a ũ dx` (m²) and the mean displacement.
     pub fn step(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
         if !self.unloading && (m.rate0 < 0.0 || m.rate1 < 0.0) {
-            self.switch(m.d0, c);
+            if self.mdr_from.is_nan() {
+                self.switch(m.d0, c);
+            } else {
+                self.unloading = true;
+            }
         }
         let lim0 = self.limit(m.d0, c);
         let lim1 = self.limit(d1, c);
-        let rates = if self.unloading {
-            (self.ratio * m.rate0, self.ratio * m.rate1)
-        } else {
-            (m.rate0, m.rate1)
-        };
+        let rates = (self.limit_rates(m.rate0), self.limit_rates(m.rate1));
         let (h, v, acc) = (m.h, m.slip_velocity, m.slip_accel);
         let dw = h * v + 0.5 * h * h * acc;
         let center = self.center(&lim0);
         let w_old = self.offset;
         self.offset += dw;
-        self.truncate(lim1.reach);
+        self.truncate(lim1.edge());
         let mut k = 0;
         while k < self.chunks.len() {
             if !self.chunks[k].changes(&lim1, self.offset) {
@@ -551,7 +599,7 @@ impl ThorntonRow {
         } else {
             (false, false)
         };
-        let a1 = (self.radius * lim1.reach).sqrt();
+        let a1 = (self.radius * lim1.edge()).sqrt();
         let mean = if a1 > 0.0 && self.chunks.iter().any(|ch| !ch.pieces.is_empty()) {
             integral / a1
         } else if finite {
@@ -567,6 +615,11 @@ impl ThorntonRow {
     /// `∫₀^a ũ dx` (m²) and mean displacement there; `None` at every other step.
     pub fn jump(&mut self, start: (f64, f64), end: (f64, f64), c: f64) -> Option<StepResult> {
         if self.unloading || !(start.1 < 0.0 || end.1 < 0.0) {
+            return None;
+        }
+        if !self.mdr_from.is_nan() {
+            // The MDR unloading's limits are continuous at the switch: no jump.
+            self.unloading = true;
             return None;
         }
         self.switch(start.0, c);
@@ -621,7 +674,7 @@ impl ThorntonRow {
         &mut self,
         p: Piece,
         (lim0, lim1): (&Limit, &Limit),
-        (rate0, rate1): (f64, f64),
+        ((rate0, shift0), (rate1, shift1)): ((f64, f64), (f64, f64)),
         m: &StepMotion,
         w_old: f64,
         out: &mut Vec<Piece>,
@@ -629,11 +682,11 @@ impl ThorntonRow {
         let s = if p.kind == Kind::Plus { 1.0 } else { -1.0 };
         let (h, v, acc) = (m.h, m.slip_velocity, m.slip_accel);
         let v1 = v + acc * h;
-        let g0 = |y: f64| lim0.c * lim0.line.slope(lim0.reach - y) * rate0 - s * v;
-        let g1 = |y: f64| lim1.c * lim1.line.slope(lim1.reach - y) * rate1 - s * v1;
+        let g0 = |y: f64| lim0.c * (lim0.line.slope(lim0.reach - y) * rate0 - shift0) - s * v;
+        let g1 = |y: f64| lim1.c * (lim1.line.slope(lim1.reach - y) * rate1 - shift1) - s * v1;
         let mut cuts = [p.y0, f64::NAN, f64::NAN, p.y1];
-        cuts[1] = front(lim0, rate0, s * v);
-        cuts[2] = front(lim1, rate1, s * v1);
+        cuts[1] = front(lim0, rate0, lim0.c * shift0 + s * v);
+        cuts[2] = front(lim1, rate1, lim1.c * shift1 + s * v1);
         let mut inner: Vec<f64> = cuts[1..3]
             .iter()
             .copied()
@@ -669,7 +722,7 @@ impl ThorntonRow {
                 let qc = 2.0 * (c_hi - 2.0 * c_mid + c_lo) / (span * span);
                 let bc = (c_hi - c_lo) / span - qc * span;
                 let (a, b, k) = if lim0.line.yield_indentation.is_finite() {
-                    (0.0, 0.0, s * lim0.c)
+                    (-s * lim0.c * lim0.shift, 0.0, s * lim0.c)
                 } else {
                     (s * lim0.c * (lim0.reach - lo), -s * lim0.c, 0.0)
                 };
@@ -708,14 +761,14 @@ impl ThorntonRow {
             if p.slope != lim.c {
                 p = p.bounded(lim.c, &line);
             }
-            let top = lim.c * lim.reach;
+            let top = lim.c * (lim.reach - lim.shift);
             if p.upper <= top - w && p.lower >= -top - w {
                 out.push(p);
                 return;
             }
             if p.k == 0.0 {
                 // ũ ∓ c(D − y) in z: (a + W ∓ c(D − y_ref)) + (b ± c) z + q z².
-                let lim_ref = lim.c * (lim.reach - p.y_ref);
+                let lim_ref = lim.c * (lim.reach - lim.shift - p.y_ref);
                 let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
                 let abs_a = p.a + w;
                 roots_inside(abs_a - lim_ref, p.b + lim.c, p.q, z0, z1, &mut self.cuts);
