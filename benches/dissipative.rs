@@ -9,7 +9,7 @@
 //! The relaxation time of an `e_n` and the fine normal motion of a relaxation time are cached per
 //! thread (as the elastic normal trajectory is), so after the first call (made before timing)
 //! only the refinement is timed: the situation of a sweep. Their one-off costs are the groups
-//! `kelvin_voigt_once` (`tau_for_restitution`, and the fine normal motion).
+//! `kelvin_voigt_once` (the fine normal motion of a relaxation time, and its restitution).
 //!
 //! Before timing, a summary line per case prints `P`, the final resolution and the estimate.
 //! `IMPACT_BENCH_CLOCK=cpu` measures the thread's CPU time (groups suffixed `_cpu`).
@@ -86,8 +86,9 @@ fn bench_solve(c: &mut Criterion, clock: Clock, name: &str, e_n: f64) {
     group.finish();
 }
 
-/// What the per-thread caches save: the relaxation time of an `e_n` (a root search on the
-/// normal motion's restitution) and the fine normal motion of a relaxation time.
+/// What a first Kelvin–Voigt impact computes once per thread: the fine normal motion of a
+/// relaxation time; and the restitution of one (physical bodies, the root search that checks
+/// the fitted relaxation time of an `e_n`).
 fn bench_once(c: &mut Criterion, clock: Clock) {
     let mut group = c.benchmark_group(format!("kelvin_voigt_once{}", clock.suffix()));
     group

@@ -296,8 +296,9 @@ fn bench_accurate(c: &mut Criterion, clock: Clock, name: &str, tol: f64) {
     group.finish();
 }
 
-/// The one-off cost the process-wide cache saves: the dimensionless Hertz trajectory
-/// (what `dimensionless_normal(steps)` computes on its first call for `steps`).
+/// The one-off cost of the dimensionless Hertz trajectory: what the build tabulates for the
+/// powers of two from 16 to 8192 steps, and what `dimensionless_normal(steps)` computes on its
+/// first call in a process for other grids.
 fn bench_normal(c: &mut Criterion, clock: Clock) {
     let mut group = c.benchmark_group(format!("normal_trajectory{}", clock.suffix()));
     group

@@ -261,6 +261,35 @@ impl NormalBodies {
 }
 
 impl NormalTrajectory {
+    /// The trajectory of `bodies` from its nodes as [`NormalBodies::trajectory_over`] computed
+    /// them (`indentation`, `rate`, both `steps + 1` long, and the scalars it measured): the
+    /// accelerations and the step are derived the same way, to the bit.
+    pub(crate) fn from_nodes(
+        bodies: &NormalBodies,
+        tc: f64,
+        indentation: Vec<f64>,
+        rate: Vec<f64>,
+        [max_indentation, peak_force, delta_v1, delta_v2]: [f64; 4],
+    ) -> Self {
+        let steps = indentation.len() - 1;
+        let inv_m = bodies.inv_mass1 + bodies.inv_mass2;
+        let accel = std::iter::once(0.0)
+            .chain(indentation[1..].iter().map(|&d| -bodies.force(d) * inv_m))
+            .collect();
+        NormalTrajectory {
+            indentation,
+            rate,
+            accel,
+            accel_factor: bodies.stiffness * inv_m,
+            dt: tc / steps as f64,
+            contact_time: tc,
+            max_indentation,
+            peak_force,
+            delta_v1,
+            delta_v2,
+        }
+    }
+
     /// Indentation and its rate at time `t ∈ [0, dt]` into step `n`, by cubic Hermite
     /// interpolation of the nodes (error O(dt⁴)).
     pub fn within_step(&self, n: usize, t: f64) -> (f64, f64) {

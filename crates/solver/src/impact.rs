@@ -5,7 +5,7 @@
 //! time is then ≈ 2.868.
 
 use std::collections::BTreeMap;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
@@ -408,22 +408,64 @@ const UNIVERSAL: NormalBodies = NormalBodies {
 /// The trajectories of [`dimensionless_normal`], shared by every thread of the process.
 static NORMAL_CACHE: Mutex<BTreeMap<usize, Arc<NormalTrajectory>>> = Mutex::new(BTreeMap::new());
 
-/// The measured contact time of the universal motion, once per process.
-static UNIVERSAL_CONTACT_TIME: OnceLock<f64> = OnceLock::new();
+/// The universal motion tabulated at build time (`crates/solver/build.rs`, with this crate's
+/// [`NormalBodies`]): little-endian `f64`s, the first and last power of two tabulated, the
+/// measured contact time, then for each grid its maximum indentation, peak force, `Δv₁`,
+/// `Δv₂`, indentations and rates.
+static TABULATED: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/universal_hertz.bin"));
+
+/// The `i`-th value of [`TABULATED`].
+fn tabulated(i: usize) -> f64 {
+    let mut b = [0u8; 8];
+    b.copy_from_slice(&TABULATED[8 * i..8 * i + 8]);
+    f64::from_le_bytes(b)
+}
+
+/// The measured contact time of the universal motion ([`NormalBodies::measure_contact_time`]
+/// of [`UNIVERSAL`], tabulated at build time).
+fn universal_contact_time() -> f64 {
+    tabulated(2)
+}
+
+/// The universal motion on `steps` steps as tabulated at build time, where `steps` is one of
+/// its powers of two.
+fn tabulated_normal(steps: usize) -> Option<NormalTrajectory> {
+    let (first, last) = (tabulated(0) as u32, tabulated(1) as u32);
+    if !steps.is_power_of_two() || !(first..=last).contains(&steps.trailing_zeros()) {
+        return None;
+    }
+    let mut at = 3;
+    for k in first..steps.trailing_zeros() {
+        at += 4 + 2 * ((1usize << k) + 1);
+    }
+    let scalars = [0, 1, 2, 3].map(|i| tabulated(at + i));
+    let nodes = |from: usize| (from..from + steps + 1).map(tabulated).collect();
+    Some(NormalTrajectory::from_nodes(
+        &UNIVERSAL,
+        universal_contact_time(),
+        nodes(at + 4),
+        nodes(at + 5 + steps),
+        scalars,
+    ))
+}
 
 /// The universal dimensionless normal motion (`m* = R* = E* = v_z0 = 1`) on `steps` steps,
-/// computed once per process and shared by its threads (the contact time is measured once:
-/// before, every level of every thread measured it again, 0.4 M instructions each, more than
-/// a warm solve at α = ∞ and γ ≤ 0.5).
+/// shared by the threads of a process: tabulated at build time for the powers of two from 16
+/// to 8192 steps (the grids of the refinement), computed once per process for others, on the
+/// tabulated contact time. Before, every process integrated each level again (246 µs at
+/// 1 024 steps, about as much as a warm solve's finest level), and measured the contact time
+/// once (0.4 M instructions).
 pub fn dimensionless_normal(steps: usize) -> Arc<NormalTrajectory> {
     let cached = |cache: &BTreeMap<usize, Arc<NormalTrajectory>>| cache.get(&steps).cloned();
     // A poisoned lock only means another thread panicked while inserting: the map is valid.
     if let Some(t) = cached(&NORMAL_CACHE.lock().unwrap_or_else(|e| e.into_inner())) {
         return t;
     }
-    let tc = *UNIVERSAL_CONTACT_TIME.get_or_init(|| UNIVERSAL.measure_contact_time());
     // Computed outside the lock, so that threads wait only for the map.
-    let t = Arc::new(UNIVERSAL.trajectory_over(steps, tc));
+    let t = Arc::new(
+        tabulated_normal(steps)
+            .unwrap_or_else(|| UNIVERSAL.trajectory_over(steps, universal_contact_time())),
+    );
     let mut cache = NORMAL_CACHE.lock().unwrap_or_else(|e| e.into_inner());
     if let Some(t) = cached(&cache) {
         return t;
@@ -748,6 +790,41 @@ mod tests {
         ] {
             assert!(a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits()));
             assert_eq!(a.len(), 97);
+        }
+    }
+
+    #[test]
+    fn the_tabulated_normal_motion_has_the_bits_of_the_computed_one() {
+        // Every grid the build tabulated (16 … 8192 steps) is what this process would integrate,
+        // measuring its own contact time, to the bit; other grids are computed.
+        assert!(tabulated_normal(8).is_none() && tabulated_normal(16384).is_none());
+        assert!(tabulated_normal(96).is_none());
+        for k in 4..=13 {
+            let steps = 1usize << k;
+            let table = tabulated_normal(steps).expect("tabulated");
+            let fresh = UNIVERSAL.trajectory(steps);
+            for (a, b) in [
+                (&table.indentation, &fresh.indentation),
+                (&table.rate, &fresh.rate),
+                (&table.accel, &fresh.accel),
+            ] {
+                assert_eq!(a.len(), steps + 1);
+                assert!(
+                    a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits()),
+                    "{steps}"
+                );
+            }
+            for (x, y) in [
+                (table.accel_factor, fresh.accel_factor),
+                (table.dt, fresh.dt),
+                (table.contact_time, fresh.contact_time),
+                (table.max_indentation, fresh.max_indentation),
+                (table.peak_force, fresh.peak_force),
+                (table.delta_v1, fresh.delta_v1),
+                (table.delta_v2, fresh.delta_v2),
+            ] {
+                assert_eq!(x.to_bits(), y.to_bits(), "{steps}");
+            }
         }
     }
 }

@@ -1,15 +1,117 @@
-//! `N`: the relaxation time `τ̂(e_n)` of the Kelvin–Voigt law at the `N` Chebyshev nodes of
-//! `x = 1 − e_n ∈ [0, 0.7]`, by the root search (`tau_for_restitution`), as CSV `x,tau`: the
-//! data behind the starting guess of that search (`kelvin_voigt::TAU_GUESS`).
-use oblique_solver::kelvin_voigt::tau_for_restitution;
+//! `[DEGREE] [POINTS]`: the fit behind `kelvin_voigt::tau_for_restitution`. The relaxation
+//! time `τ̂(e_n)` of the Kelvin–Voigt law by the root search from the series
+//! (`tau_for_restitution_from_series`, no fit involved) at `POINTS` (default 600) points of
+//! `x = 1 − e_n ∈ (0, 0.7]` spread as Chebyshev nodes, and the least-squares Chebyshev series of
+//! `g = τ̂/x` in `u = x/0.35 − 1` of degree `DEGREE` (default 28). Each point weighs as the
+//! error in `τ̂` it gives (`x (g − τ̂/x)`): the search knows `τ̂` to a few ulps of `e_n`, so
+//! `τ̂/x` only to `~ε/x` near `x = 0`; there the fit is pinned by the exact limit
+//! `g(0) = 1/(C1 b₁)` of the small-damping series (`b₁` the damping number of `τ̂ = 1`).
+//! Prints the coefficients as a Rust array and the residuals (relative, in `τ̂`) to stderr.
+use oblique_solver::kelvin_voigt::{damping_number, tau_for_restitution_from_series, C1};
+
+/// Least squares `min |A c − b|` by Householder QR (`A` is `m × n`, rows).
+#[allow(clippy::needless_range_loop)] // Householder reflections read clearest with indices.
+fn least_squares(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+    let (m, n) = (a.len(), a[0].len());
+    for k in 0..n {
+        let norm = (k..m).map(|i| a[i][k] * a[i][k]).sum::<f64>().sqrt();
+        let alpha = if a[k][k] > 0.0 { -norm } else { norm };
+        let mut v: Vec<f64> = (k..m).map(|i| a[i][k]).collect();
+        v[0] -= alpha;
+        let vv: f64 = v.iter().map(|x| x * x).sum();
+        if vv == 0.0 {
+            continue;
+        }
+        for j in k..n {
+            let s: f64 = (k..m).map(|i| v[i - k] * a[i][j]).sum::<f64>() * 2.0 / vv;
+            for i in k..m {
+                a[i][j] -= s * v[i - k];
+            }
+        }
+        let s: f64 = (k..m).map(|i| v[i - k] * b[i]).sum::<f64>() * 2.0 / vv;
+        for i in k..m {
+            b[i] -= s * v[i - k];
+        }
+    }
+    let mut c = vec![0.0; n];
+    for k in (0..n).rev() {
+        let s: f64 = (k + 1..n).map(|j| a[k][j] * c[j]).sum();
+        c[k] = (b[k] - s) / a[k][k];
+    }
+    c
+}
+
+/// `T_0(u) … T_{n-1}(u)`.
+fn chebyshev(u: f64, n: usize) -> Vec<f64> {
+    let mut t = vec![1.0, u];
+    while t.len() < n {
+        let k = t.len();
+        t.push(2.0 * u * t[k - 1] - t[k - 2]);
+    }
+    t.truncate(n);
+    t
+}
 
 fn main() -> anyhow::Result<()> {
-    let n: usize = std::env::args().nth(1).map_or(Ok(40), |s| s.parse())?;
-    println!("x,tau");
-    for k in 0..n {
-        let t = std::f64::consts::PI * (k as f64 + 0.5) / n as f64;
-        let x = 0.35 * (1.0 - t.cos());
-        println!("{x:.17e},{:.17e}", tau_for_restitution(1.0 - x)?);
+    let mut args = std::env::args().skip(1);
+    let degree: usize = args.next().map_or(Ok(28), |s| s.parse())?;
+    let points: usize = args.next().map_or(Ok(600), |s| s.parse())?;
+    let n = degree + 1;
+    let data: Vec<(f64, f64)> = (0..points)
+        .map(|k| {
+            let t = std::f64::consts::PI * (k as f64 + 0.5) / points as f64;
+            let x = 0.35 * (1.0 - t.cos());
+            tau_for_restitution_from_series(1.0 - x).map(|tau| (x, tau))
+        })
+        .collect::<Result<_, _>>()?;
+    let limit = 1.0 / (C1 * damping_number(1.0));
+    let mut rows = Vec::new();
+    let mut rhs = Vec::new();
+    for &(x, tau) in &data {
+        let u = x / 0.35 - 1.0;
+        rows.push(chebyshev(u, n).iter().map(|t| x * t).collect());
+        rhs.push(tau);
     }
+    // The exact limit at x = 0, weighted as a point at x = 0.35.
+    rows.push(chebyshev(-1.0, n).iter().map(|t| 0.35 * t).collect());
+    rhs.push(0.35 * limit);
+    let c = least_squares(rows, rhs);
+    let fit = |x: f64| {
+        let u = x / 0.35 - 1.0;
+        x * chebyshev(u, n)
+            .iter()
+            .zip(&c)
+            .map(|(t, c)| t * c)
+            .sum::<f64>()
+    };
+    let mut worst = [(0.0f64, 0.0f64); 3];
+    for &(x, tau) in &data {
+        let r = (fit(x) / tau - 1.0).abs();
+        let band = if x < 0.01 {
+            0
+        } else if x < 0.1 {
+            1
+        } else {
+            2
+        };
+        if r > worst[band].0 {
+            worst[band] = (r, x);
+        }
+    }
+    let g0 = fit(1e-300) / 1e-300;
+    eprintln!(
+        "degree {degree}, {points} points: relative residual in tau {:.2e} (x < 0.01, at x = {:.2e}), \
+         {:.2e} (0.01-0.1), {:.2e} (x >= 0.1); g(0) off the limit by {:.1e}",
+        worst[0].0,
+        worst[0].1,
+        worst[1].0,
+        worst[2].0,
+        g0 / limit - 1.0
+    );
+    println!("const TAU_FIT: [f64; {n}] = [");
+    for v in &c {
+        println!("    {v:e},");
+    }
+    println!("];");
     Ok(())
 }

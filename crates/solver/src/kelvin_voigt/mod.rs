@@ -51,8 +51,8 @@ pub const C3: f64 = 0.9645;
 /// Below this damping number `b` the normal restitution is the series
 /// `1 − C1 b + C2′ b² − C3 b³` (its truncation and the uncertainty of `C2′` stay below 1e-15
 /// there), from twice it the integrated normal motion; in between a smooth blend of the two.
-/// The integration alone is accurate to a few 1e-13 absolute, which is more than `1 − e_n`
-/// itself for `b ≲ 1e-12`: it gave `e_n = 1 + 7.3e-12` as `τ̂ → 0`.
+/// The integration alone is accurate to about 2e-15 absolute, which is more than `1 − e_n`
+/// itself for `b ≲ 2e-15` (an earlier, coarser one gave `e_n = 1 + 7.3e-12` as `τ̂ → 0`).
 pub const SERIES_DAMPING: f64 = 1e-5;
 
 /// The normal restitution `e_n` of the dimensionless impact with relaxation time `τ̂ ≥ 0`
@@ -60,7 +60,8 @@ pub const SERIES_DAMPING: f64 = 1e-5;
 /// `b ≤` [`SERIES_DAMPING`], the integrated normal motion for `b ≥ 2·SERIES_DAMPING`, and a
 /// smoothstep blend between them. Continuous, decreasing and below 1 for every `τ̂ > 0` whose
 /// `b` is representable; NaN for NaN. Every path from a relaxation time to `e_n` (the
-/// dimensionless search [`tau_for_restitution`], physical bodies) uses it.
+/// root searches [`tau_for_restitution_search`] and [`tau_for_restitution_from_series`]
+/// behind the fitted [`tau_for_restitution`], physical bodies) uses it.
 pub fn restitution(tau: f64) -> f64 {
     if tau.is_nan() {
         return f64::NAN;
@@ -106,82 +107,128 @@ pub fn dimensionless_tau(tau: f64, mass: f64, stiffness: f64, approach_speed: f6
     tau * (stiffness / mass).powf(0.4) * approach_speed.powf(0.2) * 0.75f64.powf(0.4)
 }
 
-/// Chebyshev coefficients of `τ̂(e_n)/x` in `u = x/0.35 − 1`, `x = 1 − e_n ∈ [0, 0.7]`: a
-/// least-squares fit of degree 16 to the root search at the 40 Chebyshev nodes
-/// (`cargo run --release -p oblique-tools --bin taufit -- 40`), within 8e-10 (relative) of the
-/// search at 23 other nodes, where the search's own noise is about 2e-10. Only the starting
-/// bracket of [`tau_for_restitution`] comes from it.
-const TAU_GUESS: [f64; 17] = [
-    0.8174367818028133,
-    0.37743363344666797,
-    0.09468123780307039,
-    0.024742298734542267,
-    0.006621890943480596,
-    0.0018000362171788455,
-    0.0004946775386039995,
-    0.0001370469175101043,
-    3.8204352566837354e-05,
-    1.0702646762107083e-05,
-    3.0102984656011342e-06,
-    8.494622322377022e-07,
-    2.4040911681838263e-07,
-    6.816761875479278e-08,
-    1.9398245620291033e-08,
-    5.502590968802941e-09,
-    1.5884544802888535e-09,
+/// Chebyshev coefficients of `τ̂(e_n)/x` in `u = x/0.35 − 1`, `x = 1 − e_n ∈ [0, 0.7]`: the
+/// least-squares fit of degree 28 to the root search from the series at 600 Chebyshev-spread
+/// points, each weighed as the error in `τ̂` it gives, and to the exact limit `1/(C1 b₁)` at
+/// `x = 0` (`cargo run --release -p oblique-tools --bin taufit`). Its residuals are 5.8e-15
+/// of `τ̂` for `e_n ≤ 0.9`, 3.7e-14 for `0.9 < e_n ≤ 0.99` and 1.4e-10 nearer 1, all below
+/// the search's own resolution (a few ulps of `e_n` over `1 − e_n`).
+const TAU_FIT: [f64; 29] = [
+    8.174367809627743e-1,
+    3.774336328919117e-1,
+    9.468123757493672e-2,
+    2.474229870665735e-2,
+    6.6218908928035196e-3,
+    1.8000362408721864e-3,
+    4.946775090525393e-4,
+    1.3704694457156687e-4,
+    3.8204325659985004e-5,
+    1.0702671767251201e-5,
+    3.010274673155798e-6,
+    8.494847393862056e-7,
+    2.4038796287988863e-7,
+    6.818673993449707e-8,
+    1.9380975453575352e-8,
+    5.518575494065826e-9,
+    1.573823479503945e-9,
+    4.4947016240008847e-10,
+    1.2851165413698164e-10,
+    3.679632909038257e-11,
+    1.0535659654443624e-11,
+    3.028712526441891e-12,
+    8.634650494147622e-13,
+    2.5279890577593616e-13,
+    6.910110476759705e-14,
+    2.2471980364851982e-14,
+    4.967998730133029e-15,
+    2.2191750388926598e-15,
+    5.712339521534509e-16,
 ];
 
-/// The fitted `τ̂(e_n)` ([`TAU_GUESS`], Clenshaw), `e_n ∈ [0.3, 1]`.
-pub fn tau_guess(e_n: f64) -> f64 {
+/// The fitted `τ̂(e_n)` ([`TAU_FIT`], Clenshaw), `e_n ∈ [0.3, 1]` (unchecked): within 1e-13
+/// of the root search ([`tau_for_restitution_search`]) for `e_n ≤ 0.9` (2.7e-15 measured),
+/// and within 1e-13 plus the search's own resolution above
+/// (`crates/solver/tests/kelvin_voigt.rs`); [`tau_for_restitution`] takes the series' inverse
+/// instead next to `e_n = 1`.
+pub fn tau_fit(e_n: f64) -> f64 {
     let x = 1.0 - e_n;
     let u = x / 0.35 - 1.0;
     let (mut b1, mut b2) = (0.0, 0.0);
-    for &c in TAU_GUESS.iter().skip(1).rev() {
+    for &c in TAU_FIT.iter().skip(1).rev() {
         (b1, b2) = (2.0 * u * b1 - b2 + c, b1);
     }
-    x * (u * b1 - b2 + TAU_GUESS[0])
+    x * (u * b1 - b2 + TAU_FIT[0])
 }
 
 /// Check a normal restitution: finite, in `[0.3, 1]` ([`crate::law`] owns the range).
 pub use crate::law::check_restitution;
 
 thread_local! {
-    static TAU_CACHE: RefCell<HashMap<u64, f64>> = RefCell::new(HashMap::new());
     static TRAJECTORY_CACHE: RefCell<HashMap<(usize, u64), Rc<ViscoelasticTrajectory>>> =
         RefCell::new(HashMap::new());
     static FINE_CACHE: RefCell<HashMap<u64, Rc<FineMotion>>> = RefCell::new(HashMap::new());
 }
 
 /// The dimensionless relaxation time `τ̂` whose impact has normal restitution `e_n`
-/// (`e_n ∈ [0.3, 1]`; `τ̂ = 0` at 1), found by a bracketed secant (Illinois) search on
-/// [`restitution`], to the rounding of `e_n`. Cached per thread.
+/// (`e_n ∈ [0.3, 1]`; `τ̂ = 0` at 1), nothing integrated: where [`restitution`] is the
+/// small-damping series (`b ≤` [`SERIES_DAMPING`]) the series inverted to the rounding of
+/// `e_n`, from `b = 2·SERIES_DAMPING` on the fit [`tau_fit`], and a smoothstep blend of the two
+/// in between (they agree there to 2e-10 of `τ̂`, 2e-15 of `e_n`). The root search on
+/// [`restitution`] ([`tau_for_restitution_search`]) is its reference.
 pub fn tau_for_restitution(e_n: f64) -> Result<f64, PhysicsError> {
     let e_n = check_restitution(e_n)?;
     if e_n == 1.0 {
         return Ok(0.0);
     }
-    if let Some(t) = TAU_CACHE.with(|c| c.borrow().get(&e_n.to_bits()).copied()) {
-        return Ok(t);
+    let x = 1.0 - e_n;
+    let (x1, x2) = (
+        series_deficit(SERIES_DAMPING),
+        series_deficit(2.0 * SERIES_DAMPING),
+    );
+    if x <= x1 {
+        return Ok(series_tau(x));
     }
-    let f = |tau: f64| restitution(tau) - e_n;
-    let x = tau_search(e_n, &f)?;
-    TAU_CACHE.with(|c| {
-        let mut c = c.borrow_mut();
-        if c.len() > 4096 {
-            c.clear();
-        }
-        c.insert(e_n.to_bits(), x)
-    });
-    Ok(x)
+    let fit = tau_fit(e_n);
+    if x >= x2 {
+        return Ok(fit);
+    }
+    let w = (x - x1) / (x2 - x1);
+    let w = w * w * (3.0 - 2.0 * w);
+    Ok((1.0 - w) * series_tau(x) + w * fit)
+}
+
+/// `1 − e_n = C1 b − C2′ b² + C3 b³` of the small-damping series at damping number `b`.
+fn series_deficit(b: f64) -> f64 {
+    b * (C1 - b * (C2_PRIME - C3 * b))
+}
+
+/// The `τ̂` whose small-damping series gives `1 − e_n = x` (`b ≤ 2·SERIES_DAMPING`): Newton on
+/// the cubic from `b = x/C1`, whose correction terms are below `3e-5` of `b` there.
+fn series_tau(x: f64) -> f64 {
+    let mut b = x / C1;
+    for _ in 0..4 {
+        let slope = C1 - b * (2.0 * C2_PRIME - 3.0 * C3 * b);
+        b -= (series_deficit(b) - x) / slope;
+    }
+    b / damping_number(1.0)
+}
+
+/// The root of `restitution(τ̂) = e_n` by a bracketed secant (Illinois) search on
+/// [`restitution`], to the rounding of `e_n`: the reference of [`tau_for_restitution`].
+pub fn tau_for_restitution_search(e_n: f64) -> Result<f64, PhysicsError> {
+    let e_n = check_restitution(e_n)?;
+    if e_n == 1.0 {
+        return Ok(0.0);
+    }
+    tau_search(e_n, &|tau: f64| restitution(tau) - e_n)
 }
 
 /// The root of `f` (`restitution(τ) − e_n`, decreasing): bracketed around the fitted
-/// [`tau_guess`] (±1e-8, widened ×100 up to ±1e-2 where that does not bracket), which leaves
-/// 3–6 evaluations of `f` to the Illinois search; without a bracket there, the search from
-/// the series `e_n ≈ 1 − C1 b` widened by doubling (10–15 evaluations).
+/// [`tau_fit`] (±1e-12, widened ×100 up to ±1e-2 where that does not bracket); without a
+/// bracket there, the search from the series `e_n ≈ 1 − C1 b` widened by doubling.
 fn tau_search(e_n: f64, f: &dyn Fn(f64) -> f64) -> Result<f64, PhysicsError> {
-    let guess = tau_guess(e_n);
-    let mut width = 1e-8;
+    let guess = tau_fit(e_n);
+    let mut width = 1e-12;
     while width <= 1e-2 {
         let (lo, hi) = (guess * (1.0 - width), guess * (1.0 + width));
         let (f_lo, f_hi) = (f(lo), f(hi));
@@ -251,8 +298,8 @@ fn illinois(
     x
 }
 
-/// [`tau_for_restitution`] without its guess and cache: the search from the series alone (the
-/// reference the fitted guess is checked against).
+/// The root search from the series alone, without the fit: the data of the fit
+/// ([`TAU_FIT`]) and an independent check of it.
 pub fn tau_for_restitution_from_series(e_n: f64) -> Result<f64, PhysicsError> {
     let e_n = check_restitution(e_n)?;
     if e_n == 1.0 {
