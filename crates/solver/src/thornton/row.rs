@@ -453,23 +453,24 @@ impl ThorntonRow {
     /// empty), with their sums for the limit slope `s`; returns the number of chunks now there.
     fn install(&mut self, k: usize, pieces: Vec<Piece>, s: f64) -> usize {
         let line = self.line;
-        let mut parts: Vec<Chunk> = pieces
+        if pieces.is_empty() {
+            self.spare = std::mem::take(&mut self.chunks[k].pieces);
+            self.chunks.remove(k);
+            return 0;
+        }
+        if pieces.len() <= CHUNK_MAX {
+            let old = std::mem::replace(&mut self.chunks[k], Chunk::new(pieces, s, &line));
+            if old.pieces.capacity() > self.spare.capacity() {
+                self.spare = old.pieces;
+            }
+            return 1;
+        }
+        let parts: Vec<Chunk> = pieces
             .chunks(CHUNK_MAX)
             .map(|c| Chunk::new(c.to_vec(), s, &line))
             .collect();
         let n = parts.len();
-        match n {
-            0 => {
-                self.chunks.remove(k);
-            }
-            _ => {
-                let first = parts.remove(0);
-                self.chunks[k] = first;
-                for (i, ch) in parts.into_iter().enumerate() {
-                    self.chunks.insert(k + 1 + i, ch);
-                }
-            }
-        }
+        self.chunks.splice(k..=k, parts);
         n
     }
 
@@ -547,7 +548,8 @@ impl ThorntonRow {
                 continue;
             }
             let old = std::mem::take(&mut self.chunks[k].pieces);
-            let mut out = Vec::with_capacity(old.len() + 4);
+            let mut out = std::mem::take(&mut self.spare);
+            out.clear();
             for &p in &old {
                 match p.kind {
                     Kind::Stuck => self.clip(p, &lim1, &mut out),
@@ -556,6 +558,7 @@ impl ThorntonRow {
                     }
                 }
             }
+            self.chunks[k].pieces = old;
             k += self.install(k, out, lim1.c);
         }
         // Points entering contact: ũ = w(h) − w(θh), θ = (y − D0)/(D1 − D0).
@@ -588,9 +591,11 @@ impl ThorntonRow {
                 self.install(last - 1, pieces, lim1.c);
             } else if !out.is_empty() {
                 self.chunks.push(Chunk::default());
-                self.install(last, out.clone(), lim1.c);
+                self.install(last, std::mem::take(&mut out), lim1.c);
             }
-            self.spare = out;
+            if out.capacity() > self.spare.capacity() {
+                self.spare = out;
+            }
         }
         let integral = self.integral(&lim1);
         let finite = c.is_finite();
