@@ -1,10 +1,12 @@
-//! The Kelvin–Voigt law against the elastic one: one impact solved to a tolerance at the same
+//! The dissipative laws against the elastic one: one impact solved to a tolerance at the same
 //! `(γ, α)`.
 //!
 //! For every `γ ∈ {0.5, 1.754, 3}` and `α ∈ {0.3, 1, ∞}` (simulated even where a closed form
 //! applies):
 //! - `elastic_1e-6`: `Request::new(γ, α)` at tol 1e-6, the whole automatic refinement;
-//! - `kelvin_voigt_1e-6/e0.9` and `/e0.6`: the same at `e_n = 0.9` and `0.6`.
+//! - `kelvin_voigt_1e-6/e0.9` and `/e0.6`: the same at `e_n = 0.9` and `0.6`;
+//! - `thornton_1e-6/e0.9` and `/e0.6`: the same under Thornton's law (its normal trajectories
+//!   cached per thread by limiting pressure, as the elastic ones are).
 //!
 //! The relaxation time of an `e_n` and the fine normal motion of a relaxation time are cached per
 //! thread (as the elastic normal trajectory is), so after the first call (made before timing)
@@ -23,7 +25,7 @@ use criterion::{BenchmarkId, Criterion};
 use oblique_bench::ClockIter;
 use oblique_clock::Clock;
 use oblique_solver::kelvin_voigt::{tau_for_restitution, unit_bodies};
-use oblique_solver::{Accuracy, Request};
+use oblique_solver::{Accuracy, Law, Request};
 
 const GAMMAS: [f64; 3] = [0.5, 1.754, 3.0];
 const ALPHAS: [f64; 3] = [0.3, 1.0, f64::INFINITY];
@@ -37,11 +39,15 @@ fn label(gamma: f64, alpha: f64) -> String {
     }
 }
 
-fn request(gamma: f64, alpha: f64, e_n: f64) -> Request {
-    Request::new(gamma, alpha)
+fn request(gamma: f64, alpha: f64, e_n: f64, law: Option<Law>) -> Request {
+    let r = Request::new(gamma, alpha)
         .e_n(e_n)
         .accuracy(Accuracy::Tolerance(TOL))
-        .forced(true)
+        .forced(true);
+    match law {
+        Some(l) => r.law(l),
+        None => r,
+    }
 }
 
 fn check() {
@@ -51,18 +57,27 @@ fn check() {
     );
     for &g in &GAMMAS {
         for &a in &ALPHAS {
-            for e in [1.0, 0.9, 0.6] {
-                let s = request(g, a, e).solve().expect("solve");
+            for (e, law) in [
+                (1.0, None),
+                (0.9, None),
+                (0.6, None),
+                (0.9, Some(Law::Thornton)),
+                (0.6, Some(Law::Thornton)),
+            ] {
+                let s = request(g, a, e, law).solve().expect("solve");
                 eprintln!(
-                    "{g:>6} {a:>5} {e:>5} {:>14.10} {:>6} {:>9.1e}",
-                    s.p, s.resolution.steps, s.error_estimate
+                    "{g:>6} {a:>5} {e:>5} {:>14.10} {:>6} {:>9.1e} {}",
+                    s.p,
+                    s.resolution.steps,
+                    s.error_estimate,
+                    s.law.name()
                 );
             }
         }
     }
 }
 
-fn bench_solve(c: &mut Criterion, clock: Clock, name: &str, e_n: f64) {
+fn bench_solve(c: &mut Criterion, clock: Clock, name: &str, e_n: f64, law: Option<Law>) {
     let mut group = c.benchmark_group(format!("{name}{}", clock.suffix()));
     group
         .sample_size(20)
@@ -75,7 +90,7 @@ fn bench_solve(c: &mut Criterion, clock: Clock, name: &str, e_n: f64) {
                 &(gamma, alpha),
                 |b, &(g, a)| {
                     clock.iter(b, || {
-                        request(black_box(g), black_box(a), e_n)
+                        request(black_box(g), black_box(a), e_n, law)
                             .solve()
                             .expect("solve")
                     })
@@ -112,9 +127,23 @@ fn main() {
     }
     let clock =
         Clock::from_env("IMPACT_BENCH_CLOCK", Clock::ThreadCpu).unwrap_or_else(|e| panic!("{e}"));
-    bench_solve(&mut c, clock, "elastic_1e-6", 1.0);
-    bench_solve(&mut c, clock, "kelvin_voigt_1e-6/e0.9", 0.9);
-    bench_solve(&mut c, clock, "kelvin_voigt_1e-6/e0.6", 0.6);
+    bench_solve(&mut c, clock, "elastic_1e-6", 1.0, None);
+    bench_solve(&mut c, clock, "kelvin_voigt_1e-6/e0.9", 0.9, None);
+    bench_solve(&mut c, clock, "kelvin_voigt_1e-6/e0.6", 0.6, None);
+    bench_solve(
+        &mut c,
+        clock,
+        "thornton_1e-6/e0.9",
+        0.9,
+        Some(Law::Thornton),
+    );
+    bench_solve(
+        &mut c,
+        clock,
+        "thornton_1e-6/e0.6",
+        0.6,
+        Some(Law::Thornton),
+    );
     bench_once(&mut c, clock);
     c.final_summary();
 }

@@ -995,13 +995,18 @@ fn bisect(f: &dyn Fn(f64) -> f64, (mut lo, f_lo): (f64, f64), (mut hi, _): (f64,
     0.5 * (lo + hi)
 }
 
-/// Append a piece, merging it into the last one when both sit at the same limit.
+/// Append a piece, merging it into the last one when both sit at the same limit (their ends
+/// a few ulps apart: an end found by bisection and one set by the motion), and letting a
+/// limit piece absorb a sliver a few ulps wide that follows it.
 fn push_merged(out: &mut Vec<Piece>, p: Piece) {
     if p.x1 <= p.x0 {
         return;
     }
     if let Some(last) = out.last_mut() {
-        if p.kind != Kind::Stuck && last.kind == p.kind && last.y1 == p.y0 {
+        let close = 8.0 * f64::EPSILON * p.y1.abs();
+        let joins = last.kind == p.kind && (p.y0 - last.y1).abs() <= close;
+        let sliver = p.y1 - p.y0 <= close;
+        if last.kind != Kind::Stuck && (joins || sliver) {
             last.y1 = p.y1;
             last.x1 = p.x1;
             return;
