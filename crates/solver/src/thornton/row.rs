@@ -352,8 +352,9 @@ struct Chunk {
     upper: f64,
     lower: f64,
     slope: f64,
-    /// Whether some piece is at a limit.
+    /// Whether some piece is at a limit, and whether one is at the `+` / `−` limit.
     limits: bool,
+    signs: [bool; 2],
 }
 
 impl Chunk {
@@ -368,6 +369,7 @@ impl Chunk {
             lower: f64::INFINITY,
             slope: s,
             limits: false,
+            signs: [false, false],
             pieces: Vec::new(),
         };
         for p in &mut pieces {
@@ -383,20 +385,25 @@ impl Chunk {
                 ch.lower = ch.lower.min(p.lower);
             } else {
                 ch.limits = true;
+                ch.signs[usize::from(p.kind == Kind::Minus)] = true;
             }
         }
         ch.pieces = pieces;
         ch
     }
 
-    /// Whether the step may change the chunk: it holds a piece at a limit, or its stuck
-    /// pieces may cross the limit `lim` with the offset `w`.
-    fn changes(&self, lim: &Limit, w: f64) -> bool {
+    /// Whether the step may change the chunk: it holds a piece at a limit of a sign whose
+    /// springs may stick again in the step (`release`, `+` and `−`), or its stuck pieces may
+    /// cross the limit `lim` with the offset `w`.
+    fn changes(&self, lim: &Limit, w: f64, release: [bool; 2]) -> bool {
         let (Some(first), Some(last)) = (self.pieces.first(), self.pieces.last()) else {
             return false;
         };
-        if self.limits || !lim.c.is_finite() {
-            return self.limits;
+        if !lim.c.is_finite() {
+            return false;
+        }
+        if (self.signs[0] && release[0]) || (self.signs[1] && release[1]) {
+            return true;
         }
         if lim.linear_from(first.y0) && self.slope == lim.c {
             let top = lim.c * (lim.reach - lim.shift);
@@ -474,6 +481,45 @@ impl ThorntonRow {
         n
     }
 
+    /// Join runs at one limit that a chunk boundary splits, and neighbouring chunks that fit
+    /// in one, so that a run at a limit is one piece (one integral a step) and the chunks stay
+    /// few.
+    fn compact(&mut self, s: f64) {
+        let line = self.line;
+        let mut k = 0;
+        while k + 1 < self.chunks.len() {
+            let joins = match (
+                self.chunks[k].pieces.last(),
+                self.chunks[k + 1].pieces.first(),
+            ) {
+                (Some(a), Some(b)) => {
+                    a.kind != Kind::Stuck
+                        && a.kind == b.kind
+                        && (b.y0 - a.y1).abs() <= 8.0 * f64::EPSILON * b.y1.abs()
+                }
+                _ => false,
+            };
+            let fits = self.chunks[k].pieces.len() + self.chunks[k + 1].pieces.len() <= CHUNK_MAX;
+            if !(joins || fits) {
+                k += 1;
+                continue;
+            }
+            let next = self.chunks.remove(k + 1).pieces;
+            let mut pieces = std::mem::take(&mut self.chunks[k].pieces);
+            for p in next {
+                push_merged(&mut pieces, p);
+            }
+            if pieces.len() <= CHUNK_MAX {
+                self.chunks[k] = Chunk::new(pieces, s, &line);
+            } else {
+                let tail = pieces.split_off(CHUNK_MAX);
+                self.chunks[k] = Chunk::new(pieces, s, &line);
+                self.chunks.insert(k + 1, Chunk::new(tail, s, &line));
+                k += 1;
+            }
+        }
+    }
+
     /// The pieces of every chunk, in order (the chunks emptied).
     fn take_all(&mut self) -> Vec<Piece> {
         let mut all = Vec::new();
@@ -541,9 +587,19 @@ impl ThorntonRow {
         let w_old = self.offset;
         self.offset += dw;
         self.truncate(lim1.edge());
+        // Whether springs at the `+` / `−` limit may stick again in this step: the rate gap
+        // g = c_κ (Q′ Ḋ − σ̇) ∓ ẇ of `slip` is at most c_κ (max(Ḋ, 0) − σ̇) ∓ ẇ (0 ≤ Q′ ≤ 1);
+        // where it stays negative at the start and not positive at the end, every run slips on.
+        let ((rate0, shift0), (rate1, shift1)) = rates;
+        let v1 = v + acc * h;
+        let release = [1.0, -1.0].map(|sign: f64| {
+            let g0 = lim0.c * (rate0.max(0.0) - shift0) - sign * v;
+            let g1 = lim1.c * (rate1.max(0.0) - shift1) - sign * v1;
+            !(g0 < 0.0 && g1 <= 0.0)
+        });
         let mut k = 0;
         while k < self.chunks.len() {
-            if !self.chunks[k].changes(&lim1, self.offset) {
+            if !self.chunks[k].changes(&lim1, self.offset, release) {
                 k += 1;
                 continue;
             }
@@ -597,6 +653,7 @@ impl ThorntonRow {
                 self.spare = out;
             }
         }
+        self.compact(lim1.c);
         let integral = self.integral(&lim1);
         let finite = c.is_finite();
         self.at_limit = if finite {
