@@ -239,3 +239,66 @@ fn a_table_without_the_case_e_n_is_refused_naming_e_n_and_the_range() {
         assert!(!out.join("steel_on_steel_damped.csv").exists());
     }
 }
+
+/// Steel shot with Thornton's limiting pressure: `sweep scene` names the law in the summary and
+/// in the CSV's `law` column; with `relaxation_time` too it is refused naming both keys
+/// (exit 2, nothing written).
+#[test]
+fn a_yield_pressure_scene_names_thorntons_law_and_two_laws_are_refused() {
+    let out = scratch("thornton");
+    let text = "name = \"shot\"\nfriction = 0.3\nyield_pressure = 2e9\n\n[sphere]\n\
+                material = \"steel\"\nradius = 1e-3\n\n[target]\nkind = \"wall\"\n\
+                material = \"steel\"\n\n[cases]\nkind = \"angles\"\nspeed = 1.0\n\
+                angles_deg = [10, 50, 85]\n";
+    let file = out.join("shot.toml");
+    std::fs::write(&file, text).unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .arg("scene")
+        .arg(&file)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(
+        stdout.contains("(Thornton's law, limiting pressure 2e9 Pa with each case's impact speed)"),
+        "{stdout}"
+    );
+    let csv = std::fs::read_to_string(out.join("shot.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert!(lines[0].ends_with(",e_n,law"), "{}", lines[0]);
+    assert_eq!(lines.len(), 4);
+    // 85°: v_z0 = 0.087 m/s, below the yield speed (about 0.24 m/s): elastic, e_n = 1.
+    assert!(lines[1..].iter().all(|l| l.ends_with(",thornton")), "{csv}");
+    assert!(lines[3].ends_with(",1,thornton"), "{csv}");
+    assert!(!lines[1].ends_with(",1,thornton"), "{csv}");
+
+    let both = out.join("both.toml");
+    std::fs::write(
+        &both,
+        text.replace(
+            "yield_pressure = 2e9",
+            "yield_pressure = 2e9\nrelaxation_time = 1e-6",
+        ),
+    )
+    .unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_sweep"))
+        .arg("scene")
+        .arg(&both)
+        .arg("-o")
+        .arg(out.join("both"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("invalid yield_pressure") && stderr.contains("relaxation_time"),
+        "{stderr}"
+    );
+    assert!(!out.join("both").join("shot.csv").exists());
+}

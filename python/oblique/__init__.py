@@ -509,7 +509,11 @@ class Impact(NamedTuple):
     """Normal restitution of the impact (1: elastic)."""
     tau: Float
     """Dimensionless relaxation time τ̂ of the Kelvin–Voigt law that gives ``e_n`` (0 for the
-    elastic law), in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(2/5), k = (4/3) E* √R*."""
+    other laws), in units of (m*/k)^(2/5) v_z0^(-1/5) (4/3)^(2/5), k = (4/3) E* √R*."""
+    yield_pressure: Float
+    """Dimensionless limiting pressure p̂_y of Thornton's law that gives ``e_n`` (0 for the
+    other laws): p_y in units of E* (m* v_z0²/(E* R*³))^(1/5), the unit in which the elastic
+    impact's peak pressure is p_0 = (2/π)(15/16)^(1/5) ≈ 0.6285 (p̂_y = p_0 at e_n = 1)."""
 
 
 @dataclass(frozen=True)
@@ -541,10 +545,18 @@ class Simulation:
     max_indentation: float
     """Measured maximum indentation (m)."""
     e_n: float
-    """Normal restitution of the impact (1 for elastic bodies)."""
+    """Normal restitution of the impact (1 for elastic bodies, and for Thornton's bodies at
+    or below their yield speed)."""
+    law: str
+    """The bodies' contact law: ``"elastic"``, ``"kelvin-voigt"`` or ``"thornton"``."""
     tau: float
-    """Dimensionless relaxation time τ̂ of the impact (0 for elastic bodies): that of
+    """Dimensionless relaxation time τ̂ of the impact (0 for the other laws): that of
     :func:`impact` at the same ``e_n``."""
+    yield_pressure: float
+    """Dimensionless limiting pressure p̂_y of the impact (0 for the other laws): the
+    argument ``yield_pressure`` p_y (Pa) in units of E* (m* v_z0²/(E* R*³))^(1/5), that of
+    :func:`impact` with ``law="thornton"`` at the same ``e_n``; p_0 = (2/π)(15/16)^(1/5) at
+    or below the yield speed, where the impact is elastic."""
     springs: int
     """Springs on the half-row of the finest run (0: the continuum row)."""
     steps: int
@@ -1035,9 +1047,12 @@ def impact(
     ``gamma``, ``alpha`` and ``e_n``.
 
     ``e_n`` is the normal restitution, from 0.3 to 1 (1, the default: elastic). Below 1 the
-    springs follow the ``"kelvin-voigt"`` law (one relaxation time in the normal and tangential
-    direction, non-adhesive; physics.md), the only dissipative ``law`` so far; ``law=None``
-    picks it below 1 and ``"elastic"`` at 1."""
+    springs follow a dissipative ``law``: ``"kelvin-voigt"`` (one relaxation time in the normal
+    and tangential direction, non-adhesive; physics.md, "Dissipative impacts"), the one
+    ``law=None`` picks below 1 (``"elastic"`` at 1), or ``"thornton"`` (elastic–perfectly
+    plastic, Thornton 1997; physics.md, "Elastic–plastic impacts"). Each row reports the
+    law's parameter that gives its ``e_n``: ``tau`` for Kelvin–Voigt, ``yield_pressure`` for
+    Thornton (0 for the other laws)."""
     g, a, e = _f64(gamma, "gamma"), _f64(alpha, "alpha"), _f64(e_n, "e_n")
     shape = _shape([("gamma", g.shape), ("alpha", a.shape), ("e_n", e.shape)])
     raw = _native.impact(
@@ -1051,25 +1066,10 @@ def impact(
         law,
     )
     v = _views(raw, shape, _native.IMPACT)
-    if shape:
-        return Impact(
-            v["p"],
-            v["error_estimate"],
-            v["closed_form"] != 0,
-            v["springs"].astype(np.int64),
-            v["steps"].astype(np.int64),
-            v["e_n"],
-            v["tau"],
-        )
-    return Impact(
-        v["p"],
-        v["error_estimate"],
-        v["closed_form"] != 0,
-        int(v["springs"]),
-        int(v["steps"]),
-        v["e_n"],
-        v["tau"],
-    )
+    v["closed_form"] = v["closed_form"] != 0
+    for k in ("springs", "steps"):
+        v[k] = v[k].astype(np.int64) if shape else int(v[k])
+    return Impact(**v)
 
 
 def groups(
@@ -1110,7 +1110,8 @@ def simulate(
     other_v_z: float = 0.0,
     other_omega: float = 0.0,
     tol: float = 1e-6,
-    relaxation_time: float = 0.0,
+    relaxation_time: Optional[float] = None,
+    yield_pressure: Optional[float] = None,
 ) -> Simulation:
     """One impact in physical units, simulated directly (the two bodies' equations of motion,
     Hertz normal contact, MDR tangential springs) until the error estimate of P is ≤ ``tol``:
@@ -1120,7 +1121,14 @@ def simulate(
     ``relaxation_time`` τ (s, ≥ 0) makes the bodies Kelvin–Voigt (for this law τ equals
     Brilliantov's dissipative constant A); the normal restitution it gives at this impact
     speed is returned as ``e_n`` (it falls as the speed grows, 1 − e_n ∝ τ v_z0^(1/5) at
-    first order) and must be ≥ 0.3."""
+    first order) and must be ≥ 0.3.
+
+    ``yield_pressure`` p_y (Pa, finite, > 0) makes the bodies Thornton's elastic–perfectly
+    plastic ones (physics.md, "Elastic–plastic impacts"; about 1.6 times the yield stress of
+    the softer body): the impact is elastic (``e_n`` = 1) up to the yield speed V_y at which
+    the Hertz peak pressure reaches p_y, and above it ``e_n`` is Thornton's closed form of
+    V_y/v_z0 (it must be ≥ 0.3). Give ``relaxation_time`` or ``yield_pressure``, not both;
+    neither: elastic bodies."""
     _, mats = _stiffness(materials, None, need=True)
     motion, s1, s2, mu, shape = _planar(
         sphere, v_x, v_z, omega, friction, other, other_v_x, other_v_z, other_omega, None, mats
@@ -1128,7 +1136,14 @@ def simulate(
     if shape:
         raise ValueError(f"simulate: scalar arguments only, got the broadcast shape {shape}")
     d = _native.simulate(
-        motion, s1, s2, [_column(x, ()) for x in mats], mu, float(tol), float(relaxation_time)
+        motion,
+        s1,
+        s2,
+        [_column(x, ()) for x in mats],
+        mu,
+        float(tol),
+        None if relaxation_time is None else float(relaxation_time),
+        None if yield_pressure is None else float(yield_pressure),
     )
     v_x, v_z, omega = d["sphere"]
     o_x, o_z, o_omega = d["other"] or (None, None, None)
@@ -1145,7 +1160,9 @@ def simulate(
         peak_force=d["peak_force"],
         max_indentation=d["max_indentation"],
         e_n=d["e_n"],
+        law=d["law"],
         tau=d["tau"],
+        yield_pressure=d["yield_pressure"],
         springs=d["springs"],
         steps=d["steps"],
         groups=Groups(*d["groups"]),

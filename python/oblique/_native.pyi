@@ -117,7 +117,8 @@ def simulate(
     materials: Sequence[_F],
     friction: _F,
     tol: float,
-    relaxation_time: float,
+    relaxation_time: Optional[float],
+    yield_pressure: Optional[float],
 ) -> dict: ...
 def build_table(
     config_text: str,

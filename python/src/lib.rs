@@ -27,8 +27,9 @@ use oblique_lookup::columns::{
 use oblique_lookup::rebound::{Elastic, Incident, State};
 use oblique_lookup::{LookupError, OutOfDomain, Stiffness};
 use oblique_physics::regimes::{self, Regime};
+use oblique_solver::thornton;
 use oblique_solver::units::{Groups, PhysicalImpact};
-use oblique_solver::{Accuracy, Law, Method, PhysicsError, Request, PARAMETER_KEYS};
+use oblique_solver::{Accuracy, BodiesLaw, Law, Method, PhysicsError, Request, PARAMETER_KEYS};
 
 mod build;
 
@@ -772,20 +773,34 @@ fn groups<'py>(
     )
 }
 
-/// Columns of an impact row: the law's parameters ([`PARAMETER_KEYS`]) last.
-const IMPACT: [&str; 8] = [
+/// Columns of an impact row before the law's parameters.
+const IMPACT_HEAD: [&str; 6] = [
     "p",
     "error_estimate",
     "closed_form",
     "springs",
     "steps",
     "e_n",
-    "tau",
-    "yield_pressure",
 ];
 
+/// Columns of an impact row: [`IMPACT_HEAD`], then the law's parameters ([`PARAMETER_KEYS`]:
+/// `tau`, `yield_pressure`), so that a law added to the solver adds its column here.
+const IMPACT: [&str; IMPACT_HEAD.len() + PARAMETER_KEYS.len()] = {
+    let mut all = [""; IMPACT_HEAD.len() + PARAMETER_KEYS.len()];
+    let mut i = 0;
+    while i < IMPACT_HEAD.len() {
+        all[i] = IMPACT_HEAD[i];
+        i += 1;
+    }
+    while i < all.len() {
+        all[i] = PARAMETER_KEYS[i - IMPACT_HEAD.len()];
+        i += 1;
+    }
+    all
+};
+
 /// `P(γ, α, e_n)` simulated to `tol` (or in closed form) for every row, with the law `law`
-/// (`None`: elastic at e_n = 1, Kelvin–Voigt below); returns `(rows, 8)`.
+/// (`None`: elastic at e_n = 1, Kelvin–Voigt below); returns `(rows, len(IMPACT))`.
 #[pyfunction]
 #[pyo3(signature = (gamma, alpha, e_n, rows, shape, tol, simulate, law))]
 #[allow(clippy::too_many_arguments)]
@@ -826,7 +841,7 @@ fn impact<'py>(
                 None => req,
             };
             let s = req.solve()?;
-            let head = [
+            let head: [f64; IMPACT_HEAD.len()] = [
                 s.p,
                 s.error_estimate,
                 f64::from(u8::from(s.method == Method::ClosedForm)),
@@ -834,7 +849,7 @@ fn impact<'py>(
                 s.resolution.steps as f64,
                 s.e_n,
             ];
-            // The law's parameters (`tau`) last, through the law.
+            // The law's parameters (`tau`, `yield_pressure`) last, through the law.
             let (front, back) = r.split_at_mut(head.len());
             front.copy_from_slice(&head);
             back.copy_from_slice(&s.law.values());
@@ -844,9 +859,27 @@ fn impact<'py>(
     )
 }
 
-/// One impact in physical units, simulated to `tol` (2-D, in its plane). Returns a dict.
+/// The bodies' law of `simulate`: Kelvin–Voigt of relaxation time `τ` (s; elastic at 0), or
+/// Thornton's of limiting pressure `p_y` (Pa), or elastic where neither is given; not both
+/// (each is checked by its law).
+fn bodies_law(relaxation_time: Option<f64>, yield_pressure: Option<f64>) -> PyResult<BodiesLaw> {
+    match (relaxation_time, yield_pressure) {
+        (None, None) => Ok(BodiesLaw::default()),
+        (Some(tau), None) => Ok(BodiesLaw::of_relaxation_time(tau)),
+        (Some(_), Some(_)) => Err(PyValueError::new_err(
+            "relaxation_time and yield_pressure: give one or the other (Kelvin–Voigt bodies \
+             or Thornton's elastic–plastic bodies), not both",
+        )),
+        (None, Some(p)) => Ok(BodiesLaw::Thornton(thornton::BodiesParameters {
+            yield_pressure: p,
+        })),
+    }
+}
+
+/// One impact in physical units, simulated to `tol` (2-D, in its plane), with the bodies' law
+/// of [`bodies_law`]. Returns a dict.
 #[pyfunction]
-#[pyo3(signature = (motion, sphere, other, materials, friction, tol, relaxation_time))]
+#[pyo3(signature = (motion, sphere, other, materials, friction, tol, relaxation_time, yield_pressure))]
 #[allow(clippy::too_many_arguments)]
 fn simulate<'py>(
     py: Python<'py>,
@@ -856,10 +889,12 @@ fn simulate<'py>(
     materials: Vec<PyReadonlyArray1<'_, f64>>,
     friction: PyReadonlyArray1<'_, f64>,
     tol: f64,
-    relaxation_time: f64,
+    relaxation_time: Option<f64>,
+    yield_pressure: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let law = bodies_law(relaxation_time, yield_pressure)?;
     let (pairs, states) = physical_columns(1, &motion, &sphere, &other, &materials, &friction)?;
-    let imp = physical(&pairs, states.incident(0), 0).with_relaxation_time(relaxation_time);
+    let imp = physical(&pairs, states.incident(0), 0).with_law(law);
     let out = py
         .detach(|| imp.solve(tol))
         .map_err(|e| physics_error(e, 0, &[]))?;
@@ -873,6 +908,7 @@ fn simulate<'py>(
     d.set_item("peak_force", out.peak_force)?;
     d.set_item("max_indentation", out.max_indentation)?;
     d.set_item("e_n", out.e_n)?;
+    d.set_item("law", out.law.name())?;
     for (key, value) in PARAMETER_KEYS.into_iter().zip(out.law.values()) {
         d.set_item(key, value)?;
     }

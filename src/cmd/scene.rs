@@ -163,14 +163,17 @@ pub fn run(args: SceneArgs) -> Result<()> {
     if let Some((lo, hi)) = ev.e_n_range().filter(|_| ev.dissipative) {
         let from = match scene.dissipation {
             Dissipation::RelaxationTime(tau) => {
-                format!(", relaxation time {tau:e} s with each case's impact speed")
+                format!("Kelvin-Voigt law, relaxation time {tau:e} s with each case's impact speed")
             }
-            _ => String::new(),
+            Dissipation::YieldPressure(p) => {
+                format!("Thornton's law, limiting pressure {p:e} Pa with each case's impact speed")
+            }
+            _ => "Kelvin-Voigt law".to_string(),
         };
         if lo == hi {
-            outln!("  e_n = {lo} (Kelvin-Voigt law{from})")?;
+            outln!("  e_n = {lo} ({from})")?;
         } else {
-            outln!("  e_n {lo:.6} .. {hi:.6} (Kelvin-Voigt law{from})")?;
+            outln!("  e_n {lo:.6} .. {hi:.6} ({from})")?;
         }
     }
     let cases = ev.rows.iter().filter(|r| r.in_scene).count();

@@ -83,7 +83,7 @@ pub enum SceneError {
     /// The table has no `e_n` axis covering a case's `e_n`.
     #[error(
         "case {x_name} = {x}: the table {what}; the case has e_n = {e_n} (simulate it: run \
-         without --table, or give a table with an e_n axis covering it)"
+         without --table, or give a table of its law with an e_n axis covering it)"
     )]
     Restitution {
         /// Swept quantity.

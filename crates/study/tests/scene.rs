@@ -698,3 +698,158 @@ fn a_table_without_the_case_e_n_is_the_users_to_fix_and_bad_dissipation_keys_nam
         assert!(e.to_string().contains(key), "{edit}: {e}");
     }
 }
+
+/// Steel shot (R = 1 mm) on a steel plate at 1 m/s with Thornton's limiting pressure 2 GPa
+/// (`physics.md`, "Elastic–plastic impacts"): the yield speed is about 0.24 m/s, so the steep
+/// cases yield and the grazing ones (v_z0 = 0.17 and 0.09 m/s) stay elastic.
+const SHOT: &str = r#"
+name = "shot"
+friction = 0.3
+yield_pressure = 2e9
+
+[sphere]
+material = "steel"
+radius = 1e-3
+
+[target]
+kind = "wall"
+material = "steel"
+
+[cases]
+kind = "angles"
+speed = 1.0
+angles_deg = [10, 30, 50, 70, 80, 85]
+"#;
+
+/// `V_y` (m/s) of the scene's bodies at limiting pressure `p_y` (Pa), written out from
+/// `physics.md`: `½ m* V_y² = (2/5) k d_y^{5/2}`, `k = (4/3) E* √R*`, `d_y = R* (π p_y/(2E*))²`.
+fn yield_speed(ev: &scene::Evaluation, p_y: f64) -> f64 {
+    let (e, r) = (ev.e_star, ev.effective_radius);
+    let d_y = r * (std::f64::consts::PI * p_y / (2.0 * e)).powi(2);
+    let k = 4.0 / 3.0 * e * r.sqrt();
+    (2.0 * 0.4 * k * d_y.powf(2.5) / ev.normal_mass).sqrt()
+}
+
+/// A scene with `yield_pressure`: Thornton bodies. Below the yield speed a case is the elastic
+/// scene's, bit for bit, with `e_n = 1`; above it `e_n` is Thornton's closed form of `V_y/v_z0`
+/// and `P` that of a direct physical-units simulation of Thornton bodies. The CSV names the
+/// law, and a Kelvin–Voigt table is refused for the yielding cases.
+#[test]
+fn yield_pressure_gives_thornton_bodies_that_yield_above_the_yield_speed() {
+    use oblique_solver::thornton::{self, BodiesParameters};
+    use oblique_solver::{BodiesLaw, Law};
+    let p_y = 2e9;
+    let s = Scene::parse(SHOT, Path::new("shot.toml")).unwrap();
+    assert_eq!(s.dissipation, Dissipation::YieldPressure(p_y));
+    let ev = evaluate(&s, PSource::Simulate).unwrap();
+    let elastic = Scene::parse(
+        &SHOT.replace("yield_pressure = 2e9", ""),
+        Path::new("e.toml"),
+    )
+    .unwrap();
+    let el = evaluate(&elastic, PSource::Simulate).unwrap();
+    let v_y = yield_speed(&ev, p_y);
+    assert!((0.2..0.3).contains(&v_y), "V_y = {v_y}");
+    let (mut yielded, mut stayed) = (0, 0);
+    for (r, e) in ev.rows.iter().zip(&el.rows) {
+        assert_eq!(r.law, Law::Thornton);
+        let v = r.incident.sphere.v_z;
+        if v <= v_y {
+            stayed += 1;
+            assert_eq!(r.e_n, 1.0, "x = {}", r.x);
+            assert_eq!(r.p.to_bits(), e.p.to_bits(), "x = {}", r.x);
+            assert_eq!(r.model, e.model, "x = {}", r.x);
+            continue;
+        }
+        yielded += 1;
+        let want = thornton::restitution(v_y / v);
+        assert!(
+            (r.e_n - want).abs() <= 1e-12 * want,
+            "e_n {} vs {want}",
+            r.e_n
+        );
+        assert!(r.e_n < 1.0 && r.e_n > 0.75, "x = {}: e_n {}", r.x, r.e_n);
+        assert!((r.model.sphere.v_z + r.e_n * v).abs() < 1e-12 * v);
+        assert_eq!(r.method, RowMethod::Simulated);
+        let phys = PhysicalImpact::sphere_on_wall(
+            (s.sphere, s.sphere_material.elastic),
+            s.target_material().elastic,
+            r.incident.sphere,
+            s.friction,
+        )
+        .with_law(BodiesLaw::Thornton(BodiesParameters {
+            yield_pressure: p_y,
+        }))
+        .solve(1e-6)
+        .unwrap();
+        assert_eq!(phys.law.name(), "thornton");
+        assert!(
+            (phys.e_n - r.e_n).abs() < 1e-12,
+            "{} vs {}",
+            phys.e_n,
+            r.e_n
+        );
+        let p = phys.p.unwrap();
+        let err = phys.error_estimate + r.p_error + 1e-9;
+        assert!((p - r.p).abs() <= err, "x = {}: P {} vs {p}", r.x, r.p);
+        // Plastic flow changes P beyond the solver's accuracy.
+        assert!(
+            (r.p - e.p).abs() > 1e-3,
+            "x = {}: {} vs elastic {}",
+            r.x,
+            r.p,
+            e.p
+        );
+    }
+    assert_eq!((yielded, stayed), (4, 2));
+    // e_n falls as the normal speed grows (the steeper the impact).
+    assert!(ev.rows.windows(2).all(|w| w[1].e_n >= w[0].e_n));
+    let lines = scene::csv::lines(&ev, false);
+    assert!(lines[0].ends_with(",e_n,law"), "{}", lines[0]);
+    assert!(
+        lines[1..].iter().all(|l| l.ends_with(",thornton")),
+        "{lines:?}"
+    );
+
+    // A table of the Kelvin–Voigt law answers another P at the same e_n: refused.
+    let t = Table::open(root().join("tables/dissipative-demo.h5")).unwrap();
+    let e = evaluate(&s, PSource::Table(&t)).unwrap_err();
+    assert!(matches!(e, SceneError::Restitution { .. }) && e.user_can_fix());
+    assert!(
+        e.to_string().contains("kelvin-voigt law")
+            && e.to_string().contains("thornton law")
+            && e.to_string().contains("case angle_deg = 10:"),
+        "{e}"
+    );
+}
+
+/// Bad limiting pressures are refused naming `yield_pressure`; with `e_n` or
+/// `relaxation_time`, naming both keys; one whose `e_n` would fall below 0.3 when evaluated.
+#[test]
+fn bad_yield_pressures_and_two_laws_are_refused_naming_the_keys() {
+    for (edit, keys) in [
+        ("yield_pressure = 0", &["yield_pressure", "> 0 (Pa)"][..]),
+        ("yield_pressure = -2e9", &["yield_pressure", "> 0 (Pa)"]),
+        ("yield_pressure = nan", &["yield_pressure", "> 0 (Pa)"]),
+        ("yield_pressure = inf", &["yield_pressure", "> 0 (Pa)"]),
+        (
+            "yield_pressure = 2e9\ne_n = 0.9",
+            &["yield_pressure", "e_n"],
+        ),
+        (
+            "yield_pressure = 2e9\nrelaxation_time = 1e-6",
+            &["yield_pressure", "relaxation_time"],
+        ),
+        // Far below the Hertz pressure of a 1 m/s impact: e_n < 0.3.
+        ("yield_pressure = 1e7", &["yield_pressure", "0.3"]),
+    ] {
+        let text = SHOT.replace("yield_pressure = 2e9", edit);
+        let e = match Scene::parse(&text, Path::new("bad.toml")) {
+            Err(e) => e,
+            Ok(s) => evaluate(&s, PSource::Simulate).unwrap_err(),
+        };
+        for key in keys {
+            assert!(e.to_string().contains(key), "{edit}: {e}");
+        }
+    }
+}

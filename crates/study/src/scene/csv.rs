@@ -30,7 +30,7 @@
 //! | `alpha`, `P_error`, `method` | `α`, error bound of `P`, how `P` was obtained |
 //! | `v_x0`, `v_z0`, `omega0` | sphere 1 before the impact |
 //! | `omega_closed_form`, `omega_rolling` | `ω` of the two approximations |
-//! | `e_n`, `law` | normal restitution of the case and the law (`kelvin-voigt`, or `elastic` where `e_n = 1`; scenes that give `e_n` or `relaxation_time` only) |
+//! | `e_n`, `law` | normal restitution of the case and the law (`kelvin-voigt`, or `elastic` where `e_n = 1`; `thornton` for every case of a scene with `yield_pressure`; scenes that give `e_n`, `relaxation_time` or `yield_pressure` only) |
 //! | `v_x_2`, `v_z_2`, `omega_2` | sphere 2 after the impact (sphere–sphere scenes only) |
 //! | `e_t_measured`, `omega_measured` | measured values (scenes with measured data only) |
 
@@ -125,11 +125,7 @@ fn row(r: &Row, dissipative: bool, sphere_sphere: bool, has_measured: bool) -> V
     ];
     if dissipative {
         cells.push(num(r.e_n));
-        cells.push(
-            oblique_solver::Law::for_restitution(r.e_n)
-                .name()
-                .to_string(),
-        );
+        cells.push(r.law.name().to_string());
     }
     if sphere_sphere {
         let o = m.other.unwrap_or_default();

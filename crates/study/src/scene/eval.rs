@@ -11,8 +11,9 @@ use super::spec::{CaseKind, Dissipation, Scene, SceneTarget};
 use super::SceneError;
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::request::dissipative_closed_form;
+use oblique_solver::thornton::{self, Thornton};
 use oblique_solver::units::PhysicalImpact;
-use oblique_solver::{Accuracy, Law, Method, Request};
+use oblique_solver::{Accuracy, BodiesLaw, ContactLaw, Law, Method, Request};
 
 /// Where `P` comes from.
 #[derive(Debug, Clone, Copy)]
@@ -62,8 +63,10 @@ pub struct Row {
     /// `α = (2/7)(m*/m_t) μ v_z0/|u0|` (`∞` for `u0 = 0` or `μ = ∞`).
     pub alpha: f64,
     /// Normal restitution `e_n` of the case (1 for elastic bodies; from the impact speed when
-    /// the scene gives a relaxation time).
+    /// the scene gives a relaxation time or a limiting pressure).
     pub e_n: f64,
+    /// The contact law of the case ([`Dissipation::law`]): `P` is that law's `P(γ, α, e_n)`.
+    pub law: Law,
     /// `P` (NaN for a pure normal impact).
     pub p: f64,
     /// Error bound of `P`: the solver's estimate, the table's stated bound
@@ -117,8 +120,8 @@ pub struct Evaluation {
     pub alpha_c2: f64,
     /// The cases, sorted by `x` (scene cases and measured-only points).
     pub rows: Vec<Row>,
-    /// Whether the scene names a dissipation (`e_n` or `relaxation_time`): the CSV then has
-    /// the `e_n` and `law` columns.
+    /// Whether the scene names a dissipation (`e_n`, `relaxation_time` or `yield_pressure`):
+    /// the CSV then has the `e_n` and `law` columns.
     pub dissipative: bool,
     /// Where `P` came from, in words.
     pub source: String,
@@ -207,6 +210,7 @@ fn evaluate_row(
         })?;
     let e_n =
         restitution(scene, &inc).map_err(|source| SceneError::Physics { x_name, x, source })?;
+    let law = scene.dissipation.law(e_n);
     let u0 = pair.slip_velocity(&inc);
     let (p, p_error, method) = if u0 == 0.0 {
         (f64::NAN, 0.0, RowMethod::NormalImpact)
@@ -215,7 +219,7 @@ fn evaluate_row(
             PSource::Simulate if e_n != 1.0 => {
                 let sol = Request::new(gamma, alpha)
                     .e_n(e_n)
-                    .law(Law::KelvinVoigt)
+                    .law(law)
                     .accuracy(Accuracy::Tolerance(scene.tol))
                     .solve()
                     .map_err(|source| SceneError::Physics { x_name, x, source })?;
@@ -231,6 +235,11 @@ fn evaluate_row(
                     Some((lo, hi)) if !(lo..=hi).contains(&e_n) => {
                         Some(format!("covers e_n in [{lo}, {hi}] only"))
                     }
+                    Some(_) if table.provenance().law != law.name() => Some(format!(
+                        "answers the {} law, the case's bodies are of the {} law",
+                        table.provenance().law,
+                        law.name()
+                    )),
                     Some(_) => None,
                 };
                 if let Some(what) = what {
@@ -244,7 +253,7 @@ fn evaluate_row(
                 let p = table
                     .p_e(gamma, alpha, e_n)
                     .map_err(|source| SceneError::Lookup { x_name, x, source })?;
-                if dissipative_closed_form(gamma, alpha, e_n).is_some() {
+                if exact(law, gamma, alpha, e_n) {
                     (p, 0.0, RowMethod::ClosedForm)
                 } else {
                     (p, table_error, RowMethod::Table)
@@ -297,6 +306,7 @@ fn evaluate_row(
         incident: inc,
         alpha,
         e_n,
+        law,
         p: model.p,
         p_error,
         method,
@@ -315,32 +325,41 @@ fn evaluate_row(
     })
 }
 
-/// The normal restitution of the case with incident state `inc`: 1 for elastic bodies, the
-/// scene's `e_n`, or that of its relaxation time at this impact's speed.
-fn restitution(scene: &Scene, inc: &Incident) -> Result<f64, oblique_solver::PhysicsError> {
-    match scene.dissipation {
-        Dissipation::Elastic => Ok(1.0),
-        Dissipation::Restitution(e) => Ok(e),
-        Dissipation::RelaxationTime(tau) => {
-            let sphere = (scene.sphere, scene.sphere_material.elastic);
-            let impact = match &scene.target {
-                SceneTarget::Wall { material } => PhysicalImpact::sphere_on_wall(
-                    sphere,
-                    material.elastic,
-                    inc.sphere,
-                    scene.friction,
-                ),
-                SceneTarget::Sphere { body, material, .. } => PhysicalImpact::sphere_on_sphere(
-                    sphere,
-                    inc.sphere,
-                    (*body, material.elastic),
-                    inc.other,
-                    scene.friction,
-                ),
-            };
-            Ok(impact.with_relaxation_time(tau).restitution()?.1)
-        }
+/// Whether `P(γ, α, e_n)` of the dissipative law `law` is exact in closed form there (the
+/// law's own closed forms: Thornton's at `α = 0` only, as its limits jump at the switch to
+/// unloading; the Kelvin–Voigt full-slip line and `γ = 1` plateau otherwise).
+fn exact(law: Law, gamma: f64, alpha: f64, e_n: f64) -> bool {
+    match law {
+        Law::Thornton => Thornton::closed_form(gamma, alpha, e_n).is_some(),
+        _ => dissipative_closed_form(gamma, alpha, e_n).is_some(),
     }
+}
+
+/// The normal restitution of the case with incident state `inc`: 1 for elastic bodies, the
+/// scene's `e_n`, or that of its relaxation time or limiting pressure at this impact's speed.
+fn restitution(scene: &Scene, inc: &Incident) -> Result<f64, oblique_solver::PhysicsError> {
+    let bodies = match scene.dissipation {
+        Dissipation::Elastic => return Ok(1.0),
+        Dissipation::Restitution(e) => return Ok(e),
+        Dissipation::RelaxationTime(tau) => BodiesLaw::of_relaxation_time(tau),
+        Dissipation::YieldPressure(p) => {
+            BodiesLaw::Thornton(thornton::BodiesParameters { yield_pressure: p })
+        }
+    };
+    let sphere = (scene.sphere, scene.sphere_material.elastic);
+    let impact = match &scene.target {
+        SceneTarget::Wall { material } => {
+            PhysicalImpact::sphere_on_wall(sphere, material.elastic, inc.sphere, scene.friction)
+        }
+        SceneTarget::Sphere { body, material, .. } => PhysicalImpact::sphere_on_sphere(
+            sphere,
+            inc.sphere,
+            (*body, material.elastic),
+            inc.other,
+            scene.friction,
+        ),
+    };
+    Ok(impact.with_law(bodies).restitution()?.1)
 }
 
 fn rms(values: impl Iterator<Item = (f64, f64)>) -> Option<(f64, usize)> {

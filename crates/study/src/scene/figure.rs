@@ -247,6 +247,9 @@ fn dissipation_caption(scene: &Scene, ev: &Evaluation) -> Option<String> {
     match scene.dissipation {
         Dissipation::Elastic => None,
         Dissipation::Restitution(e) => Some(format!("normal restitution e_n = {e} (Kelvin–Voigt law)")),
+        Dissipation::YieldPressure(p) => Some(format!(
+            "Thornton limiting pressure p_y = {p:e} Pa: e_n = {lo:.4} .. {hi:.4} from each case's impact speed"
+        )),
         Dissipation::RelaxationTime(tau) => Some(format!(
             "Kelvin–Voigt relaxation time τ = {tau:e} s: e_n = {lo:.4} .. {hi:.4} from each case's impact speed"
         )),

@@ -12,6 +12,7 @@ mod validate;
 use std::path::{Path, PathBuf};
 
 use oblique_lookup::rebound::{Body, Elastic, Incident, Pair, State};
+use oblique_solver::Law;
 
 use super::materials::CatalogueMaterial;
 use super::SceneError;
@@ -179,7 +180,8 @@ pub struct MeasuredRef {
 /// How the bodies dissipate in the normal direction (`physics.md`, "Dissipative impacts").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Dissipation {
-    /// Elastic bodies: `e_n = 1` (no `e_n` or `relaxation_time` in the scene file).
+    /// Elastic bodies: `e_n = 1` (no `e_n`, `relaxation_time` or `yield_pressure` in the scene
+    /// file).
     Elastic,
     /// A normal restitution `e_n` (Kelvin–Voigt law; `e_n = 1` is elastic), the same for every
     /// case.
@@ -188,13 +190,28 @@ pub enum Dissipation {
     /// impact speed (`oblique_solver::units::PhysicalImpact::restitution`), so it varies along
     /// the sweep.
     RelaxationTime(f64),
+    /// The limiting contact pressure `p_y` (Pa) of Thornton's elastic–perfectly plastic law
+    /// (`physics.md`, "Elastic–plastic impacts"): each case is elastic (`e_n = 1`) up to the
+    /// yield speed `V_y` at which the Hertz peak pressure reaches `p_y`, and above it its `e_n`
+    /// is Thornton's closed form of `V_y/v_z0` (`oblique_solver::thornton::restitution`).
+    YieldPressure(f64),
 }
 
 impl Dissipation {
-    /// Whether the scene names a dissipation (`e_n` or `relaxation_time`): its CSV then has
-    /// the `e_n` and `law` columns.
+    /// Whether the scene names a dissipation (`e_n`, `relaxation_time` or `yield_pressure`):
+    /// its CSV then has the `e_n` and `law` columns.
     pub fn is_named(self) -> bool {
         !matches!(self, Dissipation::Elastic)
+    }
+
+    /// The contact law of a case of normal restitution `e_n`: Thornton's for every case of
+    /// a scene with a limiting pressure (its bodies' law, even below the yield speed where the
+    /// impact is elastic), otherwise elastic at `e_n = 1` and Kelvin–Voigt below.
+    pub fn law(self, e_n: f64) -> Law {
+        match self {
+            Dissipation::YieldPressure(_) => Law::Thornton,
+            _ => Law::for_restitution(e_n),
+        }
     }
 }
 
@@ -211,7 +228,8 @@ pub struct Scene {
     pub friction: f64,
     /// Solver tolerance of `P` when simulating (absolute).
     pub tol: f64,
-    /// Normal dissipation: elastic, a constant `e_n`, or a Kelvin–Voigt relaxation time.
+    /// Normal dissipation: elastic, a constant `e_n`, a Kelvin–Voigt relaxation time, or
+    /// Thornton's limiting pressure.
     pub dissipation: Dissipation,
     /// Sphere 1: mass, radius, κ.
     pub sphere: Body,

@@ -97,6 +97,7 @@ pub(super) struct SceneFile {
     pub(super) tol: Option<f64>,
     pub(super) e_n: Option<f64>,
     pub(super) relaxation_time: Option<f64>,
+    pub(super) yield_pressure: Option<f64>,
     pub(super) sphere: SphereFile,
     pub(super) target: TargetFile,
     pub(super) cases: CasesFile,

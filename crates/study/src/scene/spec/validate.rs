@@ -128,7 +128,7 @@ impl Validator<'_> {
         if !(1e-10..=1e-2).contains(&tol) {
             return Err(self.invalid_num("tol", tol, "in [1e-10, 1e-2] (absolute error of P)"));
         }
-        let dissipation = self.dissipation(f.e_n, f.relaxation_time)?;
+        let dissipation = self.dissipation(f.e_n, f.relaxation_time, f.yield_pressure)?;
         let s = &f.sphere;
         let (sphere, sphere_material) = self.body(&BodyFields {
             section: "sphere",
@@ -203,6 +203,42 @@ impl Validator<'_> {
     }
 
     fn dissipation(
+        &self,
+        e_n: Option<f64>,
+        relaxation_time: Option<f64>,
+        yield_pressure: Option<f64>,
+    ) -> Result<Dissipation, SceneError> {
+        let Some(p) = yield_pressure else {
+            return self.kelvin_voigt(e_n, relaxation_time);
+        };
+        let other = match (e_n, relaxation_time) {
+            (Some(_), _) => Some("e_n"),
+            (None, Some(_)) => Some("relaxation_time"),
+            (None, None) => None,
+        };
+        if let Some(other) = other {
+            return Err(self.invalid(
+                "yield_pressure",
+                format!("(given with {other})"),
+                &format!(
+                    "either yield_pressure (Pa, Thornton's elastic-plastic bodies) or {other} \
+                     (Kelvin-Voigt bodies), not both"
+                ),
+            ));
+        }
+        if p.is_finite() && p > 0.0 {
+            Ok(Dissipation::YieldPressure(p))
+        } else {
+            Err(self.invalid_num(
+                "yield_pressure",
+                p,
+                "a finite pressure > 0 (Pa): the limiting contact pressure of Thornton's law",
+            ))
+        }
+    }
+
+    /// The dissipation of Kelvin–Voigt bodies: a constant `e_n` or a relaxation time.
+    fn kelvin_voigt(
         &self,
         e_n: Option<f64>,
         relaxation_time: Option<f64>,
