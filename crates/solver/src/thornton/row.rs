@@ -27,290 +27,12 @@
 //! curved piece meets a limit, the crossing is found by bracketing on a few samples between
 //! the kinks of `Q` and bisection to the rounding.
 
+mod field;
+
 use super::line::Truncated;
-use crate::continuum::{roots_inside, GAUSS};
+use crate::continuum::roots_inside;
 use crate::springs::{StepMotion, StepResult};
-
-/// Which law a piece follows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    /// Stuck: `ũ = W + a + b z + q z² + k Q(D_f − y)`.
-    Stuck,
-    /// At the `+` limit `ũ = c Λ(y)`.
-    Plus,
-    /// At the `−` limit `ũ = −c Λ(y)`.
-    Minus,
-}
-
-/// One piece of the field on `y0 ≤ y ≤ y1`.
-#[derive(Debug, Clone, Copy)]
-struct Piece {
-    kind: Kind,
-    y0: f64,
-    y1: f64,
-    x0: f64,
-    x1: f64,
-    y_ref: f64,
-    a: f64,
-    b: f64,
-    q: f64,
-    /// Factor of the curved part `k Q(D_f − y)` (0: none).
-    k: f64,
-    /// `D_f` of the curved part (m).
-    top: f64,
-    /// `∫ (ũ − W) dx` over a stuck piece (m²).
-    rel: f64,
-    /// Bounds of `ũ − W` over a stuck piece: `lo ≤ ũ − W ≤ hi`.
-    lo: f64,
-    hi: f64,
-    /// `upper ≥ max (ũ − W + s y)` and `lower ≤ min (ũ − W − s y)` over a stuck piece for the
-    /// limit slope `s = slope` (NaN until computed): it is inside the linear limits
-    /// `±s (D − y)` while `upper ≤ s D − W` and `lower ≥ −s D − W`.
-    upper: f64,
-    lower: f64,
-    slope: f64,
-}
-
-impl Piece {
-    /// A stuck piece; a curved part that is linear over the piece (`D_f − y0 ≤ d_y`) is folded
-    /// into the quadratic.
-    #[allow(clippy::too_many_arguments)]
-    fn stuck(
-        y0: f64,
-        y1: f64,
-        y_ref: f64,
-        (a, b, q): (f64, f64, f64),
-        k: f64,
-        top: f64,
-        line: &Truncated,
-        radius: f64,
-    ) -> Self {
-        let (mut a, mut b, mut k) = (a, b, k);
-        if k != 0.0 && top - y0 <= line.yield_indentation {
-            a += k * (top - y_ref);
-            b -= k;
-            k = 0.0;
-        }
-        Piece {
-            kind: Kind::Stuck,
-            y0,
-            y1,
-            x0: (radius * y0).sqrt(),
-            x1: (radius * y1).sqrt(),
-            y_ref,
-            a,
-            b,
-            q,
-            k,
-            top,
-            rel: 0.0,
-            lo: 0.0,
-            hi: 0.0,
-            upper: 0.0,
-            lower: 0.0,
-            slope: f64::NAN,
-        }
-        .refreshed(line, radius)
-    }
-
-    fn limit(kind: Kind, y0: f64, y1: f64, radius: f64) -> Self {
-        Piece {
-            kind,
-            y0,
-            y1,
-            x0: (radius * y0).sqrt(),
-            x1: (radius * y1).sqrt(),
-            y_ref: y0,
-            a: 0.0,
-            b: 0.0,
-            q: 0.0,
-            k: 0.0,
-            top: 0.0,
-            rel: 0.0,
-            lo: 0.0,
-            hi: 0.0,
-            upper: 0.0,
-            lower: 0.0,
-            slope: f64::NAN,
-        }
-    }
-
-    /// The same piece on `[y0, y1]` (a stuck one with its sums recomputed).
-    fn part(&self, y0: f64, y1: f64, line: &Truncated, radius: f64) -> Self {
-        let p = Piece {
-            y0,
-            y1,
-            x0: (radius * y0).sqrt(),
-            x1: (radius * y1).sqrt(),
-            slope: f64::NAN,
-            ..*self
-        };
-        if p.kind == Kind::Stuck {
-            p.refreshed(line, radius)
-        } else {
-            p
-        }
-    }
-
-    /// A stuck piece with its integral and range computed.
-    fn refreshed(mut self, line: &Truncated, radius: f64) -> Self {
-        self.rel = self.integral(line, radius);
-        (self.lo, self.hi) = self.range(line);
-        self.slope = f64::NAN;
-        self
-    }
-
-    /// A stuck piece with its bounds for the limit slope `s` ([`Piece::upper`]).
-    fn bounded(mut self, s: f64, line: &Truncated) -> Self {
-        // The curved part k Q(D_f − y) between two lines: its chord and its tangent at the
-        // middle (Q(D_f − y) is concave in y; k < 0 swaps them).
-        let (cu, cl) = if self.k == 0.0 {
-            ((0.0, 0.0), (0.0, 0.0))
-        } else {
-            let (y0, y1) = (self.y0, self.y1);
-            let ym = 0.5 * (y0 + y1);
-            let (v0, v1) = (
-                self.k * line.value(self.top - y0),
-                self.k * line.value(self.top - y1),
-            );
-            let chord_slope = if y1 > y0 { (v1 - v0) / (y1 - y0) } else { 0.0 };
-            let chord = (v0 - chord_slope * (y0 - self.y_ref), chord_slope);
-            let t_slope = -self.k * line.slope(self.top - ym);
-            let tangent = (
-                self.k * line.value(self.top - ym) - t_slope * (ym - self.y_ref),
-                t_slope,
-            );
-            if self.k > 0.0 {
-                (tangent, chord)
-            } else {
-                (chord, tangent)
-            }
-        };
-        // max of (a + cu.0) + (b + cu.1 + s) z + q z², min of (a + cl.0) + (b + cl.1 − s) z + q z².
-        let ext = |a: f64, b: f64, max: bool| {
-            let (z0, z1) = (self.y0 - self.y_ref, self.y1 - self.y_ref);
-            let f = |z: f64| a + z * (b + self.q * z);
-            let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
-            let mut best = pick(f(z0), f(z1));
-            if self.q != 0.0 {
-                let z = -b / (2.0 * self.q);
-                if z > z0 && z < z1 {
-                    best = pick(best, f(z));
-                }
-            }
-            best
-        };
-        let y_ref_term = s * self.y_ref;
-        self.upper = ext(self.a + cu.0 + y_ref_term, self.b + cu.1 + s, true);
-        self.lower = ext(self.a + cl.0 - y_ref_term, self.b + cl.1 - s, false);
-        self.slope = s;
-        self
-    }
-
-    /// `ũ − W` of a stuck piece at `y`.
-    fn value(&self, y: f64, line: &Truncated) -> f64 {
-        let z = y - self.y_ref;
-        let quad = self.a + z * (self.b + self.q * z);
-        if self.k == 0.0 {
-            quad
-        } else {
-            quad + self.k * line.value(self.top - y)
-        }
-    }
-
-    /// `∫ (ũ − W) dx` over a stuck piece (m²).
-    fn integral(&self, line: &Truncated, radius: f64) -> f64 {
-        let dx = self.x1 - self.x0;
-        let quad: f64 = GAUSS
-            .iter()
-            .map(|&(t, w)| {
-                let x = self.x0 + t * dx;
-                let z = x * x / radius - self.y_ref;
-                w * (self.a + z * (self.b + self.q * z))
-            })
-            .sum::<f64>()
-            * dx;
-        if self.k == 0.0 {
-            quad
-        } else {
-            quad + self.k
-                * (line.integral(self.top, self.x1, radius)
-                    - line.integral(self.top, self.x0, radius))
-        }
-    }
-
-    /// Bounds `(min, max)` of `ũ − W` over a stuck piece.
-    fn range(&self, line: &Truncated) -> (f64, f64) {
-        let quad = |y: f64| {
-            let z = y - self.y_ref;
-            self.a + z * (self.b + self.q * z)
-        };
-        let (mut lo, mut hi) = {
-            let (u, v) = (quad(self.y0), quad(self.y1));
-            (u.min(v), u.max(v))
-        };
-        if self.q != 0.0 {
-            let y = self.y_ref - self.b / (2.0 * self.q);
-            if y > self.y0 && y < self.y1 {
-                lo = lo.min(quad(y));
-                hi = hi.max(quad(y));
-            }
-        }
-        if self.k != 0.0 {
-            // Q(D_f − y) falls with y.
-            let (u, v) = (
-                self.k * line.value(self.top - self.y0),
-                self.k * line.value(self.top - self.y1),
-            );
-            lo += u.min(v);
-            hi += u.max(v);
-        }
-        (lo, hi)
-    }
-}
-
-/// The Coulomb limit at one instant: `c_κ Λ(y) = c_κ Q(D − y)`.
-#[derive(Debug, Clone, Copy)]
-struct Limit {
-    /// `c κ`: `c` in loading, `c/ρ` in unloading.
-    c: f64,
-    /// The reach `D` (m): `d` in loading, `ρ (d − d_p)` in Thornton's unloading, `d_max` in
-    /// the MDR unloading.
-    reach: f64,
-    /// The uniform shortening `σ` of every spring (m): `d_max − d` in the MDR unloading, 0
-    /// elsewhere; the limit is `c_κ (Q(D − y) − σ)`.
-    shift: f64,
-    /// The line density's truncation (none in unloading).
-    line: Truncated,
-}
-
-impl Limit {
-    fn at(&self, y: f64) -> f64 {
-        self.c * (self.line.value(self.reach - y) - self.shift)
-    }
-
-    /// The profile height where the limit falls to 0: the contact's edge.
-    fn edge(&self) -> f64 {
-        if self.shift > 0.0 {
-            (self.reach - self.line.inverse(self.shift)).max(0.0)
-        } else {
-            self.reach
-        }
-    }
-
-    /// Whether the limit is linear in `y` from `y0` on (`D − y0 ≤ d_y`).
-    fn linear_from(&self, y0: f64) -> bool {
-        self.reach - y0 <= self.line.yield_indentation
-    }
-
-    /// `∫ c_κ Λ dx` over `[x0, x1]` (m²).
-    fn integral(&self, x0: f64, x1: f64, radius: f64) -> f64 {
-        self.c
-            * (self.line.integral(self.reach, x1, radius)
-                - self.line.integral(self.reach, x0, radius)
-                - self.shift * (x1 - x0))
-    }
-}
+use field::{crossings, front, push_merged, Chunk, Kind, Limit, Piece, CHUNK_MAX};
 
 /// The half-row ([module docs](self)).
 #[derive(Debug, Clone)]
@@ -335,87 +57,6 @@ pub struct ThorntonRow {
     at_limit: (bool, bool),
     cuts: Vec<f64>,
 }
-
-/// Pieces per chunk above which a chunk is split.
-const CHUNK_MAX: usize = 24;
-
-/// Consecutive pieces with the sums a step needs.
-#[derive(Debug, Clone, Default)]
-struct Chunk {
-    pieces: Vec<Piece>,
-    /// Over the stuck pieces: `Σ Δx`, `Σ ∫ (ũ − W) dx`, `min lo`, `max hi`, `max upper`,
-    /// `min lower` (the bounds for the limit slope `slope`).
-    stuck_length: f64,
-    rel: f64,
-    lo: f64,
-    hi: f64,
-    upper: f64,
-    lower: f64,
-    slope: f64,
-    /// Whether some piece is at a limit, and whether one is at the `+` / `−` limit.
-    limits: bool,
-    signs: [bool; 2],
-}
-
-impl Chunk {
-    /// The chunk of `pieces` with its sums, the stuck pieces bounded for the slope `s`.
-    fn new(mut pieces: Vec<Piece>, s: f64, line: &Truncated) -> Self {
-        let mut ch = Chunk {
-            stuck_length: 0.0,
-            rel: 0.0,
-            lo: f64::INFINITY,
-            hi: f64::NEG_INFINITY,
-            upper: f64::NEG_INFINITY,
-            lower: f64::INFINITY,
-            slope: s,
-            limits: false,
-            signs: [false, false],
-            pieces: Vec::new(),
-        };
-        for p in &mut pieces {
-            if p.kind == Kind::Stuck {
-                if p.slope != s {
-                    *p = p.bounded(s, line);
-                }
-                ch.stuck_length += p.x1 - p.x0;
-                ch.rel += p.rel;
-                ch.lo = ch.lo.min(p.lo);
-                ch.hi = ch.hi.max(p.hi);
-                ch.upper = ch.upper.max(p.upper);
-                ch.lower = ch.lower.min(p.lower);
-            } else {
-                ch.limits = true;
-                ch.signs[usize::from(p.kind == Kind::Minus)] = true;
-            }
-        }
-        ch.pieces = pieces;
-        ch
-    }
-
-    /// Whether the step may change the chunk: it holds a piece at a limit of a sign whose
-    /// springs may stick again in the step (`release`, `+` and `−`), or its stuck pieces may
-    /// cross the limit `lim` with the offset `w`.
-    fn changes(&self, lim: &Limit, w: f64, release: [bool; 2]) -> bool {
-        let (Some(first), Some(last)) = (self.pieces.first(), self.pieces.last()) else {
-            return false;
-        };
-        if !lim.c.is_finite() {
-            return false;
-        }
-        if (self.signs[0] && release[0]) || (self.signs[1] && release[1]) {
-            return true;
-        }
-        if lim.linear_from(first.y0) && self.slope == lim.c {
-            let top = lim.c * (lim.reach - lim.shift);
-            return !(self.upper <= top - w && self.lower >= -top - w);
-        }
-        let floor = lim.at(last.y1);
-        !(w + self.hi < floor && w + self.lo > -floor)
-    }
-}
-
-/// Samples per stretch between kinks when bracketing a crossing with a curved limit or piece.
-const SAMPLES: usize = 8;
 
 impl ThorntonRow {
     /// An unloaded row for effective radius `R*` (m), yield indentation `d_y` (m), and the
@@ -459,14 +100,14 @@ impl ThorntonRow {
     /// Put `pieces` in place of chunk `k` (split in chunks of at most [`CHUNK_MAX`], none if
     /// empty), with their sums for the limit slope `s`; returns the number of chunks now there.
     fn install(&mut self, k: usize, pieces: Vec<Piece>, s: f64) -> usize {
-        let line = self.line;
         if pieces.is_empty() {
             self.spare = std::mem::take(&mut self.chunks[k].pieces);
             self.chunks.remove(k);
             return 0;
         }
         if pieces.len() <= CHUNK_MAX {
-            let old = std::mem::replace(&mut self.chunks[k], Chunk::new(pieces, s, &line));
+            let chunk = self.build(pieces, s);
+            let old = std::mem::replace(&mut self.chunks[k], chunk);
             if old.pieces.capacity() > self.spare.capacity() {
                 self.spare = old.pieces;
             }
@@ -474,18 +115,22 @@ impl ThorntonRow {
         }
         let parts: Vec<Chunk> = pieces
             .chunks(CHUNK_MAX)
-            .map(|c| Chunk::new(c.to_vec(), s, &line))
+            .map(|c| self.build(c.to_vec(), s))
             .collect();
         let n = parts.len();
         self.chunks.splice(k..=k, parts);
         n
     }
 
+    /// A chunk of `pieces` with its sums for the limit slope `s` (its margins unmeasured).
+    fn build(&self, pieces: Vec<Piece>, s: f64) -> Chunk {
+        Chunk::new(pieces, s, &self.line)
+    }
+
     /// Join runs at one limit that a chunk boundary splits, and neighbouring chunks that fit
     /// in one, so that a run at a limit is one piece (one integral a step) and the chunks stay
     /// few.
     fn compact(&mut self, s: f64) {
-        let line = self.line;
         let mut k = 0;
         while k + 1 < self.chunks.len() {
             let joins = match (
@@ -510,11 +155,12 @@ impl ThorntonRow {
                 push_merged(&mut pieces, p);
             }
             if pieces.len() <= CHUNK_MAX {
-                self.chunks[k] = Chunk::new(pieces, s, &line);
+                self.chunks[k] = self.build(pieces, s);
             } else {
                 let tail = pieces.split_off(CHUNK_MAX);
-                self.chunks[k] = Chunk::new(pieces, s, &line);
-                self.chunks.insert(k + 1, Chunk::new(tail, s, &line));
+                self.chunks[k] = self.build(pieces, s);
+                let next = self.build(tail, s);
+                self.chunks.insert(k + 1, next);
                 k += 1;
             }
         }
@@ -597,9 +243,12 @@ impl ThorntonRow {
             let g1 = lim1.c * (rate1.max(0.0) - shift1) - sign * v1;
             !(g0 < 0.0 && g1 <= 0.0)
         });
+        let grow = !self.unloading;
+        let line = self.line;
         let mut k = 0;
         while k < self.chunks.len() {
-            if !self.chunks[k].changes(&lim1, self.offset, release) {
+            let w = self.offset;
+            if !self.chunks[k].changes(&lim1, w, release, grow, &line) {
                 k += 1;
                 continue;
             }
@@ -977,97 +626,4 @@ impl ThorntonRow {
         }
         total
     }
-}
-
-/// The height `y` where `g(y) = c_κ Q′(D − y) Ḋ − u` changes sign (`u = s ẇ`), NaN where it
-/// does not inside the curved part (`Q′(σ) = (2/π) arcsin √(d_y/σ) = u/(c_κ Ḋ)`, so
-/// `σ = d_y / sin²(π r/2)`).
-fn front(lim: &Limit, rate: f64, u: f64) -> f64 {
-    let dy = lim.line.yield_indentation;
-    let scale = lim.c * rate;
-    if !dy.is_finite() || scale == 0.0 || !scale.is_finite() {
-        return f64::NAN;
-    }
-    let r = u / scale;
-    if !(r > 0.0 && r < 1.0) {
-        return f64::NAN;
-    }
-    let s = (std::f64::consts::FRAC_PI_2 * r).sin();
-    lim.reach - dy / (s * s)
-}
-
-/// The sign changes of `f` inside `(y0, y1)`, appended to `out`: `f` sampled at [`SAMPLES`]
-/// points on each stretch between the `kinks` (where it is smooth), each bracket bisected to
-/// the rounding.
-fn crossings(f: &dyn Fn(f64) -> f64, y0: f64, y1: f64, kinks: &[f64], out: &mut Vec<f64>) {
-    let mut ends = [y0, f64::NAN, f64::NAN, y1];
-    let mut n = 1;
-    for &k in kinks {
-        if k > y0 && k < y1 {
-            ends[n] = k;
-            n += 1;
-        }
-    }
-    ends[n] = y1;
-    let ends = &mut ends[..=n];
-    ends.sort_by(f64::total_cmp);
-    for pair in ends.windows(2) {
-        let (a, b) = (pair[0], pair[1]);
-        if b <= a {
-            continue;
-        }
-        let mut prev = (a, f(a));
-        for i in 1..=SAMPLES {
-            let y = if i == SAMPLES {
-                b
-            } else {
-                a + (b - a) * i as f64 / SAMPLES as f64
-            };
-            let fy = f(y);
-            if (prev.1 < 0.0 && fy > 0.0) || (prev.1 > 0.0 && fy < 0.0) {
-                out.push(bisect(f, prev, (y, fy)));
-            } else if fy == 0.0 && y > y0 && y < y1 {
-                out.push(y);
-            }
-            prev = (y, fy);
-        }
-    }
-}
-
-/// The root of `f` between `(lo, f(lo))` and `(hi, f(hi))` of opposite signs, to adjacent
-/// doubles.
-fn bisect(f: &dyn Fn(f64) -> f64, (mut lo, f_lo): (f64, f64), (mut hi, _): (f64, f64)) -> f64 {
-    let neg = f_lo < 0.0;
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if (f(mid) < 0.0) == neg {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
-/// Append a piece, merging it into the last one when both sit at the same limit (their ends
-/// a few ulps apart: an end found by bisection and one set by the motion), and letting a
-/// limit piece absorb a sliver a few ulps wide that follows it.
-fn push_merged(out: &mut Vec<Piece>, p: Piece) {
-    if p.x1 <= p.x0 {
-        return;
-    }
-    if let Some(last) = out.last_mut() {
-        let close = 8.0 * f64::EPSILON * p.y1.abs();
-        let joins = last.kind == p.kind && (p.y0 - last.y1).abs() <= close;
-        let sliver = p.y1 - p.y0 <= close;
-        if last.kind != Kind::Stuck && (joins || sliver) {
-            last.y1 = p.y1;
-            last.x1 = p.x1;
-            return;
-        }
-    }
-    out.push(p);
 }
