@@ -37,6 +37,55 @@ pub fn check_restitution(e_n: f64) -> Result<f64, PhysicsError> {
     }
 }
 
+/// Refuse a scheme other than the accurate one, for a law solved with it only: `case` says
+/// for what (`"for e_n < 1"`), `allowed` what the law takes instead.
+pub(crate) fn accurate_only(
+    scheme: Scheme,
+    case: &'static str,
+    allowed: &'static str,
+) -> Result<(), PhysicsError> {
+    if scheme == Scheme::Accurate {
+        Ok(())
+    } else {
+        Err(PhysicsError::NotForLaw {
+            name: "scheme",
+            value: scheme.name().to_string(),
+            case,
+            allowed,
+        })
+    }
+}
+
+/// Refuse a row of springs (`springs > 0`), for a law solved on the continuum row only.
+pub(crate) fn continuum_only(
+    springs: usize,
+    case: &'static str,
+    allowed: &'static str,
+) -> Result<(), PhysicsError> {
+    if springs == 0 {
+        Ok(())
+    } else {
+        Err(PhysicsError::NotForLaw {
+            name: "springs",
+            value: springs.to_string(),
+            case,
+            allowed,
+        })
+    }
+}
+
+/// `G* = (2/7) γ²` and the Coulomb limit factor `c = α/G*` of the dimensionless impact (`∞`
+/// above [`crate::impact::ALPHA_NO_SLIP`]: no slip).
+pub(crate) fn shear_and_limit(gamma: f64, alpha: f64) -> (f64, f64) {
+    let shear = 2.0 / 7.0 * gamma * gamma;
+    let limit = if alpha > crate::impact::ALPHA_NO_SLIP {
+        f64::INFINITY
+    } else {
+        alpha / shear
+    };
+    (shear, limit)
+}
+
 /// The floor of the Richardson estimate as a share of the last raw difference
 /// `|P_k − P_{k−1}|`: `regular` where the last two ratios of successive differences are within
 /// `[0.75, 1.375] · 2^p` (clean convergence at order `p`), `irregular` elsewhere.

@@ -15,9 +15,11 @@ use serde::Serialize;
 use crate::error::PhysicsError;
 use crate::impact::{
     check_alpha, check_gamma, run_contact_with, ContactPoint, Resolution, Scheme, TangentialBodies,
-    ALPHA_NO_SLIP,
 };
-use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary, PARAMETER_KEYS};
+use crate::law::{
+    accurate_only, continuum_only, shear_and_limit, BodiesNormal, ContactLaw, Floor, NormalSummary,
+    PARAMETER_KEYS,
+};
 use crate::model::{close_step_elastic, NormalModel, StepEnd, TangentialModel};
 use crate::springs::{StepMotion, StepResult};
 use normal::{FineMotion, ViscoelasticBodies, ViscoelasticTrajectory};
@@ -492,15 +494,12 @@ impl ContactLaw for KelvinVoigt {
     ) -> Result<(f64, f64, Parameters), PhysicsError> {
         let gamma = check_gamma(gamma)?;
         let alpha = check_alpha(alpha)?;
-        if scheme != Scheme::Accurate {
-            return Err(PhysicsError::NotForLaw {
-                name: "scheme",
-                value: scheme.name().to_string(),
-                case: "for e_n < 1",
-                allowed: "the Kelvin-Voigt law is solved with the accurate scheme only (euler is \
-                          for elastic impacts)",
-            });
-        }
+        accurate_only(
+            scheme,
+            "for e_n < 1",
+            "the Kelvin-Voigt law is solved with the accurate scheme only (euler is for elastic \
+             impacts)",
+        )?;
         Ok((gamma, alpha, Self::parameters(e_n)?))
     }
 
@@ -517,20 +516,12 @@ impl ContactLaw for KelvinVoigt {
         _scheme: Scheme,
     ) -> Result<f64, PhysicsError> {
         let res = res.validate()?;
-        if res.springs != 0 {
-            return Err(PhysicsError::NotForLaw {
-                name: "springs",
-                value: res.springs.to_string(),
-                case: "for e_n < 1",
-                allowed: "the Kelvin-Voigt law is solved on the continuum row only (springs 0)",
-            });
-        }
-        let shear = 2.0 / 7.0 * gamma * gamma;
-        let limit = if alpha > ALPHA_NO_SLIP {
-            f64::INFINITY
-        } else {
-            alpha / shear
-        };
+        continuum_only(
+            res.springs,
+            "for e_n < 1",
+            "the Kelvin-Voigt law is solved on the continuum row only (springs 0)",
+        )?;
+        let (shear, limit) = shear_and_limit(gamma, alpha);
         Ok(dimensionless_p(shear, limit, parameters.tau, res))
     }
 
@@ -585,14 +576,11 @@ impl ContactLaw for KelvinVoigt {
         res: Resolution,
         (radius, shear_modulus, limit): (f64, f64, f64),
     ) -> Result<NormalSummary, PhysicsError> {
-        if res.springs != 0 {
-            return Err(PhysicsError::NotForLaw {
-                name: "springs",
-                value: res.springs.to_string(),
-                case: "for Kelvin-Voigt bodies",
-                allowed: "their law is solved on the continuum row only (springs 0)",
-            });
-        }
+        continuum_only(
+            res.springs,
+            "for Kelvin-Voigt bodies",
+            "their law is solved on the continuum row only (springs 0)",
+        )?;
         let tau = parameters.relaxation_time;
         let normal = ViscoelasticBodies {
             inv_mass1: normal.inv_mass1,

@@ -23,9 +23,11 @@ use serde::Serialize;
 use crate::error::PhysicsError;
 use crate::impact::{
     check_alpha, check_gamma, run_contact_with, ContactPoint, Scheme, TangentialBodies,
-    ALPHA_NO_SLIP,
 };
-use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary, PARAMETER_KEYS};
+use crate::law::{
+    accurate_only, continuum_only, shear_and_limit, BodiesNormal, ContactLaw, Floor, NormalSummary,
+    PARAMETER_KEYS,
+};
 use crate::model::{NormalModel, TangentialModel};
 use crate::resolution::Resolution;
 use crate::springs::{StepMotion, StepResult};
@@ -236,15 +238,11 @@ impl ContactLaw for Thornton {
     ) -> Result<(f64, f64, Parameters), PhysicsError> {
         let gamma = check_gamma(gamma)?;
         let alpha = check_alpha(alpha)?;
-        if scheme != Scheme::Accurate {
-            return Err(PhysicsError::NotForLaw {
-                name: "scheme",
-                value: scheme.name().to_string(),
-                case: "for Thornton's law",
-                allowed: "it is solved with the accurate scheme only (euler is for elastic \
-                          impacts)",
-            });
-        }
+        accurate_only(
+            scheme,
+            "for Thornton's law",
+            "it is solved with the accurate scheme only (euler is for elastic impacts)",
+        )?;
         Ok((gamma, alpha, Self::parameters(e_n)?))
     }
 
@@ -264,20 +262,12 @@ impl ContactLaw for Thornton {
         _scheme: Scheme,
     ) -> Result<f64, PhysicsError> {
         let res = res.validate()?;
-        if res.springs != 0 {
-            return Err(PhysicsError::NotForLaw {
-                name: "springs",
-                value: res.springs.to_string(),
-                case: "for Thornton's law",
-                allowed: "it is solved on the continuum row only (springs 0)",
-            });
-        }
-        let shear = 2.0 / 7.0 * gamma * gamma;
-        let limit = if alpha > ALPHA_NO_SLIP {
-            f64::INFINITY
-        } else {
-            alpha / shear
-        };
+        continuum_only(
+            res.springs,
+            "for Thornton's law",
+            "it is solved on the continuum row only (springs 0)",
+        )?;
+        let (shear, limit) = shear_and_limit(gamma, alpha);
         let motion = dimensionless_motion(parameters.yield_pressure);
         Ok(dimensionless_p(shear, limit, &motion, res.steps))
     }
@@ -335,14 +325,11 @@ impl ContactLaw for Thornton {
                 (radius, shear_modulus, limit),
             );
         }
-        if res.springs != 0 {
-            return Err(PhysicsError::NotForLaw {
-                name: "springs",
-                value: res.springs.to_string(),
-                case: "for Thornton bodies",
-                allowed: "their law is solved on the continuum row only (springs 0)",
-            });
-        }
+        continuum_only(
+            res.springs,
+            "for Thornton bodies",
+            "their law is solved on the continuum row only (springs 0)",
+        )?;
         let inv_mass = normal.inv_mass1 + normal.inv_mass2;
         let loading = Loading {
             stiffness: normal.stiffness,

@@ -354,12 +354,8 @@ impl Motion {
     /// The motion sampled on a grid of `steps` steps with the switch at a node
     /// ([`Trajectory`]).
     pub fn trajectory(&self, steps: usize) -> Trajectory {
-        let steps = steps.max(2);
-        let share = self.switch_time / self.contact_time;
-        let loading_steps = ((steps as f64 * share).round() as usize).clamp(1, steps - 1);
-        let unloading_steps = steps - loading_steps;
-        let h1 = self.switch_time / loading_steps as f64;
-        let h2 = self.rebound.turning_time() / unloading_steps as f64;
+        let (loading_steps, unloading_steps, h1, h2) =
+            two_part_grid(steps, self.switch_time, self.rebound.turning_time());
         let mut indentation = Vec::with_capacity(steps + 1);
         let mut rate = Vec::with_capacity(steps + 1);
         for j in 0..loading_steps {
@@ -383,6 +379,26 @@ impl Motion {
             unloading_step: h2,
         }
     }
+}
+
+/// A grid of `steps` (at least 2) over a loading of `loading_time` and an unloading of
+/// `unloading_time` (s) with the switch at a node: the steps of each part, shared in
+/// proportion to the times (at least one each), and their lengths (s).
+pub fn two_part_grid(
+    steps: usize,
+    loading_time: f64,
+    unloading_time: f64,
+) -> (usize, usize, f64, f64) {
+    let steps = steps.max(2);
+    let share = loading_time / (loading_time + unloading_time);
+    let loading_steps = ((steps as f64 * share).round() as usize).clamp(1, steps - 1);
+    let unloading_steps = steps - loading_steps;
+    (
+        loading_steps,
+        unloading_steps,
+        loading_time / loading_steps as f64,
+        unloading_time / unloading_steps as f64,
+    )
 }
 
 /// The motion on a time grid of two uniform parts: `switch` steps of `loading_step` up to the

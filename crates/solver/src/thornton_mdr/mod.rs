@@ -20,13 +20,15 @@ use crate::error::PhysicsError;
 use crate::hertz::hermite;
 use crate::impact::{
     check_alpha, check_gamma, run_contact_with, ContactPoint, Scheme, TangentialBodies,
-    ALPHA_NO_SLIP,
 };
-use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary, PARAMETER_KEYS};
+use crate::law::{
+    accurate_only, continuum_only, shear_and_limit, BodiesNormal, ContactLaw, Floor, NormalSummary,
+    PARAMETER_KEYS,
+};
 use crate::model::NormalModel;
 use crate::resolution::Resolution;
 use crate::thornton::line::Truncated;
-use crate::thornton::normal::{Loading, Motion};
+use crate::thornton::normal::{two_part_grid, Loading, Motion};
 use crate::thornton::row::ThorntonRow;
 use crate::thornton::{elastic_peak_pressure, yield_indentation, yield_pressure_for_restitution};
 
@@ -170,13 +172,9 @@ impl MdrMotion {
 
     /// The motion on a grid of `steps` steps with the switch at a node ([`MdrTrajectory`]).
     pub fn trajectory(&self, steps: usize) -> MdrTrajectory {
-        let steps = steps.max(2);
         let m = &self.thornton;
-        let share = m.switch_time / self.contact_time();
-        let loading_steps = ((steps as f64 * share).round() as usize).clamp(1, steps - 1);
-        let unloading_steps = steps - loading_steps;
-        let h1 = m.switch_time / loading_steps as f64;
-        let h2 = self.unloading_time / unloading_steps as f64;
+        let (loading_steps, unloading_steps, h1, h2) =
+            two_part_grid(steps, m.switch_time, self.unloading_time);
         let mut indentation = Vec::with_capacity(steps + 1);
         let mut rate = Vec::with_capacity(steps + 1);
         for j in 0..loading_steps {
@@ -414,15 +412,11 @@ impl ContactLaw for ThorntonMdr {
     ) -> Result<(f64, f64, Parameters), PhysicsError> {
         let gamma = check_gamma(gamma)?;
         let alpha = check_alpha(alpha)?;
-        if scheme != Scheme::Accurate {
-            return Err(PhysicsError::NotForLaw {
-                name: "scheme",
-                value: scheme.name().to_string(),
-                case: "for the thornton-mdr law",
-                allowed: "it is solved with the accurate scheme only (euler is for elastic \
-                          impacts)",
-            });
-        }
+        accurate_only(
+            scheme,
+            "for the thornton-mdr law",
+            "it is solved with the accurate scheme only (euler is for elastic impacts)",
+        )?;
         Ok((gamma, alpha, Self::parameters(e_n)?))
     }
 
@@ -440,20 +434,12 @@ impl ContactLaw for ThorntonMdr {
         _scheme: Scheme,
     ) -> Result<f64, PhysicsError> {
         let res = res.validate()?;
-        if res.springs != 0 {
-            return Err(PhysicsError::NotForLaw {
-                name: "springs",
-                value: res.springs.to_string(),
-                case: "for the thornton-mdr law",
-                allowed: "it is solved on the continuum row only (springs 0)",
-            });
-        }
-        let shear = 2.0 / 7.0 * gamma * gamma;
-        let limit = if alpha > ALPHA_NO_SLIP {
-            f64::INFINITY
-        } else {
-            alpha / shear
-        };
+        continuum_only(
+            res.springs,
+            "for the thornton-mdr law",
+            "it is solved on the continuum row only (springs 0)",
+        )?;
+        let (shear, limit) = shear_and_limit(gamma, alpha);
         let motion = cached_motion(parameters.yield_pressure);
         Ok(dimensionless_p(shear, limit, &motion, res.steps))
     }
@@ -510,14 +496,11 @@ impl ContactLaw for ThorntonMdr {
                 (radius, shear_modulus, limit),
             );
         }
-        if res.springs != 0 {
-            return Err(PhysicsError::NotForLaw {
-                name: "springs",
-                value: res.springs.to_string(),
-                case: "for thornton-mdr bodies",
-                allowed: "their law is solved on the continuum row only (springs 0)",
-            });
-        }
+        continuum_only(
+            res.springs,
+            "for thornton-mdr bodies",
+            "their law is solved on the continuum row only (springs 0)",
+        )?;
         let trajectory = motion.trajectory(res.steps);
         let row = ThorntonRow::with_mdr_unloading(
             radius,
