@@ -289,3 +289,31 @@ fn the_mdr_unloading_keeps_the_full_slip_line() {
     let ratio = (v[1] - v[0]) / (v[2] - v[1]);
     assert!((3.3..=4.7).contains(&ratio), "ratio {ratio} ({v:?})");
 }
+
+/// At a cusp of `P` in the stick patch the differences between levels fall by 4.4 twice and
+/// then irregularly (7.4, 2.25, 5.8 to 32 768 steps): the estimate at tol 1e-7 must still cover
+/// the error against the Richardson value of 16 384 and 32 768 steps (its floor, a quarter of
+/// the last difference, does; a tenth stated 5.7e-9 for an error of 6.7e-9).
+#[test]
+fn the_estimate_covers_a_cusp() {
+    use oblique_solver::{Accuracy, Law};
+    let (gamma, alpha, e_n) = (
+        1.918_247_265_996_400_5,
+        3.158_187_750_796_722,
+        0.914_290_147_378_581_8,
+    );
+    let s = Request::new(gamma, alpha)
+        .e_n(e_n)
+        .law(Law::Thornton)
+        .accuracy(Accuracy::Tolerance(1e-7))
+        .solve()
+        .unwrap();
+    let (a, b) = (p(gamma, alpha, e_n, 16384), p(gamma, alpha, e_n, 32768));
+    let reference = b + (b - a) / 3.0;
+    let error = (s.p - reference).abs();
+    assert!(
+        error <= s.error_estimate && s.error_estimate <= 1e-7,
+        "error {error:e}, estimate {:e}",
+        s.error_estimate
+    );
+}
