@@ -100,13 +100,14 @@ impl ThorntonRow {
     /// Put `pieces` in place of chunk `k` (split in chunks of at most [`CHUNK_MAX`], none if
     /// empty), with their sums for the limit slope `s`; returns the number of chunks now there.
     fn install(&mut self, k: usize, pieces: Vec<Piece>, s: f64) -> usize {
+        let line = self.line;
         if pieces.is_empty() {
             self.spare = std::mem::take(&mut self.chunks[k].pieces);
             self.chunks.remove(k);
             return 0;
         }
         if pieces.len() <= CHUNK_MAX {
-            let chunk = self.build(pieces, s);
+            let chunk = Chunk::new(pieces, s, &line);
             let old = std::mem::replace(&mut self.chunks[k], chunk);
             if old.pieces.capacity() > self.spare.capacity() {
                 self.spare = old.pieces;
@@ -115,22 +116,18 @@ impl ThorntonRow {
         }
         let parts: Vec<Chunk> = pieces
             .chunks(CHUNK_MAX)
-            .map(|c| self.build(c.to_vec(), s))
+            .map(|c| Chunk::new(c.to_vec(), s, &line))
             .collect();
         let n = parts.len();
         self.chunks.splice(k..=k, parts);
         n
     }
 
-    /// A chunk of `pieces` with its sums for the limit slope `s` (its margins unmeasured).
-    fn build(&self, pieces: Vec<Piece>, s: f64) -> Chunk {
-        Chunk::new(pieces, s, &self.line)
-    }
-
     /// Join runs at one limit that a chunk boundary splits, and neighbouring chunks that fit
     /// in one, so that a run at a limit is one piece (one integral a step) and the chunks stay
     /// few.
     fn compact(&mut self, s: f64) {
+        let line = self.line;
         let mut k = 0;
         while k + 1 < self.chunks.len() {
             let joins = match (
@@ -155,11 +152,11 @@ impl ThorntonRow {
                 push_merged(&mut pieces, p);
             }
             if pieces.len() <= CHUNK_MAX {
-                self.chunks[k] = self.build(pieces, s);
+                self.chunks[k] = Chunk::new(pieces, s, &line);
             } else {
                 let tail = pieces.split_off(CHUNK_MAX);
-                self.chunks[k] = self.build(pieces, s);
-                let next = self.build(tail, s);
+                self.chunks[k] = Chunk::new(pieces, s, &line);
+                let next = Chunk::new(tail, s, &line);
                 self.chunks.insert(k + 1, next);
                 k += 1;
             }
@@ -589,7 +586,7 @@ impl ThorntonRow {
     /// Whether some piece sits at the `+` / `−` limit.
     fn limits_held(&self) -> (bool, bool) {
         let mut held = (false, false);
-        for ch in self.chunks.iter().filter(|ch| ch.limits) {
+        for ch in self.chunks.iter().filter(|ch| ch.has_limits()) {
             for p in &ch.pieces {
                 held.0 |= p.kind == Kind::Plus;
                 held.1 |= p.kind == Kind::Minus;
@@ -614,7 +611,7 @@ impl ThorntonRow {
         let mut total = 0.0;
         for ch in &self.chunks {
             total += w * ch.stuck_length + ch.rel;
-            if ch.limits {
+            if ch.has_limits() {
                 for p in &ch.pieces {
                     match p.kind {
                         Kind::Stuck => {}

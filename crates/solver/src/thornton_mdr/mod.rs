@@ -444,12 +444,13 @@ impl ContactLaw for ThorntonMdr {
         Ok(dimensionless_p(shear, limit, &motion, res.steps))
     }
 
+    /// Thornton's ([`crate::thornton::Thornton`]): the same parameter.
     fn values(parameters: &Parameters) -> [f64; PARAMETER_KEYS.len()] {
-        [0.0, parameters.yield_pressure]
+        crate::thornton::Thornton::values(parameters)
     }
 
     fn describe(parameters: &Parameters) -> Option<String> {
-        Some(parameters.to_string())
+        crate::thornton::Thornton::describe(parameters)
     }
 
     /// `p̂_y` of the bodies and the `e_n` of its integrated motion (1 at or below the yield

@@ -301,8 +301,7 @@ pub(super) struct Chunk {
     pub(super) upper: f64,
     pub(super) lower: f64,
     pub(super) slope: f64,
-    /// Whether some piece is at a limit, and whether one is at the `+` / `−` limit.
-    pub(super) limits: bool,
+    /// Whether some piece is at the `+` / `−` limit.
     pub(super) signs: [bool; 2],
     /// Lower bounds of the stuck pieces' distances to the `+` and `−` limits when the chunk was
     /// built in loading (`L − ũ` and `ũ + L`, at the offset `at_offset`; NaN otherwise). While
@@ -323,7 +322,6 @@ impl Chunk {
             upper: f64::NEG_INFINITY,
             lower: f64::INFINITY,
             slope: s,
-            limits: false,
             signs: [false, false],
             margin: [f64::NAN; 2],
             at_offset: f64::NAN,
@@ -341,12 +339,16 @@ impl Chunk {
                 ch.upper = ch.upper.max(p.upper);
                 ch.lower = ch.lower.min(p.lower);
             } else {
-                ch.limits = true;
                 ch.signs[usize::from(p.kind == Kind::Minus)] = true;
             }
         }
         ch.pieces = pieces;
         ch
+    }
+
+    /// Whether some piece is at a limit.
+    pub(super) fn has_limits(&self) -> bool {
+        self.signs[0] || self.signs[1]
     }
 
     /// Whether the step may change the chunk: it holds a piece at a limit of a sign whose
