@@ -18,10 +18,12 @@ use super::impact::{
 };
 
 mod damped;
+mod plastic;
 pub use damped::{
     fold_minus_at_e, fold_minus_birth_e, fold_minus_free_below, fold_minus_scan_e,
     restitution_minus_edges_e, restitution_minus_somewhere_e, slip_history_e,
 };
+pub use plastic::{ends_in_full_slip_thornton, full_slip_edge_thornton, slip_history_thornton};
 
 /// Direction of the friction force during a gross-slip episode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -134,7 +134,7 @@ thread_local! {
 
 /// The dimensionless trajectory of `motion` on `steps` steps, cached per thread by its limiting
 /// pressure (a table's nodes share a few `e_n`).
-fn dimensionless_trajectory(motion: &Motion, steps: usize) -> Rc<Trajectory> {
+pub(crate) fn dimensionless_trajectory(motion: &Motion, steps: usize) -> Rc<Trajectory> {
     let key = (steps, motion.loading.yield_indentation.to_bits());
     TRAJECTORY_CACHE.with(|cache| {
         let mut cache = cache.borrow_mut();

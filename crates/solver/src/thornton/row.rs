@@ -92,6 +92,26 @@ impl ThorntonRow {
         self.at_limit
     }
 
+    /// Whether the whole contact is at one Coulomb limit (gross slip, `F_t = ±μF_N`):
+    /// `Some(true)` at `+`, `Some(false)` at `−`, `None` where a piece of positive length is
+    /// stuck, where both limits are held, or where nothing is in contact.
+    pub fn gross_slip(&self) -> Option<bool> {
+        let (mut plus, mut minus) = (false, false);
+        for p in self.chunks.iter().flat_map(|c| &c.pieces) {
+            match p.kind {
+                Kind::Plus => plus = true,
+                Kind::Minus => minus = true,
+                Kind::Stuck if p.x1 > p.x0 => return None,
+                Kind::Stuck => {}
+            }
+        }
+        match (plus, minus) {
+            (true, false) => Some(true),
+            (false, true) => Some(false),
+            _ => None,
+        }
+    }
+
     /// Number of pieces (diagnostics).
     pub fn pieces(&self) -> usize {
         self.chunks.iter().map(|c| c.pieces.len()).sum()

@@ -1,0 +1,218 @@
+//! The gross-slip history of an impact under Thornton's elastic–plastic law
+//! ([`slip_history_thornton`]) and the edge of its full-slip region ([`full_slip_edge_thornton`]).
+//!
+//! Thornton's law has no closed-form full-slip line: at the switch to unloading its Coulomb
+//! limits jump (centre up, edge down), the central springs stick for a moment, and `P` leaves
+//! `1 − (7/2)(1 + e_n)α` at every `α > 0` (`physics.md`, "Elastic–plastic impacts"). It keeps a
+//! full-slip *region*, though: below an edge `α₁(γ, e_n)` the contact is back in gross slip
+//! `F_t = +μF_N` after the switch and stays there until it separates, and `P` is smooth in `α`;
+//! above it that last episode ends before the separation and `P` leaves its smooth continuation
+//! like the Kelvin–Voigt law at `α_c1` (`(α − α₁)^{3/2}`). `α₁` lies above the Kelvin–Voigt
+//! `α_c1(γ, e_n) = 2γ²/(7(γ²(1 + e_n) − e_n))` (the law's closed form at the same `e_n`) by
+//! `1e-4` to a few `1e-2` of it, so a table of this law must trace it.
+
+use super::*;
+use crate::law::{check_restitution, shear_and_limit};
+use crate::model::{NormalModel, StepEnd, TangentialModel};
+use crate::registry::Law;
+use crate::springs::{StepMotion, StepResult};
+use crate::thornton::row::ThorntonRow;
+use crate::thornton::yield_pressure_for_restitution;
+use crate::thornton::{dimensionless_motion, dimensionless_trajectory};
+
+/// Thornton's row ([`ThorntonRow`]) that logs, after every step it takes, whether the whole
+/// contact is at one Coulomb limit ([`ThorntonRow::gross_slip`]) and whether anything is still
+/// in contact, and is otherwise the row.
+struct LoggedRow<'a> {
+    row: ThorntonRow,
+    log: &'a mut Vec<(Option<bool>, bool)>,
+}
+
+impl TangentialModel for LoggedRow<'_> {
+    const END_STATE: bool = <ThorntonRow as TangentialModel>::END_STATE;
+    #[inline(always)]
+    fn at_limit(&self) -> (bool, bool) {
+        TangentialModel::at_limit(&self.row)
+    }
+    #[inline(always)]
+    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        let r = self.row.step_accurate(m, d1, c);
+        self.log
+            .push((self.row.gross_slip(), self.row.pieces() > 0));
+        r
+    }
+    #[inline(always)]
+    fn touch_mean(&self, slip_velocity: f64, rate0: f64, c: f64) -> f64 {
+        self.row.touch_mean(slip_velocity, rate0, c)
+    }
+    #[inline(always)]
+    fn close_step<B: TangentialBodies>(&self, bodies: &mut B, end: &StepEnd) -> (f64, f64) {
+        self.row.close_step(bodies, end)
+    }
+    #[inline(always)]
+    fn release_time(&self, m: &StepMotion, c: f64) -> Option<f64> {
+        self.row.release_time(m, c)
+    }
+    #[inline(always)]
+    fn jump(&mut self, start: (f64, f64), end: (f64, f64), c: f64) -> Option<StepResult> {
+        self.row.jump(start, end, c)
+    }
+}
+
+/// [`slip_history`] for Thornton's law at normal restitution `e_n ∈ [0.3, 1]` (its limiting
+/// pressure from Thornton's closed form): the impact with the law's continuum row on `steps`
+/// steps, a step in gross slip where the whole contact is at one Coulomb limit at its end (the
+/// row's own pieces, no force ratio), episodes merged as [`slip_history`] merges them. Times are
+/// fractions of the law's contact time.
+///
+/// At `e_n = 1` the elastic law answers (as [`crate::registry`] does): exactly
+/// [`slip_history`]. Errors: those of [`slip_history`], and `e_n` outside `[0.3, 1]`.
+pub fn slip_history_thornton(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<SlipHistory, PhysicsError> {
+    let e_n = check_restitution(e_n)?;
+    if Law::Thornton.answering(e_n) == Law::Elastic {
+        return slip_history(gamma, alpha, steps);
+    }
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
+    let (log, p, times) = run_logged(gamma, alpha, e_n, steps)?;
+    let mut episodes: Vec<Episode> = Vec::new();
+    let contact_time = times.last().map_or(1.0, |&(t, h)| t + h);
+    for (&(t, h), (state, _)) in times.iter().zip(&log) {
+        let q = match state {
+            Some(true) => 1.0,
+            Some(false) => -1.0,
+            None => 0.0,
+        };
+        record_step(&mut episodes, t + 0.5 * h, q, contact_time);
+    }
+    Ok(SlipHistory { episodes, p })
+}
+
+/// One logged run: the gross-slip state after every step, `P`, and `(start, length)` of every
+/// step (dimensionless time).
+#[allow(clippy::type_complexity)]
+fn run_logged(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<(Vec<(Option<bool>, bool)>, f64, Vec<(f64, f64)>), PhysicsError> {
+    let motion = dimensionless_motion(yield_pressure_for_restitution(e_n)?);
+    let trajectory = dimensionless_trajectory(&motion, steps);
+    let (shear, limit) = shear_and_limit(gamma, alpha);
+    let mut rec = Recorder {
+        point: ContactPoint { u: 1.0 },
+        t: 0.0,
+        log: Vec::with_capacity(steps + steps / 8),
+    };
+    let mut log = Vec::with_capacity(steps + steps / 8);
+    let row = LoggedRow {
+        row: ThorntonRow::new(
+            1.0,
+            motion.loading.yield_indentation,
+            motion.unloading.ratio,
+            motion.unloading.plastic_indentation,
+        ),
+        log: &mut log,
+    };
+    run_contact_with(&mut rec, &*trajectory, row, 1.0, shear, limit);
+    let times = rec.log.iter().map(|&(t, h, _)| (t, h)).collect();
+    debug_assert!(trajectory.contact_time() > 0.0);
+    Ok((log, rec.point.u, times))
+}
+
+/// Whether the impact at `(γ, α, e_n)` on `steps` steps ends in gross slip at the `+` limit:
+/// the whole contact at `F_t = +μF_N` after the last step that leaves something in contact.
+/// Just above the edge `α₁` the contact sticks before it separates and a short `−μF_N` episode
+/// ends it; where the central springs that stick at the switch to unloading never slip again
+/// (small γ, small `e_n`), the edge is where that happens.
+pub fn ends_in_full_slip_thornton(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<bool, PhysicsError> {
+    let e_n = check_restitution(e_n)?;
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
+    let (log, _, _) = run_logged(gamma, alpha, e_n, steps)?;
+    let last = log.iter().rev().find(|&&(_, in_contact)| in_contact);
+    Ok(last.and_then(|&(state, _)| state) == Some(true))
+}
+
+/// The edge `α₁(γ, e_n)` of Thornton's full-slip region on `steps` steps ([module docs](self)):
+/// the `α` where the impact stops ending in gross slip at the `+` limit
+/// ([`ends_in_full_slip_thornton`]), bisected to `1e-12` relative in a bracket found by
+/// doubling the distance from the Kelvin–Voigt `α_c1(γ, e_n)` (up where the impact at `α_c1`
+/// ends in full slip, down where it does not). `γ > 1` (at and below 1 the elastic full-slip line ends at `α_c2`, where
+/// no such edge has been traced), `e_n ∈ [0.3, 1)`.
+///
+/// Errors: `γ ≤ 1` or not finite, `e_n` outside `[0.3, 1)`, `steps < 8`, and
+/// [`PhysicsError::InvalidParameter`] naming `alpha` if no bracket is found between 0 and
+/// `α_c2`.
+pub fn full_slip_edge_thornton(gamma: f64, e_n: f64, steps: usize) -> Result<f64, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    if !(gamma > 1.0 && gamma.is_finite()) {
+        return Err(PhysicsError::InvalidParameter {
+            name: "gamma",
+            value: gamma,
+            allowed: "> 1 and finite (the full-slip edge is traced above gamma = 1)",
+        });
+    }
+    let e_n = check_restitution(e_n)?;
+    if Law::Thornton.answering(e_n) == Law::Elastic {
+        return Err(PhysicsError::InvalidParameter {
+            name: "e_n",
+            value: e_n,
+            allowed: "in [0.3, 1) (at e_n = 1 the edge is the elastic alpha_c1)",
+        });
+    }
+    let g2 = gamma * gamma;
+    let c1 = 2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n));
+    let c2 = oblique_physics::regimes::alpha_c2(gamma);
+    let ends = |a: f64| ends_in_full_slip_thornton(gamma, a, e_n, steps);
+    let no_bracket = |a: f64| PhysicsError::InvalidParameter {
+        name: "alpha",
+        value: a,
+        allowed: "a bracket of the full-slip edge between 0 and alpha_c2",
+    };
+    // A bracket `ends(lo) && !ends(hi)`, by doubling the distance from α_c1 upwards or
+    // downwards.
+    let (mut lo, mut hi);
+    let mut step = 1e-3 * c1;
+    if ends(c1)? {
+        lo = c1;
+        hi = c1 + step;
+        while ends(hi)? {
+            lo = hi;
+            step *= 2.0;
+            hi = c1 + step;
+            if hi >= c2 {
+                return Err(no_bracket(hi));
+            }
+        }
+    } else {
+        hi = c1;
+        lo = c1 - step;
+        while !ends(lo)? {
+            hi = lo;
+            step *= 2.0;
+            lo = c1 - step;
+            if lo <= 0.0 {
+                return Err(no_bracket(lo));
+            }
+        }
+    }
+    while hi - lo > 1e-12 * hi {
+        let mid = 0.5 * (lo + hi);
+        if ends(mid)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}
