@@ -103,20 +103,24 @@ pub fn restitution_rounding(e_n: f64) -> f64 {
 pub fn plastic_restitution(test: &str, res: &ObliqueResult) -> Vec<Check> {
     let mut v = Vec::new();
     for (setup, outs) in &res.setups {
+        let ratios = || outs.iter().filter_map(|o| o.plastic.map(|p| p.speed_ratio));
+        let (lo, hi) = (
+            ratios().fold(f64::INFINITY, f64::min),
+            ratios().fold(0.0, f64::max),
+        );
+        let range = if lo == hi {
+            format!("{lo:.3}")
+        } else {
+            format!("{lo:.3} to {hi:.3}")
+        };
         let checks = outs.iter().filter_map(|o| {
             o.plastic.map(|p| Check {
                 test: format!("{test} ({})", setup.label),
                 name: format!(
                     "normal restitution e_n = Thornton's e(V_y/V) (V_y = {:.6} m/s; {} cases; \
-                     V/V_y {:.3} to {:.3}; e_n of the normal motion)",
+                     V/V_y {range}; e_n of the normal motion)",
                     p.yield_speed,
                     outs.len(),
-                    outs.iter()
-                        .filter_map(|o| o.plastic.map(|p| p.speed_ratio))
-                        .fold(f64::INFINITY, f64::min),
-                    outs.iter()
-                        .filter_map(|o| o.plastic.map(|p| p.speed_ratio))
-                        .fold(0.0, f64::max),
                 ),
                 closed_form: p.closed_form_e_n,
                 computed: o.e_n,
