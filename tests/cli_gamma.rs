@@ -163,6 +163,18 @@ fn catalogue_gamma_of_one_material_depends_on_nu_only() {
         let j = names.iter().position(|&n| n == "steel").unwrap();
         assert_eq!(m["gamma"][j].as_f64().unwrap(), num(&p, "gamma"));
     }
+    // Yield stress and limiting pressure p_y = 1.60 Y (Pa) of the metals only.
+    for m in list {
+        let (y, p) = (&m["yield_stress"], &m["limiting_pressure"]);
+        assert!(!m["yield_source"].as_str().unwrap().is_empty());
+        match m["name"].as_str().unwrap() {
+            "steel" => assert_eq!((y.as_f64(), p.as_f64()), (Some(235e6), Some(1.60 * 235e6))),
+            "aluminium-6061-t6" => {
+                assert_eq!((y.as_f64(), p.as_f64()), (Some(276e6), Some(1.60 * 276e6)))
+            }
+            _ => assert!(y.is_null() && p.is_null(), "{m}"),
+        }
+    }
     // The text form lists every material and its source.
     let o = sweep(&["gamma", "--catalogue"]);
     assert!(o.status.success());
@@ -173,6 +185,14 @@ fn catalogue_gamma_of_one_material_depends_on_nu_only() {
             "no source for {n}:\n{text}"
         );
     }
+    let yields = text
+        .split("yield stress:\n")
+        .nth(1)
+        .expect("yield stress section");
+    for n in &names {
+        assert!(yields.contains(&format!("  {n}: ")), "{yields}");
+    }
+    assert!(text.contains("  Y (MPa)  p_y (MPa)") && text.contains("      276      441.6"));
 }
 
 #[test]

@@ -302,3 +302,67 @@ fn a_yield_pressure_scene_names_thorntons_law_and_two_laws_are_refused() {
     );
     assert!(!out.join("both").join("shot.csv").exists());
 }
+
+/// `yield_pressure = "catalogue"` takes the lower limiting pressure of the bodies' catalogue
+/// materials (1.60 Y): steel on aluminium 6061-T6 runs as `yield_pressure = 3.76e8` (steel's
+/// 1.60 x 235 MPa, below aluminium's 441.6 MPa), to the byte; without a catalogue metal, or
+/// with another word, it is refused naming the key (exit 2).
+#[test]
+fn a_catalogue_yield_pressure_is_the_softer_metals() {
+    let out = scratch("catalogue_yield");
+    let text = "name = \"shot\"\nfriction = 0.3\nyield_pressure = \"catalogue\"\n\n[sphere]\n\
+                material = \"steel\"\nradius = 1e-3\n\n[target]\nkind = \"wall\"\n\
+                material = \"aluminium-6061-t6\"\n\n[cases]\nkind = \"angles\"\nspeed = 0.2\n\
+                angles_deg = [10, 50, 85]\n";
+    let run = |name: &str, text: &str| {
+        let dir = out.join(name);
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("shot.toml");
+        std::fs::write(&file, text).unwrap();
+        let r = Command::new(env!("CARGO_BIN_EXE_sweep"))
+            .arg("scene")
+            .arg(&file)
+            .arg("-o")
+            .arg(&dir)
+            .output()
+            .unwrap();
+        (r, dir.join("shot.csv"))
+    };
+    let (a, csv_a) = run("catalogue", text);
+    let stdout = String::from_utf8_lossy(&a.stdout);
+    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
+    assert!(stdout.contains("limiting pressure 3.76e8 Pa"), "{stdout}");
+    let (b, csv_b) = run(
+        "pascal",
+        &text.replace("yield_pressure = \"catalogue\"", "yield_pressure = 3.76e8"),
+    );
+    assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
+    let (ca, cb) = (
+        std::fs::read_to_string(&csv_a).unwrap(),
+        std::fs::read_to_string(&csv_b).unwrap(),
+    );
+    assert_eq!(ca, cb);
+    assert!(ca.lines().skip(1).all(|l| l.ends_with(",thornton")), "{ca}");
+    for (name, bad, says) in [
+        (
+            "glass",
+            text.replace("\"steel\"", "\"soda-lime-glass\"")
+                .replace("\"aluminium-6061-t6\"", "\"rigid\""),
+            "steel, aluminium-6061-t6",
+        ),
+        (
+            "word",
+            text.replace("\"catalogue\"", "\"steel\""),
+            "or \"catalogue\"",
+        ),
+    ] {
+        let (r, csv) = run(name, &bad);
+        let stderr = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{stderr}");
+        assert!(
+            stderr.contains("invalid yield_pressure") && stderr.contains(says),
+            "{stderr}"
+        );
+        assert!(!csv.exists());
+    }
+}

@@ -317,3 +317,128 @@ fn chung_ooi_test4_damped_is_the_kelvin_voigt_reference_at_its_published_e_n() {
         }
     }
 }
+
+/// The elastic–plastic cases (Thornton's law): each case's `e_n` is that of the exact normal
+/// motion and equals Thornton's closed form `e(V_y/V)` (a check that fails when it does not),
+/// the normal velocity is reversed with it, `P` is Thornton's `P(γ, α, e_n)`, the limiting
+/// pressures are the sourced ones, and a table never answers them.
+#[test]
+fn elastic_plastic_cases_follow_thorntons_law() {
+    use oblique_study::reference::{checks, eval, spec::Suite, Method, Test};
+    let find = |suite: Suite, id: &str| {
+        suite
+            .tests()
+            .into_iter()
+            .find_map(|t| match t {
+                Test::Oblique(o) if o.id == id => Some(o),
+                _ => None,
+            })
+            .expect(id)
+    };
+    let t4 = find(Suite::ChungOoi, "chung_ooi_test4_angle_plastic");
+    let psi = find(Suite::Thornton, "thornton_psi_plastic");
+    assert!(t4.plastic() && psi.plastic());
+    assert!(!find(Suite::ChungOoi, "chung_ooi_test4_angle_damped").plastic());
+    // The sourced limiting pressures: 1.60 x 276 MPa (aluminium 6061-T6), and for alumina the
+    // p_y whose Thornton e_n is the published 0.98 at 3.9 m/s head-on.
+    for (s, _) in t4.setups.iter().chain(&psi.setups) {
+        let p_y = s.yield_pressure.expect("p_y").pascal;
+        if s.label == "aluminium oxide" {
+            let e = eval::thornton_restitution(s, p_y, 3.9);
+            assert!((e - 0.98).abs() < 1e-12, "{e}");
+            assert!(p_y > 1e10 && p_y < 2e10, "{p_y}");
+        } else {
+            assert!((p_y - 441.6e6).abs() < 1e-3, "{p_y}");
+        }
+        // V_y is the speed whose Hertz approach just reaches d_y (the peak pressure p_y).
+        let v_y = eval::yield_speed(s, p_y);
+        let [a, b] = s.materials();
+        let (e_star, _) = oblique_lookup::rebound::effective_moduli(&a, &b);
+        let r = s.pair().effective_radius();
+        let d_y = oblique_solver::thornton::yield_indentation(p_y, r, e_star);
+        let m = s.pair().normal_mass();
+        let hertz = oblique_solver::hertz::HertzClosedForm {
+            mass: m,
+            stiffness: 4.0 / 3.0 * e_star * r.sqrt(),
+            approach_speed: v_y,
+        };
+        assert!((hertz.max_indentation() / d_y - 1.0).abs() < 1e-12);
+        assert_eq!(eval::thornton_motion_restitution(s, p_y, 0.999 * v_y), 1.0);
+    }
+    let table = oblique_lookup::Table::open(Path::new(ROOT).join("tables/full.h5")).expect("table");
+    for t in [&t4, &psi] {
+        let res = eval::oblique(t, &Method::Slice { tol: 1e-8 }).expect("computed");
+        let (mut plastic, mut elastic) = (0, 0);
+        for (s, outs) in &res.setups {
+            for o in outs {
+                let p = o.plastic.expect("plastic");
+                assert_eq!(p.yield_pressure, s.yield_pressure.expect("p_y").pascal);
+                assert!((o.e_n - p.closed_form_e_n).abs() <= 1e-12 * o.e_n, "{o:?}");
+                let v = o.case.incident.sphere.v_z;
+                assert!((p.speed_ratio - v / p.yield_speed).abs() < 1e-12 * p.speed_ratio);
+                assert!((o.post.sphere.v_z + o.e_n * v).abs() < 1e-12 * v);
+                if o.e_n < 1.0 {
+                    plastic += 1;
+                    assert!(o.regime.is_none() && o.how == "simulated", "{o:?}");
+                    let want = oblique_solver::Request::new(o.gamma, o.alpha)
+                        .e_n(o.e_n)
+                        .law(oblique_solver::Law::Thornton)
+                        .accuracy(oblique_solver::Accuracy::Tolerance(1e-8))
+                        .solve()
+                        .expect("solve");
+                    assert!((o.post.p - want.p).abs() < 1e-12, "{o:?}");
+                    assert!(o.p_error > 0.0 && o.p_error <= 1e-8);
+                } else {
+                    elastic += 1;
+                    assert!(p.speed_ratio <= 1.0 && o.regime.is_some());
+                }
+            }
+        }
+        assert!(plastic >= 24, "{} plastic cases", plastic);
+        if t.id == "chung_ooi_test4_angle_plastic" {
+            // Alumina is elastic from 45° (its normal speed below V_y), plastic below.
+            assert_eq!((plastic, elastic), (17 + 8, 9));
+        }
+        if t.id == "thornton_psi_plastic" {
+            // Ψ₁ = 2 V_t/(μ (1 + e) V_n) with the case's own e_n.
+            for (_, outs) in &res.setups {
+                for o in outs {
+                    let i = o.case.incident.sphere;
+                    let psi1 = 2.0 * i.v_x / (0.1 * (1.0 + o.e_n) * i.v_z);
+                    assert!((psi1 - o.case.x).abs() < 1e-12, "{psi1}");
+                }
+            }
+        }
+        // The check holds, and fails for an e_n off by 1e-9.
+        let c = checks::plastic_restitution(t.id, &res);
+        assert_eq!(c.len(), res.setups.len());
+        assert!(c.iter().all(|c| c.exact && c.holds()), "{c:?}");
+        let mut off = res.clone();
+        off.setups[0].1[3].e_n += 1e-9;
+        let c = checks::plastic_restitution(t.id, &off);
+        assert!(!c[0].holds(), "{c:?}");
+        // A table answers no Thornton case: those are simulated, the same numbers.
+        let tab = eval::oblique(t, &Method::Table(&table)).expect("with the table");
+        for ((_, a), (_, b)) in res.setups.iter().zip(&tab.setups) {
+            for (x, y) in a.iter().zip(b) {
+                assert_eq!(x.e_n, y.e_n);
+                if x.e_n < 1.0 {
+                    assert_eq!(y.how, "simulated");
+                    assert!((x.post.p - y.post.p).abs() < 1e-7);
+                }
+            }
+        }
+    }
+    // The shipped checks hold.
+    for f in ["chung-ooi", "thornton"] {
+        let (h, rows) =
+            read_csv(&Path::new(ROOT).join(format!("docs/reference/{f}/closed_form_checks.csv")));
+        let holds = h.iter().position(|c| c == "holds").expect("holds");
+        let n = rows
+            .iter()
+            .filter(|r| r.iter().any(|c| c.contains("Thornton's e(V_y/V)")))
+            .inspect(|r| assert_eq!(r[holds], "true", "{r:?}"))
+            .count();
+        assert_eq!(n, if f == "chung-ooi" { 2 } else { 1 });
+    }
+}

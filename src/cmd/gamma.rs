@@ -369,6 +369,9 @@ fn catalogue(as_json: bool) -> Result<()> {
                     "gamma_same_material": pair_gamma(m, m),
                     "gamma": CATALOGUE.iter().map(|o| pair_gamma(m, o)).collect::<Vec<_>>(),
                     "source": m.source,
+                    "yield_stress": m.yield_stress,
+                    "limiting_pressure": m.limiting_pressure(),
+                    "yield_source": m.yield_source,
                 })
             })
             .collect();
@@ -378,19 +381,23 @@ fn catalogue(as_json: bool) -> Result<()> {
                 "kappa": SOLID,
                 "materials": list,
                 "note": "gamma[j]: with the j-th material (solid spheres; sphere-wall and \
-                         sphere-sphere alike, any radii); null for two rigid bodies",
+                         sphere-sphere alike, any radii); null for two rigid bodies. \
+                         yield_stress Y and limiting_pressure p_y = 1.60 Y (Pa) of Thornton's \
+                         elastic-perfectly plastic law: null where none",
             })
         )?;
         return Ok(());
     }
     let width = CATALOGUE.iter().map(|m| m.name.len()).max().unwrap_or(0);
     outln!(
-        "{:w$}  {:>8}  {:>6}  {:>11}  {:>8}",
+        "{:w$}  {:>8}  {:>6}  {:>11}  {:>8}  {:>7}  {:>9}",
         "material",
         "E (GPa)",
         "nu",
         "rho (kg/m3)",
         "gamma",
+        "Y (MPa)",
+        "p_y (MPa)",
         w = width + 3
     )?;
     for (i, m) in CATALOGUE.iter().enumerate() {
@@ -400,15 +407,29 @@ fn catalogue(as_json: bool) -> Result<()> {
             "-".into()
         };
         let gamma = pair_gamma(m, m).map_or("-".into(), |g| format!("{g:.6}"));
+        let mpa = |v: Option<f64>| v.map_or("-".into(), |v| fmt_num(v / 1e6));
         outln!(
-            "{:>2} {:width$}  {:>8}  {:>6}  {:>11}  {:>8}",
+            "{:>2} {:width$}  {:>8}  {:>6}  {:>11}  {:>8}  {:>7}  {:>9}",
             i + 1,
             m.name,
             fmt_num(m.youngs_modulus / 1e9),
             fmt_num(m.poisson_ratio),
             rho,
-            gamma
+            gamma,
+            mpa(m.yield_stress),
+            mpa(m.limiting_pressure())
         )?;
+    }
+    outln!()?;
+    for l in wrap(
+        "Y: yield stress; p_y = 1.60 Y: the limiting contact pressure of Thornton's \
+         elastic-perfectly plastic law (the peak Hertz pressure at first yield, Johnson 1985, \
+         Contact Mechanics, chapter 6); scenes take it with yield_pressure = \"catalogue\". \
+         None for brittle materials and polymers.",
+        "",
+        96,
+    ) {
+        outln!("{l}")?;
     }
     outln!()?;
     for l in wrap(
@@ -442,6 +463,14 @@ fn catalogue(as_json: bool) -> Result<()> {
     outln!("sources:")?;
     for m in CATALOGUE {
         let lines = wrap(&format!("{}: {}", m.name, m.source), "    ", 96);
+        for (k, l) in lines.iter().enumerate() {
+            outln!("{}", if k == 0 { &l[2..] } else { l })?;
+        }
+    }
+    outln!()?;
+    outln!("yield stress:")?;
+    for m in CATALOGUE {
+        let lines = wrap(&format!("{}: {}", m.name, m.yield_source), "    ", 96);
         for (k, l) in lines.iter().enumerate() {
             outln!("{}", if k == 0 { &l[2..] } else { l })?;
         }

@@ -119,6 +119,7 @@ pub fn run(suite: Suite, method: &Method) -> Result<SuiteResult, ReferenceError>
                 let res = eval::oblique(&t, method)?;
                 checks.extend(checks::gross_slip(t.id, &res, method)?);
                 checks.extend(checks::rolling(t.id, &res));
+                checks.extend(checks::plastic_restitution(t.id, &res));
                 setups.extend(res.setups.iter().map(|(s, _)| *s));
                 if let Some(m) = t.measured {
                     measured.push((t.id, output::measured_rows(&t, m, method)?));

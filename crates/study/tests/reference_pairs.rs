@@ -72,6 +72,7 @@ fn mixed_sphere_pairs_agree_with_direct_simulation() {
                 radius: r2,
             }),
             friction: mu,
+            yield_pressure: None,
         };
         for (a, b) in motions {
             // Spins scaled so that R ω is of the order of the speeds.

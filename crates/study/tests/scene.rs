@@ -34,13 +34,14 @@ fn scratch(name: &str) -> PathBuf {
     d
 }
 
-const SHIPPED: [&str; 6] = [
+const SHIPPED: [&str; 7] = [
     "seed000_alumina_on_glass",
     "alumina_on_rigid_wall",
     "steel_on_steel",
     "sphere_sphere_mixed",
     "nylon_spin_on_steel",
     "steel_on_steel_damped",
+    "steel_on_steel_plastic",
 ];
 
 #[test]
@@ -53,6 +54,12 @@ fn every_shipped_scene_loads() {
     let s = shipped("sphere_sphere_mixed");
     assert!(matches!(s.target, SceneTarget::Sphere { .. }));
     assert!(s.sphere.radius != s.pair().other.unwrap().radius);
+    // The catalogue's limiting pressure of steel, 1.60 x 235 MPa (Pa).
+    let s = shipped("steel_on_steel_plastic");
+    assert_eq!(
+        s.dissipation,
+        oblique_study::scene::Dissipation::YieldPressure(1.60 * 235e6)
+    );
 }
 
 #[test]

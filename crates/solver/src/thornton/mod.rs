@@ -196,8 +196,8 @@ impl std::fmt::Display for Parameters {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodiesParameters {
     /// Limiting contact pressure `p_y` (Pa), > 0: the pressure at which the bodies flow
-    /// plastically (about 1.6 times the yield stress of the softer body for an
-    /// elastic–perfectly plastic sphere; Johnson 1985, §6.2). The impact stays elastic
+    /// plastically (about 1.6 times the yield stress of the softer body: a Hertz contact first
+    /// yields at a peak pressure of 1.60 Y, Johnson 1985, chapter 6). The impact stays elastic
     /// (`e_n = 1`) up to the yield speed `V_y` at which the Hertz peak pressure reaches it.
     pub yield_pressure: f64,
 }

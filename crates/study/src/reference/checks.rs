@@ -1,5 +1,6 @@
 //! Closed-form checks printed beside the computed values: Hertz's normal impact, the gross-slip
-//! line, the rolling state (angular momentum about the contact point) and the no-slip limit.
+//! line, the rolling state (angular momentum about the contact point), the no-slip limit, and
+//! the normal restitution of Thornton's law against its closed form.
 
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::units::PhysicalImpact;
@@ -82,6 +83,52 @@ pub fn hertz(test: &str, outs: &[NormalOutcome]) -> Vec<Check> {
                 exact: true,
             });
         }
+    }
+    v
+}
+
+/// Rounding allowed in the normal restitution of Thornton's exact normal motion (its three
+/// phases in closed form) against Thornton's closed form `e(V_y/V)`: relative to `e_n`.
+const RESTITUTION_ROUNDING: f64 = 1e-12;
+
+/// The error bound of an `e_n` of Thornton's exact normal motion: the rounding.
+pub fn restitution_rounding(e_n: f64) -> f64 {
+    RESTITUTION_ROUNDING * e_n.abs()
+}
+
+/// Thornton's closed form `e(V_y/V)` (`physics.md`, "Elastic–plastic impacts") against the
+/// normal restitution computed for every case of an elastic–plastic test (the exact normal
+/// motion of the bodies, or the direct two-body simulation): one check per setup, the worst
+/// case. `V_y` is Thornton's (1997) yield speed of the setup's `p_y`, `R*`, `E*` and `m*`.
+pub fn plastic_restitution(test: &str, res: &ObliqueResult) -> Vec<Check> {
+    let mut v = Vec::new();
+    for (setup, outs) in &res.setups {
+        let ratios = || outs.iter().filter_map(|o| o.plastic.map(|p| p.speed_ratio));
+        let (lo, hi) = (
+            ratios().fold(f64::INFINITY, f64::min),
+            ratios().fold(0.0, f64::max),
+        );
+        let range = if lo == hi {
+            format!("{lo:.3}")
+        } else {
+            format!("{lo:.3} to {hi:.3}")
+        };
+        let checks = outs.iter().filter_map(|o| {
+            o.plastic.map(|p| Check {
+                test: format!("{test} ({})", setup.label),
+                name: format!(
+                    "normal restitution e_n = Thornton's e(V_y/V) (V_y = {:.6} m/s; {} cases; \
+                     V/V_y {range}; e_n of the normal motion)",
+                    p.yield_speed,
+                    outs.len(),
+                ),
+                closed_form: p.closed_form_e_n,
+                computed: o.e_n,
+                bound: restitution_rounding(p.closed_form_e_n),
+                exact: true,
+            })
+        });
+        v.extend(worst(checks));
     }
     v
 }

@@ -159,15 +159,16 @@ const SLIP_ANGLE: Quantity = Quantity {
     label: "90° − θ (°)",
     value: |c| 90.0 - c.centre_before().atan2(c.v_cn()).to_degrees(),
 };
+// 2x/((1 + e) y) is x/y to the bit at e = 1 (both doublings are exact).
 const PSI2: Quantity = Quantity {
     name: "psi2",
     label: "Ψ₂ = 2V'_st/(μ(1+e)V_n)",
-    value: |c| c.slip_after() / c.mu_v_cn(),
+    value: |c| 2.0 * c.slip_after() / ((1.0 + c.e_n) * c.mu_v_cn()),
 };
 const OMEGA2_NORMALISED: Quantity = Quantity {
     name: "spin_normalised",
     label: "2Rω'/(μ(1+e)V_n)",
-    value: |c| c.setup.sphere.radius * c.post.sphere.omega / c.mu_v_cn(),
+    value: |c| 2.0 * (c.setup.sphere.radius * c.post.sphere.omega) / ((1.0 + c.e_n) * c.mu_v_cn()),
 };
 
 /// The quantities of a convention, in CSV order; the first ones are plotted.

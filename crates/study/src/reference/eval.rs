@@ -6,8 +6,9 @@ use oblique_lookup::Table;
 use oblique_physics::regimes::{self, Regime};
 use oblique_solver::hertz::{HertzClosedForm, NormalBodies};
 use oblique_solver::request::dissipative_closed_form;
+use oblique_solver::thornton::normal::{Loading, Motion};
 use oblique_solver::units::PhysicalImpact;
-use oblique_solver::{Accuracy, BodiesLaw, Method as SolverMethod, Request, Resolution};
+use oblique_solver::{Accuracy, BodiesLaw, Law, Method as SolverMethod, Request, Resolution};
 use rayon::prelude::*;
 
 use super::spec::{Case, NormalTest, ObliqueTest, Setup};
@@ -74,8 +75,13 @@ pub struct Outcome {
     pub p_error: f64,
     /// Friction regime (`None`: `u0 = 0`, a pure normal impact).
     pub regime: Option<Regime>,
-    /// Normal restitution of the impact (1: elastic; below, the Kelvin–Voigt law).
+    /// Normal restitution of the impact (1: elastic; below, the Kelvin–Voigt law, or Thornton's
+    /// law where [`Outcome::plastic`] is set: there the `e_n` of its exact normal motion, or of
+    /// the direct simulation).
     pub e_n: f64,
+    /// Thornton's law of the case: its limiting pressure and yield speed (`None`: elastic or
+    /// Kelvin–Voigt).
+    pub plastic: Option<Plastic>,
     /// How `P` was obtained: `simulated`, `closed-form`, `table`, `direct`, `normal-impact`.
     pub how: &'static str,
     /// The state after the impact.
@@ -84,6 +90,70 @@ pub struct Outcome {
     /// `P` (error propagation; the last differs from `post` only for a direct simulation, by
     /// its error in the normal motion and rounding).
     pub bracket: [Post; 3],
+}
+
+/// What Thornton's law gives one impact: the limiting pressure, the yield speed and the
+/// closed form of its normal restitution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plastic {
+    /// Limiting contact pressure `p_y` (Pa).
+    pub yield_pressure: f64,
+    /// Yield speed `V_y` (m/s): the approach speed at which the peak Hertz pressure reaches
+    /// `p_y` ([`yield_speed`]).
+    pub yield_speed: f64,
+    /// The approach speed over the yield speed, `V/V_y`.
+    pub speed_ratio: f64,
+    /// Thornton's closed form `e(V_y/V)` (`physics.md`; 1 for `V ≤ V_y`), the check of `e_n`.
+    pub closed_form_e_n: f64,
+}
+
+/// `1/E* = Σ (1 − ν²)/E` (Pa), `R*` (m) and `m*` (kg) of a setup.
+fn effective(setup: &Setup) -> (f64, f64, f64) {
+    let pair = setup.pair();
+    let [a, b] = setup.materials();
+    let (e_star, _) = oblique_lookup::rebound::effective_moduli(&a, &b);
+    (e_star, pair.effective_radius(), pair.normal_mass())
+}
+
+/// Thornton's (1997) yield speed `V_y = √(π⁵/30 · p_y⁵ R*³/(E*⁴ m*))` (m/s) of a setup with
+/// limiting pressure `p_y` (Pa): `½ m* V_y² = (2/5) k d_y^{5/2}`, `k = (4/3) E* √R*`,
+/// `d_y = R* (π p_y/(2E*))²` (the Hertz approach that stops where the peak pressure reaches
+/// `p_y`).
+pub fn yield_speed(setup: &Setup, yield_pressure: f64) -> f64 {
+    let (e_star, r, m) = effective(setup);
+    let pi5 = std::f64::consts::PI.powi(5);
+    (pi5 / 30.0 * yield_pressure.powi(5) * r.powi(3) / (e_star.powi(4) * m)).sqrt()
+}
+
+/// Thornton's closed form of the normal restitution of a setup with limiting pressure `p_y`
+/// (Pa) at approach speed `speed` (m/s), `e(V_y/V)` ([`yield_speed`]).
+pub fn thornton_restitution(setup: &Setup, yield_pressure: f64, speed: f64) -> f64 {
+    oblique_solver::thornton::restitution(yield_speed(setup, yield_pressure) / speed)
+}
+
+/// The limiting pressure `p_y` (Pa) whose Thornton restitution at approach speed `speed` (m/s)
+/// is `e_n ∈ (0, 1)`: [`yield_speed`] inverted at `V_y = r V`, `r` the speed ratio of `e_n`
+/// (NaN for an `e_n` out of range).
+pub fn yield_pressure_for_restitution(setup: &Setup, speed: f64, e_n: f64) -> f64 {
+    let Ok(ratio) = oblique_solver::thornton::speed_ratio_for_restitution(e_n) else {
+        return f64::NAN;
+    };
+    let (e_star, r, m) = effective(setup);
+    let v_y = ratio * speed;
+    let pi5 = std::f64::consts::PI.powi(5);
+    (v_y * v_y * 30.0 / pi5 * e_star.powi(4) * m / r.powi(3)).powf(0.2)
+}
+
+/// The normal restitution of Thornton's exact normal motion of the setup's bodies (its three
+/// phases in closed form, [`Motion`]) at approach speed `speed` (m/s): an independent
+/// computation of what [`thornton_restitution`] states.
+pub fn thornton_motion_restitution(setup: &Setup, yield_pressure: f64, speed: f64) -> f64 {
+    let (e_star, r, m) = effective(setup);
+    let loading = Loading {
+        stiffness: 4.0 / 3.0 * e_star * r.sqrt(),
+        yield_indentation: oblique_solver::thornton::yield_indentation(yield_pressure, r, e_star),
+    };
+    Motion::new(loading, 1.0 / m, speed).restitution()
 }
 
 /// An evaluated oblique test: per setup, its outcomes.
@@ -135,21 +205,50 @@ pub fn outcome_e(
     e_n: f64,
     method: &Method,
 ) -> Result<Outcome, ReferenceError> {
-    let algebra = |pair: &Pair, inc: &Incident, p: f64| algebra(pair, inc, p, e_n);
     let pair = setup.pair();
     let [a, b] = setup.materials();
     let gamma = pair.gamma_from_materials(&a, &b)?;
     let inc = &case.incident;
     let alpha = pair.alpha(inc, setup.friction)?;
     let u0 = pair.slip_velocity(inc);
-    let (post, p_error, how) = match method {
+    // Thornton's law: e_n of the exact normal motion at this approach speed, and the closed
+    // form beside it (the check).
+    let plastic = setup.yield_pressure.map(|y| {
+        let speed = pair.approach_speed(inc);
+        let yield_speed = yield_speed(setup, y.pascal);
+        Plastic {
+            yield_pressure: y.pascal,
+            yield_speed,
+            speed_ratio: speed / yield_speed,
+            closed_form_e_n: oblique_solver::thornton::restitution(yield_speed / speed),
+        }
+    });
+    let e_n = match (plastic, setup.yield_pressure) {
+        (Some(_), Some(y)) => {
+            thornton_motion_restitution(setup, y.pascal, pair.approach_speed(inc))
+        }
+        _ => e_n,
+    };
+    let law = if plastic.is_some() {
+        Law::Thornton
+    } else {
+        Law::for_restitution(e_n)
+    };
+    let algebra = |pair: &Pair, inc: &Incident, p: f64| algebra(pair, inc, p, e_n);
+    let (post, p_error, how, e_n) = match method {
         Method::Direct { tol } => {
+            let law = match setup.yield_pressure {
+                Some(y) => BodiesLaw::Thornton(oblique_solver::thornton::BodiesParameters {
+                    yield_pressure: y.pascal,
+                }),
+                None => BodiesLaw::of_relaxation_time(relaxation_time(setup, inc, e_n)?),
+            };
             let imp = PhysicalImpact {
                 pair,
                 materials: [a, b],
                 incident: *inc,
                 friction: setup.friction,
-                law: BodiesLaw::of_relaxation_time(relaxation_time(setup, inc, e_n)?),
+                law,
             };
             let out = imp.solve(*tol)?;
             let post = Post {
@@ -157,38 +256,41 @@ pub fn outcome_e(
                 other: out.other,
                 p: out.p.unwrap_or(f64::NAN),
             };
-            (post, out.error_estimate, "direct")
+            (post, out.error_estimate, "direct", out.e_n)
         }
-        _ if u0 == 0.0 => (algebra(&pair, inc, f64::NAN)?, 0.0, "normal-impact"),
+        _ if u0 == 0.0 => (algebra(&pair, inc, f64::NAN)?, 0.0, "normal-impact", e_n),
         Method::Slice { tol } => {
             let mut r = Request::new(gamma, alpha).accuracy(Accuracy::Tolerance(*tol));
             if e_n != 1.0 {
-                r = r.e_n(e_n);
+                r = r.e_n(e_n).law(law);
             }
             let s = r.solve()?;
             let (err, how) = match s.method {
                 SolverMethod::ClosedForm => (0.0, "closed-form"),
                 SolverMethod::Simulated => (s.error_estimate, "simulated"),
             };
-            (algebra(&pair, inc, s.p)?, err, how)
+            (algebra(&pair, inc, s.p)?, err, how, e_n)
         }
-        // A damped test and a table without its e_n: that case is simulated (its `method`
-        // column says so), never answered at e_n = 1.
+        // A dissipative case that the table cannot answer (a table without its e_n, or any
+        // table for Thornton's law): it is simulated (its `method` column says so), never
+        // answered at e_n = 1.
         Method::Table(t)
             if e_n != 1.0
-                && !t
-                    .restitution()
-                    .is_some_and(|(lo, hi)| (lo..=hi).contains(&e_n)) =>
+                && (law == Law::Thornton
+                    || !t
+                        .restitution()
+                        .is_some_and(|(lo, hi)| (lo..=hi).contains(&e_n))) =>
         {
             let s = Request::new(gamma, alpha)
                 .e_n(e_n)
+                .law(law)
                 .accuracy(Accuracy::Tolerance(1e-8))
                 .solve()?;
             let (err, how) = match s.method {
                 SolverMethod::ClosedForm => (0.0, "closed-form"),
                 SolverMethod::Simulated => (s.error_estimate, "simulated"),
             };
-            (algebra(&pair, inc, s.p)?, err, how)
+            (algebra(&pair, inc, s.p)?, err, how, e_n)
         }
         Method::Table(t) if e_n != 1.0 => {
             let p = t.p_e(gamma, alpha, e_n)?;
@@ -196,7 +298,7 @@ pub fn outcome_e(
                 Some(_) => (0.0, "closed-form"),
                 None => (t.error_bound(), "table"),
             };
-            (algebra(&pair, inc, p)?, err, how)
+            (algebra(&pair, inc, p)?, err, how, e_n)
         }
         Method::Table(t) => {
             let p = t.p(gamma, alpha)?;
@@ -204,9 +306,10 @@ pub fn outcome_e(
                 Some(_) => (0.0, "closed-form"),
                 None => (t.error_bound(), "table"),
             };
-            (algebra(&pair, inc, p)?, err, how)
+            (algebra(&pair, inc, p)?, err, how, e_n)
         }
     };
+    let algebra = |pair: &Pair, inc: &Incident, p: f64| self::algebra(pair, inc, p, e_n);
     let how = if u0 == 0.0 { "normal-impact" } else { how };
     let bracket = if u0 == 0.0 {
         [post, post, algebra(&pair, inc, f64::NAN)?]
@@ -222,7 +325,9 @@ pub fn outcome_e(
         gamma,
         alpha,
         p_error,
-        regime: (u0 != 0.0).then(|| {
+        // Thornton's law has no closed-form slip regimes (its limits jump at the switch to
+        // unloading): its cases are not classified below the yield speed.
+        regime: (u0 != 0.0 && (plastic.is_none() || e_n == 1.0)).then(|| {
             if e_n == 1.0 {
                 Regime::of(gamma, alpha)
             } else {
@@ -230,6 +335,7 @@ pub fn outcome_e(
             }
         }),
         e_n,
+        plastic,
         how,
         post,
         bracket,

@@ -77,8 +77,15 @@ fn describe_setup(s: &Setup) -> String {
             o.material.density
         ),
     };
+    let plastic = s.yield_pressure.map_or(String::new(), |y| {
+        format!(
+            ", limiting pressure p_y = {} Pa ({})",
+            num(y.pascal),
+            y.source
+        )
+    });
     format!(
-        "{}: {} sphere R = {} m, E = {:e} Pa, nu = {}, rho = {} kg/m^3, on {target}, mu = {}",
+        "{}: {} sphere R = {} m, E = {:e} Pa, nu = {}, rho = {} kg/m^3, on {target}, mu = {}{plastic}",
         s.label,
         b.material.name,
         b.radius,
@@ -87,6 +94,16 @@ fn describe_setup(s: &Setup) -> String {
         b.material.density,
         s.friction
     )
+}
+
+/// The regime column: the friction regime, `normal-impact` without slip, `unclassified` for
+/// Thornton's law below the yield speed (it has no closed-form slip regimes).
+fn regime_name(o: &Outcome) -> &'static str {
+    match o.regime {
+        Some(r) => r.name(),
+        None if o.how != "normal-impact" && o.plastic.is_some() => "unclassified",
+        None => "normal-impact",
+    }
 }
 
 /// Measured points against the model at the same angle.
@@ -188,6 +205,18 @@ fn oblique_csv(test: &ObliqueTest, res: &ObliqueResult, method: &str) -> String 
             NAME"
             .into(),
     });
+    let plastic = test.plastic();
+    if plastic {
+        head.push(
+            "elastic-plastic columns: e_n of the exact normal motion (its error bound e_n_err: \
+             the rounding, checked against Thornton's closed form in closed_form_checks.csv), \
+             p_y_pa the limiting pressure (Pa), v_y_m_s the yield speed V_y = \
+             sqrt(pi^5/30 p_y^5 R*^3/(E*^4 m*)) (Thornton 1997), v_over_v_y = V/V_y with V \
+             the normal approach speed (inputs and closed forms of them: exact to the \
+             rounding); regime = unclassified: Thornton's law has no closed-form slip regimes"
+                .into(),
+        );
+    }
     let mut text = comments(&head);
     let mut header = vec![
         "material".to_string(),
@@ -200,6 +229,15 @@ fn oblique_csv(test: &ObliqueTest, res: &ObliqueResult, method: &str) -> String 
     for q in &qs {
         header.push(q.name.into());
         header.push(format!("{}_err", q.name));
+    }
+    if plastic {
+        header.extend([
+            "e_n".into(),
+            "e_n_err".into(),
+            "p_y_pa".into(),
+            "v_y_m_s".into(),
+            "v_over_v_y".into(),
+        ]);
     }
     header.extend(["v_x0_m_s".into(), "v_z0_m_s".into(), "omega0_rad_s".into()]);
     if sphere_sphere {
@@ -218,11 +256,21 @@ fn oblique_csv(test: &ObliqueTest, res: &ObliqueResult, method: &str) -> String 
                 num(o.case.x),
                 num(o.gamma),
                 num(o.alpha),
-                o.regime.map_or("normal-impact", |r| r.name()).to_string(),
+                regime_name(o).to_string(),
                 o.how.to_string(),
             ];
             for q in &qs {
                 row.extend(pair_cells(columns::value(q, setup, o)));
+            }
+            if plastic {
+                let p = o.plastic;
+                row.extend([
+                    num(o.e_n),
+                    num(super::checks::restitution_rounding(o.e_n)),
+                    p.map_or(String::new(), |p| num(p.yield_pressure)),
+                    p.map_or(String::new(), |p| num(p.yield_speed)),
+                    p.map_or(String::new(), |p| num(p.speed_ratio)),
+                ]);
             }
             let (a, b) = (o.case.incident.sphere, o.case.incident.other);
             row.extend([num(a.v_x), num(a.v_z), num(a.omega)]);
@@ -333,15 +381,21 @@ fn history_csv(test: &NormalTest, outs: &[NormalOutcome]) -> String {
 }
 
 /// Every test's bodies, materials and friction, one line per setup (SI units; `target` is
-/// `wall` or `sphere`; a rigid wall has `E2_pa = inf`).
+/// `wall` or `sphere`; a rigid wall has `E2_pa = inf`; `p_y_pa` is the limiting pressure of an
+/// elastic–plastic test, empty otherwise).
 fn setups_csv(res: &SuiteResult) -> String {
     let mut text = comments(&[
         "the bodies of every test: solid spheres (I = 0.4 m R^2); SI units".into(),
         "target = wall: a fixed half-space of E2_pa, nu2 (inf: rigid); target = sphere: a free \
          sphere of R2_m, rho2, E2_pa, nu2"
             .into(),
+        "p_y_pa: the limiting contact pressure of Thornton's elastic-perfectly plastic law \
+         (empty: elastic or Kelvin-Voigt)"
+            .into(),
     ]);
-    text.push_str("test,material,R1_m,rho1_kg_m3,E1_pa,nu1,target,R2_m,rho2_kg_m3,E2_pa,nu2,mu\n");
+    text.push_str(
+        "test,material,R1_m,rho1_kg_m3,E1_pa,nu1,target,R2_m,rho2_kg_m3,E2_pa,nu2,mu,p_y_pa\n",
+    );
     let mut line = |id: &str, s: &Setup| {
         let m1 = s.sphere.material;
         let (kind, r2, m2) = match s.target {
@@ -349,7 +403,7 @@ fn setups_csv(res: &SuiteResult) -> String {
             super::spec::Target::Sphere(b) => ("sphere", b.radius, b.material),
         };
         text.push_str(&format!(
-            "{id},{},{},{},{},{},{kind},{},{},{},{},{}\n",
+            "{id},{},{},{},{},{},{kind},{},{},{},{},{},{}\n",
             s.label,
             num(s.sphere.radius),
             num(m1.density),
@@ -359,7 +413,8 @@ fn setups_csv(res: &SuiteResult) -> String {
             cell(m2.density),
             num(m2.youngs_modulus),
             num(m2.poisson_ratio),
-            num(s.friction)
+            num(s.friction),
+            s.yield_pressure.map_or(String::new(), |y| num(y.pascal))
         ));
     };
     for t in &res.tests {
@@ -467,7 +522,7 @@ fn oblique_figure(
                     }
                 };
                 let gross = |o: &Outcome| o.alpha.is_finite().then(|| line(o));
-                let (gross_label, rigid_label) = if test.e_n == 1.0 {
+                let (gross_label, rigid_label) = if test.e_n == 1.0 && !test.plastic() {
                     (
                         "gross slip, P = 1 − 7α".to_string(),
                         "rigid body, P = max(1 − 7α, 0)".to_string(),

@@ -65,6 +65,16 @@ pub enum Target {
     Sphere(Ball),
 }
 
+/// The limiting contact pressure of Thornton's elastic–perfectly plastic law for a setup
+/// (`physics.md`, "Elastic–plastic impacts"), with where it comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct YieldPressure {
+    /// Limiting contact pressure `p_y` (Pa), > 0.
+    pub pascal: f64,
+    /// Where the value comes from, in words (the CSV's header lines).
+    pub source: &'static str,
+}
+
 /// One impact configuration of a test: the bodies, their materials and the friction.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Setup {
@@ -76,6 +86,9 @@ pub struct Setup {
     pub target: Target,
     /// Coulomb friction coefficient `μ`.
     pub friction: f64,
+    /// The limiting pressure of Thornton's law (`None`: the test's elastic or Kelvin–Voigt
+    /// law). With one, each case's `e_n` follows from `p_y` and its normal speed.
+    pub yield_pressure: Option<YieldPressure>,
 }
 
 impl Setup {
@@ -102,6 +115,14 @@ impl Setup {
     /// Whether the target is a sphere.
     pub fn sphere_sphere(&self) -> bool {
         matches!(self.target, Target::Sphere(_))
+    }
+
+    /// The same bodies with Thornton's law of limiting pressure `p_y`.
+    pub fn with_yield(self, yield_pressure: YieldPressure) -> Setup {
+        Setup {
+            yield_pressure: Some(yield_pressure),
+            ..self
+        }
     }
 }
 
@@ -158,7 +179,15 @@ pub struct ObliqueTest {
     pub measured: Option<&'static Measured>,
     /// Normal restitution of every case: 1 (elastic), or the `e_n < 1` a damped test
     /// publishes, computed with the Kelvin–Voigt law (`physics.md`, "Dissipative impacts").
+    /// 1 for an elastic–plastic test, whose setups carry a limiting pressure instead.
     pub e_n: f64,
+}
+
+impl ObliqueTest {
+    /// Whether the test is elastic–plastic (Thornton's law): its setups carry `p_y`.
+    pub fn plastic(&self) -> bool {
+        self.setups.iter().any(|(s, _)| s.yield_pressure.is_some())
+    }
 }
 
 /// A normal-impact test (contact time, peak force, peak overlap).
@@ -202,7 +231,7 @@ pub enum Suite {
     ChungOoi,
     /// MFIX's DEM05: Kharaz, Gorham & Salman (2001), alumina on soda-lime glass.
     MfixDem05,
-    /// Thornton, Cummins & Cleary's normalised diagrams, elastic case.
+    /// Thornton, Cummins & Cleary's normalised diagrams, elastic and elastic–plastic.
     Thornton,
     /// Seed 000's Fig. 5: the Gorham–Kharaz alumina sphere on glass with the seed's constants.
     Seed000,
@@ -242,7 +271,7 @@ impl Suite {
                 "MFIX DEM05: Kharaz, Gorham & Salman (2001) alumina sphere on soda-lime glass"
             }
             Suite::Thornton => {
-                "Thornton, Cummins & Cleary normalised oblique impact, elastic case (psi_1, psi_2)"
+                "Thornton, Cummins & Cleary normalised oblique impact, elastic and elastic-plastic (psi_1, psi_2)"
             }
             Suite::Seed000 => {
                 "seed 000 (Lyashenko, Willert & Popov), Fig. 5: Gorham-Kharaz alumina on glass"
@@ -267,6 +296,7 @@ fn wall(sphere: Ball, wall: Material, friction: f64, label: &'static str) -> Set
         sphere,
         target: Target::Wall(wall),
         friction,
+        yield_pressure: None,
     }
 }
 
@@ -304,6 +334,21 @@ fn angle_cases(speed: f64, angles_deg: &[f64]) -> Vec<Case> {
 const CO_SOURCE: &str = "Chung & Ooi (2011), Granular Matter 13:643-656; parameters as \
     re-implemented in Kratos DEMApplication (DEM_benchmarks_class.py and its test data) and the \
     Yade benchmark scripts of Angelidakis, Chareyre & Caulk (2023)";
+
+/// Where test 4 elastic–plastic, its law and its limiting pressures come from.
+const CO_PLASTIC_SOURCE: &str = "Chung & Ooi (2011), Granular Matter 13:643-656, test 4 \
+    (parameters as re-implemented in Kratos DEMApplication and Yade, as the elastic test 4); \
+    the law and V_y: Thornton (1997), J. Appl. Mech. 64:383-386; first yield of a Hertz \
+    contact at p_0 = 1.60 Y: Johnson (1985), Contact Mechanics, Cambridge University Press, \
+    chapter 6; Y = 276 MPa of aluminium 6061-T6: ASM Aerospace Specification Metals data sheet \
+    'Aluminum 6061-T6; 6061-T651' (MatWeb)";
+
+/// The catalogue's limiting pressure of aluminium 6061-T6, `1.60 Y` (Pa).
+fn aluminium_6061_limiting_pressure() -> f64 {
+    oblique_physics::materials::find("aluminium-6061-t6")
+        .and_then(|m| m.limiting_pressure())
+        .unwrap_or(f64::NAN)
+}
 
 // Chung & Ooi's materials (as given by the re-implementations named in CO_SOURCE).
 const GLASS: Material = Material {
@@ -419,6 +464,7 @@ fn chung_ooi() -> Vec<Test> {
                         sphere: b,
                         target: Target::Sphere(b),
                         friction: 0.35,
+                        yield_pressure: None,
                     },
                     Incident {
                         sphere: state(0.0, 10.0, 0.0),
@@ -541,6 +587,7 @@ fn chung_ooi() -> Vec<Test> {
                     sphere: b,
                     target: Target::Sphere(b),
                     friction: 0.4,
+                    yield_pressure: None,
                 };
                 let cases = co_angles()
                     .into_iter()
@@ -579,6 +626,7 @@ fn chung_ooi() -> Vec<Test> {
                     sphere: ball(m, 0.10),
                     target: Target::Sphere(ball(m, 0.50)),
                     friction: 0.4,
+                    yield_pressure: None,
                 };
                 (s, spin_cases(0.10))
             })
@@ -597,6 +645,40 @@ fn chung_ooi() -> Vec<Test> {
             other laws (a viscous dashpot giving a constant e_n), which give another P at the \
             same e_n",
         e_n: 0.98,
+        ..t4.clone()
+    };
+    // Test 4 elastic-plastic, by Thornton's law: aluminium oxide at the p_y that gives the
+    // published e_n = 0.98 at 3.9 m/s (head-on), the aluminium alloy at 6061-T6's 1.60 Y.
+    let t4_plastic = ObliqueTest {
+        id: "chung_ooi_test4_angle_plastic",
+        title: "Test 4 elastic-plastic (Thornton's law): rigid plane, 3.9 m/s, varying angle",
+        source: CO_PLASTIC_SOURCE,
+        elastic_note: "elastic-perfectly plastic, Thornton's law (physics.md \"Elastic-plastic \
+            impacts\"): Hertz up to the limiting pressure p_y, the pressure capped at p_y \
+            beyond; e_n follows from p_y and each case's normal speed 3.9 cos(theta) m/s \
+            (Thornton's closed form of V_y/V, 1 at or below the yield speed V_y). Aluminium \
+            oxide (brittle, no yield stress): p_y chosen so that Thornton's e_n equals the \
+            published 0.98 at 3.9 m/s head-on. Aluminium alloy: p_y = 1.60 Y, Y = 276 MPa of \
+            6061-T6 (the catalogue's aluminium-6061-t6), the peak Hertz pressure at first yield",
+        setups: t4
+            .setups
+            .iter()
+            .map(|(s, c)| {
+                let p_y = if s.sphere.material == AL_OXIDE {
+                    YieldPressure {
+                        pascal: super::eval::yield_pressure_for_restitution(s, 3.9, 0.98),
+                        source: "chosen so that Thornton's e_n equals the published 0.98 at \
+                                 3.9 m/s head-on",
+                    }
+                } else {
+                    YieldPressure {
+                        pascal: aluminium_6061_limiting_pressure(),
+                        source: "1.60 Y, Y = 276 MPa of aluminium 6061-T6",
+                    }
+                };
+                (s.with_yield(p_y), c.clone())
+            })
+            .collect(),
         ..t4.clone()
     };
     let damped_half = |t: &ObliqueTest, id: &'static str, title: &'static str| ObliqueTest {
@@ -631,6 +713,7 @@ fn chung_ooi() -> Vec<Test> {
         Test::Normal(t3),
         Test::Oblique(t4),
         Test::Oblique(t4_damped),
+        Test::Oblique(t4_plastic),
         Test::Oblique(t5),
         Test::Oblique(t6),
         Test::Oblique(t6_damped),
@@ -777,7 +860,7 @@ fn thornton() -> Vec<Test> {
             )
         })
         .collect();
-    vec![Test::Oblique(ObliqueTest {
+    let elastic = ObliqueTest {
         id: "thornton_psi",
         title:
             "Thornton's normalised oblique impact: sphere on a rigid plane, V_n = 5 m/s, μ = 0.1",
@@ -792,8 +875,58 @@ fn thornton() -> Vec<Test> {
         convention: Convention::Thornton,
         measured: None,
         e_n: 1.0,
-    })]
+    };
+    // The ν = 0.3 bodies with the catalogue's limiting pressure of aluminium 6061-T6 (E = 68.9
+    // GPa, near the bodies' 70 GPa): Ψ₁ = 2 V_t/(μ (1 + e) V_n) with the setup's e. One setup
+    // and Ψ₁ in steps of 0.5 keep the suite fast (Thornton's law in stick takes 0.3–2 s a
+    // point at e ≈ 0.3).
+    let p_y = YieldPressure {
+        pascal: aluminium_6061_limiting_pressure(),
+        source: "1.60 Y, Y = 276 MPa of aluminium 6061-T6",
+    };
+    let plastic_setups = elastic
+        .setups
+        .iter()
+        .filter(|(s, _)| s.sphere.material.poisson_ratio == PLASTIC_POISSON)
+        .map(|(s, _)| {
+            let s = s.with_yield(p_y);
+            let e = super::eval::thornton_restitution(&s, p_y.pascal, VN);
+            let cases = steps(0.5, 12.0, 0.5)
+                .into_iter()
+                .map(|p| Case {
+                    x: p,
+                    incident: on_wall(state(0.5 * p * MU * (1.0 + e) * VN, VN, 0.0)),
+                })
+                .collect();
+            (s, cases)
+        })
+        .collect();
+    let plastic = ObliqueTest {
+        id: "thornton_psi_plastic",
+        title: "Thornton's normalised oblique impact, elastic-plastic: V_n = 5 m/s, μ = 0.1",
+        source: THORNTON_PLASTIC_SOURCE,
+        elastic_note: "elastic-perfectly plastic, Thornton's law (physics.md \"Elastic-plastic \
+            impacts\"), p_y = 1.60 Y with Y = 276 MPa of aluminium 6061-T6 (the catalogue's \
+            aluminium-6061-t6), the peak Hertz pressure at first yield; e_n is Thornton's \
+            closed form of V_y/V_n, the same for every case of a setup, and enters \
+            Psi = 2 V_t/(mu (1 + e) V_n); nu = 0.3 only (at nu = 0.4 and 0.5 the e_n at 5 m/s \
+            is below 0.3, outside the law's range)",
+        x_label: "Ψ₁ = 2V_t/(μ(1+e)V_n)",
+        setups: plastic_setups,
+        ..elastic.clone()
+    };
+    vec![Test::Oblique(elastic), Test::Oblique(plastic)]
 }
+
+/// Poisson's ratio of the elastic–plastic Thornton setup.
+const PLASTIC_POISSON: f64 = 0.3;
+
+const THORNTON_PLASTIC_SOURCE: &str = "Thornton, Cummins & Cleary (2011), Powder Technol. \
+    210:189-197, and (2013) Powder Technol. 233:30-46 (Psi); bodies as the elastic thornton_psi \
+    (Kratos DEMApplication's Thornton benchmarks); the law and V_y: Thornton (1997), J. Appl. \
+    Mech. 64:383-386; first yield of a Hertz contact at p_0 = 1.60 Y: Johnson (1985), Contact \
+    Mechanics, Cambridge University Press, chapter 6; Y = 276 MPa of aluminium 6061-T6: ASM \
+    Aerospace Specification Metals data sheet 'Aluminum 6061-T6; 6061-T651' (MatWeb)";
 
 #[cfg(test)]
 mod tests {

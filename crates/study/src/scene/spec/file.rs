@@ -88,6 +88,17 @@ impl<'de> Visitor<'de> for ValuesVisitor {
         Ok(Values(values))
     }
 }
+/// `yield_pressure`: a pressure (Pa), or a word (`"catalogue"`: the limiting pressure of the
+/// bodies' catalogue materials).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(super) enum YieldPressureFile {
+    /// `p_y` in Pa.
+    Pascal(f64),
+    /// A word naming where `p_y` comes from.
+    Named(String),
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SceneFile {
@@ -97,7 +108,7 @@ pub(super) struct SceneFile {
     pub(super) tol: Option<f64>,
     pub(super) e_n: Option<f64>,
     pub(super) relaxation_time: Option<f64>,
-    pub(super) yield_pressure: Option<f64>,
+    pub(super) yield_pressure: Option<YieldPressureFile>,
     pub(super) sphere: SphereFile,
     pub(super) target: TargetFile,
     pub(super) cases: CasesFile,

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use oblique_lookup::rebound::{Body, Elastic, State};
 
-use super::file::{CasesFile, SceneFile, TargetFile, Values};
+use super::file::{CasesFile, SceneFile, TargetFile, Values, YieldPressureFile};
 use super::{
     CaseKind, Cases, Dissipation, MaterialUse, MeasuredRef, Scene, SceneTarget, DEFAULT_TOL,
     DENSITY_RANGE, MASS_RANGE, MAX_SPEED, MIN_APPROACH_SPEED, RADIUS_RANGE, YOUNGS_MODULUS_RANGE,
@@ -128,7 +128,6 @@ impl Validator<'_> {
         if !(1e-10..=1e-2).contains(&tol) {
             return Err(self.invalid_num("tol", tol, "in [1e-10, 1e-2] (absolute error of P)"));
         }
-        let dissipation = self.dissipation(f.e_n, f.relaxation_time, f.yield_pressure)?;
         let s = &f.sphere;
         let (sphere, sphere_material) = self.body(&BodyFields {
             section: "sphere",
@@ -149,6 +148,14 @@ impl Validator<'_> {
             ));
         }
         let target = self.target(&f.target)?;
+        let yield_pressure = match &f.yield_pressure {
+            None => None,
+            Some(YieldPressureFile::Pascal(p)) => Some(*p),
+            Some(YieldPressureFile::Named(word)) => {
+                Some(self.catalogue_yield_pressure(word, &sphere_material, &target)?)
+            }
+        };
+        let dissipation = self.dissipation(f.e_n, f.relaxation_time, yield_pressure)?;
         let cases = self.cases(&f.cases)?;
         self.case_ranges(&cases, sphere.radius)?;
         let measured = match f.measured {
@@ -200,6 +207,48 @@ impl Validator<'_> {
             }
         }
         Ok(scene)
+    }
+
+    /// `yield_pressure = "catalogue"`: the lower limiting pressure of the two bodies' catalogue
+    /// materials that have one (the softer body flows first; `CatalogueMaterial::
+    /// limiting_pressure`, 1.60 times the yield stress), refused where neither has one.
+    fn catalogue_yield_pressure(
+        &self,
+        word: &str,
+        sphere: &MaterialUse,
+        target: &SceneTarget,
+    ) -> Result<f64, SceneError> {
+        if word != "catalogue" {
+            return Err(self.invalid(
+                "yield_pressure",
+                format!("{word:?}"),
+                "a finite pressure > 0 (Pa), or \"catalogue\" for the limiting pressure of the \
+                 bodies' catalogue materials",
+            ));
+        }
+        let target = match target {
+            SceneTarget::Wall { material } | SceneTarget::Sphere { material, .. } => material,
+        };
+        [sphere, target]
+            .iter()
+            .filter_map(|m| m.catalogue.and_then(|c| c.limiting_pressure()))
+            .min_by(f64::total_cmp)
+            .ok_or_else(|| {
+                self.invalid(
+                    "yield_pressure",
+                    "\"catalogue\"",
+                    &format!(
+                        "a catalogue material with a limiting pressure for one of the bodies \
+                         (those with a yield stress: {}), or p_y in Pa",
+                        materials::CATALOGUE
+                            .iter()
+                            .filter(|m| m.yield_stress.is_some())
+                            .map(|m| m.name)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )
+            })
     }
 
     fn dissipation(
