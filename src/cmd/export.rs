@@ -74,8 +74,8 @@ pub fn run(args: ExportArgs) -> Result<()> {
         // which a table of this law does not have.
         return Err(Failure::usage(format!(
             "{}: a table of the {} law (no closed-form full-slip line: its partial-slip patch \
-             covers 0 <= alpha <= alpha_c2) cannot be exported yet; the export format holds \
-             tables of the elastic and kelvin-voigt laws; query it with sweep query, the Rust \
+             covers 0 <= alpha <= alpha_c2) cannot be exported yet: the export format holds \
+             tables whose full-slip line is closed-form; query it with sweep query, the Rust \
              crate or Python",
             args.table.display(),
             table.provenance().law

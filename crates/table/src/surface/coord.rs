@@ -103,7 +103,7 @@ pub enum PartialMap {
     SqrtBoth,
     /// The patch of a law without a closed-form full-slip line (Thornton's, a table with an
     /// `e_n` axis): it covers `0 ≤ α ≤ α_c2`, with `c = α/(2α_c1)` up to `α_c1(γ, e_n)` (where
-    /// `P` stays within 1 % of the line and is smooth in `α`) and `c = 1/2 + s/2` above,
+    /// `P` is smooth in `α` and close to the line) and `c = 1/2 + s/2` above,
     /// `s` the [`PartialMap::SqrtBoth`] coordinate. `α_c1` is the root-cell boundary `c = 1/2`
     /// (an even `blocks_coord`), so no leaf straddles it; the law's own edge of full slip lies
     /// within a few per cent of it (`docs/solver.md`, "The edge of the full-slip region").
