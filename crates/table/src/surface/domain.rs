@@ -245,7 +245,8 @@ impl Surface {
             (PartialMap::Slip, Some(_)) => {
                 if self.gamma_min < 1.0 || self.pair_gamma().is_some() {
                     return Err(format!(
-                        "the partial-slip coordinate '{}' needs a gamma range with gamma_min >=                          1, not [{}, {}]",
+                        "the partial-slip coordinate '{}' needs a gamma range with \
+                         gamma_min >= 1, not [{}, {}]",
                         name(map),
                         self.gamma_min,
                         self.gamma_max
