@@ -50,6 +50,9 @@ SCHEMA_VERSIONS = (2, 3, 4)  # v2: v3 without the optional warp; v4: v3 with opt
 AXES_PAIR = "alpha,e_n"  # the axes of the table of one pair (schema 4): P(alpha, e_n) at one gamma
 # The contact laws whose tables (with an e_n axis) this reader answers (root attribute 'law').
 LAWS_E_N = ("kelvin-voigt",)
+# Laws whose tables the engine builds that this reader does not answer yet: their partial-slip
+# patch covers 0 <= alpha <= alpha_c2 (no closed-form full-slip line).
+LAWS_NOT_YET = ("thornton",)
 # The axes a table may have beyond gamma and alpha (schema 4), each with the bounds of its range,
 # bound_lo < NAME_min < NAME_max <= bound_hi; the file names its range NAME_min, NAME_max (root)
 # and its root cells blocks_NAME (patch).
@@ -560,6 +563,11 @@ class Table:
                     law = _str_attr(f.attrs, "law")
                 except (KeyError, TypeError):
                     raise self._invalid("missing or non-string root attribute 'law'") from None
+                if law in LAWS_NOT_YET:
+                    raise self._invalid(
+                        f"root attribute 'law' = '{law}': this reader does not answer tables "
+                        f"of the {law} law yet (they have no closed-form full-slip line); "
+                        "query them with sweep query, the Rust crate or the Python package")
                 if law not in LAWS_E_N:
                     raise self._invalid(
                         f"root attribute 'law' = '{law}': this reader knows the law "

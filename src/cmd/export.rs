@@ -69,6 +69,18 @@ pub fn run(args: ExportArgs) -> Result<()> {
     // being read is not overwritten (also under another name or a hard link).
     oblique_output::check_output_not_input(&args.output, &[&args.table])?;
     let table = Table::open(&args.table)?;
+    if !table.surface().has_line() {
+        // The export's layout answers alpha <= alpha_c1 from the closed-form full-slip line,
+        // which a table of this law does not have.
+        return Err(Failure::usage(format!(
+            "{}: a table of the {} law (no closed-form full-slip line: its partial-slip patch \
+             covers 0 <= alpha <= alpha_c2) cannot be exported yet: the export format holds \
+             tables whose full-slip line is closed-form; query it with sweep query, the Rust \
+             crate or Python",
+            args.table.display(),
+            table.provenance().law
+        )));
+    }
     let axis = table.surface().restitution();
     if let (Some((lo, hi)), false) = (axis, args.gammas.is_empty()) {
         return Err(Failure::usage(format!(

@@ -13,7 +13,7 @@ use serde_json::json;
 
 use oblique_lookup::columns::{Column, PointColumns};
 use oblique_lookup::{LookupError, OutOfDomain, Table};
-use oblique_table::surface::{Region, Surface};
+use oblique_table::surface::{linear_limit_dissipative, Region, Surface};
 
 #[derive(Args)]
 pub struct QueryArgs {
@@ -92,9 +92,13 @@ fn usage(e: LookupError) -> Failure {
 
 fn region_name(surface: &Surface, gamma: f64, alpha: f64, e_n: f64) -> &'static str {
     let inside = gamma >= surface.gamma_min() && gamma <= surface.gamma_max();
-    match Region::of_e(gamma, alpha, e_n) {
+    match surface.region_at(gamma, alpha, e_n) {
         Region::Line => "full-slip line (closed form)",
         _ if !inside || alpha > surface.alpha_max() => "outside the table (clamped)",
+        // A table without the closed-form line (Thornton's law) interpolates full slip too.
+        Region::PartialHigh if alpha <= linear_limit_dissipative(gamma, e_n) => {
+            "full slip, alpha <= alpha_c1 (interpolated)"
+        }
         Region::PartialHigh => "partial slip (interpolated)",
         Region::StickLow | Region::StickHigh if alpha.is_infinite() => {
             "no slip, alpha = inf (interpolated)"
@@ -155,7 +159,7 @@ pub fn run(args: QueryArgs) -> Result<()> {
             other => usage(other),
         })?;
     let region = region_name(table.surface(), gamma, alpha, e_n);
-    let error = if Region::of_e(gamma, alpha, e_n) == Region::Line {
+    let error = if table.surface().region_at(gamma, alpha, e_n) == Region::Line {
         0.0
     } else {
         table.error_bound()

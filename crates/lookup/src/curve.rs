@@ -19,8 +19,8 @@
 use crate::{LookupError, Table};
 use oblique_table::export::{CurveData, CurvePiece};
 use oblique_table::surface::{
-    alpha_c2, bound_p, floor_index, full_slip_line, linear_limit_dissipative, partial_coord_from,
-    partial_ratio, partial_ratio_e, stick_coord_from, stick_parts, PartialMap, Patch, Warp,
+    alpha_c2, bound_p, floor_index, full_slip_line, partial_coord_from, partial_ratio,
+    partial_ratio_e, stick_coord_from, stick_parts, PartialMap, Patch, Warp,
 };
 use oblique_table::surface::{alpha_outside, bad_alpha, OutOfDomain, PatchId, Surface};
 
@@ -130,15 +130,16 @@ pub struct Curve {
     alpha_max: f64,
     /// Normal restitution of the line (1 for an elastic curve).
     e_n: f64,
-    /// The partial-slip coordinate's map ([`Patch::partial_map`]).
+    /// The partial-slip coordinate's map ([`Surface::partial_map`]).
     map: PartialMap,
     /// `1 − (7/2)(1 + e_n)α` up to here: at the requested `γ` (the rule's first test, for any
-    /// `γ`) and at the one used (its test after clamping).
+    /// `γ`) and at the one used (its test after clamping); `−∞` in a table without the line
+    /// ([`Surface::line_end`]).
     alpha_lin_requested: f64,
     alpha_lin: f64,
     /// Partial slip below, stick above (`γ > 1`).
     alpha_c2: f64,
-    /// `γ > 1`: the line crosses `partial_high` and `stick_high`; else `stick_low`.
+    /// [`Surface::high`]: the line crosses `partial_high` and `stick_high`; else `stick_low`.
     high: bool,
     /// The rule's `2γ²`, `α_c2/α_c1` (`2γ² − 1`, or `γ²(1 + e_n) − e_n`) and its log
     /// (partial-slip coordinate).
@@ -185,13 +186,13 @@ impl Curve {
                     let clamped = gamma.clamp(surface.gamma_min(), surface.gamma_max());
                     return Ok(Curve {
                         requested: gamma,
-                        alpha_lin_requested: linear_limit_dissipative(gamma, e_n),
+                        alpha_lin_requested: surface.line_end(gamma, e_n),
                         ..Curve::new(surface, clamped, e_n, outside)?
                     });
                 }
             }
         }
-        let high = gamma > 1.0;
+        let high = surface.high(gamma);
         let (partial, stick) = if high {
             (
                 surface.patch_by_id(PatchId::PartialHigh),
@@ -204,7 +205,7 @@ impl Curve {
         // The γ-only parts of `surface::partial_coord` (an elastic table),
         // `surface::partial_coord_e` (a table with an e_n axis) and `surface::stick_coord`.
         let (map, (ratio, g2)) = if surface.restitution().is_some() {
-            (PartialMap::SqrtBoth, partial_ratio_e(gamma, e_n))
+            (surface.partial_map(), partial_ratio_e(gamma, e_n))
         } else {
             (PartialMap::SqrtEnd, partial_ratio(gamma))
         };
@@ -216,8 +217,8 @@ impl Curve {
             alpha_max: surface.alpha_max(),
             e_n,
             map,
-            alpha_lin_requested: linear_limit_dissipative(gamma, e_n),
-            alpha_lin: linear_limit_dissipative(gamma, e_n),
+            alpha_lin_requested: surface.line_end(gamma, e_n),
+            alpha_lin: surface.line_end(gamma, e_n),
             alpha_c2: alpha_c2(gamma),
             high,
             g2,

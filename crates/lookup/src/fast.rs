@@ -36,8 +36,8 @@ use oblique_table::indexed::IndexedPatch;
 use oblique_table::leaf::cubic_tensor;
 #[cfg(target_arch = "x86_64")]
 use oblique_table::leaf::cubic_tensor3_avx;
-use oblique_table::surface::{full_slip_line, partial_coord, partial_coord_e, stick_coord};
-use oblique_table::surface::{OutOfDomain, PatchKind, Region, Surface};
+use oblique_table::surface::{full_slip_line, partial_coord, partial_coord_map, stick_coord};
+use oblique_table::surface::{OutOfDomain, PartialMap, PatchKind, Region, Surface};
 
 mod batch;
 
@@ -60,6 +60,8 @@ pub(crate) struct Accel<const D: usize> {
     gamma_min: f64,
     gamma_max: f64,
     alpha_max: f64,
+    /// The partial-slip coordinate's map ([`Surface::partial_map`]).
+    partial_map: PartialMap,
     /// The patches with their indexes, indexed by [`PatchId::index`].
     ///
     /// [`PatchId::index`]: oblique_table::surface::PatchId::index
@@ -78,7 +80,12 @@ impl<const D: usize> Accel<D> {
 
     /// [`Accel::new`] with at most `max_entries` index entries per patch.
     fn with_budget(surface: &Surface, max_entries: usize) -> Option<Accel<D>> {
-        if surface.stencil() != 4 || (D == 3 && surface.restitution().is_none()) {
+        // An elastic structure never serves a table without the full-slip line (D = 2 has
+        // no e_n axis and takes the elastic region).
+        if surface.stencil() != 4
+            || (D == 3 && surface.restitution().is_none())
+            || (D == 2 && !surface.has_line())
+        {
             return None;
         }
         let mut patches: [Option<IndexedPatch<D>>; 3] = [None, None, None];
@@ -90,6 +97,7 @@ impl<const D: usize> Accel<D> {
             gamma_min: surface.gamma_min(),
             gamma_max: surface.gamma_max(),
             alpha_max: surface.alpha_max(),
+            partial_map: surface.partial_map(),
             patches,
             batch_u32,
         })
@@ -194,7 +202,9 @@ impl<const D: usize> Accel<D> {
             Some(patch) => {
                 let c = match patch.kind() {
                     PatchKind::PartialSlip if D == 2 => partial_coord(gamma, alpha),
-                    PatchKind::PartialSlip => partial_coord_e(gamma, alpha, e_n),
+                    PatchKind::PartialSlip => {
+                        partial_coord_map(self.partial_map, gamma, alpha, e_n)
+                    }
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
                 };
                 let point = [gamma, c.clamp(0.0, 1.0), e_n];

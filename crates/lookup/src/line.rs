@@ -12,9 +12,8 @@
 
 use oblique_table::line::PatchLine;
 use oblique_table::surface::{
-    alpha_c2, check_query, full_slip_line, linear_limit_dissipative, partial_coord_from,
-    partial_ratio_e, stick_coord_parts, stick_parts, OutOfDomain, PartialMap, PatchKind, Region,
-    Surface,
+    alpha_c2, check_query, full_slip_line, partial_coord_from, partial_ratio_e, stick_coord_parts,
+    stick_parts, OutOfDomain, PartialMap, PatchKind, Region, Surface,
 };
 
 use crate::LookupError;
@@ -24,6 +23,8 @@ use crate::LookupError;
 #[derive(Debug, Clone, PartialEq)]
 struct LineAt {
     gamma: f64,
+    /// The table's partial-slip map ([`Surface::partial_map`]).
+    map: PartialMap,
     /// [`partial_ratio_e`] and the logarithm of the ratio.
     ratio: f64,
     two_g2: f64,
@@ -43,6 +44,7 @@ impl LineAt {
         }
         Some(LineAt {
             gamma,
+            map: surface.partial_map(),
             ratio,
             two_g2,
             ln_ratio: ratio.ln(),
@@ -60,13 +62,9 @@ impl LineAt {
         match patch {
             Some((kind, line)) => {
                 let c = match kind {
-                    PatchKind::PartialSlip => partial_coord_from(
-                        PartialMap::SqrtBoth,
-                        alpha,
-                        self.ratio,
-                        self.two_g2,
-                        self.ln_ratio,
-                    ),
+                    PatchKind::PartialSlip => {
+                        partial_coord_from(self.map, alpha, self.ratio, self.two_g2, self.ln_ratio)
+                    }
                     PatchKind::Stick => stick_coord_parts(alpha, self.stick),
                 };
                 line.interpolate(c.clamp(0.0, 1.0))
@@ -86,8 +84,11 @@ pub(crate) struct PairLine {
     gamma: f64,
     e_n: f64,
     outside: OutOfDomain,
-    /// [`linear_limit_dissipative`]`(γ, e_n)` and [`alpha_c2`]`(γ)`.
+    /// [`Surface::line_end`]`(γ, e_n)` (`−∞` in a table without the line) and
+    /// [`alpha_c2`]`(γ)`.
     line_end: f64,
+    /// [`Surface::has_line`]: the region is [`Region::of_limits`], else [`Region::off_line`].
+    has_line: bool,
     c2: f64,
     /// Off the full-slip line; `None` where every such query is refused (`γ` outside the
     /// table's range without clamping).
@@ -125,7 +126,8 @@ impl PairLine {
             gamma,
             e_n,
             outside,
-            line_end: linear_limit_dissipative(gamma, e_n),
+            line_end: surface.line_end(gamma, e_n),
+            has_line: surface.has_line(),
             c2: alpha_c2(gamma),
             at,
         })
@@ -142,7 +144,12 @@ impl PairLine {
     pub(crate) fn p(&self, surface: &Surface, alpha: f64) -> Result<f64, LookupError> {
         let (gamma, e_n) = (self.gamma, self.e_n);
         check_query(gamma, alpha)?;
-        let region = Region::of_limits(gamma, alpha, self.line_end, || self.c2);
+        // `Surface::region_at`, from the γ- and e_n-only parts.
+        let region = if self.has_line {
+            Region::of_limits(gamma, alpha, self.line_end, || self.c2)
+        } else {
+            Region::off_line(gamma, alpha, || self.c2)
+        };
         if region == Region::Line {
             return Ok(full_slip_line(alpha, e_n));
         }

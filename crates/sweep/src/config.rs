@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use oblique_table::surface::PartialMap;
 use serde::{Deserialize, Deserializer, Serialize};
 use thiserror::Error;
 
@@ -182,8 +183,8 @@ pub struct Solver {
     pub tol: f64,
     /// The preset `tol` came from, if any.
     pub preset: Option<String>,
-    /// The contact law of a table with an `e_n` axis: `kelvin-voigt` (the default there, and
-    /// the only dissipative law); `elastic` (or absent) otherwise.
+    /// The contact law of a table with an `e_n` axis: `kelvin-voigt` (the default there) or
+    /// `thornton` (`γ ≥ 1` only); `elastic` (or absent) otherwise.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub law: Option<String>,
 }
@@ -349,6 +350,17 @@ impl Config {
         }
     }
 
+    /// The partial-slip coordinate's map of the table ([`PartialMap`]): the elastic one
+    /// without an `e_n` range, [`PartialMap::Slip`] for Thornton's law (no closed-form
+    /// full-slip line), [`PartialMap::SqrtBoth`] for Kelvin–Voigt.
+    pub fn partial_map(&self) -> PartialMap {
+        match (self.domain.e_n_range(), self.law()) {
+            (None, _) => PartialMap::SqrtEnd,
+            (Some(_), oblique_solver::Law::Thornton) => PartialMap::Slip,
+            (Some(_), _) => PartialMap::SqrtBoth,
+        }
+    }
+
     /// Root cells along `e_n` (`nodes.blocks_e_n`, default 1).
     pub fn blocks_e_n(&self) -> usize {
         self.nodes.blocks_e_n.unwrap_or(1)
@@ -488,6 +500,56 @@ impl Config {
                 format!("\"{}\"", law.name()),
                 "\"elastic\" (or absent) without domain.e_n_min and e_n_max".into(),
             ));
+        }
+        // The laws whose tables the format holds (oblique_table::format::LAWS_E_N).
+        if d.e_n_range().is_some() && !oblique_table::format::LAWS_E_N.contains(&law.name()) {
+            return Err(err(
+                "solver.law",
+                format!("\"{}\"", law.name()),
+                format!(
+                    "{} for a table with an e_n range",
+                    oblique_table::format::LAWS_E_N
+                        .iter()
+                        .map(|l| format!("\"{l}\""))
+                        .collect::<Vec<_>>()
+                        .join(" or ")
+                ),
+            ));
+        }
+        if law == oblique_solver::Law::Thornton {
+            // Its table has no closed-form full-slip line: the partial-slip patch covers
+            // 0 <= alpha <= alpha_c2 for gamma >= 1 (PartialMap::Slip); the side gamma < 1 and
+            // the table of one pair are not designed for it yet.
+            if pair {
+                return Err(err(
+                    "domain.gamma",
+                    d.gamma_min.to_string(),
+                    "absent for the thornton law: give domain.gamma_min and gamma_max (the \
+                     table of one pair is not built for this law yet)"
+                        .into(),
+                ));
+            }
+            if d.gamma_min < 1.0 {
+                return Err(err(
+                    "domain.gamma_min",
+                    d.gamma_min.to_string(),
+                    format!(
+                        "in [1, gamma_max = {}) for the thornton law (its table below gamma = 1 \
+                         is not designed yet)",
+                        d.gamma_max
+                    ),
+                ));
+            }
+            // alpha_c1 is the root-cell boundary c = 1/2 of the partial-slip patch.
+            if !self.nodes.blocks_coord.is_multiple_of(2) {
+                return Err(err(
+                    "nodes.blocks_coord",
+                    self.nodes.blocks_coord.to_string(),
+                    "an even number in [2, 1024] for the thornton law (alpha_c1 is the root-cell \
+                     boundary c = 1/2)"
+                        .into(),
+                ));
+            }
         }
         let n = &self.nodes;
         if let Some(b) = n.blocks_e_n {

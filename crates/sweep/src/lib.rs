@@ -14,7 +14,7 @@ pub mod solve;
 mod tree;
 pub mod warp;
 
-use oblique_table::surface::{OutOfDomain, PartialMap, PatchId, PatchKind, Point, Region, Surface};
+use oblique_table::surface::{OutOfDomain, PatchId, PatchKind, Point, Surface};
 pub use oblique_table::write::{Built, BuiltPatch};
 use oblique_table::Check;
 
@@ -167,6 +167,7 @@ pub fn build_with(
         PatchId::ALL.map(find),
         cfg.domain.e_n_range(),
     )
+    .and_then(|s| s.with_partial_map(cfg.partial_map()))
     .map_err(SweepError::Model)?;
     let points = check_points(cfg);
     progress.phase(STAGE_CHECKS, &format!("{} points", points.len()));
@@ -185,7 +186,7 @@ pub fn build_with(
                 p_simulated: p_sim,
                 p_interpolated: p_int,
                 interpolation_error: (p_int - p_sim).abs(),
-                patch: Region::of_e(pt.gamma, pt.alpha, pt.e_n).index(),
+                patch: surface.region_at(pt.gamma, pt.alpha, pt.e_n).index(),
             }
         })
         .collect();
@@ -286,12 +287,9 @@ pub(crate) fn check_points(cfg: &Config) -> Vec<Point> {
                 Some((lo, hi)) => lo + (hi - lo) * rng.uniform(),
                 None => 1.0,
             };
-            let map = if range.is_some() {
-                PartialMap::SqrtBoth
-            } else {
-                PartialMap::SqrtEnd
-            };
-            let alpha = p.kind.alpha_at(map, gamma, c, e_n, cfg.domain.alpha_max);
+            let alpha = p
+                .kind
+                .alpha_at(cfg.partial_map(), gamma, c, e_n, cfg.domain.alpha_max);
             points.push(Point::new(gamma, alpha, e_n));
         }
     }

@@ -90,6 +90,8 @@ struct Layout<'a> {
     warp: Option<&'a Warp>,
     /// The `e_n` axis of a dissipative table: the lattice has a third axis.
     restitution: Option<Axis>,
+    /// The partial-slip coordinate's map ([`Config::partial_map`]).
+    map: PartialMap,
 }
 
 /// A node on the finest lattice of a patch: `(γ index, c index, e_n index, warped)`. A node on
@@ -119,9 +121,9 @@ impl Layout<'_> {
         (self.m as u64) << MAX_DEPTH
     }
 
-    /// The partial-slip coordinate's map ([`Patch::partial_map`]).
+    /// The partial-slip coordinate's map ([`Config::partial_map`]).
     fn partial_map(&self) -> PartialMap {
-        PartialMap::of_table(self.restitution.is_some())
+        self.map
     }
 
     /// Axes of the tree: 2, or 3 with an `e_n` axis, or 2 (`c`, `e_n`) for one pair.
@@ -475,6 +477,7 @@ pub(crate) fn build_patch(
         alpha_max: cfg.domain.alpha_max,
         warp: warp.as_ref(),
         restitution: restitution_axis(cfg)?,
+        map: cfg.partial_map(),
     };
     let m = layout.m;
     let law = cfg.law();

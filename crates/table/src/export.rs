@@ -117,7 +117,9 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// # Panics
 ///
 /// For a surface with an `e_n` axis and `curves` or without `with_surface` (`sweep export`
-/// refuses `--gamma` for such a table before it gets here).
+/// refuses `--gamma` for such a table before it gets here), and for a surface without the
+/// full-slip line ([`Surface::has_line`]: the layout answers the line; `sweep export` refuses
+/// such a table).
 pub fn export(
     surface: &Surface,
     error_bound: f64,
@@ -128,6 +130,10 @@ pub fn export(
     assert!(
         axis.is_none() || (with_surface && curves.is_empty()),
         "the export of a table with an e_n axis holds its surface and no curves"
+    );
+    assert!(
+        surface.has_line(),
+        "the export layout answers the full-slip line, which this table does not have"
     );
     let (version, header) = match (axis, surface.pair_gamma()) {
         (Some(_), Some(_)) => (VERSION_PAIR, HEADER_BYTES_E_N),

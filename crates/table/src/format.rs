@@ -33,17 +33,38 @@ pub const ATTR_E_N_MIN: &str = E_N.attr_min;
 /// Root attribute (schema 4, with an `e_n` axis): highest normal restitution `e_n`.
 pub const ATTR_E_N_MAX: &str = E_N.attr_max;
 /// Root attribute (schema 4, with an `e_n` axis): the contact law of the node values
-/// (`kelvin-voigt`).
+/// (`kelvin-voigt` or `thornton`).
 pub const ATTR_LAW: &str = "law";
+/// The law of a Kelvin–Voigt table (`physics.md`, "Dissipative impacts"): its full-slip line
+/// `P = 1 − (7/2)(1 + e_n)α` is exact up to `α_c1(γ, e_n)`.
+pub const LAW_KELVIN_VOIGT: &str = "kelvin-voigt";
+/// The law of a table of Thornton's elastic–plastic law: `P` has no closed-form full-slip
+/// line, so its partial-slip patch covers `0 ≤ α ≤ α_c2` ([`PARTIAL_MAP_SLIP`]).
+pub const LAW_THORNTON: &str = "thornton";
 /// The values of [`ATTR_LAW`] a reader accepts: the contact laws whose tables this engine
-/// builds and answers (`kelvin-voigt`, `physics.md` "Dissipative impacts").
-pub const LAWS_E_N: &[&str] = &["kelvin-voigt"];
-/// Patch attribute (schema 4, partial-slip patch with an `e_n` axis): the map from
-/// `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)` to the patch coordinate; the one value readers accept is
-/// [`PARTIAL_MAP_SQRT_BOTH`].
+/// builds and answers.
+pub const LAWS_E_N: &[&str] = &[LAW_KELVIN_VOIGT, LAW_THORNTON];
+/// Patch attribute (schema 4, partial-slip patch with an `e_n` axis): the map from `α` to the
+/// patch coordinate, [`PARTIAL_MAP_SQRT_BOTH`] or [`PARTIAL_MAP_SLIP`], the one of the table's
+/// law ([`coordinate_of_law`]); readers refuse any other pair.
 pub const ATTR_COORDINATE: &str = "coordinate";
-/// Value of [`ATTR_COORDINATE`]: `c = 1 − √(1 − √ℓ)` ([`crate::surface::PartialMap::SqrtBoth`]).
+/// Value of [`ATTR_COORDINATE`]: `c = 1 − √(1 − √ℓ)` over `α_c1 … α_c2`, `ℓ =
+/// ln(α/α_c1)/ln(α_c2/α_c1)` ([`crate::surface::PartialMap::SqrtBoth`]; a Kelvin–Voigt table).
 pub const PARTIAL_MAP_SQRT_BOTH: &str = "1-sqrt(1-sqrt(l))";
+/// Value of [`ATTR_COORDINATE`]: the patch covers `0 … α_c2`, `c = α/(2α_c1)` up to `α_c1`
+/// and `c = 1/2 + (1 − √(1 − √ℓ))/2` above ([`crate::surface::PartialMap::Slip`]; a table of
+/// Thornton's law).
+pub const PARTIAL_MAP_SLIP: &str = "slip,1-sqrt(1-sqrt(l))";
+
+/// The [`ATTR_COORDINATE`] of the partial-slip patch of a table of the law `law` (a value of
+/// [`LAWS_E_N`]); `None` for a law this crate does not know.
+pub fn coordinate_of_law(law: &str) -> Option<&'static str> {
+    match law {
+        LAW_KELVIN_VOIGT => Some(PARTIAL_MAP_SQRT_BOTH),
+        LAW_THORNTON => Some(PARTIAL_MAP_SLIP),
+        _ => None,
+    }
+}
 /// Patch attribute (schema 4, with an `e_n` axis): number of root cells along `e_n`.
 pub const ATTR_BLOCKS_E_N: &str = E_N.attr_blocks;
 /// Node dataset (schema 4, with an `e_n` axis; `[leaves, m+1, m+1, m+1]`): `e_n` of every

@@ -5,7 +5,7 @@ use std::path::Path;
 use hdf5::types::VarLenUnicode;
 
 use crate::format::*;
-use crate::surface::{Axis, Patch, PatchData, PatchId, PatchKind, Surface, Warp};
+use crate::surface::{Axis, PartialMap, Patch, PatchData, PatchId, PatchKind, Surface, Warp};
 use crate::TableError;
 
 /// Where a table came from (root attributes).
@@ -201,6 +201,7 @@ impl Reader<'_> {
         version: u32,
         e_range: Option<(f64, f64)>,
         pair: bool,
+        law: &str,
     ) -> Result<Option<Patch>, TableError> {
         let Ok(g) = root.group(name) else {
             return Ok(None);
@@ -242,12 +243,23 @@ impl Reader<'_> {
                 if kind == PatchKind::PartialSlip {
                     // The coordinate's map is named: a table built with another one is refused,
                     // never read with this one.
+                    // The law and its coordinate go together: a table whose coordinate is
+                    // not its law's would answer from the wrong place.
                     let map = self.attr_str(&g, ATTR_COORDINATE)?;
-                    if map != PARTIAL_MAP_SQRT_BOTH {
+                    let known = [PARTIAL_MAP_SQRT_BOTH, PARTIAL_MAP_SLIP];
+                    if !known.contains(&map.as_str()) {
                         return Err(self.invalid(format!(
                             "patch '{name}': attribute '{ATTR_COORDINATE}' = '{map}': this reader \
-                             understands '{PARTIAL_MAP_SQRT_BOTH}'; rebuild the table with this \
-                             engine"
+                             understands '{PARTIAL_MAP_SQRT_BOTH}' and '{PARTIAL_MAP_SLIP}'; \
+                             rebuild the table with this engine"
+                        )));
+                    }
+                    if coordinate_of_law(law) != Some(map.as_str()) {
+                        return Err(self.invalid(format!(
+                            "patch '{name}': attribute '{ATTR_COORDINATE}' = '{map}' does not go \
+                             with the root attribute '{ATTR_LAW}' = '{law}' (whose coordinate is \
+                             '{}'): the file was changed after its build; rebuild it",
+                            coordinate_of_law(law).unwrap_or_default()
                         )));
                     }
                 }
@@ -462,6 +474,8 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
     }
     // Schema 4 names its axes; each extra axis brings its range.
     let mut pair = false;
+    // The law of a table with an e_n axis (empty for an elastic one).
+    let mut law = String::new();
     let e_range = if version >= 4 {
         let axes = r.attr_str(&file, ATTR_AXES)?;
         let names: Vec<&str> = axes.split(',').collect();
@@ -498,7 +512,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
                     r.attr_f64(&file, spec.attr_max)?,
                 );
                 spec.check_range(lo, hi).map_err(|m| r.invalid(m))?;
-                let law = r.attr_str(&file, ATTR_LAW)?;
+                law = r.attr_str(&file, ATTR_LAW)?;
                 if !LAWS_E_N.contains(&law.as_str()) {
                     return Err(r.invalid(format!(
                         "root attribute '{ATTR_LAW}' = '{law}': this reader knows the law{} {}; \
@@ -537,6 +551,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
             version,
             e_range,
             pair,
+            &law,
         )?;
     }
     let surface = Surface::with_restitution(
@@ -548,6 +563,13 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
         e_range,
     )
     .map_err(|m| r.invalid(m))?;
+    // The law's map (checked against each partial-slip patch's coordinate above).
+    let surface = match coordinate_of_law(&law).and_then(PartialMap::of_coordinate) {
+        Some(map) if e_range.is_some() => surface
+            .with_partial_map(map)
+            .map_err(|m| r.invalid(format!("root attribute '{ATTR_LAW}' = '{law}': {m}")))?,
+        _ => surface,
+    };
     // The predicted error of every leaf, for the stated bound (`None`: not in the file).
     let leaf_predicted = PatchId::ALL.map(|id| {
         let name = id.name();

@@ -267,6 +267,18 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.attr_str(&file, ATTR_AXES, &axes)?;
         w.attr_f64(&file, E_N.attr_min, lo)?;
         w.attr_f64(&file, E_N.attr_max, hi)?;
+        // Never write a law and a partial-slip coordinate that the readers refuse together.
+        let coordinate = s.partial_map().coordinate();
+        if coordinate_of_law(&prov.law) != coordinate {
+            return Err(StorageError::Hdf5 {
+                path: path.to_string(),
+                message: format!(
+                    "the law '{}' does not go with the partial-slip coordinate '{}'",
+                    prov.law,
+                    coordinate.unwrap_or_default()
+                ),
+            });
+        }
         w.attr_str(&file, ATTR_LAW, &prov.law)?;
     }
     w.attr_f64(&file, ATTR_STENCIL, s.stencil() as f64)?;
@@ -295,8 +307,10 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
         w.attr_f64(&g, ATTR_LEAF_INTERVALS, p.leaf_intervals() as f64)?;
         if let Some(r) = p.restitution() {
             w.attr_f64(&g, E_N.attr_blocks, r.blocks() as f64)?;
-            if p.kind() == PatchKind::PartialSlip {
-                w.attr_str(&g, ATTR_COORDINATE, PARTIAL_MAP_SQRT_BOTH)?;
+            if let (PatchKind::PartialSlip, Some(coordinate)) =
+                (p.kind(), s.partial_map().coordinate())
+            {
+                w.attr_str(&g, ATTR_COORDINATE, coordinate)?;
             }
         }
         let leaves = [bp.leaf_error.len()];

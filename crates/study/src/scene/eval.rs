@@ -253,7 +253,9 @@ fn evaluate_row(
                 let p = table
                     .p_e(gamma, alpha, e_n)
                     .map_err(|source| SceneError::Lookup { x_name, x, source })?;
-                if exact(law, gamma, alpha, e_n) {
+                // Exact only where the table itself answers the closed form (a table of
+                // Thornton's law interpolates full slip too).
+                if table.surface().has_line() && exact(law, gamma, alpha, e_n) {
                     (p, 0.0, RowMethod::ClosedForm)
                 } else {
                     (p, table_error, RowMethod::Table)
@@ -276,7 +278,7 @@ fn evaluate_row(
                     x,
                     source,
                 })?;
-                if regimes::closed_form(gamma, alpha).is_some() {
+                if table.surface().has_line() && regimes::closed_form(gamma, alpha).is_some() {
                     (p, 0.0, RowMethod::ClosedForm)
                 } else {
                     (p, table_error, RowMethod::Table)

@@ -64,6 +64,10 @@ impl PatchKind {
         match self {
             PatchKind::PartialSlip => {
                 let c1 = alpha_c1_dissipative(gamma, e_n);
+                if map == PartialMap::Slip && c <= 0.5 {
+                    // Below α_c1 the coordinate is linear in α.
+                    return 2.0 * c * c1;
+                }
                 c1 * (alpha_c2(gamma) / c1).powf(map.l_of_c(c))
             }
             PatchKind::Stick => {
@@ -97,6 +101,13 @@ pub enum PartialMap {
     /// smooth in `√ℓ`; near `α_c2` it is smooth in `√(1 − ℓ)` as the elastic map is. (The
     /// balanced `(2/π) asin(√ℓ)` needs 15 % fewer nodes but an `asin` in every query.)
     SqrtBoth,
+    /// The patch of a law without a closed-form full-slip line (Thornton's, a table with an
+    /// `e_n` axis): it covers `0 ≤ α ≤ α_c2`, with `c = α/(2α_c1)` up to `α_c1(γ, e_n)` (where
+    /// `P` is smooth in `α` and close to the line) and `c = 1/2 + s/2` above,
+    /// `s` the [`PartialMap::SqrtBoth`] coordinate. `α_c1` is the root-cell boundary `c = 1/2`
+    /// (an even `blocks_coord`), so no leaf straddles it; the law's own edge of full slip lies
+    /// within a few per cent of it (`docs/solver.md`, "The edge of the full-slip region").
+    Slip,
 }
 
 impl PartialMap {
@@ -111,16 +122,45 @@ impl PartialMap {
         }
     }
 
-    /// `c` of `ℓ` (`ℓ` outside `[0, 1]` by rounding: the ends).
+    /// The map of a table with an `e_n` axis of the law whose [`crate::format::ATTR_COORDINATE`]
+    /// is `coordinate` ([`crate::format::coordinate_of_law`]); `None` for another value.
+    pub fn of_coordinate(coordinate: &str) -> Option<PartialMap> {
+        match coordinate {
+            crate::format::PARTIAL_MAP_SQRT_BOTH => Some(PartialMap::SqrtBoth),
+            crate::format::PARTIAL_MAP_SLIP => Some(PartialMap::Slip),
+            _ => None,
+        }
+    }
+
+    /// The value of [`crate::format::ATTR_COORDINATE`] that names this map (`None` for the
+    /// elastic map, which no attribute names).
+    pub fn coordinate(self) -> Option<&'static str> {
+        match self {
+            PartialMap::SqrtEnd => None,
+            PartialMap::SqrtBoth => Some(crate::format::PARTIAL_MAP_SQRT_BOTH),
+            PartialMap::Slip => Some(crate::format::PARTIAL_MAP_SLIP),
+        }
+    }
+
+    /// Whether a table of this map answers `α ≤ α_c1` from the closed-form full-slip line
+    /// (every map but [`PartialMap::Slip`]).
+    #[inline(always)]
+    pub fn has_line(self) -> bool {
+        self != PartialMap::Slip
+    }
+
+    /// `c` of `ℓ` (`ℓ` outside `[0, 1]` by rounding: the ends); for [`PartialMap::Slip`] the
+    /// part above `α_c1` (`ℓ ≥ 0`, `c ≥ 1/2`).
     #[inline(always)]
     pub fn c_of_l(self, l: f64) -> f64 {
         match self {
             PartialMap::SqrtEnd => 1.0 - (1.0 - l).max(0.0).sqrt(),
             PartialMap::SqrtBoth => 1.0 - (1.0 - l.clamp(0.0, 1.0).sqrt()).sqrt(),
+            PartialMap::Slip => 0.5 + 0.5 * PartialMap::SqrtBoth.c_of_l(l),
         }
     }
 
-    /// `ℓ` of `c` (the inverse of [`PartialMap::c_of_l`]).
+    /// `ℓ` of `c` (the inverse of [`PartialMap::c_of_l`]; for [`PartialMap::Slip`], `c ≥ 1/2`).
     #[inline]
     pub fn l_of_c(self, c: f64) -> f64 {
         match self {
@@ -133,6 +173,7 @@ impl PartialMap {
                 let s = 1.0 - q * q;
                 s * s
             }
+            PartialMap::Slip => PartialMap::SqrtBoth.l_of_c(2.0 * c - 1.0),
         }
     }
 }
@@ -154,8 +195,16 @@ pub fn stick_scale(gamma: f64) -> f64 {
 /// [`partial_ratio_e`].
 #[inline(always)]
 pub fn partial_coord_e(gamma: f64, alpha: f64, e_n: f64) -> f64 {
+    partial_coord_map(PartialMap::SqrtBoth, gamma, alpha, e_n)
+}
+
+/// The partial-slip coordinate of a table with an `e_n` axis whose map is `map`
+/// ([`PartialMap::SqrtBoth`]: [`partial_coord_e`]; [`PartialMap::Slip`]): [`partial_coord_from`]
+/// with [`partial_ratio_e`].
+#[inline(always)]
+pub fn partial_coord_map(map: PartialMap, gamma: f64, alpha: f64, e_n: f64) -> f64 {
     let (ratio, two_g2) = partial_ratio_e(gamma, e_n);
-    partial_coord_from(PartialMap::SqrtBoth, alpha, ratio, two_g2, ratio.ln())
+    partial_coord_from(map, alpha, ratio, two_g2, ratio.ln())
 }
 
 /// [`PatchKind::coord`] of the partial-slip patch: [`partial_coord_from`] with
@@ -190,7 +239,9 @@ pub fn partial_arg(alpha: f64, ratio: f64, two_g2: f64) -> f64 {
 
 /// The partial-slip coordinate `map(ℓ)`, `ℓ = ln(α/α_c1)/ln(α_c2/α_c1)`, from the `γ`-only
 /// parts ([`partial_ratio`], [`partial_ratio_e`]) and `ln_ratio = ln(ratio)`: the one
-/// statement of these operations (the rule, the query paths, the curves).
+/// statement of these operations (the rule, the query paths, the curves). With
+/// [`PartialMap::Slip`], `q = α/α_c1 ≤ 1` gives `c = 0.5·q` (no logarithm: at `γ = 1`,
+/// where `α_c1 = α_c2` and `ln_ratio` is 0, every query of the patch is there).
 #[inline(always)]
 pub fn partial_coord_from(
     map: PartialMap,
@@ -199,7 +250,11 @@ pub fn partial_coord_from(
     two_g2: f64,
     ln_ratio: f64,
 ) -> f64 {
-    map.c_of_l(partial_arg(alpha, ratio, two_g2).ln() / ln_ratio)
+    let q = partial_arg(alpha, ratio, two_g2);
+    if map == PartialMap::Slip && q <= 1.0 {
+        return 0.5 * q;
+    }
+    map.c_of_l(q.ln() / ln_ratio)
 }
 
 /// [`PatchKind::coord`] of a stick patch: `S(α) = r/(r + ρ) = (α − α_c2)/(α − α_c2 + ρ α_c2)`,

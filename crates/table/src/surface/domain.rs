@@ -117,6 +117,9 @@ pub struct Surface {
     /// The `e_n` range `[lo, hi]` of a table with a normal-restitution axis (every patch has
     /// that axis); `None` for an elastic table (`e_n = 1`).
     restitution: Option<(f64, f64)>,
+    /// The partial-slip coordinate's map, which also says whether the table answers the
+    /// full-slip line ([`PartialMap::has_line`]; [`Surface::with_partial_map`]).
+    partial_map: PartialMap,
 }
 
 impl Surface {
@@ -224,7 +227,89 @@ impl Surface {
             stencil,
             patches,
             restitution,
+            partial_map: PartialMap::of_table(restitution.is_some()),
         })
+    }
+
+    /// The same surface with the partial-slip map `map`: [`PartialMap::SqrtEnd`] for an
+    /// elastic table, [`PartialMap::SqrtBoth`] (the default with an `e_n` axis) or
+    /// [`PartialMap::Slip`] with an `e_n` axis. A [`PartialMap::Slip`] table (Thornton's law)
+    /// has no full-slip line: its partial-slip patch answers every `α < α_c2` for `γ ≥ 1`, and
+    /// it needs `gamma_min ≥ 1` (the side `γ < 1` of such a law is not designed) and a range
+    /// of `γ` (not the table of one pair). `Err` names the rule.
+    pub fn with_partial_map(mut self, map: PartialMap) -> Result<Surface, String> {
+        let name = |m: PartialMap| m.coordinate().unwrap_or("the elastic map");
+        match (map, self.restitution) {
+            (PartialMap::SqrtEnd, None) => {}
+            (PartialMap::SqrtBoth, Some(_)) => {}
+            (PartialMap::Slip, Some(_)) => {
+                if self.gamma_min < 1.0 || self.pair_gamma().is_some() {
+                    return Err(format!(
+                        "the partial-slip coordinate '{}' needs a gamma range with \
+                         gamma_min >= 1, not [{}, {}]",
+                        name(map),
+                        self.gamma_min,
+                        self.gamma_max
+                    ));
+                }
+            }
+            _ => {
+                return Err(format!(
+                    "the partial-slip coordinate '{}' is for {}",
+                    name(map),
+                    if self.restitution.is_some() {
+                        "an elastic table, this one has an e_n axis"
+                    } else {
+                        "a table with an e_n axis, this one is elastic"
+                    }
+                ))
+            }
+        }
+        self.partial_map = map;
+        Ok(self)
+    }
+
+    /// The partial-slip coordinate's map ([`Surface::with_partial_map`]).
+    #[inline(always)]
+    pub fn partial_map(&self) -> PartialMap {
+        self.partial_map
+    }
+
+    /// Whether the table answers `α ≤ α_c1(γ, e_n)` from the closed-form full-slip line (all
+    /// but a table of Thornton's law, [`PartialMap::Slip`]).
+    #[inline(always)]
+    pub fn has_line(&self) -> bool {
+        self.partial_map.has_line()
+    }
+
+    /// Where the full-slip line ends at `(γ, e_n)`: [`linear_limit_dissipative`], or `−∞` in
+    /// a table without a line ([`Surface::has_line`]; no `α ≥ 0` is on it).
+    #[inline(always)]
+    pub fn line_end(&self, gamma: f64, e_n: f64) -> f64 {
+        if self.has_line() {
+            linear_limit_dissipative(gamma, e_n)
+        } else {
+            f64::NEG_INFINITY
+        }
+    }
+
+    /// Whether a `γ` in the domain is answered by the patches of `γ ≥ 1` (`partial_high`,
+    /// `stick_high`): `γ > 1`, and `γ = 1` too in a table without a line (where the
+    /// partial-slip patch holds `P` below `α_c2 = α_c1`).
+    #[inline(always)]
+    pub fn high(&self, gamma: f64) -> bool {
+        gamma > 1.0 || (gamma == 1.0 && !self.has_line())
+    }
+
+    /// The region of a valid `(γ, α, e_n)` in this table: [`Region::of_e`], or without a
+    /// line ([`Surface::has_line`]) [`Region::off_line`].
+    #[inline(always)]
+    pub fn region_at(&self, gamma: f64, alpha: f64, e_n: f64) -> Region {
+        if self.has_line() {
+            Region::of_e(gamma, alpha, e_n)
+        } else {
+            Region::off_line(gamma, alpha, || alpha_c2(gamma))
+        }
     }
 
     /// The same surface with every patch replaced by `f(id, patch)`, checked as by
@@ -246,7 +331,8 @@ impl Surface {
             self.stencil,
             patches,
             self.restitution,
-        )
+        )?
+        .with_partial_map(self.partial_map)
     }
 
     /// The `e_n` range `[lo, hi]` of a table with a normal-restitution axis; `None` for an
@@ -408,6 +494,21 @@ impl Region {
         }
     }
 
+    /// The region of a valid `(γ, α)` in a table without a full-slip line
+    /// ([`Surface::has_line`]; `c2()` = [`alpha_c2`]`(γ)`): `partial_high` for `γ ≥ 1` and
+    /// `α < α_c2`, `stick_high` for `γ ≥ 1` above, `stick_low` for `γ < 1` (outside such a
+    /// table's domain: refused or clamped). Never [`Region::Line`].
+    #[inline(always)]
+    pub fn off_line(gamma: f64, alpha: f64, c2: impl Fn() -> f64) -> Self {
+        if gamma < 1.0 {
+            Region::StickLow
+        } else if alpha < c2() {
+            Region::PartialHigh
+        } else {
+            Region::StickHigh
+        }
+    }
+
     /// The patch that answers in this region (`None` on the line).
     pub fn patch_id(self) -> Option<PatchId> {
         match self {
@@ -494,7 +595,7 @@ impl Surface {
     pub fn region_of(&self, gamma: f64, alpha: f64, e_n: f64) -> Result<Region, TableError> {
         check_query(gamma, alpha)?;
         self.check_e_n(e_n)?;
-        Ok(Region::of_e(gamma, alpha, e_n))
+        Ok(self.region_at(gamma, alpha, e_n))
     }
 
     /// `Ok` when the table answers at normal restitution `e_n`: exactly 1 for an elastic
@@ -550,7 +651,7 @@ impl Surface {
             OutOfDomain::Clamp => {
                 let g = gamma.clamp(self.gamma_min, self.gamma_max);
                 let a = alpha.min(self.alpha_max);
-                match Region::of_e(g, a, e_n) {
+                match self.region_at(g, a, e_n) {
                     Region::Line => Ok(full_slip_line(a, e_n)),
                     r => Ok(eval_in(r, g, a)),
                 }
@@ -603,7 +704,9 @@ impl Surface {
             }
             Some(patch) => {
                 let c = match patch.kind {
-                    PatchKind::PartialSlip => partial_coord_e(gamma, alpha, e_n),
+                    PatchKind::PartialSlip => {
+                        partial_coord_map(self.partial_map, gamma, alpha, e_n)
+                    }
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
                 };
                 patch.interpolate_at(gamma, c.clamp(0.0, 1.0), e_n, self.stencil)

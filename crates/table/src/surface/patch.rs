@@ -287,12 +287,6 @@ impl Patch {
         self.axes[0].lo == self.axes[0].hi
     }
 
-    /// The partial-slip coordinate's map: [`PartialMap::SqrtBoth`] with an `e_n` axis,
-    /// [`PartialMap::SqrtEnd`] without.
-    pub fn partial_map(&self) -> PartialMap {
-        PartialMap::of_table(self.restitution().is_some())
-    }
-
     /// Children of a split cell that halves every axis: `2^dims`.
     pub fn fanout(&self) -> usize {
         1 << self.dims()

@@ -1,0 +1,410 @@
+//! Tables of Thornton's elastic–plastic law, `P(γ, α, e_n)`, end to end: `sweep run
+//! configs/thornton-demo.toml` builds one, its partial-slip patch covers `0 ≤ α ≤ α_c2` with
+//! simulated nodes below `α_c1` (the law has no closed-form full-slip line), every query path
+//! answers with the same bits, the table holds its stated bound against direct solves at
+//! random points, next to `α_c1` and at the law's own edge of full slip, and what cannot
+//! answer such a table yet (the export, the reference reader) or a config it cannot be built
+//! from refuses by name.
+
+mod common;
+use common::{sweep_ok as ok, sweep_refused as refused};
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+use oblique_lookup::{OutOfDomain, Table};
+use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2, full_slip_line};
+use oblique_solver::{Accuracy, Law, Request};
+use oblique_table::surface::{PartialMap, Region};
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+const KV_DEMO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/dissipative-demo.h5");
+
+/// `configs/thornton-demo.toml` built into a scratch folder (once per test process).
+fn table() -> &'static Path {
+    static T: OnceLock<PathBuf> = OnceLock::new();
+    T.get_or_init(|| {
+        let out = common::subdir("thornton").join("thornton-demo.h5");
+        let cfg = Path::new(ROOT).join("configs/thornton-demo.toml");
+        ok(&[
+            "run",
+            cfg.to_str().expect("path"),
+            "--output",
+            out.to_str().expect("path"),
+            "--quiet",
+        ]);
+        out
+    })
+}
+
+fn t() -> &'static str {
+    table().to_str().expect("path")
+}
+
+/// `P` of Thornton's law by a direct solve at tolerance 1e-8: the value and its estimate.
+fn solve(gamma: f64, alpha: f64, e_n: f64) -> (f64, f64) {
+    let s = Request::new(gamma, alpha)
+        .e_n(e_n)
+        .law(Law::Thornton)
+        .accuracy(Accuracy::Tolerance(1e-8))
+        .solve()
+        .expect("a Thornton solve");
+    (s.p, s.error_estimate)
+}
+
+#[test]
+fn the_table_names_its_law_and_its_coordinate() {
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&["inspect", t(), "--json"])).expect("JSON");
+    assert_eq!(v["law"].as_str(), Some("thornton"), "{v}");
+    assert!(ok(&["inspect", t()]).contains("(thornton law)"));
+    let table = Table::open(table()).expect("open");
+    assert_eq!(table.provenance().law, "thornton");
+    assert_eq!(table.surface().partial_map(), PartialMap::Slip);
+    assert!(!table.surface().has_line());
+}
+
+/// Random points, points below `α_c1`, at `α_c1(1 ± 1e-3)` and at the law's own edge `α₁`,
+/// against direct solves at tol 1e-8: within the stated bound (plus the solve's estimate), and
+/// below `α_c1` answered by the partial-slip patch, not by the line.
+#[test]
+fn the_table_holds_its_bound_against_direct_solves_below_and_above_alpha_c1() {
+    let table = Table::open(table()).expect("open");
+    let bound = table.error_bound();
+    assert!(bound > 0.0 && bound < 1e-3, "bound {bound:e}");
+    let s = table.surface();
+    let (g0, g1) = (s.gamma_min(), s.gamma_max());
+    let (e0, e1) = table.restitution().expect("an e_n axis");
+    let mut next = oblique_lookup::testing::uniform(0x7468_6f72_6e74_6f6e);
+    let mut points = Vec::new();
+    for i in 0..36 {
+        let gamma = g0 + (g1 - g0) * next();
+        let e_n = e0 + (e1 - e0) * next();
+        let alpha = if i % 9 == 0 {
+            f64::INFINITY
+        } else {
+            10f64.powf(-3.0 + 3.5 * next())
+        };
+        points.push((gamma, alpha, e_n));
+    }
+    let mut below = 0;
+    for (gamma, e_n) in [(1.61, 0.82), (1.7, 0.85), (1.79, 0.95), (1.65, 0.99)] {
+        let c1 = alpha_c1_dissipative(gamma, e_n);
+        let edge = oblique_solver::history::full_slip_edge_thornton(gamma, e_n, 4096)
+            .expect("the edge of full slip");
+        for alpha in [
+            0.01,
+            0.3 * c1,
+            0.9 * c1,
+            c1 * (1.0 - 1e-3),
+            c1 * (1.0 + 1e-3),
+            edge,
+        ] {
+            points.push((gamma, alpha, e_n));
+            below += usize::from(alpha < c1);
+        }
+    }
+    assert!(
+        below >= 16 && points.len() >= 60,
+        "{below}, {}",
+        points.len()
+    );
+    let mut worst = 0.0_f64;
+    for &(gamma, alpha, e_n) in &points {
+        let p = table.p_e(gamma, alpha, e_n).expect("inside the domain");
+        let (sim, est) = solve(gamma, alpha, e_n);
+        let err = (p - sim).abs();
+        worst = worst.max(err);
+        assert!(
+            err <= bound + est,
+            "({gamma}, {alpha}, {e_n}): table {p}, simulation {sim}: {err:e} > {bound:e}"
+        );
+        if alpha <= alpha_c1_dissipative(gamma, e_n) {
+            assert_eq!(s.region_at(gamma, alpha, e_n), Region::PartialHigh);
+            assert_ne!(p.to_bits(), full_slip_line(alpha, e_n).to_bits());
+        }
+    }
+    // Next to α_c1 the law is off the line by more than the table's error: the line would
+    // have been a wrong answer there.
+    let (gamma, e_n) = (1.7, 0.85);
+    let c1 = alpha_c1_dissipative(gamma, e_n);
+    let (sim, _) = solve(gamma, 0.999 * c1, e_n);
+    assert!(
+        (full_slip_line(0.999 * c1, e_n) - sim).abs() > 3.0 * bound,
+        "the line at 0.999 alpha_c1: {:e}",
+        (full_slip_line(0.999 * c1, e_n) - sim).abs()
+    );
+    eprintln!(
+        "{} points, worst |error| {worst:.3e}, bound {bound:.3e}",
+        points.len()
+    );
+}
+
+/// The rule written step by step, the indexed query path, the batches, the curves at one
+/// `(γ, e_n)` and a prepared pair's line answer alike: the same bits (curves: to 1e-14, as
+/// for every table), with and without clamping, inside and outside the domain.
+#[test]
+fn every_query_path_answers_alike() {
+    let table = Table::open(table()).expect("open");
+    let s = table.surface();
+    let mut next = oblique_lookup::testing::uniform(0x5eed_7ab1_e000_0001);
+    let (mut g, mut a, mut e) = (Vec::new(), Vec::new(), Vec::new());
+    for i in 0..60_000 {
+        let gamma = match i % 13 {
+            0 => 1.0,
+            1 => 1.5,
+            2 => 1.9,
+            _ => 1.55 + 0.3 * next(),
+        };
+        let alpha = match i % 10 {
+            0 => f64::INFINITY,
+            1 => alpha_c2(gamma),
+            2 => alpha_c1_dissipative(gamma, 0.8),
+            _ => 10f64.powf(-3.5 + 4.0 * next()),
+        };
+        let e_n = if i % 7 == 0 {
+            0.8
+        } else {
+            0.79 + 0.22 * next()
+        };
+        for outside in [OutOfDomain::Error, OutOfDomain::Clamp] {
+            let fast = table.p_e_with(gamma, alpha, e_n, outside);
+            let rule = s.eval_point(gamma, alpha, e_n, outside);
+            match (&fast, &rule) {
+                (Ok(x), Ok(y)) => assert_eq!(x.to_bits(), y.to_bits(), "({gamma}, {alpha}, {e_n})"),
+                (Err(x), Err(y)) => assert_eq!(x.to_string(), y.to_string()),
+                _ => panic!("({gamma}, {alpha}, {e_n}): {fast:?} vs {rule:?}"),
+            }
+        }
+        g.push(gamma);
+        a.push(alpha);
+        // The batch below clamps γ and α; e_n is never clamped, so its e_n is in range.
+        e.push(e_n.clamp(0.8, 1.0));
+    }
+    // Outside the γ range nothing is answered from a line: refused, or clamped into the table.
+    let below = table
+        .p_e(1.2, 0.01, 0.8)
+        .expect_err("gamma below the table");
+    assert!(below.to_string().contains("gamma"), "{below}");
+    assert_eq!(
+        table
+            .p_e_with(1.2, 0.01, 0.8, OutOfDomain::Clamp)
+            .expect("clamped")
+            .to_bits(),
+        table
+            .p_e(s.gamma_min(), 0.01, 0.8)
+            .expect("inside")
+            .to_bits()
+    );
+    let mut out = vec![f64::NAN; g.len()];
+    table
+        .p_e_batch(&g, &a, &e, &mut out, OutOfDomain::Clamp)
+        .expect("batch");
+    for i in 0..g.len() {
+        let one = table
+            .p_e_with(g[i], a[i], e[i], OutOfDomain::Clamp)
+            .expect("one");
+        assert_eq!(
+            out[i].to_bits(),
+            one.to_bits(),
+            "({}, {}, {})",
+            g[i],
+            a[i],
+            e[i]
+        );
+    }
+    // Curves at one (γ, e_n), also at γ = gamma_min and clamped from below.
+    let mut worst = 0.0_f64;
+    for (gamma, outside) in [
+        (1.6, OutOfDomain::Error),
+        (1.73, OutOfDomain::Error),
+        (1.8, OutOfDomain::Error),
+        (1.3, OutOfDomain::Clamp),
+    ] {
+        for e_n in [0.8, 0.87, 1.0] {
+            let curve = table.curve_e(gamma, e_n, outside).expect("curve");
+            for j in 0..=2000 {
+                let alpha = if j == 0 {
+                    f64::INFINITY
+                } else {
+                    10f64.powf(-3.5 + 4.5 * f64::from(j) / 2000.0)
+                };
+                let want = table.p_e_with(gamma, alpha, e_n, outside).expect("p_e");
+                worst = worst.max((curve.p(alpha).expect("curve") - want).abs());
+            }
+        }
+    }
+    assert!(worst <= 1e-14, "curves: worst {worst:e}");
+    // A prepared pair's line (PairLine): the rebound's P is the table's at its α, bit for bit.
+    use oblique_lookup::rebound::{Body, Incident3, Motion3, Pair};
+    use oblique_lookup::Contact;
+    let pair = Pair {
+        sphere: Body {
+            mass: 2.4e-4,
+            radius: 2.5e-3,
+            kappa: 0.4,
+        },
+        other: None,
+    };
+    let mut alphas = Vec::new();
+    for (gamma, e_n) in [(1.62, 0.87), (1.6, 0.9)] {
+        let contact = Contact::with_gamma(gamma, 0.3).with_restitution(e_n);
+        let prepared = table.prepare(&pair, &contact).expect("prepared");
+        for k in 1..400 {
+            let tangential = 0.002 * f64::from(k) * f64::from(k);
+            let inc = Incident3 {
+                sphere: Motion3 {
+                    velocity: [tangential, 0.1 * tangential, 1.2],
+                    spin: [0.0, 0.0, 0.0],
+                },
+                other: Motion3::default(),
+                normal: [0.0, 0.0, 1.0],
+            };
+            let fast = table.rebound_3d_prepared(&prepared, &inc).expect("fast");
+            let want = table.p_e(gamma, fast.alpha, e_n).expect("P");
+            assert_eq!(
+                fast.rebound.p.to_bits(),
+                want.to_bits(),
+                "alpha {}",
+                fast.alpha
+            );
+            alphas.push(fast.alpha / alpha_c1_dissipative(gamma, e_n));
+        }
+    }
+    assert!(alphas.iter().any(|&r| r < 1.0) && alphas.iter().any(|&r| r > 2.0));
+}
+
+#[test]
+fn sweep_query_answers_below_alpha_c1_from_the_table() {
+    let text = ok(&[
+        "query",
+        t(),
+        "--gamma",
+        "1.7",
+        "--alpha",
+        "0.05",
+        "--e-n",
+        "0.8",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let p = v["P"].as_f64().expect("P");
+    let table = Table::open(table()).expect("open");
+    assert_eq!(p, table.p_e(1.7, 0.05, 0.8).expect("P"));
+    assert_ne!(p, full_slip_line(0.05, 0.8));
+    assert_eq!(v["error_bound"].as_f64(), Some(table.error_bound()));
+    assert!(
+        v["region"]
+            .as_str()
+            .is_some_and(|r| r.contains("interpolated")),
+        "{text}"
+    );
+    // A point below the table's γ range is not answered from the line.
+    refused(
+        &[
+            "query",
+            t(),
+            "--gamma",
+            "1.2",
+            "--alpha",
+            "0.01",
+            "--e-n",
+            "0.8",
+        ],
+        &["gamma", "--clamp"],
+    );
+}
+
+#[test]
+fn the_export_and_the_reference_reader_refuse_it_naming_the_law() {
+    let out = common::subdir("thornton-export").join("t.bin");
+    refused(
+        &["export", t(), "--output", out.to_str().expect("path")],
+        &["thornton", "export"],
+    );
+    assert!(!out.exists());
+    let r = Command::new("python3")
+        .arg(Path::new(ROOT).join("scripts/read_table.py"))
+        .arg(t())
+        .args(["--gamma", "1.7", "--alpha", "0.05", "--e-n", "0.8"])
+        .output()
+        .expect("python3 (with h5py: the test command installs it)");
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(!r.status.success(), "{err}");
+    assert!(err.contains("thornton") && err.contains("law"), "{err}");
+}
+
+/// A law and a partial-slip coordinate that do not go together are refused, naming both.
+#[test]
+fn readers_refuse_a_law_with_the_other_laws_coordinate() {
+    let dir = common::subdir("thornton-edited");
+    let kv_slip = dir.join("kv-slip.h5");
+    common::edited_copy(
+        Path::new(KV_DEMO),
+        &kv_slip,
+        "g = f['patches/partial_high']; del g.attrs['coordinate']; \
+         g.attrs['coordinate'] = 'slip,1-sqrt(1-sqrt(l))'",
+    );
+    refused(
+        &["inspect", kv_slip.to_str().expect("path")],
+        &["coordinate", "slip,1-sqrt(1-sqrt(l))", "kelvin-voigt"],
+    );
+    let th_plain = dir.join("thornton-plain.h5");
+    common::edited_copy(
+        table(),
+        &th_plain,
+        "g = f['patches/partial_high']; del g.attrs['coordinate']; \
+         g.attrs['coordinate'] = '1-sqrt(1-sqrt(l))'",
+    );
+    refused(
+        &["inspect", th_plain.to_str().expect("path")],
+        &["coordinate", "'1-sqrt(1-sqrt(l))'", "thornton"],
+    );
+    // The law changed, the coordinate kept: refused the same way.
+    let th_kv = dir.join("thornton-as-kv.h5");
+    common::edited_copy(
+        table(),
+        &th_kv,
+        "del f.attrs['law']; f.attrs['law'] = 'kelvin-voigt'",
+    );
+    refused(
+        &["inspect", th_kv.to_str().expect("path")],
+        &["slip,1-sqrt(1-sqrt(l))", "kelvin-voigt"],
+    );
+}
+
+/// The config keys a table of this law needs, each refused by name.
+#[test]
+fn configs_of_this_law_are_checked_by_key() {
+    let text = std::fs::read_to_string(Path::new(ROOT).join("configs/thornton-demo.toml"))
+        .expect("config");
+    let parse = |t: &str| oblique_sweep::Config::parse(t, "t.toml").map_err(|e| e.to_string());
+    let cfg = parse(&text).expect("the shipped config");
+    assert_eq!(cfg.law(), Law::Thornton);
+    assert_eq!(cfg.partial_map(), PartialMap::Slip);
+    let e = parse(&text.replace("gamma_min = 1.6", "gamma_min = 0.9")).expect_err("gamma < 1");
+    assert!(
+        e.contains("domain.gamma_min") && e.contains("thornton"),
+        "{e}"
+    );
+    let e = parse(&text.replace("blocks_coord = 2", "blocks_coord = 3")).expect_err("odd");
+    assert!(
+        e.contains("nodes.blocks_coord") && e.contains("even"),
+        "{e}"
+    );
+    let e = parse(&text.replace("gamma_max = 1.8", "gamma_max = 2.6")).expect_err("F-");
+    assert!(e.contains("domain.gamma_max") && e.contains("F-"), "{e}");
+    let pair = text.replace("gamma_min = 1.6\ngamma_max = 1.8", "gamma = 1.7");
+    let e = parse(&pair).expect_err("one pair");
+    assert!(e.contains("domain.gamma") && e.contains("thornton"), "{e}");
+    let e = parse(&text.replace("\"thornton\"", "\"thornton-mdr\"")).expect_err("no table");
+    assert!(
+        e.contains("solver.law") && e.contains("thornton-mdr"),
+        "{e}"
+    );
+    // The same keys with the Kelvin–Voigt law are fine.
+    let kv = text.replace("\"thornton\"", "\"kelvin-voigt\"");
+    assert!(parse(&kv.replace("blocks_coord = 2", "blocks_coord = 3")).is_ok());
+    assert!(parse(&kv.replace("gamma_min = 1.6", "gamma_min = 0.9")).is_ok());
+}
