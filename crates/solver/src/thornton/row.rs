@@ -464,13 +464,16 @@ impl ThorntonRow {
         let line = self.line;
         self.cuts.clear();
         let mut p = p;
+        // `None`: the crossings are found (a quadratic against a line); else whether the `+` /
+        // `−` limit may be crossed, to be searched.
         let general = if lim.linear_from(p.y0) {
             // Linear limits ±s (D − y): the piece's bounds for slope s decide most steps.
             if p.slope != lim.c {
                 p = p.bounded(lim.c, &line);
             }
             let top = lim.c * (lim.reach - lim.shift);
-            if p.upper <= top - w && p.lower >= -top - w {
+            let sides = (p.upper > top - w, p.lower < -top - w);
+            if !(sides.0 || sides.1) {
                 out.push(p);
                 return;
             }
@@ -484,9 +487,9 @@ impl ThorntonRow {
                 for z in &mut self.cuts {
                     *z += p.y_ref;
                 }
-                false
+                None
             } else {
-                true
+                Some(sides)
             }
         } else {
             // A curved limit: above its smallest value on the piece, and above its chord (it
@@ -505,22 +508,57 @@ impl ThorntonRow {
             let b = p.bounded(s, &line);
             let top = floor + s * p.y1;
             p.slope = f64::NAN;
-            if b.upper <= top - w && b.lower >= -top - w {
+            // Each limit is crossed only where neither its floor nor its chord says otherwise.
+            let sides = (
+                w + p.hi >= floor && b.upper > top - w,
+                w + p.lo <= -floor && b.lower < -top - w,
+            );
+            if !(sides.0 || sides.1) {
                 out.push(p);
                 return;
             }
-            true
+            Some(sides)
         };
-        if general {
+        if let Some((plus_side, minus_side)) = general {
             let kinks = [
                 p.top - line.yield_indentation,
                 lim.reach - lim.line.yield_indentation,
             ];
-            let plus = |y: f64| w + p.value(y, &line) - lim.at(y);
-            let minus = |y: f64| w + p.value(y, &line) + lim.at(y);
+            // ũ ∓ c_κ Λ has the second derivative 2q − k Q″-magnitude of the piece's curved
+            // part ± c_κ that of the limit (−Q″ ≥ 0 in both, bounded on each stretch).
+            let (k, c) = (p.k, lim.c);
+            let curvature = |a: f64, b: f64, sign: f64| {
+                let piece = if k == 0.0 {
+                    (0.0, 0.0)
+                } else {
+                    scaled(-k, line.curvature_range(p.top, a, b))
+                };
+                let limit = scaled(sign * c, lim.line.curvature_range(lim.reach, a, b));
+                (2.0 * p.q + piece.0 + limit.0, 2.0 * p.q + piece.1 + limit.1)
+            };
             let mut cuts = std::mem::take(&mut self.cuts);
-            crossings(&plus, p.y0, p.y1, &kinks, &mut cuts);
-            crossings(&minus, p.y0, p.y1, &kinks, &mut cuts);
+            if plus_side {
+                let plus = |y: f64| w + p.value(y, &line) - lim.at(y);
+                crossings(
+                    &plus,
+                    &|a, b| curvature(a, b, 1.0),
+                    p.y0,
+                    p.y1,
+                    &kinks,
+                    &mut cuts,
+                );
+            }
+            if minus_side {
+                let minus = |y: f64| w + p.value(y, &line) + lim.at(y);
+                crossings(
+                    &minus,
+                    &|a, b| curvature(a, b, -1.0),
+                    p.y0,
+                    p.y1,
+                    &kinks,
+                    &mut cuts,
+                );
+            }
             self.cuts = cuts;
         }
         self.cuts.sort_by(f64::total_cmp);
@@ -622,5 +660,16 @@ impl ThorntonRow {
             }
         }
         total
+    }
+}
+
+/// Bounds of `f m` for `m` within `(m0, m1)` (`(0, 0)` for `f = 0`, whatever the bounds).
+fn scaled(f: f64, (m0, m1): (f64, f64)) -> (f64, f64) {
+    if f == 0.0 {
+        (0.0, 0.0)
+    } else if f > 0.0 {
+        (f * m0, f * m1)
+    } else {
+        (f * m1, f * m0)
     }
 }

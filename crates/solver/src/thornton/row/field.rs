@@ -442,11 +442,15 @@ pub(super) fn front(lim: &Limit, rate: f64, u: f64) -> f64 {
     lim.reach - dy / (s * s)
 }
 
-/// The sign changes of `f` inside `(y0, y1)`, appended to `out`: `f` sampled at [`SAMPLES`]
-/// points on each stretch between the `kinks` (where it is smooth), each bracket bisected to
-/// the rounding.
+/// The sign changes of `f` inside `(y0, y1)`, appended to `out`, on each stretch between the
+/// `kinks` (where `f` is smooth): where `curvature(a, b)` (bounds `(min, max)` of `f″` on the
+/// stretch `(a, b)`) says that `f` is convex or concave there, its values at the stretch's ends
+/// decide (one sign change where they differ in sign; none where a convex `f` is not positive
+/// at either end, or a concave one not negative); elsewhere `f` is sampled at [`SAMPLES`]
+/// points. Each bracket is closed to the rounding ([`bisect`]).
 pub(super) fn crossings(
     f: &dyn Fn(f64) -> f64,
+    curvature: &dyn Fn(f64, f64) -> (f64, f64),
     y0: f64,
     y1: f64,
     kinks: &[f64],
@@ -463,26 +467,58 @@ pub(super) fn crossings(
     ends[n] = y1;
     let ends = &mut ends[..=n];
     ends.sort_by(f64::total_cmp);
+    let mut start = (y0, f(y0));
     for pair in ends.windows(2) {
         let (a, b) = (pair[0], pair[1]);
         if b <= a {
             continue;
         }
-        let mut prev = (a, f(a));
-        for i in 1..=SAMPLES {
-            let y = if i == SAMPLES {
-                b
-            } else {
-                a + (b - a) * i as f64 / SAMPLES as f64
-            };
-            let fy = f(y);
-            if (prev.1 < 0.0 && fy > 0.0) || (prev.1 > 0.0 && fy < 0.0) {
-                out.push(bisect(f, prev, (y, fy)));
-            } else if fy == 0.0 && y > y0 && y < y1 {
-                out.push(y);
+        let fa = start.1;
+        let fb = f(b);
+        start = (b, fb);
+        let (low, high) = curvature(a, b);
+        let differ = (fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0);
+        let convex = low >= 0.0;
+        let concave = high <= 0.0;
+        if convex || concave {
+            if differ {
+                out.push(bisect(f, (a, fa), (b, fb)));
+            } else if !((convex && fa <= 0.0 && fb <= 0.0) || (concave && fa >= 0.0 && fb >= 0.0)) {
+                sample(f, (a, fa), (b, fb), (y0, y1), out);
+                continue;
             }
-            prev = (y, fy);
+            if fb == 0.0 && b < y1 {
+                out.push(b);
+            }
+            continue;
         }
+        sample(f, (a, fa), (b, fb), (y0, y1), out);
+    }
+}
+
+/// The sign changes of `f` on one smooth stretch from `(a, f(a))` to `(b, f(b))`, bracketed on
+/// [`SAMPLES`] points (exact zeros inside `(y0, y1)` kept as they are).
+fn sample(
+    f: &dyn Fn(f64) -> f64,
+    (a, fa): (f64, f64),
+    (b, fb): (f64, f64),
+    (y0, y1): (f64, f64),
+    out: &mut Vec<f64>,
+) {
+    let mut prev = (a, fa);
+    for i in 1..=SAMPLES {
+        let (y, fy) = if i == SAMPLES {
+            (b, fb)
+        } else {
+            let y = a + (b - a) * i as f64 / SAMPLES as f64;
+            (y, f(y))
+        };
+        if (prev.1 < 0.0 && fy > 0.0) || (prev.1 > 0.0 && fy < 0.0) {
+            out.push(bisect(f, prev, (y, fy)));
+        } else if fy == 0.0 && y > y0 && y < y1 {
+            out.push(y);
+        }
+        prev = (y, fy);
     }
 }
 
