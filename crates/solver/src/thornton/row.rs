@@ -100,14 +100,13 @@ impl ThorntonRow {
     /// Put `pieces` in place of chunk `k` (split in chunks of at most [`CHUNK_MAX`], none if
     /// empty), with their sums for the limit slope `s`; returns the number of chunks now there.
     fn install(&mut self, k: usize, pieces: Vec<Piece>, s: f64) -> usize {
-        let line = self.line;
         if pieces.is_empty() {
             self.spare = std::mem::take(&mut self.chunks[k].pieces);
             self.chunks.remove(k);
             return 0;
         }
         if pieces.len() <= CHUNK_MAX {
-            let chunk = Chunk::new(pieces, s, &line);
+            let chunk = Chunk::new(pieces, s);
             let old = std::mem::replace(&mut self.chunks[k], chunk);
             if old.pieces.capacity() > self.spare.capacity() {
                 self.spare = old.pieces;
@@ -116,7 +115,7 @@ impl ThorntonRow {
         }
         let parts: Vec<Chunk> = pieces
             .chunks(CHUNK_MAX)
-            .map(|c| Chunk::new(c.to_vec(), s, &line))
+            .map(|c| Chunk::new(c.to_vec(), s))
             .collect();
         let n = parts.len();
         self.chunks.splice(k..=k, parts);
@@ -127,7 +126,6 @@ impl ThorntonRow {
     /// in one, so that a run at a limit is one piece (one integral a step) and the chunks stay
     /// few.
     fn compact(&mut self, s: f64) {
-        let line = self.line;
         let mut k = 0;
         while k + 1 < self.chunks.len() {
             let joins = match (
@@ -152,11 +150,11 @@ impl ThorntonRow {
                 push_merged(&mut pieces, p);
             }
             if pieces.len() <= CHUNK_MAX {
-                self.chunks[k] = Chunk::new(pieces, s, &line);
+                self.chunks[k] = Chunk::new(pieces, s);
             } else {
                 let tail = pieces.split_off(CHUNK_MAX);
-                self.chunks[k] = Chunk::new(pieces, s, &line);
-                let next = Chunk::new(tail, s, &line);
+                self.chunks[k] = Chunk::new(pieces, s);
+                let next = Chunk::new(tail, s);
                 self.chunks.insert(k + 1, next);
                 k += 1;
             }
@@ -241,11 +239,10 @@ impl ThorntonRow {
             !(g0 < 0.0 && g1 <= 0.0)
         });
         let grow = !self.unloading;
-        let line = self.line;
         let mut k = 0;
         while k < self.chunks.len() {
             let w = self.offset;
-            if !self.chunks[k].changes(&lim1, w, release, grow, &line) {
+            if !self.chunks[k].changes(&lim1, w, release, grow) {
                 k += 1;
                 continue;
             }
@@ -469,7 +466,7 @@ impl ThorntonRow {
         let general = if lim.linear_from(p.y0) {
             // Linear limits ±s (D − y): the piece's bounds for slope s decide most steps.
             if p.slope != lim.c {
-                p = p.bounded(lim.c, &line);
+                p = p.bounded(lim.c);
             }
             let top = lim.c * (lim.reach - lim.shift);
             let sides = (p.upper > top - w, p.lower < -top - w);
@@ -505,9 +502,8 @@ impl ThorntonRow {
             } else {
                 0.0
             };
-            let b = p.bounded(s, &line);
+            let b = p.bounded(s);
             let top = floor + s * p.y1;
-            p.slope = f64::NAN;
             // Each limit is crossed only where neither its floor nor its chord says otherwise.
             let sides = (
                 w + p.hi >= floor && b.upper > top - w,

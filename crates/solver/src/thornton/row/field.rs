@@ -42,6 +42,10 @@ pub(super) struct Piece {
     pub(super) upper: f64,
     pub(super) lower: f64,
     pub(super) slope: f64,
+    /// The curved part `k Q(D_f − y)` of a stuck piece at `y0`, `y1` and the middle, and its
+    /// slope in `y` at the middle (zeros where `k = 0`): what its range and bounds need, kept
+    /// so that bounding a piece for a new slope takes no arctangent.
+    pub(super) curve: [f64; 4],
 }
 
 impl Piece {
@@ -82,6 +86,7 @@ impl Piece {
             upper: 0.0,
             lower: 0.0,
             slope: f64::NAN,
+            curve: [0.0; 4],
         }
         .refreshed(line, radius)
     }
@@ -105,6 +110,7 @@ impl Piece {
             upper: 0.0,
             lower: 0.0,
             slope: f64::NAN,
+            curve: [0.0; 4],
         }
     }
 
@@ -127,14 +133,25 @@ impl Piece {
 
     /// A stuck piece with its integral and range computed.
     pub(super) fn refreshed(mut self, line: &Truncated, radius: f64) -> Self {
+        self.curve = if self.k == 0.0 {
+            [0.0; 4]
+        } else {
+            let ym = 0.5 * (self.y0 + self.y1);
+            [
+                self.k * line.value(self.top - self.y0),
+                self.k * line.value(self.top - self.y1),
+                self.k * line.value(self.top - ym),
+                -self.k * line.slope(self.top - ym),
+            ]
+        };
         self.rel = self.integral(line, radius);
-        (self.lo, self.hi) = self.range(line);
+        (self.lo, self.hi) = self.range();
         self.slope = f64::NAN;
         self
     }
 
     /// A stuck piece with its bounds for the limit slope `s` ([`Piece::upper`]).
-    pub(super) fn bounded(mut self, s: f64, line: &Truncated) -> Self {
+    pub(super) fn bounded(mut self, s: f64) -> Self {
         // The curved part k Q(D_f − y) between two lines: its chord and its tangent at the
         // middle (Q(D_f − y) is concave in y; k < 0 swaps them).
         let (cu, cl) = if self.k == 0.0 {
@@ -142,17 +159,10 @@ impl Piece {
         } else {
             let (y0, y1) = (self.y0, self.y1);
             let ym = 0.5 * (y0 + y1);
-            let (v0, v1) = (
-                self.k * line.value(self.top - y0),
-                self.k * line.value(self.top - y1),
-            );
+            let [v0, v1, vm, t_slope] = self.curve;
             let chord_slope = if y1 > y0 { (v1 - v0) / (y1 - y0) } else { 0.0 };
             let chord = (v0 - chord_slope * (y0 - self.y_ref), chord_slope);
-            let t_slope = -self.k * line.slope(self.top - ym);
-            let tangent = (
-                self.k * line.value(self.top - ym) - t_slope * (ym - self.y_ref),
-                t_slope,
-            );
+            let tangent = (vm - t_slope * (ym - self.y_ref), t_slope);
             if self.k > 0.0 {
                 (tangent, chord)
             } else {
@@ -212,8 +222,9 @@ impl Piece {
         }
     }
 
-    /// Bounds `(min, max)` of `ũ − W` over a stuck piece.
-    pub(super) fn range(&self, line: &Truncated) -> (f64, f64) {
+    /// Bounds `(min, max)` of `ũ − W` over a stuck piece (its curved part's values kept in
+    /// [`Piece::curve`]).
+    pub(super) fn range(&self) -> (f64, f64) {
         let quad = |y: f64| {
             let z = y - self.y_ref;
             self.a + z * (self.b + self.q * z)
@@ -231,10 +242,7 @@ impl Piece {
         }
         if self.k != 0.0 {
             // Q(D_f − y) falls with y.
-            let (u, v) = (
-                self.k * line.value(self.top - self.y0),
-                self.k * line.value(self.top - self.y1),
-            );
+            let (u, v) = (self.curve[0], self.curve[1]);
             lo += u.min(v);
             hi += u.max(v);
         }
@@ -313,7 +321,7 @@ pub(super) struct Chunk {
 
 impl Chunk {
     /// The chunk of `pieces` with its sums, the stuck pieces bounded for the slope `s`.
-    pub(super) fn new(mut pieces: Vec<Piece>, s: f64, line: &Truncated) -> Self {
+    pub(super) fn new(mut pieces: Vec<Piece>, s: f64) -> Self {
         let mut ch = Chunk {
             stuck_length: 0.0,
             rel: 0.0,
@@ -330,7 +338,7 @@ impl Chunk {
         for p in &mut pieces {
             if p.kind == Kind::Stuck {
                 if p.slope != s {
-                    *p = p.bounded(s, line);
+                    *p = p.bounded(s);
                 }
                 ch.stuck_length += p.x1 - p.x0;
                 ch.rel += p.rel;
@@ -355,14 +363,7 @@ impl Chunk {
     /// springs may stick again in the step (`release`, `+` and `−`), or its stuck pieces may
     /// cross the limit `lim` with the offset `w` (`grow`: the limits have only grown since the
     /// chunk's margins were measured).
-    pub(super) fn changes(
-        &mut self,
-        lim: &Limit,
-        w: f64,
-        release: [bool; 2],
-        grow: bool,
-        line: &Truncated,
-    ) -> bool {
+    pub(super) fn changes(&mut self, lim: &Limit, w: f64, release: [bool; 2], grow: bool) -> bool {
         let (Some(first), Some(last)) = (self.pieces.first(), self.pieces.last()) else {
             return false;
         };
@@ -376,6 +377,14 @@ impl Chunk {
             let top = lim.c * (lim.reach - lim.shift);
             return !(self.upper <= top - w && self.lower >= -top - w);
         }
+        // Margins measured while the limits grow: O(1) a step.
+        let inside = |ch: &Self| {
+            let moved = w - ch.at_offset;
+            ch.margin[0] >= moved && ch.margin[1] >= -moved
+        };
+        if grow && !self.margin[0].is_nan() && inside(self) {
+            return false;
+        }
         let floor = lim.at(last.y1);
         if w + self.hi < floor && w + self.lo > -floor {
             return false;
@@ -383,36 +392,39 @@ impl Chunk {
         if !grow {
             return true;
         }
-        // Measured once while the limits grow, then O(1) a step.
         if self.margin[0].is_nan() {
-            self.measure(lim, w, line);
+            self.measure(lim, w);
         }
-        let moved = w - self.at_offset;
-        !(self.margin[0] >= moved && self.margin[1] >= -moved)
+        !inside(self)
     }
 
     /// Record the stuck pieces' distances to `±lim` at the offset `w` ([`Chunk::margin`]): for
     /// each, its bounds against the limit's line (a linear limit) or chord (a curved one, which
     /// is above its chord).
-    pub(super) fn measure(&mut self, lim: &Limit, w: f64, line: &Truncated) {
+    pub(super) fn measure(&mut self, lim: &Limit, w: f64) {
         let mut margin = [f64::INFINITY; 2];
+        // The limit at the last piece's end, where the next piece mostly starts.
+        let mut last = (f64::NAN, f64::NAN);
+        let mut at = |y: f64| {
+            if y != last.0 {
+                last = (y, lim.at(y));
+            }
+            last.1
+        };
         for p in self.pieces.iter().filter(|p| p.kind == Kind::Stuck) {
             let (b, top) = if lim.linear_from(p.y0) {
                 let b = if p.slope == lim.c {
                     *p
                 } else {
-                    p.bounded(lim.c, line)
+                    p.bounded(lim.c)
                 };
                 (b, lim.c * (lim.reach - lim.shift))
             } else {
-                let floor = lim.at(p.y1);
+                let l0 = at(p.y0);
+                let floor = at(p.y1);
                 let span = p.y1 - p.y0;
-                let s = if span > 0.0 {
-                    (lim.at(p.y0) - floor) / span
-                } else {
-                    0.0
-                };
-                (p.bounded(s, line), floor + s * p.y1)
+                let s = if span > 0.0 { (l0 - floor) / span } else { 0.0 };
+                (p.bounded(s), floor + s * p.y1)
             };
             margin[0] = margin[0].min(top - w - b.upper);
             margin[1] = margin[1].min(b.lower + top + w);
