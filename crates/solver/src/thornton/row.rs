@@ -251,6 +251,8 @@ impl ThorntonRow {
             out.clear();
             for &p in &old {
                 match p.kind {
+                    // Inside the limits by its caps while they grow: unchanged.
+                    Kind::Stuck if grow && w <= p.caps[0] && -w <= p.caps[1] => out.push(p),
                     Kind::Stuck => self.clip(p, &lim1, &mut out),
                     Kind::Plus | Kind::Minus => {
                         self.slip(p, (&lim0, &lim1), rates, m, w_old, &mut out);

@@ -46,6 +46,10 @@ pub(super) struct Piece {
     /// slope in `y` at the middle (zeros where `k = 0`): what its range and bounds need, kept
     /// so that bounding a piece for a new slope takes no arctangent.
     pub(super) curve: [f64; 4],
+    /// While the limits only grow (loading): the offsets `W` up to which a stuck piece stays
+    /// inside the `+` limit (`W ≤ caps[0]`) and the `−` limit (`−W ≤ caps[1]`), measured
+    /// against the limit of one step (NaN until measured; [`Chunk::measure`]).
+    pub(super) caps: [f64; 2],
 }
 
 impl Piece {
@@ -87,6 +91,7 @@ impl Piece {
             lower: 0.0,
             slope: f64::NAN,
             curve: [0.0; 4],
+            caps: [f64::NAN; 2],
         }
         .refreshed(line, radius)
     }
@@ -111,6 +116,7 @@ impl Piece {
             lower: 0.0,
             slope: f64::NAN,
             curve: [0.0; 4],
+            caps: [f64::NAN; 2],
         }
     }
 
@@ -133,6 +139,7 @@ impl Piece {
 
     /// A stuck piece with its integral and range computed.
     pub(super) fn refreshed(mut self, line: &Truncated, radius: f64) -> Self {
+        self.caps = [f64::NAN; 2];
         self.curve = if self.k == 0.0 {
             [0.0; 4]
         } else {
@@ -152,6 +159,13 @@ impl Piece {
 
     /// A stuck piece with its bounds for the limit slope `s` ([`Piece::upper`]).
     pub(super) fn bounded(mut self, s: f64) -> Self {
+        (self.upper, self.lower) = self.bounds(s);
+        self.slope = s;
+        self
+    }
+
+    /// `(upper, lower)` of [`Piece::upper`] for the limit slope `s`.
+    pub(super) fn bounds(&self, s: f64) -> (f64, f64) {
         // The curved part k Q(D_f − y) between two lines: its chord and its tangent at the
         // middle (Q(D_f − y) is concave in y; k < 0 swaps them).
         let (cu, cl) = if self.k == 0.0 {
@@ -184,10 +198,10 @@ impl Piece {
             best
         };
         let y_ref_term = s * self.y_ref;
-        self.upper = ext(self.a + cu.0 + y_ref_term, self.b + cu.1 + s, true);
-        self.lower = ext(self.a + cl.0 - y_ref_term, self.b + cl.1 - s, false);
-        self.slope = s;
-        self
+        (
+            ext(self.a + cu.0 + y_ref_term, self.b + cu.1 + s, true),
+            ext(self.a + cl.0 - y_ref_term, self.b + cl.1 - s, false),
+        )
     }
 
     /// `ũ − W` of a stuck piece at `y`.
@@ -311,12 +325,10 @@ pub(super) struct Chunk {
     pub(super) slope: f64,
     /// Whether some piece is at the `+` / `−` limit.
     pub(super) signs: [bool; 2],
-    /// Lower bounds of the stuck pieces' distances to the `+` and `−` limits when the chunk was
-    /// built in loading (`L − ũ` and `ũ + L`, at the offset `at_offset`; NaN otherwise). While
-    /// the limits only grow (loading), the chunk is inside them as long as
-    /// `margin₊ ≥ W − at_offset` and `margin₋ ≥ at_offset − W`.
-    pub(super) margin: [f64; 2],
-    pub(super) at_offset: f64,
+    /// The smallest [`Piece::caps`] of the stuck pieces (NaN while one is not measured): while
+    /// the limits only grow (loading), the chunk is inside them as long as `W ≤ caps[0]` and
+    /// `−W ≤ caps[1]`.
+    pub(super) caps: [f64; 2],
 }
 
 impl Chunk {
@@ -331,8 +343,7 @@ impl Chunk {
             lower: f64::INFINITY,
             slope: s,
             signs: [false, false],
-            margin: [f64::NAN; 2],
-            at_offset: f64::NAN,
+            caps: [f64::INFINITY; 2],
             pieces: Vec::new(),
         };
         for p in &mut pieces {
@@ -346,6 +357,7 @@ impl Chunk {
                 ch.hi = ch.hi.max(p.hi);
                 ch.upper = ch.upper.max(p.upper);
                 ch.lower = ch.lower.min(p.lower);
+                ch.caps = low_caps(ch.caps, p.caps);
             } else {
                 ch.signs[usize::from(p.kind == Kind::Minus)] = true;
             }
@@ -377,12 +389,8 @@ impl Chunk {
             let top = lim.c * (lim.reach - lim.shift);
             return !(self.upper <= top - w && self.lower >= -top - w);
         }
-        // Margins measured while the limits grow: O(1) a step.
-        let inside = |ch: &Self| {
-            let moved = w - ch.at_offset;
-            ch.margin[0] >= moved && ch.margin[1] >= -moved
-        };
-        if grow && !self.margin[0].is_nan() && inside(self) {
+        // Caps measured while the limits grow: O(1) a step.
+        if grow && inside(self.caps, w) {
             return false;
         }
         let floor = lim.at(last.y1);
@@ -392,17 +400,16 @@ impl Chunk {
         if !grow {
             return true;
         }
-        if self.margin[0].is_nan() {
-            self.measure(lim, w);
-        }
-        !inside(self)
+        self.measure(lim, w);
+        !inside(self.caps, w)
     }
 
-    /// Record the stuck pieces' distances to `±lim` at the offset `w` ([`Chunk::margin`]): for
+    /// Measure the caps ([`Piece::caps`]) of the stuck pieces that have none or whose caps the
+    /// offset `w` passes against `±lim` (the limits have grown since), and the chunk's: for
     /// each, its bounds against the limit's line (a linear limit) or chord (a curved one, which
     /// is above its chord).
     pub(super) fn measure(&mut self, lim: &Limit, w: f64) {
-        let mut margin = [f64::INFINITY; 2];
+        let mut caps = [f64::INFINITY; 2];
         // The limit at the last piece's end, where the next piece mostly starts.
         let mut last = (f64::NAN, f64::NAN);
         let mut at = |y: f64| {
@@ -411,27 +418,46 @@ impl Chunk {
             }
             last.1
         };
-        for p in self.pieces.iter().filter(|p| p.kind == Kind::Stuck) {
-            let (b, top) = if lim.linear_from(p.y0) {
-                let b = if p.slope == lim.c {
-                    *p
+        for p in self.pieces.iter_mut().filter(|p| p.kind == Kind::Stuck) {
+            if !inside(p.caps, w) {
+                let ((upper, lower), top) = if lim.linear_from(p.y0) {
+                    let b = if p.slope == lim.c {
+                        (p.upper, p.lower)
+                    } else {
+                        p.bounds(lim.c)
+                    };
+                    (b, lim.c * (lim.reach - lim.shift))
                 } else {
-                    p.bounded(lim.c)
+                    let l0 = at(p.y0);
+                    let floor = at(p.y1);
+                    let span = p.y1 - p.y0;
+                    let s = if span > 0.0 { (l0 - floor) / span } else { 0.0 };
+                    (p.bounds(s), floor + s * p.y1)
                 };
-                (b, lim.c * (lim.reach - lim.shift))
-            } else {
-                let l0 = at(p.y0);
-                let floor = at(p.y1);
-                let span = p.y1 - p.y0;
-                let s = if span > 0.0 { (l0 - floor) / span } else { 0.0 };
-                (p.bounded(s), floor + s * p.y1)
-            };
-            margin[0] = margin[0].min(top - w - b.upper);
-            margin[1] = margin[1].min(b.lower + top + w);
+                // Inside while ũ − W + W ≤ L: W ≤ top − upper, and −W ≤ top + lower.
+                p.caps = [top - upper, top + lower];
+            }
+            caps = low_caps(caps, p.caps);
         }
-        self.margin = margin;
-        self.at_offset = w;
+        self.caps = caps;
     }
+}
+
+/// Whether the offset `w` is within the caps ([`Chunk::caps`]; false while one is NaN).
+fn inside(caps: [f64; 2], w: f64) -> bool {
+    w <= caps[0] && -w <= caps[1]
+}
+
+/// The smaller of two caps, each side, NaN where either is NaN.
+fn low_caps(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    let low = |u: f64, v: f64| {
+        if u.is_nan() || v.is_nan() {
+            f64::NAN
+        } else {
+            u.min(v)
+        }
+    };
+    [low(a[0], b[0]), low(a[1], b[1])]
 }
 
 /// Samples per stretch between kinks when bracketing a crossing with a curved limit or piece.
