@@ -59,15 +59,16 @@ impl Truncated {
     }
 
     /// Bounds `(min, max)` of `−Q″(T − y)` (1/m) for `y` inside `(a, b)`, `a < b`: `(0, 0)`
-    /// where `Q(T − y)` is linear there, `(−∞, ∞)` where its kink at `T − y = 0` is inside, and
+    /// where `Q(T − y)` is linear there, `(−∞, ∞)` where its kink at `T − y = 0` is inside (or
+    /// an end is NaN), and
     /// `(0, ∞)` where its kink at `d_y` is (by the rounding of a stretch's end at a kink).
     pub fn curvature_range(&self, top: f64, a: f64, b: f64) -> (f64, f64) {
         let dy = self.yield_indentation;
         let (s_lo, s_hi) = (top - b, top - a);
-        if s_lo < 0.0 && s_hi > 0.0 {
+        if s_lo.is_nan() || s_hi.is_nan() || (s_lo < 0.0 && s_hi > 0.0) {
             return (f64::NEG_INFINITY, f64::INFINITY);
         }
-        if !(s_hi > dy) {
+        if s_hi <= dy {
             return (0.0, 0.0);
         }
         if s_lo < dy {

@@ -24,8 +24,11 @@
 //! quadratic of the elastic row plus, for a part that stuck again at a curved limit, the limit
 //! it left (`k = ±c`, `D_f` the indentation then). Its integral is exact (Gauss for the
 //! quadratic, [`super::line::Truncated::integral`] for the rest); where a curved limit or a
-//! curved piece meets a limit, the crossing is found by bracketing on a few samples between
-//! the kinks of `Q` and bisection to the rounding.
+//! curved piece meets a limit, the crossing is found between the kinks of `Q`: from the gap's
+//! values at a stretch's ends where the bounds of its second derivative say that it is convex
+//! or concave there, else by bracketing on a few samples, then closed to the rounding. While
+//! the limits grow, each stuck piece keeps the offsets up to which it stays inside them
+//! ([`field::Piece::caps`]), so that a step clips only the pieces that may have changed.
 
 mod field;
 
