@@ -243,7 +243,8 @@ impl ThorntonRow {
         });
         let grow = !self.unloading;
         let mut k = 0;
-        while k < self.chunks.len() {
+        // Without slip (c = ∞) no chunk changes.
+        while lim1.c.is_finite() && k < self.chunks.len() {
             let w = self.offset;
             if !self.chunks[k].changes(&lim1, w, release, grow) {
                 k += 1;
@@ -252,13 +253,13 @@ impl ThorntonRow {
             let old = std::mem::take(&mut self.chunks[k].pieces);
             let mut out = std::mem::take(&mut self.spare);
             out.clear();
-            for &p in &old {
+            for p in &old {
                 match p.kind {
                     // Inside the limits by its caps while they grow: unchanged.
-                    Kind::Stuck if grow && w <= p.caps[0] && -w <= p.caps[1] => out.push(p),
-                    Kind::Stuck => self.clip(p, &lim1, &mut out),
+                    Kind::Stuck if grow && w <= p.caps[0] && -w <= p.caps[1] => out.push(*p),
+                    Kind::Stuck => self.clip(*p, &lim1, &mut out),
                     Kind::Plus | Kind::Minus => {
-                        self.slip(p, (&lim0, &lim1), rates, m, w_old, &mut out);
+                        self.slip(*p, (&lim0, &lim1), rates, m, w_old, &mut out);
                     }
                 }
             }
@@ -288,11 +289,18 @@ impl ThorntonRow {
             // Into the last chunk while it has room.
             let last = self.chunks.len();
             if last > 0 && self.chunks[last - 1].pieces.len() + out.len() <= CHUNK_MAX {
-                let mut pieces = std::mem::take(&mut self.chunks[last - 1].pieces);
-                for &p in &out {
-                    push_merged(&mut pieces, p);
+                let chunk = &mut self.chunks[last - 1];
+                if chunk.slope == lim1.c {
+                    for &p in &out {
+                        chunk.append(p);
+                    }
+                } else {
+                    let mut pieces = std::mem::take(&mut chunk.pieces);
+                    for &p in &out {
+                        push_merged(&mut pieces, p);
+                    }
+                    self.install(last - 1, pieces, lim1.c);
                 }
-                self.install(last - 1, pieces, lim1.c);
             } else if !out.is_empty() {
                 self.chunks.push(Chunk::default());
                 self.install(last, std::mem::take(&mut out), lim1.c);

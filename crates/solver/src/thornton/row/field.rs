@@ -347,23 +347,40 @@ impl Chunk {
             pieces: Vec::new(),
         };
         for p in &mut pieces {
-            if p.kind == Kind::Stuck {
-                if p.slope != s {
-                    *p = p.bounded(s);
-                }
-                ch.stuck_length += p.x1 - p.x0;
-                ch.rel += p.rel;
-                ch.lo = ch.lo.min(p.lo);
-                ch.hi = ch.hi.max(p.hi);
-                ch.upper = ch.upper.max(p.upper);
-                ch.lower = ch.lower.min(p.lower);
-                ch.caps = low_caps(ch.caps, p.caps);
-            } else {
-                ch.signs[usize::from(p.kind == Kind::Minus)] = true;
-            }
+            ch.count(p);
         }
         ch.pieces = pieces;
         ch
+    }
+
+    /// Add a piece's share to the sums (a stuck piece bounded for the chunk's slope first).
+    fn count(&mut self, p: &mut Piece) {
+        if p.kind == Kind::Stuck {
+            if p.slope != self.slope {
+                *p = p.bounded(self.slope);
+            }
+            self.stuck_length += p.x1 - p.x0;
+            self.rel += p.rel;
+            self.lo = self.lo.min(p.lo);
+            self.hi = self.hi.max(p.hi);
+            self.upper = self.upper.max(p.upper);
+            self.lower = self.lower.min(p.lower);
+            self.caps = low_caps(self.caps, p.caps);
+        } else {
+            self.signs[usize::from(p.kind == Kind::Minus)] = true;
+        }
+    }
+
+    /// Append `p` ([`push_merged`]) with its share of the sums: the same chunk as
+    /// [`Chunk::new`] of all its pieces, without visiting the others.
+    pub(super) fn append(&mut self, p: Piece) {
+        let n = self.pieces.len();
+        push_merged(&mut self.pieces, p);
+        if self.pieces.len() > n {
+            let mut last = self.pieces[n];
+            self.count(&mut last);
+            self.pieces[n] = last;
+        }
     }
 
     /// Whether some piece is at a limit.
@@ -375,6 +392,7 @@ impl Chunk {
     /// springs may stick again in the step (`release`, `+` and `−`), or its stuck pieces may
     /// cross the limit `lim` with the offset `w` (`grow`: the limits have only grown since the
     /// chunk's margins were measured).
+    #[inline]
     pub(super) fn changes(&mut self, lim: &Limit, w: f64, release: [bool; 2], grow: bool) -> bool {
         let (Some(first), Some(last)) = (self.pieces.first(), self.pieces.last()) else {
             return false;
@@ -408,6 +426,7 @@ impl Chunk {
     /// offset `w` passes against `±lim` (the limits have grown since), and the chunk's: for
     /// each, its bounds against the limit's line (a linear limit) or chord (a curved one, which
     /// is above its chord).
+    #[inline(never)]
     pub(super) fn measure(&mut self, lim: &Limit, w: f64) {
         let mut caps = [f64::INFINITY; 2];
         // The limit at the last piece's end, where the next piece mostly starts.
