@@ -484,6 +484,9 @@ impl ThorntonRow {
             let top = lim.c * (lim.reach - lim.shift);
             let sides = (p.upper > top - w, p.lower < -top - w);
             if !(sides.0 || sides.1) {
+                // Inside while W + upper ≤ top and W + lower ≥ −top (the caps, while the
+                // limits grow).
+                p.caps = [top - p.upper, top + p.lower];
                 out.push(p);
                 return;
             }
@@ -505,6 +508,8 @@ impl ThorntonRow {
             // A curved limit: above its smallest value on the piece, and above its chord (it
             // is concave in y), which is a linear limit of slope s through (y1, L(y1)).
             let floor = lim.at(p.y1);
+            // The caps by the floor: inside while W + hi ≤ floor and W + lo ≥ −floor.
+            p.caps = [floor - p.hi, floor + p.lo];
             if w + p.hi < floor && w + p.lo > -floor {
                 out.push(p);
                 return;
@@ -515,14 +520,15 @@ impl ThorntonRow {
             } else {
                 0.0
             };
-            let b = p.bounded(s);
+            let (upper, lower) = p.bounds(s);
             let top = floor + s * p.y1;
             // Each limit is crossed only where neither its floor nor its chord says otherwise.
             let sides = (
-                w + p.hi >= floor && b.upper > top - w,
-                w + p.lo <= -floor && b.lower < -top - w,
+                w + p.hi >= floor && upper > top - w,
+                w + p.lo <= -floor && lower < -top - w,
             );
             if !(sides.0 || sides.1) {
+                p.caps = [p.caps[0].max(top - upper), p.caps[1].max(top + lower)];
                 out.push(p);
                 return;
             }
