@@ -242,6 +242,9 @@ impl ThorntonRow {
             !(g0 < 0.0 && g1 <= 0.0)
         });
         let grow = !self.unloading;
+        // Thornton's unloading: linear limits ±c_κ (D − y) everywhere, below `top1` − c_κ y.
+        let lines = !grow && lim1.line.yield_indentation == f64::INFINITY;
+        let top1 = lim1.c * (lim1.reach - lim1.shift);
         let mut k = 0;
         // Without slip (c = ∞) no chunk changes.
         while lim1.c.is_finite() && k < self.chunks.len() {
@@ -255,8 +258,18 @@ impl ThorntonRow {
             out.clear();
             for p in &old {
                 match p.kind {
-                    // Inside the limits by its caps while they grow: unchanged.
+                    // Inside the limits by its caps while they grow, or by its bounds against
+                    // the lines of Thornton's unloading: unchanged.
                     Kind::Stuck if grow && w <= p.caps[0] && -w <= p.caps[1] => out.push(*p),
+                    Kind::Stuck
+                        if lines
+                            && p.slope == lim1.c
+                            && p.x1 > p.x0
+                            && p.upper <= top1 - w
+                            && p.lower >= -top1 - w =>
+                    {
+                        out.push(*p)
+                    }
                     Kind::Stuck => self.clip(*p, &lim1, &mut out),
                     Kind::Plus | Kind::Minus => {
                         self.slip(*p, (&lim0, &lim1), rates, m, w_old, &mut out);
