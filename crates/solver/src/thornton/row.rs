@@ -59,6 +59,9 @@ pub struct ThorntonRow {
     unloading: bool,
     at_limit: (bool, bool),
     cuts: Vec<f64>,
+    /// The first chunk changed since the last [`ThorntonRow::compact`] (the pairs before it
+    /// were left as they are then).
+    dirty: usize,
 }
 
 impl ThorntonRow {
@@ -77,6 +80,7 @@ impl ThorntonRow {
             unloading: false,
             at_limit: (false, false),
             cuts: Vec::new(),
+            dirty: 0,
         }
     }
 
@@ -103,6 +107,7 @@ impl ThorntonRow {
     /// Put `pieces` in place of chunk `k` (split in chunks of at most [`CHUNK_MAX`], none if
     /// empty), with their sums for the limit slope `s`; returns the number of chunks now there.
     fn install(&mut self, k: usize, pieces: Vec<Piece>, s: f64) -> usize {
+        self.dirty = self.dirty.min(k);
         if pieces.is_empty() {
             self.spare = std::mem::take(&mut self.chunks[k].pieces);
             self.chunks.remove(k);
@@ -129,7 +134,9 @@ impl ThorntonRow {
     /// in one, so that a run at a limit is one piece (one integral a step) and the chunks stay
     /// few.
     fn compact(&mut self, s: f64) {
-        let mut k = 0;
+        // A pass leaves no pair to join: only pairs with a changed chunk are looked at.
+        let mut k = self.dirty.saturating_sub(1);
+        self.dirty = usize::MAX;
         while k + 1 < self.chunks.len() {
             let joins = match (
                 self.chunks[k].pieces.last(),
@@ -302,6 +309,7 @@ impl ThorntonRow {
             // Into the last chunk while it has room.
             let last = self.chunks.len();
             if last > 0 && self.chunks[last - 1].pieces.len() + out.len() <= CHUNK_MAX {
+                self.dirty = self.dirty.min(last - 1);
                 let chunk = &mut self.chunks[last - 1];
                 if chunk.slope == lim1.c {
                     for &p in &out {
@@ -630,6 +638,7 @@ impl ThorntonRow {
             .is_some_and(|ch| ch.pieces.first().is_none_or(|p| p.y0 >= top))
         {
             self.chunks.pop();
+            self.dirty = self.dirty.min(self.chunks.len());
         }
         let k = self.chunks.len();
         if k == 0 {
