@@ -46,6 +46,42 @@ impl Truncated {
         }
     }
 
+    /// `−Q″(s) = (1/π) √d_y / (s √(s − d_y))` (1/m) for `s > d_y`, 0 below (where `Q` is
+    /// linear): how fast the slope falls in the truncated part, decreasing in `s` there and
+    /// unbounded as `s → d_y⁺`.
+    pub fn curvature(&self, s: f64) -> f64 {
+        let dy = self.yield_indentation;
+        if s > dy {
+            std::f64::consts::FRAC_1_PI * dy.sqrt() / (s * (s - dy).sqrt())
+        } else {
+            0.0
+        }
+    }
+
+    /// Bounds `(min, max)` of `−Q″(T − y)` (1/m) for `y` inside `(a, b)`, `a < b`: `(0, 0)`
+    /// where `Q(T − y)` is linear there, `(−∞, ∞)` where its kink at `T − y = 0` is inside (or
+    /// an end is NaN), and
+    /// `(0, ∞)` where its kink at `d_y` is (by the rounding of a stretch's end at a kink).
+    pub fn curvature_range(&self, top: f64, a: f64, b: f64) -> (f64, f64) {
+        let dy = self.yield_indentation;
+        let (s_lo, s_hi) = (top - b, top - a);
+        if s_lo.is_nan() || s_hi.is_nan() || (s_lo < 0.0 && s_hi > 0.0) {
+            return (f64::NEG_INFINITY, f64::INFINITY);
+        }
+        if s_hi <= dy {
+            return (0.0, 0.0);
+        }
+        if s_lo < dy {
+            return (0.0, f64::INFINITY);
+        }
+        let high = if s_lo > dy {
+            self.curvature(s_lo)
+        } else {
+            f64::INFINITY
+        };
+        (self.curvature(s_hi), high)
+    }
+
     /// `s` with `Q(s) = q` (`q ≥ 0`): `q` up to `d_y`, beyond by Newton from below (`Q` is
     /// concave and increasing there, so the iterates rise monotonically to the root).
     pub fn inverse(&self, q: f64) -> f64 {
@@ -162,6 +198,35 @@ mod tests {
             let numeric = (q.value(s + h) - q.value(s - h)) / (2.0 * h);
             assert!((numeric - q.slope(s)).abs() < 1e-8, "s {s}");
         }
+        for s in [0.31, 0.5, 2.0, 40.0] {
+            let h = 1e-5 * s;
+            let numeric = -(q.slope(s + h) - q.slope(s - h)) / (2.0 * h);
+            assert!(
+                (numeric - q.curvature(s)).abs() < 1e-6 * q.curvature(s),
+                "s {s}: {numeric} {}",
+                q.curvature(s)
+            );
+        }
+        assert_eq!(q.curvature(0.29), 0.0);
+        // Over y in (a, b), T − y runs over (T − b, T − a): the bounds are the curvature at its
+        // ends, and cover samples inside.
+        let (lo, hi) = q.curvature_range(1.0, 0.2, 0.6);
+        assert_eq!((lo, hi), (q.curvature(0.8), q.curvature(0.4)));
+        for i in 1..10 {
+            let m = q.curvature(1.0 - (0.2 + 0.04 * i as f64));
+            assert!(m >= lo && m <= hi);
+        }
+        assert_eq!(q.curvature_range(1.0, 0.75, 0.9), (0.0, 0.0));
+        let quarter = Truncated {
+            yield_indentation: 0.25,
+        };
+        assert_eq!(
+            quarter.curvature_range(1.0, 0.5, 0.75),
+            (quarter.curvature(0.5), f64::INFINITY)
+        );
+        assert_eq!(q.curvature_range(1.0, 0.5, 0.8), (0.0, f64::INFINITY));
+        assert_eq!(q.curvature_range(1.0, 0.5, 1.2).1, f64::INFINITY);
+        assert_eq!(q.curvature_range(1.0, 0.9, 1.2).0, f64::NEG_INFINITY);
         assert_eq!(q.slope(0.3), 1.0);
         assert!(q.slope(1e6) > 0.0 && q.slope(1e6) < 1e-2);
         for s in [0.0, 0.1, 0.3, 0.300001, 0.7, 5.0, 1e4] {

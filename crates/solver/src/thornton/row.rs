@@ -24,8 +24,11 @@
 //! quadratic of the elastic row plus, for a part that stuck again at a curved limit, the limit
 //! it left (`k = ±c`, `D_f` the indentation then). Its integral is exact (Gauss for the
 //! quadratic, [`super::line::Truncated::integral`] for the rest); where a curved limit or a
-//! curved piece meets a limit, the crossing is found by bracketing on a few samples between
-//! the kinks of `Q` and bisection to the rounding.
+//! curved piece meets a limit, the crossing is found between the kinks of `Q`: from the gap's
+//! values at a stretch's ends where the bounds of its second derivative say that it is convex
+//! or concave there, else by bracketing on a few samples, then closed to the rounding. While
+//! the limits grow, each stuck piece keeps the offsets up to which it stays inside them
+//! ([`field::Piece::caps`]), so that a step clips only the pieces that may have changed.
 
 mod field;
 
@@ -56,6 +59,9 @@ pub struct ThorntonRow {
     unloading: bool,
     at_limit: (bool, bool),
     cuts: Vec<f64>,
+    /// The first chunk changed since the last [`ThorntonRow::compact`] (the pairs before it
+    /// were left as they are then).
+    dirty: usize,
 }
 
 impl ThorntonRow {
@@ -74,6 +80,7 @@ impl ThorntonRow {
             unloading: false,
             at_limit: (false, false),
             cuts: Vec::new(),
+            dirty: 0,
         }
     }
 
@@ -120,14 +127,14 @@ impl ThorntonRow {
     /// Put `pieces` in place of chunk `k` (split in chunks of at most [`CHUNK_MAX`], none if
     /// empty), with their sums for the limit slope `s`; returns the number of chunks now there.
     fn install(&mut self, k: usize, pieces: Vec<Piece>, s: f64) -> usize {
-        let line = self.line;
+        self.dirty = self.dirty.min(k);
         if pieces.is_empty() {
             self.spare = std::mem::take(&mut self.chunks[k].pieces);
             self.chunks.remove(k);
             return 0;
         }
         if pieces.len() <= CHUNK_MAX {
-            let chunk = Chunk::new(pieces, s, &line);
+            let chunk = Chunk::new(pieces, s);
             let old = std::mem::replace(&mut self.chunks[k], chunk);
             if old.pieces.capacity() > self.spare.capacity() {
                 self.spare = old.pieces;
@@ -136,7 +143,7 @@ impl ThorntonRow {
         }
         let parts: Vec<Chunk> = pieces
             .chunks(CHUNK_MAX)
-            .map(|c| Chunk::new(c.to_vec(), s, &line))
+            .map(|c| Chunk::new(c.to_vec(), s))
             .collect();
         let n = parts.len();
         self.chunks.splice(k..=k, parts);
@@ -147,8 +154,9 @@ impl ThorntonRow {
     /// in one, so that a run at a limit is one piece (one integral a step) and the chunks stay
     /// few.
     fn compact(&mut self, s: f64) {
-        let line = self.line;
-        let mut k = 0;
+        // A pass leaves no pair to join: only pairs with a changed chunk are looked at.
+        let mut k = self.dirty.saturating_sub(1);
+        self.dirty = usize::MAX;
         while k + 1 < self.chunks.len() {
             let joins = match (
                 self.chunks[k].pieces.last(),
@@ -172,11 +180,11 @@ impl ThorntonRow {
                 push_merged(&mut pieces, p);
             }
             if pieces.len() <= CHUNK_MAX {
-                self.chunks[k] = Chunk::new(pieces, s, &line);
+                self.chunks[k] = Chunk::new(pieces, s);
             } else {
                 let tail = pieces.split_off(CHUNK_MAX);
-                self.chunks[k] = Chunk::new(pieces, s, &line);
-                let next = Chunk::new(tail, s, &line);
+                self.chunks[k] = Chunk::new(pieces, s);
+                let next = Chunk::new(tail, s);
                 self.chunks.insert(k + 1, next);
                 k += 1;
             }
@@ -261,22 +269,37 @@ impl ThorntonRow {
             !(g0 < 0.0 && g1 <= 0.0)
         });
         let grow = !self.unloading;
-        let line = self.line;
+        // Thornton's unloading: linear limits ±c_κ (D − y) everywhere, below `top1` − c_κ y.
+        let lines = !grow && lim1.line.yield_indentation == f64::INFINITY;
+        let top1 = lim1.c * (lim1.reach - lim1.shift);
         let mut k = 0;
-        while k < self.chunks.len() {
+        // Without slip (c = ∞) no chunk changes.
+        while lim1.c.is_finite() && k < self.chunks.len() {
             let w = self.offset;
-            if !self.chunks[k].changes(&lim1, w, release, grow, &line) {
+            if !self.chunks[k].changes(&lim1, w, release, grow) {
                 k += 1;
                 continue;
             }
             let old = std::mem::take(&mut self.chunks[k].pieces);
             let mut out = std::mem::take(&mut self.spare);
             out.clear();
-            for &p in &old {
+            for p in &old {
                 match p.kind {
-                    Kind::Stuck => self.clip(p, &lim1, &mut out),
+                    // Inside the limits by its caps while they grow, or by its bounds against
+                    // the lines of Thornton's unloading: unchanged.
+                    Kind::Stuck if grow && w <= p.caps[0] && -w <= p.caps[1] => out.push(*p),
+                    Kind::Stuck
+                        if lines
+                            && p.slope == lim1.c
+                            && p.x1 > p.x0
+                            && p.upper <= top1 - w
+                            && p.lower >= -top1 - w =>
+                    {
+                        out.push(*p)
+                    }
+                    Kind::Stuck => self.clip(*p, &lim1, &mut out),
                     Kind::Plus | Kind::Minus => {
-                        self.slip(p, (&lim0, &lim1), rates, m, w_old, &mut out);
+                        self.slip(*p, (&lim0, &lim1), rates, m, w_old, &mut out);
                     }
                 }
             }
@@ -306,11 +329,19 @@ impl ThorntonRow {
             // Into the last chunk while it has room.
             let last = self.chunks.len();
             if last > 0 && self.chunks[last - 1].pieces.len() + out.len() <= CHUNK_MAX {
-                let mut pieces = std::mem::take(&mut self.chunks[last - 1].pieces);
-                for &p in &out {
-                    push_merged(&mut pieces, p);
+                self.dirty = self.dirty.min(last - 1);
+                let chunk = &mut self.chunks[last - 1];
+                if chunk.slope == lim1.c {
+                    for &p in &out {
+                        chunk.append(p);
+                    }
+                } else {
+                    let mut pieces = std::mem::take(&mut chunk.pieces);
+                    for &p in &out {
+                        push_merged(&mut pieces, p);
+                    }
+                    self.install(last - 1, pieces, lim1.c);
                 }
-                self.install(last - 1, pieces, lim1.c);
             } else if !out.is_empty() {
                 self.chunks.push(Chunk::default());
                 self.install(last, std::mem::take(&mut out), lim1.c);
@@ -484,13 +515,19 @@ impl ThorntonRow {
         let line = self.line;
         self.cuts.clear();
         let mut p = p;
+        // `None`: the crossings are found (a quadratic against a line); else whether the `+` /
+        // `−` limit may be crossed, to be searched.
         let general = if lim.linear_from(p.y0) {
             // Linear limits ±s (D − y): the piece's bounds for slope s decide most steps.
             if p.slope != lim.c {
-                p = p.bounded(lim.c, &line);
+                p = p.bounded(lim.c);
             }
             let top = lim.c * (lim.reach - lim.shift);
-            if p.upper <= top - w && p.lower >= -top - w {
+            let sides = (p.upper > top - w, p.lower < -top - w);
+            if !(sides.0 || sides.1) {
+                // Inside while W + upper ≤ top and W + lower ≥ −top (the caps, while the
+                // limits grow).
+                p.caps = [top - p.upper, top + p.lower];
                 out.push(p);
                 return;
             }
@@ -504,14 +541,16 @@ impl ThorntonRow {
                 for z in &mut self.cuts {
                     *z += p.y_ref;
                 }
-                false
+                None
             } else {
-                true
+                Some(sides)
             }
         } else {
             // A curved limit: above its smallest value on the piece, and above its chord (it
             // is concave in y), which is a linear limit of slope s through (y1, L(y1)).
             let floor = lim.at(p.y1);
+            // The caps by the floor: inside while W + hi ≤ floor and W + lo ≥ −floor.
+            p.caps = [floor - p.hi, floor + p.lo];
             if w + p.hi < floor && w + p.lo > -floor {
                 out.push(p);
                 return;
@@ -522,25 +561,60 @@ impl ThorntonRow {
             } else {
                 0.0
             };
-            let b = p.bounded(s, &line);
+            let (upper, lower) = p.bounds(s);
             let top = floor + s * p.y1;
-            p.slope = f64::NAN;
-            if b.upper <= top - w && b.lower >= -top - w {
+            // Each limit is crossed only where neither its floor nor its chord says otherwise.
+            let sides = (
+                w + p.hi >= floor && upper > top - w,
+                w + p.lo <= -floor && lower < -top - w,
+            );
+            if !(sides.0 || sides.1) {
+                p.caps = [p.caps[0].max(top - upper), p.caps[1].max(top + lower)];
                 out.push(p);
                 return;
             }
-            true
+            Some(sides)
         };
-        if general {
+        if let Some((plus_side, minus_side)) = general {
             let kinks = [
                 p.top - line.yield_indentation,
                 lim.reach - lim.line.yield_indentation,
             ];
-            let plus = |y: f64| w + p.value(y, &line) - lim.at(y);
-            let minus = |y: f64| w + p.value(y, &line) + lim.at(y);
+            // ũ ∓ c_κ Λ has the second derivative 2q − k Q″-magnitude of the piece's curved
+            // part ± c_κ that of the limit (−Q″ ≥ 0 in both, bounded on each stretch).
+            let (k, c) = (p.k, lim.c);
+            let curvature = |a: f64, b: f64, sign: f64| {
+                let piece = if k == 0.0 {
+                    (0.0, 0.0)
+                } else {
+                    scaled(-k, line.curvature_range(p.top, a, b))
+                };
+                let limit = scaled(sign * c, lim.line.curvature_range(lim.reach, a, b));
+                (2.0 * p.q + piece.0 + limit.0, 2.0 * p.q + piece.1 + limit.1)
+            };
             let mut cuts = std::mem::take(&mut self.cuts);
-            crossings(&plus, p.y0, p.y1, &kinks, &mut cuts);
-            crossings(&minus, p.y0, p.y1, &kinks, &mut cuts);
+            if plus_side {
+                let plus = |y: f64| w + p.value(y, &line) - lim.at(y);
+                crossings(
+                    &plus,
+                    &|a, b| curvature(a, b, 1.0),
+                    p.y0,
+                    p.y1,
+                    &kinks,
+                    &mut cuts,
+                );
+            }
+            if minus_side {
+                let minus = |y: f64| w + p.value(y, &line) + lim.at(y);
+                crossings(
+                    &minus,
+                    &|a, b| curvature(a, b, -1.0),
+                    p.y0,
+                    p.y1,
+                    &kinks,
+                    &mut cuts,
+                );
+            }
             self.cuts = cuts;
         }
         self.cuts.sort_by(f64::total_cmp);
@@ -584,6 +658,7 @@ impl ThorntonRow {
             .is_some_and(|ch| ch.pieces.first().is_none_or(|p| p.y0 >= top))
         {
             self.chunks.pop();
+            self.dirty = self.dirty.min(self.chunks.len());
         }
         let k = self.chunks.len();
         if k == 0 {
@@ -642,5 +717,16 @@ impl ThorntonRow {
             }
         }
         total
+    }
+}
+
+/// Bounds of `f m` for `m` within `(m0, m1)` (`(0, 0)` for `f = 0`, whatever the bounds).
+fn scaled(f: f64, (m0, m1): (f64, f64)) -> (f64, f64) {
+    if f == 0.0 {
+        (0.0, 0.0)
+    } else if f > 0.0 {
+        (f * m0, f * m1)
+    } else {
+        (f * m1, f * m0)
     }
 }

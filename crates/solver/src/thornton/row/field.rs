@@ -42,6 +42,14 @@ pub(super) struct Piece {
     pub(super) upper: f64,
     pub(super) lower: f64,
     pub(super) slope: f64,
+    /// The curved part `k Q(D_f − y)` of a stuck piece at `y0`, `y1` and the middle, and its
+    /// slope in `y` at the middle (zeros where `k = 0`): what its range and bounds need, kept
+    /// so that bounding a piece for a new slope takes no arctangent.
+    pub(super) curve: [f64; 4],
+    /// While the limits only grow (loading): the offsets `W` up to which a stuck piece stays
+    /// inside the `+` limit (`W ≤ caps[0]`) and the `−` limit (`−W ≤ caps[1]`), measured
+    /// against the limit of one step (NaN until measured; [`Chunk::measure`]).
+    pub(super) caps: [f64; 2],
 }
 
 impl Piece {
@@ -82,6 +90,8 @@ impl Piece {
             upper: 0.0,
             lower: 0.0,
             slope: f64::NAN,
+            curve: [0.0; 4],
+            caps: [f64::NAN; 2],
         }
         .refreshed(line, radius)
     }
@@ -105,6 +115,8 @@ impl Piece {
             upper: 0.0,
             lower: 0.0,
             slope: f64::NAN,
+            curve: [0.0; 4],
+            caps: [f64::NAN; 2],
         }
     }
 
@@ -127,14 +139,33 @@ impl Piece {
 
     /// A stuck piece with its integral and range computed.
     pub(super) fn refreshed(mut self, line: &Truncated, radius: f64) -> Self {
+        self.caps = [f64::NAN; 2];
+        self.curve = if self.k == 0.0 {
+            [0.0; 4]
+        } else {
+            let ym = 0.5 * (self.y0 + self.y1);
+            [
+                self.k * line.value(self.top - self.y0),
+                self.k * line.value(self.top - self.y1),
+                self.k * line.value(self.top - ym),
+                -self.k * line.slope(self.top - ym),
+            ]
+        };
         self.rel = self.integral(line, radius);
-        (self.lo, self.hi) = self.range(line);
+        (self.lo, self.hi) = self.range();
         self.slope = f64::NAN;
         self
     }
 
     /// A stuck piece with its bounds for the limit slope `s` ([`Piece::upper`]).
-    pub(super) fn bounded(mut self, s: f64, line: &Truncated) -> Self {
+    pub(super) fn bounded(mut self, s: f64) -> Self {
+        (self.upper, self.lower) = self.bounds(s);
+        self.slope = s;
+        self
+    }
+
+    /// `(upper, lower)` of [`Piece::upper`] for the limit slope `s`.
+    pub(super) fn bounds(&self, s: f64) -> (f64, f64) {
         // The curved part k Q(D_f − y) between two lines: its chord and its tangent at the
         // middle (Q(D_f − y) is concave in y; k < 0 swaps them).
         let (cu, cl) = if self.k == 0.0 {
@@ -142,17 +173,10 @@ impl Piece {
         } else {
             let (y0, y1) = (self.y0, self.y1);
             let ym = 0.5 * (y0 + y1);
-            let (v0, v1) = (
-                self.k * line.value(self.top - y0),
-                self.k * line.value(self.top - y1),
-            );
+            let [v0, v1, vm, t_slope] = self.curve;
             let chord_slope = if y1 > y0 { (v1 - v0) / (y1 - y0) } else { 0.0 };
             let chord = (v0 - chord_slope * (y0 - self.y_ref), chord_slope);
-            let t_slope = -self.k * line.slope(self.top - ym);
-            let tangent = (
-                self.k * line.value(self.top - ym) - t_slope * (ym - self.y_ref),
-                t_slope,
-            );
+            let tangent = (vm - t_slope * (ym - self.y_ref), t_slope);
             if self.k > 0.0 {
                 (tangent, chord)
             } else {
@@ -174,10 +198,10 @@ impl Piece {
             best
         };
         let y_ref_term = s * self.y_ref;
-        self.upper = ext(self.a + cu.0 + y_ref_term, self.b + cu.1 + s, true);
-        self.lower = ext(self.a + cl.0 - y_ref_term, self.b + cl.1 - s, false);
-        self.slope = s;
-        self
+        (
+            ext(self.a + cu.0 + y_ref_term, self.b + cu.1 + s, true),
+            ext(self.a + cl.0 - y_ref_term, self.b + cl.1 - s, false),
+        )
     }
 
     /// `ũ − W` of a stuck piece at `y`.
@@ -212,8 +236,9 @@ impl Piece {
         }
     }
 
-    /// Bounds `(min, max)` of `ũ − W` over a stuck piece.
-    pub(super) fn range(&self, line: &Truncated) -> (f64, f64) {
+    /// Bounds `(min, max)` of `ũ − W` over a stuck piece (its curved part's values kept in
+    /// [`Piece::curve`]).
+    pub(super) fn range(&self) -> (f64, f64) {
         let quad = |y: f64| {
             let z = y - self.y_ref;
             self.a + z * (self.b + self.q * z)
@@ -231,10 +256,7 @@ impl Piece {
         }
         if self.k != 0.0 {
             // Q(D_f − y) falls with y.
-            let (u, v) = (
-                self.k * line.value(self.top - self.y0),
-                self.k * line.value(self.top - self.y1),
-            );
+            let (u, v) = (self.curve[0], self.curve[1]);
             lo += u.min(v);
             hi += u.max(v);
         }
@@ -303,17 +325,15 @@ pub(super) struct Chunk {
     pub(super) slope: f64,
     /// Whether some piece is at the `+` / `−` limit.
     pub(super) signs: [bool; 2],
-    /// Lower bounds of the stuck pieces' distances to the `+` and `−` limits when the chunk was
-    /// built in loading (`L − ũ` and `ũ + L`, at the offset `at_offset`; NaN otherwise). While
-    /// the limits only grow (loading), the chunk is inside them as long as
-    /// `margin₊ ≥ W − at_offset` and `margin₋ ≥ at_offset − W`.
-    pub(super) margin: [f64; 2],
-    pub(super) at_offset: f64,
+    /// The smallest [`Piece::caps`] of the stuck pieces (NaN while one is not measured): while
+    /// the limits only grow (loading), the chunk is inside them as long as `W ≤ caps[0]` and
+    /// `−W ≤ caps[1]`.
+    pub(super) caps: [f64; 2],
 }
 
 impl Chunk {
     /// The chunk of `pieces` with its sums, the stuck pieces bounded for the slope `s`.
-    pub(super) fn new(mut pieces: Vec<Piece>, s: f64, line: &Truncated) -> Self {
+    pub(super) fn new(mut pieces: Vec<Piece>, s: f64) -> Self {
         let mut ch = Chunk {
             stuck_length: 0.0,
             rel: 0.0,
@@ -323,27 +343,44 @@ impl Chunk {
             lower: f64::INFINITY,
             slope: s,
             signs: [false, false],
-            margin: [f64::NAN; 2],
-            at_offset: f64::NAN,
+            caps: [f64::INFINITY; 2],
             pieces: Vec::new(),
         };
         for p in &mut pieces {
-            if p.kind == Kind::Stuck {
-                if p.slope != s {
-                    *p = p.bounded(s, line);
-                }
-                ch.stuck_length += p.x1 - p.x0;
-                ch.rel += p.rel;
-                ch.lo = ch.lo.min(p.lo);
-                ch.hi = ch.hi.max(p.hi);
-                ch.upper = ch.upper.max(p.upper);
-                ch.lower = ch.lower.min(p.lower);
-            } else {
-                ch.signs[usize::from(p.kind == Kind::Minus)] = true;
-            }
+            ch.count(p);
         }
         ch.pieces = pieces;
         ch
+    }
+
+    /// Add a piece's share to the sums (a stuck piece bounded for the chunk's slope first).
+    fn count(&mut self, p: &mut Piece) {
+        if p.kind == Kind::Stuck {
+            if p.slope != self.slope {
+                *p = p.bounded(self.slope);
+            }
+            self.stuck_length += p.x1 - p.x0;
+            self.rel += p.rel;
+            self.lo = self.lo.min(p.lo);
+            self.hi = self.hi.max(p.hi);
+            self.upper = self.upper.max(p.upper);
+            self.lower = self.lower.min(p.lower);
+            self.caps = low_caps(self.caps, p.caps);
+        } else {
+            self.signs[usize::from(p.kind == Kind::Minus)] = true;
+        }
+    }
+
+    /// Append `p` ([`push_merged`]) with its share of the sums: the same chunk as
+    /// [`Chunk::new`] of all its pieces, without visiting the others.
+    pub(super) fn append(&mut self, p: Piece) {
+        let n = self.pieces.len();
+        push_merged(&mut self.pieces, p);
+        if self.pieces.len() > n {
+            let mut last = self.pieces[n];
+            self.count(&mut last);
+            self.pieces[n] = last;
+        }
     }
 
     /// Whether some piece is at a limit.
@@ -355,14 +392,8 @@ impl Chunk {
     /// springs may stick again in the step (`release`, `+` and `−`), or its stuck pieces may
     /// cross the limit `lim` with the offset `w` (`grow`: the limits have only grown since the
     /// chunk's margins were measured).
-    pub(super) fn changes(
-        &mut self,
-        lim: &Limit,
-        w: f64,
-        release: [bool; 2],
-        grow: bool,
-        line: &Truncated,
-    ) -> bool {
+    #[inline]
+    pub(super) fn changes(&mut self, lim: &Limit, w: f64, release: [bool; 2], grow: bool) -> bool {
         let (Some(first), Some(last)) = (self.pieces.first(), self.pieces.last()) else {
             return false;
         };
@@ -376,6 +407,10 @@ impl Chunk {
             let top = lim.c * (lim.reach - lim.shift);
             return !(self.upper <= top - w && self.lower >= -top - w);
         }
+        // Caps measured while the limits grow: O(1) a step.
+        if grow && inside(self.caps, w) {
+            return false;
+        }
         let floor = lim.at(last.y1);
         if w + self.hi < floor && w + self.lo > -floor {
             return false;
@@ -383,43 +418,65 @@ impl Chunk {
         if !grow {
             return true;
         }
-        // Measured once while the limits grow, then O(1) a step.
-        if self.margin[0].is_nan() {
-            self.measure(lim, w, line);
-        }
-        let moved = w - self.at_offset;
-        !(self.margin[0] >= moved && self.margin[1] >= -moved)
+        self.measure(lim, w);
+        !inside(self.caps, w)
     }
 
-    /// Record the stuck pieces' distances to `±lim` at the offset `w` ([`Chunk::margin`]): for
+    /// Measure the caps ([`Piece::caps`]) of the stuck pieces that have none or whose caps the
+    /// offset `w` passes against `±lim` (the limits have grown since), and the chunk's: for
     /// each, its bounds against the limit's line (a linear limit) or chord (a curved one, which
     /// is above its chord).
-    pub(super) fn measure(&mut self, lim: &Limit, w: f64, line: &Truncated) {
-        let mut margin = [f64::INFINITY; 2];
-        for p in self.pieces.iter().filter(|p| p.kind == Kind::Stuck) {
-            let (b, top) = if lim.linear_from(p.y0) {
-                let b = if p.slope == lim.c {
-                    *p
+    #[inline(never)]
+    pub(super) fn measure(&mut self, lim: &Limit, w: f64) {
+        let mut caps = [f64::INFINITY; 2];
+        // The limit at the last piece's end, where the next piece mostly starts.
+        let mut last = (f64::NAN, f64::NAN);
+        let mut at = |y: f64| {
+            if y != last.0 {
+                last = (y, lim.at(y));
+            }
+            last.1
+        };
+        for p in self.pieces.iter_mut().filter(|p| p.kind == Kind::Stuck) {
+            if !inside(p.caps, w) {
+                let ((upper, lower), top) = if lim.linear_from(p.y0) {
+                    let b = if p.slope == lim.c {
+                        (p.upper, p.lower)
+                    } else {
+                        p.bounds(lim.c)
+                    };
+                    (b, lim.c * (lim.reach - lim.shift))
                 } else {
-                    p.bounded(lim.c, line)
+                    let l0 = at(p.y0);
+                    let floor = at(p.y1);
+                    let span = p.y1 - p.y0;
+                    let s = if span > 0.0 { (l0 - floor) / span } else { 0.0 };
+                    (p.bounds(s), floor + s * p.y1)
                 };
-                (b, lim.c * (lim.reach - lim.shift))
-            } else {
-                let floor = lim.at(p.y1);
-                let span = p.y1 - p.y0;
-                let s = if span > 0.0 {
-                    (lim.at(p.y0) - floor) / span
-                } else {
-                    0.0
-                };
-                (p.bounded(s, line), floor + s * p.y1)
-            };
-            margin[0] = margin[0].min(top - w - b.upper);
-            margin[1] = margin[1].min(b.lower + top + w);
+                // Inside while ũ − W + W ≤ L: W ≤ top − upper, and −W ≤ top + lower.
+                p.caps = [top - upper, top + lower];
+            }
+            caps = low_caps(caps, p.caps);
         }
-        self.margin = margin;
-        self.at_offset = w;
+        self.caps = caps;
     }
+}
+
+/// Whether the offset `w` is within the caps ([`Chunk::caps`]; false while one is NaN).
+fn inside(caps: [f64; 2], w: f64) -> bool {
+    w <= caps[0] && -w <= caps[1]
+}
+
+/// The smaller of two caps, each side, NaN where either is NaN.
+fn low_caps(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    let low = |u: f64, v: f64| {
+        if u.is_nan() || v.is_nan() {
+            f64::NAN
+        } else {
+            u.min(v)
+        }
+    };
+    [low(a[0], b[0]), low(a[1], b[1])]
 }
 
 /// Samples per stretch between kinks when bracketing a crossing with a curved limit or piece.
@@ -442,11 +499,15 @@ pub(super) fn front(lim: &Limit, rate: f64, u: f64) -> f64 {
     lim.reach - dy / (s * s)
 }
 
-/// The sign changes of `f` inside `(y0, y1)`, appended to `out`: `f` sampled at [`SAMPLES`]
-/// points on each stretch between the `kinks` (where it is smooth), each bracket bisected to
-/// the rounding.
+/// The sign changes of `f` inside `(y0, y1)`, appended to `out`, on each stretch between the
+/// `kinks` (where `f` is smooth): where `curvature(a, b)` (bounds `(min, max)` of `f″` on the
+/// stretch `(a, b)`) says that `f` is convex or concave there, its values at the stretch's ends
+/// decide (one sign change where they differ in sign; none where a convex `f` is not positive
+/// at either end, or a concave one not negative); elsewhere `f` is sampled at [`SAMPLES`]
+/// points. Each bracket is closed to the rounding ([`bisect`]).
 pub(super) fn crossings(
     f: &dyn Fn(f64) -> f64,
+    curvature: &dyn Fn(f64, f64) -> (f64, f64),
     y0: f64,
     y1: f64,
     kinks: &[f64],
@@ -463,26 +524,58 @@ pub(super) fn crossings(
     ends[n] = y1;
     let ends = &mut ends[..=n];
     ends.sort_by(f64::total_cmp);
+    let mut start = (y0, f(y0));
     for pair in ends.windows(2) {
         let (a, b) = (pair[0], pair[1]);
         if b <= a {
             continue;
         }
-        let mut prev = (a, f(a));
-        for i in 1..=SAMPLES {
-            let y = if i == SAMPLES {
-                b
-            } else {
-                a + (b - a) * i as f64 / SAMPLES as f64
-            };
-            let fy = f(y);
-            if (prev.1 < 0.0 && fy > 0.0) || (prev.1 > 0.0 && fy < 0.0) {
-                out.push(bisect(f, prev, (y, fy)));
-            } else if fy == 0.0 && y > y0 && y < y1 {
-                out.push(y);
+        let fa = start.1;
+        let fb = f(b);
+        start = (b, fb);
+        let (low, high) = curvature(a, b);
+        let differ = (fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0);
+        let convex = low >= 0.0;
+        let concave = high <= 0.0;
+        if convex || concave {
+            if differ {
+                out.push(bisect(f, (a, fa), (b, fb)));
+            } else if !((convex && fa <= 0.0 && fb <= 0.0) || (concave && fa >= 0.0 && fb >= 0.0)) {
+                sample(f, (a, fa), (b, fb), (y0, y1), out);
+                continue;
             }
-            prev = (y, fy);
+            if fb == 0.0 && b < y1 {
+                out.push(b);
+            }
+            continue;
         }
+        sample(f, (a, fa), (b, fb), (y0, y1), out);
+    }
+}
+
+/// The sign changes of `f` on one smooth stretch from `(a, f(a))` to `(b, f(b))`, bracketed on
+/// [`SAMPLES`] points (exact zeros inside `(y0, y1)` kept as they are).
+fn sample(
+    f: &dyn Fn(f64) -> f64,
+    (a, fa): (f64, f64),
+    (b, fb): (f64, f64),
+    (y0, y1): (f64, f64),
+    out: &mut Vec<f64>,
+) {
+    let mut prev = (a, fa);
+    for i in 1..=SAMPLES {
+        let (y, fy) = if i == SAMPLES {
+            (b, fb)
+        } else {
+            let y = a + (b - a) * i as f64 / SAMPLES as f64;
+            (y, f(y))
+        };
+        if (prev.1 < 0.0 && fy > 0.0) || (prev.1 > 0.0 && fy < 0.0) {
+            out.push(bisect(f, prev, (y, fy)));
+        } else if fy == 0.0 && y > y0 && y < y1 {
+            out.push(y);
+        }
+        prev = (y, fy);
     }
 }
 
