@@ -92,9 +92,9 @@ extern "C" {
 #endif
 
 /* Newest layout version this header reads: 1 (an elastic table, and curves), 2 (a table
-   with a normal-restitution axis e_n) and 3 (the table of one pair: P(alpha, e_n) at a single
-   gamma). */
-#define OBLQ_EXPORT_VERSION 3u
+   with a normal-restitution axis e_n), 3 (the table of one pair: P(alpha, e_n) at a single
+   gamma) and 4 (a table of Thornton's law: version 2 without a closed-form full-slip line). */
+#define OBLQ_EXPORT_VERSION 4u
 
 /* Status codes of the file loader oblq_load_file (host only; the others follow). */
 enum {
@@ -177,6 +177,9 @@ typedef struct {
     int has_e_n;              /* 1: a table with a normal-restitution axis (layout version 2, 3) */
     double e_n_min, e_n_max;  /* the e_n range it answers: 1, 1 for an elastic table */
     int pair; /* 1: the table of one pair (layout version 3): gamma_min == gamma_max, its gamma */
+    /* 1: a table without a closed-form full-slip line (layout version 4, Thornton's law): its
+       partial-slip patch answers every alpha < alpha_c2 for gamma >= 1 (gamma_min >= 1). */
+    int no_line;
 } oblq_table;
 
 /* One patch of a curve. */
@@ -483,8 +486,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if (d[k] != (unsigned char)"OBLQEVAL"[k]) return OBLQ_E_FORMAT;
     if (size < 96) return OBLQ_E_TRUNCATED;
     version = oblq__u32(d + 8);
-    if (version < 1 || version > 3) return OBLQ_E_VERSION;
-    header = version == 1 ? 96 : 112; /* versions 2 and 3 add the e_n range */
+    if (version < 1 || version > 4) return OBLQ_E_VERSION;
+    header = version == 1 ? 96 : 112; /* versions 2, 3 and 4 add the e_n range */
     if (oblq__u32(d + 12) != header) return OBLQ_E_CORRUPT;
     if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
     len = oblq__u64(d + 16);
@@ -508,6 +511,11 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
        of the rule's forms (then S(alpha_max) > 0 at every gamma of the domain), and below the
        patches and curves. */
     out.pair = version == 3;
+    /* The flag of a table without a full-slip line: 1 in version 4, 0 (reserved) before. */
+    out.no_line = version == 4;
+    if (oblq__u32(d + 68) != (uint32_t)out.no_line) return OBLQ_E_CORRUPT;
+    /* A table without the line starts at gamma = 1 or above (no stick_low). */
+    if (out.no_line && !(out.gamma_min >= 1.0)) return OBLQ_E_CORRUPT;
     if (!(isfinite(out.gamma_min) && out.gamma_min > 0.0 &&
           (out.pair ? out.gamma_min == out.gamma_max : out.gamma_min < out.gamma_max) &&
           out.gamma_max <= 1e100))
@@ -541,6 +549,9 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
             if (rc != OBLQ_OK) return rc;
         }
         if (out.patch[1].present && !out.patch[1].partial) return OBLQ_E_CORRUPT;
+        /* Without the line alpha_c1 is the root-cell edge c = 1/2: blocks_coord is even. */
+        if (out.no_line && out.patch[1].present && out.patch[1].blocks_coord % 2 != 0)
+            return OBLQ_E_CORRUPT;
         if ((out.patch[0].present && out.patch[0].partial) ||
             (out.patch[2].present && out.patch[2].partial))
             return OBLQ_E_CORRUPT;
@@ -855,6 +866,20 @@ OBLQ_FN int oblq__region_e(double gamma, double alpha, double e_n) {
     return 2;
 }
 
+/* The region of a table without a full-slip line (layout version 4): 0 (stick_low) for
+   gamma < 1, outside such a table's domain; 1 (partial_high) for alpha < alpha_c2, else 2;
+   never the line. */
+OBLQ_FN int oblq__region_no_line(double gamma, double alpha) {
+    if (gamma < 1.0) return 0;
+    if (alpha < oblq_alpha_c2(gamma)) return 1;
+    return 2;
+}
+
+/* The region of a query at e_n in table t (-1: the full-slip line). */
+OBLQ_FN int oblq__region_t(const oblq_table *t, double gamma, double alpha, double e_n) {
+    return t->no_line ? oblq__region_no_line(gamma, alpha) : oblq__region_e(gamma, alpha, e_n);
+}
+
 /* The full-slip line at e_n: P = 1 - (7/2)(1 + e_n) alpha. */
 OBLQ_FN double oblq__line_e(double alpha, double e_n) { return 1.0 - 3.5 * (1.0 + e_n) * alpha; }
 
@@ -866,6 +891,20 @@ OBLQ_FN double oblq__partial_coord_e(double gamma, double alpha, double e_n) {
     double ratio = g2 * (1.0 + e_n) - e_n;
     double l = log(7.0 * alpha * ratio / (2.0 * g2)) / log(ratio);
     return 1.0 - sqrt(1.0 - sqrt(oblq__clamp(l, 0.0, 1.0)));
+}
+
+/* The partial-slip coordinate of a table without a full-slip line (Thornton's law, layout
+   version 4), over 0 <= alpha <= alpha_c2: with q = alpha/alpha_c1 = 7 alpha h/(2 gamma^2),
+   c = q/2 for q <= 1 (no logarithm: at gamma = 1 every alpha < alpha_c2 is there), else
+   c = 1/2 + (1 - sqrt(1 - sqrt(l)))/2, l = ln(q)/ln(h) clamped to [0, 1]. */
+OBLQ_FN double oblq__partial_coord_slip(double gamma, double alpha, double e_n) {
+    double g2 = gamma * gamma;
+    double ratio = g2 * (1.0 + e_n) - e_n;
+    double q = 7.0 * alpha * ratio / (2.0 * g2);
+    double l;
+    if (q <= 1.0) return 0.5 * q;
+    l = log(q) / log(ratio);
+    return 0.5 + 0.5 * (1.0 - sqrt(1.0 - sqrt(oblq__clamp(l, 0.0, 1.0))));
 }
 
 /* Step 7 in a tree whose cells halve the axes of their mask: the leaf that holds the positions
@@ -945,8 +984,9 @@ OBLQ_FN double oblq__eval_in_e(const oblq_table *t, int region, double gamma, do
     const oblq_patch *p = &t->patch[region];
     double c, xe;
     if (!p->present) return -e_n; /* at gamma = 1 exactly the contact sticks at once */
-    c = p->partial ? oblq__partial_coord_e(gamma, alpha, e_n)
-                   : oblq__stick_coord(gamma, alpha, t->alpha_max);
+    c = !p->partial  ? oblq__stick_coord(gamma, alpha, t->alpha_max)
+        : t->no_line ? oblq__partial_coord_slip(gamma, alpha, e_n)
+                     : oblq__partial_coord_e(gamma, alpha, e_n);
     c = oblq__clamp(c, 0.0, 1.0);
     xe = (e_n - t->e_n_min) / (t->e_n_max - t->e_n_min);
     return oblq__clamp(t->pair ? oblq__tensor_pair(p, c, xe) : oblq__tensor3(p, gamma, c, xe),
@@ -964,7 +1004,7 @@ OBLQ_FN double oblq__rule_gamma(const oblq_table *t, double gamma) {
 /* oblq_p_e of a table with an e_n axis, e_n checked. */
 OBLQ_FN int oblq__p_axis(const oblq_table *t, double gamma, double alpha, double e_n, int clamp,
                          double *p) {
-    int region = oblq__region_e(gamma, alpha, e_n), inside;
+    int region = oblq__region_t(t, gamma, alpha, e_n), inside;
     if (region < 0) {
         *p = oblq__line_e(alpha, e_n);
         return OBLQ_OK;
@@ -974,7 +1014,7 @@ OBLQ_FN int oblq__p_axis(const oblq_table *t, double gamma, double alpha, double
         if (!clamp) return inside ? OBLQ_E_ALPHA_DOMAIN : OBLQ_E_GAMMA_DOMAIN;
         gamma = oblq__clamp(gamma, t->gamma_min, t->gamma_max);
         alpha = alpha < t->alpha_max ? alpha : t->alpha_max;
-        region = oblq__region_e(gamma, alpha, e_n);
+        region = oblq__region_t(t, gamma, alpha, e_n);
         if (region < 0) {
             *p = oblq__line_e(alpha, e_n);
             return OBLQ_OK;
@@ -992,7 +1032,9 @@ OBLQ_FN int oblq__p_axis(const oblq_table *t, double gamma, double alpha, double
    otherwise as for oblq_p (clamp moves gamma and alpha only). The table of one pair (t->pair,
    layout version 3, gamma_min == gamma_max) takes a gamma within 1e-9 relative of its own,
    |gamma - gamma_min| <= 1e-9 gamma_min, as its own; above the line it refuses any other
-   (OBLQ_E_GAMMA_DOMAIN) or, with clamp, answers at its own. */
+   (OBLQ_E_GAMMA_DOMAIN) or, with clamp, answers at its own. A table of Thornton's law
+   (t->no_line, layout version 4) has no full-slip line: every alpha, 0 included, is answered
+   from its patches inside the domain (gamma_min >= 1) and refused or clamped outside it. */
 OBLQ_FN int oblq_p_e(const oblq_table *t, double gamma, double alpha, double e_n, int clamp,
                      double *p) {
     if (!t || !p) return OBLQ_E_NULL;

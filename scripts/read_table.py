@@ -48,11 +48,12 @@ FORMAT_NAME = "oblique-P-table"
 SCHEMA_VERSION = 4
 SCHEMA_VERSIONS = (2, 3, 4)  # v2: v3 without the optional warp; v4: v3 with optional e_n axis
 AXES_PAIR = "alpha,e_n"  # the axes of the table of one pair (schema 4): P(alpha, e_n) at one gamma
-# The contact laws whose tables (with an e_n axis) this reader answers (root attribute 'law').
-LAWS_E_N = ("kelvin-voigt",)
-# Laws whose tables the engine builds that this reader does not answer yet: their partial-slip
-# patch covers 0 <= alpha <= alpha_c2 (no closed-form full-slip line).
-LAWS_NOT_YET = ("thornton",)
+# The contact laws whose tables (with an e_n axis) this reader answers (root attribute 'law'),
+# each with the partial-slip coordinate its tables have (attribute 'coordinate' of
+# /patches/partial_high). Thornton's law has no closed-form full-slip line: its partial-slip
+# patch covers 0 <= alpha <= alpha_c2 (docs/table-format.md, "Tables of Thornton's law").
+LAWS_E_N = {"kelvin-voigt": "1-sqrt(1-sqrt(l))", "thornton": "slip,1-sqrt(1-sqrt(l))"}
+LAWS_NO_LINE = ("thornton",)
 # The axes a table may have beyond gamma and alpha (schema 4), each with the bounds of its range,
 # bound_lo < NAME_min < NAME_max <= bound_hi; the file names its range NAME_min, NAME_max (root)
 # and its root cells blocks_NAME (patch).
@@ -201,6 +202,19 @@ def partial_coord_e(gamma, alpha, e_n):
     ratio = g2 * (1.0 + e_n) - e_n
     ell = math.log(7.0 * alpha * ratio / (2.0 * g2)) / math.log(ratio)
     return 1.0 - math.sqrt(1.0 - math.sqrt(_clamp01(ell)))
+
+
+def partial_coord_slip(gamma, alpha, e_n):
+    """The partial-slip coordinate of a table without a full-slip line (Thornton's law), over
+    0 <= alpha <= alpha_c2: q = alpha/alpha_c1 = 7 alpha h/(2 gamma^2); c = q/2 for q <= 1 (no
+    logarithm), else c = 1/2 + (1 - sqrt(1 - sqrt(l)))/2, l = ln(q)/ln(h) clamped to [0, 1]."""
+    g2 = gamma * gamma
+    ratio = g2 * (1.0 + e_n) - e_n
+    q = 7.0 * alpha * ratio / (2.0 * g2)
+    if q <= 1.0:
+        return 0.5 * q
+    ell = math.log(q) / math.log(ratio)
+    return 0.5 + 0.5 * (1.0 - math.sqrt(1.0 - math.sqrt(_clamp01(ell))))
 
 
 def stick_coord(gamma, alpha, alpha_max):
@@ -543,6 +557,10 @@ class Table:
         # Schema 4 names its axes; an e_n axis brings its range (None: an elastic table). The
         # table of one pair ('alpha,e_n') holds the single gamma gamma_min = gamma_max.
         self.e_n_range = None
+        # The contact law of a table with an e_n axis (None: an elastic table), and whether the
+        # table has no closed-form full-slip line (Thornton's law: no step 1 of the rule).
+        self.law = None
+        self.no_line = False
         axes = "gamma,alpha"
         if self.schema_version >= 4:
             try:
@@ -563,16 +581,18 @@ class Table:
                     law = _str_attr(f.attrs, "law")
                 except (KeyError, TypeError):
                     raise self._invalid("missing or non-string root attribute 'law'") from None
-                if law in LAWS_NOT_YET:
-                    raise self._invalid(
-                        f"root attribute 'law' = '{law}': this reader does not answer tables "
-                        f"of the {law} law yet (they have no closed-form full-slip line); "
-                        "query them with sweep query, the Rust crate or the Python package")
                 if law not in LAWS_E_N:
                     raise self._invalid(
                         f"root attribute 'law' = '{law}': this reader knows the law "
                         + ", ".join(f"'{x}'" for x in LAWS_E_N)
                         + "; a table of another law cannot answer this reader's questions")
+                self.law = law
+                self.no_line = law in LAWS_NO_LINE
+                if self.no_line and (axes != "gamma,alpha,e_n" or not self.gamma_min >= 1.0):
+                    raise self._invalid(
+                        f"root attribute 'law' = '{law}' with 'axes' = '{axes}' and "
+                        f"'gamma_min' = {self.gamma_min!r}: a table of this law has the axes "
+                        "'gamma,alpha,e_n' and gamma_min >= 1")
             elif axes != "gamma,alpha":
                 raise self._invalid(
                     f"root attribute 'axes' = '{axes}': this reader understands 'gamma,alpha', "
@@ -662,10 +682,17 @@ class Table:
             if kind == "partial-slip":
                 coord = g.attrs.get("coordinate")
                 coord = coord.decode() if isinstance(coord, bytes) else coord
-                if coord != "1-sqrt(1-sqrt(l))":
+                want = LAWS_E_N[self.law]
+                if coord != want:
                     raise self._invalid(
-                        f"{where}: attribute 'coordinate' = {coord!r}: this reader understands "
-                        "'1-sqrt(1-sqrt(l))'")
+                        f"{where}: attribute 'coordinate' = {coord!r} in a table of the "
+                        f"'{self.law}' law, whose coordinate is '{want}' (this reader "
+                        "understands " + ", ".join(
+                            f"'{c}' ({law})" for law, c in LAWS_E_N.items()) + ")")
+                if self.no_line and bc % 2:
+                    raise self._invalid(
+                        f"{where}: attribute 'blocks_coord' = {bc}: must be even in a table "
+                        "without a full-slip line (alpha_c1 is the root-cell edge c = 1/2)")
         # The tree's axes: (gamma, c), (gamma, c, e_n), or (c, e_n) in the patch of one pair.
         dims = 2 if be is None or pair else 3
         if "tree" not in g:
@@ -846,7 +873,12 @@ class Table:
 
     def region(self, gamma, alpha, e_n=1.0):
         """Patch name of a query (steps 1 and 3), or 'line' for the exact full-slip line (at
-        normal restitution e_n)."""
+        normal restitution e_n). A table without a full-slip line (Thornton's law) answers every
+        alpha from its patches: 'partial_high' for gamma >= 1 and alpha < alpha_c2."""
+        if self.no_line:
+            if gamma < 1.0:
+                return "stick_low"
+            return "partial_high" if alpha < alpha_c2(gamma) else "stick_high"
         if alpha <= (alpha_lin(gamma) if e_n == 1.0 else alpha_lin_e(gamma, e_n)):
             return "line"
         if gamma <= 1.0:
@@ -868,6 +900,10 @@ class Table:
         return gamma
 
     def _check_domain(self, gamma, alpha, lin):
+        """Step 2; `lin` is alpha_lin(gamma), None in a table without a full-slip line."""
+        outside = ("nothing is answered outside it: this table has no closed-form full-slip "
+                   "line" if lin is None else
+                   f"only alpha <= alpha_lin(gamma) = {lin} is answered outside it")
         if self.pair_gamma is not None and gamma != self.pair_gamma:
             raise DomainError(
                 f"gamma = {gamma}: this table holds one pair of materials, gamma = "
@@ -876,8 +912,7 @@ class Table:
         if not self.gamma_min <= gamma <= self.gamma_max:
             raise DomainError(
                 f"gamma = {gamma} outside the table's domain [{self.gamma_min}, "
-                f"{self.gamma_max}] (only alpha <= alpha_lin(gamma) = {lin} "
-                "is answered outside it)", "gamma")
+                f"{self.gamma_max}] ({outside})", "gamma")
         if alpha > self.alpha_max:
             raise DomainError(
                 f"alpha = {alpha} above the table's alpha_max = {self.alpha_max}", "alpha")
@@ -910,22 +945,28 @@ class Table:
         lo, hi = self.e_n_range
         if not lo <= e_n <= hi:
             raise DomainError(f"e_n = {e_n} outside the table's e_n range [{lo}, {hi}]", "e_n")
-        # 1. Full slip, exact (any gamma): P = 1 - (7/2)(1 + e_n) alpha.
-        lin = alpha_lin_e(gamma, e_n)
-        if alpha <= lin:
-            return full_slip_e(alpha, e_n)
-        # 2. Domain.
-        self._check_domain(gamma, alpha, lin)
-        # 3. Patch (alpha_c2 does not move with e_n).
-        name = "stick_low" if gamma <= 1.0 else (
-            "partial_high" if alpha < alpha_c2(gamma) else "stick_high")
+        if self.no_line:
+            # No step 1 (Thornton's law): 2. domain (gamma_min >= 1), 3. patch, the partial-slip
+            # patch from alpha = 0 to alpha_c2.
+            self._check_domain(gamma, alpha, None)
+            name = self.region(gamma, alpha, e_n)
+        else:
+            # 1. Full slip, exact (any gamma): P = 1 - (7/2)(1 + e_n) alpha.
+            lin = alpha_lin_e(gamma, e_n)
+            if alpha <= lin:
+                return full_slip_e(alpha, e_n)
+            # 2. Domain.
+            self._check_domain(gamma, alpha, lin)
+            # 3. Patch (alpha_c2 does not move with e_n).
+            name = "stick_low" if gamma <= 1.0 else (
+                "partial_high" if alpha < alpha_c2(gamma) else "stick_high")
         patch = self.patches.get(name)
         if patch is None:
             return -e_n  # at gamma = 1 exactly the contact sticks at once
         # 4. Coordinates (no warp with an e_n axis); 6-10 in Patch.interpolate_e (over (c, x_e)
         # in the table of one pair, at its gamma).
         if patch.kind == "partial-slip":
-            c = partial_coord_e(gamma, alpha, e_n)
+            c = (partial_coord_slip if self.no_line else partial_coord_e)(gamma, alpha, e_n)
         else:
             c = stick_coord(gamma, alpha, self.alpha_max)
         return patch.interpolate_e(gamma, _clamp01(c), e_n)

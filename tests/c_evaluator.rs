@@ -527,7 +527,9 @@ fn damaged_truncated_and_foreign_files_are_refused_with_their_code() {
     let hdf5 = std::fs::read(root("tables/quick.h5")).expect("table");
     assert!(case("hdf5", &hdf5).starts_with("3 not an export"));
     let mut newer = good.clone();
-    newer[8] = 4; // 1, 2 (a table with an e_n axis) and 3 (the table of one pair) are known
+    // 1, 2 (a table with an e_n axis), 3 (the table of one pair) and 4 (Thornton's law) are
+    // known.
+    newer[8] = 5;
     assert!(case("newer", &newer).starts_with("4 "));
     // A consistent checksum over inconsistent contents: an offset beyond the end.
     let mut bad = good.clone();
@@ -683,6 +685,7 @@ fn mutated_exports_never_read_out_of_bounds_under_sanitizers() {
         (export_file("full", true), sized(750, 3000)),
         (dissipative().1.clone(), sized(500, 2000)),
         (pair_table().1.clone(), sized(500, 2000)),
+        (thornton().1.clone(), sized(500, 2000)),
     ] {
         let out = Command::new(&exe)
             .args(["fuzz", path.to_str().expect("path"), &n.to_string(), "17"])
@@ -1231,8 +1234,12 @@ fn damaged_e_n_exports_are_refused_with_their_code() {
     flipped[good.len() / 2] ^= 0x04;
     assert!(case("flipped", &flipped).starts_with("5 "));
     let mut newer = good.clone();
-    newer[8] = 4;
+    newer[8] = 5;
     assert!(case("newer", &newer).starts_with("4 "));
+    // Version 4 (Thornton's law) without its flag.
+    let mut v4 = good.clone();
+    v4[8] = 4;
+    assert!(case("v4", &v4).starts_with("6 "));
     // Version 3 (the table of one pair) with the header and patches of version 2.
     let mut v3 = good.clone();
     v3[8] = 3;
@@ -2057,7 +2064,7 @@ fn pair_table_refuses_another_gamma_as_rust_does() {
         assert_eq!(refused[9] > 8000, clamp == 0, "clamp {clamp}: {refused:?}");
         assert!(refused[24] > 500, "clamp {clamp}: {refused:?}");
         assert_eq!(refused[7] + refused[8], 4, "clamp {clamp}: {refused:?}");
-        assert!(answered > 5000, "clamp {clamp}: {answered} answered");
+        assert!(answered > 1000, "clamp {clamp}: {answered} answered");
     }
     // The tolerance's edge: within it the pair's bits, one ulp beyond it refused (above the
     // line), in Rust and C alike (checked above); here that the edge is where Rust puts it.
@@ -2185,7 +2192,7 @@ fn damaged_pair_exports_are_refused() {
     flipped[good.len() / 2] ^= 0x08;
     assert!(open("flipped", &flipped).starts_with("5 "));
     let mut newer = good.clone();
-    newer[8] = 4;
+    newer[8] = 5;
     assert!(open("newer", &newer).starts_with("4 "));
     let mut v2 = good.clone();
     v2[8] = 2;
@@ -2354,4 +2361,247 @@ fn p_at_gives_the_bits_of_the_rust_point_query() {
             assert!(t.p_at(&[1.5, 0.3, 0.9, 1.0][..wrong]).is_err());
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// A table of Thornton's law: no closed-form full-slip line (export layout version 4)
+
+/// `configs/thornton-demo.toml` built here, its export by `sweep export` and the table file,
+/// made once per process.
+fn thornton() -> &'static (Table, PathBuf, PathBuf) {
+    static T: OnceLock<(Table, PathBuf, PathBuf)> = OnceLock::new();
+    T.get_or_init(|| {
+        let d = dir().join("thornton");
+        std::fs::create_dir_all(&d).expect("folder");
+        let (table, path) = (d.join("thornton-demo.h5"), d.join("thornton-demo.oblq"));
+        let cfg = root("configs/thornton-demo.toml");
+        let arg = |p: &Path| p.to_str().expect("path").to_string();
+        evaluator::sweep_ok(&["run", &arg(&cfg), "--output", &arg(&table), "--quiet"]);
+        let said = evaluator::sweep_ok(&["export", &arg(&table), "-o", &arg(&path)]);
+        assert!(
+            said.contains("the table of the thornton law (e_n in [0.8, 1])"),
+            "{said}"
+        );
+        (Table::open(&table).expect("the table"), path, table)
+    })
+}
+
+/// Random `(γ, α, e_n)` over the domain of a table of Thornton's law: [`points_e`] (γ = 1 in
+/// the mix taken to the lowest γ of the domain when it starts above 1), with `α` below
+/// `α_c1(γ, e_n)` (uniform, or at `1e-6·α_c1`), at `α_c1(1 ± 1e-12)`, one ulp either side of
+/// `α_c2`, `α = 0` and `α = ∞` in the mix.
+fn thornton_points(t: &Table, n: usize, seed: u64) -> Vec<(f64, f64, f64)> {
+    use oblique_physics::regimes::alpha_c1_dissipative;
+    let s = t.surface();
+    let range = t.restitution().expect("an e_n axis");
+    let mut r = SplitMix(seed ^ 0x7468);
+    points_e(n, seed, (s.gamma_min(), s.gamma_max()), range)
+        .into_iter()
+        .enumerate()
+        .map(|(i, (g, a, e))| {
+            let g = if g == 1.0 && s.gamma_min() > 1.0 {
+                s.gamma_min()
+            } else {
+                g
+            };
+            let c1 = alpha_c1_dissipative(g, e);
+            let a = match i % 50 {
+                3 => c1,
+                4 => c1 * (1.0 + 1e-12),
+                5 => c1 * (1.0 - 1e-12),
+                6 => ulp_up(alpha_c2(g)),
+                7 => f64::from_bits(alpha_c2(g).to_bits() - 1),
+                8 => 1e-6 * c1,
+                9..=14 => c1 * r.uniform(),
+                _ => a,
+            };
+            (g, a, e)
+        })
+        .collect()
+}
+
+/// `P(γ, α, e_n)` of a table of Thornton's law with the same bits from every path:
+/// `Table::p_e`, the batches `p_e_batch` and `p_e_batch_par`, `oblq_p_e` of the C header on
+/// the export of `sweep export` (layout version 4), and on every 40th point the reference
+/// reader `scripts/read_table.py`: random points of `configs/thornton-demo.toml` built here
+/// (10⁵ in the release check, 2·10⁴ otherwise), with points below `α_c1`, at `α_c1(1 ± 1e-12)`
+/// and at `α = 0`, `∞` in the mix.
+#[test]
+fn thornton_tables_give_the_same_bits_in_rust_batches_c_and_python_on_random_points() {
+    let start = std::time::Instant::now();
+    let (t, path, h5) = thornton();
+    let s = t.surface();
+    assert!(!s.has_line());
+    let bytes = std::fs::read(path).expect("export");
+    assert_eq!(
+        bytes,
+        export::export(s, t.error_bound(), true, &[]),
+        "sweep export"
+    );
+    assert_eq!(
+        &bytes[8..16],
+        &[4, 0, 0, 0, 112, 0, 0, 0],
+        "version 4, 112-byte header"
+    );
+    assert_eq!(
+        &bytes[68..72],
+        &[1, 0, 0, 0],
+        "the flag of a table without the line"
+    );
+    let n = sized(20_000, 100_000);
+    let pts = thornton_points(t, n, 61);
+    let scalar: Vec<f64> = pts
+        .iter()
+        .map(|&(g, a, e)| t.p_e(g, a, e).expect("inside"))
+        .collect();
+    let columns = |k: usize| -> Vec<f64> { pts.iter().map(|p| [p.0, p.1, p.2][k]).collect() };
+    let (g, a, e) = (columns(0), columns(1), columns(2));
+    let (mut serial, mut parallel) = (vec![f64::NAN; n], vec![f64::NAN; n]);
+    t.p_e_batch(&g, &a, &e, &mut serial, OutOfDomain::Error)
+        .expect("serial batch");
+    t.p_e_batch_par(&g, &a, &e, &mut parallel, OutOfDomain::Error)
+        .expect("parallel batch");
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect();
+    let out = run_ok(query_program(), &[path.to_str().expect("path")], &input);
+    let c: Vec<f64> = out
+        .lines()
+        .map(|l| l.rsplit(',').next().expect("P").parse().expect("P"))
+        .collect();
+    assert_eq!(c.len(), n, "every point answered by C");
+    let (mut differ, mut below, mut off_line) = (0, 0, 0.0f64);
+    for (i, &(g, a, e)) in pts.iter().enumerate() {
+        let c1 = oblique_physics::regimes::alpha_c1_dissipative(g, e);
+        if a <= c1 {
+            below += 1;
+            // Not answered from the line: the table's own values there.
+            off_line =
+                off_line.max((scalar[i] - oblique_physics::regimes::full_slip_line(a, e)).abs());
+        }
+        let bits = [scalar[i], serial[i], parallel[i], c[i]].map(f64::to_bits);
+        if bits.iter().any(|&b| b != bits[0]) {
+            differ += 1;
+            if differ < 5 {
+                eprintln!(
+                    "gamma {g:?} alpha {a:?} e_n {e:?}: p_e {:?}, batch {:?}, parallel {:?}, \
+                     C {:?}",
+                    scalar[i], serial[i], parallel[i], c[i]
+                );
+            }
+        }
+    }
+    assert_eq!(differ, 0, "{differ} of {n} points differ in some bit");
+    assert!(below > n / 10 && below < n / 2, "{below} below alpha_c1");
+    assert!(
+        off_line > 1e-6,
+        "P below alpha_c1 off the line by at most {off_line:e}"
+    );
+    let every = 40;
+    let subset: Vec<_> = pts.iter().copied().step_by(every).collect();
+    let py = python_p_e(h5, &subset);
+    assert_eq!(py.len(), subset.len(), "every point answered by Python");
+    for (k, (&p, &(g, a, e))) in py.iter().zip(&subset).enumerate() {
+        let r = scalar[k * every];
+        assert_eq!(
+            p.to_bits(),
+            r.to_bits(),
+            "gamma {g:?} alpha {a:?} e_n {e:?}: read_table.py {p:?}, Rust {r:?}"
+        );
+    }
+    eprintln!(
+        "Thornton's law: {n} points (γ, α, e_n), {below} at α ≤ α_c1 (P off the line there by up \
+         to {off_line:.2e}): p_e == p_e_batch == p_e_batch_par == C bit for bit, {} of them == \
+         read_table.py ({:.1} s)",
+        subset.len(),
+        start.elapsed().as_secs_f64()
+    );
+}
+
+/// `oblq_p_e` of a table of Thornton's law refuses and clamps as the Rust rule does, with its
+/// bits: `γ` below the domain (`γ = 1` and below, where an elastic or Kelvin–Voigt table would
+/// answer the full-slip line) is refused even at `α = 0`, or clamped; `α` above `alpha_max`,
+/// `e_n` outside the range and invalid values are refused with Rust's codes.
+#[test]
+fn thornton_clamp_and_refusals_match_the_rust_rule() {
+    let (t, path, _) = thornton();
+    let s = t.surface();
+    let path = path.to_str().expect("path");
+    let range = t.restitution().expect("an e_n axis");
+    let mut pts = points_e(
+        sized(20_000, 40_000),
+        67,
+        (0.5 * s.gamma_min(), 1.2 * s.gamma_max()),
+        (range.0 - 0.05, 1.0),
+    );
+    pts.extend([
+        (1.0, 0.0, 0.9),
+        (1.0, 0.01, 0.9),
+        (0.5, 0.01, 0.9),
+        (1.2, 0.0, 0.9),
+        (s.gamma_min(), 0.0, 0.9),
+        (s.gamma_max(), f64::INFINITY, 0.9),
+        (f64::NAN, 0.5, 0.9),
+        (1.7, -0.1, 0.9),
+        (1.7, 0.3, f64::NAN),
+        (1.7, 0.3, 0.799_999_999_999_999_9),
+    ]);
+    for clamp in [0, 1] {
+        let (refused, answered) =
+            pe_against_rust(t, path, &pts, clamp, "e_n 1 0.80000000000000004 1");
+        assert!(refused[24] > 1000, "clamp {clamp}: {refused:?}");
+        assert_eq!(refused[9] > 3000, clamp == 0, "clamp {clamp}: {refused:?}");
+        assert_eq!(refused[7] + refused[8], 2, "clamp {clamp}: {refused:?}");
+        assert!(answered > 1000, "clamp {clamp}: {answered} answered");
+    }
+}
+
+/// An export of version 4 whose flag, version or domain was edited (and resealed) is refused
+/// as damaged (`OBLQ_E_CORRUPT`); a version-2 export with the flag set likewise.
+#[test]
+fn damaged_thornton_exports_are_refused_with_their_code() {
+    let (_, path, _) = thornton();
+    let good = std::fs::read(path).expect("export");
+    let case = |name: &str, bytes: &[u8]| -> String {
+        let p = dir().join(format!("thornton_{name}"));
+        std::fs::write(&p, bytes).expect("write");
+        run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
+    };
+    assert!(case("good", &good).starts_with("0 ok"));
+    let mut newer = good.clone();
+    newer[8] = 5;
+    assert!(case("newer", &newer).starts_with("4 "));
+    let dir_at = u64::from_le_bytes(good[72..80].try_into().expect("8 bytes")) as usize;
+    let partial = dir_at + 160;
+    let bc = u32::from_le_bytes(
+        good[partial + 28..partial + 32]
+            .try_into()
+            .expect("4 bytes"),
+    );
+    let edits: Vec<(&str, usize, Vec<u8>)> = vec![
+        ("as_v2", 8, 2u32.to_le_bytes().to_vec()),
+        ("as_v3", 8, 3u32.to_le_bytes().to_vec()),
+        ("no_flag", 68, 0u32.to_le_bytes().to_vec()),
+        ("flag_2", 68, 2u32.to_le_bytes().to_vec()),
+        ("gamma_min_below_1", 32, 0.9f64.to_le_bytes().to_vec()),
+        (
+            "odd_blocks_coord",
+            partial + 28,
+            (bc + 1).to_le_bytes().to_vec(),
+        ),
+    ];
+    for (name, at, value) in edits {
+        let mut b = good.clone();
+        b[at..at + value.len()].copy_from_slice(&value);
+        let said = case(name, &sealed(b));
+        assert!(said.starts_with("6 "), "{name} at {at}: {said}");
+    }
+    // A version-2 export (Kelvin–Voigt) with the flag of version 4.
+    let mut kv = std::fs::read(&dissipative().1).expect("export");
+    kv[68] = 1;
+    assert!(case("kv_flagged", &sealed(kv.clone())).starts_with("6 "));
+    kv[8] = 4;
+    // Labelled 4 with the flag: answered only if the domain starts at γ ≥ 1 (this one does not).
+    assert!(case("kv_as_v4", &sealed(kv)).starts_with("6 "));
 }

@@ -2,9 +2,9 @@
 //! configs/thornton-demo.toml` builds one, its partial-slip patch covers `0 ≤ α ≤ α_c2` with
 //! simulated nodes below `α_c1` (the law has no closed-form full-slip line), every query path
 //! answers with the same bits, the table holds its stated bound against direct solves at
-//! random points, next to `α_c1` and at the law's own edge of full slip, and what cannot
-//! answer such a table yet (the export, the reference reader) or a config it cannot be built
-//! from refuses by name.
+//! random points, next to `α_c1` and at the law's own edge of full slip, the export (layout
+//! version 4) and the reference reader answer it with the same bits, and a file whose law and
+//! coordinate disagree or a config it cannot be built from is refused by name.
 
 mod common;
 use common::{sweep_ok as ok, sweep_refused as refused};
@@ -316,23 +316,70 @@ fn sweep_query_answers_below_alpha_c1_from_the_table() {
     );
 }
 
+/// `sweep export` writes the table as layout version 4 and `scripts/read_table.py` answers it,
+/// below `α_c1` too, with the bits of `Table::p_e` (the C header's bits on random points:
+/// `tests/c_evaluator.rs`).
 #[test]
-fn the_export_and_the_reference_reader_refuse_it_naming_the_law() {
+fn the_export_and_the_reference_reader_answer_it() {
     let out = common::subdir("thornton-export").join("t.bin");
-    refused(
-        &["export", t(), "--output", out.to_str().expect("path")],
-        &["thornton", "export"],
-    );
-    assert!(!out.exists());
+    let said = ok(&["export", t(), "--output", out.to_str().expect("path")]);
+    assert!(said.contains("the table of the thornton law"), "{said}");
+    let bytes = std::fs::read(&out).expect("the export");
+    assert_eq!(&bytes[8..12], &[4, 0, 0, 0], "layout version 4");
+    let table = Table::open(table()).expect("the table");
+    for (g, a, e) in [
+        (1.7, 0.05, 0.8),
+        (1.65, 0.0, 0.9),
+        (1.75, 0.3, 0.95),
+        (1.6, 1.0, 1.0),
+        (1.8, f64::INFINITY, 0.85),
+    ] {
+        let r = Command::new("python3")
+            .arg(Path::new(ROOT).join("scripts/read_table.py"))
+            .arg(t())
+            .args(["--gamma", &format!("{g:?}"), "--alpha", &format!("{a:?}")])
+            .args(["--e-n", &format!("{e:?}")])
+            .output()
+            .expect("python3 (with h5py: the test command installs it)");
+        let text = String::from_utf8_lossy(&r.stdout);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        let p: f64 = text.trim().parse().expect("P");
+        let want = table.p_e(g, a, e).expect("inside");
+        assert_eq!(
+            p.to_bits(),
+            want.to_bits(),
+            "({g}, {a}, {e}): {p:?} vs {want:?}"
+        );
+    }
+    // Below the γ range nothing is answered from a line.
     let r = Command::new("python3")
         .arg(Path::new(ROOT).join("scripts/read_table.py"))
         .arg(t())
-        .args(["--gamma", "1.7", "--alpha", "0.05", "--e-n", "0.8"])
+        .args(["--gamma", "1.2", "--alpha", "0.01", "--e-n", "0.8"])
+        .output()
+        .expect("python3");
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("gamma") && err.contains("no closed-form full-slip line"),
+        "{err}"
+    );
+}
+
+/// `scripts/read_table.py` on `path` refuses it (status 2), its message naming every one of
+/// `want`.
+fn python_refuses(path: &Path, want: &[&str]) {
+    let r = Command::new("python3")
+        .arg(Path::new(ROOT).join("scripts/read_table.py"))
+        .arg(path)
+        .args(["--gamma", "1.7", "--alpha", "0.05", "--e-n", "0.9"])
         .output()
         .expect("python3 (with h5py: the test command installs it)");
     let err = String::from_utf8_lossy(&r.stderr);
-    assert!(!r.status.success(), "{err}");
-    assert!(err.contains("thornton") && err.contains("law"), "{err}");
+    assert_eq!(r.status.code(), Some(2), "{}: {err}", path.display());
+    for w in want {
+        assert!(err.contains(w), "{}: {w:?} not in {err}", path.display());
+    }
 }
 
 /// A law and a partial-slip coordinate that do not go together are refused, naming both.
@@ -350,6 +397,10 @@ fn readers_refuse_a_law_with_the_other_laws_coordinate() {
         &["inspect", kv_slip.to_str().expect("path")],
         &["coordinate", "slip,1-sqrt(1-sqrt(l))", "kelvin-voigt"],
     );
+    python_refuses(
+        &kv_slip,
+        &["coordinate", "slip,1-sqrt(1-sqrt(l))", "kelvin-voigt"],
+    );
     let th_plain = dir.join("thornton-plain.h5");
     common::edited_copy(
         table(),
@@ -359,6 +410,10 @@ fn readers_refuse_a_law_with_the_other_laws_coordinate() {
     );
     refused(
         &["inspect", th_plain.to_str().expect("path")],
+        &["coordinate", "'1-sqrt(1-sqrt(l))'", "thornton"],
+    );
+    python_refuses(
+        &th_plain,
         &["coordinate", "'1-sqrt(1-sqrt(l))'", "thornton"],
     );
     // The law changed, the coordinate kept: refused the same way.
@@ -372,6 +427,7 @@ fn readers_refuse_a_law_with_the_other_laws_coordinate() {
         &["inspect", th_kv.to_str().expect("path")],
         &["slip,1-sqrt(1-sqrt(l))", "kelvin-voigt"],
     );
+    python_refuses(&th_kv, &["slip,1-sqrt(1-sqrt(l))", "kelvin-voigt"]);
 }
 
 /// The config keys a table of this law needs, each refused by name.

@@ -69,18 +69,6 @@ pub fn run(args: ExportArgs) -> Result<()> {
     // being read is not overwritten (also under another name or a hard link).
     oblique_output::check_output_not_input(&args.output, &[&args.table])?;
     let table = Table::open(&args.table)?;
-    if !table.surface().has_line() {
-        // The export's layout answers alpha <= alpha_c1 from the closed-form full-slip line,
-        // which a table of this law does not have.
-        return Err(Failure::usage(format!(
-            "{}: a table of the {} law (no closed-form full-slip line: its partial-slip patch \
-             covers 0 <= alpha <= alpha_c2) cannot be exported yet: the export format holds \
-             tables whose full-slip line is closed-form; query it with sweep query, the Rust \
-             crate or Python",
-            args.table.display(),
-            table.provenance().law
-        )));
-    }
     let axis = table.surface().restitution();
     if let (Some((lo, hi)), false) = (axis, args.gammas.is_empty()) {
         return Err(Failure::usage(format!(
@@ -119,13 +107,18 @@ pub fn run(args: ExportArgs) -> Result<()> {
         .format
         .unwrap_or(if c_by_name { Format::C } else { Format::Binary });
     let pair = table.surface().pair_gamma();
+    // A table without a closed-form full-slip line (Thornton's law): layout version 4.
+    let law = (!table.surface().has_line()).then(|| table.provenance().law.clone());
     let what = format!(
-        "{} from {}{}",
+        "{}{} from {}{}",
         match (axis, pair) {
             (Some(_), Some(g)) => format!("P(alpha, e_n) at gamma = {g}"),
             (Some(_), None) => "P(gamma, alpha, e_n)".to_string(),
             (None, _) => "P(gamma, alpha)".to_string(),
         },
+        law.as_ref()
+            .map(|l| format!(" of the {l} law"))
+            .unwrap_or_default(),
         args.table.display(),
         if args.gammas.is_empty() {
             String::new()
@@ -163,7 +156,10 @@ pub fn run(args: ExportArgs) -> Result<()> {
             (false, None) => "the table and ".into(),
             (false, Some((lo, hi))) => match pair {
                 Some(g) => format!("the table of one pair (gamma = {g}, e_n in [{lo}, {hi}]) and "),
-                None => format!("the table (e_n in [{lo}, {hi}]) and "),
+                None => match &law {
+                    Some(l) => format!("the table of the {l} law (e_n in [{lo}, {hi}]) and "),
+                    None => format!("the table (e_n in [{lo}, {hi}]) and "),
+                },
             },
         },
         curves.len(),

@@ -13,7 +13,11 @@
 //! pair (axes `alpha,e_n`, [`Surface::pair_gamma`]) as version 3: version 2 with `gamma_min =
 //! gamma_max` and patches of a single `γ` (`gamma_lo = gamma_hi`, `blocks_gamma = 1`), whose
 //! trees are quadtrees over `(c, e_n)` (masks 1 to 3) with `(m+1)²` nodes per leaf (a reader of
-//! version 2 only refuses it by its version).
+//! version 2 only refuses it by its version); a table of Thornton's law (no closed-form
+//! full-slip line, [`Surface::has_line`]) as version 4: version 2 with the flag `1` at offset
+//! 68 (`0` in versions 1 to 3), whose partial-slip patch covers `0 ≤ α ≤ α_c2` with the
+//! coordinate [`crate::surface::PartialMap::Slip`] (a reader of version 2 only refuses it by its
+//! version instead of answering `α ≤ α_c1` from a line this law does not have).
 
 use crate::format::fnv1a64;
 use crate::surface::{PatchId, PatchKind, Surface, MAX_INDEX_ENTRIES};
@@ -26,9 +30,15 @@ pub const VERSION: u32 = 1;
 pub const VERSION_E_N: u32 = 2;
 /// Layout version of the export of the table of one pair (axes `alpha,e_n`).
 pub const VERSION_PAIR: u32 = 3;
+/// Layout version of the export of a table without a closed-form full-slip line (Thornton's
+/// law, [`crate::surface::PartialMap::Slip`]): version 2 with the flag [`NO_LINE_AT`] set.
+pub const VERSION_NO_LINE: u32 = 4;
+/// Offset of the `u32` flag of a table without a full-slip line: `1` in version 4, `0` in
+/// versions 1 to 3 (a reader checks it against the version).
+pub const NO_LINE_AT: usize = 68;
 /// Bytes of the header (version 1).
 pub const HEADER_BYTES: usize = 96;
-/// Bytes of the header of versions 2 and 3: the version-1 header, then `e_n_min` and
+/// Bytes of the header of versions 2, 3 and 4: the version-1 header, then `e_n_min` and
 /// `e_n_max`.
 pub const HEADER_BYTES_E_N: usize = 112;
 /// Bytes of one patch record (three follow the header when the export holds the surface).
@@ -112,14 +122,15 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// and of `curves`, as bytes. An export without the surface answers only its curves.
 ///
 /// A surface with an `e_n` axis ([`Surface::restitution`]) is written as version 2, the table of
-/// one pair ([`Surface::pair_gamma`]) as version 3; curves belong to elastic tables only.
+/// one pair ([`Surface::pair_gamma`]) as version 3, a surface without the full-slip line
+/// ([`Surface::has_line`]: Thornton's law) as version 4; curves belong to elastic tables only.
 ///
 /// # Panics
 ///
 /// For a surface with an `e_n` axis and `curves` or without `with_surface` (`sweep export`
 /// refuses `--gamma` for such a table before it gets here), and for a surface without the
-/// full-slip line ([`Surface::has_line`]: the layout answers the line; `sweep export` refuses
-/// such a table).
+/// full-slip line that is not a table with an `e_n` axis over a range of `γ` (which
+/// [`Surface::with_partial_map`] never makes).
 pub fn export(
     surface: &Surface,
     error_bound: f64,
@@ -132,18 +143,22 @@ pub fn export(
         "the export of a table with an e_n axis holds its surface and no curves"
     );
     assert!(
-        surface.has_line(),
-        "the export layout answers the full-slip line, which this table does not have"
+        surface.has_line() || (axis.is_some() && surface.pair_gamma().is_none()),
+        "only a table with an e_n axis over a range of gamma has no full-slip line"
     );
-    let (version, header) = match (axis, surface.pair_gamma()) {
-        (Some(_), Some(_)) => (VERSION_PAIR, HEADER_BYTES_E_N),
-        (Some(_), None) => (VERSION_E_N, HEADER_BYTES_E_N),
-        (None, _) => (VERSION, HEADER_BYTES),
+    let (version, header) = match (axis, surface.pair_gamma(), surface.has_line()) {
+        (Some(_), None, false) => (VERSION_NO_LINE, HEADER_BYTES_E_N),
+        (Some(_), Some(_), _) => (VERSION_PAIR, HEADER_BYTES_E_N),
+        (Some(_), None, true) => (VERSION_E_N, HEADER_BYTES_E_N),
+        (None, _, _) => (VERSION, HEADER_BYTES),
     };
     let mut v = vec![0u8; header];
     v[..8].copy_from_slice(MAGIC);
     put_u32(&mut v, 8, version);
     put_u32(&mut v, 12, header as u32);
+    if version == VERSION_NO_LINE {
+        put_u32(&mut v, NO_LINE_AT, 1);
+    }
     if let Some((lo, hi)) = axis {
         put_f64(&mut v, 96, lo);
         put_f64(&mut v, 104, hi);
