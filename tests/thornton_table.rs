@@ -366,6 +366,137 @@ fn the_export_and_the_reference_reader_answer_it() {
     );
 }
 
+/// The reference reader `scripts/read_table.py`, which restates the rule with its own code,
+/// gives the bits of `Table::p_e` at every point it answers and refuses the same points naming
+/// the same argument: random points (2·10⁵ in the release check, 4·10⁴ otherwise) over and
+/// around the domain (`γ` a tenth of the range beyond each end, `γ = 1` in the mix; `e_n`
+/// beyond its range), with `α` below `α_c1` (uniform, `1e-6·α_c1`, 0), at `α_c1(1 ± 1e-12)`, one ulp
+/// either side of `α_c2` and `α = ∞`. Its `--check-stored` matches the held-out checks.
+#[test]
+fn the_reference_reader_gives_the_bits_of_p_e() {
+    use std::io::Write;
+    let start = std::time::Instant::now();
+    let table_ = Table::open(table()).expect("the table");
+    let s = table_.surface();
+    let span = s.gamma_max() - s.gamma_min();
+    let (g_lo, g_hi) = (s.gamma_min() - 0.1 * span, s.gamma_max() + 0.1 * span);
+    let mut r = oblique_physics::sample::SplitMix(0x7468_726e);
+    let n = common::size::sized(40_000, 200_000);
+    let mut points = Vec::with_capacity(n);
+    for i in 0..n {
+        let g = if i % 97 == 5 {
+            1.0
+        } else {
+            g_lo + (g_hi - g_lo) * r.uniform()
+        };
+        let e = match i % 89 {
+            0 => 0.8,
+            1 => 1.0,
+            _ => 0.75 + 0.27 * r.uniform(),
+        };
+        let c1 = alpha_c1_dissipative(g, e);
+        let a = match i % 40 {
+            0 => f64::INFINITY,
+            1 => 0.0,
+            2 => f64::from_bits(alpha_c2(g).to_bits() + 1),
+            3 => f64::from_bits(alpha_c2(g).to_bits() - 1),
+            4 => c1,
+            5 => c1 * (1.0 + 1e-12),
+            6 => c1 * (1.0 - 1e-12),
+            7 => 1e-6 * c1,
+            8..=17 => c1 * r.uniform(),
+            _ => 3.0 * r.uniform() * r.uniform(),
+        };
+        points.push((g, a, e));
+    }
+    let input: String = points
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect();
+    let script = "import sys\n\
+                  sys.path.insert(0, sys.argv[1])\n\
+                  from read_table import Table, DomainError\n\
+                  t = Table(sys.argv[2])\n\
+                  out = [t.law, repr(t.error_bound)]\n\
+                  for line in sys.stdin:\n    \
+                      g, a, e = (float(x) for x in line.split(','))\n    \
+                      try:\n        \
+                          out.append(repr(t.p_at([g, a, e])))\n    \
+                      except DomainError as err:\n        \
+                          out.append('error ' + err.name)\n\
+                  sys.stdout.write('\\n'.join(out) + '\\n')\n";
+    let mut child = Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .arg(Path::new(ROOT).join("scripts"))
+        .arg(table())
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("python3 (with h5py: the test command installs it)");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let out = child.wait_with_output().expect("python3 output");
+    writer.join().expect("writer").expect("write points");
+    assert!(out.status.success(), "read_table.py failed");
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), n + 2);
+    assert_eq!(lines[0], "thornton");
+    let bound: f64 = lines[1].parse().expect("bound");
+    assert!(
+        (bound - table_.error_bound()).abs() <= 1e-12 * table_.error_bound(),
+        "Python bound {bound}, Rust {}",
+        table_.error_bound()
+    );
+    let (mut answered, mut below, mut refused_e_n, mut refused_gamma) = (0, 0, 0, 0);
+    for (&(g, a, e), line) in points.iter().zip(&lines[2..]) {
+        match table_.p_e(g, a, e) {
+            Ok(p) => {
+                let py: f64 = line
+                    .parse()
+                    .unwrap_or_else(|_| panic!("({g:?}, {a:?}, {e:?}): Rust {p:?}, Python {line}"));
+                assert_eq!(
+                    p.to_bits(),
+                    py.to_bits(),
+                    "({g:?}, {a:?}, {e:?}): Rust {p:?}, read_table.py {py:?}"
+                );
+                answered += 1;
+                below += usize::from(a <= alpha_c1_dissipative(g, e));
+            }
+            Err(oblique_lookup::LookupError::Query { name, .. }) => {
+                assert_eq!(*line, format!("error {name}"), "({g:?}, {a:?}, {e:?})");
+                refused_e_n += usize::from(name == "e_n");
+                refused_gamma += usize::from(name == "gamma");
+            }
+            Err(other) => panic!("({g:?}, {a:?}, {e:?}): {other}"),
+        }
+    }
+    assert!(
+        answered > n / 3 && below > n / 10 && refused_e_n > n / 20 && refused_gamma > n / 20,
+        "{answered} answered ({below} at alpha <= alpha_c1), refused {refused_e_n} for e_n, \
+         {refused_gamma} for gamma"
+    );
+    let r = Command::new("python3")
+        .arg(Path::new(ROOT).join("scripts/read_table.py"))
+        .arg(t())
+        .arg("--check-stored")
+        .output()
+        .expect("python3");
+    assert!(
+        r.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&r.stdout),
+        String::from_utf8_lossy(&r.stderr)
+    );
+    eprintln!(
+        "Thornton table: {answered} of {n} points ({below} at α ≤ α_c1) the same bits in Rust \
+         and read_table.py, {refused_e_n} refused for e_n and {refused_gamma} for gamma by both \
+         ({:.1} s)",
+        start.elapsed().as_secs_f64()
+    );
+}
+
 /// `scripts/read_table.py` on `path` refuses it (status 2), its message naming every one of
 /// `want`.
 fn python_refuses(path: &Path, want: &[&str]) {
