@@ -1,7 +1,8 @@
 /*
  * oblique_eval.h: the tangential restitution P(gamma, alpha) of oblique elastic impacts with
  * friction (and P(gamma, alpha, e_n) of dissipative ones, from a table with a normal-restitution
- * axis, or from the table of one pair: P(alpha, e_n) at its single gamma), and the rebounds of
+ * axis of the Kelvin-Voigt or Thornton's elastic-plastic law, or from the table of one pair:
+ * P(alpha, e_n) at its single gamma), and the rebounds of
  * spheres on walls and on spheres, evaluated from an export of a table
  * (`sweep export TABLE -o FILE`) held in memory. One header, no library but libm, no
  * allocation (but in the optional file loader oblq_load_file): C99 and later, C++11 and later.
