@@ -2,9 +2,10 @@
 """Reference reader of the P(gamma, alpha) table (HDF5, schema v4, v3 or v2), h5py + numpy only.
 
 Implements the interpolation rule of docs/table-format.md (steps 1-10, the rule of a table with
-a normal-restitution axis, schema v4, and that of the table of one pair, axes 'alpha,e_n')
-exactly, independently of the Rust code, so that it can cross-check both the `oblique-lookup`
-crate and the simulator.
+a normal-restitution axis, schema v4, that of the table of one pair, axes 'alpha,e_n', and that
+of a table of Thornton's law, which has no full-slip line: "Tables of Thornton's law") exactly,
+independently of the Rust code, so that it can cross-check both the `oblique-lookup` crate and
+the simulator.
 
     python3 scripts/read_table.py TABLE --gamma G --alpha A        # prints P (alpha may be inf)
     python3 scripts/read_table.py TABLE --gamma G --alpha A --e-n E   # P(gamma, alpha, e_n)
