@@ -8,41 +8,7 @@ use crate::kelvin_voigt::dimensionless_normal as kv_normal;
 use crate::kelvin_voigt::row::ViscoelasticRow;
 use crate::kelvin_voigt::tau_for_restitution;
 use crate::law::check_restitution;
-use crate::model::{StepEnd, TangentialModel};
 use crate::registry::Law;
-use crate::springs::{StepMotion, StepResult};
-
-/// The Kelvin–Voigt row ([`ViscoelasticRow`]) that logs the normal state of every step it
-/// takes, `[d₀, ḋ₀, d₁, ḋ₁]` (dimensionless), and is otherwise the row itself.
-struct LoggedRow<'a> {
-    row: ViscoelasticRow,
-    log: &'a mut Vec<[f64; 4]>,
-}
-
-impl TangentialModel for LoggedRow<'_> {
-    const END_STATE: bool = <ViscoelasticRow as TangentialModel>::END_STATE;
-    #[inline(always)]
-    fn at_limit(&self) -> (bool, bool) {
-        TangentialModel::at_limit(&self.row)
-    }
-    #[inline(always)]
-    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
-        self.log.push([m.d0, m.rate0, d1, m.rate1]);
-        self.row.step_accurate(m, d1, c)
-    }
-    #[inline(always)]
-    fn touch_mean(&self, slip_velocity: f64, rate0: f64, c: f64) -> f64 {
-        self.row.touch_mean(slip_velocity, rate0, c)
-    }
-    #[inline(always)]
-    fn close_step<B: TangentialBodies>(&self, bodies: &mut B, end: &StepEnd) -> (f64, f64) {
-        self.row.close_step(bodies, end)
-    }
-    #[inline(always)]
-    fn release_time(&self, m: &StepMotion, c: f64) -> Option<f64> {
-        self.row.release_time(m, c)
-    }
-}
 
 /// The Coulomb limit's mean displacement `c`-free part `m = D − b/3` at a node of the
 /// Kelvin–Voigt normal motion with indentation `d`, rate `ḋ` and relaxation time `τ̂`: the
@@ -87,9 +53,12 @@ pub fn slip_history_e(
         log: Vec::with_capacity(steps + steps / 8),
     };
     let mut states = Vec::with_capacity(steps + steps / 8);
+    // The normal state `[d₀, ḋ₀, d₁, ḋ₁]` (dimensionless) of every step.
     let row = LoggedRow {
         row: ViscoelasticRow::new(1.0, tau),
-        log: &mut states,
+        log: |_: &ViscoelasticRow, m: &StepMotion, d1: f64| {
+            states.push([m.d0, m.rate0, d1, m.rate1])
+        },
     };
     run_contact_with(&mut rec, &*normal, row, 1.0, shear, alpha / shear);
     let mut episodes: Vec<Episode> = Vec::new();

@@ -16,6 +16,8 @@ use super::impact::{
     check_alpha, check_gamma, dimensionless_normal, mean_sqrt, run_contact, run_contact_with,
     ContactPoint, TangentialBodies, ALPHA_NO_SLIP,
 };
+use super::model::{StepEnd, TangentialModel};
+use super::springs::{StepMotion, StepResult};
 
 mod damped;
 mod plastic;
@@ -83,6 +85,43 @@ impl TangentialBodies for Recorder {
         self.point.kick(h, f);
         self.log.push((self.t, h, f));
         self.t += h;
+    }
+}
+
+/// A row that calls `log` with itself and the step after every step it takes, and is otherwise
+/// the row: the histories of the dissipative laws record what their own rows know.
+struct LoggedRow<R, F> {
+    row: R,
+    log: F,
+}
+
+impl<R: TangentialModel, F: FnMut(&R, &StepMotion, f64)> TangentialModel for LoggedRow<R, F> {
+    const END_STATE: bool = R::END_STATE;
+    #[inline(always)]
+    fn at_limit(&self) -> (bool, bool) {
+        self.row.at_limit()
+    }
+    #[inline(always)]
+    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        let r = self.row.step_accurate(m, d1, c);
+        (self.log)(&self.row, m, d1);
+        r
+    }
+    #[inline(always)]
+    fn touch_mean(&self, slip_velocity: f64, rate0: f64, c: f64) -> f64 {
+        self.row.touch_mean(slip_velocity, rate0, c)
+    }
+    #[inline(always)]
+    fn close_step<B: TangentialBodies>(&self, bodies: &mut B, end: &StepEnd) -> (f64, f64) {
+        self.row.close_step(bodies, end)
+    }
+    #[inline(always)]
+    fn release_time(&self, m: &StepMotion, c: f64) -> Option<f64> {
+        self.row.release_time(m, c)
+    }
+    #[inline(always)]
+    fn jump(&mut self, start: (f64, f64), end: (f64, f64), c: f64) -> Option<StepResult> {
+        self.row.jump(start, end, c)
     }
 }
 

@@ -13,51 +13,11 @@
 
 use super::*;
 use crate::law::{check_restitution, shear_and_limit};
-use crate::model::{NormalModel, StepEnd, TangentialModel};
+use crate::model::NormalModel;
 use crate::registry::Law;
-use crate::springs::{StepMotion, StepResult};
 use crate::thornton::row::ThorntonRow;
 use crate::thornton::yield_pressure_for_restitution;
 use crate::thornton::{dimensionless_motion, dimensionless_trajectory};
-
-/// Thornton's row ([`ThorntonRow`]) that logs, after every step it takes, whether the whole
-/// contact is at one Coulomb limit ([`ThorntonRow::gross_slip`]) and whether anything is still
-/// in contact, and is otherwise the row.
-struct LoggedRow<'a> {
-    row: ThorntonRow,
-    log: &'a mut Vec<(Option<bool>, bool)>,
-}
-
-impl TangentialModel for LoggedRow<'_> {
-    const END_STATE: bool = <ThorntonRow as TangentialModel>::END_STATE;
-    #[inline(always)]
-    fn at_limit(&self) -> (bool, bool) {
-        TangentialModel::at_limit(&self.row)
-    }
-    #[inline(always)]
-    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
-        let r = self.row.step_accurate(m, d1, c);
-        self.log
-            .push((self.row.gross_slip(), self.row.pieces() > 0));
-        r
-    }
-    #[inline(always)]
-    fn touch_mean(&self, slip_velocity: f64, rate0: f64, c: f64) -> f64 {
-        self.row.touch_mean(slip_velocity, rate0, c)
-    }
-    #[inline(always)]
-    fn close_step<B: TangentialBodies>(&self, bodies: &mut B, end: &StepEnd) -> (f64, f64) {
-        self.row.close_step(bodies, end)
-    }
-    #[inline(always)]
-    fn release_time(&self, m: &StepMotion, c: f64) -> Option<f64> {
-        self.row.release_time(m, c)
-    }
-    #[inline(always)]
-    fn jump(&mut self, start: (f64, f64), end: (f64, f64), c: f64) -> Option<StepResult> {
-        self.row.jump(start, end, c)
-    }
-}
 
 /// [`slip_history`] for Thornton's law at normal restitution `e_n ∈ [0.3, 1]` (its limiting
 /// pressure from Thornton's closed form): the impact with the law's continuum row on `steps`
@@ -110,6 +70,8 @@ fn run_logged(
         log: Vec::with_capacity(steps + steps / 8),
     };
     let mut log = Vec::with_capacity(steps + steps / 8);
+    // After every step: whether the whole contact is at one Coulomb limit
+    // (`ThorntonRow::gross_slip`) and whether anything is still in contact.
     let row = LoggedRow {
         row: ThorntonRow::new(
             1.0,
@@ -117,7 +79,9 @@ fn run_logged(
             motion.unloading.ratio,
             motion.unloading.plastic_indentation,
         ),
-        log: &mut log,
+        log: |row: &ThorntonRow, _: &StepMotion, _: f64| {
+            log.push((row.gross_slip(), row.pieces() > 0))
+        },
     };
     run_contact_with(&mut rec, &*trajectory, row, 1.0, shear, limit);
     let times = rec.log.iter().map(|&(t, h, _)| (t, h)).collect();
