@@ -117,6 +117,15 @@ class CatalogueMaterial(Material):
     impacts take masses (:class:`Sphere`)."""
     source: str = ""
     """Where the values come from (a citation)."""
+    yield_stress: Optional[float] = None
+    """Uniaxial yield stress Y (Pa) where a source gives one (the metals); ``None`` for brittle
+    materials and polymers, which Thornton's elastic–perfectly plastic law does not describe."""
+    limiting_pressure: Optional[float] = None
+    """The limiting contact pressure ``p_y = 1.60 Y`` (Pa) of Thornton's law, the peak Hertz
+    pressure at first yield (Johnson 1985, chapter 6): pass it as
+    ``simulate(..., yield_pressure=)``; ``None`` without a yield stress."""
+    yield_source: str = ""
+    """Where the yield stress comes from, or why there is none."""
 
     def __setattr__(self, key: str, value: Any) -> None:
         raise AttributeError(f"catalogue entries are read-only (cannot set {key})")
@@ -139,10 +148,24 @@ class CatalogueMaterial(Material):
 
 
 def _entry(
-    name: str, e: float, nu: float, density: Optional[float], source: str
+    name: str,
+    e: float,
+    nu: float,
+    density: Optional[float],
+    source: str,
+    yield_stress: Optional[float],
+    limiting_pressure: Optional[float],
+    yield_source: str,
 ) -> CatalogueMaterial:
     m = CatalogueMaterial(e, nu)
-    for key, value in (("name", name), ("density", density), ("source", source)):
+    for key, value in (
+        ("name", name),
+        ("density", density),
+        ("source", source),
+        ("yield_stress", yield_stress),
+        ("limiting_pressure", limiting_pressure),
+        ("yield_source", yield_source),
+    ):
         object.__setattr__(m, key, value)
     return m
 
@@ -150,7 +173,12 @@ def _entry(
 class _Catalogue(Mapping[str, CatalogueMaterial]):
     """The material catalogue: a read-only mapping from a name to its entry."""
 
-    def __init__(self, rows: Sequence[Tuple[str, float, float, Optional[float], str]]) -> None:
+    def __init__(
+        self,
+        rows: Sequence[
+            Tuple[str, float, float, Optional[float], str, Optional[float], Optional[float], str]
+        ],
+    ) -> None:
         self._by_name = {row[0]: _entry(*row) for row in rows}
 
     def __getitem__(self, name: str) -> CatalogueMaterial:
@@ -173,8 +201,9 @@ class _Catalogue(Mapping[str, CatalogueMaterial]):
 
 
 #: The built-in material catalogue, a read-only mapping name → :class:`CatalogueMaterial` (a
-#: :class:`Material` with ``name``, ``density`` in kg/m³, ``None`` for ``"rigid"``, and
-#: ``source``, the citation of the values): the materials of scene files and ``sweep gamma``
+#: :class:`Material` with ``name``, ``density`` in kg/m³, ``None`` for ``"rigid"``,
+#: ``source``, the citation of the values, and for the metals ``yield_stress`` and Thornton's
+#: ``limiting_pressure`` in Pa with ``yield_source``): the materials of scene files and ``sweep gamma``
 #: (``docs/materials.md``). Nominal room-temperature, quasi-static values; the polymers' are a
 #: first estimate.
 materials: Mapping[str, CatalogueMaterial] = _Catalogue(_native.MATERIALS)

@@ -19,7 +19,9 @@ IMPACT: List[str]
 # The axes a table may have beyond gamma and alpha: (name, the value where a table lacks it).
 EXTRA_AXES: List[Tuple[str, float]]
 # (name, E (Pa), nu, density (kg/m^3) or None, source), in catalogue order.
-MATERIALS: List[Tuple[str, float, float, Optional[float], str]]
+MATERIALS: List[
+    Tuple[str, float, float, Optional[float], str, Optional[float], Optional[float], str]
+]
 
 class TableError(OSError): ...
 

@@ -918,9 +918,23 @@ fn simulate<'py>(
     Ok(d)
 }
 
+/// One entry of the catalogue for Python: name, E (Pa), ν, density (kg/m³, `None` for the
+/// rigid body), source, yield stress `Y` (Pa, `None` without one), limiting pressure
+/// `p_y = 1.60 Y` (Pa) and the yield stress's source.
+type MaterialRow = (
+    &'static str,
+    f64,
+    f64,
+    Option<f64>,
+    &'static str,
+    Option<f64>,
+    Option<f64>,
+    &'static str,
+);
+
 /// The material catalogue (`oblique_physics::materials`) as rows `(name, E (Pa), nu, density
 /// (kg/m³) or None, source)`, in catalogue order.
-fn material_rows() -> Vec<(&'static str, f64, f64, Option<f64>, &'static str)> {
+fn material_rows() -> Vec<MaterialRow> {
     oblique_physics::materials::CATALOGUE
         .iter()
         .map(|m| {
@@ -930,6 +944,9 @@ fn material_rows() -> Vec<(&'static str, f64, f64, Option<f64>, &'static str)> {
                 m.poisson_ratio,
                 Some(m.density).filter(|d| d.is_finite()),
                 m.source,
+                m.yield_stress,
+                m.limiting_pressure(),
+                m.yield_source,
             )
         })
         .collect()

@@ -35,11 +35,21 @@ def test_the_catalogue_is_the_clis(cli_catalogue):
         assert (mat.youngs_modulus, mat.poisson_ratio) == (e, m["poisson_ratio"])
         assert mat.density == m["density"]
         assert mat.source == m["source"] and len(mat.source) > 20
+        assert (mat.yield_stress, mat.limiting_pressure) == (
+            m.get("yield_stress"),
+            m.get("limiting_pressure"),
+        )
+        assert mat.yield_source == m["yield_source"] and len(mat.yield_source) > 10
     glass = oblique.materials["soda-lime-glass"]
     assert (glass.youngs_modulus, glass.poisson_ratio, glass.density) == (73e9, 0.217, 2500.0)
     assert "Gorham & Kharaz" in glass.source
     assert oblique.materials["rigid"].density is None
     assert oblique.materials["rigid"].youngs_modulus == math.inf
+    # The metals' limiting pressure is 1.60 times their yield stress (Pa); glass has none.
+    steel = oblique.materials["steel"]
+    assert steel.yield_stress == 235e6 and steel.limiting_pressure == pytest.approx(376e6)
+    assert oblique.materials["soda-lime-glass"].limiting_pressure is None
+    assert "brittle" in oblique.materials["alumina-96"].yield_source
 
 
 def test_read_only_and_unknown_names_list_the_catalogue():
