@@ -4,16 +4,11 @@
 //! `α_c1` as `e_n → 1`, and lies below the Kelvin–Voigt `α_c1` next to γ = 1 (where the
 //! springs that stick at the switch to unloading never slip again) and above it from γ ≈ 1.1.
 
+use oblique_physics::regimes::alpha_c1_dissipative;
 use oblique_solver::history::{
     ends_in_full_slip_thornton, full_slip_edge_thornton, slip_history_thornton, SlipSign,
 };
 use oblique_solver::{Accuracy, Law, PhysicsError, Request};
-
-/// The Kelvin–Voigt `α_c1(γ, e_n) = 2γ²/(7(γ²(1 + e_n) − e_n))`.
-fn kv_alpha_c1(gamma: f64, e_n: f64) -> f64 {
-    let g2 = gamma * gamma;
-    2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n))
-}
 
 /// `P` of Thornton's law at tol 1e-10.
 fn p(gamma: f64, alpha: f64, e_n: f64) -> f64 {
@@ -68,9 +63,9 @@ fn the_edge_is_a_curvature_jump_of_p() {
     let coarse = full_slip_edge_thornton(gamma, e_n, 4096).unwrap();
     assert!((coarse / a1 - 1.0).abs() < 1e-6, "{coarse} against {a1}");
     assert!(
-        a1 > kv_alpha_c1(gamma, e_n) * (1.0 + 5e-4),
+        a1 > alpha_c1_dissipative(gamma, e_n) * (1.0 + 5e-4),
         "{a1} against the Kelvin-Voigt alpha_c1 {}",
-        kv_alpha_c1(gamma, e_n)
+        alpha_c1_dissipative(gamma, e_n)
     );
     // Below the edge (x = (α − α₁)/(0.01 α₁), in [-2, -0.05]).
     let xs: Vec<f64> = (0..10).map(|i| -2.0 + 1.95 * i as f64 / 9.0).collect();
@@ -99,13 +94,13 @@ fn the_edge_is_a_curvature_jump_of_p() {
 #[test]
 fn the_edge_tends_to_the_kelvin_voigt_alpha_c1() {
     for gamma in [1.5, 2.3] {
-        let elastic = kv_alpha_c1(gamma, 1.0);
-        let kv = kv_alpha_c1(gamma, 0.999);
+        let elastic = alpha_c1_dissipative(gamma, 1.0);
+        let kv = alpha_c1_dissipative(gamma, 0.999);
         assert!((kv / elastic - 1.0).abs() > 1e-4);
         let near = full_slip_edge_thornton(gamma, 0.999, 8192).unwrap();
         assert!((near / kv - 1.0).abs() < 2e-6, "{gamma}: {near} vs {kv}");
         let farther = full_slip_edge_thornton(gamma, 0.99, 8192).unwrap();
-        let gap = farther / kv_alpha_c1(gamma, 0.99) - 1.0;
+        let gap = farther / alpha_c1_dissipative(gamma, 0.99) - 1.0;
         assert!(
             (3e-6..1e-4).contains(&gap),
             "{gamma}: {farther}, gap {gap:e}"
@@ -121,7 +116,7 @@ fn the_edge_tends_to_the_kelvin_voigt_alpha_c1() {
 fn next_to_gamma_one_the_edge_lies_below_the_kelvin_voigt_alpha_c1() {
     let (gamma, e_n) = (1.05, 0.7);
     let a1 = full_slip_edge_thornton(gamma, e_n, 8192).unwrap();
-    let c1 = kv_alpha_c1(gamma, e_n);
+    let c1 = alpha_c1_dissipative(gamma, e_n);
     assert!(a1 < c1 * (1.0 - 5e-3), "{a1} against {c1}");
     assert!(ends_in_full_slip_thornton(gamma, a1 * (1.0 - 1e-4), e_n, 8192).unwrap());
     assert!(!ends_in_full_slip_thornton(gamma, a1 * (1.0 + 1e-4), e_n, 8192).unwrap());

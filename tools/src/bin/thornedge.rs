@@ -7,6 +7,7 @@
 //! parallel. `thornedge --history GAMMA ALPHA E_N STEPS` prints the gross-slip episodes of one
 //! impact (`slip_history_thornton`) instead.
 
+use oblique_physics::regimes::alpha_c1_dissipative;
 use oblique_solver::history::{full_slip_edge_thornton, slip_history_thornton};
 use rayon::prelude::*;
 
@@ -49,8 +50,7 @@ fn main() -> anyhow::Result<()> {
     let rows: Vec<anyhow::Result<String>> = points
         .par_iter()
         .map(|&(g, e)| {
-            let g2 = g * g;
-            let c1 = 2.0 * g2 / (7.0 * (g2 * (1.0 + e) - e));
+            let c1 = alpha_c1_dissipative(g, e);
             let mut line = format!("gamma {g:.4} e_n {e:.4} alpha_c1(KV) {c1:.9}");
             for &s in &steps {
                 match full_slip_edge_thornton(g, e, s) {

@@ -134,8 +134,7 @@ pub fn full_slip_edge_thornton(gamma: f64, e_n: f64, steps: usize) -> Result<f64
             allowed: "in [0.3, 1) (at e_n = 1 the edge is the elastic alpha_c1)",
         });
     }
-    let g2 = gamma * gamma;
-    let c1 = 2.0 * g2 / (7.0 * (g2 * (1.0 + e_n) - e_n));
+    let c1 = oblique_physics::regimes::alpha_c1_dissipative(gamma, e_n);
     let c2 = oblique_physics::regimes::alpha_c2(gamma);
     let ends = |a: f64| ends_in_full_slip_thornton(gamma, a, e_n, steps);
     let no_bracket = |a: f64| PhysicsError::InvalidParameter {
