@@ -2371,17 +2371,16 @@ fn p_at_gives_the_bits_of_the_rust_point_query() {
 // ---------------------------------------------------------------------------------------------
 // A table of Thornton's law: no closed-form full-slip line (export layout version 4)
 
-/// `configs/thornton-demo.toml` built here, its export by `sweep export` and the table file,
-/// made once per process.
+/// `configs/thornton-demo.toml` built (once for all test processes of this build,
+/// `common::shared_build`), its export by `sweep export` (once per process) and the table file.
 fn thornton() -> &'static (Table, PathBuf, PathBuf) {
     static T: OnceLock<(Table, PathBuf, PathBuf)> = OnceLock::new();
     T.get_or_init(|| {
         let d = dir().join("thornton");
         std::fs::create_dir_all(&d).expect("folder");
-        let (table, path) = (d.join("thornton-demo.h5"), d.join("thornton-demo.oblq"));
-        let cfg = root("configs/thornton-demo.toml");
+        let path = d.join("thornton-demo.oblq");
+        let table = common::shared_build(&root("configs/thornton-demo.toml"));
         let arg = |p: &Path| p.to_str().expect("path").to_string();
-        evaluator::sweep_ok(&["run", &arg(&cfg), "--output", &arg(&table), "--quiet"]);
         let said = evaluator::sweep_ok(&["export", &arg(&table), "-o", &arg(&path)]);
         assert!(
             said.contains("the table of the thornton law (e_n in [0.8, 1])"),

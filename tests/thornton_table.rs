@@ -21,21 +21,11 @@ use oblique_table::surface::{PartialMap, Region};
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
 const KV_DEMO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/dissipative-demo.h5");
 
-/// `configs/thornton-demo.toml` built into a scratch folder (once per test process).
+/// `configs/thornton-demo.toml` built once for all test processes of this build
+/// (`common::shared_build`; `tests/c_evaluator.rs` checks the same table's bits).
 fn table() -> &'static Path {
     static T: OnceLock<PathBuf> = OnceLock::new();
-    T.get_or_init(|| {
-        let out = common::subdir("thornton").join("thornton-demo.h5");
-        let cfg = Path::new(ROOT).join("configs/thornton-demo.toml");
-        ok(&[
-            "run",
-            cfg.to_str().expect("path"),
-            "--output",
-            out.to_str().expect("path"),
-            "--quiet",
-        ]);
-        out
-    })
+    T.get_or_init(|| common::shared_build(&Path::new(ROOT).join("configs/thornton-demo.toml")))
 }
 
 fn t() -> &'static str {

@@ -45,6 +45,47 @@ pub fn build_table(dir: &str, stem: &str, body: &str) -> PathBuf {
     out
 }
 
+/// The table that `sweep run CONFIG` builds, made once for every test process of this build:
+/// kept under `CARGO_TARGET_TMPDIR/shared-tables/STEM-KEY.h5`, where `KEY` hashes the config's
+/// text and the size and modification time of the `sweep` binary, so a changed config or a
+/// rebuilt binary builds it again (the files of older keys are removed then). Built under a
+/// name of this process and renamed into place, so a process that finds the file finds it
+/// whole.
+pub fn shared_build(config: &Path) -> PathBuf {
+    use std::hash::{Hash, Hasher};
+    let text = std::fs::read(config).expect("read the config");
+    let bin = std::fs::metadata(env!("CARGO_BIN_EXE_sweep")).expect("the sweep binary");
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    text.hash(&mut h);
+    bin.len().hash(&mut h);
+    bin.modified().ok().hash(&mut h);
+    let stem = config
+        .file_stem()
+        .expect("a config file name")
+        .to_string_lossy()
+        .into_owned();
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("shared-tables");
+    std::fs::create_dir_all(&dir).expect("create the shared tables folder");
+    let out = dir.join(format!("{stem}-{:016x}.h5", h.finish()));
+    if out.exists() {
+        return out;
+    }
+    if let Ok(entries) = std::fs::read_dir(&dir) {
+        for e in entries.flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with(&format!("{stem}-")) && name.ends_with(".h5") {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
+    let tmp = dir.join(format!(".{stem}-{}.h5", std::process::id()));
+    let _ = std::fs::remove_file(&tmp);
+    let path = |p: &Path| p.to_str().expect("path").to_string();
+    sweep_ok(&["run", &path(config), "--output", &path(&tmp), "--quiet"]);
+    std::fs::rename(&tmp, &out).expect("move the shared table into place");
+    out
+}
+
 /// `sweep ARGS` succeeds: its standard output.
 pub fn sweep_ok(args: &[&str]) -> String {
     let out = sweep(args);
