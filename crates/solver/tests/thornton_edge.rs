@@ -3,10 +3,17 @@
 //! is smooth below and its curvature jumps; it converges in the steps, tends to the elastic
 //! `α_c1` as `e_n → 1`, and lies below the Kelvin–Voigt `α_c1` next to γ = 1 (where the
 //! springs that stick at the switch to unloading never slip again) and above it from γ ≈ 1.1.
+//! And two kinks inside: the loading fold `α_L(γ, e_n)` of the stick patch
+//! (`history::loading_fold_thornton`, a `(α_L − α)^{3/2}` departure) and the curvature jump
+//! at `α = 2/7`, where the first gross-slip episode ends at the switch to unloading.
 
-use oblique_physics::regimes::alpha_c1_dissipative;
+use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 use oblique_solver::history::{
-    ends_in_full_slip_thornton, full_slip_edge_thornton, slip_history_thornton, SlipSign,
+    ends_in_full_slip_thornton, full_slip_edge_thornton, has_loading_zone_thornton,
+    loading_fold_thornton, slip_history_thornton, SlipSign,
+};
+use oblique_solver::thornton::{
+    dimensionless_motion, dimensionless_p, yield_pressure_for_restitution,
 };
 use oblique_solver::{Accuracy, Law, PhysicsError, Request};
 
@@ -139,4 +146,69 @@ fn the_history_at_e_n_1_is_elastic_and_bad_input_is_named() {
         }
     }
     assert!(full_slip_edge_thornton(1.5, 0.2, 1024).is_err());
+}
+
+/// `P` of Thornton's law at `(γ, α, e_n)` on a fixed number of steps (no refinement: a kink
+/// stays where it is between neighbouring α).
+fn p_fixed(gamma: f64, alpha: f64, e_n: f64, steps: usize) -> f64 {
+    let motion = dimensionless_motion(yield_pressure_for_restitution(e_n).unwrap());
+    let shear = alpha_c2(gamma);
+    dimensionless_p(shear, alpha / shear, &motion, steps)
+}
+
+#[test]
+fn the_loading_fold_is_a_three_halves_kink_of_p() {
+    let (g, e) = (1.6, 0.8);
+    let c2 = alpha_c2(g);
+    // Converges in the steps (second order: 7.5e-7, then 2.0e-7 at 4 096 and 8 192 steps).
+    let coarse = loading_fold_thornton(g, e, 2048).unwrap().expect("a fold");
+    let fine = loading_fold_thornton(g, e, 8192).unwrap().expect("a fold");
+    assert!((coarse / fine - 1.0).abs() < 2e-6, "{coarse} {fine}");
+    assert!((fine / c2 - 1.14291).abs() < 1e-4, "{}", fine / c2);
+    // The predicate on either side.
+    assert!(has_loading_zone_thornton(g, fine * (1.0 - 1e-4), e, 8192).unwrap());
+    assert!(!has_loading_zone_thornton(g, fine * (1.0 + 1e-4), e, 8192).unwrap());
+    // Smooth above (a cubic through 30 values over 3 % of α_L to 1e-8), and below it `P`
+    // leaves that cubic like 0.6 (1 − α/α_L)^{3/2}: positive, and 8 times more at 4
+    // times the distance (a slope or curvature jump would give 4 or 16).
+    let x: Vec<f64> = (0..30).map(|k| 2e-4 + 1e-3 * k as f64).collect();
+    let y: Vec<f64> = x
+        .iter()
+        .map(|&d| p_fixed(g, fine * (1.0 + d), e, 8192))
+        .collect();
+    let xs: Vec<f64> = x.iter().map(|d| d / 0.03).collect();
+    for (&xi, &yi) in xs.iter().zip(&y).step_by(7) {
+        assert!((fit_at(&xs, &y, 3, xi) - yi).abs() < 1e-8);
+    }
+    let departure = |d: f64| p_fixed(g, fine * (1.0 - d), e, 8192) - fit_at(&xs, &y, 3, -d / 0.03);
+    let (near, far) = (departure(1e-3), departure(4e-3));
+    assert!(near > 1e-5 && near < 3e-5, "{near}");
+    let ratio = far / near;
+    assert!((6.5..9.5).contains(&ratio), "{ratio} ({near}, {far})");
+    // The fold has reached α_c2 at e_n = 0.9 (γ = 1.6); none at e_n = 1 (elastic).
+    assert_eq!(loading_fold_thornton(g, 0.9, 2048).unwrap(), None);
+    assert_eq!(loading_fold_thornton(g, 1.0, 2048).unwrap(), None);
+}
+
+#[test]
+fn at_alpha_two_sevenths_the_curvature_of_p_jumps() {
+    // The first gross-slip episode would end where the tangential impulse `(7/2) α J` has
+    // stopped the contact point, `J = 2/(7α)`; the normal impulse at the switch to unloading is
+    // `J = 1` whatever γ and `e_n`, so at α = 2/7 the episode ends at the switch, where the
+    // limits jump. Quadratics through 20 values on each side (4 096 steps): their second
+    // derivatives differ by about 10 (−5.7 and +5.0 at γ = 1.754, e_n = 0.8).
+    let a = 2.0 / 7.0;
+    for (g, e) in [(1.754, 0.8), (2.3, 0.9)] {
+        let side = |s: f64| {
+            let x: Vec<f64> = (0..20).map(|k| s * (2e-5 + 1e-5 * k as f64)).collect();
+            let y: Vec<f64> = x.iter().map(|&d| p_fixed(g, a + d, e, 4096)).collect();
+            let xs: Vec<f64> = x.iter().map(|d| d / 2e-4).collect();
+            let h = 0.5;
+            let at = |u: f64| fit_at(&xs, &y, 2, u);
+            let mid = s * 0.5;
+            (at(mid + h) - 2.0 * at(mid) + at(mid - h)) / (h * 2e-4).powi(2)
+        };
+        let (below, above) = (side(-1.0), side(1.0));
+        assert!(above - below > 5.0, "{g} {e}: {below} {above}");
+    }
 }

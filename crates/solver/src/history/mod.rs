@@ -25,7 +25,10 @@ pub use damped::{
     fold_minus_at_e, fold_minus_birth_e, fold_minus_free_below, fold_minus_scan_e,
     restitution_minus_edges_e, restitution_minus_somewhere_e, slip_history_e,
 };
-pub use plastic::{ends_in_full_slip_thornton, full_slip_edge_thornton, slip_history_thornton};
+pub use plastic::{
+    ends_in_full_slip_thornton, full_slip_edge_thornton, has_loading_zone_thornton,
+    loading_fold_thornton, slip_history_thornton, slip_pattern_thornton, LOADING_ZONE_MIN,
+};
 
 /// Direction of the friction force during a gross-slip episode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,5 +1,7 @@
 //! The gross-slip history of an impact under Thornton's elastic–plastic law
-//! ([`slip_history_thornton`]) and the edge of its full-slip region ([`full_slip_edge_thornton`]).
+//! ([`slip_history_thornton`]), its partial-slip zones ([`slip_pattern_thornton`]), the edge of
+//! its full-slip region ([`full_slip_edge_thornton`]) and the fold of its loading slip zone in
+//! the stick patch ([`loading_fold_thornton`]).
 //!
 //! Thornton's law has no closed-form full-slip line: at the switch to unloading its Coulomb
 //! limits jump (centre up, edge down), the central springs stick for a moment, and `P` leaves
@@ -50,6 +52,58 @@ pub fn slip_history_thornton(
         record_step(&mut episodes, t + 0.5 * h, q, contact_time);
     }
     Ok(SlipHistory { episodes, p })
+}
+
+/// The partial-slip pattern of one run of Thornton's law at `steps` steps per contact time:
+/// after every step, `(t, plus, minus, zones_plus, zones_minus)` with `t` the step's end
+/// (fraction of the contact time), `plus`, `minus` the fractions of the contact radius at the
+/// `+μq` and `−μq` limits and the numbers of separate zones at each; and `P`. Diagnostics for the kink curves of the stick patch (slip zones that open and close
+/// inside the contact, which the gross-slip history does not show). Errors as
+/// [`slip_history_thornton`]; `e_n = 1` runs Thornton's row without a plastic phase.
+#[allow(clippy::type_complexity)]
+pub fn slip_pattern_thornton(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<(Vec<(f64, f64, f64, usize, usize)>, f64), PhysicsError> {
+    let e_n = check_restitution(e_n)?;
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
+    let motion = dimensionless_motion(yield_pressure_for_restitution(e_n)?);
+    let trajectory = dimensionless_trajectory(&motion, steps);
+    let (shear, limit) = shear_and_limit(gamma, alpha);
+    let mut rec = Recorder {
+        point: ContactPoint { u: 1.0 },
+        t: 0.0,
+        log: Vec::with_capacity(steps + steps / 8),
+    };
+    let mut log = Vec::with_capacity(steps + steps / 8);
+    let row = LoggedRow {
+        row: ThorntonRow::new(
+            1.0,
+            motion.loading.yield_indentation,
+            motion.unloading.ratio,
+            motion.unloading.plastic_indentation,
+        ),
+        log: |row: &ThorntonRow, _: &StepMotion, _: f64| {
+            let (plus, minus, stuck, zp, zm) = row.slip_extent();
+            let total = plus + minus + stuck;
+            log.push(if total > 0.0 {
+                (plus / total, minus / total, zp, zm)
+            } else {
+                (0.0, 0.0, 0, 0)
+            })
+        },
+    };
+    run_contact_with(&mut rec, &*trajectory, row, 1.0, shear, limit);
+    let contact_time = rec.log.last().map_or(1.0, |&(t, h, _)| t + h);
+    let out = rec
+        .log
+        .iter()
+        .zip(&log)
+        .map(|(&(t, h, _), &(p, m, zp, zm))| ((t + h) / contact_time, p, m, zp, zm))
+        .collect();
+    Ok((out, rec.point.u))
 }
 
 /// One logged run: the gross-slip state after every step, `P`, and `(start, length)` of every
@@ -178,4 +232,91 @@ pub fn full_slip_edge_thornton(gamma: f64, e_n: f64, steps: usize) -> Result<f64
         }
     }
     Ok(0.5 * (lo + hi))
+}
+
+/// Smallest fraction of the contact radius at the `+` limit that counts as a loading zone in
+/// [`has_loading_zone_thornton`] (the row leaves pieces of zero length at the limit for a step
+/// now and then; a zone next to its fold is `√(α_L − α)` wide, 1e-6 of the radius about 1e-12
+/// below `α_L` relative).
+pub const LOADING_ZONE_MIN: f64 = 1e-6;
+
+/// The predicate of the loading fold `α_L(γ, e_n)` of Thornton's law
+/// ([`loading_fold_thornton`]): in the impact at `steps` steps per contact time a zone of the
+/// contact reaches the `+μq` limit (more than [`LOADING_ZONE_MIN`] of the radius at some step),
+/// opening after the first step and closing before `0.95 t_s` (`t_s` the switch to unloading).
+/// Errors as [`slip_pattern_thornton`].
+pub fn has_loading_zone_thornton(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<bool, PhysicsError> {
+    let e_n = check_restitution(e_n)?;
+    let motion = dimensionless_motion(yield_pressure_for_restitution(e_n)?);
+    let t_switch = motion.switch_time / motion.contact_time;
+    let (log, _) = slip_pattern_thornton(gamma, alpha, e_n, steps)?;
+    let mut open: Option<(f64, f64)> = None;
+    let mut prev = 0.0;
+    for &(t, plus, ..) in &log {
+        match (&mut open, plus > 0.0) {
+            (None, true) => open = Some((prev, plus)),
+            (Some((_, m)), true) => *m = m.max(plus),
+            (Some((t0, m)), false) => {
+                if *t0 > 0.0 && prev < 0.95 * t_switch && *m > LOADING_ZONE_MIN {
+                    return Ok(true);
+                }
+                open = None;
+            }
+            (None, false) => {}
+        }
+        prev = t;
+    }
+    Ok(false)
+}
+
+/// The loading fold `α_L(γ, e_n)` of Thornton's law in the stick patch (`docs/solver.md`,
+/// "Kinks inside the slip regions"): below it a `+` partial-slip zone opens and closes again
+/// while the contact loads ([`has_loading_zone_thornton`]), above it none does, and `P` leaves
+/// its smooth continuation from above like `(α_L − α)^{3/2}` (0.6 `(1 − α/α_L)^{3/2}` at
+/// γ = 1.6, `e_n` = 0.8, where `α_L = 1.1429 α_c2`). Located on `steps` steps: from
+/// `α_c2 (1 + 1e-4)` up by factors of 1.1 to the first `α` where the predicate fails, then
+/// bisected to `1e-10` in `ln α`. `None` where the predicate fails just above `α_c2` (the fold
+/// has reached `α_c2`: at γ = 1.6 between `e_n` = 0.85 and 0.9) or still holds at
+/// `1e3 α_c2`; `e_n = 1` (elastic: no fold) gives `None`.
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`.
+pub fn loading_fold_thornton(
+    gamma: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    if Law::Thornton.answering(e_n) == Law::Elastic {
+        return Ok(None);
+    }
+    let c2 = oblique_physics::regimes::alpha_c2(gamma);
+    let holds = |a: f64| has_loading_zone_thornton(gamma, a, e_n, steps);
+    let mut lo = c2 * (1.0 + 1e-4);
+    if !holds(lo)? {
+        return Ok(None);
+    }
+    let mut hi = lo * 1.1;
+    while holds(hi)? {
+        lo = hi;
+        hi *= 1.1;
+        if hi > 1e3 * c2 {
+            return Ok(None);
+        }
+    }
+    let (mut l, mut h) = (lo.ln(), hi.ln());
+    while h - l > 1e-10 {
+        let mid = 0.5 * (l + h);
+        if holds(mid.exp())? {
+            l = mid;
+        } else {
+            h = mid;
+        }
+    }
+    Ok(Some((0.5 * (l + h)).exp()))
 }

@@ -119,6 +119,35 @@ impl ThorntonRow {
         }
     }
 
+    /// Lengths (m, along the row's `x`) of the parts of the contact at the `+` limit and at the
+    /// `−` limit, the length stuck, and the numbers of separate zones at the `+` and at the `−`
+    /// limit (diagnostics: partial-slip zones that gross slip does not show).
+    pub fn slip_extent(&self) -> (f64, f64, f64, usize, usize) {
+        let (mut plus, mut minus, mut stuck) = (0.0, 0.0, 0.0);
+        let (mut zp, mut zm) = (0, 0);
+        let mut last: Option<Kind> = None;
+        for p in self.chunks.iter().flat_map(|c| &c.pieces) {
+            let len = (p.x1 - p.x0).max(0.0);
+            if len <= 0.0 {
+                continue;
+            }
+            match p.kind {
+                Kind::Plus => plus += len,
+                Kind::Minus => minus += len,
+                Kind::Stuck => stuck += len,
+            }
+            if last != Some(p.kind) {
+                match p.kind {
+                    Kind::Plus => zp += 1,
+                    Kind::Minus => zm += 1,
+                    Kind::Stuck => {}
+                }
+            }
+            last = Some(p.kind);
+        }
+        (plus, minus, stuck, zp, zm)
+    }
+
     /// Number of pieces (diagnostics).
     pub fn pieces(&self) -> usize {
         self.chunks.iter().map(|c| c.pieces.len()).sum()
