@@ -3,14 +3,16 @@
 //! is smooth below and its curvature jumps; it converges in the steps, tends to the elastic
 //! `α_c1` as `e_n → 1`, and lies below the Kelvin–Voigt `α_c1` next to γ = 1 (where the
 //! springs that stick at the switch to unloading never slip again) and above it from γ ≈ 1.1.
-//! And two kinks inside: the loading fold `α_L(γ, e_n)` of the stick patch
-//! (`history::loading_fold_thornton`, a `(α_L − α)^{3/2}` departure) and the curvature jump
-//! at `α = 2/7`, where the first gross-slip episode ends at the switch to unloading.
+//! And three kinks inside: the re-slip fold `α_R(γ, e_n)` of the partial-slip patch
+//! (`history::reslip_fold_thornton`) and the loading fold `α_L(γ, e_n)` of the stick patch
+//! (`history::loading_fold_thornton`), both `3/2`-power departures, and the curvature jump at
+//! `α = 2/7`, where the first gross-slip episode ends at the switch to unloading.
 
 use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 use oblique_solver::history::{
     ends_in_full_slip_thornton, full_slip_edge_thornton, has_loading_zone_thornton,
-    loading_fold_thornton, slip_history_thornton, SlipSign,
+    has_reslip_thornton, loading_fold_thornton, reslip_fold_thornton, slip_history_thornton,
+    SlipSign,
 };
 use oblique_solver::thornton::{
     dimensionless_motion, dimensionless_p, yield_pressure_for_restitution,
@@ -211,4 +213,32 @@ fn at_alpha_two_sevenths_the_curvature_of_p_jumps() {
         let (below, above) = (side(-1.0), side(1.0));
         assert!(above - below > 5.0, "{g} {e}: {below} {above}");
     }
+}
+
+#[test]
+fn the_reslip_fold_is_a_three_halves_kink_of_p() {
+    let (g, e) = (1.754, 0.8);
+    // 0.240005327 / 0.240005581 / 0.240005593 at 2 048 / 4 096 / 8 192 steps.
+    let coarse = reslip_fold_thornton(g, e, 2048).unwrap().expect("a fold");
+    let fine = reslip_fold_thornton(g, e, 8192).unwrap().expect("a fold");
+    assert!((coarse / fine - 1.0).abs() < 2e-6, "{coarse} {fine}");
+    assert!((fine - 0.2400056).abs() < 1e-6, "{fine}");
+    assert!(has_reslip_thornton(g, fine * (1.0 - 1e-4), e, 8192).unwrap());
+    assert!(!has_reslip_thornton(g, fine * (1.0 + 1e-4), e, 8192).unwrap());
+    // Smooth below (a cubic through 30 values over 3 % of α_R), and above it `P` leaves that
+    // cubic by about 1.06 (α/α_R − 1)^{3/2}: 8 times more at 4 times the distance.
+    let x: Vec<f64> = (0..30).map(|k| -(2e-4 + 1e-3 * k as f64)).collect();
+    let y: Vec<f64> = x
+        .iter()
+        .map(|&d| p_fixed(g, fine * (1.0 + d), e, 8192))
+        .collect();
+    let xs: Vec<f64> = x.iter().map(|d| d / 0.03).collect();
+    let departure = |d: f64| p_fixed(g, fine * (1.0 + d), e, 8192) - fit_at(&xs, &y, 3, d / 0.03);
+    let (near, far) = (departure(1e-3), departure(4e-3));
+    assert!(near > 2e-5 && near < 5e-5, "{near}");
+    let ratio = far / near;
+    assert!((6.5..9.5).contains(&ratio), "{ratio} ({near}, {far})");
+    // Next to γ = 1 the springs stuck at the switch never slip back at `+`: no such fold.
+    assert_eq!(reslip_fold_thornton(1.02, 0.7, 2048).unwrap(), None);
+    assert_eq!(reslip_fold_thornton(g, 1.0, 2048).unwrap(), None);
 }

@@ -320,3 +320,78 @@ pub fn loading_fold_thornton(
     }
     Ok(Some((0.5 * (l + h)).exp()))
 }
+
+/// The predicate of the re-slip fold `α_R(γ, e_n)` of Thornton's law
+/// ([`reslip_fold_thornton`]): the impact at `steps` steps per contact time has a `+μF_N`
+/// gross-slip episode that starts after the switch to unloading (past `1.01 t_s`) and ends
+/// before the last step (the contact slips back at `+` for a while after the central springs
+/// stuck at the switch, then sticks and ends in `−` slip). Errors as [`slip_history_thornton`].
+pub fn has_reslip_thornton(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<bool, PhysicsError> {
+    let e_n = check_restitution(e_n)?;
+    let motion = dimensionless_motion(yield_pressure_for_restitution(e_n)?);
+    let t_switch = motion.switch_time / motion.contact_time;
+    let h = slip_history_thornton(gamma, alpha, e_n, steps)?;
+    let last = h.episodes.last().map_or(1.0, |e| e.end);
+    Ok(h.episodes
+        .iter()
+        .any(|e| e.sign == SlipSign::Plus && e.start > 1.01 * t_switch && e.end < last.min(0.999)))
+}
+
+/// The re-slip fold `α_R(γ, e_n)` of Thornton's partial-slip patch (`docs/solver.md`, "Kinks
+/// inside the slip regions"): above the full-slip edge `α₁` the contact slips back at `+μF_N`
+/// for a while after the switch to unloading ([`has_reslip_thornton`]); that episode shrinks as
+/// α grows and vanishes at `α_R`, where `P` leaves its smooth continuation from below like
+/// `(α − α_R)^{3/2}` (0.2400 at γ = 1.754, `e_n` = 0.8). Located on `steps` steps: from
+/// `1.001 α_c1(γ, e_n)` (the Kelvin–Voigt `α_c1`, within −3.3 % to +0.65 % of `α₁`) up by
+/// factors of 1.01 to the first `α` where the predicate holds, on to the first where it fails
+/// again, then bisected to `1e-10` in `ln α`. `None` where it never holds below `α_c2` or still
+/// holds there; `e_n = 1` gives `None` (the elastic law answers; its folds are F₊ and F₋).
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`.
+pub fn reslip_fold_thornton(
+    gamma: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    if Law::Thornton.answering(e_n) == Law::Elastic {
+        return Ok(None);
+    }
+    let c1 = oblique_physics::regimes::alpha_c1_dissipative(gamma, e_n);
+    let c2 = oblique_physics::regimes::alpha_c2(gamma);
+    let holds = |a: f64| has_reslip_thornton(gamma, a, e_n, steps);
+    // Up from just above α_c1 to where the episode first shows apart from the first one (next
+    // to α₁ it ends at the separation, and first it is less than `MERGE_GAP` after the
+    // switch), then on to where it has gone.
+    let mut lo = 1.001 * c1;
+    while !holds(lo)? {
+        lo *= 1.01;
+        if lo >= c2 {
+            return Ok(None);
+        }
+    }
+    let mut hi = lo * 1.01;
+    while holds(hi)? {
+        lo = hi;
+        hi *= 1.01;
+        if hi >= c2 {
+            return Ok(None);
+        }
+    }
+    let (mut l, mut h) = (lo.ln(), hi.ln());
+    while h - l > 1e-10 {
+        let mid = 0.5 * (l + h);
+        if holds(mid.exp())? {
+            l = mid;
+        } else {
+            h = mid;
+        }
+    }
+    Ok(Some((0.5 * (l + h)).exp()))
+}
