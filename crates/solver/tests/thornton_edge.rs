@@ -3,16 +3,17 @@
 //! is smooth below and its curvature jumps; it converges in the steps, tends to the elastic
 //! `α_c1` as `e_n → 1`, and lies below the Kelvin–Voigt `α_c1` next to γ = 1 (where the
 //! springs that stick at the switch to unloading never slip again) and above it from γ ≈ 1.1.
-//! And three kinks inside: the re-slip fold `α_R(γ, e_n)` of the partial-slip patch
-//! (`history::reslip_fold_thornton`) and the loading fold `α_L(γ, e_n)` of the stick patch
-//! (`history::loading_fold_thornton`), both `3/2`-power departures, and the curvature jump at
-//! `α = 2/7`, where the first gross-slip episode ends at the switch to unloading.
+//! And four kinks inside: the re-slip fold `α_R(γ, e_n)` and the switch fold `α_S(γ, e_n)` of
+//! the partial-slip patch (`history::reslip_fold_thornton`, `history::switch_fold_thornton`)
+//! and the loading fold `α_L(γ, e_n)` of the stick patch (`history::loading_fold_thornton`),
+//! all `3/2`-power departures, and the curvature jump at `α = 2/7`, where the first gross-slip
+//! episode ends at the switch to unloading.
 
 use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 use oblique_solver::history::{
     ends_in_full_slip_thornton, full_slip_edge_thornton, has_loading_zone_thornton,
-    has_reslip_thornton, loading_fold_thornton, reslip_fold_thornton, slip_history_thornton,
-    SlipSign,
+    has_reslip_thornton, has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton,
+    slip_history_thornton, switch_fold_thornton, switch_zones_thornton, SlipSign,
 };
 use oblique_solver::thornton::{
     dimensionless_motion, dimensionless_p, yield_pressure_for_restitution,
@@ -241,4 +242,43 @@ fn the_reslip_fold_is_a_three_halves_kink_of_p() {
     // Next to γ = 1 the springs stuck at the switch never slip back at `+`: no such fold.
     assert_eq!(reslip_fold_thornton(1.02, 0.7, 2048).unwrap(), None);
     assert_eq!(reslip_fold_thornton(g, 1.0, 2048).unwrap(), None);
+}
+
+#[test]
+fn the_switch_fold_is_a_three_halves_kink_of_p() {
+    let (g, e) = (1.754, 0.8);
+    // 0.364385815 / 0.364385691 / 0.364385658 at 2 048 / 4 096 / 8 192 steps.
+    let coarse = switch_fold_thornton(g, e, 2048).unwrap().expect("a fold");
+    let fine = switch_fold_thornton(g, e, 8192).unwrap().expect("a fold");
+    assert!((coarse / fine - 1.0).abs() < 1e-6, "{coarse} {fine}");
+    assert!((fine - 0.3643857).abs() < 1e-6, "{fine}");
+    // The predicate on either side; below, the zone clipped at `+` at the switch lies inside
+    // the contact, between a stuck centre and a stuck ring (and a `−` zone at the edge).
+    assert!(has_switch_zone_thornton(g, fine * (1.0 - 1e-4), e, 8192).unwrap());
+    assert!(!has_switch_zone_thornton(g, fine * (1.0 + 1e-4), e, 8192).unwrap());
+    let kinds: Vec<i8> = switch_zones_thornton(g, fine * (1.0 - 1e-3), e, 8192)
+        .unwrap()
+        .iter()
+        .map(|z| z.0)
+        .collect();
+    assert_eq!(kinds, [0, 1, 0, -1]);
+    // Smooth above (a cubic through 30 values over 3 % of α_S), and below it `P` leaves that
+    // cubic from below like (1 − α/α_S)^{3/2}: 8 times more at 4 times the distance.
+    let x: Vec<f64> = (0..30).map(|k| 2e-4 + 1e-3 * k as f64).collect();
+    let y: Vec<f64> = x
+        .iter()
+        .map(|&d| p_fixed(g, fine * (1.0 + d), e, 8192))
+        .collect();
+    let xs: Vec<f64> = x.iter().map(|d| d / 0.03).collect();
+    for (&xi, &yi) in xs.iter().zip(&y).step_by(7) {
+        assert!((fit_at(&xs, &y, 3, xi) - yi).abs() < 1e-8);
+    }
+    // (4.95e-6 at 1e-3, 3.95e-5 at 4e-3: about 0.156 (1 − α/α_S)^{3/2}.)
+    let departure = |d: f64| p_fixed(g, fine * (1.0 - d), e, 8192) - fit_at(&xs, &y, 3, -d / 0.03);
+    let (near, far) = (departure(1e-3), departure(4e-3));
+    assert!(near > 3e-6 && near < 8e-6, "{near}");
+    let ratio = far / near;
+    assert!((6.5..9.5).contains(&ratio), "{ratio} ({near}, {far})");
+    // None at e_n = 1: the elastic law's limits do not jump at the switch.
+    assert_eq!(switch_fold_thornton(g, 1.0, 2048).unwrap(), None);
 }

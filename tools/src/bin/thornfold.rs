@@ -1,10 +1,11 @@
-//! Folds of Thornton's law: `thornfold [--reslip] GAMMAS E_NS [STEPS]` (comma-separated
-//! lists) prints, for every pair, the loading fold `α_L(γ, e_n)` of the stick patch
-//! (`oblique_solver::history::loading_fold_thornton`) or with `--reslip` the re-slip fold
-//! `α_R(γ, e_n)` of the partial-slip patch (`reslip_fold_thornton`), and its ratio to `α_c2`;
-//! `none` where there is none.
+//! Folds of Thornton's law: `thornfold [--reslip | --switch] GAMMAS E_NS [STEPS]`
+//! (comma-separated lists) prints, for every pair, the loading fold `α_L(γ, e_n)` of the stick
+//! patch (`oblique_solver::history::loading_fold_thornton`), with `--reslip` the re-slip fold
+//! `α_R(γ, e_n)` of the partial-slip patch (`reslip_fold_thornton`), with `--switch` its switch
+//! fold `α_S(γ, e_n)` (`switch_fold_thornton`), and its ratio to `α_c2`; `none` where there is
+//! none.
 
-use oblique_solver::history::{loading_fold_thornton, reslip_fold_thornton};
+use oblique_solver::history::{loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton};
 
 fn list(s: &str) -> anyhow::Result<Vec<f64>> {
     Ok(s.split(',').map(str::parse).collect::<Result<_, _>>()?)
@@ -13,12 +14,13 @@ fn list(s: &str) -> anyhow::Result<Vec<f64>> {
 fn main() -> anyhow::Result<()> {
     let mut a: Vec<String> = std::env::args().skip(1).collect();
     let reslip = a.first().is_some_and(|s| s == "--reslip");
-    if reslip {
+    let switch = a.first().is_some_and(|s| s == "--switch");
+    if reslip || switch {
         a.remove(0);
     }
     anyhow::ensure!(
         a.len() >= 2,
-        "usage: thornfold [--reslip] GAMMAS E_NS [STEPS]"
+        "usage: thornfold [--reslip | --switch] GAMMAS E_NS [STEPS]"
     );
     let (gammas, e_ns) = (list(&a[0])?, list(&a[1])?);
     let steps = if a.len() > 2 { a[2].parse()? } else { 2048 };
@@ -27,6 +29,8 @@ fn main() -> anyhow::Result<()> {
             let c2 = 2.0 * g * g / 7.0;
             let fold = if reslip {
                 reslip_fold_thornton(g, e, steps)?
+            } else if switch {
+                switch_fold_thornton(g, e, steps)?
             } else {
                 loading_fold_thornton(g, e, steps)?
             };

@@ -1,7 +1,8 @@
 //! The gross-slip history of an impact under Thornton's elastic–plastic law
-//! ([`slip_history_thornton`]), its partial-slip zones ([`slip_pattern_thornton`]), the edge of
-//! its full-slip region ([`full_slip_edge_thornton`]) and the fold of its loading slip zone in
-//! the stick patch ([`loading_fold_thornton`]).
+//! ([`slip_history_thornton`]), its partial-slip zones ([`slip_pattern_thornton`],
+//! [`slip_zones_thornton`]), the edge of its full-slip region ([`full_slip_edge_thornton`]), the
+//! fold of its loading slip zone in the stick patch ([`loading_fold_thornton`]) and the folds of
+//! its partial-slip patch ([`reslip_fold_thornton`], [`switch_fold_thornton`]).
 //!
 //! Thornton's law has no closed-form full-slip line: at the switch to unloading its Coulomb
 //! limits jump (centre up, edge down), the central springs stick for a moment, and `P` leaves
@@ -381,6 +382,225 @@ pub fn reslip_fold_thornton(
         lo = hi;
         hi *= 1.01;
         if hi >= c2 {
+            return Ok(None);
+        }
+    }
+    let (mut l, mut h) = (lo.ln(), hi.ln());
+    while h - l > 1e-10 {
+        let mid = 0.5 * (l + h);
+        if holds(mid.exp())? {
+            l = mid;
+        } else {
+            h = mid;
+        }
+    }
+    Ok(Some((0.5 * (l + h)).exp()))
+}
+
+/// One entry of [`slip_zones_thornton`]: the time (fraction of the contact time) and the zones
+/// `(kind, x0, x1)` from the centre, `kind` +1 at the `+μq` limit, −1 at the `−μq` limit, 0
+/// stuck, `x` in fractions of the contact radius (neighbouring pieces of one kind joined).
+pub type ZoneSnapshot = (f64, Vec<(i8, f64, f64)>);
+
+/// A Thornton row that records its zones after the switch to unloading and, with `every`,
+/// after every step.
+struct ZoneRow<'a> {
+    row: ThorntonRow,
+    every: bool,
+    log: &'a mut Vec<Vec<(i8, f64, f64)>>,
+    /// Index into the log of the entry made at the switch.
+    switch_at: &'a mut Option<usize>,
+}
+
+impl TangentialModel for ZoneRow<'_> {
+    const END_STATE: bool = true;
+    fn at_limit(&self) -> (bool, bool) {
+        self.row.at_limit()
+    }
+    fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
+        let r = self.row.step(m, d1, c);
+        if self.every {
+            self.log.push(self.row.zones());
+        }
+        r
+    }
+    fn jump(&mut self, start: (f64, f64), end: (f64, f64), c: f64) -> Option<StepResult> {
+        let r = self.row.jump(start, end, c);
+        if r.is_some() {
+            *self.switch_at = Some(self.log.len());
+            self.log.push(self.row.zones());
+        }
+        r
+    }
+}
+
+/// Zones in fractions of the outer end of the last one (the contact radius).
+fn scaled_zones(zones: Vec<(i8, f64, f64)>) -> Vec<(i8, f64, f64)> {
+    let edge = zones.last().map_or(0.0, |z| z.2);
+    let scale = if edge > 0.0 { 1.0 / edge } else { 0.0 };
+    zones
+        .into_iter()
+        .map(|(k, x0, x1)| (k, x0 * scale, x1 * scale))
+        .collect()
+}
+
+/// One run recording zones ([`ZoneRow`]): the zone log, the index of the switch's entry, the
+/// `(start, length)` of every step, `P` and the switch time (fraction of the contact time).
+#[allow(clippy::type_complexity)]
+fn run_zones(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+    every: bool,
+) -> Result<
+    (
+        Vec<Vec<(i8, f64, f64)>>,
+        Option<usize>,
+        Vec<(f64, f64)>,
+        f64,
+        f64,
+    ),
+    PhysicsError,
+> {
+    let e_n = check_restitution(e_n)?;
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
+    let motion = dimensionless_motion(yield_pressure_for_restitution(e_n)?);
+    let trajectory = dimensionless_trajectory(&motion, steps);
+    let (shear, limit) = shear_and_limit(gamma, alpha);
+    let mut rec = Recorder {
+        point: ContactPoint { u: 1.0 },
+        t: 0.0,
+        log: Vec::with_capacity(steps + steps / 8),
+    };
+    let mut log = Vec::with_capacity(if every { steps + steps / 8 } else { 1 });
+    let mut switch_at = None;
+    let row = ZoneRow {
+        row: ThorntonRow::new(
+            1.0,
+            motion.loading.yield_indentation,
+            motion.unloading.ratio,
+            motion.unloading.plastic_indentation,
+        ),
+        every,
+        log: &mut log,
+        switch_at: &mut switch_at,
+    };
+    run_contact_with(&mut rec, &*trajectory, row, 1.0, shear, limit);
+    let times = rec.log.iter().map(|&(t, h, _)| (t, h)).collect();
+    let t_switch = motion.switch_time / motion.contact_time;
+    Ok((log, switch_at, times, rec.point.u, t_switch))
+}
+
+/// Every zone of the contact after every step of one run of Thornton's law, and one entry for
+/// the field clipped at the switch to unloading (at the switch's time): `(t, zones)` with `t`
+/// the step's end (fraction of the contact time) and the zones from the centre
+/// ([`ZoneSnapshot`]); and `P`. Diagnostics for the kinks of `P` that the numbers of lasting
+/// zones ([`slip_pattern_thornton`]) do not show: a zone of the clipped field at the switch
+/// lasts no step. Errors as [`slip_pattern_thornton`].
+pub fn slip_zones_thornton(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<(Vec<ZoneSnapshot>, f64), PhysicsError> {
+    let (log, switch_at, times, p, t_switch) = run_zones(gamma, alpha, e_n, steps, true)?;
+    let contact_time = times.last().map_or(1.0, |&(t, h)| t + h);
+    let mut ends = times.iter().map(|&(t, h)| (t + h) / contact_time);
+    let out = log
+        .into_iter()
+        .enumerate()
+        .map(|(i, zones)| {
+            let t = if Some(i) == switch_at {
+                t_switch
+            } else {
+                ends.next().unwrap_or(1.0)
+            };
+            (t, scaled_zones(zones))
+        })
+        .collect();
+    Ok((out, p))
+}
+
+/// The zones of the field clipped at the switch to unloading, from the centre (`x` in
+/// fractions of the contact radius, [`ZoneSnapshot`]); empty where the run has no switch.
+/// Errors as [`slip_pattern_thornton`].
+pub fn switch_zones_thornton(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<Vec<(i8, f64, f64)>, PhysicsError> {
+    let (mut log, switch_at, ..) = run_zones(gamma, alpha, e_n, steps, false)?;
+    Ok(switch_at
+        .and_then(|i| log.get_mut(i).map(std::mem::take))
+        .map(scaled_zones)
+        .unwrap_or_default())
+}
+
+/// Smallest fraction of the contact radius at the `+` limit that counts as a zone of the field
+/// clipped at the switch in [`has_switch_zone_thornton`] (the zone next to its fold is
+/// `√(α_S − α)` wide: 1e-6 of the radius about 1e-12 below `α_S` relative).
+pub const SWITCH_ZONE_MIN: f64 = 1e-6;
+
+/// The largest `α` up to which [`switch_fold_thornton`] looks for the fold (it lies between
+/// 0.29 and 0.40 over γ 1.05–2.6, `e_n` 0.3–0.9999).
+pub const SWITCH_FOLD_MAX: f64 = 1.0;
+
+/// The predicate of the switch fold `α_S(γ, e_n)` of Thornton's law
+/// ([`switch_fold_thornton`]): in the impact at `steps` steps per contact time, the field
+/// clipped against the unloading limits at the switch to unloading has a zone at the `+μq`
+/// limit more than [`SWITCH_ZONE_MIN`] of the contact radius wide ([`switch_zones_thornton`]).
+/// Errors as [`slip_pattern_thornton`].
+pub fn has_switch_zone_thornton(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<bool, PhysicsError> {
+    let zones = switch_zones_thornton(gamma, alpha, e_n, steps)?;
+    Ok(zones
+        .iter()
+        .any(|&(k, x0, x1)| k == 1 && x1 - x0 > SWITCH_ZONE_MIN))
+}
+
+/// The switch fold `α_S(γ, e_n)` of Thornton's partial-slip patch (`docs/solver.md`, "Kinks
+/// inside the slip regions"). At the switch to unloading the limits jump (centre up, edge
+/// down) and every spring keeps its displacement: outside the radius where the two limits
+/// cross, the springs that are at or near the loading `+` limit stand above the unloading one
+/// and are clipped to it ([`has_switch_zone_thornton`]). Above `α = 2/7` the first gross-slip
+/// episode ends before the switch and the contact sticks from its edge inwards; as α grows the
+/// stuck field lies further below the loading limit, the clipped zone shrinks to a point inside
+/// the contact (the field touches the unloading limit there) and vanishes at `α_S`, where `P`
+/// leaves its smooth continuation from below like `(α_S − α)^{3/2}` (the clipped area is its
+/// depth times its width, `√(α_S − α)`): 0.3644 at γ = 1.754, `e_n` = 0.8.
+///
+/// Located on `steps` steps: from `(2/7)(1 + 1e-4)` up by factors of 1.01 to the first `α`
+/// where the predicate fails, then bisected to `1e-10` in `ln α`. `None` where
+/// `α_c2 ≤ (2/7)(1 + 1e-4)` (γ at or next to 1), where the predicate fails at the start or still
+/// holds at `α_c2`; `e_n = 1` gives `None` (the elastic law's limits do not jump).
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`.
+pub fn switch_fold_thornton(
+    gamma: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    if Law::Thornton.answering(e_n) == Law::Elastic {
+        return Ok(None);
+    }
+    let holds = |a: f64| has_switch_zone_thornton(gamma, a, e_n, steps);
+    let mut lo = 2.0 / 7.0 * (1.0 + 1e-4);
+    if !holds(lo)? {
+        return Ok(None);
+    }
+    let mut hi = lo * 1.01;
+    while holds(hi)? {
+        lo = hi;
+        hi *= 1.01;
+        if hi > SWITCH_FOLD_MAX {
             return Ok(None);
         }
     }

@@ -148,6 +148,28 @@ impl ThorntonRow {
         (plus, minus, stuck, zp, zm)
     }
 
+    /// The zones of the contact in order from the centre (diagnostics): `(kind, x0, x1)` with
+    /// `kind` +1 at the `+` limit, −1 at the `−` limit, 0 stuck, `x0`, `x1` (m) along the
+    /// row; neighbouring pieces of one kind joined, pieces of zero length left out.
+    pub fn zones(&self) -> Vec<(i8, f64, f64)> {
+        let mut out: Vec<(i8, f64, f64)> = Vec::new();
+        for p in self.chunks.iter().flat_map(|c| &c.pieces) {
+            if p.x1 <= p.x0 {
+                continue;
+            }
+            let kind = match p.kind {
+                Kind::Plus => 1,
+                Kind::Minus => -1,
+                Kind::Stuck => 0,
+            };
+            match out.last_mut() {
+                Some(last) if last.0 == kind => last.2 = p.x1,
+                _ => out.push((kind, p.x0, p.x1)),
+            }
+        }
+        out
+    }
+
     /// Number of pieces (diagnostics).
     pub fn pieces(&self) -> usize {
         self.chunks.iter().map(|c| c.pieces.len()).sum()
