@@ -54,7 +54,8 @@ fn main() -> anyhow::Result<()> {
         let v: Vec<_> = out.iter().filter(|o| o.0 == k).collect();
         if let Some(w) = v.iter().max_by(|x, y| x.4.total_cmp(&y.4)) {
             println!(
-                "{name}: {} points, max |error| {:.3e} at gamma {:.6} alpha {:.6} e_n {:.6}; above the bound {bound:.3e}: {}",
+                "{name}: {} points, max |error| {:.3e} at gamma {:.6} alpha {:.6} e_n {:.6}; \
+                 above the bound {bound:.3e}: {}",
                 v.len(),
                 w.4,
                 w.1,

@@ -58,9 +58,10 @@ pub fn slip_history_thornton(
 /// The partial-slip pattern of one run of Thornton's law at `steps` steps per contact time:
 /// after every step, `(t, plus, minus, zones_plus, zones_minus)` with `t` the step's end
 /// (fraction of the contact time), `plus`, `minus` the fractions of the contact radius at the
-/// `+μq` and `−μq` limits and the numbers of separate zones at each; and `P`. Diagnostics for the kink curves of the stick patch (slip zones that open and close
-/// inside the contact, which the gross-slip history does not show). Errors as
-/// [`slip_history_thornton`]; `e_n = 1` runs Thornton's row without a plastic phase.
+/// `+μq` and `−μq` limits and the numbers of separate zones at each; and `P`. Diagnostics for
+/// the kinks of `P` (slip zones that open and close inside the contact, which the gross-slip
+/// history does not show). Errors as [`slip_history_thornton`]; `e_n = 1` runs Thornton's row
+/// without a plastic phase.
 #[allow(clippy::type_complexity)]
 pub fn slip_pattern_thornton(
     gamma: f64,
@@ -70,45 +71,27 @@ pub fn slip_pattern_thornton(
 ) -> Result<(Vec<(f64, f64, f64, usize, usize)>, f64), PhysicsError> {
     let e_n = check_restitution(e_n)?;
     let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
-    let motion = dimensionless_motion(yield_pressure_for_restitution(e_n)?);
-    let trajectory = dimensionless_trajectory(&motion, steps);
-    let (shear, limit) = shear_and_limit(gamma, alpha);
-    let mut rec = Recorder {
-        point: ContactPoint { u: 1.0 },
-        t: 0.0,
-        log: Vec::with_capacity(steps + steps / 8),
-    };
-    let mut log = Vec::with_capacity(steps + steps / 8);
-    let row = LoggedRow {
-        row: ThorntonRow::new(
-            1.0,
-            motion.loading.yield_indentation,
-            motion.unloading.ratio,
-            motion.unloading.plastic_indentation,
-        ),
-        log: |row: &ThorntonRow, _: &StepMotion, _: f64| {
-            let (plus, minus, stuck, zp, zm) = row.slip_extent();
-            let total = plus + minus + stuck;
-            log.push(if total > 0.0 {
-                (plus / total, minus / total, zp, zm)
-            } else {
-                (0.0, 0.0, 0, 0)
-            })
-        },
-    };
-    run_contact_with(&mut rec, &*trajectory, row, 1.0, shear, limit);
-    let contact_time = rec.log.last().map_or(1.0, |&(t, h, _)| t + h);
-    let out = rec
-        .log
+    let (log, p, times) = run_logged_with(gamma, alpha, e_n, steps, |row| {
+        let (plus, minus, stuck, zp, zm) = row.slip_extent();
+        let total = plus + minus + stuck;
+        if total > 0.0 {
+            (plus / total, minus / total, zp, zm)
+        } else {
+            (0.0, 0.0, 0, 0)
+        }
+    })?;
+    let contact_time = times.last().map_or(1.0, |&(t, h)| t + h);
+    let out = times
         .iter()
         .zip(&log)
-        .map(|(&(t, h, _), &(p, m, zp, zm))| ((t + h) / contact_time, p, m, zp, zm))
+        .map(|(&(t, h), &(p, m, zp, zm))| ((t + h) / contact_time, p, m, zp, zm))
         .collect();
-    Ok((out, rec.point.u))
+    Ok((out, p))
 }
 
-/// One logged run: the gross-slip state after every step, `P`, and `(start, length)` of every
-/// step (dimensionless time).
+/// One logged run: the gross-slip state after every step (whether the whole contact is at one
+/// Coulomb limit, `ThorntonRow::gross_slip`, and whether anything is still in contact), `P`,
+/// and `(start, length)` of every step (dimensionless time).
 #[allow(clippy::type_complexity)]
 fn run_logged(
     gamma: f64,
@@ -116,6 +99,22 @@ fn run_logged(
     e_n: f64,
     steps: usize,
 ) -> Result<(Vec<(Option<bool>, bool)>, f64, Vec<(f64, f64)>), PhysicsError> {
+    run_logged_with(gamma, alpha, e_n, steps, |row| {
+        (row.gross_slip(), row.pieces() > 0)
+    })
+}
+
+/// One run of Thornton's row with `f` of the row logged after every step: the log, `P`, and
+/// `(start, length)` of every step (dimensionless time). `γ`, `α` and `e_n` checked by the
+/// caller.
+#[allow(clippy::type_complexity)]
+fn run_logged_with<T>(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+    mut f: impl FnMut(&ThorntonRow) -> T,
+) -> Result<(Vec<T>, f64, Vec<(f64, f64)>), PhysicsError> {
     let motion = dimensionless_motion(yield_pressure_for_restitution(e_n)?);
     let trajectory = dimensionless_trajectory(&motion, steps);
     let (shear, limit) = shear_and_limit(gamma, alpha);
@@ -125,8 +124,6 @@ fn run_logged(
         log: Vec::with_capacity(steps + steps / 8),
     };
     let mut log = Vec::with_capacity(steps + steps / 8);
-    // After every step: whether the whole contact is at one Coulomb limit
-    // (`ThorntonRow::gross_slip`) and whether anything is still in contact.
     let row = LoggedRow {
         row: ThorntonRow::new(
             1.0,
@@ -134,9 +131,7 @@ fn run_logged(
             motion.unloading.ratio,
             motion.unloading.plastic_indentation,
         ),
-        log: |row: &ThorntonRow, _: &StepMotion, _: f64| {
-            log.push((row.gross_slip(), row.pieces() > 0))
-        },
+        log: |row: &ThorntonRow, _: &StepMotion, _: f64| log.push(f(row)),
     };
     run_contact_with(&mut rec, &*trajectory, row, 1.0, shear, limit);
     let times = rec.log.iter().map(|&(t, h, _)| (t, h)).collect();
@@ -166,8 +161,8 @@ pub fn ends_in_full_slip_thornton(
 /// the `α` where the impact stops ending in gross slip at the `+` limit
 /// ([`ends_in_full_slip_thornton`]), bisected to `1e-12` relative in a bracket found by
 /// doubling the distance from the Kelvin–Voigt `α_c1(γ, e_n)` (up where the impact at `α_c1`
-/// ends in full slip, down where it does not). `γ > 1` (at and below 1 the elastic full-slip line ends at `α_c2`, where
-/// no such edge has been traced), `e_n ∈ [0.3, 1)`.
+/// ends in full slip, down where it does not). `γ > 1` (at and below 1 the elastic full-slip
+/// line ends at `α_c2`, where no such edge has been traced), `e_n ∈ [0.3, 1)`.
 ///
 /// Errors: `γ ≤ 1` or not finite, `e_n` outside `[0.3, 1)`, `steps < 8`, and
 /// [`PhysicsError::InvalidParameter`] naming `alpha` if no bracket is found between 0 and
@@ -298,28 +293,11 @@ pub fn loading_fold_thornton(
     }
     let c2 = oblique_physics::regimes::alpha_c2(gamma);
     let holds = |a: f64| has_loading_zone_thornton(gamma, a, e_n, steps);
-    let mut lo = c2 * (1.0 + 1e-4);
-    if !holds(lo)? {
+    let start = c2 * (1.0 + 1e-4);
+    if !holds(start)? {
         return Ok(None);
     }
-    let mut hi = lo * 1.1;
-    while holds(hi)? {
-        lo = hi;
-        hi *= 1.1;
-        if hi > 1e3 * c2 {
-            return Ok(None);
-        }
-    }
-    let (mut l, mut h) = (lo.ln(), hi.ln());
-    while h - l > 1e-10 {
-        let mid = 0.5 * (l + h);
-        if holds(mid.exp())? {
-            l = mid;
-        } else {
-            h = mid;
-        }
-    }
-    Ok(Some((0.5 * (l + h)).exp()))
+    fold_above(start, 1.1, 1e3 * c2, holds)
 }
 
 /// The predicate of the re-slip fold `α_R(γ, e_n)` of Thornton's law
@@ -377,24 +355,7 @@ pub fn reslip_fold_thornton(
             return Ok(None);
         }
     }
-    let mut hi = lo * 1.01;
-    while holds(hi)? {
-        lo = hi;
-        hi *= 1.01;
-        if hi >= c2 {
-            return Ok(None);
-        }
-    }
-    let (mut l, mut h) = (lo.ln(), hi.ln());
-    while h - l > 1e-10 {
-        let mid = 0.5 * (l + h);
-        if holds(mid.exp())? {
-            l = mid;
-        } else {
-            h = mid;
-        }
-    }
-    Ok(Some((0.5 * (l + h)).exp()))
+    fold_above(lo, 1.01, c2, holds)
 }
 
 /// One entry of [`slip_zones_thornton`]: the time (fraction of the contact time) and the zones
@@ -576,9 +537,10 @@ pub fn has_switch_zone_thornton(
 /// depth times its width, `√(α_S − α)`): 0.3644 at γ = 1.754, `e_n` = 0.8.
 ///
 /// Located on `steps` steps: from `(2/7)(1 + 1e-4)` up by factors of 1.01 to the first `α`
-/// where the predicate fails, then bisected to `1e-10` in `ln α`. `None` where
-/// `α_c2 ≤ (2/7)(1 + 1e-4)` (γ at or next to 1), where the predicate fails at the start or still
-/// holds at `α_c2`; `e_n = 1` gives `None` (the elastic law's limits do not jump).
+/// where the predicate fails, then bisected to `1e-10` in `ln α`; the search does not stop at
+/// `α_c2` (next to γ = 1, at γ 1.02–1.1, `α_S` lies in the stick patch, where `P` has the same
+/// kink). `None` where the predicate fails at the start or still holds at
+/// [`SWITCH_FOLD_MAX`]; `e_n = 1` gives `None` (the elastic law's limits do not jump).
 ///
 /// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`.
 pub fn switch_fold_thornton(
@@ -592,15 +554,28 @@ pub fn switch_fold_thornton(
         return Ok(None);
     }
     let holds = |a: f64| has_switch_zone_thornton(gamma, a, e_n, steps);
-    let mut lo = 2.0 / 7.0 * (1.0 + 1e-4);
-    if !holds(lo)? {
+    let start = 2.0 / 7.0 * (1.0 + 1e-4);
+    if !holds(start)? {
         return Ok(None);
     }
-    let mut hi = lo * 1.01;
+    fold_above(start, 1.01, SWITCH_FOLD_MAX, holds)
+}
+
+/// The fold above `start`, where a predicate that holds at `start` first fails: `α` steps up by
+/// `factor` while it holds (`None` once a step passes `max`), then the bracket is bisected to
+/// `1e-10` in `ln α` (the locators of [`loading_fold_thornton`], [`reslip_fold_thornton`] and
+/// [`switch_fold_thornton`]).
+fn fold_above(
+    start: f64,
+    factor: f64,
+    max: f64,
+    holds: impl Fn(f64) -> Result<bool, PhysicsError>,
+) -> Result<Option<f64>, PhysicsError> {
+    let (mut lo, mut hi) = (start, start * factor);
     while holds(hi)? {
         lo = hi;
-        hi *= 1.01;
-        if hi > SWITCH_FOLD_MAX {
+        hi *= factor;
+        if hi > max {
             return Ok(None);
         }
     }
