@@ -243,7 +243,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         points.len(),
         match table.surface().pair_gamma() {
             Some(g) => format!("gamma = {g}, the table's one pair"),
-            None if args.near_fold => format!(
+            None if args.near_fold && table.restitution().is_none() => format!(
                 "gamma uniform in [{}, {}]",
                 table
                     .surface()
@@ -270,10 +270,10 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         match table.restitution() {
             Some((lo, hi)) => format!(
                 ", e_n uniform in [{lo}, {hi}]{}, law {}",
-                if args.near_fold {
-                    " where F- exists"
-                } else {
-                    ""
+                match (args.near_fold, table.surface().pair_gamma()) {
+                    (false, _) => "",
+                    (true, Some(_)) => " where F- exists",
+                    (true, None) => " (gamma and e_n where F- exists)",
                 },
                 law.name()
             ),
