@@ -20,6 +20,7 @@ fn shipped_configs_write_outside_the_tracked_tables() {
         "dissipative-demo",
         "dissipative",
         "dissipative-pair",
+        "dissipative-fold",
         "thornton-demo",
     ] {
         let path = root.join("configs").join(format!("{name}.toml"));

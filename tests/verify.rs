@@ -2,6 +2,8 @@
 //! `tables/full.h5` that was off by 1.32e-5 while the table stated 8.5e-6 (`inspect`) or
 //! 2.5e-5 (`query`), a sample of random points, and bad arguments.
 
+mod common;
+
 use std::process::{Command, Output};
 
 const FULL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/full.h5");
@@ -137,7 +139,7 @@ fn near_curves_draws_alpha_next_to_the_critical_curves() {
 
 /// `--near-fold` draws (γ, α) next to the fold curve F₋ of an elastic table whose γ range spans
 /// 0.03 or more above 2.40, and `tables/full.h5` holds its bound there; a table without F₋ is
-/// refused (exit 2).
+/// refused (exit 2), elastic or Kelvin–Voigt.
 #[test]
 fn near_fold_draws_points_next_to_fold_minus() {
     let out = sweep(&[
@@ -159,7 +161,7 @@ fn near_fold_draws_points_next_to_fold_minus() {
     );
     assert!(stdout.contains("points above it: 0"), "{stdout}");
     for (table, needle) in [
-        ("tables/default.h5", "an e_n axis"),
+        ("tables/default.h5", "where F- has no traced point"),
         ("tables/isotropic.h5", "gamma in [1.52, 2.16]"),
     ] {
         let path = format!("{}/{table}", env!("CARGO_MANIFEST_DIR"));
@@ -173,4 +175,42 @@ fn near_fold_draws_points_next_to_fold_minus() {
     }
     let out = sweep(&["verify", FULL, "--near-fold", "--near-curves"]);
     assert_eq!(out.status.code(), Some(2));
+}
+
+/// `--near-fold` on a Kelvin–Voigt table that reaches F₋ (one pair at γ = 2.6, e_n 0.95–1,
+/// built with its leaves measured next to F₋): (α, e_n) next to the fold surface `α_F(γ, e_n)`,
+/// none above the stated bound.
+#[test]
+fn near_fold_draws_points_next_to_the_fold_surface_of_an_e_n_table() {
+    let table = common::build_table(
+        "near-fold-e",
+        "pair",
+        "[domain]\ngamma = 2.6\ne_n_min = 0.95\ne_n_max = 1.0\n[nodes]\ntarget_error = 4e-5\n\
+         leaf_intervals = 6\nprobe_kinks = true\n[solver]\ntol = 4e-6\n[checks]\nper_patch = 5\n",
+    );
+    let path = table.to_str().expect("path");
+    let out = sweep(&[
+        "verify",
+        path,
+        "--points",
+        "20",
+        "--seed",
+        "4",
+        "--near-fold",
+        "--quiet",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stdout}{stderr}");
+    assert!(
+        stderr.contains(
+            "gamma = 2.6, the table's one pair, alpha within 1e-4 to 1e-2 (relative) of the \
+             fold surface F-, e_n uniform in [0.95, 1] where F- exists, law kelvin-voigt"
+        ),
+        "{stderr}"
+    );
+    assert!(
+        stdout.contains("20 (seed 4)") && stdout.contains("points above it: 0"),
+        "{stdout}"
+    );
 }

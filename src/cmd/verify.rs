@@ -43,10 +43,12 @@ pub struct VerifyArgs {
     /// are drawn again).
     #[arg(long)]
     near_curves: bool,
-    /// Draw (gamma, alpha) next to the fold curve F- instead (elastic tables whose gamma range
-    /// spans 0.03 or more above 2.40): gamma uniform over the table's range above 2.40, alpha = alpha_F(gamma)
-    /// times 1 + s·r, s = +1 or -1, r log-uniform in [1e-4, 1e-2], where the surface leaves its
-    /// smooth continuation like (alpha - alpha_F)^(3/2) (F- is traced first, about 1 s).
+    /// Draw (gamma, alpha) next to the fold F- instead: gamma uniform over the table's range
+    /// above 2.40 (an elastic table whose gamma range spans 0.03 or more there), or (gamma,
+    /// e_n) uniform over the part of a Kelvin-Voigt table's range where F- exists; alpha =
+    /// alpha_F times 1 + s·r, s = +1 or -1, r log-uniform in [1e-4, 1e-2], where the surface
+    /// leaves its smooth continuation like (alpha - alpha_F)^(3/2) (F- is traced first: about
+    /// 1 s for a curve, seconds for a surface).
     #[arg(long, conflicts_with = "near_curves")]
     near_fold: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
@@ -115,39 +117,57 @@ fn sample_near_curves(table: &Table, n: usize, seed: u64) -> Vec<Point> {
     )
 }
 
-/// The `n` points of `--near-fold`: [`oblique_sweep::kink::near_fold_minus_points`] over the
-/// part of an elastic table's γ range where F₋ is traced.
+/// The `n` points of `--near-fold`: next to the fold F₋ over the part of the table's range where
+/// it is traced: [`oblique_sweep::kink::near_fold_minus_points`] on the curve of an elastic
+/// table, [`oblique_sweep::kink::near_fold_minus_points_e`] on the surface `α_F(γ, e_n)` of a
+/// Kelvin–Voigt table (`e_n` uniform in the table's range where F₋ exists).
 fn sample_near_fold(
     table: &Table,
     path: &std::path::Path,
+    law: Law,
     n: usize,
     seed: u64,
 ) -> Result<Vec<Point>> {
     let s = table.surface();
+    let (g_lo, g_hi) = (s.gamma_min(), s.gamma_max());
+    let range = match table.restitution() {
+        Some((lo, hi)) => format!("gamma in [{g_lo}, {g_hi}] and e_n in [{lo}, {hi}]"),
+        None => format!("gamma in [{g_lo}, {g_hi}]"),
+    };
     let refuse = |has: String| {
         Failure::usage(format!(
-            "--near-fold: {} has {has}; the fold curve F- is traced for elastic tables whose \
-             gamma range spans {} or more above {}",
+            "--near-fold: {} has {has}; the fold F- is traced for elastic tables whose gamma \
+             range spans {} or more above {}, and for Kelvin-Voigt tables that reach it (gamma \
+             >= 2.37 at e_n = 1, later for lower e_n, none for e_n <= 0.87)",
             path.display(),
             3.0 * oblique_sweep::kink::STEP,
             oblique_sweep::kink::FOLD_MINUS_FROM
         ))
     };
-    // A table with an e_n axis (the table of one pair has one too) is not traced.
-    if table.restitution().is_some() {
-        return Err(refuse("an e_n axis".into()));
+    let Some(e_range) = table.restitution() else {
+        // `None` when the range spans less than three tracing steps above 2.40.
+        let curve = oblique_sweep::kink::fold_minus_curve(g_lo, g_hi)
+            .context("tracing the fold curve F-")?
+            .ok_or_else(|| refuse(range))?;
+        return Ok(oblique_sweep::kink::near_fold_minus_points(
+            &curve, g_lo, g_hi, n, seed,
+        ));
+    };
+    if !oblique_sweep::kink::probes_implemented(law) {
+        return Err(refuse(format!(
+            "the {} law, whose kinks are not traced",
+            law.name()
+        )));
     }
-    // `None` when the range spans less than three tracing steps above 2.40.
-    let curve = oblique_sweep::kink::fold_minus_curve(s.gamma_min(), s.gamma_max())
-        .context("tracing the fold curve F-")?
-        .ok_or_else(|| refuse(format!("gamma in [{}, {}]", s.gamma_min(), s.gamma_max())))?;
-    Ok(oblique_sweep::kink::near_fold_minus_points(
-        &curve,
-        s.gamma_min(),
-        s.gamma_max(),
-        n,
-        seed,
-    ))
+    let surface = oblique_sweep::kink::fold_minus_surface((g_lo, g_hi), e_range)
+        .context("tracing the fold surface F-")?;
+    let points = surface
+        .map(|f| oblique_sweep::kink::near_fold_minus_points_e(&f, (g_lo, g_hi), e_range, n, seed))
+        .unwrap_or_default();
+    if points.is_empty() {
+        return Err(refuse(format!("{range}, where F- has no traced point")));
+    }
+    Ok(points)
 }
 
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
@@ -196,11 +216,6 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         )
         .into());
     }
-    let points = if args.near_fold {
-        sample_near_fold(&table, &args.table, args.points, args.seed)?
-    } else {
-        sample(&table, args.points, args.seed, args.near_curves)
-    };
     // The law of the table's node values (an elastic table: elastic).
     let law = match table.restitution() {
         Some(_) => Law::from_name(&table.provenance().law).map_err(|e| {
@@ -211,6 +226,11 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             )
         })?,
         None => Law::Elastic,
+    };
+    let points = if args.near_fold {
+        sample_near_fold(&table, &args.table, law, args.points, args.seed)?
+    } else {
+        sample(&table, args.points, args.seed, args.near_curves)
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
@@ -223,7 +243,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         points.len(),
         match table.surface().pair_gamma() {
             Some(g) => format!("gamma = {g}, the table's one pair"),
-            None if args.near_fold => format!(
+            None if args.near_fold && table.restitution().is_none() => format!(
                 "gamma uniform in [{}, {}]",
                 table
                     .surface()
@@ -237,7 +257,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
                 table.surface().gamma_max()
             ),
         },
-        if args.near_fold {
+        if args.near_fold && table.restitution().is_some() {
+            "alpha within 1e-4 to 1e-2 (relative) of the fold surface F-"
+        } else if args.near_fold {
             "alpha within 1e-4 to 1e-2 (relative) of the fold curve F-"
         } else if args.near_curves {
             "alpha within 1e-4 to 0.1 (relative) of alpha_c1(gamma, e_n) and alpha_c2(gamma), \
@@ -246,7 +268,15 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             "alpha/(1+alpha) uniform"
         },
         match table.restitution() {
-            Some((lo, hi)) => format!(", e_n uniform in [{lo}, {hi}], law {}", law.name()),
+            Some((lo, hi)) => format!(
+                ", e_n uniform in [{lo}, {hi}]{}, law {}",
+                match (args.near_fold, table.surface().pair_gamma()) {
+                    (false, _) => "",
+                    (true, Some(_)) => " where F- exists",
+                    (true, None) => " (gamma and e_n where F- exists)",
+                },
+                law.name()
+            ),
             None => String::new(),
         },
         if table.surface().alpha_max().is_infinite() && !args.near_curves && !args.near_fold {

@@ -149,8 +149,10 @@ pub struct Nodes {
     #[serde(default)]
     pub fold_warp: bool,
     /// Trace the kink curves of `P` whose leaves the quarter-surplus prediction cannot be trusted
-    /// on (the fold curve F₋ of the partial-slip patch, γ ≥ 2.40) and measure every leaf one
-    /// crosses by direct simulations next to it before accepting it (an elastic table only).
+    /// on (the fold F₋ of the partial-slip patch: a curve for γ ≥ 2.40 in an elastic table, a
+    /// surface `α_F(γ, e_n)` in a Kelvin–Voigt table, which it needs from γ ≈ 2.37) and measure
+    /// every leaf one crosses by direct simulations next to it before accepting it (not for
+    /// Thornton's law).
     #[serde(default)]
     pub probe_kinks: bool,
 }
@@ -568,12 +570,30 @@ impl Config {
                 "false for a table with an e_n range".into(),
             ));
         }
+        if d.e_n_range().is_some() && n.probe_kinks && !crate::kink::probes_implemented(law) {
+            return Err(err(
+                "nodes.probe_kinks",
+                "true".into(),
+                format!(
+                    "false for a table of the {} law: no kink of its surface is traced for the \
+                     probes yet (nodes.probe_kinks traces the fold F- of the elastic and \
+                     kelvin-voigt laws)",
+                    law.name()
+                ),
+            ));
+        }
         if let Some((_, hi)) = d.e_n_range() {
             // Next to the fold curve F₋ the leaves' predictions miss how P leaves its smooth
-            // continuation (docs/accuracy.md, "Tables with an e_n axis"); a table with an e_n
-            // range does not measure those leaves yet, so its bound would not hold there.
+            // continuation (docs/accuracy.md, "Tables with an e_n axis"): a table that reaches
+            // it must measure those leaves (nodes.probe_kinks), else its bound would not hold.
             let free = oblique_solver::history::fold_minus_free_below(hi);
-            if d.gamma_max >= free {
+            if d.gamma_max >= free && !n.probe_kinks {
+                let fix = if crate::kink::probes_implemented(law) {
+                    "set nodes.probe_kinks = true (its leaves are then measured next to F-), or \
+                     lower it or e_n_max"
+                } else {
+                    "lower it or e_n_max"
+                };
                 return Err(err(
                     if pair {
                         "domain.gamma"
@@ -582,20 +602,14 @@ impl Config {
                     },
                     d.gamma_max.to_string(),
                     format!(
-                        "< {free} with e_n_max = {hi}: from there on P has the fold curve F- \
-                         (born at gamma 2.37 for e_n = 1, later for lower e_n, none up to 3.6 \
-                         for e_n <= 0.8), next to which a table with an e_n range cannot yet \
-                         hold its stated bound; lower it or e_n_max"
+                        "< {free} with e_n_max = {hi} and nodes.probe_kinks = false: from there \
+                         on P has the fold curve F- (born at gamma 2.37 for e_n = 1, later for \
+                         lower e_n, none up to 3.6 for e_n <= 0.8), next to which a table with \
+                         an e_n range does not hold its stated bound unless it measures the \
+                         leaves there; {fix}"
                     ),
                 ));
             }
-        }
-        if d.e_n_range().is_some() && n.probe_kinks {
-            return Err(err(
-                "nodes.probe_kinks",
-                "true".into(),
-                "false for a table with an e_n range".into(),
-            ));
         }
         if n.placement != "aligned" {
             return Err(err(
@@ -778,7 +792,7 @@ tol = 1e-6
     }
 
     #[test]
-    fn an_e_n_range_stops_below_the_fold_curve_f_minus() {
+    fn an_e_n_range_stops_below_the_fold_curve_f_minus_unless_probed() {
         let with = |gamma: &str, e_n: &str| {
             let text = GOOD
                 .replace("gamma_min = 0.1\ngamma_max = 3.5", gamma)
@@ -817,10 +831,29 @@ tol = 1e-6
         let e = with("gamma = 2.5", near_one).unwrap_err();
         assert!(e.contains("`domain.gamma` = 2.5"), "{e}");
         assert!(!e.contains("domain.gamma_max"), "{e}");
+        assert!(e.contains("set nodes.probe_kinks = true"), "{e}");
+        // With its leaves measured next to F₋ the range is taken.
+        let probed = |gamma: &str| {
+            with(gamma, near_one).or_else(|_| {
+                let text = GOOD
+                    .replace("gamma_min = 0.1\ngamma_max = 3.5", gamma)
+                    .replace(
+                        "alpha_max = \"inf\"",
+                        &format!("alpha_max = \"inf\"\n{near_one}"),
+                    )
+                    .replace(
+                        "target_error = 1e-5",
+                        "target_error = 1e-5\nprobe_kinks = true",
+                    );
+                Config::parse(&text, "x.toml").map_err(|e| e.to_string())
+            })
+        };
+        assert!(probed("gamma_min = 1.0\ngamma_max = 2.6").is_ok());
+        assert!(probed("gamma = 2.5").is_ok());
     }
 
     #[test]
-    fn kink_probes_are_for_elastic_tables_only() {
+    fn kink_probes_are_refused_where_no_kink_is_traced() {
         let probe = GOOD.replace(
             "target_error = 1e-5",
             "target_error = 1e-5\nprobe_kinks = true",
@@ -831,16 +864,30 @@ tol = 1e-6
                 .nodes
                 .probe_kinks
         );
-        let dissipative = probe.replace("gamma_max = 3.5", "gamma_max = 2.0").replace(
-            "alpha_max = \"inf\"",
-            "alpha_max = \"inf\"\ne_n_min = 0.5\ne_n_max = 1.0",
-        );
-        let e = Config::parse(&dissipative, "x.toml")
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.contains("nodes.probe_kinks") && e.contains("e_n range"),
-            "{e}"
-        );
+        let dissipative = probe
+            .replace(
+                "gamma_min = 0.1\ngamma_max = 3.5",
+                "gamma_min = 1.0\ngamma_max = 2.6",
+            )
+            .replace(
+                "alpha_max = \"inf\"",
+                "alpha_max = \"inf\"\ne_n_min = 0.5\ne_n_max = 1.0",
+            );
+        // The Kelvin–Voigt law (the default with an e_n range): F₋ is traced as a surface.
+        let c = Config::parse(&dissipative, "x.toml").expect("kelvin-voigt");
+        assert_eq!(c.law(), oblique_solver::Law::KelvinVoigt);
+        // Thornton's law: nothing is traced, so the key is refused, whatever γ.
+        for g in ["2.6", "2.0"] {
+            let thornton = dissipative
+                .replace("gamma_max = 2.6", &format!("gamma_max = {g}"))
+                .replace("tol = 1e-6", "tol = 1e-6\nlaw = \"thornton\"");
+            let e = Config::parse(&thornton, "x.toml").unwrap_err().to_string();
+            assert!(
+                e.contains("`nodes.probe_kinks` = true")
+                    && e.contains("thornton law")
+                    && e.contains("no kink"),
+                "{e}"
+            );
+        }
     }
 }

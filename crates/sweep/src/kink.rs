@@ -2,19 +2,75 @@
 //! before the build so that every leaf they cross is measured by direct simulations
 //! (`nodes.probe_kinks`, `docs/table-format.md`, "The stated error bound").
 //!
-//! The one treated today is the fold curve F₋ of the partial-slip patch (`docs/solver.md`,
-//! "Kink curves": a `−μF_N` episode late in the restitution phase vanishes as α grows; γ ≳ 2.40,
+//! The one treated today is the fold F₋ of the partial-slip patch (`docs/solver.md`, "Kink
+//! curves": a `−μF_N` episode late in the restitution phase vanishes as α grows; γ ≳ 2.40,
 //! α ≈ 0.31–0.52). Above it `P` departs from its smooth continuation like `(α − α_F)^{3/2}`:
 //! at γ = 3.3589 the slope `dP/d ln α` falls from 0.345 at F₋ by `0.9 √(α/α_F − 1)` (0.020 at
 //! 5e-4 above, 0.090 at 1e-2). A cubic across such a point errs in proportion to `h^{3/2}`, not
 //! `h²`, and the quarter-surplus prediction of a leaf that F₋ crosses was up to 4.2× below the
 //! leaf's error in `tables/full.h5` (1.61e-5 at γ = 3.35889, α = 0.326995; `docs/accuracy.md`).
+//!
+//! An elastic table traces it as a curve `α_F(γ)` ([`fold_minus_curve`]); a Kelvin–Voigt table
+//! as a surface `α_F(γ, e_n)` ([`fold_minus_surface`]), which ends where damping removes the
+//! fold (`e_n` ≈ 0.99 at γ = 2.4, 0.94 at 2.6, 0.87 at 3.5). Both are a [`Kink`]: the probes
+//! of a cell ask any kink for its α on the cell's node rows, so another law's kink (a fold in
+//! the stick patch, say) is one more entry of [`trace`].
 
 use rayon::prelude::*;
 
 use super::SweepError;
-use oblique_solver::history::fold_minus_at;
-use oblique_table::surface::stencil4;
+use oblique_solver::history::{
+    fold_minus_at, fold_minus_at_e, fold_minus_free_below, restitution_minus_somewhere_e,
+};
+use oblique_solver::Law;
+use oblique_table::surface::{stencil4, PatchKind, Point};
+
+/// A kink of `P` that the probes of `nodes.probe_kinks` measure the leaves next to: where it
+/// lies in one patch, as `α_K(γ, e_n)`. The probe code asks nothing else, so a new kink (of
+/// another law, or in another patch) implements this and joins [`trace`].
+pub trait Kink: std::fmt::Debug + Send + Sync {
+    /// Its name in messages (`F-`).
+    fn name(&self) -> &'static str;
+    /// The patch whose coordinate the probes are placed along.
+    fn patch(&self) -> PatchKind;
+    /// `α_K` at `(γ, e_n)`; `None` where the kink does not exist or was not traced (no probes
+    /// there).
+    fn alpha(&self, gamma: f64, e_n: f64) -> Option<f64>;
+}
+
+/// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ of the elastic and
+/// of the Kelvin–Voigt law. None is traced for Thornton's law (its kinks in the slip regions,
+/// `docs/solver.md`, are not followed yet).
+pub fn probes_implemented(law: Law) -> bool {
+    matches!(law, Law::Elastic | Law::KelvinVoigt)
+}
+
+/// The kinks of `law` in the patch `kind` that the probes measure, traced over γ in `gammas`
+/// (and `e_n` in `e_range` for a table with an `e_n` axis): F₋ of the partial-slip patch as a
+/// curve (elastic, [`fold_minus_curve`]) or as a surface (Kelvin–Voigt,
+/// [`fold_minus_surface`]); none where the range holds no F₋ or the law has none traced.
+pub fn trace(
+    law: Law,
+    kind: PatchKind,
+    gammas: (f64, f64),
+    e_range: Option<(f64, f64)>,
+) -> Result<Vec<Box<dyn Kink>>, SweepError> {
+    let mut out: Vec<Box<dyn Kink>> = Vec::new();
+    match (law, kind, e_range) {
+        (Law::Elastic, PatchKind::PartialSlip, None) => {
+            if let Some(c) = fold_minus_curve(gammas.0, gammas.1)? {
+                out.push(Box::new(c));
+            }
+        }
+        (Law::KelvinVoigt, PatchKind::PartialSlip, Some(e_range)) => {
+            if let Some(s) = fold_minus_surface(gammas, e_range)? {
+                out.push(Box::new(s));
+            }
+        }
+        _ => {}
+    }
+    Ok(out)
+}
 
 /// Lowest γ at which F₋ is traced: its predicate first holds at γ ≈ 2.398 (2048 steps); below
 /// it the curve is younger than its tracing and its slope change smaller.
@@ -53,6 +109,25 @@ impl KinkCurve {
             self.gamma_0,
             self.gamma_0 + (self.ln_alpha.len() - 1) as f64 * self.step,
         )
+    }
+}
+
+impl Kink for KinkCurve {
+    fn name(&self) -> &'static str {
+        "F-"
+    }
+
+    fn patch(&self) -> PatchKind {
+        PatchKind::PartialSlip
+    }
+
+    /// [`KinkCurve::alpha_at`] at `e_n = 1`, the only restitution of an elastic table.
+    fn alpha(&self, gamma: f64, e_n: f64) -> Option<f64> {
+        if e_n == 1.0 {
+            self.alpha_at(gamma)
+        } else {
+            None
+        }
     }
 }
 
@@ -137,7 +212,7 @@ pub fn near_fold_minus_points(
     gamma_max: f64,
     n: usize,
     seed: u64,
-) -> Vec<oblique_table::surface::Point> {
+) -> Vec<Point> {
     let (c_lo, c_hi) = curve.gamma_range();
     let (lo, hi) = (gamma_min.max(c_lo), gamma_max.min(c_hi));
     // An empty range (or a NaN edge) gives no points.
@@ -151,11 +226,291 @@ pub fn near_fold_minus_points(
         let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
         let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
         if let Some(alpha_f) = curve.alpha_at(gamma) {
-            out.push(oblique_table::surface::Point::new(
-                gamma,
-                alpha_f * (1.0 + sign * r),
-                1.0,
-            ));
+            out.push(Point::new(gamma, alpha_f * (1.0 + sign * r), 1.0));
+        }
+    }
+    out
+}
+
+/// Rows of a kink surface per unit of `e_n`: rows at `e_n = 1 − l/200` (0.005 apart).
+pub const ROWS_PER_UNIT_E: f64 = 200.0;
+
+/// The relative change of `α_F` per row of [`ROWS_PER_UNIT_E`] at the top of a column
+/// (`d ln α_F / d e_n` ≈ 1.3–2.4 over γ 2.5–3.5, `docs/solver.md`): the first guess one row
+/// below `e_n = 1`, before two rows give a slope.
+const FIRST_ROW_SLOPE: f64 = 0.0075;
+
+/// How far (in `ln α`) a point located by continuation may lie from its extrapolated guess
+/// (a neighbouring row's `α_F` differs by under 1.2 %, the extrapolation by under 1e-4).
+const CONTINUATION_SPAN: f64 = 0.03;
+
+/// A kink surface `α_K(γ, e_n)` traced on a grid of γ (spacing [`STEP`]) and `e_n`
+/// ([`ROWS_PER_UNIT_E`] rows per unit, from `e_n = 1` down), interpolated in `ln α` along γ in
+/// each row, then across the rows (Lagrange, up to 4 points each, fewer at the edge of the
+/// traced nodes). Undefined where the kink was not found on the two nodes on either side of
+/// the point along either axis: within one grid step of where it ends, and outside the grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KinkSurface {
+    name: &'static str,
+    patch: PatchKind,
+    gamma_0: f64,
+    n_gamma: usize,
+    n_e: usize,
+    /// `ln α_K` of node `(i, l)` (γ = `gamma_0 + i STEP`, `e_n = 1 − l/ROWS_PER_UNIT_E`) at
+    /// `i n_e + l`; NaN where the kink was not found.
+    ln_alpha: Vec<f64>,
+}
+
+/// `e_n` of row `l` of a kink surface (exact at `e_n` = 1, 0.99, …, 0.3).
+fn e_of_row(l: usize) -> f64 {
+    (ROWS_PER_UNIT_E - l as f64) / ROWS_PER_UNIT_E
+}
+
+/// The Lagrange stencil on up to four consecutive nodes among `0..n` (node `i` at `x = i`)
+/// for which `ok` holds, around `x`: `(start, k)` with `2 ≤ k ≤ 4`, centred as
+/// [`stencil4`] centres it where the nodes allow. `None` when the two nodes of the interval
+/// holding `x` are not both `ok` (or `x` lies outside `[0, n − 1]`).
+fn local_stencil(x: f64, n: usize, ok: impl Fn(usize) -> bool) -> Option<(usize, usize)> {
+    if n < 2 || !(x >= 0.0 && x <= (n - 1) as f64) {
+        return None;
+    }
+    let cell = (x as usize).min(n - 2);
+    if !(ok(cell) && ok(cell + 1)) {
+        return None;
+    }
+    let mut lo = cell;
+    while lo > 0 && cell - lo < 2 && ok(lo - 1) {
+        lo -= 1;
+    }
+    let mut hi = cell + 1;
+    while hi + 1 < n && hi - cell < 3 && ok(hi + 1) {
+        hi += 1;
+    }
+    let k = (hi - lo + 1).min(4);
+    let start = cell.saturating_sub(1).clamp(lo, hi + 1 - k);
+    Some((start, k))
+}
+
+/// The Lagrange weights of nodes `start .. start + k` at `x`.
+fn lagrange_weights(x: f64, start: usize, k: usize) -> [f64; 4] {
+    let mut w = [0.0; 4];
+    for (j, wj) in w.iter_mut().enumerate().take(k) {
+        let mut prod = 1.0;
+        for m in 0..k {
+            if m != j {
+                prod *= (x - (start + m) as f64) / (j as f64 - m as f64);
+            }
+        }
+        *wj = prod;
+    }
+    w
+}
+
+impl KinkSurface {
+    /// `ln α_K` of node `(i, l)` (NaN where not found).
+    fn node(&self, i: usize, l: usize) -> f64 {
+        self.ln_alpha[i * self.n_e + l]
+    }
+
+    /// `ln α_K` interpolated along γ (position `u` in grid steps) in row `l`.
+    fn along_gamma(&self, u: f64, l: usize) -> Option<f64> {
+        let (start, k) = local_stencil(u, self.n_gamma, |i| self.node(i, l).is_finite())?;
+        let w = lagrange_weights(u, start, k);
+        Some((0..k).map(|j| w[j] * self.node(start + j, l)).sum())
+    }
+
+    /// `α_K(γ, e_n)`, or `None` where it is undefined (see [`KinkSurface`]).
+    pub fn alpha_at(&self, gamma: f64, e_n: f64) -> Option<f64> {
+        let u = (gamma - self.gamma_0) / STEP;
+        let x = (1.0 - e_n) * ROWS_PER_UNIT_E;
+        if !(u >= 0.0 && u <= (self.n_gamma - 1) as f64) {
+            return None;
+        }
+        // The rows that can take part (within two of the interval holding `x`), each
+        // interpolated along γ once.
+        let cell = (x.max(0.0) as usize).min(self.n_e.saturating_sub(2));
+        let first = cell.saturating_sub(2);
+        let rows: Vec<Option<f64>> = (first..(cell + 4).min(self.n_e))
+            .map(|l| self.along_gamma(u, l))
+            .collect();
+        let row = |l: usize| {
+            l.checked_sub(first)
+                .and_then(|r| rows.get(r).copied().flatten())
+        };
+        let (start, k) = local_stencil(x, self.n_e, |l| row(l).is_some())?;
+        let w = lagrange_weights(x, start, k);
+        let ln_alpha: f64 = (0..k)
+            .map(|j| w[j] * row(start + j).unwrap_or(f64::NAN))
+            .sum();
+        ln_alpha.is_finite().then(|| ln_alpha.exp())
+    }
+
+    /// The γ of the grid's first and last columns that hold the kink, or `None` if none does.
+    pub fn gamma_range(&self) -> Option<(f64, f64)> {
+        let has = |i: usize| (0..self.n_e).any(|l| self.node(i, l).is_finite());
+        let lo = (0..self.n_gamma).find(|&i| has(i))?;
+        let hi = (0..self.n_gamma).rev().find(|&i| has(i))?;
+        Some((
+            self.gamma_0 + lo as f64 * STEP,
+            self.gamma_0 + hi as f64 * STEP,
+        ))
+    }
+
+    /// The `e_n` of the grid's lowest and highest rows that hold the kink, or `None`.
+    pub fn e_n_range(&self) -> Option<(f64, f64)> {
+        let has = |l: usize| (0..self.n_gamma).any(|i| self.node(i, l).is_finite());
+        let lo = (0..self.n_e).rev().find(|&l| has(l))?;
+        let hi = (0..self.n_e).find(|&l| has(l))?;
+        Some((e_of_row(lo), e_of_row(hi)))
+    }
+
+    /// How many nodes hold the kink (each one located by a fold search).
+    pub fn traced_nodes(&self) -> usize {
+        self.ln_alpha.iter().filter(|a| a.is_finite()).count()
+    }
+}
+
+impl Kink for KinkSurface {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn patch(&self) -> PatchKind {
+        self.patch
+    }
+
+    fn alpha(&self, gamma: f64, e_n: f64) -> Option<f64> {
+        self.alpha_at(gamma, e_n)
+    }
+}
+
+/// One column of [`fold_minus_surface`]: `ln α_F` at `γ` on rows `0..n_e`, from `e_n = 1`
+/// down, each row continued from the rows above (extrapolated), NaN from the first row where
+/// F₋ is not found (damping ends it; it does not come back at lower `e_n`).
+fn fold_minus_column(gamma: f64, n_e: usize) -> Result<Vec<f64>, SweepError> {
+    let mut out = vec![f64::NAN; n_e];
+    for l in 0..n_e {
+        let e_n = e_of_row(l);
+        let fail = |what: String| SweepError::Kink {
+            curve: "F-",
+            gamma,
+            what: format!("at e_n = {e_n}: {what}"),
+        };
+        let guess = match l {
+            0 => first_guess(gamma),
+            1 => (out[0] - FIRST_ROW_SLOPE).exp(),
+            2 => (2.0 * out[1] - out[0]).exp(),
+            _ => (3.0 * out[l - 1] - 3.0 * out[l - 2] + out[l - 3]).exp(),
+        };
+        let found = if l == 0 {
+            // The first guess lies 1 % above the elastic curve; near F₋'s birth its predicate
+            // holds only on a narrow interval below it, which the search finds.
+            match fold_minus_at(gamma, guess, TRACE_STEPS).map_err(|e| fail(e.to_string()))? {
+                Some(a) => Some(a),
+                None => match restitution_minus_somewhere_e(gamma, 1.0, (0.25, 0.8), TRACE_STEPS)
+                    .map_err(|e| fail(e.to_string()))?
+                {
+                    Some(a) => {
+                        fold_minus_at(gamma, a, TRACE_STEPS).map_err(|e| fail(e.to_string()))?
+                    }
+                    None => None,
+                },
+            }
+        } else {
+            // Accepted within `CONTINUATION_SPAN` of the guess: a search that missed the
+            // predicate's interval (at the end of F₋ it narrows) and found another change is no
+            // point of this column.
+            fold_minus_at_e(gamma, e_n, guess, TRACE_STEPS)
+                .map_err(|e| fail(e.to_string()))?
+                .filter(|a| (a / guess).ln().abs() <= CONTINUATION_SPAN)
+        };
+        match found {
+            Some(a) => out[l] = a.ln(),
+            None => break,
+        }
+    }
+    Ok(out)
+}
+
+/// F₋ of the Kelvin–Voigt law as a surface `α_F(γ, e_n)` over `gammas` × `e_range`, for the
+/// probes of a table with an `e_n` axis: on a grid of γ spacing [`STEP`] from one step below
+/// `max(γ_lo, γ_free)` to one step beyond `γ_hi` (`γ_free` =
+/// [`fold_minus_free_below`]`(e_max)`: no F₋ below it) and rows `e_n = 1, 0.99, …` down to
+/// one row below `e_min` (or 0.3), each column traced from `e_n = 1` down by continuation
+/// ([`fold_minus_at_e`], [`TRACE_STEPS`] steps, ≈1e-10 in `ln α`), the columns in parallel.
+/// `None` when γ_hi lies below γ_free (no F₋ in the range). A column's top node (`e_n = 1`) is
+/// searched as [`fold_minus_curve`] searches its points, then anywhere in α ∈ [0.25, 0.8] where
+/// that finds nothing (near F₋'s birth).
+pub fn fold_minus_surface(
+    (gamma_lo, gamma_hi): (f64, f64),
+    (e_lo, e_hi): (f64, f64),
+) -> Result<Option<KinkSurface>, SweepError> {
+    let free = fold_minus_free_below(e_hi.min(1.0));
+    if gamma_hi < free {
+        return Ok(None);
+    }
+    let gamma_0 = gamma_lo.max(free) - STEP;
+    let n_gamma = ((gamma_hi - gamma_0) / STEP - 1e-9).ceil().max(0.0) as usize + 2;
+    let min_row = ((1.0 - oblique_solver::law::MIN_RESTITUTION) * ROWS_PER_UNIT_E).round() as usize;
+    let n_e =
+        (((1.0 - e_lo) * ROWS_PER_UNIT_E - 1e-9).ceil().max(0.0) as usize + 2).min(min_row + 1);
+    // No column below the elastic birth has F₋ at any e_n.
+    let born = fold_minus_free_below(1.0);
+    let columns = (0..n_gamma)
+        .into_par_iter()
+        .map(|i| {
+            let g = gamma_0 + i as f64 * STEP;
+            if g < born {
+                Ok(vec![f64::NAN; n_e])
+            } else {
+                fold_minus_column(g, n_e)
+            }
+        })
+        .collect::<Result<Vec<Vec<f64>>, SweepError>>()?;
+    Ok(Some(KinkSurface {
+        name: "F-",
+        patch: PatchKind::PartialSlip,
+        gamma_0,
+        n_gamma,
+        n_e,
+        ln_alpha: columns.concat(),
+    }))
+}
+
+/// `n` points next to the fold surface F₋ (`surface`, from [`fold_minus_surface`]): `(γ, e_n)`
+/// uniform over the part of `[gamma_min, gamma_max] × e_range` where the surface is defined
+/// (drawn over the box of its traced nodes, drawn again where it is undefined), and
+/// `α = α_F(γ, e_n)(1 + s·r)` as [`near_fold_minus_points`] places them. Fewer than `n` (none)
+/// when `1000 n` draws do not find them. The same `seed` gives the same points (`sweep verify
+/// --near-fold` on a table with an `e_n` axis).
+pub fn near_fold_minus_points_e(
+    surface: &KinkSurface,
+    (gamma_min, gamma_max): (f64, f64),
+    (e_min, e_max): (f64, f64),
+    n: usize,
+    seed: u64,
+) -> Vec<Point> {
+    let (Some((g_lo, g_hi)), Some((e_lo, e_hi))) = (surface.gamma_range(), surface.e_n_range())
+    else {
+        return Vec::new();
+    };
+    let (g_lo, g_hi) = (gamma_min.max(g_lo), gamma_max.min(g_hi));
+    let (e_lo, e_hi) = (e_min.max(e_lo), e_max.min(e_hi));
+    if !(g_lo <= g_hi && e_lo <= e_hi) {
+        return Vec::new();
+    }
+    let mut rng = oblique_physics::sample::SplitMix(seed);
+    let mut out = Vec::with_capacity(n);
+    for _ in 0..n.saturating_mul(1000) {
+        if out.len() == n {
+            break;
+        }
+        let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
+        let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
+        let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        if let Some(alpha_f) = surface.alpha_at(gamma, e_n) {
+            out.push(Point::new(gamma, alpha_f * (1.0 + sign * r), e_n));
         }
     }
     out
@@ -201,5 +556,107 @@ mod tests {
             .all(|d| (1e-4 - 1e-15..=1e-2 + 1e-15).contains(&d.abs())));
         assert!(d.iter().any(|&d| d < 0.0) && d.iter().any(|&d| d > 0.0));
         assert!(near_fold_minus_points(&curve, 1.0, 2.0, 10, 5).is_empty());
+    }
+
+    #[test]
+    fn the_fold_minus_surface_matches_direct_tracing_between_its_nodes() {
+        // γ 2.44–2.56, e_n 0.95–1: F₋ ends at e_n ≈ 0.977 at γ = 2.45, 0.957 at 2.55
+        // (`fmedge`), so the grid's edge crosses the range.
+        let s = fold_minus_surface((2.44, 2.56), (0.95, 1.0))
+            .unwrap()
+            .expect("a surface");
+        let (g_lo, g_hi) = s.gamma_range().unwrap();
+        assert!(g_lo <= 2.44 && g_hi >= 2.56, "{g_lo} {g_hi}");
+        let (e_lo, e_hi) = s.e_n_range().unwrap();
+        assert_eq!(e_hi, 1.0);
+        assert!((0.95..0.965).contains(&e_lo), "{e_lo}");
+        // Between the nodes (γ off the 0.01 grid, e_n off the 0.005 rows), against F₋ located
+        // directly from the interpolated value (measured: within 1.6e-6; the located α_F
+        // itself moves by about 1e-6 with the step times at 2048 steps); at e_n = 1 the
+        // elastic curve's.
+        let curve = fold_minus_curve(2.4, 2.6).unwrap().unwrap();
+        for (g, e_n, tol) in [
+            (2.4537, 1.0, 5e-6),
+            (2.5311, 1.0, 5e-6),
+            (2.4537, 0.9921, 5e-6),
+            (2.5013, 0.9837, 5e-6),
+            (2.5488, 0.9712, 5e-6),
+            // Near the end of F₋ (≈ 0.963 at γ = 2.5), fewer rows across e_n.
+            (2.5052, 0.9723, 2e-5),
+        ] {
+            let a = s.alpha_at(g, e_n).unwrap_or_else(|| panic!("{g} {e_n}"));
+            let direct = fold_minus_at_e(g, e_n, a, TRACE_STEPS)
+                .unwrap()
+                .expect("F- there");
+            assert!((a / direct - 1.0).abs() < tol, "{g} {e_n}: {a} vs {direct}");
+            if e_n == 1.0 {
+                let c = curve.alpha_at(g).unwrap();
+                assert!((a / c - 1.0).abs() < 1e-5, "{g}: {a} vs {c}");
+            }
+        }
+        // Undefined where F₋ does not exist (γ = 2.45 below e_n ≈ 0.977; γ < 2.37), and
+        // outside the grid.
+        assert_eq!(s.alpha_at(2.45, 0.96), None);
+        assert!(fold_minus_at_e(2.45, 0.96, 0.48, TRACE_STEPS)
+            .unwrap()
+            .is_none());
+        assert_eq!(s.alpha_at(2.36, 1.0), None);
+        assert_eq!(s.alpha_at(2.7, 1.0), None);
+        assert_eq!(s.alpha_at(2.5, 1.01), None);
+        // No surface where the range holds no F₋ (e_n ≤ 0.8 below γ = 3.6).
+        assert!(fold_minus_surface((2.0, 2.36), (0.5, 1.0))
+            .unwrap()
+            .is_none());
+        assert!(fold_minus_surface((2.4, 3.0), (0.3, 0.8))
+            .unwrap()
+            .is_none());
+        // Points next to it: within 1e-4 to 1e-2 (relative) of the surface, on both sides,
+        // (γ, e_n) in the range asked for; the same seed, the same points.
+        let pts = near_fold_minus_points_e(&s, (2.45, 2.55), (0.96, 1.0), 200, 7);
+        assert_eq!(pts.len(), 200);
+        assert_eq!(
+            pts,
+            near_fold_minus_points_e(&s, (2.45, 2.55), (0.96, 1.0), 200, 7)
+        );
+        let d: Vec<f64> = pts
+            .iter()
+            .map(|p| p.alpha / s.alpha_at(p.gamma, p.e_n).unwrap() - 1.0)
+            .collect();
+        assert!(pts
+            .iter()
+            .all(|p| (2.45..=2.55).contains(&p.gamma) && (0.96..=1.0).contains(&p.e_n)));
+        assert!(d
+            .iter()
+            .all(|d| (1e-4 - 1e-15..=1e-2 + 1e-15).contains(&d.abs())));
+        assert!(d.iter().any(|&d| d < 0.0) && d.iter().any(|&d| d > 0.0));
+        // Over the range where F₋ lives: both ends of e_n are drawn.
+        assert!(pts.iter().any(|p| p.e_n < 0.97) && pts.iter().any(|p| p.e_n > 0.99));
+        assert!(near_fold_minus_points_e(&s, (2.45, 2.55), (0.9, 0.94), 10, 7).is_empty());
+    }
+
+    #[test]
+    fn kinks_are_traced_for_the_laws_that_have_them() {
+        assert!(probes_implemented(Law::Elastic) && probes_implemented(Law::KelvinVoigt));
+        assert!(!probes_implemented(Law::Thornton));
+        // Nothing for the stick patch, for Thornton's law, or below F₋'s birth.
+        for (law, kind, e) in [
+            (Law::Elastic, PatchKind::Stick, None),
+            (Law::Thornton, PatchKind::PartialSlip, Some((0.5, 1.0))),
+            (Law::KelvinVoigt, PatchKind::PartialSlip, Some((0.5, 0.8))),
+        ] {
+            assert!(
+                trace(law, kind, (2.4, 2.6), e).unwrap().is_empty(),
+                "{law:?}"
+            );
+        }
+        let elastic = trace(Law::Elastic, PatchKind::PartialSlip, (2.4, 2.45), None).unwrap();
+        assert_eq!(elastic.len(), 1);
+        assert_eq!(
+            (elastic[0].name(), elastic[0].patch()),
+            ("F-", PatchKind::PartialSlip)
+        );
+        let a = elastic[0].alpha(2.42, 1.0).unwrap();
+        assert!((a / 0.5123275 - 1.0).abs() < 1e-6, "{a}");
+        assert_eq!(elastic[0].alpha(2.42, 0.99), None);
     }
 }

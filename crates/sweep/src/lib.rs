@@ -415,4 +415,45 @@ mod tests {
         assert!(without > 1.0, "without probes: {without}");
         assert!(with <= 1.0, "with probes: {with}");
     }
+
+    #[test]
+    fn an_e_n_table_measures_its_leaves_next_to_the_fold_surface() {
+        // The table of one pair at γ = 2.6, e_n 0.95–1 (Kelvin–Voigt; target 4e-5, tol 4e-6:
+        // about 1 500 nodes), against 80 points next to the fold surface F₋ simulated at tol
+        // 1e-7: the largest error over the stated bound, at most 1 where the bound holds.
+        let text = "output = \"t.h5\"\n[domain]\ngamma = 2.6\nalpha_max = \"inf\"\n\
+                    e_n_min = 0.95\ne_n_max = 1.0\n[nodes]\ntarget_error = 4e-5\n\
+                    leaf_intervals = 6\nprobe_kinks = true\n[solver]\ntol = 4e-6\n\
+                    [checks]\nper_patch = 5\n";
+        let mut cfg = Config::parse(text, "t.toml").expect("a valid config");
+        let surface = kink::fold_minus_surface((2.6, 2.6), (0.95, 1.0))
+            .unwrap()
+            .expect("F- at gamma 2.6");
+        let points = kink::near_fold_minus_points_e(&surface, (2.6, 2.6), (0.95, 1.0), 80, 3);
+        assert_eq!(points.len(), 80);
+        let truth = solve_points(&points, 1e-7, cfg.law(), &Silent).unwrap();
+        let mut worst = |probe: bool| {
+            // `sweep run` refuses this γ without the probes: built here to show why.
+            cfg.nodes.probe_kinks = probe;
+            let built = build(&cfg, &Silent).expect("built");
+            let bound = oblique_table::write::error_bound(&built);
+            points
+                .iter()
+                .zip(&truth)
+                .map(|(pt, (p, _))| {
+                    let table = built
+                        .surface
+                        .eval_point(pt.gamma, pt.alpha, pt.e_n, OutOfDomain::Error)
+                        .unwrap();
+                    (table - p).abs() / bound
+                })
+                .fold(0.0, f64::max)
+        };
+        let without = worst(false);
+        let with = worst(true);
+        // Without the probes the table errs beyond its stated bound next to F₋ (2.27× at
+        // 80 points); with them it holds it (0.68).
+        assert!(without > 1.0, "without probes: {without}");
+        assert!(with <= 1.0, "with probes: {with}");
+    }
 }

@@ -99,9 +99,9 @@ struct Layout<'a> {
 /// above. The `e_n` index is 0 without an `e_n` axis.
 type Key = (u64, u64, u64, bool);
 
-/// A point where a cell is measured: its position `(u, v)` in node intervals of the cell
-/// (along γ, along the coordinate) and the point simulated there.
-type Probe = (f64, f64, Point);
+/// A point where a cell is measured: its position `(u, v, w)` in node intervals of the cell
+/// (along γ, along the coordinate, along `e_n`) and the point simulated there.
+type Probe = (f64, f64, f64, Point);
 
 /// A tree cell: the number of splits above it (`depth`), its depth along each axis and its
 /// integer position per axis at that axis's depth (`ie = 0` without an `e_n` axis). Without
@@ -196,39 +196,86 @@ impl Layout<'_> {
         Point::new(gamma, alpha, e_n)
     }
 
-    /// Where a cell of an elastic partial-slip patch next to the kink curve `curve` is measured
-    /// ([`kink::PROBE_OFFSETS`] from the kink along the coordinate, on every node row along γ,
-    /// those that land inside the cell): `(u, v, point)` with `u`, `v` the position in node
-    /// intervals of the cell. Empty when the curve passes far from the cell.
-    fn kink_probes(&self, cell: Cell, curve: &kink::KinkCurve) -> Vec<Probe> {
+    /// Where a cell next to a kink (`kinks`, those of this patch) is measured: on every node
+    /// row of the cell (each γ row, and each `e_n` row with an `e_n` axis) and, with an `e_n`
+    /// axis, also halfway between them (at the centre of every square of four node rows), at
+    /// [`kink::PROBE_OFFSETS`] node intervals from the kink along the coordinate, those that land
+    /// inside the cell: `(u, v, w, point)` with `u`, `v`, `w` the position in node intervals of
+    /// the cell along γ, the coordinate and `e_n` (`w = 0` without an `e_n` axis, `u = 0` in
+    /// the patch of one pair). Empty when no kink passes near the cell.
+    ///
+    /// The centres: the kink moves across the coordinate from row to row (about one node
+    /// interval per row along `e_n` at γ ≈ 2.43, where `dα_F/de_n` ≈ 0.6), so the cell's
+    /// tensor interpolant errs most between the rows. On γ 2.43–2.47, e_n 0.98–1 (target 3e-5),
+    /// the node rows alone passed a leaf that errs by 3.96e-5 midway between them; with the
+    /// centres the largest error at 200 points next to F₋ is 1.56e-5 (`docs/accuracy.md`).
+    fn kink_probes(&self, cell: Cell, kinks: &[Box<dyn kink::Kink>]) -> Vec<Probe> {
         let m = self.m as f64;
         let nc = (self.bc as u64 * self.fine()) as f64;
         let sg = 1u64 << (MAX_DEPTH - cell.d[0]);
         let sc = (1u64 << (MAX_DEPTH - cell.d[1])) as f64;
+        let se = 1u64 << (MAX_DEPTH - cell.d[2]);
         let warped = self.warped(cell);
+        let mg = if self.pair() { 0 } else { self.m as u64 };
+        let me = if self.restitution.is_some() {
+            self.m as u64
+        } else {
+            0
+        };
+        // The rows `(u, w)`: the node rows, γ outer; then the centres.
+        let mut rows: Vec<(f64, f64)> = (0..=mg)
+            .flat_map(|i| (0..=me).map(move |l| (i as f64, l as f64)))
+            .collect();
+        if me > 0 {
+            let centres_g: Vec<f64> = if mg == 0 {
+                vec![0.0]
+            } else {
+                (0..mg).map(|i| i as f64 + 0.5).collect()
+            };
+            for &u in &centres_g {
+                rows.extend((0..me).map(|l| (u, l as f64 + 0.5)));
+            }
+        }
+        let ng = (self.bg as u64 * self.fine()) as f64;
+        let ne = (self.be() as u64 * self.fine()) as f64;
         let mut out = Vec::new();
-        for i in 0..=self.m as u64 {
-            let u = i as f64;
-            let gamma = self.gamma_of_row((cell.ig * self.m as u64 + i) * sg);
-            let Some(alpha_k) = curve.alpha_at(gamma) else {
-                continue;
+        for (u, w) in rows {
+            // A node row's γ and e_n are its nodes' (computed from the lattice index).
+            let gamma = if u.fract() == 0.0 {
+                self.gamma_of_row((cell.ig * self.m as u64 + u as u64) * sg)
+            } else {
+                let x = ((cell.ig * self.m as u64) as f64 + u) * sg as f64 / ng;
+                self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * x
             };
-            let c_k =
-                self.spec
-                    .kind
-                    .coord_at(self.partial_map(), gamma, alpha_k, 1.0, self.alpha_max);
-            let lattice = match self.warp {
-                Some(w) if warped => w.apply(gamma, c_k),
-                _ => c_k,
+            let e_n = match self.restitution {
+                Some(r) => r.at(((cell.ie * self.m as u64) as f64 + w) * se as f64 / ne),
+                None => 1.0,
             };
-            // The offsets that land inside the cell: also when the kink lies just outside it
-            // (up to 1.4 intervals below, 0.7 above), whose first intervals see the steep side.
-            let v_k = lattice * nc / sc - cell.ic as f64 * m;
-            for d in kink::PROBE_OFFSETS {
-                let v = v_k + d;
-                if (0.0..=m).contains(&v) {
-                    let c = (cell.ic as f64 * m + v) * sc / nc;
-                    out.push((u, v, self.point_at(gamma, c, 1.0, warped)));
+            for k in kinks {
+                let Some(alpha_k) = k.alpha(gamma, e_n) else {
+                    continue;
+                };
+                let c_k = self.spec.kind.coord_at(
+                    self.partial_map(),
+                    gamma,
+                    alpha_k,
+                    e_n,
+                    self.alpha_max,
+                );
+                let lattice = match self.warp {
+                    Some(warp) if warped => warp.apply(gamma, c_k),
+                    _ => c_k,
+                };
+                // The offsets that land inside the cell: also when the kink lies just outside
+                // it (up to 1.4 intervals below, 0.7 above), whose first intervals see the
+                // steep side.
+                let v_k = lattice * nc / sc - cell.ic as f64 * m;
+                for d in kink::PROBE_OFFSETS {
+                    let v = v_k + d;
+                    if (0.0..=m).contains(&v) {
+                        let c = (cell.ic as f64 * m + v) * sc / nc;
+                        out.push((u, v, w, self.point_at(gamma, c, e_n, warped)));
+                    }
                 }
             }
         }
@@ -370,6 +417,36 @@ fn interp_cell(values: &[f64], m: usize, k: usize, u: f64, v: f64) -> f64 {
     out
 }
 
+/// The `k`-point tensor interpolant of a cell's nodes (row-major, `γ` outer, `e_n` inner; one
+/// node along γ in the patch of one pair) at `u`, `v`, `w` node intervals along γ, the
+/// coordinate and `e_n`: the rule a leaf with an `e_n` axis answers with.
+fn interp_cell_e(
+    values: &[f64],
+    m: usize,
+    k: usize,
+    pair: bool,
+    (u, v, w): (f64, f64, f64),
+) -> f64 {
+    let (mut wg, mut wc, mut we) = ([0.0; 8], [0.0; 8], [0.0; 8]);
+    let (sg, kg) = if pair {
+        wg[0] = 1.0;
+        (0, 1)
+    } else {
+        stencil(u, m + 1, k, &mut wg)
+    };
+    let (sc, kc) = stencil(v, m + 1, k, &mut wc);
+    let (se, ke) = stencil(w, m + 1, k, &mut we);
+    let mut out = 0.0;
+    for (x, wx) in wg.iter().enumerate().take(kg) {
+        for (y, wy) in wc.iter().enumerate().take(kc) {
+            for (z, wz) in we.iter().enumerate().take(ke) {
+                out += wx * wy * wz * values[((sg + x) * (m + 1) + sc + y) * (m + 1) + se + z];
+            }
+        }
+    }
+    out
+}
+
 /// Largest deviation between the values at odd positions along `axis` and the `k`-point
 /// interpolation along that axis alone from the even ones.
 fn surplus_axis(values: &[f64], n: usize, k: usize, dims: u32, axis: usize) -> f64 {
@@ -421,6 +498,35 @@ fn split_axes(values: &[f64], m: usize, k: usize, target: f64, dims: u32) -> u8 
     bits
 }
 
+/// The axes a cell halves whose probes next to a kink measured more than `target` (bit
+/// `dims − 1 − k` for axis `k`), from the largest error measured on its node rows (`on_rows`)
+/// and at the centres between them (`centres`). Without an `e_n` axis every axis, as every
+/// quadtree split. With one: the coordinate where the node rows err (the interpolation along
+/// it across the kink), and the other axes where the centres err (the kink moves across the
+/// coordinate between rows); every axis where both do. Measured on γ 2.4–2.5, e_n 0.95–1
+/// (target 1e-5, tol 2e-6): 181 922 nodes against 222 593 halving every axis, the same
+/// largest error (8.51e-6) at 300 points next to F₋.
+fn probe_split(dims: u32, has_e: bool, on_rows: f64, centres: f64, target: f64) -> u8 {
+    let every = (1u8 << dims) - 1;
+    if !has_e {
+        return every;
+    }
+    // The coordinate is axis 1 (axis 0 in the patch of one pair, with two axes).
+    let coord = 1u8 << 1;
+    let mut bits = 0;
+    if on_rows > target {
+        bits |= coord;
+    }
+    if centres > target {
+        bits |= every & !coord;
+    }
+    if bits == 0 {
+        every
+    } else {
+        bits
+    }
+}
+
 /// Build one patch by adaptive refinement of its quadtree (octree with an `e_n` axis).
 ///
 /// Every open cell gets its `(m+1)^dims` nodes (nodes shared with cells already done are
@@ -460,14 +566,28 @@ pub(crate) fn build_patch(
     } else {
         None
     };
+    let e_range = cfg.domain.e_n_range();
     let kinks = if cfg.nodes.probe_kinks && spec.kind == PatchKind::PartialSlip {
         progress.phase(
             STAGE_KINKS,
-            &format!("the fold curve F- for the probes of {}", spec.name),
+            &format!(
+                "the fold {} F- for the probes of {}",
+                if e_range.is_some() {
+                    "surface"
+                } else {
+                    "curve"
+                },
+                spec.name
+            ),
         );
-        kink::fold_minus_curve(spec.gamma_lo, spec.gamma_hi)?
+        kink::trace(
+            cfg.law(),
+            spec.kind,
+            (spec.gamma_lo, spec.gamma_hi),
+            e_range,
+        )?
     } else {
-        None
+        Vec::new()
     };
     let layout = Layout {
         spec,
@@ -552,8 +672,8 @@ pub(crate) fn build_patch(
             let pred = surplus(&vals, m, k, layout.dims()) / 4.0;
             predicted[c] = pred;
             if pred <= cfg.nodes.target_error {
-                if let Some(curve) = &kinks {
-                    let probes = layout.kink_probes(cells[c], curve);
+                if !kinks.is_empty() {
+                    let probes = layout.kink_probes(cells[c], &kinks);
                     if !probes.is_empty() {
                         probed.push((o, vals, probes));
                     }
@@ -573,7 +693,7 @@ pub(crate) fn build_patch(
             // estimate) is within the target too; that error becomes its prediction.
             let points: Vec<Point> = probed
                 .iter()
-                .flat_map(|(_, _, probes)| probes.iter().map(|p| p.2))
+                .flat_map(|(_, _, probes)| probes.iter().map(|p| p.3))
                 .collect();
             progress.phase(
                 &stage_refine(spec.name),
@@ -588,14 +708,30 @@ pub(crate) fn build_patch(
                 solve_points_with(&points, cfg.solver.tol, law, progress, opts)?.into_iter();
             for (o, vals, probes) in probed {
                 let c = open[o];
-                let measured = probes
-                    .iter()
-                    .zip(values.by_ref())
-                    .map(|(&(u, v, _), (p, e))| (interp_cell(&vals, m, k, u, v) - p).abs() + e)
-                    .fold(0.0, f64::max);
-                predicted[c] = predicted[c].max(measured);
+                // The largest error measured on the node rows and at the centres between them.
+                let (mut on_rows, mut centres) = (0.0_f64, 0.0_f64);
+                for (&(u, v, w, _), (p, e)) in probes.iter().zip(values.by_ref()) {
+                    let at = if layout.restitution.is_some() {
+                        interp_cell_e(&vals, m, k, layout.pair(), (u, v, w))
+                    } else {
+                        interp_cell(&vals, m, k, u, v)
+                    };
+                    let err = (at - p).abs() + e;
+                    if w.fract() == 0.0 {
+                        on_rows = on_rows.max(err);
+                    } else {
+                        centres = centres.max(err);
+                    }
+                }
+                predicted[c] = predicted[c].max(on_rows.max(centres));
                 if predicted[c] > cfg.nodes.target_error {
-                    mask[c] = 0b11;
+                    mask[c] = probe_split(
+                        layout.dims(),
+                        layout.restitution.is_some(),
+                        on_rows,
+                        centres,
+                        cfg.nodes.target_error,
+                    );
                     split[o] = true;
                 }
             }
@@ -706,4 +842,158 @@ pub(crate) fn build_patch(
         unique_nodes: cache.len(),
         simulated,
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kink::{Kink, PROBE_OFFSETS};
+
+    /// A kink surface of the partial-slip patch that ends below `e_n` = 0.95.
+    #[derive(Debug)]
+    struct Slanted;
+
+    impl Kink for Slanted {
+        fn name(&self) -> &'static str {
+            "slanted"
+        }
+
+        fn patch(&self) -> PatchKind {
+            PatchKind::PartialSlip
+        }
+
+        fn alpha(&self, gamma: f64, e_n: f64) -> Option<f64> {
+            (e_n >= 0.95).then_some(0.45 - 0.3 * (gamma - 2.5) + 0.6 * (e_n - 1.0))
+        }
+    }
+
+    #[test]
+    fn a_probed_cell_halves_the_axes_its_probes_point_to() {
+        // (γ, c, e_n): bits 4, 2, 1; one pair (c, e_n): 2, 1; elastic (γ, c): every axis.
+        assert_eq!(probe_split(3, true, 2.0, 0.5, 1.0), 0b010);
+        assert_eq!(probe_split(3, true, 0.5, 2.0, 1.0), 0b101);
+        assert_eq!(probe_split(3, true, 2.0, 2.0, 1.0), 0b111);
+        assert_eq!(probe_split(2, true, 2.0, 0.5, 1.0), 0b10);
+        assert_eq!(probe_split(2, true, 0.5, 2.0, 1.0), 0b01);
+        assert_eq!(probe_split(2, false, 2.0, 0.0, 1.0), 0b11);
+    }
+
+    #[test]
+    fn probes_land_in_the_cells_next_to_a_kink_surface_on_every_node_row() {
+        // γ 2.3–2.6 in one root row, c in four, e_n 0.9–1 in two; cells at depth 3 (1/8 of a
+        // root cell along each axis).
+        let spec = PatchSpec {
+            name: PatchId::PartialHigh.name(),
+            kind: PatchKind::PartialSlip,
+            gamma_lo: 2.3,
+            gamma_hi: 2.6,
+        };
+        let layout = Layout {
+            spec: &spec,
+            bg: 1,
+            bc: 4,
+            m: 6,
+            alpha_max: f64::INFINITY,
+            warp: None,
+            restitution: Some(Axis::restitution(0.9, 1.0, 2).unwrap()),
+            map: PartialMap::SqrtBoth,
+        };
+        let kinks: Vec<Box<dyn Kink>> = vec![Box::new(Slanted)];
+        let d = 3;
+        // Node intervals per unit of c at depth 3.
+        let per_c = ((layout.bc * layout.m) << d) as f64;
+        let mut probed_cells = 0;
+        let mut rows_with_kink_inside = 0;
+        let mut centres = 0;
+        for ig in 0..1u64 << d {
+            for ic in 0..(layout.bc as u64) << d {
+                for ie in 0..(2u64 << d) {
+                    let cell = Cell {
+                        depth: d,
+                        d: [d; 3],
+                        ig,
+                        ic,
+                        ie,
+                    };
+                    let probes = layout.kink_probes(cell, &kinks);
+                    probed_cells += usize::from(!probes.is_empty());
+                    let keys = layout.cell_keys(cell);
+                    let (g0, c0, e0) = {
+                        let (g, c, p) = layout.point(keys[0]);
+                        (g, c, p.e_n)
+                    };
+                    let (g1, _, e1) = {
+                        let (g, c, p) = layout.point(keys[keys.len() - 1]);
+                        (g, c, p.e_n)
+                    };
+                    for &(u, v, w, pt) in &probes {
+                        // On a node row of the cell or at the centre between four, inside it
+                        // along the coordinate.
+                        assert!((u * 2.0).fract() == 0.0 && (w * 2.0).fract() == 0.0);
+                        assert_eq!(u.fract() == 0.0, w.fract() == 0.0, "{u} {w}");
+                        assert!((0.0..=6.0).contains(&v) && u <= 6.0 && w <= 6.0);
+                        centres += usize::from(u.fract() != 0.0);
+                        let g = g0 + (g1 - g0) * u / 6.0;
+                        let e_n = e0 + (e1 - e0) * w / 6.0;
+                        assert!((pt.gamma - g).abs() < 1e-12 && (pt.e_n - e_n).abs() < 1e-12);
+                        if u.fract() == 0.0 {
+                            let (i, l) = (u as usize, w as usize);
+                            let (gn, _, node) = layout.point(keys[(i * 7) * 7 + l]);
+                            assert_eq!((pt.gamma, pt.e_n), (gn, node.e_n));
+                        }
+                        assert!(pt.e_n >= 0.95, "{pt:?}");
+                        // At one of the offsets from the kink on that row.
+                        let coord = |a: f64| {
+                            PatchKind::PartialSlip.coord_at(
+                                PartialMap::SqrtBoth,
+                                pt.gamma,
+                                a,
+                                pt.e_n,
+                                f64::INFINITY,
+                            )
+                        };
+                        let c_k = coord(Slanted.alpha(pt.gamma, pt.e_n).unwrap());
+                        let off = (coord(pt.alpha) - c_k) * per_c;
+                        assert!(
+                            PROBE_OFFSETS.iter().any(|o| (o - off).abs() < 1e-6),
+                            "{off} at {pt:?}"
+                        );
+                        assert!(((coord(pt.alpha) - c0) * per_c - v).abs() < 1e-6);
+                    }
+                    // Every node row the kink crosses inside the cell has the probe on it.
+                    for i in 0..=6usize {
+                        for l in 0..=6usize {
+                            let (g, c0, node) = layout.point(keys[(i * 7) * 7 + l]);
+                            let Some(a) = Slanted.alpha(g, node.e_n) else {
+                                continue;
+                            };
+                            let v = (PatchKind::PartialSlip.coord_at(
+                                PartialMap::SqrtBoth,
+                                g,
+                                a,
+                                node.e_n,
+                                f64::INFINITY,
+                            ) - c0)
+                                * per_c;
+                            if (0.0..=6.0).contains(&v) {
+                                rows_with_kink_inside += 1;
+                                assert!(
+                                    probes.iter().any(|p| p.0 == i as f64
+                                        && p.2 == l as f64
+                                        && (p.1 - v).abs() < 1e-6),
+                                    "row {i}, {l} of {cell:?}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // The kink crosses a few columns of cells along c; the other cells get no probes.
+        assert!(rows_with_kink_inside > 0 && centres > 0);
+        assert!(
+            probed_cells > 0 && probed_cells < (1 << d) * (2 << d) * 4,
+            "{probed_cells}"
+        );
+    }
 }

@@ -1,7 +1,8 @@
 //! A table against direct simulation at given points (a scratch tool for studies of the stated
 //! bound): `probe TABLE TOL < points.csv > out.csv`. Each input line is `tag,gamma,alpha,e_n`
 //! (`e_n` 1 for an elastic table); each output line `tag,gamma,alpha,e_n,p_table,p_sim,est,err`
-//! with `err = |p_table − p_sim|`. Points are simulated at `TOL` in parallel (rayon).
+//! with `err = |p_table − p_sim|`. Points are simulated at `TOL` in parallel (rayon), by the
+//! table's law.
 use oblique_lookup::Table;
 use oblique_solver::{Accuracy, Request};
 use oblique_table::surface::{partial_coord, stick_coord, PatchKind, Region};
@@ -34,6 +35,12 @@ fn main() -> anyhow::Result<()> {
         .map(|(tag, x)| (tag, x[0], x[1], x[2]))
         .collect();
     let has_e = table.restitution().is_some();
+    // The law of the table's node values (an elastic table: elastic).
+    let law = if has_e {
+        oblique_solver::Law::from_name(&table.provenance().law)?
+    } else {
+        oblique_solver::Law::Elastic
+    };
     let out: Vec<String> = pts
         .par_iter()
         .map(|(tag, g, a, e)| {
@@ -44,6 +51,7 @@ fn main() -> anyhow::Result<()> {
             };
             let sol = Request::new(*g, *a)
                 .e_n(*e)
+                .law(law)
                 .accuracy(Accuracy::Tolerance(tol))
                 .solve();
             match (pt, sol) {
