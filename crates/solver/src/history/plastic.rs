@@ -286,11 +286,9 @@ pub fn loading_fold_thornton(
     e_n: f64,
     steps: usize,
 ) -> Result<Option<f64>, PhysicsError> {
-    let gamma = check_gamma(gamma)?;
-    let e_n = check_restitution(e_n)?;
-    if Law::Thornton.answering(e_n) == Law::Elastic {
+    let Some((gamma, e_n)) = fold_inputs(gamma, e_n)? else {
         return Ok(None);
-    }
+    };
     let c2 = oblique_physics::regimes::alpha_c2(gamma);
     let holds = |a: f64| has_loading_zone_thornton(gamma, a, e_n, steps);
     let start = c2 * (1.0 + 1e-4);
@@ -337,11 +335,9 @@ pub fn reslip_fold_thornton(
     e_n: f64,
     steps: usize,
 ) -> Result<Option<f64>, PhysicsError> {
-    let gamma = check_gamma(gamma)?;
-    let e_n = check_restitution(e_n)?;
-    if Law::Thornton.answering(e_n) == Law::Elastic {
+    let Some((gamma, e_n)) = fold_inputs(gamma, e_n)? else {
         return Ok(None);
-    }
+    };
     let c1 = oblique_physics::regimes::alpha_c1_dissipative(gamma, e_n);
     let c2 = oblique_physics::regimes::alpha_c2(gamma);
     let holds = |a: f64| has_reslip_thornton(gamma, a, e_n, steps);
@@ -548,17 +544,23 @@ pub fn switch_fold_thornton(
     e_n: f64,
     steps: usize,
 ) -> Result<Option<f64>, PhysicsError> {
-    let gamma = check_gamma(gamma)?;
-    let e_n = check_restitution(e_n)?;
-    if Law::Thornton.answering(e_n) == Law::Elastic {
+    let Some((gamma, e_n)) = fold_inputs(gamma, e_n)? else {
         return Ok(None);
-    }
+    };
     let holds = |a: f64| has_switch_zone_thornton(gamma, a, e_n, steps);
     let start = 2.0 / 7.0 * (1.0 + 1e-4);
     if !holds(start)? {
         return Ok(None);
     }
     fold_above(start, 1.01, SWITCH_FOLD_MAX, holds)
+}
+
+/// `(γ, e_n)` of a fold locator checked, or `None` where the elastic law answers (`e_n = 1`:
+/// none of Thornton's folds).
+fn fold_inputs(gamma: f64, e_n: f64) -> Result<Option<(f64, f64)>, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    Ok((Law::Thornton.answering(e_n) != Law::Elastic).then_some((gamma, e_n)))
 }
 
 /// The fold above `start`, where a predicate that holds at `start` first fails: `α` steps up by
