@@ -666,6 +666,11 @@ class Table:
             raise self._invalid(
                 f"{where}: leaf_intervals = {m} gives fewer nodes than stencil_points")
         be = None
+        if "knots" in g:
+            raise self._invalid(
+                f"{where}: group 'knots' (docs/table-format.md, \"The knots\"): this reader "
+                "does not apply knots; query the table with sweep query or the Rust, Python "
+                "or C ABI readers")
         if self.e_n_range is not None:
             # Root cells along the extra axis: patch attribute blocks_NAME.
             key = f"blocks_{self.axes[2]}"
@@ -680,6 +685,7 @@ class Table:
                     "with an e_n axis with the cubic stencil (4) only")
             if "warp" in g:
                 raise self._invalid(f"{where}: a patch with an e_n axis cannot have a warp")
+
             if kind == "partial-slip":
                 coord = g.attrs.get("coordinate")
                 coord = coord.decode() if isinstance(coord, bytes) else coord

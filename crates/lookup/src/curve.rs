@@ -20,7 +20,7 @@ use crate::{LookupError, Table};
 use oblique_table::export::{CurveData, CurvePiece};
 use oblique_table::surface::{
     alpha_c2, bound_p, floor_index, full_slip_line, partial_coord_from, partial_ratio,
-    partial_ratio_e, stick_coord_from, stick_parts, PartialMap, Patch, Warp,
+    partial_ratio_e, stick_coord_from, stick_parts, KnotLine, PartialMap, Patch, Warp,
 };
 use oblique_table::surface::{alpha_outside, bad_alpha, OutOfDomain, PatchId, Surface};
 
@@ -40,6 +40,9 @@ struct Piecewise {
     /// The patch's warp when the line is at or beyond its start, with `K(γ)` of the line: the
     /// intervals are then in the warped coordinate `c'` ([`Patch::warped`]).
     warp: Option<(f64, Warp)>,
+    /// The patch's knots when they apply on the line: the intervals are then in `c'`
+    /// ([`Patch::knotted`]).
+    knots: Option<KnotLine>,
 }
 
 impl Piecewise {
@@ -80,15 +83,17 @@ impl Piecewise {
             last: n - 1,
             coef,
             warp,
+            knots: patch.knots_at(gamma, e_n),
         })
     }
 
     /// The value at (unwarped) patch coordinate `c ∈ [0, 1]`.
     #[inline(always)]
     fn eval(&self, c: f64) -> f64 {
-        let c = match &self.warp {
-            Some((k, w)) => w.apply_with(*k, c),
-            None => c,
+        let c = match (&self.warp, &self.knots) {
+            (Some((k, w)), _) => w.apply_with(*k, c),
+            (_, Some(line)) => line.apply(c),
+            _ => c,
         };
         let u = c * self.n;
         let i = floor_index(u, self.last);

@@ -155,6 +155,13 @@ pub struct Nodes {
     /// Thornton's law).
     #[serde(default)]
     pub probe_kinks: bool,
+    /// Put the kinks of `P` inside the partial-slip patch of a Thornton table on cell edges
+    /// (the knots of the coordinate, `docs/table-format.md`): the end `α_c1` of the line, the
+    /// re-slip fold `α_R`, the line `α = 2/7` and the switch fold `α_S`, traced on a grid of
+    /// `(γ, e_n)` first (a few seconds), at `c'` = 1/2, 5/8, 3/4 and 7/8, for `e_n` up to
+    /// 0.98 (where the folds merge towards `α = 2/7` as `e_n → 1`).
+    #[serde(default)]
+    pub knots: bool,
 }
 
 fn default_placement() -> String {
@@ -568,6 +575,15 @@ impl Config {
                 "nodes.fold_warp",
                 "true".into(),
                 "false for a table with an e_n range".into(),
+            ));
+        }
+        if n.knots && (law != oblique_solver::Law::Thornton || pair || d.e_n_range().is_none()) {
+            return Err(err(
+                "nodes.knots",
+                "true".into(),
+                "false unless solver.law = \"thornton\" with an e_n range over a range of gamma \
+                 (the knots follow the kinks of that law)"
+                    .into(),
             ));
         }
         if d.e_n_range().is_some() && n.probe_kinks && !crate::kink::probes_implemented(law) {

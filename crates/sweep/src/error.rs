@@ -44,6 +44,21 @@ pub enum SweepError {
         /// What went wrong.
         what: String,
     },
+    /// A kink surface could not be traced for the knots of `nodes.knots`.
+    #[error(
+        "kink {knot} at gamma = {gamma}, e_n = {e_n}: {what} (set nodes.knots = false to build \
+         without the knots, or narrow the domain)"
+    )]
+    Knots {
+        /// Which kink.
+        knot: &'static str,
+        /// γ of the failed point.
+        gamma: f64,
+        /// `e_n` of the failed point.
+        e_n: f64,
+        /// What went wrong.
+        what: String,
+    },
     /// A node could not be computed.
     #[error("node gamma = {gamma}, alpha = {alpha}{en}: {source}", en = e_n_words(*e_n))]
     Node {
@@ -190,6 +205,7 @@ impl SweepError {
             SweepError::Model(_) => false,
             SweepError::Fold { .. }
             | SweepError::Kink { .. }
+            | SweepError::Knots { .. }
             | SweepError::TooManyNodes { .. }
             | SweepError::Unreachable { .. }
             | SweepError::DepthLimit { .. } => true,

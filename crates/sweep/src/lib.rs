@@ -8,6 +8,7 @@ pub mod config;
 pub mod error;
 pub mod job;
 pub mod kink;
+pub mod knots;
 pub mod nodestore;
 pub mod preflight;
 pub mod solve;
@@ -101,6 +102,8 @@ pub const STAGE_FOLD: &str = "fold tracing";
 /// Name of the stage that traces the kink curves of `nodes.probe_kinks` (before the
 /// partial-slip patch).
 pub const STAGE_KINKS: &str = "kink tracing";
+/// Name of the stage that traces the kinks of `nodes.knots` (before the partial-slip patch).
+pub const STAGE_KNOTS: &str = "knot tracing";
 /// Name of the held-out checks' stage (the last of a build).
 pub const STAGE_CHECKS: &str = "held-out checks";
 
@@ -111,12 +114,16 @@ pub(crate) fn stage_refine(patch: &str) -> String {
 
 /// The stages of a build (or of one shard) of `cfg`, in the order [`Progress::phase`] reports
 /// them: each patch's refinement (the partial-slip patch's preceded by [`STAGE_FOLD`] when it
-/// is warped and by [`STAGE_KINKS`] when its kinks are probed), then [`STAGE_CHECKS`].
+/// is warped, by [`STAGE_KNOTS`] when it has knots and by [`STAGE_KINKS`] when its kinks are
+/// probed), then [`STAGE_CHECKS`].
 pub fn stages(cfg: &Config) -> Vec<String> {
     let mut out = Vec::new();
     for spec in patch_specs(cfg) {
         if cfg.nodes.fold_warp && spec.kind == PatchKind::PartialSlip {
             out.push(STAGE_FOLD.to_string());
+        }
+        if cfg.nodes.knots && spec.kind == PatchKind::PartialSlip {
+            out.push(STAGE_KNOTS.to_string());
         }
         if cfg.nodes.probe_kinks && spec.kind == PatchKind::PartialSlip {
             out.push(STAGE_KINKS.to_string());

@@ -5,14 +5,14 @@
 use std::collections::HashMap;
 
 use oblique_table::surface::{
-    stencil, Axis, PartialMap, Patch, PatchData, PatchId, PatchKind, Point, Warp,
+    stencil, Axis, Knots, PartialMap, Patch, PatchData, PatchId, PatchKind, Point, Warp,
 };
 use oblique_table::write::BuiltPatch;
 
 use crate::config::Config;
 use crate::{
-    kink, solve_points_with, stage_refine, warp, Progress, RunError, RunOptions, Shard, SweepError,
-    STAGE_FOLD, STAGE_KINKS,
+    kink, knots, solve_points_with, stage_refine, warp, Progress, RunError, RunOptions, Shard,
+    SweepError, STAGE_FOLD, STAGE_KINKS, STAGE_KNOTS,
 };
 
 /// Deepest quadtree level (a leaf at this depth has `2^-MAX_DEPTH` of its root's size).
@@ -88,6 +88,9 @@ struct Layout<'a> {
     alpha_max: f64,
     /// Fold warp of the partial-slip patch: the lattice is in `c'`, α comes from `c`.
     warp: Option<&'a Warp>,
+    /// Knots of the partial-slip patch (a table with an `e_n` axis): inside their region the
+    /// lattice is in `c'`, α comes from `c`.
+    knots: Option<&'a Knots>,
     /// The `e_n` axis of a dissipative table: the lattice has a third axis.
     restitution: Option<Axis>,
     /// The partial-slip coordinate's map ([`Config::partial_map`]).
@@ -183,10 +186,12 @@ impl Layout<'_> {
         }
     }
 
-    /// The point at `γ`, lattice coordinate `c` (`c'` where `warped`) and `e_n`.
+    /// The point at `γ`, lattice coordinate `c` (`c'` where `warped`: the warp's or the
+    /// knots') and `e_n`.
     fn point_at(&self, gamma: f64, c: f64, e_n: f64, warped: bool) -> Point {
-        let unwarped = match self.warp {
-            Some(w) if warped => w.invert(gamma, c),
+        let unwarped = match (self.warp, self.knots) {
+            (Some(w), _) if warped => w.invert(gamma, c),
+            (_, Some(k)) if warped => k.line(gamma, e_n).invert(c),
             _ => c,
         };
         let alpha =
@@ -262,8 +267,9 @@ impl Layout<'_> {
                     e_n,
                     self.alpha_max,
                 );
-                let lattice = match self.warp {
-                    Some(warp) if warped => warp.apply(gamma, c_k),
+                let lattice = match (self.warp, self.knots) {
+                    (Some(warp), _) if warped => warp.apply(gamma, c_k),
+                    (_, Some(k)) if warped => k.line(gamma, e_n).apply(c_k),
                     _ => c_k,
                 };
                 // The offsets that land inside the cell: also when the kink lies just outside
@@ -288,16 +294,38 @@ impl Layout<'_> {
         (cell.ig as f64 / scale, (cell.ig + 1) as f64 / scale)
     }
 
-    /// Whether the cell lies at or beyond the warp's start (its nodes are warped).
+    /// The cell's extent along `e_n` in root-cell units (exact dyadic values).
+    fn e_rows(cell: Cell) -> (f64, f64) {
+        let scale = f64::from(1u32 << cell.d[2]);
+        (cell.ie as f64 / scale, (cell.ie + 1) as f64 / scale)
+    }
+
+    /// Whether the cell's nodes are warped: it lies at or beyond the warp's start, or inside
+    /// the knots' region.
     fn warped(&self, cell: Cell) -> bool {
+        if let Some(k) = self.knots {
+            let r = k.region();
+            let ((g0, g1), (e0, e1)) = (Self::rows(cell), Self::e_rows(cell));
+            return g0 >= r[0] && g1 <= r[1] && e0 >= r[2] && e1 <= r[3];
+        }
         self.warp.is_some_and(|w| Self::rows(cell).0 >= w.start())
     }
 
-    /// Whether the warp's start cuts through the cell: it is split without being evaluated, so
-    /// that every leaf lies on one side.
-    fn straddles(&self, cell: Cell) -> bool {
-        let (lo, hi) = Self::rows(cell);
-        self.warp.is_some_and(|w| lo < w.start() && w.start() < hi)
+    /// The axes along which the warp's start or an edge of the knots' region cuts through the
+    /// cell (bit `dims − 1 − k` for axis `k`; 0: none): it is split along them without being
+    /// evaluated, so that every leaf lies on one side.
+    fn straddles(&self, cell: Cell) -> u8 {
+        let cuts = |(lo, hi): (f64, f64), at: f64| lo < at && at < hi;
+        if let Some(k) = self.knots {
+            let r = k.region();
+            let (g, e) = (Self::rows(cell), Self::e_rows(cell));
+            let bits = (1u8 << (self.dims() - 1)) * u8::from(cuts(g, r[0]) || cuts(g, r[1]));
+            return bits | u8::from(cuts(e, r[2]) || cuts(e, r[3]));
+        }
+        match self.warp {
+            Some(w) if cuts(Self::rows(cell), w.start()) => (1u8 << self.dims()) - 1,
+            _ => 0,
+        }
     }
 
     /// Lattice keys of a cell's `(m+1)^dims` nodes, row-major (`γ` outer, `e_n` inner).
@@ -567,6 +595,21 @@ pub(crate) fn build_patch(
         None
     };
     let e_range = cfg.domain.e_n_range();
+    let knots = match e_range {
+        Some(e_range) if cfg.nodes.knots && spec.kind == PatchKind::PartialSlip => {
+            progress.phase(
+                STAGE_KNOTS,
+                &format!("the kinks of P for the knots of {}", spec.name),
+            );
+            knots::thornton_knots(
+                (spec.gamma_lo, spec.gamma_hi),
+                roots_gamma(cfg, spec),
+                e_range,
+                cfg.nodes.blocks_e_n.unwrap_or(1),
+            )?
+        }
+        _ => None,
+    };
     let kinks = if cfg.nodes.probe_kinks && spec.kind == PatchKind::PartialSlip {
         progress.phase(
             STAGE_KINKS,
@@ -596,6 +639,7 @@ pub(crate) fn build_patch(
         m: cfg.nodes.leaf_intervals,
         alpha_max: cfg.domain.alpha_max,
         warp: warp.as_ref(),
+        knots: knots.as_ref(),
         restitution: restitution_axis(cfg)?,
         map: cfg.partial_map(),
     };
@@ -614,7 +658,7 @@ pub(crate) fn build_patch(
     for round in 0.. {
         let mut wanted: Vec<Key> = open
             .iter()
-            .filter(|&&c| !layout.straddles(cells[c]))
+            .filter(|&&c| layout.straddles(cells[c]) == 0)
             .flat_map(|&c| layout.cell_keys(cells[c]))
             .filter(|key| !cache.contains_key(key))
             .collect();
@@ -662,9 +706,11 @@ pub(crate) fn build_patch(
         let mut split = vec![false; open.len()];
         let mut probed: Vec<(usize, Vec<f64>, Vec<Probe>)> = Vec::new();
         for (o, &c) in open.iter().enumerate() {
-            // A cell across the warp's start is split without being evaluated: no leaf may
-            // straddle it.
-            if layout.straddles(cells[c]) {
+            // A cell across the warp's start or an edge of the knots' region is split without
+            // being evaluated: no leaf may straddle it.
+            let cut = layout.straddles(cells[c]);
+            if cut != 0 {
+                mask[c] = cut;
                 split[o] = true;
                 continue;
             }
@@ -741,9 +787,8 @@ pub(crate) fn build_patch(
             if !split[o] {
                 continue;
             }
-            if mask[c] == 0 {
-                // Split without being evaluated (across the warp's start): every axis.
-                mask[c] = (1 << layout.dims()) - 1;
+            if layout.straddles(cells[c]) != 0 {
+                // Split without being evaluated (across the warp's start or a knots' edge).
             } else if cells[c].d.iter().any(|&d| d >= MAX_DEPTH) {
                 let keys = layout.cell_keys(cells[c]);
                 let (g0, c0, _) = layout.point(keys[0]);
@@ -830,6 +875,7 @@ pub(crate) fn build_patch(
                 p,
                 error_estimate: err,
                 warp: warp.clone(),
+                knots: knots.clone(),
             },
         )
         .map_err(|m| SweepError::Model(format!("patch '{}': {m}", spec.name)))?,
@@ -895,6 +941,7 @@ mod tests {
             m: 6,
             alpha_max: f64::INFINITY,
             warp: None,
+            knots: None,
             restitution: Some(Axis::restitution(0.9, 1.0, 2).unwrap()),
             map: PartialMap::SqrtBoth,
         };

@@ -130,7 +130,8 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// For a surface with an `e_n` axis and `curves` or without `with_surface` (`sweep export`
 /// refuses `--gamma` for such a table before it gets here), and for a surface without the
 /// full-slip line that is not a table with an `e_n` axis over a range of `γ` (which
-/// [`Surface::with_partial_map`] never makes).
+/// [`Surface::with_partial_map`] never makes), and for a patch with knots (`sweep export`
+/// refuses such a table).
 pub fn export(
     surface: &Surface,
     error_bound: f64,
@@ -141,6 +142,10 @@ pub fn export(
     assert!(
         axis.is_none() || (with_surface && curves.is_empty()),
         "the export of a table with an e_n axis holds its surface and no curves"
+    );
+    assert!(
+        surface.patches().all(|(_, p)| p.knots().is_none()),
+        "the export layout holds no knots of a coordinate"
     );
     assert!(
         surface.has_line() || (axis.is_some() && surface.pair_gamma().is_none()),

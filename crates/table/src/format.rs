@@ -221,6 +221,26 @@ pub const ATTR_WARP_C_STAR: &str = "c_star";
 /// `(0, 1)`.
 pub const DS_WARP_KNOT: &str = "knot";
 
+/// Optional sub-group of `partial_high` (schema 4, a table over `γ, α, e_n`): the knots of the
+/// coordinate ([`crate::surface::Knots`]).
+pub const GROUP_KNOTS: &str = "knots";
+/// Knots attributes: the grid's origins and steps along γ and `e_n`.
+pub const ATTR_KNOTS_GAMMA_0: &str = "gamma_0";
+/// See [`ATTR_KNOTS_GAMMA_0`].
+pub const ATTR_KNOTS_GAMMA_STEP: &str = "gamma_step";
+/// See [`ATTR_KNOTS_GAMMA_0`].
+pub const ATTR_KNOTS_E_N_0: &str = "e_n_0";
+/// See [`ATTR_KNOTS_GAMMA_0`].
+pub const ATTR_KNOTS_E_N_STEP: &str = "e_n_step";
+/// Knots dataset (float64 `[4]`): the box of root cells where the knots apply.
+pub const DS_KNOTS_REGION: &str = "region";
+/// Knots dataset (float64 `[k]`): where each knot is sent.
+pub const DS_KNOTS_C_STAR: &str = "c_star";
+/// Knots dataset (uint8 `[k]`): the grading next to each knot.
+pub const DS_KNOTS_GRADE: &str = "grade";
+/// Knots dataset (float64 `[k, n_γ, n_e]`): the knot values on the grid.
+pub const DS_KNOTS_KNOT: &str = "knot";
+
 /// Group with the no-slip limit `P(γ, ∞)`: datasets `gamma`, `P`, `error_estimate`.
 pub const GROUP_NO_SLIP: &str = "no_slip";
 /// Group with the critical curves: datasets `gamma`, `alpha_c1`, `alpha_c2`.

@@ -8,7 +8,7 @@ use crate::leaf::{
     cubic_tensor, cubic_tensor3_fast, descend, descend_masked, floor_f64, floor_index,
     floor_index32,
 };
-use crate::surface::{bound_p, Patch, PatchKind, Warp};
+use crate::surface::{bound_p, Knots, Patch, PatchKind, Warp};
 
 /// One cell of a patch's tree with its position, for the fine index: `2^depth` and the
 /// integer origin per axis in units of the cell's size along it, `tree[cell]`, and the axes it
@@ -52,6 +52,8 @@ pub struct IndexedPatch<const D: usize> {
     p: Vec<f64>,
     /// The warp of the coordinate, as in [`Patch::warp`].
     warp: Option<Warp>,
+    /// The knots of the coordinate, as in [`Patch::knots`].
+    knots: Option<Knots>,
 }
 
 impl<const D: usize> std::fmt::Debug for IndexedPatch<D> {
@@ -99,6 +101,7 @@ impl<const D: usize> IndexedPatch<D> {
             size: patch.leaf_size(),
             p: patch.p().to_vec(),
             warp: patch.warp().cloned(),
+            knots: patch.knots().cloned(),
         })
     }
 
@@ -282,7 +285,8 @@ impl<const D: usize> IndexedPatch<D> {
     }
 
     /// Steps 5 and 6 at `point` (as [`IndexedPatch::interpolate`] takes it): the position per
-    /// axis in units of the root cells, after the warp.
+    /// axis in units of the root cells, after the warp or the knots ([`Patch::knotted`], the
+    /// same operations).
     #[inline(always)]
     pub fn positions(&self, point: [f64; D]) -> [f64; D] {
         let mut v = [0.0; D];
@@ -290,7 +294,13 @@ impl<const D: usize> IndexedPatch<D> {
             v[k] = self.position(k, point[k]);
         }
         v[0] = self.position(0, point[0]);
-        v[1] = self.position_c(self.warped(point[0], v[0], point[1]));
+        let c = match &self.knots {
+            Some(k) if D == 3 && k.applies(v[0], v[2], self.blocks[0], self.blocks[2]) => {
+                k.line(point[0], point[2]).apply(point[1])
+            }
+            _ => self.warped(point[0], v[0], point[1]),
+        };
+        v[1] = self.position_c(c);
         v
     }
 }

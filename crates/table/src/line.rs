@@ -60,12 +60,12 @@ pub struct PatchLine {
 impl Patch {
     /// The rule along `γ = gamma`, `e_n = e_n` (`e_n` ignored in a patch without an `e_n`
     /// axis; `γ` ignored in the patch of one pair) with the cubic stencil, or `None` for a
-    /// patch whose leaves have fewer than 4 nodes per axis, a warped patch, or a line whose
+    /// patch whose leaves have fewer than 4 nodes per axis, a warped or knotted patch, or a line whose
     /// index would exceed [`MAX_LINE_ENTRIES`]. Outside the patch's ranges the coordinates are
     /// clamped as the rule clamps them.
     pub fn line(&self, gamma: f64, e_n: f64) -> Option<PatchLine> {
         let n1 = self.leaf_intervals() + 1;
-        if n1 < 4 || self.warp().is_some() {
+        if n1 < 4 || self.warp().is_some() || self.knots().is_some() {
             return None;
         }
         let xg = self.x_gamma(gamma);

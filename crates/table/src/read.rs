@@ -5,7 +5,9 @@ use std::path::Path;
 use hdf5::types::VarLenUnicode;
 
 use crate::format::*;
-use crate::surface::{Axis, PartialMap, Patch, PatchData, PatchId, PatchKind, Surface, Warp};
+use crate::surface::{
+    Axis, Knots, PartialMap, Patch, PatchData, PatchId, PatchKind, Surface, Warp,
+};
 use crate::TableError;
 
 /// Where a table came from (root attributes).
@@ -191,6 +193,75 @@ impl Reader<'_> {
             .map_err(|m| self.invalid(format!("'{where_}': {m}")))
     }
 
+    /// The optional knots of patch `name` (group `knots`): only `partial_high` of a schema-4
+    /// file over `gamma,alpha,e_n` may have them; every value is checked against the
+    /// documented ranges ([`Knots::new`]; the rules against the patch are [`Patch::new`]'s).
+    fn knots(
+        &self,
+        g: &hdf5::Group,
+        name: &str,
+        e_n_axis: bool,
+    ) -> Result<Option<Knots>, TableError> {
+        if !g.link_exists(GROUP_KNOTS) {
+            return Ok(None);
+        }
+        let where_ = format!("{name}/{GROUP_KNOTS}");
+        if name != PATCH_PARTIAL_HIGH || !e_n_axis {
+            return Err(self.invalid(format!(
+                "patch '{name}' has a group '{GROUP_KNOTS}': only '{PATCH_PARTIAL_HIGH}' of a \
+                 table over gamma, alpha and e_n may have one"
+            )));
+        }
+        let k = g
+            .group(GROUP_KNOTS)
+            .map_err(|_| self.invalid(format!("'{where_}' is not a group")))?;
+        let attr = |a: &str| {
+            self.attr_f64(&k, a).map_err(|_| {
+                self.invalid(format!(
+                    "'{where_}': missing or non-numeric attribute '{a}'"
+                ))
+            })
+        };
+        let owner = format!("'{where_}'");
+        let region: Vec<f64> = self.vector(&k, &owner, DS_KNOTS_REGION, "float64")?;
+        let region: [f64; 4] = region.try_into().map_err(|v: Vec<f64>| {
+            self.invalid(format!(
+                "{owner}: dataset '{DS_KNOTS_REGION}' has {} values: expected 4",
+                v.len()
+            ))
+        })?;
+        let c_star = self.vector(&k, &owner, DS_KNOTS_C_STAR, "float64")?;
+        let grade = self.vector(&k, &owner, DS_KNOTS_GRADE, "uint8")?;
+        let ds = k
+            .dataset(DS_KNOTS_KNOT)
+            .ok()
+            .filter(|d| d.ndim() == 3)
+            .ok_or_else(|| {
+                self.invalid(format!(
+                    "{owner}: dataset '{DS_KNOTS_KNOT}' missing or not a 3-D float64 array"
+                ))
+            })?;
+        let shape = ds.shape();
+        let knot = ds.read_raw::<f64>().map_err(|e| {
+            self.invalid(format!(
+                "{owner}: cannot read dataset '{DS_KNOTS_KNOT}': {e}"
+            ))
+        })?;
+        Knots::new(
+            attr(ATTR_KNOTS_GAMMA_0)?,
+            attr(ATTR_KNOTS_GAMMA_STEP)?,
+            attr(ATTR_KNOTS_E_N_0)?,
+            attr(ATTR_KNOTS_E_N_STEP)?,
+            region,
+            c_star,
+            grade,
+            [shape[0], shape[1], shape[2]],
+            knot,
+        )
+        .map(Some)
+        .map_err(|m| self.invalid(format!("{owner}: {m}")))
+    }
+
     #[allow(clippy::too_many_arguments)]
     fn patch(
         &self,
@@ -301,6 +372,12 @@ impl Reader<'_> {
             return Err(self.invalid(format!("patch '{name}': |P| = {} > 1 at node {i}", p[i])));
         }
         let warp = self.warp(&g, name, version)?;
+        let knots = self.knots(&g, name, restitution.is_some() && gamma_hi > gamma_lo)?;
+        let group = if knots.is_some() {
+            GROUP_KNOTS
+        } else {
+            GROUP_WARP
+        };
         // The checks above name the datasets as the file has them; what remains (the warp's
         // rules against the patch) is the model's own check.
         let axes = [Axis::gamma(gamma_lo, gamma_hi, bg), Axis::coord(bc)]
@@ -317,9 +394,10 @@ impl Reader<'_> {
                 p,
                 error_estimate: err,
                 warp,
+                knots,
             },
         )
-        .map_err(|m| self.invalid(format!("'{name}/{GROUP_WARP}': {m}")))?;
+        .map_err(|m| self.invalid(format!("'{name}/{group}': {m}")))?;
         // Where the builder simulated each value: the tree and the axis attributes must put
         // every node there, or the file's attributes were changed after the build.
         let gamma = self.dataset(&g, DS_GAMMA, &shape)?;

@@ -353,6 +353,28 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
             w.attr_f64(&wg, ATTR_WARP_C_STAR, warp.c_star())?;
             w.ds(&wg, DS_WARP_KNOT, warp.knot(), &[warp.knot().len()])?;
         }
+        // The optional knots of the coordinate (schema 4; only `partial_high` has them).
+        if let Some(k) = p.knots() {
+            let refuse = |m: String| StorageError::Hdf5 {
+                path: path.to_string(),
+                message: format!("patch '{}': {GROUP_KNOTS}: {m}", bp.name),
+            };
+            if bp.name != PATCH_PARTIAL_HIGH {
+                return Err(refuse(format!("only '{PATCH_PARTIAL_HIGH}' may have them")));
+            }
+            p.check_knots().map_err(refuse)?;
+            let kg = g
+                .create_group(GROUP_KNOTS)
+                .map_err(w.e(&format!("{}/{GROUP_KNOTS}", bp.name)))?;
+            w.attr_f64(&kg, ATTR_KNOTS_GAMMA_0, k.gamma_0())?;
+            w.attr_f64(&kg, ATTR_KNOTS_GAMMA_STEP, k.gamma_step())?;
+            w.attr_f64(&kg, ATTR_KNOTS_E_N_0, k.e_n_0())?;
+            w.attr_f64(&kg, ATTR_KNOTS_E_N_STEP, k.e_n_step())?;
+            w.ds(&kg, DS_KNOTS_REGION, &k.region(), &[4])?;
+            w.ds(&kg, DS_KNOTS_C_STAR, k.c_star(), &[k.c_star().len()])?;
+            w.ints(&kg, DS_KNOTS_GRADE, &k.grade_values(), &[k.c_star().len()])?;
+            w.ds(&kg, DS_KNOTS_KNOT, k.values(), &k.shape())?;
+        }
     }
 
     // No-slip limit: the nodes at c = 1 of the stick patches (when α_max = ∞), by γ (and by

@@ -43,6 +43,7 @@ fn patch(tree: Vec<i32>, split: Vec<u8>, boxes: &[[(f64, f64); 3]]) -> Result<Pa
             p,
             error_estimate: err,
             warp: None,
+            knots: None,
         },
     )
 }

@@ -709,7 +709,8 @@ impl Surface {
                     }
                     PatchKind::Stick => stick_coord(gamma, alpha, self.alpha_max),
                 };
-                patch.interpolate_at(gamma, c.clamp(0.0, 1.0), e_n, self.stencil)
+                let c = patch.knotted(gamma, c.clamp(0.0, 1.0), e_n);
+                patch.interpolate_at(gamma, c, e_n, self.stencil)
             }
             // A domain that touches γ = 1 only from one side: at γ = 1 exactly the contact
             // sticks at once and P = −e_n on the nonlinear part (α ≥ 2/7).

@@ -24,6 +24,7 @@ pub mod axis;
 pub mod checks;
 pub mod coord;
 pub mod domain;
+pub mod knots;
 pub mod patch;
 pub mod warp;
 
@@ -31,6 +32,7 @@ pub use axis::*;
 pub use checks::*;
 pub use coord::*;
 pub use domain::*;
+pub use knots::*;
 pub use patch::*;
 pub use warp::*;
 
@@ -177,6 +179,7 @@ mod tests {
                 c_star: 0.5,
                 knot: vec![0.6; 61],
             }),
+            knots: None,
             split: None,
         };
         // γ(start) = 2.90625: unwarped below, warped from it on.

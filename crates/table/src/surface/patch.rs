@@ -72,6 +72,9 @@ pub struct Patch {
     /// Optional warp of the coordinate (only `partial_high`, schema 3): when present, the
     /// quadtree is over `(x, c')` with `c' =` [`Warp::apply`]`(γ, c)` instead of `(x, c)`.
     pub(super) warp: Option<Warp>,
+    /// Optional knots of the coordinate (only `partial_high` of a table over `γ, α, e_n`):
+    /// where they apply, the tree is over `(x, c', x_e)` with `c'` from [`KnotLine::apply`].
+    pub(super) knots: Option<Knots>,
     /// Which axes each split cell halves (schema 4, optional; see [`check_split`]): bit
     /// `dims − 1 − k` for axis `k` (`γ`, `c`, `e_n`), non-zero exactly for the split cells.
     /// The children of cell `i` are the `2^popcount` cells from `tree[i]`, numbered row-major
@@ -96,6 +99,8 @@ pub struct PatchData {
     pub error_estimate: Vec<f64>,
     /// The warp of the coordinate, if any (only without an `e_n` axis).
     pub warp: Option<Warp>,
+    /// The knots of the coordinate, if any (only with an `e_n` axis, over a range of γ).
+    pub knots: Option<Knots>,
 }
 
 impl Patch {
@@ -115,6 +120,7 @@ impl Patch {
             p,
             error_estimate,
             warp,
+            knots,
         } = data;
         let restitution = match axes.as_slice() {
             [g, c] | [g, c, _] if g.name != AxisName::Gamma || *c != Axis::coord(c.blocks) => {
@@ -163,6 +169,13 @@ impl Patch {
         if restitution.is_some() && warp.is_some() {
             return Err("a patch with an e_n axis cannot have a warp".into());
         }
+        if knots.is_some() && (restitution.is_none() || pair) {
+            return Err(
+                "only a patch over gamma, its coordinate and e_n (a range of gamma) can \
+                        have knots"
+                    .into(),
+            );
+        }
         let dims = tree_dims(restitution.is_some(), pair);
         let roots = axes.iter().map(|a| a.blocks).product();
         let leaves = match &split {
@@ -200,9 +213,11 @@ impl Patch {
             p,
             error_estimate,
             warp,
+            knots,
             split,
         };
         patch.check_warp()?;
+        patch.check_knots()?;
         Ok(patch)
     }
 
@@ -224,6 +239,7 @@ impl Patch {
                 p,
                 error_estimate,
                 warp,
+                knots: self.knots.clone(),
             },
         )
     }
@@ -677,6 +693,148 @@ impl Patch {
             }
         }
         Ok(())
+    }
+
+    /// The knots of the coordinate, if any.
+    pub fn knots(&self) -> Option<&Knots> {
+        self.knots.as_ref()
+    }
+
+    /// The same patch with other knots (or none), checked as by [`Patch::new`].
+    pub fn with_knots(&self, knots: Option<Knots>) -> Result<Patch, String> {
+        Patch::new(
+            self.kind,
+            self.axes.clone(),
+            PatchData {
+                leaf_intervals: self.leaf_intervals,
+                tree: self.tree.clone(),
+                split: self.split.clone(),
+                p: self.p.clone(),
+                error_estimate: self.error_estimate.clone(),
+                warp: self.warp.clone(),
+                knots,
+            },
+        )
+    }
+
+    /// Check the patch's knots, if any, against the patch: the region inside the root cells
+    /// (edges multiples of `2⁻²⁰`), the grid covering the region's γ and `e_n` ranges (within
+    /// `1e-12` of the span), and no leaf across an edge of the region (every leaf wholly inside
+    /// or wholly outside along each axis). `Err` names the attribute and the allowed range, or
+    /// the leaf.
+    pub fn check_knots(&self) -> Result<(), String> {
+        let (Some(k), Some(r)) = (&self.knots, self.restitution()) else {
+            return Ok(());
+        };
+        let blocks = [self.blocks_gamma() as f64, r.blocks as f64];
+        let region = k.region;
+        for (axis, (from, to)) in [(region[0], region[1]), (region[2], region[3])]
+            .into_iter()
+            .enumerate()
+        {
+            let dyadic = |v: f64| (v * 1048576.0).fract() == 0.0;
+            if !(to <= blocks[axis] && dyadic(from) && dyadic(to)) {
+                return Err(format!(
+                    "attribute 'region' = {region:?}: the {} edges must be multiples of 2^-20 \
+                     in [0, {}] (root cells of the patch)",
+                    ["gamma", "e_n"][axis],
+                    blocks[axis]
+                ));
+            }
+        }
+        let at = |axis: usize, v: f64| {
+            let (lo, hi) = if axis == 0 {
+                (self.gamma_lo(), self.gamma_hi())
+            } else {
+                (r.lo, r.hi)
+            };
+            lo + (hi - lo) * v / blocks[axis]
+        };
+        let grids = [
+            ("gamma", k.gamma_0, k.gamma_step, k.n_gamma),
+            ("e_n", k.e_n_0, k.e_n_step, k.n_e_n),
+        ];
+        for (axis, (name, first, step, n)) in grids.into_iter().enumerate() {
+            let (from, to) = (at(axis, region[2 * axis]), at(axis, region[2 * axis + 1]));
+            let end = first + (n - 1) as f64 * step;
+            let slack = 1e-12 * to.abs().max(1.0);
+            if !(first <= from + slack && end >= to - slack) {
+                return Err(format!(
+                    "the knot grid along {name} spans [{first}, {end}]: must cover the region's \
+                     [{from}, {to}]"
+                ));
+            }
+        }
+        for (axis, tree_axis) in [(0usize, 0usize), (1, 2)] {
+            let (from, to) = (region[2 * axis], region[2 * axis + 1]);
+            for (leaf, (lo, hi)) in self.leaf_spans(tree_axis).into_iter().enumerate() {
+                if (lo < from && from < hi) || (lo < to && to < hi) {
+                    return Err(format!(
+                        "leaf {leaf} spans root cells [{lo}, {hi}] along {} across an edge of \
+                         attribute 'region' = {region:?}: no leaf may straddle one",
+                        ["gamma", "e_n"][axis]
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Each leaf's extent along axis `axis` of the tree (`0` γ, `1` c, `2` `e_n`; a patch over
+    /// `γ`, `c`, `e_n`) in root-cell units, `[a/2^d, (a+1)/2^d]` for a leaf halved `d` times
+    /// along it at integer position `a` (exact dyadic values), leaf by leaf; the cells' `split`
+    /// masks say which axes each halves.
+    pub fn leaf_spans(&self, axis: usize) -> Vec<(f64, f64)> {
+        let dims = self.dims() as usize;
+        let blocks: Vec<usize> = self.tree_axes().iter().map(|a| a.blocks).collect();
+        let after: usize = blocks[axis + 1..].iter().product();
+        let mut spans = vec![(0.0, 0.0); self.leaves()];
+        let mut stack: Vec<(usize, u32, u64)> = (0..self.roots())
+            .map(|i| (i, 0, ((i / after) % blocks[axis]) as u64))
+            .collect();
+        let bit = 1u8 << (dims - 1 - axis);
+        while let Some((cell, d, a)) = stack.pop() {
+            let t = self.tree[cell];
+            if t < 0 {
+                let scale = f64::from(d.min(1000) as i32).exp2();
+                spans[(-(t as i64) - 1) as usize] = (a as f64 / scale, (a + 1) as f64 / scale);
+                continue;
+            }
+            let mask = self.split_mask(cell);
+            let n = 1usize << mask.count_ones();
+            if mask & bit == 0 {
+                stack.extend((0..n).map(|q| (t as usize + q, d, a)));
+            } else {
+                let shift = (mask & (bit - 1)).count_ones();
+                stack.extend(
+                    (0..n).map(|q| (t as usize + q, d + 1, 2 * a + ((q >> shift) & 1) as u64)),
+                );
+            }
+        }
+        spans
+    }
+
+    /// The knots on the line through `(γ, e_n)` where they apply: the patch has knots and the
+    /// clamped root-cell positions of `γ` and `e_n` ([`locate`]'s) are inside their region.
+    #[inline]
+    pub fn knots_at(&self, gamma: f64, e_n: f64) -> Option<KnotLine> {
+        let k = self.knots.as_ref()?;
+        let r = self.restitution()?;
+        let bg = self.blocks_gamma() as f64;
+        let be = r.blocks as f64;
+        let vg = (self.x_gamma(gamma) * bg).clamp(0.0, bg);
+        let ve = (r.x(e_n) * be).clamp(0.0, be);
+        k.applies(vg, ve, bg, be).then(|| k.line(gamma, e_n))
+    }
+
+    /// Step 5 of the rule in a patch with an `e_n` axis: `c` itself, or
+    /// [`KnotLine::apply`]`(c)` where [`Patch::knots_at`] gives the knots.
+    #[inline]
+    pub fn knotted(&self, gamma: f64, c: f64, e_n: f64) -> f64 {
+        match self.knots_at(gamma, e_n) {
+            Some(line) => line.apply(c),
+            None => c,
+        }
     }
 
     /// Each leaf's extent along γ in root-cell units, `[a/2^d, (a+1)/2^d]` for a leaf at depth
