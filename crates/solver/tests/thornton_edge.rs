@@ -247,7 +247,7 @@ fn the_reslip_fold_is_a_three_halves_kink_of_p() {
 #[test]
 fn the_switch_fold_is_a_three_halves_kink_of_p() {
     let (g, e) = (1.754, 0.8);
-    // 0.364385815 / 0.364385691 / 0.364385658 at 2 048 / 4 096 / 8 192 steps.
+    // 0.364385815 / 0.364385691 / 0.364385659 at 2 048 / 4 096 / 8 192 steps.
     let coarse = switch_fold_thornton(g, e, 2048).unwrap().expect("a fold");
     let fine = switch_fold_thornton(g, e, 8192).unwrap().expect("a fold");
     assert!((coarse / fine - 1.0).abs() < 1e-6, "{coarse} {fine}");
@@ -281,4 +281,24 @@ fn the_switch_fold_is_a_three_halves_kink_of_p() {
     assert!((6.5..9.5).contains(&ratio), "{ratio} ({near}, {far})");
     // None at e_n = 1: the elastic law's limits do not jump at the switch.
     assert_eq!(switch_fold_thornton(g, 1.0, 2048).unwrap(), None);
+}
+
+#[test]
+fn a_narrow_switch_zone_is_found_up_to_its_fold() {
+    // γ = 2.6, e_n = 0.3: the clipped zone is a narrow hump of the gap to the unloading limit
+    // inside one smooth stretch of a stuck piece, still about 0.02 of the radius wide 1e-5 below
+    // α_S. Its search decides it by the gap's concavity, not by samples, so the fold converges
+    // in the steps as at γ = 1.754 (0.309996367 / 0.309996398 at 2 048 / 8 192 steps).
+    let (g, e) = (2.6, 0.3);
+    let coarse = switch_fold_thornton(g, e, 2048).unwrap().expect("a fold");
+    let fine = switch_fold_thornton(g, e, 8192).unwrap().expect("a fold");
+    assert!((coarse - fine).abs() < 1e-6, "{coarse} {fine}");
+    // The zone at 2 048 steps up to 2e-6 below the 8 192-step fold, inside the contact.
+    let alpha = fine - 2e-6;
+    assert!(has_switch_zone_thornton(g, alpha, e, 2048).unwrap());
+    let zones = switch_zones_thornton(g, alpha, e, 2048).unwrap();
+    let plus: Vec<&(i8, f64, f64)> = zones.iter().filter(|z| z.0 == 1).collect();
+    assert_eq!(plus.len(), 1, "{zones:?}");
+    let (_, x0, x1) = *plus[0];
+    assert!(x0 > 0.8 && x1 < 0.95 && x1 - x0 > 1e-3, "{zones:?}");
 }

@@ -82,6 +82,39 @@ impl Truncated {
         (self.curvature(s_hi), high)
     }
 
+    /// `d(−Q″)/ds = −(−Q″(s)) (1/s + 1/(2 (s − d_y)))` (1/m²) for `s > d_y`, 0 below: negative
+    /// and rising towards 0 with `s` (`−Q″` is convex and falling in the truncated part).
+    pub fn curvature_slope(&self, s: f64) -> f64 {
+        let dy = self.yield_indentation;
+        if s > dy {
+            -self.curvature(s) * (1.0 / s + 0.5 / (s - dy))
+        } else {
+            0.0
+        }
+    }
+
+    /// Bounds `(min, max)` of `−Q″(R − y) − (−Q″(T − y))` (1/m) for `y` inside `(a, b)`,
+    /// `a < b`, where both `R − y` and `T − y` stay in the truncated part (`> d_y`; `None`
+    /// elsewhere or for a NaN): by the mean value theorem it is `(R − T) d(−Q″)/ds` at some
+    /// `s` between `min(R, T) − b` and `max(R, T) − a`, where [`Truncated::curvature_slope`]
+    /// is bounded by its values at these ends. Small where `R` and `T` are close, as the
+    /// difference of the two bounds of [`Truncated::curvature_range`] is not.
+    pub fn curvature_difference(&self, reach: f64, top: f64, a: f64, b: f64) -> Option<(f64, f64)> {
+        let dy = self.yield_indentation;
+        let span = reach - top;
+        let s_min = reach.min(top) - b;
+        let s_max = reach.max(top) - a;
+        if !(dy.is_finite() && span.is_finite() && s_min > dy && s_max.is_finite()) {
+            return None;
+        }
+        let (u, v) = (self.curvature_slope(s_min), self.curvature_slope(s_max));
+        Some(if span >= 0.0 {
+            (span * u, span * v)
+        } else {
+            (span * v, span * u)
+        })
+    }
+
     /// `s` with `Q(s) = q` (`q ≥ 0`): `q` up to `d_y`, beyond by Newton from below (`Q` is
     /// concave and increasing there, so the iterates rise monotonically to the root).
     pub fn inverse(&self, q: f64) -> f64 {
@@ -227,6 +260,27 @@ mod tests {
         assert_eq!(q.curvature_range(1.0, 0.5, 0.8), (0.0, f64::INFINITY));
         assert_eq!(q.curvature_range(1.0, 0.5, 1.2).1, f64::INFINITY);
         assert_eq!(q.curvature_range(1.0, 0.9, 1.2).0, f64::NEG_INFINITY);
+        // The slope of the curvature, and the bounds of a difference of two curvatures
+        // against samples (R = 1.3, T = 1.2 over y in (0.1, 0.7)).
+        for s in [0.31, 0.5, 2.0] {
+            let h = 1e-6 * s;
+            let numeric = (q.curvature(s + h) - q.curvature(s - h)) / (2.0 * h);
+            let exact = q.curvature_slope(s);
+            assert!((numeric - exact).abs() < 1e-6 * exact.abs(), "s {s}");
+        }
+        for (reach, top) in [(1.3, 1.2), (1.2, 1.3)] {
+            let (lo, hi) = q
+                .curvature_difference(reach, top, 0.1, 0.7)
+                .unwrap_or_default();
+            assert!(lo < hi && (lo > 0.0 || hi < 0.0), "{lo} {hi}");
+            for i in 0..=20 {
+                let y = 0.1 + 0.03 * i as f64;
+                let d = q.curvature(reach - y) - q.curvature(top - y);
+                assert!(d >= lo && d <= hi, "{reach} {top} y {y}: {d} {lo} {hi}");
+            }
+        }
+        assert!(q.curvature_difference(1.3, 1.2, 0.1, 0.95).is_none());
+        assert!(q.curvature_difference(1.3, f64::NAN, 0.1, 0.5).is_none());
         assert_eq!(q.slope(0.3), 1.0);
         assert!(q.slope(1e6) > 0.0 && q.slope(1e6) < 1e-2);
         for s in [0.0, 0.1, 0.3, 0.300001, 0.7, 5.0, 1e4] {

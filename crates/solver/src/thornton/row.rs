@@ -641,7 +641,20 @@ impl ThorntonRow {
                     scaled(-k, line.curvature_range(p.top, a, b))
                 };
                 let limit = scaled(sign * c, lim.line.curvature_range(lim.reach, a, b));
-                (2.0 * p.q + piece.0 + limit.0, 2.0 * p.q + piece.1 + limit.1)
+                let (mut low, mut high) =
+                    (2.0 * p.q + piece.0 + limit.0, 2.0 * p.q + piece.1 + limit.1);
+                // Where the piece's curved part follows the same line as the limit, the two
+                // nearly cancel when D_f ≈ D (a piece stuck again from the limit): bound the sum
+                // as (±c_κ − k) (−Q″(D − y)) + k [−Q″(D − y) − (−Q″(D_f − y))] too.
+                if k != 0.0 && line == lim.line {
+                    if let Some(gap) = line.curvature_difference(lim.reach, p.top, a, b) {
+                        let rest = scaled(sign * c - k, lim.line.curvature_range(lim.reach, a, b));
+                        let gap = scaled(k, gap);
+                        low = low.max(2.0 * p.q + rest.0 + gap.0);
+                        high = high.min(2.0 * p.q + rest.1 + gap.1);
+                    }
+                }
+                (low, high)
             };
             let mut cuts = std::mem::take(&mut self.cuts);
             if plus_side {

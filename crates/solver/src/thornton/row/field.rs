@@ -479,8 +479,14 @@ fn low_caps(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [low(a[0], b[0]), low(a[1], b[1])]
 }
 
-/// Samples per stretch between kinks when bracketing a crossing with a curved limit or piece.
-pub(super) const SAMPLES: usize = 8;
+/// Halvings of a stretch between kinks past which [`crossings`] stops refining: a part
+/// `2⁻⁴⁰` of the stretch wide is judged by the signs at its ends.
+pub(super) const DEPTH: u32 = 40;
+
+/// Evaluations of the gap per stretch past which [`crossings`] stops refining (the parts left
+/// are judged by the signs at their ends): a gap that stays within its rounding of zero over a
+/// wide range would otherwise be split down to [`DEPTH`] everywhere.
+pub(super) const BUDGET: usize = 256;
 
 /// The height `y` where `g(y) = c_κ Q′(D − y) Ḋ − u` changes sign (`u = s ẇ`), NaN where it
 /// does not inside the curved part (`Q′(σ) = (2/π) arcsin √(d_y/σ) = u/(c_κ Ḋ)`, so
@@ -500,11 +506,21 @@ pub(super) fn front(lim: &Limit, rate: f64, u: f64) -> f64 {
 }
 
 /// The sign changes of `f` inside `(y0, y1)`, appended to `out`, on each stretch between the
-/// `kinks` (where `f` is smooth): where `curvature(a, b)` (bounds `(min, max)` of `f″` on the
-/// stretch `(a, b)`) says that `f` is convex or concave there, its values at the stretch's ends
-/// decide (one sign change where they differ in sign; none where a convex `f` is not positive
-/// at either end, or a concave one not negative); elsewhere `f` is sampled at [`SAMPLES`]
-/// points. Each bracket is closed to the rounding ([`bisect`]).
+/// `kinks` (where `f` is smooth), decided by the bounds `curvature(a, b) = (min, max)` of `f″`
+/// on `(a, b)` rather than by sampling, so that a zone where `f` changes sign twice between two
+/// points is not missed however narrow it is (down to `2⁻⁴⁰` of the stretch, [`DEPTH`]):
+///
+/// - where `f″ ≤ 0` (concave) the ends' signs decide, except where `f ≤ 0` at both ends: there
+///   `f` may rise above 0 between two crossings, and the stretch is halved until a point with
+///   `f > 0` brackets both, or the bound of a concave `f` by its neighbouring chords (and first
+///   `f ≤ chord + |min f″| (y − a)(b − y)/2`) shows `f ≤ 0` on every part ([`Search::rise`]); where
+///   `f″ ≥ 0` (convex) the same for `−f`;
+/// - where `f″` takes both signs the stretch is halved until each part is convex or concave,
+///   or `f` keeps its sign between the chord ± `max |f″| (y − a)(b − y)/2`, or a part is
+///   `2⁻⁴⁰` of the stretch wide (judged by its ends).
+///
+/// Each bracket is closed to the rounding ([`bisect`]); exact zeros met inside `(y0, y1)` are
+/// kept as they are. At most [`BUDGET`] evaluations of `f` per stretch refine it.
 pub(super) fn crossings(
     f: &dyn Fn(f64) -> f64,
     curvature: &dyn Fn(f64, f64) -> (f64, f64),
@@ -530,52 +546,179 @@ pub(super) fn crossings(
         if b <= a {
             continue;
         }
-        let fa = start.1;
-        let fb = f(b);
-        start = (b, fb);
-        let (low, high) = curvature(a, b);
-        let differ = (fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0);
-        let convex = low >= 0.0;
-        let concave = high <= 0.0;
-        if convex || concave {
-            if differ {
-                out.push(bisect(f, (a, fa), (b, fb)));
-            } else if !((convex && fa <= 0.0 && fb <= 0.0) || (concave && fa >= 0.0 && fb >= 0.0)) {
-                sample(f, (a, fa), (b, fb), (y0, y1), out);
-                continue;
-            }
-            if fb == 0.0 && b < y1 {
-                out.push(b);
-            }
-            continue;
+        let end = (b, f(b));
+        let mut search = Search {
+            f,
+            curvature,
+            budget: BUDGET,
+            out: &mut *out,
+        };
+        search.stretch(start, end, 0);
+        start = end;
+        if end.1 == 0.0 && b < y1 {
+            out.push(b);
         }
-        sample(f, (a, fa), (b, fb), (y0, y1), out);
     }
 }
 
-/// The sign changes of `f` on one smooth stretch from `(a, f(a))` to `(b, f(b))`, bracketed on
-/// [`SAMPLES`] points (exact zeros inside `(y0, y1)` kept as they are).
-fn sample(
-    f: &dyn Fn(f64) -> f64,
-    (a, fa): (f64, f64),
-    (b, fb): (f64, f64),
-    (y0, y1): (f64, f64),
-    out: &mut Vec<f64>,
-) {
-    let mut prev = (a, fa);
-    for i in 1..=SAMPLES {
-        let (y, fy) = if i == SAMPLES {
-            (b, fb)
-        } else {
-            let y = a + (b - a) * i as f64 / SAMPLES as f64;
-            (y, f(y))
-        };
-        if (prev.1 < 0.0 && fy > 0.0) || (prev.1 > 0.0 && fy < 0.0) {
-            out.push(bisect(f, prev, (y, fy)));
-        } else if fy == 0.0 && y > y0 && y < y1 {
-            out.push(y);
+/// Whether `u` and `v` have strictly opposite signs.
+fn differ(u: f64, v: f64) -> bool {
+    (u < 0.0 && v > 0.0) || (u > 0.0 && v < 0.0)
+}
+
+/// `max` over `t ∈ [0, 1]` of `u + (v − u) t + w t (1 − t)` (`w ≥ 0`): the largest value of a
+/// function from `u` to `v` on a stretch `h` wide whose second derivative is at least
+/// `−2w/h²`.
+fn peak(u: f64, v: f64, w: f64) -> f64 {
+    if w <= 0.0 {
+        return u.max(v);
+    }
+    if !w.is_finite() {
+        // Unbounded (or unknown) curvature: no bound.
+        return f64::INFINITY;
+    }
+    let t = (0.5 + (v - u) / (2.0 * w)).clamp(0.0, 1.0);
+    u + (v - u) * t + w * t * (1.0 - t)
+}
+
+/// An upper bound of a concave `g` on `[l, r]` from `g(l) = gl`, `g(r) = gr` and the slopes
+/// `sl` of its chord on the part just left of `l` and `sr` of the one just right of `r`
+/// (`+∞` and `−∞`: none): a concave function lies below each of its chords extended, so
+/// `g(y) ≤ min(gl + sl (y − l), gr + sr (y − r))`.
+fn cap(l: f64, gl: f64, r: f64, gr: f64, sl: f64, sr: f64) -> f64 {
+    let h = r - l;
+    match (sl.is_finite(), sr.is_finite()) {
+        (false, false) => f64::INFINITY,
+        (true, false) => gl.max(gl + sl * h),
+        (false, true) => gr.max(gr - sr * h),
+        (true, true) => {
+            let mut best = gl.min(gr - sr * h).max((gl + sl * h).min(gr));
+            if sl > sr {
+                // Where the two lines meet.
+                let y = (gr - gl + sl * l - sr * r) / (sl - sr);
+                if y > l && y < r {
+                    best = best.max(gl + sl * (y - l));
+                }
+            }
+            best
         }
-        prev = (y, fy);
+    }
+}
+
+/// The search of one smooth stretch of [`crossings`].
+struct Search<'a> {
+    f: &'a dyn Fn(f64) -> f64,
+    curvature: &'a dyn Fn(f64, f64) -> (f64, f64),
+    /// Evaluations of `f` left for refining.
+    budget: usize,
+    out: &'a mut Vec<f64>,
+}
+
+impl Search<'_> {
+    /// The middle of `[l, r]` and `f` there (an exact zero kept), `None` where the part is not
+    /// to be halved: `depth` halvings already, the budget spent, or no double between its ends.
+    fn split(&mut self, l: f64, r: f64, depth: u32) -> Option<(f64, f64)> {
+        if depth >= DEPTH || self.budget == 0 {
+            return None;
+        }
+        let m = 0.5 * (l + r);
+        if !(m > l && m < r) {
+            return None;
+        }
+        self.budget -= 1;
+        let fm = (self.f)(m);
+        if fm == 0.0 {
+            self.out.push(m);
+        }
+        Some((m, fm))
+    }
+
+    /// The sign changes inside the smooth part from `l = (y, f(y))` to `r`, `depth` halvings
+    /// into its stretch.
+    fn stretch(&mut self, l: (f64, f64), r: (f64, f64), depth: u32) {
+        let (low, high) = (self.curvature)(l.0, r.0);
+        if high <= 0.0 {
+            self.hump(1.0, l, r, low, depth);
+            return;
+        }
+        if low >= 0.0 {
+            self.hump(-1.0, l, r, -high, depth);
+            return;
+        }
+        // f″ of both signs (or unbounded): f lies between the chord ± the parabolas of its
+        // bounds.
+        let h = r.0 - l.0;
+        let h2 = 0.5 * h * h;
+        let below = l.1 <= 0.0 && r.1 <= 0.0 && peak(l.1, r.1, -low * h2) <= 0.0;
+        let above = l.1 >= 0.0 && r.1 >= 0.0 && peak(-l.1, -r.1, high * h2) <= 0.0;
+        if below || above {
+            return;
+        }
+        match self.split(l.0, r.0, depth) {
+            Some(m) => {
+                self.stretch(l, m, depth + 1);
+                self.stretch(m, r, depth + 1);
+            }
+            None => {
+                if differ(l.1, r.1) {
+                    self.out.push(bisect(self.f, l, r));
+                }
+            }
+        }
+    }
+
+    /// The sign changes on a part where `g = sign · f` is concave with `g″ ≥ low`: one where
+    /// the ends differ in sign, none where `g ≥ 0` at both (`g` is above its chord), and
+    /// otherwise two or none, as [`Search::rise`] finds.
+    fn hump(&mut self, sign: f64, l: (f64, f64), r: (f64, f64), low: f64, depth: u32) {
+        let (gl, gr) = (sign * l.1, sign * r.1);
+        if differ(gl, gr) {
+            self.out.push(bisect(self.f, l, r));
+            return;
+        }
+        if gl >= 0.0 && gr >= 0.0 {
+            return;
+        }
+        let h = r.0 - l.0;
+        if peak(gl, gr, -low * 0.5 * h * h) <= 0.0 {
+            return;
+        }
+        self.rise(sign, l, r, (f64::INFINITY, f64::NEG_INFINITY), depth);
+    }
+
+    /// Look for a point where the concave `g = sign · f` (`≤ 0` at both ends of `[l, r]`) is
+    /// positive, halving the parts where its bound by the neighbouring chords (`slopes`,
+    /// [`cap`]) is positive; found, the crossings on both sides of it are bracketed (one each:
+    /// `{g > 0}` is an interval) and `true` returned.
+    fn rise(
+        &mut self,
+        sign: f64,
+        l: (f64, f64),
+        r: (f64, f64),
+        (sl, sr): (f64, f64),
+        depth: u32,
+    ) -> bool {
+        let (gl, gr) = (sign * l.1, sign * r.1);
+        if cap(l.0, gl, r.0, gr, sl, sr) <= 0.0 {
+            return false;
+        }
+        let Some(m) = self.split(l.0, r.0, depth) else {
+            return false;
+        };
+        let gm = sign * m.1;
+        if gm > 0.0 {
+            if gl < 0.0 {
+                self.out.push(bisect(self.f, l, m));
+            }
+            if gr < 0.0 {
+                self.out.push(bisect(self.f, m, r));
+            }
+            return true;
+        }
+        let left = (gm - gl) / (m.0 - l.0);
+        let right = (gr - gm) / (r.0 - m.0);
+        self.rise(sign, l, m, (sl, right), depth + 1)
+            || self.rise(sign, m, r, (left, sr), depth + 1)
     }
 }
 
@@ -639,4 +782,119 @@ pub(super) fn push_merged(out: &mut Vec<Piece>, p: Piece) {
         }
     }
     out.push(p);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    /// The crossings of `f` on `(y0, y1)` with the kinks, sorted, and the evaluations of `f`.
+    fn found(
+        f: &dyn Fn(f64) -> f64,
+        curvature: &dyn Fn(f64, f64) -> (f64, f64),
+        (y0, y1): (f64, f64),
+        kinks: &[f64],
+    ) -> (Vec<f64>, usize) {
+        let calls = Cell::new(0);
+        let counted = |y: f64| {
+            calls.set(calls.get() + 1);
+            f(y)
+        };
+        let mut out = Vec::new();
+        crossings(&counted, curvature, y0, y1, kinks, &mut out);
+        out.sort_by(f64::total_cmp);
+        (out, calls.get())
+    }
+
+    fn close(got: &[f64], want: &[f64], tol: f64) -> bool {
+        got.len() == want.len() && got.iter().zip(want).all(|(g, w)| (g - w).abs() < tol)
+    }
+
+    #[test]
+    fn a_narrow_hump_between_eighths_is_found() {
+        // Concave, negative at both ends, positive on (0.5625 ∓ 0.0316), between the points
+        // k/8: found with its two crossings, and the mirror image (a convex dip) too.
+        let (c, h) = (0.5625, 1e-3f64);
+        let hump = |y: f64| h - (y - c) * (y - c);
+        let want = [c - h.sqrt(), c + h.sqrt()];
+        let (got, _) = found(&hump, &|_, _| (-2.0, -2.0), (0.0, 1.0), &[]);
+        assert!(close(&got, &want, 1e-12), "{got:?}");
+        let dip = |y: f64| -hump(y);
+        let (got, _) = found(&dip, &|_, _| (2.0, 2.0), (0.0, 1.0), &[]);
+        assert!(close(&got, &want, 1e-12), "{got:?}");
+        // Only the concavity's bound (f″ ≥ −2, unbounded above): the same.
+        let (got, _) = found(&hump, &|_, _| (-2.0, f64::INFINITY), (0.0, 1.0), &[]);
+        assert!(close(&got, &want, 1e-12), "{got:?}");
+        // Kinks between: each stretch searched.
+        let (got, _) = found(&hump, &|_, _| (-2.0, -2.0), (0.0, 1.0), &[0.2, 0.7]);
+        assert!(close(&got, &want, 1e-12), "{got:?}");
+    }
+
+    #[test]
+    fn a_hump_below_zero_costs_few_evaluations_and_a_tiny_one_is_found() {
+        // max f = −1e-3: decided by the chord and f″ ≥ −2 on the stretch, from its ends.
+        let below = |y: f64| -1e-3 - (y - 0.5625) * (y - 0.5625);
+        let (got, calls) = found(&below, &|_, _| (-2.0, -2.0), (0.0, 1.0), &[]);
+        assert!(got.is_empty() && calls <= 4, "{got:?} {calls}");
+        // Concave without a bound below: the neighbouring chords decide in a few halvings.
+        let (got, calls) = found(&below, &|_, _| (f64::NEG_INFINITY, -2.0), (0.0, 1.0), &[]);
+        assert!(got.is_empty() && calls <= 16, "{got:?} {calls}");
+        // A zone 2e-6 wide, 1e-12 high: still two crossings.
+        let tiny = |y: f64| 1e-12 - (y - 0.5625) * (y - 0.5625);
+        let (got, calls) = found(&tiny, &|_, _| (-2.0, -2.0), (0.0, 1.0), &[]);
+        assert!(
+            close(&got, &[0.5625 - 1e-6, 0.5625 + 1e-6], 1e-12),
+            "{got:?}"
+        );
+        assert!(calls < 200, "{calls}");
+    }
+
+    #[test]
+    fn a_hump_next_to_an_unbounded_curvature_is_found() {
+        // f = √(1 − y) − 4 (1 − y) − 0.0624: concave, f″ = −(1 − y)^{−3/2}/4 unbounded at
+        // y = 1, negative at both ends and positive on (0.983 1, 0.985 6).
+        let f = |y: f64| (1.0 - y).sqrt() - 4.0 * (1.0 - y) - 0.0624;
+        let curvature = |a: f64, b: f64| {
+            let at = |y: f64| -0.25 * (1.0 - y).powf(-1.5);
+            (at(b), at(a))
+        };
+        let root = |t: f64| 1.0 - t * t;
+        let d = (1.0f64 - 16.0 * 0.0624).sqrt();
+        let want = [root((1.0 + d) / 8.0), root((1.0 - d) / 8.0)];
+        let (got, _) = found(&f, &curvature, (0.0, 1.0), &[]);
+        assert!(close(&got, &want, 1e-12), "{got:?} {want:?}");
+    }
+
+    #[test]
+    fn narrow_humps_where_the_curvature_changes_sign_are_found() {
+        // sin(40 y) > 0.999 on seven zones 2.2e-3 wide in (0, 1): f″ = −1600 sin(40 y) takes
+        // both signs, bounded on each part by the range of the sine.
+        let f = |y: f64| (40.0 * y).sin() - 0.999;
+        let sine_range = |u: f64, v: f64| {
+            let (mut lo, mut hi) = (u.sin().min(v.sin()), u.sin().max(v.sin()));
+            let turn = std::f64::consts::FRAC_PI_2;
+            let mut k = (u / turn).ceil();
+            while k * turn <= v {
+                let s = (k * turn).sin();
+                lo = lo.min(s);
+                hi = hi.max(s);
+                k += 1.0;
+            }
+            (lo, hi)
+        };
+        let curvature = |a: f64, b: f64| {
+            let (lo, hi) = sine_range(40.0 * a, 40.0 * b);
+            (-1600.0 * hi, -1600.0 * lo)
+        };
+        let half = 0.999f64.acos();
+        let mut want = Vec::new();
+        for k in 0..7 {
+            let centre = std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::PI * k as f64;
+            want.extend([(centre - half) / 40.0, (centre + half) / 40.0]);
+        }
+        let (got, calls) = found(&f, &curvature, (0.0, 1.0), &[]);
+        assert!(close(&got, &want, 1e-12), "{got:?}");
+        assert!(calls < 2 * BUDGET, "{calls}");
+    }
 }
