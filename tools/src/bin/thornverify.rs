@@ -1,12 +1,13 @@
 //! A table of Thornton's law next to the traced kinks of the law: `thornverify TABLE N [SEED]`
 //! draws `N` points with γ and `e_n` uniform over the table's domain (`e_n < 1`) and α next to
-//! one of the re-slip fold `α_R`, the line `α = 2/7` and the loading fold `α_L` (in turn;
+//! one of the re-slip fold `α_R`, the line `α = 2/7`, the loading fold `α_L` and the switch
+//! fold `α_S` (in turn;
 //! `α_K (1 ± r)`, `r` log-uniform in [1e-4, 1e-2]), and prints the largest difference between
 //! the table and a direct solve at tol 1e-8 for each kink, against the table's stated bound.
 
 use oblique_lookup::Table;
 use oblique_physics::sample::SplitMix;
-use oblique_solver::history::{loading_fold_thornton, reslip_fold_thornton};
+use oblique_solver::history::{loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton};
 use oblique_solver::{Accuracy, Law, Request};
 use rayon::prelude::*;
 
@@ -28,7 +29,7 @@ fn main() -> anyhow::Result<()> {
         let e = (e0 + (e1 - e0) * rng.uniform()).min(0.9999);
         let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
         let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-        pts.push((i % 3, g, e, r * sign));
+        pts.push((i % 4, g, e, r * sign));
     }
     let out: Vec<(usize, f64, f64, f64, f64)> = pts
         .par_iter()
@@ -36,7 +37,8 @@ fn main() -> anyhow::Result<()> {
             let kink = match k {
                 0 => reslip_fold_thornton(g, e, 2048).ok()??,
                 1 => 2.0 / 7.0,
-                _ => loading_fold_thornton(g, e, 2048).ok()??,
+                2 => loading_fold_thornton(g, e, 2048).ok()??,
+                _ => switch_fold_thornton(g, e, 2048).ok()??,
             };
             let alpha = kink * (1.0 + r);
             let t = table.p_e(g, alpha, e).ok()?;
@@ -50,7 +52,7 @@ fn main() -> anyhow::Result<()> {
         })
         .collect();
     let bound = table.error_bound();
-    for (k, name) in [(0, "alpha_R"), (1, "2/7"), (2, "alpha_L")] {
+    for (k, name) in [(0, "alpha_R"), (1, "2/7"), (2, "alpha_L"), (3, "alpha_S")] {
         let v: Vec<_> = out.iter().filter(|o| o.0 == k).collect();
         if let Some(w) = v.iter().max_by(|x, y| x.4.total_cmp(&y.4)) {
             println!(
