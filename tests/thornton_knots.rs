@@ -249,3 +249,23 @@ fn the_reference_reader_refuses_a_table_with_knots() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("group 'knots'"), "{err}");
 }
+
+#[test]
+fn inspect_names_the_knots() {
+    let t = table().to_str().expect("path");
+    let text = ok(&["inspect", t]);
+    assert!(
+        text.contains("knots: 4 kinks on c' = 0.5, 0.625, 0.75, 0.875"),
+        "{text}"
+    );
+    let v: serde_json::Value = serde_json::from_str(&ok(&["inspect", t, "--json"])).expect("JSON");
+    let partial = &v["patches"][0];
+    assert_eq!(partial["name"], "partial_high", "{v}");
+    assert_eq!(partial["knots"]["count"], 4, "{v}");
+    assert_eq!(
+        partial["knots"]["grade"],
+        serde_json::json!([0, 2, 0, 1]),
+        "{v}"
+    );
+    assert!(v["patches"][1]["knots"].is_null(), "{v}");
+}

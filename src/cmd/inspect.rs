@@ -56,6 +56,15 @@ pub fn run(args: InspectArgs) -> Result<()> {
                         "c_star": w.c_star(), "gamma_0": w.gamma_0(), "gamma_step": w.gamma_step(),
                         "knots": w.knot().len(),
                     })),
+                    "knots": p.knots().map(|k| {
+                        let [n, ng, ne] = k.shape();
+                        let r = k.region();
+                        json!({
+                            "count": n, "c_star": k.c_star(), "grade": k.grade_values(),
+                            "region_roots": r, "gamma_0": k.gamma_0(), "gamma_step": k.gamma_step(),
+                            "e_n_0": k.e_n_0(), "e_n_step": k.e_n_step(), "grid": [ng, ne],
+                        })
+                    }),
                 });
                 // Root cells along each extra axis (1 where the patch has none).
                 for a in EXTRA_AXES {
@@ -143,6 +152,23 @@ pub fn run(args: InspectArgs) -> Result<()> {
                 w.knot().len(),
                 w.gamma_0(),
                 w.gamma_step()
+            )?;
+        }
+        if let (Some(k), Some(r)) = (p.knots(), p.restitution()) {
+            let reg = k.region();
+            let at = |lo: f64, hi: f64, blocks: usize, v: f64| lo + (hi - lo) * v / blocks as f64;
+            let stars: Vec<String> = k.c_star().iter().map(|c| c.to_string()).collect();
+            outln!(
+                "                knots: {} kinks on c' = {} (grades {:?}: 0 linear, 1 graded below, 2 above) for gamma [{}, {}], e_n [{}, {}]; traced on a {} x {} grid",
+                stars.len(),
+                stars.join(", "),
+                k.grade_values(),
+                at(p.gamma_lo(), p.gamma_hi(), p.blocks_gamma(), reg[0]),
+                at(p.gamma_lo(), p.gamma_hi(), p.blocks_gamma(), reg[1]),
+                at(r.lo(), r.hi(), r.blocks(), reg[2]),
+                at(r.lo(), r.hi(), r.blocks(), reg[3]),
+                k.shape()[1],
+                k.shape()[2]
             )?;
         }
     }
