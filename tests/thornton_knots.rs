@@ -207,17 +207,18 @@ fn the_export_refuses_a_table_with_knots() {
 }
 
 #[test]
-fn knots_are_refused_for_another_law_or_without_an_e_n_range() {
+fn knots_are_refused_for_the_elastic_law_and_the_table_of_one_pair() {
     let dir = common::subdir("thornton-knots-refused");
     for (name, body) in [
-        (
-            "kv",
-            BODY.replace("law = \"thornton\"", "law = \"kelvin-voigt\""),
-        ),
         (
             "elastic",
             BODY.replace("e_n_min = 0.8\ne_n_max = 0.99\n", "")
                 .replace("law = \"thornton\"", "law = \"elastic\""),
+        ),
+        (
+            "pair",
+            BODY.replace("gamma_min = 1.6\ngamma_max = 1.8\n", "gamma = 1.7\n")
+                .replace("law = \"thornton\"", "law = \"kelvin-voigt\""),
         ),
     ] {
         let cfg = dir.join(format!("{name}.toml"));
@@ -229,7 +230,7 @@ fn knots_are_refused_for_another_law_or_without_an_e_n_range() {
         .expect("write config");
         refused(
             &["run", cfg.to_str().expect("path")],
-            &["nodes.knots", "thornton"],
+            &["nodes.knots", "e_n range"],
         );
         assert!(!out.exists());
     }

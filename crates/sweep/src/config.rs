@@ -577,12 +577,16 @@ impl Config {
                 "false for a table with an e_n range".into(),
             ));
         }
-        if n.knots && (law != oblique_solver::Law::Thornton || pair || d.e_n_range().is_none()) {
+        let knotted_law = matches!(
+            law,
+            oblique_solver::Law::Thornton | oblique_solver::Law::KelvinVoigt
+        );
+        if n.knots && (!knotted_law || pair || d.e_n_range().is_none()) {
             return Err(err(
                 "nodes.knots",
                 "true".into(),
-                "false unless solver.law = \"thornton\" with an e_n range over a range of gamma \
-                 (the knots follow the kinks of that law)"
+                "false unless the table has an e_n range over a range of gamma, of the \
+                 thornton or kelvin-voigt law (the knots follow the kinks of those laws)"
                     .into(),
             ));
         }

@@ -364,6 +364,15 @@ impl KinkSurface {
         Some((e_of_row(lo), e_of_row(hi)))
     }
 
+    /// The traced nodes that hold the kink: `(γ, e_n, ln α_K)`.
+    pub fn nodes(&self) -> Vec<(f64, f64, f64)> {
+        (0..self.n_gamma)
+            .flat_map(|i| (0..self.n_e).map(move |l| (i, l)))
+            .filter(|&(i, l)| self.node(i, l).is_finite())
+            .map(|(i, l)| (self.gamma_0 + i as f64 * STEP, e_of_row(l), self.node(i, l)))
+            .collect()
+    }
+
     /// How many nodes hold the kink (each one located by a fold search).
     pub fn traced_nodes(&self) -> usize {
         self.ln_alpha.iter().filter(|a| a.is_finite()).count()

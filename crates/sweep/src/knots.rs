@@ -149,3 +149,233 @@ fn knots_at(gamma: f64, e_n: f64) -> Result<[f64; 4], SweepError> {
     }
     Ok(out)
 }
+
+/// Degree of the fitted fold surface F₋ in each of γ and `e_n` ([`fold_minus_knots`]).
+pub const FIT_DEGREE: usize = 4;
+/// Largest relative difference between the fitted F₋ and its traced nodes that
+/// [`fold_minus_knots`] accepts: a fold `(α − α_F)^{3/2}` that far from a cell edge moves a
+/// leaf's cubic by about 1e-7.
+pub const FIT_TOL: f64 = 1e-4;
+
+/// The knot of the fold F₋ of a Kelvin–Voigt table's partial-slip patch (`nodes.knots`):
+/// F₋ traced as for the probes ([`kink::fold_minus_surface`]), `ln α_F(γ, e_n)` fitted by a
+/// polynomial of degree [`FIT_DEGREE`] in each variable (least squares over the traced nodes,
+/// within [`FIT_TOL`] of each), which continues it smoothly where F₋ does not exist (beyond
+/// its end along `e_n` and below its birth along γ, where `P` is smooth and any smooth knot
+/// does), tabulated over the box of root cells that holds every traced node (edges rounded
+/// outwards to a sixteenth of a root cell), sent to the root-cell edge `c*` nearest to its
+/// middle and graded above (`P` departs from its smooth continuation like `(α − α_F)^{3/2}`
+/// above F₋). `None` when the domain holds no F₋. `map` is the table's partial-slip map,
+/// `alpha_max` its `α_max`.
+pub fn fold_minus_knots(
+    gammas: (f64, f64),
+    bg: usize,
+    e_range: (f64, f64),
+    be: usize,
+    bc: usize,
+    map: PartialMap,
+) -> Result<Option<Knots>, SweepError> {
+    let Some(surface) = crate::kink::fold_minus_surface(gammas, e_range)? else {
+        return Ok(None);
+    };
+    let nodes: Vec<(f64, f64, f64)> = surface
+        .nodes()
+        .into_iter()
+        .filter(|&(g, e, _)| g >= gammas.0 - 0.02 && e >= e_range.0 - 0.01)
+        .collect();
+    if nodes.len() < (FIT_DEGREE + 1) * (FIT_DEGREE + 1) {
+        return Ok(None);
+    }
+    let fail = |gamma: f64, e_n: f64, what: String| SweepError::Knots {
+        knot: "F-",
+        gamma,
+        e_n,
+        what,
+    };
+    // Scaled variables on the traced box.
+    let (mut g0, mut g1, mut e0, mut e1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(g, e, _) in &nodes {
+        (g0, g1, e0, e1) = (g0.min(g), g1.max(g), e0.min(e), e1.max(e));
+    }
+    let scale = |v: f64, lo: f64, hi: f64| {
+        if hi > lo {
+            2.0 * (v - lo) / (hi - lo) - 1.0
+        } else {
+            0.0
+        }
+    };
+    let basis = |g: f64, e: f64| -> Vec<f64> {
+        let (x, y) = (scale(g, g0, g1), scale(e, e0, e1));
+        let mut b = Vec::with_capacity((FIT_DEGREE + 1) * (FIT_DEGREE + 1));
+        let mut xi = 1.0;
+        for _ in 0..=FIT_DEGREE {
+            let mut yj = 1.0;
+            for _ in 0..=FIT_DEGREE {
+                b.push(xi * yj);
+                yj *= y;
+            }
+            xi *= x;
+        }
+        b
+    };
+    let coef = least_squares(
+        &nodes
+            .iter()
+            .map(|&(g, e, l)| (basis(g, e), l))
+            .collect::<Vec<_>>(),
+    )
+    .ok_or_else(|| fail(g0, e0, "the fit of F- is singular".into()))?;
+    let fit = |g: f64, e: f64| -> f64 { basis(g, e).iter().zip(&coef).map(|(b, c)| b * c).sum() };
+    for &(g, e, l) in &nodes {
+        let d = (fit(g, e) - l).exp() - 1.0;
+        if d.abs() > FIT_TOL {
+            return Err(fail(
+                g,
+                e,
+                format!(
+                    "the fitted F- is {d:.2e} (relative) from the traced one, more than {FIT_TOL:e}"
+                ),
+            ));
+        }
+    }
+    // The region: root-cell units, outwards to a sixteenth.
+    let (gl, gh) = gammas;
+    let (el, eh) = e_range;
+    let pos = |v: f64, lo: f64, hi: f64, blocks: usize| {
+        ((v - lo) / (hi - lo) * blocks as f64).clamp(0.0, blocks as f64)
+    };
+    let from_g = (pos(g0, gl, gh, bg) * 16.0).floor() / 16.0;
+    let from_e = (pos(e0, el, eh, be) * 16.0).floor() / 16.0;
+    let region = [from_g, bg as f64, from_e, be as f64];
+    let g_from = gl + (gh - gl) * from_g / bg as f64;
+    let e_from = el + (eh - el) * from_e / be as f64;
+    let (kg0, kgs, ng) = grid(g_from, gh, STEP_F_MINUS_GAMMA);
+    let (ke0, kes, ne) = grid(e_from, eh, STEP_F_MINUS_E_N);
+    let mut knot = Vec::with_capacity(ng * ne);
+    for i in 0..ng {
+        let g = if i + 1 == ng {
+            gh
+        } else {
+            kg0 + kgs * i as f64
+        };
+        for l in 0..ne {
+            let e = if l + 1 == ne {
+                eh
+            } else {
+                ke0 + kes * l as f64
+            };
+            let a = fit(g, e).exp();
+            let c = PatchKind::PartialSlip.coord_at(map, g, a, e, f64::INFINITY);
+            if !(c > 0.0 && c < 1.0) {
+                return Err(fail(
+                    g,
+                    e,
+                    format!("the fitted F- at alpha = {a} lies outside the patch (c = {c})"),
+                ));
+            }
+            knot.push(c);
+        }
+    }
+    let mut sorted = knot.clone();
+    sorted.sort_by(f64::total_cmp);
+    let middle = sorted[sorted.len() / 2];
+    let c_star =
+        ((middle * bc as f64).round() / bc as f64).clamp(1.0 / bc as f64, 1.0 - 1.0 / bc as f64);
+    if !(c_star > 0.0 && c_star < 1.0) {
+        return Err(fail(
+            gl,
+            el,
+            format!("blocks_coord = {bc}: the knot needs a root-cell edge inside the patch (>= 2)"),
+        ));
+    }
+    Knots::new(
+        kg0,
+        kgs,
+        ke0,
+        kes,
+        region,
+        vec![c_star],
+        vec![2],
+        [1, ng, ne],
+        knot,
+    )
+    .map(Some)
+    .map_err(|what| fail(gl, el, what))
+}
+
+/// Grid spacings of the F₋ knot (those of the traced surface).
+const STEP_F_MINUS_GAMMA: f64 = 0.01;
+const STEP_F_MINUS_E_N: f64 = 0.005;
+
+/// The least-squares coefficients of `rows` (`(basis values, value)`), by the normal equations
+/// and Gaussian elimination with partial pivoting; `None` when they are singular.
+fn least_squares(rows: &[(Vec<f64>, f64)]) -> Option<Vec<f64>> {
+    let n = rows.first()?.0.len();
+    let mut a = vec![vec![0.0; n + 1]; n];
+    for (b, v) in rows {
+        for i in 0..n {
+            for j in 0..n {
+                a[i][j] += b[i] * b[j];
+            }
+            a[i][n] += b[i] * v;
+        }
+    }
+    for col in 0..n {
+        let piv = (col..n).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))?;
+        if a[piv][col].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(col, piv);
+        let pivot = a[col].clone();
+        for (r, row) in a.iter_mut().enumerate() {
+            if r != col {
+                let f = row[col] / pivot[col];
+                for (x, p) in row.iter_mut().zip(&pivot).skip(col) {
+                    *x -= f * p;
+                }
+            }
+        }
+    }
+    Some((0..n).map(|i| a[i][n] / a[i][i]).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use oblique_solver::history::fold_minus_at_e;
+
+    /// The fitted F₋ against F₋ located directly where it exists: within 1e-4 (relative),
+    /// sent to a root-cell edge, its region inside the patch and holding those points.
+    #[test]
+    fn the_fitted_fold_minus_lies_on_the_located_fold() {
+        let (gammas, e_range) = ((2.45, 2.6), (0.95, 1.0));
+        let map = PartialMap::SqrtBoth;
+        let k = fold_minus_knots(gammas, 1, e_range, 1, 4, map)
+            .expect("traced")
+            .expect("F- exists there");
+        let c_star = k.c_star()[0];
+        assert_eq!(
+            (c_star * 4.0).fract(),
+            0.0,
+            "c* {c_star} on a root-cell edge"
+        );
+        assert_eq!(k.grade_values(), vec![2]);
+        let r = k.region();
+        assert!(
+            r[0] < 1.0 && r[1] == 1.0 && r[2] < 1.0 && r[3] == 1.0,
+            "{r:?}"
+        );
+        for &(g, e, guess) in &[(2.5, 0.99, 0.476), (2.55, 0.97, 0.449), (2.6, 0.96, 0.428)] {
+            let a_f = fold_minus_at_e(g, e, guess, 2048)
+                .expect("solve")
+                .expect("F- here");
+            let line = k.line(g, e);
+            let c_f = PatchKind::PartialSlip.coord_at(map, g, a_f, e, f64::INFINITY);
+            let a_k = PatchKind::PartialSlip.alpha_at(map, g, line.knots()[0], e, f64::INFINITY);
+            assert!(
+                (a_k / a_f - 1.0).abs() < 1e-4,
+                "γ {g}, e_n {e}: knot at α {a_k}, F- at {a_f} (c {c_f})"
+            );
+        }
+    }
+}

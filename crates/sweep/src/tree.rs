@@ -601,12 +601,17 @@ pub(crate) fn build_patch(
                 STAGE_KNOTS,
                 &format!("the kinks of P for the knots of {}", spec.name),
             );
-            knots::thornton_knots(
+            let (gammas, bg, be) = (
                 (spec.gamma_lo, spec.gamma_hi),
                 roots_gamma(cfg, spec),
-                e_range,
                 cfg.nodes.blocks_e_n.unwrap_or(1),
-            )?
+            );
+            if cfg.law() == oblique_solver::Law::Thornton {
+                knots::thornton_knots(gammas, bg, e_range, be)?
+            } else {
+                let bc = cfg.nodes.blocks_coord;
+                knots::fold_minus_knots(gammas, bg, e_range, be, bc, cfg.partial_map())?
+            }
         }
         _ => None,
     };
@@ -718,7 +723,9 @@ pub(crate) fn build_patch(
             let pred = surplus(&vals, m, k, layout.dims()) / 4.0;
             predicted[c] = pred;
             if pred <= cfg.nodes.target_error {
-                if !kinks.is_empty() {
+                // Inside the knots' region the kink lies on a cell edge: nothing to probe.
+                let aligned = layout.knots.is_some() && layout.warped(cells[c]);
+                if !kinks.is_empty() && !aligned {
                     let probes = layout.kink_probes(cells[c], &kinks);
                     if !probes.is_empty() {
                         probed.push((o, vals, probes));
