@@ -242,7 +242,7 @@ fn export() -> &'static (PathBuf, PathBuf) {
             said.contains("the table of the thornton law (e_n in [0.8, 0.99])"),
             "{said}"
         );
-        (out, gcc_driver(&d.join("eval_check")))
+        (out, gcc_driver(&d.join("eval_check"), &[]))
     })
 }
 
@@ -422,7 +422,10 @@ fn the_c_header_refuses_a_damaged_knots_block() {
     let u64_at = |at: usize| u64::from_le_bytes(good[at..at + 8].try_into().expect("8 bytes"));
     let record = u64_at(72) as usize + 160;
     let block = u64_at(record + 152) as usize;
-    assert!(block > 0 && block.is_multiple_of(8), "the knots block at {block}");
+    assert!(
+        block > 0 && block.is_multiple_of(8),
+        "the knots block at {block}"
+    );
     let region = |j: usize| block + 48 + 8 * j;
     let edits: Vec<(&str, usize, Vec<u8>)> = vec![
         ("no_block", record + 152, 0u64.to_le_bytes().to_vec()),
@@ -463,4 +466,53 @@ fn the_c_header_refuses_a_damaged_knots_block() {
     let mut newer = good.clone();
     newer[8] = 6;
     assert!(case("newer", &sealed(newer)).starts_with("4 "));
+}
+
+/// Mutated copies of the export through `oblq_open` and queries, compiled with
+/// AddressSanitizer and UndefinedBehaviorSanitizer: 400 mutated anywhere and 400 mutated inside
+/// the knots block (half of them resealed); none reads out of bounds, every answer is in
+/// `[−1, 1]`, and some are refused.
+#[test]
+fn mutated_knots_blocks_never_read_out_of_bounds_under_sanitizers() {
+    let (export, _) = export();
+    let dir = common::subdir("thornton-knots-asan");
+    let exe = gcc_driver(
+        &dir.join("eval_check_asan"),
+        &[
+            "-g",
+            "-fsanitize=address,undefined",
+            "-fno-sanitize-recover=all",
+        ],
+    );
+    let good = std::fs::read(export).expect("export");
+    let word = |at: usize, n: usize| {
+        let mut b = [0u8; 8];
+        b[..n].copy_from_slice(&good[at..at + n]);
+        u64::from_le_bytes(b) as usize
+    };
+    let block = word(word(72, 8) + 160 + 152, 8);
+    // The block's 88 bytes, then c_star [k] and the knot values [k][n_γ][n_e].
+    let (k, n_gamma, n_e) = (word(block, 4), word(block + 4, 4), word(block + 8, 4));
+    let end = block + 88 + 8 * k * (1 + n_gamma * n_e);
+    assert!(end <= good.len(), "the block [{block}, {end})");
+    let path = export.to_str().expect("path");
+    let (from, to) = (block.to_string(), end.to_string());
+    for args in [
+        vec!["fuzz", path, "400", "23"],
+        vec!["fuzz", path, "400", "29", &from, &to],
+    ] {
+        let out = std::process::Command::new(&exe)
+            .args(&args)
+            .output()
+            .expect("run");
+        assert!(
+            out.status.success(),
+            "{args:?}: {}\n{}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("refused"), "{text}");
+        eprintln!("{args:?}: {}", text.trim());
+    }
 }

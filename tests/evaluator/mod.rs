@@ -226,8 +226,8 @@ pub fn sealed(mut b: Vec<u8>) -> Vec<u8> {
 }
 
 /// The driver `tests/c/eval_check.c` compiled with gcc (C99, warnings as errors, no fused
-/// multiply-add) into `exe`.
-pub fn gcc_driver(exe: &Path) -> PathBuf {
+/// multiply-add) and the further `flags` (sanitizers) into `exe`.
+pub fn gcc_driver(exe: &Path, flags: &[&str]) -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let out = Command::new("gcc")
         .args([
@@ -237,8 +237,9 @@ pub fn gcc_driver(exe: &Path) -> PathBuf {
             "-Werror",
             "-pedantic",
             "-O2",
-            "-I",
         ])
+        .args(flags)
+        .arg("-I")
         .arg(root.join("include"))
         .arg("-o")
         .arg(exe)
