@@ -94,8 +94,12 @@ extern "C" {
 
 /* Newest layout version this header reads: 1 (an elastic table, and curves), 2 (a table
    with a normal-restitution axis e_n), 3 (the table of one pair: P(alpha, e_n) at a single
-   gamma) and 4 (a table of Thornton's law: version 2 without a closed-form full-slip line). */
-#define OBLQ_EXPORT_VERSION 4u
+   gamma), 4 (a table of Thornton's law: version 2 without a closed-form full-slip line) and 5
+   (version 2 or 4 whose partial-slip coordinate has knots). */
+#define OBLQ_EXPORT_VERSION 5u
+
+/* Most knots of a partial-slip coordinate (layout version 5). */
+#define OBLQ_MAX_KNOTS 8
 
 /* Status codes of the file loader oblq_load_file (host only; the others follow). */
 enum {
@@ -163,6 +167,15 @@ typedef struct {
        1: e_n; 0 for a leaf; 1 to 3 in the patch of one pair), uint8 [cells]; NULL: every
        split halves every axis. */
     const unsigned char *split;
+    /* The knots of the partial-slip coordinate (layout version 5; k_n = 0: none): k_n kink
+       surfaces K_j tabulated at (k_gamma_0 + i k_gamma_step, k_e_n_0 + l k_e_n_step),
+       k_knot [k_n][k_ng][k_ne], sent to k_c_star[j] inside k_region (root cells: gamma from,
+       gamma to, e_n from, e_n to); k_grade[j]: 0 linear, 1 the segment below graded, 2 the
+       segment above. */
+    size_t k_n, k_ng, k_ne;
+    double k_gamma_0, k_gamma_step, k_e_n_0, k_e_n_step, k_region[4];
+    unsigned char k_grade[OBLQ_MAX_KNOTS];
+    const double *k_c_star, *k_knot;
 } oblq_patch;
 
 /* A checked export: the table's domain and stated error bound, its patches, its curves. */
@@ -175,11 +188,12 @@ typedef struct {
     const unsigned char *data; /* the export */
     uint64_t size;
     uint64_t curves; /* offset of the curve records */
-    int has_e_n;              /* 1: a table with a normal-restitution axis (layout version 2, 3) */
+    int has_e_n;              /* 1: a table with a normal-restitution axis (layout version 2 to 5) */
     double e_n_min, e_n_max;  /* the e_n range it answers: 1, 1 for an elastic table */
     int pair; /* 1: the table of one pair (layout version 3): gamma_min == gamma_max, its gamma */
-    /* 1: a table without a closed-form full-slip line (layout version 4, Thornton's law): its
-       partial-slip patch answers every alpha < alpha_c2 for gamma >= 1 (gamma_min >= 1). */
+    /* 1: a table without a closed-form full-slip line (layout version 4, or 5 with the flag,
+       Thornton's law): its partial-slip patch answers every alpha < alpha_c2 for gamma >= 1
+       (gamma_min >= 1). */
     int no_line;
 } oblq_table;
 
@@ -394,6 +408,140 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
     return OBLQ_OK;
 }
 
+/* Whether root-cell positions [a/2^d, (a+1)/2^d] of a cell (d < 21; deeper cells straddle no
+   multiple of 2^-20) hold the region edge E (in units of 2^-20) strictly inside. */
+OBLQ_FN int oblq__straddles(uint64_t a, unsigned d, uint64_t e) {
+    uint64_t w;
+    if (d > 20) return 0;
+    w = (uint64_t)1 << (20 - d);
+    return a * w < e && e < (a + 1) * w;
+}
+
+/* The knots block of the partial-slip patch at offset `off` (layout version 5), checked as the
+   other blocks are: inside the export, the counts and values in their ranges (c_star strictly
+   increasing in (0, 1), grades 0 to 2 with no segment graded at both ends, the knot values
+   strictly increasing in (0, 1) at every grid point), the region finite multiples of 2^-20
+   with 0 <= from < to <= blocks per axis, the grid covering it (within 1e-12 of the value),
+   and no leaf across an edge of the region along gamma or e_n (a walk down the cells that
+   straddle one, on a path of at most 64 of them, whose splits would halve one axis 21 times).
+   `e_lo`, `e_hi`: the table's e_n range. */
+OBLQ_FN int oblq__knots(oblq_patch *p, const unsigned char *d, uint64_t len, uint64_t off,
+                        double e_lo, double e_hi) {
+    const unsigned char *b;
+    uint64_t n, ng, ne, i, j, l, edge[4];
+    double g[4], v, blocks[2], lo[2], hi[2];
+    struct { uint64_t cell, ag, ae; unsigned dg, de, q; } st[64];
+    unsigned sp;
+    if (off == 0 || !oblq__span(off, 1, 88, len)) return OBLQ_E_CORRUPT;
+    b = d + off;
+    n = oblq__u32(b);
+    ng = oblq__u32(b + 4);
+    ne = oblq__u32(b + 8);
+    if (n < 1 || n > OBLQ_MAX_KNOTS || ng < 4 || ne < 4 || oblq__u32(b + 12) != 0)
+        return OBLQ_E_CORRUPT;
+    if (!oblq__span(off + 88, n, 8, len) || !oblq__span(off + 88 + 8 * n, ng, 8 * n * ne, len))
+        return OBLQ_E_CORRUPT;
+    p->k_n = (size_t)n;
+    p->k_ng = (size_t)ng;
+    p->k_ne = (size_t)ne;
+    for (i = 0; i < 4; i++) g[i] = oblq__f64(b + 16 + 8 * i);
+    p->k_gamma_0 = g[0];
+    p->k_gamma_step = g[1];
+    p->k_e_n_0 = g[2];
+    p->k_e_n_step = g[3];
+    if (!(isfinite(g[0]) && isfinite(g[1]) && g[1] > 0.0 && isfinite(g[2]) && isfinite(g[3]) &&
+          g[3] > 0.0))
+        return OBLQ_E_CORRUPT;
+    blocks[0] = (double)p->blocks_gamma;
+    blocks[1] = (double)p->blocks_e_n;
+    for (i = 0; i < 4; i++) {
+        v = oblq__f64(b + 48 + 8 * i);
+        p->k_region[i] = v;
+        /* finite, inside [0, blocks], a multiple of 2^-20 */
+        if (!(v >= 0.0 && v <= blocks[i / 2]) || v * 1048576.0 != floor(v * 1048576.0))
+            return OBLQ_E_CORRUPT;
+        edge[i] = (uint64_t)(v * 1048576.0);
+    }
+    if (!(p->k_region[0] < p->k_region[1] && p->k_region[2] < p->k_region[3]))
+        return OBLQ_E_CORRUPT;
+    for (j = 0; j < OBLQ_MAX_KNOTS; j++) {
+        p->k_grade[j] = b[80 + j];
+        if (j >= n ? p->k_grade[j] != 0 : p->k_grade[j] > 2) return OBLQ_E_CORRUPT;
+        if (j >= 1 && j < n && p->k_grade[j - 1] == 2 && p->k_grade[j] == 1) return OBLQ_E_CORRUPT;
+    }
+    p->k_c_star = (const double *)(const void *)(b + 88);
+    p->k_knot = p->k_c_star + n;
+    for (j = 0; j < n; j++)
+        if (!(p->k_c_star[j] > (j ? p->k_c_star[j - 1] : 0.0) && p->k_c_star[j] < 1.0))
+            return OBLQ_E_CORRUPT;
+    for (i = 0; i < ng; i++)
+        for (l = 0; l < ne; l++)
+            for (j = 0; j < n; j++) {
+                v = p->k_knot[(j * ng + i) * ne + l];
+                if (!(v > (j ? p->k_knot[((j - 1) * ng + i) * ne + l] : 0.0) && v < 1.0))
+                    return OBLQ_E_CORRUPT;
+            }
+    /* The grid covers the region: gamma_0 <= its lowest value, the last grid point >= its
+       highest (within 1e-12 of the value), along gamma and along e_n. */
+    lo[0] = p->gamma_lo;
+    hi[0] = p->gamma_hi;
+    lo[1] = e_lo;
+    hi[1] = e_hi;
+    for (i = 0; i < 2; i++) {
+        double from = lo[i] + (hi[i] - lo[i]) * p->k_region[2 * i] / blocks[i];
+        double to = lo[i] + (hi[i] - lo[i]) * p->k_region[2 * i + 1] / blocks[i];
+        double first = g[2 * i], end = first + (double)((i ? ne : ng) - 1) * g[2 * i + 1];
+        double slack = 1e-12 * (fabs(to) > 1.0 ? fabs(to) : 1.0);
+        if (!(first <= from + slack && end >= to - slack)) return OBLQ_E_CORRUPT;
+    }
+    /* No leaf straddles an edge of the region: from each root that straddles one, depth first
+       through the children that straddle one; every cell reached must be split. */
+    for (i = 0; i < p->blocks_gamma * p->blocks_coord * p->blocks_e_n; i++) {
+        sp = 0;
+        st[0].cell = i;
+        st[0].ag = i / (p->blocks_coord * p->blocks_e_n);
+        st[0].ae = i % p->blocks_e_n;
+        st[0].dg = st[0].de = st[0].q = 0;
+        for (;;) {
+            uint64_t cell = st[sp].cell;
+            int32_t t = oblq__i32(p->tree + 4 * cell);
+            unsigned mask, k, fan, q;
+            int across = 0;
+            for (k = 0; k < 2; k++)
+                across |= oblq__straddles(st[sp].ag, st[sp].dg, edge[k]) |
+                          oblq__straddles(st[sp].ae, st[sp].de, edge[2 + k]);
+            if (across && t < 0) return OBLQ_E_CORRUPT; /* a leaf across an edge */
+            mask = t < 0 ? 0u : (p->split ? p->split[cell] : 7u);
+            fan = 1u << ((mask & 1u) + ((mask >> 1) & 1u) + (mask >> 2));
+            if (!across || t < 0 || st[sp].q == fan) {
+                if (sp == 0) break;
+                sp--;
+                continue;
+            }
+            if (sp + 1 >= 64) return OBLQ_E_CORRUPT; /* a path deeper than the walk holds */
+            /* Child q: its bits over the halved axes in the order gamma, c, e_n. */
+            q = st[sp].q++;
+            st[sp + 1].cell = (uint64_t)t + q;
+            st[sp + 1].ag = st[sp].ag;
+            st[sp + 1].dg = st[sp].dg;
+            st[sp + 1].ae = st[sp].ae;
+            st[sp + 1].de = st[sp].de;
+            st[sp + 1].q = 0;
+            if (mask & 1u) {
+                st[sp + 1].ae = 2 * st[sp].ae + (q & 1u);
+                st[sp + 1].de++;
+            }
+            if (mask & 4u) {
+                unsigned shift = (mask & 1u) + ((mask >> 1) & 1u);
+                st[sp + 1].ag = 2 * st[sp].ag + ((q >> shift) & 1u);
+                st[sp + 1].dg++;
+            }
+            sp++;
+        }
+    }
+    return OBLQ_OK;
+}
+
 OBLQ_FN int oblq__piece(oblq_piece *c, const unsigned char *d, uint64_t len, const unsigned char *r) {
     uint64_t off;
     memset(c, 0, sizeof *c);
@@ -487,8 +635,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if (d[k] != (unsigned char)"OBLQEVAL"[k]) return OBLQ_E_FORMAT;
     if (size < 96) return OBLQ_E_TRUNCATED;
     version = oblq__u32(d + 8);
-    if (version < 1 || version > 4) return OBLQ_E_VERSION;
-    header = version == 1 ? 96 : 112; /* versions 2, 3 and 4 add the e_n range */
+    if (version < 1 || version > 5) return OBLQ_E_VERSION;
+    header = version == 1 ? 96 : 112; /* versions 2 to 5 add the e_n range */
     if (oblq__u32(d + 12) != header) return OBLQ_E_CORRUPT;
     if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
     len = oblq__u64(d + 16);
@@ -512,8 +660,9 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
        of the rule's forms (then S(alpha_max) > 0 at every gamma of the domain), and below the
        patches and curves. */
     out.pair = version == 3;
-    /* The flag of a table without a full-slip line: 1 in version 4, 0 (reserved) before. */
-    out.no_line = version == 4;
+    /* The flag of a table without a full-slip line: 1 in version 4, 0 (reserved) before, 0 or
+       1 in version 5 (the knots of a table of either kind). */
+    out.no_line = version == 4 || (version == 5 && oblq__u32(d + 68) == 1);
     if (oblq__u32(d + 68) != (uint32_t)out.no_line) return OBLQ_E_CORRUPT;
     /* A table without the line starts at gamma = 1 or above (no stick_low). */
     if (out.no_line && !(out.gamma_min >= 1.0)) return OBLQ_E_CORRUPT;
@@ -545,9 +694,18 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if (!oblq__span(off, 3, 160, len) || off < header) return OBLQ_E_CORRUPT;
         out.has_surface = 1;
         for (k = 0; k < 3; k++) {
-            rc = oblq__patch(&out.patch[k], d, len, d + off + 160 * k,
-                             out.pair ? 1 : (out.has_e_n ? 3 : 2));
+            const unsigned char *r = d + off + 160 * k;
+            rc = oblq__patch(&out.patch[k], d, len, r, out.pair ? 1 : (out.has_e_n ? 3 : 2));
             if (rc != OBLQ_OK) return rc;
+            /* The knots block: in the record of partial_high of version 5 only (and there). */
+            if (version == 5 && k == 1) {
+                if (!out.patch[k].present) return OBLQ_E_CORRUPT;
+                rc = oblq__knots(&out.patch[k], d, len, oblq__u64(r + 152), out.e_n_min,
+                                 out.e_n_max);
+                if (rc != OBLQ_OK) return rc;
+            } else if (oblq__u64(r + 152) != 0) {
+                return OBLQ_E_CORRUPT;
+            }
         }
         if (out.patch[1].present && !out.patch[1].partial) return OBLQ_E_CORRUPT;
         /* Without the line alpha_c1 is the root-cell edge c = 1/2: blocks_coord is even. */
@@ -613,6 +771,8 @@ OBLQ_FN int oblq_rebase(oblq_table *t, const void *data) {
         p->index = (const unsigned char *)oblq__moved(p->index, t->data, data);
         p->origin = (const double *)oblq__moved(p->origin, t->data, data);
         p->split = (const unsigned char *)oblq__moved(p->split, t->data, data);
+        p->k_c_star = (const double *)oblq__moved(p->k_c_star, t->data, data);
+        p->k_knot = (const double *)oblq__moved(p->k_knot, t->data, data);
     }
     out.data = (const unsigned char *)data;
     *t = out;
@@ -979,6 +1139,54 @@ OBLQ_FN double oblq__tensor_pair(const oblq_patch *p, double c, double xe) {
     return wc[0] * r[0] + wc[1] * r[1] + wc[2] * r[2] + wc[3] * r[3];
 }
 
+/* Step 5 with knots (layout version 5): c' of the clamped c where the knots apply, at root-cell
+   positions v_gamma = x blocks_gamma and v_e = x_e blocks_e_n (clamped as in step 6) with
+   from <= v < to on both axes (to included where it is the last root edge); else c. The knot
+   values K_j: the cubic stencils on the grid at u = (gamma - gamma_0)/gamma_step and
+   w = (e_n - e_n_0)/e_n_step (each clamped to the grid), r_a = we_0 knot[j][sg+a][se] + ...,
+   K_j = 0 + wg_0 r_0 + ... + wg_3 r_3, left to right; then the map of c's segment
+   (docs/table-format.md, "The knots"). */
+OBLQ_FN double oblq__knotted(const oblq_patch *p, double gamma, double c, double xe,
+                             double e_n) {
+    double bg = (double)p->blocks_gamma, be = (double)p->blocks_e_n;
+    double vg = oblq__clamp((gamma - p->gamma_lo) / (p->gamma_hi - p->gamma_lo) * bg, 0.0, bg);
+    double ve = oblq__clamp(xe * be, 0.0, be);
+    double k[OBLQ_MAX_KNOTS], wg[4], we[4], u, w, k0, c0, k1, c1, width, t;
+    size_t sg, se, j, a, s = 0, n = p->k_n;
+    const double *r = p->k_region;
+    if (!(vg >= r[0] && (vg < r[1] || r[1] >= bg) && ve >= r[2] && (ve < r[3] || r[3] >= be)))
+        return c;
+    u = oblq__clamp((gamma - p->k_gamma_0) / p->k_gamma_step, 0.0, (double)(p->k_ng - 1));
+    w = oblq__clamp((e_n - p->k_e_n_0) / p->k_e_n_step, 0.0, (double)(p->k_ne - 1));
+    sg = oblq__stencil4(u, p->k_ng, wg);
+    se = oblq__stencil4(w, p->k_ne, we);
+    for (j = 0; j < n; j++) {
+        double sum = 0.0;
+        for (a = 0; a < 4; a++) {
+            const double *v = p->k_knot + (j * p->k_ng + sg + a) * p->k_ne + se;
+            double inner = we[0] * v[0] + we[1] * v[1] + we[2] * v[2] + we[3] * v[3];
+            sum += wg[a] * inner;
+        }
+        k[j] = sum;
+        if (sum < c) s++; /* the segment of c: the number of knots below it */
+    }
+    k0 = s == 0 ? 0.0 : k[s - 1];
+    c0 = s == 0 ? 0.0 : p->k_c_star[s - 1];
+    k1 = s == n ? 1.0 : k[s];
+    c1 = s == n ? 1.0 : p->k_c_star[s];
+    width = k1 - k0;
+    if (!(width > 0.0)) return c0; /* an empty segment (or NaN) */
+    if (s < n && p->k_grade[s] == 1) {
+        t = (c - k0) / width;
+        return c0 + (c1 - c0) * (1.0 - sqrt(oblq__max0(1.0 - t)));
+    }
+    if (s > 0 && p->k_grade[s - 1] == 2) {
+        t = (c - k0) / width;
+        return c0 + (c1 - c0) * sqrt(oblq__max0(t));
+    }
+    return c0 + (c1 - c0) * (c - k0) / width;
+}
+
 /* The rule of a table with an e_n axis in a region above the line, inside the domain. */
 OBLQ_FN double oblq__eval_in_e(const oblq_table *t, int region, double gamma, double alpha,
                                double e_n) {
@@ -990,6 +1198,7 @@ OBLQ_FN double oblq__eval_in_e(const oblq_table *t, int region, double gamma, do
                      : oblq__partial_coord_e(gamma, alpha, e_n);
     c = oblq__clamp(c, 0.0, 1.0);
     xe = (e_n - t->e_n_min) / (t->e_n_max - t->e_n_min);
+    if (p->k_n) c = oblq__knotted(p, gamma, c, xe, e_n);
     return oblq__clamp(t->pair ? oblq__tensor_pair(p, c, xe) : oblq__tensor3(p, gamma, c, xe),
                        -1.0, 1.0);
 }

@@ -3,7 +3,8 @@
 
 Implements the interpolation rule of docs/table-format.md (steps 1-10, the rule of a table with
 a normal-restitution axis, schema v4, that of the table of one pair, axes 'alpha,e_n', and that
-of a table of Thornton's law, which has no full-slip line: "Tables of Thornton's law") exactly,
+of a table of Thornton's law, which has no full-slip line: "Tables of Thornton's law", with the
+knots of its partial-slip coordinate where the table has them: "The knots") exactly,
 independently of the Rust code, so that it can cross-check both the `oblique-lookup` crate and
 the simulator.
 
@@ -299,13 +300,79 @@ class Warp:
         return self.c_star + (1.0 - self.c_star) * (c - k) / (1.0 - k)
 
 
+MAX_KNOTS = 8  # most knots the group 'knots' may hold
+
+
+class Knots:
+    """The optional knots of the partial-slip coordinate of a table over gamma, alpha, e_n
+    (group /patches/partial_high/knots): kink surfaces K_j(gamma, e_n) sent to fixed c*_j
+    (docs/table-format.md, "The knots"; step 5 with the operations, in the order, it states)."""
+
+    def __init__(self, gamma_0, gamma_step, e_n_0, e_n_step, region, c_star, grade, knot):
+        self.gamma_0 = gamma_0
+        self.gamma_step = gamma_step
+        self.e_n_0 = e_n_0
+        self.e_n_step = e_n_step
+        self.region = region  # [gamma from, gamma to, e_n from, e_n to], root-cell units
+        self.c_star = c_star  # [k] floats
+        self.grade = grade  # [k] ints: 0 none, 1 the segment below graded, 2 the one above
+        self.n_gamma, self.n_e_n = knot.shape[1], knot.shape[2]
+        # knot[j][i] is the row of K_j at gamma_0 + i gamma_step along e_n, as Python floats.
+        self.knot = [[[float(v) for v in row] for row in plane] for plane in knot]
+
+    def applies(self, vg, ve, blocks_gamma, blocks_e_n):
+        """Whether the knots apply at the clamped root-cell positions vg (gamma) and ve (e_n):
+        from <= v < to on both axes, v = to included where to is the last root edge."""
+        r = self.region
+
+        def inside(v, lo, hi, blocks):
+            return v >= lo and (v < hi or hi >= blocks)
+        return inside(vg, r[0], r[1], blocks_gamma) and inside(ve, r[2], r[3], blocks_e_n)
+
+    def line(self, gamma, e_n):
+        """The knot values K_j at (gamma, e_n): the cubic stencils of step 8 on the grid at
+        u = (gamma - gamma_0)/gamma_step and w = (e_n - e_n_0)/e_n_step, each clamped to the
+        grid; r_a = we_0 knot[j, s_g+a, s_e] + ... + we_3 knot[j, s_g+a, s_e+3], then
+        K_j = wg_0 r_0 + ... + wg_3 r_3, both from left to right (from 0)."""
+        u = min(max((gamma - self.gamma_0) / self.gamma_step, 0.0), float(self.n_gamma - 1))
+        w = min(max((e_n - self.e_n_0) / self.e_n_step, 0.0), float(self.n_e_n - 1))
+        sg, wg = cubic_stencil(u, self.n_gamma)
+        se, we = cubic_stencil(w, self.n_e_n)
+        out = []
+        for plane in self.knot:
+            total = 0.0
+            for a in range(4):
+                v = plane[sg + a]
+                inner = we[0] * v[se] + we[1] * v[se + 1] + we[2] * v[se + 2] + we[3] * v[se + 3]
+                total += wg[a] * inner
+            out.append(total)
+        return out
+
+    def apply(self, ks, c):
+        """c -> c' on the line whose knot values are ks (step 5 with knots)."""
+        n = len(ks)
+        s = sum(1 for k in ks if k < c)
+        k0, c0 = (0.0, 0.0) if s == 0 else (ks[s - 1], self.c_star[s - 1])
+        k1, c1 = (1.0, 1.0) if s == n else (ks[s], self.c_star[s])
+        w = k1 - k0
+        if not w > 0.0:  # also a NaN width: the segment is empty
+            return c0
+        if s < n and self.grade[s] == 1:
+            t = (c - k0) / w
+            return c0 + (c1 - c0) * (1.0 - math.sqrt(max(1.0 - t, 0.0)))
+        if s > 0 and self.grade[s - 1] == 2:
+            t = (c - k0) / w
+            return c0 + (c1 - c0) * math.sqrt(max(t, 0.0))
+        return c0 + (c1 - c0) * (c - k0) / w
+
+
 class Patch:
     """One patch held in memory: root cells, quadtree (octree with an e_n axis) and node
     values."""
 
     def __init__(self, name, kind, gamma_lo, gamma_hi, blocks_gamma, blocks_coord,
                  leaf_intervals, tree, p, warp=None, blocks_e_n=None, e_n_range=None,
-                 split=None, pair=False):
+                 split=None, pair=False, knots=None):
         self.name = name
         self.kind = kind
         self.gamma_lo = gamma_lo
@@ -322,6 +389,7 @@ class Patch:
         self.split = split
         # The patch of one pair: gamma_lo = gamma_hi, its tree over (c, e_n) only.
         self.pair = pair
+        self.knots = knots  # Knots or None (only partial_high of a table over gamma, alpha, e_n)
         # Node values as Python floats, flat (leaf, i_gamma, i_c, i_e), for the e_n rule.
         self.flat = [float(v) for v in p.reshape(-1)] if blocks_e_n is not None else None
 
@@ -359,6 +427,21 @@ class Patch:
             total += wg[i] * inner
         # 10. The bound: |P| <= 1.
         return min(max(total, -1.0), 1.0)
+
+    def knotted(self, gamma, c, xe, e_n):
+        """Step 5 with knots: c' of the clamped c where the knots apply (v_gamma =
+        x blocks_gamma and v_e = x_e blocks_e_n clamped as in step 6, inside the region), else
+        c."""
+        k = self.knots
+        if k is None:
+            return c
+        bg, be = float(self.blocks_gamma), float(self.blocks_e_n)
+        x = (gamma - self.gamma_lo) / (self.gamma_hi - self.gamma_lo)
+        vg = min(max(x * bg, 0.0), bg)
+        ve = min(max(xe * be, 0.0), be)
+        if not k.applies(vg, ve, bg, be):
+            return c
+        return k.apply(k.line(gamma, e_n), c)
 
     def find_leaf3(self, gamma, c, xe):
         """Steps 6 and 7 in the octree of a patch with an e_n axis: leaf number and position
@@ -426,7 +509,9 @@ class Patch:
         if self.pair:
             return self.interpolate_pair(c, e_n)
         lo, hi = self.e_n_range
-        leaf, fg, fc, fe = self.find_leaf3(gamma, c, (e_n - lo) / (hi - lo))
+        xe = (e_n - lo) / (hi - lo)
+        c = self.knotted(gamma, c, xe, e_n)
+        leaf, fg, fc, fe = self.find_leaf3(gamma, c, xe)
         m = self.leaf_intervals
         n1 = m + 1
         sg, wg = cubic_stencil(fg * m, n1)
@@ -666,11 +751,10 @@ class Table:
             raise self._invalid(
                 f"{where}: leaf_intervals = {m} gives fewer nodes than stencil_points")
         be = None
-        if "knots" in g:
+        if "knots" in g and (name != "partial_high" or self.e_n_range is None or pair):
             raise self._invalid(
-                f"{where}: group 'knots' (docs/table-format.md, \"The knots\"): this reader "
-                "does not apply knots; query the table with sweep query or the Rust, Python "
-                "or C ABI readers")
+                f"patch '{name}' has a group 'knots': only 'partial_high' of a table over "
+                "gamma, alpha and e_n may have one")
         if self.e_n_range is not None:
             # Root cells along the extra axis: patch attribute blocks_NAME.
             key = f"blocks_{self.axes[2]}"
@@ -739,6 +823,8 @@ class Table:
         if not np.all(np.isfinite(p)):
             raise self._invalid(f"{where}: non-finite value in 'P'")
         warp = self._warp(g, name, lo, hi, bg, bc, tree, num) if "warp" in g else None
+        knots = self._knots(g, name, lo, hi, bg, bc, be, tree, split, num) \
+            if "knots" in g else None
         self._check_nodes(g, where, lo, hi, bg, bc, be, m, tree, split, dims, pair, leaves,
                           shape)
         # The stated error bound of the patch (docs/table-format.md, "The stated error bound"):
@@ -753,7 +839,7 @@ class Table:
                 bound = float(per_leaf.max(initial=0.0))
         self.bounds[name] = bound
         return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp, be, self.e_n_range, split,
-                     pair)
+                     pair, knots)
 
     def _check_nodes(self, g, where, lo, hi, bg, bc, be, m, tree, split, dims, pair, leaves,
                      shape):
@@ -877,6 +963,129 @@ class Table:
                 continue
             stack.extend((t + q, d + 1, 2 * a + q // 2) for q in range(4))
         return Warp(start, gamma_0, gamma_step, c_star, knot)
+
+    def _knots(self, g, name, gamma_lo, gamma_hi, bg, bc, be, tree, split, num):
+        """The optional knots group of partial_high (a table over gamma, alpha, e_n), validated
+        as docs/table-format.md ("The knots") states; each refusal names the field."""
+        where = f"'{name}/knots'"
+        k = g["knots"]
+        if not isinstance(k, h5py.Group):
+            raise self._invalid(f"{where} is not a group")
+
+        def attr(a, allowed, ok):
+            v = num(k.attrs, a, where)
+            if not (math.isfinite(v) and ok(v)):
+                raise self._invalid(f"{where}: attribute '{a}' = {v}: must be {allowed}")
+            return v
+
+        gamma_0 = attr("gamma_0", "finite", lambda v: True)
+        gamma_step = attr("gamma_step", "finite and > 0", lambda v: v > 0)
+        e_n_0 = attr("e_n_0", "finite", lambda v: True)
+        e_n_step = attr("e_n_step", "finite and > 0", lambda v: v > 0)
+
+        def dataset(n, ndim, kinds, what):
+            d = k.get(n)
+            if not isinstance(d, h5py.Dataset) or d.ndim != ndim or d.dtype.kind not in kinds:
+                raise self._invalid(f"{where}: dataset '{n}' missing or not a {what} array")
+            return d[()]
+
+        region = [float(v) for v in dataset("region", 1, "f", "1-D float64")]
+        if len(region) != 4:
+            raise self._invalid(
+                f"{where}: dataset 'region' has {len(region)} values: expected 4 ([gamma from, "
+                "gamma to, e_n from, e_n to])")
+        c_star = [float(v) for v in dataset("c_star", 1, "f", "1-D float64")]
+        grade = [int(v) for v in dataset("grade", 1, "u", "1-D uint8")]
+        knot = np.asarray(dataset("knot", 3, "f", "3-D float64"), dtype=np.float64)
+        nk, ng, ne = knot.shape
+        if not 1 <= nk <= MAX_KNOTS:
+            raise self._invalid(
+                f"{where}: dataset 'knot' holds {nk} knots: must hold 1 to {MAX_KNOTS}")
+        if ng < 4 or ne < 4:
+            raise self._invalid(
+                f"{where}: dataset 'knot' has {ng} x {ne} grid points: must have at least 4 "
+                "along each of gamma and e_n")
+        if len(c_star) != nk or len(grade) != nk:
+            raise self._invalid(
+                f"{where}: datasets 'c_star' and 'grade' have {len(c_star)} and {len(grade)} "
+                f"values: expected {nk}, one per knot")
+        for j, cs in enumerate(c_star):
+            below = c_star[j - 1] if j else 0.0
+            if not below < cs < 1.0:
+                raise self._invalid(
+                    f"{where}: dataset 'c_star'[{j}] = {cs}: must be in ({below}, 1) (strictly "
+                    "increasing in (0, 1))")
+        for j, v in enumerate(grade):
+            if v not in (0, 1, 2):
+                raise self._invalid(
+                    f"{where}: dataset 'grade'[{j}] = {v}: must be 0 (none), 1 (below) or 2 "
+                    "(above)")
+            if j and grade[j - 1] == 2 and v == 1:
+                raise self._invalid(
+                    f"{where}: dataset 'grade': knot {j - 1} is graded 2 (above) and knot {j} "
+                    "1 (below): a segment may be graded at one end only")
+        for i in range(ng):
+            for l in range(ne):
+                below = 0.0
+                for j in range(nk):
+                    v = float(knot[j, i, l])
+                    if not below < v < 1.0:
+                        raise self._invalid(
+                            f"{where}: dataset 'knot'[{j}, {i}, {l}] = {v}: must be in "
+                            f"({below}, 1) (strictly increasing in the knot index, inside "
+                            "(0, 1))")
+                    below = v
+        # The region: finite multiples of 2^-20 in [0, blocks], from < to, per axis.
+        blocks = (bg, be)
+        for axis, axis_name in enumerate(("gamma", "e_n")):
+            lo_r, hi_r = region[2 * axis], region[2 * axis + 1]
+            if not (math.isfinite(lo_r) and math.isfinite(hi_r) and 0.0 <= lo_r < hi_r
+                    <= blocks[axis] and (lo_r * 1048576.0).is_integer()
+                    and (hi_r * 1048576.0).is_integer()):
+                raise self._invalid(
+                    f"{where}: dataset 'region' = {region}: the {axis_name} edges must be "
+                    f"multiples of 2^-20 with 0 <= from < to <= {blocks[axis]} (root cells of "
+                    "the patch)")
+        # The grid covers the region (within 1e-12 of the value).
+        spans = ((gamma_lo, gamma_hi), self.e_n_range)
+        for axis, (axis_name, first, step, n) in enumerate(
+                (("gamma", gamma_0, gamma_step, ng), ("e_n", e_n_0, e_n_step, ne))):
+            a_lo, a_hi = spans[axis]
+            at_from = a_lo + (a_hi - a_lo) * region[2 * axis] / blocks[axis]
+            at_to = a_lo + (a_hi - a_lo) * region[2 * axis + 1] / blocks[axis]
+            end = first + (n - 1) * step
+            slack = 1e-12 * max(abs(at_to), 1.0)
+            if not (first <= at_from + slack and end >= at_to - slack):
+                raise self._invalid(
+                    f"{where}: the knot grid along {axis_name} ('{axis_name}_0' + "
+                    f"i*'{axis_name}_step', {n} points of 'knot') spans [{first}, {end}]: "
+                    f"must cover the region's [{at_from}, {at_to}]")
+        # No leaf straddles an edge of the region along gamma or e_n: walk the octree with the
+        # split masks, each leaf's extent [a/2^d, (a+1)/2^d] in root cells along both axes.
+        stack = []
+        for r in range(bg * bc * be):
+            stack.append((r, 0, r // (bc * be), 0, r % be))
+        while stack:
+            cell, dg, ag, de, ae = stack.pop()
+            t = tree[cell]
+            if t < 0:
+                for axis_name, d, a, lo_r, hi_r in (("gamma", dg, ag, region[0], region[1]),
+                                                    ("e_n", de, ae, region[2], region[3])):
+                    lo_c, hi_c = a / 2.0 ** d, (a + 1) / 2.0 ** d
+                    if lo_c < lo_r < hi_c or lo_c < hi_r < hi_c:
+                        raise self._invalid(
+                            f"{where}: leaf {-t - 1} spans root cells [{lo_c}, {hi_c}] along "
+                            f"{axis_name} across an edge of dataset 'region' = {region}: no "
+                            "leaf may straddle one")
+                continue
+            mask = 7 if split is None else split[cell]
+            halved = [a for a in range(3) if mask >> (2 - a) & 1]
+            for q in range(1 << len(halved)):
+                bits = {a: (q >> (len(halved) - 1 - j)) & 1 for j, a in enumerate(halved)}
+                ndg, nag = (dg + 1, 2 * ag + bits[0]) if 0 in bits else (dg, ag)
+                nde, nae = (de + 1, 2 * ae + bits[2]) if 2 in bits else (de, ae)
+                stack.append((t + q, ndg, nag, nde, nae))
+        return Knots(gamma_0, gamma_step, e_n_0, e_n_step, region, c_star, grade, knot)
 
     def region(self, gamma, alpha, e_n=1.0):
         """Patch name of a query (steps 1 and 3), or 'line' for the exact full-slip line (at

@@ -12,7 +12,9 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use common::size::sized;
-use evaluator::{points_e, random_body, random_impact, rebound_fields, run_ok, status_of};
+use evaluator::{
+    points_e, python_p_e, random_body, random_impact, rebound_fields, run_ok, sealed, status_of,
+};
 use oblique_lookup::rebound::{Body, Incident, Incident3, Motion3, Pair, State};
 use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
 use oblique_physics::regimes::{alpha_c1, alpha_c2, linear_limit};
@@ -527,9 +529,9 @@ fn damaged_truncated_and_foreign_files_are_refused_with_their_code() {
     let hdf5 = std::fs::read(root("tables/quick.h5")).expect("table");
     assert!(case("hdf5", &hdf5).starts_with("3 not an export"));
     let mut newer = good.clone();
-    // 1, 2 (a table with an e_n axis), 3 (the table of one pair) and 4 (Thornton's law) are
-    // known.
-    newer[8] = 5;
+    // 1, 2 (a table with an e_n axis), 3 (the table of one pair), 4 (Thornton's law) and 5
+    // (knots of the partial-slip coordinate) are known.
+    newer[8] = 6;
     assert!(case("newer", &newer).starts_with("4 "));
     // A consistent checksum over inconsistent contents: an offset beyond the end.
     let mut bad = good.clone();
@@ -871,13 +873,6 @@ fn c_rebound_example_agrees_with_the_rust_library() {
 
 /// The table with an e_n axis of [`evaluator::dissipative_table`] and its export, made once
 /// per process.
-/// `b` with its checksum recomputed (an export edited after it was written, resealed).
-fn sealed(mut b: Vec<u8>) -> Vec<u8> {
-    let sum = oblique_table::format::fnv1a64(&b[32..]);
-    b[24..32].copy_from_slice(&sum.to_le_bytes());
-    b
-}
-
 fn dissipative() -> &'static (Table, PathBuf) {
     static T: OnceLock<(Table, PathBuf)> = OnceLock::new();
     T.get_or_init(|| evaluator::dissipative_table(&dir().join("dissipative")))
@@ -894,35 +889,6 @@ fn dissipative_demo() -> &'static (Table, PathBuf) {
         std::fs::write(&path, bytes).expect("write export");
         (t, path)
     })
-}
-
-/// `P(γ, α, e_n)` of the reference reader `scripts/read_table.py` at `pts` (one `repr` a
-/// point, the same text Rust's `{:?}` parses back to the same bits).
-fn python_p_e(table: &Path, pts: &[(f64, f64, f64)]) -> Vec<f64> {
-    let script = "import sys\n\
-                  sys.path.insert(0, sys.argv[1])\n\
-                  from read_table import Table\n\
-                  t = Table(sys.argv[2])\n\
-                  out = []\n\
-                  for line in sys.stdin:\n    \
-                      g, a, e = (float(x) for x in line.split(','))\n    \
-                      out.append(repr(t.p_e(g, a, e)))\n\
-                  sys.stdout.write('\\n'.join(out) + '\\n')\n";
-    let input: String = pts
-        .iter()
-        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
-        .collect();
-    let scripts = root("scripts");
-    let args = [
-        "-c",
-        script,
-        scripts.to_str().expect("path"),
-        table.to_str().expect("path"),
-    ];
-    run_ok(Path::new("python3"), &args, &input)
-        .lines()
-        .map(|l| l.parse().unwrap_or_else(|_| panic!("read_table.py: {l}")))
-        .collect()
 }
 
 /// `P(γ, α, e_n)` with the same bits from every path: `Table::p_e`, the batches
@@ -1234,7 +1200,7 @@ fn damaged_e_n_exports_are_refused_with_their_code() {
     flipped[good.len() / 2] ^= 0x04;
     assert!(case("flipped", &flipped).starts_with("5 "));
     let mut newer = good.clone();
-    newer[8] = 5;
+    newer[8] = 6;
     assert!(case("newer", &newer).starts_with("4 "));
     // Version 4 (Thornton's law) without its flag.
     let mut v4 = good.clone();
@@ -2197,7 +2163,7 @@ fn damaged_pair_exports_are_refused() {
     flipped[good.len() / 2] ^= 0x08;
     assert!(open("flipped", &flipped).starts_with("5 "));
     let mut newer = good.clone();
-    newer[8] = 5;
+    newer[8] = 6;
     assert!(open("newer", &newer).starts_with("4 "));
     let mut v2 = good.clone();
     v2[8] = 2;
@@ -2574,7 +2540,7 @@ fn damaged_thornton_exports_are_refused_with_their_code() {
     };
     assert!(case("good", &good).starts_with("0 ok"));
     let mut newer = good.clone();
-    newer[8] = 5;
+    newer[8] = 6;
     assert!(case("newer", &newer).starts_with("4 "));
     let dir_at = u64::from_le_bytes(good[72..80].try_into().expect("8 bytes")) as usize;
     let partial = dir_at + 160;

@@ -9,7 +9,6 @@ use clap::{Args, ValueEnum};
 use crate::failure::{Failure, Result};
 use oblique_lookup::{OutOfDomain, Table};
 use oblique_table::export;
-use oblique_table::surface::PatchId;
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -75,18 +74,6 @@ pub fn run(args: ExportArgs) -> Result<()> {
         return Err(Failure::usage(format!(
             "--gamma: {} has an e_n axis (e_n in [{lo}, {hi}]); curves P(alpha) hold elastic \
              tables only: export the table without --gamma and query it with oblq_p_e",
-            args.table.display()
-        )));
-    }
-    let knotted = table
-        .surface()
-        .patch_by_id(PatchId::PartialHigh)
-        .is_some_and(|p| p.knots().is_some());
-    if knotted {
-        return Err(Failure::usage(format!(
-            "{}: its partial-slip coordinate has knots (docs/table-format.md, \"The knots\"), \
-             which the export layout does not hold; query this table from Rust, Python or \
-             `sweep query`",
             args.table.display()
         )));
     }

@@ -18,6 +18,8 @@
                                                  (oblq_pair_init_e), two more fields:
                                                  normal_impulse e_n
      eval_check fuzz EXPORT N SEED               N mutated copies through oblq_open and queries
+     eval_check fuzz EXPORT N SEED FROM TO       the same, the bytes and doubles mutated only in
+                                                 [FROM, TO) (a block of the export)
      eval_check headers EXPORT                   every header field set to NaN, +-inf, 0,
                                                  negative, huge, a critical value, the other
                                                  end of its range (resealed): refused with a
@@ -131,6 +133,10 @@ static void reseal(unsigned char *d, size_t n) {
 
 /* Mutate copies of the export (bytes, words, lengths), half of them with the checksum
    recomputed so that the structural checks are exercised; every one that opens is queried. */
+/* The bytes the fuzz mutates (besides header words and the length): [fuzz_from, fuzz_to), or
+   all of them when fuzz_to is 0. */
+static size_t fuzz_from = 0, fuzz_to = 0;
+
 static int fuzz(const unsigned char *orig, size_t n, long count) {
     unsigned char *d = (unsigned char *)malloc(n + 8);
     long k, opened = 0, refused = 0;
@@ -145,7 +151,8 @@ static int fuzz(const unsigned char *orig, size_t n, long count) {
         edits = 1 + next_u64() % 8;
         for (i = 0; i < edits; i++) {
             unsigned long long r = next_u64();
-            size_t at = (size_t)(next_u64() % n);
+            size_t at = fuzz_to > fuzz_from ? fuzz_from + (size_t)(next_u64() % (fuzz_to - fuzz_from))
+                                            : (size_t)(next_u64() % n);
             switch (r % 5) {
             case 0: d[at] ^= (unsigned char)(1u << (r >> 8) % 8); break;
             case 1: d[at] = (unsigned char)(r >> 16); break;
@@ -613,9 +620,17 @@ int main(int argc, char **argv) {
         int rc = headers(d, n);
         free(d);
         return rc;
-    } else if (!strcmp(argv[1], "fuzz") && argc == 5) {
+    } else if (!strcmp(argv[1], "fuzz") && (argc == 5 || argc == 7)) {
         int rc;
         rng_state = strtoull(argv[4], NULL, 10);
+        if (argc == 7) {
+            fuzz_from = (size_t)strtoull(argv[5], NULL, 10);
+            fuzz_to = (size_t)strtoull(argv[6], NULL, 10);
+            if (fuzz_to > n || fuzz_from >= fuzz_to) {
+                fprintf(stderr, "eval_check: fuzz: FROM TO not a block of the export\n");
+                return 2;
+            }
+        }
         rc = fuzz(d, n, atol(argv[3]));
         free(d);
         return rc;

@@ -188,3 +188,69 @@ pub fn status_of(err: &oblique_lookup::LookupError, g: f64, a: f64) -> i32 {
         other => panic!("unexpected refusal: {other}"),
     }
 }
+
+/// `P(γ, α, e_n)` of the reference reader `scripts/read_table.py` at `pts` (one `repr` a
+/// point, the same text Rust's `{:?}` parses back to the same bits).
+pub fn python_p_e(table: &Path, pts: &[(f64, f64, f64)]) -> Vec<f64> {
+    let script = "import sys\n\
+                  sys.path.insert(0, sys.argv[1])\n\
+                  from read_table import Table\n\
+                  t = Table(sys.argv[2])\n\
+                  out = []\n\
+                  for line in sys.stdin:\n    \
+                      g, a, e = (float(x) for x in line.split(','))\n    \
+                      out.append(repr(t.p_e(g, a, e)))\n\
+                  sys.stdout.write('\\n'.join(out) + '\\n')\n";
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?},{a:?},{e:?}\n"))
+        .collect();
+    let scripts = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts");
+    let args = [
+        "-c",
+        script,
+        scripts.to_str().expect("path"),
+        table.to_str().expect("path"),
+    ];
+    run_ok(Path::new("python3"), &args, &input)
+        .lines()
+        .map(|l| l.parse().unwrap_or_else(|_| panic!("read_table.py: {l}")))
+        .collect()
+}
+
+/// `b` with its checksum recomputed (an export edited after it was written, resealed).
+pub fn sealed(mut b: Vec<u8>) -> Vec<u8> {
+    let sum = oblique_table::format::fnv1a64(&b[32..]);
+    b[24..32].copy_from_slice(&sum.to_le_bytes());
+    b
+}
+
+/// The driver `tests/c/eval_check.c` compiled with gcc (C99, warnings as errors, no fused
+/// multiply-add) and the further `flags` (sanitizers) into `exe`.
+pub fn gcc_driver(exe: &Path, flags: &[&str]) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = Command::new("gcc")
+        .args([
+            "-std=c99",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-pedantic",
+            "-O2",
+        ])
+        .args(flags)
+        .arg("-I")
+        .arg(root.join("include"))
+        .arg("-o")
+        .arg(exe)
+        .arg(root.join("tests/c/eval_check.c"))
+        .arg("-lm")
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run gcc ({e}): install it (scripts/setup.sh does)"));
+    assert!(
+        out.status.success(),
+        "gcc tests/c/eval_check.c failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    exe.to_path_buf()
+}

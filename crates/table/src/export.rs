@@ -17,7 +17,11 @@
 //! full-slip line, [`Surface::has_line`]) as version 4: version 2 with the flag `1` at offset
 //! 68 (`0` in versions 1 to 3), whose partial-slip patch covers `0 ≤ α ≤ α_c2` with the
 //! coordinate [`crate::surface::PartialMap::Slip`] (a reader of version 2 only refuses it by its
-//! version instead of answering `α ≤ α_c1` from a line this law does not have).
+//! version instead of answering `α ≤ α_c1` from a line this law does not have); a table with an
+//! `e_n` axis whose partial-slip patch has knots ([`crate::surface::Knots`]) as version 5:
+//! version 2 (flag `0` at offset 68) or version 4 (flag `1`) with the knots in a block named by
+//! the partial-slip record at offset 152 (a reader of version 4 only refuses it by its version
+//! instead of answering from the coordinate without its knots).
 
 use crate::format::fnv1a64;
 use crate::surface::{PatchId, PatchKind, Surface, MAX_INDEX_ENTRIES};
@@ -33,9 +37,19 @@ pub const VERSION_PAIR: u32 = 3;
 /// Layout version of the export of a table without a closed-form full-slip line (Thornton's
 /// law, [`crate::surface::PartialMap::Slip`]): version 2 with the flag [`NO_LINE_AT`] set.
 pub const VERSION_NO_LINE: u32 = 4;
+/// Layout version of the export of a table with an `e_n` axis whose partial-slip coordinate has
+/// knots: version 2 or 4 (the flag [`NO_LINE_AT`] says which) with the knots block.
+pub const VERSION_KNOTS: u32 = 5;
 /// Offset of the `u32` flag of a table without a full-slip line: `1` in version 4, `0` in
-/// versions 1 to 3 (a reader checks it against the version).
+/// versions 1 to 3, either in version 5 (a reader checks it against the version).
 pub const NO_LINE_AT: usize = 68;
+/// Offset, in the record of `partial_high`, of the `u64` offset of its knots block (version 5;
+/// reserved, 0, in every other record and version).
+pub const KNOTS_AT: usize = 152;
+/// Bytes of the knots block before its arrays: `k`, `n_γ`, `n_e` and a reserved `u32`, the
+/// grid's `gamma_0`, `gamma_step`, `e_n_0`, `e_n_step`, the `region` (4 `f64`) and the grades
+/// (`u8[8]`); then `c_star` (`f64[k]`) and the knot values (`f64[k][n_γ][n_e]`).
+pub const KNOTS_HEAD_BYTES: usize = 88;
 /// Bytes of the header (version 1).
 pub const HEADER_BYTES: usize = 96;
 /// Bytes of the header of versions 2, 3 and 4: the version-1 header, then `e_n_min` and
@@ -123,15 +137,17 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 ///
 /// A surface with an `e_n` axis ([`Surface::restitution`]) is written as version 2, the table of
 /// one pair ([`Surface::pair_gamma`]) as version 3, a surface without the full-slip line
-/// ([`Surface::has_line`]: Thornton's law) as version 4; curves belong to elastic tables only.
+/// ([`Surface::has_line`]: Thornton's law) as version 4, and one whose partial-slip patch has
+/// knots as version 5 (with the flag of version 4 when it has no full-slip line); curves belong
+/// to elastic tables only.
 ///
 /// # Panics
 ///
 /// For a surface with an `e_n` axis and `curves` or without `with_surface` (`sweep export`
 /// refuses `--gamma` for such a table before it gets here), and for a surface without the
 /// full-slip line that is not a table with an `e_n` axis over a range of `γ` (which
-/// [`Surface::with_partial_map`] never makes), and for a patch with knots (`sweep export`
-/// refuses such a table).
+/// [`Surface::with_partial_map`] never makes), and for knots in a patch other than the
+/// partial-slip patch of such a table (which [`crate::surface::Patch::new`] refuses).
 pub fn export(
     surface: &Surface,
     error_bound: f64,
@@ -143,15 +159,20 @@ pub fn export(
         axis.is_none() || (with_surface && curves.is_empty()),
         "the export of a table with an e_n axis holds its surface and no curves"
     );
+    let knotted = surface.patches().any(|(_, p)| p.knots().is_some());
     assert!(
-        surface.patches().all(|(_, p)| p.knots().is_none()),
-        "the export layout holds no knots of a coordinate"
+        surface.patches().all(|(_, p)| p.knots().is_none()
+            || (p.kind() == PatchKind::PartialSlip
+                && axis.is_some()
+                && surface.pair_gamma().is_none())),
+        "only the partial-slip patch of a table with an e_n axis over a range of gamma has knots"
     );
     assert!(
         surface.has_line() || (axis.is_some() && surface.pair_gamma().is_none()),
         "only a table with an e_n axis over a range of gamma has no full-slip line"
     );
     let (version, header) = match (axis, surface.pair_gamma(), surface.has_line()) {
+        (Some(_), None, _) if knotted => (VERSION_KNOTS, HEADER_BYTES_E_N),
         (Some(_), None, false) => (VERSION_NO_LINE, HEADER_BYTES_E_N),
         (Some(_), Some(_), _) => (VERSION_PAIR, HEADER_BYTES_E_N),
         (Some(_), None, true) => (VERSION_E_N, HEADER_BYTES_E_N),
@@ -161,7 +182,7 @@ pub fn export(
     v[..8].copy_from_slice(MAGIC);
     put_u32(&mut v, 8, version);
     put_u32(&mut v, 12, header as u32);
-    if version == VERSION_NO_LINE {
+    if !surface.has_line() {
         put_u32(&mut v, NO_LINE_AT, 1);
     }
     if let Some((lo, hi)) = axis {
@@ -239,6 +260,30 @@ pub fn export(
                 put_u32(&mut v, r + 96, w.knot().len() as u32);
                 let k_at = push_f64s(&mut v, w.knot().iter().copied());
                 put_u64(&mut v, r + 104, k_at);
+            }
+            if let Some(k) = p.knots() {
+                // The knots block (version 5): the counts, the grid, the region, the grades,
+                // then `c_star` and the knot values `[k][n_γ][n_e]`.
+                align8(&mut v);
+                let at = v.len();
+                let [n, n_gamma, n_e_n] = k.shape();
+                for x in [n, n_gamma, n_e_n, 0] {
+                    v.extend_from_slice(&(x as u32).to_le_bytes());
+                }
+                let region = k.region();
+                for x in [k.gamma_0(), k.gamma_step(), k.e_n_0(), k.e_n_step()]
+                    .into_iter()
+                    .chain(region)
+                {
+                    v.extend_from_slice(&x.to_le_bytes());
+                }
+                let mut grades = [0u8; crate::surface::MAX_KNOTS];
+                grades[..n].copy_from_slice(&k.grade_values());
+                v.extend_from_slice(&grades);
+                debug_assert_eq!(v.len() - at, KNOTS_HEAD_BYTES);
+                push_f64s(&mut v, k.c_star().iter().copied());
+                push_f64s(&mut v, k.values().iter().copied());
+                put_u64(&mut v, r + KNOTS_AT, at as u64);
             }
         }
     }
