@@ -740,7 +740,7 @@ fn the_estimate_bounds_the_error_at_random_points() {
         let (p2, p4) = (at(2), at(4));
         let reference = p4 + (p4 - p2) / 3.0;
         let coarse = req.accuracy(Accuracy::Tolerance(1e-6)).solve().unwrap();
-        for (tol, s) in [(1e-6, coarse), (1e-8, fine.clone())] {
+        for (tol, s) in [(1e-6, coarse), (1e-8, fine)] {
             let err = (s.p - reference).abs();
             assert!(
                 s.error_estimate >= err,

@@ -39,7 +39,7 @@ fn main() -> anyhow::Result<()> {
         let reference = p4 + (p4 - p2) / 3.0;
         for tol in [1e-6, 1e-8] {
             let s = if tol == 1e-8 {
-                fine.clone()
+                fine
             } else {
                 req.accuracy(Accuracy::Tolerance(tol)).solve()?
             };
