@@ -26,14 +26,20 @@ use normal::{FineMotion, ViscoelasticBodies, ViscoelasticTrajectory};
 use row::ViscoelasticRow;
 
 /// The floor of the Richardson error estimate, as a share of the last raw difference between
-/// levels: 0.5 whatever the ratios of differences (the elastic law's is 0.1 where they are
-/// near 4). The Kelvin–Voigt law can converge at order 2 up to some resolution and at order
-/// 1.5 beyond it, where the order-2 Richardson value keeps 0.2–0.3 of the last difference as
-/// error: at γ = 1.620185, α = 0.335640, e_n = 0.5 the ratios 4.15, 4.22 (to 4096 steps) looked
-/// regular, and a floor of 0.1 accepted tol 1e-8 with an estimate of 9.5e-9 for an error of
-/// 2.9e-8. With 0.1 throughout the estimate also fell below the error at γ = 2.2,
-/// α = 0.98 α_c2, e_n = 0.3 (7.1e-9 for 2.2e-8); both in `crates/solver/tests/kelvin_voigt.rs`.
-pub const RAW_FLOOR: Floor = Floor::fixed(0.5);
+/// levels: the elastic law's ([`crate::elastic::RAW_FLOOR`], 0.1) where the last two ratios of
+/// differences are regular, the law converging at order 2 as the elastic one does (ratios
+/// 3.78–4.25 from 256 to 32 768 steps at γ = 1.620185, α = 0.335640, e_n = 0.5, 3.96–4.00 at
+/// γ = 2.2, α = 0.98, e_n = 0.3; `crates/solver/tests/kelvin_voigt.rs`), and 0.5 elsewhere.
+/// Near separation the constant of the second-order term can change irregularly between
+/// levels (γ = 3.2763, α = 2.5414, e_n = 0.5779: ratios 1.95, 6.63, 1.63, 3.98, 7.77), where
+/// 0.1 put an estimate at 0.78 of its error (tol 1e-8); and before the asymptotic range
+/// (γ = 3.5, α = 1.001 α_c2, e_n = 0.3: ratios −8.0, 51, −0.9 from 256 to 4096 steps) the
+/// Richardson value of 256 and 512 steps erred by 3.5e-6, 0.46 of the last difference
+/// (`crates/solver/tests/extremes.rs`).
+pub const RAW_FLOOR: Floor = Floor {
+    regular: crate::elastic::RAW_FLOOR,
+    irregular: 0.5,
+};
 
 /// Smallest normal restitution the solver takes ([`crate::law`] owns the range).
 pub use crate::law::MIN_RESTITUTION;
@@ -390,10 +396,14 @@ impl TangentialModel for ViscoelasticRow {
     fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
         self.step(m, d1, c)
     }
-    #[inline(always)]
-    fn release_time(&self, _m: &StepMotion, _c: f64) -> Option<f64> {
-        None
-    }
+    // `release_time`: the default, the elastic row's. The springs that entered contact slipping
+    // and kept slipping share one state, `δ = −s c τ ḋ` (`ViscoelasticRow::enter`), and stick
+    // again all at once where `s (δ + τ ẇ) = τ (s ẇ − c ḋ)` falls to 0: where `ẇ = ±c ḋ`, the
+    // elastic row's instant. The friction force has a kink there; splitting the step at it
+    // makes the differences between levels regular (γ = 2.2, α = 0.98, e_n = 0.3: ratios
+    // 4.26, 4.68, 5.43, 2.31, 4.29, 4.69 from 256 to 32 768 steps unsplit, 3.96–4.00 split).
+    // Other slipping springs stick one by one; a split where none of the shared state is left
+    // only costs a step.
     /// While in contact: the viscous part of the end force, `τ ẇ₁` over the stuck length `ℓ_s`,
     /// was taken at the predicted `ẇ₁ = ẇ₀ + h ẅ₀`; solve the trapezoid rule for `ẇ₁` instead
     /// (linear): `f = A (M + τ σ (ẇ₁ − ŵ))`, `ẇ₁ = ẇ₀ + h a_b f`, `σ = ℓ_s/a₁`. The row's

@@ -292,7 +292,14 @@ struct Update {
     /// `ẇ0` (m/s) and `ẅ0` (m/s²): `w` is quadratic over the step.
     vel: f64,
     acc: f64,
-    /// `D0` (m), `Ḋ0` (m/s) and the slope `β` (m/s²) of `Ḋ`, linear over the step.
+    /// `D0` (m), `Ḋ0` (m/s) and the slope `β` (m/s²) of `Ḋ`, linear over the step: `β` the
+    /// slope between the end values of `Ḋ = ḋ + τ d̈`, `Ḋ0` such that `∫₀^h Ḋ dt = D1 − D0`
+    /// exactly (`D` quadratic through both nodes). Next to first touch `d̈ ∝ −√t` (the viscous
+    /// normal force `(3/2) k τ ḋ √d`), where the trapezoid of `Ḋ` errs by `O(h^{3/2})` in the
+    /// first step and `O(h³ t^{−3/2})` in later ones: `O(h^{3/2})` in all, kept by the
+    /// slipping state shared from first touch ([`ViscoelasticRow::enter`]) and passed to the
+    /// whole contact when it sticks again (measured at γ = 2.2, α = 0.98, e_n = 0.3: ratios of
+    /// differences 2.8–2.9 from 1 024 to 32 768 steps; 3.96–4.00 with the exact integral).
     load0: f64,
     load_rate0: f64,
     beta: f64,
@@ -503,7 +510,9 @@ impl ViscoelasticRow {
             self.entry = [-delta, delta];
             self.entry_set = true;
         }
-        let load_rate0 = m.rate0 + tau * m.accel0;
+        let load0 = m.d0 + tau * m.rate0;
+        let beta = (m.rate1 + tau * m.accel1 - (m.rate0 + tau * m.accel0)) / h;
+        let load_rate0 = (load1 - load0) / h - 0.5 * beta * h;
         let up = Update {
             c,
             load: load1,
@@ -512,9 +521,9 @@ impl ViscoelasticRow {
             tau,
             vel,
             acc,
-            load0: m.d0 + tau * m.rate0,
+            load0,
             load_rate0,
-            beta: (m.rate1 + tau * m.accel1 - load_rate0) / h,
+            beta,
             prev: self.frames,
         };
         if finite {
