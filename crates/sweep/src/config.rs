@@ -605,12 +605,16 @@ impl Config {
         if let Some((_, hi)) = d.e_n_range() {
             // Next to the fold curve F₋ the leaves' predictions miss how P leaves its smooth
             // continuation (docs/accuracy.md, "Tables with an e_n axis"): a table that reaches
-            // it must measure those leaves (nodes.probe_kinks), else its bound would not hold.
+            // it must measure those leaves (nodes.probe_kinks) or put F₋ on a cell edge
+            // (nodes.knots, the Kelvin–Voigt law over a range of γ), else its bound would not
+            // hold.
             let free = oblique_solver::history::fold_minus_free_below(hi);
-            if d.gamma_max >= free && !n.probe_kinks {
+            let aligned = n.knots && law == oblique_solver::Law::KelvinVoigt && !pair;
+            if d.gamma_max >= free && !n.probe_kinks && !aligned {
                 let fix = if crate::kink::probes_implemented(law) {
-                    "set nodes.probe_kinks = true (its leaves are then measured next to F-), or \
-                     lower it or e_n_max"
+                    "set nodes.probe_kinks = true (its leaves are then measured next to F-) or, \
+                     for the kelvin-voigt law over a range of gamma, nodes.knots = true (F- on a \
+                     cell edge), or lower it or e_n_max"
                 } else {
                     "lower it or e_n_max"
                 };
@@ -622,7 +626,7 @@ impl Config {
                     },
                     d.gamma_max.to_string(),
                     format!(
-                        "< {free} with e_n_max = {hi} and nodes.probe_kinks = false: from there \
+                        "< {free} with e_n_max = {hi}, nodes.probe_kinks and nodes.knots false: from there \
                          on P has the fold curve F- (born at gamma 2.37 for e_n = 1, later for \
                          lower e_n, none up to 3.6 for e_n <= 0.8), next to which a table with \
                          an e_n range does not hold its stated bound unless it measures the \
@@ -870,6 +874,20 @@ tol = 1e-6
         };
         assert!(probed("gamma_min = 1.0\ngamma_max = 2.6").is_ok());
         assert!(probed("gamma = 2.5").is_ok());
+        // With F₋ on a cell edge (the knots) too, over a range of γ; not for one pair.
+        let knotted = |gamma: &str| {
+            let text = GOOD
+                .replace("gamma_min = 0.1\ngamma_max = 3.5", gamma)
+                .replace(
+                    "alpha_max = \"inf\"",
+                    &format!("alpha_max = \"inf\"\n{near_one}"),
+                )
+                .replace("target_error = 1e-5", "target_error = 1e-5\nknots = true")
+                .replace("tol = 1e-6", "tol = 1e-6\nlaw = \"kelvin-voigt\"");
+            Config::parse(&text, "x.toml").map_err(|e| e.to_string())
+        };
+        assert!(knotted("gamma_min = 1.0\ngamma_max = 2.6").is_ok());
+        assert!(knotted("gamma = 2.5").is_err());
     }
 
     #[test]
