@@ -221,13 +221,14 @@ impl Patch {
         Ok(patch)
     }
 
-    /// The same patch with other node values and error estimates, checked as by
+    /// The same patch with other node values, error estimates, warp and knots, checked as by
     /// [`Patch::new`].
     fn remade(
         &self,
         p: Vec<f64>,
         error_estimate: Vec<f64>,
         warp: Option<Warp>,
+        knots: Option<Knots>,
     ) -> Result<Patch, String> {
         Patch::new(
             self.kind,
@@ -239,7 +240,7 @@ impl Patch {
                 p,
                 error_estimate,
                 warp,
-                knots: self.knots.clone(),
+                knots,
             },
         )
     }
@@ -249,7 +250,12 @@ impl Patch {
     pub fn map_values(&self, f: impl FnMut(usize, f64) -> f64) -> Result<Patch, String> {
         let mut f = f;
         let p = self.p.iter().enumerate().map(|(i, &v)| f(i, v)).collect();
-        self.remade(p, self.error_estimate.clone(), self.warp.clone())
+        self.remade(
+            p,
+            self.error_estimate.clone(),
+            self.warp.clone(),
+            self.knots.clone(),
+        )
     }
 
     /// The same patch with other error estimates (`f(i, e_i)` at node `i`), checked as by
@@ -264,12 +270,22 @@ impl Patch {
             .enumerate()
             .map(|(i, &v)| f(i, v))
             .collect();
-        self.remade(self.p.clone(), error_estimate, self.warp.clone())
+        self.remade(
+            self.p.clone(),
+            error_estimate,
+            self.warp.clone(),
+            self.knots.clone(),
+        )
     }
 
     /// The same patch with another warp (or none), checked as by [`Patch::new`].
     pub fn with_warp(&self, warp: Option<Warp>) -> Result<Patch, String> {
-        self.remade(self.p.clone(), self.error_estimate.clone(), warp)
+        self.remade(
+            self.p.clone(),
+            self.error_estimate.clone(),
+            warp,
+            self.knots.clone(),
+        )
     }
 
     /// The axes, in order: `γ`, the coordinate `c` of `α`, and `e_n` if the patch has one.
@@ -698,23 +714,6 @@ impl Patch {
     /// The knots of the coordinate, if any.
     pub fn knots(&self) -> Option<&Knots> {
         self.knots.as_ref()
-    }
-
-    /// The same patch with other knots (or none), checked as by [`Patch::new`].
-    pub fn with_knots(&self, knots: Option<Knots>) -> Result<Patch, String> {
-        Patch::new(
-            self.kind,
-            self.axes.clone(),
-            PatchData {
-                leaf_intervals: self.leaf_intervals,
-                tree: self.tree.clone(),
-                split: self.split.clone(),
-                p: self.p.clone(),
-                error_estimate: self.error_estimate.clone(),
-                warp: self.warp.clone(),
-                knots,
-            },
-        )
     }
 
     /// Check the patch's knots, if any, against the patch: the region inside the root cells
