@@ -162,8 +162,9 @@ pub const FIT_TOL: f64 = 1e-4;
 /// polynomial of degree [`FIT_DEGREE`] in each variable (least squares over the traced nodes,
 /// within [`FIT_TOL`] of each), which continues it smoothly where F₋ does not exist (beyond
 /// its end along `e_n` and below its birth along γ, where `P` is smooth and any smooth knot
-/// does), tabulated over the box of root cells that holds every traced node (edges rounded
-/// outwards to a sixteenth of a root cell), sent to the root-cell edge `c*` nearest to its
+/// does), tabulated over the box of root cells that holds every traced node and reaches
+/// [`BOX_MARGIN`] below them in γ and `e_n` (edges rounded outwards to a sixteenth of a root
+/// cell), sent to the root-cell edge `c*` nearest to its
 /// middle and graded above (`P` departs from its smooth continuation like `(α − α_F)^{3/2}`
 /// above F₋). `None` when the domain holds no F₋. `map` is the table's partial-slip map,
 /// `alpha_max` its `α_max`.
@@ -244,8 +245,8 @@ pub fn fold_minus_knots(
     let pos = |v: f64, lo: f64, hi: f64, blocks: usize| {
         ((v - lo) / (hi - lo) * blocks as f64).clamp(0.0, blocks as f64)
     };
-    let from_g = (pos(g0, gl, gh, bg) * 16.0).floor() / 16.0;
-    let from_e = (pos(e0, el, eh, be) * 16.0).floor() / 16.0;
+    let from_g = (pos(g0 - BOX_MARGIN, gl, gh, bg) * 16.0).floor() / 16.0;
+    let from_e = (pos(e0 - BOX_MARGIN, el, eh, be) * 16.0).floor() / 16.0;
     let region = [from_g, bg as f64, from_e, be as f64];
     let g_from = gl + (gh - gl) * from_g / bg as f64;
     let e_from = el + (eh - el) * from_e / be as f64;
@@ -302,6 +303,12 @@ pub fn fold_minus_knots(
     .map(Some)
     .map_err(|what| fail(gl, el, what))
 }
+
+/// How far below the lowest traced γ and `e_n` of F₋ its knot's box reaches (before rounding
+/// outwards to a sixteenth of a root cell): where F₋ is born and where it ends along `e_n`, `P`
+/// bends sharply over a short range without a fold yet, and a knot there (the fit's smooth
+/// continuation) keeps those leaves away from a cell that straddles the box's edge.
+pub const BOX_MARGIN: f64 = 0.02;
 
 /// Grid spacings of the F₋ knot (those of the traced surface).
 const STEP_F_MINUS_GAMMA: f64 = 0.01;
