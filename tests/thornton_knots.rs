@@ -60,6 +60,17 @@ fn solve(gamma: f64, alpha: f64, e_n: f64) -> f64 {
         .p
 }
 
+/// The re-slip fold `α_R` and the switch fold `α_S` at `(γ, e_n)`, located at 4096 steps.
+fn folds(gamma: f64, e_n: f64) -> (f64, f64) {
+    let ar = reslip_fold_thornton(gamma, e_n, 4096)
+        .expect("solve")
+        .expect("alpha_R");
+    let as_ = switch_fold_thornton(gamma, e_n, 4096)
+        .expect("solve")
+        .expect("alpha_S");
+    (ar, as_)
+}
+
 #[test]
 fn the_folds_lie_on_the_knots_cell_edges() {
     let table = Table::open(table()).expect("open");
@@ -82,12 +93,7 @@ fn the_folds_lie_on_the_knots_cell_edges() {
         let c_of =
             |a: f64| PatchKind::PartialSlip.coord_at(PartialMap::Slip, g, a, e, f64::INFINITY);
         let line = patch.knots_at(g, e).expect("inside the knots' region");
-        let ar = reslip_fold_thornton(g, e, 4096)
-            .expect("solve")
-            .expect("alpha_R");
-        let as_ = switch_fold_thornton(g, e, 4096)
-            .expect("solve")
-            .expect("alpha_S");
+        let (ar, as_) = folds(g, e);
         // The knots (in c) where the folds are, to the tracing's resolution (2048 steps) and
         // the interpolation between the grid's points: within 2e-6 up to e_n 0.95, 1.1e-5 at
         // 0.975 next to the region's top, where α_R(e_n) steepens (it tends to 2/7 as e_n → 1).
@@ -118,12 +124,7 @@ fn the_table_holds_its_bound_next_to_the_folds() {
     assert!(bound > 0.0 && bound < 3e-4, "bound {bound:e}");
     let mut worst: f64 = 0.0;
     for &(g, e) in &[(1.63, 0.82), (1.754, 0.9), (1.79, 0.96)] {
-        let ar = reslip_fold_thornton(g, e, 4096)
-            .expect("solve")
-            .expect("alpha_R");
-        let as_ = switch_fold_thornton(g, e, 4096)
-            .expect("solve")
-            .expect("alpha_S");
+        let (ar, as_) = folds(g, e);
         for a in [ar, 2.0 / 7.0, as_] {
             for f in [0.98, 0.995, 0.9995, 1.0005, 1.005, 1.02] {
                 let got = table.p_e(g, a * f, e).expect("inside the table");
