@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use crate::elastic::RAW_FLOOR;
+use crate::elastic::FLOOR;
 use crate::error::{positive, PhysicsError};
 use crate::impact::{ladder_start, memory_bytes, plan, work, Limits, Scheme};
 use crate::law::Floor;
@@ -199,24 +199,55 @@ fn estimate(values: &[f64], order: i32) -> f64 {
 
 /// Richardson extrapolation of the last two values for order `p` and its error estimate:
 /// `R_k = P_k + (P_k − P_{k−1})/(2^p − 1)`, estimated by
-/// `max(|R_k − R_{k−1}|, 0.1 |P_k − P_{k−1}|)`. Measured on 32 points spanning every regime
-/// (γ 0.3–3.5, α from just above the linear limit to ∞, 128–8192 steps): never below the true
-/// error where that error exceeds the 2e-8 accuracy of the reference (`tools/src/bin/estim.rs`).
+/// `max(|R_k − R_{k−1}|, s |P_k − P_{k−1}|)`, the share `s` the law's floor (0.1 for the
+/// elastic law), raised by [`tail_share`] where the regular ratios are away from `2^p`. Measured on
+/// 32 points spanning every regime (γ 0.3–3.5, α from just above the linear limit to ∞,
+/// 128–8192 steps): never below the true error where that error exceeds the 2e-8 accuracy of
+/// the reference (`tools/src/bin/estim.rs`).
 fn extrapolate(values: &[f64], order: i32, floor: Floor) -> (f64, f64) {
     let r = 2f64.powi(order) - 1.0;
     let n = values.len();
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / r;
     let last = rich(n - 1);
-    let share = if floor.regular == floor.irregular || !regular(values, order) {
-        floor.irregular
+    let share = if regular(values, order) {
+        floor.regular.max(tail_share(values, order))
     } else {
-        floor.regular
+        floor.irregular
     };
     let est = (last - rich(n - 2))
         .abs()
         .max(share * (values[n - 1] - values[n - 2]).abs());
     (last, est)
 }
+
+/// The share of the last raw difference `d = P_k − P_{k−1}` by which the Richardson value
+/// misses the limit if the differences go on shrinking at one of the last two ratios `q`, with
+/// a margin of [`TAIL_MARGIN`]: `1.5 |2^p − q| / ((2^p − 1)(q − 1))`, the larger of the two.
+/// The extrapolation assumes the nominal ratio `2^p` (the rest of the error `d/(2^p − 1)`),
+/// while at a steady ratio `q` the rest is `d/(q − 1)`: 0.111 |d| off at `q = 3.25` or 5.5,
+/// beyond the elastic law's floor of 0.1 |d|.
+///
+/// At γ = 1.754, α = 1 (elastic, tol 1e-8) the ratios before 4096 steps were 3.25 and 3.75
+/// and the Richardson value erred by 3.00e-9 = 0.115 |d|, above that floor (estimate 2.61e-9);
+/// this share is 0.167 there (estimate 4.31e-9). Over 761 regular levels of 159 points
+/// (`cargo run --release -p oblique-tools --bin ladder -- 150 7 11`, against the Richardson
+/// value of the two finest levels) no other level needed more than 0.031 |d|.
+fn tail_share(values: &[f64], order: i32) -> f64 {
+    let n = values.len();
+    if n < 4 {
+        return 0.0;
+    }
+    let r = 2f64.powi(order);
+    let d = |k: usize| values[k] - values[k - 1];
+    [d(n - 2) / d(n - 1), d(n - 3) / d(n - 2)]
+        .iter()
+        .filter(|&&q| q > 1.0)
+        .map(|&q| TAIL_MARGIN * (r - q).abs() / ((r - 1.0) * (q - 1.0)))
+        .fold(0.0, f64::max)
+}
+
+/// Margin on the rest of a convergence at a ratio seen ([`tail_share`]).
+const TAIL_MARGIN: f64 = 1.5;
 
 /// Whether the last two ratios of successive differences of `values` are within
 /// `[0.75, 1.375] · 2^order`.
@@ -299,15 +330,7 @@ pub fn refine_observed(
     run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
-    refine_core(
-        base,
-        (order, Floor::fixed(RAW_FLOOR)),
-        tol,
-        richardson,
-        limits,
-        run,
-        observer,
-    )
+    refine_core(base, (order, FLOOR), tol, richardson, limits, run, observer)
 }
 
 /// [`refine_observed`] with the floor of the Richardson estimate as a share of the last raw

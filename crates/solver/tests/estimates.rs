@@ -184,11 +184,10 @@ fn convergence_gamma_3_no_slip() {
 }
 
 /// `solve` with a tolerance: the true error, measured against a run at ≥ 4x the returned
-/// resolution (and ≥ 8192 steps), must not exceed the tolerance, nor 1.5 times the reported
-/// error estimate. The estimate is a heuristic, not a bound: the worst measured is
-/// γ = 1.754, α = 1 at tol 1e-4, accepted at 256 steps with an estimate of 1.15e-6 and a true
-/// error of 1.50e-6 (1.31×, 70× below the tolerance); `examples/solvecheck.rs` found one more
-/// (1.2×) among 200 random points at 2e-6.
+/// resolution (and ≥ 8192 steps), must not exceed the tolerance nor the reported error
+/// estimate. γ = 1.754, α = 1 at tol 1e-4 is accepted at 256 steps after differences that
+/// turn (ratios −6.3, 4.13) with a true error of 1.50e-6: a floor of 0.1 of the last
+/// difference stated 1.15e-6 there (1.31× below), the irregular floor of 0.2 states 2.3e-6.
 #[test]
 fn error_estimate_bounds_the_true_error() {
     let points = [
@@ -232,7 +231,7 @@ fn error_estimate_bounds_the_true_error() {
                 err <= tol,
                 "gamma = {g}, alpha = {a}: error {err:e} > tol {tol:e}"
             );
-            if err > 1.5 * s.error_estimate {
+            if err > s.error_estimate {
                 failures.push(format!(
                     "gamma = {g}, alpha = {a}, tol = {tol:e}: |P - P_ref| = {err:.3e} > \
                      estimate {:.3e} (x{:.2}) at {} steps",
@@ -245,9 +244,39 @@ fn error_estimate_bounds_the_true_error() {
     }
     assert!(
         failures.is_empty(),
-        "{} of {checked} error estimates are below 1/1.5 of the true error:\n{}",
+        "{} of {checked} error estimates are below the true error:\n{}",
         failures.len(),
         failures.join("\n")
+    );
+}
+
+/// Where the differences shrink regularly but below the nominal ratio 4 (3.25 and 3.75 before
+/// 4096 steps at γ = 1.754, α = 1), the Richardson value keeps more of the error than it
+/// assumes: at tol 1e-8 it erred by 3.00e-9 against a tol 1e-10 reference while a floor of
+/// 0.1 of the last difference stated 2.61e-9. The share of a tail at the ratios seen states
+/// 4.3e-9.
+#[test]
+fn the_estimate_covers_a_tail_slower_than_the_order() {
+    let solve = |tol: f64| {
+        Request::new(1.754, 1.0)
+            .accuracy(Accuracy::Tolerance(tol))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap()
+    };
+    let reference = solve(1e-10);
+    let s = solve(1e-8);
+    let err = (s.p - reference.p).abs();
+    assert!(
+        err > 2.0 * reference.error_estimate,
+        "the reference is not fine enough to measure {err:e}"
+    );
+    assert!(
+        err <= s.error_estimate,
+        "|P - P_ref| = {err:.3e} > estimate {:.3e} at {} steps",
+        s.error_estimate,
+        s.resolution.steps
     );
 }
 
