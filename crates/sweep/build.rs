@@ -5,7 +5,10 @@
 //! would never exist and the script would rerun, and the binary relink, on every build. A
 //! commit rewrites the branch's ref file (`refs/heads/NAME`) and appends to `logs/HEAD`, but
 //! changes neither `HEAD` nor the mtime of the folder `refs`: both are watched too, or a binary
-//! built before a commit would keep naming the earlier commit.
+//! built before a commit would keep naming the earlier commit. The workspace's sources
+//! (`crates/`, `Cargo.toml`, `Cargo.lock`) are watched as well: an edit that is not yet
+//! committed changes none of git's files, and a binary built from it must say `-dirty`, not
+//! name the commit it does not match.
 use std::process::Command;
 
 fn git(args: &[&str]) -> Option<String> {
@@ -27,6 +30,13 @@ fn main() {
     let suffix = if dirty { "-dirty" } else { "" };
     println!("cargo:rustc-env=OBLIQUE_GIT_COMMIT={commit}{suffix}");
     println!("cargo:rerun-if-changed=build.rs");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for name in ["crates", "Cargo.toml", "Cargo.lock"] {
+        let path = root.join(name);
+        if path.exists() {
+            println!("cargo:rerun-if-changed={}", path.display());
+        }
+    }
     if let Some(dir) = git(&["rev-parse", "--absolute-git-dir"]) {
         let branch = git(&["symbolic-ref", "-q", "HEAD"]);
         let names = ["HEAD", "index", "refs", "packed-refs", "logs/HEAD"];
