@@ -80,6 +80,55 @@ fn verify_holds_the_stated_bound_at_random_gamma_alpha_e_n() {
     assert!(text.contains("points above it: 0"), "{text}");
 }
 
+/// `nodes.polish_tol` solves again the nodes that hold a leaf's bound up: the same small table
+/// with `polish_tol = 4e-6` states at most `target_error + Λ_4³ · 4e-6`, where the unpolished
+/// one states more (its node term is up to `Λ_4³ · solver.tol`), the same held-out checks
+/// hold, direct simulations stay within the smaller bound, and a polish tolerance not below
+/// `solver.tol` is refused by name.
+#[test]
+fn polished_nodes_lower_the_stated_bound_and_it_holds() {
+    const BODY: &str = "[domain]\ngamma_min = 1.3\ngamma_max = 1.6\ne_n_min = 0.7\n\
+                        e_n_max = 1.0\n[nodes]\ntarget_error = 4e-4\nleaf_intervals = 6\n\
+                        blocks_coord = 2\n[solver]\ntol = 4e-5\n[checks]\nper_patch = 30\n";
+    let bound = |path: &Path| -> f64 {
+        let v = json(&["inspect", path.to_str().expect("path"), "--json"]);
+        v["error_bound"].as_f64().expect("error_bound")
+    };
+    let limit = 4e-4 + 1.631_1_f64.powi(3) * 4e-6;
+    let plain = bound(table());
+    assert!(
+        plain > limit * 1.05,
+        "the unpolished bound {plain:e} is already below {limit:e}"
+    );
+    let polished = common::build_table(
+        "dissipative-polish",
+        "kv-polished",
+        &BODY.replace(
+            "leaf_intervals = 6",
+            "leaf_intervals = 6\npolish_tol = 4e-6",
+        ),
+    );
+    let b = bound(&polished);
+    assert!(b <= limit, "polished bound {b:e} above {limit:e}");
+    let p = polished.to_str().expect("path");
+    let text = ok(&[
+        "verify", p, "--points", "60", "--seed", "3", "--quiet", "--tol", "1e-8",
+    ]);
+    assert!(text.contains("points above it: 0"), "{text}");
+    let cfg = polished.with_file_name("kv-polish-refused.toml");
+    let out = polished.with_file_name("kv-polish-refused.h5");
+    let text = format!(
+        "output = {:?}\n{}",
+        out.display().to_string(),
+        BODY.replace(
+            "leaf_intervals = 6",
+            "leaf_intervals = 6\npolish_tol = 4e-5"
+        )
+    );
+    std::fs::write(&cfg, text).expect("write config");
+    refused(&["run", cfg.to_str().expect("path")], &["nodes.polish_tol"]);
+}
+
 #[test]
 fn query_answers_the_line_exactly_and_the_patches_within_the_bound() {
     // Full slip below alpha_c1(gamma, e_n): 1 - (7/2)(1 + e_n) alpha, exactly.

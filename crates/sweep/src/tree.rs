@@ -826,6 +826,11 @@ pub(crate) fn build_patch(
         }
         open = next;
     }
+    if let Some(tol) = cfg.nodes.polish_tol {
+        polish(
+            &layout, &cells, &child, &predicted, &mut cache, tol, cfg, progress, opts,
+        )?;
+    }
     if shard.is_some() {
         return Ok(None);
     }
@@ -895,6 +900,57 @@ pub(crate) fn build_patch(
         unique_nodes: cache.len(),
         simulated,
     }))
+}
+
+/// Solve again, at `tol`, the nodes that hold a leaf's bound above `target_error + Λ^d · tol`
+/// (`nodes.polish_tol`): in every leaf (a cell this run evaluated and did not split) whose
+/// `predicted + Λ^d · max error_estimate` exceeds that, each node whose estimate exceeds `tol`.
+/// Afterwards every leaf's bound is at most `target_error + Λ^d · tol`: the predicted error
+/// of a leaf is at most `target_error`, and its nodes' estimates at most `tol` or unchanged
+/// where the bound was already below. The values replace the nodes' first ones in `cache`
+/// (the more accurate answer at the same point); a shard polishes the leaves of its own roots,
+/// so that a strict merge finds every value it needs in the store.
+#[allow(clippy::too_many_arguments)]
+fn polish(
+    layout: &Layout,
+    cells: &[Cell],
+    child: &[Option<usize>],
+    predicted: &[f64],
+    cache: &mut HashMap<Key, (f64, f64)>,
+    tol: f64,
+    cfg: &Config,
+    progress: &dyn Progress,
+    opts: RunOptions,
+) -> Result<(), RunError> {
+    let factor = oblique_table::bound::node_error_factor_of(cfg.nodes.stencil, layout.dims());
+    let limit = cfg.nodes.target_error + factor * tol;
+    let mut wanted: Vec<Key> = Vec::new();
+    for (c, cell) in cells.iter().enumerate() {
+        if child[c].is_some() || !predicted[c].is_finite() {
+            continue;
+        }
+        let keys = layout.cell_keys(*cell);
+        let worst = keys.iter().map(|k| cache[k].1).fold(0.0, f64::max);
+        if predicted[c] + factor * worst > limit {
+            wanted.extend(keys.into_iter().filter(|k| cache[k].1 > tol));
+        }
+    }
+    wanted.sort_unstable();
+    wanted.dedup();
+    if wanted.is_empty() {
+        return Ok(());
+    }
+    progress.phase(
+        &stage_refine(layout.spec.name),
+        &format!(
+            "polish: {} nodes again at tol {tol:e} (stated bound <= {limit:.2e})",
+            wanted.len()
+        ),
+    );
+    let points: Vec<Point> = wanted.iter().map(|&key| layout.point(key).2).collect();
+    let values = solve_points_with(&points, tol, cfg.law(), progress, opts)?;
+    cache.extend(wanted.into_iter().zip(values));
+    Ok(())
 }
 
 #[cfg(test)]
