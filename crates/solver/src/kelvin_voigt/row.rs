@@ -69,18 +69,26 @@ fn sign_index(kind: Kind) -> usize {
     usize::from(kind == Kind::Minus)
 }
 
+/// Whether [`push_slip`] merges the slipping piece `p` into `last`: the same kind, adjacent,
+/// both holding the same uniform state.
+#[inline]
+fn merges(last: &Piece, p: &Piece) -> bool {
+    // The test that fails first for most pieces (those of a clipped stuck piece) first.
+    p.b == 0.0
+        && p.q == 0.0
+        && last.b == 0.0
+        && last.q == 0.0
+        && last.kind == p.kind
+        && last.kind != Kind::Stuck
+        && last.y1 == p.y0
+        && last.a == p.a
+}
+
 /// Append a slipping piece, merged into the last one when both hold the same uniform state
 /// (the entry state: every spring that entered slipping and kept slipping).
 fn push_slip(out: &mut Vec<Piece>, p: Piece, c: f64, r: f64) {
     if let Some(last) = out.last_mut() {
-        if last.kind == p.kind
-            && last.y1 == p.y0
-            && last.b == 0.0
-            && last.q == 0.0
-            && p.b == 0.0
-            && p.q == 0.0
-            && last.a == p.a
-        {
+        if merges(last, &p) {
             last.y1 = p.y1;
             last.x1 = p.x1;
             refresh(last, c, r);
@@ -138,20 +146,26 @@ impl PieceChunk for Chunk {
 
 impl Chunk {
     fn summarize(&mut self) {
-        self.rel_integral = 0.0;
-        self.stuck_length = 0.0;
-        self.upper = f64::NEG_INFINITY;
-        self.lower = f64::INFINITY;
-        self.slipping = [0; 2];
-        self.slip_length = [0.0; 2];
-        self.slip_cube = [0.0; 2];
-        self.plus_min = f64::INFINITY;
-        self.minus_max = f64::NEG_INFINITY;
-        let pieces = std::mem::take(&mut self.pieces);
+        // Summed in a local (in registers, not stored back piece by piece), in the order of
+        // the pieces.
+        let mut sums = Chunk {
+            pieces: std::mem::take(&mut self.pieces),
+            rel_integral: 0.0,
+            stuck_length: 0.0,
+            upper: f64::NEG_INFINITY,
+            lower: f64::INFINITY,
+            slipping: [0; 2],
+            slip_length: [0.0; 2],
+            slip_cube: [0.0; 2],
+            plus_min: f64::INFINITY,
+            minus_max: f64::NEG_INFINITY,
+        };
+        let pieces = std::mem::take(&mut sums.pieces);
         for p in &pieces {
-            self.add(p);
+            sums.add(p);
         }
-        self.pieces = pieces;
+        sums.pieces = pieces;
+        *self = sums;
     }
 
     /// A chunk of no piece, its sums those of nothing.
@@ -742,17 +756,44 @@ impl ViscoelasticRow {
         let mut out = std::mem::take(&mut self.spare);
         out.clear();
         let old = std::mem::take(&mut self.chunks[k].pieces);
-        for &p in &old {
-            match p.kind {
-                Kind::Stuck => {
-                    if p.upper > t_plus || p.lower < t_minus {
-                        self.clip(p, up, &mut out);
-                    } else {
-                        out.push(p);
-                    }
+        let (c, r) = (up.c, self.radius);
+        let [plus, minus] = self.frames;
+        // A piece that this step leaves as it is: a stuck one within the limits, a slipping one
+        // that keeps slipping as a whole (the test of `release`).
+        let unchanged = |p: &Piece| match p.kind {
+            Kind::Stuck => !(p.upper > t_plus || p.lower < t_minus),
+            Kind::Plus => plus.actual(p.lower) + up.viscous > 0.0,
+            Kind::Minus => minus.actual(p.upper) + up.viscous < 0.0,
+        };
+        let mut i = 0;
+        while i < old.len() {
+            let p = old[i];
+            if !unchanged(&p) {
+                if p.kind == Kind::Stuck {
+                    self.clip(p, up, &mut out);
+                } else {
+                    self.release(p, up, &mut out, None);
                 }
-                Kind::Plus | Kind::Minus => self.release(p, up, &mut out, None),
+                i += 1;
+                continue;
             }
+            if p.kind == Kind::Stuck {
+                out.push(p);
+            } else {
+                push_slip(&mut out, p, c, r);
+            }
+            // The unchanged pieces after it go over as they are, in one copy, up to the first
+            // that `push_slip` would merge into its predecessor. A merged piece agrees with the
+            // last piece merged into it in everything that test reads (kind, upper end, zero
+            // `b` and `q`, `a`), so comparing with the previous old piece is comparing with
+            // the last piece out.
+            let run = old[i + 1..]
+                .iter()
+                .zip(&old[i..])
+                .take_while(|&(q, prev)| unchanged(q) && !merges(prev, q))
+                .count();
+            out.extend_from_slice(&old[i + 1..i + 1 + run]);
+            i += 1 + run;
         }
         self.spare = old;
         self.install(k, out)
