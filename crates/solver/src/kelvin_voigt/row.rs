@@ -53,8 +53,21 @@ fn refresh(p: &mut Piece, c: f64, r: f64) {
     match p.kind {
         Kind::Stuck => Piece::refresh(p, c, r),
         Kind::Plus | Kind::Minus => {
-            p.upper = p.extremum(0.0, true);
-            p.lower = p.extremum(0.0, false);
+            // `extremum(0, ·)` both at once: δ̃ at both ends and at the vertex inside, the
+            // same values (that adds `0 · y`: at most the sign of a zero differs, which only
+            // comparisons read).
+            let (v0, v1) = (p.value(p.y0), p.value(p.y1));
+            let (mut upper, mut lower) = (v0.max(v1), v0.min(v1));
+            if p.q != 0.0 {
+                let y = p.y_ref - p.b / (2.0 * p.q);
+                if y > p.y0 && y < p.y1 {
+                    let v = p.value(y);
+                    upper = upper.max(v);
+                    lower = lower.min(v);
+                }
+            }
+            p.upper = upper;
+            p.lower = lower;
         }
     }
 }
@@ -96,6 +109,24 @@ fn push_slip(out: &mut Vec<Piece>, p: Piece, c: f64, r: f64) {
         }
     }
     out.push(p);
+}
+
+/// `*bound = bound.max(v)` for the bounds of a chunk, which only comparisons read: a NaN `v`
+/// leaves the bound as `max` does, and where the two differ (the sign of a zero) no comparison
+/// tells them apart. A compare and a move instead of `max` and its NaN handling.
+#[inline]
+fn raise(bound: &mut f64, v: f64) {
+    if v > *bound {
+        *bound = v;
+    }
+}
+
+/// `*bound = bound.min(v)`, as [`raise`].
+#[inline]
+fn lower_to(bound: &mut f64, v: f64) {
+    if v < *bound {
+        *bound = v;
+    }
 }
 
 /// Consecutive pieces with the sums a step needs.
@@ -179,15 +210,15 @@ impl Chunk {
     fn absorb(&mut self, o: &Chunk) {
         self.rel_integral += o.rel_integral;
         self.stuck_length += o.stuck_length;
-        self.upper = self.upper.max(o.upper);
-        self.lower = self.lower.min(o.lower);
+        raise(&mut self.upper, o.upper);
+        lower_to(&mut self.lower, o.lower);
         for i in 0..2 {
             self.slipping[i] += o.slipping[i];
             self.slip_length[i] += o.slip_length[i];
             self.slip_cube[i] += o.slip_cube[i];
         }
-        self.plus_min = self.plus_min.min(o.plus_min);
-        self.minus_max = self.minus_max.max(o.minus_max);
+        lower_to(&mut self.plus_min, o.plus_min);
+        raise(&mut self.minus_max, o.minus_max);
     }
 
     /// Whether a step changes a chunk with these sums: a slipping piece may stick again
@@ -207,20 +238,20 @@ impl Chunk {
             Kind::Stuck => {
                 self.rel_integral += p.rel_integral;
                 self.stuck_length += p.x1 - p.x0;
-                self.upper = self.upper.max(p.upper);
-                self.lower = self.lower.min(p.lower);
+                raise(&mut self.upper, p.upper);
+                lower_to(&mut self.lower, p.lower);
             }
             Kind::Plus => {
                 self.slipping[0] += 1;
                 self.slip_length[0] += p.x1 - p.x0;
                 self.slip_cube[0] += cube(p);
-                self.plus_min = self.plus_min.min(p.lower);
+                lower_to(&mut self.plus_min, p.lower);
             }
             Kind::Minus => {
                 self.slipping[1] += 1;
                 self.slip_length[1] += p.x1 - p.x0;
                 self.slip_cube[1] += cube(p);
-                self.minus_max = self.minus_max.max(p.upper);
+                raise(&mut self.minus_max, p.upper);
             }
         }
     }
@@ -766,33 +797,37 @@ impl ViscoelasticRow {
             Kind::Minus => minus.actual(p.upper) + up.viscous < 0.0,
         };
         let mut i = 0;
-        while i < old.len() {
-            let p = old[i];
-            if !unchanged(&p) {
+        while let Some(p) = old.get(i) {
+            if !unchanged(p) {
                 if p.kind == Kind::Stuck {
-                    self.clip(p, up, &mut out);
+                    self.clip(*p, up, &mut out);
                 } else {
-                    self.release(p, up, &mut out, None);
+                    self.release(*p, up, &mut out, None);
                 }
                 i += 1;
                 continue;
             }
             if p.kind == Kind::Stuck {
-                out.push(p);
+                out.push(*p);
             } else {
-                push_slip(&mut out, p, c, r);
+                push_slip(&mut out, *p, c, r);
             }
             // The unchanged pieces after it go over as they are, in one copy, up to the first
             // that `push_slip` would merge into its predecessor. A merged piece agrees with the
             // last piece merged into it in everything that test reads (kind, upper end, zero
             // `b` and `q`, `a`), so comparing with the previous old piece is comparing with
             // the last piece out.
-            let run = old[i + 1..]
-                .iter()
-                .zip(&old[i..])
-                .take_while(|&(q, prev)| unchanged(q) && !merges(prev, q))
-                .count();
-            out.extend_from_slice(&old[i + 1..i + 1 + run]);
+            let rest = &old[i + 1..];
+            let mut prev = p;
+            let mut run = 0;
+            for q in rest {
+                if !unchanged(q) || merges(prev, q) {
+                    break;
+                }
+                prev = q;
+                run += 1;
+            }
+            out.extend_from_slice(&rest[..run]);
             i += 1 + run;
         }
         self.spare = old;
