@@ -53,8 +53,21 @@ fn refresh(p: &mut Piece, c: f64, r: f64) {
     match p.kind {
         Kind::Stuck => Piece::refresh(p, c, r),
         Kind::Plus | Kind::Minus => {
-            p.upper = p.extremum(0.0, true);
-            p.lower = p.extremum(0.0, false);
+            // `extremum(0, ·)` both at once: δ̃ at both ends and at the vertex inside, the
+            // same values (that adds `0 · y`: at most the sign of a zero differs, which only
+            // comparisons read).
+            let (v0, v1) = (p.value(p.y0), p.value(p.y1));
+            let (mut upper, mut lower) = (v0.max(v1), v0.min(v1));
+            if p.q != 0.0 {
+                let y = p.y_ref - p.b / (2.0 * p.q);
+                if y > p.y0 && y < p.y1 {
+                    let v = p.value(y);
+                    upper = upper.max(v);
+                    lower = lower.min(v);
+                }
+            }
+            p.upper = upper;
+            p.lower = lower;
         }
     }
 }
@@ -69,18 +82,26 @@ fn sign_index(kind: Kind) -> usize {
     usize::from(kind == Kind::Minus)
 }
 
+/// Whether [`push_slip`] merges the slipping piece `p` into `last`: the same kind, adjacent,
+/// both holding the same uniform state.
+#[inline]
+fn merges(last: &Piece, p: &Piece) -> bool {
+    // The test that fails first for most pieces (those of a clipped stuck piece) first.
+    p.b == 0.0
+        && p.q == 0.0
+        && last.b == 0.0
+        && last.q == 0.0
+        && last.kind == p.kind
+        && last.kind != Kind::Stuck
+        && last.y1 == p.y0
+        && last.a == p.a
+}
+
 /// Append a slipping piece, merged into the last one when both hold the same uniform state
 /// (the entry state: every spring that entered slipping and kept slipping).
 fn push_slip(out: &mut Vec<Piece>, p: Piece, c: f64, r: f64) {
     if let Some(last) = out.last_mut() {
-        if last.kind == p.kind
-            && last.y1 == p.y0
-            && last.b == 0.0
-            && last.q == 0.0
-            && p.b == 0.0
-            && p.q == 0.0
-            && last.a == p.a
-        {
+        if merges(last, &p) {
             last.y1 = p.y1;
             last.x1 = p.x1;
             refresh(last, c, r);
@@ -88,6 +109,24 @@ fn push_slip(out: &mut Vec<Piece>, p: Piece, c: f64, r: f64) {
         }
     }
     out.push(p);
+}
+
+/// `*bound = bound.max(v)` for the bounds of a chunk, which only comparisons read: a NaN `v`
+/// leaves the bound as `max` does, and where the two differ (the sign of a zero) no comparison
+/// tells them apart. A compare and a move instead of `max` and its NaN handling.
+#[inline]
+fn raise(bound: &mut f64, v: f64) {
+    if v > *bound {
+        *bound = v;
+    }
+}
+
+/// `*bound = bound.min(v)`, as [`raise`].
+#[inline]
+fn lower_to(bound: &mut f64, v: f64) {
+    if v < *bound {
+        *bound = v;
+    }
 }
 
 /// Consecutive pieces with the sums a step needs.
@@ -138,20 +177,26 @@ impl PieceChunk for Chunk {
 
 impl Chunk {
     fn summarize(&mut self) {
-        self.rel_integral = 0.0;
-        self.stuck_length = 0.0;
-        self.upper = f64::NEG_INFINITY;
-        self.lower = f64::INFINITY;
-        self.slipping = [0; 2];
-        self.slip_length = [0.0; 2];
-        self.slip_cube = [0.0; 2];
-        self.plus_min = f64::INFINITY;
-        self.minus_max = f64::NEG_INFINITY;
-        let pieces = std::mem::take(&mut self.pieces);
+        // Summed in a local (in registers, not stored back piece by piece), in the order of
+        // the pieces.
+        let mut sums = Chunk {
+            pieces: std::mem::take(&mut self.pieces),
+            rel_integral: 0.0,
+            stuck_length: 0.0,
+            upper: f64::NEG_INFINITY,
+            lower: f64::INFINITY,
+            slipping: [0; 2],
+            slip_length: [0.0; 2],
+            slip_cube: [0.0; 2],
+            plus_min: f64::INFINITY,
+            minus_max: f64::NEG_INFINITY,
+        };
+        let pieces = std::mem::take(&mut sums.pieces);
         for p in &pieces {
-            self.add(p);
+            sums.add(p);
         }
-        self.pieces = pieces;
+        sums.pieces = pieces;
+        *self = sums;
     }
 
     /// A chunk of no piece, its sums those of nothing.
@@ -165,15 +210,15 @@ impl Chunk {
     fn absorb(&mut self, o: &Chunk) {
         self.rel_integral += o.rel_integral;
         self.stuck_length += o.stuck_length;
-        self.upper = self.upper.max(o.upper);
-        self.lower = self.lower.min(o.lower);
+        raise(&mut self.upper, o.upper);
+        lower_to(&mut self.lower, o.lower);
         for i in 0..2 {
             self.slipping[i] += o.slipping[i];
             self.slip_length[i] += o.slip_length[i];
             self.slip_cube[i] += o.slip_cube[i];
         }
-        self.plus_min = self.plus_min.min(o.plus_min);
-        self.minus_max = self.minus_max.max(o.minus_max);
+        lower_to(&mut self.plus_min, o.plus_min);
+        raise(&mut self.minus_max, o.minus_max);
     }
 
     /// Whether a step changes a chunk with these sums: a slipping piece may stick again
@@ -193,20 +238,20 @@ impl Chunk {
             Kind::Stuck => {
                 self.rel_integral += p.rel_integral;
                 self.stuck_length += p.x1 - p.x0;
-                self.upper = self.upper.max(p.upper);
-                self.lower = self.lower.min(p.lower);
+                raise(&mut self.upper, p.upper);
+                lower_to(&mut self.lower, p.lower);
             }
             Kind::Plus => {
                 self.slipping[0] += 1;
                 self.slip_length[0] += p.x1 - p.x0;
                 self.slip_cube[0] += cube(p);
-                self.plus_min = self.plus_min.min(p.lower);
+                lower_to(&mut self.plus_min, p.lower);
             }
             Kind::Minus => {
                 self.slipping[1] += 1;
                 self.slip_length[1] += p.x1 - p.x0;
                 self.slip_cube[1] += cube(p);
-                self.minus_max = self.minus_max.max(p.upper);
+                raise(&mut self.minus_max, p.upper);
             }
         }
     }
@@ -742,17 +787,48 @@ impl ViscoelasticRow {
         let mut out = std::mem::take(&mut self.spare);
         out.clear();
         let old = std::mem::take(&mut self.chunks[k].pieces);
-        for &p in &old {
-            match p.kind {
-                Kind::Stuck => {
-                    if p.upper > t_plus || p.lower < t_minus {
-                        self.clip(p, up, &mut out);
-                    } else {
-                        out.push(p);
-                    }
+        let (c, r) = (up.c, self.radius);
+        let [plus, minus] = self.frames;
+        // A piece that this step leaves as it is: a stuck one within the limits, a slipping one
+        // that keeps slipping as a whole (the test of `release`).
+        let unchanged = |p: &Piece| match p.kind {
+            Kind::Stuck => !(p.upper > t_plus || p.lower < t_minus),
+            Kind::Plus => plus.actual(p.lower) + up.viscous > 0.0,
+            Kind::Minus => minus.actual(p.upper) + up.viscous < 0.0,
+        };
+        let mut i = 0;
+        while let Some(p) = old.get(i) {
+            if !unchanged(p) {
+                if p.kind == Kind::Stuck {
+                    self.clip(*p, up, &mut out);
+                } else {
+                    self.release(*p, up, &mut out, None);
                 }
-                Kind::Plus | Kind::Minus => self.release(p, up, &mut out, None),
+                i += 1;
+                continue;
             }
+            if p.kind == Kind::Stuck {
+                out.push(*p);
+            } else {
+                push_slip(&mut out, *p, c, r);
+            }
+            // The unchanged pieces after it go over as they are, in one copy, up to the first
+            // that `push_slip` would merge into its predecessor. A merged piece agrees with the
+            // last piece merged into it in everything that test reads (kind, upper end, zero
+            // `b` and `q`, `a`), so comparing with the previous old piece is comparing with
+            // the last piece out.
+            let rest = &old[i + 1..];
+            let mut prev = p;
+            let mut run = 0;
+            for q in rest {
+                if !unchanged(q) || merges(prev, q) {
+                    break;
+                }
+                prev = q;
+                run += 1;
+            }
+            out.extend_from_slice(&rest[..run]);
+            i += 1 + run;
         }
         self.spare = old;
         self.install(k, out)
