@@ -667,7 +667,7 @@ class Table:
     ``path``: a ``str``, ``bytes`` or ``os.PathLike`` (``pathlib.Path``); ``None`` (the
     default, ``oblique.Table()``) opens the table built into the package,
     :data:`EMBEDDED_TABLE` (``tables/default.h5``: the Kelvin–Voigt law, 1.3 ≤ γ ≤ 2.2, α
-    from 0 to ∞, 0.3 ≤ e_n ≤ 1, stated error bound 9.8e-6; every body of the material
+    from 0 to ∞, 0.3 ≤ e_n ≤ 1, stated error bound 8.1e-6; every body of the material
     catalogue, solid spheres, thin shells and pairs of them); give ``tables/full.h5`` of the
     repository for 0.1 ≤ γ ≤ 3.5 at e_n = 1.
 
