@@ -76,7 +76,15 @@ impl Piece {
     /// A stuck piece `ũ − W = a + b z + q z²` on `[y0, y1]`; `c` is the limit factor (for the
     /// bounds).
     fn stuck(y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64, radius: f64) -> Self {
-        let mut p = Self {
+        let mut p = Self::unrefreshed(y0, y1, y_ref, abq, radius);
+        p.refresh(c, radius);
+        p
+    }
+
+    /// A stuck piece as [`Piece::stuck`] before [`Piece::refresh`]: its integral and bounds
+    /// zero, for [`ContinuumRow::clip`] to refresh where it keeps the piece whole.
+    fn unrefreshed(y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), radius: f64) -> Self {
+        Self {
             kind: Kind::Stuck,
             y0,
             y1,
@@ -89,9 +97,7 @@ impl Piece {
             rel_integral: 0.0,
             upper: 0.0,
             lower: 0.0,
-        };
-        p.refresh(c, radius);
-        p
+        }
     }
 
     fn limit(kind: Kind, y0: f64, y1: f64, radius: f64) -> Self {
@@ -123,23 +129,24 @@ impl Piece {
             .sum();
         self.rel_integral = total * dx;
         if c.is_finite() {
-            self.upper = self.extremum(c, true);
-            self.lower = self.extremum(-c, false);
-        }
-    }
-
-    /// `max` (or `min`) of `ũ − W + s y` over the piece: at an end or at the vertex.
-    pub(crate) fn extremum(&self, s: f64, max: bool) -> f64 {
-        let f = |y: f64| self.value(y) + s * y;
-        let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
-        let mut best = pick(f(self.y0), f(self.y1));
-        if self.q != 0.0 {
-            let y = self.y_ref - (self.b + s) / (2.0 * self.q);
-            if y > self.y0 && y < self.y1 {
-                best = pick(best, f(y));
+            // `max (ũ − W + c y)` and `min (ũ − W − c y)`: at an end or at the vertex inside,
+            // with `ũ − W` at the ends evaluated once for both.
+            let (v0, v1) = (self.value(self.y0), self.value(self.y1));
+            let mut upper = (v0 + c * self.y0).max(v1 + c * self.y1);
+            let mut lower = (v0 + -c * self.y0).min(v1 + -c * self.y1);
+            if self.q != 0.0 {
+                let y = self.y_ref - (self.b + c) / (2.0 * self.q);
+                if y > self.y0 && y < self.y1 {
+                    upper = upper.max(self.value(y) + c * y);
+                }
+                let y = self.y_ref - (self.b + -c) / (2.0 * self.q);
+                if y > self.y0 && y < self.y1 {
+                    lower = lower.min(self.value(y) + -c * y);
+                }
             }
+            self.upper = upper;
+            self.lower = lower;
         }
-        best
     }
 
     /// `ũ − W` at height `y` for a stuck piece.
@@ -174,6 +181,24 @@ pub(crate) fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut V
         push(a / s);
     } else {
         push(0.0);
+    }
+}
+
+/// `*bound = bound.max(v)` for the bounds of a chunk, which only comparisons read: a NaN `v`
+/// leaves the bound as `max` does, and where the two differ (the sign of a zero) no comparison
+/// tells them apart. A compare and a move instead of `max` and its NaN handling.
+#[inline]
+pub(crate) fn raise(bound: &mut f64, v: f64) {
+    if v > *bound {
+        *bound = v;
+    }
+}
+
+/// `*bound = bound.min(v)`, as [`raise`].
+#[inline]
+pub(crate) fn lower_to(bound: &mut f64, v: f64) {
+    if v < *bound {
+        *bound = v;
     }
 }
 
@@ -213,8 +238,8 @@ impl Sums {
         if p.kind == Kind::Stuck {
             self.rel_integral += p.rel_integral;
             self.stuck_length += dx;
-            self.upper = self.upper.max(p.upper);
-            self.lower = self.lower.min(p.lower);
+            raise(&mut self.upper, p.upper);
+            lower_to(&mut self.lower, p.lower);
         } else {
             let i = usize::from(p.kind == Kind::Minus);
             self.slipping[i] += 1;
@@ -227,11 +252,14 @@ impl Sums {
     /// The sums over two runs of pieces.
     #[inline]
     fn merge(self, o: &Sums) -> Sums {
+        let (mut upper, mut lower) = (self.upper, self.lower);
+        raise(&mut upper, o.upper);
+        lower_to(&mut lower, o.lower);
         Sums {
             rel_integral: self.rel_integral + o.rel_integral,
             stuck_length: self.stuck_length + o.stuck_length,
-            upper: self.upper.max(o.upper),
-            lower: self.lower.min(o.lower),
+            upper,
+            lower,
             slipping: [
                 self.slipping[0] + o.slipping[0],
                 self.slipping[1] + o.slipping[1],
@@ -489,7 +517,7 @@ impl<S: Clone> Frozen<S> {
 
 impl Chunk {
     /// Append one piece ([`push_merged`]) and add it to the sums.
-    fn push(&mut self, p: Piece, radius: f64) {
+    fn push(&mut self, p: Piece) {
         if p.x1 <= p.x0 {
             return;
         }
@@ -498,7 +526,7 @@ impl Chunk {
             .last()
             .filter(|last| p.kind != Kind::Stuck && last.kind == p.kind)
             .copied();
-        push_merged(&mut self.pieces, p, radius);
+        push_merged(&mut self.pieces, p);
         if let Some(old) = merged {
             self.replace_last(&old);
         } else {
@@ -554,7 +582,6 @@ impl ContinuumRow {
     /// with its sums updated in place (a whole re-summation per step cost a quarter of the
     /// solve), or into a new chunk once the last one is full.
     fn append(&mut self, parts: &[Piece]) {
-        let radius = self.radius;
         for &p in parts {
             if self
                 .chunks
@@ -564,7 +591,7 @@ impl ContinuumRow {
                 self.chunks.push(Chunk::default());
             }
             if let Some(ch) = self.chunks.last_mut() {
-                ch.push(p, radius);
+                ch.push(p);
             }
         }
     }
@@ -633,7 +660,7 @@ impl ContinuumRow {
             // changes only where a stuck piece crosses a limit.
             k += if self.chunks[k].sums.changes(resticks, t_plus, t_minus) {
                 self.frozen.thaw(k);
-                self.update_chunk(k, &up, t_plus, t_minus)
+                self.update_chunk(k, &up, resticks, t_plus, t_minus)
             } else {
                 1
             };
@@ -644,17 +671,16 @@ impl ContinuumRow {
             let span = d1 - d0;
             let k1 = h * v + acc * h * h;
             let k2 = 0.5 * acc * h * h;
-            let entry = Piece::stuck(
+            let entry = Piece::unrefreshed(
                 d0.max(0.0),
                 d1,
                 d0,
                 (k1 - k2 - w, (2.0 * k2 - k1) / span, -k2 / (span * span)),
-                c,
                 radius,
             );
             let mut parts = std::mem::take(&mut self.entry);
             parts.clear();
-            self.clip(entry, &up, &mut parts);
+            self.clip(entry, &up, &mut parts, false);
             self.append(&parts);
             self.entry = parts;
         }
@@ -692,37 +718,72 @@ impl ContinuumRow {
     }
 
     /// Apply the step to every piece of chunk `k` (after the offset moved by `dw`); returns the
-    /// number of chunks that now hold its pieces (0, 1 or 2).
-    fn update_chunk(&mut self, k: usize, up: &Update, t_plus: f64, t_minus: f64) -> usize {
+    /// number of chunks that now hold its pieces (0, 1 or 2). `resticks` says per sign whether
+    /// the slipping pieces stick again.
+    fn update_chunk(
+        &mut self,
+        k: usize,
+        up: &Update,
+        resticks: [bool; 2],
+        t_plus: f64,
+        t_minus: f64,
+    ) -> usize {
         let radius = self.radius;
         let c = up.c;
         let w = self.offset;
         let mut out = std::mem::take(&mut self.spare);
         out.clear();
         let old = std::mem::take(&mut self.chunks[k].pieces);
-        for &p in &old {
-            match p.kind {
-                Kind::Stuck => {
-                    if p.upper > t_plus || p.lower < t_minus {
-                        self.clip(p, up, &mut out);
+        // A piece that this step leaves as it is: a stuck one within the limits, a slipping one
+        // that keeps slipping.
+        let unchanged = |p: &Piece| match p.kind {
+            Kind::Stuck => !(p.upper > t_plus || p.lower < t_minus),
+            Kind::Plus => !resticks[0],
+            Kind::Minus => !resticks[1],
+        };
+        let mut i = 0;
+        while let Some(&p) = old.get(i) {
+            i += 1;
+            if !unchanged(&p) {
+                if p.kind == Kind::Stuck {
+                    self.clip(p, up, &mut out, true);
+                } else {
+                    // At the limit s c (d0 − y) before the step; it sticks again: the increment
+                    // falls behind the limit's own change.
+                    let (s, corr) = if p.kind == Kind::Plus {
+                        (1.0, up.plus)
                     } else {
-                        out.push(p);
-                    }
+                        (-1.0, up.minus)
+                    };
+                    let a = s * c * (up.d0 - p.y0) + up.dw + corr - w;
+                    let stuck = Piece::unrefreshed(p.y0, p.y1, p.y0, (a, -s * c, 0.0), radius);
+                    self.clip(stuck, up, &mut out, false);
                 }
-                Kind::Plus | Kind::Minus => {
-                    let s = if p.kind == Kind::Plus { 1.0 } else { -1.0 };
-                    // At the limit s c (d0 − y) before the step; it sticks again when the
-                    // increment falls behind the limit's own change.
-                    if s * up.dw < c * (up.d1 - up.d0) {
-                        let corr = if s > 0.0 { up.plus } else { up.minus };
-                        let a = s * c * (up.d0 - p.y0) + up.dw + corr - w;
-                        let stuck = Piece::stuck(p.y0, p.y1, p.y0, (a, -s * c, 0.0), c, radius);
-                        self.clip(stuck, up, &mut out);
-                    } else {
-                        push_merged(&mut out, p, radius);
-                    }
-                }
+                continue;
             }
+            if p.kind == Kind::Stuck {
+                out.push(p);
+            } else if p.x1 > p.x0 {
+                push_merged(&mut out, p);
+            } else {
+                // Dropped by `push_merged`: the next piece meets the last one out, not this one.
+                continue;
+            }
+            // The unchanged pieces after it go over as they are, in one copy, up to the first
+            // that `push_merged` would drop or merge into its predecessor: the last piece out
+            // is the previous old piece, or (merged into it) one of its kind.
+            let rest = &old[i..];
+            let mut prev = p.kind;
+            let mut run = 0;
+            for q in rest {
+                if !unchanged(q) || (q.kind != Kind::Stuck && (q.x1 <= q.x0 || q.kind == prev)) {
+                    break;
+                }
+                prev = q.kind;
+                run += 1;
+            }
+            out.extend_from_slice(&rest[..run]);
+            i += run;
         }
         self.spare = old;
         self.install(k, out)
@@ -734,15 +795,23 @@ impl ContinuumRow {
     }
 
     /// Clip a stuck piece (after the increment) against the limits `±c (d1 − y)` and append the
-    /// parts: stuck where inside, limit pieces where outside.
-    fn clip(&mut self, p: Piece, up: &Update, out: &mut Vec<Piece>) {
+    /// parts: stuck where inside, limit pieces where outside. `refreshed`: whether `p` holds its
+    /// integral and bounds ([`Piece::refresh`]); if not, they are computed where `p` is kept
+    /// whole (only then: the parts of a cut piece are refreshed on their own).
+    fn clip(&mut self, p: Piece, up: &Update, out: &mut Vec<Piece>, refreshed: bool) {
         let radius = self.radius;
         let (c, d1) = (up.c, up.d1);
         if p.x1 <= p.x0 {
             return;
         }
+        let whole = |mut p: Piece| {
+            if !refreshed {
+                p.refresh(c, radius);
+            }
+            p
+        };
         if !c.is_finite() {
-            out.push(p);
+            out.push(whole(p));
             return;
         }
         // In z = y − y_ref, with a' = a + W: ũ − c(d1 − y) = (a' − c(d1 − y_ref)) + (b + c) z
@@ -775,11 +844,11 @@ impl ContinuumRow {
                 let part = if kind != Kind::Stuck {
                     Piece::limit(kind, lo, hi, radius)
                 } else if lo == p.y0 && hi == p.y1 {
-                    p
+                    whole(p)
                 } else {
                     Piece::stuck(lo, hi, p.y_ref, (p.a, p.b, p.q), c, radius)
                 };
-                push_merged(out, part, radius);
+                push_merged(out, part);
             }
             lo = hi;
         }
@@ -787,13 +856,17 @@ impl ContinuumRow {
 }
 
 /// Append a piece, merging it into the last one when both sit at the same limit.
-fn push_merged(out: &mut Vec<Piece>, p: Piece, radius: f64) {
+fn push_merged(out: &mut Vec<Piece>, p: Piece) {
     if p.x1 <= p.x0 {
         return;
     }
     if let Some(last) = out.last_mut() {
         if p.kind != Kind::Stuck && last.kind == p.kind {
-            *last = Piece::limit(p.kind, last.y0, p.y1, radius);
+            // `Piece::limit(p.kind, last.y0, p.y1, radius)`: a limit piece holds `y_ref = y0`,
+            // zero coefficients and sums, and `x = √(R* y)` at both ends, so only its upper end
+            // moves, to that of `p`.
+            last.y1 = p.y1;
+            last.x1 = p.x1;
             return;
         }
     }
