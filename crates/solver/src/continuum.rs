@@ -156,11 +156,12 @@ impl Piece {
     }
 }
 
-/// Roots of `A + B z + Q z² = 0` strictly inside `(lo, hi)`, appended to `out`.
-pub(crate) fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut Vec<f64>) {
+/// Roots of `A + B z + Q z² = 0` strictly inside `(lo, hi)`, passed to `out` (at most two).
+#[inline]
+pub(crate) fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, mut out: impl FnMut(f64)) {
     let mut push = |r: f64| {
         if r > lo && r < hi {
-            out.push(r);
+            out(r);
         }
     };
     if q == 0.0 {
@@ -372,11 +373,13 @@ impl PieceChunk for Chunk {
     fn summarize(&mut self) {
         self.sums = self.pieces.iter().fold(Sums::EMPTY, Sums::with);
     }
+    #[inline]
     fn remove_last(&mut self) {
         if let Some(p) = self.pieces.pop() {
             self.sums = self.sums.without(&p);
         }
     }
+    #[inline]
     fn replace_last(&mut self, old: &Piece) {
         if let Some(p) = self.pieces.last() {
             self.sums = self.sums.without(old).with(p);
@@ -547,7 +550,6 @@ pub struct ContinuumRow {
     entry: Vec<Piece>,
     /// The chunks before the last, summed ([`Frozen`]).
     frozen: Frozen<Sums>,
-    cuts: Vec<f64>,
     at_limit: (bool, bool),
 }
 
@@ -573,7 +575,6 @@ impl ContinuumRow {
             spare: Vec::new(),
             entry: Vec::new(),
             frozen: Frozen::new(Sums::EMPTY),
-            cuts: Vec::new(),
             at_limit: (false, false),
         }
     }
@@ -820,9 +821,18 @@ impl ContinuumRow {
         let abs_a = p.a + w;
         let lim_ref = c * (d1 - p.y_ref);
         let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
-        self.cuts.clear();
-        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut self.cuts);
-        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut self.cuts);
+        // At most two roots per limit, in a fixed array.
+        let mut cuts = [0.0; 4];
+        let mut n = 0;
+        let mut push = |z: f64| {
+            if let Some(slot) = cuts.get_mut(n) {
+                *slot = z;
+                n += 1;
+            }
+        };
+        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut push);
+        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut push);
+        let cuts = &mut cuts[..n];
         let classify = |y: f64| {
             let u = w + p.value(y);
             let lim = c * (d1 - y);
@@ -834,9 +844,16 @@ impl ContinuumRow {
                 Kind::Stuck
             }
         };
-        self.cuts.sort_by(|a, b| a.total_cmp(b));
+        // In increasing order (`total_cmp`, as `sort_by`): an insertion sort of at most four.
+        for i in 1..cuts.len() {
+            let mut j = i;
+            while j > 0 && cuts[j - 1].total_cmp(&cuts[j]).is_gt() {
+                cuts.swap(j - 1, j);
+                j -= 1;
+            }
+        }
         let mut lo = p.y0;
-        let ends = self.cuts.iter().map(|z| z + p.y_ref);
+        let ends = cuts.iter().map(|z| z + p.y_ref);
         for hi in ends.chain(std::iter::once(p.y1)) {
             let hi = hi.clamp(lo, p.y1);
             if hi > lo {

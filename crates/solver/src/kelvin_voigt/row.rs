@@ -864,7 +864,7 @@ impl ViscoelasticRow {
             f.scale * p.q,
             z0,
             z1,
-            &mut self.cuts,
+            |r| self.cuts.push(r),
         );
         self.cuts.sort_by(|a, b| a.total_cmp(b));
         let cuts = heights(&self.cuts, p.y_ref);
@@ -923,8 +923,8 @@ impl ViscoelasticRow {
         let lim_ref = c * (up.load - p.y_ref);
         let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
         self.cuts.clear();
-        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut self.cuts);
-        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut self.cuts);
+        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, |r| self.cuts.push(r));
+        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, |r| self.cuts.push(r));
         self.cuts.sort_by(|a, b| a.total_cmp(b));
         let cuts = heights(&self.cuts, p.y_ref);
         let mut lo = p.y0;
