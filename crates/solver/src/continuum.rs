@@ -919,6 +919,51 @@ mod tests {
         assert!((got - exact).abs() < 1e-15, "{got} vs {exact}");
     }
 
+    /// Check what the step relies on after every step of a loading and unloading with
+    /// reversals: the pieces tile `[0, d]` in order (but for slivers `x1 = x0` that are
+    /// dropped, an ulp or so of `y`); a limit piece holds `y_ref = y0`, zero
+    /// coefficients and sums and `x = √(R* y)` at both ends (a merge moves only its upper end);
+    /// no two neighbours of a chunk sit at the same limit (they would have been merged).
+    #[test]
+    fn pieces_tile_the_contact_and_limit_pieces_stay_canonical() {
+        let radius = 0.7;
+        let mut row = ContinuumRow::new(radius);
+        let n = 600;
+        let (mut d0, mut slipped, mut restuck) = (0.0f64, false, false);
+        for i in 1..=n {
+            let t = f64::from(i) / f64::from(n);
+            let d1 = 0.5 * (std::f64::consts::PI * t).sin();
+            // Reversals of the tangential motion while the contact grows and shrinks.
+            let dw = 0.004 * (7.0 * std::f64::consts::PI * t).cos();
+            row.step_accurate(&motion(dw, d0), d1, 1.0);
+            let mut top = 0.0;
+            for ch in &row.chunks {
+                for (j, p) in ch.pieces.iter().enumerate() {
+                    let gap = p.y0 - top;
+                    assert!((0.0..=1e-15).contains(&gap), "step {i}: gap {gap}");
+                    top = p.y1;
+                    if p.kind == Kind::Stuck {
+                        restuck |= slipped;
+                        continue;
+                    }
+                    slipped = true;
+                    assert_eq!(p.y_ref, p.y0, "step {i}");
+                    assert_eq!((p.a, p.b, p.q), (0.0, 0.0, 0.0), "step {i}");
+                    assert_eq!((p.rel_integral, p.upper, p.lower), (0.0, 0.0, 0.0));
+                    assert_eq!(p.x0, (radius * p.y0).sqrt(), "step {i}");
+                    assert_eq!(p.x1, (radius * p.y1).sqrt(), "step {i}");
+                    if j > 0 {
+                        assert_ne!(ch.pieces[j - 1].kind, p.kind, "step {i}: unmerged");
+                    }
+                }
+            }
+            let short = d1.max(0.0) - top;
+            assert!((0.0..=1e-15).contains(&short), "step {i}: ends {short} short");
+            d0 = d1;
+        }
+        assert!(slipped && restuck, "the motion must slip and stick again");
+    }
+
     #[test]
     fn clipping_cuts_a_piece_at_the_limit() {
         // Stuck entry with ũ = dw (1 − y/d1) against c (d1 − y) with c d1 < dw: everything at
