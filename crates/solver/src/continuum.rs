@@ -625,9 +625,20 @@ impl ContinuumRow {
         let (d0, h, v, acc) = (m.d0, m.h, m.slip_velocity, m.slip_accel);
         let dw = h * v + 0.5 * h * h * acc;
         let radius = self.radius;
-        let center = self.center(c, d0);
         let finite = c.is_finite();
-        let (plus, minus) = if finite {
+        // Read only where the contact vanishes without a limit.
+        let center = if finite { 0.0 } else { self.center(c, d0) };
+        self.offset += dw;
+        let w = self.offset;
+        self.truncate(d1.max(0.0), c);
+        // Slipping pieces stick again (all of one sign at once) when the increment falls
+        // behind the limit's own change.
+        let resticks = [dw < c * (d1 - d0), -dw < c * (d1 - d0)];
+        // The release corrections are read only by the pieces that stick again: computed where
+        // the row held pieces of a sign that sticks again after the last step (truncation only
+        // removes pieces), else left at zero.
+        let (any_plus, any_minus) = self.at_limit;
+        let (plus, minus) = if finite && ((any_plus && resticks[0]) || (any_minus && resticks[1])) {
             m.release_corrections(c)
         } else {
             (0.0, 0.0)
@@ -640,9 +651,6 @@ impl ContinuumRow {
             plus,
             minus,
         };
-        self.offset += dw;
-        let w = self.offset;
-        self.truncate(d1.max(0.0), c);
         // Thresholds of the stuck bounds: inside the limits iff upper ≤ c d1 − W and
         // lower ≥ −c d1 − W (never violated without a limit).
         let (t_plus, t_minus) = if finite {
@@ -650,7 +658,6 @@ impl ContinuumRow {
         } else {
             (f64::INFINITY, f64::NEG_INFINITY)
         };
-        let resticks = [dw < c * (d1 - d0), -dw < c * (d1 - d0)];
         // The frozen chunks are visited only when their sums say that one of them changes.
         let mut k = self
             .frozen
@@ -958,7 +965,10 @@ mod tests {
                 }
             }
             let short = d1.max(0.0) - top;
-            assert!((0.0..=1e-15).contains(&short), "step {i}: ends {short} short");
+            assert!(
+                (0.0..=1e-15).contains(&short),
+                "step {i}: ends {short} short"
+            );
             d0 = d1;
         }
         assert!(slipped && restuck, "the motion must slip and stick again");
