@@ -379,7 +379,8 @@ impl PieceChunk for Chunk {
             self.sums = self.sums.without(&p);
         }
     }
-    #[inline]
+    // Every truncation and every merge at the outer end: `#[inline]` alone left it a call.
+    #[inline(always)]
     fn replace_last(&mut self, old: &Piece) {
         if let Some(p) = self.pieces.last() {
             self.sums = self.sums.without(old).with(p);
