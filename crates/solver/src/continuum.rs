@@ -76,7 +76,15 @@ impl Piece {
     /// A stuck piece `ũ − W = a + b z + q z²` on `[y0, y1]`; `c` is the limit factor (for the
     /// bounds).
     fn stuck(y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64, radius: f64) -> Self {
-        let mut p = Self {
+        let mut p = Self::unrefreshed(y0, y1, y_ref, abq, radius);
+        p.refresh(c, radius);
+        p
+    }
+
+    /// A stuck piece as [`Piece::stuck`] before [`Piece::refresh`]: its integral and bounds
+    /// zero, for [`ContinuumRow::clip`] to refresh where it keeps the piece whole.
+    fn unrefreshed(y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), radius: f64) -> Self {
+        Self {
             kind: Kind::Stuck,
             y0,
             y1,
@@ -89,9 +97,7 @@ impl Piece {
             rel_integral: 0.0,
             upper: 0.0,
             lower: 0.0,
-        };
-        p.refresh(c, radius);
-        p
+        }
     }
 
     fn limit(kind: Kind, y0: f64, y1: f64, radius: f64) -> Self {
@@ -123,23 +129,24 @@ impl Piece {
             .sum();
         self.rel_integral = total * dx;
         if c.is_finite() {
-            self.upper = self.extremum(c, true);
-            self.lower = self.extremum(-c, false);
-        }
-    }
-
-    /// `max` (or `min`) of `ũ − W + s y` over the piece: at an end or at the vertex.
-    pub(crate) fn extremum(&self, s: f64, max: bool) -> f64 {
-        let f = |y: f64| self.value(y) + s * y;
-        let pick = |u: f64, v: f64| if max { u.max(v) } else { u.min(v) };
-        let mut best = pick(f(self.y0), f(self.y1));
-        if self.q != 0.0 {
-            let y = self.y_ref - (self.b + s) / (2.0 * self.q);
-            if y > self.y0 && y < self.y1 {
-                best = pick(best, f(y));
+            // `max (ũ − W + c y)` and `min (ũ − W − c y)`: at an end or at the vertex inside,
+            // with `ũ − W` at the ends evaluated once for both.
+            let (v0, v1) = (self.value(self.y0), self.value(self.y1));
+            let mut upper = (v0 + c * self.y0).max(v1 + c * self.y1);
+            let mut lower = (v0 + -c * self.y0).min(v1 + -c * self.y1);
+            if self.q != 0.0 {
+                let y = self.y_ref - (self.b + c) / (2.0 * self.q);
+                if y > self.y0 && y < self.y1 {
+                    upper = upper.max(self.value(y) + c * y);
+                }
+                let y = self.y_ref - (self.b + -c) / (2.0 * self.q);
+                if y > self.y0 && y < self.y1 {
+                    lower = lower.min(self.value(y) + -c * y);
+                }
             }
+            self.upper = upper;
+            self.lower = lower;
         }
-        best
     }
 
     /// `ũ − W` at height `y` for a stuck piece.
@@ -149,11 +156,12 @@ impl Piece {
     }
 }
 
-/// Roots of `A + B z + Q z² = 0` strictly inside `(lo, hi)`, appended to `out`.
-pub(crate) fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut Vec<f64>) {
+/// Roots of `A + B z + Q z² = 0` strictly inside `(lo, hi)`, passed to `out` (at most two).
+#[inline]
+pub(crate) fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, mut out: impl FnMut(f64)) {
     let mut push = |r: f64| {
         if r > lo && r < hi {
-            out.push(r);
+            out(r);
         }
     };
     if q == 0.0 {
@@ -174,6 +182,24 @@ pub(crate) fn roots_inside(a: f64, b: f64, q: f64, lo: f64, hi: f64, out: &mut V
         push(a / s);
     } else {
         push(0.0);
+    }
+}
+
+/// `*bound = bound.max(v)` for the bounds of a chunk, which only comparisons read: a NaN `v`
+/// leaves the bound as `max` does, and where the two differ (the sign of a zero) no comparison
+/// tells them apart. A compare and a move instead of `max` and its NaN handling.
+#[inline]
+pub(crate) fn raise(bound: &mut f64, v: f64) {
+    if v > *bound {
+        *bound = v;
+    }
+}
+
+/// `*bound = bound.min(v)`, as [`raise`].
+#[inline]
+pub(crate) fn lower_to(bound: &mut f64, v: f64) {
+    if v < *bound {
+        *bound = v;
     }
 }
 
@@ -213,8 +239,8 @@ impl Sums {
         if p.kind == Kind::Stuck {
             self.rel_integral += p.rel_integral;
             self.stuck_length += dx;
-            self.upper = self.upper.max(p.upper);
-            self.lower = self.lower.min(p.lower);
+            raise(&mut self.upper, p.upper);
+            lower_to(&mut self.lower, p.lower);
         } else {
             let i = usize::from(p.kind == Kind::Minus);
             self.slipping[i] += 1;
@@ -227,11 +253,14 @@ impl Sums {
     /// The sums over two runs of pieces.
     #[inline]
     fn merge(self, o: &Sums) -> Sums {
+        let (mut upper, mut lower) = (self.upper, self.lower);
+        raise(&mut upper, o.upper);
+        lower_to(&mut lower, o.lower);
         Sums {
             rel_integral: self.rel_integral + o.rel_integral,
             stuck_length: self.stuck_length + o.stuck_length,
-            upper: self.upper.max(o.upper),
-            lower: self.lower.min(o.lower),
+            upper,
+            lower,
             slipping: [
                 self.slipping[0] + o.slipping[0],
                 self.slipping[1] + o.slipping[1],
@@ -344,11 +373,14 @@ impl PieceChunk for Chunk {
     fn summarize(&mut self) {
         self.sums = self.pieces.iter().fold(Sums::EMPTY, Sums::with);
     }
+    #[inline]
     fn remove_last(&mut self) {
         if let Some(p) = self.pieces.pop() {
             self.sums = self.sums.without(&p);
         }
     }
+    // Every truncation and every merge at the outer end: `#[inline]` alone left it a call.
+    #[inline(always)]
     fn replace_last(&mut self, old: &Piece) {
         if let Some(p) = self.pieces.last() {
             self.sums = self.sums.without(old).with(p);
@@ -489,7 +521,7 @@ impl<S: Clone> Frozen<S> {
 
 impl Chunk {
     /// Append one piece ([`push_merged`]) and add it to the sums.
-    fn push(&mut self, p: Piece, radius: f64) {
+    fn push(&mut self, p: Piece) {
         if p.x1 <= p.x0 {
             return;
         }
@@ -498,7 +530,7 @@ impl Chunk {
             .last()
             .filter(|last| p.kind != Kind::Stuck && last.kind == p.kind)
             .copied();
-        push_merged(&mut self.pieces, p, radius);
+        push_merged(&mut self.pieces, p);
         if let Some(old) = merged {
             self.replace_last(&old);
         } else {
@@ -519,7 +551,6 @@ pub struct ContinuumRow {
     entry: Vec<Piece>,
     /// The chunks before the last, summed ([`Frozen`]).
     frozen: Frozen<Sums>,
-    cuts: Vec<f64>,
     at_limit: (bool, bool),
 }
 
@@ -545,7 +576,6 @@ impl ContinuumRow {
             spare: Vec::new(),
             entry: Vec::new(),
             frozen: Frozen::new(Sums::EMPTY),
-            cuts: Vec::new(),
             at_limit: (false, false),
         }
     }
@@ -554,7 +584,6 @@ impl ContinuumRow {
     /// with its sums updated in place (a whole re-summation per step cost a quarter of the
     /// solve), or into a new chunk once the last one is full.
     fn append(&mut self, parts: &[Piece]) {
-        let radius = self.radius;
         for &p in parts {
             if self
                 .chunks
@@ -564,7 +593,7 @@ impl ContinuumRow {
                 self.chunks.push(Chunk::default());
             }
             if let Some(ch) = self.chunks.last_mut() {
-                ch.push(p, radius);
+                ch.push(p);
             }
         }
     }
@@ -597,9 +626,20 @@ impl ContinuumRow {
         let (d0, h, v, acc) = (m.d0, m.h, m.slip_velocity, m.slip_accel);
         let dw = h * v + 0.5 * h * h * acc;
         let radius = self.radius;
-        let center = self.center(c, d0);
         let finite = c.is_finite();
-        let (plus, minus) = if finite {
+        // Read only where the contact vanishes without a limit.
+        let center = if finite { 0.0 } else { self.center(c, d0) };
+        self.offset += dw;
+        let w = self.offset;
+        self.truncate(d1.max(0.0), c);
+        // Slipping pieces stick again (all of one sign at once) when the increment falls
+        // behind the limit's own change.
+        let resticks = [dw < c * (d1 - d0), -dw < c * (d1 - d0)];
+        // The release corrections are read only by the pieces that stick again: computed where
+        // the row held pieces of a sign that sticks again after the last step (truncation only
+        // removes pieces), else left at zero.
+        let (any_plus, any_minus) = self.at_limit;
+        let (plus, minus) = if finite && ((any_plus && resticks[0]) || (any_minus && resticks[1])) {
             m.release_corrections(c)
         } else {
             (0.0, 0.0)
@@ -612,9 +652,6 @@ impl ContinuumRow {
             plus,
             minus,
         };
-        self.offset += dw;
-        let w = self.offset;
-        self.truncate(d1.max(0.0), c);
         // Thresholds of the stuck bounds: inside the limits iff upper ≤ c d1 − W and
         // lower ≥ −c d1 − W (never violated without a limit).
         let (t_plus, t_minus) = if finite {
@@ -622,7 +659,6 @@ impl ContinuumRow {
         } else {
             (f64::INFINITY, f64::NEG_INFINITY)
         };
-        let resticks = [dw < c * (d1 - d0), -dw < c * (d1 - d0)];
         // The frozen chunks are visited only when their sums say that one of them changes.
         let mut k = self
             .frozen
@@ -633,7 +669,7 @@ impl ContinuumRow {
             // changes only where a stuck piece crosses a limit.
             k += if self.chunks[k].sums.changes(resticks, t_plus, t_minus) {
                 self.frozen.thaw(k);
-                self.update_chunk(k, &up, t_plus, t_minus)
+                self.update_chunk(k, &up, resticks, t_plus, t_minus)
             } else {
                 1
             };
@@ -644,17 +680,16 @@ impl ContinuumRow {
             let span = d1 - d0;
             let k1 = h * v + acc * h * h;
             let k2 = 0.5 * acc * h * h;
-            let entry = Piece::stuck(
+            let entry = Piece::unrefreshed(
                 d0.max(0.0),
                 d1,
                 d0,
                 (k1 - k2 - w, (2.0 * k2 - k1) / span, -k2 / (span * span)),
-                c,
                 radius,
             );
             let mut parts = std::mem::take(&mut self.entry);
             parts.clear();
-            self.clip(entry, &up, &mut parts);
+            self.clip(entry, &up, &mut parts, false);
             self.append(&parts);
             self.entry = parts;
         }
@@ -692,37 +727,72 @@ impl ContinuumRow {
     }
 
     /// Apply the step to every piece of chunk `k` (after the offset moved by `dw`); returns the
-    /// number of chunks that now hold its pieces (0, 1 or 2).
-    fn update_chunk(&mut self, k: usize, up: &Update, t_plus: f64, t_minus: f64) -> usize {
+    /// number of chunks that now hold its pieces (0, 1 or 2). `resticks` says per sign whether
+    /// the slipping pieces stick again.
+    fn update_chunk(
+        &mut self,
+        k: usize,
+        up: &Update,
+        resticks: [bool; 2],
+        t_plus: f64,
+        t_minus: f64,
+    ) -> usize {
         let radius = self.radius;
         let c = up.c;
         let w = self.offset;
         let mut out = std::mem::take(&mut self.spare);
         out.clear();
         let old = std::mem::take(&mut self.chunks[k].pieces);
-        for &p in &old {
-            match p.kind {
-                Kind::Stuck => {
-                    if p.upper > t_plus || p.lower < t_minus {
-                        self.clip(p, up, &mut out);
+        // A piece that this step leaves as it is: a stuck one within the limits, a slipping one
+        // that keeps slipping.
+        let unchanged = |p: &Piece| match p.kind {
+            Kind::Stuck => !(p.upper > t_plus || p.lower < t_minus),
+            Kind::Plus => !resticks[0],
+            Kind::Minus => !resticks[1],
+        };
+        let mut i = 0;
+        while let Some(&p) = old.get(i) {
+            i += 1;
+            if !unchanged(&p) {
+                if p.kind == Kind::Stuck {
+                    self.clip(p, up, &mut out, true);
+                } else {
+                    // At the limit s c (d0 − y) before the step; it sticks again: the increment
+                    // falls behind the limit's own change.
+                    let (s, corr) = if p.kind == Kind::Plus {
+                        (1.0, up.plus)
                     } else {
-                        out.push(p);
-                    }
+                        (-1.0, up.minus)
+                    };
+                    let a = s * c * (up.d0 - p.y0) + up.dw + corr - w;
+                    let stuck = Piece::unrefreshed(p.y0, p.y1, p.y0, (a, -s * c, 0.0), radius);
+                    self.clip(stuck, up, &mut out, false);
                 }
-                Kind::Plus | Kind::Minus => {
-                    let s = if p.kind == Kind::Plus { 1.0 } else { -1.0 };
-                    // At the limit s c (d0 − y) before the step; it sticks again when the
-                    // increment falls behind the limit's own change.
-                    if s * up.dw < c * (up.d1 - up.d0) {
-                        let corr = if s > 0.0 { up.plus } else { up.minus };
-                        let a = s * c * (up.d0 - p.y0) + up.dw + corr - w;
-                        let stuck = Piece::stuck(p.y0, p.y1, p.y0, (a, -s * c, 0.0), c, radius);
-                        self.clip(stuck, up, &mut out);
-                    } else {
-                        push_merged(&mut out, p, radius);
-                    }
-                }
+                continue;
             }
+            if p.kind == Kind::Stuck {
+                out.push(p);
+            } else if p.x1 > p.x0 {
+                push_merged(&mut out, p);
+            } else {
+                // Dropped by `push_merged`: the next piece meets the last one out, not this one.
+                continue;
+            }
+            // The unchanged pieces after it go over as they are, in one copy, up to the first
+            // that `push_merged` would drop or merge into its predecessor: the last piece out
+            // is the previous old piece, or (merged into it) one of its kind.
+            let rest = &old[i..];
+            let mut prev = p.kind;
+            let mut run = 0;
+            for q in rest {
+                if !unchanged(q) || (q.kind != Kind::Stuck && (q.x1 <= q.x0 || q.kind == prev)) {
+                    break;
+                }
+                prev = q.kind;
+                run += 1;
+            }
+            out.extend_from_slice(&rest[..run]);
+            i += run;
         }
         self.spare = old;
         self.install(k, out)
@@ -734,15 +804,23 @@ impl ContinuumRow {
     }
 
     /// Clip a stuck piece (after the increment) against the limits `±c (d1 − y)` and append the
-    /// parts: stuck where inside, limit pieces where outside.
-    fn clip(&mut self, p: Piece, up: &Update, out: &mut Vec<Piece>) {
+    /// parts: stuck where inside, limit pieces where outside. `refreshed`: whether `p` holds its
+    /// integral and bounds ([`Piece::refresh`]); if not, they are computed where `p` is kept
+    /// whole (only then: the parts of a cut piece are refreshed on their own).
+    fn clip(&mut self, p: Piece, up: &Update, out: &mut Vec<Piece>, refreshed: bool) {
         let radius = self.radius;
         let (c, d1) = (up.c, up.d1);
         if p.x1 <= p.x0 {
             return;
         }
+        let whole = |mut p: Piece| {
+            if !refreshed {
+                p.refresh(c, radius);
+            }
+            p
+        };
         if !c.is_finite() {
-            out.push(p);
+            out.push(whole(p));
             return;
         }
         // In z = y − y_ref, with a' = a + W: ũ − c(d1 − y) = (a' − c(d1 − y_ref)) + (b + c) z
@@ -751,9 +829,18 @@ impl ContinuumRow {
         let abs_a = p.a + w;
         let lim_ref = c * (d1 - p.y_ref);
         let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
-        self.cuts.clear();
-        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut self.cuts);
-        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut self.cuts);
+        // At most two roots per limit, in a fixed array.
+        let mut cuts = [0.0; 4];
+        let mut n = 0;
+        let mut push = |z: f64| {
+            if let Some(slot) = cuts.get_mut(n) {
+                *slot = z;
+                n += 1;
+            }
+        };
+        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut push);
+        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut push);
+        let cuts = &mut cuts[..n];
         let classify = |y: f64| {
             let u = w + p.value(y);
             let lim = c * (d1 - y);
@@ -765,9 +852,16 @@ impl ContinuumRow {
                 Kind::Stuck
             }
         };
-        self.cuts.sort_by(|a, b| a.total_cmp(b));
+        // In increasing order (`total_cmp`, as `sort_by`): an insertion sort of at most four.
+        for i in 1..cuts.len() {
+            let mut j = i;
+            while j > 0 && cuts[j - 1].total_cmp(&cuts[j]).is_gt() {
+                cuts.swap(j - 1, j);
+                j -= 1;
+            }
+        }
         let mut lo = p.y0;
-        let ends = self.cuts.iter().map(|z| z + p.y_ref);
+        let ends = cuts.iter().map(|z| z + p.y_ref);
         for hi in ends.chain(std::iter::once(p.y1)) {
             let hi = hi.clamp(lo, p.y1);
             if hi > lo {
@@ -775,11 +869,11 @@ impl ContinuumRow {
                 let part = if kind != Kind::Stuck {
                     Piece::limit(kind, lo, hi, radius)
                 } else if lo == p.y0 && hi == p.y1 {
-                    p
+                    whole(p)
                 } else {
                     Piece::stuck(lo, hi, p.y_ref, (p.a, p.b, p.q), c, radius)
                 };
-                push_merged(out, part, radius);
+                push_merged(out, part);
             }
             lo = hi;
         }
@@ -787,13 +881,17 @@ impl ContinuumRow {
 }
 
 /// Append a piece, merging it into the last one when both sit at the same limit.
-fn push_merged(out: &mut Vec<Piece>, p: Piece, radius: f64) {
+fn push_merged(out: &mut Vec<Piece>, p: Piece) {
     if p.x1 <= p.x0 {
         return;
     }
     if let Some(last) = out.last_mut() {
         if p.kind != Kind::Stuck && last.kind == p.kind {
-            *last = Piece::limit(p.kind, last.y0, p.y1, radius);
+            // `Piece::limit(p.kind, last.y0, p.y1, radius)`: a limit piece holds `y_ref = y0`,
+            // zero coefficients and sums, and `x = √(R* y)` at both ends, so only its upper end
+            // moves, to that of `p`.
+            last.y1 = p.y1;
+            last.x1 = p.x1;
             return;
         }
     }
@@ -827,6 +925,54 @@ mod tests {
             .integral;
         let exact = 0.2 * 0.6 * (2.0 / 3.0);
         assert!((got - exact).abs() < 1e-15, "{got} vs {exact}");
+    }
+
+    /// Check what the step relies on after every step of a loading and unloading with
+    /// reversals: the pieces tile `[0, d]` in order (but for slivers `x1 = x0` that are
+    /// dropped, an ulp or so of `y`); a limit piece holds `y_ref = y0`, zero
+    /// coefficients and sums and `x = √(R* y)` at both ends (a merge moves only its upper end);
+    /// no two neighbours of a chunk sit at the same limit (they would have been merged).
+    #[test]
+    fn pieces_tile_the_contact_and_limit_pieces_stay_canonical() {
+        let radius = 0.7;
+        let mut row = ContinuumRow::new(radius);
+        let n = 600;
+        let (mut d0, mut slipped, mut restuck) = (0.0f64, false, false);
+        for i in 1..=n {
+            let t = f64::from(i) / f64::from(n);
+            let d1 = 0.5 * (std::f64::consts::PI * t).sin();
+            // Reversals of the tangential motion while the contact grows and shrinks.
+            let dw = 0.004 * (7.0 * std::f64::consts::PI * t).cos();
+            row.step_accurate(&motion(dw, d0), d1, 1.0);
+            let mut top = 0.0;
+            for ch in &row.chunks {
+                for (j, p) in ch.pieces.iter().enumerate() {
+                    let gap = p.y0 - top;
+                    assert!((0.0..=1e-15).contains(&gap), "step {i}: gap {gap}");
+                    top = p.y1;
+                    if p.kind == Kind::Stuck {
+                        restuck |= slipped;
+                        continue;
+                    }
+                    slipped = true;
+                    assert_eq!(p.y_ref, p.y0, "step {i}");
+                    assert_eq!((p.a, p.b, p.q), (0.0, 0.0, 0.0), "step {i}");
+                    assert_eq!((p.rel_integral, p.upper, p.lower), (0.0, 0.0, 0.0));
+                    assert_eq!(p.x0, (radius * p.y0).sqrt(), "step {i}");
+                    assert_eq!(p.x1, (radius * p.y1).sqrt(), "step {i}");
+                    if j > 0 {
+                        assert_ne!(ch.pieces[j - 1].kind, p.kind, "step {i}: unmerged");
+                    }
+                }
+            }
+            let short = d1.max(0.0) - top;
+            assert!(
+                (0.0..=1e-15).contains(&short),
+                "step {i}: ends {short} short"
+            );
+            d0 = d1;
+        }
+        assert!(slipped && restuck, "the motion must slip and stick again");
     }
 
     #[test]

@@ -3,6 +3,9 @@
 //! 1024 steps and at tol 1e-6 (with the error estimate and the finest steps), one line per
 //! point, for comparing two builds of the solver bit for bit (`cmp` of their outputs): a change
 //! meant to make a step cheaper without changing its arithmetic must leave every line as it was.
+//!
+//! `N elastic`: the same at `e_n = 1` (the elastic law, the continuum row): the same `γ` and
+//! `α` per point.
 use oblique_solver::{Accuracy, Request, Resolution};
 
 /// Element `i` of the van der Corput sequence in base `b`, in `[0, 1)`.
@@ -18,6 +21,11 @@ fn halton(mut i: usize, b: usize) -> f64 {
 
 fn main() -> anyhow::Result<()> {
     let n: usize = std::env::args().nth(1).map_or(Ok(300), |s| s.parse())?;
+    let elastic = match std::env::args().nth(2).as_deref() {
+        None => false,
+        Some("elastic") => true,
+        Some(other) => anyhow::bail!("usage: kvbits [N] [elastic], not {other:?}"),
+    };
     for i in 1..=n {
         let gamma = 0.05 + 4.95 * halton(i, 2);
         // Every tenth point without slip; the others log-uniform in [0.05, 20].
@@ -26,7 +34,11 @@ fn main() -> anyhow::Result<()> {
         } else {
             0.05 * 400f64.powf(halton(i, 3))
         };
-        let e_n = 0.3 + 0.69 * halton(i, 5);
+        let e_n = if elastic {
+            1.0
+        } else {
+            0.3 + 0.69 * halton(i, 5)
+        };
         let req = Request::new(gamma, alpha).e_n(e_n).forced(true);
         let mut line = format!("{gamma:.17e} {alpha:.17e} {e_n:.17e}");
         for steps in [256, 1024] {

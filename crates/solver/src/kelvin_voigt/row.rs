@@ -22,7 +22,9 @@
 //! `∫ v dx` is integrated exactly. Transitions happen at the end of a step (local error O(h²)
 //! once per spring: second order overall).
 
-use crate::continuum::{install, roots_inside, truncate, Frozen, Kind, Piece, PieceChunk};
+use crate::continuum::{
+    install, lower_to, raise, roots_inside, truncate, Frozen, Kind, Piece, PieceChunk,
+};
 use crate::springs::{StepMotion, StepResult};
 
 /// A piece of this row on `[y0, y1]` with `z = y − y_ref` (the elastic row's [`Piece`]): a
@@ -53,9 +55,7 @@ fn refresh(p: &mut Piece, c: f64, r: f64) {
     match p.kind {
         Kind::Stuck => Piece::refresh(p, c, r),
         Kind::Plus | Kind::Minus => {
-            // `extremum(0, ·)` both at once: δ̃ at both ends and at the vertex inside, the
-            // same values (that adds `0 · y`: at most the sign of a zero differs, which only
-            // comparisons read).
+            // Both extremes at once: δ̃ at both ends and at the vertex inside.
             let (v0, v1) = (p.value(p.y0), p.value(p.y1));
             let (mut upper, mut lower) = (v0.max(v1), v0.min(v1));
             if p.q != 0.0 {
@@ -109,24 +109,6 @@ fn push_slip(out: &mut Vec<Piece>, p: Piece, c: f64, r: f64) {
         }
     }
     out.push(p);
-}
-
-/// `*bound = bound.max(v)` for the bounds of a chunk, which only comparisons read: a NaN `v`
-/// leaves the bound as `max` does, and where the two differ (the sign of a zero) no comparison
-/// tells them apart. A compare and a move instead of `max` and its NaN handling.
-#[inline]
-fn raise(bound: &mut f64, v: f64) {
-    if v > *bound {
-        *bound = v;
-    }
-}
-
-/// `*bound = bound.min(v)`, as [`raise`].
-#[inline]
-fn lower_to(bound: &mut f64, v: f64) {
-    if v < *bound {
-        *bound = v;
-    }
 }
 
 /// Consecutive pieces with the sums a step needs.
@@ -882,7 +864,7 @@ impl ViscoelasticRow {
             f.scale * p.q,
             z0,
             z1,
-            &mut self.cuts,
+            |r| self.cuts.push(r),
         );
         self.cuts.sort_by(|a, b| a.total_cmp(b));
         let cuts = heights(&self.cuts, p.y_ref);
@@ -941,8 +923,8 @@ impl ViscoelasticRow {
         let lim_ref = c * (up.load - p.y_ref);
         let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
         self.cuts.clear();
-        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, &mut self.cuts);
-        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, &mut self.cuts);
+        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, |r| self.cuts.push(r));
+        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, |r| self.cuts.push(r));
         self.cuts.sort_by(|a, b| a.total_cmp(b));
         let cuts = heights(&self.cuts, p.y_ref);
         let mut lo = p.y0;

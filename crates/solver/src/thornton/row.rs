@@ -587,8 +587,12 @@ impl ThorntonRow {
                 let lim_ref = lim.c * (lim.reach - lim.shift - p.y_ref);
                 let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
                 let abs_a = p.a + w;
-                roots_inside(abs_a - lim_ref, p.b + lim.c, p.q, z0, z1, &mut self.cuts);
-                roots_inside(abs_a + lim_ref, p.b - lim.c, p.q, z0, z1, &mut self.cuts);
+                roots_inside(abs_a - lim_ref, p.b + lim.c, p.q, z0, z1, |r| {
+                    self.cuts.push(r)
+                });
+                roots_inside(abs_a + lim_ref, p.b - lim.c, p.q, z0, z1, |r| {
+                    self.cuts.push(r)
+                });
                 for z in &mut self.cuts {
                     *z += p.y_ref;
                 }
