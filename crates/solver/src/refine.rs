@@ -233,17 +233,27 @@ fn extrapolate(values: &[f64], order: i32, floor: Floor) -> (f64, f64) {
 /// (`cargo run --release -p oblique-tools --bin ladder -- 150 7 11`, against the Richardson
 /// value of the two finest levels) no other level needed more than 0.031 |d|.
 fn tail_share(values: &[f64], order: i32) -> f64 {
-    let n = values.len();
-    if n < 4 {
+    let Some(ratios) = last_ratios(values) else {
         return 0.0;
-    }
+    };
     let r = 2f64.powi(order);
-    let d = |k: usize| values[k] - values[k - 1];
-    [d(n - 2) / d(n - 1), d(n - 3) / d(n - 2)]
+    ratios
         .iter()
         .filter(|&&q| q > 1.0)
         .map(|&q| TAIL_MARGIN * (r - q).abs() / ((r - 1.0) * (q - 1.0)))
         .fold(0.0, f64::max)
+}
+
+/// The last two ratios of successive differences of `values`,
+/// `(P_{k−1} − P_{k−2}) / (P_k − P_{k−1})` and the one before it (`None` with fewer than four
+/// values).
+fn last_ratios(values: &[f64]) -> Option<[f64; 2]> {
+    let n = values.len();
+    if n < 4 {
+        return None;
+    }
+    let d = |k: usize| values[k] - values[k - 1];
+    Some([d(n - 2) / d(n - 1), d(n - 3) / d(n - 2)])
 }
 
 /// Margin on the rest of a convergence at a ratio seen ([`tail_share`]).
@@ -252,15 +262,8 @@ const TAIL_MARGIN: f64 = 1.5;
 /// Whether the last two ratios of successive differences of `values` are within
 /// `[0.75, 1.375] · 2^order`.
 fn regular(values: &[f64], order: i32) -> bool {
-    let n = values.len();
-    if n < 4 {
-        return false;
-    }
     let r = 2f64.powi(order);
-    let d = |k: usize| values[k] - values[k - 1];
-    [d(n - 2) / d(n - 1), d(n - 3) / d(n - 2)]
-        .iter()
-        .all(|q| (0.75 * r..=1.375 * r).contains(q))
+    last_ratios(values).is_some_and(|q| q.iter().all(|q| (0.75 * r..=1.375 * r).contains(q)))
 }
 
 /// The acceptance guard of the Richardson path: the estimate one level coarser must already be

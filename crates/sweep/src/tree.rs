@@ -930,8 +930,8 @@ fn polish(
             continue;
         }
         let keys = layout.cell_keys(*cell);
-        let worst = keys.iter().map(|k| cache[k].1).fold(0.0, f64::max);
-        if predicted[c] + factor * worst > limit {
+        let errs: Vec<f64> = keys.iter().map(|k| cache[k].1).collect();
+        if oblique_table::bound::leaf_bound(predicted[c], &errs, factor) > limit {
             wanted.extend(keys.into_iter().filter(|k| cache[k].1 > tol));
         }
     }
