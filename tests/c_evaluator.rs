@@ -1733,15 +1733,8 @@ fn load_file_reads_exports_and_refuses_other_paths_with_their_code() {
     )
     .expect("write");
     let out = Command::new("gcc")
-        .args([
-            "-std=c99",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-pedantic",
-            "-fsyntax-only",
-            "-I",
-        ])
+        .args(evaluator::C_STRICT)
+        .args(["-fsyntax-only", "-I"])
         .arg(root("include"))
         .arg(&src)
         .output()

@@ -23,14 +23,6 @@ use oblique_physics::sample::SplitMix;
 use oblique_table::export;
 
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
-const C_FLAGS: [&str; 6] = [
-    "-std=c99",
-    "-Wall",
-    "-Wextra",
-    "-Werror",
-    "-pedantic",
-    "-O2",
-];
 const F_FLAGS: [&str; 6] = [
     "-std=f2008",
     "-Wall",
@@ -109,7 +101,8 @@ fn path_str(p: &Path) -> String {
 fn build(tag: &str, extra: &[&str]) -> (PathBuf, PathBuf) {
     let d = dir().join(tag);
     std::fs::create_dir_all(&d).expect("build folder");
-    let mut cflags = strings(&C_FLAGS);
+    let mut cflags = strings(&evaluator::C_STRICT);
+    cflags.push("-O2".into());
     cflags.extend(strings(extra));
     let mut fflags = strings(&F_FLAGS);
     fflags.extend(strings(extra));

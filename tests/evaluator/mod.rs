@@ -225,19 +225,17 @@ pub fn sealed(mut b: Vec<u8>) -> Vec<u8> {
     b
 }
 
+/// The flags every C compilation of the evaluator's tests starts with: C99, every warning an
+/// error, pedantic.
+pub const C_STRICT: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"];
+
 /// The driver `tests/c/eval_check.c` compiled with gcc (C99, warnings as errors, no fused
 /// multiply-add) and the further `flags` (sanitizers) into `exe`.
 pub fn gcc_driver(exe: &Path, flags: &[&str]) -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let out = Command::new("gcc")
-        .args([
-            "-std=c99",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-pedantic",
-            "-O2",
-        ])
+        .args(C_STRICT)
+        .arg("-O2")
         .args(flags)
         .arg("-I")
         .arg(root.join("include"))
