@@ -65,8 +65,8 @@
  * 1e-3 N s and 1e-4 J there, so the bound says little about them). At random e_n
  * (oblq_pair_init_e; 2^24 wall and sphere impacts on the export of tables/dissipative-demo.h5,
  * H200): 5483 answers not the host's bits, every field (with e_t) within 1.14e-13 max(1, |host|).
- * examples/cuda/oblique_gpu.cu does all of this (elastic tables) and compares the device with
- * the host.
+ * examples/cuda/oblique_gpu.cu does all of this (elastic tables, and tables with an e_n axis:
+ * oblq_p_e and rebounds at each pair's e_n) and compares the device with the host.
  */
 #ifndef OBLIQUE_EVAL_H
 #define OBLIQUE_EVAL_H
