@@ -389,7 +389,7 @@ impl FineMotion {
             out.extend(v.iter().step_by(every).copied());
             out
         };
-        // Field by field: `..g.clone()` also copied the fine grid's nodes, only to drop them.
+        // Field by field: a copy of the whole fine motion would copy its nodes for nothing.
         ViscoelasticTrajectory {
             indentation: pick(&g.indentation),
             rate: pick(&g.rate),
