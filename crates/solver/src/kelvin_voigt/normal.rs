@@ -384,12 +384,23 @@ impl FineMotion {
     pub fn sample(&self, steps: usize) -> ViscoelasticTrajectory {
         let g = &self.grid;
         let every = FINE_STEPS / steps;
-        let pick = |v: &[f64]| v.iter().step_by(every).copied().collect::<Vec<f64>>();
+        let pick = |v: &[f64]| {
+            let mut out = Vec::with_capacity(steps + 1);
+            out.extend(v.iter().step_by(every).copied());
+            out
+        };
+        // Field by field: a copy of the whole fine motion would copy its nodes for nothing.
         ViscoelasticTrajectory {
             indentation: pick(&g.indentation),
             rate: pick(&g.rate),
+            tau: g.tau,
+            law: g.law,
             dt: g.contact_time / steps as f64,
-            ..g.clone()
+            contact_time: g.contact_time,
+            max_indentation: g.max_indentation,
+            peak_force: g.peak_force,
+            delta_v1: g.delta_v1,
+            delta_v2: g.delta_v2,
         }
     }
 }

@@ -111,22 +111,50 @@ fn push_slip(out: &mut Vec<Piece>, p: Piece, c: f64, r: f64) {
     out.push(p);
 }
 
-/// Consecutive pieces with the sums a step needs.
-#[derive(Debug, Clone, Default)]
-struct Chunk {
-    pieces: Vec<Piece>,
-    /// Stuck: `Σ ∫ (u − W) dx`, `Σ Δx`, `max upper`, `min lower`.
+/// The sums over a run of pieces that a step needs (a `Copy` value: the frozen chunks' sums
+/// and the row's total are built without touching a piece vector).
+#[derive(Debug, Clone, Copy)]
+struct Sums {
+    /// Stuck: `Σ ∫ (u − W) dx` (m²), `Σ Δx` (m), `max upper`, `min lower` (m).
     rel_integral: f64,
     stuck_length: f64,
     upper: f64,
     lower: f64,
-    /// Slipping at `+`/`−`: number of pieces, `Σ Δx`, `Σ Δ(x³)`, `min δ̃` (`+`) and `max δ̃`
-    /// (`−`).
+    /// Slipping at `+`/`−`: number of pieces, `Σ Δx` (m), `Σ Δ(x³)` (m³), `min δ̃` (`+`) and
+    /// `max δ̃` (`−`) (m).
     slipping: [u32; 2],
     slip_length: [f64; 2],
     slip_cube: [f64; 2],
     plus_min: f64,
     minus_max: f64,
+}
+
+impl Sums {
+    /// The sums of no piece.
+    const EMPTY: Sums = Sums {
+        rel_integral: 0.0,
+        stuck_length: 0.0,
+        upper: f64::NEG_INFINITY,
+        lower: f64::INFINITY,
+        slipping: [0; 2],
+        slip_length: [0.0; 2],
+        slip_cube: [0.0; 2],
+        plus_min: f64::INFINITY,
+        minus_max: f64::NEG_INFINITY,
+    };
+}
+
+impl Default for Sums {
+    fn default() -> Self {
+        Sums::EMPTY
+    }
+}
+
+/// Consecutive pieces with the sums a step needs.
+#[derive(Debug, Clone, Default)]
+struct Chunk {
+    pieces: Vec<Piece>,
+    sums: Sums,
 }
 
 /// Pieces per chunk above which a chunk is split in two. Smaller than the elastic row's 48: a
@@ -144,52 +172,60 @@ impl PieceChunk for Chunk {
     fn summarize(&mut self) {
         Chunk::summarize(self);
     }
+    #[inline]
     fn remove_last(&mut self) {
         if let Some(p) = self.pieces.pop() {
-            self.remove(&p);
+            self.sums.remove(&p);
         }
     }
+    #[inline]
     fn replace_last(&mut self, old: &Piece) {
-        if let Some(&p) = self.pieces.last() {
-            self.remove(old);
-            self.add(&p);
+        if let Some(p) = self.pieces.last() {
+            self.sums.remove(old);
+            self.sums.add(p);
         }
     }
 }
 
 impl Chunk {
+    /// Sum the pieces again, in their order.
     fn summarize(&mut self) {
-        // Summed in a local (in registers, not stored back piece by piece), in the order of
-        // the pieces.
-        let mut sums = Chunk {
-            pieces: std::mem::take(&mut self.pieces),
-            rel_integral: 0.0,
-            stuck_length: 0.0,
-            upper: f64::NEG_INFINITY,
-            lower: f64::INFINITY,
-            slipping: [0; 2],
-            slip_length: [0.0; 2],
-            slip_cube: [0.0; 2],
-            plus_min: f64::INFINITY,
-            minus_max: f64::NEG_INFINITY,
-        };
-        let pieces = std::mem::take(&mut sums.pieces);
-        for p in &pieces {
+        let mut sums = Sums::EMPTY;
+        for p in &self.pieces {
             sums.add(p);
         }
-        sums.pieces = pieces;
-        *self = sums;
+        self.sums = sums;
     }
 
-    /// A chunk of no piece, its sums those of nothing.
-    fn empty() -> Self {
-        let mut ch = Chunk::default();
-        ch.summarize();
-        ch
+    /// A chunk of no piece with room for a full one.
+    fn fresh() -> Self {
+        Chunk {
+            pieces: Vec::with_capacity(CHUNK_MAX + 1),
+            sums: Sums::EMPTY,
+        }
     }
 
-    /// Add the sums of another chunk to these.
-    fn absorb(&mut self, o: &Chunk) {
+    /// Append one piece at the outer end ([`push_slip`] for a slipping one) and update the
+    /// sums.
+    fn push(&mut self, p: Piece, c: f64, r: f64) {
+        let before = self.pieces.last().copied();
+        let len = self.pieces.len();
+        if p.kind == Kind::Stuck {
+            self.pieces.push(p);
+        } else {
+            push_slip(&mut self.pieces, p, c, r);
+        }
+        match before {
+            Some(old) if self.pieces.len() == len => self.replace_last(&old),
+            _ => self.sums.add(&p),
+        }
+    }
+}
+
+impl Sums {
+    /// Add the sums of another run to these.
+    #[inline]
+    fn absorb(&mut self, o: &Sums) {
         self.rel_integral += o.rel_integral;
         self.stuck_length += o.stuck_length;
         raise(&mut self.upper, o.upper);
@@ -203,7 +239,7 @@ impl Chunk {
         raise(&mut self.minus_max, o.minus_max);
     }
 
-    /// Whether a step changes a chunk with these sums: a slipping piece may stick again
+    /// Whether a step changes a run with these sums: a slipping piece may stick again
     /// (`scale · δ̃` past `release`, per sign) or a stuck piece crosses a limit.
     #[inline]
     fn changes(&self, frames: &[Frame; 2], releases: [f64; 2], t_plus: f64, t_minus: f64) -> bool {
@@ -260,22 +296,6 @@ impl Chunk {
                     self.slip_cube[i] -= cube(p);
                 }
             }
-        }
-    }
-
-    /// Append one piece at the outer end ([`push_slip`] for a slipping one) and update the
-    /// sums.
-    fn push(&mut self, p: Piece, c: f64, r: f64) {
-        let before = self.pieces.last().copied();
-        let len = self.pieces.len();
-        if p.kind == Kind::Stuck {
-            self.pieces.push(p);
-        } else {
-            push_slip(&mut self.pieces, p, c, r);
-        }
-        match before {
-            Some(old) if self.pieces.len() == len => self.replace_last(&old),
-            _ => self.add(&p),
         }
     }
 }
@@ -367,18 +387,12 @@ impl Update {
     }
 }
 
-/// The cut points `z + y_ref` (at most four: two roots of two quadratics), without allocating.
-fn heights(cuts: &[f64], y_ref: f64) -> cut_list::Cuts {
-    let mut out = cut_list::Cuts::default();
-    for &z in cuts.iter().take(4) {
-        out.push(z + y_ref);
-    }
-    out
-}
-
-/// A list of at most four cut points on the stack.
+/// The cut points of a piece, on the stack: at most four roots `z` (two per quadratic) in the
+/// piece's local coordinate.
 mod cut_list {
-    /// At most four heights.
+    use std::cmp::Ordering;
+
+    /// At most four values; a fifth is not kept (two quadratics have no more roots).
     #[derive(Debug, Default, Clone, Copy)]
     pub struct Cuts {
         values: [f64; 4],
@@ -386,10 +400,33 @@ mod cut_list {
     }
 
     impl Cuts {
+        #[inline]
         pub fn push(&mut self, v: f64) {
-            self.values[self.len] = v;
-            self.len += 1;
+            if let Some(slot) = self.values.get_mut(self.len) {
+                *slot = v;
+                self.len += 1;
+            }
         }
+
+        /// The heights `z + y_ref` in increasing order (`total_cmp`, as `sort_by`: values
+        /// that compare equal are the same bits, so any sort gives the same list): an
+        /// insertion sort of at most four.
+        #[inline]
+        pub fn heights(mut self, y_ref: f64) -> Cuts {
+            let v = &mut self.values[..self.len];
+            for i in 1..v.len() {
+                let mut j = i;
+                while j > 0 && v[j - 1].total_cmp(&v[j]) == Ordering::Greater {
+                    v.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+            for z in v.iter_mut() {
+                *z += y_ref;
+            }
+            self
+        }
+
         pub fn iter(&self) -> std::slice::Iter<'_, f64> {
             self.values[..self.len].iter()
         }
@@ -461,12 +498,11 @@ pub struct ViscoelasticRow {
     /// `e^{−h/τ}` underflowed the frames; only for `h ≫ τ`, where that memory is lost anyway).
     memoryless: bool,
     at_limit: (bool, bool),
-    cuts: Vec<f64>,
     spare: Vec<Piece>,
     /// Scratch for the pieces of the springs entering contact in a step.
     entering: Vec<Piece>,
     /// The chunks before the last, summed ([`Frozen`]; its sums hold no pieces).
-    frozen: Frozen<Chunk>,
+    frozen: Frozen<Sums>,
 }
 
 impl ViscoelasticRow {
@@ -485,10 +521,9 @@ impl ViscoelasticRow {
             last_decay: (f64::NAN, (0.0, 0.0)),
             memoryless: false,
             at_limit: (false, false),
-            cuts: Vec::new(),
             spare: Vec::new(),
             entering: Vec::new(),
-            frozen: Frozen::new(Chunk::empty()),
+            frozen: Frozen::new(Sums::EMPTY),
         }
     }
 
@@ -576,7 +611,10 @@ impl ViscoelasticRow {
                 .changes(&frames, releases, t_plus, t_minus),
         );
         while k < self.chunks.len() {
-            k += if self.chunks[k].changes(&frames, releases, t_plus, t_minus) {
+            k += if self.chunks[k]
+                .sums
+                .changes(&frames, releases, t_plus, t_minus)
+            {
                 self.frozen.thaw(k);
                 self.update_chunk(k, &up, t_plus, t_minus)
             } else {
@@ -590,7 +628,7 @@ impl ViscoelasticRow {
         let r = self.radius;
         let all = self
             .frozen
-            .total(&self.chunks, Chunk::empty(), |s, ch| s.absorb(ch));
+            .total(&self.chunks, Sums::EMPTY, |s, ch| s.absorb(&ch.sums));
         let mut integral = all.rel_integral + (w + up.viscous) * all.stuck_length;
         let stuck = all.stuck_length;
         let (mut any_plus, mut any_minus) = (false, false);
@@ -682,9 +720,7 @@ impl ViscoelasticRow {
                 .last()
                 .is_none_or(|ch| ch.pieces.len() >= CHUNK_MAX)
             {
-                let mut fresh = Chunk::default();
-                fresh.summarize();
-                self.chunks.push(fresh);
+                self.chunks.push(Chunk::fresh());
             }
             if let Some(ch) = self.chunks.last_mut() {
                 ch.push(p, c, r);
@@ -856,7 +892,7 @@ impl ViscoelasticRow {
             };
             (f0.actual(p.a), f0.scale * p.b, f0.scale * p.q)
         });
-        self.cuts.clear();
+        let mut cuts = cut_list::Cuts::default();
         let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
         roots_inside(
             f.actual(p.a) + up.viscous,
@@ -864,10 +900,9 @@ impl ViscoelasticRow {
             f.scale * p.q,
             z0,
             z1,
-            |r| self.cuts.push(r),
+            |r| cuts.push(r),
         );
-        self.cuts.sort_by(|a, b| a.total_cmp(b));
-        let cuts = heights(&self.cuts, p.y_ref);
+        let cuts = cuts.heights(p.y_ref);
         let mut lo = p.y0;
         for hi in cuts.iter().copied().chain(std::iter::once(p.y1)) {
             let hi = hi.clamp(lo, p.y1);
@@ -922,11 +957,10 @@ impl ViscoelasticRow {
         let abs_a = p.a + w + up.viscous;
         let lim_ref = c * (up.load - p.y_ref);
         let (z0, z1) = (p.y0 - p.y_ref, p.y1 - p.y_ref);
-        self.cuts.clear();
-        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, |r| self.cuts.push(r));
-        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, |r| self.cuts.push(r));
-        self.cuts.sort_by(|a, b| a.total_cmp(b));
-        let cuts = heights(&self.cuts, p.y_ref);
+        let mut cuts = cut_list::Cuts::default();
+        roots_inside(abs_a - lim_ref, p.b + c, p.q, z0, z1, |r| cuts.push(r));
+        roots_inside(abs_a + lim_ref, p.b - c, p.q, z0, z1, |r| cuts.push(r));
+        let cuts = cuts.heights(p.y_ref);
         let mut lo = p.y0;
         for hi in cuts.iter().copied().chain(std::iter::once(p.y1)) {
             let hi = hi.clamp(lo, p.y1);
