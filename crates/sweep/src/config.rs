@@ -172,6 +172,13 @@ pub struct Nodes {
     /// polishing.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub polish_tol: Option<f64>,
+    /// Let a split cell of a table without an `e_n` axis halve only the axes that need it
+    /// (each axis whose own surplus, a quarter of it as the cell's error along that axis,
+    /// exceeds the target, or else the axis with the largest), as the cells of a table with an
+    /// `e_n` axis always do; the patches then store which axes each cell halved (`split`,
+    /// `docs/table-format.md`). `false`: every split halves both axes (a quadtree).
+    #[serde(default)]
+    pub anisotropic: bool,
 }
 
 fn default_placement() -> String {

@@ -733,7 +733,7 @@ pub(crate) fn build_patch(
                 }
                 continue;
             }
-            mask[c] = if layout.restitution.is_some() {
+            mask[c] = if layout.restitution.is_some() || cfg.nodes.anisotropic {
                 split_axes(&vals, m, k, cfg.nodes.target_error, layout.dims())
             } else {
                 0b11
@@ -883,7 +883,7 @@ pub(crate) fn build_patch(
             PatchData {
                 leaf_intervals: m,
                 tree,
-                split: layout.restitution.is_some().then_some(mask),
+                split: (layout.restitution.is_some() || cfg.nodes.anisotropic).then_some(mask),
                 p,
                 error_estimate: err,
                 warp: warp.clone(),

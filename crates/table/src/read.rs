@@ -349,7 +349,7 @@ impl Reader<'_> {
         let fanout = 1 << dims;
         let split: Option<Vec<u8>> = if g.link_exists(DS_SPLIT) {
             let split = self.vector(&g, &format!("patch '{name}'"), DS_SPLIT, "uint8")?;
-            crate::surface::check_split(&tree, &split, dims, restitution.is_some())
+            crate::surface::check_split(&tree, &split, dims)
                 .map_err(|m| self.invalid(format!("patch '{name}': dataset 'split' {m}")))?;
             Some(split)
         } else {

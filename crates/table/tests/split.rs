@@ -125,18 +125,18 @@ fn bad_masks_are_refused_naming_the_dataset() {
         (vec![8, 0, 5, 0, 0, 0, 0], "[0] = 8"), // no such axis
         (vec![7, 0, 5, 0, 0, 0, 0], "children of its split cells"), // 8 children, 6 cells after
     ] {
-        let e = check_split(&tree, &split, 3, true)
+        let e = check_split(&tree, &split, 3)
             .err()
             .or_else(|| two_level_with(&tree, split.clone()).err())
             .unwrap_or_else(|| panic!("{split:?} accepted"));
         assert!(e.contains(needle), "{split:?}: {e}");
     }
-    assert!(check_split(&[-1], &[0], 2, false)
-        .expect_err("2-D")
-        .contains("only in a patch with an e_n axis"));
-    // The patch of one pair, over (c, e_n): masks 1 to 3.
-    assert!(check_split(&[1, -1, -2], &[1, 0, 0], 2, true).is_ok());
-    assert!(check_split(&[1, -1, -2], &[4, 0, 0], 2, true)
+    assert!(check_split(&[-1], &[0], 4)
+        .expect_err("4 axes")
+        .contains("2 or 3 axes"));
+    // A tree over two axes ((c, e_n) of one pair, or (γ, c) without an e_n axis): masks 1 to 3.
+    assert!(check_split(&[1, -1, -2], &[1, 0, 0], 2).is_ok());
+    assert!(check_split(&[1, -1, -2], &[4, 0, 0], 2)
         .expect_err("a gamma bit in a pair patch")
         .contains("[0] = 4"));
 }

@@ -82,12 +82,14 @@ pub fn check_tree_split(
 }
 
 /// Check a `split` dataset against its tree: one mask per cell, 1 to `2^dims − 1` for a split
-/// cell (bit `dims − 1 − k` for each axis `k` it halves), 0 for a leaf; only in a patch with
-/// an `e_n` axis: `dims = 3` over `(γ, c, e_n)`, or `dims = 2` over `(c, e_n)` in a patch of
-/// one pair (`has_e_n`; an elastic patch, `dims = 2` without the axis, has none).
-pub fn check_split(tree: &[i32], split: &[u8], dims: u32, has_e_n: bool) -> Result<(), String> {
-    if !has_e_n || !(2..=3).contains(&dims) {
-        return Err("is allowed only in a patch with an e_n axis".into());
+/// cell (bit `dims − 1 − k` for each axis `k` it halves), 0 for a leaf: `dims = 3` over
+/// `(γ, c, e_n)`, `dims = 2` over `(c, e_n)` in a patch of one pair or over `(γ, c)` in a
+/// patch without an `e_n` axis.
+pub fn check_split(tree: &[i32], split: &[u8], dims: u32) -> Result<(), String> {
+    if !(2..=3).contains(&dims) {
+        return Err(format!(
+            "is allowed only in a tree over 2 or 3 axes, not {dims}"
+        ));
     }
     if split.len() != tree.len() {
         return Err(format!(

@@ -181,8 +181,7 @@ impl Patch {
         let leaves = match &split {
             None => check_tree_of(&tree, roots, 1 << dims),
             Some(split) => {
-                check_split(&tree, split, dims, restitution.is_some())
-                    .map_err(|m| format!("dataset 'split' {m}"))?;
+                check_split(&tree, split, dims).map_err(|m| format!("dataset 'split' {m}"))?;
                 check_tree_split(&tree, roots, &|i| 1 << split[i].count_ones())
             }
         }
@@ -844,17 +843,28 @@ impl Patch {
         let mut stack: Vec<(usize, u32, u64)> = (0..self.roots())
             .map(|i| (i, 0, (i / per_row) as u64))
             .collect();
-        let fanout = self.fanout();
+        // The bit of γ in a split mask (none in the patch of one pair, whose tree has no γ).
+        let g_bit = if self.is_pair() {
+            0
+        } else {
+            1u8 << (tree_dims(self.restitution().is_some(), false) - 1)
+        };
         while let Some((cell, d, a)) = stack.pop() {
             let t = self.tree[cell];
             if t < 0 {
                 let scale = f64::from(d.min(1000) as i32).exp2();
                 spans[(-(t as i64) - 1) as usize] = (a as f64 / scale, (a + 1) as f64 / scale);
             } else {
-                // The child's upper half along γ: `q_γ`, the first bit of `q`.
-                stack.extend(
-                    (0..fanout).map(|q| (t as usize + q, d + 1, 2 * a + (q / (fanout / 2)) as u64)),
-                );
+                let (mask, fanout) = (self.split_mask(cell), self.fanout_of(cell));
+                if mask & g_bit != 0 {
+                    // The child's upper half along γ: `q_γ`, the first bit of `q`.
+                    let shift = mask.count_ones() - 1;
+                    stack.extend(
+                        (0..fanout).map(|q| (t as usize + q, d + 1, 2 * a + (q >> shift) as u64)),
+                    );
+                } else {
+                    stack.extend((0..fanout).map(|q| (t as usize + q, d, a)));
+                }
             }
         }
         spans
