@@ -786,6 +786,12 @@ pub(crate) fn build_patch(
                         cfg.nodes.target_error,
                     );
                     split[o] = true;
+                } else if layout.restitution.is_none() && cells[c].d[0] < cells[c].d[1] {
+                    // An anisotropic cell of a table over (γ, α) that a kink crosses is no
+                    // longer along γ than along c, as a quadtree's: the kink moves across c
+                    // between the node rows, and the probes measured on the rows and midway.
+                    mask[c] = 0b10;
+                    split[o] = true;
                 }
             }
         }
