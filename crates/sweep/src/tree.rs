@@ -505,8 +505,9 @@ fn surplus_axis(values: &[f64], n: usize, k: usize, dims: u32, axis: usize) -> f
     worst
 }
 
-/// The axes a cell of a patch with an `e_n` axis halves when its prediction exceeds `target`
-/// (bit `dims − 1 − k` for axis `k`: `γ`, `c`, `e_n`, or `c`, `e_n` for one pair): each axis
+/// The axes a cell of a patch with an `e_n` axis (or of any patch with `nodes.anisotropic`)
+/// halves when its prediction exceeds `target` (bit `dims − 1 − k` for axis `k`: `γ`, `c`,
+/// `e_n`; `c`, `e_n` for one pair; `γ`, `c` without the axis): each axis
 /// whose own surplus
 /// ([`surplus_axis`], a quarter of it as the cell's own error along that axis) exceeds the
 /// target, or else the axis with the largest. Along `e_n` `P` is smooth and the kink curves
