@@ -94,9 +94,10 @@ extern "C" {
 
 /* Newest layout version this header reads: 1 (an elastic table, and curves), 2 (a table
    with a normal-restitution axis e_n), 3 (the table of one pair: P(alpha, e_n) at a single
-   gamma), 4 (a table of Thornton's law: version 2 without a closed-form full-slip line) and 5
-   (version 2 or 4 whose partial-slip coordinate has knots). */
-#define OBLQ_EXPORT_VERSION 5u
+   gamma), 4 (a table of Thornton's law: version 2 without a closed-form full-slip line), 5
+   (version 2 or 4 whose partial-slip coordinate has knots) and 6 (an elastic table whose
+   split cells halve only the axes their masks name). */
+#define OBLQ_EXPORT_VERSION 6u
 
 /* Most knots of a partial-slip coordinate (layout version 5). */
 #define OBLQ_MAX_KNOTS 8
@@ -163,9 +164,9 @@ typedef struct {
        is [leaves][m+1][m+1][m+1]; in the patch of one pair (gamma_lo == gamma_hi,
        blocks_gamma 1) a quadtree over (c, e_n) and p is [leaves][m+1][m+1]. */
     size_t blocks_e_n;
-    /* With the axis, optionally: which axes each split cell halves (bit 4: gamma, 2: c,
-       1: e_n; 0 for a leaf; 1 to 3 in the patch of one pair), uint8 [cells]; NULL: every
-       split halves every axis. */
+    /* Optionally: which axes each split cell halves, uint8 [cells]; NULL: every split halves
+       every axis. With the axis bit 4: gamma, 2: c, 1: e_n (1 to 3 in the patch of one pair:
+       c, e_n); without it (layout version 6) bit 2: gamma, 1: c; 0 for a leaf. */
     const unsigned char *split;
     /* The knots of the partial-slip coordinate (layout version 5; k_n = 0: none): k_n kink
        surfaces K_j tabulated at (k_gamma_0 + i k_gamma_step, k_e_n_0 + l k_e_n_step),
@@ -253,11 +254,12 @@ OBLQ_FN int oblq__finite_array(const double *v, size_t n) {
     return 1;
 }
 
-/* A patch record; `axes`: 2 of an elastic table (version 1), 3 of a table with an e_n axis
-   (version 2: an octree over gamma, c, e_n), 1 of the table of one pair (version 3: a single
-   gamma, a quadtree over c, e_n). */
+/* A patch record; `axes`: 2 of an elastic table (versions 1 and 6), 3 of a table with an e_n
+   axis (version 2: an octree over gamma, c, e_n), 1 of the table of one pair (version 3: a
+   single gamma, a quadtree over c, e_n). `masked`: an elastic table whose records may name
+   split masks (version 6); a patch with masks has no fine index. */
 OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
-                        const unsigned char *r, int axes) {
+                        const unsigned char *r, int axes, int masked) {
     uint64_t cells, leaves, m, bg, bc, be, fan, roots, i, nodes, off, masks;
     int octree = axes != 2, pair = axes == 1;
     memset(p, 0, sizeof *p);
@@ -279,7 +281,7 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
     if (bg < 1 || bc < 1 || m < 3 || m > 64 || leaves < 1) return OBLQ_E_CORRUPT;
     be = 1;
     fan = 4;
-    masks = 7; /* the masks a split cell may have */
+    masks = 3; /* the masks a split cell may have: 1 to 3 over (gamma, c) */
     if (octree) {
         /* The e_n axis: an octree (a quadtree over c, e_n in the patch of one pair), without a
            warp or a fine index. */
@@ -297,20 +299,25 @@ OBLQ_FN int oblq__patch(oblq_patch *p, const unsigned char *d, uint64_t len,
     if (!oblq__span(off, cells, 4, len)) return OBLQ_E_CORRUPT;
     p->tree = d + off;
     p->split = NULL;
-    if (octree) {
-        /* The split masks (offset 0: none). Their offset need not be 8-byte aligned. */
+    if (octree || masked) {
+        /* The split masks (offset 0: none). Their offset need not be 8-byte aligned. In an
+           elastic table (version 6) a patch with masks is descended from its roots: no fine
+           index. */
         off = oblq__u64(r + 144);
         if (off != 0) {
             if (off > len || cells > len - off) return OBLQ_E_CORRUPT;
+            if (!octree && (oblq__u64(r + 120) != 0 || oblq__u64(r + 128) != 0 ||
+                            oblq__u32(r + 112) != 0))
+                return OBLQ_E_CORRUPT;
             p->split = d + off;
         }
     } else if (oblq__u64(r + 144) != 0) {
         return OBLQ_E_CORRUPT;
     }
     /* Safe descent: a split cell's children exist and come after it (so every descent ends),
-       a leaf number is in range; a mask is 1 to 7 for a split cell (1 to 3 in the patch of one
-       pair: never gamma), 0 for a leaf; the children of all split cells are exactly the cells
-       after the roots. */
+       a leaf number is in range; a mask is 1 to 7 for a split cell of an octree (1 to 3 in the
+       patch of one pair: never gamma; 1 to 3 in an elastic table: gamma, c), 0 for a leaf; the
+       children of all split cells are exactly the cells after the roots. */
     {
         uint64_t children = 0;
         for (i = 0; i < cells; i++) {
@@ -635,8 +642,9 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if (d[k] != (unsigned char)"OBLQEVAL"[k]) return OBLQ_E_FORMAT;
     if (size < 96) return OBLQ_E_TRUNCATED;
     version = oblq__u32(d + 8);
-    if (version < 1 || version > 5) return OBLQ_E_VERSION;
-    header = version == 1 ? 96 : 112; /* versions 2 to 5 add the e_n range */
+    if (version < 1 || version > 6) return OBLQ_E_VERSION;
+    /* Versions 2 to 5 add the e_n range; version 6 is version 1 with split masks. */
+    header = version == 1 || version == 6 ? 96 : 112;
     if (oblq__u32(d + 12) != header) return OBLQ_E_CORRUPT;
     if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
     len = oblq__u64(d + 16);
@@ -678,7 +686,7 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     if (oblq__u32(d + 64) != 4) return OBLQ_E_CORRUPT; /* the cubic stencil */
     out.e_n_min = 1.0;
     out.e_n_max = 1.0;
-    if (version >= 2) {
+    if (version >= 2 && version <= 5) {
         /* A table with an e_n axis (of one pair in version 3): its range, its surface, no
            curves. */
         out.has_e_n = 1;
@@ -695,7 +703,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         out.has_surface = 1;
         for (k = 0; k < 3; k++) {
             const unsigned char *r = d + off + 160 * k;
-            rc = oblq__patch(&out.patch[k], d, len, r, out.pair ? 1 : (out.has_e_n ? 3 : 2));
+            rc = oblq__patch(&out.patch[k], d, len, r, out.pair ? 1 : (out.has_e_n ? 3 : 2),
+                             version == 6);
             if (rc != OBLQ_OK) return rc;
             /* The knots block: in the record of partial_high of version 5 only (and there). */
             if (version == 5 && k == 1) {
@@ -910,42 +919,59 @@ OBLQ_FN double oblq__knot_at(const oblq_patch *p, double gamma) {
     return w[0] * k[0] + w[1] * k[1] + w[2] * k[2] + w[3] * k[3];
 }
 
+OBLQ_FN size_t oblq__descend(const oblq_patch *p, size_t cell, double *f, unsigned n);
+
+/* Steps 6-9 on a patch of an elastic table at (gamma, c): the quadtree's leaf (from the fine
+   index, or from the roots; through the split masks of layout version 6), then the tensor
+   product of the two cubic stencils, summed c innermost. */
 OBLQ_FN double oblq__tensor(const oblq_patch *p, double gamma, double c) {
     double fg, fc, wg[4], wc[4], r[4];
     double xg = (gamma - p->gamma_lo) / (p->gamma_hi - p->gamma_lo);
     size_t cell, leaf, n1, sg, sc, i;
     const double *v;
-    if (p->index) {
-        /* The fine index: the entry's cell, the position inside it (v 2^d - origin, the rule's
-           repeated f <- 2f - q bit for bit), then the descent only below the index's depth. */
-        double bg = (double)p->blocks_gamma, bc = (double)p->blocks_coord;
-        double vg = oblq__clamp(xg * bg, 0.0, bg), vc = oblq__clamp(c * bc, 0.0, bc);
-        size_t ig = oblq__floor_index(vg * p->fine, p->rows - 1);
-        size_t ic = oblq__floor_index(vc * p->fine, p->cols - 1);
-        const double *co;
-        cell = oblq__u32(p->index + 4 * (ig * p->cols + ic));
-        co = p->origin + 3 * cell;
-        fg = vg * co[0] - co[1];
-        fc = vc * co[0] - co[2];
+    if (p->split) {
+        /* Cells that halve only the axes of their masks (bit 2: gamma, 1: c): the generic
+           descent from the root cell, the doublings below on the halved axes only. */
+        double f[2];
+        size_t a = oblq__locate(xg, p->blocks_gamma, &f[0]);
+        size_t b = oblq__locate(c, p->blocks_coord, &f[1]);
+        leaf = oblq__descend(p, a * p->blocks_coord + b, f, 2);
+        fg = f[0];
+        fc = f[1];
     } else {
-        size_t a = oblq__locate(xg, p->blocks_gamma, &fg);
-        size_t b = oblq__locate(c, p->blocks_coord, &fc);
-        cell = a * p->blocks_coord + b;
-    }
-    for (;;) {
-        int32_t t = oblq__i32(p->tree + 4 * cell);
-        size_t qg, qc;
-        if (t < 0) {
-            leaf = (size_t)(-(int64_t)t - 1);
-            break;
+        if (p->index) {
+            /* The fine index: the entry's cell, the position inside it (v 2^d - origin, the
+               rule's repeated f <- 2f - q bit for bit), then the descent only below the
+               index's depth. */
+            double bg = (double)p->blocks_gamma, bc = (double)p->blocks_coord;
+            double vg = oblq__clamp(xg * bg, 0.0, bg), vc = oblq__clamp(c * bc, 0.0, bc);
+            size_t ig = oblq__floor_index(vg * p->fine, p->rows - 1);
+            size_t ic = oblq__floor_index(vc * p->fine, p->cols - 1);
+            const double *co;
+            cell = oblq__u32(p->index + 4 * (ig * p->cols + ic));
+            co = p->origin + 3 * cell;
+            fg = vg * co[0] - co[1];
+            fc = vc * co[0] - co[2];
+        } else {
+            size_t a = oblq__locate(xg, p->blocks_gamma, &fg);
+            size_t b = oblq__locate(c, p->blocks_coord, &fc);
+            cell = a * p->blocks_coord + b;
         }
-        fg *= 2.0;
-        fc *= 2.0;
-        qg = fg >= 1.0;
-        qc = fc >= 1.0;
-        fg -= (double)qg;
-        fc -= (double)qc;
-        cell = (size_t)t + 2 * qg + qc;
+        for (;;) {
+            int32_t t = oblq__i32(p->tree + 4 * cell);
+            size_t qg, qc;
+            if (t < 0) {
+                leaf = (size_t)(-(int64_t)t - 1);
+                break;
+            }
+            fg *= 2.0;
+            fc *= 2.0;
+            qg = fg >= 1.0;
+            qc = fc >= 1.0;
+            fg -= (double)qg;
+            fc -= (double)qc;
+            cell = (size_t)t + 2 * qg + qc;
+        }
     }
     n1 = p->m + 1;
     sg = oblq__stencil4(fg * (double)p->m, n1, wg);

@@ -394,19 +394,18 @@ class Patch:
         self.flat = [float(v) for v in p.reshape(-1)] if blocks_e_n is not None else None
 
     def find_leaf(self, x, c):
-        """Steps 6 and 7: leaf number and position (fx, fc) inside it, for x, c in [0, 1]."""
+        """Steps 6 and 7: leaf number and position (fx, fc) inside it, for x, c in [0, 1].
+        The children of a split cell i are tree[i] + 2 q_gamma + q_c, or, with the dataset
+        'split', the 2^k cells from tree[i] numbered over the k axes the cell halves."""
         bg, bc = self.blocks_gamma, self.blocks_coord
         a = min(int(math.floor(x * bg)), bg - 1)
         fx = x * bg - a
         b = min(int(math.floor(c * bc)), bc - 1)
         fc = c * bc - b
-        i = a * bc + b
-        while self.tree[i] >= 0:
-            fx, fc = 2.0 * fx, 2.0 * fc
-            qg, qc = int(fx >= 1.0), int(fc >= 1.0)
-            fx, fc = fx - qg, fc - qc
-            i = self.tree[i] + 2 * qg + qc
-        return -self.tree[i] - 1, fx, fc
+        # The descent halves the axes of each split cell's mask (bit 2: gamma, 1: c; both
+        # without the dataset 'split').
+        leaf, (fx, fc) = self.descend(a * bc + b, [fx, fc])
+        return leaf, fx, fc
 
     def interpolate(self, gamma, c, k):
         """Steps 4 (x, with c given) to 10."""
@@ -796,10 +795,10 @@ class Table:
         split = None
         if "split" in g:
             d = g["split"]
-            if d.ndim != 1 or d.dtype.kind not in "iu" or len(d) != len(tree) or be is None:
+            if d.ndim != 1 or d.dtype.kind not in "iu" or len(d) != len(tree):
                 raise self._invalid(
                     f"{where}: dataset 'split' is {d.dtype}{list(d.shape)}, expected 1-D integer "
-                    f"[{len(tree)}] (one mask per cell, only with an e_n axis)")
+                    f"[{len(tree)}] (one mask per cell)")
             split = [int(s) for s in d[()]]
             top = (1 << dims) - 1
             for i, (t, s) in enumerate(zip(tree, split)):
@@ -808,7 +807,9 @@ class Table:
                         f"{where}: dataset 'split'[{i}] = {s}: must be 1 to {top} for a split "
                         "cell, 0 for a leaf"
                         + (" (the patch of one pair halves c and e_n only: no gamma bit 4)"
-                           if pair else ""))
+                           if pair else "")
+                        + (" (a table without an e_n axis: bit 2 gamma, bit 1 c)"
+                           if dims == 2 and not pair else ""))
         problem, leaves = check_tree(tree, bg * bc * (be or 1), 1 << dims, split)
         if problem:
             raise self._invalid(f"{where}: dataset 'tree' {problem}")
@@ -822,7 +823,7 @@ class Table:
         p = d[()].astype(np.float64)
         if not np.all(np.isfinite(p)):
             raise self._invalid(f"{where}: non-finite value in 'P'")
-        warp = self._warp(g, name, lo, hi, bg, bc, tree, num) if "warp" in g else None
+        warp = self._warp(g, name, lo, hi, bg, bc, tree, split, num) if "warp" in g else None
         knots = self._knots(g, name, lo, hi, bg, bc, be, tree, split, num) \
             if "knots" in g else None
         self._check_nodes(g, where, lo, hi, bg, bc, be, m, tree, split, dims, pair, leaves,
@@ -906,7 +907,7 @@ class Table:
         if pair and not np.all(stored["gamma"] == lo):
             raise self._invalid(f"{where}: node gammas differ from the pair's gamma {lo!r}")
 
-    def _warp(self, g, name, gamma_lo, gamma_hi, bg, bc, tree, num):
+    def _warp(self, g, name, gamma_lo, gamma_hi, bg, bc, tree, split, num):
         """The optional warp group of a patch, validated as docs/table-format.md states."""
         where = f"'{name}/warp'"
         if name != "partial_high":
@@ -949,7 +950,8 @@ class Table:
                 f"{where}: the knot grid 'gamma_0' + i*'gamma_step' spans [{gamma_0}, {end}] "
                 f"({len(knot)} values of 'knot'): must cover the warped gamma range "
                 f"[{first}, {gamma_hi}]")
-        # No leaf may straddle `start`: every leaf's rows [a/2^d, (a+1)/2^d] lie on one side.
+        # No leaf may straddle `start`: every leaf's rows [a/2^d, (a+1)/2^d] lie on one side
+        # (d: the splits above it that halve gamma, mask bit 2; all without 'split').
         stack = [(i, 0, i // bc) for i in range(bg * bc)]
         while stack:
             cell, d, a = stack.pop()
@@ -961,7 +963,13 @@ class Table:
                         f"{where}: leaf {-t - 1} spans root rows [{lo_row}, {hi_row}] across "
                         f"attribute 'start' = {start}: no leaf may straddle it")
                 continue
-            stack.extend((t + q, d + 1, 2 * a + q // 2) for q in range(4))
+            mask = 3 if split is None else split[cell]
+            if mask & 2:
+                # q_gamma is the first bit of q: q // 2 of four children, q of two.
+                fan = 1 << bin(mask).count("1")
+                stack.extend((t + q, d + 1, 2 * a + q // (fan // 2)) for q in range(fan))
+            else:
+                stack.extend((t + q, d, a) for q in range(2))
         return Warp(start, gamma_0, gamma_step, c_star, knot)
 
     def _knots(self, g, name, gamma_lo, gamma_hi, bg, bc, be, tree, split, num):

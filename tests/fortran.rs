@@ -15,7 +15,8 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use evaluator::{
-    dissipative_table, points_e, random_body, random_impact, rebound_fields, run, run_ok, status_of,
+    anisotropic_table, dissipative_table, points_e, random_body, random_impact, rebound_fields,
+    run, run_ok, sealed, status_of, ANISOTROPIC_GAMMAS,
 };
 use oblique_lookup::rebound::{Body, Elastic, Incident3, Motion3, Pair};
 use oblique_lookup::{Contact, OutOfDomain, Prepared, Table};
@@ -1285,4 +1286,85 @@ fn module_answers_the_table_of_one_pair() {
         pts.len(),
         start.elapsed().as_secs_f64()
     );
+}
+
+/// The module on an elastic table whose split cells halve only the axes they need (export
+/// layout version 6, with a warp): `oblique_p` gives the bits of `Table::p_with` and its
+/// refusals at a few hundred points, a curve of the export the bits of `Curve::p`, and a
+/// damaged mask (on a leaf) is refused at open with `OBLQ_E_CORRUPT` (6).
+#[test]
+fn module_answers_an_elastic_table_with_split_masks() {
+    let (t, export, _) = anisotropic_table(&dir().join("anisotropic"));
+    let s = t.surface();
+    let mut r = SplitMix(61);
+    let pts: Vec<(f64, f64)> = (0..400)
+        .map(|_| {
+            let g =
+                0.9 * s.gamma_min() + (1.05 * s.gamma_max() - 0.9 * s.gamma_min()) * r.uniform();
+            (g, 3.0 * r.uniform() * r.uniform())
+        })
+        .collect();
+    let gamma = ANISOTROPIC_GAMMAS[2];
+    let alphas: Vec<f64> = (0..100).map(|_| 4.0 * r.uniform() * r.uniform()).collect();
+    let mut input = String::new();
+    for (i, (g, a)) in pts.iter().enumerate() {
+        input += &format!("p {} {} {}\n", f(*g), f(*a), i % 2);
+    }
+    input += &format!("curve {} 0\n", f(gamma));
+    for a in &alphas {
+        input += &format!("cp {} 0\n", f(*a));
+    }
+    let out = run_ok(&builds()[0].1, &[&path_str(&export)], &input);
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some("0"), "open");
+    let (mut answered, mut refused) = (0, 0);
+    for (i, (g, a)) in pts.iter().enumerate() {
+        let line = lines.next().expect("an answer per point");
+        let (st, p) = line.split_once(' ').expect("status P");
+        let outside = if i % 2 == 1 {
+            OutOfDomain::Clamp
+        } else {
+            OutOfDomain::Error
+        };
+        match t.p_with(*g, *a, outside) {
+            Ok(want) => {
+                answered += 1;
+                assert_eq!(st, "0", "({g:?}, {a:?}): {line}");
+                assert_eq!(num(p).to_bits(), want.to_bits(), "({g:?}, {a:?})");
+            }
+            Err(err) => {
+                refused += 1;
+                assert_eq!(st, status_of(&err, *g, *a).to_string(), "{line}: {err}");
+            }
+        }
+    }
+    assert!(
+        answered > 300 && refused > 5,
+        "{answered} answered, {refused} refused"
+    );
+    assert!(lines.next().expect("curve").starts_with("0 "), "the curve");
+    let curve = t.curve(gamma, OutOfDomain::Error).expect("curve");
+    for a in &alphas {
+        let line = lines.next().expect("an answer per alpha");
+        let (st, p) = line.split_once(' ').expect("status P");
+        assert_eq!(st, "0", "{line}");
+        let want = curve.p(*a).expect("valid");
+        assert_eq!(num(p).to_bits(), want.to_bits(), "curve alpha {a:?}");
+    }
+    // A mask on a leaf of the first patch with masks, resealed: refused at open.
+    let mut b = std::fs::read(&export).expect("export");
+    let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().expect("8"));
+    let dir_at = u64_at(&b, 72) as usize;
+    let r = (0..3)
+        .map(|k| dir_at + 160 * k)
+        .find(|&r| u64_at(&b, r + 144) != 0)
+        .expect("a patch with masks");
+    let (tree_at, masks) = (u64_at(&b, r + 48) as usize, u64_at(&b, r + 144) as usize);
+    let leaf = (0..)
+        .find(|&i: &usize| i32::from_le_bytes(b[tree_at + 4 * i..][..4].try_into().expect("4")) < 0)
+        .expect("a leaf");
+    b[masks + leaf] = 1;
+    let bad = dir().join("anisotropic-bad-mask.oblq");
+    std::fs::write(&bad, sealed(b)).expect("write");
+    assert_eq!(run_ok(&builds()[0].1, &[&path_str(&bad)], "").trim(), "6");
 }

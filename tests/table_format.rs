@@ -80,6 +80,8 @@ struct Expect {
     gamma_max: f64,
     alpha_max: f64,
     config: String,
+    /// Built with `nodes.anisotropic`: every patch has the dataset `split`.
+    anisotropic: bool,
 }
 
 impl Expect {
@@ -89,6 +91,21 @@ impl Expect {
             gamma_max: GAMMA_MAX,
             alpha_max: f64::INFINITY,
             config: SMALL_CONFIG.to_string(),
+            anisotropic: false,
+        }
+    }
+
+    /// SMALL_CONFIG with `nodes.anisotropic = true`: cells halve only the axes they need.
+    fn anisotropic() -> Self {
+        let config = SMALL_CONFIG.replace(
+            "blocks_coord = 3\n",
+            "blocks_coord = 3\nanisotropic = true\n",
+        );
+        assert_ne!(config, SMALL_CONFIG);
+        Expect {
+            config,
+            anisotropic: true,
+            ..Expect::small()
         }
     }
 
@@ -108,6 +125,7 @@ impl Expect {
             gamma_max,
             alpha_max,
             config,
+            anisotropic: false,
         }
     }
 
@@ -134,6 +152,7 @@ impl Expect {
 enum Ty {
     F64,
     I32,
+    U8,
     Str,
 }
 
@@ -142,6 +161,7 @@ impl Ty {
         match self {
             Ty::F64 => TypeDescriptor::Float(FloatSize::U8),
             Ty::I32 => TypeDescriptor::Integer(IntSize::U4),
+            Ty::U8 => TypeDescriptor::Unsigned(IntSize::U1),
             Ty::Str => TypeDescriptor::VarLenUnicode,
         }
     }
@@ -207,6 +227,10 @@ const PATCH_DATASETS: &[(&str, Ty, PatchShape)] = &[
     ("leaf_depth", Ty::I32, PatchShape::Leaves),
     ("leaf_predicted_error", Ty::F64, PatchShape::Leaves),
 ];
+
+/// The optional dataset of a patch of a table built with `nodes.anisotropic` (`uint8 [cells]`):
+/// the axes each cell halves (bit 2 `γ`, bit 1 `c`; 0 for a leaf).
+const SPLIT_DATASET: (&str, Ty) = ("split", Ty::U8);
 
 /// The optional sub-group of `partial_high` (schema 3): the warp of the coordinate.
 const WARP_GROUP: &str = "warp";
@@ -478,6 +502,7 @@ fn a_documented_names_match_the_explicit_lists() {
         .chain(PATCHES.iter().map(|x| x.0))
         .chain(PATCH_ATTRS.iter().map(|x| x.0))
         .chain(PATCH_DATASETS.iter().map(|x| x.0))
+        .chain([SPLIT_DATASET.0])
         .chain(OTHER_DATASETS.iter().map(|x| x.0))
         .chain([WARP_GROUP])
         .chain(WARP_ATTRS.iter().map(|x| x.0))
@@ -589,6 +614,9 @@ fn check_layout(path: &Path, ex: &Expect) {
         if warp.is_some() {
             members.push(WARP_GROUP);
         }
+        if ex.anisotropic {
+            members.push(SPLIT_DATASET.0);
+        }
         assert_eq!(
             set(g.member_names().unwrap()),
             set(members),
@@ -606,7 +634,13 @@ fn check_layout(path: &Path, ex: &Expect) {
         let bc = count_attr(&g, "blocks_coord");
         let m = count_attr(&g, "leaf_intervals");
         let tree: Vec<i32> = ints(&g, "tree");
-        // Walk the tree as documented: every leaf's square (x0, c0, hx, hc) and depth.
+        // The masks (bit 2 γ, bit 1 c): 3 on every split cell without them.
+        let split: Option<Vec<u8>> = ex.anisotropic.then(|| {
+            check_dataset(&g, SPLIT_DATASET.0, SPLIT_DATASET.1, &[tree.len()]);
+            ints(&g, SPLIT_DATASET.0)
+        });
+        // Walk the tree as documented: every leaf's box (x0, c0, hx, hc) and depth (the splits
+        // above it).
         let mut leaves: Vec<Option<LeafSquare>> = Vec::new();
         let mut stack: Vec<(usize, f64, f64, f64, f64, i32)> = (0..bg * bc)
             .map(|r| {
@@ -621,6 +655,9 @@ fn check_layout(path: &Path, ex: &Expect) {
             visited[cell] = true;
             let t = tree[cell];
             if t < 0 {
+                if let Some(split) = &split {
+                    assert_eq!(split[cell], 0, "{pname}: split[{cell}] of a leaf");
+                }
                 let leaf = (-t - 1) as usize;
                 if leaves.len() <= leaf {
                     leaves.resize(leaf + 1, None);
@@ -629,14 +666,19 @@ fn check_layout(path: &Path, ex: &Expect) {
                 leaves[leaf] = Some((x0, c0, hx, hc, d));
             } else {
                 let t = t as usize;
+                let mask = split.as_ref().map_or(3, |s| s[cell]);
+                assert!((1..=3).contains(&mask), "{pname}: split[{cell}] = {mask}");
+                let (ng, nc) = (usize::from(mask & 2 != 0), usize::from(mask & 1 != 0));
                 assert!(
-                    t > cell && t + 4 <= tree.len(),
+                    t > cell && t + (1 << (ng + nc)) <= tree.len(),
                     "{pname}: cell {cell} -> {t}"
                 );
-                for qg in 0..2 {
-                    for qc in 0..2 {
-                        let (x, c) = (x0 + qg as f64 * hx / 2.0, c0 + qc as f64 * hc / 2.0);
-                        stack.push((t + 2 * qg + qc, x, c, hx / 2.0, hc / 2.0, d + 1));
+                // Children `t + q`, `q` row-major over the halved axes (γ first).
+                let (hx2, hc2) = (hx / (1 + ng) as f64, hc / (1 + nc) as f64);
+                for qg in 0..=ng {
+                    for qc in 0..=nc {
+                        let (x, c) = (x0 + qg as f64 * hx2, c0 + qc as f64 * hc2);
+                        stack.push((t + (qg << nc) + qc, x, c, hx2, hc2, d + 1));
                     }
                 }
             }
@@ -925,7 +967,8 @@ fn check_warp(g: &hdf5::Group, pname: &str) -> Option<Warp> {
 
 // ---------------------------------------------------------------------------------------------
 // Other domains: a finite α_max (no `/no_slip`), a domain starting at γ = 1 (no `stick_low`) and
-// one ending at γ = 1 (no high patches).
+// one ending at γ = 1 (no high patches); and the small table built with `nodes.anisotropic`
+// (every patch with the dataset `split`, its tree walked through the masks).
 
 #[test]
 fn a_domain_variants_follow_the_documented_layout() {
@@ -934,6 +977,7 @@ fn a_domain_variants_follow_the_documented_layout() {
         Expect::variant(0.8, 1.6, 3.0),
         Expect::variant(1.0, 1.5, f64::INFINITY),
         Expect::variant(0.6, 1.0, f64::INFINITY),
+        Expect::anisotropic(),
     ]
     .iter()
     .enumerate()
@@ -942,6 +986,17 @@ fn a_domain_variants_follow_the_documented_layout() {
         let out = dir.join(format!("variant{i}.h5"));
         build(&config, &out, 2);
         check_layout(&out, ex);
+        if ex.anisotropic {
+            // Some cell halves one axis only, so the walk above followed the masks.
+            let f = open(&out);
+            let one_axis = ex
+                .patches()
+                .iter()
+                .flat_map(|p| ints::<u8>(&f.group(&format!("patches/{p}")).unwrap(), "split"))
+                .filter(|&m| m == 1 || m == 2)
+                .count();
+            assert!(one_axis > 0, "variant {i}: no cell halves one axis only");
+        }
 
         let t = Table::open(&out).expect("open the table");
         for c in t.checks() {

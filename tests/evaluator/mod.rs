@@ -147,6 +147,61 @@ pub fn dissipative_table(d: &Path) -> (Table, PathBuf) {
     (t, export)
 }
 
+/// The curves of [`anisotropic_table`]'s export: `γ < 1`, an isotropic material's `γ` and two
+/// in the warped range.
+pub const ANISOTROPIC_GAMMAS: [f64; 4] = [0.3, 1.749_785_860_077_429_9, 2.6, 3.2];
+
+/// A small elastic table whose split cells halve only the axes they need
+/// (`nodes.anisotropic`, split masks 1 to 3 over `(γ, c)`) with a warp, γ from 0.1 to 3.5,
+/// built once for every test process of this build (`common::shared_build`, about 15 s on 2
+/// cores); and its export with the curves of [`ANISOTROPIC_GAMMAS`] by `sweep export` (layout
+/// version 6) into the folder `d`, `d/anisotropic.oblq`. Panics unless some split cell halves
+/// one axis only (mask 1 or 2) and the partial-slip patch has a warp: a reader that ignored
+/// the masks would answer such a table wrongly.
+pub fn anisotropic_table(d: &Path) -> (Table, PathBuf, PathBuf) {
+    std::fs::create_dir_all(d).expect("folder");
+    let cfg = d.join("anisotropic.toml");
+    std::fs::write(
+        &cfg,
+        "output = \"unused.h5\"\n[domain]\ngamma_min = 0.1\ngamma_max = 3.5\n\
+         alpha_max = \"inf\"\n[nodes]\ntarget_error = 4e-4\nleaf_intervals = 8\n\
+         fold_warp = true\nanisotropic = true\n[solver]\ntol = 4e-5\n[checks]\n\
+         per_patch = 30\n",
+    )
+    .expect("write config");
+    let table = crate::common::shared_build(&cfg);
+    let export = d.join("anisotropic.oblq");
+    let path = |p: &Path| p.to_str().expect("utf-8 path").to_string();
+    let mut args = vec![
+        "export".to_string(),
+        path(&table),
+        "-o".into(),
+        path(&export),
+    ];
+    for g in ANISOTROPIC_GAMMAS {
+        args.extend(["--gamma".to_string(), format!("{g:?}")]);
+    }
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let said = sweep_ok(&args);
+    assert!(said.contains("the table and 4 curves"), "{said}");
+    let bytes = std::fs::read(&export).expect("the export");
+    assert_eq!(bytes[8..12], 6u32.to_le_bytes(), "layout version 6");
+    let t = Table::open(&table).expect("the table");
+    let s = t.surface();
+    let one_axis = s
+        .patches()
+        .filter_map(|(_, p)| p.split())
+        .flatten()
+        .filter(|&&m| m == 1 || m == 2)
+        .count();
+    assert!(one_axis > 10, "{one_axis} cells halve one axis only");
+    assert!(
+        s.patches().any(|(_, p)| p.warp().is_some()),
+        "the partial-slip patch has a warp"
+    );
+    (t, export, table)
+}
+
 /// Random `(γ, α, e_n)` with `γ` in `[g_lo, g_hi]` and `e_n` in `[e_lo, e_hi]`; α = 0, ∞, α_c2
 /// and α_c1(γ, e_n) in the mix, `γ = 1` and the ends of the `e_n` range now and then.
 pub fn points_e(n: usize, seed: u64, g: (f64, f64), e: (f64, f64)) -> Vec<(f64, f64, f64)> {

@@ -21,7 +21,11 @@
 //! `e_n` axis whose partial-slip patch has knots ([`crate::surface::Knots`]) as version 5:
 //! version 2 (flag `0` at offset 68) or version 4 (flag `1`) with the knots in a block named by
 //! the partial-slip record at offset 152 (a reader of version 4 only refuses it by its version
-//! instead of answering from the coordinate without its knots).
+//! instead of answering from the coordinate without its knots); an elastic table one of whose
+//! patches has split masks (`nodes.anisotropic`: cells that halve only the axes they need) as
+//! version 6: version 1 (its header and records) whose patch records name the masks at offset
+//! 144, as version 2 does, and whose patches with masks have no fine index (a reader of version
+//! 1 only refuses it by its version instead of descending as if every split halved both axes).
 
 use crate::format::fnv1a64;
 use crate::surface::{PatchId, PatchKind, Surface, MAX_INDEX_ENTRIES};
@@ -40,6 +44,12 @@ pub const VERSION_NO_LINE: u32 = 4;
 /// Layout version of the export of a table with an `e_n` axis whose partial-slip coordinate has
 /// knots: version 2 or 4 (the flag [`NO_LINE_AT`] says which) with the knots block.
 pub const VERSION_KNOTS: u32 = 5;
+/// Layout version of the export of an elastic table with split masks: version 1 whose patch
+/// records may name the masks of their cells at [`SPLIT_AT`] (bit 2 `γ`, bit 1 `c`).
+pub const VERSION_SPLIT: u32 = 6;
+/// Offset, in a patch record, of the `u64` offset of its split masks (`u8[cells]`; versions 2,
+/// 3 and 6, or 0: every split halves every axis).
+pub const SPLIT_AT: usize = 144;
 /// Offset of the `u32` flag of a table without a full-slip line: `1` in version 4, `0` in
 /// versions 1 to 3, either in version 5 (a reader checks it against the version).
 pub const NO_LINE_AT: usize = 68;
@@ -138,8 +148,10 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// A surface with an `e_n` axis ([`Surface::restitution`]) is written as version 2, the table of
 /// one pair ([`Surface::pair_gamma`]) as version 3, a surface without the full-slip line
 /// ([`Surface::has_line`]: Thornton's law) as version 4, and one whose partial-slip patch has
-/// knots as version 5 (with the flag of version 4 when it has no full-slip line); curves belong
-/// to elastic tables only.
+/// knots as version 5 (with the flag of version 4 when it has no full-slip line), and an elastic
+/// surface one of whose patches has split masks ([`crate::surface::Patch::split`]) as version 6
+/// (version 1 otherwise, byte for byte as before version 6 existed); curves belong to elastic
+/// tables only.
 ///
 /// # Panics
 ///
@@ -171,11 +183,15 @@ pub fn export(
         surface.has_line() || (axis.is_some() && surface.pair_gamma().is_none()),
         "only a table with an e_n axis over a range of gamma has no full-slip line"
     );
+    // The masks of an elastic table are written only with its surface (a curves-only export
+    // stays version 1).
+    let masked = with_surface && surface.patches().any(|(_, p)| p.split().is_some());
     let (version, header) = match (axis, surface.pair_gamma(), surface.has_line()) {
         (Some(_), None, _) if knotted => (VERSION_KNOTS, HEADER_BYTES_E_N),
         (Some(_), None, false) => (VERSION_NO_LINE, HEADER_BYTES_E_N),
         (Some(_), Some(_), _) => (VERSION_PAIR, HEADER_BYTES_E_N),
         (Some(_), None, true) => (VERSION_E_N, HEADER_BYTES_E_N),
+        (None, _, _) if masked => (VERSION_SPLIT, HEADER_BYTES),
         (None, _, _) => (VERSION, HEADER_BYTES),
     };
     let mut v = vec![0u8; header];
@@ -230,12 +246,20 @@ pub fn export(
             let p_at = push_f64s(&mut v, p.p().iter().copied());
             put_u64(&mut v, r + 56, p_at);
             if let Some(split) = p.split() {
-                // The axes each split cell halves (versions 2 and 3): `u8[cells]`.
+                // The axes each split cell halves (versions 2, 3 and 6): `u8[cells]`.
                 let at = v.len() as u64;
                 v.extend_from_slice(split);
-                put_u64(&mut v, r + 144, at);
+                put_u64(&mut v, r + SPLIT_AT, at);
             }
-            if let Some(fine) = p.fine_index(MAX_INDEX_ENTRIES) {
+            // The fine index of a patch whose cells halve both axes; a patch with masks
+            // (version 6) is descended from its roots: an index over cells of unequal sides
+            // would need a scale per axis, and it saved about 5% of a random lookup in C
+            // (docs/export-format.md, "Version 6").
+            let fine = match p.split() {
+                Some(_) => None,
+                None => p.fine_index(MAX_INDEX_ENTRIES),
+            };
+            if let Some(fine) = fine {
                 put_u32(&mut v, r + 112, fine.depth[0]);
                 align8(&mut v);
                 let at = v.len() as u64;
