@@ -265,33 +265,63 @@ fn clamp_and_refusals_of_queries_match_the_rust_rule() {
     );
 }
 
+/// Curve `index` (at `gamma`) of `export` through the C driver at `n` values of α (every 40th
+/// ∞, the next α_c2, the others `4·u·u`, seeded by `seed`): each answer has the bits of the
+/// Rust curve of `t`. Returns the α and the C answers.
+fn curve_bits(
+    t: &Table,
+    export: &Path,
+    index: usize,
+    gamma: f64,
+    n: usize,
+    seed: u64,
+) -> Vec<(f64, f64)> {
+    let curve = t.curve(gamma, OutOfDomain::Error).expect("curve");
+    let mut r = SplitMix(seed);
+    let alphas: Vec<f64> = (0..n)
+        .map(|k| match k % 40 {
+            0 => f64::INFINITY,
+            1 => alpha_c2(gamma),
+            _ => 4.0 * r.uniform() * r.uniform(),
+        })
+        .collect();
+    let input: String = alphas.iter().map(|a| format!("{a:?}\n")).collect();
+    let out = run_ok(
+        gcc_driver(),
+        &[
+            "curve",
+            export.to_str().expect("path"),
+            &index.to_string(),
+            "0",
+        ],
+        &input,
+    );
+    assert_eq!(
+        out.lines().count(),
+        alphas.len(),
+        "every alpha answered by C"
+    );
+    alphas
+        .iter()
+        .zip(out.lines())
+        .map(|(&a, line)| {
+            let c: f64 = line.parse().expect("P");
+            let want = curve.p(a).expect("valid");
+            assert_eq!(c.to_bits(), want.to_bits(), "gamma {gamma} alpha {a:?}");
+            (a, c)
+        })
+        .collect()
+}
+
 #[test]
 fn curves_give_the_bits_of_the_rust_curves() {
     let t = table("full");
     for curves_only in [false, true] {
         let path = export_file("full", curves_only);
         for (i, &g) in GAMMAS.iter().enumerate() {
-            let curve = t.curve(g, OutOfDomain::Error).expect("curve");
-            let mut r = SplitMix(i as u64 + 3);
-            let alphas: Vec<f64> = (0..10_000)
-                .map(|k| match k % 40 {
-                    0 => f64::INFINITY,
-                    1 => alpha_c2(g),
-                    _ => 4.0 * r.uniform() * r.uniform(),
-                })
-                .collect();
-            let input: String = alphas.iter().map(|a| format!("{a:?}\n")).collect();
-            let out = run_ok(
-                gcc_driver(),
-                &["curve", path.to_str().expect("path"), &i.to_string(), "0"],
-                &input,
-            );
-            for (a, line) in alphas.iter().zip(out.lines()) {
-                let c: f64 = line.parse().expect("P");
-                let want = curve.p(*a).expect("valid");
-                assert_eq!(c.to_bits(), want.to_bits(), "gamma {g} alpha {a:?}");
+            for (a, c) in curve_bits(t, &path, i, g, 10_000, i as u64 + 3) {
                 // And within 1e-13 of the table's rule itself.
-                assert!((c - t.p(g, *a).expect("inside")).abs() < 1e-13);
+                assert!((c - t.p(g, a).expect("inside")).abs() < 1e-13);
             }
         }
         // A curves-only export refuses P at any gamma above the line.
@@ -2611,27 +2641,7 @@ fn anisotropic_table_gives_the_bits_of_rust_in_c_and_agrees_with_python() {
     assert_eq!(differ, 0, "{differ} of {n} points differ in some bit");
     // The curves of the export.
     for (i, &g) in evaluator::ANISOTROPIC_GAMMAS.iter().enumerate() {
-        let curve = t.curve(g, OutOfDomain::Error).expect("curve");
-        let mut r = SplitMix(i as u64 + 41);
-        let alphas: Vec<f64> = (0..5_000)
-            .map(|k| match k % 40 {
-                0 => f64::INFINITY,
-                1 => alpha_c2(g),
-                _ => 4.0 * r.uniform() * r.uniform(),
-            })
-            .collect();
-        let input: String = alphas.iter().map(|a| format!("{a:?}\n")).collect();
-        let out = run_ok(
-            gcc_driver(),
-            &["curve", export.to_str().expect("path"), &i.to_string(), "0"],
-            &input,
-        );
-        assert_eq!(out.lines().count(), alphas.len());
-        for (a, line) in alphas.iter().zip(out.lines()) {
-            let p: f64 = line.parse().expect("P");
-            let want = curve.p(*a).expect("valid");
-            assert_eq!(p.to_bits(), want.to_bits(), "gamma {g} alpha {a:?}");
-        }
+        curve_bits(t, export, i, g, 5_000, i as u64 + 41);
     }
     // Clamped and refused outside the domain as in Rust.
     let pts_out = points(20_000, 33, 0.05, 4.0);
