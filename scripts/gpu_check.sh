@@ -60,7 +60,7 @@ with open(sys.argv[1], "rb") as f:
 version, = struct.unpack_from("<I", d, 8)
 g_lo, g_hi, a_max = struct.unpack_from("<3d", d, 32)
 no_line, = struct.unpack_from("<I", d, 68)
-e_n = version >= 2
+e_n = 2 <= version <= 5  # version 6: an elastic table with split masks
 e_lo, e_hi = struct.unpack_from("<2d", d, 96) if e_n else (1.0, 1.0)
 box = None
 if version == 5:  # the knots' region of partial_high (record 1), root cells to gamma and e_n
