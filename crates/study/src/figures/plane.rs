@@ -189,7 +189,8 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
     }
 }
 
-/// Outline of every leaf of a patch in `(γ, α/(1+α))`: bottom, right, top and left edge, the
+/// Outline of every leaf of a patch in `(γ, α/(1+α))` (following the `split` masks of a tree
+/// whose cells halve only some axes): bottom, right, top and left edge, the
 /// edges of constant patch coordinate `c` (`c'` of a warp; curves in this plane) sampled at 64 points per patch
 /// width, at least 5 per leaf.
 pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
@@ -221,15 +222,21 @@ pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
             continue;
         };
         if t >= 0 {
+            // The children, row-major over the axes the cell halves (bit 2: γ, bit 1: c;
+            // both in a quadtree without `split` masks).
             let t = t as usize;
-            for qg in 0..2 {
-                for qc in 0..2 {
+            let mask = patch.split_mask(cell);
+            let (halve_g, halve_c) = (mask & 2 != 0, mask & 1 != 0);
+            let (ng, nc) = (1 + usize::from(halve_g), 1 + usize::from(halve_c));
+            let (cx, cc) = (hx / ng as f64, hc / nc as f64);
+            for qg in 0..ng {
+                for qc in 0..nc {
                     stack.push((
-                        t + 2 * qg + qc,
-                        x0 + 0.5 * hx * qg as f64,
-                        c0 + 0.5 * hc * qc as f64,
-                        0.5 * hx,
-                        0.5 * hc,
+                        t + qg * nc + qc,
+                        x0 + cx * qg as f64,
+                        c0 + cc * qc as f64,
+                        cx,
+                        cc,
                     ));
                 }
             }
