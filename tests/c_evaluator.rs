@@ -34,6 +34,61 @@ fn dir() -> &'static Path {
     DIR.get_or_init(|| common::subdir("c_evaluator"))
 }
 
+/// What the C driver's `open` prints for `bytes` written to the scratch file `name`: `0 ok`, or
+/// the status code and its message.
+fn open_export(name: &str, bytes: &[u8]) -> String {
+    let p = dir().join(name);
+    std::fs::write(&p, bytes).expect("write");
+    run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
+}
+
+/// The little-endian `u32` at byte `at` of an export.
+fn u32_at(b: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes(b[at..at + 4].try_into().expect("4"))
+}
+
+/// The little-endian `u64` at byte `at` of an export.
+fn u64_at(b: &[u8], at: usize) -> u64 {
+    u64::from_le_bytes(b[at..at + 8].try_into().expect("8"))
+}
+
+/// A patch record of an export that names split masks (offset 144, `docs/export-format.md`).
+struct MaskedRecord {
+    /// The patch's index (0 `stick_low`, 1 `partial_high`, 2 `stick_high`).
+    k: usize,
+    /// Offset of the record.
+    record: usize,
+    /// Offset of the masks, one byte per cell.
+    masks: usize,
+    /// Cells of the tree.
+    cells: usize,
+    /// Offset of the tree (`i32` per cell).
+    tree: usize,
+}
+
+impl MaskedRecord {
+    /// The tree's entry for cell `i` of export `b`: the first child (≥ 0) or `−1 − leaf`.
+    fn link(&self, b: &[u8], i: usize) -> i32 {
+        i32::from_le_bytes(b[self.tree + 4 * i..][..4].try_into().expect("4"))
+    }
+}
+
+/// The patch records of export `b` that name split masks.
+fn masked_records(b: &[u8]) -> Vec<MaskedRecord> {
+    let dir_at = u64_at(b, 72) as usize;
+    (0..3)
+        .map(|k| (k, dir_at + 160 * k))
+        .filter(|&(_, r)| u64_at(b, r + 144) != 0)
+        .map(|(k, r)| MaskedRecord {
+            k,
+            record: r,
+            masks: u64_at(b, r + 144) as usize,
+            cells: u32_at(b, r + 36) as usize,
+            tree: u64_at(b, r + 48) as usize,
+        })
+        .collect()
+}
+
 /// Compile `src` with `compiler` and `flags` into `out` (in the scratch folder).
 fn compile(compiler: &str, flags: &[&str], src: &str, out: &str) -> PathBuf {
     let exe = dir().join(out);
@@ -587,11 +642,7 @@ fn header_values_the_data_contradicts_are_refused_after_resealing() {
         b[24..32].copy_from_slice(&sum.to_le_bytes());
         b
     };
-    let open = |name: &str, bytes: &[u8]| -> String {
-        let p = dir().join(format!("header_{name}"));
-        std::fs::write(&p, bytes).expect("write");
-        run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
-    };
+    let open = |name: &str, bytes: &[u8]| open_export(&format!("header_{name}"), bytes);
     let c2 = |g: f64| g * g * (2.0 / 7.0);
     for (name, at, v) in [
         ("alpha_max_at_c2", 48, c2(2.2)),
@@ -1802,28 +1853,18 @@ fn load_file_reads_exports_and_refuses_other_paths_with_their_code() {
 fn damaged_split_masks_are_refused() {
     let (_, path) = dissipative();
     let good = std::fs::read(path).expect("export");
-    let open = |name: &str, bytes: &[u8]| -> String {
-        let p = dir().join(format!("split_{name}"));
-        std::fs::write(&p, bytes).expect("write");
-        run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
-    };
-    let u32_at = |b: &[u8], at: usize| u32::from_le_bytes(b[at..at + 4].try_into().expect("4"));
-    let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().expect("8"));
+    let open = |name: &str, bytes: &[u8]| open_export(&format!("split_{name}"), bytes);
     assert!(open("good", &good).starts_with("0 ok"));
-    let dir_at = u64_at(&good, 72) as usize;
     let mut cases = 0;
-    for k in 0..3 {
-        let r = dir_at + 160 * k;
-        let (masks, cells) = (
-            u64_at(&good, r + 144) as usize,
-            u32_at(&good, r + 36) as usize,
-        );
-        if masks == 0 {
-            continue;
-        }
-        let tree_at = u64_at(&good, r + 48) as usize;
-        let link =
-            |i: usize| i32::from_le_bytes(good[tree_at + 4 * i..][..4].try_into().expect("4"));
+    for rec in masked_records(&good) {
+        let MaskedRecord {
+            k,
+            record: r,
+            masks,
+            cells,
+            ..
+        } = rec;
+        let link = |i: usize| rec.link(&good, i);
         let Some(split) = (0..cells).find(|&i| link(i) >= 0) else {
             continue; // every root a leaf
         };
@@ -2168,13 +2209,7 @@ fn rebounds_on_the_table_of_one_pair_give_the_bits_of_the_rust_library() {
 fn damaged_pair_exports_are_refused() {
     let (_, path) = pair_table();
     let good = std::fs::read(path).expect("export");
-    let open = |name: &str, bytes: &[u8]| -> String {
-        let p = dir().join(format!("pair_{name}"));
-        std::fs::write(&p, bytes).expect("write");
-        run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
-    };
-    let u32_at = |b: &[u8], at: usize| u32::from_le_bytes(b[at..at + 4].try_into().expect("4"));
-    let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().expect("8"));
+    let open = |name: &str, bytes: &[u8]| open_export(&format!("pair_{name}"), bytes);
     let with = |edits: &[(usize, Vec<u8>)]| {
         let mut b = good.clone();
         for (at, v) in edits {
@@ -2705,13 +2740,7 @@ fn anisotropic_table_gives_the_bits_of_rust_in_c_and_agrees_with_python() {
 fn damaged_masks_of_an_elastic_export_are_refused() {
     let (_, path, _) = anisotropic();
     let good = std::fs::read(path).expect("export");
-    let open = |name: &str, bytes: &[u8]| -> String {
-        let p = dir().join(format!("aniso_{name}"));
-        std::fs::write(&p, bytes).expect("write");
-        run_ok(gcc_driver(), &["open", p.to_str().expect("path")], "")
-    };
-    let u32_at = |b: &[u8], at: usize| u32::from_le_bytes(b[at..at + 4].try_into().expect("4"));
-    let u64_at = |b: &[u8], at: usize| u64::from_le_bytes(b[at..at + 8].try_into().expect("8"));
+    let open = |name: &str, bytes: &[u8]| open_export(&format!("aniso_{name}"), bytes);
     assert!(open("good", &good).starts_with("0 ok"));
     let with = |at: usize, v: &[u8]| {
         let mut b = good.clone();
@@ -2720,21 +2749,17 @@ fn damaged_masks_of_an_elastic_export_are_refused() {
     };
     assert!(open("as_v1", &with(8, &1u32.to_le_bytes())).starts_with("6 "));
     assert!(open("as_v7", &with(8, &7u32.to_le_bytes())).starts_with("4 "));
-    let dir_at = u64_at(&good, 72) as usize;
     let mut cases = 0;
-    for k in 0..3 {
-        let r = dir_at + 160 * k;
-        let (masks, cells) = (
-            u64_at(&good, r + 144) as usize,
-            u32_at(&good, r + 36) as usize,
-        );
-        if masks == 0 {
-            continue;
-        }
+    for rec in masked_records(&good) {
+        let MaskedRecord {
+            k,
+            record: r,
+            masks,
+            cells,
+            ..
+        } = rec;
         assert_eq!(u64_at(&good, r + 120), 0, "no fine index beside masks");
-        let tree_at = u64_at(&good, r + 48) as usize;
-        let link =
-            |i: usize| i32::from_le_bytes(good[tree_at + 4 * i..][..4].try_into().expect("4"));
+        let link = |i: usize| rec.link(&good, i);
         let leaf = (0..cells).find(|&i| link(i) < 0).expect("a leaf");
         for split in (0..cells).filter(|&i| link(i) >= 0).take(3) {
             for (name, bytes) in [
