@@ -651,6 +651,9 @@ pub(crate) fn build_patch(
     };
     let m = layout.m;
     let law = cfg.law();
+    // Whether a split halves only the axes a cell needs, its masks stored (always with an
+    // `e_n` axis; `nodes.anisotropic` without).
+    let masked = layout.restitution.is_some() || cfg.nodes.anisotropic;
     // All cells ever created, roots first; `child[i]` is the first child of a split cell.
     let mut cells: Vec<Cell> = layout.roots();
     let mut child: Vec<Option<usize>> = vec![None; cells.len()];
@@ -734,7 +737,7 @@ pub(crate) fn build_patch(
                 }
                 continue;
             }
-            mask[c] = if layout.restitution.is_some() || cfg.nodes.anisotropic {
+            mask[c] = if masked {
                 split_axes(&vals, m, k, cfg.nodes.target_error, layout.dims())
             } else {
                 0b11
@@ -890,7 +893,7 @@ pub(crate) fn build_patch(
             PatchData {
                 leaf_intervals: m,
                 tree,
-                split: (layout.restitution.is_some() || cfg.nodes.anisotropic).then_some(mask),
+                split: masked.then_some(mask),
                 p,
                 error_estimate: err,
                 warp: warp.clone(),

@@ -847,7 +847,7 @@ impl Patch {
         let g_bit = if self.is_pair() {
             0
         } else {
-            1u8 << (tree_dims(self.restitution().is_some(), false) - 1)
+            1u8 << (self.dims() - 1)
         };
         while let Some((cell, d, a)) = stack.pop() {
             let t = self.tree[cell];
