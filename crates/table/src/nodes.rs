@@ -27,48 +27,6 @@ pub struct StoredNodes<'a> {
     pub e_n: Option<&'a [f64]>,
 }
 
-/// The position of every leaf's box along each axis of the tree, in root-cell units: leaf
-/// `L` spans `[pos[k], pos[k] + 1] / 2^depth[k]` root cells along axis `k`, the root cell
-/// included in `pos` (`pos = root·2^depth + offset`). Exact: dyadic values.
-fn leaf_boxes(patch: &Patch) -> Vec<([f64; 3], [u32; 3])> {
-    let dims = patch.dims() as usize;
-    let blocks: Vec<usize> = (0..dims).map(|k| patch.axis(k).2).collect();
-    let tree = patch.tree();
-    let mut boxes = vec![([0.0; 3], [0u32; 3]); patch.leaves()];
-    let mut stack: Vec<(usize, [f64; 3], [u32; 3])> = (0..patch.roots())
-        .map(|r| {
-            let mut pos = [0.0; 3];
-            let mut rest = r;
-            for k in (0..dims).rev() {
-                pos[k] = (rest % blocks[k]) as f64;
-                rest /= blocks[k];
-            }
-            (r, pos, [0; 3])
-        })
-        .collect();
-    while let Some((cell, pos, depth)) = stack.pop() {
-        let t = tree[cell];
-        if t < 0 {
-            boxes[(-(t as i64) - 1) as usize] = (pos, depth);
-            continue;
-        }
-        let mask = patch.split_mask(cell);
-        let halved: Vec<usize> = (0..dims)
-            .filter(|&k| mask >> (dims - 1 - k) & 1 == 1)
-            .collect();
-        for q in 0..1usize << halved.len() {
-            let (mut p, mut d) = (pos, depth);
-            for (j, &k) in halved.iter().enumerate() {
-                let bit = (q >> (halved.len() - 1 - j)) & 1;
-                p[k] = 2.0 * p[k] + bit as f64;
-                d[k] += 1;
-            }
-            stack.push((t as usize + q, p, d));
-        }
-    }
-    boxes
-}
-
 /// Check the stored node coordinates of `patch` (named `name` in messages) against the
 /// positions its tree and axis attributes give: every node's γ, `c` and `e_n` within
 /// [`POSITION_TOL`] of its axis's span, every α a number `≥ 0` (`∞` allowed). `Err` names the
@@ -124,7 +82,7 @@ pub fn check_positions(name: &str, patch: &Patch, stored: StoredNodes<'_>) -> Re
             (ds.0, ds.1, lo, width, blocks as f64)
         })
         .collect();
-    let boxes = leaf_boxes(patch);
+    let boxes = patch.leaf_boxes();
     for (leaf, (pos, depth)) in boxes.iter().enumerate() {
         // Root cells per unit of the axis coordinate at this leaf's depth, per axis.
         let mut scale = [1.0; 3];

@@ -194,17 +194,6 @@ pub fn regimes(table: &Table, src: &Source) -> Sheet {
 /// edges of constant patch coordinate `c` (`c'` of a warp; curves in this plane) sampled at 64 points per patch
 /// width, at least 5 per leaf.
 pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
-    let roots = patch.blocks_gamma() * patch.blocks_coord();
-    let mut stack: Vec<(usize, f64, f64, f64, f64)> = (0..roots)
-        .map(|i| {
-            let (a, b) = (i / patch.blocks_coord(), i % patch.blocks_coord());
-            let (hx, hc) = (
-                1.0 / patch.blocks_gamma() as f64,
-                1.0 / patch.blocks_coord() as f64,
-            );
-            (i, a as f64 * hx, b as f64 * hc, hx, hc)
-        })
-        .collect();
     let mut out = Vec::new();
     let gamma = |x: f64| patch.gamma_lo() + (patch.gamma_hi() - patch.gamma_lo()) * x;
     // The quadtree is over the warped c' from the warp's start on (schema 3).
@@ -216,32 +205,14 @@ pub fn leaf_outlines(patch: &Patch, alpha_max: f64) -> Vec<Vec<(f64, f64)>> {
         };
         (g, compact(patch.kind().alpha(g, c, alpha_max)))
     };
-    let bg = patch.blocks_gamma() as f64;
-    while let Some((cell, x0, c0, hx, hc)) = stack.pop() {
-        let Some(&t) = patch.tree().get(cell) else {
-            continue;
-        };
-        if t >= 0 {
-            // The children, row-major over the axes the cell halves (bit 2: γ, bit 1: c;
-            // both in a quadtree without `split` masks).
-            let t = t as usize;
-            let mask = patch.split_mask(cell);
-            let (halve_g, halve_c) = (mask & 2 != 0, mask & 1 != 0);
-            let (ng, nc) = (1 + usize::from(halve_g), 1 + usize::from(halve_c));
-            let (cx, cc) = (hx / ng as f64, hc / nc as f64);
-            for qg in 0..ng {
-                for qc in 0..nc {
-                    stack.push((
-                        t + qg * nc + qc,
-                        x0 + cx * qg as f64,
-                        c0 + cc * qc as f64,
-                        cx,
-                        cc,
-                    ));
-                }
-            }
-            continue;
-        }
+    let (bg, bc) = (patch.blocks_gamma() as f64, patch.blocks_coord() as f64);
+    for (pos, depth) in patch.leaf_boxes() {
+        // The leaf's box in patch units: root cells over 2^depth along each axis.
+        let (sg, sc) = (
+            bg * f64::from(depth[0].min(1000) as i32).exp2(),
+            bc * f64::from(depth[1].min(1000) as i32).exp2(),
+        );
+        let (x0, hx, c0, hc) = (pos[0] / sg, 1.0 / sg, pos[1] / sc, 1.0 / sc);
         // The leaf's first row in root-row units (exact up to the rounding of 1/blocks).
         let warped = patch
             .warp()

@@ -836,38 +836,62 @@ impl Patch {
     }
 
     /// Each leaf's extent along γ in root-cell units, `[a/2^d, (a+1)/2^d]` for a leaf at depth
-    /// `d` with integer position `a` (exact dyadic values), leaf by leaf.
+    /// `d` along γ with integer position `a` (exact dyadic values), leaf by leaf; `[0, 1]` in
+    /// the patch of one pair (a single root along γ, never halved).
     pub fn leaf_gamma_spans(&self) -> Vec<(f64, f64)> {
-        let mut spans = vec![(0.0, 0.0); self.leaves()];
-        let per_row = self.blocks_coord() * self.blocks_e_n();
-        let mut stack: Vec<(usize, u32, u64)> = (0..self.roots())
-            .map(|i| (i, 0, (i / per_row) as u64))
-            .collect();
-        // The bit of γ in a split mask (none in the patch of one pair, whose tree has no γ).
-        let g_bit = if self.is_pair() {
-            0
-        } else {
-            1u8 << (self.dims() - 1)
-        };
-        while let Some((cell, d, a)) = stack.pop() {
-            let t = self.tree[cell];
-            if t < 0 {
-                let scale = f64::from(d.min(1000) as i32).exp2();
-                spans[(-(t as i64) - 1) as usize] = (a as f64 / scale, (a + 1) as f64 / scale);
-            } else {
-                let (mask, fanout) = (self.split_mask(cell), self.fanout_of(cell));
-                if mask & g_bit != 0 {
-                    // The child's upper half along γ: `q_γ`, the first bit of `q`.
-                    let shift = mask.count_ones() - 1;
-                    stack.extend(
-                        (0..fanout).map(|q| (t as usize + q, d + 1, 2 * a + (q >> shift) as u64)),
-                    );
-                } else {
-                    stack.extend((0..fanout).map(|q| (t as usize + q, d, a)));
+        if self.is_pair() {
+            return vec![(0.0, 1.0); self.leaves()];
+        }
+        self.leaf_boxes()
+            .into_iter()
+            .map(|(pos, depth)| {
+                let scale = f64::from(depth[0].min(1000) as i32).exp2();
+                (pos[0] / scale, (pos[0] + 1.0) / scale)
+            })
+            .collect()
+    }
+
+    /// The position of every leaf's box along each axis of the tree (`γ`, `c`, `e_n`; `c`, `e_n`
+    /// in the patch of one pair), in root-cell units: leaf `L` spans
+    /// `[pos[k], pos[k] + 1] / 2^depth[k]` root cells along axis `k`, the root cell included in
+    /// `pos` (`pos = root·2^depth + offset`), following the `split` masks. Exact: dyadic values.
+    pub fn leaf_boxes(&self) -> Vec<([f64; 3], [u32; 3])> {
+        let dims = self.dims() as usize;
+        let blocks: Vec<usize> = (0..dims).map(|k| self.axis(k).2).collect();
+        let tree = self.tree();
+        let mut boxes = vec![([0.0; 3], [0u32; 3]); self.leaves()];
+        let mut stack: Vec<(usize, [f64; 3], [u32; 3])> = (0..self.roots())
+            .map(|r| {
+                let mut pos = [0.0; 3];
+                let mut rest = r;
+                for k in (0..dims).rev() {
+                    pos[k] = (rest % blocks[k]) as f64;
+                    rest /= blocks[k];
                 }
+                (r, pos, [0; 3])
+            })
+            .collect();
+        while let Some((cell, pos, depth)) = stack.pop() {
+            let t = tree[cell];
+            if t < 0 {
+                boxes[(-(t as i64) - 1) as usize] = (pos, depth);
+                continue;
+            }
+            let mask = self.split_mask(cell);
+            let halved: Vec<usize> = (0..dims)
+                .filter(|&k| mask >> (dims - 1 - k) & 1 == 1)
+                .collect();
+            for q in 0..1usize << halved.len() {
+                let (mut p, mut d) = (pos, depth);
+                for (j, &k) in halved.iter().enumerate() {
+                    let bit = (q >> (halved.len() - 1 - j)) & 1;
+                    p[k] = 2.0 * p[k] + bit as f64;
+                    d[k] += 1;
+                }
+                stack.push((t as usize + q, p, d));
             }
         }
-        spans
+        boxes
     }
 
     /// The patch's warp if it applies at `γ`: the patch has one and `v = x·blocks_gamma`
