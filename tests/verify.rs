@@ -88,6 +88,21 @@ fn verify_refuses_bad_arguments() {
         assert_eq!(out.status.code(), Some(2), "{all:?}: {err}");
         assert!(err.contains(needle), "{all:?}: {err}");
     }
+    // E₋ is traced for elastic tables only, within γ 1.74–2.40.
+    let default = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/default.h5");
+    for (table, needle) in [(default, "has an e_n axis"), (FULL, "cannot be used with")] {
+        let mut all = vec!["verify", table, "--near-end"];
+        if table == FULL {
+            all.push("--near-fold");
+        }
+        let out = sweep(&all);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{all:?}: {err}");
+        assert!(
+            err.contains(needle) && err.contains("--near-"),
+            "{all:?}: {err}"
+        );
+    }
     let out = sweep(&["verify", "/nonexistent/table.h5"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/table.h5"));

@@ -51,6 +51,13 @@ pub struct VerifyArgs {
     /// 1 s for a curve, seconds for a surface).
     #[arg(long, conflicts_with = "near_curves")]
     near_fold: bool,
+    /// Draw (gamma, alpha) next to the end-of-contact curve E- instead (elastic tables): gamma
+    /// uniform over the table's range within [1.74, 2.40], where the last -mu F_N episode of
+    /// the impact leaves the separation as alpha grows (alpha from 20.9 at gamma = 1.74 through
+    /// the stick region, alpha_c2 at 1.907, to 0.513 at 2.40); alpha = alpha_E times 1 + s·r,
+    /// s = +1 or -1, r log-uniform in [1e-4, 0.1] (E- is traced first: about 2 s).
+    #[arg(long, conflicts_with_all = ["near_curves", "near_fold"])]
+    near_end: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
@@ -170,6 +177,43 @@ fn sample_near_fold(
     Ok(points)
 }
 
+/// The `n` points of `--near-end`: [`oblique_sweep::kink::near_end_minus_points`] on the curve
+/// E₋ over the part of an elastic table's γ range where it is traced.
+fn sample_near_end(
+    table: &Table,
+    path: &std::path::Path,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<Point>> {
+    let s = table.surface();
+    let (g_lo, g_hi) = (s.gamma_min(), s.gamma_max());
+    let refuse = |has: String| {
+        Failure::usage(format!(
+            "--near-end: {} has {has}; the end-of-contact curve E- is traced for elastic              tables whose gamma range reaches into [{}, {}] by {} or more",
+            path.display(),
+            oblique_sweep::kink::END_MINUS_FROM + oblique_sweep::kink::STEP,
+            oblique_sweep::kink::END_MINUS_TO,
+            3.0 * oblique_sweep::kink::STEP,
+        ))
+    };
+    if let Some((lo, hi)) = table.restitution() {
+        return Err(refuse(format!("an e_n axis ([{lo}, {hi}])")));
+    }
+    if s.pair_gamma().is_some() {
+        return Err(refuse("one pair (a single gamma)".into()));
+    }
+    let curve =
+        oblique_sweep::kink::end_minus_curve(oblique_table::surface::PatchKind::Stick, g_lo, g_hi)
+            .context("tracing the end-of-contact curve E-")?;
+    let points = curve
+        .map(|c| oblique_sweep::kink::near_end_minus_points(&c, g_lo, g_hi, n, seed))
+        .unwrap_or_default();
+    if points.is_empty() {
+        return Err(refuse(format!("gamma in [{g_lo}, {g_hi}]")));
+    }
+    Ok(points)
+}
+
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
 #[derive(Clone, Copy)]
 struct Outcome {
@@ -229,6 +273,8 @@ pub fn run(args: VerifyArgs) -> Result<()> {
     };
     let points = if args.near_fold {
         sample_near_fold(&table, &args.table, law, args.points, args.seed)?
+    } else if args.near_end {
+        sample_near_end(&table, &args.table, args.points, args.seed)?
     } else {
         sample(&table, args.points, args.seed, args.near_curves)
     };
@@ -243,6 +289,17 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         points.len(),
         match table.surface().pair_gamma() {
             Some(g) => format!("gamma = {g}, the table's one pair"),
+            None if args.near_end => format!(
+                "gamma uniform in [{}, {}]",
+                table
+                    .surface()
+                    .gamma_min()
+                    .max(oblique_sweep::kink::END_MINUS_FROM + oblique_sweep::kink::STEP),
+                table
+                    .surface()
+                    .gamma_max()
+                    .min(oblique_sweep::kink::END_MINUS_TO)
+            ),
             None if args.near_fold && table.restitution().is_none() => format!(
                 "gamma uniform in [{}, {}]",
                 table
@@ -257,7 +314,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
                 table.surface().gamma_max()
             ),
         },
-        if args.near_fold && table.restitution().is_some() {
+        if args.near_end {
+            "alpha within 1e-4 to 0.1 (relative) of the end-of-contact curve E-"
+        } else if args.near_fold && table.restitution().is_some() {
             "alpha within 1e-4 to 1e-2 (relative) of the fold surface F-"
         } else if args.near_fold {
             "alpha within 1e-4 to 1e-2 (relative) of the fold curve F-"
@@ -279,7 +338,11 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             ),
             None => String::new(),
         },
-        if table.surface().alpha_max().is_infinite() && !args.near_curves && !args.near_fold {
+        if table.surface().alpha_max().is_infinite()
+            && !args.near_curves
+            && !args.near_fold
+            && !args.near_end
+        {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {
             String::new()

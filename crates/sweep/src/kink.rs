@@ -13,8 +13,16 @@
 //! An elastic table traces it as a curve `α_F(γ)` ([`fold_minus_curve`]); a Kelvin–Voigt table
 //! as a surface `α_F(γ, e_n)` ([`fold_minus_surface`]), which ends where damping removes the
 //! fold (`e_n` ≈ 0.99 at γ = 2.4, 0.94 at 2.6, 0.87 at 3.5). Both are a [`Kink`]: the probes
-//! of a cell ask any kink for its α on the cell's node rows, so another law's kink (a fold in
-//! the stick patch, say) is one more entry of [`trace`].
+//! of a cell ask any kink for its α on the cell's node rows, so another kink is one more entry
+//! of [`trace`].
+//!
+//! The second is the end-of-contact curve E₋ of an elastic table ([`end_minus_curve`]): the
+//! last `−μF_N` episode leaves the separation as α grows. It runs from α → ∞ at γ ≈ 1.732
+//! down the stick patch, across α_c2 at γ ≈ 1.907 and through the partial-slip patch to F₋'s
+//! birth (γ = 2.40). `P` keeps its slope there, but the leaves it crosses err more than their
+//! surplus predicts: `tables/full.h5` built without its probes erred by 1.04e-5 at γ = 2.2796,
+//! α = 0.59139 (0.24 % below E₋; stated bound 7.98e-6), and by 8.1e-6 at γ = 1.872 in a stick
+//! leaf whose prediction was 3.2e-6.
 
 use rayon::prelude::*;
 
@@ -61,6 +69,14 @@ pub fn trace(
             if let Some(c) = fold_minus_curve(gammas.0, gammas.1)? {
                 out.push(Box::new(c));
             }
+            if let Some(c) = end_minus_curve(kind, gammas.0, gammas.1)? {
+                out.push(Box::new(c));
+            }
+        }
+        (Law::Elastic, PatchKind::Stick, None) => {
+            if let Some(c) = end_minus_curve(kind, gammas.0, gammas.1)? {
+                out.push(Box::new(c));
+            }
         }
         (Law::KelvinVoigt, PatchKind::PartialSlip, Some(e_range)) => {
             if let Some(s) = fold_minus_surface(gammas, e_range)? {
@@ -81,44 +97,62 @@ pub const STEP: f64 = 0.01;
 /// curve, `docs/solver.md`; a leaf's node spacing next to F₋ is ≥ 1e-3 relative).
 pub const TRACE_STEPS: usize = 2048;
 
-/// A kink curve `α_K(γ)` traced on an even grid of γ, interpolated (4-point Lagrange in
-/// `ln α`) between the grid points; undefined outside the grid.
+/// How a [`KinkCurve`] stores `α_K` at its grid points: the quantity that is smooth in γ, which
+/// the 4-point rule interpolates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CurveScale {
+    /// `ln α_K` (F₋).
+    Ln,
+    /// `1/α_K`, nearly linear in γ where E₋ leaves for α → ∞ (0.0479, 0.1069, 0.1647 at
+    /// γ = 1.74, 1.75, 1.76).
+    Reciprocal,
+}
+
+/// A kink curve `α_K(γ)` traced on an even grid of γ, interpolated (4-point Lagrange in the
+/// curve's [`CurveScale`]) between the grid points; undefined outside the grid.
 #[derive(Debug, Clone, PartialEq)]
 pub struct KinkCurve {
+    name: &'static str,
+    patch: PatchKind,
+    scale: CurveScale,
     gamma_0: f64,
     step: f64,
-    ln_alpha: Vec<f64>,
+    values: Vec<f64>,
 }
 
 impl KinkCurve {
     /// `α_K(γ)`, or `None` outside `[γ₀, γ₀ + (n − 1)·step]`.
     pub fn alpha_at(&self, gamma: f64) -> Option<f64> {
-        let n = self.ln_alpha.len();
+        let n = self.values.len();
         let u = (gamma - self.gamma_0) / self.step;
         if !(u >= 0.0 && u <= (n - 1) as f64) {
             return None;
         }
         let (start, w) = stencil4(u, n);
-        let l = &self.ln_alpha[start..start + 4];
-        Some((w[0] * l[0] + w[1] * l[1] + w[2] * l[2] + w[3] * l[3]).exp())
+        let l = &self.values[start..start + 4];
+        let v = w[0] * l[0] + w[1] * l[1] + w[2] * l[2] + w[3] * l[3];
+        match self.scale {
+            CurveScale::Ln => Some(v.exp()),
+            CurveScale::Reciprocal => (v > 0.0).then(|| 1.0 / v),
+        }
     }
 
     /// The γ range of the curve.
     pub fn gamma_range(&self) -> (f64, f64) {
         (
             self.gamma_0,
-            self.gamma_0 + (self.ln_alpha.len() - 1) as f64 * self.step,
+            self.gamma_0 + (self.values.len() - 1) as f64 * self.step,
         )
     }
 }
 
 impl Kink for KinkCurve {
     fn name(&self) -> &'static str {
-        "F-"
+        self.name
     }
 
     fn patch(&self) -> PatchKind {
-        PatchKind::PartialSlip
+        self.patch
     }
 
     /// [`KinkCurve::alpha_at`] at `e_n = 1`, the only restitution of an elastic table.
@@ -189,9 +223,107 @@ pub fn fold_minus_curve(gamma_lo: f64, gamma_hi: f64) -> Result<Option<KinkCurve
         })
         .collect::<Result<Vec<f64>, SweepError>>()?;
     Ok(Some(KinkCurve {
+        name: "F-",
+        patch: PatchKind::PartialSlip,
+        scale: CurveScale::Ln,
         gamma_0,
         step: STEP,
-        ln_alpha,
+        values: ln_alpha,
+    }))
+}
+
+/// Where the end-of-contact curve E₋ is traced up to: F₋'s first traced point. Beyond it the
+/// `−μF_N` episode at the separation turns into F₋'s interior one, whose probes take over.
+pub const END_MINUS_TO: f64 = FOLD_MINUS_FROM;
+
+/// Lowest γ at which E₋ is searched: it leaves for α → ∞ at γ ≈ 1.732 (`1/α_E` falls by
+/// about 0.059 per 0.01 of γ towards it); points of the grid below where it is found are
+/// dropped, so that the curve starts at the first grid point that holds it (γ = 1.74, α_E =
+/// 20.87, where `dP/d ln α` is 0.009 and the leaves' errors small).
+pub const END_MINUS_FROM: f64 = 1.73;
+
+/// `1/α_E` of E₋ at a few γ (`kinkmap`, 2048 steps), linearly interpolated (extrapolated below
+/// the first): the first guess of each point's search, which must lie below E₋ or above it
+/// within a factor `e`.
+fn end_minus_guess(gamma: f64) -> f64 {
+    const TABLE: [(f64, f64); 10] = [
+        (1.74, 0.04790),
+        (1.75, 0.10689),
+        (1.80, 0.38698),
+        (1.85, 0.65216),
+        (1.90, 0.90843),
+        (1.95, 1.05102),
+        (2.00, 1.14955),
+        (2.10, 1.34468),
+        (2.20, 1.54040),
+        (2.40, 1.94918),
+    ];
+    let first = TABLE[0];
+    let inv = if gamma < first.0 {
+        first.1 + (gamma - first.0) * (TABLE[1].1 - first.1) / (TABLE[1].0 - first.0)
+    } else {
+        lerp_table(&TABLE, gamma)
+    };
+    // Where the extrapolation reaches nothing (below γ ≈ 1.732) look at a large α: E₋ lies
+    // above it if it exists, and the search finds nothing within a factor `e`.
+    1.0 / inv.max(1e-3)
+}
+
+/// The end-of-contact curve E₋ ([`oblique_solver::history::has_end_minus`]) of the patch `kind`
+/// over the part of `[gamma_lo, gamma_hi]` within [[`END_MINUS_FROM`], [`END_MINUS_TO`]]
+/// (widened by two grid steps on either side, where they exist, for the 4-point rule): a grid of
+/// [`STEP`] from the first point at or below the range's start, each point located to ≈1e-10
+/// in `ln α` at [`TRACE_STEPS`] steps (in parallel), stored as `1/α_E`; leading points where
+/// E₋ does not exist yet are dropped. `None` when fewer than four points remain.
+pub fn end_minus_curve(
+    kind: PatchKind,
+    gamma_lo: f64,
+    gamma_hi: f64,
+) -> Result<Option<KinkCurve>, SweepError> {
+    let lo = (gamma_lo - 2.0 * STEP).max(END_MINUS_FROM);
+    let hi = (gamma_hi + 2.0 * STEP).min(END_MINUS_TO);
+    if hi < lo + 3.0 * STEP {
+        return Ok(None);
+    }
+    let i0 = (lo / STEP - 1e-9).floor() as i64;
+    let i1 = (hi / STEP + 1e-9).floor() as i64;
+    let found = (i0..=i1)
+        .into_par_iter()
+        .map(|i| {
+            let g = i as f64 * STEP;
+            let fail = |what: String| SweepError::Kink {
+                curve: "E-",
+                gamma: g,
+                what,
+            };
+            let a = oblique_solver::history::end_minus_at(g, end_minus_guess(g), TRACE_STEPS)
+                .map_err(|e| fail(e.to_string()))?;
+            Ok((g, a))
+        })
+        .collect::<Result<Vec<(f64, Option<f64>)>, SweepError>>()?;
+    let Some(first) = found.iter().position(|(_, a)| a.is_some()) else {
+        return Ok(None);
+    };
+    let values = found[first..]
+        .iter()
+        .map(|&(g, a)| {
+            a.map(|a| 1.0 / a).ok_or_else(|| SweepError::Kink {
+                curve: "E-",
+                gamma: g,
+                what: "not found near its tabulated position".into(),
+            })
+        })
+        .collect::<Result<Vec<f64>, SweepError>>()?;
+    if values.len() < 4 {
+        return Ok(None);
+    }
+    Ok(Some(KinkCurve {
+        name: "E-",
+        patch: kind,
+        scale: CurveScale::Reciprocal,
+        gamma_0: found[first].0,
+        step: STEP,
+        values,
     }))
 }
 
@@ -213,6 +345,32 @@ pub fn near_fold_minus_points(
     n: usize,
     seed: u64,
 ) -> Vec<Point> {
+    near_kink_points(curve, (gamma_min, gamma_max), (-4.0, -2.0), n, seed)
+}
+
+/// `n` points next to the end-of-contact curve E₋ (`curve`, from [`end_minus_curve`]): as
+/// [`near_fold_minus_points`] places them, with `r = 10^u`, `u` uniform in `[−4, −1]` (the
+/// leaves it crossed erred most at 0.2–2 % from it). The same `seed` gives the same points
+/// (`sweep verify --near-end`).
+pub fn near_end_minus_points(
+    curve: &KinkCurve,
+    gamma_min: f64,
+    gamma_max: f64,
+    n: usize,
+    seed: u64,
+) -> Vec<Point> {
+    near_kink_points(curve, (gamma_min, gamma_max), (-4.0, -1.0), n, seed)
+}
+
+/// `n` points at `α = α_K(γ)(1 + s·10^u)`, `γ` uniform over the curve's range within
+/// `[gamma_min, gamma_max]`, `s = ±1`, `u` uniform in `[u_lo, u_hi]`, `e_n = 1`.
+fn near_kink_points(
+    curve: &KinkCurve,
+    (gamma_min, gamma_max): (f64, f64),
+    (u_lo, u_hi): (f64, f64),
+    n: usize,
+    seed: u64,
+) -> Vec<Point> {
     let (c_lo, c_hi) = curve.gamma_range();
     let (lo, hi) = (gamma_min.max(c_lo), gamma_max.min(c_hi));
     // An empty range (or a NaN edge) gives no points.
@@ -223,10 +381,10 @@ pub fn near_fold_minus_points(
     let mut out = Vec::with_capacity(n);
     while out.len() < n {
         let gamma = (lo + (hi - lo) * rng.uniform()).min(hi);
-        let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+        let r = 10f64.powf(u_lo + (u_hi - u_lo) * rng.uniform());
         let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-        if let Some(alpha_f) = curve.alpha_at(gamma) {
-            out.push(Point::new(gamma, alpha_f * (1.0 + sign * r), 1.0));
+        if let Some(alpha_k) = curve.alpha_at(gamma) {
+            out.push(Point::new(gamma, alpha_k * (1.0 + sign * r), 1.0));
         }
     }
     out
@@ -644,10 +802,49 @@ mod tests {
     }
 
     #[test]
+    fn the_traced_end_of_contact_curve_matches_direct_location() {
+        // Over both patches: it starts at the first grid point that holds it (γ = 1.74) and
+        // ends at F₋'s first traced point.
+        let curve = end_minus_curve(PatchKind::Stick, 1.5, 2.6)
+            .unwrap()
+            .expect("a curve");
+        let (lo, hi) = curve.gamma_range();
+        assert!(
+            (lo - 1.74).abs() < 1e-12 && (hi - END_MINUS_TO).abs() < 1e-12,
+            "{lo} {hi}"
+        );
+        assert_eq!((curve.name(), curve.patch()), ("E-", PatchKind::Stick));
+        // Between grid points (the 4-point rule in 1/α), against E₋ located there; near its
+        // start α grows like 1/(γ − 1.732).
+        for (g, guess, tol) in [
+            (1.7437, 15.0, 1e-3),
+            (1.7813, 3.5, 2e-5),
+            (1.8711, 1.3, 1e-6),
+            (2.2796, 0.59, 1e-6),
+        ] {
+            let direct = oblique_solver::history::end_minus_at(g, guess, TRACE_STEPS)
+                .unwrap()
+                .expect("E- there");
+            let a = curve.alpha_at(g).unwrap();
+            assert!((a / direct - 1.0).abs() < tol, "{g}: {a} vs {direct}");
+        }
+        assert_eq!(curve.alpha_at(1.735), None);
+        assert_eq!(curve.alpha_at(2.41), None);
+        // Only where the range reaches it.
+        assert!(end_minus_curve(PatchKind::Stick, 0.5, 1.6)
+            .unwrap()
+            .is_none());
+        assert!(end_minus_curve(PatchKind::PartialSlip, 2.6, 3.5)
+            .unwrap()
+            .is_none());
+    }
+
+    #[test]
     fn kinks_are_traced_for_the_laws_that_have_them() {
         assert!(probes_implemented(Law::Elastic) && probes_implemented(Law::KelvinVoigt));
         assert!(!probes_implemented(Law::Thornton));
-        // Nothing for the stick patch, for Thornton's law, or below F₋'s birth.
+        // Nothing for the stick patch above E₋'s end, for Thornton's law, or below F₋'s birth
+        // with damping.
         for (law, kind, e) in [
             (Law::Elastic, PatchKind::Stick, None),
             (Law::Thornton, PatchKind::PartialSlip, Some((0.5, 1.0))),
@@ -667,5 +864,11 @@ mod tests {
         let a = elastic[0].alpha(2.42, 1.0).unwrap();
         assert!((a / 0.5123275 - 1.0).abs() < 1e-6, "{a}");
         assert_eq!(elastic[0].alpha(2.42, 0.99), None);
+        // E₋ in both patches of an elastic table below F₋'s birth.
+        for kind in [PatchKind::Stick, PatchKind::PartialSlip] {
+            let k = trace(Law::Elastic, kind, (1.85, 2.0), None).unwrap();
+            let names: Vec<_> = k.iter().map(|k| (k.name(), k.patch())).collect();
+            assert_eq!(names, [("E-", kind)]);
+        }
     }
 }

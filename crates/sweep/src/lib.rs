@@ -114,8 +114,8 @@ pub(crate) fn stage_refine(patch: &str) -> String {
 
 /// The stages of a build (or of one shard) of `cfg`, in the order [`Progress::phase`] reports
 /// them: each patch's refinement (the partial-slip patch's preceded by [`STAGE_FOLD`] when it
-/// is warped, by [`STAGE_KNOTS`] when it has knots and by [`STAGE_KINKS`] when its kinks are
-/// probed), then [`STAGE_CHECKS`].
+/// is warped, by [`STAGE_KNOTS`] when it has knots; each patch's by [`STAGE_KINKS`] when
+/// kinks are probed), then [`STAGE_CHECKS`].
 pub fn stages(cfg: &Config) -> Vec<String> {
     let mut out = Vec::new();
     for spec in patch_specs(cfg) {
@@ -125,7 +125,7 @@ pub fn stages(cfg: &Config) -> Vec<String> {
         if cfg.nodes.knots && spec.kind == PatchKind::PartialSlip {
             out.push(STAGE_KNOTS.to_string());
         }
-        if cfg.nodes.probe_kinks && spec.kind == PatchKind::PartialSlip {
+        if cfg.nodes.probe_kinks {
             out.push(STAGE_KINKS.to_string());
         }
         out.push(stage_refine(spec.name));

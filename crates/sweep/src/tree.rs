@@ -202,8 +202,9 @@ impl Layout<'_> {
     }
 
     /// Where a cell next to a kink (`kinks`, those of this patch) is measured: on every node
-    /// row of the cell (each γ row, and each `e_n` row with an `e_n` axis) and, with an `e_n`
-    /// axis, also halfway between them (at the centre of every square of four node rows), at
+    /// row of the cell (each γ row, and each `e_n` row with an `e_n` axis) and also halfway
+    /// between them (at the centre of every square of four node rows with an `e_n` axis, on
+    /// the row midway between two γ rows without), at
     /// [`kink::PROBE_OFFSETS`] node intervals from the kink along the coordinate, those that land
     /// inside the cell: `(u, v, w, point)` with `u`, `v`, `w` the position in node intervals of
     /// the cell along γ, the coordinate and `e_n` (`w = 0` without an `e_n` axis, `u = 0` in
@@ -214,6 +215,9 @@ impl Layout<'_> {
     /// tensor interpolant errs most between the rows. On γ 2.43–2.47, e_n 0.98–1 (target 3e-5),
     /// the node rows alone passed a leaf that errs by 3.96e-5 midway between them; with the
     /// centres the largest error at 200 points next to F₋ is 1.56e-5 (`docs/accuracy.md`).
+    /// Without an `e_n` axis E₋ moves by 2.4 node intervals of c per γ row in the stick leaf of
+    /// `configs/full.toml` at γ 1.75–1.875 (`dα_E/dγ` ≈ −9), which erred by 8.1e-6 between its
+    /// last two rows, where its probes on the rows found 1.8e-6 and it predicted 3.2e-6.
     fn kink_probes(&self, cell: Cell, kinks: &[Box<dyn kink::Kink>]) -> Vec<Probe> {
         let m = self.m as f64;
         let nc = (self.bc as u64 * self.fine()) as f64;
@@ -227,7 +231,7 @@ impl Layout<'_> {
         } else {
             0
         };
-        // The rows `(u, w)`: the node rows, γ outer; then the centres.
+        // The rows `(u, w)`: the node rows, γ outer; then the centres (with an `e_n` axis).
         let mut rows: Vec<(f64, f64)> = (0..=mg)
             .flat_map(|i| (0..=me).map(move |l| (i as f64, l as f64)))
             .collect();
@@ -243,8 +247,9 @@ impl Layout<'_> {
         }
         let ng = (self.bg as u64 * self.fine()) as f64;
         let ne = (self.be() as u64 * self.fine()) as f64;
-        let mut out = Vec::new();
-        for (u, w) in rows {
+        // The row's γ and e_n, and the kink's position on it in node intervals of the cell
+        // along the coordinate (`None` where the kink is not defined there).
+        let place = |u: f64, w: f64, k: &dyn kink::Kink| -> (f64, f64, Option<f64>) {
             // A node row's γ and e_n are its nodes' (computed from the lattice index).
             let gamma = if u.fract() == 0.0 {
                 self.gamma_of_row((cell.ig * self.m as u64 + u as u64) * sg)
@@ -256,10 +261,7 @@ impl Layout<'_> {
                 Some(r) => r.at(((cell.ie * self.m as u64) as f64 + w) * se as f64 / ne),
                 None => 1.0,
             };
-            for k in kinks {
-                let Some(alpha_k) = k.alpha(gamma, e_n) else {
-                    continue;
-                };
+            let v_k = k.alpha(gamma, e_n).map(|alpha_k| {
                 let c_k = self.spec.kind.coord_at(
                     self.partial_map(),
                     gamma,
@@ -272,10 +274,35 @@ impl Layout<'_> {
                     (_, Some(k)) if warped => k.line(gamma, e_n).apply(c_k),
                     _ => c_k,
                 };
+                lattice * nc / sc - cell.ic as f64 * m
+            });
+            (gamma, e_n, v_k)
+        };
+        let mut out = Vec::new();
+        for k in kinks {
+            let mut rows_k = rows.clone();
+            if me == 0 && mg > 0 {
+                // Without an `e_n` axis, rows between the γ rows too where the kink moves by
+                // more than half a node interval of the coordinate from one row to the next:
+                // close enough that it moves by at most half an interval between them (at most
+                // 16 per interval).
+                let v: Vec<Option<f64>> = (0..=mg).map(|i| place(i as f64, 0.0, &**k).2).collect();
+                for i in 0..mg as usize {
+                    let moves = match (v[i], v[i + 1]) {
+                        (Some(a), Some(b)) if (a - b).is_finite() => (a - b).abs(),
+                        _ => 0.0,
+                    };
+                    let n = (2.0 * moves).ceil().clamp(1.0, 16.0) as usize;
+                    rows_k.extend((1..n).map(|j| (i as f64 + j as f64 / n as f64, 0.0)));
+                }
+            }
+            for &(u, w) in &rows_k {
+                let (gamma, e_n, Some(v_k)) = place(u, w, &**k) else {
+                    continue;
+                };
                 // The offsets that land inside the cell: also when the kink lies just outside
                 // it (up to 1.4 intervals below, 0.7 above), whose first intervals see the
                 // steep side.
-                let v_k = lattice * nc / sc - cell.ic as f64 * m;
                 for d in kink::PROBE_OFFSETS {
                     let v = v_k + d;
                     if (0.0..=m).contains(&v) {
@@ -529,19 +556,27 @@ fn split_axes(values: &[f64], m: usize, k: usize, target: f64, dims: u32) -> u8 
 
 /// The axes a cell halves whose probes next to a kink measured more than `target` (bit
 /// `dims − 1 − k` for axis `k`), from the largest error measured on its node rows (`on_rows`)
-/// and at the centres between them (`centres`). Without an `e_n` axis every axis, as every
-/// quadtree split. With one: the coordinate where the node rows err (the interpolation along
-/// it across the kink), and the other axes where the centres err (the kink moves across the
-/// coordinate between rows); every axis where both do. Measured on γ 2.4–2.5, e_n 0.95–1
-/// (target 1e-5, tol 2e-6): 181 922 nodes against 222 593 halving every axis, the same
-/// largest error (8.51e-6) at 300 points next to F₋.
-fn probe_split(dims: u32, has_e: bool, on_rows: f64, centres: f64, target: f64) -> u8 {
+/// and at the centres between them (`centres`). Without stored split masks (`masked` false)
+/// every axis, as every quadtree split. With them: the coordinate where the node rows err (the
+/// interpolation along it across the kink), and the other axes where the centres err (the kink
+/// moves across the coordinate between rows); every axis where both do. Measured on γ 2.4–2.5,
+/// e_n 0.95–1 (target 1e-5, tol 2e-6): 181 922 nodes against 222 593 halving every axis, the
+/// same largest error (8.51e-6) at 300 points next to F₋.
+fn probe_split(
+    dims: u32,
+    has_e: bool,
+    masked: bool,
+    on_rows: f64,
+    centres: f64,
+    target: f64,
+) -> u8 {
     let every = (1u8 << dims) - 1;
-    if !has_e {
+    if !masked {
         return every;
     }
-    // The coordinate is axis 1 (axis 0 in the patch of one pair, with two axes).
-    let coord = 1u8 << 1;
+    // The coordinate is axis 1 (bit 1) with an `e_n` axis (axis 0 in the patch of one pair,
+    // with two axes: bit 1 too); axis 1 of two (bit 0) without.
+    let coord = if has_e { 1u8 << 1 } else { 1u8 };
     let mut bits = 0;
     if on_rows > target {
         bits |= coord;
@@ -616,15 +651,15 @@ pub(crate) fn build_patch(
         }
         _ => None,
     };
-    let kinks = if cfg.nodes.probe_kinks && spec.kind == PatchKind::PartialSlip {
+    let kinks = if cfg.nodes.probe_kinks {
         progress.phase(
             STAGE_KINKS,
             &format!(
-                "the fold {} F- for the probes of {}",
+                "the kink {} for the probes of {}",
                 if e_range.is_some() {
-                    "surface"
+                    "surfaces"
                 } else {
-                    "curve"
+                    "curves"
                 },
                 spec.name
             ),
@@ -638,6 +673,11 @@ pub(crate) fn build_patch(
     } else {
         Vec::new()
     };
+    let kink_names = kinks
+        .iter()
+        .map(|k| k.name())
+        .collect::<Vec<_>>()
+        .join(" and ");
     let layout = Layout {
         spec,
         bg: roots_gamma(cfg, spec),
@@ -755,7 +795,7 @@ pub(crate) fn build_patch(
             progress.phase(
                 &stage_refine(spec.name),
                 &format!(
-                    "round {}: {} probes next to F- in {} cells",
+                    "round {}: {} probes next to {kink_names} in {} cells",
                     round + 1,
                     points.len(),
                     probed.len()
@@ -774,7 +814,7 @@ pub(crate) fn build_patch(
                         interp_cell(&vals, m, k, u, v)
                     };
                     let err = (at - p).abs() + e;
-                    if w.fract() == 0.0 {
+                    if u.fract() == 0.0 && w.fract() == 0.0 {
                         on_rows = on_rows.max(err);
                     } else {
                         centres = centres.max(err);
@@ -785,6 +825,7 @@ pub(crate) fn build_patch(
                     mask[c] = probe_split(
                         layout.dims(),
                         layout.restitution.is_some(),
+                        masked,
                         on_rows,
                         centres,
                         cfg.nodes.target_error,
@@ -989,12 +1030,103 @@ mod tests {
     #[test]
     fn a_probed_cell_halves_the_axes_its_probes_point_to() {
         // (γ, c, e_n): bits 4, 2, 1; one pair (c, e_n): 2, 1; elastic (γ, c): every axis.
-        assert_eq!(probe_split(3, true, 2.0, 0.5, 1.0), 0b010);
-        assert_eq!(probe_split(3, true, 0.5, 2.0, 1.0), 0b101);
-        assert_eq!(probe_split(3, true, 2.0, 2.0, 1.0), 0b111);
-        assert_eq!(probe_split(2, true, 2.0, 0.5, 1.0), 0b10);
-        assert_eq!(probe_split(2, true, 0.5, 2.0, 1.0), 0b01);
-        assert_eq!(probe_split(2, false, 2.0, 0.0, 1.0), 0b11);
+        assert_eq!(probe_split(3, true, true, 2.0, 0.5, 1.0), 0b010);
+        assert_eq!(probe_split(3, true, true, 0.5, 2.0, 1.0), 0b101);
+        assert_eq!(probe_split(3, true, true, 2.0, 2.0, 1.0), 0b111);
+        assert_eq!(probe_split(2, true, true, 2.0, 0.5, 1.0), 0b10);
+        assert_eq!(probe_split(2, true, true, 0.5, 2.0, 1.0), 0b01);
+        // (γ, c) with masks: c is bit 0, γ bit 1; a quadtree halves both.
+        assert_eq!(probe_split(2, false, true, 2.0, 0.5, 1.0), 0b01);
+        assert_eq!(probe_split(2, false, true, 0.5, 2.0, 1.0), 0b10);
+        assert_eq!(probe_split(2, false, true, 2.0, 2.0, 1.0), 0b11);
+        assert_eq!(probe_split(2, false, false, 2.0, 0.0, 1.0), 0b11);
+    }
+
+    /// A kink of the stick patch of an elastic table steep in the patch coordinate.
+    #[derive(Debug)]
+    struct Steep;
+
+    impl Kink for Steep {
+        fn name(&self) -> &'static str {
+            "steep"
+        }
+
+        fn patch(&self) -> PatchKind {
+            PatchKind::Stick
+        }
+
+        fn alpha(&self, gamma: f64, e_n: f64) -> Option<f64> {
+            (e_n == 1.0).then(|| 1.0 / (0.75 + 5.0 * (gamma - 1.87)))
+        }
+    }
+
+    #[test]
+    fn a_kink_steep_across_the_rows_of_a_table_without_e_n_is_probed_between_them() {
+        let spec = PatchSpec {
+            name: PatchId::StickHigh.name(),
+            kind: PatchKind::Stick,
+            gamma_lo: 1.75,
+            gamma_hi: 2.0,
+        };
+        let layout = Layout {
+            spec: &spec,
+            bg: 1,
+            bc: 4,
+            m: 8,
+            alpha_max: f64::INFINITY,
+            warp: None,
+            knots: None,
+            restitution: None,
+            map: PartialMap::SqrtBoth,
+        };
+        let kinks: Vec<Box<dyn Kink>> = vec![Box::new(Steep)];
+        let per_c = |d: u32| ((layout.bc * layout.m) << d) as f64;
+        let v_of = |pt: &Point, d: u32| {
+            let a = Steep.alpha(pt.gamma, 1.0).unwrap();
+            PatchKind::Stick.coord_at(PartialMap::SqrtBoth, pt.gamma, a, 1.0, f64::INFINITY)
+                * per_c(d)
+        };
+        let (mut between, mut cells) = (0, 0);
+        for (dg, dc) in [(1u32, 3u32), (3, 1)] {
+            for ig in 0..1u64 << dg {
+                for ic in 0..(layout.bc as u64) << dc {
+                    let cell = Cell {
+                        depth: dg.max(dc),
+                        d: [dg, dc, 0],
+                        ig,
+                        ic,
+                        ie: 0,
+                    };
+                    let probes = layout.kink_probes(cell, &kinks);
+                    cells += usize::from(!probes.is_empty());
+                    // The rows that hold probes, in order along γ, each with the kink's position
+                    // along c in node intervals.
+                    let mut rows: Vec<(f64, f64)> = probes
+                        .iter()
+                        .map(|&(u, _, w, pt)| {
+                            assert_eq!((w, pt.e_n), (0.0, 1.0));
+                            (u, v_of(&pt, dc))
+                        })
+                        .collect();
+                    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    rows.dedup_by(|a, b| a.0 == b.0);
+                    between += rows.iter().filter(|r| r.0.fract() != 0.0).count();
+                    // Consecutive rows next to the kink: it moves by at most half an interval
+                    // between rows off the node rows (unless they are the closest allowed,
+                    // 1/16 of a row apart), and by more only between two node rows.
+                    for w in rows.windows(2) {
+                        let ((u0, v0), (u1, v1)) = (w[0], w[1]);
+                        if u1 - u0 <= 1.0 && (u0.fract() != 0.0 || u1.fract() != 0.0) {
+                            assert!(
+                                (v1 - v0).abs() <= 0.5 + 1e-9 || u1 - u0 == 1.0 / 16.0,
+                                "{cell:?}: {w:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(cells > 0 && between > 0, "{cells} {between}");
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! Map the kink curves of P(γ, α) in the slip regions from the gross-slip history:
-//! `cargo run --release -p oblique-tools --bin kinkmap -- GAMMA_FROM GAMMA_TO GAMMA_STEP [STEPS]`
-//! (e.g. `-- 1.8 3.5 0.1 4096`, 40 s).
+//! `cargo run --release -p oblique-tools --bin kinkmap -- GAMMA_FROM GAMMA_TO GAMMA_STEP [STEPS [HI [LO]]]`
+//! (α scanned up to HI α_c2, default 1.5, from max(α_c1, LO α_c2); e.g. `-- 1.8 3.5 0.1 4096`, 40 s).
 //!
 //! For each γ, the α range [α_c1, 1.5 α_c2] is scanned on a 300-point log grid; at every α one
 //! impact is run (continuum row, STEPS steps, default 4096) and its *signature* is recorded:
@@ -41,6 +41,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let (g0, g1, dg) = (a[0], a[1], a[2]);
     let steps = a.get(3).map_or(4096, |&s| s as usize);
+    let hi_factor = a.get(4).copied().unwrap_or(1.5);
+    let lo_factor = a.get(5).copied().unwrap_or(0.0);
     let n = 300;
     let mut k = 0;
     loop {
@@ -51,7 +53,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         k += 1;
         let c1 = oblique_physics::regimes::alpha_c1(g).max(1e-3);
         let c2 = oblique_physics::regimes::alpha_c2(g);
-        let (lo, hi) = (c1 * 1.0001, c2 * 1.5);
+        let (lo, hi) = ((c1 * 1.0001).max(lo_factor * c2), c2 * hi_factor);
         let xs: Vec<f64> = (0..=n)
             .map(|i| (lo.ln() + (hi / lo).ln() * i as f64 / n as f64).exp())
             .collect();

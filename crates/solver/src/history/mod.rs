@@ -458,6 +458,27 @@ pub fn fold_minus_at(gamma: f64, guess: f64, steps: usize) -> Result<Option<f64>
     fold_at(gamma, guess, steps, has_restitution_minus)
 }
 
+/// The predicate of the end-of-contact curve E₋: the impact's last gross-slip episode is a
+/// `−μF_N` one that runs into the separation (ends after [`INTERIOR_END`]). As α grows the
+/// friction force no longer reaches the limit as the contact shrinks to nothing, and the
+/// episode vanishes at the separation: it holds below E₋ and fails just above it. E₋ runs from
+/// α → ∞ at γ ≈ 1.732 through the stick patch (α = 20.87 at γ = 1.74, 1.3234 at 1.87), crosses
+/// α_c2 at γ ≈ 1.907 and goes on through the partial-slip patch (0.8699 at γ = 2.0, 0.5766 at
+/// 2.3) to F₋'s birth near γ = 2.40 (`docs/solver.md`, "Kink curves"). P has no slope jump
+/// there, but a cubic across it errs more than its neighbours predict.
+pub fn has_end_minus(h: &SlipHistory) -> bool {
+    h.episodes
+        .last()
+        .is_some_and(|e| e.sign == SlipSign::Minus && e.end > INTERIOR_END)
+}
+
+/// Locate the end-of-contact curve E₋ ([`has_end_minus`]) at `gamma` by continuation from
+/// `guess`, as [`fold_plus_at`] does. The guess must lie below E₋ or above it within a factor
+/// `e`; `None` when no change is found there (at γ below ≈ 1.732 E₋ does not exist).
+pub fn end_minus_at(gamma: f64, guess: f64, steps: usize) -> Result<Option<f64>, PhysicsError> {
+    fold_at(gamma, guess, steps, has_end_minus)
+}
+
 /// The continuation of [`fold_plus_at`] for a fold whose `present` predicate holds below it.
 fn fold_at(
     gamma: f64,
@@ -710,6 +731,32 @@ mod tests {
         let below = slip_history(3.2, a * (1.0 - 1e-6), 2048).unwrap();
         let above = slip_history(3.2, a * (1.0 + 1e-6), 2048).unwrap();
         assert!(has_restitution_minus(&below) && !has_restitution_minus(&above));
+    }
+
+    #[test]
+    fn the_end_of_contact_curve_is_where_the_last_minus_episode_leaves_the_separation() {
+        // `kinkmap -- G G 0.01 2048 HI LO`: 20.874911 at γ = 1.74, 1.323430 at 1.87 (stick),
+        // 0.649182 at 2.2 (partial slip); from below and from above. (At 8192 steps: 20.878378,
+        // 1.323434, 0.649182.)
+        for (gamma, guesses, want, tol) in [
+            (1.74, [15.0, 30.0], 20.874911, 1e-6),
+            (1.87, [1.1, 1.5], 1.323430, 1e-6),
+            (2.2, [0.5, 0.7], 0.649182, 1e-6),
+        ] {
+            for guess in guesses {
+                let a = end_minus_at(gamma, guess, 2048).unwrap().expect("found");
+                assert!((a / want - 1.0).abs() < tol, "{a} at {gamma} from {guess}");
+            }
+        }
+        // Below γ ≈ 1.732 the episode reaches the separation at no α.
+        assert_eq!(end_minus_at(1.72, 100.0, 2048).unwrap(), None);
+        // The located α separates the two histories to 1e-6 (relative); above it nothing slips
+        // at the end of a stick impact.
+        let a = end_minus_at(1.87, 1.3, 2048).unwrap().unwrap();
+        let below = slip_history(1.87, a * (1.0 - 1e-6), 2048).unwrap();
+        let above = slip_history(1.87, a * (1.0 + 1e-6), 2048).unwrap();
+        assert!(has_end_minus(&below) && !has_end_minus(&above));
+        assert!(above.episodes.is_empty(), "{:?}", above.episodes);
     }
 
     #[test]
