@@ -37,7 +37,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|s| s.parse::<f64>())
         .collect::<Result<_, _>>()?;
     if a.len() < 3 {
-        return Err("usage: kinkmap GAMMA_FROM GAMMA_TO GAMMA_STEP [STEPS]".into());
+        return Err("usage: kinkmap GAMMA_FROM GAMMA_TO GAMMA_STEP [STEPS [HI [LO]]]".into());
     }
     let (g0, g1, dg) = (a[0], a[1], a[2]);
     let steps = a.get(3).map_or(4096, |&s| s as usize);

@@ -98,6 +98,25 @@ pub fn fold_minus_at_e(
     )
 }
 
+/// The end-of-contact curve E₋ ([`has_end_minus`]) of the Kelvin–Voigt law at normal
+/// restitution `e_n ∈ [0.3, 1]`, located by continuation from `guess` on the histories of
+/// [`slip_history_e`] (at `e_n = 1` exactly [`super::end_minus_at`]). `None` where the
+/// continuation finds no change.
+pub fn end_minus_at_e(
+    gamma: f64,
+    e_n: f64,
+    guess: f64,
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let steps = check_fold_steps(steps)?;
+    let e_n = check_restitution(e_n)?;
+    fold_at_with(
+        |a| slip_history_e(gamma, a, e_n, steps),
+        guess,
+        has_end_minus,
+    )
+}
+
 /// Every upper edge of an α interval in `[alpha_lo, alpha_hi]` on which
 /// [`has_restitution_minus`] holds for the Kelvin–Voigt law at `e_n` (F₋, where the predicate
 /// goes from holding to failing as α grows), in increasing α: a log grid of `n` intervals,

@@ -22,7 +22,7 @@ use super::springs::{StepMotion, StepResult};
 mod damped;
 mod plastic;
 pub use damped::{
-    fold_minus_at_e, fold_minus_birth_e, fold_minus_free_below, fold_minus_scan_e,
+    end_minus_at_e, fold_minus_at_e, fold_minus_birth_e, fold_minus_free_below, fold_minus_scan_e,
     restitution_minus_edges_e, restitution_minus_somewhere_e, slip_history_e,
 };
 pub use plastic::{
