@@ -757,6 +757,16 @@ mod tests {
         let above = slip_history(1.87, a * (1.0 + 1e-6), 2048).unwrap();
         assert!(has_end_minus(&below) && !has_end_minus(&above));
         assert!(above.episodes.is_empty(), "{:?}", above.episodes);
+        // With damping (`endscan_e 2.0`, continued down from e_n = 1): a surface; at e_n = 1
+        // the elastic curve's runs.
+        assert_eq!(
+            end_minus_at_e(2.2, 1.0, 0.6, 2048).unwrap(),
+            end_minus_at(2.2, 0.6, 2048).unwrap()
+        );
+        let a = end_minus_at_e(2.0, 0.8, 0.82, 2048)
+            .unwrap()
+            .expect("found");
+        assert!((a / 0.817007 - 1.0).abs() < 2e-6, "{a}");
     }
 
     #[test]
