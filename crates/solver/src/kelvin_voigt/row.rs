@@ -473,6 +473,28 @@ fn crossing(h: f64, g: impl Fn(f64) -> f64) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// The first instant in `[0, h]` at which `g(t) = a t² + b t + g0` is no longer negative, as
+/// [`crossing`] finds it for a continuous `g`, in closed form: 0 when `g(0) ≥ 0`, `h` when
+/// `g(h) < 0`, else the one root in `(0, h]` (where `g` rises through 0: `2at + b ≥ 0`), by
+/// the cancellation-free pair `q/a`, `g0/q` with `q = −(b + sgn(b)√(b² − 4a g0))/2`.
+fn quadratic_crossing(h: f64, a: f64, b: f64, g0: f64) -> f64 {
+    let g = |t: f64| (a * t + b) * t + g0;
+    if g0 >= 0.0 {
+        return 0.0;
+    }
+    if g(h) < 0.0 {
+        return h;
+    }
+    let root = (b * b - 4.0 * a * g0).max(0.0).sqrt();
+    let q = -0.5 * (b + root.copysign(b));
+    [g0 / q, q / a]
+        .into_iter()
+        .filter(|t| t.is_finite() && (0.0..=h).contains(t) && 2.0 * a * t + b >= 0.0)
+        .reduce(f64::min)
+        // Rounding at a double root or at an end of the step: the bracketed search.
+        .unwrap_or_else(|| crossing(h, g))
+}
+
 /// The exact (continuum) Kelvin–Voigt half-row of tangential springs.
 #[derive(Debug, Clone)]
 pub struct ViscoelasticRow {
@@ -982,12 +1004,18 @@ impl ViscoelasticRow {
                         // The part starts to slip at t* where s (u + τẇ) = c (D − y) (at its
                         // midpoint, along the stuck path u(t) = u(h) − (w(h) − w(t))); there
                         // δ(t*) = u(t*) − s c (D(t*) − y), relaxed from t* to h.
+                        // `w` is quadratic over the step and `D` too, so the condition is a
+                        // quadratic in t, solved in closed form.
                         let s = if kind == Kind::Plus { 1.0 } else { -1.0 };
                         let u_mid = w + p.value(mid);
-                        let t = crossing(up.h, |t| {
-                            s * (u_mid - up.w_after(t) + up.tau * up.w_rate(t))
-                                - c * (up.load_at(t) - mid)
-                        });
+                        let h = up.h;
+                        let t = quadratic_crossing(
+                            h,
+                            0.5 * (s * up.acc - c * up.beta),
+                            s * (up.vel + up.tau * up.acc) - c * up.load_rate0,
+                            s * (u_mid - up.vel * h - 0.5 * up.acc * h * h + up.tau * up.vel)
+                                - c * (up.load0 - mid),
+                        );
                         let decay = up.decay(up.h - t);
                         let e = decay.0;
                         let shift = -s * c * up.forcing(t, up.h, decay);
@@ -1023,6 +1051,46 @@ mod tests {
             rate1: rate,
             accel1: 0.0,
         }
+    }
+
+    #[test]
+    fn the_closed_form_slip_start_is_the_root_of_the_condition() {
+        // Quadratics over one step with every shape (rising, falling then rising, linear,
+        // nearly a double root), against bisection to the last bit; the ends as the bracketed
+        // search gives them. (The search stops after 12 iterations: a linear condition can
+        // leave it 1.2e-4 h off, where the closed form is exact.)
+        let mut rng = oblique_physics::sample::SplitMix(7);
+        let mut inside = 0;
+        for _ in 0..20_000 {
+            let h = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+            let scale = 10f64.powf(-3.0 + 3.0 * rng.uniform());
+            let a = scale * (rng.uniform() - 0.5) / (h * h);
+            let b = scale * (rng.uniform() - 0.3) / h;
+            let g0 = scale * (rng.uniform() - 0.7);
+            let a = if rng.uniform() < 0.1 { 0.0 } else { a };
+            let g = |t: f64| (a * t + b) * t + g0;
+            let closed = quadratic_crossing(h, a, b, g0);
+            let search = crossing(h, g);
+            if g0 >= 0.0 || g(h) < 0.0 {
+                assert_eq!(closed, search);
+                continue;
+            }
+            inside += 1;
+            let (mut lo, mut hi) = (0.0, h);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if g(mid) < 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            assert!(
+                (closed - hi).abs() <= 1e-12 * h,
+                "{a} {b} {g0} {h}: {closed} vs {hi}"
+            );
+        }
+        assert!(inside > 2_000, "{inside}");
     }
 
     #[test]
