@@ -89,13 +89,21 @@ pub fn fold_minus_at_e(
     guess: f64,
     steps: usize,
 ) -> Result<Option<f64>, PhysicsError> {
+    fold_at_e(gamma, e_n, guess, steps, has_restitution_minus)
+}
+
+/// The continuation of [`fold_at_with`] on the Kelvin–Voigt histories at `e_n`, for the curve
+/// whose `present` predicate holds below it.
+fn fold_at_e(
+    gamma: f64,
+    e_n: f64,
+    guess: f64,
+    steps: usize,
+    present: fn(&SlipHistory) -> bool,
+) -> Result<Option<f64>, PhysicsError> {
     let steps = check_fold_steps(steps)?;
     let e_n = check_restitution(e_n)?;
-    fold_at_with(
-        |a| slip_history_e(gamma, a, e_n, steps),
-        guess,
-        has_restitution_minus,
-    )
+    fold_at_with(|a| slip_history_e(gamma, a, e_n, steps), guess, present)
 }
 
 /// The end-of-contact curve E₋ ([`has_end_minus`]) of the Kelvin–Voigt law at normal
@@ -108,13 +116,7 @@ pub fn end_minus_at_e(
     guess: f64,
     steps: usize,
 ) -> Result<Option<f64>, PhysicsError> {
-    let steps = check_fold_steps(steps)?;
-    let e_n = check_restitution(e_n)?;
-    fold_at_with(
-        |a| slip_history_e(gamma, a, e_n, steps),
-        guess,
-        has_end_minus,
-    )
+    fold_at_e(gamma, e_n, guess, steps, has_end_minus)
 }
 
 /// Every upper edge of an α interval in `[alpha_lo, alpha_hi]` on which
