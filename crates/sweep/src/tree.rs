@@ -283,16 +283,16 @@ impl Layout<'_> {
             let mut rows_k = rows.clone();
             if me == 0 && mg > 0 {
                 // Without an `e_n` axis, rows between the γ rows too where the kink moves by
-                // more than half a node interval of the coordinate from one row to the next:
-                // close enough that it moves by at most half an interval between them (at most
-                // 16 per interval).
+                // more than one node interval of the coordinate from one row to the next:
+                // close enough that it moves by at most one interval between them (at most 16
+                // per interval), within the span its offsets cover on each row.
                 let v: Vec<Option<f64>> = (0..=mg).map(|i| place(i as f64, 0.0, &**k).2).collect();
                 for i in 0..mg as usize {
                     let moves = match (v[i], v[i + 1]) {
                         (Some(a), Some(b)) if (a - b).is_finite() => (a - b).abs(),
                         _ => 0.0,
                     };
-                    let n = (2.0 * moves).ceil().clamp(1.0, 16.0) as usize;
+                    let n = moves.ceil().clamp(1.0, 16.0) as usize;
                     rows_k.extend((1..n).map(|j| (i as f64 + j as f64 / n as f64, 0.0)));
                 }
             }
@@ -1111,14 +1111,14 @@ mod tests {
                     rows.sort_by(|a, b| a.0.total_cmp(&b.0));
                     rows.dedup_by(|a, b| a.0 == b.0);
                     between += rows.iter().filter(|r| r.0.fract() != 0.0).count();
-                    // Consecutive rows next to the kink: it moves by at most half an interval
+                    // Consecutive rows next to the kink: it moves by at most one interval
                     // between rows off the node rows (unless they are the closest allowed,
                     // 1/16 of a row apart), and by more only between two node rows.
                     for w in rows.windows(2) {
                         let ((u0, v0), (u1, v1)) = (w[0], w[1]);
                         if u1 - u0 <= 1.0 && (u0.fract() != 0.0 || u1.fract() != 0.0) {
                             assert!(
-                                (v1 - v0).abs() <= 0.5 + 1e-9 || u1 - u0 == 1.0 / 16.0,
+                                (v1 - v0).abs() <= 1.0 + 1e-9 || u1 - u0 == 1.0 / 16.0,
                                 "{cell:?}: {w:?}"
                             );
                         }
