@@ -955,10 +955,10 @@ pub(crate) fn build_patch(
 
 /// Solve again, at `tol`, the nodes that hold a leaf's bound above `target_error + Λ^d · tol`
 /// (`nodes.polish_tol`): in every leaf (a cell this run evaluated and did not split) whose
-/// `predicted + Λ^d · max error_estimate` exceeds that, each node whose estimate exceeds `tol`.
-/// Afterwards every leaf's bound is at most `target_error + Λ^d · tol`: the predicted error
-/// of a leaf is at most `target_error`, and its nodes' estimates at most `tol` or unchanged
-/// where the bound was already below. The values replace the nodes' first ones in `cache`
+/// `predicted + Λ^d · max error_estimate` exceeds that limit, each node whose estimate exceeds
+/// the leaf's own share `(limit − predicted)/Λ^d` (at least `tol`: a leaf predicts at most
+/// `target_error`). Afterwards every leaf's bound is at most the limit: its nodes' estimates
+/// are at most `tol` where solved again and at most its share elsewhere. The values replace the nodes' first ones in `cache`
 /// (the more accurate answer at the same point); a shard polishes the leaves of its own roots,
 /// so that a strict merge finds every value it needs in the store.
 #[allow(clippy::too_many_arguments)]
@@ -983,7 +983,8 @@ fn polish(
         let keys = layout.cell_keys(*cell);
         let errs: Vec<f64> = keys.iter().map(|k| cache[k].1).collect();
         if oblique_table::bound::leaf_bound(predicted[c], &errs, factor) > limit {
-            wanted.extend(keys.into_iter().filter(|k| cache[k].1 > tol));
+            let share = ((limit - predicted[c]) / factor).max(tol);
+            wanted.extend(keys.into_iter().filter(|k| cache[k].1 > share));
         }
     }
     wanted.sort_unstable();
