@@ -178,20 +178,22 @@ fn sample_near_fold(
 }
 
 /// The `n` points of `--near-end`: [`oblique_sweep::kink::near_end_minus_points`] on the curve
-/// E₋ over the part of an elastic table's γ range where it is traced.
+/// E₋ over the part of an elastic table's γ range where it is traced, and that γ range.
 fn sample_near_end(
     table: &Table,
     path: &std::path::Path,
     n: usize,
     seed: u64,
-) -> Result<Vec<Point>> {
+) -> Result<(Vec<Point>, (f64, f64))> {
     let s = table.surface();
     let (g_lo, g_hi) = (s.gamma_min(), s.gamma_max());
     let refuse = |has: String| {
         Failure::usage(format!(
-            "--near-end: {} has {has}; the end-of-contact curve E- is traced for elastic              tables whose gamma range reaches into [{}, {}] by {} or more",
+            "--near-end: {} has {has}; the end-of-contact curve E- is traced for elastic \
+             tables whose gamma range reaches into [{}, {}] by {} or more (it leaves for \
+             alpha = inf at gamma ~ 1.732)",
             path.display(),
-            oblique_sweep::kink::END_MINUS_FROM + oblique_sweep::kink::STEP,
+            oblique_sweep::kink::END_MINUS_FROM,
             oblique_sweep::kink::END_MINUS_TO,
             3.0 * oblique_sweep::kink::STEP,
         ))
@@ -205,13 +207,15 @@ fn sample_near_end(
     let curve =
         oblique_sweep::kink::end_minus_curve(oblique_table::surface::PatchKind::Stick, g_lo, g_hi)
             .context("tracing the end-of-contact curve E-")?;
-    let points = curve
-        .map(|c| oblique_sweep::kink::near_end_minus_points(&c, g_lo, g_hi, n, seed))
-        .unwrap_or_default();
+    let Some(curve) = curve else {
+        return Err(refuse(format!("gamma in [{g_lo}, {g_hi}]")));
+    };
+    let points = oblique_sweep::kink::near_end_minus_points(&curve, g_lo, g_hi, n, seed);
     if points.is_empty() {
         return Err(refuse(format!("gamma in [{g_lo}, {g_hi}]")));
     }
-    Ok(points)
+    let (c_lo, c_hi) = curve.gamma_range();
+    Ok((points, (g_lo.max(c_lo), g_hi.min(c_hi))))
 }
 
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
@@ -271,10 +275,13 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         })?,
         None => Law::Elastic,
     };
+    let mut near_end_range = None;
     let points = if args.near_fold {
         sample_near_fold(&table, &args.table, law, args.points, args.seed)?
     } else if args.near_end {
-        sample_near_end(&table, &args.table, args.points, args.seed)?
+        let (points, range) = sample_near_end(&table, &args.table, args.points, args.seed)?;
+        near_end_range = Some(range);
+        points
     } else {
         sample(&table, args.points, args.seed, args.near_curves)
     };
@@ -289,17 +296,10 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         points.len(),
         match table.surface().pair_gamma() {
             Some(g) => format!("gamma = {g}, the table's one pair"),
-            None if args.near_end => format!(
-                "gamma uniform in [{}, {}]",
-                table
-                    .surface()
-                    .gamma_min()
-                    .max(oblique_sweep::kink::END_MINUS_FROM + oblique_sweep::kink::STEP),
-                table
-                    .surface()
-                    .gamma_max()
-                    .min(oblique_sweep::kink::END_MINUS_TO)
-            ),
+            None if near_end_range.is_some() => {
+                let (lo, hi) = near_end_range.unwrap_or_default();
+                format!("gamma uniform in [{lo}, {hi}]")
+            }
             None if args.near_fold && table.restitution().is_none() => format!(
                 "gamma uniform in [{}, {}]",
                 table

@@ -202,9 +202,9 @@ impl Layout<'_> {
     }
 
     /// Where a cell next to a kink (`kinks`, those of this patch) is measured: on every node
-    /// row of the cell (each γ row, and each `e_n` row with an `e_n` axis) and also halfway
-    /// between them (at the centre of every square of four node rows with an `e_n` axis, on
-    /// the row midway between two γ rows without), at
+    /// row of the cell (each γ row, and each `e_n` row with an `e_n` axis) and between them
+    /// (with an `e_n` axis at the centre of every square of four node rows; without, on rows
+    /// between two γ rows across which the kink moves by more than one node interval), at
     /// [`kink::PROBE_OFFSETS`] node intervals from the kink along the coordinate, those that land
     /// inside the cell: `(u, v, w, point)` with `u`, `v`, `w` the position in node intervals of
     /// the cell along γ, the coordinate and `e_n` (`w = 0` without an `e_n` axis, `u = 0` in
@@ -215,7 +215,7 @@ impl Layout<'_> {
     /// tensor interpolant errs most between the rows. On γ 2.43–2.47, e_n 0.98–1 (target 3e-5),
     /// the node rows alone passed a leaf that errs by 3.96e-5 midway between them; with the
     /// centres the largest error at 200 points next to F₋ is 1.56e-5 (`docs/accuracy.md`).
-    /// Without an `e_n` axis E₋ moves by 2.4 node intervals of c per γ row in the stick leaf of
+    /// Without an `e_n` axis, E₋ moved by 2.4 node intervals of c per γ row in the stick leaf of
     /// `configs/full.toml` at γ 1.75–1.875 (`dα_E/dγ` ≈ −9), which erred by 8.1e-6 between its
     /// last two rows, where its probes on the rows found 1.8e-6 and it predicted 3.2e-6.
     fn kink_probes(&self, cell: Cell, kinks: &[Box<dyn kink::Kink>]) -> Vec<Probe> {
@@ -958,9 +958,10 @@ pub(crate) fn build_patch(
 /// `predicted + Λ^d · max error_estimate` exceeds that limit, each node whose estimate exceeds
 /// the leaf's own share `(limit − predicted)/Λ^d` (at least `tol`: a leaf predicts at most
 /// `target_error`). Afterwards every leaf's bound is at most the limit: its nodes' estimates
-/// are at most `tol` where solved again and at most its share elsewhere. The values replace the nodes' first ones in `cache`
-/// (the more accurate answer at the same point); a shard polishes the leaves of its own roots,
-/// so that a strict merge finds every value it needs in the store.
+/// are at most `tol` where solved again and at most its share elsewhere. The values replace
+/// the nodes' first ones in `cache` (the more accurate answer at the same point); a shard
+/// polishes the leaves of its own roots, so that a strict merge finds every value it needs in
+/// the store.
 #[allow(clippy::too_many_arguments)]
 fn polish(
     layout: &Layout,
@@ -1030,7 +1031,8 @@ mod tests {
 
     #[test]
     fn a_probed_cell_halves_the_axes_its_probes_point_to() {
-        // (γ, c, e_n): bits 4, 2, 1; one pair (c, e_n): 2, 1; elastic (γ, c): every axis.
+        // (γ, c, e_n): bits 4, 2, 1; one pair (c, e_n): 2, 1; elastic (γ, c): 2, 1 with
+        // stored masks, every axis without.
         assert_eq!(probe_split(3, true, true, 2.0, 0.5, 1.0), 0b010);
         assert_eq!(probe_split(3, true, true, 0.5, 2.0, 1.0), 0b101);
         assert_eq!(probe_split(3, true, true, 2.0, 2.0, 1.0), 0b111);
