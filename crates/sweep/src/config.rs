@@ -179,6 +179,14 @@ pub struct Nodes {
     /// `docs/table-format.md`). `false`: every split halves both axes (a quadtree).
     #[serde(default)]
     pub anisotropic: bool,
+    /// Predict a cell's error from the rate at which its surplus fell from its parent's along
+    /// each axis it halved (between 1/16 and 1/4 of the surplus along that axis; the parent's
+    /// rate along the others, 1/4 at the roots), summed over the axes, instead of a quarter of
+    /// its surplus everywhere (never more than that). Smooth `P` converges faster than the
+    /// second order the quarter assumes; the kinks that do not are measured by
+    /// `probe_kinks`, which this needs (`docs/table-format.md`, "The stated error bound").
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub observed_rate: bool,
 }
 
 fn default_placement() -> String {
@@ -613,10 +621,19 @@ impl Config {
                 "true".into(),
                 format!(
                     "false for a table of the {} law: no kink of its surface is traced for the \
-                     probes yet (nodes.probe_kinks traces the fold F- of the elastic and \
-                     kelvin-voigt laws)",
+                     probes yet (nodes.probe_kinks traces the fold F- and the end-of-contact \
+                     curve E- of the elastic and kelvin-voigt laws)",
                     law.name()
                 ),
+            ));
+        }
+        if n.observed_rate && !n.probe_kinks {
+            return Err(err(
+                "nodes.observed_rate",
+                "true".into(),
+                "false unless nodes.probe_kinks = true (a leaf that a kink of P crosses converges \
+                 at second order whatever its surplus fell by, and must be measured next to it)"
+                    .into(),
             ));
         }
         if let Some((_, hi)) = d.e_n_range() {

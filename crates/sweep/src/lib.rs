@@ -26,7 +26,7 @@ pub use solve::{
     solve_points, solve_points_with, NodeKey, NodeRecord, NodeStore, Progress, RunOptions, Shard,
     Silent,
 };
-use tree::{build_patch, patch_specs, root_count};
+use tree::{build_patch, patch_specs, root_count, RunState};
 
 /// Engine version.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -153,12 +153,10 @@ pub fn build_with(
     progress: &dyn Progress,
     opts: RunOptions,
 ) -> Result<Built, RunError> {
-    let mut total = 0usize;
+    let mut run = RunState::default();
     let mut patches = Vec::new();
     for spec in patch_specs(cfg) {
-        patches.extend(build_patch(
-            cfg, &spec, progress, &mut total, opts, 0, None,
-        )?);
+        patches.extend(build_patch(cfg, &spec, progress, &mut run, opts, 0, None)?);
     }
     let find = |id: PatchId| {
         patches
@@ -213,14 +211,14 @@ pub fn build_shard(
     opts: RunOptions,
     shard: Shard,
 ) -> Result<(), RunError> {
-    let mut total = 0usize;
+    let mut run = RunState::default();
     let mut first_root = 0;
     for spec in patch_specs(cfg) {
         build_patch(
             cfg,
             &spec,
             progress,
-            &mut total,
+            &mut run,
             opts,
             first_root,
             Some(shard),

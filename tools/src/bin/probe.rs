@@ -5,13 +5,19 @@
 //! table's law.
 use oblique_lookup::Table;
 use oblique_solver::{Accuracy, Request};
-use oblique_table::surface::{partial_coord, stick_coord, PatchKind, Region};
+use oblique_table::surface::{partial_coord_map, stick_coord, PatchKind, Region};
 use rayon::prelude::*;
 
-/// `patch:leaf` of an elastic table's point (`-` outside the patches).
-fn leaf_of(table: &Table, g: f64, a: f64) -> String {
+/// `patch:leaf` of a point (`-` outside the patches): by the region and the coordinate at
+/// `e_n` (knotted or warped as the table's rule does), the leaf of the patch's tree.
+fn leaf_of(table: &Table, g: f64, a: f64, e: f64) -> String {
     let surface = table.surface();
-    let region = Region::of(g, a);
+    let has_e = table.restitution().is_some();
+    let region = if has_e {
+        Region::of_e(g, a, e)
+    } else {
+        Region::of(g, a)
+    };
     let Some(id) = region.patch_id() else {
         return "-".into();
     };
@@ -19,10 +25,17 @@ fn leaf_of(table: &Table, g: f64, a: f64) -> String {
         return "-".into();
     };
     let c = match patch.kind() {
-        PatchKind::PartialSlip => partial_coord(g, a),
+        PatchKind::PartialSlip => partial_coord_map(surface.partial_map(), g, a, e),
         _ => stick_coord(g, a, surface.alpha_max()),
     };
-    let (leaf, _, _) = patch.find_leaf(g, patch.warped(g, c));
+    let leaf = match patch.restitution() {
+        None => patch.find_leaf(g, patch.warped(g, c)).0,
+        Some(r) if patch.is_pair() => patch.find_leaf_at([c, r.x(e)]).0,
+        Some(r) => {
+            let c = patch.knotted(g, c, e);
+            patch.find_leaf_at([patch.x_gamma(g), c, r.x(e)]).0
+        }
+    };
     format!("{}:{leaf}", id.name())
 }
 
@@ -60,7 +73,7 @@ fn main() -> anyhow::Result<()> {
                     s.p,
                     s.error_estimate,
                     (pt - s.p).abs(),
-                    leaf_of(&table, *g, *a)
+                    leaf_of(&table, *g, *a, *e)
                 ),
                 (t, s) => format!("{tag},{g},{a},{e},ERR,{:?},{:?}", t.err(), s.err()),
             }

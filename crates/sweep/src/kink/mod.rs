@@ -24,6 +24,10 @@
 //! α = 0.59139 (0.24 % below E₋; stated bound 7.98e-6), and by 8.1e-6 at γ = 1.872 in a stick
 //! leaf whose prediction was 3.2e-6.
 
+mod end_minus;
+
+pub use end_minus::{end_minus_in_patch, end_minus_surface, END_SURFACE_STEP};
+
 use rayon::prelude::*;
 
 use super::SweepError;
@@ -53,15 +57,30 @@ pub fn probes_implemented(law: Law) -> bool {
     matches!(law, Law::Elastic | Law::KelvinVoigt)
 }
 
+/// What [`trace`] traced once for a whole build, shared by its patches: the Kelvin–Voigt
+/// end-of-contact surface E₋ crosses both the stick and the partial-slip patch.
+#[derive(Debug, Default)]
+pub struct Traced {
+    /// E₋ and the γ and `e_n` ranges it was traced for.
+    end_minus: Option<(TracedOver, Option<KinkSurface>)>,
+}
+
+/// The γ and `e_n` ranges a kink was traced over.
+type TracedOver = ((f64, f64), (f64, f64));
+
 /// The kinks of `law` in the patch `kind` that the probes measure, traced over γ in `gammas`
 /// (and `e_n` in `e_range` for a table with an `e_n` axis): F₋ of the partial-slip patch as a
 /// curve (elastic, [`fold_minus_curve`]) or as a surface (Kelvin–Voigt,
-/// [`fold_minus_surface`]); none where the range holds no F₋ or the law has none traced.
+/// [`fold_minus_surface`]); the end-of-contact curve E₋ in both patches as a curve (elastic,
+/// [`end_minus_curve`]) or as a surface (Kelvin–Voigt, [`end_minus_surface`], traced once per
+/// `traced` and split by [`end_minus_in_patch`]); none where the range holds no such kink or
+/// the law has none traced.
 pub fn trace(
     law: Law,
     kind: PatchKind,
     gammas: (f64, f64),
     e_range: Option<(f64, f64)>,
+    traced: &mut Traced,
 ) -> Result<Vec<Box<dyn Kink>>, SweepError> {
     let mut out: Vec<Box<dyn Kink>> = Vec::new();
     match (law, kind, e_range) {
@@ -78,9 +97,22 @@ pub fn trace(
                 out.push(Box::new(c));
             }
         }
-        (Law::KelvinVoigt, PatchKind::PartialSlip, Some(e_range)) => {
-            if let Some(s) = fold_minus_surface(gammas, e_range)? {
-                out.push(Box::new(s));
+        (Law::KelvinVoigt, _, Some(e_range)) => {
+            if kind == PatchKind::PartialSlip {
+                if let Some(s) = fold_minus_surface(gammas, e_range)? {
+                    out.push(Box::new(s));
+                }
+            }
+            let full = match &traced.end_minus {
+                Some((over, s)) if *over == (gammas, e_range) => s.clone(),
+                _ => {
+                    let s = end_minus_surface(gammas, e_range, kind)?;
+                    traced.end_minus = Some(((gammas, e_range), s.clone()));
+                    s
+                }
+            };
+            if let Some(full) = full {
+                out.push(Box::new(end_minus_in_patch(&full, kind)));
             }
         }
         _ => {}
@@ -131,10 +163,7 @@ impl KinkCurve {
         let (start, w) = stencil4(u, n);
         let l = &self.values[start..start + 4];
         let v = w[0] * l[0] + w[1] * l[1] + w[2] * l[2] + w[3] * l[3];
-        match self.scale {
-            CurveScale::Ln => Some(v.exp()),
-            CurveScale::Reciprocal => (v > 0.0).then(|| 1.0 / v),
-        }
+        self.scale.alpha(v)
     }
 
     /// The γ range of the curve.
@@ -402,26 +431,45 @@ const FIRST_ROW_SLOPE: f64 = 0.0075;
 /// (a neighbouring row's `α_F` differs by under 1.2 %, the extrapolation by under 1e-4).
 const CONTINUATION_SPAN: f64 = 0.03;
 
-/// A kink surface `α_K(γ, e_n)` traced on a grid of γ (spacing [`STEP`]) and `e_n`
-/// ([`ROWS_PER_UNIT_E`] rows per unit, from `e_n = 1` down), interpolated in `ln α` along γ in
-/// each row, then across the rows (Lagrange, up to 4 points each, fewer at the edge of the
-/// traced nodes). Undefined where the kink was not found on the two nodes on either side of
-/// the point along either axis: within one grid step of where it ends, and outside the grid.
+/// A kink surface `α_K(γ, e_n)` traced on a grid of γ (spacing `step`) and `e_n`
+/// (`rows_per_unit` rows per unit, from `e_n = 1` down), stored in its [`CurveScale`] and
+/// interpolated in that scale along γ in each row, then across the rows (Lagrange, up to 4
+/// points each, fewer at the edge of the traced nodes). Undefined where the kink was not found
+/// on the two nodes on either side of the point along either axis: within one grid step of
+/// where it ends, and outside the grid.
 #[derive(Debug, Clone, PartialEq)]
 pub struct KinkSurface {
     name: &'static str,
     patch: PatchKind,
+    scale: CurveScale,
     gamma_0: f64,
+    step: f64,
+    rows_per_unit: f64,
     n_gamma: usize,
     n_e: usize,
-    /// `ln α_K` of node `(i, l)` (γ = `gamma_0 + i STEP`, `e_n = 1 − l/ROWS_PER_UNIT_E`) at
-    /// `i n_e + l`; NaN where the kink was not found.
-    ln_alpha: Vec<f64>,
+    /// Whether a point up to one grid step beyond the last node of a row (or column of rows)
+    /// is extrapolated from the nodes on its side ([`one_sided_stencil`]): E₋ bends where it
+    /// crosses α_c2, and each patch keeps the nodes on its own side.
+    extrapolate: bool,
+    /// `α_K` of node `(i, l)` in `scale` (γ = `gamma_0 + i step`, `e_n = 1 − l/rows_per_unit`)
+    /// at `i n_e + l`; NaN where the kink was not found.
+    values: Vec<f64>,
 }
 
-/// `e_n` of row `l` of a kink surface (exact at `e_n` = 1, 0.99, …, 0.3).
-fn e_of_row(l: usize) -> f64 {
-    (ROWS_PER_UNIT_E - l as f64) / ROWS_PER_UNIT_E
+impl CurveScale {
+    /// `α` from its stored value (`None` for a reciprocal at or below 0).
+    fn alpha(self, v: f64) -> Option<f64> {
+        match self {
+            CurveScale::Ln => v.is_finite().then(|| v.exp()),
+            CurveScale::Reciprocal => (v > 0.0).then(|| 1.0 / v),
+        }
+    }
+}
+
+/// `e_n` of row `l` of a kink surface with `rows_per_unit` rows per unit of `e_n` (exact at
+/// `e_n` = 1, 0.99, …, 0.3 for 100 or 200 rows).
+fn e_of_row(l: usize, rows_per_unit: f64) -> f64 {
+    (rows_per_unit - l as f64) / rows_per_unit
 }
 
 /// The Lagrange stencil on up to four consecutive nodes among `0..n` (node `i` at `x = i`)
@@ -449,6 +497,36 @@ fn local_stencil(x: f64, n: usize, ok: impl Fn(usize) -> bool) -> Option<(usize,
     Some((start, k))
 }
 
+/// Where [`local_stencil`] finds nothing because `x` lies within one node beyond the end of a
+/// run of `ok` nodes: up to four consecutive `ok` nodes of that run ending next to `x`
+/// (at least two), for extrapolation.
+fn one_sided_stencil(x: f64, n: usize, ok: impl Fn(usize) -> bool) -> Option<(usize, usize)> {
+    if n < 2 || !(x >= 0.0 && x <= (n - 1) as f64) {
+        return None;
+    }
+    let cell = (x as usize).min(n - 2);
+    let run = |last: usize, down: bool| -> Option<(usize, usize)> {
+        let mut k = 1;
+        while k < 4 {
+            let next = if down {
+                last.checked_sub(k)
+            } else {
+                Some(last + k).filter(|&j| j < n)
+            };
+            match next {
+                Some(j) if ok(j) => k += 1,
+                _ => break,
+            }
+        }
+        (k >= 2).then_some((if down { last + 1 - k } else { last }, k))
+    };
+    match (ok(cell), ok(cell + 1)) {
+        (true, false) => run(cell, true),
+        (false, true) => run(cell + 1, false),
+        _ => None,
+    }
+}
+
 /// The Lagrange weights of nodes `start .. start + k` at `x`.
 fn lagrange_weights(x: f64, start: usize, k: usize) -> [f64; 4] {
     let mut w = [0.0; 4];
@@ -465,22 +543,31 @@ fn lagrange_weights(x: f64, start: usize, k: usize) -> [f64; 4] {
 }
 
 impl KinkSurface {
-    /// `ln α_K` of node `(i, l)` (NaN where not found).
+    /// The stored value of node `(i, l)` (NaN where not found).
     fn node(&self, i: usize, l: usize) -> f64 {
-        self.ln_alpha[i * self.n_e + l]
+        self.values[i * self.n_e + l]
     }
 
-    /// `ln α_K` interpolated along γ (position `u` in grid steps) in row `l`.
+    /// `e_n` of row `l`.
+    fn e_of_row(&self, l: usize) -> f64 {
+        e_of_row(l, self.rows_per_unit)
+    }
+
+    /// The stored value interpolated along γ (position `u` in grid steps) in row `l`.
     fn along_gamma(&self, u: f64, l: usize) -> Option<f64> {
-        let (start, k) = local_stencil(u, self.n_gamma, |i| self.node(i, l).is_finite())?;
+        let ok = |i: usize| self.node(i, l).is_finite();
+        let (start, k) = local_stencil(u, self.n_gamma, ok).or_else(|| {
+            self.extrapolate
+                .then(|| one_sided_stencil(u, self.n_gamma, ok))?
+        })?;
         let w = lagrange_weights(u, start, k);
         Some((0..k).map(|j| w[j] * self.node(start + j, l)).sum())
     }
 
     /// `α_K(γ, e_n)`, or `None` where it is undefined (see [`KinkSurface`]).
     pub fn alpha_at(&self, gamma: f64, e_n: f64) -> Option<f64> {
-        let u = (gamma - self.gamma_0) / STEP;
-        let x = (1.0 - e_n) * ROWS_PER_UNIT_E;
+        let u = (gamma - self.gamma_0) / self.step;
+        let x = (1.0 - e_n) * self.rows_per_unit;
         if !(u >= 0.0 && u <= (self.n_gamma - 1) as f64) {
             return None;
         }
@@ -495,12 +582,16 @@ impl KinkSurface {
             l.checked_sub(first)
                 .and_then(|r| rows.get(r).copied().flatten())
         };
-        let (start, k) = local_stencil(x, self.n_e, |l| row(l).is_some())?;
+        let ok = |l: usize| row(l).is_some();
+        let (start, k) = local_stencil(x, self.n_e, ok).or_else(|| {
+            self.extrapolate
+                .then(|| one_sided_stencil(x, self.n_e, ok))?
+        })?;
         let w = lagrange_weights(x, start, k);
-        let ln_alpha: f64 = (0..k)
+        let v: f64 = (0..k)
             .map(|j| w[j] * row(start + j).unwrap_or(f64::NAN))
             .sum();
-        ln_alpha.is_finite().then(|| ln_alpha.exp())
+        self.scale.alpha(v)
     }
 
     /// The γ of the grid's first and last columns that hold the kink, or `None` if none does.
@@ -509,8 +600,8 @@ impl KinkSurface {
         let lo = (0..self.n_gamma).find(|&i| has(i))?;
         let hi = (0..self.n_gamma).rev().find(|&i| has(i))?;
         Some((
-            self.gamma_0 + lo as f64 * STEP,
-            self.gamma_0 + hi as f64 * STEP,
+            self.gamma_0 + lo as f64 * self.step,
+            self.gamma_0 + hi as f64 * self.step,
         ))
     }
 
@@ -519,21 +610,25 @@ impl KinkSurface {
         let has = |l: usize| (0..self.n_gamma).any(|i| self.node(i, l).is_finite());
         let lo = (0..self.n_e).rev().find(|&l| has(l))?;
         let hi = (0..self.n_e).find(|&l| has(l))?;
-        Some((e_of_row(lo), e_of_row(hi)))
+        Some((self.e_of_row(lo), self.e_of_row(hi)))
     }
 
-    /// The traced nodes that hold the kink: `(γ, e_n, ln α_K)`.
+    /// The traced nodes that hold the kink: `(γ, e_n, v)`, `v` the stored value of `α_K` in
+    /// the surface's [`CurveScale`] (`ln α_K` for F₋).
     pub fn nodes(&self) -> Vec<(f64, f64, f64)> {
         (0..self.n_gamma)
             .flat_map(|i| (0..self.n_e).map(move |l| (i, l)))
             .filter(|&(i, l)| self.node(i, l).is_finite())
-            .map(|(i, l)| (self.gamma_0 + i as f64 * STEP, e_of_row(l), self.node(i, l)))
+            .map(|(i, l)| {
+                let g = self.gamma_0 + i as f64 * self.step;
+                (g, self.e_of_row(l), self.node(i, l))
+            })
             .collect()
     }
 
     /// How many nodes hold the kink (each one located by a fold search).
     pub fn traced_nodes(&self) -> usize {
-        self.ln_alpha.iter().filter(|a| a.is_finite()).count()
+        self.values.iter().filter(|a| a.is_finite()).count()
     }
 }
 
@@ -557,7 +652,7 @@ impl Kink for KinkSurface {
 fn fold_minus_column(gamma: f64, n_e: usize) -> Result<Vec<f64>, SweepError> {
     let mut out = vec![f64::NAN; n_e];
     for l in 0..n_e {
-        let e_n = e_of_row(l);
+        let e_n = e_of_row(l, ROWS_PER_UNIT_E);
         let fail = |what: String| SweepError::Kink {
             curve: "F-",
             gamma,
@@ -637,10 +732,14 @@ pub fn fold_minus_surface(
     Ok(Some(KinkSurface {
         name: "F-",
         patch: PatchKind::PartialSlip,
+        scale: CurveScale::Ln,
         gamma_0,
+        step: STEP,
+        rows_per_unit: ROWS_PER_UNIT_E,
         n_gamma,
         n_e,
-        ln_alpha: columns.concat(),
+        extrapolate: false,
+        values: columns.concat(),
     }))
 }
 
@@ -843,19 +942,46 @@ mod tests {
     fn kinks_are_traced_for_the_laws_that_have_them() {
         assert!(probes_implemented(Law::Elastic) && probes_implemented(Law::KelvinVoigt));
         assert!(!probes_implemented(Law::Thornton));
-        // Nothing for the stick patch above E₋'s end, for Thornton's law, or below F₋'s birth
-        // with damping.
+        // Nothing for the stick patch of an elastic table above E₋'s end or for Thornton's law.
         for (law, kind, e) in [
             (Law::Elastic, PatchKind::Stick, None),
             (Law::Thornton, PatchKind::PartialSlip, Some((0.5, 1.0))),
-            (Law::KelvinVoigt, PatchKind::PartialSlip, Some((0.5, 0.8))),
         ] {
-            assert!(
-                trace(law, kind, (2.4, 2.6), e).unwrap().is_empty(),
-                "{law:?}"
-            );
+            let k = trace(law, kind, (2.4, 2.6), e, &mut Traced::default()).unwrap();
+            assert!(k.is_empty(), "{law:?}");
         }
-        let elastic = trace(Law::Elastic, PatchKind::PartialSlip, (2.4, 2.45), None).unwrap();
+        // Below F₋'s end with damping, E₋ alone, in the partial-slip patch (α_E ≈ 0.46–0.7 at
+        // γ 2.5, below α_c2 = 1.79); traced once for both patches.
+        let mut traced = Traced::default();
+        let e = Some((0.5, 0.8));
+        let k = trace(
+            Law::KelvinVoigt,
+            PatchKind::PartialSlip,
+            (2.4, 2.6),
+            e,
+            &mut traced,
+        );
+        let k = k.unwrap();
+        let names: Vec<_> = k.iter().map(|k| (k.name(), k.patch())).collect();
+        assert_eq!(names, [("E-", PatchKind::PartialSlip)]);
+        assert!((0.4..0.8).contains(&k[0].alpha(2.5, 0.7).unwrap()));
+        let stick = trace(
+            Law::KelvinVoigt,
+            PatchKind::Stick,
+            (2.4, 2.6),
+            e,
+            &mut traced,
+        )
+        .unwrap();
+        assert_eq!(stick[0].alpha(2.5, 0.7), None);
+        let elastic = trace(
+            Law::Elastic,
+            PatchKind::PartialSlip,
+            (2.4, 2.45),
+            None,
+            &mut traced,
+        )
+        .unwrap();
         assert_eq!(elastic.len(), 1);
         assert_eq!(
             (elastic[0].name(), elastic[0].patch()),
@@ -866,7 +992,7 @@ mod tests {
         assert_eq!(elastic[0].alpha(2.42, 0.99), None);
         // E₋ in both patches of an elastic table below F₋'s birth.
         for kind in [PatchKind::Stick, PatchKind::PartialSlip] {
-            let k = trace(Law::Elastic, kind, (1.85, 2.0), None).unwrap();
+            let k = trace(Law::Elastic, kind, (1.85, 2.0), None, &mut traced).unwrap();
             let names: Vec<_> = k.iter().map(|k| (k.name(), k.patch())).collect();
             assert_eq!(names, [("E-", kind)]);
         }

@@ -1,0 +1,229 @@
+//! The end-of-contact surface E₋ of the Kelvin–Voigt law, `α_E(γ, e_n)`: where the last
+//! `−μF_N` episode of an impact leaves the separation as α grows, for a table with an `e_n`
+//! axis. At `e_n = 1` it is the elastic curve ([`super::end_minus_curve`]); with damping it
+//! moves little above γ ≈ 1.8 (α_E = 0.8699, 0.8170, 0.9873, 1.6320 at γ = 2.0 and
+//! `e_n` = 1, 0.8, 0.5, 0.3) and leaves for α → ∞ at a γ that depends on `e_n` (α_E = 20.87,
+//! 9.77, 62.2 at γ = 1.74 and `e_n` = 1, 0.75, 0.5; not found at 0.48). Beyond F₋'s birth
+//! (γ ≈ 2.40) the change at `e_n = 1` is F₋'s own (the `−μF_N` episode at the separation
+//! turns into F₋'s interior one); below `e_n` ≈ 0.99 E₋ goes on (α_E ≈ 0.49 at γ = 2.45,
+//! `e_n` = 0.99), next to F₋ where F₋ exists.
+
+use rayon::prelude::*;
+
+use super::{CurveScale, KinkSurface, TRACE_STEPS};
+use crate::SweepError;
+use oblique_physics::regimes::alpha_c2;
+use oblique_solver::history::end_minus_at_e;
+use oblique_table::surface::PatchKind;
+
+/// Spacing of the surface's grid in γ and in `e_n` (rows `e_n = 1, 0.98, …`). `α_E` varies
+/// slowly with both: the 4-point rule between the grid points is within 1e-4 (relative) of
+/// direct location where α_E ≤ 10 (`the_end_of_contact_surface_matches_direct_location`).
+pub const END_SURFACE_STEP: f64 = 0.02;
+
+/// The γ at which every row's tracing starts (or the grid's first column above it), where E₋
+/// exists at every `e_n` in [0.3, 1] with α_E of order one (0.82–1.63 at γ = 2.0, 0.43–1.38
+/// at 2.6).
+const START_GAMMA: f64 = 2.0;
+
+/// First guess of α_E at the start: within a factor `e` of it at every `e_n` for γ 2.0–2.62.
+const START_GUESS: f64 = 1.0;
+
+/// Lowest γ of the grid: E₋ is not found below γ ≈ 1.72 at any `e_n`.
+const SURFACE_FROM: f64 = 1.70;
+
+/// Highest γ of the grid: beyond γ ≈ 2.6 the predicate has more than one upper edge at some
+/// `e_n` (at γ = 3.0, `e_n` = 0.9 it holds on α 0.16–0.32 and again above 1.82), which this
+/// tracing does not follow.
+const SURFACE_TO: f64 = 2.62;
+
+/// α beyond which a row's tracing towards small γ stops (α_E → ∞ there; `P` is flat in α,
+/// `dP/d ln α` ≈ 0.009 at α = 20 and γ = 1.74).
+const ALPHA_STOP: f64 = 60.0;
+
+/// How far (in `ln α`) a point located by continuation may lie from its extrapolated guess
+/// (neighbouring points differ by at most 25 % where α_E ≤ [`ALPHA_STOP`]; the linear
+/// extrapolation of `1/α_E` by far less).
+const SPAN: f64 = 0.3;
+
+/// E₋ of the Kelvin–Voigt law as a surface `α_E(γ, e_n)` over `gammas` × `e_range` for the
+/// probes of `patch` (it crosses both patches: the stick patch above α_c2, the partial-slip
+/// patch below; [`end_minus_in_patch`] keeps each patch's side), on a grid of
+/// [`END_SURFACE_STEP`] in γ (multiples of it, one point beyond each end of `gammas`, within
+/// [`SURFACE_FROM`]–[`SURFACE_TO`]) and in `e_n` (from 1 down to one row below `e_range.0`, at
+/// least 0.3), stored as `1/α_E`. Each row is traced from [`START_GAMMA`] (or the grid's first
+/// column above it) towards both ends by continuation ([`end_minus_at_e`], [`TRACE_STEPS`]
+/// steps, the guess extrapolated linearly in `1/α_E`), the rows in parallel; a row stops where
+/// E₋ is lost or α_E passes [`ALPHA_STOP`]. `None` when no grid point holds it.
+pub fn end_minus_surface(
+    (gamma_lo, gamma_hi): (f64, f64),
+    (e_lo, _e_hi): (f64, f64),
+    patch: PatchKind,
+) -> Result<Option<KinkSurface>, SweepError> {
+    let h = END_SURFACE_STEP;
+    let rows_per_unit = 1.0 / h;
+    let i_lo = ((gamma_lo / h - 1e-9).floor() as i64 - 1).max((SURFACE_FROM / h).round() as i64);
+    let i_hi = ((gamma_hi / h + 1e-9).ceil() as i64 + 1).min((SURFACE_TO / h).round() as i64);
+    if i_hi < i_lo + 1 {
+        return Ok(None);
+    }
+    // Each row starts at START_GAMMA, or at the grid's first column where that lies below it
+    // (the guess holds up to γ = 2.62); the columns traced are the grid's and those between it
+    // and the start.
+    let i_start = ((START_GAMMA / h).round() as i64).max(i_lo);
+    let (t_lo, t_hi) = (i_lo.min(i_start), i_hi.max(i_start));
+    let n_t = (t_hi - t_lo + 1) as usize;
+    let min_row = ((1.0 - oblique_solver::law::MIN_RESTITUTION) * rows_per_unit).round() as usize;
+    let n_e = (((1.0 - e_lo) * rows_per_unit - 1e-9).ceil().max(0.0) as usize + 2).min(min_row + 1);
+    let rows = (0..n_e)
+        .into_par_iter()
+        .map(|l| {
+            let e_n = super::e_of_row(l, rows_per_unit);
+            let mut inv = vec![f64::NAN; n_t];
+            let locate = |i: usize, guess: f64, span: f64| -> Result<Option<f64>, SweepError> {
+                let g = (t_lo + i as i64) as f64 * h;
+                let found =
+                    end_minus_at_e(g, e_n, guess, TRACE_STEPS).map_err(|e| SweepError::Kink {
+                        curve: "E-",
+                        gamma: g,
+                        what: format!("at e_n = {e_n}: {e}"),
+                    })?;
+                Ok(found
+                    .filter(|a| (a / guess).ln().abs() <= span && *a <= ALPHA_STOP)
+                    .map(|a| 1.0 / a))
+            };
+            let s = (i_start - t_lo) as usize;
+            let Some(first) = locate(s, START_GUESS, 1.0)? else {
+                return Ok(inv);
+            };
+            inv[s] = first;
+            // Outwards from the start: up in γ, then down.
+            for dir in [1i64, -1] {
+                let mut i = s as i64 + dir;
+                while i >= 0 && (i as usize) < n_t {
+                    // Linear extrapolation from the two points behind (the start's other
+                    // neighbour on the way down), else the last point.
+                    let prev = inv[(i - dir) as usize];
+                    let guess_inv = match usize::try_from(i - 2 * dir).ok().and_then(|j| inv.get(j))
+                    {
+                        Some(&p2) if p2.is_finite() => 2.0 * prev - p2,
+                        _ => prev,
+                    };
+                    let guess = 1.0 / guess_inv.max(1.0 / ALPHA_STOP);
+                    match locate(i as usize, guess, SPAN)? {
+                        Some(v) => inv[i as usize] = v,
+                        None => break,
+                    }
+                    i += dir;
+                }
+            }
+            Ok(inv)
+        })
+        .collect::<Result<Vec<Vec<f64>>, SweepError>>()?;
+    // Keep the grid's columns, node (i, l) at i n_e + l.
+    let n_gamma = (i_hi - i_lo + 1) as usize;
+    let off = (i_lo - t_lo) as usize;
+    let values: Vec<f64> = (0..n_gamma)
+        .flat_map(|i| rows.iter().map(move |r| r[off + i]))
+        .collect();
+    if values.iter().all(|v| !v.is_finite()) {
+        return Ok(None);
+    }
+    Ok(Some(KinkSurface {
+        name: "E-",
+        patch,
+        scale: CurveScale::Reciprocal,
+        gamma_0: i_lo as f64 * h,
+        step: h,
+        rows_per_unit,
+        n_gamma,
+        n_e,
+        extrapolate: true,
+        values,
+    }))
+}
+
+/// The part of an [`end_minus_surface`] in the patch `kind`: the nodes with α_E ≥ α_c2(γ) for
+/// the stick patch, α_E ≤ α_c2(γ) for the partial-slip patch. E₋ bends where it crosses α_c2
+/// (α_E = 1.0914, 1.0363, 1.0116 at γ = 1.90, 1.91, 1.92 and `e_n` = 0.99, α_c2 = 1.0423 at
+/// 1.91): a stencil across the bend errs by up to 0.8 %, so each side is interpolated from its
+/// own nodes and extrapolated up to one grid step beyond them.
+pub fn end_minus_in_patch(surface: &KinkSurface, kind: PatchKind) -> KinkSurface {
+    let mut out = surface.clone();
+    out.patch = kind;
+    for i in 0..out.n_gamma {
+        let inv_c2 = 1.0 / alpha_c2(out.gamma_0 + i as f64 * out.step);
+        for l in 0..out.n_e {
+            let v = &mut out.values[i * out.n_e + l];
+            let stick = *v <= inv_c2;
+            if stick != (kind == PatchKind::Stick) {
+                *v = f64::NAN;
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_end_of_contact_surface_matches_direct_location() {
+        let full = end_minus_surface((1.74, 2.5), (0.3, 1.0), PatchKind::Stick)
+            .unwrap()
+            .unwrap();
+        let stick = end_minus_in_patch(&full, PatchKind::Stick);
+        let partial = end_minus_in_patch(&full, PatchKind::PartialSlip);
+        // The patch's side of α_c2 at (γ, e_n): where the traced surface lies.
+        let s = |g: f64, e: f64| -> Option<f64> {
+            let a = full.alpha_at(g, e)?;
+            if a >= alpha_c2(g) {
+                stick.alpha_at(g, e)
+            } else {
+                partial.alpha_at(g, e)
+            }
+        };
+        // At grid points: the traced values (kinkmap / endscan_e, 2048 steps).
+        for (g, e, a) in [
+            (2.0, 1.0, 0.869908),
+            (2.0, 0.8, 0.817007),
+            (2.0, 0.5, 0.987312),
+            (2.0, 0.3, 1.631979),
+            (1.8, 0.6, 2.520372),
+            (2.3, 0.4, 1.078174),
+            (2.4, 0.7, 0.483600),
+        ] {
+            let got = s(g, e).unwrap_or_else(|| panic!("{g} {e}: none"));
+            assert!((got / a - 1.0).abs() < 2e-6, "{g} {e}: {got} against {a}");
+        }
+        // Between the grid points, against direct location from a nearby guess: within 2e-4
+        // where E₋ is smooth; within 3e-3 next to its bends (where it crosses α_c2, at γ ≈ 1.91
+        // for e_n near 1, and next to F₋'s birth, γ ≈ 2.4 and e_n ≥ 0.97).
+        for (g, e, tol) in [
+            (1.75, 0.99, 2e-4),
+            (1.76, 0.71, 2e-4),
+            (1.77, 0.91, 2e-4),
+            (1.85, 0.45, 2e-4),
+            (1.89, 0.97, 2e-4),
+            (1.93, 0.77, 2e-4),
+            (1.95, 0.6, 2e-4),
+            (2.11, 0.33, 2e-4),
+            (2.27, 0.63, 2e-4),
+            (2.49, 0.51, 4e-4),
+            (2.45, 0.95, 5e-4),
+            (1.91, 0.99, 3e-3),
+            (2.39, 0.99, 3e-3),
+            (2.41, 0.97, 3e-3),
+        ] {
+            let got = s(g, e).unwrap_or_else(|| panic!("{g} {e}: none"));
+            let direct = end_minus_at_e(g, e, got, TRACE_STEPS).unwrap().unwrap();
+            assert!(
+                (got / direct - 1.0).abs() < tol,
+                "{g} {e}: {got} against {direct}"
+            );
+        }
+        // Nowhere below γ ≈ 1.72.
+        assert!(full.alpha_at(1.70, 0.99).is_none());
+    }
+}
