@@ -974,4 +974,23 @@ tol = 1e-6
             );
         }
     }
+
+    #[test]
+    fn the_observed_rate_needs_the_probes() {
+        let with = |keys: &str| {
+            let text = GOOD.replace(
+                "target_error = 1e-5",
+                &format!("target_error = 1e-5\n{keys}"),
+            );
+            Config::parse(&text, "x.toml").map_err(|e| e.to_string())
+        };
+        let e = with("observed_rate = true").unwrap_err();
+        assert!(
+            e.contains("nodes.observed_rate") && e.contains("nodes.probe_kinks = true"),
+            "{e}"
+        );
+        let cfg = with("observed_rate = true\nprobe_kinks = true").unwrap();
+        assert!(cfg.nodes.observed_rate);
+        assert!(!with("").unwrap().nodes.observed_rate);
+    }
 }
