@@ -88,9 +88,9 @@ fn verify_refuses_bad_arguments() {
         assert_eq!(out.status.code(), Some(2), "{all:?}: {err}");
         assert!(err.contains(needle), "{all:?}: {err}");
     }
-    // E₋ is traced for elastic tables only, within γ 1.74–2.40.
-    let default = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/default.h5");
-    for (table, needle) in [(default, "has an e_n axis"), (FULL, "cannot be used with")] {
+    // E₋ is traced over a range of γ (a curve, or a surface with an e_n axis), not for one pair.
+    let pair = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/dissipative-pair.h5");
+    for (table, needle) in [(pair, "one pair"), (FULL, "cannot be used with")] {
         let mut all = vec!["verify", table, "--near-end"];
         if table == FULL {
             all.push("--near-fold");
@@ -106,6 +106,45 @@ fn verify_refuses_bad_arguments() {
     let out = sweep(&["verify", "/nonexistent/table.h5"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/table.h5"));
+}
+
+/// `--near-end` on a Kelvin–Voigt table: (γ, α, e_n) next to the end-of-contact surface
+/// `α_E(γ, e_n)` (traced first), none above the stated bound; the worst point lies within 10 %
+/// of E₋, which runs through α ≈ 1–10 over γ 1.74–1.9.
+#[test]
+fn near_end_draws_points_next_to_the_end_of_contact_surface_of_an_e_n_table() {
+    let table = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/dissipative-demo.h5");
+    let out = sweep(&[
+        "verify",
+        table,
+        "--points",
+        "30",
+        "--seed",
+        "5",
+        "--near-end",
+        "--quiet",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("end-of-contact"), "{err}");
+    assert!(text.contains("points above it: 0"), "{text}");
+    let worst = text
+        .lines()
+        .find(|l| l.starts_with("worst point"))
+        .expect("a worst point");
+    let field = |name: &str| -> f64 {
+        let rest = worst.split(&format!("{name} = ")).nth(1).expect(name);
+        rest.split([',', ':'])
+            .next()
+            .unwrap_or("")
+            .trim()
+            .parse()
+            .expect(name)
+    };
+    let (g, a) = (field("gamma"), field("alpha"));
+    assert!((1.72..=2.0).contains(&g), "{worst}");
+    assert!((0.5..=70.0).contains(&a), "{worst}");
 }
 
 /// `--near-curves` draws α next to `α_c1(γ, e_n)` and `α_c2(γ)` (within 10 % of one of them)

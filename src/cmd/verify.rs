@@ -51,11 +51,13 @@ pub struct VerifyArgs {
     /// 1 s for a curve, seconds for a surface).
     #[arg(long, conflicts_with = "near_curves")]
     near_fold: bool,
-    /// Draw (gamma, alpha) next to the end-of-contact curve E- instead (elastic tables): gamma
-    /// uniform over the table's range within [1.74, 2.40], where the last -mu F_N episode of
-    /// the impact leaves the separation as alpha grows (alpha from 20.9 at gamma = 1.74 through
-    /// the stick region, alpha_c2 at 1.907, to 0.513 at 2.40); alpha = alpha_E times 1 + s·r,
-    /// s = +1 or -1, r log-uniform in [1e-4, 0.1] (E- is traced first: about 2 s).
+    /// Draw (gamma, alpha) next to the end-of-contact curve E- instead: gamma uniform over the
+    /// table's range within [1.74, 2.40], where the last -mu F_N episode of the impact leaves
+    /// the separation as alpha grows (alpha from 20.9 at gamma = 1.74 through the stick
+    /// region, alpha_c2 at 1.907, to 0.513 at 2.40), or for a Kelvin-Voigt table (gamma, e_n)
+    /// uniform where its surface alpha_E(gamma, e_n) is traced (gamma 1.72-2.62); alpha =
+    /// alpha_E times 1 + s·r, s = +1 or -1, r log-uniform in [1e-4, 0.1] (E- is traced first:
+    /// about 2 s for the curve, 10-25 s for a surface on 2 cores).
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold"])]
     near_end: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
@@ -178,10 +180,13 @@ fn sample_near_fold(
 }
 
 /// The `n` points of `--near-end`: [`oblique_sweep::kink::near_end_minus_points`] on the curve
-/// E₋ over the part of an elastic table's γ range where it is traced, and that γ range.
+/// E₋ over the part of an elastic table's γ range where it is traced,
+/// [`oblique_sweep::kink::near_end_minus_points_e`] on the surface `α_E(γ, e_n)` of a
+/// Kelvin–Voigt table, and that γ range.
 fn sample_near_end(
     table: &Table,
     path: &std::path::Path,
+    law: Law,
     n: usize,
     seed: u64,
 ) -> Result<(Vec<Point>, (f64, f64))> {
@@ -191,18 +196,46 @@ fn sample_near_end(
         Failure::usage(format!(
             "--near-end: {} has {has}; the end-of-contact curve E- is traced for elastic \
              tables whose gamma range reaches into [{}, {}] by {} or more (it leaves for \
-             alpha = inf at gamma ~ 1.732)",
+             alpha = inf at gamma ~ 1.732), and as a surface for Kelvin-Voigt tables over \
+             gamma 1.72-2.62",
             path.display(),
             oblique_sweep::kink::END_MINUS_FROM,
             oblique_sweep::kink::END_MINUS_TO,
             3.0 * oblique_sweep::kink::STEP,
         ))
     };
-    if let Some((lo, hi)) = table.restitution() {
-        return Err(refuse(format!("an e_n axis ([{lo}, {hi}])")));
-    }
     if s.pair_gamma().is_some() {
         return Err(refuse("one pair (a single gamma)".into()));
+    }
+    if let Some(e_range) = table.restitution() {
+        if !oblique_sweep::kink::probes_implemented(law) {
+            return Err(refuse(format!(
+                "the {} law, whose end-of-contact surface is not traced",
+                law.name()
+            )));
+        }
+        let surface = oblique_sweep::kink::end_minus_surface(
+            (g_lo, g_hi),
+            e_range,
+            oblique_table::surface::PatchKind::Stick,
+        )
+        .context("tracing the end-of-contact surface E-")?;
+        let points = surface
+            .as_ref()
+            .map(|f| {
+                oblique_sweep::kink::near_end_minus_points_e(f, (g_lo, g_hi), e_range, n, seed)
+            })
+            .unwrap_or_default();
+        let Some(range) = surface
+            .and_then(|f| f.gamma_range())
+            .filter(|_| !points.is_empty())
+        else {
+            return Err(refuse(format!(
+                "gamma in [{g_lo}, {g_hi}] and e_n in [{}, {}]",
+                e_range.0, e_range.1
+            )));
+        };
+        return Ok((points, (g_lo.max(range.0), g_hi.min(range.1))));
     }
     let curve =
         oblique_sweep::kink::end_minus_curve(oblique_table::surface::PatchKind::Stick, g_lo, g_hi)
@@ -279,7 +312,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
     let points = if args.near_fold {
         sample_near_fold(&table, &args.table, law, args.points, args.seed)?
     } else if args.near_end {
-        let (points, range) = sample_near_end(&table, &args.table, args.points, args.seed)?;
+        let (points, range) = sample_near_end(&table, &args.table, law, args.points, args.seed)?;
         near_end_range = Some(range);
         points
     } else {
@@ -314,7 +347,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
                 table.surface().gamma_max()
             ),
         },
-        if args.near_end {
+        if args.near_end && table.restitution().is_some() {
+            "alpha within 1e-4 to 0.1 (relative) of the end-of-contact surface E-"
+        } else if args.near_end {
             "alpha within 1e-4 to 0.1 (relative) of the end-of-contact curve E-"
         } else if args.near_fold && table.restitution().is_some() {
             "alpha within 1e-4 to 1e-2 (relative) of the fold surface F-"

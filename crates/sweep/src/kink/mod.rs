@@ -57,12 +57,35 @@ pub fn probes_implemented(law: Law) -> bool {
     matches!(law, Law::Elastic | Law::KelvinVoigt)
 }
 
-/// What [`trace`] traced once for a whole build, shared by its patches: the Kelvin–Voigt
-/// end-of-contact surface E₋ crosses both the stick and the partial-slip patch.
+/// What [`trace`] traced once for a whole build, shared by its patches: the end-of-contact
+/// curve E₋ (elastic) and surface (Kelvin–Voigt) cross both the stick and the partial-slip
+/// patch.
 #[derive(Debug, Default)]
 pub struct Traced {
-    /// E₋ and the γ and `e_n` ranges it was traced for.
+    /// The Kelvin–Voigt E₋ and the γ and `e_n` ranges it was traced for.
     end_minus: Option<(TracedOver, Option<KinkSurface>)>,
+    /// The elastic E₋ and the γ range it was traced for.
+    end_minus_curve: Option<((f64, f64), Option<KinkCurve>)>,
+}
+
+impl Traced {
+    /// The elastic E₋ over `gammas` for the patch `kind`, traced on the first call for these
+    /// γ ([`end_minus_curve`]; the curve does not depend on the patch, only its label).
+    fn end_minus_curve(
+        &mut self,
+        kind: PatchKind,
+        gammas: (f64, f64),
+    ) -> Result<Option<KinkCurve>, SweepError> {
+        let curve = match &self.end_minus_curve {
+            Some((over, c)) if *over == gammas => c.clone(),
+            _ => {
+                let c = end_minus_curve(kind, gammas.0, gammas.1)?;
+                self.end_minus_curve = Some((gammas, c.clone()));
+                c
+            }
+        };
+        Ok(curve.map(|c| KinkCurve { patch: kind, ..c }))
+    }
 }
 
 /// The γ and `e_n` ranges a kink was traced over.
@@ -72,9 +95,9 @@ type TracedOver = ((f64, f64), (f64, f64));
 /// (and `e_n` in `e_range` for a table with an `e_n` axis): F₋ of the partial-slip patch as a
 /// curve (elastic, [`fold_minus_curve`]) or as a surface (Kelvin–Voigt,
 /// [`fold_minus_surface`]); the end-of-contact curve E₋ in both patches as a curve (elastic,
-/// [`end_minus_curve`]) or as a surface (Kelvin–Voigt, [`end_minus_surface`], traced once per
-/// `traced` and split by [`end_minus_in_patch`]); none where the range holds no such kink or
-/// the law has none traced.
+/// [`end_minus_curve`]) or as a surface (Kelvin–Voigt, [`end_minus_surface`], split by
+/// [`end_minus_in_patch`]), each traced once per `traced` for both patches; none where the
+/// range holds no such kink or the law has none traced.
 pub fn trace(
     law: Law,
     kind: PatchKind,
@@ -88,12 +111,12 @@ pub fn trace(
             if let Some(c) = fold_minus_curve(gammas.0, gammas.1)? {
                 out.push(Box::new(c));
             }
-            if let Some(c) = end_minus_curve(kind, gammas.0, gammas.1)? {
+            if let Some(c) = traced.end_minus_curve(kind, gammas)? {
                 out.push(Box::new(c));
             }
         }
         (Law::Elastic, PatchKind::Stick, None) => {
-            if let Some(c) = end_minus_curve(kind, gammas.0, gammas.1)? {
+            if let Some(c) = traced.end_minus_curve(kind, gammas)? {
                 out.push(Box::new(c));
             }
         }
@@ -751,10 +774,55 @@ pub fn fold_minus_surface(
 /// --near-fold` on a table with an `e_n` axis).
 pub fn near_fold_minus_points_e(
     surface: &KinkSurface,
-    (gamma_min, gamma_max): (f64, f64),
-    (e_min, e_max): (f64, f64),
+    gammas: (f64, f64),
+    e_range: (f64, f64),
     n: usize,
     seed: u64,
+) -> Vec<Point> {
+    near_surface_points(
+        surface,
+        |g, e| surface.alpha_at(g, e),
+        (gammas, e_range),
+        (n, seed),
+        (-4.0, -2.0),
+    )
+}
+
+/// `n` points next to the end-of-contact surface E₋ (`surface`, from [`end_minus_surface`]):
+/// `(γ, e_n)` drawn as [`near_fold_minus_points_e`] draws them, `α = α_E(γ, e_n)(1 + s·r)` with
+/// `r = 10^u`, `u` uniform in `[−4, −1]` (as [`near_end_minus_points`]), `α_E` from the side
+/// of α_c2 it lies on ([`end_minus_in_patch`]). The same `seed` gives the same points (`sweep
+/// verify --near-end` on a table with an `e_n` axis).
+pub fn near_end_minus_points_e(
+    surface: &KinkSurface,
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+    n: usize,
+    seed: u64,
+) -> Vec<Point> {
+    let stick = end_minus_in_patch(surface, PatchKind::Stick);
+    let partial = end_minus_in_patch(surface, PatchKind::PartialSlip);
+    let alpha = |g: f64, e: f64| {
+        let a = surface.alpha_at(g, e)?;
+        if a >= oblique_physics::regimes::alpha_c2(g) {
+            stick.alpha_at(g, e)
+        } else {
+            partial.alpha_at(g, e)
+        }
+    };
+    near_surface_points(surface, alpha, (gammas, e_range), (n, seed), (-4.0, -1.0))
+}
+
+/// `n` points next to a kink surface whose `α_K` is `alpha`: `(γ, e_n)` uniform over the part
+/// of `gammas × e_range` within the box of `surface`'s traced nodes (drawn again where `alpha`
+/// is undefined), `α = α_K(1 + s·10^u)`, `s = ±1`, `u` uniform in `u_range`. Fewer than `n`
+/// (none) when `1000 n` draws do not find them.
+fn near_surface_points(
+    surface: &KinkSurface,
+    alpha: impl Fn(f64, f64) -> Option<f64>,
+    ((gamma_min, gamma_max), (e_min, e_max)): TracedOver,
+    (n, seed): (usize, u64),
+    (u_lo, u_hi): (f64, f64),
 ) -> Vec<Point> {
     let (Some((g_lo, g_hi)), Some((e_lo, e_hi))) = (surface.gamma_range(), surface.e_n_range())
     else {
@@ -773,10 +841,10 @@ pub fn near_fold_minus_points_e(
         }
         let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
         let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
-        let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+        let r = 10f64.powf(u_lo + (u_hi - u_lo) * rng.uniform());
         let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-        if let Some(alpha_f) = surface.alpha_at(gamma, e_n) {
-            out.push(Point::new(gamma, alpha_f * (1.0 + sign * r), e_n));
+        if let Some(alpha_k) = alpha(gamma, e_n) {
+            out.push(Point::new(gamma, alpha_k * (1.0 + sign * r), e_n));
         }
     }
     out
