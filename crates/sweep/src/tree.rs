@@ -205,7 +205,7 @@ impl Layout<'_> {
     /// row of the cell (each γ row, and each `e_n` row with an `e_n` axis) and between them
     /// (with an `e_n` axis at the centre of every square of four node rows; without, on rows
     /// between two γ rows across which the kink moves by more than one node interval), at
-    /// [`kink::PROBE_OFFSETS`] node intervals from the kink along the coordinate, those that land
+    /// [`kink::Kink::offsets`] node intervals from the kink along the coordinate, those that land
     /// inside the cell: `(u, v, w, point)` with `u`, `v`, `w` the position in node intervals of
     /// the cell along γ, the coordinate and `e_n` (`w = 0` without an `e_n` axis, `u = 0` in
     /// the patch of one pair). Empty when no kink passes near the cell.
@@ -303,7 +303,7 @@ impl Layout<'_> {
                 // The offsets that land inside the cell: also when the kink lies just outside
                 // it (up to 1.4 intervals below, 0.7 above), whose first intervals see the
                 // steep side.
-                for d in kink::PROBE_OFFSETS {
+                for &d in k.offsets() {
                     let v = v_k + d;
                     if (0.0..=m).contains(&v) {
                         let c = (cell.ic as f64 * m + v) * sc / nc;

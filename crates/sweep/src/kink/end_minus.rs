@@ -21,6 +21,12 @@ use oblique_table::surface::PatchKind;
 /// direct location where α_E ≤ 10 (`the_end_of_contact_surface_matches_direct_location`).
 pub const END_SURFACE_STEP: f64 = 0.02;
 
+/// Where a cell next to E₋ is measured on each row, in node intervals from it: four of the seven
+/// [`super::PROBE_OFFSETS`]. `P` keeps its slope across E₋ (a curvature change, not F₋'s
+/// `(α − α_F)^{3/2}`), so a cubic's error across it varies over the whole stencil, not within
+/// one interval of it.
+pub const END_PROBE_OFFSETS: [f64; 4] = [-0.7, 0.0, 0.7, 1.4];
+
 /// The γ at which every row's tracing starts (or the grid's first column above it), where E₋
 /// exists at every `e_n` in [0.3, 1] with α_E of order one (0.82–1.63 at γ = 2.0, 0.43–1.38
 /// at 2.6).
@@ -138,6 +144,7 @@ pub fn end_minus_surface(
         rows_per_unit,
         n_gamma,
         n_e,
+        offsets: &END_PROBE_OFFSETS,
         extrapolate: true,
         values,
     }))

@@ -26,7 +26,7 @@
 
 mod end_minus;
 
-pub use end_minus::{end_minus_in_patch, end_minus_surface, END_SURFACE_STEP};
+pub use end_minus::{end_minus_in_patch, end_minus_surface, END_PROBE_OFFSETS, END_SURFACE_STEP};
 
 use rayon::prelude::*;
 
@@ -48,6 +48,11 @@ pub trait Kink: std::fmt::Debug + Send + Sync {
     /// `α_K` at `(γ, e_n)`; `None` where the kink does not exist or was not traced (no probes
     /// there).
     fn alpha(&self, gamma: f64, e_n: f64) -> Option<f64>;
+    /// Where a cell next to it is measured on each row, in node intervals from it along the
+    /// coordinate ([`PROBE_OFFSETS`] unless the kink says otherwise).
+    fn offsets(&self) -> &'static [f64] {
+        &PROBE_OFFSETS
+    }
 }
 
 /// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ of the elastic and
@@ -470,6 +475,8 @@ pub struct KinkSurface {
     rows_per_unit: f64,
     n_gamma: usize,
     n_e: usize,
+    /// Where the probes measure a cell next to it ([`Kink::offsets`]).
+    offsets: &'static [f64],
     /// Whether a point up to one grid step beyond the last node of a row (or column of rows)
     /// is extrapolated from the nodes on its side ([`one_sided_stencil`]): E₋ bends where it
     /// crosses α_c2, and each patch keeps the nodes on its own side.
@@ -667,6 +674,10 @@ impl Kink for KinkSurface {
     fn alpha(&self, gamma: f64, e_n: f64) -> Option<f64> {
         self.alpha_at(gamma, e_n)
     }
+
+    fn offsets(&self) -> &'static [f64] {
+        self.offsets
+    }
 }
 
 /// One column of [`fold_minus_surface`]: `ln α_F` at `γ` on rows `0..n_e`, from `e_n = 1`
@@ -761,6 +772,7 @@ pub fn fold_minus_surface(
         rows_per_unit: ROWS_PER_UNIT_E,
         n_gamma,
         n_e,
+        offsets: &PROBE_OFFSETS,
         extrapolate: false,
         values: columns.concat(),
     }))
