@@ -546,6 +546,15 @@ fn surplus_axis_within(
     worst
 }
 
+/// [`surplus_axis`] along each of the `dims` axes of a cell's values (0 beyond them).
+fn axis_surpluses(values: &[f64], m: usize, k: usize, dims: u32) -> [f64; 3] {
+    let mut axes = [0.0; 3];
+    for (a, s) in axes.iter_mut().enumerate().take(dims as usize) {
+        *s = surplus_axis(values, m, k, dims, a);
+    }
+    axes
+}
+
 /// Bounds of the rate at which a cell's surplus falls from one level to the next along an
 /// axis, as [`observed_rates`] accepts it: at most 1/4 (the second order of a kink curve
 /// crossing the cell, the rate the quarter-surplus prediction assumes everywhere), at least
@@ -601,14 +610,12 @@ fn observed_rates(
 /// halves when its prediction exceeds `target` (bit `dims − 1 − k` for axis `k`: `γ`, `c`,
 /// `e_n`; `c`, `e_n` for one pair; `γ`, `c` without the axis): each axis
 /// whose own surplus
-/// ([`surplus_axis`], a quarter of it as the cell's own error along that axis) exceeds the
+/// (`axes`, from [`axis_surpluses`]; a quarter of it as the cell's own error along that axis) exceeds the
 /// target, or else the axis with the largest. Along `e_n` `P` is smooth and the kink curves
 /// lie across `c`, so most cells need only one or two axes halved (measured on γ 1.9–2.6,
 /// target 1e-4: 55 315 nodes in the partial-slip patch against 188 131 halving every axis).
-fn split_axes(values: &[f64], m: usize, k: usize, target: f64, dims: u32) -> u8 {
-    let s: Vec<f64> = (0..dims as usize)
-        .map(|a| surplus_axis(values, m, k, dims, a) / 4.0)
-        .collect();
+fn split_axes(axes: &[f64; 3], target: f64, dims: u32) -> u8 {
+    let s: Vec<f64> = axes[..dims as usize].iter().map(|sa| sa / 4.0).collect();
     let big = s.iter().copied().fold(0.0, f64::max);
     let mut bits = 0u8;
     for (a, &sa) in s.iter().enumerate() {
@@ -847,13 +854,15 @@ pub(crate) fn build_patch(
                 continue;
             }
             let vals = values_of(cells[c]);
-            let mut pred = surplus(&vals, m, k, layout.dims()) / 4.0;
-            if cfg.nodes.observed_rate {
-                let dims = layout.dims();
-                let mut axes = [0.0; 3];
-                for (a, s) in axes.iter_mut().enumerate().take(dims as usize) {
-                    *s = surplus_axis(&vals, m, k, dims, a);
-                }
+            let dims = layout.dims();
+            let mut pred = surplus(&vals, m, k, dims) / 4.0;
+            // The surplus along each axis: for the observed rate, and (computed then if not
+            // yet) for the axes a split halves.
+            let axes = cfg
+                .nodes
+                .observed_rate
+                .then(|| axis_surpluses(&vals, m, k, dims));
+            if let Some(axes) = axes {
                 rates[c] = match parent[c] {
                     Some(p) if rates[p][0].is_finite() => observed_rates(
                         (cells[p], &values_of(cells[p]), rates[p]),
@@ -881,7 +890,8 @@ pub(crate) fn build_patch(
                 continue;
             }
             mask[c] = if masked {
-                split_axes(&vals, m, k, cfg.nodes.target_error, layout.dims())
+                let axes = axes.unwrap_or_else(|| axis_surpluses(&vals, m, k, dims));
+                split_axes(&axes, cfg.nodes.target_error, dims)
             } else {
                 0b11
             };

@@ -171,6 +171,37 @@ pub fn end_minus_in_patch(surface: &KinkSurface, kind: PatchKind) -> KinkSurface
     out
 }
 
+/// α_E(γ, e_n) of an [`end_minus_surface`] from the side of α_c2 it lies on: the traced
+/// surface says which, the side's own part ([`end_minus_in_patch`]) answers, so that no stencil
+/// reaches across the bend.
+#[derive(Debug, Clone)]
+pub struct EndMinusSides {
+    full: KinkSurface,
+    stick: KinkSurface,
+    partial: KinkSurface,
+}
+
+impl EndMinusSides {
+    /// The two sides of `surface`.
+    pub fn new(surface: &KinkSurface) -> Self {
+        EndMinusSides {
+            full: surface.clone(),
+            stick: end_minus_in_patch(surface, PatchKind::Stick),
+            partial: end_minus_in_patch(surface, PatchKind::PartialSlip),
+        }
+    }
+
+    /// α_E at `(γ, e_n)`, `None` where the side's part is undefined.
+    pub fn alpha_at(&self, gamma: f64, e_n: f64) -> Option<f64> {
+        let a = self.full.alpha_at(gamma, e_n)?;
+        if a >= alpha_c2(gamma) {
+            self.stick.alpha_at(gamma, e_n)
+        } else {
+            self.partial.alpha_at(gamma, e_n)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -180,17 +211,8 @@ mod tests {
         let full = end_minus_surface((1.74, 2.5), (0.3, 1.0), PatchKind::Stick)
             .unwrap()
             .unwrap();
-        let stick = end_minus_in_patch(&full, PatchKind::Stick);
-        let partial = end_minus_in_patch(&full, PatchKind::PartialSlip);
-        // The patch's side of α_c2 at (γ, e_n): where the traced surface lies.
-        let s = |g: f64, e: f64| -> Option<f64> {
-            let a = full.alpha_at(g, e)?;
-            if a >= alpha_c2(g) {
-                stick.alpha_at(g, e)
-            } else {
-                partial.alpha_at(g, e)
-            }
-        };
+        let sides = EndMinusSides::new(&full);
+        let s = |g: f64, e: f64| sides.alpha_at(g, e);
         // At grid points: the traced values (kinkmap / endscan_e, 2048 steps).
         for (g, e, a) in [
             (2.0, 1.0, 0.869908),

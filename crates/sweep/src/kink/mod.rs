@@ -26,7 +26,9 @@
 
 mod end_minus;
 
-pub use end_minus::{end_minus_in_patch, end_minus_surface, END_PROBE_OFFSETS, END_SURFACE_STEP};
+pub use end_minus::{
+    end_minus_in_patch, end_minus_surface, EndMinusSides, END_PROBE_OFFSETS, END_SURFACE_STEP,
+};
 
 use rayon::prelude::*;
 
@@ -803,7 +805,7 @@ pub fn near_fold_minus_points_e(
 /// `n` points next to the end-of-contact surface E₋ (`surface`, from [`end_minus_surface`]):
 /// `(γ, e_n)` drawn as [`near_fold_minus_points_e`] draws them, `α = α_E(γ, e_n)(1 + s·r)` with
 /// `r = 10^u`, `u` uniform in `[−4, −1]` (as [`near_end_minus_points`]), `α_E` from the side
-/// of α_c2 it lies on ([`end_minus_in_patch`]). The same `seed` gives the same points (`sweep
+/// of α_c2 it lies on ([`EndMinusSides`]). The same `seed` gives the same points (`sweep
 /// verify --near-end` on a table with an `e_n` axis).
 pub fn near_end_minus_points_e(
     surface: &KinkSurface,
@@ -812,17 +814,14 @@ pub fn near_end_minus_points_e(
     n: usize,
     seed: u64,
 ) -> Vec<Point> {
-    let stick = end_minus_in_patch(surface, PatchKind::Stick);
-    let partial = end_minus_in_patch(surface, PatchKind::PartialSlip);
-    let alpha = |g: f64, e: f64| {
-        let a = surface.alpha_at(g, e)?;
-        if a >= oblique_physics::regimes::alpha_c2(g) {
-            stick.alpha_at(g, e)
-        } else {
-            partial.alpha_at(g, e)
-        }
-    };
-    near_surface_points(surface, alpha, (gammas, e_range), (n, seed), (-4.0, -1.0))
+    let sides = EndMinusSides::new(surface);
+    near_surface_points(
+        surface,
+        |g, e| sides.alpha_at(g, e),
+        (gammas, e_range),
+        (n, seed),
+        (-4.0, -1.0),
+    )
 }
 
 /// `n` points next to a kink surface whose `α_K` is `alpha`: `(γ, e_n)` uniform over the part
