@@ -103,8 +103,9 @@ struct Layout<'a> {
 type Key = (u64, u64, u64, bool);
 
 /// A point where a cell is measured: its position `(u, v, w)` in node intervals of the cell
-/// (along γ, along the coordinate, along `e_n`) and the point simulated there.
-type Probe = (f64, f64, f64, Point);
+/// (along γ, along the coordinate, along `e_n`), the point simulated there, and whether it
+/// measures a kink across the `e_n` axis ([`kink::Kink::across_e_n`]).
+type Probe = (f64, f64, f64, Point, bool);
 
 /// A tree cell: the number of splits above it (`depth`), its depth along each axis and its
 /// integer position per axis at that axis's depth (`ie = 0` without an `e_n` axis). Without
@@ -208,7 +209,8 @@ impl Layout<'_> {
     /// [`kink::Kink::offsets`] node intervals from the kink along the coordinate, those that land
     /// inside the cell: `(u, v, w, point)` with `u`, `v`, `w` the position in node intervals of
     /// the cell along γ, the coordinate and `e_n` (`w = 0` without an `e_n` axis, `u = 0` in
-    /// the patch of one pair). Empty when no kink passes near the cell.
+    /// the patch of one pair). Empty when no kink passes near the cell. With `skip_knotted`
+    /// (inside the knots' region) the kinks the knots put on cell edges are left out.
     ///
     /// The centres: the kink moves across the coordinate from row to row (about one node
     /// interval per row along `e_n` at γ ≈ 2.43, where `dα_F/de_n` ≈ 0.6), so the cell's
@@ -218,7 +220,12 @@ impl Layout<'_> {
     /// Without an `e_n` axis, E₋ moved by 2.4 node intervals of c per γ row in the stick leaf of
     /// `configs/full.toml` at γ 1.75–1.875 (`dα_E/dγ` ≈ −9), which erred by 8.1e-6 between its
     /// last two rows, where its probes on the rows found 1.8e-6 and it predicted 3.2e-6.
-    fn kink_probes(&self, cell: Cell, kinks: &[Box<dyn kink::Kink>]) -> Vec<Probe> {
+    fn kink_probes(
+        &self,
+        cell: Cell,
+        kinks: &[Box<dyn kink::Kink>],
+        skip_knotted: bool,
+    ) -> Vec<Probe> {
         let m = self.m as f64;
         let nc = (self.bc as u64 * self.fine()) as f64;
         let sg = 1u64 << (MAX_DEPTH - cell.d[0]);
@@ -280,6 +287,15 @@ impl Layout<'_> {
         };
         let mut out = Vec::new();
         for k in kinks {
+            if skip_knotted && k.knotted() {
+                continue;
+            }
+            if k.across_e_n() {
+                if let Some(r) = self.restitution {
+                    self.sheet_probes(cell, &**k, r, &mut out);
+                }
+                continue;
+            }
             let mut rows_k = rows.clone();
             if me == 0 && mg > 0 {
                 // Without an `e_n` axis, rows between the γ rows too where the kink moves by
@@ -307,12 +323,84 @@ impl Layout<'_> {
                     let v = v_k + d;
                     if (0.0..=m).contains(&v) {
                         let c = (cell.ic as f64 * m + v) * sc / nc;
-                        out.push((u, v, w, self.point_at(gamma, c, e_n, warped)));
+                        out.push((u, v, w, self.point_at(gamma, c, e_n, warped), false));
                     }
                 }
             }
         }
         out
+    }
+
+    /// The probes of a cell next to a kink across the `e_n` axis (`k`, a sheet
+    /// `e_n = e_K(γ, α)`): on every line of nodes along `e_n` (each γ row and coordinate column
+    /// of the cell) and on the lines through the centres of the squares of four such lines, at
+    /// [`kink::Kink::offsets`] node intervals from where the line meets the sheet, those inside
+    /// the cell. On a line `α` moves with `e_n` (the coordinate's map depends on `α_c1(e_n)`),
+    /// so the meeting point is a root of `e_n − e_K(γ, α(e_n))`: the first sign change on 16
+    /// steps over the cell and 1.5 intervals beyond each end, bisected.
+    fn sheet_probes(&self, cell: Cell, k: &dyn kink::Kink, r: Axis, out: &mut Vec<Probe>) {
+        let m = self.m as f64;
+        let nc = (self.bc as u64 * self.fine()) as f64;
+        let ne = (self.be() as u64 * self.fine()) as f64;
+        let sg = 1u64 << (MAX_DEPTH - cell.d[0]);
+        let sc = (1u64 << (MAX_DEPTH - cell.d[1])) as f64;
+        let se = (1u64 << (MAX_DEPTH - cell.d[2])) as f64;
+        let warped = self.warped(cell);
+        let mg = if self.pair() { 0 } else { self.m };
+        let mut lines: Vec<(f64, f64)> = (0..=mg)
+            .flat_map(|i| (0..=self.m).map(move |j| (i as f64, j as f64)))
+            .collect();
+        let centres_g: Vec<f64> = if mg == 0 {
+            vec![0.0]
+        } else {
+            (0..mg).map(|i| i as f64 + 0.5).collect()
+        };
+        for &u in &centres_g {
+            lines.extend((0..self.m).map(|j| (u, j as f64 + 0.5)));
+        }
+        let ng = (self.bg as u64 * self.fine()) as f64;
+        let e_of = |w: f64| r.at((((cell.ie * self.m as u64) as f64 + w) * se / ne).max(0.0));
+        for (u, v) in lines {
+            let gamma = if u.fract() == 0.0 {
+                self.gamma_of_row((cell.ig * self.m as u64 + u as u64) * sg)
+            } else {
+                let x = ((cell.ig * self.m as u64) as f64 + u) * sg as f64 / ng;
+                self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * x
+            };
+            let c = (cell.ic as f64 * m + v) * sc / nc;
+            let miss = |w: f64| -> Option<f64> {
+                let e_n = e_of(w);
+                let alpha = self.point_at(gamma, c, e_n, warped).alpha;
+                k.e_n_at(gamma, alpha).map(|e_k| e_n - e_k)
+            };
+            let ws: Vec<f64> = (0..=16)
+                .map(|j| -1.5 + (m + 3.0) * j as f64 / 16.0)
+                .collect();
+            let fs: Vec<Option<f64>> = ws.iter().map(|&w| miss(w)).collect();
+            let Some(j) = (0..16).find(|&j| match (fs[j], fs[j + 1]) {
+                (Some(a), Some(b)) => a <= 0.0 && b > 0.0 || a >= 0.0 && b < 0.0,
+                _ => false,
+            }) else {
+                continue;
+            };
+            let (mut lo, mut hi) = (ws[j], ws[j + 1]);
+            let below = fs[j].is_some_and(|f| f < 0.0);
+            for _ in 0..50 {
+                let mid = 0.5 * (lo + hi);
+                match miss(mid) {
+                    Some(f) if (f < 0.0) == below => lo = mid,
+                    Some(_) => hi = mid,
+                    None => break,
+                }
+            }
+            let w_k = 0.5 * (lo + hi);
+            for &d in k.offsets() {
+                let w = w_k + d;
+                if (0.0..=m).contains(&w) {
+                    out.push((u, v, w, self.point_at(gamma, c, e_of(w), warped), true));
+                }
+            }
+        }
     }
 
     /// The cell's extent along γ in root-row units (exact dyadic values).
@@ -638,8 +726,8 @@ fn probe_split(
     dims: u32,
     has_e: bool,
     masked: bool,
-    on_rows: f64,
-    centres: f64,
+    on_rows: [f64; 2],
+    centres: [f64; 2],
     target: f64,
 ) -> u8 {
     let every = (1u8 << dims) - 1;
@@ -647,14 +735,22 @@ fn probe_split(
         return every;
     }
     // The coordinate is axis 1 (bit 1) with an `e_n` axis (axis 0 in the patch of one pair,
-    // with two axes: bit 1 too); axis 1 of two (bit 0) without.
+    // with two axes: bit 1 too); axis 1 of two (bit 0) without. `e_n` is the last axis (bit 0).
     let coord = if has_e { 1u8 << 1 } else { 1u8 };
     let mut bits = 0;
-    if on_rows > target {
+    if on_rows[0] > target {
         bits |= coord;
     }
-    if centres > target {
+    if centres[0] > target {
         bits |= every & !coord;
+    }
+    // A kink across `e_n`: its lines along `e_n` where they err, the other axes where the
+    // centres between the lines do.
+    if has_e && on_rows[1] > target {
+        bits |= 1;
+    }
+    if has_e && centres[1] > target {
+        bits |= every & !1;
     }
     if bits == 0 {
         every
@@ -879,10 +975,10 @@ pub(crate) fn build_patch(
             }
             predicted[c] = pred;
             if pred <= cfg.nodes.target_error {
-                // Inside the knots' region the kink lies on a cell edge: nothing to probe.
+                // Inside the knots' region the knotted kink lies on a cell edge: not probed.
                 let aligned = layout.knots.is_some() && layout.warped(cells[c]);
-                if !kinks.is_empty() && !aligned {
-                    let probes = layout.kink_probes(cells[c], &kinks);
+                if !kinks.is_empty() {
+                    let probes = layout.kink_probes(cells[c], &kinks, aligned);
                     if !probes.is_empty() {
                         probed.push((o, vals, probes));
                     }
@@ -918,22 +1014,26 @@ pub(crate) fn build_patch(
                 solve_points_with(&points, cfg.solver.tol, law, progress, opts)?.into_iter();
             for (o, vals, probes) in probed {
                 let c = open[o];
-                // The largest error measured on the node rows and at the centres between them.
-                let (mut on_rows, mut centres) = (0.0_f64, 0.0_f64);
-                for (&(u, v, w, _), (p, e)) in probes.iter().zip(values.by_ref()) {
+                // The largest error measured on the node rows and at the centres between them,
+                // for the kinks along the coordinate ([0]) and across `e_n` ([1]).
+                let mut on_rows = [0.0_f64; 2];
+                let mut centres = [0.0_f64; 2];
+                for (&(u, v, w, _, across), (p, e)) in probes.iter().zip(values.by_ref()) {
                     let at = if layout.restitution.is_some() {
                         interp_cell_e(&vals, m, k, layout.pair(), (u, v, w))
                     } else {
                         interp_cell(&vals, m, k, u, v)
                     };
                     let err = (at - p).abs() + e;
-                    if u.fract() == 0.0 && w.fract() == 0.0 {
-                        on_rows = on_rows.max(err);
+                    let (along, a) = if across { (v, 1) } else { (w, 0) };
+                    if u.fract() == 0.0 && along.fract() == 0.0 {
+                        on_rows[a] = on_rows[a].max(err);
                     } else {
-                        centres = centres.max(err);
+                        centres[a] = centres[a].max(err);
                     }
                 }
-                predicted[c] = predicted[c].max(on_rows.max(centres));
+                let measured = on_rows.into_iter().chain(centres).fold(0.0, f64::max);
+                predicted[c] = predicted[c].max(measured);
                 if predicted[c] > cfg.nodes.target_error {
                     mask[c] = probe_split(
                         layout.dims(),
@@ -1144,6 +1244,106 @@ mod tests {
         }
     }
 
+    /// A sheet across `e_n` in the partial-slip patch: `e_K = 0.95 + 0.05 (α − 0.6) + 0.1 (γ − 2.45)`
+    /// for α in 0.5–1.2.
+    #[derive(Debug)]
+    struct Sheet;
+
+    impl Kink for Sheet {
+        fn name(&self) -> &'static str {
+            "sheet"
+        }
+
+        fn patch(&self) -> PatchKind {
+            PatchKind::PartialSlip
+        }
+
+        fn alpha(&self, _gamma: f64, _e_n: f64) -> Option<f64> {
+            None
+        }
+
+        fn e_n_at(&self, gamma: f64, alpha: f64) -> Option<f64> {
+            (0.5..=1.2)
+                .contains(&alpha)
+                .then_some(0.95 + 0.05 * (alpha - 0.6) + 0.1 * (gamma - 2.45))
+        }
+
+        fn across_e_n(&self) -> bool {
+            true
+        }
+
+        fn offsets(&self) -> &'static [f64] {
+            &crate::kink::SHEET_PROBE_OFFSETS
+        }
+    }
+
+    #[test]
+    fn probes_land_on_every_line_along_e_n_that_meets_a_sheet() {
+        let spec = PatchSpec {
+            name: PatchId::PartialHigh.name(),
+            kind: PatchKind::PartialSlip,
+            gamma_lo: 2.3,
+            gamma_hi: 2.6,
+        };
+        let layout = Layout {
+            spec: &spec,
+            bg: 1,
+            bc: 4,
+            m: 6,
+            alpha_max: f64::INFINITY,
+            warp: None,
+            knots: None,
+            restitution: Some(Axis::restitution(0.9, 1.0, 2).unwrap()),
+            map: PartialMap::SqrtBoth,
+        };
+        let kinks: Vec<Box<dyn Kink>> = vec![Box::new(Sheet)];
+        let d = 3;
+        let (mut probed_cells, mut lines, mut centres) = (0, 0, 0);
+        for ig in 0..1u64 << d {
+            for ic in 0..(layout.bc as u64) << d {
+                for ie in 0..(2u64 << d) {
+                    let cell = Cell {
+                        depth: d,
+                        d: [d; 3],
+                        ig,
+                        ic,
+                        ie,
+                    };
+                    let probes = layout.kink_probes(cell, &kinks, false);
+                    probed_cells += usize::from(!probes.is_empty());
+                    let keys = layout.cell_keys(cell);
+                    let e0 = layout.point(keys[0]).2.e_n;
+                    let e1 = layout.point(keys[keys.len() - 1]).2.e_n;
+                    let de = (e1 - e0) / 6.0;
+                    let mut seen = std::collections::BTreeMap::new();
+                    for &(u, v, w, pt, across) in &probes {
+                        assert!(across && (0.0..=6.0).contains(&w), "{u} {v} {w}");
+                        assert!((u * 2.0).fract() == 0.0 && (v * 2.0).fract() == 0.0);
+                        assert_eq!(u.fract() == 0.0, v.fract() == 0.0, "{u} {v}");
+                        // On the line, at an offset from where it meets the sheet (α moves
+                        // along the line with α_c1(e_n): e_K at the probe's own α is a few
+                        // thousandths of an interval from e_K where the line meets it).
+                        seen.insert(((u * 2.0) as i64, (v * 2.0) as i64), ());
+                        centres += usize::from(u.fract() != 0.0);
+                        let Some(e_k) = Sheet.e_n_at(pt.gamma, pt.alpha) else {
+                            continue; // at the edge of the sheet's span in α
+                        };
+                        let off = (pt.e_n - e_k) / de;
+                        assert!(
+                            crate::kink::SHEET_PROBE_OFFSETS
+                                .iter()
+                                .any(|&o| (o - off).abs() < 0.02),
+                            "offset {off} at {pt:?}"
+                        );
+                        assert!((pt.e_n - (e0 + de * w)).abs() < 1e-12);
+                    }
+                    lines += seen.len();
+                }
+            }
+        }
+        assert!(probed_cells > 0 && lines > probed_cells && centres > 0);
+    }
+
     /// The `(m+1)²` values of `f(x, y)` on a cell of a quadtree over the unit square
     /// (`x` outer): depth `d`, position `(i, j)`.
     fn grid(f: impl Fn(f64, f64) -> f64, m: usize, d: u32, (i, j): (u64, u64)) -> Vec<f64> {
@@ -1205,16 +1405,56 @@ mod tests {
     fn a_probed_cell_halves_the_axes_its_probes_point_to() {
         // (γ, c, e_n): bits 4, 2, 1; one pair (c, e_n): 2, 1; elastic (γ, c): 2, 1 with
         // stored masks, every axis without.
-        assert_eq!(probe_split(3, true, true, 2.0, 0.5, 1.0), 0b010);
-        assert_eq!(probe_split(3, true, true, 0.5, 2.0, 1.0), 0b101);
-        assert_eq!(probe_split(3, true, true, 2.0, 2.0, 1.0), 0b111);
-        assert_eq!(probe_split(2, true, true, 2.0, 0.5, 1.0), 0b10);
-        assert_eq!(probe_split(2, true, true, 0.5, 2.0, 1.0), 0b01);
+        assert_eq!(
+            probe_split(3, true, true, [2.0, 0.0], [0.5, 0.0], 1.0),
+            0b010
+        );
+        assert_eq!(
+            probe_split(3, true, true, [0.5, 0.0], [2.0, 0.0], 1.0),
+            0b101
+        );
+        assert_eq!(
+            probe_split(3, true, true, [2.0, 0.0], [2.0, 0.0], 1.0),
+            0b111
+        );
+        assert_eq!(
+            probe_split(2, true, true, [2.0, 0.0], [0.5, 0.0], 1.0),
+            0b10
+        );
+        assert_eq!(
+            probe_split(2, true, true, [0.5, 0.0], [2.0, 0.0], 1.0),
+            0b01
+        );
         // (γ, c) with masks: c is bit 0, γ bit 1; a quadtree halves both.
-        assert_eq!(probe_split(2, false, true, 2.0, 0.5, 1.0), 0b01);
-        assert_eq!(probe_split(2, false, true, 0.5, 2.0, 1.0), 0b10);
-        assert_eq!(probe_split(2, false, true, 2.0, 2.0, 1.0), 0b11);
-        assert_eq!(probe_split(2, false, false, 2.0, 0.0, 1.0), 0b11);
+        assert_eq!(
+            probe_split(2, false, true, [2.0, 0.0], [0.5, 0.0], 1.0),
+            0b01
+        );
+        assert_eq!(
+            probe_split(2, false, true, [0.5, 0.0], [2.0, 0.0], 1.0),
+            0b10
+        );
+        assert_eq!(
+            probe_split(2, false, true, [2.0, 0.0], [2.0, 0.0], 1.0),
+            0b11
+        );
+        assert_eq!(
+            probe_split(2, false, false, [2.0, 0.0], [0.0, 0.0], 1.0),
+            0b11
+        );
+        // A kink across e_n: its lines halve e_n (bit 0), its centres the other axes.
+        assert_eq!(
+            probe_split(3, true, true, [0.0, 2.0], [0.0, 0.5], 1.0),
+            0b001
+        );
+        assert_eq!(
+            probe_split(3, true, true, [0.0, 0.5], [0.0, 2.0], 1.0),
+            0b110
+        );
+        assert_eq!(
+            probe_split(2, true, true, [0.0, 2.0], [0.0, 0.0], 1.0),
+            0b01
+        );
     }
 
     /// A kink of the stick patch of an elastic table steep in the patch coordinate.
@@ -1272,13 +1512,13 @@ mod tests {
                         ic,
                         ie: 0,
                     };
-                    let probes = layout.kink_probes(cell, &kinks);
+                    let probes = layout.kink_probes(cell, &kinks, false);
                     cells += usize::from(!probes.is_empty());
                     // The rows that hold probes, in order along γ, each with the kink's position
                     // along c in node intervals.
                     let mut rows: Vec<(f64, f64)> = probes
                         .iter()
-                        .map(|&(u, _, w, pt)| {
+                        .map(|&(u, _, w, pt, _)| {
                             assert_eq!((w, pt.e_n), (0.0, 1.0));
                             (u, v_of(&pt, dc))
                         })
@@ -1342,7 +1582,7 @@ mod tests {
                         ic,
                         ie,
                     };
-                    let probes = layout.kink_probes(cell, &kinks);
+                    let probes = layout.kink_probes(cell, &kinks, false);
                     probed_cells += usize::from(!probes.is_empty());
                     let keys = layout.cell_keys(cell);
                     let (g0, c0, e0) = {
@@ -1353,7 +1593,7 @@ mod tests {
                         let (g, c, p) = layout.point(keys[keys.len() - 1]);
                         (g, c, p.e_n)
                     };
-                    for &(u, v, w, pt) in &probes {
+                    for &(u, v, w, pt, _) in &probes {
                         // On a node row of the cell or at the centre between four, inside it
                         // along the coordinate.
                         assert!((u * 2.0).fract() == 0.0 && (w * 2.0).fract() == 0.0);

@@ -43,6 +43,64 @@ pub fn slip_history_e(
     if Law::KelvinVoigt.answering(e_n) == Law::Elastic {
         return slip_history(gamma, alpha, steps);
     }
+    let (ratios, p) = friction_ratio_e(gamma, alpha, e_n, steps)?;
+    let mut episodes: Vec<Episode> = Vec::new();
+    for &(t, q) in &ratios {
+        record_step(&mut episodes, t, q, 1.0);
+    }
+    Ok(SlipHistory { episodes, p })
+}
+
+/// The ratio `F_t/(μF_N)` of every step of one Kelvin–Voigt impact at `e_n < 1` (the run of
+/// [`slip_history_e`]): `(t/t_c, ratio)` at each step's midpoint (steps without a positive
+/// Coulomb limit left out), and the run's `P`. `±1` is gross slip; a local extremum that
+/// approaches `±1` without reaching it marks where an episode is about to be born. Errors:
+/// those of [`slip_history_e`], and an `e_n` the elastic law answers.
+pub fn friction_ratio_e(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<(Vec<(f64, f64)>, f64), PhysicsError> {
+    let run = kv_run(gamma, alpha, e_n, steps)?;
+    let ratios = run
+        .steps
+        .iter()
+        .filter_map(|s| s.ratio.map(|q| (s.t, q)))
+        .collect();
+    Ok((ratios, run.p))
+}
+
+/// One step of a logged Kelvin–Voigt run ([`kv_run`]).
+#[derive(Debug, Clone, Copy)]
+struct KvStep {
+    /// Midpoint of the step, `t/t_c`.
+    t: f64,
+    /// `F_t/(μF_N)`, `None` without a positive Coulomb limit.
+    ratio: Option<f64>,
+    /// Part of the row at the `+` / `−` limit after the step.
+    plus: bool,
+    minus: bool,
+    /// Part of the row stuck after the step.
+    stuck: bool,
+}
+
+/// A logged Kelvin–Voigt run and its `P`.
+struct KvRun {
+    steps: Vec<KvStep>,
+    p: f64,
+}
+
+/// One Kelvin–Voigt impact at `e_n < 1` on `steps` steps, every step logged.
+fn kv_run(gamma: f64, alpha: f64, e_n: f64, steps: usize) -> Result<KvRun, PhysicsError> {
+    let e_n = check_restitution(e_n)?;
+    if Law::KelvinVoigt.answering(e_n) == Law::Elastic {
+        return Err(PhysicsError::InvalidParameter {
+            name: "e_n",
+            value: e_n,
+            allowed: "< 1 (the elastic law has no viscous part)",
+        });
+    }
     let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
     let tau = tau_for_restitution(e_n)?;
     let shear = 2.0 / 7.0 * gamma * gamma;
@@ -53,29 +111,143 @@ pub fn slip_history_e(
         log: Vec::with_capacity(steps + steps / 8),
     };
     let mut states = Vec::with_capacity(steps + steps / 8);
-    // The normal state `[d₀, ḋ₀, d₁, ḋ₁]` (dimensionless) of every step.
+    // The normal state `[d₀, ḋ₀, d₁, ḋ₁]` (dimensionless) of every step, and the row's zones.
     let row = LoggedRow {
         row: ViscoelasticRow::new(1.0, tau),
-        log: |_: &ViscoelasticRow, m: &StepMotion, d1: f64| {
-            states.push([m.d0, m.rate0, d1, m.rate1])
+        log: |r: &ViscoelasticRow, m: &StepMotion, d1: f64| {
+            let (plus, minus) = r.at_limit();
+            states.push((
+                [m.d0, m.rate0, d1, m.rate1],
+                plus,
+                minus,
+                r.stuck_length() > 0.0,
+            ))
         },
     };
     run_contact_with(&mut rec, &*normal, row, 1.0, shear, alpha / shear);
-    let mut episodes: Vec<Episode> = Vec::new();
-    for (&(t, h, f), &[d0, r0, d1, r1]) in rec.log.iter().zip(&states) {
+    let mut out = Vec::with_capacity(rec.log.len());
+    for (&(t, h, f), &([d0, r0, d1, r1], plus, minus, stuck)) in rec.log.iter().zip(&states) {
         let (m0, b0) = limit_mean(d0, r0, tau);
         let (m1, b1) = limit_mean(d1, r1, tau);
         let root_mean = mean_sqrt(b0, b1);
         let limit = alpha * root_mean * (m0 + m1);
-        if limit.is_nan() || limit <= 0.0 {
-            continue;
-        }
-        record_step(&mut episodes, t + 0.5 * h, f / limit, normal.contact_time);
+        let ratio = (!limit.is_nan() && limit > 0.0).then(|| f / limit);
+        out.push(KvStep {
+            t: (t + 0.5 * h) / normal.contact_time,
+            ratio,
+            plus,
+            minus,
+            stuck,
+        });
     }
-    Ok(SlipHistory {
-        episodes,
+    Ok(KvRun {
+        steps: out,
         p: rec.point.u,
     })
+}
+
+/// The zones of the row over one Kelvin–Voigt impact at `e_n < 1`: runs of steps in one
+/// state, `(label, first, last)` with the steps' midpoints as fractions of `t_c` and the label
+/// `+` and/or `−` for the limits part of the contact is at, then `s` where part is stuck or
+/// `G` where none is (gross slip). For studies of the sheet I₊ ([`has_plus_interlude_e`]).
+pub fn zone_runs_e(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<Vec<(String, f64, f64)>, PhysicsError> {
+    let run = kv_run(gamma, alpha, e_n, steps)?;
+    let mut out: Vec<(String, f64, f64)> = Vec::new();
+    for s in &run.steps {
+        let label = format!(
+            "{}{}{}",
+            if s.plus { "+" } else { "" },
+            if s.minus { "-" } else { "" },
+            if s.stuck { "s" } else { "G" }
+        );
+        match out.last_mut() {
+            Some(last) if last.0 == label => last.2 = s.t,
+            _ => out.push((label, s.t, s.t)),
+        }
+    }
+    Ok(out)
+}
+
+/// Shortest `+` interlude between two `−` zones ([`has_plus_interlude_e`]), as a fraction of
+/// `t_c`: two steps at 2048 steps. An interlude lasts `∝ √(e_n − e_I)` above the sheet I₊,
+/// about 0.85 `t_c` per unit of `√(e_n − e_I)` at γ = 2.5, α = 0.9, so this moves the located
+/// sheet by about 1.4e-6 in `e_n`.
+pub const INTERLUDE_MIN: f64 = 0.001;
+
+/// Shortest `+` interlude that runs into the final gross slip ([`has_plus_interlude_e`]), as a
+/// fraction of `t_c`. Where the `−` zone gives way to gross slip the `+` zone takes a short
+/// while to spread over the contact (up to 0.0073 `t_c` next to α_c2: γ = 2.6, α = 1.845,
+/// `e_n` = 0.95), which is no interlude.
+pub const INTERLUDE_LONG: f64 = 0.02;
+
+/// Whether the restitution of a Kelvin–Voigt impact holds a `+` interlude: after a step with
+/// part of the contact at the `−` limit, a stretch during which part slips at the `+` limit,
+/// none at the `−` limit and part stays stuck, that either ends in a `−` zone again (and
+/// lasts at least [`INTERLUDE_MIN`] `t_c`) or runs into the final gross slip (and lasts at least
+/// [`INTERLUDE_LONG`] `t_c`: further above I₊ the second `−` zone vanishes). The interlude
+/// is born at an interior time of the `−` zone on the sheet I₊ `e_n = e_I(γ, α)` (γ ≳ 2.32,
+/// α between about 0.41 and α_c2, `e_n` ≳ 0.85 up to γ = 2.62; [`plus_interlude_edge_e`]), so
+/// that `P` departs from its smooth continuation like `(e_n − e_I)^{3/2}` above it. The
+/// global friction ratio does not show it (its extremes move smoothly through I₊), nor do the
+/// gross-slip episodes of [`slip_history_e`].
+pub fn has_plus_interlude_e(
+    gamma: f64,
+    alpha: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<bool, PhysicsError> {
+    let run = kv_run(gamma, alpha, e_n, steps)?;
+    let mut seen_minus = false;
+    let mut start: Option<f64> = None;
+    for s in &run.steps {
+        let interlude = seen_minus && s.plus && !s.minus && s.stuck;
+        match (interlude, start) {
+            (true, None) => start = Some(s.t),
+            (false, Some(t0)) => {
+                let span = s.t - t0;
+                let between = s.minus && span >= INTERLUDE_MIN;
+                let into_gross = s.plus && !s.stuck && span >= INTERLUDE_LONG;
+                if between || into_gross {
+                    return Ok(true);
+                }
+                start = None;
+            }
+            _ => {}
+        }
+        seen_minus |= s.minus;
+    }
+    Ok(false)
+}
+
+/// The sheet I₊ at `(γ, α)`: the `e_n` in `(e_lo, e_hi)` above which [`has_plus_interlude_e`]
+/// holds, bisected to `1e-7`; `None` unless it fails at `e_lo` and holds at `e_hi` (`e_hi <
+/// 1`).
+pub fn plus_interlude_edge_e(
+    gamma: f64,
+    alpha: f64,
+    (e_lo, e_hi): (f64, f64),
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let steps = check_fold_steps(steps)?;
+    let holds = |e: f64| has_plus_interlude_e(gamma, alpha, e, steps);
+    if e_lo.is_nan() || e_hi.is_nan() || e_hi <= e_lo || holds(e_lo)? || !holds(e_hi)? {
+        return Ok(None);
+    }
+    let (mut lo, mut hi) = (e_lo, e_hi);
+    while hi - lo > 1e-7 {
+        let mid = 0.5 * (lo + hi);
+        if holds(mid)? {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(Some(0.5 * (lo + hi)))
 }
 
 /// [`fold_minus_at`] for the Kelvin–Voigt law at normal restitution `e_n ∈ [0.3, 1]`: the same
@@ -494,5 +666,41 @@ mod tests {
         assert!(fold_minus_at_e(2.45, 0.9, 0.49, 64).is_err());
         assert!(fold_minus_scan_e(2.45, 0.9, (0.8, 0.3), 10, 256).is_err());
         assert!(fold_minus_birth_e(0.9, (2.6, 2.4), (0.3, 0.8), 0.005, 256).is_err());
+    }
+
+    #[test]
+    fn the_plus_interlude_is_born_on_the_sheet() {
+        // γ = 2.5, α = 0.9: − zone straight into gross slip below e_I ≈ 0.9446, a + interlude
+        // between two − zones above it; located within 1e-5 at 2048 and 4096 steps. P's second
+        // difference along e_n changes there (docs/solver.md).
+        let runs = |e: f64| -> Vec<String> {
+            zone_runs_e(2.5, 0.9, e, 4096)
+                .unwrap()
+                .into_iter()
+                .map(|r| r.0)
+                .collect()
+        };
+        assert_eq!(runs(0.944), ["+G", "s", "-s", "+G", "G"]);
+        assert_eq!(runs(0.946), ["+G", "s", "-s", "+s", "-s", "+G", "G"]);
+        assert!(!has_plus_interlude_e(2.5, 0.9, 0.944, 2048).unwrap());
+        assert!(has_plus_interlude_e(2.5, 0.9, 0.946, 2048).unwrap());
+        let coarse = plus_interlude_edge_e(2.5, 0.9, (0.8, 0.999), 2048)
+            .unwrap()
+            .unwrap();
+        let fine = plus_interlude_edge_e(2.5, 0.9, (0.8, 0.999), 4096)
+            .unwrap()
+            .unwrap();
+        assert!(
+            (coarse - 0.9446).abs() < 2e-4 && (coarse - fine).abs() < 1e-5,
+            "{coarse} {fine}"
+        );
+        // Next to α_c2 the + zone spreads over a few steps before gross slip: no interlude.
+        assert!(!has_plus_interlude_e(2.6, 1.845, 0.9, 2048).unwrap());
+        // Not below γ ≈ 2.32; the elastic law is refused.
+        assert_eq!(
+            plus_interlude_edge_e(2.3, 0.7, (0.8, 0.999), 2048).unwrap(),
+            None
+        );
+        assert!(has_plus_interlude_e(2.5, 0.9, 1.0, 2048).is_err());
     }
 }

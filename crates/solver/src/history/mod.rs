@@ -23,7 +23,8 @@ mod damped;
 mod plastic;
 pub use damped::{
     end_minus_at_e, fold_minus_at_e, fold_minus_birth_e, fold_minus_free_below, fold_minus_scan_e,
-    restitution_minus_edges_e, restitution_minus_somewhere_e, slip_history_e,
+    friction_ratio_e, has_plus_interlude_e, plus_interlude_edge_e, restitution_minus_edges_e,
+    restitution_minus_somewhere_e, slip_history_e, zone_runs_e, INTERLUDE_LONG, INTERLUDE_MIN,
 };
 pub use plastic::{
     ends_in_full_slip_thornton, full_slip_edge_thornton, has_loading_zone_thornton,

@@ -25,6 +25,9 @@
 //! leaf whose prediction was 3.2e-6.
 
 mod end_minus;
+mod interlude;
+
+pub use interlude::{interlude_sheet, InterludeSheet, SHEET_PROBE_OFFSETS, SHEET_STEP, SHEET_TO};
 
 pub use end_minus::{
     end_minus_in_patch, end_minus_surface, EndMinusSides, END_PROBE_OFFSETS, END_SURFACE_STEP,
@@ -51,9 +54,26 @@ pub trait Kink: std::fmt::Debug + Send + Sync {
     /// there).
     fn alpha(&self, gamma: f64, e_n: f64) -> Option<f64>;
     /// Where a cell next to it is measured on each row, in node intervals from it along the
-    /// coordinate ([`PROBE_OFFSETS`] unless the kink says otherwise).
+    /// coordinate ([`PROBE_OFFSETS`] unless the kink says otherwise), or along `e_n` for a kink
+    /// across that axis.
     fn offsets(&self) -> &'static [f64] {
         &PROBE_OFFSETS
+    }
+    /// For a kink across the `e_n` axis (a sheet `e_n = e_K(γ, α)`, [`InterludeSheet`]): `e_K`
+    /// at `(γ, α)`, `None` where it does not exist or was not traced. The probes then lie on
+    /// the cell's lines along `e_n` ([`Kink::alpha`] answers `None`). `None` for a kink along
+    /// the coordinate (the default).
+    fn e_n_at(&self, _gamma: f64, _alpha: f64) -> Option<f64> {
+        None
+    }
+    /// Whether the kink lies across the `e_n` axis ([`Kink::e_n_at`]).
+    fn across_e_n(&self) -> bool {
+        false
+    }
+    /// Whether the knots put this kink on a cell edge where they apply (`nodes.knots`: F₋ of
+    /// the Kelvin–Voigt law), so that its probes are not needed there.
+    fn knotted(&self) -> bool {
+        false
     }
 }
 
@@ -103,7 +123,8 @@ type TracedOver = ((f64, f64), (f64, f64));
 /// curve (elastic, [`fold_minus_curve`]) or as a surface (Kelvin–Voigt,
 /// [`fold_minus_surface`]); the end-of-contact curve E₋ in both patches as a curve (elastic,
 /// [`end_minus_curve`]) or as a surface (Kelvin–Voigt, [`end_minus_surface`], split by
-/// [`end_minus_in_patch`]), each traced once per `traced` for both patches; none where the
+/// [`end_minus_in_patch`]), each traced once per `traced` for both patches; the sheet I₊ of the
+/// Kelvin–Voigt partial-slip patch across the `e_n` axis ([`interlude_sheet`]); none where the
 /// range holds no such kink or the law has none traced.
 pub fn trace(
     law: Law,
@@ -143,6 +164,11 @@ pub fn trace(
             };
             if let Some(full) = full {
                 out.push(Box::new(end_minus_in_patch(&full, kind)));
+            }
+            if kind == PatchKind::PartialSlip {
+                if let Some(s) = interlude_sheet(gammas, e_range)? {
+                    out.push(Box::new(s));
+                }
             }
         }
         _ => {}
@@ -679,6 +705,10 @@ impl Kink for KinkSurface {
 
     fn offsets(&self) -> &'static [f64] {
         self.offsets
+    }
+
+    fn knotted(&self) -> bool {
+        self.name == "F-"
     }
 }
 
