@@ -60,6 +60,14 @@ pub struct VerifyArgs {
     /// about 2 s for the curve, 10-25 s for a surface on 2 cores).
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold"])]
     near_end: bool,
+    /// Draw points next to the sheet I+ of a Kelvin-Voigt table instead, where a + slip
+    /// interlude is born in the restitution (gamma 2.32-2.62, alpha from about 0.41 to
+    /// alpha_c2, e_n 0.86-0.999) and P leaves its smooth continuation like
+    /// (e_n - e_I)^(3/2): gamma uniform where the sheet is traced, ln(alpha) uniform up to
+    /// alpha_c2, e_n = e_I(gamma, alpha) + s·r, s = +1 or -1, r log-uniform in [1e-4, 0.03]
+    /// (I+ is traced first: about 10 s on 2 cores).
+    #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end"])]
+    near_sheet: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
@@ -251,6 +259,51 @@ fn sample_near_end(
     Ok((points, (g_lo.max(c_lo), g_hi.min(c_hi))))
 }
 
+/// The `n` points of `--near-sheet`: [`oblique_sweep::kink::near_interlude_points`] on the
+/// sheet I₊ of a Kelvin–Voigt table, and the γ range they are drawn from.
+fn sample_near_sheet(
+    table: &Table,
+    path: &std::path::Path,
+    law: Law,
+    n: usize,
+    seed: u64,
+) -> Result<(Vec<Point>, (f64, f64))> {
+    let s = table.surface();
+    let (g_lo, g_hi) = (s.gamma_min(), s.gamma_max());
+    let refuse = |has: String| {
+        Failure::usage(format!(
+            "--near-sheet: {} has {has}; the sheet I+ is traced for Kelvin-Voigt tables over \
+             gamma 2.32-{} with e_n reaching into 0.86-0.999",
+            path.display(),
+            oblique_sweep::kink::SHEET_TO
+        ))
+    };
+    let Some(e_range) = table.restitution() else {
+        return Err(refuse("no e_n axis (an elastic table)".into()));
+    };
+    if law != Law::KelvinVoigt {
+        return Err(refuse(format!("the {} law", law.name())));
+    }
+    if s.pair_gamma().is_some() {
+        return Err(refuse("one pair (a single gamma)".into()));
+    }
+    let sheet = oblique_sweep::kink::interlude_sheet((g_lo, g_hi), e_range)
+        .context("tracing the sheet I+")?;
+    let points = sheet
+        .as_ref()
+        .map(|sh| oblique_sweep::kink::near_interlude_points(sh, (g_lo, g_hi), e_range, n, seed))
+        .unwrap_or_default();
+    if points.is_empty() {
+        return Err(refuse(format!(
+            "gamma in [{g_lo}, {g_hi}] and e_n in [{}, {}]",
+            e_range.0, e_range.1
+        )));
+    }
+    let lo = points.iter().map(|p| p.gamma).fold(f64::INFINITY, f64::min);
+    let hi = points.iter().map(|p| p.gamma).fold(f64::NEG_INFINITY, f64::max);
+    Ok((points, (lo, hi)))
+}
+
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
 #[derive(Clone, Copy)]
 struct Outcome {
@@ -315,6 +368,11 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         let (points, range) = sample_near_end(&table, &args.table, law, args.points, args.seed)?;
         near_end_range = Some(range);
         points
+    } else if args.near_sheet {
+        let (points, range) =
+            sample_near_sheet(&table, &args.table, law, args.points, args.seed)?;
+        near_end_range = Some(range);
+        points
     } else {
         sample(&table, args.points, args.seed, args.near_curves)
     };
@@ -347,7 +405,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
                 table.surface().gamma_max()
             ),
         },
-        if args.near_end && table.restitution().is_some() {
+        if args.near_sheet {
+            "ln(alpha) uniform up to alpha_c2, e_n within 1e-4 to 0.03 of the sheet I+"
+        } else if args.near_end && table.restitution().is_some() {
             "alpha within 1e-4 to 0.1 (relative) of the end-of-contact surface E-"
         } else if args.near_end {
             "alpha within 1e-4 to 0.1 (relative) of the end-of-contact curve E-"
@@ -362,6 +422,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             "alpha/(1+alpha) uniform"
         },
         match table.restitution() {
+            Some((lo, hi)) if args.near_sheet => {
+                format!(" within e_n [{lo}, {hi}], law {}", law.name())
+            }
             Some((lo, hi)) => format!(
                 ", e_n uniform in [{lo}, {hi}]{}, law {}",
                 match (args.near_fold, table.surface().pair_gamma()) {
@@ -377,6 +440,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             && !args.near_curves
             && !args.near_fold
             && !args.near_end
+            && !args.near_sheet
         {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {

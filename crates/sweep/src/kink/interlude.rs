@@ -15,7 +15,7 @@ use super::Kink;
 use crate::SweepError;
 use oblique_physics::regimes::alpha_c2;
 use oblique_solver::history::plus_interlude_edge_e;
-use oblique_table::surface::PatchKind;
+use oblique_table::surface::{PatchKind, Point};
 
 /// Spacing of the traced rows in γ: `e_I` at a fixed distance from the sheet's start α_L
 /// (in `ln α`) is within 4e-5 of the linear rule between rows (`d²e_I/dγ²` ≈ 0.8).
@@ -118,6 +118,53 @@ impl InterludeSheet {
             })
             .collect()
     }
+}
+
+/// `n` points next to the sheet I₊ (`sheet`, from [`interlude_sheet`]): γ uniform over the
+/// part of `gammas` its rows cover, `α` uniform in `ln α` from the rows' lowest start α_L to
+/// α_c2(γ) (drawn again where the sheet is undefined), `e_n = e_I(γ, α) + s·10^u`, `s = ±1`,
+/// `u` uniform in `[−4, −1.5]` (1e-4 to 0.03 in `e_n`: a leaf's node interval along `e_n` is
+/// 2e-3 to 4e-3 there), drawn again outside `e_range`. The same `seed` gives the same points
+/// (`sweep verify --near-sheet`). Fewer than `n` (none) when `1000 n` draws do not find them.
+pub fn near_interlude_points(
+    sheet: &InterludeSheet,
+    (gamma_min, gamma_max): (f64, f64),
+    (e_min, e_max): (f64, f64),
+    n: usize,
+    seed: u64,
+) -> Vec<Point> {
+    let top = sheet.gamma_0 + sheet.step * (sheet.rows.len().max(1) - 1) as f64;
+    let (g_lo, g_hi) = (gamma_min.max(sheet.gamma_0), gamma_max.min(top));
+    let Some(l_lo) = sheet
+        .rows
+        .iter()
+        .filter_map(Row::start)
+        .min_by(f64::total_cmp)
+    else {
+        return Vec::new();
+    };
+    if g_lo > g_hi {
+        return Vec::new();
+    }
+    let mut rng = oblique_physics::sample::SplitMix(seed);
+    let mut out = Vec::with_capacity(n);
+    for _ in 0..n.saturating_mul(1000) {
+        if out.len() == n {
+            break;
+        }
+        let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
+        let l_hi = alpha_c2(gamma).ln();
+        let alpha = (l_lo + (l_hi - l_lo) * rng.uniform()).exp();
+        let r = 10f64.powf(-4.0 + 2.5 * rng.uniform());
+        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        if let Some(e_k) = sheet.e_at(gamma, alpha) {
+            let e_n = e_k + sign * r;
+            if e_n >= e_min && e_n <= e_max {
+                out.push(Point::new(gamma, alpha, e_n));
+            }
+        }
+    }
+    out
 }
 
 impl Kink for InterludeSheet {

@@ -27,7 +27,10 @@
 mod end_minus;
 mod interlude;
 
-pub use interlude::{interlude_sheet, InterludeSheet, SHEET_PROBE_OFFSETS, SHEET_STEP, SHEET_TO};
+pub use interlude::{
+    interlude_sheet, near_interlude_points, InterludeSheet, SHEET_PROBE_OFFSETS, SHEET_STEP,
+    SHEET_TO,
+};
 
 pub use end_minus::{
     end_minus_in_patch, end_minus_surface, EndMinusSides, END_PROBE_OFFSETS, END_SURFACE_STEP,
