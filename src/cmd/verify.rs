@@ -300,7 +300,10 @@ fn sample_near_sheet(
         )));
     }
     let lo = points.iter().map(|p| p.gamma).fold(f64::INFINITY, f64::min);
-    let hi = points.iter().map(|p| p.gamma).fold(f64::NEG_INFINITY, f64::max);
+    let hi = points
+        .iter()
+        .map(|p| p.gamma)
+        .fold(f64::NEG_INFINITY, f64::max);
     Ok((points, (lo, hi)))
 }
 
@@ -369,8 +372,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         near_end_range = Some(range);
         points
     } else if args.near_sheet {
-        let (points, range) =
-            sample_near_sheet(&table, &args.table, law, args.points, args.seed)?;
+        let (points, range) = sample_near_sheet(&table, &args.table, law, args.points, args.seed)?;
         near_end_range = Some(range);
         points
     } else {

@@ -35,6 +35,9 @@ const E_JUMP: f64 = 0.002;
 const LN_ALPHA_MIN: f64 = 1e-4;
 /// The `e_n` bracket of each location (the interlude holds at its top).
 const E_LOW: f64 = 0.8;
+/// Below this `e_n` the sheet is not found up to γ = [`SHEET_TO`] (its lowest point there is
+/// 0.8616, at γ = 2.62 and α ≈ 0.58): a table whose `e_n` range ends below it is not traced.
+const SHEET_E_MIN: f64 = 0.85;
 const E_TOP: f64 = 0.999;
 /// Steps per contact time of the tracing: 2048 and 4096 steps put `e_I` within 1e-5 of each
 /// other (γ = 2.5, α = 0.9: 0.9445958 and 0.9446023).
@@ -210,7 +213,7 @@ pub fn interlude_sheet(
     let h = SHEET_STEP;
     let i_lo = ((gamma_lo / h - 1e-9).floor() as i64 - 1).max((SHEET_FROM / h).round() as i64);
     let i_hi = ((gamma_hi / h + 1e-9).ceil() as i64 + 1).min((SHEET_TO / h).round() as i64);
-    if i_hi < i_lo + 1 || e_lo >= E_TOP || e_hi < E_LOW {
+    if i_hi < i_lo + 1 || e_lo >= E_TOP || e_hi + REACH < SHEET_E_MIN {
         return Ok(None);
     }
     let rows = (i_lo..=i_hi)
