@@ -1244,6 +1244,31 @@ mod tests {
         }
     }
 
+    /// The partial-slip patch over γ 2.3–2.6 of a Kelvin–Voigt table (one root row, four root
+    /// columns along c, e_n 0.9–1 in two), leaves of 6 intervals.
+    fn kv_spec() -> PatchSpec {
+        PatchSpec {
+            name: PatchId::PartialHigh.name(),
+            kind: PatchKind::PartialSlip,
+            gamma_lo: 2.3,
+            gamma_hi: 2.6,
+        }
+    }
+
+    fn kv_layout(spec: &PatchSpec) -> Layout<'_> {
+        Layout {
+            spec,
+            bg: 1,
+            bc: 4,
+            m: 6,
+            alpha_max: f64::INFINITY,
+            warp: None,
+            knots: None,
+            restitution: Some(Axis::restitution(0.9, 1.0, 2).unwrap()),
+            map: PartialMap::SqrtBoth,
+        }
+    }
+
     /// A sheet across `e_n` in the partial-slip patch: `e_K = 0.95 + 0.05 (α − 0.6) + 0.1 (γ − 2.45)`
     /// for α in 0.5–1.2.
     #[derive(Debug)]
@@ -1279,23 +1304,8 @@ mod tests {
 
     #[test]
     fn probes_land_on_every_line_along_e_n_that_meets_a_sheet() {
-        let spec = PatchSpec {
-            name: PatchId::PartialHigh.name(),
-            kind: PatchKind::PartialSlip,
-            gamma_lo: 2.3,
-            gamma_hi: 2.6,
-        };
-        let layout = Layout {
-            spec: &spec,
-            bg: 1,
-            bc: 4,
-            m: 6,
-            alpha_max: f64::INFINITY,
-            warp: None,
-            knots: None,
-            restitution: Some(Axis::restitution(0.9, 1.0, 2).unwrap()),
-            map: PartialMap::SqrtBoth,
-        };
+        let spec = kv_spec();
+        let layout = kv_layout(&spec);
         let kinks: Vec<Box<dyn Kink>> = vec![Box::new(Sheet)];
         let d = 3;
         let (mut probed_cells, mut lines, mut centres) = (0, 0, 0);
@@ -1548,23 +1558,8 @@ mod tests {
     fn probes_land_in_the_cells_next_to_a_kink_surface_on_every_node_row() {
         // γ 2.3–2.6 in one root row, c in four, e_n 0.9–1 in two; cells at depth 3 (1/8 of a
         // root cell along each axis).
-        let spec = PatchSpec {
-            name: PatchId::PartialHigh.name(),
-            kind: PatchKind::PartialSlip,
-            gamma_lo: 2.3,
-            gamma_hi: 2.6,
-        };
-        let layout = Layout {
-            spec: &spec,
-            bg: 1,
-            bc: 4,
-            m: 6,
-            alpha_max: f64::INFINITY,
-            warp: None,
-            knots: None,
-            restitution: Some(Axis::restitution(0.9, 1.0, 2).unwrap()),
-            map: PartialMap::SqrtBoth,
-        };
+        let spec = kv_spec();
+        let layout = kv_layout(&spec);
         let kinks: Vec<Box<dyn Kink>> = vec![Box::new(Slanted)];
         let d = 3;
         // Node intervals per unit of c at depth 3.

@@ -4,16 +4,12 @@
 use oblique_solver::history::friction_ratio_e;
 
 fn main() -> anyhow::Result<()> {
-    let a: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|s| s.parse::<f64>())
-        .collect::<Result<_, _>>()?;
-    let (g, al, e) = match a[..] {
-        [g, al, e, ..] => (g, al, e),
-        _ => anyhow::bail!("usage: ratio_e GAMMA ALPHA E_N [STEPS [FROM]]"),
-    };
-    let steps = a.get(3).map_or(4096, |&s| s as usize);
-    let from = a.get(4).copied().unwrap_or(0.5);
+    let args = oblique_tools::args();
+    let g: f64 = oblique_tools::arg(&args, 0, "GAMMA")?;
+    let al: f64 = oblique_tools::arg(&args, 1, "ALPHA")?;
+    let e: f64 = oblique_tools::arg(&args, 2, "E_N")?;
+    let steps: usize = oblique_tools::arg_or(&args, 3, "STEPS", 4096)?;
+    let from: f64 = oblique_tools::arg_or(&args, 4, "FROM", 0.5)?;
     let (r, p) = friction_ratio_e(g, al, e, steps)?;
     println!("# P {p:.15}");
     let quiet = std::env::var_os("RATIO_QUIET").is_some();

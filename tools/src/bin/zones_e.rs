@@ -5,15 +5,11 @@
 use oblique_solver::history::zone_runs_e;
 
 fn main() -> anyhow::Result<()> {
-    let a: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|s| s.parse::<f64>())
-        .collect::<Result<_, _>>()?;
-    let (g, al, e) = match a[..] {
-        [g, al, e, ..] => (g, al, e),
-        _ => anyhow::bail!("usage: zones_e GAMMA ALPHA E_N [STEPS]"),
-    };
-    let steps = a.get(3).map_or(2048, |&s| s as usize);
+    let args = oblique_tools::args();
+    let g: f64 = oblique_tools::arg(&args, 0, "GAMMA")?;
+    let al: f64 = oblique_tools::arg(&args, 1, "ALPHA")?;
+    let e: f64 = oblique_tools::arg(&args, 2, "E_N")?;
+    let steps: usize = oblique_tools::arg_or(&args, 3, "STEPS", 2048)?;
     for (label, t0, t1) in zone_runs_e(g, al, e, steps)? {
         print!("{label}[{t0:.4}-{t1:.4}] ");
     }
