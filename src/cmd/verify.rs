@@ -281,8 +281,11 @@ fn sample_near_sheet(
     let Some(e_range) = table.restitution() else {
         return Err(refuse("no e_n axis (an elastic table)".into()));
     };
-    if law != Law::KelvinVoigt {
-        return Err(refuse(format!("the {} law", law.name())));
+    if !oblique_sweep::kink::probes_implemented(law) {
+        return Err(refuse(format!(
+            "the {} law, whose kinks are not traced",
+            law.name()
+        )));
     }
     if s.pair_gamma().is_some() {
         return Err(refuse("one pair (a single gamma)".into()));
