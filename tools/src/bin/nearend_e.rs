@@ -1,7 +1,7 @@
 //! Points next to the end-of-contact surface E₋ of the Kelvin–Voigt law as `probe` input:
-//! `nearend_e GAMMA_LO GAMMA_HI E_LO E_HI N SEED > points.csv`. Columns every 0.02 in γ are
-//! traced from e_n = 1 down every 0.01 (continuation), α_E interpolated bilinearly in
-//! (γ, ln α); points at α = α_E(1 + s·10^u), u uniform in [−4, −1].
+//! `nearend_e GAMMA_LO GAMMA_HI E_LO E_HI N SEED [U_LO U_HI] > points.csv`. Columns every 0.02
+//! in γ are traced from e_n = 1 down every 0.01 (continuation), α_E interpolated bilinearly in
+//! (γ, ln α); points at α = α_E(1 + s·10^u), u uniform in [U_LO, U_HI] (default [−4, −1]).
 use oblique_solver::history::{end_minus_at, end_minus_at_e};
 use rayon::prelude::*;
 
@@ -11,9 +11,14 @@ fn main() -> anyhow::Result<()> {
         .map(|s| s.parse())
         .collect::<Result<_, _>>()?;
     anyhow::ensure!(
-        a.len() == 6,
-        "usage: nearend_e GAMMA_LO GAMMA_HI E_LO E_HI N SEED"
+        a.len() == 6 || a.len() == 8,
+        "usage: nearend_e GAMMA_LO GAMMA_HI E_LO E_HI N SEED [U_LO U_HI]"
     );
+    let (u_lo, u_hi) = if a.len() == 8 {
+        (a[6], a[7])
+    } else {
+        (-4.0, -1.0)
+    };
     let (g0, g1, e0, e1, n, seed) = (a[0], a[1], a[2], a[3], a[4] as usize, a[5] as u64);
     let dg = 0.02;
     let ng = ((g1 - g0) / dg).ceil() as usize + 1;
@@ -50,7 +55,7 @@ fn main() -> anyhow::Result<()> {
     while k < n {
         let g = g0 + (g1 - g0) * rng.uniform();
         let e = e0 + (e1 - e0) * rng.uniform();
-        let u = -4.0 + 3.0 * rng.uniform();
+        let u = u_lo + (u_hi - u_lo) * rng.uniform();
         let s = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
         let x = ((g - g0) / dg).min(ng as f64 - 1.0 - 1e-9);
         let y = ((1.0 - e) * 100.0).min(rows as f64 - 1.0 - 1e-9);
