@@ -228,7 +228,6 @@ impl Layout<'_> {
     ) -> Vec<Probe> {
         let m = self.m as f64;
         let nc = (self.bc as u64 * self.fine()) as f64;
-        let sg = 1u64 << (MAX_DEPTH - cell.d[0]);
         let sc = (1u64 << (MAX_DEPTH - cell.d[1])) as f64;
         let se = 1u64 << (MAX_DEPTH - cell.d[2]);
         let warped = self.warped(cell);
@@ -252,18 +251,12 @@ impl Layout<'_> {
                 rows.extend((0..me).map(|l| (u, l as f64 + 0.5)));
             }
         }
-        let ng = (self.bg as u64 * self.fine()) as f64;
         let ne = (self.be() as u64 * self.fine()) as f64;
         // The row's γ and e_n, and the kink's position on it in node intervals of the cell
         // along the coordinate (`None` where the kink is not defined there).
         let place = |u: f64, w: f64, k: &dyn kink::Kink| -> (f64, f64, Option<f64>) {
             // A node row's γ and e_n are its nodes' (computed from the lattice index).
-            let gamma = if u.fract() == 0.0 {
-                self.gamma_of_row((cell.ig * self.m as u64 + u as u64) * sg)
-            } else {
-                let x = ((cell.ig * self.m as u64) as f64 + u) * sg as f64 / ng;
-                self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * x
-            };
+            let gamma = self.gamma_in_cell(cell, u);
             let e_n = match self.restitution {
                 Some(r) => r.at(((cell.ie * self.m as u64) as f64 + w) * se as f64 / ne),
                 None => 1.0,
@@ -331,6 +324,19 @@ impl Layout<'_> {
         out
     }
 
+    /// γ at `u` node intervals into `cell` along γ: a node row's own γ (from its lattice index,
+    /// as its nodes have it) where `u` is whole, else linear between them.
+    fn gamma_in_cell(&self, cell: Cell, u: f64) -> f64 {
+        let sg = 1u64 << (MAX_DEPTH - cell.d[0]);
+        if u.fract() == 0.0 {
+            self.gamma_of_row((cell.ig * self.m as u64 + u as u64) * sg)
+        } else {
+            let ng = (self.bg as u64 * self.fine()) as f64;
+            let x = ((cell.ig * self.m as u64) as f64 + u) * sg as f64 / ng;
+            self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * x
+        }
+    }
+
     /// The probes of a cell next to a kink across the `e_n` axis (`k`, a sheet
     /// `e_n = e_K(γ, α)`): on every line of nodes along `e_n` (each γ row and coordinate column
     /// of the cell) and on the lines through the centres of the squares of four such lines, at
@@ -342,7 +348,6 @@ impl Layout<'_> {
         let m = self.m as f64;
         let nc = (self.bc as u64 * self.fine()) as f64;
         let ne = (self.be() as u64 * self.fine()) as f64;
-        let sg = 1u64 << (MAX_DEPTH - cell.d[0]);
         let sc = (1u64 << (MAX_DEPTH - cell.d[1])) as f64;
         let se = (1u64 << (MAX_DEPTH - cell.d[2])) as f64;
         let warped = self.warped(cell);
@@ -358,15 +363,9 @@ impl Layout<'_> {
         for &u in &centres_g {
             lines.extend((0..self.m).map(|j| (u, j as f64 + 0.5)));
         }
-        let ng = (self.bg as u64 * self.fine()) as f64;
         let e_of = |w: f64| r.at((((cell.ie * self.m as u64) as f64 + w) * se / ne).max(0.0));
         for (u, v) in lines {
-            let gamma = if u.fract() == 0.0 {
-                self.gamma_of_row((cell.ig * self.m as u64 + u as u64) * sg)
-            } else {
-                let x = ((cell.ig * self.m as u64) as f64 + u) * sg as f64 / ng;
-                self.spec.gamma_lo + (self.spec.gamma_hi - self.spec.gamma_lo) * x
-            };
+            let gamma = self.gamma_in_cell(cell, u);
             let c = (cell.ic as f64 * m + v) * sc / nc;
             let miss = |w: f64| -> Option<f64> {
                 let e_n = e_of(w);
