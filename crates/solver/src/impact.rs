@@ -139,6 +139,9 @@ struct Stepper<'a, N: NormalModel, T: TangentialModel> {
     force: f64,
     /// Mean spring displacement at the current time (m).
     mean: f64,
+    /// How far the mean displacement was from its gross-slip value at the start of the
+    /// previous grid step (m; [`Stepper::gross_slip_onset`]).
+    limit_gap: f64,
 }
 
 impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
@@ -220,7 +223,9 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
         }
         let split = self
             .row
-            .release_time(&self.motion(bodies, h, start, end), self.limit);
+            .release_time(&self.motion(bodies, h, start, end), self.limit)
+            .or_else(|| self.gross_slip_onset(h, start));
+        self.limit_gap = self.gap_to_gross_slip(start);
         match split {
             Some(t) => {
                 let mid = nt.within_step(n, t);
@@ -229,6 +234,38 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
             }
             None => self.step(bodies, h, start, end),
         }
+    }
+}
+
+impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
+    /// The instant (s into a grid step of length `h` from the normal state `start`) at which
+    /// the whole contact reaches a Coulomb limit, when the gap of the mean displacement to its
+    /// gross-slip value ([`Stepper::gap_to_gross_slip`]), closing at the rate of the previous
+    /// step, closes inside this one; `None` otherwise, for a model that does not locate gross
+    /// slip ([`TangentialModel::LOCATES_GROSS_SLIP`]), or within 1e-3 of the step of its ends.
+    /// The extrapolation places the onset within `O(h²)` of the step, where the kink's error
+    /// is of higher order than the scheme's.
+    fn gross_slip_onset(&self, h: f64, start: (f64, f64)) -> Option<f64> {
+        if !T::LOCATES_GROSS_SLIP {
+            return None;
+        }
+        let gap = self.gap_to_gross_slip(start);
+        let closing = self.limit_gap - gap;
+        if !(gap > 0.0 && closing > gap) {
+            return None;
+        }
+        let t = h * gap / closing;
+        (t > 1e-3 * h && t < (1.0 - 1e-3) * h).then_some(t)
+    }
+}
+
+impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
+    /// How far (m) the mean displacement lies from its value in gross slip, `±c (D − b/3)` for
+    /// the limit level `D` and the reach `b` at the normal state `at`: the whole contact
+    /// `y < b` at a Coulomb limit `±c (D − y)`.
+    fn gap_to_gross_slip(&self, at: (f64, f64)) -> f64 {
+        let (level, reach) = (self.normal.limit_level(at), self.normal.reach(at));
+        self.limit * (level - reach / 3.0) - self.mean.abs()
     }
 }
 
@@ -345,6 +382,7 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
         limit,
         force: 0.0,
         mean,
+        limit_gap: f64::INFINITY,
     };
     let steps = normal.steps();
     // Grid steps that end within GRADED_SPAN of the separation are graded (finite limit only).

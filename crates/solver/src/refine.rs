@@ -204,7 +204,7 @@ fn estimate(values: &[f64], order: i32) -> f64 {
 /// 32 points spanning every regime (γ 0.3–3.5, α from just above the linear limit to ∞,
 /// 128–8192 steps): never below the true error where that error exceeds the 2e-8 accuracy of
 /// the reference (`tools/src/bin/estim.rs`).
-fn extrapolate(values: &[f64], order: i32, floor: Floor) -> (f64, f64) {
+fn extrapolate(values: &[f64], order: i32, floor: Floor, steps: usize) -> (f64, f64) {
     let r = 2f64.powi(order) - 1.0;
     let n = values.len();
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / r;
@@ -216,7 +216,8 @@ fn extrapolate(values: &[f64], order: i32, floor: Floor) -> (f64, f64) {
     };
     let est = (last - rich(n - 2))
         .abs()
-        .max(share * (values[n - 1] - values[n - 2]).abs());
+        .max(share * (values[n - 1] - values[n - 2]).abs())
+        .max(floor.scatter / (steps as f64).powi(2));
     (last, est)
 }
 
@@ -278,9 +279,15 @@ fn regular(values: &[f64], order: i32) -> bool {
 /// where a sequence converges fast from a poor start: `configs/quick.toml` needs 13.8 s with it
 /// against 10.4 s without (33 %, measured under load). With three values only (no coarser
 /// estimate) the result is never accepted.
-fn previous_estimate_agrees(values: &[f64], order: i32, tol: f64, floor: Floor) -> bool {
+fn previous_estimate_agrees(
+    values: &[f64],
+    order: i32,
+    tol: f64,
+    floor: Floor,
+    steps: usize,
+) -> bool {
     let n = values.len();
-    n >= 4 && extrapolate(&values[..n - 1], order, floor).1 <= 2f64.powi(order) * tol
+    n >= 4 && extrapolate(&values[..n - 1], order, floor, steps / 2).1 <= 2f64.powi(order) * tol
 }
 
 /// Refine a computation `run(level)` (resolution doubling each level from `base`) until the
@@ -378,7 +385,7 @@ pub(crate) fn refine_core(
             });
         } else {
             let (value, est) = if richardson {
-                extrapolate(&values, order, floor)
+                extrapolate(&values, order, floor, res.steps)
             } else {
                 (values[values.len() - 1], estimate(&values, order))
             };
@@ -389,7 +396,9 @@ pub(crate) fn refine_core(
                 tol,
             });
             best = (est, res);
-            if est <= tol && (!richardson || previous_estimate_agrees(&values, order, tol, floor)) {
+            if est <= tol
+                && (!richardson || previous_estimate_agrees(&values, order, tol, floor, res.steps))
+            {
                 return Ok((value, est, res));
             }
             // Stop before the expensive levels when even an optimistic rate (the nominal order

@@ -144,7 +144,11 @@ impl Request {
                 self.limits,
             ),
             (law, e_n),
-            L::FLOOR,
+            if alpha.is_finite() {
+                L::FLOOR
+            } else {
+                L::FLOOR.without_scatter()
+            },
             closed,
             |res| L::simulate(gamma, alpha, parameters, res, self.scheme),
             observer,

@@ -25,12 +25,29 @@ fn res(springs: usize, steps: usize) -> Resolution {
 /// over four doublings, order 1.83) and by 4.07, 3.78 further on (to 16384 steps); at γ = 0.5,
 /// α = 1 by 3.38 … 4.15 (195×). 3.3 per doubling and 150× overall (order ≥ 1.8) still reject
 /// any order ≤ 1.7 (2^1.5 = 2.83 per doubling, 64× overall).
+///
+/// A level whose error is within the scatter left by events inside the steps (0.05/N² at `N`
+/// steps, `Floor::scatter`'s measure) is not held to the ratio: at γ = 1.754, α = 1 the smooth
+/// part of the error nearly vanishes once the onset of gross slip is located (`C` ≈ 0.03), and
+/// the errors at 1024 and 2048 steps were 6.1e-10 and 1.0e-8, both within it.
 fn check_second_order(g: f64, a: f64) {
     let (errs, ratios, summary) = convergence_ladder(g, a);
+    let steps = convergence_steps(g);
+    let scattered = |k: usize| errs[k + 1] <= 0.05 / (steps[k + 1] as f64).powi(2);
     assert!(
-        ratios.iter().all(|&r| r >= 3.3) && errs[0] / errs[4] >= 150.0,
+        ratios
+            .iter()
+            .enumerate()
+            .all(|(k, &r)| r >= 3.3 || scattered(k))
+            && errs[0] / errs[4] >= 150.0,
         "not second order: {summary}"
     );
+}
+
+/// The steps of the levels [`convergence_ladder`] measures.
+fn convergence_steps(g: f64) -> Vec<usize> {
+    let base = base_resolution(g, ACC);
+    (1..=5).map(|k| base.doubled(k).steps).collect()
 }
 
 /// Errors on the refinement ladder of `solve` (base resolution doubled 1..=5 times: the
@@ -418,5 +435,47 @@ fn fixed_resolution_estimate_is_absent_or_bounds_the_true_error() {
             .solve()
             .unwrap();
         assert_eq!(s.estimate(), None, "{springs} x {steps}: {s:?}");
+    }
+}
+
+/// `P` at every step count from 1000 to 1040: its scatter around the least-squares fit
+/// `P∞ + C/N²`, times `N²`.
+fn scatter_n2(gamma: f64, alpha: f64, e_n: f64) -> (f64, f64) {
+    let req = Request::new(gamma, alpha).e_n(e_n);
+    let ns: Vec<f64> = (1000..=1040).map(|n| n as f64).collect();
+    let ps: Vec<f64> = ns
+        .iter()
+        .map(|&n| {
+            req.simulate(res(0, n as usize))
+                .expect("simulation at a fixed resolution")
+        })
+        .collect();
+    let xs: Vec<f64> = ns.iter().map(|n| 1.0 / (n * n)).collect();
+    let m = xs.len() as f64;
+    let (sx, sy) = (xs.iter().sum::<f64>(), ps.iter().sum::<f64>());
+    let sxx: f64 = xs.iter().map(|x| x * x).sum();
+    let sxy: f64 = xs.iter().zip(&ps).map(|(x, p)| x * p).sum();
+    let c = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+    let p_inf = (sy - c * sx) / m;
+    let scatter = xs
+        .iter()
+        .zip(&ps)
+        .map(|(x, p)| (p - p_inf - c * x).abs())
+        .fold(0.0_f64, f64::max);
+    (scatter * 1e6, c)
+}
+
+/// The onset of gross slip inside a step is located and the step split there: without it, `P`
+/// at γ = 3, α = 1 (and γ = 2.5, α = 0.9, `e_n` = 0.95) scattered by up to `4/N²` around its
+/// smooth convergence, depending on where in the step the onset fell, as large as its smooth
+/// error `C/N²` (`|C|` ≈ 11.5 and 4.7); located, by at most 0.05/N².
+#[test]
+fn the_error_does_not_depend_on_where_gross_slip_starts_in_a_step() {
+    for (g, a, e) in [(3.0, 1.0, 1.0), (2.5, 0.9, 0.95)] {
+        let (scatter, c) = scatter_n2(g, a, e);
+        assert!(
+            scatter < 0.2 && scatter < 0.05 * c.abs(),
+            "γ {g}, α {a}, e_n {e}: scatter {scatter:.3}/N² against C = {c:.3}"
+        );
     }
 }

@@ -33,6 +33,7 @@ pub const IRREGULAR_FLOOR: f64 = 0.2;
 pub const FLOOR: Floor = Floor {
     regular: RAW_FLOOR,
     irregular: IRREGULAR_FLOOR,
+    scatter: crate::law::ROW_SCATTER,
 };
 
 /// The elastic law ([`ContactLaw`]): `e_n = 1`, no parameters.

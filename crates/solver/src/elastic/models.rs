@@ -10,6 +10,7 @@ use crate::model::{grid_accessors, NormalModel, TangentialModel};
 use crate::springs::{SpringRow, StepMotion, StepResult};
 
 impl TangentialModel for ContinuumRow {
+    const LOCATES_GROSS_SLIP: bool = true;
     #[inline(always)]
     fn at_limit(&self) -> (bool, bool) {
         ContinuumRow::at_limit(self)

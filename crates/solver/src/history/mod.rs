@@ -103,6 +103,7 @@ struct LoggedRow<R, F> {
 
 impl<R: TangentialModel, F: FnMut(&R, &StepMotion, f64)> TangentialModel for LoggedRow<R, F> {
     const END_STATE: bool = R::END_STATE;
+    const LOCATES_GROSS_SLIP: bool = R::LOCATES_GROSS_SLIP;
     #[inline(always)]
     fn at_limit(&self) -> (bool, bool) {
         self.row.at_limit()
@@ -417,10 +418,18 @@ pub struct FoldPoint {
     pub alpha: f64,
     /// Jump of `dP/d ln α` across `α_F` ([`one_sided_slopes`], right minus left).
     pub slope_jump: f64,
-    /// The episode just below `α_F` (start, end in fractions of `t_c`): of zero length on the
-    /// fold proper, ending at [`INTERIOR_END`] on the threshold edge just above the birth.
+    /// The episode just below `α_F` ([`BELOW_FOLD`] in `ln α`; start, end in fractions of
+    /// `t_c`): of zero length on the fold proper, ending at [`INTERIOR_END`] on the threshold
+    /// edge just above the birth.
     pub episode: Option<Episode>,
 }
+
+/// How far below `α_F` (in `ln α`) [`FoldPoint::episode`] is read. On the fold proper the
+/// episode is one step that touches the limit; where the stepper splits a step at the onset of
+/// gross slip ([`crate::model::TangentialModel::LOCATES_GROSS_SLIP`]) whether that step counts
+/// flickers within about 1e-8 of `α_F` (at γ = 3.5, 1024 steps: none at 1e-9 below the located
+/// fold, one at 1e-7, 1e-5 and 1e-3 below).
+pub const BELOW_FOLD: f64 = 1e-7;
 
 /// The fold curve F₊ at a fixed number of steps.
 #[derive(Debug, Clone, PartialEq)]
@@ -606,7 +615,7 @@ pub fn fold_plus_curve(gamma_max: f64, n: usize, steps: usize) -> Result<FoldCur
             })?
         };
         let (left, right) = one_sided_slopes(gamma, alpha, steps)?;
-        let below = slip_history(gamma, alpha * (-1e-9_f64).exp(), steps)?;
+        let below = slip_history(gamma, alpha * (-BELOW_FOLD).exp(), steps)?;
         let episode = below.episodes.iter().copied().find(|e| {
             e.sign == SlipSign::Plus
                 && e.start >= RESTITUTION_WINDOW.0

@@ -39,6 +39,7 @@ use row::ViscoelasticRow;
 pub const RAW_FLOOR: Floor = Floor {
     regular: crate::elastic::RAW_FLOOR,
     irregular: 0.5,
+    scatter: crate::law::ROW_SCATTER,
 };
 
 /// Smallest normal restitution the solver takes ([`crate::law`] owns the range).
@@ -384,9 +385,14 @@ impl NormalModel for ViscoelasticTrajectory {
             d
         }
     }
+    #[inline(always)]
+    fn limit_level(&self, (d, rate): (f64, f64)) -> f64 {
+        self.load(d, rate)
+    }
 }
 
 impl TangentialModel for ViscoelasticRow {
+    const LOCATES_GROSS_SLIP: bool = true;
     const END_STATE: bool = true;
     #[inline(always)]
     fn at_limit(&self) -> (bool, bool) {

@@ -211,6 +211,7 @@ pub struct BodiesParameters {
 pub const RAW_FLOOR: Floor = Floor {
     regular: 0.25,
     irregular: 0.5,
+    scatter: 0.0,
 };
 
 impl ContactLaw for Thornton {
