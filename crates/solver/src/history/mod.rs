@@ -22,8 +22,9 @@ use super::springs::{StepMotion, StepResult};
 mod damped;
 mod plastic;
 pub use damped::{
-    end_minus_at_e, fold_minus_at_e, fold_minus_birth_e, fold_minus_free_below, fold_minus_scan_e,
-    friction_ratio_e, has_plus_interlude_e, plus_interlude_edge_e, restitution_minus_edges_e,
+    end_minus_at_e, end_minus_at_e_within, fold_minus_at_e, fold_minus_birth_e,
+    fold_minus_free_below, fold_minus_scan_e, friction_ratio_e, has_plus_interlude_e,
+    plus_interlude_edge_e, plus_interlude_edge_e_within, restitution_minus_edges_e,
     restitution_minus_somewhere_e, slip_history_e, zone_runs_e, INTERLUDE_LONG, INTERLUDE_MIN,
 };
 pub use plastic::{
@@ -263,6 +264,19 @@ fn locate_change_with(
     if at_lo == at_hi {
         return Ok(None);
     }
+    bisect_change(history, (alpha_lo, alpha_hi), at_lo, iterations, present).map(Some)
+}
+
+/// The bisection of [`locate_change_with`] on a bracket whose ends are known to differ, the
+/// predicate `at_lo` at its lower end: `iterations` halvings in `ln α`, the midpoint of the last
+/// bracket.
+fn bisect_change(
+    history: impl Fn(f64) -> Result<SlipHistory, PhysicsError>,
+    (alpha_lo, alpha_hi): (f64, f64),
+    at_lo: bool,
+    iterations: usize,
+    present: impl Fn(&SlipHistory) -> bool,
+) -> Result<f64, PhysicsError> {
     let (mut lo, mut hi) = (alpha_lo.ln(), alpha_hi.ln());
     for _ in 0..iterations {
         let mid = 0.5 * (lo + hi);
@@ -272,7 +286,7 @@ fn locate_change_with(
             hi = mid;
         }
     }
-    Ok(Some((0.5 * (lo + hi)).exp()))
+    Ok((0.5 * (lo + hi)).exp())
 }
 
 /// The time window (fractions of `t_c`) in which the `+μF_N` episode of the fold curve F₊ starts:
@@ -316,6 +330,12 @@ const BIRTH_BISECTIONS: usize = 18;
 
 /// Bisections in `ln α` when locating a point of F₊: from a bracket of at most ~0.1 to ~1e-10.
 const FOLD_BISECTIONS: usize = 30;
+
+/// How closely (in `ln α`) the public functions that locate a fold or the end-of-contact curve
+/// by continuation bisect the change of their predicate at a fixed resolution: far below the
+/// resolution's own error (about 1e-5 relative at 2048 steps), so that the located value is
+/// the resolution's to the last digits printed.
+pub const LOCATE_LN_ALPHA: f64 = 1e-10;
 
 fn check_fold_steps(steps: usize) -> Result<usize, PhysicsError> {
     if steps < FOLD_MIN_STEPS {
@@ -497,14 +517,21 @@ fn fold_at(
     present: fn(&SlipHistory) -> bool,
 ) -> Result<Option<f64>, PhysicsError> {
     let steps = check_fold_steps(steps)?;
-    fold_at_with(|a| slip_history(gamma, a, steps), guess, present)
+    fold_at_with(
+        |a| slip_history(gamma, a, steps),
+        guess,
+        present,
+        LOCATE_LN_ALPHA,
+    )
 }
 
-/// [`fold_at`] for the histories `history(α)` of any law at a fixed γ and resolution.
+/// [`fold_at`] for the histories `history(α)` of any law at a fixed γ and resolution, the
+/// change located to `ln_tol` in `ln α` ([`LOCATE_LN_ALPHA`] for the public functions).
 fn fold_at_with(
     history: impl Fn(f64) -> Result<SlipHistory, PhysicsError>,
     guess: f64,
     present: fn(&SlipHistory) -> bool,
+    ln_tol: f64,
 ) -> Result<Option<f64>, PhysicsError> {
     let at = |a: f64| history(a).map(|h| present(&h));
     let holds = at(guess)?;
@@ -518,17 +545,20 @@ fn fold_at_with(
             near * (-d).exp()
         };
         if at(far)? != holds {
+            // The predicate holds at the lower end of the bracket (both ends are known).
             let bracket = if holds { (near, far) } else { (far, near) };
-            let iterations = ((bracket.1 / bracket.0).ln() / 1e-10)
+            let iterations = ((bracket.1 / bracket.0).ln() / ln_tol)
                 .log2()
                 .ceil()
                 .max(1.0);
-            return locate_change_with(
+            return bisect_change(
                 &history,
                 bracket,
+                true,
                 (iterations as usize).min(FOLD_BISECTIONS + 20),
                 present,
-            );
+            )
+            .map(Some);
         }
         near = far;
         d *= 2.0;

@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use super::{CurveScale, KinkSurface, TRACE_STEPS};
 use crate::SweepError;
 use oblique_physics::regimes::alpha_c2;
-use oblique_solver::history::end_minus_at_e;
+use oblique_solver::history::end_minus_at_e_within;
 use oblique_table::surface::PatchKind;
 
 /// Spacing of the surface's grid in γ and in `e_n` (rows `e_n = 1, 0.98, …`). `α_E` varies
@@ -28,6 +28,12 @@ pub const END_SURFACE_STEP: f64 = 0.02;
 /// difference along α at γ 2.40077, `e_n` 0.9106: −22.7 at E₋, −3.1 at 0.109 above), a tail
 /// that reaches leaves E₋ does not cross; those are not probed (`docs/accuracy.md`).
 pub const END_PROBE_OFFSETS: [f64; 4] = [-0.7, 0.0, 0.7, 1.4];
+
+/// How closely (in `ln α`) each point of the surface is located: 100 times below the error of
+/// [`TRACE_STEPS`] steps (about 1e-5 relative), and far below the probes' spacing (a node
+/// interval, at least 1e-4 of α); 14 bisections from the continuation's first bracket where
+/// the public [`oblique_solver::history::end_minus_at_e`] takes 24 to reach 1e-10.
+pub const END_TRACE_LN_ALPHA: f64 = 1e-7;
 
 /// The γ at which every row's tracing starts (or the grid's first column above it), where E₋
 /// exists at every `e_n` in [0.3, 1] with α_E of order one (0.82–1.63 at γ = 2.0, 0.43–1.38
@@ -60,9 +66,10 @@ const SPAN: f64 = 0.3;
 /// [`END_SURFACE_STEP`] in γ (multiples of it, one point beyond each end of `gammas`, within
 /// [`SURFACE_FROM`]–[`SURFACE_TO`]) and in `e_n` (from 1 down to one row below `e_range.0`, at
 /// least 0.3), stored as `1/α_E`. Each row is traced from [`START_GAMMA`] (or the grid's first
-/// column above it) towards both ends by continuation ([`end_minus_at_e`], [`TRACE_STEPS`]
-/// steps, the guess extrapolated linearly in `1/α_E`), the rows in parallel; a row stops where
-/// E₋ is lost or α_E passes [`ALPHA_STOP`]. `None` when no grid point holds it.
+/// column above it) towards both ends by continuation ([`end_minus_at_e_within`] to
+/// [`END_TRACE_LN_ALPHA`], [`TRACE_STEPS`] steps, the guess extrapolated linearly in
+/// `1/α_E`), the rows in parallel; a row stops where E₋ is lost or α_E passes
+/// [`ALPHA_STOP`]. `None` when no grid point holds it.
 pub fn end_minus_surface(
     (gamma_lo, gamma_hi): (f64, f64),
     (e_lo, _e_hi): (f64, f64),
@@ -90,12 +97,12 @@ pub fn end_minus_surface(
             let mut inv = vec![f64::NAN; n_t];
             let locate = |i: usize, guess: f64, span: f64| -> Result<Option<f64>, SweepError> {
                 let g = (t_lo + i as i64) as f64 * h;
-                let found =
-                    end_minus_at_e(g, e_n, guess, TRACE_STEPS).map_err(|e| SweepError::Kink {
-                        curve: "E-",
-                        gamma: g,
-                        what: format!("at e_n = {e_n}: {e}"),
-                    })?;
+                let found = end_minus_at_e_within(g, e_n, guess, TRACE_STEPS, END_TRACE_LN_ALPHA)
+                    .map_err(|e| SweepError::Kink {
+                    curve: "E-",
+                    gamma: g,
+                    what: format!("at e_n = {e_n}: {e}"),
+                })?;
                 Ok(found
                     .filter(|a| (a / guess).ln().abs() <= span && *a <= ALPHA_STOP)
                     .map(|a| 1.0 / a))
@@ -207,6 +214,7 @@ impl EndMinusSides {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use oblique_solver::history::end_minus_at_e;
 
     #[test]
     fn the_end_of_contact_surface_matches_direct_location() {

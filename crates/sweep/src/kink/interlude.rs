@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use super::Kink;
 use crate::SweepError;
 use oblique_physics::regimes::alpha_c2;
-use oblique_solver::history::plus_interlude_edge_e;
+use oblique_solver::history::plus_interlude_edge_e_within;
 use oblique_table::surface::{PatchKind, Point};
 
 /// Spacing of the traced rows in γ: `e_I` at a fixed distance from the sheet's start α_L
@@ -42,6 +42,11 @@ const E_TOP: f64 = 0.999;
 /// Steps per contact time of the tracing: 2048 and 4096 steps put `e_I` within 1e-5 of each
 /// other (γ = 2.5, α = 0.9: 0.9445958 and 0.9446023).
 pub const SHEET_STEPS: usize = 2048;
+
+/// How closely each point of the sheet is located in `e_n`: 10 times below the error of
+/// [`SHEET_STEPS`] steps, and far below the probes' spacing (half a node interval along `e_n`,
+/// at least 1e-4).
+const SHEET_E_TOL: f64 = 1e-6;
 
 /// Where a cell next to I₊ is measured on each line of nodes along `e_n`, in node intervals
 /// from it along `e_n`: the fold departs above it.
@@ -202,10 +207,11 @@ const REACH: f64 = 0.01;
 /// The sheet I₊ for a partial-slip patch over `gammas` and `e_range`: rows every
 /// [`SHEET_STEP`] in γ (multiples of it, one beyond each end of `gammas`, within
 /// [`SHEET_FROM`]–[`SHEET_TO`]), each located on a grid of [`LN_ALPHA_STEP`] in `ln α` from
-/// [`ALPHA_FROM`] to α_c2(γ) ([`plus_interlude_edge_e`], [`SHEET_STEPS`] steps, bracket
-/// [`E_LOW`]–[`E_TOP`]) and bisected where it rises steeply, the rows in parallel; a row keeps
-/// its first contiguous run of located points. `None` when no located point lies within
-/// [`REACH`] of the `e_n` range, or the γ range lies outside the rows.
+/// [`ALPHA_FROM`] to α_c2(γ) ([`plus_interlude_edge_e_within`] to [`SHEET_E_TOL`],
+/// [`SHEET_STEPS`] steps, bracket [`E_LOW`]–[`E_TOP`]) and bisected where it rises steeply,
+/// the rows in parallel; a row keeps its first contiguous run of located points. `None` when
+/// no located point lies within [`REACH`] of the `e_n` range, or the γ range lies outside the
+/// rows.
 pub fn interlude_sheet(
     (gamma_lo, gamma_hi): (f64, f64),
     (e_lo, e_hi): (f64, f64),
@@ -234,14 +240,16 @@ pub fn interlude_sheet(
 
 /// One row of [`interlude_sheet`] at `gamma`.
 fn trace_row(gamma: f64) -> Result<Row, SweepError> {
+    // The whole bracket at every point: next to the sheet's start the predicate changes more
+    // than once along `e_n`, and a narrower bracket about a neighbour's value can find
+    // another change (up to 7e-4 away at γ 2.44–2.62).
     let locate = |x: f64| -> Result<Option<f64>, SweepError> {
-        plus_interlude_edge_e(gamma, x.exp(), (E_LOW, E_TOP), SHEET_STEPS).map_err(|e| {
-            SweepError::Kink {
+        plus_interlude_edge_e_within(gamma, x.exp(), (E_LOW, E_TOP), SHEET_STEPS, SHEET_E_TOL)
+            .map_err(|e| SweepError::Kink {
                 curve: "I+",
                 gamma,
                 what: format!("at alpha = {}: {e}", x.exp()),
-            }
-        })
+            })
     };
     let (x0, x1) = (ALPHA_FROM.ln(), alpha_c2(gamma).ln());
     let n = ((x1 - x0) / LN_ALPHA_STEP).ceil().max(1.0) as usize;
@@ -281,6 +289,7 @@ fn trace_row(gamma: f64) -> Result<Row, SweepError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use oblique_solver::history::plus_interlude_edge_e;
 
     /// The traced sheet against direct location between its rows and samples: within 2e-4 in
     /// `e_n` where it is gradual, and defined from its start α_L on.
