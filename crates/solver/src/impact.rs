@@ -221,11 +221,16 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
             self.force = 2.0 * self.shear_modulus * j.integral;
             self.mean = j.mean;
         }
+        let gap = if T::LOCATES_GROSS_SLIP {
+            self.gap_to_gross_slip(start)
+        } else {
+            f64::INFINITY
+        };
         let split = self
             .row
             .release_time(&self.motion(bodies, h, start, end), self.limit)
-            .or_else(|| self.gross_slip_onset(h, start));
-        self.limit_gap = self.gap_to_gross_slip(start);
+            .or_else(|| self.gross_slip_onset(h, gap));
+        self.limit_gap = gap;
         match split {
             Some(t) => {
                 let mid = nt.within_step(n, t);
@@ -238,18 +243,17 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
 }
 
 impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
-    /// The instant (s into a grid step of length `h` from the normal state `start`) at which
-    /// the whole contact reaches a Coulomb limit, when the gap of the mean displacement to its
-    /// gross-slip value ([`Stepper::gap_to_gross_slip`]), closing at the rate of the previous
+    /// The instant (s into a grid step of length `h`) at which the whole contact reaches a
+    /// Coulomb limit, when `gap`, the gap of the mean displacement to its gross-slip value at
+    /// the step's start ([`Stepper::gap_to_gross_slip`]), closing at the rate of the previous
     /// step, closes inside this one; `None` otherwise, for a model that does not locate gross
     /// slip ([`TangentialModel::LOCATES_GROSS_SLIP`]), or within 1e-3 of the step of its ends.
     /// The extrapolation places the onset within `O(h²)` of the step, where the kink's error
     /// is of higher order than the scheme's.
-    fn gross_slip_onset(&self, h: f64, start: (f64, f64)) -> Option<f64> {
+    fn gross_slip_onset(&self, h: f64, gap: f64) -> Option<f64> {
         if !T::LOCATES_GROSS_SLIP {
             return None;
         }
-        let gap = self.gap_to_gross_slip(start);
         let closing = self.limit_gap - gap;
         if !(gap > 0.0 && closing > gap) {
             return None;

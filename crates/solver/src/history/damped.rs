@@ -247,13 +247,7 @@ pub fn plus_interlude_edge_e_within(
     e_tol: f64,
 ) -> Result<Option<f64>, PhysicsError> {
     let steps = check_fold_steps(steps)?;
-    if e_tol.is_nan() || e_tol <= 0.0 {
-        return Err(PhysicsError::InvalidParameter {
-            name: "e_tol",
-            value: e_tol,
-            allowed: "> 0",
-        });
-    }
+    let e_tol = crate::error::positive("e_tol", e_tol)?;
     let holds = |e: f64| has_plus_interlude_e(gamma, alpha, e, steps);
     if e_lo.is_nan() || e_hi.is_nan() || e_hi <= e_lo || holds(e_lo)? || !holds(e_hi)? {
         return Ok(None);
@@ -301,13 +295,7 @@ fn fold_at_e(
 ) -> Result<Option<f64>, PhysicsError> {
     let steps = check_fold_steps(steps)?;
     let e_n = check_restitution(e_n)?;
-    if ln_tol.is_nan() || ln_tol <= 0.0 {
-        return Err(PhysicsError::InvalidParameter {
-            name: "ln_tol",
-            value: ln_tol,
-            allowed: "> 0",
-        });
-    }
+    let ln_tol = crate::error::positive("ln_tol", ln_tol)?;
     fold_at_with(
         |a| slip_history_e(gamma, a, e_n, steps),
         guess,
