@@ -552,6 +552,8 @@ pub struct ContinuumRow {
     /// The chunks before the last, summed ([`Frozen`]).
     frozen: Frozen<Sums>,
     at_limit: (bool, bool),
+    /// Whether some piece is stuck after the last step.
+    stuck: bool,
 }
 
 /// What the step does to the pieces: the limit factor, the indentations, the increment and
@@ -577,6 +579,7 @@ impl ContinuumRow {
             entry: Vec::new(),
             frozen: Frozen::new(Sums::EMPTY),
             at_limit: (false, false),
+            stuck: false,
         }
     }
 
@@ -602,6 +605,11 @@ impl ContinuumRow {
     /// step).
     pub fn at_limit(&self) -> (bool, bool) {
         self.at_limit
+    }
+
+    /// Whether some part of the contact is stuck (below both limits) after the last step.
+    pub fn stuck(&self) -> bool {
+        self.stuck
     }
 
     /// Number of pieces the field is made of now (diagnostics).
@@ -698,6 +706,7 @@ impl ContinuumRow {
             .total(&self.chunks, Sums::EMPTY, |s, ch| *s = s.merge(&ch.sums));
         let integral = total.integral(w, c, d1, radius);
         let (any_plus, any_minus) = (total.slipping[0] > 0, total.slipping[1] > 0);
+        self.stuck = total.stuck_length > 0.0;
         self.at_limit = if finite {
             (any_plus, any_minus)
         } else {

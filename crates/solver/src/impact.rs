@@ -16,6 +16,7 @@ use super::model::{
     ExplicitEuler, Integrator, NormalModel, StepEnd, TangentialModel, VelocityVerlet,
 };
 use super::springs::{SpringRow, StepMotion};
+use super::zones::{self, Level, ZoneClock};
 pub use crate::model::TangentialBodies;
 pub use crate::resolution::Resolution;
 
@@ -142,6 +143,8 @@ struct Stepper<'a, N: NormalModel, T: TangentialModel> {
     /// How far the mean displacement was from its gross-slip value at the start of the
     /// previous grid step (m; [`Stepper::gross_slip_onset`]).
     limit_gap: f64,
+    /// The zones of the row so far ([`crate::zones`]).
+    zones: ZoneClock,
 }
 
 impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
@@ -180,6 +183,7 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
     ) {
         let motion = self.motion(bodies, h, start, end);
         let step = self.row.step_accurate(&motion, end.0, self.limit);
+        self.zones.record(zones::state(&self.row), h);
         // The contact's reach (`d` for an elastic law) at both ends: the contact radius is
         // `a = √(R* reach)`.
         let (b0, b1) = (self.normal.reach(start), self.normal.reach(end));
@@ -348,6 +352,8 @@ const GRADED_FLOOR: f64 = 1e-4;
 /// [`ContinuumRow::step_accurate`] for the continuum row (`springs = 0`).
 ///
 /// `shear_modulus` is `G*` (Pa), `limit` is `c = μ E*/G*` (`∞` for no slip), `radius` is `R*` (m).
+/// Returns how finely the run resolved its approach to gross slip
+/// ([`crate::zones::Level::shortest_zone`], grid steps).
 pub fn run_contact<B: TangentialBodies, N: NormalModel>(
     bodies: &mut B,
     normal: &N,
@@ -355,20 +361,21 @@ pub fn run_contact<B: TangentialBodies, N: NormalModel>(
     radius: f64,
     shear_modulus: f64,
     limit: f64,
-) {
+) -> f64 {
     if springs == 0 {
         let row = ContinuumRow::new(radius);
-        run_contact_with(bodies, normal, row, radius, shear_modulus, limit);
+        run_contact_with(bodies, normal, row, radius, shear_modulus, limit)
     } else {
         let a_max = (radius * normal.max_indentation()).sqrt();
         let row = SpringRow::nodes(a_max, springs, radius);
-        run_contact_with(bodies, normal, row, radius, shear_modulus, limit);
+        run_contact_with(bodies, normal, row, radius, shear_modulus, limit)
     }
 }
 
 /// [`run_contact`] with any normal and tangential model ([`NormalModel`], [`TangentialModel`]),
 /// integrated by the accurate scheme ([`VelocityVerlet`]); monomorphised, so a model costs
-/// nothing for being behind a trait.
+/// nothing for being behind a trait. Returns the shortest zone that ended in gross slip, in
+/// grid steps ([`crate::zones`]).
 pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>(
     bodies: &mut B,
     normal: &N,
@@ -376,7 +383,7 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
     radius: f64,
     shear_modulus: f64,
     limit: f64,
-) {
+) -> f64 {
     let mean = row.touch_mean(bodies.slip_velocity(), normal.rate(0), limit);
     let mut stepper = Stepper {
         row,
@@ -387,6 +394,7 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
         force: 0.0,
         mean,
         limit_gap: f64::INFINITY,
+        zones: ZoneClock::new(normal.contact_time(), normal.steps()),
     };
     let steps = normal.steps();
     // Grid steps that end within GRADED_SPAN of the separation are graded (finite limit only).
@@ -401,6 +409,7 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
     if graded > 0 {
         stepper.graded_end(bodies, steps - graded);
     }
+    stepper.zones.shortest()
 }
 
 /// The end value `m₁` that makes the product rule `∫ a dt · (m₀ + m₁)/2` exact over the step
@@ -532,14 +541,14 @@ pub fn dimensionless_normal(steps: usize) -> Arc<NormalTrajectory> {
 /// as `α` grows (7e-4 at α = 390, 6e-6 at 3.9e5).
 pub const ALPHA_NO_SLIP: f64 = 1e10;
 
-/// Simulate one elastic impact at a fixed resolution and return `P` (no closed-form shortcut;
-/// [`crate::Request::simulate`] is the public door).
+/// Simulate one elastic impact at a fixed resolution and return `P` with how finely the run
+/// resolved its zones (no closed-form shortcut; [`crate::Request::simulate`] is the public door).
 pub(crate) fn simulate_elastic(
     gamma: f64,
     alpha: f64,
     res: Resolution,
     scheme: Scheme,
-) -> Result<f64, PhysicsError> {
+) -> Result<Level, PhysicsError> {
     let gamma = check_gamma(gamma)?;
     let alpha = check_alpha(alpha)?;
     let res = res.validate()?;
@@ -593,11 +602,14 @@ impl Integrator for VelocityVerlet {
 
     /// Hertz normal motion on `res.steps` steps ([`dimensionless_normal`]), the continuum row
     /// (`res.springs = 0`) or `res.springs` springs, [`run_contact`].
-    fn dimensionless_p(shear: f64, limit: f64, res: Resolution) -> f64 {
+    fn dimensionless_p(shear: f64, limit: f64, res: Resolution) -> Level {
         let normal = dimensionless_normal(res.steps);
         let mut cp = ContactPoint { u: 1.0 };
-        run_contact(&mut cp, &*normal, res.springs, 1.0, shear, limit);
-        cp.u
+        let shortest_zone = run_contact(&mut cp, &*normal, res.springs, 1.0, shear, limit);
+        Level {
+            p: cp.u,
+            shortest_zone,
+        }
     }
 }
 
@@ -643,8 +655,8 @@ impl Integrator for ExplicitEuler {
 
     /// The seed's scheme: explicit Euler for the normal and tangential motion together, springs
     /// at the cell midpoints ([`SpringRow::midpoints`], `res.springs ≥ 2`).
-    fn dimensionless_p(shear: f64, limit: f64, res: Resolution) -> f64 {
-        simulate_euler(shear, limit, res)
+    fn dimensionless_p(shear: f64, limit: f64, res: Resolution) -> Level {
+        Level::unwatched(simulate_euler(shear, limit, res))
     }
 }
 

@@ -19,6 +19,7 @@ use serde::Serialize;
 use crate::error::PhysicsError;
 use crate::impact::{Scheme, TangentialBodies};
 use crate::resolution::Resolution;
+use crate::zones::Level;
 
 /// Smallest normal restitution the solver takes (the Kelvin–Voigt law's range is
 /// `[MIN_RESTITUTION, 1]`).
@@ -174,14 +175,16 @@ pub trait ContactLaw {
     fn closed_form(gamma: f64, alpha: f64, e_n: f64) -> Option<f64>;
 
     /// `P` of the dimensionless impact at resolution `res` (no closed form, no estimate), with
-    /// the checked `(γ, α)` and parameters of [`ContactLaw::prepare`].
+    /// the checked `(γ, α)` and parameters of [`ContactLaw::prepare`], and how finely the run
+    /// resolved the zones of its slip history ([`Level`]: the refinement accepts a level only
+    /// where it did; [`Level::unwatched`] for a law that does not watch them).
     fn simulate(
         gamma: f64,
         alpha: f64,
         parameters: Self::Parameters,
         res: Resolution,
         scheme: Scheme,
-    ) -> Result<f64, PhysicsError>;
+    ) -> Result<Level, PhysicsError>;
 
     /// The values of [`PARAMETER_KEYS`] for `parameters`, in their order (0 for a key that is
     /// not this law's).
@@ -242,4 +245,7 @@ pub struct NormalSummary {
     pub delta_v1: f64,
     /// Change of sphere 2's normal velocity over the contact (m/s; 0 for a wall).
     pub delta_v2: f64,
+    /// How finely the run resolved its approach to gross slip ([`Level::shortest_zone`], grid
+    /// steps; `∞` for a law that does not watch it).
+    pub shortest_zone: f64,
 }

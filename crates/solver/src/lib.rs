@@ -23,6 +23,7 @@ pub mod springs;
 pub mod thornton;
 pub mod thornton_mdr;
 pub mod units;
+pub mod zones;
 
 pub use error::PhysicsError;
 pub use impact::{Resolution, Scheme};

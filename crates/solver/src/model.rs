@@ -110,6 +110,13 @@ pub trait NormalModel {
 pub trait TangentialModel {
     /// Whether some part of the contact is at the `+` and at the `−` Coulomb limit.
     fn at_limit(&self) -> (bool, bool);
+    /// Whether some part of the contact is stuck (below both limits) after the last step: with
+    /// [`TangentialModel::at_limit`], the zone of the slip history the row is in
+    /// ([`crate::zones`]). The default, `true`, counts zones by their limits only.
+    #[inline(always)]
+    fn stuck(&self) -> bool {
+        true
+    }
     /// Whether the stepper splits a step at the onset of gross slip inside it. There the
     /// friction force joins `±μ F_N` with a kink, and a step that straddles it integrates the
     /// impulse with an error of order `h²` that depends on where in the step the onset falls:
@@ -201,7 +208,12 @@ pub trait Integrator {
     /// `P` of the dimensionless impact of one solid sphere (`m* = R* = E* = v_z0 = 1`,
     /// `u0 = 1`) at resolution `res`, with `G* = shear = (2/7)γ²` and Coulomb limit
     /// `c = limit` (`∞` for no slip). `res` is valid for the scheme.
-    fn dimensionless_p(shear: f64, limit: f64, res: crate::resolution::Resolution) -> f64;
+    /// The run's zones are watched where the scheme can ([`crate::zones::Level`]).
+    fn dimensionless_p(
+        shear: f64,
+        limit: f64,
+        res: crate::resolution::Resolution,
+    ) -> crate::zones::Level;
 }
 
 /// The accurate scheme: velocity Verlet for the bodies, product integration of the friction
@@ -296,13 +308,13 @@ mod tests {
             let row = ContinuumRow::new(1.0);
             assert_eq!(
                 p_with(g, a, 512, row).to_bits(),
-                continuum.unwrap().to_bits()
+                continuum.unwrap().p.to_bits()
             );
             let res = Resolution {
                 springs: 64,
                 steps: 256,
             };
-            let springs = simulate_elastic(g, a, res, Scheme::Accurate).unwrap();
+            let springs = simulate_elastic(g, a, res, Scheme::Accurate).unwrap().p;
             let a_max = dimensionless_normal(256).max_indentation.sqrt();
             let row = SpringRow::nodes(a_max, 64, 1.0);
             assert_eq!(p_with(g, a, 256, row).to_bits(), springs.to_bits());

@@ -11,6 +11,7 @@ use crate::impact::{ladder_start, memory_bytes, plan, work, Limits, Scheme};
 use crate::law::Floor;
 use crate::registry::LawParameters;
 use crate::resolution::Resolution;
+use crate::zones::Level;
 
 /// How the accuracy of a result is chosen.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -340,18 +341,29 @@ pub fn refine_observed(
     run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
-    refine_core(base, (order, FLOOR), tol, richardson, limits, run, observer)
+    let mut run = run;
+    refine_core(
+        base,
+        (order, FLOOR),
+        tol,
+        richardson,
+        limits,
+        |res| run(res).map(Level::unwatched),
+        observer,
+    )
 }
 
 /// [`refine_observed`] with the floor of the Richardson estimate as a share of the last raw
-/// difference (`(order, floor)`), which a law sets by how regularly it converges.
+/// difference (`(order, floor)`), which a law sets by how regularly it converges, and runs
+/// that report how finely they resolved their zones: a level whose estimate is within `tol`
+/// is accepted only where [`Level::resolved`].
 pub(crate) fn refine_core(
     base: Resolution,
     (order, floor): (i32, Floor),
     tol: f64,
     richardson: bool,
     limits: Limits,
-    mut run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
+    mut run: impl FnMut(Resolution) -> Result<Level, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
     let tol = positive("tol", tol)?;
@@ -375,7 +387,8 @@ pub(crate) fn refine_core(
             level: k,
             resolution: res,
         });
-        values.push(run(res)?);
+        let level = run(res)?;
+        values.push(level.p);
         if values.len() < 3 {
             observer(RefineEvent::Finished {
                 level: k,
@@ -397,6 +410,7 @@ pub(crate) fn refine_core(
             });
             best = (est, res);
             if est <= tol
+                && level.resolved()
                 && (!richardson || previous_estimate_agrees(&values, order, tol, floor, res.steps))
             {
                 return Ok((value, est, res));
@@ -453,7 +467,7 @@ pub(crate) fn refine_to(
     tol: f64,
     (scheme, limits): (Scheme, Limits),
     ladder: Ladder,
-    run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
+    run: impl FnMut(Resolution) -> Result<Level, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
     plan(gamma, tol, scheme, limits)?;
@@ -478,7 +492,7 @@ pub(crate) fn solve_core(
     (law, e_n): (LawParameters, f64),
     floor: Floor,
     closed: Option<f64>,
-    mut run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
+    mut run: impl FnMut(Resolution) -> Result<Level, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
 ) -> Result<Solution, PhysicsError> {
     match accuracy {
@@ -519,7 +533,7 @@ pub(crate) fn solve_core(
         }
         Accuracy::Fixed(res) => {
             let res = res.validate()?;
-            let fine = run(res)?;
+            let fine = run(res)?.p;
             let halved = |k: u32| Resolution {
                 springs: res.springs >> k,
                 steps: res.steps >> k,
@@ -534,7 +548,7 @@ pub(crate) fn solve_core(
             } else {
                 let mut values = [fine; 4];
                 for k in 1..=FIXED_HALVINGS {
-                    values[k as usize] = run(halved(k))?;
+                    values[k as usize] = run(halved(k))?.p;
                 }
                 match fixed_estimate(values, scheme.order()) {
                     Ok(est) => (fine, est, res),

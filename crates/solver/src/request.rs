@@ -121,7 +121,7 @@ impl Request {
         let e_n = self.law.check_restitution(self.e_n)?;
         with_law!(self.law.answering(e_n), L => {
             let (gamma, alpha, parameters) = L::prepare(self.gamma, self.alpha, e_n, self.scheme)?;
-            L::simulate(gamma, alpha, parameters, res, self.scheme)
+            Ok(L::simulate(gamma, alpha, parameters, res, self.scheme)?.p)
         })
     }
 

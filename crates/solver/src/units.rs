@@ -16,6 +16,7 @@ use super::impact::{Limits, Resolution, Scheme, TangentialBodies};
 use super::law::{BodiesNormal, ContactLaw, Floor};
 use super::refine::{refine_to, Ladder};
 use super::registry::{with_bodies_law, BodiesLaw, LawParameters};
+use super::zones::Level;
 
 /// One impact in physical units, in the vocabulary of the lookup ([`oblique_physics::rebound`]):
 /// the same [`Pair`], materials and [`Incident`] state that a table query takes.
@@ -255,6 +256,12 @@ impl PhysicalImpact {
     /// Simulate at a fixed resolution (`springs` on the half-row, `steps` per contact time;
     /// Kelvin–Voigt bodies take the continuum row only, `springs = 0`).
     pub fn simulate(&self, res: Resolution) -> Result<PhysicalOutcome, PhysicsError> {
+        Ok(self.simulate_level(res)?.0)
+    }
+
+    /// [`PhysicalImpact::simulate`] with how finely the run resolved its approach to gross
+    /// slip ([`Level::shortest_zone`]).
+    fn simulate_level(&self, res: Resolution) -> Result<(PhysicalOutcome, f64), PhysicsError> {
         let res = res.validate()?;
         let groups = self.groups()?;
         let normal = self.normal(&groups);
@@ -283,7 +290,7 @@ impl PhysicalImpact {
             v_z: self.incident.other.v_z + normal.delta_v2,
             omega: bodies.w2,
         });
-        Ok(PhysicalOutcome {
+        let outcome = PhysicalOutcome {
             sphere,
             other,
             p,
@@ -295,7 +302,8 @@ impl PhysicalImpact {
             law,
             groups,
             resolution: res,
-        })
+        };
+        Ok((outcome, normal.shortest_zone))
     }
 
     /// Simulate with automatic refinement until the error estimate of `P` is ≤ `tol`.
@@ -321,10 +329,10 @@ impl PhysicalImpact {
             (Scheme::Accurate, Limits::default()),
             ladder,
             |res| {
-                let out = self.simulate(res)?;
+                let (out, shortest_zone) = self.simulate_level(res)?;
                 let p = out.p.unwrap_or(0.0);
                 last = Some(out);
-                Ok(p)
+                Ok(Level { p, shortest_zone })
             },
             &mut |_| {},
         )?;

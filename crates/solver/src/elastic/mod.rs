@@ -15,6 +15,7 @@ use crate::impact::{check_alpha, check_gamma, run_contact, simulate_elastic};
 use crate::impact::{Scheme, TangentialBodies};
 use crate::law::{BodiesNormal, ContactLaw, Floor, NormalSummary, PARAMETER_KEYS};
 use crate::resolution::Resolution;
+use crate::zones::Level;
 
 /// The share of the last raw difference `|P_k − P_{k−1}|` below which the Richardson estimate
 /// of the elastic law never falls (`refine::extrapolate`); the default of
@@ -90,7 +91,7 @@ impl ContactLaw for Elastic {
         _parameters: Parameters,
         res: Resolution,
         scheme: Scheme,
-    ) -> Result<f64, PhysicsError> {
+    ) -> Result<Level, PhysicsError> {
         simulate_elastic(gamma, alpha, res, scheme)
     }
 
@@ -127,13 +128,14 @@ impl ContactLaw for Elastic {
             approach_speed: normal.approach_speed,
         }
         .trajectory(res.steps);
-        run_contact(bodies, &normal, res.springs, radius, shear_modulus, limit);
+        let shortest_zone = run_contact(bodies, &normal, res.springs, radius, shear_modulus, limit);
         Ok(NormalSummary {
             contact_time: normal.contact_time,
             peak_force: normal.peak_force,
             max_indentation: normal.max_indentation,
             delta_v1: normal.delta_v1,
             delta_v2: normal.delta_v2,
+            shortest_zone,
         })
     }
 }

@@ -16,6 +16,10 @@ impl TangentialModel for ContinuumRow {
         ContinuumRow::at_limit(self)
     }
     #[inline(always)]
+    fn stuck(&self) -> bool {
+        ContinuumRow::stuck(self)
+    }
+    #[inline(always)]
     fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
         ContinuumRow::step_accurate(self, m, d1, c)
     }

@@ -22,6 +22,7 @@ use crate::law::{
 };
 use crate::model::{close_step_elastic, NormalModel, StepEnd, TangentialModel};
 use crate::springs::{StepMotion, StepResult};
+use crate::zones::Level;
 use normal::{FineMotion, ViscoelasticBodies, ViscoelasticTrajectory};
 use row::ViscoelasticRow;
 
@@ -359,11 +360,19 @@ fn fine_normal(tau: f64) -> Rc<FineMotion> {
 /// `m_t = 2/7`) with relaxation time `τ̂ > 0`, `G* = shear`, Coulomb limit factor `limit`
 /// (`∞`: no slip), at resolution `res` (continuum row: `res.springs` is ignored).
 pub fn dimensionless_p(shear: f64, limit: f64, tau: f64, res: Resolution) -> f64 {
+    dimensionless_level(shear, limit, tau, res).p
+}
+
+/// [`dimensionless_p`] with how finely the run resolved its zones ([`Level`]).
+pub fn dimensionless_level(shear: f64, limit: f64, tau: f64, res: Resolution) -> Level {
     let normal = dimensionless_normal(res.steps, tau);
     let mut cp = ContactPoint { u: 1.0 };
     let row = ViscoelasticRow::new(1.0, tau);
-    run_contact_with(&mut cp, &*normal, row, 1.0, shear, limit);
-    cp.u
+    let shortest_zone = run_contact_with(&mut cp, &*normal, row, 1.0, shear, limit);
+    Level {
+        p: cp.u,
+        shortest_zone,
+    }
 }
 
 impl NormalModel for ViscoelasticTrajectory {
@@ -397,6 +406,10 @@ impl TangentialModel for ViscoelasticRow {
     #[inline(always)]
     fn at_limit(&self) -> (bool, bool) {
         ViscoelasticRow::at_limit(self)
+    }
+    #[inline(always)]
+    fn stuck(&self) -> bool {
+        self.stuck_length() > 0.0
     }
     #[inline(always)]
     fn step_accurate(&mut self, m: &StepMotion, d1: f64, c: f64) -> StepResult {
@@ -523,14 +536,14 @@ impl ContactLaw for KelvinVoigt {
         dissipative_closed_form(gamma, alpha, e_n)
     }
 
-    /// The continuum row only ([`dimensionless_p`]).
+    /// The continuum row only ([`dimensionless_level`]).
     fn simulate(
         gamma: f64,
         alpha: f64,
         parameters: Parameters,
         res: Resolution,
         _scheme: Scheme,
-    ) -> Result<f64, PhysicsError> {
+    ) -> Result<Level, PhysicsError> {
         let res = res.validate()?;
         continuum_only(
             res.springs,
@@ -538,7 +551,7 @@ impl ContactLaw for KelvinVoigt {
             "the Kelvin-Voigt law is solved on the continuum row only (springs 0)",
         )?;
         let (shear, limit) = shear_and_limit(gamma, alpha);
-        Ok(dimensionless_p(shear, limit, parameters.tau, res))
+        Ok(dimensionless_level(shear, limit, parameters.tau, res))
     }
 
     /// `[τ̂, 0]`.
@@ -607,13 +620,14 @@ impl ContactLaw for KelvinVoigt {
         }
         .trajectory(res.steps);
         let row = ViscoelasticRow::new(radius, tau);
-        run_contact_with(bodies, &normal, row, radius, shear_modulus, limit);
+        let shortest_zone = run_contact_with(bodies, &normal, row, radius, shear_modulus, limit);
         Ok(NormalSummary {
             contact_time: normal.contact_time,
             peak_force: normal.peak_force,
             max_indentation: normal.max_indentation,
             delta_v1: normal.delta_v1,
             delta_v2: normal.delta_v2,
+            shortest_zone,
         })
     }
 }

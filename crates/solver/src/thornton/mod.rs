@@ -31,6 +31,7 @@ use crate::law::{
 use crate::model::{NormalModel, TangentialModel};
 use crate::resolution::Resolution;
 use crate::springs::{StepMotion, StepResult};
+use crate::zones::Level;
 use normal::{HertzPhase, Loading, Motion, Trajectory};
 use row::ThorntonRow;
 
@@ -264,7 +265,7 @@ impl ContactLaw for Thornton {
         parameters: Parameters,
         res: Resolution,
         _scheme: Scheme,
-    ) -> Result<f64, PhysicsError> {
+    ) -> Result<Level, PhysicsError> {
         let res = res.validate()?;
         continuum_only(
             res.springs,
@@ -273,7 +274,9 @@ impl ContactLaw for Thornton {
         )?;
         let (shear, limit) = shear_and_limit(gamma, alpha);
         let motion = dimensionless_motion(parameters.yield_pressure);
-        Ok(dimensionless_p(shear, limit, &motion, res.steps))
+        Ok(Level::unwatched(dimensionless_p(
+            shear, limit, &motion, res.steps,
+        )))
     }
 
     /// `[0, p̂_y]`.
@@ -347,7 +350,8 @@ impl ContactLaw for Thornton {
             motion.unloading.ratio,
             motion.unloading.plastic_indentation,
         );
-        run_contact_with(bodies, &trajectory, row, radius, shear_modulus, limit);
+        let shortest_zone =
+            run_contact_with(bodies, &trajectory, row, radius, shear_modulus, limit);
         // The normal impulse J = (V + v_r) m*: each body's normal velocity changes by J/m_i.
         let change = (motion.approach_speed + motion.rebound.speed) / inv_mass;
         Ok(NormalSummary {
@@ -356,6 +360,7 @@ impl ContactLaw for Thornton {
             max_indentation: motion.max_indentation,
             delta_v1: -change * normal.inv_mass1,
             delta_v2: change * normal.inv_mass2,
+            shortest_zone,
         })
     }
 }

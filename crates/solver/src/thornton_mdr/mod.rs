@@ -31,6 +31,7 @@ use crate::thornton::line::Truncated;
 use crate::thornton::normal::{two_part_grid, Loading, Motion};
 use crate::thornton::row::ThorntonRow;
 use crate::thornton::{elastic_peak_pressure, yield_indentation, yield_pressure_for_restitution};
+use crate::zones::Level;
 
 /// Sub-steps of RK4 per grid step of the unloading, and in its last step.
 const SUBSTEPS: usize = 8;
@@ -432,7 +433,7 @@ impl ContactLaw for ThorntonMdr {
         parameters: Parameters,
         res: Resolution,
         _scheme: Scheme,
-    ) -> Result<f64, PhysicsError> {
+    ) -> Result<Level, PhysicsError> {
         let res = res.validate()?;
         continuum_only(
             res.springs,
@@ -441,7 +442,9 @@ impl ContactLaw for ThorntonMdr {
         )?;
         let (shear, limit) = shear_and_limit(gamma, alpha);
         let motion = cached_motion(parameters.yield_pressure);
-        Ok(dimensionless_p(shear, limit, &motion, res.steps))
+        Ok(Level::unwatched(dimensionless_p(
+            shear, limit, &motion, res.steps,
+        )))
     }
 
     /// Thornton's ([`crate::thornton::Thornton`]): the same parameter.
@@ -508,7 +511,8 @@ impl ContactLaw for ThorntonMdr {
             loading.yield_indentation,
             motion.thornton.max_indentation,
         );
-        run_contact_with(bodies, &trajectory, row, radius, shear_modulus, limit);
+        let shortest_zone =
+            run_contact_with(bodies, &trajectory, row, radius, shear_modulus, limit);
         let change = (normal.approach_speed + motion.rebound_speed) / inv_mass;
         Ok(NormalSummary {
             contact_time: motion.contact_time(),
@@ -516,6 +520,7 @@ impl ContactLaw for ThorntonMdr {
             max_indentation: motion.thornton.max_indentation,
             delta_v1: -change * normal.inv_mass1,
             delta_v2: change * normal.inv_mass2,
+            shortest_zone,
         })
     }
 }
