@@ -183,7 +183,8 @@ impl<N: NormalModel, T: TangentialModel> Stepper<'_, N, T> {
     ) {
         let motion = self.motion(bodies, h, start, end);
         let step = self.row.step_accurate(&motion, end.0, self.limit);
-        self.zones.record(zones::state(&self.row), h);
+        self.zones
+            .record(zones::state(self.row.at_limit(), self.row.stuck()), h);
         // The contact's reach (`d` for an elastic law) at both ends: the contact radius is
         // `a = √(R* reach)`.
         let (b0, b1) = (self.normal.reach(start), self.normal.reach(end));

@@ -21,8 +21,6 @@
 //! (`docs/solver.md`, "Error estimates"). The zones of other kinds were tried too: counting
 //! every zone cost 13–21 % more steps over the random points and changed nothing there.
 
-use crate::model::TangentialModel;
-
 /// Fewest grid steps (the zone's length over `t_c/N`) that a zone ending in gross slip must
 /// span for its level to be accepted. Steps split at events inside the zone, or graded near
 /// the separation, do not count more: they are not what resolves the zone.
@@ -104,13 +102,12 @@ impl ZoneClock {
     }
 }
 
-/// The state of the zone a row is in after a step: the limits part of the contact is at, and
-/// whether part of it is stuck.
+/// The state of the zone a row is in after a step: whether part of the contact is at the `+`
+/// and at the `−` limit (`TangentialModel::at_limit`), and whether part of it is stuck
+/// (`TangentialModel::stuck`).
 #[inline(always)]
-pub(crate) fn state<T: TangentialModel>(row: &T) -> u8 {
-    let (plus, minus) = row.at_limit();
-    let stuck = if row.stuck() { STUCK } else { 0 };
-    u8::from(plus) | u8::from(minus) << 1 | stuck
+pub(crate) fn state((plus, minus): (bool, bool), stuck: bool) -> u8 {
+    u8::from(plus) | u8::from(minus) << 1 | if stuck { STUCK } else { 0 }
 }
 
 #[cfg(test)]
