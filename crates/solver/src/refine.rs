@@ -88,6 +88,15 @@ pub enum NoEstimate {
         /// `P(h) − P(2h)`, `P(2h) − P(4h)`, `P(4h) − P(8h)`.
         differences: [f64; 3],
     },
+    /// Where the stuck part of the contact shrinks to nothing before gross slip, that zone
+    /// spans fewer than [`crate::zones::ZONE_STEPS`] steps: until it spans more, the error does
+    /// not follow the scheme's order and the coarser runs say nothing of it.
+    Unresolved {
+        /// Grid steps the zone spans ([`Level::shortest_zone`]).
+        zone_steps: f64,
+        /// Steps asked for.
+        steps: usize,
+    },
 }
 
 impl std::fmt::Display for NoEstimate {
@@ -111,6 +120,13 @@ impl std::fmt::Display for NoEstimate {
                 "the runs at 1, 1/2, 1/4 and 1/8 of the resolution differ by {a:.1e}, {b:.1e}, \
                  {c:.1e}, not steadily shrinking at the scheme's order (outside the asymptotic \
                  range)"
+            ),
+            NoEstimate::Unresolved { zone_steps, steps } => write!(
+                f,
+                "at {steps} steps the zone where the stuck part of the contact shrinks to nothing \
+                 before gross slip spans {zone_steps:.1} steps, fewer than {}: the error is not \
+                 yet of the scheme's order there (more steps resolve it)",
+                crate::zones::ZONE_STEPS
             ),
         }
     }
@@ -533,7 +549,8 @@ pub(crate) fn solve_core(
         }
         Accuracy::Fixed(res) => {
             let res = res.validate()?;
-            let fine = run(res)?.p;
+            let level = run(res)?;
+            let fine = level.p;
             let halved = |k: u32| Resolution {
                 springs: res.springs >> k,
                 steps: res.steps >> k,
@@ -542,6 +559,12 @@ pub(crate) fn solve_core(
             if (res.springs != 0 && coarsest.springs < 2) || coarsest.steps < 8 {
                 no_estimate = Some(NoEstimate::TooCoarse {
                     springs: res.springs,
+                    steps: res.steps,
+                });
+                (fine, f64::INFINITY, res)
+            } else if !level.resolved() {
+                no_estimate = Some(NoEstimate::Unresolved {
+                    zone_steps: level.shortest_zone,
                     steps: res.steps,
                 });
                 (fine, f64::INFINITY, res)

@@ -4,7 +4,7 @@
 //! simulations at a much higher resolution than the run under test.
 
 use oblique_solver::impact::base_resolution;
-use oblique_solver::{Accuracy, Method, Request, Resolution, Scheme};
+use oblique_solver::{Accuracy, Method, NoEstimate, Request, Resolution, Scheme};
 
 const ACC: Scheme = Scheme::Accurate;
 
@@ -507,4 +507,31 @@ fn a_level_is_accepted_only_once_the_approach_to_gross_slip_is_resolved() {
             s.resolution.steps
         );
     }
+}
+
+/// A fixed resolution whose approach to gross slip spans fewer than 8 steps states no estimate
+/// (γ = 2, α = 1.45: 4.1 steps at 512, where the error is 9e-7 and the differences of the
+/// halved runs, 5.1e-6 and 2.0e-5, shrink by 3.9 as if second order); at 4096 steps it does.
+#[test]
+fn a_fixed_resolution_that_does_not_resolve_the_approach_to_gross_slip_has_no_estimate() {
+    let at = |steps| {
+        Request::new(2.0, 1.45)
+            .accuracy(Accuracy::Fixed(res(0, steps)))
+            .scheme(ACC)
+            .forced(true)
+            .solve()
+            .unwrap()
+    };
+    let coarse = at(512);
+    assert!(
+        matches!(coarse.no_estimate, Some(NoEstimate::Unresolved { zone_steps, steps: 512 }) if zone_steps < 8.0),
+        "{:?}",
+        coarse.no_estimate
+    );
+    assert_eq!(coarse.error_estimate, f64::INFINITY);
+    let fine = at(4096);
+    assert!(!matches!(
+        fine.no_estimate,
+        Some(NoEstimate::Unresolved { .. })
+    ));
 }
