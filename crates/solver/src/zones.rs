@@ -15,11 +15,14 @@
 //! when every zone that ends in gross slip and lasts at least [`ZONE_MIN`] `t_c` spans at least
 //! [`ZONE_STEPS`] grid steps ([`Level::resolved`]); shorter ones (a zone being born, next to a
 //! fold) are left to the estimate, which bounds the extra levels this rule can ask for at
-//! `ZONE_STEPS / ZONE_MIN` = 4000 steps. Over 609 points of γ 1.95–2.15, α 1.2–2.6 this took
-//! the levels accepted above their tolerance from 3 to 1 at tol 1e-6 and from 4 to 1 at 2e-6,
-//! for 4.6 % (1e-6) and 8.4 % (2e-6) more steps over 1 499 random points of γ 0.1–3.5
-//! (`docs/solver.md`, "Error estimates"). The zones of other kinds were tried too: counting
-//! every zone cost 13–21 % more steps over the random points and changed nothing there.
+//! `ZONE_STEPS / ZONE_MIN` = 2000 steps. Over 609 points of γ 1.95–2.15, α 1.2–2.6 this took
+//! the levels accepted above their tolerance from 3 to 1 at tol 1e-6 and from 4 to 2 at 2e-6,
+//! for 0.4–2.3 % more steps over random points (`docs/solver.md`, "Error estimates"). Shorter
+//! zones cost more than they bring: counting those from 0.002 `t_c` took the 2e-6 grid to 1
+//! above its tolerance but cost 33 % more steps over random points in partial slip (γ 1–3.5),
+//! where no error was above its tolerance either way, and `configs/full.toml` took 41 % longer
+//! to build; counting every zone, not only those that end in gross slip, 13–21 % over random
+//! points.
 
 /// Fewest grid steps (the zone's length over `t_c/N`) that a zone ending in gross slip must
 /// span for its level to be accepted. Steps split at events inside the zone, or graded near
@@ -27,7 +30,7 @@
 pub const ZONE_STEPS: f64 = 8.0;
 
 /// Zones shorter than this fraction of the contact time are not counted by [`ZONE_STEPS`].
-pub const ZONE_MIN: f64 = 0.002;
+pub const ZONE_MIN: f64 = 0.004;
 
 /// The bit of a zone's state that says part of the contact is stuck.
 const STUCK: u8 = 4;
