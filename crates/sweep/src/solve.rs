@@ -167,7 +167,12 @@ pub fn solve_points_with(
         .iter()
         .map(|pt| opts.store.and_then(|s| s.get(rec(pt).key())))
         .collect();
-    let todo: Vec<usize> = (0..points.len()).filter(|&i| out[i].is_none()).collect();
+    // Solved grouped by `e_n` (stable: in their order within one `e_n`): the threads then take
+    // runs of one `e_n`, whose normal motion each thread computes once and caches, instead of
+    // again for nearly every node when the values of `e_n` alternate along the list (the
+    // answers do not depend on the order).
+    let mut todo: Vec<usize> = (0..points.len()).filter(|&i| out[i].is_none()).collect();
+    todo.sort_by(|&a, &b| points[a].e_n.total_cmp(&points[b].e_n));
     if opts.strict {
         if let Some(&i) = todo.first() {
             return Err(RunError::Missing {
