@@ -35,8 +35,9 @@ pub enum PhysicsError {
     Input(#[from] oblique_physics::InvalidInput),
     /// The requested tolerance needs more resolution than the configured limit allows.
     #[error(
-        "tolerance {tol:e} not reached: best error estimate {achieved:e} at {res} (limit \
-         {max_steps} steps); loosen the tolerance or raise the limit",
+        "tolerance {tol:e} not reached: {} at {res} (limit {max_steps} steps); loosen the \
+         tolerance or raise the limit",
+        unreached(*achieved, *zone_steps),
         res = Resolution { springs: *springs, steps: *steps }
     )]
     ToleranceUnreachable {
@@ -50,6 +51,10 @@ pub enum PhysicsError {
         steps: usize,
         /// Maximum number of steps allowed.
         max_steps: usize,
+        /// Where the estimate was within `tol` but the level did not resolve the approach to
+        /// gross slip ([`crate::zones::Level::resolved`]): the steps that zone spanned; `∞`
+        /// otherwise.
+        zone_steps: f64,
     },
     /// The tolerance cannot be reached within the limits even in the most favourable case
     /// (found before anything is simulated).
@@ -195,6 +200,21 @@ pub fn positive(name: &'static str, value: f64) -> Result<f64, PhysicsError> {
     }
 }
 
+/// The first words of [`PhysicsError::ToleranceUnreachable`]: the best estimate, or why an
+/// estimate within the tolerance was not accepted.
+fn unreached(achieved: f64, zone_steps: f64) -> String {
+    if zone_steps.is_finite() {
+        format!(
+            "the estimate {achieved:e} is within it, but the zone where the stuck part of the \
+             contact shrinks to nothing before gross slip spans {zone_steps:.1} steps, fewer than \
+             the {} its estimate needs,",
+            crate::zones::ZONE_STEPS
+        )
+    } else {
+        format!("best error estimate {achieved:e}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -207,6 +227,7 @@ mod tests {
             springs,
             steps: 4096,
             max_steps: 1 << 20,
+            zone_steps: f64::INFINITY,
         };
         let infeasible = |springs| PhysicsError::Infeasible {
             tol: 1e-12,

@@ -385,6 +385,8 @@ pub(crate) fn refine_core(
     let tol = positive("tol", tol)?;
     let mut values = Vec::new();
     let mut best = (f64::INFINITY, base);
+    // The zone's steps where the last estimate was within `tol` but its level unresolved.
+    let mut unresolved = f64::INFINITY;
     for k in 0.. {
         let res = base.doubled(k);
         if res.steps > limits.max_steps
@@ -397,6 +399,7 @@ pub(crate) fn refine_core(
                 springs: best.1.springs,
                 steps: best.1.steps,
                 max_steps: limits.max_steps,
+                zone_steps: unresolved,
             });
         }
         observer(RefineEvent::Started {
@@ -425,6 +428,11 @@ pub(crate) fn refine_core(
                 tol,
             });
             best = (est, res);
+            unresolved = if est <= tol && !level.resolved() {
+                level.shortest_zone
+            } else {
+                f64::INFINITY
+            };
             if est <= tol
                 && level.resolved()
                 && (!richardson || previous_estimate_agrees(&values, order, tol, floor, res.steps))
@@ -440,6 +448,17 @@ pub(crate) fn refine_core(
                 springs: res.springs.saturating_mul(1usize << more),
                 steps: res.steps.saturating_mul(1usize << more),
             };
+            if !limits.admits(target, Scheme::Accurate) && unresolved.is_finite() {
+                // The estimate is within `tol`; only the zone asks for the next level.
+                return Err(PhysicsError::ToleranceUnreachable {
+                    tol,
+                    achieved: est,
+                    springs: res.springs,
+                    steps: res.steps,
+                    max_steps: limits.max_steps,
+                    zone_steps: unresolved,
+                });
+            }
             if !limits.admits(target, Scheme::Accurate) {
                 return Err(PhysicsError::Infeasible {
                     tol,

@@ -10,7 +10,7 @@
 //! zone spans several steps its error does not fall like `1/N²`, and the levels' differences
 //! can look second order while the value is still far off: there the error times `N²` is
 //! −0.27, +0.23, +0.72, +0.70, +0.96, +0.99 from 256 to 8192 steps, almost all of the change
-//! gained over that zone, and the refinement at tol 1e-6 accepted 512 steps (the zone 3.6 steps
+//! gained over that zone, and the refinement at tol 1e-6 accepted 512 steps (the zone 4.1 steps
 //! long) with an estimate of 5.1e-7 where the error was 2.6e-6. So a level is accepted only
 //! when every zone that ends in gross slip and lasts at least [`ZONE_MIN`] `t_c` spans at least
 //! [`ZONE_STEPS`] grid steps ([`Level::resolved`]); shorter ones (a zone being born, next to a

@@ -534,3 +534,29 @@ fn a_fixed_resolution_that_does_not_resolve_the_approach_to_gross_slip_has_no_es
         Some(NoEstimate::Unresolved { .. })
     ));
 }
+
+/// Where the limits stop the refinement after an estimate within the tolerance that was not
+/// accepted because its level did not resolve the approach to gross slip, the error says so
+/// (γ = 2, α = 1.45, tol 3e-6, at most 1024 steps: the zone spans 7.3 steps there).
+#[test]
+fn an_unresolved_level_at_the_limit_is_named_in_the_error() {
+    let limits = oblique_solver::impact::Limits {
+        max_steps: 1024,
+        ..Default::default()
+    };
+    let err = Request::new(2.0, 1.45)
+        .scheme(ACC)
+        .accuracy(Accuracy::Tolerance(3e-6))
+        .limits(limits)
+        .solve()
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            oblique_solver::PhysicsError::ToleranceUnreachable { zone_steps, achieved, .. }
+                if zone_steps < 8.0 && achieved <= 3e-6
+        ),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("fewer than"), "{err}");
+}
