@@ -354,10 +354,9 @@ pub fn refine_observed(
     tol: f64,
     richardson: bool,
     limits: Limits,
-    run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
+    mut run: impl FnMut(Resolution) -> Result<f64, PhysicsError>,
     observer: &mut dyn FnMut(RefineEvent),
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
-    let mut run = run;
     refine_core(
         base,
         (order, FLOOR),
@@ -387,20 +386,22 @@ pub(crate) fn refine_core(
     let mut best = (f64::INFINITY, base);
     // The zone's steps where the last estimate was within `tol` but its level unresolved.
     let mut unresolved = f64::INFINITY;
+    let unreachable =
+        |(achieved, at): (f64, Resolution), zone_steps| PhysicsError::ToleranceUnreachable {
+            tol,
+            achieved,
+            springs: at.springs,
+            steps: at.steps,
+            max_steps: limits.max_steps,
+            zone_steps,
+        };
     for k in 0.. {
         let res = base.doubled(k);
         if res.steps > limits.max_steps
             || work(res) > limits.max_work
             || memory_bytes(res, Scheme::Accurate) > limits.max_memory
         {
-            return Err(PhysicsError::ToleranceUnreachable {
-                tol,
-                achieved: best.0,
-                springs: best.1.springs,
-                steps: best.1.steps,
-                max_steps: limits.max_steps,
-                zone_steps: unresolved,
-            });
+            return Err(unreachable(best, unresolved));
         }
         observer(RefineEvent::Started {
             level: k,
@@ -448,18 +449,11 @@ pub(crate) fn refine_core(
                 springs: res.springs.saturating_mul(1usize << more),
                 steps: res.steps.saturating_mul(1usize << more),
             };
-            if !limits.admits(target, Scheme::Accurate) && unresolved.is_finite() {
-                // The estimate is within `tol`; only the zone asks for the next level.
-                return Err(PhysicsError::ToleranceUnreachable {
-                    tol,
-                    achieved: est,
-                    springs: res.springs,
-                    steps: res.steps,
-                    max_steps: limits.max_steps,
-                    zone_steps: unresolved,
-                });
-            }
             if !limits.admits(target, Scheme::Accurate) {
+                if unresolved.is_finite() {
+                    // The estimate is within `tol`; only the zone asks for the next level.
+                    return Err(unreachable(best, unresolved));
+                }
                 return Err(PhysicsError::Infeasible {
                     tol,
                     gamma: f64::NAN,
