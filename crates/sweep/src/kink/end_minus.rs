@@ -87,53 +87,19 @@ pub fn end_minus_surface(
     // and the start.
     let i_start = ((START_GAMMA / h).round() as i64).max(i_lo);
     let (t_lo, t_hi) = (i_lo.min(i_start), i_hi.max(i_start));
-    let n_t = (t_hi - t_lo + 1) as usize;
-    let min_row = ((1.0 - oblique_solver::law::MIN_RESTITUTION) * rows_per_unit).round() as usize;
-    let n_e = (((1.0 - e_lo) * rows_per_unit - 1e-9).ceil().max(0.0) as usize + 2).min(min_row + 1);
+    // The rows of the stored widest grid where they hold these columns with this start, else
+    // traced ([`super::stored`]: the same bits).
+    let n_e =
+        (((1.0 - e_lo) * rows_per_unit - 1e-9).ceil().max(0.0) as usize + 2).min(min_row() + 1);
+    let stored = super::stored::end_minus();
     let rows = (0..n_e)
         .into_par_iter()
-        .map(|l| {
-            let e_n = super::e_of_row(l, rows_per_unit);
-            let mut inv = vec![f64::NAN; n_t];
-            let locate = |i: usize, guess: f64, span: f64| -> Result<Option<f64>, SweepError> {
-                let g = (t_lo + i as i64) as f64 * h;
-                let found = end_minus_at_e_within(g, e_n, guess, TRACE_STEPS, END_TRACE_LN_ALPHA)
-                    .map_err(|e| SweepError::Kink {
-                    curve: "E-",
-                    gamma: g,
-                    what: format!("at e_n = {e_n}: {e}"),
-                })?;
-                Ok(found
-                    .filter(|a| (a / guess).ln().abs() <= span && *a <= ALPHA_STOP)
-                    .map(|a| 1.0 / a))
-            };
-            let s = (i_start - t_lo) as usize;
-            let Some(first) = locate(s, START_GUESS, 1.0)? else {
-                return Ok(inv);
-            };
-            inv[s] = first;
-            // Outwards from the start: up in γ, then down.
-            for dir in [1i64, -1] {
-                let mut i = s as i64 + dir;
-                while i >= 0 && (i as usize) < n_t {
-                    // Linear extrapolation from the two points behind (the start's other
-                    // neighbour on the way down), else the last point.
-                    let prev = inv[(i - dir) as usize];
-                    let guess_inv = match usize::try_from(i - 2 * dir).ok().and_then(|j| inv.get(j))
-                    {
-                        Some(&p2) if p2.is_finite() => 2.0 * prev - p2,
-                        _ => prev,
-                    };
-                    let guess = 1.0 / guess_inv.max(1.0 / ALPHA_STOP);
-                    match locate(i as usize, guess, SPAN)? {
-                        Some(v) => inv[i as usize] = v,
-                        None => break,
-                    }
-                    i += dir;
-                }
-            }
-            Ok(inv)
-        })
+        .map(
+            |l| match stored.and_then(|g| g.row(l, (t_lo, t_hi), i_start)) {
+                Some(row) => Ok(row),
+                None => trace_row(l, (t_lo, t_hi), i_start),
+            },
+        )
         .collect::<Result<Vec<Vec<f64>>, SweepError>>()?;
     // Keep the grid's columns, node (i, l) at i n_e + l.
     let n_gamma = (i_hi - i_lo + 1) as usize;
@@ -157,6 +123,82 @@ pub fn end_minus_surface(
         extrapolate: true,
         values,
     }))
+}
+
+/// The last row of the grid: `e_n` = [`oblique_solver::law::MIN_RESTITUTION`].
+fn min_row() -> usize {
+    ((1.0 - oblique_solver::law::MIN_RESTITUTION) / END_SURFACE_STEP).round() as usize
+}
+
+/// Row `l` of the E₋ grid (`e_n = 1 − l` [`END_SURFACE_STEP`]) over the columns
+/// `t_lo..=t_hi` (γ = `i` [`END_SURFACE_STEP`]), stored as `1/α_E` (NaN where not found),
+/// traced from column `i_start` towards both ends by continuation: the row of
+/// [`end_minus_surface`]. A column's value depends on the columns between it and the start
+/// only (and, below the start, on the start's neighbour above it), so that the rows of a wider
+/// range hold those of a narrower one bit for bit ([`super::stored`]).
+pub(super) fn trace_row(
+    l: usize,
+    (t_lo, t_hi): (i64, i64),
+    i_start: i64,
+) -> Result<Vec<f64>, SweepError> {
+    let h = END_SURFACE_STEP;
+    let n_t = (t_hi - t_lo + 1) as usize;
+    let e_n = super::e_of_row(l, 1.0 / h);
+    let mut inv = vec![f64::NAN; n_t];
+    let locate =
+        |i: usize, guess: f64, span: f64| -> Result<Option<f64>, SweepError> {
+            let g = (t_lo + i as i64) as f64 * h;
+            let found = end_minus_at_e_within(g, e_n, guess, TRACE_STEPS, END_TRACE_LN_ALPHA)
+                .map_err(|e| SweepError::Kink {
+                    curve: "E-",
+                    gamma: g,
+                    what: format!("at e_n = {e_n}: {e}"),
+                })?;
+            Ok(found
+                .filter(|a| (a / guess).ln().abs() <= span && *a <= ALPHA_STOP)
+                .map(|a| 1.0 / a))
+        };
+    let s = (i_start - t_lo) as usize;
+    let Some(first) = locate(s, START_GUESS, 1.0)? else {
+        return Ok(inv);
+    };
+    inv[s] = first;
+    // Outwards from the start: up in γ, then down.
+    for dir in [1i64, -1] {
+        let mut i = s as i64 + dir;
+        while i >= 0 && (i as usize) < n_t {
+            // Linear extrapolation from the two points behind (the start's other
+            // neighbour on the way down), else the last point.
+            let prev = inv[(i - dir) as usize];
+            let guess_inv = match usize::try_from(i - 2 * dir).ok().and_then(|j| inv.get(j)) {
+                Some(&p2) if p2.is_finite() => 2.0 * prev - p2,
+                _ => prev,
+            };
+            let guess = 1.0 / guess_inv.max(1.0 / ALPHA_STOP);
+            match locate(i as usize, guess, SPAN)? {
+                Some(v) => inv[i as usize] = v,
+                None => break,
+            }
+            i += dir;
+        }
+    }
+    Ok(inv)
+}
+
+/// The columns and the start of the widest E₋ grid ([`end_minus_surface`] over
+/// [`SURFACE_FROM`]–[`SURFACE_TO`]) and its number of rows (`e_n` from 1 down to
+/// [`oblique_solver::law::MIN_RESTITUTION`]).
+pub(super) fn widest_grid() -> ((i64, i64), i64, usize) {
+    let h = END_SURFACE_STEP;
+    let (t_lo, t_hi) = (
+        (SURFACE_FROM / h).round() as i64,
+        (SURFACE_TO / h).round() as i64,
+    );
+    (
+        (t_lo, t_hi),
+        ((START_GAMMA / h).round() as i64).max(t_lo),
+        min_row() + 1,
+    )
 }
 
 /// The part of an [`end_minus_surface`] in the patch `kind`: the nodes with α_E ≥ α_c2(γ) for

@@ -55,8 +55,8 @@ pub const SHEET_PROBE_OFFSETS: [f64; 4] = [-0.5, 0.0, 0.5, 1.0];
 /// One traced row of the sheet at a γ: samples `(ln α, e_I)` in increasing α, contiguous from
 /// the sheet's start α_L.
 #[derive(Debug, Clone, PartialEq)]
-struct Row {
-    samples: Vec<(f64, f64)>,
+pub(super) struct Row {
+    pub(super) samples: Vec<(f64, f64)>,
 }
 
 impl Row {
@@ -222,9 +222,15 @@ pub fn interlude_sheet(
     if i_hi < i_lo + 1 || e_lo >= E_TOP || e_hi + REACH < SHEET_E_MIN {
         return Ok(None);
     }
+    // The stored rows where they exist, else traced ([`super::stored`]: the same bits).
     let rows = (i_lo..=i_hi)
         .into_par_iter()
-        .map(|i| trace_row(i as f64 * h))
+        .map(|i| match super::stored::interlude_row(i) {
+            Some(samples) => Ok(Row {
+                samples: samples.to_vec(),
+            }),
+            None => trace_row(i as f64 * h),
+        })
         .collect::<Result<Vec<Row>, SweepError>>()?;
     let sheet = InterludeSheet {
         gamma_0: i_lo as f64 * h,
@@ -238,8 +244,17 @@ pub fn interlude_sheet(
     Ok(reaches.then_some(sheet))
 }
 
-/// One row of [`interlude_sheet`] at `gamma`.
-fn trace_row(gamma: f64) -> Result<Row, SweepError> {
+/// The indices `i` (γ = `i` [`SHEET_STEP`]) of every row [`interlude_sheet`] can trace.
+pub(super) fn row_indices() -> (i64, i64) {
+    (
+        (SHEET_FROM / SHEET_STEP).round() as i64,
+        (SHEET_TO / SHEET_STEP).round() as i64,
+    )
+}
+
+/// One row of [`interlude_sheet`] at `gamma`: its samples `(ln α, e_I)`, the same whatever
+/// the range of the sheet ([`super::stored`]).
+pub(super) fn trace_row(gamma: f64) -> Result<Row, SweepError> {
     // The whole bracket at every point: next to the sheet's start the predicate changes more
     // than once along `e_n`, and a narrower bracket about a neighbour's value can find
     // another change (up to 7e-4 away at γ 2.44–2.62).

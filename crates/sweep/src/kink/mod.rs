@@ -26,6 +26,7 @@
 
 mod end_minus;
 mod interlude;
+pub mod stored;
 
 pub use interlude::{
     interlude_sheet, near_interlude_points, InterludeSheet, SHEET_PROBE_OFFSETS, SHEET_STEP,
