@@ -32,4 +32,4 @@ pub use model::{ExplicitEuler, Integrator, NormalModel, TangentialModel, Velocit
 pub use preset::Preset;
 pub use refine::{Accuracy, Method, NoEstimate, RefineEvent, Solution};
 pub use registry::{BodiesLaw, Law, LawParameters};
-pub use request::Request;
+pub use request::{KeptLevels, Request};

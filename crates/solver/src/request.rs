@@ -17,6 +17,7 @@ use crate::preset::Preset;
 use crate::refine::{solve_core, Accuracy, RefineEvent, Solution};
 use crate::registry::with_law;
 use crate::registry::Law;
+use crate::zones::Level;
 
 /// An impact to solve and how.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,7 +113,41 @@ impl Request {
         observer: &mut dyn FnMut(RefineEvent),
     ) -> Result<Solution, PhysicsError> {
         let e_n = self.law.check_restitution(self.e_n)?;
-        with_law!(self.law.answering(e_n), L => self.solve_with::<L>(e_n, observer))
+        with_law!(self.law.answering(e_n), L => self.solve_with::<L>(e_n, observer, None))
+    }
+
+    /// [`Request::solve`] that keeps the levels of its automatic refinement in `kept` and takes
+    /// those `kept` already holds instead of simulating them again: a request solved once at
+    /// one tolerance and again at a smaller one continues from the levels of the first solve.
+    /// Each level's value depends on its resolution alone, so the answer has the bits of a
+    /// refinement from scratch. `kept` belongs to this request: levels kept for another one
+    /// (another γ, α, `e_n`, law, scheme or limits) are dropped first. A fixed resolution keeps
+    /// nothing.
+    pub fn solve_continuing(&self, kept: &mut KeptLevels) -> Result<Solution, PhysicsError> {
+        let e_n = self.law.check_restitution(self.e_n)?;
+        let owner = self.owner();
+        if kept.owner != Some(owner) {
+            *kept = KeptLevels {
+                owner: Some(owner),
+                levels: Vec::new(),
+            };
+        }
+        let memo = matches!(self.accuracy, Accuracy::Tolerance(_)).then_some(&mut kept.levels);
+        with_law!(self.law.answering(e_n), L => self.solve_with::<L>(e_n, &mut |_| {}, memo))
+    }
+
+    /// What identifies the levels of this request's refinement ([`KeptLevels`]).
+    fn owner(&self) -> Owner {
+        Owner {
+            point: [
+                self.gamma.to_bits(),
+                self.alpha.to_bits(),
+                self.e_n.to_bits(),
+            ],
+            law: self.law,
+            scheme: self.scheme,
+            limits: self.limits,
+        }
     }
 
     /// `P` at a fixed resolution, simulated (no closed form, no estimate), by the law the
@@ -131,10 +166,12 @@ impl Request {
         &self,
         e_n: f64,
         observer: &mut dyn FnMut(RefineEvent),
+        mut memo: Option<&mut Vec<Level>>,
     ) -> Result<Solution, PhysicsError> {
         let (gamma, alpha, parameters) = L::prepare(self.gamma, self.alpha, e_n, self.scheme)?;
         let closed = L::closed_form(gamma, alpha, e_n);
         let law = self.law.parameters(e_n)?;
+        let mut runs = 0;
         solve_core(
             (
                 gamma,
@@ -150,10 +187,62 @@ impl Request {
                 L::FLOOR.without_scatter()
             },
             closed,
-            |res| L::simulate(gamma, alpha, parameters, res, self.scheme),
+            |res| {
+                // The refinement runs its levels in order, once each: level `k` is the
+                // `k`-th run.
+                let Some(kept) = memo.as_deref_mut() else {
+                    return L::simulate(gamma, alpha, parameters, res, self.scheme);
+                };
+                match kept.get(runs) {
+                    Some(&level) => {
+                        runs += 1;
+                        Ok(level)
+                    }
+                    None => {
+                        let level = L::simulate(gamma, alpha, parameters, res, self.scheme)?;
+                        kept.push(level);
+                        runs += 1;
+                        Ok(level)
+                    }
+                }
+            },
             observer,
         )
     }
+}
+
+/// The levels of one request's automatic refinement ([`Request::solve_continuing`]): each
+/// level's `P` and how finely it resolved its zones, in the order they ran (16 bytes a level).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct KeptLevels {
+    owner: Option<Owner>,
+    levels: Vec<Level>,
+}
+
+impl KeptLevels {
+    /// Nothing kept yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Number of levels kept.
+    pub fn len(&self) -> usize {
+        self.levels.len()
+    }
+
+    /// Whether no level is kept.
+    pub fn is_empty(&self) -> bool {
+        self.levels.is_empty()
+    }
+}
+
+/// The request whose levels are kept: its point (bits), law, scheme and limits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Owner {
+    point: [u64; 3],
+    law: Law,
+    scheme: Scheme,
+    limits: Limits,
 }
 
 /// `P(γ, α, e_n)` of the Kelvin–Voigt law where it is exact without simulation (its

@@ -23,8 +23,8 @@ pub use config::Config;
 pub use error::{RunError, SweepError};
 pub use preflight::{check_tol_in_store, default_check_tols, preflight, probe_limits, Preflight};
 pub use solve::{
-    solve_points, solve_points_with, NodeKey, NodeRecord, NodeStore, Progress, RunOptions, Shard,
-    Silent,
+    solve_points, solve_points_kept, solve_points_with, NodeKey, NodeRecord, NodeStore, Progress,
+    RunOptions, Shard, Silent,
 };
 use tree::{build_patch, patch_specs, root_count, RunState};
 

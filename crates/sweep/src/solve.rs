@@ -4,7 +4,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use oblique_solver::{Accuracy, Law, Request};
+use oblique_solver::{Accuracy, KeptLevels, Law, Request};
 use oblique_table::surface::Point;
 use rayon::prelude::*;
 
@@ -139,12 +139,17 @@ pub fn solve_points(
     })
 }
 
-fn solve_one(pt: Point, tol: f64, law: Law) -> Result<(f64, f64), SweepError> {
+fn solve_one(
+    pt: Point,
+    tol: f64,
+    law: Law,
+    kept: &mut KeptLevels,
+) -> Result<(f64, f64), SweepError> {
     Request::new(pt.gamma, pt.alpha)
         .e_n(pt.e_n)
         .law(law)
         .accuracy(Accuracy::Tolerance(tol))
-        .solve()
+        .solve_continuing(kept)
         .map(|s| (s.p, s.error_estimate))
         .map_err(|source| SweepError::Node {
             gamma: pt.gamma,
@@ -161,6 +166,22 @@ pub fn solve_points_with(
     law: Law,
     progress: &dyn Progress,
     opts: RunOptions,
+) -> Result<Vec<(f64, f64)>, RunError> {
+    solve_points_kept(points, tol, law, progress, opts, (&mut [], f64::INFINITY))
+}
+
+/// [`solve_points_with`] that continues from the levels in `kept` (one per point, or none:
+/// an empty slice) and keeps there the levels of each point it simulates whose estimate
+/// exceeds `keep_above` (nothing for the others): a later solve of the same points at a
+/// smaller tolerance, such as the polish of `nodes.polish_tol`, then simulates only the levels
+/// beyond them, with the bits of a solve from scratch ([`Request::solve_continuing`]).
+pub fn solve_points_kept(
+    points: &[Point],
+    tol: f64,
+    law: Law,
+    progress: &dyn Progress,
+    opts: RunOptions,
+    (kept, keep_above): (&mut [KeptLevels], f64),
 ) -> Result<Vec<(f64, f64)>, RunError> {
     let rec = |pt: &Point| NodeRecord::at(*pt, tol);
     let mut out: Vec<Option<(f64, f64)>> = points
@@ -189,14 +210,27 @@ pub fn solve_points_with(
         if stopped() {
             return Err(RunError::Interrupted);
         }
+        let mut levels: Vec<KeptLevels> = batch
+            .iter()
+            .map(|&i| kept.get_mut(i).map(std::mem::take).unwrap_or_default())
+            .collect();
         let values: Vec<(f64, f64)> = batch
             .par_iter()
-            .map(|&i| {
-                let r = solve_one(points[i], tol, law);
+            .zip(levels.par_iter_mut())
+            .map(|(&i, levels)| {
+                let r = solve_one(points[i], tol, law, levels);
+                if !r.as_ref().is_ok_and(|v| v.1 > keep_above) {
+                    *levels = KeptLevels::new();
+                }
                 progress.inc(1);
                 r
             })
             .collect::<Result<_, _>>()?;
+        for (&i, levels) in batch.iter().zip(levels) {
+            if let Some(slot) = kept.get_mut(i) {
+                *slot = levels;
+            }
+        }
         if let Some(store) = opts.store {
             let records: Vec<NodeRecord> = batch
                 .iter()

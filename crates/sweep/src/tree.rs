@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 
+use oblique_solver::KeptLevels;
 use oblique_table::surface::{
     stencil, Axis, Knots, PartialMap, Patch, PatchData, PatchId, PatchKind, Point, Warp,
 };
@@ -11,8 +12,8 @@ use oblique_table::write::BuiltPatch;
 
 use crate::config::Config;
 use crate::{
-    kink, knots, solve_points_with, stage_refine, warp, Progress, RunError, RunOptions, Shard,
-    SweepError, STAGE_FOLD, STAGE_KINKS, STAGE_KNOTS,
+    kink, knots, solve_points_kept, solve_points_with, stage_refine, warp, Progress, RunError,
+    RunOptions, Shard, SweepError, STAGE_FOLD, STAGE_KINKS, STAGE_KNOTS,
 };
 
 /// Deepest quadtree level (a leaf at this depth has `2^-MAX_DEPTH` of its root's size).
@@ -878,6 +879,8 @@ pub(crate) fn build_patch(
         .filter(|&i| shard.is_none_or(|sh| sh.owns(first_root + i)))
         .collect();
     let mut cache: HashMap<Key, (f64, f64)> = HashMap::new();
+    // The levels of the nodes a polish may solve again ([`polish`]).
+    let mut kept: HashMap<Key, KeptLevels> = HashMap::new();
     // The axes each split cell halves (bit `dims − 1 − k` for axis `k`); 0 for a leaf.
     let mut mask = vec![0u8; cells.len()];
     // With `nodes.observed_rate`: each cell's parent and the rate per surplus axis at which its
@@ -924,8 +927,29 @@ pub(crate) fn build_patch(
             ),
         );
         let points: Vec<Point> = wanted.iter().map(|&key| layout.point(key).2).collect();
-        let values = solve_points_with(&points, cfg.solver.tol, law, progress, opts)?;
+        // With a polish, each node that may be solved again (its estimate above `polish_tol`)
+        // keeps the levels of its refinement, so that the polish continues from them.
+        let mut levels: Vec<KeptLevels> = Vec::new();
+        if cfg.nodes.polish_tol.is_some() {
+            levels.resize_with(points.len(), KeptLevels::new);
+        }
+        let keep_above = cfg.nodes.polish_tol.unwrap_or(f64::INFINITY);
+        let values = solve_points_kept(
+            &points,
+            cfg.solver.tol,
+            law,
+            progress,
+            opts,
+            (&mut levels, keep_above),
+        )?;
         run.nodes += wanted.len();
+        kept.extend(
+            wanted
+                .iter()
+                .zip(levels)
+                .filter(|(_, l)| !l.is_empty())
+                .map(|(&key, l)| (key, l)),
+        );
         cache.extend(wanted.into_iter().zip(values));
         // Every open cell is decided first (split, leaf, or measured next to a kink curve),
         // then split in the order of `open`: the order of the cells, and so of the leaves, in
@@ -1093,7 +1117,15 @@ pub(crate) fn build_patch(
     }
     if let Some(tol) = cfg.nodes.polish_tol {
         polish(
-            &layout, &cells, &child, &predicted, &mut cache, tol, cfg, progress, opts,
+            &layout,
+            &cells,
+            &child,
+            &predicted,
+            (&mut cache, &mut kept),
+            tol,
+            cfg,
+            progress,
+            opts,
         )?;
     }
     if shard.is_some() {
@@ -1167,6 +1199,9 @@ pub(crate) fn build_patch(
     }))
 }
 
+/// Each node's value and error estimate.
+type NodeValues = HashMap<Key, (f64, f64)>;
+
 /// Solve again, at `tol`, the nodes that hold a leaf's bound above `target_error + Λ^d · tol`
 /// (`nodes.polish_tol`): in every leaf (a cell this run evaluated and did not split) whose
 /// `predicted + Λ^d · max error_estimate` exceeds that limit, each node whose estimate exceeds
@@ -1182,7 +1217,7 @@ fn polish(
     cells: &[Cell],
     child: &[Option<usize>],
     predicted: &[f64],
-    cache: &mut HashMap<Key, (f64, f64)>,
+    (cache, kept): (&mut NodeValues, &mut HashMap<Key, KeptLevels>),
     tol: f64,
     cfg: &Config,
     progress: &dyn Progress,
@@ -1215,7 +1250,19 @@ fn polish(
         ),
     );
     let points: Vec<Point> = wanted.iter().map(|&key| layout.point(key).2).collect();
-    let values = solve_points_with(&points, tol, cfg.law(), progress, opts)?;
+    // From the levels each node's first solve kept: the same values, fewer simulations.
+    let mut levels: Vec<KeptLevels> = wanted
+        .iter()
+        .map(|key| kept.remove(key).unwrap_or_default())
+        .collect();
+    let values = solve_points_kept(
+        &points,
+        tol,
+        cfg.law(),
+        progress,
+        opts,
+        (&mut levels, f64::INFINITY),
+    )?;
     cache.extend(wanted.into_iter().zip(values));
     Ok(())
 }
