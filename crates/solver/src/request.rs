@@ -193,18 +193,16 @@ impl Request {
                 let Some(kept) = memo.as_deref_mut() else {
                     return L::simulate(gamma, alpha, parameters, res, self.scheme);
                 };
-                match kept.get(runs) {
-                    Some(&level) => {
-                        runs += 1;
-                        Ok(level)
-                    }
+                let level = match kept.get(runs) {
+                    Some(&level) => level,
                     None => {
                         let level = L::simulate(gamma, alpha, parameters, res, self.scheme)?;
                         kept.push(level);
-                        runs += 1;
-                        Ok(level)
+                        level
                     }
-                }
+                };
+                runs += 1;
+                Ok(level)
             },
             observer,
         )

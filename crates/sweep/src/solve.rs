@@ -139,24 +139,29 @@ pub fn solve_points(
     })
 }
 
+/// `P` at `pt` to `tol` and its estimate; with `kept`, continuing from the levels it holds and
+/// keeping this solve's ([`Request::solve_continuing`]), else a plain solve.
 fn solve_one(
     pt: Point,
     tol: f64,
     law: Law,
-    kept: &mut KeptLevels,
+    kept: Option<&mut KeptLevels>,
 ) -> Result<(f64, f64), SweepError> {
-    Request::new(pt.gamma, pt.alpha)
+    let req = Request::new(pt.gamma, pt.alpha)
         .e_n(pt.e_n)
         .law(law)
-        .accuracy(Accuracy::Tolerance(tol))
-        .solve_continuing(kept)
-        .map(|s| (s.p, s.error_estimate))
-        .map_err(|source| SweepError::Node {
-            gamma: pt.gamma,
-            alpha: pt.alpha,
-            e_n: pt.e_n,
-            source,
-        })
+        .accuracy(Accuracy::Tolerance(tol));
+    match kept {
+        Some(kept) => req.solve_continuing(kept),
+        None => req.solve(),
+    }
+    .map(|s| (s.p, s.error_estimate))
+    .map_err(|source| SweepError::Node {
+        gamma: pt.gamma,
+        alpha: pt.alpha,
+        e_n: pt.e_n,
+        source,
+    })
 }
 
 /// [`solve_points`] with stored values, saving in batches and stopping when asked.
@@ -218,7 +223,9 @@ pub fn solve_points_kept(
             .par_iter()
             .zip(levels.par_iter_mut())
             .map(|(&i, levels)| {
-                let r = solve_one(points[i], tol, law, levels);
+                // Levels are only worth recording where they are kept or continued from.
+                let memo = keep_above.is_finite() || !levels.is_empty();
+                let r = solve_one(points[i], tol, law, memo.then_some(&mut *levels));
                 if !r.as_ref().is_ok_and(|v| v.1 > keep_above) {
                     *levels = KeptLevels::new();
                 }

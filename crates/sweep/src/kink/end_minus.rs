@@ -85,7 +85,7 @@ pub fn end_minus_surface(
     // Each row starts at START_GAMMA, or at the grid's first column where that lies below it
     // (the guess holds up to γ = 2.62); the columns traced are the grid's and those between it
     // and the start.
-    let i_start = ((START_GAMMA / h).round() as i64).max(i_lo);
+    let i_start = start_column(i_lo);
     let (t_lo, t_hi) = (i_lo.min(i_start), i_hi.max(i_start));
     // The rows of the stored widest grid where they hold these columns with this start, else
     // traced ([`super::stored`]: the same bits).
@@ -194,11 +194,13 @@ pub(super) fn widest_grid() -> ((i64, i64), i64, usize) {
         (SURFACE_FROM / h).round() as i64,
         (SURFACE_TO / h).round() as i64,
     );
-    (
-        (t_lo, t_hi),
-        ((START_GAMMA / h).round() as i64).max(t_lo),
-        min_row() + 1,
-    )
+    ((t_lo, t_hi), start_column(t_lo), min_row() + 1)
+}
+
+/// The column every row is traced from: [`START_GAMMA`]'s, or the grid's first column `i_lo`
+/// where that lies above it.
+fn start_column(i_lo: i64) -> i64 {
+    ((START_GAMMA / END_SURFACE_STEP).round() as i64).max(i_lo)
 }
 
 /// The part of an [`end_minus_surface`] in the patch `kind`: the nodes with α_E ≥ α_c2(γ) for
