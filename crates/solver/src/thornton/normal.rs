@@ -381,9 +381,22 @@ impl Motion {
     }
 }
 
+/// Parts of the grid that the split between loading and unloading is rounded to
+/// ([`two_part_grid`]).
+pub const SPLIT_PARTS: usize = 16;
+
 /// A grid of `steps` (at least 2) over a loading of `loading_time` and an unloading of
 /// `unloading_time` (s) with the switch at a node: the steps of each part, shared in
 /// proportion to the times (at least one each), and their lengths (s).
+///
+/// Where `steps` is a multiple of [`SPLIT_PARTS`] (every level of a refinement) the share is
+/// rounded to sixteenths, `(steps/16)·round(16·share)` loading steps, so that doubling the steps
+/// doubles both parts and halves both step lengths: the errors of the two parts keep their
+/// ratio from level to level, and the differences between levels shrink regularly. Rounded
+/// per level instead, the loading step moved by up to half a step against the unloading one
+/// between levels, and at γ = 0.51, α = ∞, `e_n` = 0.75 the differences from 16 to 512 steps
+/// had ratios −8.0, 78.8, 3.1 and 0.65 (the estimate at 256 steps 6.1e-8 for an error of
+/// 2.2e-7); with the sixteenths 5.7, 4.8, 4.4, 4.3, 4.2.
 pub fn two_part_grid(
     steps: usize,
     loading_time: f64,
@@ -391,7 +404,12 @@ pub fn two_part_grid(
 ) -> (usize, usize, f64, f64) {
     let steps = steps.max(2);
     let share = loading_time / (loading_time + unloading_time);
-    let loading_steps = ((steps as f64 * share).round() as usize).clamp(1, steps - 1);
+    let loading_steps = if steps.is_multiple_of(SPLIT_PARTS) {
+        let parts = ((SPLIT_PARTS as f64 * share).round() as usize).clamp(1, SPLIT_PARTS - 1);
+        parts * (steps / SPLIT_PARTS)
+    } else {
+        ((steps as f64 * share).round() as usize).clamp(1, steps - 1)
+    };
     let unloading_steps = steps - loading_steps;
     (
         loading_steps,
@@ -643,6 +661,37 @@ mod tests {
                 v * v + work - 1.0
             );
         }
+    }
+
+    /// The grids of a refinement are nested: from 16 steps on, doubling the steps doubles both
+    /// parts, and every node of a level is a node of the next, with the same bits.
+    #[test]
+    fn the_levels_of_a_refinement_share_their_nodes() {
+        for p_y in [0.05, 0.2, 0.350980351, 0.6] {
+            let loading = Loading {
+                stiffness: 4.0 / 3.0,
+                yield_indentation: (std::f64::consts::FRAC_PI_2 * p_y).powi(2),
+            };
+            let m = Motion::new(loading, 1.0, 1.0);
+            let mut coarse = m.trajectory(16);
+            for k in 1..8 {
+                let fine = m.trajectory(16 << k);
+                assert_eq!(
+                    fine.switch,
+                    2 * coarse.switch,
+                    "p_y {p_y}, {} steps",
+                    16 << k
+                );
+                for (j, (&d, &v)) in coarse.indentation.iter().zip(&coarse.rate).enumerate() {
+                    assert_eq!(fine.indentation[2 * j].to_bits(), d.to_bits(), "node {j}");
+                    assert_eq!(fine.rate[2 * j].to_bits(), v.to_bits(), "node {j}");
+                }
+                coarse = fine;
+            }
+        }
+        // Elsewhere the share is rounded to the step.
+        assert_eq!(two_part_grid(100, 1.0, 2.0).0, 33);
+        assert_eq!(two_part_grid(96, 1.0, 2.0).0, 30);
     }
 
     #[test]
