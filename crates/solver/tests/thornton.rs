@@ -233,22 +233,26 @@ fn the_extremes_are_bounded_and_e_n_1_is_the_limit() {
             }
         }
     }
+    // Each within its estimate (the two laws' floors stop them at different levels: at tol
+    // 1e-6 the elastic answer at γ 0.1, α 1 is 7.7e-9 off, the Thornton one 4e-11).
     for (g, a) in [(0.1, 1.0), (5.0, 1e3)] {
         let elastic = Request::new(g, a)
-            .accuracy(Accuracy::Tolerance(1e-6))
+            .accuracy(Accuracy::Tolerance(1e-8))
             .solve()
             .unwrap();
         let near = Request::new(g, a)
             .e_n(1.0 - 1e-10)
             .law(Law::Thornton)
-            .accuracy(Accuracy::Tolerance(1e-6))
+            .accuracy(Accuracy::Tolerance(1e-8))
             .solve()
             .unwrap();
         assert!(
-            (near.p - elastic.p).abs() < 1e-9,
-            "γ {g} α {a}: {} {}",
+            (near.p - elastic.p).abs() <= near.error_estimate + elastic.error_estimate,
+            "γ {g} α {a}: {} ± {:e}, {} ± {:e}",
             near.p,
-            elastic.p
+            near.error_estimate,
+            elastic.p,
+            elastic.error_estimate
         );
     }
 }
@@ -353,4 +357,29 @@ fn the_levels_converge_steadily_through_the_switch() {
             s.error_estimate
         );
     }
+}
+
+/// Where the contact slips, `P` scatters around its smooth convergence by up to about 0.3/N²
+/// (the rows of this law do not locate the onset of gross slip inside a step): at
+/// γ = 1.352443, α = 2.034742, e_n = 0.491959 the Richardson value at 2 048 steps (tol 1e-6)
+/// erred by 7.1e-8 where its differences stated 5.2e-8; the floor 0.3/N² covers it.
+#[test]
+fn the_estimate_covers_the_scatter_of_slip_events() {
+    use oblique_solver::{Accuracy, Law};
+    let (gamma, alpha, e_n) = (1.352443, 2.034742, 0.491959);
+    let s = Request::new(gamma, alpha)
+        .e_n(e_n)
+        .law(Law::Thornton)
+        .accuracy(Accuracy::Tolerance(1e-6))
+        .solve()
+        .unwrap();
+    let (a, b) = (p(gamma, alpha, e_n, 16384), p(gamma, alpha, e_n, 32768));
+    let reference = b + (b - a) / 3.0;
+    let error = (s.p - reference).abs();
+    assert!(
+        error <= s.error_estimate && s.error_estimate <= 1e-6,
+        "error {error:e}, estimate {:e} at {} steps",
+        s.error_estimate,
+        s.resolution.steps
+    );
 }
