@@ -1,9 +1,10 @@
 //! Quick timing of the nine benchmark solves (`benches/impact.rs`) at one tolerance:
-//! `cargo run --release -p oblique-tools --bin nine -- [TOL] [E_N] [REPEATS]` prints, per
+//! `cargo run --release -p oblique-tools --bin nine -- [TOL] [E_N] [REPEATS] [LAW]` prints, per
 //! `(γ, α)`, the median thread CPU time of a whole refinement (normal motion cached), the final
-//! steps and P, and the geometric mean. The criterion benchmark is the published measure; this
-//! is for quick before/after checks while changing the solver.
-use oblique_solver::{Accuracy, Request};
+//! steps and P, and the geometric mean; `LAW` names a law other than the one `E_N` implies
+//! (`thornton`). The criterion benchmark is the published measure; this is for quick
+//! before/after checks while changing the solver.
+use oblique_solver::{Accuracy, Law, Request};
 
 /// Thread CPU time (s).
 fn cpu() -> f64 {
@@ -15,13 +16,17 @@ fn main() -> anyhow::Result<()> {
     let tol: f64 = a.first().map_or(Ok(1e-6), |s| s.parse())?;
     let e_n: f64 = a.get(1).map_or(Ok(1.0), |s| s.parse())?;
     let reps: usize = a.get(2).map_or(Ok(21), |s| s.parse())?;
+    let law = a.get(3).map(|s| Law::from_name(s)).transpose()?;
     let mut log_sum = 0.0;
     for g in [0.5, 1.754, 3.0] {
         for al in [0.3, 1.0, f64::INFINITY] {
-            let req = Request::new(g, al)
+            let mut req = Request::new(g, al)
                 .e_n(e_n)
                 .accuracy(Accuracy::Tolerance(tol))
                 .forced(true);
+            if let Some(law) = law {
+                req = req.law(law);
+            }
             let s = req.solve()?;
             let mut t: Vec<f64> = (0..reps)
                 .map(|_| {
