@@ -94,6 +94,9 @@ pub(crate) fn shear_and_limit(gamma: f64, alpha: f64) -> (f64, f64) {
 pub struct Floor {
     /// Share where the convergence is regular.
     pub regular: f64,
+    /// Share where it is steady: the last three ratios of successive differences within
+    /// `[0.95, 1.05] · 2^p` (`refine::steady`); at most [`Floor::regular`].
+    pub steady: f64,
     /// Share elsewhere (and while fewer than four values exist).
     pub irregular: f64,
     /// An absolute floor `scatter/N²` at `N` steps: the part of the error that depends on where
@@ -106,6 +109,7 @@ impl Floor {
     pub const fn fixed(share: f64) -> Self {
         Floor {
             regular: share,
+            steady: share,
             irregular: share,
             scatter: 0.0,
         }

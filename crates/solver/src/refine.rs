@@ -226,7 +226,9 @@ fn extrapolate(values: &[f64], order: i32, floor: Floor, steps: usize) -> (f64, 
     let n = values.len();
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / r;
     let last = rich(n - 1);
-    let share = if regular(values, order) {
+    let share = if steady(values, order) {
+        floor.steady.max(tail_share(values, order))
+    } else if regular(values, order) {
         floor.regular.max(tail_share(values, order))
     } else {
         floor.irregular
@@ -276,6 +278,21 @@ fn last_ratios(values: &[f64]) -> Option<[f64; 2]> {
 
 /// Margin on the rest of a convergence at a ratio seen ([`tail_share`]).
 const TAIL_MARGIN: f64 = 1.5;
+
+/// Whether the last three ratios of successive differences of `values` are within
+/// `[0.95, 1.05] · 2^order` ([`Floor::steady`]): the sequence has converged at its order for
+/// four levels.
+fn steady(values: &[f64], order: i32) -> bool {
+    let n = values.len();
+    if n < 5 {
+        return false;
+    }
+    let r = 2f64.powi(order);
+    let d = |k: usize| values[k] - values[k - 1];
+    [n - 1, n - 2, n - 3]
+        .iter()
+        .all(|&k| (0.95 * r..=1.05 * r).contains(&(d(k - 1) / d(k))))
+}
 
 /// Whether the last two ratios of successive differences of `values` are within
 /// `[0.75, 1.375] · 2^order`.
@@ -685,5 +702,35 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The steady share applies only where the last three ratios are within 3.8–4.2: a ladder
+    /// `C/N²` is steady from its fifth value on, one ratio off by 6 % (or a turn) is not, and a
+    /// steady ladder's estimate is the larger of the steady share and the difference of its
+    /// Richardson values.
+    #[test]
+    fn only_three_ratios_near_the_order_are_steady() {
+        let ladder: Vec<f64> = (0..6).map(|k| 0.5 + 1e-3 / 4f64.powi(k)).collect();
+        assert!(!steady(&ladder[..4], 2));
+        assert!(steady(&ladder[..5], 2));
+        assert!(steady(&ladder, 2));
+        let mut off = ladder.clone();
+        off[3] = 0.5 + 1e-3 / 4f64.powi(3) * 1.25; // ratios 3.2 and 5.0 around it
+        assert!(!steady(&off[..5], 2));
+        assert!(!steady(&off, 2));
+        let mut turn = ladder.clone();
+        turn[5] = turn[4] + 1e-6;
+        assert!(!steady(&turn, 2));
+        let floor = Floor {
+            regular: 0.1,
+            steady: 0.05,
+            irregular: 0.2,
+            scatter: 0.0,
+        };
+        let (_, est) = extrapolate(&ladder, 2, floor, 512);
+        let last = (ladder[5] - ladder[4]).abs();
+        assert!((est - 0.05 * last).abs() < 1e-3 * est, "{est:e} {last:e}");
+        let (_, est) = extrapolate(&ladder[..4], 2, floor, 64);
+        assert!((est - 0.1 * (ladder[3] - ladder[2]).abs()).abs() < 1e-3 * est);
     }
 }

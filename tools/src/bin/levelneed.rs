@@ -1,21 +1,25 @@
 //! How far each automatic refinement runs beyond the level it needed (a scratch tool for the
-//! solver's cost): `levelneed TOL < points.csv` with lines `tag,gamma,alpha,e_n`. For each
+//! solver's cost): `levelneed TOL [LAW] < points.csv` with lines `tag,gamma,alpha,e_n` (`LAW`:
+//! a law other than the one `e_n` implies, `thornton`). For each
 //! point: the steps at which `solve` at `TOL` stopped, its estimate, and, against a reference
 //! (the Richardson value of fixed runs at 4 and 8 times those steps), the first level whose raw
 //! value and whose Richardson value (with the level before) err by at most `TOL`; then the
 //! work of the refinement (the sum of its levels' steps) over the work of stopping at that
 //! Richardson level (itself and the level before). Points run in parallel (rayon).
-use oblique_solver::{Accuracy, Request, Resolution};
+use oblique_solver::{Accuracy, Law, Request, Resolution};
 use rayon::prelude::*;
 
 fn main() -> anyhow::Result<()> {
-    let tol: f64 = oblique_tools::arg_or(&oblique_tools::args(), 0, "TOL", 1e-6)?;
+    let args = oblique_tools::args();
+    let tol: f64 = oblique_tools::arg_or(&args, 0, "TOL", 1e-6)?;
+    let law = args.get(1).map(|s| Law::from_name(s)).transpose()?;
     let pts = oblique_tools::tagged_rows(3)?;
     let rows: Vec<String> = pts
         .par_iter()
         .map(|(tag, x)| -> anyhow::Result<String> {
             let (g, a, e) = (x[0], x[1], x[2]);
             let req = Request::new(g, a).e_n(e);
+            let req = law.map_or(req, |l| req.law(l));
             let sol = req.accuracy(Accuracy::Tolerance(tol)).forced(true).solve()?;
             let fin = sol.resolution.steps;
             let run = |steps: usize| req.simulate(Resolution { springs: 0, steps });

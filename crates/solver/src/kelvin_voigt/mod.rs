@@ -39,6 +39,7 @@ use row::ViscoelasticRow;
 /// (`crates/solver/tests/extremes.rs`).
 pub const RAW_FLOOR: Floor = Floor {
     regular: crate::elastic::RAW_FLOOR,
+    steady: crate::elastic::STEADY_FLOOR,
     irregular: 0.5,
     scatter: crate::law::ROW_SCATTER,
 };

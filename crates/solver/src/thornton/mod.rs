@@ -204,7 +204,13 @@ pub struct BodiesParameters {
 }
 
 /// The estimate's floor, as a share of the last raw difference between levels: 0.25 where
-/// the convergence looks regular, 0.5 elsewhere (the elastic law's: 0.1). At γ = 1.9182,
+/// the convergence looks regular, 0.1 where it is steady (three ratios within 3.8–4.2, as the
+/// elastic law's regular share), 0.5 elsewhere (the elastic law's: 0.1, 0.1, 0.2). Steady
+/// levels of this law needed up to 0.065 of the last difference beyond the difference of the
+/// Richardson values (4 182 steady levels of the ladders of 2 619 points, `thornhonest`'s draw
+/// of seeds 1 and 2 to 32 768 steps; the largest at γ = 2.6492, α = 0.2106, `e_n` = 0.8298,
+/// 4 096 steps, next to the re-slip fold); in the elastic stick patch one needed 0.080
+/// ([`crate::elastic::STEADY_FLOOR`]). At γ = 1.9182,
 /// α = 3.1582, e_n = 0.9143 (a cusp of `P` in the stick patch) the ratios of differences were
 /// 4.42 and 4.40 up to 4 096 steps, then 7.4, 2.25 and 5.8 to 32 768: the Richardson value at
 /// 4 096 steps erred by 6.7e-9, 0.12 of the last raw difference (5.4e-8), where a floor of 0.1
@@ -221,6 +227,7 @@ pub struct BodiesParameters {
 /// steps move by under 0.2 %.
 pub const RAW_FLOOR: Floor = Floor {
     regular: 0.25,
+    steady: 0.1,
     irregular: 0.5,
     scatter: 0.3,
 };
