@@ -21,6 +21,10 @@ use oblique_table::surface::{Knots, PartialMap, PatchKind};
 
 /// Highest `e_n` the knots apply at (rounded down to a sixteenth of a root cell).
 pub const E_N_MAX: f64 = 0.98;
+/// Lowest γ the knots apply from (rounded up to a sixteenth of a root cell): next to γ = 1 the
+/// re-slip fold `α_R` does not exist (none at γ 1.15, `e_n` 0.3), and at γ 1.02–1.1 the switch
+/// fold `α_S` lies above `α_c2`; from γ 1.2 all four lie in order over `e_n` 0.3–0.98.
+pub const GAMMA_MIN: f64 = 1.2;
 /// Largest grid spacing along γ of the traced kinks.
 pub const GAMMA_STEP: f64 = 0.025;
 /// Largest grid spacing along `e_n` of the traced kinks.
@@ -43,8 +47,9 @@ fn grid(lo: f64, hi: f64, step: f64) -> (f64, f64, usize) {
 
 /// The knots of the partial-slip patch over `γ ∈ gammas` (`bg` root cells) and `e_n ∈ e_range`
 /// (`be` root cells), with the partial-slip coordinate of Thornton's law
-/// ([`PartialMap::Slip`]); `None` when the `e_n` range starts above [`E_N_MAX`]. `Err` names
-/// the kink and the point where it is missing or out of order.
+/// ([`PartialMap::Slip`]); `None` when the `e_n` range starts above [`E_N_MAX`] or the γ range
+/// ends below [`GAMMA_MIN`]. `Err` names the kink and the point where it is missing or out of
+/// order.
 pub fn thornton_knots(
     gammas: (f64, f64),
     bg: usize,
@@ -62,7 +67,18 @@ pub fn thornton_knots(
         return Ok(None);
     }
     let e_top = e_lo + (e_hi - e_lo) * top / be as f64;
-    let (g0, gs, ng) = grid(gammas.0, gammas.1, GAMMA_STEP);
+    // The region along γ: from GAMMA_MIN, up to a multiple of 1/16 of a root cell.
+    let (g_lo, g_hi) = gammas;
+    let from = if g_lo >= GAMMA_MIN {
+        0.0
+    } else {
+        ((GAMMA_MIN - g_lo) / (g_hi - g_lo) * bg as f64 * 16.0).ceil() / 16.0
+    };
+    if from >= bg as f64 {
+        return Ok(None);
+    }
+    let g_from = g_lo + (g_hi - g_lo) * from / bg as f64;
+    let (g0, gs, ng) = grid(g_from, g_hi, GAMMA_STEP);
     let (e0, es, ne) = grid(e_lo, e_top, E_N_STEP);
     let points: Vec<(f64, f64)> = (0..ng)
         .flat_map(|i| {
@@ -97,7 +113,7 @@ pub fn thornton_knots(
         gs,
         e0,
         es,
-        [0.0, bg as f64, 0.0, top],
+        [from, bg as f64, 0.0, top],
         C_STAR.to_vec(),
         GRADE.to_vec(),
         [4, ng, ne],
@@ -350,6 +366,27 @@ fn least_squares(rows: &[(Vec<f64>, f64)]) -> Option<Vec<f64>> {
 mod tests {
     use super::*;
     use oblique_solver::history::fold_minus_at_e;
+
+    /// Next to γ = 1 the re-slip fold does not exist: the knots start at [`GAMMA_MIN`] (up to a
+    /// sixteenth of a root cell), their grid from there, and a range below it has none.
+    #[test]
+    fn thornton_knots_start_at_gamma_min() {
+        let k = thornton_knots((1.1, 1.3), 1, (0.8, 0.9), 1)
+            .expect("traced")
+            .expect("knots from 1.2");
+        assert_eq!(k.region(), [0.5, 1.0, 0.0, 1.0]);
+        assert!((k.gamma_0() - 1.2).abs() < 1e-12, "{}", k.gamma_0());
+        // 1.2 is 0.4 of the way through 1.1–1.35: up to 7/16.
+        let k = thornton_knots((1.1, 1.35), 1, (0.8, 0.85), 1)
+            .expect("traced")
+            .expect("knots");
+        assert_eq!(k.region()[0], 7.0 / 16.0);
+        assert!(thornton_knots((1.0, 1.15), 1, (0.8, 0.9), 1)
+            .expect("nothing traced")
+            .is_none());
+        // Without the start, the tracing fails where α_R is missing.
+        assert!(knots_at(1.1, 0.8).is_err());
+    }
 
     /// The fitted F₋ against F₋ located directly where it exists: within 1e-4 (relative),
     /// sent to a root-cell edge, its region inside the patch and holding those points.
