@@ -62,3 +62,15 @@ pub fn tagged_rows(n: usize) -> Result<Vec<(String, Vec<f64>)>> {
     }
     Ok(rows)
 }
+
+/// Uniform numbers in `[0, 1)` from `seed` (xorshift64, 53 bits a draw): the draw of the tools
+/// whose seeds the docs cite (`ladder`, `kvhonest`, `thornhonest`), unchanged so that they
+/// print what the docs show.
+pub fn xorshift(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

@@ -9,13 +9,8 @@ use oblique_solver::{Accuracy, Request, Resolution};
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let n: usize = args.first().map_or(Ok(50), |s| s.parse())?;
-    let mut seed: u64 = args.get(1).map_or(Ok(7), |s| s.parse())?;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let seed: u64 = args.get(1).map_or(Ok(7), |s| s.parse())?;
+    let mut rnd = oblique_tools::xorshift(seed);
     let mut worst = f64::INFINITY;
     let mut under = 0;
     println!("gamma alpha e_n tol steps error estimate estimate/error");

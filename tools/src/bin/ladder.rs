@@ -15,14 +15,9 @@ fn cpu() -> f64 {
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let n: usize = args.first().map_or(Ok(100), |s| s.parse())?;
-    let mut seed: u64 = args.get(1).map_or(Ok(1), |s| s.parse())?;
+    let seed: u64 = args.get(1).map_or(Ok(1), |s| s.parse())?;
     let levels: u32 = args.get(2).map_or(Ok(9), |s| s.parse())?;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = oblique_tools::xorshift(seed);
     let mut points = Vec::new();
     for g in [0.5, 1.754, 3.0] {
         for a in [0.3, 1.0, f64::INFINITY] {

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 fn main() -> anyhow::Result<()> {
     let args = oblique_tools::args();
     let n: usize = oblique_tools::arg_or(&args, 0, "N", 300)?;
-    let mut seed: u64 = oblique_tools::arg_or(&args, 1, "SEED", 1)?;
+    let seed: u64 = oblique_tools::arg_or(&args, 1, "SEED", 1)?;
     let tols: Vec<f64> = if args.len() > 2 {
         args[2..]
             .iter()
@@ -26,12 +26,7 @@ fn main() -> anyhow::Result<()> {
     } else {
         vec![1e-4, 1e-5, 1e-6, 1e-7]
     };
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = oblique_tools::xorshift(seed);
     let mut points = Vec::new();
     for e in [0.9, 0.6] {
         for g in [0.5, 1.754, 3.0] {
