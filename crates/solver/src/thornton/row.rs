@@ -180,8 +180,10 @@ impl ThorntonRow {
     fn install(&mut self, k: usize, pieces: Vec<Piece>, s: f64) -> usize {
         self.dirty = self.dirty.min(k);
         if pieces.is_empty() {
-            self.spare = std::mem::take(&mut self.chunks[k].pieces);
-            self.chunks.remove(k);
+            let old = self.chunks.remove(k).pieces;
+            if old.capacity() > self.spare.capacity() {
+                self.spare = old;
+            }
             return 0;
         }
         if pieces.len() <= CHUNK_MAX {
@@ -199,6 +201,22 @@ impl ThorntonRow {
         let n = parts.len();
         self.chunks.splice(k..=k, parts);
         n
+    }
+
+    /// Put `chunk`, whose sums count its first `counted` pieces, in place of chunk `k` (as
+    /// [`ThorntonRow::install`]); returns the number of chunks now there.
+    fn install_counted(&mut self, k: usize, mut chunk: Chunk, counted: usize) -> usize {
+        if chunk.pieces.is_empty() || chunk.pieces.len() > CHUNK_MAX {
+            let s = chunk.slope;
+            return self.install(k, chunk.pieces, s);
+        }
+        self.dirty = self.dirty.min(k);
+        chunk.count_from(counted);
+        let old = std::mem::replace(&mut self.chunks[k], chunk);
+        if old.pieces.capacity() > self.spare.capacity() {
+            self.spare = old.pieces;
+        }
+        1
     }
 
     /// Join runs at one limit that a chunk boundary splits, and neighbouring chunks that fit
@@ -331,31 +349,46 @@ impl ThorntonRow {
                 k += 1;
                 continue;
             }
-            let old = std::mem::take(&mut self.chunks[k].pieces);
-            let mut out = std::mem::take(&mut self.spare);
-            out.clear();
-            for p in &old {
-                match p.kind {
-                    // Inside the limits by its caps while they grow, or by its bounds against
-                    // the lines of Thornton's unloading: unchanged.
-                    Kind::Stuck if grow && w <= p.caps[0] && -w <= p.caps[1] => out.push(*p),
-                    Kind::Stuck
-                        if lines
+            // A stuck piece inside the limits by its caps while they grow, or by its bounds
+            // against the lines of Thornton's unloading, is unchanged.
+            let kept = |p: &Piece| {
+                p.kind == Kind::Stuck
+                    && ((grow && w <= p.caps[0] && -w <= p.caps[1])
+                        || (lines
                             && p.slope == lim1.c
                             && p.x1 > p.x0
                             && p.upper <= top1 - w
-                            && p.lower >= -top1 - w =>
-                    {
-                        out.push(*p)
-                    }
-                    Kind::Stuck => self.clip(*p, &lim1, &mut out),
+                            && p.lower >= -top1 - w))
+            };
+            // The unchanged pieces before the first that may change stay where they are (the
+            // new chunk's sums count them as they are found); the rest are moved aside and
+            // pushed back as the step leaves them.
+            let mut chunk = Chunk::empty(lim1.c);
+            let mut pieces = std::mem::take(&mut self.chunks[k].pieces);
+            let mut first = 0;
+            while first < pieces.len() && kept(&pieces[first]) {
+                chunk.count(&mut pieces[first]);
+                first += 1;
+            }
+            let mut rest = std::mem::take(&mut self.spare);
+            rest.clear();
+            rest.extend_from_slice(&pieces[first..]);
+            pieces.truncate(first);
+            for p in &rest {
+                if kept(p) {
+                    pieces.push(*p);
+                    continue;
+                }
+                match p.kind {
+                    Kind::Stuck => self.clip(*p, &lim1, &mut pieces),
                     Kind::Plus | Kind::Minus => {
-                        self.slip(*p, (&lim0, &lim1), rates, m, w_old, &mut out);
+                        self.slip(*p, (&lim0, &lim1), rates, m, w_old, &mut pieces);
                     }
                 }
             }
-            self.chunks[k].pieces = old;
-            k += self.install(k, out, lim1.c);
+            self.spare = rest;
+            chunk.pieces = pieces;
+            k += self.install_counted(k, chunk, first);
         }
         // Points entering contact: ũ = w(h) − w(θh), θ = (y − D0)/(D1 − D0).
         let (r0, r1) = (lim0.reach, lim1.reach);
@@ -734,6 +767,22 @@ impl ThorntonRow {
         }
         let needs = self.chunks[k - 1].pieces.last().is_some_and(|p| p.y1 > top);
         if needs {
+            let chunk = &mut self.chunks[k - 1];
+            // Where only pieces at a limit are cut or dropped, the stuck pieces' sums hold: the
+            // chunk is cut in place (its signs counted again).
+            let from = chunk.pieces.partition_point(|p| p.y1 <= top);
+            if chunk.pieces[from..].iter().all(|p| p.kind != Kind::Stuck) {
+                chunk.pieces.retain(|p| p.y0 < top);
+                if let Some(last) = chunk.pieces.last_mut() {
+                    if last.y1 > top {
+                        *last = last.part(last.y0, top, &line, self.radius);
+                    }
+                }
+                chunk.signs = [Kind::Plus, Kind::Minus]
+                    .map(|kind| chunk.pieces.iter().any(|p| p.kind == kind));
+                self.dirty = self.dirty.min(k - 1);
+                return;
+            }
             let mut pieces = std::mem::take(&mut self.chunks[k - 1].pieces);
             pieces.retain(|p| p.y0 < top);
             if let Some(last) = pieces.last_mut() {
@@ -748,14 +797,9 @@ impl ThorntonRow {
 
     /// Whether some piece sits at the `+` / `−` limit.
     fn limits_held(&self) -> (bool, bool) {
-        let mut held = (false, false);
-        for ch in self.chunks.iter().filter(|ch| ch.has_limits()) {
-            for p in &ch.pieces {
-                held.0 |= p.kind == Kind::Plus;
-                held.1 |= p.kind == Kind::Minus;
-            }
-        }
-        held
+        self.chunks.iter().fold((false, false), |held, ch| {
+            (held.0 || ch.signs[0], held.1 || ch.signs[1])
+        })
     }
 
     /// `ũ` at the centre.

@@ -323,7 +323,8 @@ pub(super) struct Chunk {
     pub(super) upper: f64,
     pub(super) lower: f64,
     pub(super) slope: f64,
-    /// Whether some piece is at the `+` / `−` limit.
+    /// Whether some piece is at the `+` / `−` limit (exact: the row's limits held are read
+    /// from it).
     pub(super) signs: [bool; 2],
     /// The smallest [`Piece::caps`] of the stuck pieces (NaN while one is not measured): while
     /// the limits only grow (loading), the chunk is inside them as long as `W ≤ caps[0]` and
@@ -333,8 +334,16 @@ pub(super) struct Chunk {
 
 impl Chunk {
     /// The chunk of `pieces` with its sums, the stuck pieces bounded for the slope `s`.
-    pub(super) fn new(mut pieces: Vec<Piece>, s: f64) -> Self {
-        let mut ch = Chunk {
+    pub(super) fn new(pieces: Vec<Piece>, s: f64) -> Self {
+        let mut ch = Chunk::empty(s);
+        ch.pieces = pieces;
+        ch.count_from(0);
+        ch
+    }
+
+    /// A chunk without pieces, for the limit slope `s`.
+    pub(super) fn empty(s: f64) -> Self {
+        Chunk {
             stuck_length: 0.0,
             rel: 0.0,
             lo: f64::INFINITY,
@@ -345,16 +354,20 @@ impl Chunk {
             signs: [false, false],
             caps: [f64::INFINITY; 2],
             pieces: Vec::new(),
-        };
-        for p in &mut pieces {
-            ch.count(p);
         }
-        ch.pieces = pieces;
-        ch
+    }
+
+    /// Add the shares of the pieces from index `from` on to the sums (those before counted).
+    pub(super) fn count_from(&mut self, from: usize) {
+        let mut pieces = std::mem::take(&mut self.pieces);
+        for p in pieces.iter_mut().skip(from) {
+            self.count(p);
+        }
+        self.pieces = pieces;
     }
 
     /// Add a piece's share to the sums (a stuck piece bounded for the chunk's slope first).
-    fn count(&mut self, p: &mut Piece) {
+    pub(super) fn count(&mut self, p: &mut Piece) {
         if p.kind == Kind::Stuck {
             if p.slope != self.slope {
                 *p = p.bounded(self.slope);
