@@ -5,8 +5,8 @@
 //! meant to make a step cheaper without changing its arithmetic must leave every line as it was.
 //!
 //! `N elastic`: the same at `e_n = 1` (the elastic law, the continuum row): the same `γ` and
-//! `α` per point.
-use oblique_solver::{Accuracy, Request, Resolution};
+//! `α` per point. `N thornton`: the same points under Thornton's law.
+use oblique_solver::{Accuracy, Law, Request, Resolution};
 
 /// Element `i` of the van der Corput sequence in base `b`, in `[0, 1)`.
 fn halton(mut i: usize, b: usize) -> f64 {
@@ -21,10 +21,11 @@ fn halton(mut i: usize, b: usize) -> f64 {
 
 fn main() -> anyhow::Result<()> {
     let n: usize = std::env::args().nth(1).map_or(Ok(300), |s| s.parse())?;
-    let elastic = match std::env::args().nth(2).as_deref() {
-        None => false,
-        Some("elastic") => true,
-        Some(other) => anyhow::bail!("usage: kvbits [N] [elastic], not {other:?}"),
+    let (elastic, law) = match std::env::args().nth(2).as_deref() {
+        None => (false, None),
+        Some("elastic") => (true, None),
+        Some("thornton") => (false, Some(Law::from_name("thornton")?)),
+        Some(other) => anyhow::bail!("usage: kvbits [N] [elastic|thornton], not {other:?}"),
     };
     for i in 1..=n {
         let gamma = 0.05 + 4.95 * halton(i, 2);
@@ -39,7 +40,10 @@ fn main() -> anyhow::Result<()> {
         } else {
             0.3 + 0.69 * halton(i, 5)
         };
-        let req = Request::new(gamma, alpha).e_n(e_n).forced(true);
+        let mut req = Request::new(gamma, alpha).e_n(e_n).forced(true);
+        if let Some(law) = law {
+            req = req.law(law);
+        }
         let mut line = format!("{gamma:.17e} {alpha:.17e} {e_n:.17e}");
         for steps in [256, 1024] {
             let p = req.simulate(Resolution { springs: 0, steps })?;

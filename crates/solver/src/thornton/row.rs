@@ -12,7 +12,8 @@
 //! the increment `Δw` of the step; a spring entering contact during the step receives
 //! `w(h) − w(θh)`; the field is clipped against the limits at the end of the step; a spring at
 //! a limit that sticks again inside the step receives the part of the limit's change it missed,
-//! `∫₀^τ (L̇ − ẇ) dt` with the rate gap `g = L̇ ∓ ẇ` linear over the step. Where the limit is not
+//! `±∫₀^τ (L̇ ∓ ẇ) dt` at the `±` limit, with the rate gap `g = L̇ ∓ ẇ` linear over the step
+//! (the row is the same under `u → −u`). Where the limit is not
 //! linear in `y`, `L̇ = c Q′(d − y) ḋ` differs from spring to spring, so the springs of one run at
 //! a limit stick again one after the other: the run is cut where `g` changes sign at the
 //! start or the end of the step (closed form: `Q′(s) = (2/π) arcsin √(d_y/s)`), each part
@@ -546,14 +547,23 @@ impl ThorntonRow {
             if a1 <= 0.0 && a0 < 0.0 {
                 push_merged(out, Piece::limit(p.kind, lo, hi, self.radius));
             } else {
-                // Sticks again: ũ = s L0(y) + Δw + corr(y), stored less the new offset.
+                // Sticks again: ũ = s L0(y) + Δw + corr(y), stored less the new offset, with
+                // corr = s ∫₀^τ g dt the part of the limit's change the spring missed before it
+                // stuck again at τ (the spring at the − limit moves with −L: the sign s). Where g
+                // stays negative to the end of the step (only at a part's ends, where the rate
+                // gap's front cuts it, g₁ = 0 to the rounding) the spring reaches the limit at
+                // the end, ∫₀^h g dt: the same value at g₁ = 0, so that the correction is
+                // continuous in y and a rounding of g₁ does not move the part's interpolation.
                 let corr = |y: f64| {
                     let (b0, b1) = (g0(y), g1(y));
-                    if b0 < 0.0 && b1 > 0.0 {
+                    let missed = if b0 >= 0.0 {
+                        0.0
+                    } else if b1 > 0.0 {
                         -b0 * b0 * h / (2.0 * (b1 - b0))
                     } else {
-                        0.0
-                    }
+                        0.5 * (b0 + b1) * h
+                    };
+                    s * missed
                 };
                 let (c_lo, c_mid, c_hi) = if a0 < 0.0 {
                     (corr(lo), corr(mid), corr(hi))
