@@ -1,7 +1,9 @@
 //! How `P` converges step by step at a fixed resolution, and how much of its error depends on
 //! where events fall inside the steps: `cargo run --release -p oblique-tools --bin stepscan --
-//! GAMMA ALPHA E_N [N0 [COUNT]]` solves the continuum row at every step count `N0 …
-//! N0 + COUNT − 1` (defaults 1000 and 101), fits `P∞ + C/N²` by least squares and prints the
+//! GAMMA ALPHA E_N [N0 [COUNT [LAW [STRIDE]]]]` solves the continuum row at the step counts
+//! `N0, N0 + STRIDE, …` (`COUNT` of them; defaults 1000, 101 and 1; `LAW` names a law other than
+//! the one `E_N` implies, e.g. `thornton`, whose grids are nested at multiples of 16: use
+//! `STRIDE` 16 there), fits `P∞ + C/N²` by least squares and prints the
 //! fit and the scatter of `P` around it scaled by `N0²`: rms and largest. A second-order error
 //! that follows the step smoothly shows as `C` with a scatter near 0; an event whose position
 //! inside a step moves the error (a kink of the friction force that no step is split at) shows
@@ -16,9 +18,20 @@ fn main() -> anyhow::Result<()> {
     let e: f64 = oblique_tools::arg(&args, 2, "E_N")?;
     let n0: usize = oblique_tools::arg_or(&args, 3, "N0", 1000)?;
     let count: usize = oblique_tools::arg_or(&args, 4, "COUNT", 101)?;
-    anyhow::ensure!(count >= 3 && n0 >= 16, "N0 >= 16 and COUNT >= 3");
-    let req = Request::new(g, al).e_n(e);
-    let ns: Vec<usize> = (n0..n0 + count).collect();
+    let law = args
+        .get(5)
+        .map(|s| oblique_solver::Law::from_name(s))
+        .transpose()?;
+    let stride: usize = oblique_tools::arg_or(&args, 6, "STRIDE", 1)?;
+    anyhow::ensure!(
+        count >= 3 && n0 >= 16 && stride >= 1,
+        "N0 >= 16, COUNT >= 3 and STRIDE >= 1"
+    );
+    let mut req = Request::new(g, al).e_n(e);
+    if let Some(law) = law {
+        req = req.law(law);
+    }
+    let ns: Vec<usize> = (0..count).map(|k| n0 + k * stride).collect();
     let ps = ns
         .par_iter()
         .map(|&steps| req.simulate(Resolution { springs: 0, steps }))
@@ -37,7 +50,7 @@ fn main() -> anyhow::Result<()> {
     let n2 = (n0 as f64).powi(2);
     println!(
         "gamma {g} alpha {al} e_n {e}, N {n0}..{}: P_inf {a:.10}  C {b:.3e}  scatter rms*N^2 {:.3}  max*N^2 {:.3}",
-        n0 + count - 1,
+        ns[count - 1],
         rms * n2,
         max * n2
     );
