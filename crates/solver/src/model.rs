@@ -321,6 +321,43 @@ mod tests {
         }
     }
 
+    /// `P` of the dimensionless impact on `normal` started with the slip velocity `u0 = ±1`
+    /// (`P = u/u0`).
+    fn p_signed<N: NormalModel, T: TangentialModel>(
+        u0: f64,
+        normal: &N,
+        (gamma, alpha): (f64, f64),
+        row: T,
+    ) -> f64 {
+        let shear = 2.0 / 7.0 * gamma * gamma;
+        let mut cp = ContactPoint { u: u0 };
+        run_contact_with(&mut cp, normal, row, 1.0, shear, alpha / shear);
+        cp.u / u0
+    }
+
+    /// The elastic and Kelvin–Voigt rows are the same under `u → −u`, to the bit: the two
+    /// Coulomb limits are treated alike (the release corrections, the clipping, the onset of
+    /// gross slip). Thornton's row has its own test (`thornton::tests`).
+    #[test]
+    fn the_rows_are_the_same_for_a_mirrored_slip() {
+        let tau = crate::kelvin_voigt::tau_fit(0.8);
+        let elastic = dimensionless_normal(512);
+        let viscous = crate::kelvin_voigt::dimensionless_normal(512, tau);
+        for case in [(0.5, 1.0), (1.754, 0.3), (3.0, 1.5), (3.4, 0.6), (2.1, 4.4)] {
+            let continuum = |u0| p_signed(u0, &*elastic, case, ContinuumRow::new(1.0));
+            assert_eq!(
+                continuum(1.0).to_bits(),
+                continuum(-1.0).to_bits(),
+                "{case:?}"
+            );
+            let kv = |u0| {
+                let row = crate::kelvin_voigt::row::ViscoelasticRow::new(1.0, tau);
+                p_signed(u0, &*viscous, case, row)
+            };
+            assert_eq!(kv(1.0).to_bits(), kv(-1.0).to_bits(), "{case:?}");
+        }
+    }
+
     #[test]
     fn a_new_tangential_model_plugs_into_the_loop() {
         // Without friction the contact point keeps its tangential velocity: P = 1 exactly,
