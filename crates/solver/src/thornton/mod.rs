@@ -155,6 +155,11 @@ pub(crate) fn dimensionless_trajectory(motion: &Motion, steps: usize) -> Rc<Traj
 /// `G* = shear` and Coulomb limit factor `limit` (`∞`: no slip). The motion must be a
 /// dimensionless one ([`dimensionless_motion`]: its trajectories are cached by `d_y`).
 pub fn dimensionless_p(shear: f64, limit: f64, motion: &Motion, steps: usize) -> f64 {
+    started_p(1.0, shear, limit, motion, steps)
+}
+
+/// [`dimensionless_p`] of the impact started with the slip velocity `u0` (`P = u/u0`).
+fn started_p(u0: f64, shear: f64, limit: f64, motion: &Motion, steps: usize) -> f64 {
     let trajectory = dimensionless_trajectory(motion, steps);
     let row = ThorntonRow::new(
         1.0,
@@ -162,9 +167,9 @@ pub fn dimensionless_p(shear: f64, limit: f64, motion: &Motion, steps: usize) ->
         motion.unloading.ratio,
         motion.unloading.plastic_indentation,
     );
-    let mut cp = ContactPoint { u: 1.0 };
+    let mut cp = ContactPoint { u: u0 };
     run_contact_with(&mut cp, &*trajectory, row, 1.0, shear, limit);
-    cp.u
+    cp.u / u0
 }
 
 /// Thornton's law ([`ContactLaw`]): `e_n ∈ [0.3, 1]`, the limiting pressure that gives it, the
@@ -548,16 +553,7 @@ mod tests {
         let p_y = yield_pressure_for_restitution(e_n).expect("e_n in range");
         let motion = dimensionless_motion(p_y);
         let shear = 2.0 / 7.0 * gamma * gamma;
-        let trajectory = dimensionless_trajectory(&motion, steps);
-        let row = ThorntonRow::new(
-            1.0,
-            motion.loading.yield_indentation,
-            motion.unloading.ratio,
-            motion.unloading.plastic_indentation,
-        );
-        let mut cp = ContactPoint { u: u0 };
-        run_contact_with(&mut cp, &*trajectory, row, 1.0, shear, alpha / shear);
-        cp.u / u0
+        started_p(u0, shear, alpha / shear, &motion, steps)
     }
 
     /// The row is the same under `u → −u`: a spring at the `−` limit that sticks again

@@ -182,18 +182,13 @@ impl ThorntonRow {
         self.dirty = self.dirty.min(k);
         if pieces.is_empty() {
             let old = self.chunks.remove(k).pieces;
-            if old.capacity() > self.spare.capacity() {
-                self.spare = old;
-            }
+            self.keep_spare(old);
             return 0;
         }
         if pieces.len() <= CHUNK_MAX {
-            let chunk = Chunk::new(pieces, s);
-            let old = std::mem::replace(&mut self.chunks[k], chunk);
-            if old.pieces.capacity() > self.spare.capacity() {
-                self.spare = old.pieces;
-            }
-            return 1;
+            let mut chunk = Chunk::empty(s);
+            chunk.pieces = pieces;
+            return self.install_counted(k, chunk, 0);
         }
         let parts: Vec<Chunk> = pieces
             .chunks(CHUNK_MAX)
@@ -214,10 +209,15 @@ impl ThorntonRow {
         self.dirty = self.dirty.min(k);
         chunk.count_from(counted);
         let old = std::mem::replace(&mut self.chunks[k], chunk);
-        if old.pieces.capacity() > self.spare.capacity() {
-            self.spare = old.pieces;
-        }
+        self.keep_spare(old.pieces);
         1
+    }
+
+    /// Keep `pieces`' allocation as the scratch vector where it is the larger one.
+    fn keep_spare(&mut self, pieces: Vec<Piece>) {
+        if pieces.capacity() > self.spare.capacity() {
+            self.spare = pieces;
+        }
     }
 
     /// Join runs at one limit that a chunk boundary splits, and neighbouring chunks that fit
@@ -431,9 +431,7 @@ impl ThorntonRow {
                 self.chunks.push(Chunk::default());
                 self.install(last, std::mem::take(&mut out), lim1.c);
             }
-            if out.capacity() > self.spare.capacity() {
-                self.spare = out;
-            }
+            self.keep_spare(out);
         }
         self.compact(lim1.c);
         let integral = self.integral(&lim1);
