@@ -97,6 +97,11 @@ pub struct Floor {
     /// Share where it is steady: the last three ratios of successive differences within
     /// `[0.95, 1.05] · 2^p` (`refine::steady`); at most [`Floor::regular`].
     pub steady: f64,
+    /// Share where it is tight: the last three ratios within `[0.99, 1.01] · 2^p`
+    /// (`refine::tight`); at most [`Floor::steady`]. Such a level is also accepted without the
+    /// guard on the level before it (`refine::previous_estimate_agrees`): four doublings at the
+    /// order are no plateau.
+    pub tight: f64,
     /// Share elsewhere (and while fewer than four values exist).
     pub irregular: f64,
     /// An absolute floor `scatter/N²` at `N` steps: the part of the error that depends on where
@@ -110,6 +115,7 @@ impl Floor {
         Floor {
             regular: share,
             steady: share,
+            tight: share,
             irregular: share,
             scatter: 0.0,
         }

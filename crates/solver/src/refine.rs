@@ -226,7 +226,9 @@ fn extrapolate(values: &[f64], order: i32, floor: Floor, steps: usize) -> (f64, 
     let n = values.len();
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / r;
     let last = rich(n - 1);
-    let share = if steady(values, order) {
+    let share = if tight(values, order) {
+        floor.tight.max(tail_share(values, order))
+    } else if steady(values, order) {
         floor.steady.max(tail_share(values, order))
     } else if regular(values, order) {
         floor.regular.max(tail_share(values, order))
@@ -283,6 +285,21 @@ const TAIL_MARGIN: f64 = 1.5;
 /// `[0.95, 1.05] · 2^order` ([`Floor::steady`]): the sequence has converged at its order for
 /// four levels.
 fn steady(values: &[f64], order: i32) -> bool {
+    within_last_three(values, order, 0.05)
+}
+
+/// Whether the last three ratios of successive differences of `values` are within
+/// `[0.99, 1.01] · 2^order` ([`Floor::tight`]): four doublings at the order, to 1 %.
+fn tight(values: &[f64], order: i32) -> bool {
+    within_last_three(values, order, TIGHT_SPREAD)
+}
+
+/// Relative spread of the ratios around `2^p` that [`tight`] accepts.
+const TIGHT_SPREAD: f64 = 0.01;
+
+/// Whether the last three ratios of successive differences of `values` are within
+/// `[1 − spread, 1 + spread] · 2^order` (five values at least).
+fn within_last_three(values: &[f64], order: i32, spread: f64) -> bool {
     let n = values.len();
     if n < 5 {
         return false;
@@ -291,7 +308,7 @@ fn steady(values: &[f64], order: i32) -> bool {
     let d = |k: usize| values[k] - values[k - 1];
     [n - 1, n - 2, n - 3]
         .iter()
-        .all(|&k| (0.95 * r..=1.05 * r).contains(&(d(k - 1) / d(k))))
+        .all(|&k| ((1.0 - spread) * r..=(1.0 + spread) * r).contains(&(d(k - 1) / d(k))))
 }
 
 /// Whether the last two ratios of successive differences of `values` are within
@@ -302,7 +319,9 @@ fn regular(values: &[f64], order: i32) -> bool {
 }
 
 /// The acceptance guard of the Richardson path: the estimate one level coarser must already be
-/// within `2^p · tol`, as it is when the sequence has converged at order `p` for two levels.
+/// within `2^p · tol`, as it is when the sequence has converged at order `p` for two levels, or
+/// the last three ratios of differences are [`tight`] (converged at order `p` to 1 % for four
+/// doublings: no plateau looks like that).
 ///
 /// Without it a pre-asymptotic plateau passes for convergence: at γ = 1.80378, α = 5.148 (stick,
 /// a short slip episode that 256 steps do not resolve) the values at 64, 128 and 256 steps lie
@@ -321,7 +340,9 @@ fn previous_estimate_agrees(
     steps: usize,
 ) -> bool {
     let n = values.len();
-    n >= 4 && extrapolate(&values[..n - 1], order, floor, steps / 2).1 <= 2f64.powi(order) * tol
+    tight(values, order)
+        || (n >= 4
+            && extrapolate(&values[..n - 1], order, floor, steps / 2).1 <= 2f64.powi(order) * tol)
 }
 
 /// Refine a computation `run(level)` (resolution doubling each level from `base`) until the
@@ -724,6 +745,7 @@ mod tests {
         let floor = Floor {
             regular: 0.1,
             steady: 0.05,
+            tight: 0.05,
             irregular: 0.2,
             scatter: 0.0,
         };
@@ -732,5 +754,44 @@ mod tests {
         assert!((est - 0.05 * last).abs() < 1e-3 * est, "{est:e} {last:e}");
         let (_, est) = extrapolate(&ladder[..4], 2, floor, 64);
         assert!((est - 0.1 * (ladder[3] - ladder[2]).abs()).abs() < 1e-3 * est);
+    }
+
+    /// The tight share applies only where the last three ratios are within 1 % of 4, and such
+    /// a level passes the acceptance guard whatever the estimate of the level before it: a
+    /// ladder `C/N²` with ratios 4.06 is steady but not tight, and its estimate keeps the
+    /// steady share.
+    #[test]
+    fn only_three_ratios_within_one_per_cent_of_the_order_are_tight() {
+        let floor = Floor {
+            regular: 0.1,
+            steady: 0.1,
+            tight: 0.01,
+            irregular: 0.2,
+            scatter: 0.0,
+        };
+        let ladder = |q: f64| -> Vec<f64> { (0..6).map(|k| 0.5 + 1e-3 / q.powi(k)).collect() };
+        let exact = ladder(4.0);
+        assert!(!tight(&exact[..4], 2));
+        assert!(tight(&exact[..5], 2) && tight(&exact, 2));
+        let last = (exact[5] - exact[4]).abs();
+        let (_, est) = extrapolate(&exact, 2, floor, 512);
+        assert!((est - 0.01 * last).abs() < 1e-3 * est, "{est:e} {last:e}");
+        // Tight from a first ratio of 3.5 on: the level before is regular only and states 0.1
+        // of a difference four times larger, above 4 tol for a tol just above this level's
+        // estimate, and the level is accepted anyway.
+        let mut late = vec![0.5, 0.5 + 3.5e-3];
+        for k in 0..4 {
+            late.push(late[late.len() - 1] + 1e-3 / 4f64.powi(k));
+        }
+        assert!(tight(&late, 2) && !tight(&late[..5], 2) && !steady(&late[..5], 2));
+        let (_, est) = extrapolate(&late, 2, floor, 512);
+        let tol = 1.01 * est;
+        assert!(extrapolate(&late[..5], 2, floor, 256).1 > 4.0 * tol);
+        assert!(previous_estimate_agrees(&late, 2, tol, floor, 512));
+        let off = ladder(4.06);
+        assert!(steady(&off, 2) && !tight(&off, 2));
+        let (_, est) = extrapolate(&off, 2, floor, 512);
+        assert!(est >= 0.1 * (off[5] - off[4]).abs(), "{est:e}");
+        assert!(!previous_estimate_agrees(&off, 2, est, floor, 512));
     }
 }

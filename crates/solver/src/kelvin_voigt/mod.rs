@@ -40,6 +40,7 @@ use row::ViscoelasticRow;
 pub const RAW_FLOOR: Floor = Floor {
     regular: crate::elastic::RAW_FLOOR,
     steady: crate::elastic::STEADY_FLOOR,
+    tight: crate::elastic::TIGHT_FLOOR,
     irregular: 0.5,
     scatter: crate::law::ROW_SCATTER,
 };

@@ -233,6 +233,7 @@ pub struct BodiesParameters {
 pub const RAW_FLOOR: Floor = Floor {
     regular: 0.25,
     steady: 0.1,
+    tight: crate::elastic::TIGHT_FLOOR,
     irregular: 0.5,
     scatter: 0.3,
 };
