@@ -332,17 +332,55 @@ fn regular(values: &[f64], order: i32) -> bool {
 /// where a sequence converges fast from a poor start: `configs/quick.toml` needs 13.8 s with it
 /// against 10.4 s without (33 %, measured under load). With three values only (no coarser
 /// estimate) the result is never accepted.
+///
+/// `previous_floor` is the level before's [`zone_floor`], which its estimate keeps.
 fn previous_estimate_agrees(
     values: &[f64],
     order: i32,
     tol: f64,
     floor: Floor,
     steps: usize,
+    previous_floor: f64,
 ) -> bool {
     let n = values.len();
     tight(values, order)
         || (n >= 4
-            && extrapolate(&values[..n - 1], order, floor, steps / 2).1 <= 2f64.powi(order) * tol)
+            && extrapolate(&values[..n - 1], order, floor, steps / 2)
+                .1
+                .max(previous_floor)
+                <= 2f64.powi(order) * tol)
+}
+
+/// Share of the contact time below which a zone that ends in gross slip
+/// ([`Level::shortest_zone`]) is brief: the run is next to a fold where such a zone is born,
+/// and the estimate is at least [`BRIEF_ZONE_SCATTER`]`/N²` ([`zone_floor`]).
+pub const BRIEF_ZONE: f64 = 0.05;
+
+/// The estimate's floor `BRIEF_ZONE_SCATTER/N²` at `N` steps where a zone that ends in gross
+/// slip is brief ([`BRIEF_ZONE`]).
+///
+/// Next to the fold where a gross-slip episode of the restitution phase is born (the elastic
+/// stick patch at γ ≈ 1.95–2.15, α ≈ 1.2–2.6), `P` at `N` steps scatters around its smooth
+/// convergence by up to about `1.2/N²` (γ = 2.11, α = 1.40: `stepscan` 0.15/N² rms over 64
+/// consecutive `N`, errors of the accepted answers up to 1.18/N²), with differences between
+/// levels that look converged: on the grid of 609 points there (`docs/solver.md`, "Error
+/// estimates") 66 answers at tol 1e-6 stated estimates below their errors (up to 6.3×, most
+/// of them the row's `0.1/N²`), 77 at 2e-6 and 51 at 1e-7. Where the zone before gross slip
+/// lasts under 0.05 `t_c` (counted from [`crate::zones::ZONE_MIN`]) this floor leaves 11
+/// (worst 3.2×), 17 and 4, all at α 1.2–1.35 where no zone is counted at the finer levels (the
+/// episode is shorter than `ZONE_MIN` or gone), for 0.1–0.6 % more steps on that grid and
+/// 0.5–2.7 % over 800 random points (`levelneed` at 2e-6, 1e-6 and 1e-7).
+pub const BRIEF_ZONE_SCATTER: f64 = 1.5;
+
+/// The estimate's floor of a level at `steps` steps whose shortest counted zone spans
+/// `zone_steps` grid steps: [`BRIEF_ZONE_SCATTER`]`/N²` where that zone is brief, else 0.
+fn zone_floor(zone_steps: f64, steps: usize) -> f64 {
+    let n = steps as f64;
+    if zone_steps < BRIEF_ZONE * n {
+        BRIEF_ZONE_SCATTER / (n * n)
+    } else {
+        0.0
+    }
 }
 
 /// Refine a computation `run(level)` (resolution doubling each level from `base`) until the
@@ -421,6 +459,8 @@ pub(crate) fn refine_core(
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
     let tol = positive("tol", tol)?;
     let mut values = Vec::new();
+    // The zone floor of the level before ([`zone_floor`]).
+    let mut previous_floor = 0.0;
     let mut best = (f64::INFINITY, base);
     // The zone's steps where the last estimate was within `tol` but its level unresolved.
     let mut unresolved = f64::INFINITY;
@@ -447,6 +487,7 @@ pub(crate) fn refine_core(
         });
         let level = run(res)?;
         values.push(level.p);
+        let level_floor = zone_floor(level.shortest_zone, res.steps);
         if values.len() < 3 {
             observer(RefineEvent::Finished {
                 level: k,
@@ -460,6 +501,7 @@ pub(crate) fn refine_core(
             } else {
                 (values[values.len() - 1], estimate(&values, order))
             };
+            let est = est.max(level_floor);
             observer(RefineEvent::Finished {
                 level: k,
                 resolution: res,
@@ -474,7 +516,15 @@ pub(crate) fn refine_core(
             };
             if est <= tol
                 && level.resolved()
-                && (!richardson || previous_estimate_agrees(&values, order, tol, floor, res.steps))
+                && (!richardson
+                    || previous_estimate_agrees(
+                        &values,
+                        order,
+                        tol,
+                        floor,
+                        res.steps,
+                        previous_floor,
+                    ))
             {
                 return Ok((value, est, res));
             }
@@ -506,6 +556,7 @@ pub(crate) fn refine_core(
                 });
             }
         }
+        previous_floor = level_floor;
     }
     unreachable!("the refinement loop only exits by returning")
 }
@@ -756,6 +807,17 @@ mod tests {
         assert!((est - 0.1 * (ladder[3] - ladder[2]).abs()).abs() < 1e-3 * est);
     }
 
+    /// The zone floor is 1.5/N² exactly where the shortest counted zone lasts under 0.05 of
+    /// the contact time (`zone_steps < 0.05 N`), and none without such a zone.
+    #[test]
+    fn a_brief_zone_before_gross_slip_floors_the_estimate() {
+        assert_eq!(zone_floor(f64::INFINITY, 2048), 0.0);
+        assert_eq!(zone_floor(0.05 * 2048.0, 2048), 0.0);
+        let f = zone_floor(0.049 * 2048.0, 2048);
+        assert!((f - 1.5 / 2048f64.powi(2)).abs() < 1e-20, "{f:e}");
+        assert!(zone_floor(9.4, 2048) > 0.0 && zone_floor(9.4, 128) == 0.0);
+    }
+
     /// The tight share applies only where the last three ratios are within 1 % of 4, and such
     /// a level passes the acceptance guard whatever the estimate of the level before it: a
     /// ladder `C/N²` with ratios 4.06 is steady but not tight, and its estimate keeps the
@@ -787,11 +849,11 @@ mod tests {
         let (_, est) = extrapolate(&late, 2, floor, 512);
         let tol = 1.01 * est;
         assert!(extrapolate(&late[..5], 2, floor, 256).1 > 4.0 * tol);
-        assert!(previous_estimate_agrees(&late, 2, tol, floor, 512));
+        assert!(previous_estimate_agrees(&late, 2, tol, floor, 512, 0.0));
         let off = ladder(4.06);
         assert!(steady(&off, 2) && !tight(&off, 2));
         let (_, est) = extrapolate(&off, 2, floor, 512);
         assert!(est >= 0.1 * (off[5] - off[4]).abs(), "{est:e}");
-        assert!(!previous_estimate_agrees(&off, 2, est, floor, 512));
+        assert!(!previous_estimate_agrees(&off, 2, est, floor, 512, 0.0));
     }
 }
