@@ -676,7 +676,13 @@ pub(crate) fn solve_core(
                     values[k as usize] = run(halved(k))?.p;
                 }
                 match fixed_estimate(values, scheme.order()) {
-                    Ok(est) => (fine, est, res),
+                    // A brief zone before gross slip scatters `P` beyond what the halved runs
+                    // show ([`zone_floor`]).
+                    Ok(est) => (
+                        fine,
+                        est.max(zone_floor(level.shortest_zone, res.steps)),
+                        res,
+                    ),
                     Err(differences) => {
                         no_estimate = Some(NoEstimate::NotAsymptotic { differences });
                         (fine, f64::INFINITY, res)
