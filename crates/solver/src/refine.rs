@@ -285,8 +285,11 @@ const TAIL_MARGIN: f64 = 1.5;
 /// `[0.95, 1.05] · 2^order` ([`Floor::steady`]): the sequence has converged at its order for
 /// four levels.
 fn steady(values: &[f64], order: i32) -> bool {
-    within_last_three(values, order, 0.05)
+    within_last_three(values, order, STEADY_SPREAD)
 }
+
+/// Relative spread of the ratios around `2^p` that [`steady`] accepts.
+const STEADY_SPREAD: f64 = 0.05;
 
 /// Whether the last three ratios of successive differences of `values` are within
 /// `[0.99, 1.01] · 2^order` ([`Floor::tight`]): four doublings at the order, to 1 %.
@@ -333,7 +336,8 @@ fn regular(values: &[f64], order: i32) -> bool {
 /// against 10.4 s without (33 %, measured under load). With three values only (no coarser
 /// estimate) the result is never accepted.
 ///
-/// `previous_floor` is the level before's [`zone_floor`], which its estimate keeps.
+/// `previous_floor` is the level before's [`Level::brief_zone_floor`], which its estimate
+/// keeps.
 fn previous_estimate_agrees(
     values: &[f64],
     order: i32,
@@ -349,38 +353,6 @@ fn previous_estimate_agrees(
                 .1
                 .max(previous_floor)
                 <= 2f64.powi(order) * tol)
-}
-
-/// Share of the contact time below which a zone that ends in gross slip
-/// ([`Level::shortest_zone`]) is brief: the run is next to a fold where such a zone is born,
-/// and the estimate is at least [`BRIEF_ZONE_SCATTER`]`/N²` ([`zone_floor`]).
-pub const BRIEF_ZONE: f64 = 0.05;
-
-/// The estimate's floor `BRIEF_ZONE_SCATTER/N²` at `N` steps where a zone that ends in gross
-/// slip is brief ([`BRIEF_ZONE`]).
-///
-/// Next to the fold where a gross-slip episode of the restitution phase is born (the elastic
-/// stick patch at γ ≈ 1.95–2.15, α ≈ 1.2–2.6), `P` at `N` steps scatters around its smooth
-/// convergence by up to about `1.2/N²` (γ = 2.11, α = 1.40: `stepscan` 0.15/N² rms over 64
-/// consecutive `N`, errors of the accepted answers up to 1.18/N²), with differences between
-/// levels that look converged: on the grid of 609 points there (`docs/solver.md`, "Error
-/// estimates") 66 answers at tol 1e-6 stated estimates below their errors (up to 6.3×, most
-/// of them the row's `0.1/N²`), 77 at 2e-6 and 51 at 1e-7. Where the zone before gross slip
-/// lasts under 0.05 `t_c` (counted from [`crate::zones::ZONE_MIN`]) this floor leaves 11
-/// (worst 3.2×), 17 and 4, all at α 1.2–1.35 where no zone is counted at the finer levels (the
-/// episode is shorter than `ZONE_MIN` or gone), for 0.1–0.6 % more steps on that grid and
-/// 0.5–2.7 % over 800 random points (`levelneed` at 2e-6, 1e-6 and 1e-7).
-pub const BRIEF_ZONE_SCATTER: f64 = 1.5;
-
-/// The estimate's floor of a level at `steps` steps whose shortest counted zone spans
-/// `zone_steps` grid steps: [`BRIEF_ZONE_SCATTER`]`/N²` where that zone is brief, else 0.
-fn zone_floor(zone_steps: f64, steps: usize) -> f64 {
-    let n = steps as f64;
-    if zone_steps < BRIEF_ZONE * n {
-        BRIEF_ZONE_SCATTER / (n * n)
-    } else {
-        0.0
-    }
 }
 
 /// Refine a computation `run(level)` (resolution doubling each level from `base`) until the
@@ -459,7 +431,7 @@ pub(crate) fn refine_core(
 ) -> Result<(f64, f64, Resolution), PhysicsError> {
     let tol = positive("tol", tol)?;
     let mut values = Vec::new();
-    // The zone floor of the level before ([`zone_floor`]).
+    // The brief-zone floor of the level before ([`Level::brief_zone_floor`]).
     let mut previous_floor = 0.0;
     let mut best = (f64::INFINITY, base);
     // The zone's steps where the last estimate was within `tol` but its level unresolved.
@@ -487,7 +459,7 @@ pub(crate) fn refine_core(
         });
         let level = run(res)?;
         values.push(level.p);
-        let level_floor = zone_floor(level.shortest_zone, res.steps);
+        let level_floor = level.brief_zone_floor(res.steps);
         if values.len() < 3 {
             observer(RefineEvent::Finished {
                 level: k,
@@ -677,12 +649,8 @@ pub(crate) fn solve_core(
                 }
                 match fixed_estimate(values, scheme.order()) {
                     // A brief zone before gross slip scatters `P` beyond what the halved runs
-                    // show ([`zone_floor`]).
-                    Ok(est) => (
-                        fine,
-                        est.max(zone_floor(level.shortest_zone, res.steps)),
-                        res,
-                    ),
+                    // show ([`Level::brief_zone_floor`]).
+                    Ok(est) => (fine, est.max(level.brief_zone_floor(res.steps)), res),
                     Err(differences) => {
                         no_estimate = Some(NoEstimate::NotAsymptotic { differences });
                         (fine, f64::INFINITY, res)
@@ -811,17 +779,6 @@ mod tests {
         assert!((est - 0.05 * last).abs() < 1e-3 * est, "{est:e} {last:e}");
         let (_, est) = extrapolate(&ladder[..4], 2, floor, 64);
         assert!((est - 0.1 * (ladder[3] - ladder[2]).abs()).abs() < 1e-3 * est);
-    }
-
-    /// The zone floor is 1.5/N² exactly where the shortest counted zone lasts under 0.05 of
-    /// the contact time (`zone_steps < 0.05 N`), and none without such a zone.
-    #[test]
-    fn a_brief_zone_before_gross_slip_floors_the_estimate() {
-        assert_eq!(zone_floor(f64::INFINITY, 2048), 0.0);
-        assert_eq!(zone_floor(0.05 * 2048.0, 2048), 0.0);
-        let f = zone_floor(0.049 * 2048.0, 2048);
-        assert!((f - 1.5 / 2048f64.powi(2)).abs() < 1e-20, "{f:e}");
-        assert!(zone_floor(9.4, 2048) > 0.0 && zone_floor(9.4, 128) == 0.0);
     }
 
     /// The tight share applies only where the last three ratios are within 1 % of 4, and such

@@ -32,6 +32,27 @@ pub const ZONE_STEPS: f64 = 8.0;
 /// Zones shorter than this fraction of the contact time are not counted by [`ZONE_STEPS`].
 pub const ZONE_MIN: f64 = 0.004;
 
+/// Share of the contact time below which a counted zone that ends in gross slip
+/// ([`Level::shortest_zone`]) is brief: the run is next to a fold where such a zone is born,
+/// and its error estimate is at least [`BRIEF_ZONE_SCATTER`]`/N²` ([`Level::brief_zone_floor`]).
+pub const BRIEF_ZONE: f64 = 0.05;
+
+/// The error estimate's floor `BRIEF_ZONE_SCATTER/N²` at `N` steps where a zone that ends in
+/// gross slip is brief ([`BRIEF_ZONE`]).
+///
+/// Next to the fold where a gross-slip episode of the restitution phase is born (the elastic
+/// stick patch at γ ≈ 1.95–2.15, α ≈ 1.2–2.6), `P` at `N` steps scatters around its smooth
+/// convergence by up to about `1.2/N²` (γ = 2.11, α = 1.40: `stepscan` 0.15/N² rms over 64
+/// consecutive `N`, errors of the accepted answers up to 1.18/N²), with differences between
+/// levels that look converged: on the grid of 609 points there (`docs/solver.md`, "Error
+/// estimates") 65 answers at tol 1e-6 stated estimates below their errors (up to 6.3×, most
+/// of them the row's `0.1/N²`), 77 at 2e-6 and 51 at 1e-7. Where the zone before gross slip
+/// lasts under 0.05 `t_c` (counted from [`ZONE_MIN`]) this floor leaves 11 (worst 3.2×), 17
+/// and 4, all at α 1.2–1.35 where no zone is counted at the finer levels (the episode is
+/// shorter than `ZONE_MIN` or gone), for 0.1–0.6 % more steps on that grid and 0.5–2.7 % over
+/// 800 random points (`levelneed` at 2e-6, 1e-6 and 1e-7).
+pub const BRIEF_ZONE_SCATTER: f64 = 1.5;
+
 /// The bit of a zone's state that says part of the contact is stuck.
 const STUCK: u8 = 4;
 
@@ -58,6 +79,18 @@ impl Level {
     /// more.
     pub fn resolved(&self) -> bool {
         self.shortest_zone >= ZONE_STEPS
+    }
+
+    /// The floor of the error estimate of this level at `steps` steps:
+    /// [`BRIEF_ZONE_SCATTER`]`/N²` where its shortest counted zone lasts under [`BRIEF_ZONE`]
+    /// of the contact time (`shortest_zone < BRIEF_ZONE · N` grid steps), else 0.
+    pub fn brief_zone_floor(&self, steps: usize) -> f64 {
+        let n = steps as f64;
+        if self.shortest_zone < BRIEF_ZONE * n {
+            BRIEF_ZONE_SCATTER / (n * n)
+        } else {
+            0.0
+        }
     }
 }
 
@@ -149,5 +182,20 @@ mod tests {
         };
         assert!(!level.resolved());
         assert!(Level::unwatched(0.5).resolved());
+    }
+
+    /// The brief-zone floor is 1.5/N² exactly where the shortest counted zone lasts under 0.05
+    /// of the contact time (`shortest_zone < 0.05 N`), and none without such a zone.
+    #[test]
+    fn a_brief_zone_before_gross_slip_floors_the_estimate() {
+        let at = |zone: f64| Level {
+            p: 0.5,
+            shortest_zone: zone,
+        };
+        assert_eq!(Level::unwatched(0.5).brief_zone_floor(2048), 0.0);
+        assert_eq!(at(0.05 * 2048.0).brief_zone_floor(2048), 0.0);
+        let f = at(0.049 * 2048.0).brief_zone_floor(2048);
+        assert!((f - 1.5 / 2048f64.powi(2)).abs() < 1e-20, "{f:e}");
+        assert!(at(9.4).brief_zone_floor(2048) > 0.0 && at(9.4).brief_zone_floor(128) == 0.0);
     }
 }

@@ -20,7 +20,7 @@ fn main() -> anyhow::Result<()> {
     let seed: u64 = args.get(1).map_or(Ok(1), |s| s.parse())?;
     let levels: u32 = args.get(2).map_or(Ok(9), |s| s.parse())?;
     let law = args.get(3).map(|s| Law::from_name(s)).transpose()?;
-    let thornton = law.is_some_and(|l| l.name() == "thornton");
+    let thornton = law == Some(Law::Thornton);
     let mut rnd = oblique_tools::xorshift(seed);
     let mut points = Vec::new();
     for e in if thornton { vec![0.9, 0.6] } else { vec![1.0] } {
