@@ -95,11 +95,12 @@ extern "C" {
 /* Newest layout version this header reads: 1 (an elastic table, and curves), 2 (a table
    with a normal-restitution axis e_n), 3 (the table of one pair: P(alpha, e_n) at a single
    gamma), 4 (a table of Thornton's law: version 2 without a closed-form full-slip line), 5
-   (version 2 or 4 whose partial-slip coordinate has knots) and 6 (an elastic table whose
-   split cells halve only the axes their masks name). */
-#define OBLQ_EXPORT_VERSION 6u
+   (version 2 or 4 whose partial-slip coordinate has knots), 6 (an elastic table whose
+   split cells halve only the axes their masks name) and 7 (version 5 whose stick patch
+   stick_high has knots too). */
+#define OBLQ_EXPORT_VERSION 7u
 
-/* Most knots of a partial-slip coordinate (layout version 5). */
+/* Most knots of a patch's coordinate (layout versions 5 and 7). */
 #define OBLQ_MAX_KNOTS 8
 
 /* Status codes of the file loader oblq_load_file (host only; the others follow). */
@@ -168,7 +169,8 @@ typedef struct {
        every axis. With the axis bit 4: gamma, 2: c, 1: e_n (1 to 3 in the patch of one pair:
        c, e_n); without it (layout version 6) bit 2: gamma, 1: c; 0 for a leaf. */
     const unsigned char *split;
-    /* The knots of the partial-slip coordinate (layout version 5; k_n = 0: none): k_n kink
+    /* The knots of the patch's coordinate (layout version 5: partial_high; 7: partial_high
+       and stick_high; k_n = 0: none): k_n kink
        surfaces K_j tabulated at (k_gamma_0 + i k_gamma_step, k_e_n_0 + l k_e_n_step),
        k_knot [k_n][k_ng][k_ne], sent to k_c_star[j] inside k_region (root cells: gamma from,
        gamma to, e_n from, e_n to); k_grade[j]: 0 linear, 1 the segment below graded, 2 the
@@ -189,10 +191,10 @@ typedef struct {
     const unsigned char *data; /* the export */
     uint64_t size;
     uint64_t curves; /* offset of the curve records */
-    int has_e_n;              /* 1: a table with a normal-restitution axis (layout version 2 to 5) */
+    int has_e_n; /* 1: a table with a normal-restitution axis (layout versions 2 to 5 and 7) */
     double e_n_min, e_n_max;  /* the e_n range it answers: 1, 1 for an elastic table */
     int pair; /* 1: the table of one pair (layout version 3): gamma_min == gamma_max, its gamma */
-    /* 1: a table without a closed-form full-slip line (layout version 4, or 5 with the flag,
+    /* 1: a table without a closed-form full-slip line (layout version 4, or 5 and 7 with the flag,
        Thornton's law): its partial-slip patch answers every alpha < alpha_c2 for gamma >= 1
        (gamma_min >= 1). */
     int no_line;
@@ -424,7 +426,7 @@ OBLQ_FN int oblq__straddles(uint64_t a, unsigned d, uint64_t e) {
     return a * w < e && e < (a + 1) * w;
 }
 
-/* The knots block of the partial-slip patch at offset `off` (layout version 5), checked as the
+/* The knots block of a patch at offset `off` (layout versions 5 and 7), checked as the
    other blocks are: inside the export, the counts and values in their ranges (c_star strictly
    increasing in (0, 1), grades 0 to 2 with no segment graded at both ends, the knot values
    strictly increasing in (0, 1) at every grid point), the region finite multiples of 2^-20
@@ -642,8 +644,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if (d[k] != (unsigned char)"OBLQEVAL"[k]) return OBLQ_E_FORMAT;
     if (size < 96) return OBLQ_E_TRUNCATED;
     version = oblq__u32(d + 8);
-    if (version < 1 || version > 6) return OBLQ_E_VERSION;
-    /* Versions 2 to 5 add the e_n range; version 6 is version 1 with split masks. */
+    if (version < 1 || version > 7) return OBLQ_E_VERSION;
+    /* Versions 2 to 5 and 7 add the e_n range; version 6 is version 1 with split masks. */
     header = version == 1 || version == 6 ? 96 : 112;
     if (oblq__u32(d + 12) != header) return OBLQ_E_CORRUPT;
     if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
@@ -669,8 +671,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
        patches and curves. */
     out.pair = version == 3;
     /* The flag of a table without a full-slip line: 1 in version 4, 0 (reserved) before, 0 or
-       1 in version 5 (the knots of a table of either kind). */
-    out.no_line = version == 4 || (version == 5 && oblq__u32(d + 68) == 1);
+       1 in versions 5 and 7 (the knots of a table of either kind). */
+    out.no_line = version == 4 || ((version == 5 || version == 7) && oblq__u32(d + 68) == 1);
     if (oblq__u32(d + 68) != (uint32_t)out.no_line) return OBLQ_E_CORRUPT;
     /* A table without the line starts at gamma = 1 or above (no stick_low). */
     if (out.no_line && !(out.gamma_min >= 1.0)) return OBLQ_E_CORRUPT;
@@ -686,7 +688,7 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     if (oblq__u32(d + 64) != 4) return OBLQ_E_CORRUPT; /* the cubic stencil */
     out.e_n_min = 1.0;
     out.e_n_max = 1.0;
-    if (version >= 2 && version <= 5) {
+    if ((version >= 2 && version <= 5) || version == 7) {
         /* A table with an e_n axis (of one pair in version 3): its range, its surface, no
            curves. */
         out.has_e_n = 1;
@@ -706,8 +708,10 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
             rc = oblq__patch(&out.patch[k], d, len, r, out.pair ? 1 : (out.has_e_n ? 3 : 2),
                              version == 6);
             if (rc != OBLQ_OK) return rc;
-            /* The knots block: in the record of partial_high of version 5 only (and there). */
-            if (version == 5 && k == 1) {
+            /* The knots blocks: in the record of partial_high of version 5 (and there), of
+               stick_high of version 7 (and there), of partial_high of version 7 where named. */
+            if ((version == 5 && k == 1) || (version == 7 && k == 2) ||
+                (version == 7 && k == 1 && oblq__u64(r + 152) != 0)) {
                 if (!out.patch[k].present) return OBLQ_E_CORRUPT;
                 rc = oblq__knots(&out.patch[k], d, len, oblq__u64(r + 152), out.e_n_min,
                                  out.e_n_max);
@@ -1165,8 +1169,8 @@ OBLQ_FN double oblq__tensor_pair(const oblq_patch *p, double c, double xe) {
     return wc[0] * r[0] + wc[1] * r[1] + wc[2] * r[2] + wc[3] * r[3];
 }
 
-/* Step 5 with knots (layout version 5): c' of the clamped c where the knots apply, at root-cell
-   positions v_gamma = x blocks_gamma and v_e = x_e blocks_e_n (clamped as in step 6) with
+/* Step 5 with knots (layout versions 5 and 7): c' of the clamped c where the knots apply, at
+   root-cell positions v_gamma = x blocks_gamma and v_e = x_e blocks_e_n (clamped as in step 6) with
    from <= v < to on both axes (to included where it is the last root edge); else c. The knot
    values K_j: the cubic stencils on the grid at u = (gamma - gamma_0)/gamma_step and
    w = (e_n - e_n_0)/e_n_step (each clamped to the grid), r_a = we_0 knot[j][sg+a][se] + ...,

@@ -4,7 +4,7 @@
 Implements the interpolation rule of docs/table-format.md (steps 1-10, the rule of a table with
 a normal-restitution axis, schema v4, that of the table of one pair, axes 'alpha,e_n', and that
 of a table of Thornton's law, which has no full-slip line: "Tables of Thornton's law", with the
-knots of its partial-slip coordinate where the table has them: "The knots") exactly,
+knots of its partial-slip and stick coordinates where the table has them: "The knots") exactly,
 independently of the Rust code, so that it can cross-check both the `oblique-lookup` crate and
 the simulator.
 
@@ -389,7 +389,8 @@ class Patch:
         self.split = split
         # The patch of one pair: gamma_lo = gamma_hi, its tree over (c, e_n) only.
         self.pair = pair
-        self.knots = knots  # Knots or None (only partial_high of a table over gamma, alpha, e_n)
+        # Knots or None (only partial_high and stick_high of a table over gamma, alpha, e_n)
+        self.knots = knots
         # Node values as Python floats, flat (leaf, i_gamma, i_c, i_e), for the e_n rule.
         self.flat = [float(v) for v in p.reshape(-1)] if blocks_e_n is not None else None
 
@@ -750,10 +751,11 @@ class Table:
             raise self._invalid(
                 f"{where}: leaf_intervals = {m} gives fewer nodes than stencil_points")
         be = None
-        if "knots" in g and (name != "partial_high" or self.e_n_range is None or pair):
+        if "knots" in g and (name not in ("partial_high", "stick_high")
+                             or self.e_n_range is None or pair):
             raise self._invalid(
-                f"patch '{name}' has a group 'knots': only 'partial_high' of a table over "
-                "gamma, alpha and e_n may have one")
+                f"patch '{name}' has a group 'knots': only 'partial_high' and 'stick_high' of "
+                "a table over gamma, alpha and e_n may have one")
         if self.e_n_range is not None:
             # Root cells along the extra axis: patch attribute blocks_NAME.
             key = f"blocks_{self.axes[2]}"
@@ -973,8 +975,9 @@ class Table:
         return Warp(start, gamma_0, gamma_step, c_star, knot)
 
     def _knots(self, g, name, gamma_lo, gamma_hi, bg, bc, be, tree, split, num):
-        """The optional knots group of partial_high (a table over gamma, alpha, e_n), validated
-        as docs/table-format.md ("The knots") states; each refusal names the field."""
+        """The optional knots group of partial_high or stick_high (a table over gamma, alpha,
+        e_n), validated as docs/table-format.md ("The knots") states; each refusal names the
+        field."""
         where = f"'{name}/knots'"
         k = g["knots"]
         if not isinstance(k, h5py.Group):

@@ -148,7 +148,13 @@ impl Progress for CliProgress {
     fn phase(&self, stage: &str, detail: &str) {
         let Some(state) = &self.state else { return };
         let Ok(mut s) = state.lock() else { return };
-        if let Some(i) = s.steps.iter().position(|x| x == stage) {
+        // A stage that recurs (one per patch) is the next of that name from the current one.
+        let from = s.step;
+        let next = s.steps.iter().skip(from).position(|x| x == stage);
+        if let Some(i) = next
+            .map(|i| from + i)
+            .or_else(|| s.steps.iter().position(|x| x == stage))
+        {
             s.step = i;
         }
         s.detail = detail.to_string();

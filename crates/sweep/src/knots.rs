@@ -1,7 +1,8 @@
 //! The knots of the partial-slip coordinate of a table of Thornton's law (`nodes.knots`):
 //! its kinks inside the slip regions (`docs/solver.md`, "Kinks inside the slip regions")
 //! traced on a grid of `(γ, e_n)` and sent to fixed cell edges (`docs/table-format.md`, "The
-//! knots"), so that no leaf straddles them.
+//! knots"), so that no leaf straddles them; and the knot of its stick patch, the loading fold
+//! `α_L` ([`loading_fold_knots`]).
 //!
 //! | knot | kink | `c'` | grading |
 //! |---|---|---|---|
@@ -16,7 +17,7 @@
 use rayon::prelude::*;
 
 use super::SweepError;
-use oblique_solver::history::{reslip_fold_thornton, switch_fold_thornton};
+use oblique_solver::history::{loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton};
 use oblique_table::surface::{Knots, PartialMap, PatchKind};
 
 /// Highest `e_n` the knots apply at (rounded down to a sixteenth of a root cell).
@@ -164,6 +165,118 @@ fn knots_at(gamma: f64, e_n: f64) -> Result<[f64; 4], SweepError> {
         out[j] = if j == 0 { 0.5 } else { c };
     }
     Ok(out)
+}
+
+/// Where the loading fold `α_L` is sent in the stick patch ([`loading_fold_knots`]).
+pub const LOADING_C_STAR: f64 = 0.5;
+/// Smallest stick coordinate of `α_L` inside its knots' region: along `e_n` the fold falls to
+/// `α_c2` (the patch's lower edge, `c = 0`; at γ 1.6 between `e_n` 0.85 and 0.9, at γ 2.6
+/// between 0.7 and 0.8), and the region ends at the last row of its grid where it still lies
+/// this far above that edge at every γ.
+pub const LOADING_C_MIN: f64 = 0.05;
+
+/// The knot of the loading fold `α_L(γ, e_n)` in the stick patch `stick_high` of a table of
+/// Thornton's law (`nodes.knots`): below `α_L` a zone of the contact reaches the `+μq` limit
+/// while it loads, above it none does, and `P` departs from its smooth continuation like
+/// `(1 − α/α_L)^{3/2}` below it ([`loading_fold_thornton`]). Traced on a grid of at most
+/// [`GAMMA_STEP`] by [`E_N_STEP`] from [`GAMMA_MIN`] (as the partial-slip knots) and from the
+/// lowest `e_n` upwards, each γ column up to the first row where the fold is gone or lies below
+/// [`LOADING_C_MIN`]; the region holds the rows where it lies above that at every γ (its top
+/// the last such row, down to a sixteenth of a root cell), sent to [`LOADING_C_STAR`] and
+/// graded below. `None` where fewer than four rows qualify or the γ range ends below
+/// [`GAMMA_MIN`]. `alpha_max` is the table's `α_max`.
+pub fn loading_fold_knots(
+    gammas: (f64, f64),
+    bg: usize,
+    e_range: (f64, f64),
+    be: usize,
+    alpha_max: f64,
+) -> Result<Option<Knots>, SweepError> {
+    let (g_lo, g_hi) = gammas;
+    let (e_lo, e_hi) = e_range;
+    let from = if g_lo >= GAMMA_MIN {
+        0.0
+    } else {
+        ((GAMMA_MIN - g_lo) / (g_hi - g_lo) * bg as f64 * 16.0).ceil() / 16.0
+    };
+    if from >= bg as f64 {
+        return Ok(None);
+    }
+    let g_from = g_lo + (g_hi - g_lo) * from / bg as f64;
+    let (g0, gs, ng) = grid(g_from, g_hi, GAMMA_STEP);
+    let (e0, es, ne_all) = grid(e_lo, e_hi, E_N_STEP);
+    let e_row = |l: usize| {
+        if l + 1 == ne_all {
+            e_hi
+        } else {
+            e0 + es * l as f64
+        }
+    };
+    // Each column's coordinates of α_L, from the lowest e_n up to the first row that fails.
+    let columns: Vec<Vec<f64>> = (0..ng)
+        .into_par_iter()
+        .map(|i| {
+            let g = if i + 1 == ng {
+                g_hi
+            } else {
+                g0 + gs * i as f64
+            };
+            let mut cs = Vec::new();
+            for l in 0..ne_all {
+                let e = e_row(l);
+                let fold = loading_fold_thornton(g, e, STEPS).map_err(|err| SweepError::Knots {
+                    knot: "alpha_L",
+                    gamma: g,
+                    e_n: e,
+                    what: err.to_string(),
+                })?;
+                let c =
+                    fold.map(|a| PatchKind::Stick.coord_at(PartialMap::Slip, g, a, e, alpha_max));
+                match c {
+                    Some(c) if (LOADING_C_MIN..1.0).contains(&c) => cs.push(c),
+                    _ => break,
+                }
+            }
+            Ok(cs)
+        })
+        .collect::<Result<_, SweepError>>()?;
+    let ne = columns.iter().map(Vec::len).min().unwrap_or(0);
+    if ne < 4 {
+        return Ok(None);
+    }
+    // The region along e_n: up to the last common row, down to a sixteenth of a root cell.
+    let e_last = e_row(ne - 1);
+    let top = if ne == ne_all {
+        be as f64
+    } else {
+        ((e_last - e_lo) / (e_hi - e_lo) * be as f64 * 16.0).floor() / 16.0
+    };
+    if top <= 0.0 {
+        return Ok(None);
+    }
+    let mut knot = Vec::with_capacity(ng * ne);
+    for column in &columns {
+        knot.extend_from_slice(&column[..ne]);
+    }
+    // The grid is the tracing's, up to the last common row.
+    Knots::new(
+        g0,
+        gs,
+        e0,
+        es,
+        [from, bg as f64, 0.0, top],
+        vec![LOADING_C_STAR],
+        vec![1],
+        [1, ng, ne],
+        knot,
+    )
+    .map(Some)
+    .map_err(|what| SweepError::Knots {
+        knot: "alpha_L",
+        gamma: g_lo,
+        e_n: e_lo,
+        what,
+    })
 }
 
 /// Degree of the fitted fold surface F₋ in each of γ and `e_n` ([`fold_minus_knots`]).
@@ -386,6 +499,36 @@ mod tests {
             .is_none());
         // Without the start, the tracing fails where α_R is missing.
         assert!(knots_at(1.1, 0.8).is_err());
+    }
+
+    /// The loading fold's knot ends along `e_n` at the last row of its grid where `α_L` lies at
+    /// least [`LOADING_C_MIN`] into the stick patch at every γ (at γ 1.6 `α_L` reaches `α_c2`
+    /// between `e_n` 0.85 and 0.9); a range where it is gone has none.
+    #[test]
+    fn the_loading_fold_knot_ends_where_the_fold_nears_alpha_c2() {
+        let k = loading_fold_knots((1.6, 1.7), 1, (0.7, 0.9), 1, f64::INFINITY)
+            .expect("traced")
+            .expect("alpha_L above alpha_c2 from 0.7");
+        let r = k.region();
+        assert_eq!((r[0], r[1], r[2]), (0.0, 1.0, 0.0));
+        assert!(r[3] > 0.3 && r[3] < 0.8, "{r:?}");
+        assert_eq!((r[3] * 16.0).fract(), 0.0, "{r:?}");
+        assert_eq!((k.c_star(), k.grade_values()), (&[0.5][..], vec![1]));
+        // At the region's top the knot lies above LOADING_C_MIN, just beyond it below.
+        let e_top = 0.7 + 0.2 * r[3];
+        for g in [1.6, 1.65, 1.7] {
+            let c = k.line(g, e_top).knots()[0];
+            assert!((LOADING_C_MIN..0.2).contains(&c), "γ {g}: c {c}");
+        }
+        let beyond = loading_fold_thornton(1.7, e_top + 0.03, STEPS)
+            .expect("solve")
+            .map(|a| PatchKind::Stick.coord_at(PartialMap::Slip, 1.7, a, e_top, f64::INFINITY));
+        assert!(beyond.is_none_or(|c| c < LOADING_C_MIN), "{beyond:?}");
+        assert!(
+            loading_fold_knots((1.6, 1.7), 1, (0.9, 0.95), 1, f64::INFINITY)
+                .expect("traced")
+                .is_none()
+        );
     }
 
     /// The fitted F₋ against F₋ located directly where it exists: within 1e-4 (relative),

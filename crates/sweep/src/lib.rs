@@ -102,7 +102,7 @@ pub const STAGE_FOLD: &str = "fold tracing";
 /// Name of the stage that traces the kink curves of `nodes.probe_kinks` (before the
 /// partial-slip patch).
 pub const STAGE_KINKS: &str = "kink tracing";
-/// Name of the stage that traces the kinks of `nodes.knots` (before the partial-slip patch).
+/// Name of the stage that traces the kinks of `nodes.knots` (before each patch with knots).
 pub const STAGE_KNOTS: &str = "knot tracing";
 /// Name of the held-out checks' stage (the last of a build).
 pub const STAGE_CHECKS: &str = "held-out checks";
@@ -114,7 +114,7 @@ pub(crate) fn stage_refine(patch: &str) -> String {
 
 /// The stages of a build (or of one shard) of `cfg`, in the order [`Progress::phase`] reports
 /// them: each patch's refinement (the partial-slip patch's preceded by [`STAGE_FOLD`] when it
-/// is warped, by [`STAGE_KNOTS`] when it has knots; each patch's by [`STAGE_KINKS`] when
+/// is warped; each patch's by [`STAGE_KNOTS`] when it has knots and by [`STAGE_KINKS`] when
 /// kinks are probed), then [`STAGE_CHECKS`].
 pub fn stages(cfg: &Config) -> Vec<String> {
     let mut out = Vec::new();
@@ -122,7 +122,7 @@ pub fn stages(cfg: &Config) -> Vec<String> {
         if cfg.nodes.fold_warp && spec.kind == PatchKind::PartialSlip {
             out.push(STAGE_FOLD.to_string());
         }
-        if cfg.nodes.knots && spec.kind == PatchKind::PartialSlip {
+        if tree::has_knots(cfg, &spec) {
             out.push(STAGE_KNOTS.to_string());
         }
         if cfg.nodes.probe_kinks {

@@ -26,6 +26,15 @@ pub(crate) struct PatchSpec {
     pub(crate) gamma_hi: f64,
 }
 
+/// Whether the patch of `spec` has knots (`nodes.knots`): the partial-slip patch, and the stick
+/// patch `stick_high` of a table of Thornton's law (its loading fold).
+pub(crate) fn has_knots(cfg: &Config, spec: &PatchSpec) -> bool {
+    cfg.nodes.knots
+        && (spec.kind == PatchKind::PartialSlip
+            || (cfg.law() == oblique_solver::Law::Thornton
+                && spec.name == PatchId::StickHigh.name()))
+}
+
 pub(crate) fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
     let d = &cfg.domain;
     let mut specs = Vec::new();
@@ -808,7 +817,7 @@ pub(crate) fn build_patch(
     };
     let e_range = cfg.domain.e_n_range();
     let knots = match e_range {
-        Some(e_range) if cfg.nodes.knots && spec.kind == PatchKind::PartialSlip => {
+        Some(e_range) if has_knots(cfg, spec) => {
             progress.phase(
                 STAGE_KNOTS,
                 &format!("the kinks of P for the knots of {}", spec.name),
@@ -818,7 +827,10 @@ pub(crate) fn build_patch(
                 roots_gamma(cfg, spec),
                 cfg.nodes.blocks_e_n.unwrap_or(1),
             );
-            if cfg.law() == oblique_solver::Law::Thornton {
+            if spec.kind == PatchKind::Stick {
+                let alpha_max = cfg.domain.alpha_max;
+                knots::loading_fold_knots(gammas, bg, e_range, be, alpha_max)?
+            } else if cfg.law() == oblique_solver::Law::Thornton {
                 knots::thornton_knots(gammas, bg, e_range, be)?
             } else {
                 let bc = cfg.nodes.blocks_coord;

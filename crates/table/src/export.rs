@@ -21,7 +21,11 @@
 //! `e_n` axis whose partial-slip patch has knots ([`crate::surface::Knots`]) as version 5:
 //! version 2 (flag `0` at offset 68) or version 4 (flag `1`) with the knots in a block named by
 //! the partial-slip record at offset 152 (a reader of version 4 only refuses it by its version
-//! instead of answering from the coordinate without its knots); an elastic table one of whose
+//! instead of answering from the coordinate without its knots); such a table whose stick patch
+//! `stick_high` has knots too as version 7: version 5 whose `stick_high` record names its knots
+//! block at the same offset, and whose `partial_high` record may name none (a reader of version
+//! 5 only refuses it by its version instead of answering the stick patch without its knots); an
+//! elastic table one of whose
 //! patches has split masks (`nodes.anisotropic`: cells that halve only the axes they need) as
 //! version 6: version 1 (its header and records) whose patch records name the masks at offset
 //! 144, as version 2 does, and whose patches with masks have no fine index (a reader of version
@@ -47,14 +51,19 @@ pub const VERSION_KNOTS: u32 = 5;
 /// Layout version of the export of an elastic table with split masks: version 1 whose patch
 /// records may name the masks of their cells at [`SPLIT_AT`] (bit 2 `γ`, bit 1 `c`).
 pub const VERSION_SPLIT: u32 = 6;
+/// Layout version of the export of a table with an `e_n` axis whose stick patch `stick_high`
+/// has knots: version 5 whose `stick_high` record names a knots block too, and whose
+/// `partial_high` record may name none.
+pub const VERSION_STICK_KNOTS: u32 = 7;
 /// Offset, in a patch record, of the `u64` offset of its split masks (`u8[cells]`; versions 2,
 /// 3 and 6, or 0: every split halves every axis).
 pub const SPLIT_AT: usize = 144;
 /// Offset of the `u32` flag of a table without a full-slip line: `1` in version 4, `0` in
 /// versions 1 to 3, either in version 5 (a reader checks it against the version).
 pub const NO_LINE_AT: usize = 68;
-/// Offset, in the record of `partial_high`, of the `u64` offset of its knots block (version 5;
-/// reserved, 0, in every other record and version).
+/// Offset, in the record of `partial_high` (version 5 and 7) and of `stick_high` (version 7),
+/// of the `u64` offset of its knots block (reserved, 0, in every other record and version; 0 in
+/// the record of `partial_high` of version 7 without knots).
 pub const KNOTS_AT: usize = 152;
 /// Bytes of the knots block before its arrays: `k`, `n_γ`, `n_e` and a reserved `u32`, the
 /// grid's `gamma_0`, `gamma_step`, `e_n_0`, `e_n_step`, the `region` (4 `f64`) and the grades
@@ -148,7 +157,8 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// A surface with an `e_n` axis ([`Surface::restitution`]) is written as version 2, the table of
 /// one pair ([`Surface::pair_gamma`]) as version 3, a surface without the full-slip line
 /// ([`Surface::has_line`]: Thornton's law) as version 4, and one whose partial-slip patch has
-/// knots as version 5 (with the flag of version 4 when it has no full-slip line), and an elastic
+/// knots as version 5 (with the flag of version 4 when it has no full-slip line), one whose stick
+/// patch `stick_high` has knots as version 7 (version 5 with that patch's knots), and an elastic
 /// surface one of whose patches has split masks ([`crate::surface::Patch::split`]) as version 6
 /// (version 1 otherwise, byte for byte as before version 6 existed); curves belong to elastic
 /// tables only.
@@ -159,7 +169,8 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// refuses `--gamma` for such a table before it gets here), and for a surface without the
 /// full-slip line that is not a table with an `e_n` axis over a range of `γ` (which
 /// [`Surface::with_partial_map`] never makes), and for knots in a patch other than the
-/// partial-slip patch of such a table (which [`crate::surface::Patch::new`] refuses).
+/// partial-slip patch and `stick_high` of such a table (which the reader and the writer
+/// refuse).
 pub fn export(
     surface: &Surface,
     error_bound: f64,
@@ -172,12 +183,16 @@ pub fn export(
         "the export of a table with an e_n axis holds its surface and no curves"
     );
     let knotted = surface.patches().any(|(_, p)| p.knots().is_some());
+    let stick_knotted = surface
+        .patch_by_id(PatchId::StickHigh)
+        .is_some_and(|p| p.knots().is_some());
     assert!(
-        surface.patches().all(|(_, p)| p.knots().is_none()
-            || (p.kind() == PatchKind::PartialSlip
+        surface.patches().all(|(id, p)| p.knots().is_none()
+            || (matches!(id, PatchId::PartialHigh | PatchId::StickHigh)
                 && axis.is_some()
                 && surface.pair_gamma().is_none())),
-        "only the partial-slip patch of a table with an e_n axis over a range of gamma has knots"
+        "only the partial-slip patch and stick_high of a table with an e_n axis over a range of \
+         gamma have knots"
     );
     assert!(
         surface.has_line() || (axis.is_some() && surface.pair_gamma().is_none()),
@@ -187,6 +202,7 @@ pub fn export(
     // stays version 1).
     let masked = with_surface && surface.patches().any(|(_, p)| p.split().is_some());
     let (version, header) = match (axis, surface.pair_gamma(), surface.has_line()) {
+        (Some(_), None, _) if stick_knotted => (VERSION_STICK_KNOTS, HEADER_BYTES_E_N),
         (Some(_), None, _) if knotted => (VERSION_KNOTS, HEADER_BYTES_E_N),
         (Some(_), None, false) => (VERSION_NO_LINE, HEADER_BYTES_E_N),
         (Some(_), Some(_), _) => (VERSION_PAIR, HEADER_BYTES_E_N),
@@ -286,7 +302,7 @@ pub fn export(
                 put_u64(&mut v, r + 104, k_at);
             }
             if let Some(k) = p.knots() {
-                // The knots block (version 5): the counts, the grid, the region, the grades,
+                // The knots block (versions 5 and 7): the counts, the grid, the region, the grades,
                 // then `c_star` and the knot values `[k][n_γ][n_e]`.
                 align8(&mut v);
                 let at = v.len();

@@ -221,8 +221,8 @@ pub const ATTR_WARP_C_STAR: &str = "c_star";
 /// `(0, 1)`.
 pub const DS_WARP_KNOT: &str = "knot";
 
-/// Optional sub-group of `partial_high` (schema 4, a table over `γ, α, e_n`): the knots of the
-/// coordinate ([`crate::surface::Knots`]).
+/// Optional sub-group of `partial_high` and of `stick_high` (schema 4, a table over `γ, α, e_n`):
+/// the knots of the patch's coordinate ([`crate::surface::Knots`]).
 pub const GROUP_KNOTS: &str = "knots";
 /// Knots attributes: the grid's origins and steps along γ and `e_n`.
 pub const ATTR_KNOTS_GAMMA_0: &str = "gamma_0";

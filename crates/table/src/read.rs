@@ -193,8 +193,8 @@ impl Reader<'_> {
             .map_err(|m| self.invalid(format!("'{where_}': {m}")))
     }
 
-    /// The optional knots of patch `name` (group `knots`): only `partial_high` of a schema-4
-    /// file over `gamma,alpha,e_n` may have them; every value is checked against the
+    /// The optional knots of patch `name` (group `knots`): only `partial_high` and
+    /// `stick_high` of a schema-4 file over `gamma,alpha,e_n` may have them; every value is checked against the
     /// documented ranges ([`Knots::new`]; the rules against the patch are [`Patch::new`]'s).
     fn knots(
         &self,
@@ -206,10 +206,10 @@ impl Reader<'_> {
             return Ok(None);
         }
         let where_ = format!("{name}/{GROUP_KNOTS}");
-        if name != PATCH_PARTIAL_HIGH || !e_n_axis {
+        if !(name == PATCH_PARTIAL_HIGH || name == PATCH_STICK_HIGH) || !e_n_axis {
             return Err(self.invalid(format!(
-                "patch '{name}' has a group '{GROUP_KNOTS}': only '{PATCH_PARTIAL_HIGH}' of a \
-                 table over gamma, alpha and e_n may have one"
+                "patch '{name}' has a group '{GROUP_KNOTS}': only '{PATCH_PARTIAL_HIGH}' and \
+                 '{PATCH_STICK_HIGH}' of a table over gamma, alpha and e_n may have one"
             )));
         }
         let k = g

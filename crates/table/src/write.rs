@@ -353,14 +353,17 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
             w.attr_f64(&wg, ATTR_WARP_C_STAR, warp.c_star())?;
             w.ds(&wg, DS_WARP_KNOT, warp.knot(), &[warp.knot().len()])?;
         }
-        // The optional knots of the coordinate (schema 4; only `partial_high` has them).
+        // The optional knots of the coordinate (schema 4; only `partial_high` and `stick_high`
+        // have them).
         if let Some(k) = p.knots() {
             let refuse = |m: String| StorageError::Hdf5 {
                 path: path.to_string(),
                 message: format!("patch '{}': {GROUP_KNOTS}: {m}", bp.name),
             };
-            if bp.name != PATCH_PARTIAL_HIGH {
-                return Err(refuse(format!("only '{PATCH_PARTIAL_HIGH}' may have them")));
+            if bp.name != PATCH_PARTIAL_HIGH && bp.name != PATCH_STICK_HIGH {
+                return Err(refuse(format!(
+                    "only '{PATCH_PARTIAL_HIGH}' and '{PATCH_STICK_HIGH}' may have them"
+                )));
             }
             p.check_knots().map_err(refuse)?;
             let kg = g
