@@ -58,7 +58,8 @@ fn loading_fold(gamma: f64, e_n: f64) -> f64 {
 
 #[test]
 fn the_loading_fold_lies_on_the_stick_knot() {
-    let table = Table::open(table()).expect("open");
+    let path = table();
+    let table = Table::open(path).expect("open");
     let patch = table
         .surface()
         .patch_by_id(PatchId::StickHigh)
@@ -89,6 +90,11 @@ fn the_loading_fold_lies_on_the_stick_knot() {
         let c_k = line.knots()[0];
         assert_eq!(patch.knotted(g, c_k, e), 0.5, "γ {g}, e_n {e}");
     }
+    let text = ok(&["inspect", path.to_str().expect("path")]);
+    assert!(
+        text.contains("knots: 1 kink on c' = 0.5 (grades [1]"),
+        "{text}"
+    );
     // The partial-slip patch keeps its four knots.
     let partial = table
         .surface()

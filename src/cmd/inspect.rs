@@ -159,8 +159,9 @@ pub fn run(args: InspectArgs) -> Result<()> {
             let at = |lo: f64, hi: f64, blocks: usize, v: f64| lo + (hi - lo) * v / blocks as f64;
             let stars: Vec<String> = k.c_star().iter().map(|c| c.to_string()).collect();
             outln!(
-                "                knots: {} kinks on c' = {} (grades {:?}: 0 linear, 1 graded below, 2 above) for gamma [{}, {}], e_n [{}, {}]; traced on a {} x {} grid",
+                "                knots: {} {} on c' = {} (grades {:?}: 0 linear, 1 graded below, 2 above) for gamma [{}, {}], e_n [{}, {}]; traced on a {} x {} grid",
                 stars.len(),
+                if stars.len() == 1 { "kink" } else { "kinks" },
                 stars.join(", "),
                 k.grade_values(),
                 at(p.gamma_lo(), p.gamma_hi(), p.blocks_gamma(), reg[0]),

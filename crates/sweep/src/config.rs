@@ -159,7 +159,9 @@ pub struct Nodes {
     /// (the knots of the coordinate, `docs/table-format.md`): the end `α_c1` of the line, the
     /// re-slip fold `α_R`, the line `α = 2/7` and the switch fold `α_S`, traced on a grid of
     /// `(γ, e_n)` first (a few seconds), at `c'` = 1/2, 5/8, 3/4 and 7/8, for `e_n` up to
-    /// 0.98 (where the folds merge towards `α = 2/7` as `e_n → 1`).
+    /// 0.98 (where the folds merge towards `α = 2/7` as `e_n → 1`); and the loading fold `α_L`
+    /// of its stick patch at `c'` = 1/2 of that patch where it lies above `α_c2`
+    /// ([`crate::knots::loading_fold_knots`]).
     #[serde(default)]
     pub knots: bool,
     /// Tolerance (absolute error of `P`) to which the nodes that hold a leaf's bound up are
