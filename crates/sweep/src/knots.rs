@@ -179,12 +179,12 @@ pub const LOADING_C_MIN: f64 = 0.05;
 /// Thornton's law (`nodes.knots`): below `α_L` a zone of the contact reaches the `+μq` limit
 /// while it loads, above it none does, and `P` departs from its smooth continuation like
 /// `(1 − α/α_L)^{3/2}` below it ([`loading_fold_thornton`]). Traced on a grid of at most
-/// [`GAMMA_STEP`] by [`E_N_STEP`] from [`GAMMA_MIN`] (as the partial-slip knots) and from the
+/// [`GAMMA_STEP`] by [`E_N_STEP`] from [`GAMMA_MIN`] (up to a root-cell edge) and from the
 /// lowest `e_n` upwards, each γ column up to the first row where the fold is gone or lies below
 /// [`LOADING_C_MIN`]; the region holds the rows where it lies above that at every γ (its top
-/// the last such row, down to a sixteenth of a root cell), sent to [`LOADING_C_STAR`] and
-/// graded below. `None` where fewer than four rows qualify or the γ range ends below
-/// [`GAMMA_MIN`]. `alpha_max` is the table's `α_max`.
+/// the last such row, down to a root-cell edge), sent to [`LOADING_C_STAR`] and
+/// graded below. `None` where fewer than four rows qualify, the region would hold no whole root
+/// cell, or the γ range ends below [`GAMMA_MIN`]. `alpha_max` is the table's `α_max`.
 pub fn loading_fold_knots(
     gammas: (f64, f64),
     bg: usize,
@@ -194,10 +194,11 @@ pub fn loading_fold_knots(
 ) -> Result<Option<Knots>, SweepError> {
     let (g_lo, g_hi) = gammas;
     let (e_lo, e_hi) = e_range;
+    // From GAMMA_MIN up to a root-cell edge (as the top along e_n below).
     let from = if g_lo >= GAMMA_MIN {
         0.0
     } else {
-        ((GAMMA_MIN - g_lo) / (g_hi - g_lo) * bg as f64 * 16.0).ceil() / 16.0
+        ((GAMMA_MIN - g_lo) / (g_hi - g_lo) * bg as f64).ceil()
     };
     if from >= bg as f64 {
         return Ok(None);
@@ -244,12 +245,16 @@ pub fn loading_fold_knots(
     if ne < 4 {
         return Ok(None);
     }
-    // The region along e_n: up to the last common row, down to a sixteenth of a root cell.
+    // The region along e_n: up to the last common row, down to a root-cell edge. An edge
+    // inside a root cell splits every cell across it down to its depth without evaluating
+    // them, and there the knot lies next to α_c2, where the map stretches the patch most: at
+    // a sixteenth, over γ 1.6–2.0 and e_n 0.65–0.9 (target 5e-5), the stick patch needed
+    // 66 458 nodes with the knot against 51 895 without.
     let e_last = e_row(ne - 1);
     let top = if ne == ne_all {
         be as f64
     } else {
-        ((e_last - e_lo) / (e_hi - e_lo) * be as f64 * 16.0).floor() / 16.0
+        ((e_last - e_lo) / (e_hi - e_lo) * be as f64).floor()
     };
     if top <= 0.0 {
         return Ok(None);
@@ -501,34 +506,44 @@ mod tests {
         assert!(knots_at(1.1, 0.8).is_err());
     }
 
-    /// The loading fold's knot ends along `e_n` at the last row of its grid where `α_L` lies at
-    /// least [`LOADING_C_MIN`] into the stick patch at every γ (at γ 1.6 `α_L` reaches `α_c2`
-    /// between `e_n` 0.85 and 0.9); a range where it is gone has none.
+    /// The loading fold's knot ends along `e_n` at the last root-cell edge below the last row of
+    /// its grid where `α_L` lies at least [`LOADING_C_MIN`] into the stick patch at every γ (at
+    /// γ 1.6 `α_L` reaches `α_c2` between `e_n` 0.85 and 0.9); with a root cell that ends
+    /// beyond that row, or a range where the fold is gone, there is none.
     #[test]
     fn the_loading_fold_knot_ends_where_the_fold_nears_alpha_c2() {
-        let k = loading_fold_knots((1.6, 1.7), 1, (0.7, 0.9), 1, f64::INFINITY)
+        // Four root cells along e_n (0.05 each): the knot's region ends at 0.8.
+        let k = loading_fold_knots((1.6, 1.7), 1, (0.7, 0.9), 4, f64::INFINITY)
             .expect("traced")
             .expect("alpha_L above alpha_c2 from 0.7");
-        let r = k.region();
-        assert_eq!((r[0], r[1], r[2]), (0.0, 1.0, 0.0));
-        assert!(r[3] > 0.3 && r[3] < 0.8, "{r:?}");
-        assert_eq!((r[3] * 16.0).fract(), 0.0, "{r:?}");
+        assert_eq!(k.region(), [0.0, 1.0, 0.0, 2.0]);
         assert_eq!((k.c_star(), k.grade_values()), (&[0.5][..], vec![1]));
-        // At the region's top the knot lies above LOADING_C_MIN, just beyond it below.
-        let e_top = 0.7 + 0.2 * r[3];
+        // At the region's top the knot lies above LOADING_C_MIN; at the next root-cell edge
+        // the fold lies below it at γ 1.7 (or is gone).
         for g in [1.6, 1.65, 1.7] {
-            let c = k.line(g, e_top).knots()[0];
+            let c = k.line(g, 0.8).knots()[0];
             assert!((LOADING_C_MIN..0.2).contains(&c), "γ {g}: c {c}");
         }
-        let beyond = loading_fold_thornton(1.7, e_top + 0.03, STEPS)
+        let beyond = loading_fold_thornton(1.7, 0.85, STEPS)
             .expect("solve")
-            .map(|a| PatchKind::Stick.coord_at(PartialMap::Slip, 1.7, a, e_top, f64::INFINITY));
+            .map(|a| PatchKind::Stick.coord_at(PartialMap::Slip, 1.7, a, 0.85, f64::INFINITY));
         assert!(beyond.is_none_or(|c| c < LOADING_C_MIN), "{beyond:?}");
+        // One root cell along e_n: the fold leaves inside it, no knot.
+        assert!(
+            loading_fold_knots((1.6, 1.7), 1, (0.7, 0.9), 1, f64::INFINITY)
+                .expect("traced")
+                .is_none()
+        );
         assert!(
             loading_fold_knots((1.6, 1.7), 1, (0.9, 0.95), 1, f64::INFINITY)
                 .expect("traced")
                 .is_none()
         );
+        // Below GAMMA_MIN the region starts at the next root-cell edge along γ.
+        let k = loading_fold_knots((1.1, 1.3), 2, (0.6, 0.7), 1, f64::INFINITY)
+            .expect("traced")
+            .expect("alpha_L from 1.2");
+        assert_eq!(k.region()[..2], [1.0, 2.0]);
     }
 
     /// The fitted F₋ against F₋ located directly where it exists: within 1e-4 (relative),
