@@ -48,7 +48,7 @@ if [ "${1:-}" = "--prepare" ]; then
     # 10^5 (full) or 5 x 10^4 (e_n tables) random points over every regime, seeded: gamma
     # uniform over the table's domain, alpha = alpha_c2 u/(1 - u), 1 in 64 no slip; with an e_n
     # axis (the export's header, docs/export-format.md) e_n uniform over its range, 1 in 32
-    # each exactly at 1, e_n_min and e_n_max; where partial_high has knots (version 5), a third
+    # each exactly at 1, e_n_min and e_n_max; where partial_high has knots (version 5 or 7), a third
     # in partial slip inside the knots' region (alpha uniform over alpha_c1(gamma, e_n) to
     # alpha_c2, from 0 without the full-slip line).
     points=100000
@@ -60,11 +60,13 @@ with open(sys.argv[1], "rb") as f:
 version, = struct.unpack_from("<I", d, 8)
 g_lo, g_hi, a_max = struct.unpack_from("<3d", d, 32)
 no_line, = struct.unpack_from("<I", d, 68)
-e_n = 2 <= version <= 5  # version 6: an elastic table with split masks
+e_n = 2 <= version <= 5 or version == 7  # version 6: an elastic table with split masks
 e_lo, e_hi = struct.unpack_from("<2d", d, 96) if e_n else (1.0, 1.0)
 box = None
-if version == 5:  # the knots' region of partial_high (record 1), root cells to gamma and e_n
-    rec = struct.unpack_from("<Q", d, 72)[0] + 160
+rec = struct.unpack_from("<Q", d, 72)[0] + 160
+# The knots' region of partial_high (record 1; version 5, or 7 where it has a block), root
+# cells to gamma and e_n.
+if version == 5 or (version == 7 and struct.unpack_from("<Q", d, rec + 152)[0]):
     p_lo, p_hi = struct.unpack_from("<2d", d, rec + 8)
     bg, = struct.unpack_from("<I", d, rec + 24)
     be, = struct.unpack_from("<I", d, rec + 136)
