@@ -6,7 +6,7 @@
 
 mod common;
 mod evaluator;
-use common::{build_table, sweep_ok as ok};
+use common::{build_table, sweep_ok as ok, sweep_refused as refused};
 use evaluator::{gcc_driver, python_p_e, run_ok, sealed};
 use oblique_physics::sample::SplitMix;
 
@@ -273,4 +273,59 @@ fn damaged_stick_knots_are_refused() {
         "{err}"
     );
     assert!(Table::open(&bad).is_err());
+}
+
+/// `sweep verify --near-folds` draws points next to each of the four folds in turn (located at
+/// each point), checks them against direct solves and prints the largest error next to each;
+/// a table of another law is refused (exit 2), naming the flag.
+#[test]
+fn verify_near_folds_checks_the_bound_next_to_each_fold() {
+    let t = table().to_str().expect("path");
+    let out = ok(&[
+        "verify",
+        t,
+        "--near-folds",
+        "--points",
+        "24",
+        "--seed",
+        "2",
+        "--quiet",
+    ]);
+    for name in ["alpha_R", "2/7", "alpha_S", "alpha_L"] {
+        let line = out
+            .lines()
+            .find(|l| l.starts_with(&format!("near {name} ")))
+            .unwrap_or_else(|| panic!("no line for {name}: {out}"));
+        assert!(line.contains("6 points, max |error|"), "{line}");
+    }
+    assert!(out.contains("points above it: 0"), "{out}");
+    // The same seed draws the same points.
+    let again = ok(&[
+        "verify",
+        t,
+        "--near-folds",
+        "--points",
+        "24",
+        "--seed",
+        "2",
+        "--quiet",
+    ]);
+    let worst = |s: &str| {
+        s.lines()
+            .find(|l| l.starts_with("worst point"))
+            .map(str::to_owned)
+    };
+    assert_eq!(worst(&out), worst(&again));
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let kv = root.join("tables/dissipative-demo.h5");
+    refused(
+        &[
+            "verify",
+            kv.to_str().expect("path"),
+            "--near-folds",
+            "--points",
+            "4",
+        ],
+        &["--near-folds", "kelvin-voigt law", "thornton"],
+    );
 }

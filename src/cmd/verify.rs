@@ -68,6 +68,15 @@ pub struct VerifyArgs {
     /// (I+ is traced first: about 10 s on 2 cores).
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end"])]
     near_sheet: bool,
+    /// Draw points next to the folds of a table of Thornton's law instead, where P departs
+    /// from its smooth continuation like a power 3/2: (gamma, e_n) uniform over the table's
+    /// range (e_n at most 0.9999), alpha = alpha_K times 1 + s·r, s = +1 or -1, r log-uniform in
+    /// [1e-4, 1e-2], next to the re-slip fold alpha_R, the line 2/7, the switch fold alpha_S
+    /// and the loading fold alpha_L in turn (each located at its point first, about 0.1 s; a
+    /// point where its fold does not exist is drawn again); the largest error next to each
+    /// is printed too.
+    #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet"])]
+    near_folds: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
@@ -310,6 +319,49 @@ fn sample_near_sheet(
     Ok((points, (lo, hi)))
 }
 
+/// The `n` points of `--near-folds`: [`oblique_sweep::kink::near_thornton_fold_points`] over a
+/// table of Thornton's law, each with the index of its fold.
+fn sample_near_folds(
+    table: &Table,
+    path: &std::path::Path,
+    law: Law,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<(usize, Point)>> {
+    let s = table.surface();
+    let refuse = |has: String| {
+        Failure::usage(format!(
+            "--near-folds: {} has {has}; the folds alpha_R, 2/7, alpha_S and alpha_L are \
+             located for tables of the thornton law (an e_n axis over a range of gamma)",
+            path.display()
+        ))
+    };
+    let Some(e_range) = table.restitution() else {
+        return Err(refuse("no e_n axis (an elastic table)".into()));
+    };
+    if law != Law::Thornton {
+        return Err(refuse(format!("the {} law", law.name())));
+    }
+    let points = oblique_sweep::kink::near_thornton_fold_points(
+        (s.gamma_min(), s.gamma_max()),
+        e_range,
+        s.alpha_max(),
+        n,
+        seed,
+    )
+    .context("locating the folds")?;
+    if points.is_empty() {
+        return Err(refuse(format!(
+            "gamma in [{}, {}] and e_n in [{}, {}], where no fold was found",
+            s.gamma_min(),
+            s.gamma_max(),
+            e_range.0,
+            e_range.1
+        )));
+    }
+    Ok(points)
+}
+
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
 #[derive(Clone, Copy)]
 struct Outcome {
@@ -368,7 +420,13 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         None => Law::Elastic,
     };
     let mut near_end_range = None;
-    let points = if args.near_fold {
+    // With --near-folds, the fold of each point (an index into THORNTON_FOLDS).
+    let mut folds: Vec<usize> = Vec::new();
+    let points = if args.near_folds {
+        let tagged = sample_near_folds(&table, &args.table, law, args.points, args.seed)?;
+        folds = tagged.iter().map(|&(k, _)| k).collect();
+        tagged.into_iter().map(|(_, p)| p).collect()
+    } else if args.near_fold {
         sample_near_fold(&table, &args.table, law, args.points, args.seed)?
     } else if args.near_end {
         let (points, range) = sample_near_end(&table, &args.table, law, args.points, args.seed)?;
@@ -410,7 +468,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
                 table.surface().gamma_max()
             ),
         },
-        if args.near_sheet {
+        if args.near_folds {
+            "alpha within 1e-4 to 1e-2 (relative) of alpha_R, 2/7, alpha_S and alpha_L in turn"
+        } else if args.near_sheet {
             "ln(alpha) uniform up to alpha_c2, e_n within 1e-4 to 0.03 of the sheet I+"
         } else if args.near_end && table.restitution().is_some() {
             "alpha within 1e-4 to 0.1 (relative) of the end-of-contact surface E-"
@@ -446,6 +506,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             && !args.near_fold
             && !args.near_end
             && !args.near_sheet
+            && !args.near_folds
         {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {
@@ -525,6 +586,24 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         worst.p_table,
         worst.p_sim
     )?;
+    for (k, name) in oblique_sweep::kink::THORNTON_FOLDS.iter().enumerate() {
+        let near: Vec<&Outcome> = outcomes
+            .iter()
+            .zip(&folds)
+            .filter(|&(_, &f)| f == k)
+            .map(|(o, _)| o)
+            .collect();
+        if let Some(w) = near.iter().max_by(|a, b| a.error().total_cmp(&b.error())) {
+            outln!(
+                "near {name:<8} {:>4} points, max |error| {:.3e} at gamma = {}, alpha = {}, e_n = {}",
+                near.len(),
+                w.error(),
+                w.gamma,
+                w.alpha,
+                w.e_n
+            )?;
+        }
+    }
     outln!("stated bound {bound:.3e}; points above it: {exceeding}")?;
     if exceeding > 0 {
         return Err(anyhow::Error::new(BoundExceeded {

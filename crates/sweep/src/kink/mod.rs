@@ -41,7 +41,8 @@ use rayon::prelude::*;
 
 use super::SweepError;
 use oblique_solver::history::{
-    fold_minus_at, fold_minus_at_e, fold_minus_free_below, restitution_minus_somewhere_e,
+    fold_minus_at, fold_minus_at_e, fold_minus_free_below, loading_fold_thornton,
+    reslip_fold_thornton, restitution_minus_somewhere_e, switch_fold_thornton,
 };
 use oblique_solver::Law;
 use oblique_table::surface::{stencil4, PatchKind, Point};
@@ -893,6 +894,76 @@ fn near_surface_points(
         }
     }
     out
+}
+
+/// The folds of Thornton's law that [`near_thornton_fold_points`] draws next to, in turn.
+pub const THORNTON_FOLDS: [&str; 4] = ["alpha_R", "2/7", "alpha_S", "alpha_L"];
+
+/// Steps per contact time on which [`near_thornton_fold_points`] locates the folds (as the
+/// knots do, `nodes.knots`).
+const THORNTON_FOLD_STEPS: usize = 2048;
+
+/// `n` points next to the folds of Thornton's law inside `gammas × e_range`, each with the index
+/// of its fold in [`THORNTON_FOLDS`]: point `i` next to fold `i mod 4` (the re-slip fold `α_R`,
+/// the line `α = 2/7`, the switch fold `α_S`, the loading fold `α_L`; `docs/solver.md`, "Kinks
+/// inside the slip regions"), with `(γ, e_n)` uniform (`e_n` at most `1 − 1e-4`, where the
+/// folds still exist), the fold located there on 2 048 steps, and `α = α_K (1 + s·10^u)`,
+/// `s = ±1`, `u` uniform in `[−4, −2]`, where `P` departs from its smooth continuation like a
+/// power 3/2. A draw whose fold does not exist there (`α_R` next to γ = 1, `α_L` where it has
+/// merged) or whose `α` lies beyond `alpha_max` is drawn again, up to 20 draws per point
+/// (fewer points then). The draws are made in order from `seed` and located in parallel: the
+/// same `seed` gives the same points (`sweep verify --near-folds`). `Err`: a solve's error.
+pub fn near_thornton_fold_points(
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+    alpha_max: f64,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
+    let (g_lo, g_hi) = gammas;
+    let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
+    let mut rng = oblique_physics::sample::SplitMix(seed);
+    let mut slots: Vec<Option<Point>> = vec![None; n];
+    for _ in 0..20 {
+        let open: Vec<usize> = (0..n).filter(|&i| slots[i].is_none()).collect();
+        if open.is_empty() {
+            break;
+        }
+        let draws: Vec<(usize, f64, f64, f64)> = open
+            .iter()
+            .map(|&i| {
+                let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
+                let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
+                let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+                let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+                (i, gamma, e_n, sign * r)
+            })
+            .collect();
+        let found: Vec<(usize, Option<Point>)> = draws
+            .par_iter()
+            .map(|&(i, gamma, e_n, r)| {
+                let fold = match i % 4 {
+                    0 => reslip_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                    1 => Ok(Some(2.0 / 7.0)),
+                    2 => switch_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                    _ => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                }?;
+                let point = fold
+                    .map(|a| a * (1.0 + r))
+                    .filter(|&a| a <= alpha_max)
+                    .map(|a| Point::new(gamma, a, e_n));
+                Ok((i, point))
+            })
+            .collect::<Result<_, oblique_solver::PhysicsError>>()?;
+        for (i, point) in found {
+            slots[i] = point;
+        }
+    }
+    Ok(slots
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, p)| p.map(|p| (i % 4, p)))
+        .collect())
 }
 
 #[cfg(test)]
