@@ -8,7 +8,7 @@
 mod common;
 mod evaluator;
 use common::{build_table, sweep_ok as ok, sweep_refused as refused};
-use evaluator::{gcc_driver, python_p_e, run_ok, sealed};
+use evaluator::{assert_same_bits, gcc_driver, run_ok, sealed};
 use oblique_physics::sample::SplitMix;
 
 use std::path::{Path, PathBuf};
@@ -339,32 +339,7 @@ fn the_reference_reader_and_the_c_header_give_the_bits_of_the_rule() {
         knotted > n / 2,
         "{knotted} of {n} points where the knots apply"
     );
-    let rust: Vec<f64> = pts
-        .iter()
-        .map(|&(g, a, e)| t.p_e(g, a, e).expect("inside the domain"))
-        .collect();
-    let py = python_p_e(table_path, &pts);
-    let input: String = pts
-        .iter()
-        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
-        .collect();
-    let out = run_ok(driver, &["pe", export.to_str().expect("path"), "0"], &input);
-    let c: Vec<f64> = out
-        .lines()
-        .skip(1)
-        .map(|l| l.parse().unwrap_or_else(|_| panic!("oblq_p_e: {l}")))
-        .collect();
-    assert_eq!((py.len(), c.len()), (n, n), "every point answered");
-    for (i, &(g, a, e)) in pts.iter().enumerate() {
-        assert_eq!(
-            (py[i].to_bits(), c[i].to_bits()),
-            (rust[i].to_bits(), rust[i].to_bits()),
-            "γ {g:?}, α {a:?}, e_n {e:?}: Rust {:?}, read_table.py {:?}, C {:?}",
-            rust[i],
-            py[i],
-            c[i]
-        );
-    }
+    assert_same_bits(&t, table_path, export, driver, &pts);
 }
 
 /// The reference reader refuses a table whose knots break a rule of the format (exit 2, naming

@@ -7,7 +7,7 @@
 mod common;
 mod evaluator;
 use common::{build_table, sweep_ok as ok, sweep_refused as refused};
-use evaluator::{gcc_driver, python_p_e, run_ok, sealed};
+use evaluator::{assert_same_bits, gcc_driver, run_ok, sealed};
 use oblique_physics::sample::SplitMix;
 
 use std::path::{Path, PathBuf};
@@ -188,32 +188,7 @@ fn the_reference_reader_and_the_c_header_give_the_bits_of_the_rule() {
         let u = r.uniform();
         pts.push((g, u / (1.0 - u), e));
     }
-    let rust: Vec<f64> = pts
-        .iter()
-        .map(|&(g, a, e)| t.p_e(g, a, e).expect("inside the domain"))
-        .collect();
-    let py = python_p_e(table_path, &pts);
-    let input: String = pts
-        .iter()
-        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
-        .collect();
-    let out = run_ok(driver, &["pe", export.to_str().expect("path"), "0"], &input);
-    let c: Vec<f64> = out
-        .lines()
-        .skip(1)
-        .map(|l| l.parse().unwrap_or_else(|_| panic!("oblq_p_e: {l}")))
-        .collect();
-    assert_eq!((py.len(), c.len()), (n, n), "every point answered");
-    for (i, &(g, a, e)) in pts.iter().enumerate() {
-        assert_eq!(
-            (py[i].to_bits(), c[i].to_bits()),
-            (rust[i].to_bits(), rust[i].to_bits()),
-            "γ {g:?}, α {a:?}, e_n {e:?}: Rust {:?}, read_table.py {:?}, C {:?}",
-            rust[i],
-            py[i],
-            c[i]
-        );
-    }
+    assert_same_bits(&t, table_path, export, driver, &pts);
 }
 
 /// The C header refuses a version-7 export without the stick patch's knots block or with a
@@ -281,16 +256,19 @@ fn damaged_stick_knots_are_refused() {
 #[test]
 fn verify_near_folds_checks_the_bound_next_to_each_fold() {
     let t = table().to_str().expect("path");
-    let out = ok(&[
-        "verify",
-        t,
-        "--near-folds",
-        "--points",
-        "24",
-        "--seed",
-        "2",
-        "--quiet",
-    ]);
+    let run = || {
+        ok(&[
+            "verify",
+            t,
+            "--near-folds",
+            "--points",
+            "24",
+            "--seed",
+            "2",
+            "--quiet",
+        ])
+    };
+    let out = run();
     for name in ["alpha_R", "2/7", "alpha_S", "alpha_L"] {
         let line = out
             .lines()
@@ -300,16 +278,7 @@ fn verify_near_folds_checks_the_bound_next_to_each_fold() {
     }
     assert!(out.contains("points above it: 0"), "{out}");
     // The same seed draws the same points.
-    let again = ok(&[
-        "verify",
-        t,
-        "--near-folds",
-        "--points",
-        "24",
-        "--seed",
-        "2",
-        "--quiet",
-    ]);
+    let again = run();
     let worst = |s: &str| {
         s.lines()
             .find(|l| l.starts_with("worst point"))

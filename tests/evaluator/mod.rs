@@ -307,3 +307,42 @@ pub fn gcc_driver(exe: &Path, flags: &[&str]) -> PathBuf {
     );
     exe.to_path_buf()
 }
+
+/// `Table::p_e` of `t` (opened from `table`), the reference reader `scripts/read_table.py` on
+/// that file and `oblq_p_e` of the C driver `driver` on `export` give the same bits at every
+/// point of `pts`.
+pub fn assert_same_bits(
+    t: &Table,
+    table: &Path,
+    export: &Path,
+    driver: &Path,
+    pts: &[(f64, f64, f64)],
+) {
+    let n = pts.len();
+    let rust: Vec<f64> = pts
+        .iter()
+        .map(|&(g, a, e)| t.p_e(g, a, e).expect("inside the domain"))
+        .collect();
+    let py = python_p_e(table, pts);
+    let input: String = pts
+        .iter()
+        .map(|(g, a, e)| format!("{g:?} {a:?} {e:?}\n"))
+        .collect();
+    let out = run_ok(driver, &["pe", export.to_str().expect("path"), "0"], &input);
+    let c: Vec<f64> = out
+        .lines()
+        .skip(1)
+        .map(|l| l.parse().unwrap_or_else(|_| panic!("oblq_p_e: {l}")))
+        .collect();
+    assert_eq!((py.len(), c.len()), (n, n), "every point answered");
+    for (i, &(g, a, e)) in pts.iter().enumerate() {
+        assert_eq!(
+            (py[i].to_bits(), c[i].to_bits()),
+            (rust[i].to_bits(), rust[i].to_bits()),
+            "γ {g:?}, α {a:?}, e_n {e:?}: Rust {:?}, read_table.py {:?}, C {:?}",
+            rust[i],
+            py[i],
+            c[i]
+        );
+    }
+}
