@@ -13,7 +13,8 @@ use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 use oblique_solver::history::{
     ends_in_full_slip_thornton, full_slip_edge_thornton, has_loading_zone_thornton,
     has_reslip_thornton, has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton,
-    slip_history_thornton, switch_fold_thornton, switch_zones_thornton, SlipSign,
+    slip_history_thornton, switch_fold_thornton, switch_sheet_thornton, switch_zones_thornton,
+    SlipSign,
 };
 use oblique_solver::thornton::{
     dimensionless_motion, dimensionless_p, yield_pressure_for_restitution,
@@ -281,6 +282,48 @@ fn the_switch_fold_is_a_three_halves_kink_of_p() {
     assert!((6.5..9.5).contains(&ratio), "{ratio} ({near}, {far})");
     // None at e_n = 1: the elastic law's limits do not jump at the switch.
     assert_eq!(switch_fold_thornton(g, 1.0, 2048).unwrap(), None);
+}
+
+#[test]
+fn the_switch_sheet_of_the_stick_patch_lies_across_e_n() {
+    let g = 1.7;
+    let c2 = alpha_c2(g);
+    // Nearly flat in α: between 0.515 and 0.5225 at 3 and 5 α_c2, 0.50 and 0.51 at 1.9 α_c2.
+    let sheet = |r: f64, steps: usize| {
+        switch_sheet_thornton(g, r * c2, (0.45, 0.6), steps)
+            .unwrap()
+            .expect("a sheet")
+    };
+    for (r, lo, hi) in [
+        (3.0, 0.515, 0.5225),
+        (5.0, 0.515, 0.5225),
+        (1.9, 0.50, 0.51),
+    ] {
+        let e = sheet(r, 2048);
+        assert!(e > lo && e < hi, "{r} α_c2: {e}");
+    }
+    let (a, e_s) = (3.0 * c2, sheet(3.0, 8192));
+    assert!((sheet(3.0, 2048) - e_s).abs() < 1e-4, "{e_s}");
+    // The clipped field's `+` zone lies at the contact's edge, beyond a `−` zone.
+    let zones = switch_zones_thornton(g, a, e_s - 2e-3, 8192).unwrap();
+    let last = zones.last().expect("zones");
+    assert!(last.0 == 1 && last.2 == 1.0 && last.1 > 0.999, "{zones:?}");
+    assert!(zones.iter().any(|z| z.0 == -1), "{zones:?}");
+    // None where the predicate fails at both ends, and an empty range is refused.
+    assert_eq!(
+        switch_sheet_thornton(g, a, (0.53, 0.6), 2048).unwrap(),
+        None
+    );
+    assert!(switch_sheet_thornton(g, a, (0.6, 0.53), 2048).is_err());
+    // `P` is not smooth across it: at a fixed 8 192 steps its second differences along `e_n`
+    // (spacing 1e-3) keep their value above the sheet and move below it.
+    let d2 = |e: f64| {
+        let h = 1e-3;
+        (p_fixed(g, a, e - h, 8192) - 2.0 * p_fixed(g, a, e, 8192) + p_fixed(g, a, e + h, 8192)) / h
+    };
+    let (above, further, below) = (d2(e_s + 3e-3), d2(e_s + 6e-3), d2(e_s - 3e-3));
+    assert!((above / further - 1.0).abs() < 0.05, "{above} {further}");
+    assert!((below / above - 1.0).abs() > 0.2, "{below} {above}");
 }
 
 #[test]

@@ -555,6 +555,48 @@ pub fn switch_fold_thornton(
     fold_above(start, 1.01, SWITCH_FOLD_MAX, holds)
 }
 
+/// The switch sheet `e_S(γ, α)` of Thornton's stick patch (`docs/solver.md`, "Kinks inside the
+/// slip regions"): at small `e_n` the field clipped at the switch to unloading has a `+` zone at
+/// the contact's edge there too ([`has_switch_zone_thornton`], the predicate of
+/// [`switch_fold_thornton`]), which lasts into the restitution; it ceases as `e_n` grows, on a
+/// sheet across the `e_n` axis nearly flat in α (γ = 1.7: between 0.515 and 0.5225 at 3 `α_c2`),
+/// where `P` leaves its smooth continuation below it. Located on `steps` steps by bisection in
+/// `e_n` to `1e-9` inside `(e_lo, e_hi)`, where the predicate holds at `e_lo` and fails at
+/// `e_hi`; `None` where it does not (no sheet there, or more than one edge between them that
+/// the ends do not show).
+///
+/// Errors: `γ` or `α` not positive and finite, `e_lo < e_hi` not inside `[0.3, 1]`, `steps < 8`.
+pub fn switch_sheet_thornton(
+    gamma: f64,
+    alpha: f64,
+    (e_lo, e_hi): (f64, f64),
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
+    let (lo, hi) = (check_restitution(e_lo)?, check_restitution(e_hi)?);
+    if lo >= hi {
+        return Err(PhysicsError::InvalidParameter {
+            name: "e_n range",
+            value: hi - lo,
+            allowed: "> 0 (its upper end above its lower)",
+        });
+    }
+    let holds = |e: f64| has_switch_zone_thornton(gamma, alpha, e, steps);
+    if !holds(lo)? || holds(hi)? {
+        return Ok(None);
+    }
+    let (mut l, mut h) = (lo, hi);
+    while h - l > 1e-9 {
+        let mid = 0.5 * (l + h);
+        if holds(mid)? {
+            l = mid;
+        } else {
+            h = mid;
+        }
+    }
+    Ok(Some(0.5 * (l + h)))
+}
+
 /// `(γ, e_n)` of a fold locator checked, or `None` where the elastic law answers (`e_n = 1`:
 /// none of Thornton's folds).
 fn fold_inputs(gamma: f64, e_n: f64) -> Result<Option<(f64, f64)>, PhysicsError> {
