@@ -68,13 +68,15 @@ pub struct VerifyArgs {
     /// (I+ is traced first: about 10 s on 2 cores).
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end"])]
     near_sheet: bool,
-    /// Draw points next to the folds of a table of Thornton's law instead, where P departs
-    /// from its smooth continuation like a power 3/2: (gamma, e_n) uniform over the table's
-    /// range (e_n at most 0.9999), alpha = alpha_K times 1 + s·r, s = +1 or -1, r log-uniform in
-    /// [1e-4, 1e-2], next to the re-slip fold alpha_R, the line 2/7, the switch fold alpha_S
-    /// and the loading fold alpha_L in turn (each located at its point first, about 0.1 s; a
-    /// point where its fold does not exist is drawn again); the largest error next to each
-    /// is printed too.
+    /// Draw points next to the kinks of a table of Thornton's law instead, where P leaves its
+    /// smooth continuation, in turn: (gamma, e_n) uniform over the table's range (e_n at most
+    /// 0.9999) and alpha = alpha_K times 1 + s·r, s = +1 or -1, r log-uniform in [1e-4, 1e-2],
+    /// next to the re-slip fold alpha_R, the line 2/7, the switch fold alpha_S and the loading
+    /// fold alpha_L; and next to the switch sheet e_S of the stick patch (below e_n ~ 0.52):
+    /// gamma uniform, alpha/alpha_c2 log-uniform in [1.2, 10], e_n = e_S + s·r (each kink
+    /// located at its point first, about 0.1 s; a point where it does not exist is drawn
+    /// again, a kink found nowhere is left out); the largest error next to each is printed
+    /// too.
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet"])]
     near_folds: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
@@ -331,8 +333,9 @@ fn sample_near_folds(
     let s = table.surface();
     let refuse = |has: String| {
         Failure::usage(format!(
-            "--near-folds: {} has {has}; the folds alpha_R, 2/7, alpha_S and alpha_L are \
-             located for tables of the thornton law (an e_n axis over a range of gamma)",
+            "--near-folds: {} has {has}; the folds alpha_R, 2/7, alpha_S and alpha_L and the \
+             switch sheet e_S are located for tables of the thornton law (an e_n axis over a \
+             range of gamma)",
             path.display()
         ))
     };
@@ -469,7 +472,8 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             ),
         },
         if args.near_folds {
-            "alpha within 1e-4 to 1e-2 (relative) of alpha_R, 2/7, alpha_S and alpha_L in turn"
+            "alpha within 1e-4 to 1e-2 (relative) of alpha_R, 2/7, alpha_S and alpha_L and e_n \
+             within 1e-4 to 1e-2 of the switch sheet e_S, in turn"
         } else if args.near_sheet {
             "ln(alpha) uniform up to alpha_c2, e_n within 1e-4 to 0.03 of the sheet I+"
         } else if args.near_end && table.restitution().is_some() {

@@ -43,6 +43,7 @@ use super::SweepError;
 use oblique_solver::history::{
     fold_minus_at, fold_minus_at_e, fold_minus_free_below, loading_fold_thornton,
     reslip_fold_thornton, restitution_minus_somewhere_e, switch_fold_thornton,
+    switch_sheet_thornton,
 };
 use oblique_solver::Law;
 use oblique_table::surface::{stencil4, PatchKind, Point};
@@ -896,23 +897,29 @@ fn near_surface_points(
     out
 }
 
-/// The folds of Thornton's law that [`near_thornton_fold_points`] draws next to, in turn.
-pub const THORNTON_FOLDS: [&str; 4] = ["alpha_R", "2/7", "alpha_S", "alpha_L"];
+/// The kinks of Thornton's law that [`near_thornton_fold_points`] draws next to, in turn: four
+/// folds along α and the switch sheet `e_S` across `e_n`.
+pub const THORNTON_FOLDS: [&str; 5] = ["alpha_R", "2/7", "alpha_S", "alpha_L", "e_S"];
 
 /// Steps per contact time on which [`near_thornton_fold_points`] locates the folds (as the
 /// knots do, `nodes.knots`).
 const THORNTON_FOLD_STEPS: usize = 2048;
 
-/// `n` points next to the folds of Thornton's law inside `gammas × e_range`, each with the index
-/// of its fold in [`THORNTON_FOLDS`]: point `i` next to fold `i mod 4` (the re-slip fold `α_R`,
-/// the line `α = 2/7`, the switch fold `α_S`, the loading fold `α_L`; `docs/solver.md`, "Kinks
-/// inside the slip regions"), with `(γ, e_n)` uniform (`e_n` at most `1 − 1e-4`, where the
-/// folds still exist), the fold located there on 2 048 steps, and `α = α_K (1 + s·10^u)`,
-/// `s = ±1`, `u` uniform in `[−4, −2]`, where `P` departs from its smooth continuation like a
-/// power 3/2. A draw whose fold does not exist there (`α_R` next to γ = 1, `α_L` where it has
-/// merged) or whose `α` lies beyond `alpha_max` is drawn again, up to 20 draws per point
-/// (fewer points then). The draws are made in order from `seed` and located in parallel: the
-/// same `seed` gives the same points (`sweep verify --near-folds`). `Err`: a solve's error.
+/// `n` points next to the kinks of Thornton's law inside `gammas × e_range`, each with the index
+/// of its kink in [`THORNTON_FOLDS`], point `i` next to kink `i mod 5` (`docs/solver.md`, "Kinks
+/// inside the slip regions"):
+/// - the re-slip fold `α_R`, the line `α = 2/7`, the switch fold `α_S` and the loading fold
+///   `α_L`: `(γ, e_n)` uniform (`e_n` at most `1 − 1e-4`, where the folds still exist), the fold
+///   located there on 2 048 steps, `α = α_K (1 + s·10^u)`, `s = ±1`, `u` uniform in `[−4, −2]`;
+/// - the switch sheet `e_S(γ, α)` of the stick patch: γ uniform, `α/α_c2` log-uniform in
+///   `[1.2, 10]`, the sheet located inside the table's `e_n` range, `e_n = e_S + s·10^u`.
+///
+/// A draw whose kink does not exist there (`α_R` next to γ = 1, `α_L` where it has merged, the
+/// sheet above `e_n` ≈ 0.52), whose `α` lies beyond `alpha_max` or whose `e_n` leaves the range
+/// is drawn again, up to 20 rounds, and a kink none of whose draws of a round exists is not
+/// drawn again (fewer points then). The draws are made in order from `seed` and located in
+/// parallel: the same `seed` gives the same points (`sweep verify --near-folds`). `Err`: a
+/// solve's error.
 pub fn near_thornton_fold_points(
     gammas: (f64, f64),
     e_range: (f64, f64),
@@ -920,49 +927,66 @@ pub fn near_thornton_fold_points(
     n: usize,
     seed: u64,
 ) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
+    let kinds = THORNTON_FOLDS.len();
     let (g_lo, g_hi) = gammas;
     let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
     let mut rng = oblique_physics::sample::SplitMix(seed);
     let mut slots: Vec<Option<Point>> = vec![None; n];
+    let mut gone = vec![false; kinds];
     for _ in 0..20 {
-        let open: Vec<usize> = (0..n).filter(|&i| slots[i].is_none()).collect();
+        let open: Vec<usize> = (0..n)
+            .filter(|&i| slots[i].is_none() && !gone[i % kinds])
+            .collect();
         if open.is_empty() {
             break;
         }
-        let draws: Vec<(usize, f64, f64, f64)> = open
+        let draws: Vec<(usize, f64, f64, f64, f64)> = open
             .iter()
             .map(|&i| {
                 let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
                 let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
                 let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
                 let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-                (i, gamma, e_n, sign * r)
+                let ratio = 1.2 * (10.0f64 / 1.2).powf(rng.uniform());
+                (i, gamma, e_n, sign * r, ratio)
             })
             .collect();
         let found: Vec<(usize, Option<Point>)> = draws
             .par_iter()
-            .map(|&(i, gamma, e_n, r)| {
-                let fold = match i % 4 {
-                    0 => reslip_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
-                    1 => Ok(Some(2.0 / 7.0)),
-                    2 => switch_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
-                    _ => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
-                }?;
-                let point = fold
-                    .map(|a| a * (1.0 + r))
-                    .filter(|&a| a <= alpha_max)
-                    .map(|a| Point::new(gamma, a, e_n));
+            .map(|&(i, gamma, e_n, r, ratio)| {
+                let point = if i % kinds == 4 {
+                    let alpha = ratio * oblique_physics::regimes::alpha_c2(gamma);
+                    switch_sheet_thornton(gamma, alpha, (e_lo, e_hi), THORNTON_FOLD_STEPS)?
+                        .map(|e_s| e_s + r)
+                        .filter(|&e| e >= e_lo && e <= e_hi && alpha <= alpha_max)
+                        .map(|e| Point::new(gamma, alpha, e))
+                } else {
+                    let fold = match i % kinds {
+                        0 => reslip_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                        1 => Ok(Some(2.0 / 7.0)),
+                        2 => switch_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                        _ => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                    }?;
+                    fold.map(|a| a * (1.0 + r))
+                        .filter(|&a| a <= alpha_max)
+                        .map(|a| Point::new(gamma, a, e_n))
+                };
                 Ok((i, point))
             })
             .collect::<Result<_, oblique_solver::PhysicsError>>()?;
+        let mut any = vec![false; kinds];
         for (i, point) in found {
+            any[i % kinds] |= point.is_some();
             slots[i] = point;
+        }
+        for (k, g) in gone.iter_mut().enumerate() {
+            *g |= !any[k] && open.iter().any(|&i| i % kinds == k);
         }
     }
     Ok(slots
         .into_iter()
         .enumerate()
-        .filter_map(|(i, p)| p.map(|p| (i % 4, p)))
+        .filter_map(|(i, p)| p.map(|p| (i % kinds, p)))
         .collect())
 }
 
