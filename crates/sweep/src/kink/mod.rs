@@ -994,6 +994,43 @@ pub fn near_thornton_fold_points(
 mod tests {
     use super::*;
 
+    /// Over a range that holds all five kinks, each gets its share of the points, next to it:
+    /// the folds within 1e-2 (relative) in α, the switch sheet within 1e-2 in `e_n`; the same
+    /// seed draws the same points.
+    #[test]
+    fn thornton_fold_points_lie_next_to_each_kink() {
+        let pts = near_thornton_fold_points((1.65, 1.75), (0.48, 0.56), f64::INFINITY, 10, 3)
+            .expect("located");
+        assert_eq!(pts.len(), 10);
+        for (i, &(k, p)) in pts.iter().enumerate() {
+            assert_eq!(k, i % 5);
+            let fold = match k {
+                0 => reslip_fold_thornton(p.gamma, p.e_n, THORNTON_FOLD_STEPS).unwrap(),
+                1 => Some(2.0 / 7.0),
+                2 => switch_fold_thornton(p.gamma, p.e_n, THORNTON_FOLD_STEPS).unwrap(),
+                3 => loading_fold_thornton(p.gamma, p.e_n, THORNTON_FOLD_STEPS).unwrap(),
+                _ => None,
+            };
+            match fold {
+                Some(a) => {
+                    let r = (p.alpha / a - 1.0).abs();
+                    assert!((1e-4 * 0.999..=1e-2 * 1.001).contains(&r), "{k}: {p:?} {a}");
+                }
+                None => {
+                    assert!(p.alpha > 1.2 * oblique_physics::regimes::alpha_c2(p.gamma));
+                    let e_s = switch_sheet_thornton(p.gamma, p.alpha, (0.48, 0.56), 2048)
+                        .unwrap()
+                        .expect("the sheet");
+                    let d = (p.e_n - e_s).abs();
+                    assert!((1e-4 * 0.999..=1e-2 * 1.001).contains(&d), "{p:?} {e_s}");
+                }
+            }
+        }
+        let again = near_thornton_fold_points((1.65, 1.75), (0.48, 0.56), f64::INFINITY, 10, 3)
+            .expect("located");
+        assert_eq!(format!("{pts:?}"), format!("{again:?}"));
+    }
+
     #[test]
     fn the_traced_fold_minus_matches_its_continuation() {
         // The tabulated positions of docs/solver.md and the sequential continuation (kinkmap):
