@@ -3,9 +3,12 @@
 //! patch (`oblique_solver::history::loading_fold_thornton`), with `--reslip` the re-slip fold
 //! `α_R(γ, e_n)` of the partial-slip patch (`reslip_fold_thornton`), with `--switch` its switch
 //! fold `α_S(γ, e_n)` (`switch_fold_thornton`), and its ratio to `α_c2`; `none` where there is
-//! none.
+//! none. `thornfold --sheet GAMMAS RATIOS [STEPS]` prints the switch sheet `e_S(γ, α)` of the
+//! stick patch (`switch_sheet_thornton`, searched in `e_n` 0.3–0.99) at `α = RATIO α_c2`.
 
-use oblique_solver::history::{loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton};
+use oblique_solver::history::{
+    loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton, switch_sheet_thornton,
+};
 
 fn list(s: &str) -> anyhow::Result<Vec<f64>> {
     Ok(s.split(',').map(str::parse).collect::<Result<_, _>>()?)
@@ -13,6 +16,24 @@ fn list(s: &str) -> anyhow::Result<Vec<f64>> {
 
 fn main() -> anyhow::Result<()> {
     let mut a: Vec<String> = std::env::args().skip(1).collect();
+    if a.first().is_some_and(|s| s == "--sheet") {
+        anyhow::ensure!(
+            a.len() >= 3,
+            "usage: thornfold --sheet GAMMAS RATIOS [STEPS]"
+        );
+        let (gammas, ratios) = (list(&a[1])?, list(&a[2])?);
+        let steps = if a.len() > 3 { a[3].parse()? } else { 2048 };
+        for &g in &gammas {
+            for &r in &ratios {
+                let alpha = r * 2.0 * g * g / 7.0;
+                match switch_sheet_thornton(g, alpha, (0.3, 0.99), steps)? {
+                    Some(e) => println!("{g} {r} {e:.6}"),
+                    None => println!("{g} {r} none"),
+                }
+            }
+        }
+        return Ok(());
+    }
     let reslip = a.first().is_some_and(|s| s == "--reslip");
     let switch = a.first().is_some_and(|s| s == "--switch");
     if reslip || switch {
