@@ -252,16 +252,8 @@ pub fn plus_interlude_edge_e_within(
     if e_lo.is_nan() || e_hi.is_nan() || e_hi <= e_lo || holds(e_lo)? || !holds(e_hi)? {
         return Ok(None);
     }
-    let (mut lo, mut hi) = (e_lo, e_hi);
-    while hi - lo > e_tol {
-        let mid = 0.5 * (lo + hi);
-        if holds(mid)? {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok(Some(0.5 * (lo + hi)))
+    // The interlude holds above its edge: the edge of its negation, which holds below.
+    bisect_edge((e_lo, e_hi), e_tol, |e| holds(e).map(|h| !h)).map(Some)
 }
 
 /// [`fold_minus_at`] for the Kelvin–Voigt law at normal restitution `e_n ∈ [0.3, 1]`: the same

@@ -268,6 +268,25 @@ fn locate_change_with(
     bisect_change(history, (alpha_lo, alpha_hi), at_lo, iterations, present).map(Some)
 }
 
+/// The edge of a predicate between `lo`, where it holds, and `hi`, where it fails: the bracket
+/// halved until it is at most `width` wide, then its midpoint (the locators of the switch sheet,
+/// of Thornton's folds in `ln α`, and of the Kelvin–Voigt `+` interlude along `e_n`).
+pub(crate) fn bisect_edge(
+    (mut lo, mut hi): (f64, f64),
+    width: f64,
+    holds: impl Fn(f64) -> Result<bool, PhysicsError>,
+) -> Result<f64, PhysicsError> {
+    while hi - lo > width {
+        let mid = 0.5 * (lo + hi);
+        if holds(mid)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}
+
 /// The bisection of [`locate_change_with`] on a bracket whose ends are known to differ, the
 /// predicate `at_lo` at its lower end: `iterations` halvings in `ln α`, the midpoint of the last
 /// bracket.

@@ -585,16 +585,7 @@ pub fn switch_sheet_thornton(
     if !holds(lo)? || holds(hi)? {
         return Ok(None);
     }
-    let (mut l, mut h) = (lo, hi);
-    while h - l > 1e-9 {
-        let mid = 0.5 * (l + h);
-        if holds(mid)? {
-            l = mid;
-        } else {
-            h = mid;
-        }
-    }
-    Ok(Some(0.5 * (l + h)))
+    bisect_edge((lo, hi), 1e-9, holds).map(Some)
 }
 
 /// `(γ, e_n)` of a fold locator checked, or `None` where the elastic law answers (`e_n = 1`:
@@ -623,14 +614,5 @@ fn fold_above(
             return Ok(None);
         }
     }
-    let (mut l, mut h) = (lo.ln(), hi.ln());
-    while h - l > 1e-10 {
-        let mid = 0.5 * (l + h);
-        if holds(mid.exp())? {
-            l = mid;
-        } else {
-            h = mid;
-        }
-    }
-    Ok(Some((0.5 * (l + h)).exp()))
+    bisect_edge((lo.ln(), hi.ln()), 1e-10, |l| holds(l.exp())).map(|l| Some(l.exp()))
 }
