@@ -40,10 +40,34 @@ pub const GRADE: [u8; 4] = [0, 2, 0, 1];
 /// Names of the knots in messages.
 const NAMES: [&str; 4] = ["alpha_c1", "alpha_R", "2/7", "alpha_S"];
 
-/// `n ≥ 4` equal steps of at most `step` over `[lo, hi]`: `(first, step, n)`.
-fn grid(lo: f64, hi: f64, step: f64) -> (f64, f64, usize) {
-    let n = (((hi - lo) / step).ceil() as usize + 1).max(4);
-    (lo, (hi - lo) / (n - 1) as f64, n)
+/// `n ≥ 4` points over `[first, last]` at equal steps of at most the step asked for.
+#[derive(Debug, Clone, Copy)]
+struct Grid {
+    first: f64,
+    step: f64,
+    n: usize,
+    last: f64,
+}
+
+impl Grid {
+    fn new(lo: f64, hi: f64, step: f64) -> Self {
+        let n = (((hi - lo) / step).ceil() as usize + 1).max(4);
+        Grid {
+            first: lo,
+            step: (hi - lo) / (n - 1) as f64,
+            n,
+            last: hi,
+        }
+    }
+
+    /// Point `i`: `last` itself for the last one.
+    fn at(self, i: usize) -> f64 {
+        if i + 1 == self.n {
+            self.last
+        } else {
+            self.first + self.step * i as f64
+        }
+    }
 }
 
 /// The knots of the partial-slip patch over `γ ∈ gammas` (`bg` root cells) and `e_n ∈ e_range`
@@ -79,24 +103,11 @@ pub fn thornton_knots(
         return Ok(None);
     }
     let g_from = g_lo + (g_hi - g_lo) * from / bg as f64;
-    let (g0, gs, ng) = grid(g_from, g_hi, GAMMA_STEP);
-    let (e0, es, ne) = grid(e_lo, e_top, E_N_STEP);
+    let gg = Grid::new(g_from, g_hi, GAMMA_STEP);
+    let eg = Grid::new(e_lo, e_top, E_N_STEP);
+    let (ng, ne) = (gg.n, eg.n);
     let points: Vec<(f64, f64)> = (0..ng)
-        .flat_map(|i| {
-            (0..ne).map(move |l| {
-                let g = if i + 1 == ng {
-                    gammas.1
-                } else {
-                    g0 + gs * i as f64
-                };
-                let e = if l + 1 == ne {
-                    e_top
-                } else {
-                    e0 + es * l as f64
-                };
-                (g, e)
-            })
-        })
+        .flat_map(|i| (0..ne).map(move |l| (gg.at(i), eg.at(l))))
         .collect();
     let traced: Vec<[f64; 4]> = points
         .par_iter()
@@ -110,10 +121,10 @@ pub fn thornton_knots(
         }
     }
     let knots = Knots::new(
-        g0,
-        gs,
-        e0,
-        es,
+        gg.first,
+        gg.step,
+        eg.first,
+        eg.step,
         [from, bg as f64, 0.0, top],
         C_STAR.to_vec(),
         GRADE.to_vec(),
@@ -204,27 +215,17 @@ pub fn loading_fold_knots(
         return Ok(None);
     }
     let g_from = g_lo + (g_hi - g_lo) * from / bg as f64;
-    let (g0, gs, ng) = grid(g_from, g_hi, GAMMA_STEP);
-    let (e0, es, ne_all) = grid(e_lo, e_hi, E_N_STEP);
-    let e_row = |l: usize| {
-        if l + 1 == ne_all {
-            e_hi
-        } else {
-            e0 + es * l as f64
-        }
-    };
+    let gg = Grid::new(g_from, g_hi, GAMMA_STEP);
+    let eg = Grid::new(e_lo, e_hi, E_N_STEP);
+    let (ng, ne_all) = (gg.n, eg.n);
     // Each column's coordinates of α_L, from the lowest e_n up to the first row that fails.
     let columns: Vec<Vec<f64>> = (0..ng)
         .into_par_iter()
         .map(|i| {
-            let g = if i + 1 == ng {
-                g_hi
-            } else {
-                g0 + gs * i as f64
-            };
+            let g = gg.at(i);
             let mut cs = Vec::new();
             for l in 0..ne_all {
-                let e = e_row(l);
+                let e = eg.at(l);
                 let fold = loading_fold_thornton(g, e, STEPS).map_err(|err| SweepError::Knots {
                     knot: "alpha_L",
                     gamma: g,
@@ -250,7 +251,7 @@ pub fn loading_fold_knots(
     // them, and there the knot lies next to α_c2, where the map stretches the patch most: at
     // a sixteenth, over γ 1.6–2.0 and e_n 0.65–0.9 (target 5e-5), the stick patch needed
     // 66 458 nodes with the knot against 51 895 without.
-    let e_last = e_row(ne - 1);
+    let e_last = eg.at(ne - 1);
     let top = if ne == ne_all {
         be as f64
     } else {
@@ -265,10 +266,10 @@ pub fn loading_fold_knots(
     }
     // The grid is the tracing's, up to the last common row.
     Knots::new(
-        g0,
-        gs,
-        e0,
-        es,
+        gg.first,
+        gg.step,
+        eg.first,
+        eg.step,
         [from, bg as f64, 0.0, top],
         vec![LOADING_C_STAR],
         vec![1],
@@ -384,21 +385,14 @@ pub fn fold_minus_knots(
     let region = [from_g, bg as f64, from_e, be as f64];
     let g_from = gl + (gh - gl) * from_g / bg as f64;
     let e_from = el + (eh - el) * from_e / be as f64;
-    let (kg0, kgs, ng) = grid(g_from, gh, STEP_F_MINUS_GAMMA);
-    let (ke0, kes, ne) = grid(e_from, eh, STEP_F_MINUS_E_N);
+    let gg = Grid::new(g_from, gh, STEP_F_MINUS_GAMMA);
+    let eg = Grid::new(e_from, eh, STEP_F_MINUS_E_N);
+    let (ng, ne) = (gg.n, eg.n);
     let mut knot = Vec::with_capacity(ng * ne);
     for i in 0..ng {
-        let g = if i + 1 == ng {
-            gh
-        } else {
-            kg0 + kgs * i as f64
-        };
+        let g = gg.at(i);
         for l in 0..ne {
-            let e = if l + 1 == ne {
-                eh
-            } else {
-                ke0 + kes * l as f64
-            };
+            let e = eg.at(l);
             let a = fit(g, e).exp();
             let c = PatchKind::PartialSlip.coord_at(map, g, a, e, f64::INFINITY);
             if !(c > 0.0 && c < 1.0) {
@@ -424,10 +418,10 @@ pub fn fold_minus_knots(
         ));
     }
     Knots::new(
-        kg0,
-        kgs,
-        ke0,
-        kes,
+        gg.first,
+        gg.step,
+        eg.first,
+        eg.step,
         region,
         vec![c_star],
         vec![2],
