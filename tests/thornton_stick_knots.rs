@@ -250,7 +250,7 @@ fn damaged_stick_knots_are_refused() {
     assert!(Table::open(&bad).is_err());
 }
 
-/// `sweep verify --near-folds` draws points next to each of the four folds in turn (located at
+/// `sweep verify --near-folds` draws points next to each of the kinks in turn (located at
 /// each point), checks them against direct solves and prints the largest error next to each;
 /// a table of another law is refused (exit 2), naming the flag.
 #[test]
@@ -269,15 +269,26 @@ fn verify_near_folds_checks_the_bound_next_to_each_fold() {
         ])
     };
     let out = run();
-    for name in ["alpha_R", "2/7", "alpha_S", "alpha_L"] {
+    // Points 0, 7, 14, 21 next to the four folds, 6, 13, 20 next to E- (0.81-1.83 here).
+    for (name, n) in [
+        ("alpha_R", 4),
+        ("2/7", 4),
+        ("alpha_S", 4),
+        ("alpha_L", 4),
+        ("E-", 3),
+    ] {
         let line = out
             .lines()
             .find(|l| l.starts_with(&format!("near {name} ")))
             .unwrap_or_else(|| panic!("no line for {name}: {out}"));
-        assert!(line.contains("5 points, max |error|"), "{line}");
+        assert!(line.contains(&format!("{n} points, max |error|")), "{line}");
     }
-    // The switch sheet lies below e_n 0.52, outside this table's range: no points there.
-    assert!(!out.contains("near e_S"), "{out}");
+    // The switch sheet lies below e_n 0.52 and F- beyond gamma 1.87, outside this table's
+    // range: no points there.
+    assert!(
+        !out.contains("near e_S") && !out.contains("near F-"),
+        "{out}"
+    );
     assert!(out.contains("points above it: 0"), "{out}");
     // The same seed draws the same points.
     let again = run();

@@ -7,14 +7,16 @@
 //! the partial-slip patch (`history::reslip_fold_thornton`, `history::switch_fold_thornton`)
 //! and the loading fold `α_L(γ, e_n)` of the stick patch (`history::loading_fold_thornton`),
 //! all `3/2`-power departures, and the curvature jump at `α = 2/7`, where the first gross-slip
-//! episode ends at the switch to unloading.
+//! episode ends at the switch to unloading. And the fold F₋ of the partial-slip patch
+//! (`history::fold_minus_thornton`) and the end-of-contact curves E₋
+//! (`history::end_minus_edges_thornton`), the elastic law's continued to `e_n < 1`.
 
 use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 use oblique_solver::history::{
-    ends_in_full_slip_thornton, full_slip_edge_thornton, has_loading_zone_thornton,
-    has_reslip_thornton, has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton,
-    slip_history_thornton, switch_fold_thornton, switch_sheet_thornton, switch_zones_thornton,
-    SlipSign,
+    end_minus_at, end_minus_edges_thornton, ends_in_full_slip_thornton, fold_minus_thornton,
+    full_slip_edge_thornton, has_loading_zone_thornton, has_reslip_thornton,
+    has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton, slip_history_thornton,
+    switch_fold_thornton, switch_sheet_thornton, switch_zones_thornton, SlipSign,
 };
 use oblique_solver::thornton::{
     dimensionless_motion, dimensionless_p, yield_pressure_for_restitution,
@@ -344,4 +346,89 @@ fn a_narrow_switch_zone_is_found_up_to_its_fold() {
     assert_eq!(plus.len(), 1, "{zones:?}");
     let (_, x0, x1) = *plus[0];
     assert!(x0 > 0.8 && x1 < 0.95 && x1 - x0 > 1e-3, "{zones:?}");
+}
+
+#[test]
+fn the_fold_minus_is_a_kink_of_p() {
+    let (g, e) = (2.3, 0.6);
+    // 0.434576669 / 0.434577100 / 0.434577208 at 2 048 / 4 096 / 8 192 steps.
+    let coarse = fold_minus_thornton(g, e, 2048).unwrap().expect("a fold");
+    let fine = fold_minus_thornton(g, e, 8192).unwrap().expect("a fold");
+    assert!((coarse / fine - 1.0).abs() < 2e-6, "{coarse} {fine}");
+    assert!((fine - 0.4345772).abs() < 1e-6, "{fine}");
+    // Above the switch fold, inside the partial-slip patch.
+    let switch = switch_fold_thornton(g, e, 2048)
+        .unwrap()
+        .expect("a switch fold");
+    assert!(fine > 1.2 * switch && fine < alpha_c2(g), "{fine} {switch}");
+    // The predicate: a `−μF_N` episode late in the restitution, inside the contact, below it.
+    let late_minus = |a: f64| {
+        slip_history_thornton(g, a, e, 8192)
+            .unwrap()
+            .episodes
+            .iter()
+            .any(|ep| ep.sign == SlipSign::Minus && ep.start > 0.5 && ep.end < 0.97)
+    };
+    assert!(late_minus(fine * (1.0 - 1e-4)));
+    assert!(!late_minus(fine * (1.0 + 1e-4)));
+    // A kink of `P`, not smooth on either side: at fixed steps the second differences
+    // (spacing 1e-3 α_F) across it are 8.6 times those 3 % below (−0.0789 against −0.0091,
+    // in units of the spacing), and next to it below they have risen already (−0.0109 at
+    // 2e-3 α_F): the same at 8 192 and 32 768 steps, so not the steps' error.
+    let d2 = |a: f64, steps: usize| {
+        let h = 1e-3 * fine;
+        (p_fixed(g, a - h, e, steps) - 2.0 * p_fixed(g, a, e, steps) + p_fixed(g, a + h, e, steps))
+            / h
+    };
+    let (across, below, next) = (
+        d2(fine, 8192),
+        d2(0.97 * fine, 8192),
+        d2(0.998 * fine, 8192),
+    );
+    assert!(across / below > 6.0, "{across} {below}");
+    assert!(next / below > 1.1, "{next} {below}");
+    let finer = d2(fine, 32768);
+    assert!((finer / across - 1.0).abs() < 0.05, "{finer} {across}");
+    // Born at lower γ the lower e_n: none at γ 1.8 (e_n 0.3), nor at γ 2.3 for e_n 0.99; at
+    // e_n = 1 the elastic F₋ (0.45158 at γ 2.6).
+    assert_eq!(fold_minus_thornton(1.8, 0.3, 2048).unwrap(), None);
+    assert_eq!(fold_minus_thornton(2.3, 0.99, 2048).unwrap(), None);
+    let elastic = fold_minus_thornton(2.6, 1.0, 2048)
+        .unwrap()
+        .expect("the elastic F-");
+    assert!((elastic - 0.45158).abs() < 1e-4, "{elastic}");
+    assert!(fold_minus_thornton(2.3, 0.2, 2048).is_err());
+}
+
+#[test]
+fn the_end_of_contact_curves_continue_the_elastic_one() {
+    // One E₋ at γ 1.8, e_n 0.7 (0.8501967 / 0.8501972 at 2 048 / 8 192 steps), inside the
+    // partial-slip patch; at e_n = 1 the elastic E₋ itself (the same histories); two at e_n 0.3.
+    let edges = |g: f64, e: f64, range: (f64, f64), steps: usize| {
+        end_minus_edges_thornton(g, e, range, 100, steps).unwrap()
+    };
+    let coarse = edges(1.8, 0.7, (0.5, 5.0), 2048);
+    let fine = edges(1.8, 0.7, (0.5, 5.0), 8192);
+    assert_eq!((coarse.len(), fine.len()), (1, 1), "{coarse:?} {fine:?}");
+    assert!(
+        (coarse[0] / fine[0] - 1.0).abs() < 1e-6,
+        "{coarse:?} {fine:?}"
+    );
+    assert!((fine[0] - 0.850197).abs() < 1e-5 && fine[0] < alpha_c2(1.8));
+    let elastic = edges(1.8, 1.0, (0.5, 5.0), 2048);
+    let direct = end_minus_at(1.8, 2.5, 2048)
+        .unwrap()
+        .expect("the elastic E-");
+    assert_eq!(elastic.len(), 1);
+    assert!(
+        (elastic[0] / direct - 1.0).abs() < 1e-9,
+        "{elastic:?} {direct}"
+    );
+    let low = end_minus_edges_thornton(1.75, 0.3, (0.2, 30.0), 200, 2048).unwrap();
+    assert_eq!(low.len(), 2, "{low:?}");
+    assert!(
+        (low[0] - 0.4235).abs() < 1e-3 && (low[1] - 14.765).abs() < 0.05,
+        "{low:?}"
+    );
+    assert!(end_minus_edges_thornton(1.8, 0.7, (5.0, 0.5), 100, 2048).is_err());
 }

@@ -2,12 +2,14 @@
 //! (comma-separated lists) prints, for every pair, the loading fold `α_L(γ, e_n)` of the stick
 //! patch (`oblique_solver::history::loading_fold_thornton`), with `--reslip` the re-slip fold
 //! `α_R(γ, e_n)` of the partial-slip patch (`reslip_fold_thornton`), with `--switch` its switch
-//! fold `α_S(γ, e_n)` (`switch_fold_thornton`), and its ratio to `α_c2`; `none` where there is
+//! fold `α_S(γ, e_n)` (`switch_fold_thornton`), with `--minus` its fold F₋
+//! (`fold_minus_thornton`), and its ratio to `α_c2`; `none` where there is
 //! none. `thornfold --sheet GAMMAS RATIOS [STEPS]` prints the switch sheet `e_S(γ, α)` of the
 //! stick patch (`switch_sheet_thornton`, searched in `e_n` 0.3–0.99) at `α = RATIO α_c2`.
 
 use oblique_solver::history::{
-    loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton, switch_sheet_thornton,
+    fold_minus_thornton, loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton,
+    switch_sheet_thornton,
 };
 
 fn list(s: &str) -> anyhow::Result<Vec<f64>> {
@@ -36,12 +38,13 @@ fn main() -> anyhow::Result<()> {
     }
     let reslip = a.first().is_some_and(|s| s == "--reslip");
     let switch = a.first().is_some_and(|s| s == "--switch");
-    if reslip || switch {
+    let minus = a.first().is_some_and(|s| s == "--minus");
+    if reslip || switch || minus {
         a.remove(0);
     }
     anyhow::ensure!(
         a.len() >= 2,
-        "usage: thornfold [--reslip | --switch] GAMMAS E_NS [STEPS]"
+        "usage: thornfold [--reslip | --switch | --minus] GAMMAS E_NS [STEPS]"
     );
     let (gammas, e_ns) = (list(&a[0])?, list(&a[1])?);
     let steps = if a.len() > 2 { a[2].parse()? } else { 2048 };
@@ -52,6 +55,8 @@ fn main() -> anyhow::Result<()> {
                 reslip_fold_thornton(g, e, steps)?
             } else if switch {
                 switch_fold_thornton(g, e, steps)?
+            } else if minus {
+                fold_minus_thornton(g, e, steps)?
             } else {
                 loading_fold_thornton(g, e, steps)?
             };

@@ -345,8 +345,7 @@ pub fn fold_minus_scan_e(
 }
 
 /// Every α in `[alpha_lo, alpha_hi]` where `present` goes from holding to failing as α grows,
-/// on the Kelvin–Voigt histories at `e_n` and γ, in increasing α: a log grid of `n`
-/// intervals, each change bisected to ≈1e-10 in `ln α`.
+/// on the Kelvin–Voigt histories at `e_n` and γ, in increasing α ([`falling_edges`]).
 fn falling_edges_e(
     gamma: f64,
     e_n: f64,
@@ -357,8 +356,24 @@ fn falling_edges_e(
 ) -> Result<Vec<f64>, PhysicsError> {
     let steps = check_fold_steps(steps)?;
     let e_n = check_restitution(e_n)?;
+    falling_edges(
+        |a: f64| slip_history_e(gamma, a, e_n, steps),
+        (alpha_lo, alpha_hi),
+        n,
+        present,
+    )
+}
+
+/// Every α in `[alpha_lo, alpha_hi]` where `present` goes from holding to failing as α grows
+/// on the histories of `history`, in increasing α: a log grid of `n` intervals, each change
+/// bisected to ≈1e-10 in `ln α`. An interval narrower than the grid's spacing can be missed.
+pub(super) fn falling_edges(
+    history: impl Fn(f64) -> Result<SlipHistory, PhysicsError>,
+    (alpha_lo, alpha_hi): (f64, f64),
+    n: usize,
+    present: fn(&SlipHistory) -> bool,
+) -> Result<Vec<f64>, PhysicsError> {
     check_alpha_range(alpha_lo, alpha_hi, n)?;
-    let history = |a: f64| slip_history_e(gamma, a, e_n, steps);
     let xs: Vec<f64> = log_grid(alpha_lo, alpha_hi, n).collect();
     let mut edges = Vec::new();
     let mut prev = present(&history(xs[0])?);
@@ -366,7 +381,7 @@ fn falling_edges_e(
         let now = present(&history(w[1])?);
         if prev && !now {
             let iterations = ((w[1] / w[0]).ln() / 1e-10).log2().ceil().max(1.0) as usize;
-            if let Some(a) = locate_change_with(history, (w[0], w[1]), iterations, present)? {
+            if let Some(a) = locate_change_with(&history, (w[0], w[1]), iterations, present)? {
                 edges.push(a);
             }
         }

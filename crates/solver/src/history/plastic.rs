@@ -588,6 +588,76 @@ pub fn switch_sheet_thornton(
     bisect_edge((lo, hi), 1e-9, holds).map(Some)
 }
 
+/// The factor by which [`fold_minus_thornton`] steps up in α while it looks for F₋'s
+/// predicate: the interval below F₋ where it holds is 1.2 % of α wide at γ 2.0, `e_n` 0.3
+/// (next to its birth), 3–12 % elsewhere up to γ 2.6.
+pub const FOLD_MINUS_SCAN: f64 = 1.005;
+
+/// The fold F₋ of Thornton's partial-slip patch (`docs/solver.md`, "Kinks inside the slip
+/// regions"): the elastic law's F₋ (a `−μF_N` episode late in the restitution that vanishes as
+/// α grows, [`has_restitution_minus`]) continued to `e_n < 1`, where plasticity brings it to
+/// lower γ (born near γ 1.95 at `e_n` 0.3, 2.05 at 0.6, 2.15 at 0.8, 2.37 at 1), always above the
+/// switch fold `α_S`. `P` has a kink there, smooth on neither side (its curvature rises
+/// towards it from below and jumps across it): 0.4346 at γ = 2.3, `e_n` = 0.6.
+///
+/// Located on `steps` steps: from `(2/7)(1 + 1e-4)` up by factors of [`FOLD_MINUS_SCAN`] to the
+/// first α where the predicate holds, on to the first where it fails again, then bisected to
+/// `1e-10` in `ln α`. `None` where it does not hold below `α_c2` (no F₋ at this γ and `e_n`, or
+/// an interval narrower than a step, next to its birth). At `e_n = 1` the elastic histories
+/// answer (the elastic F₋).
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`.
+pub fn fold_minus_thornton(
+    gamma: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    let max = oblique_physics::regimes::alpha_c2(gamma);
+    let holds = |a: f64| {
+        Ok(has_restitution_minus(&slip_history_thornton(
+            gamma, a, e_n, steps,
+        )?))
+    };
+    let mut start = 2.0 / 7.0 * (1.0 + 1e-4);
+    while !holds(start)? {
+        start *= FOLD_MINUS_SCAN;
+        if start > max {
+            return Ok(None);
+        }
+    }
+    fold_above(start, FOLD_MINUS_SCAN, max, holds)
+}
+
+/// The end-of-contact curves E₋ of Thornton's law at `(γ, e_n)`: every α in
+/// `[alpha_lo, alpha_hi]` where the impact stops ending in a `−μF_N` episode that runs into the
+/// separation ([`has_end_minus`], holding below), in increasing α, on `steps` steps (a log grid
+/// of `n` intervals, each change bisected to ≈1e-10 in `ln α`; an interval narrower than a
+/// grid step can be missed). The elastic law's E₋ (`docs/solver.md`, "Kink curves") continued to
+/// `e_n < 1`: it comes down from α → ∞ (γ 1.75: 9.5 at `e_n` 1, 2.85 at 0.9, 0.97 at 0.7) and
+/// at small `e_n` there are several. `P` has no slope jump there, but its curvature changes
+/// fast on one side: a cubic across it errs more than its neighbours predict.
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`, `0 < lo < hi`
+/// not within `1e10`, `n < 2`.
+pub fn end_minus_edges_thornton(
+    gamma: f64,
+    e_n: f64,
+    (alpha_lo, alpha_hi): (f64, f64),
+    n: usize,
+    steps: usize,
+) -> Result<Vec<f64>, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    super::damped::falling_edges(
+        |a: f64| slip_history_thornton(gamma, a, e_n, steps),
+        (alpha_lo, alpha_hi),
+        n,
+        has_end_minus,
+    )
+}
+
 /// `(γ, e_n)` of a fold locator checked, or `None` where the elastic law answers (`e_n = 1`:
 /// none of Thornton's folds).
 fn fold_inputs(gamma: f64, e_n: f64) -> Result<Option<(f64, f64)>, PhysicsError> {

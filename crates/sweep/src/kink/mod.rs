@@ -41,9 +41,9 @@ use rayon::prelude::*;
 
 use super::SweepError;
 use oblique_solver::history::{
-    fold_minus_at, fold_minus_at_e, fold_minus_free_below, loading_fold_thornton,
-    reslip_fold_thornton, restitution_minus_somewhere_e, switch_fold_thornton,
-    switch_sheet_thornton,
+    end_minus_edges_thornton, fold_minus_at, fold_minus_at_e, fold_minus_free_below,
+    fold_minus_thornton, loading_fold_thornton, reslip_fold_thornton,
+    restitution_minus_somewhere_e, switch_fold_thornton, switch_sheet_thornton,
 };
 use oblique_solver::Law;
 use oblique_table::surface::{stencil4, PatchKind, Point};
@@ -898,24 +898,33 @@ fn near_surface_points(
 }
 
 /// The kinks of Thornton's law that [`near_thornton_fold_points`] draws next to, in turn: four
-/// folds along α and the switch sheet `e_S` across `e_n`.
-pub const THORNTON_FOLDS: [&str; 5] = ["alpha_R", "2/7", "alpha_S", "alpha_L", "e_S"];
+/// folds along α, the switch sheet `e_S` across `e_n`, the fold F₋ and the end-of-contact
+/// curves E₋ along α.
+pub const THORNTON_FOLDS: [&str; 7] = ["alpha_R", "2/7", "alpha_S", "alpha_L", "e_S", "F-", "E-"];
+
+/// How far up in α (multiples of `α_c2`) and on how fine a grid (log intervals)
+/// [`near_thornton_fold_points`] looks for the end-of-contact curves E₋: from `0.8 · 2/7`
+/// (below the lowest, about 0.42 at γ 1.75, `e_n` 0.3) to 100 `α_c2` (17 `α_c2` at γ 1.75,
+/// `e_n` 0.3; E₋ rises without bound as γ falls to 1.732 at `e_n` = 1).
+const END_MINUS_SCAN: (f64, usize) = (100.0, 250);
 
 /// Steps per contact time on which [`near_thornton_fold_points`] locates the folds (as the
 /// knots do, `nodes.knots`).
 const THORNTON_FOLD_STEPS: usize = 2048;
 
 /// `n` points next to the kinks of Thornton's law inside `gammas × e_range`, each with the index
-/// of its kink in [`THORNTON_FOLDS`], point `i` next to kink `i mod 5` (`docs/solver.md`, "Kinks
+/// of its kink in [`THORNTON_FOLDS`], point `i` next to kink `i mod 7` (`docs/solver.md`, "Kinks
 /// inside the slip regions"):
 /// - the re-slip fold `α_R`, the line `α = 2/7`, the switch fold `α_S` and the loading fold
 ///   `α_L`: `(γ, e_n)` uniform (`e_n` at most `1 − 1e-4`, where the folds still exist), the fold
 ///   located there on 2 048 steps, `α = α_K (1 + s·10^u)`, `s = ±1`, `u` uniform in `[−4, −2]`;
 /// - the switch sheet `e_S(γ, α)` of the stick patch: γ uniform, `α/α_c2` log-uniform in
-///   `[1.2, 10]`, the sheet located inside the table's `e_n` range, `e_n = e_S + s·10^u`.
+///   `[1.2, 10]`, the sheet located inside the table's `e_n` range, `e_n = e_S + s·10^u`;
+/// - the fold F₋ and the end-of-contact curves E₋ as the folds along α (E₋: one of the curves
+///   found up to 100 `α_c2`, each as likely).
 ///
 /// A draw whose kink does not exist there (`α_R` next to γ = 1, `α_L` where it has merged, the
-/// sheet above `e_n` ≈ 0.52), whose `α` lies beyond `alpha_max` or whose `e_n` leaves the range
+/// sheet above `e_n` ≈ 0.52 at γ 1.7, F₋ below γ ≈ 1.9), whose `α` lies beyond `alpha_max` or whose `e_n` leaves the range
 /// is drawn again, up to 20 rounds, and a kink none of whose draws of a round exists is not
 /// drawn again (fewer points then). The draws are made in order from `seed` and located in
 /// parallel: the same `seed` gives the same points (`sweep verify --near-folds`). `Err`: a
@@ -947,15 +956,17 @@ pub fn near_thornton_fold_points(
                 let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
                 let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
                 let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-                let ratio = 1.2 * (10.0f64 / 1.2).powf(rng.uniform());
-                (i, gamma, e_n, sign * r, ratio)
+                // The sheet's α (e_S) or which E₋ (E-).
+                let pick = rng.uniform();
+                (i, gamma, e_n, sign * r, pick)
             })
             .collect();
         let found: Vec<(usize, Option<Point>)> = draws
             .par_iter()
-            .map(|&(i, gamma, e_n, r, ratio)| {
+            .map(|&(i, gamma, e_n, r, pick)| {
+                let c2 = oblique_physics::regimes::alpha_c2(gamma);
                 let point = if i % kinds == 4 {
-                    let alpha = ratio * oblique_physics::regimes::alpha_c2(gamma);
+                    let alpha = 1.2 * (10.0f64 / 1.2).powf(pick) * c2;
                     switch_sheet_thornton(gamma, alpha, (e_lo, e_hi), THORNTON_FOLD_STEPS)?
                         .map(|e_s| e_s + r)
                         .filter(|&e| e >= e_lo && e <= e_hi && alpha <= alpha_max)
@@ -965,7 +976,23 @@ pub fn near_thornton_fold_points(
                         0 => reslip_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
                         1 => Ok(Some(2.0 / 7.0)),
                         2 => switch_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
-                        _ => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                        3 => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                        5 => fold_minus_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                        _ => {
+                            let (up, n) = END_MINUS_SCAN;
+                            let lo = 0.8 * 2.0 / 7.0;
+                            let hi = (up * c2).min(alpha_max).max(2.0 * lo);
+                            let edges = end_minus_edges_thornton(
+                                gamma,
+                                e_n,
+                                (lo, hi),
+                                n,
+                                THORNTON_FOLD_STEPS,
+                            )?;
+                            let k = ((pick * edges.len() as f64) as usize)
+                                .min(edges.len().saturating_sub(1));
+                            Ok(edges.get(k).copied())
+                        }
                     }?;
                     fold.map(|a| a * (1.0 + r))
                         .filter(|&a| a <= alpha_max)
@@ -994,40 +1021,50 @@ pub fn near_thornton_fold_points(
 mod tests {
     use super::*;
 
-    /// Over a range that holds all five kinks, each gets its share of the points, next to it:
+    /// Over a range that holds all seven kinks, each gets its share of the points, next to it:
     /// the folds within 1e-2 (relative) in α, the switch sheet within 1e-2 in `e_n`; the same
     /// seed draws the same points.
     #[test]
     fn thornton_fold_points_lie_next_to_each_kink() {
-        let pts = near_thornton_fold_points((1.65, 1.75), (0.48, 0.56), f64::INFINITY, 10, 3)
-            .expect("located");
-        assert_eq!(pts.len(), 10);
+        let (gammas, e_range) = ((1.95, 2.05), (0.45, 0.65));
+        let pts =
+            near_thornton_fold_points(gammas, e_range, f64::INFINITY, 14, 3).expect("located");
+        assert_eq!(pts.len(), 14);
         for (i, &(k, p)) in pts.iter().enumerate() {
-            assert_eq!(k, i % 5);
+            assert_eq!(k, i % 7);
+            let steps = THORNTON_FOLD_STEPS;
+            let near = |a: f64| {
+                let r = (p.alpha / a - 1.0).abs();
+                (1e-4 * 0.999..=1e-2 * 1.001).contains(&r)
+            };
             let fold = match k {
-                0 => reslip_fold_thornton(p.gamma, p.e_n, THORNTON_FOLD_STEPS).unwrap(),
+                0 => reslip_fold_thornton(p.gamma, p.e_n, steps).unwrap(),
                 1 => Some(2.0 / 7.0),
-                2 => switch_fold_thornton(p.gamma, p.e_n, THORNTON_FOLD_STEPS).unwrap(),
-                3 => loading_fold_thornton(p.gamma, p.e_n, THORNTON_FOLD_STEPS).unwrap(),
+                2 => switch_fold_thornton(p.gamma, p.e_n, steps).unwrap(),
+                3 => loading_fold_thornton(p.gamma, p.e_n, steps).unwrap(),
+                5 => fold_minus_thornton(p.gamma, p.e_n, steps).unwrap(),
                 _ => None,
             };
-            match fold {
-                Some(a) => {
-                    let r = (p.alpha / a - 1.0).abs();
-                    assert!((1e-4 * 0.999..=1e-2 * 1.001).contains(&r), "{k}: {p:?} {a}");
-                }
-                None => {
+            match (k, fold) {
+                (_, Some(a)) => assert!(near(a), "{k}: {p:?} {a}"),
+                (4, None) => {
                     assert!(p.alpha > 1.2 * oblique_physics::regimes::alpha_c2(p.gamma));
-                    let e_s = switch_sheet_thornton(p.gamma, p.alpha, (0.48, 0.56), 2048)
+                    let e_s = switch_sheet_thornton(p.gamma, p.alpha, e_range, steps)
                         .unwrap()
                         .expect("the sheet");
                     let d = (p.e_n - e_s).abs();
                     assert!((1e-4 * 0.999..=1e-2 * 1.001).contains(&d), "{p:?} {e_s}");
                 }
+                (6, None) => {
+                    let edges =
+                        end_minus_edges_thornton(p.gamma, p.e_n, (0.2, 100.0), 300, steps).unwrap();
+                    assert!(edges.iter().any(|&a| near(a)), "{p:?} {edges:?}");
+                }
+                _ => panic!("{k}: {p:?} has no kink"),
             }
         }
-        let again = near_thornton_fold_points((1.65, 1.75), (0.48, 0.56), f64::INFINITY, 10, 3)
-            .expect("located");
+        let again =
+            near_thornton_fold_points(gammas, e_range, f64::INFINITY, 14, 3).expect("located");
         assert_eq!(format!("{pts:?}"), format!("{again:?}"));
     }
 
