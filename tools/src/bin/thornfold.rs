@@ -1,15 +1,17 @@
-//! Folds of Thornton's law: `thornfold [--reslip | --switch] GAMMAS E_NS [STEPS]`
+//! Folds of Thornton's law: `thornfold [--reslip | --switch | --minus] GAMMAS E_NS [STEPS]`
 //! (comma-separated lists) prints, for every pair, the loading fold `α_L(γ, e_n)` of the stick
 //! patch (`oblique_solver::history::loading_fold_thornton`), with `--reslip` the re-slip fold
 //! `α_R(γ, e_n)` of the partial-slip patch (`reslip_fold_thornton`), with `--switch` its switch
 //! fold `α_S(γ, e_n)` (`switch_fold_thornton`), with `--minus` its fold F₋
 //! (`fold_minus_thornton`), and its ratio to `α_c2`; `none` where there is
-//! none. `thornfold --sheet GAMMAS RATIOS [STEPS]` prints the switch sheet `e_S(γ, α)` of the
+//! none. `thornfold --end GAMMAS E_NS [STEPS]` prints the end-of-contact curves E₋
+//! (`end_minus_edges_thornton`, α from 0.8 · 2/7 to 100 `α_c2`, 250 log intervals) and their
+//! ratios to `α_c2`. `thornfold --sheet GAMMAS RATIOS [STEPS]` prints the switch sheet `e_S(γ, α)` of the
 //! stick patch (`switch_sheet_thornton`, searched in `e_n` 0.3–0.99) at `α = RATIO α_c2`.
 
 use oblique_solver::history::{
-    fold_minus_thornton, loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton,
-    switch_sheet_thornton,
+    end_minus_edges_thornton, fold_minus_thornton, loading_fold_thornton, reslip_fold_thornton,
+    switch_fold_thornton, switch_sheet_thornton,
 };
 
 fn list(s: &str) -> anyhow::Result<Vec<f64>> {
@@ -32,6 +34,31 @@ fn main() -> anyhow::Result<()> {
                     Some(e) => println!("{g} {r} {e:.6}"),
                     None => println!("{g} {r} none"),
                 }
+            }
+        }
+        return Ok(());
+    }
+    if a.first().is_some_and(|s| s == "--end") {
+        anyhow::ensure!(a.len() >= 3, "usage: thornfold --end GAMMAS E_NS [STEPS]");
+        let (gammas, e_ns) = (list(&a[1])?, list(&a[2])?);
+        let steps = if a.len() > 3 { a[3].parse()? } else { 2048 };
+        for &g in &gammas {
+            for &e in &e_ns {
+                let c2 = 2.0 * g * g / 7.0;
+                let edges =
+                    end_minus_edges_thornton(g, e, (0.8 * 2.0 / 7.0, 100.0 * c2), 250, steps)?;
+                let text: Vec<String> = edges
+                    .iter()
+                    .map(|a| format!("{a:.6} ({:.4})", a / c2))
+                    .collect();
+                println!(
+                    "{g} {e} {}",
+                    if text.is_empty() {
+                        "none".into()
+                    } else {
+                        text.join(" ")
+                    }
+                );
             }
         }
         return Ok(());
