@@ -45,7 +45,8 @@ pub struct VerifyArgs {
     near_curves: bool,
     /// Draw (gamma, alpha) next to the fold F- instead: gamma uniform over the table's range
     /// above 2.40 (an elastic table whose gamma range spans 0.03 or more there), or (gamma,
-    /// e_n) uniform over the part of a Kelvin-Voigt table's range where F- exists; alpha =
+    /// e_n) uniform over the part of a Kelvin-Voigt or thornton table's range where F- exists
+    /// (under the thornton law from gamma 1.87 at e_n = 0.3); alpha =
     /// alpha_F times 1 + s·r, s = +1 or -1, r log-uniform in [1e-4, 1e-2], where the surface
     /// leaves its smooth continuation like (alpha - alpha_F)^(3/2) (F- is traced first: about
     /// 1 s for a curve, seconds for a surface).
@@ -149,7 +150,7 @@ fn sample_near_curves(table: &Table, n: usize, seed: u64) -> Vec<Point> {
 /// The `n` points of `--near-fold`: next to the fold F₋ over the part of the table's range where
 /// it is traced: [`oblique_sweep::kink::near_fold_minus_points`] on the curve of an elastic
 /// table, [`oblique_sweep::kink::near_fold_minus_points_e`] on the surface `α_F(γ, e_n)` of a
-/// Kelvin–Voigt table (`e_n` uniform in the table's range where F₋ exists).
+/// Kelvin–Voigt or Thornton table (`e_n` uniform in the table's range where F₋ exists).
 fn sample_near_fold(
     table: &Table,
     path: &std::path::Path,
@@ -166,8 +167,9 @@ fn sample_near_fold(
     let refuse = |has: String| {
         Failure::usage(format!(
             "--near-fold: {} has {has}; the fold F- is traced for elastic tables whose gamma \
-             range spans {} or more above {}, and for Kelvin-Voigt tables that reach it (gamma \
-             >= 2.37 at e_n = 1, later for lower e_n, none for e_n <= 0.87)",
+             range spans {} or more above {}, for Kelvin-Voigt tables that reach it (gamma \
+             >= 2.37 at e_n = 1, later for lower e_n, none for e_n <= 0.87) and for thornton \
+             tables that reach it (gamma >= 1.87 at e_n = 0.3, later for higher e_n)",
             path.display(),
             3.0 * oblique_sweep::kink::STEP,
             oblique_sweep::kink::FOLD_MINUS_FROM
@@ -182,14 +184,17 @@ fn sample_near_fold(
             &curve, g_lo, g_hi, n, seed,
         ));
     };
-    if !oblique_sweep::kink::probes_implemented(law) {
-        return Err(refuse(format!(
-            "the {} law, whose kinks are not traced",
-            law.name()
-        )));
+    let surface = match law {
+        Law::KelvinVoigt => oblique_sweep::kink::fold_minus_surface((g_lo, g_hi), e_range),
+        Law::Thornton => oblique_sweep::kink::thornton_fold_minus_surface((g_lo, g_hi), e_range),
+        _ => {
+            return Err(refuse(format!(
+                "the {} law, whose kinks are not traced",
+                law.name()
+            )))
+        }
     }
-    let surface = oblique_sweep::kink::fold_minus_surface((g_lo, g_hi), e_range)
-        .context("tracing the fold surface F-")?;
+    .context("tracing the fold surface F-")?;
     let points = surface
         .map(|f| oblique_sweep::kink::near_fold_minus_points_e(&f, (g_lo, g_hi), e_range, n, seed))
         .unwrap_or_default();
@@ -228,7 +233,7 @@ fn sample_near_end(
         return Err(refuse("one pair (a single gamma)".into()));
     }
     if let Some(e_range) = table.restitution() {
-        if !oblique_sweep::kink::probes_implemented(law) {
+        if law != Law::KelvinVoigt {
             return Err(refuse(format!(
                 "the {} law, whose end-of-contact surface is not traced",
                 law.name()
@@ -293,9 +298,9 @@ fn sample_near_sheet(
     let Some(e_range) = table.restitution() else {
         return Err(refuse("no e_n axis (an elastic table)".into()));
     };
-    if !oblique_sweep::kink::probes_implemented(law) {
+    if law != Law::KelvinVoigt {
         return Err(refuse(format!(
-            "the {} law, whose kinks are not traced",
+            "the {} law, whose sheet I+ is not traced",
             law.name()
         )));
     }

@@ -638,37 +638,47 @@ impl Config {
                     .into(),
             ));
         }
-        if let Some((_, hi)) = d.e_n_range() {
+        if let Some((lo, hi)) = d.e_n_range() {
             // Next to the fold curve F₋ the leaves' predictions miss how P leaves its smooth
             // continuation (docs/accuracy.md, "Tables with an e_n axis"): a table that reaches
             // it must measure those leaves (nodes.probe_kinks) or put F₋ on a cell edge
             // (nodes.knots, the Kelvin–Voigt law over a range of γ), else its bound would not
-            // hold.
-            let free = oblique_solver::history::fold_minus_free_below(hi);
+            // hold. Damping moves F₋'s birth to larger γ, plasticity to smaller γ.
+            let thornton = law == oblique_solver::Law::Thornton;
+            let free = if thornton {
+                oblique_solver::history::fold_minus_free_below_thornton(lo)
+            } else {
+                oblique_solver::history::fold_minus_free_below(hi)
+            };
             let aligned = n.knots && law == oblique_solver::Law::KelvinVoigt && !pair;
             if d.gamma_max >= free && !n.probe_kinks && !aligned {
-                let fix = if crate::kink::probes_implemented(law) {
-                    "set nodes.probe_kinks = true (its leaves are then measured next to F-) or, \
-                     for the kelvin-voigt law over a range of gamma, nodes.knots = true (F- on a \
-                     cell edge), or lower it or e_n_max"
+                let field = if pair {
+                    "domain.gamma"
                 } else {
-                    "lower it or e_n_max"
+                    "domain.gamma_max"
                 };
-                return Err(err(
-                    if pair {
-                        "domain.gamma"
-                    } else {
-                        "domain.gamma_max"
-                    },
-                    d.gamma_max.to_string(),
+                let why = if thornton {
                     format!(
-                        "< {free} with e_n_max = {hi}, nodes.probe_kinks and nodes.knots false: from there \
-                         on P has the fold curve F- (born at gamma 2.37 for e_n = 1, later for \
-                         lower e_n, none up to 3.6 for e_n <= 0.8), next to which a table with \
-                         an e_n range does not hold its stated bound unless it measures the \
-                         leaves there; {fix}"
-                    ),
-                ));
+                        "< {free} with e_n_min = {lo} and nodes.probe_kinks false: from there on \
+                         P has the fold F- (under the thornton law born at gamma 1.87 for e_n = \
+                         0.3, later for higher e_n, 2.37 for e_n = 1), next to which a table \
+                         does not hold its stated bound unless it measures the leaves there; set \
+                         nodes.probe_kinks = true (its leaves are then measured next to F-), or \
+                         lower it or raise e_n_min"
+                    )
+                } else {
+                    // An e_n range: the Kelvin–Voigt law.
+                    format!(
+                        "< {free} with e_n_max = {hi}, nodes.probe_kinks and nodes.knots false: \
+                         from there on P has the fold curve F- (born at gamma 2.37 for e_n = 1, \
+                         later for lower e_n, none up to 3.6 for e_n <= 0.8), next to which a \
+                         table with an e_n range does not hold its stated bound unless it \
+                         measures the leaves there; set nodes.probe_kinks = true (its leaves are \
+                         then measured next to F-) or, over a range of gamma, nodes.knots = true \
+                         (F- on a cell edge), or lower it or e_n_max"
+                    )
+                };
+                return Err(err(field, d.gamma_max.to_string(), why));
             }
         }
         if n.placement != "aligned" {
@@ -864,6 +874,41 @@ tol = 1e-6
     }
 
     #[test]
+    fn a_thornton_range_stops_below_its_fold_f_minus_unless_probed() {
+        let with = |gamma: &str, e_n: &str, probe: bool| {
+            let text = GOOD
+                .replace("gamma_min = 0.1\ngamma_max = 3.5", gamma)
+                .replace(
+                    "alpha_max = \"inf\"",
+                    &format!("alpha_max = \"inf\"\n{e_n}"),
+                )
+                .replace("tol = 1e-6", "tol = 1e-6\nlaw = \"thornton\"")
+                .replace(
+                    "target_error = 1e-5",
+                    &format!("target_error = 1e-5\nprobe_kinks = {probe}"),
+                );
+            Config::parse(&text, "x.toml").map_err(|e| e.to_string())
+        };
+        // Plasticity brings F₋ to lower γ the lower e_n: born at γ 1.873 for e_n 0.3, 2.165
+        // for 0.8 (less the margin 0.02 of the search).
+        let low = "e_n_min = 0.3\ne_n_max = 1.0";
+        assert!(with("gamma_min = 1.0\ngamma_max = 1.85", low, false).is_ok());
+        let e = with("gamma_min = 1.0\ngamma_max = 1.9", low, false).unwrap_err();
+        assert!(
+            e.contains("domain.gamma_max")
+                && e.contains("< 1.8529")
+                && e.contains("e_n_min = 0.3")
+                && e.contains("set nodes.probe_kinks = true"),
+            "{e}"
+        );
+        let high = "e_n_min = 0.8\ne_n_max = 1.0";
+        assert!(with("gamma_min = 1.0\ngamma_max = 2.1", high, false).is_ok());
+        assert!(with("gamma_min = 1.0\ngamma_max = 2.2", high, false).is_err());
+        // With its leaves measured next to F₋ the range is taken.
+        assert!(with("gamma_min = 1.0\ngamma_max = 2.6", low, true).is_ok());
+    }
+
+    #[test]
     fn an_e_n_range_stops_below_the_fold_curve_f_minus_unless_probed() {
         let with = |gamma: &str, e_n: &str| {
             let text = GOOD
@@ -939,7 +984,7 @@ tol = 1e-6
     }
 
     #[test]
-    fn kink_probes_are_refused_where_no_kink_is_traced() {
+    fn kink_probes_are_taken_for_every_law_of_a_table() {
         let probe = GOOD.replace(
             "target_error = 1e-5",
             "target_error = 1e-5\nprobe_kinks = true",
@@ -962,18 +1007,13 @@ tol = 1e-6
         // The Kelvin–Voigt law (the default with an e_n range): F₋ is traced as a surface.
         let c = Config::parse(&dissipative, "x.toml").expect("kelvin-voigt");
         assert_eq!(c.law(), oblique_solver::Law::KelvinVoigt);
-        // Thornton's law: nothing is traced, so the key is refused, whatever γ.
+        // Thornton's law: its F₋ is traced as a surface too, whatever γ.
         for g in ["2.6", "2.0"] {
             let thornton = dissipative
                 .replace("gamma_max = 2.6", &format!("gamma_max = {g}"))
                 .replace("tol = 1e-6", "tol = 1e-6\nlaw = \"thornton\"");
-            let e = Config::parse(&thornton, "x.toml").unwrap_err().to_string();
-            assert!(
-                e.contains("`nodes.probe_kinks` = true")
-                    && e.contains("thornton law")
-                    && e.contains("no kink"),
-                "{e}"
-            );
+            let c = Config::parse(&thornton, "x.toml").expect("thornton");
+            assert!(c.nodes.probe_kinks && crate::kink::probes_implemented(c.law()));
         }
     }
 

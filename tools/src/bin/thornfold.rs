@@ -4,7 +4,8 @@
 //! `α_R(γ, e_n)` of the partial-slip patch (`reslip_fold_thornton`), with `--switch` its switch
 //! fold `α_S(γ, e_n)` (`switch_fold_thornton`), with `--minus` its fold F₋
 //! (`fold_minus_thornton`), and its ratio to `α_c2`; `none` where there is
-//! none. `thornfold --end GAMMAS E_NS [STEPS]` prints the end-of-contact curves E₋
+//! none. `thornfold --minus-birth E_NS [STEPS]` brackets the γ where F₋ is first found at
+//! each `e_n` (bisection in [1.7, 2.4] to 1e-3). `thornfold --end GAMMAS E_NS [STEPS]` prints the end-of-contact curves E₋
 //! (`end_minus_edges_thornton`, α from 0.8 · 2/7 to 100 `α_c2`, 250 log intervals) and their
 //! ratios to `α_c2`. `thornfold --sheet GAMMAS RATIOS [STEPS]` prints the switch sheet `e_S(γ, α)` of the
 //! stick patch (`switch_sheet_thornton`, searched in `e_n` 0.3–0.99) at `α = RATIO α_c2`.
@@ -35,6 +36,30 @@ fn main() -> anyhow::Result<()> {
                     None => println!("{g} {r} none"),
                 }
             }
+        }
+        return Ok(());
+    }
+    if a.first().is_some_and(|s| s == "--minus-birth") {
+        anyhow::ensure!(a.len() >= 2, "usage: thornfold --minus-birth E_NS [STEPS]");
+        let e_ns = list(&a[1])?;
+        let steps = if a.len() > 2 { a[2].parse()? } else { 2048 };
+        for &e in &e_ns {
+            // Bisection in γ on whether F₋ is found, in [1.7, 2.4] to 1e-3.
+            let has = |g: f64| fold_minus_thornton(g, e, steps).map(|f| f.is_some());
+            let (mut lo, mut hi) = (1.7, 2.4);
+            if has(lo)? || !has(hi)? {
+                println!("{e} no bracket in [{lo}, {hi}]");
+                continue;
+            }
+            while hi - lo > 1e-3 {
+                let mid = 0.5 * (lo + hi);
+                if has(mid)? {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            println!("{e} {lo:.4} {hi:.4}");
         }
         return Ok(());
     }

@@ -630,6 +630,69 @@ pub fn fold_minus_thornton(
     fold_above(start, FOLD_MINUS_SCAN, max, holds)
 }
 
+/// Where F₋ of Thornton's law is first found (`thornfold --minus-birth`: bisection in γ to
+/// 1e-3 on whether [`fold_minus_thornton`] finds it, 2 048 steps): `(e_n, γ)`, the lower end of
+/// each bracket, by rising `e_n`; at `e_n = 1` the elastic birth
+/// ([`super::fold_minus_free_below`]).
+const FOLD_MINUS_BIRTHS_THORNTON: [(f64, f64); 12] = [
+    (0.3, 1.8729),
+    (0.35, 1.8976),
+    (0.4, 1.9140),
+    (0.5, 1.9680),
+    (0.6, 2.0281),
+    (0.7, 2.0917),
+    (0.8, 2.1648),
+    (0.9, 2.2510),
+    (0.95, 2.3084),
+    (0.97, 2.3337),
+    (0.99, 2.3679),
+    (1.0, 2.3666),
+];
+
+/// How far below its measured birth F₋ of Thornton's law may already exist: the search of
+/// [`fold_minus_thornton`] steps over an interval of its predicate narrower than
+/// [`FOLD_MINUS_SCAN`], as next to the birth, where it finds the elastic F₋ (`e_n` = 1) from
+/// γ 2.3815 against 2.3666 measured by a search that zooms in.
+pub const FOLD_MINUS_BIRTH_MARGIN: f64 = 0.02;
+
+/// A γ below which Thornton's `P(γ, α, e)` has no fold F₋ for any `e ≥ e_n_min` (`e_n_min` in
+/// `[0.3, 1]`): plasticity brings F₋'s birth to lower γ the lower `e_n` (measured at twelve
+/// `e_n`), so the birth at the nearest measured `e_n` at or below `e_n_min`, less
+/// [`FOLD_MINUS_BIRTH_MARGIN`], bounds it from below. A table that reaches F₋ must measure its
+/// leaves next to it.
+pub fn fold_minus_free_below_thornton(e_n_min: f64) -> f64 {
+    FOLD_MINUS_BIRTHS_THORNTON
+        .iter()
+        .rev()
+        .find(|&&(e, _)| e <= e_n_min)
+        .map_or(FOLD_MINUS_BIRTHS_THORNTON[0].1, |&(_, g)| g)
+        .min(super::fold_minus_free_below(1.0))
+        - FOLD_MINUS_BIRTH_MARGIN
+}
+
+/// [`fold_minus_thornton`] by continuation from `guess` (as [`fold_minus_at`] locates the
+/// elastic F₋): the guess must lie below F₋ inside its predicate's interval, or above F₋ within
+/// a factor `e`; `None` where the search finds no change. A tracing steps from node to node
+/// with it (the full search of [`fold_minus_thornton`] costs about four times more).
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`.
+pub fn fold_minus_at_thornton(
+    gamma: f64,
+    e_n: f64,
+    guess: f64,
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let steps = check_fold_steps(steps)?;
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    fold_at_with(
+        |a: f64| slip_history_thornton(gamma, a, e_n, steps),
+        guess,
+        has_restitution_minus,
+        LOCATE_LN_ALPHA,
+    )
+}
+
 /// The end-of-contact curves E₋ of Thornton's law at `(γ, e_n)`: every α in
 /// `[alpha_lo, alpha_hi]` where the impact stops ending in a `−μF_N` episode that runs into the
 /// separation ([`has_end_minus`], holding below), in increasing α, on `steps` steps (a log grid

@@ -121,6 +121,7 @@ pub fn end_minus_surface(
         n_e,
         offsets: &END_PROBE_OFFSETS,
         extrapolate: true,
+        knotted: false,
         values,
     }))
 }

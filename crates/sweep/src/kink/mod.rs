@@ -27,10 +27,15 @@
 mod end_minus;
 mod interlude;
 pub mod stored;
+mod thornton;
 
 pub use interlude::{
     interlude_sheet, near_interlude_points, InterludeSheet, SHEET_PROBE_OFFSETS, SHEET_STEP,
     SHEET_TO,
+};
+
+pub use thornton::{
+    thornton_fold_minus_surface, THORNTON_ROWS_PER_UNIT_E, THORNTON_STEP, THORNTON_TRACE_STEPS,
 };
 
 pub use end_minus::{
@@ -83,11 +88,11 @@ pub trait Kink: std::fmt::Debug + Send + Sync {
     }
 }
 
-/// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ of the elastic and
-/// of the Kelvin–Voigt law. None is traced for Thornton's law (its kinks in the slip regions,
-/// `docs/solver.md`, are not followed yet).
+/// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ of every law (of
+/// Thornton's law its F₋ only, [`thornton_fold_minus_surface`]; its other kinks in the slip
+/// regions, `docs/solver.md`, are knots or not followed).
 pub fn probes_implemented(law: Law) -> bool {
-    matches!(law, Law::Elastic | Law::KelvinVoigt)
+    matches!(law, Law::Elastic | Law::KelvinVoigt | Law::Thornton)
 }
 
 /// What [`trace`] traced once for a whole build, shared by its patches: the end-of-contact
@@ -130,8 +135,9 @@ type TracedOver = ((f64, f64), (f64, f64));
 /// [`fold_minus_surface`]); the end-of-contact curve E₋ in both patches as a curve (elastic,
 /// [`end_minus_curve`]) or as a surface (Kelvin–Voigt, [`end_minus_surface`], split by
 /// [`end_minus_in_patch`]), each traced once per `traced` for both patches; the sheet I₊ of the
-/// Kelvin–Voigt partial-slip patch across the `e_n` axis ([`interlude_sheet`]); none where the
-/// range holds no such kink or the law has none traced.
+/// Kelvin–Voigt partial-slip patch across the `e_n` axis ([`interlude_sheet`]); F₋ of
+/// Thornton's partial-slip patch ([`thornton_fold_minus_surface`]); none where the range holds
+/// no such kink or the law has none traced.
 pub fn trace(
     law: Law,
     kind: PatchKind,
@@ -175,6 +181,11 @@ pub fn trace(
                 if let Some(s) = interlude_sheet(gammas, e_range)? {
                     out.push(Box::new(s));
                 }
+            }
+        }
+        (Law::Thornton, PatchKind::PartialSlip, Some(e_range)) => {
+            if let Some(s) = thornton_fold_minus_surface(gammas, e_range)? {
+                out.push(Box::new(s));
             }
         }
         _ => {}
@@ -515,6 +526,9 @@ pub struct KinkSurface {
     /// is extrapolated from the nodes on its side ([`one_sided_stencil`]): E₋ bends where it
     /// crosses α_c2, and each patch keeps the nodes on its own side.
     extrapolate: bool,
+    /// Whether the knots put it on a cell edge where they apply ([`Kink::knotted`]: F₋ of the
+    /// Kelvin–Voigt law).
+    knotted: bool,
     /// `α_K` of node `(i, l)` in `scale` (γ = `gamma_0 + i step`, `e_n = 1 − l/rows_per_unit`)
     /// at `i n_e + l`; NaN where the kink was not found.
     values: Vec<f64>,
@@ -714,7 +728,7 @@ impl Kink for KinkSurface {
     }
 
     fn knotted(&self) -> bool {
-        self.name == "F-"
+        self.knotted
     }
 }
 
@@ -812,6 +826,7 @@ pub fn fold_minus_surface(
         n_e,
         offsets: &PROBE_OFFSETS,
         extrapolate: false,
+        knotted: true,
         values: columns.concat(),
     }))
 }
@@ -1220,16 +1235,63 @@ mod tests {
             .is_none());
     }
 
+    /// Thornton's F₋ for the probes: a surface in the partial-slip patch that matches F₋
+    /// located between its nodes, not knotted, and ends where F₋ does along `e_n`.
+    #[test]
+    fn thornton_fold_minus_is_traced_as_a_surface() {
+        let k = trace(
+            Law::Thornton,
+            PatchKind::PartialSlip,
+            (2.28, 2.34),
+            Some((0.55, 0.65)),
+            &mut Traced::default(),
+        )
+        .unwrap();
+        assert_eq!(k.len(), 1);
+        let f = &k[0];
+        assert_eq!(
+            (f.name(), f.patch(), f.knotted()),
+            ("F-", PatchKind::PartialSlip, false)
+        );
+        for (g, e) in [(2.3013, 0.6047), (2.287, 0.5561), (2.3391, 0.6472)] {
+            let direct = fold_minus_thornton(g, e, THORNTON_TRACE_STEPS)
+                .unwrap()
+                .expect("F- there");
+            let a = f.alpha(g, e).expect("traced there");
+            assert!((a / direct - 1.0).abs() < 2e-6, "{g} {e}: {a} vs {direct}");
+        }
+        // At γ 2.3 F₋ ends between e_n 0.9 and 0.95 (at 2.33 near 0.97): undefined beyond.
+        let s = thornton_fold_minus_surface((2.29, 2.31), (0.85, 1.0))
+            .unwrap()
+            .expect("a surface");
+        let (lo, hi) = s.e_n_range().expect("rows");
+        assert!(lo <= 0.85 && (0.9..0.98).contains(&hi), "{lo} {hi}");
+        assert!(s.alpha_at(2.3, 0.9).is_some());
+        assert!(s.alpha_at(2.3, 0.95).is_none());
+    }
+
     #[test]
     fn kinks_are_traced_for_the_laws_that_have_them() {
         assert!(probes_implemented(Law::Elastic) && probes_implemented(Law::KelvinVoigt));
-        assert!(!probes_implemented(Law::Thornton));
-        // Nothing for the stick patch of an elastic table above E₋'s end or for Thornton's law.
-        for (law, kind, e) in [
-            (Law::Elastic, PatchKind::Stick, None),
-            (Law::Thornton, PatchKind::PartialSlip, Some((0.5, 1.0))),
+        assert!(probes_implemented(Law::Thornton));
+        // Nothing for the stick patch of an elastic table above E₋'s end, for Thornton's stick
+        // patch, nor for its partial-slip patch below F₋'s birth.
+        for (law, kind, e, g) in [
+            (Law::Elastic, PatchKind::Stick, None, (2.4, 2.6)),
+            (
+                Law::Thornton,
+                PatchKind::Stick,
+                Some((0.5, 1.0)),
+                (2.4, 2.6),
+            ),
+            (
+                Law::Thornton,
+                PatchKind::PartialSlip,
+                Some((0.5, 0.8)),
+                (1.6, 1.9),
+            ),
         ] {
-            let k = trace(law, kind, (2.4, 2.6), e, &mut Traced::default()).unwrap();
+            let k = trace(law, kind, g, e, &mut Traced::default()).unwrap();
             assert!(k.is_empty(), "{law:?}");
         }
         // Below F₋'s end with damping, E₋ alone, in the partial-slip patch (α_E ≈ 0.46–0.7 at
