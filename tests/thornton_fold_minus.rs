@@ -1,13 +1,13 @@
 //! The fold F₋ of a table of Thornton's law (`nodes.probe_kinks`): plasticity brings it to lower
-//! γ the lower `e_n` (born at γ 1.87 for `e_n` = 0.3), the builder traces it as a surface and
-//! measures the cells of the partial-slip patch next to it by direct simulations, and the table
-//! holds its stated bound next to it (`sweep verify --near-fold`). A table that reaches F₋
-//! without the key is refused, naming the field.
+//! γ the lower `e_n` (born at γ 1.87 for `e_n` = 0.3), the builder traces it (and the
+//! end-of-contact curve E₋) as a surface and measures the cells next to it by direct
+//! simulations, and the table holds its stated bound next to it (`sweep verify --near-fold`).
+//! A table that reaches F₋ without the key is refused, naming the field.
 
 mod common;
 use common::{subdir, sweep, sweep_ok as ok, sweep_refused as refused};
 
-/// γ 2.25–2.35, `e_n` 0.55–0.65: F₋ at α 0.41–0.46 (0.27–0.29 `α_c2`) all across.
+/// γ 2.25–2.35, `e_n` 0.55–0.65: F₋ at α 0.41–0.46 (0.27–0.29 `α_c2`) all across, E₋ below it.
 const BODY: &str = "[domain]
 gamma_min = 2.25
 gamma_max = 2.35
@@ -43,6 +43,11 @@ fn the_cells_next_to_thornton_fold_minus_are_measured() {
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{err}");
     assert!(err.contains("probes next to F-"), "{err}");
+    assert!(
+        err.lines()
+            .any(|l| l.contains("probes next to") && l.contains("E-")),
+        "{err}"
+    );
     // Next to F₋ (located on the traced surface) the table errs less than it states.
     let v = sweep(&[
         "verify",

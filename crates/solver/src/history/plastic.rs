@@ -721,6 +721,31 @@ pub fn end_minus_edges_thornton(
     )
 }
 
+/// An end-of-contact curve E₋ of Thornton's law ([`end_minus_edges_thornton`]) at `(γ, e_n)`
+/// by continuation from `guess` (as [`super::end_minus_at`] locates the elastic E₋), located to
+/// `ln_tol` (`> 0`) in `ln α`: the guess must lie below the curve or above it within a factor
+/// `e`; `None` where the search finds no change.
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`, `ln_tol ≤ 0`.
+pub fn end_minus_at_thornton_within(
+    gamma: f64,
+    e_n: f64,
+    guess: f64,
+    steps: usize,
+    ln_tol: f64,
+) -> Result<Option<f64>, PhysicsError> {
+    let steps = check_fold_steps(steps)?;
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    let ln_tol = crate::error::positive("ln_tol", ln_tol)?;
+    fold_at_with(
+        |a: f64| slip_history_thornton(gamma, a, e_n, steps),
+        guess,
+        has_end_minus,
+        ln_tol,
+    )
+}
+
 /// `(γ, e_n)` of a fold locator checked, or `None` where the elastic law answers (`e_n = 1`:
 /// none of Thornton's folds).
 fn fold_inputs(gamma: f64, e_n: f64) -> Result<Option<(f64, f64)>, PhysicsError> {

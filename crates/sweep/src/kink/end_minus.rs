@@ -53,12 +53,12 @@ const SURFACE_TO: f64 = 2.62;
 
 /// α beyond which a row's tracing towards small γ stops (α_E → ∞ there; `P` is flat in α,
 /// `dP/d ln α` ≈ 0.009 at α = 20 and γ = 1.74).
-const ALPHA_STOP: f64 = 60.0;
+pub(super) const ALPHA_STOP: f64 = 60.0;
 
 /// How far (in `ln α`) a point located by continuation may lie from its extrapolated guess
 /// (neighbouring points differ by at most 25 % where α_E ≤ [`ALPHA_STOP`]; the linear
 /// extrapolation of `1/α_E` by far less).
-const SPAN: f64 = 0.3;
+pub(super) const SPAN: f64 = 0.3;
 
 /// E₋ of the Kelvin–Voigt law as a surface `α_E(γ, e_n)` over `gammas` × `e_range` for the
 /// probes of `patch` (it crosses both patches: the stick patch above α_c2, the partial-slip

@@ -35,7 +35,8 @@ pub use interlude::{
 };
 
 pub use thornton::{
-    thornton_fold_minus_surface, THORNTON_ROWS_PER_UNIT_E, THORNTON_STEP, THORNTON_TRACE_STEPS,
+    thornton_end_minus_surface, thornton_fold_minus_surface, THORNTON_END_STEP,
+    THORNTON_ROWS_PER_UNIT_E, THORNTON_STEP, THORNTON_TRACE_STEPS,
 };
 
 pub use end_minus::{
@@ -88,9 +89,9 @@ pub trait Kink: std::fmt::Debug + Send + Sync {
     }
 }
 
-/// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ of every law (of
-/// Thornton's law its F₋ only, [`thornton_fold_minus_surface`]; its other kinks in the slip
-/// regions, `docs/solver.md`, are knots or not followed).
+/// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ and E₋ of every law
+/// (of Thornton's law [`thornton_fold_minus_surface`] and [`thornton_end_minus_surface`]; its
+/// other kinks in the slip regions, `docs/solver.md`, are knots or not followed).
 pub fn probes_implemented(law: Law) -> bool {
     matches!(law, Law::Elastic | Law::KelvinVoigt | Law::Thornton)
 }
@@ -104,6 +105,8 @@ pub struct Traced {
     end_minus: Option<(TracedOver, Option<KinkSurface>)>,
     /// The elastic E₋ and the γ range it was traced for.
     end_minus_curve: Option<((f64, f64), Option<KinkCurve>)>,
+    /// Thornton's E₋ and the γ and `e_n` ranges it was traced for.
+    end_minus_thornton: Option<(TracedOver, Option<KinkSurface>)>,
 }
 
 impl Traced {
@@ -136,8 +139,9 @@ type TracedOver = ((f64, f64), (f64, f64));
 /// [`end_minus_curve`]) or as a surface (Kelvin–Voigt, [`end_minus_surface`], split by
 /// [`end_minus_in_patch`]), each traced once per `traced` for both patches; the sheet I₊ of the
 /// Kelvin–Voigt partial-slip patch across the `e_n` axis ([`interlude_sheet`]); F₋ of
-/// Thornton's partial-slip patch ([`thornton_fold_minus_surface`]); none where the range holds
-/// no such kink or the law has none traced.
+/// Thornton's partial-slip patch ([`thornton_fold_minus_surface`]) and its E₋ in both patches
+/// ([`thornton_end_minus_surface`], split by [`end_minus_in_patch`], traced once per `traced`);
+/// none where the range holds no such kink or the law has none traced.
 pub fn trace(
     law: Law,
     kind: PatchKind,
@@ -183,9 +187,22 @@ pub fn trace(
                 }
             }
         }
-        (Law::Thornton, PatchKind::PartialSlip, Some(e_range)) => {
-            if let Some(s) = thornton_fold_minus_surface(gammas, e_range)? {
-                out.push(Box::new(s));
+        (Law::Thornton, _, Some(e_range)) => {
+            if kind == PatchKind::PartialSlip {
+                if let Some(s) = thornton_fold_minus_surface(gammas, e_range)? {
+                    out.push(Box::new(s));
+                }
+            }
+            let full = match &traced.end_minus_thornton {
+                Some((over, s)) if *over == (gammas, e_range) => s.clone(),
+                _ => {
+                    let s = thornton_end_minus_surface(gammas, e_range)?;
+                    traced.end_minus_thornton = Some(((gammas, e_range), s.clone()));
+                    s
+                }
+            };
+            if let Some(full) = full {
+                out.push(Box::new(end_minus_in_patch(&full, kind)));
             }
         }
         _ => {}
@@ -1235,8 +1252,8 @@ mod tests {
             .is_none());
     }
 
-    /// Thornton's F₋ for the probes: a surface in the partial-slip patch that matches F₋
-    /// located between its nodes, not knotted, and ends where F₋ does along `e_n`.
+    /// Thornton's F₋ and E₋ for the probes: surfaces in the partial-slip patch that match the
+    /// kinks located between their nodes, not knotted; F₋ ends where it does along `e_n`.
     #[test]
     fn thornton_fold_minus_is_traced_as_a_surface() {
         let k = trace(
@@ -1247,12 +1264,29 @@ mod tests {
             &mut Traced::default(),
         )
         .unwrap();
-        assert_eq!(k.len(), 1);
+        // F₋, and E₋ (below it here, α_E ≈ 0.44–0.50).
+        assert_eq!(k.len(), 2);
         let f = &k[0];
         assert_eq!(
             (f.name(), f.patch(), f.knotted()),
             ("F-", PatchKind::PartialSlip, false)
         );
+        assert_eq!((k[1].name(), k[1].patch()), ("E-", PatchKind::PartialSlip));
+        for (g, e) in [(2.2913, 0.5847), (2.3387, 0.6412)] {
+            let direct = oblique_solver::history::end_minus_edges_thornton(
+                g,
+                e,
+                (0.3, 1.0),
+                60,
+                THORNTON_TRACE_STEPS,
+            )
+            .unwrap();
+            let a = k[1].alpha(g, e).expect("E- traced there");
+            assert!(
+                (a / direct[0] - 1.0).abs() < 1e-4,
+                "{g} {e}: {a} vs {direct:?}"
+            );
+        }
         for (g, e) in [(2.3013, 0.6047), (2.287, 0.5561), (2.3391, 0.6472)] {
             let direct = fold_minus_thornton(g, e, THORNTON_TRACE_STEPS)
                 .unwrap()
@@ -1274,21 +1308,21 @@ mod tests {
     fn kinks_are_traced_for_the_laws_that_have_them() {
         assert!(probes_implemented(Law::Elastic) && probes_implemented(Law::KelvinVoigt));
         assert!(probes_implemented(Law::Thornton));
-        // Nothing for the stick patch of an elastic table above E₋'s end, for Thornton's stick
-        // patch, nor for its partial-slip patch below F₋'s birth.
+        // Nothing for the stick patch of an elastic table above E₋'s end, nor for Thornton's
+        // patches below F₋'s birth and E₋'s reach (γ 1–1.2, e_n 0.95–1).
         for (law, kind, e, g) in [
             (Law::Elastic, PatchKind::Stick, None, (2.4, 2.6)),
             (
                 Law::Thornton,
                 PatchKind::Stick,
-                Some((0.5, 1.0)),
-                (2.4, 2.6),
+                Some((0.95, 1.0)),
+                (1.0, 1.2),
             ),
             (
                 Law::Thornton,
                 PatchKind::PartialSlip,
-                Some((0.5, 0.8)),
-                (1.6, 1.9),
+                Some((0.95, 1.0)),
+                (1.0, 1.2),
             ),
         ] {
             let k = trace(law, kind, g, e, &mut Traced::default()).unwrap();

@@ -1,13 +1,17 @@
-//! The fold F₋ of Thornton's law as a kink surface for the probes of `nodes.probe_kinks`
-//! (`docs/solver.md`, "Kinks inside the slip regions"): the elastic F₋ continued to `e_n < 1`,
-//! which plasticity brings to lower γ (born near γ 1.87 at `e_n` = 0.3, 2.37 at 1). `P` is
-//! smooth on neither side of it, and a leaf it crosses errs more than its surplus predicts.
+//! The fold F₋ and the end-of-contact curve E₋ of Thornton's law as kink surfaces for the
+//! probes of `nodes.probe_kinks` (`docs/solver.md`, "Kinks inside the slip regions"): the
+//! elastic kinks continued to `e_n < 1`, which plasticity brings to lower γ (F₋ born near
+//! γ 1.87 at `e_n` = 0.3, 2.37 at 1; E₋ reaching γ 1.5 at small `e_n`). `P` is smooth on neither
+//! side of F₋ and changes its curvature fast on one side of E₋; a leaf either crosses errs
+//! more than its surplus predicts (next to E₋ up to 2.2e-4 against a bound of 1.43e-4 in a
+//! table over γ 2.2–2.4, `e_n` 0.5–0.7, target 1e-4, without these probes).
 
 use rayon::prelude::*;
 
 use super::{e_of_row, CurveScale, KinkSurface, SweepError, CONTINUATION_SPAN, PROBE_OFFSETS};
 use oblique_solver::history::{
-    fold_minus_at_thornton, fold_minus_free_below_thornton, fold_minus_thornton,
+    end_minus_at_thornton_within, end_minus_edges_thornton, fold_minus_at_thornton,
+    fold_minus_free_below_thornton, fold_minus_thornton,
 };
 use oblique_table::surface::PatchKind;
 
@@ -104,4 +108,124 @@ fn column(gamma: f64, top: usize, n_e: usize) -> Result<Vec<f64>, SweepError> {
         }
     }
     Ok(out)
+}
+
+/// Spacing of the grid of Thornton's E₋ in γ and in `e_n` (as the Kelvin–Voigt surface's,
+/// [`super::END_SURFACE_STEP`]).
+pub const THORNTON_END_STEP: f64 = 0.02;
+
+/// The end-of-contact curve E₋ of Thornton's law as a surface `α_E(γ, e_n)` over `gammas` ×
+/// `e_range`, for the probes of both patches ([`super::end_minus_in_patch`] keeps each patch's
+/// side): the lowest of its curves (`oblique_solver::history::end_minus_edges_thornton`; at
+/// small `e_n` a second one lies higher in the stick patch, not traced), on a grid of
+/// [`THORNTON_END_STEP`] in γ (multiples of it, one point beyond each end of `gammas`, γ ≥ 1)
+/// and in `e_n` (rows `e_n = 1, 0.98, …` from one above `e_range.1` to one below `e_range.0`,
+/// at least 0.3), stored as `1/α_E`. Each row is located at the middle column by the full
+/// scan (α from 0.8 · 2/7 to 60, 250 intervals) and traced from there towards both ends by
+/// continuation (`end_minus_at_thornton_within` to `END_TRACE_LN_ALPHA`, the guess
+/// extrapolated linearly in `1/α_E`), the rows in parallel; a row stops where E₋ is lost or
+/// α_E passes 60 (it leaves for α → ∞ as γ falls: 41 at γ 1.5, `e_n` = 0.7). `None` when no
+/// grid point holds it.
+pub fn thornton_end_minus_surface(
+    (gamma_lo, gamma_hi): (f64, f64),
+    (e_lo, e_hi): (f64, f64),
+) -> Result<Option<KinkSurface>, SweepError> {
+    let h = THORNTON_END_STEP;
+    let rows_per_unit = 1.0 / h;
+    let i_lo = ((gamma_lo / h - 1e-9).floor() as i64 - 1).max((1.0 / h).round() as i64);
+    let i_hi = (gamma_hi / h + 1e-9).ceil() as i64 + 1;
+    if i_hi < i_lo + 1 {
+        return Ok(None);
+    }
+    let min_row = ((1.0 - oblique_solver::law::MIN_RESTITUTION) * rows_per_unit).round() as usize;
+    let n_e = (((1.0 - e_lo) * rows_per_unit - 1e-9).ceil().max(0.0) as usize + 2).min(min_row + 1);
+    let top = (((1.0 - e_hi) * rows_per_unit + 1e-9).floor() as usize).saturating_sub(1);
+    let i_start = (i_lo + i_hi) / 2;
+    let n_gamma = (i_hi - i_lo + 1) as usize;
+    let rows = (0..n_e)
+        .into_par_iter()
+        .map(|l| {
+            if l < top {
+                Ok(vec![f64::NAN; n_gamma])
+            } else {
+                end_minus_row(l, (i_lo, i_hi), i_start)
+            }
+        })
+        .collect::<Result<Vec<Vec<f64>>, SweepError>>()?;
+    let values: Vec<f64> = (0..n_gamma)
+        .flat_map(|i| rows.iter().map(move |r| r[i]))
+        .collect();
+    if values.iter().all(|v| !v.is_finite()) {
+        return Ok(None);
+    }
+    Ok(Some(KinkSurface {
+        name: "E-",
+        patch: PatchKind::PartialSlip,
+        scale: CurveScale::Reciprocal,
+        gamma_0: i_lo as f64 * h,
+        step: h,
+        rows_per_unit,
+        n_gamma,
+        n_e,
+        offsets: &super::END_PROBE_OFFSETS,
+        extrapolate: true,
+        knotted: false,
+        values,
+    }))
+}
+
+/// Row `l` of [`thornton_end_minus_surface`] over the columns `i_lo..=i_hi` (γ = `i` h), as
+/// `1/α_E` (NaN where not found), from column `i_start` outwards.
+fn end_minus_row(l: usize, (i_lo, i_hi): (i64, i64), i_start: i64) -> Result<Vec<f64>, SweepError> {
+    let h = THORNTON_END_STEP;
+    let n = (i_hi - i_lo + 1) as usize;
+    let e_n = e_of_row(l, 1.0 / h);
+    let mut inv = vec![f64::NAN; n];
+    let fail = |g: f64, what: String| SweepError::Kink {
+        curve: "E-",
+        gamma: g,
+        what: format!("at e_n = {e_n}: {what}"),
+    };
+    let g_start = i_start as f64 * h;
+    let edges = end_minus_edges_thornton(
+        g_start,
+        e_n,
+        (0.8 * 2.0 / 7.0, super::end_minus::ALPHA_STOP),
+        250,
+        THORNTON_TRACE_STEPS,
+    )
+    .map_err(|e| fail(g_start, e.to_string()))?;
+    let Some(&first) = edges.first() else {
+        return Ok(inv);
+    };
+    let s = (i_start - i_lo) as usize;
+    inv[s] = 1.0 / first;
+    for dir in [1i64, -1] {
+        let mut i = s as i64 + dir;
+        while i >= 0 && (i as usize) < n {
+            let g = (i_lo + i) as f64 * h;
+            let prev = inv[(i - dir) as usize];
+            let guess_inv = match usize::try_from(i - 2 * dir).ok().and_then(|j| inv.get(j)) {
+                Some(&p2) if p2.is_finite() => 2.0 * prev - p2,
+                _ => prev,
+            };
+            let guess = 1.0 / guess_inv.max(1.0 / super::end_minus::ALPHA_STOP);
+            let found = end_minus_at_thornton_within(
+                g,
+                e_n,
+                guess,
+                THORNTON_TRACE_STEPS,
+                super::end_minus::END_TRACE_LN_ALPHA,
+            )
+            .map_err(|e| fail(g, e.to_string()))?
+            .filter(|a| (a / guess).ln().abs() <= super::end_minus::SPAN)
+            .filter(|&a| a <= super::end_minus::ALPHA_STOP);
+            match found {
+                Some(a) => inv[i as usize] = 1.0 / a,
+                None => break,
+            }
+            i += dir;
+        }
+    }
+    Ok(inv)
 }
