@@ -184,17 +184,14 @@ fn sample_near_fold(
             &curve, g_lo, g_hi, n, seed,
         ));
     };
-    let surface = match law {
-        Law::KelvinVoigt => oblique_sweep::kink::fold_minus_surface((g_lo, g_hi), e_range),
-        Law::Thornton => oblique_sweep::kink::thornton_fold_minus_surface((g_lo, g_hi), e_range),
-        _ => {
-            return Err(refuse(format!(
-                "the {} law, whose kinks are not traced",
-                law.name()
-            )))
-        }
-    }
-    .context("tracing the fold surface F-")?;
+    let Some(traced) = oblique_sweep::kink::fold_minus_surface_of(law, (g_lo, g_hi), e_range)
+    else {
+        return Err(refuse(format!(
+            "the {} law, whose kinks are not traced",
+            law.name()
+        )));
+    };
+    let surface = traced.context("tracing the fold surface F-")?;
     let points = surface
         .map(|f| oblique_sweep::kink::near_fold_minus_points_e(&f, (g_lo, g_hi), e_range, n, seed))
         .unwrap_or_default();
@@ -233,7 +230,7 @@ fn sample_near_end(
         return Err(refuse("one pair (a single gamma)".into()));
     }
     if let Some(e_range) = table.restitution() {
-        if law != Law::KelvinVoigt {
+        if !oblique_sweep::kink::has_damped_surfaces(law) {
             return Err(refuse(format!(
                 "the {} law, whose end-of-contact surface is not traced",
                 law.name()
@@ -298,7 +295,7 @@ fn sample_near_sheet(
     let Some(e_range) = table.restitution() else {
         return Err(refuse("no e_n axis (an elastic table)".into()));
     };
-    if law != Law::KelvinVoigt {
+    if !oblique_sweep::kink::has_damped_surfaces(law) {
         return Err(refuse(format!(
             "the {} law, whose sheet I+ is not traced",
             law.name()

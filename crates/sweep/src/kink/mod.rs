@@ -129,6 +129,28 @@ impl Traced {
     }
 }
 
+/// F₋ of a table of `law` with an `e_n` axis as a surface over `gammas` × `e_range`
+/// ([`fold_minus_surface`] for the Kelvin–Voigt law, [`thornton_fold_minus_surface`] for
+/// Thornton's), `None` for a law whose F₋ is not traced as a surface (`sweep verify
+/// --near-fold`).
+pub fn fold_minus_surface_of(
+    law: Law,
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+) -> Option<Result<Option<KinkSurface>, SweepError>> {
+    match law {
+        Law::KelvinVoigt => Some(fold_minus_surface(gammas, e_range)),
+        Law::Thornton => Some(thornton_fold_minus_surface(gammas, e_range)),
+        _ => None,
+    }
+}
+
+/// Whether tables of `law` with an `e_n` axis have the kinks of [`end_minus_surface`] and
+/// [`interlude_sheet`] (the Kelvin–Voigt law's end-of-contact surface and sheet I₊).
+pub fn has_damped_surfaces(law: Law) -> bool {
+    law == Law::KelvinVoigt
+}
+
 /// The γ and `e_n` ranges a kink was traced over.
 type TracedOver = ((f64, f64), (f64, f64));
 
