@@ -164,26 +164,38 @@ pub(super) fn trace_row(
         return Ok(inv);
     };
     inv[s] = first;
-    // Outwards from the start: up in γ, then down.
+    continue_row(&mut inv, s, |i, guess| locate(i, guess, SPAN))?;
+    Ok(inv)
+}
+
+/// A row of `1/α_E` located at `s` (`inv[s]`), continued outwards from it, up in γ and then
+/// down: each next column's guess extrapolated linearly from the two points behind it (the
+/// start's other neighbour on the way down), else the last point, in `1/α` (at most α =
+/// [`ALPHA_STOP`]); `locate(i, guess)` answers column `i`'s `1/α_E`, and a way stops where it
+/// answers `None`.
+pub(super) fn continue_row(
+    inv: &mut [f64],
+    s: usize,
+    locate: impl Fn(usize, f64) -> Result<Option<f64>, SweepError>,
+) -> Result<(), SweepError> {
+    let n = inv.len();
     for dir in [1i64, -1] {
         let mut i = s as i64 + dir;
-        while i >= 0 && (i as usize) < n_t {
-            // Linear extrapolation from the two points behind (the start's other
-            // neighbour on the way down), else the last point.
+        while i >= 0 && (i as usize) < n {
             let prev = inv[(i - dir) as usize];
             let guess_inv = match usize::try_from(i - 2 * dir).ok().and_then(|j| inv.get(j)) {
                 Some(&p2) if p2.is_finite() => 2.0 * prev - p2,
                 _ => prev,
             };
             let guess = 1.0 / guess_inv.max(1.0 / ALPHA_STOP);
-            match locate(i as usize, guess, SPAN)? {
+            match locate(i as usize, guess)? {
                 Some(v) => inv[i as usize] = v,
                 None => break,
             }
             i += dir;
         }
     }
-    Ok(inv)
+    Ok(())
 }
 
 /// The columns and the start of the widest E₋ grid ([`end_minus_surface`] over

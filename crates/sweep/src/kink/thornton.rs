@@ -200,32 +200,19 @@ fn end_minus_row(l: usize, (i_lo, i_hi): (i64, i64), i_start: i64) -> Result<Vec
     };
     let s = (i_start - i_lo) as usize;
     inv[s] = 1.0 / first;
-    for dir in [1i64, -1] {
-        let mut i = s as i64 + dir;
-        while i >= 0 && (i as usize) < n {
-            let g = (i_lo + i) as f64 * h;
-            let prev = inv[(i - dir) as usize];
-            let guess_inv = match usize::try_from(i - 2 * dir).ok().and_then(|j| inv.get(j)) {
-                Some(&p2) if p2.is_finite() => 2.0 * prev - p2,
-                _ => prev,
-            };
-            let guess = 1.0 / guess_inv.max(1.0 / super::end_minus::ALPHA_STOP);
-            let found = end_minus_at_thornton_within(
-                g,
-                e_n,
-                guess,
-                THORNTON_TRACE_STEPS,
-                super::end_minus::END_TRACE_LN_ALPHA,
-            )
-            .map_err(|e| fail(g, e.to_string()))?
-            .filter(|a| (a / guess).ln().abs() <= super::end_minus::SPAN)
-            .filter(|&a| a <= super::end_minus::ALPHA_STOP);
-            match found {
-                Some(a) => inv[i as usize] = 1.0 / a,
-                None => break,
-            }
-            i += dir;
-        }
-    }
+    super::end_minus::continue_row(&mut inv, s, |i, guess| {
+        let g = (i_lo + i as i64) as f64 * h;
+        Ok(end_minus_at_thornton_within(
+            g,
+            e_n,
+            guess,
+            THORNTON_TRACE_STEPS,
+            super::end_minus::END_TRACE_LN_ALPHA,
+        )
+        .map_err(|e| fail(g, e.to_string()))?
+        .filter(|a| (a / guess).ln().abs() <= super::end_minus::SPAN)
+        .filter(|&a| a <= super::end_minus::ALPHA_STOP)
+        .map(|a| 1.0 / a))
+    })?;
     Ok(inv)
 }
