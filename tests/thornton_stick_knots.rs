@@ -269,12 +269,12 @@ fn verify_near_folds_checks_the_bound_next_to_each_fold() {
         ])
     };
     let out = run();
-    // Points 0, 7, 14, 21 next to the four folds, 6, 13, 20 next to E- (0.81-1.83 here).
+    // Points k, k + 9, k + 18 next to kink k: the four folds and E- (0.81-1.83 here).
     for (name, n) in [
-        ("alpha_R", 4),
-        ("2/7", 4),
-        ("alpha_S", 4),
-        ("alpha_L", 4),
+        ("alpha_R", 3),
+        ("2/7", 3),
+        ("alpha_S", 3),
+        ("alpha_L", 3),
         ("E-", 3),
     ] {
         let line = out
@@ -283,12 +283,11 @@ fn verify_near_folds_checks_the_bound_next_to_each_fold() {
             .unwrap_or_else(|| panic!("no line for {name}: {out}"));
         assert!(line.contains(&format!("{n} points, max |error|")), "{line}");
     }
-    // The switch sheet lies below e_n 0.52 and F- beyond gamma 1.87, outside this table's
-    // range: no points there.
-    assert!(
-        !out.contains("near e_S") && !out.contains("near F-"),
-        "{out}"
-    );
+    // The switch sheet lies below e_n 0.52, F- beyond gamma 1.87 and the strip of the `+`
+    // episode beyond gamma 2, outside this table's range: no points there.
+    for name in ["e_S", "F-", "F+lo", "F+hi"] {
+        assert!(!out.contains(&format!("near {name} ")), "{out}");
+    }
     assert!(out.contains("points above it: 0"), "{out}");
     // The same seed draws the same points.
     let again = run();

@@ -73,12 +73,13 @@ pub struct VerifyArgs {
     /// smooth continuation, in turn: (gamma, e_n) uniform over the table's range (e_n at most
     /// 0.9999) and alpha = alpha_K times 1 + s·r, s = +1 or -1, r log-uniform in [1e-4, 1e-2],
     /// next to the re-slip fold alpha_R, the line 2/7, the switch fold alpha_S, the loading
-    /// fold alpha_L, the fold F- (from gamma ~ 1.9) and the end-of-contact curves E- (one of
-    /// those up to 100 alpha_c2); and next to the switch sheet e_S of the stick patch (below
-    /// e_n ~ 0.52 at gamma 1.7): gamma uniform, alpha/alpha_c2 log-uniform in [1.2, 10],
-    /// e_n = e_S + s·r (each kink located at its point first, 0.1-1 s; a point where it does
-    /// not exist is drawn again, a kink found nowhere is left out); the largest error next to
-    /// each is printed too.
+    /// fold alpha_L, the fold F- (from gamma ~ 1.9), the end-of-contact curves E- (one of
+    /// those up to 100 alpha_c2) and the edges F+lo and F+hi of the strip where a +mu F_N
+    /// episode of the restitution exists (gamma above ~2); and next to the switch sheet e_S of
+    /// the stick patch (below e_n ~ 0.52 at gamma 1.7): gamma uniform, alpha/alpha_c2
+    /// log-uniform in [1.2, 10], e_n = e_S + s·r (each kink located at its point first,
+    /// 0.1-2 s; a point where it does not exist is drawn again, a kink found nowhere is left
+    /// out); the largest error next to each is printed too.
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet"])]
     near_folds: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
@@ -337,8 +338,8 @@ fn sample_near_folds(
     let refuse = |has: String| {
         Failure::usage(format!(
             "--near-folds: {} has {has}; the folds alpha_R, 2/7, alpha_S, alpha_L and F-, the \
-             curves E- and the switch sheet e_S are located for tables of the thornton law (an \
-             e_n axis over a range of gamma)",
+             curves E-, the strip's edges F+lo and F+hi and the switch sheet e_S are located for \
+             tables of the thornton law (an e_n axis over a range of gamma)",
             path.display()
         ))
     };
@@ -475,8 +476,8 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             ),
         },
         if args.near_folds {
-            "alpha within 1e-4 to 1e-2 (relative) of alpha_R, 2/7, alpha_S, alpha_L, F- and E- \
-             and e_n within 1e-4 to 1e-2 of the switch sheet e_S, in turn"
+            "alpha within 1e-4 to 1e-2 (relative) of alpha_R, 2/7, alpha_S, alpha_L, F-, E-, \
+             F+lo and F+hi and e_n within 1e-4 to 1e-2 of the switch sheet e_S, in turn"
         } else if args.near_sheet {
             "ln(alpha) uniform up to alpha_c2, e_n within 1e-4 to 0.03 of the sheet I+"
         } else if args.near_end && table.restitution().is_some() {

@@ -9,14 +9,17 @@
 //! all `3/2`-power departures, and the curvature jump at `α = 2/7`, where the first gross-slip
 //! episode ends at the switch to unloading. And the fold F₋ of the partial-slip patch
 //! (`history::fold_minus_thornton`) and the end-of-contact curves E₋
-//! (`history::end_minus_edges_thornton`), the elastic law's continued to `e_n < 1`.
+//! (`history::end_minus_edges_thornton`), the elastic law's continued to `e_n < 1`, and the
+//! strip where a `+μF_N` episode of the restitution exists
+//! (`history::restitution_plus_strip_thornton`).
 
 use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 use oblique_solver::history::{
     end_minus_at, end_minus_edges_thornton, ends_in_full_slip_thornton, fold_minus_thornton,
     full_slip_edge_thornton, has_loading_zone_thornton, has_reslip_thornton,
-    has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton, slip_history_thornton,
-    switch_fold_thornton, switch_sheet_thornton, switch_zones_thornton, SlipSign,
+    has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton,
+    restitution_plus_strip_thornton, slip_history_thornton, switch_fold_thornton,
+    switch_sheet_thornton, switch_zones_thornton, SlipSign,
 };
 use oblique_solver::thornton::{
     dimensionless_motion, dimensionless_p, yield_pressure_for_restitution,
@@ -431,4 +434,37 @@ fn the_end_of_contact_curves_continue_the_elastic_one() {
         "{low:?}"
     );
     assert!(end_minus_edges_thornton(1.8, 0.7, (5.0, 0.5), 100, 2048).is_err());
+}
+
+#[test]
+fn the_plus_strip_rises_with_e_n_into_the_stick_patch() {
+    let g = 2.3;
+    let c2 = alpha_c2(g);
+    // γ 2.3, e_n 0.55: 1.626512549–1.774265662 at 8 192 steps, 1.626512743–1.774266532 at
+    // 16 384; the lower edge (where the episode is born) needs the finer steps: 1.6263 at 2 048.
+    let (lo, hi) = restitution_plus_strip_thornton(g, 0.55, 8192)
+        .unwrap()
+        .expect("the strip");
+    let (lo2, hi2) = restitution_plus_strip_thornton(g, 0.55, 16384)
+        .unwrap()
+        .expect("the strip");
+    assert!(
+        (lo / lo2 - 1.0).abs() < 1e-6 && (hi / hi2 - 1.0).abs() < 1e-6,
+        "{lo} {hi}"
+    );
+    assert!(lo > c2 && (lo / c2 - 1.0761).abs() < 1e-3 && (hi / c2 - 1.1739).abs() < 1e-3);
+    // At e_n 0.3 in the partial-slip patch (0.3807–0.4007 α_c2), gone at 0.6.
+    let (lo3, hi3) = restitution_plus_strip_thornton(g, 0.3, 2048)
+        .unwrap()
+        .expect("the strip");
+    assert!((lo3 / c2 - 0.3807).abs() < 1e-3 && (hi3 / c2 - 0.4007).abs() < 1e-3);
+    assert_eq!(restitution_plus_strip_thornton(g, 0.6, 2048).unwrap(), None);
+    // The predicate between the edges and not outside.
+    let plus = |a: f64| {
+        let h = slip_history_thornton(g, a, 0.55, 8192).unwrap();
+        h.episodes
+            .iter()
+            .any(|ep| ep.sign == SlipSign::Plus && ep.start > 0.5 && ep.end < 0.97)
+    };
+    assert!(plus(0.5 * (lo + hi)) && !plus(lo * 0.999) && !plus(hi * 1.001));
 }

@@ -4,7 +4,9 @@
 //! `α_R(γ, e_n)` of the partial-slip patch (`reslip_fold_thornton`), with `--switch` its switch
 //! fold `α_S(γ, e_n)` (`switch_fold_thornton`), with `--minus` its fold F₋
 //! (`fold_minus_thornton`), and its ratio to `α_c2`; `none` where there is
-//! none. `thornfold --minus-birth E_NS [STEPS]` brackets the γ where F₋ is first found at
+//! none. `thornfold --strip GAMMAS E_NS [STEPS]` prints the strip where a `+μF_N` episode of
+//! the restitution exists (`restitution_plus_strip_thornton`), its edges and their ratios to
+//! `α_c2`. `thornfold --minus-birth E_NS [STEPS]` brackets the γ where F₋ is first found at
 //! each `e_n` (bisection in [1.7, 2.4] to 1e-3). `thornfold --end GAMMAS E_NS [STEPS]` prints the end-of-contact curves E₋
 //! (`end_minus_edges_thornton`, α from 0.8 · 2/7 to 100 `α_c2`, 250 log intervals) and their
 //! ratios to `α_c2`. `thornfold --sheet GAMMAS RATIOS [STEPS]` prints the switch sheet `e_S(γ, α)` of the
@@ -12,7 +14,7 @@
 
 use oblique_solver::history::{
     end_minus_edges_thornton, fold_minus_thornton, loading_fold_thornton, reslip_fold_thornton,
-    switch_fold_thornton, switch_sheet_thornton,
+    restitution_plus_strip_thornton, switch_fold_thornton, switch_sheet_thornton,
 };
 
 fn list(s: &str) -> anyhow::Result<Vec<f64>> {
@@ -60,6 +62,23 @@ fn main() -> anyhow::Result<()> {
                 }
             }
             println!("{e} {lo:.4} {hi:.4}");
+        }
+        return Ok(());
+    }
+    if a.first().is_some_and(|s| s == "--strip") {
+        anyhow::ensure!(a.len() >= 3, "usage: thornfold --strip GAMMAS E_NS [STEPS]");
+        let (gammas, e_ns) = (list(&a[1])?, list(&a[2])?);
+        let steps = if a.len() > 3 { a[3].parse()? } else { 2048 };
+        for &g in &gammas {
+            for &e in &e_ns {
+                let c2 = 2.0 * g * g / 7.0;
+                match restitution_plus_strip_thornton(g, e, steps)? {
+                    Some((lo, hi)) => {
+                        println!("{g} {e} {lo:.9} {hi:.9} ({:.4}-{:.4})", lo / c2, hi / c2)
+                    }
+                    None => println!("{g} {e} none"),
+                }
+            }
         }
         return Ok(());
     }

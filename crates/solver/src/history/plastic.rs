@@ -746,6 +746,89 @@ pub fn end_minus_at_thornton_within(
     )
 }
 
+/// How far up in α (multiples of `α_c2`) [`restitution_plus_strip_thornton`] looks for the
+/// strip (at most 1.41 `α_c2` where it was found, γ 2.0–2.6).
+pub const PLUS_STRIP_MAX: f64 = 3.0;
+
+/// The strip of Thornton's law where a `+μF_N` episode of the restitution exists
+/// ([`has_restitution_plus`], the predicate of the elastic fold F₊; `docs/solver.md`, "Kinks
+/// inside the slip regions"): `(α_lo, α_hi)`, the first interval above `α = 2/7` (above the
+/// re-slip episode of `α_R`, which holds the predicate too) on which it holds, both edges kinks
+/// of `P`. It rises with `e_n` from the partial-slip patch into the stick patch (γ = 2.3:
+/// 0.384–0.402 `α_c2` at `e_n` = 0.3, 1.078–1.177 at 0.55, none from 0.575).
+///
+/// Located on `steps` steps: from `(2/7)(1 + 1e-3)` up by factors of 1.01 (a strip narrower than
+/// that is missed) to the first α where the predicate holds, on to the first where it fails,
+/// each edge bisected to `1e-10` in `ln α`. `None` where it does not hold below
+/// [`PLUS_STRIP_MAX`] `α_c2`.
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`.
+pub fn restitution_plus_strip_thornton(
+    gamma: f64,
+    e_n: f64,
+    steps: usize,
+) -> Result<Option<(f64, f64)>, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    let max = PLUS_STRIP_MAX * oblique_physics::regimes::alpha_c2(gamma);
+    let holds = |a: f64| {
+        Ok(has_restitution_plus(&slip_history_thornton(
+            gamma, a, e_n, steps,
+        )?))
+    };
+    let factor = 1.01;
+    let mut below = 2.0 / 7.0 * (1.0 + 1e-3);
+    if holds(below)? {
+        return Ok(None);
+    }
+    let mut at = below * factor;
+    while !holds(at)? {
+        below = at;
+        at *= factor;
+        if at > max {
+            return Ok(None);
+        }
+    }
+    // Its lower edge: the negation holds below it.
+    let lo = bisect_edge((below.ln(), at.ln()), 1e-10, |l| holds(l.exp()).map(|h| !h))?.exp();
+    let Some(hi) = fold_above(at, factor, max, holds)? else {
+        return Ok(None);
+    };
+    Ok(Some((lo, hi)))
+}
+
+/// An edge of the strip of [`restitution_plus_strip_thornton`] inside `(alpha_lo, alpha_hi)`,
+/// where [`has_restitution_plus`] holds at one end and not at the other, bisected to `1e-10`
+/// in `ln α` on `steps` steps; `None` where both ends agree. The strip's lower edge converges
+/// late in the steps (1.6263 at 2 048 and 4 096 steps, 1.62651 from 8 192 at γ = 2.3,
+/// `e_n` = 0.55): a search at 2 048 steps brackets it, this places it at a finer resolution.
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`, a bracket not
+/// `0 < lo < hi`.
+pub fn restitution_plus_change_thornton(
+    gamma: f64,
+    e_n: f64,
+    (alpha_lo, alpha_hi): (f64, f64),
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    let gamma = check_gamma(gamma)?;
+    let e_n = check_restitution(e_n)?;
+    if !(alpha_lo > 0.0 && alpha_hi > alpha_lo && alpha_hi.is_finite()) {
+        return Err(PhysicsError::InvalidParameter {
+            name: "alpha bracket",
+            value: alpha_hi,
+            allowed: "0 < lo < hi, finite",
+        });
+    }
+    let iterations = ((alpha_hi / alpha_lo).ln() / 1e-10).log2().ceil().max(1.0) as usize;
+    locate_change_with(
+        |a: f64| slip_history_thornton(gamma, a, e_n, steps),
+        (alpha_lo, alpha_hi),
+        iterations,
+        has_restitution_plus,
+    )
+}
+
 /// `(γ, e_n)` of a fold locator checked, or `None` where the elastic law answers (`e_n = 1`:
 /// none of Thornton's folds).
 fn fold_inputs(gamma: f64, e_n: f64) -> Result<Option<(f64, f64)>, PhysicsError> {

@@ -49,7 +49,8 @@ use super::SweepError;
 use oblique_solver::history::{
     end_minus_edges_thornton, fold_minus_at, fold_minus_at_e, fold_minus_free_below,
     fold_minus_thornton, loading_fold_thornton, reslip_fold_thornton,
-    restitution_minus_somewhere_e, switch_fold_thornton, switch_sheet_thornton,
+    restitution_minus_somewhere_e, restitution_plus_change_thornton,
+    restitution_plus_strip_thornton, switch_fold_thornton, switch_sheet_thornton,
 };
 use oblique_solver::Law;
 use oblique_table::surface::{stencil4, PatchKind, Point};
@@ -952,9 +953,17 @@ fn near_surface_points(
 }
 
 /// The kinks of Thornton's law that [`near_thornton_fold_points`] draws next to, in turn: four
-/// folds along α, the switch sheet `e_S` across `e_n`, the fold F₋ and the end-of-contact
-/// curves E₋ along α.
-pub const THORNTON_FOLDS: [&str; 7] = ["alpha_R", "2/7", "alpha_S", "alpha_L", "e_S", "F-", "E-"];
+/// folds along α, the switch sheet `e_S` across `e_n`, the fold F₋, the end-of-contact curves
+/// E₋ and the two edges of the strip of a `+μF_N` episode of the restitution (F+lo, F+hi)
+/// along α.
+pub const THORNTON_FOLDS: [&str; 9] = [
+    "alpha_R", "2/7", "alpha_S", "alpha_L", "e_S", "F-", "E-", "F+lo", "F+hi",
+];
+
+/// Steps per contact time on which [`near_thornton_fold_points`] places the edges of the
+/// strip, bracketed on [`THORNTON_FOLD_STEPS`] (its lower edge moves by 1e-4 relative between
+/// 4 096 and 8 192 steps, by 1e-7 from there).
+const PLUS_STRIP_STEPS: usize = 8192;
 
 /// How far up in α (multiples of `α_c2`) and on how fine a grid (log intervals)
 /// [`near_thornton_fold_points`] looks for the end-of-contact curves E₋: from `0.8 · 2/7`
@@ -967,15 +976,16 @@ const END_MINUS_SCAN: (f64, usize) = (100.0, 250);
 const THORNTON_FOLD_STEPS: usize = 2048;
 
 /// `n` points next to the kinks of Thornton's law inside `gammas × e_range`, each with the index
-/// of its kink in [`THORNTON_FOLDS`], point `i` next to kink `i mod 7` (`docs/solver.md`, "Kinks
+/// of its kink in [`THORNTON_FOLDS`], point `i` next to kink `i mod 9` (`docs/solver.md`, "Kinks
 /// inside the slip regions"):
 /// - the re-slip fold `α_R`, the line `α = 2/7`, the switch fold `α_S` and the loading fold
 ///   `α_L`: `(γ, e_n)` uniform (`e_n` at most `1 − 1e-4`, where the folds still exist), the fold
 ///   located there on 2 048 steps, `α = α_K (1 + s·10^u)`, `s = ±1`, `u` uniform in `[−4, −2]`;
 /// - the switch sheet `e_S(γ, α)` of the stick patch: γ uniform, `α/α_c2` log-uniform in
 ///   `[1.2, 10]`, the sheet located inside the table's `e_n` range, `e_n = e_S + s·10^u`;
-/// - the fold F₋ and the end-of-contact curves E₋ as the folds along α (E₋: one of the curves
-///   found up to 100 `α_c2`, each as likely).
+/// - the fold F₋, the end-of-contact curves E₋ and the edges of the strip of a `+μF_N`
+///   episode of the restitution as the folds along α (E₋: one of the curves found up to 100
+///   `α_c2`, each as likely; the strip's edges bracketed on 2 048 steps, placed on 8 192).
 ///
 /// A draw whose kink does not exist there (`α_R` next to γ = 1, `α_L` where it has merged, the
 /// sheet above `e_n` ≈ 0.52 at γ 1.7, F₋ below γ ≈ 1.9), whose `α` lies beyond `alpha_max` or whose `e_n` leaves the range
@@ -1032,6 +1042,21 @@ pub fn near_thornton_fold_points(
                         2 => switch_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
                         3 => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
                         5 => fold_minus_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                        7 | 8 => {
+                            match restitution_plus_strip_thornton(gamma, e_n, THORNTON_FOLD_STEPS)?
+                            {
+                                Some((lo, hi)) => {
+                                    let edge = if i % kinds == 7 { lo } else { hi };
+                                    restitution_plus_change_thornton(
+                                        gamma,
+                                        e_n,
+                                        (edge * (1.0 - 2e-3), edge * (1.0 + 2e-3)),
+                                        PLUS_STRIP_STEPS,
+                                    )
+                                }
+                                None => Ok(None),
+                            }
+                        }
                         _ => {
                             let (up, n) = END_MINUS_SCAN;
                             let lo = 0.8 * 2.0 / 7.0;
@@ -1075,7 +1100,7 @@ pub fn near_thornton_fold_points(
 mod tests {
     use super::*;
 
-    /// Over a range that holds all seven kinks, each gets its share of the points, next to it:
+    /// Over a range that holds seven of the kinks, each gets its share of the points, next to it:
     /// the folds within 1e-2 (relative) in α, the switch sheet within 1e-2 in `e_n`; the same
     /// seed draws the same points.
     #[test]
@@ -1083,9 +1108,11 @@ mod tests {
         let (gammas, e_range) = ((1.95, 2.05), (0.45, 0.65));
         let pts =
             near_thornton_fold_points(gammas, e_range, f64::INFINITY, 14, 3).expect("located");
-        assert_eq!(pts.len(), 14);
-        for (i, &(k, p)) in pts.iter().enumerate() {
-            assert_eq!(k, i % 7);
+        // The strip of the restitution's `+` episode lies below e_n 0.4 at γ 2: its two kinds
+        // (points 7 and 8) are left out.
+        let kinds: Vec<usize> = pts.iter().map(|p| p.0).collect();
+        assert_eq!(kinds, [0, 1, 2, 3, 4, 5, 6, 0, 1, 2, 3, 4]);
+        for &(k, p) in &pts {
             let steps = THORNTON_FOLD_STEPS;
             let near = |a: f64| {
                 let r = (p.alpha / a - 1.0).abs();
@@ -1120,6 +1147,27 @@ mod tests {
         let again =
             near_thornton_fold_points(gammas, e_range, f64::INFINITY, 14, 3).expect("located");
         assert_eq!(format!("{pts:?}"), format!("{again:?}"));
+    }
+
+    /// Where the strip of a `+μF_N` episode of the restitution lies (γ 2.25–2.35, e_n 0.3–0.4:
+    /// 0.38–0.57 `α_c2`), points are drawn next to both its edges, placed on 8 192 steps.
+    #[test]
+    fn thornton_fold_points_lie_next_to_the_strip_edges() {
+        let pts = near_thornton_fold_points((2.25, 2.35), (0.3, 0.4), f64::INFINITY, 18, 5)
+            .expect("located");
+        let strip: Vec<&(usize, Point)> = pts.iter().filter(|p| p.0 >= 7).collect();
+        assert_eq!(strip.len(), 4, "{pts:?}");
+        for &&(k, p) in &strip {
+            let (lo, hi) = restitution_plus_strip_thornton(p.gamma, p.e_n, PLUS_STRIP_STEPS)
+                .unwrap()
+                .expect("the strip");
+            let edge = if k == 7 { lo } else { hi };
+            let r = (p.alpha / edge - 1.0).abs();
+            assert!(
+                (1e-4 * 0.99..=1e-2 * 1.001).contains(&r),
+                "{k}: {p:?} {edge}"
+            );
+        }
     }
 
     #[test]
