@@ -48,8 +48,8 @@ use rayon::prelude::*;
 use super::SweepError;
 use oblique_solver::history::{
     end_minus_edges_thornton, fold_minus_at, fold_minus_at_e, fold_minus_free_below,
-    fold_minus_thornton, loading_fold_thornton, reslip_fold_thornton,
-    restitution_minus_somewhere_e, restitution_plus_change_thornton,
+    fold_minus_free_below_thornton, fold_minus_thornton, loading_fold_thornton,
+    reslip_fold_thornton, restitution_minus_somewhere_e, restitution_plus_change_thornton,
     restitution_plus_strip_thornton, switch_fold_thornton, switch_sheet_thornton,
 };
 use oblique_solver::Law;
@@ -1041,6 +1041,8 @@ pub fn near_thornton_fold_points(
                         1 => Ok(Some(2.0 / 7.0)),
                         2 => switch_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
                         3 => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                        // None below its birth (the search would scan up to α_c2 for it).
+                        5 if gamma < fold_minus_free_below_thornton(e_n) => Ok(None),
                         5 => fold_minus_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
                         7 | 8 => {
                             match restitution_plus_strip_thornton(gamma, e_n, THORNTON_FOLD_STEPS)?
