@@ -682,14 +682,34 @@ pub fn fold_minus_at_thornton(
     guess: f64,
     steps: usize,
 ) -> Result<Option<f64>, PhysicsError> {
+    fold_at_thornton(
+        (gamma, e_n),
+        guess,
+        steps,
+        has_restitution_minus,
+        LOCATE_LN_ALPHA,
+    )
+}
+
+/// The continuation of [`fold_at_with`] on Thornton's histories at `(γ, e_n)` for the curve
+/// whose `present` predicate holds below it, located to `ln_tol` in `ln α` (the locators of
+/// [`fold_minus_at_thornton`] and [`end_minus_at_thornton_within`]).
+fn fold_at_thornton(
+    (gamma, e_n): (f64, f64),
+    guess: f64,
+    steps: usize,
+    present: fn(&SlipHistory) -> bool,
+    ln_tol: f64,
+) -> Result<Option<f64>, PhysicsError> {
     let steps = check_fold_steps(steps)?;
     let gamma = check_gamma(gamma)?;
     let e_n = check_restitution(e_n)?;
+    let ln_tol = crate::error::positive("ln_tol", ln_tol)?;
     fold_at_with(
         |a: f64| slip_history_thornton(gamma, a, e_n, steps),
         guess,
-        has_restitution_minus,
-        LOCATE_LN_ALPHA,
+        present,
+        ln_tol,
     )
 }
 
@@ -734,16 +754,7 @@ pub fn end_minus_at_thornton_within(
     steps: usize,
     ln_tol: f64,
 ) -> Result<Option<f64>, PhysicsError> {
-    let steps = check_fold_steps(steps)?;
-    let gamma = check_gamma(gamma)?;
-    let e_n = check_restitution(e_n)?;
-    let ln_tol = crate::error::positive("ln_tol", ln_tol)?;
-    fold_at_with(
-        |a: f64| slip_history_thornton(gamma, a, e_n, steps),
-        guess,
-        has_end_minus,
-        ln_tol,
-    )
+    fold_at_thornton((gamma, e_n), guess, steps, has_end_minus, ln_tol)
 }
 
 /// How far up in α (multiples of `α_c2`) [`restitution_plus_strip_thornton`] looks for the
