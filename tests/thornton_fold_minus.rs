@@ -1,7 +1,8 @@
 //! The fold F₋ of a table of Thornton's law (`nodes.probe_kinks`): plasticity brings it to lower
 //! γ the lower `e_n` (born at γ 1.87 for `e_n` = 0.3), the builder traces it (and the
 //! end-of-contact curve E₋) as a surface and measures the cells next to it by direct
-//! simulations, and the table holds its stated bound next to it (`sweep verify --near-fold`).
+//! simulations (and the edges of the `+` strip), and the table holds its stated bound next to
+//! it (`sweep verify --near-fold`).
 //! A table that reaches F₋ without the key is refused, naming the field.
 
 mod common;
@@ -48,6 +49,16 @@ fn the_cells_next_to_thornton_fold_minus_are_measured() {
             .any(|l| l.contains("probes next to") && l.contains("E-")),
         "{err}"
     );
+    // ... and next to both edges of the `+` strip, which rises through α_c2 into the stick
+    // patch here (γ 2.3: 1.08–1.17 α_c2 at e_n 0.55, ending near 0.575).
+    for patch in ["partial_high", "stick_high"] {
+        assert!(
+            err.lines().any(|l| l.contains(patch)
+                && l.contains("probes next to")
+                && l.contains("F+lo and F+hi")),
+            "{patch}: {err}"
+        );
+    }
     // Next to F₋ (located on the traced surface) the table errs less than it states.
     let v = sweep(&[
         "verify",

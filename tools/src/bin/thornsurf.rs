@@ -1,15 +1,45 @@
 //! The kink surfaces that `nodes.probe_kinks` traces for a table of Thornton's law:
 //! `thornsurf GAMMA_LO GAMMA_HI E_LO E_HI` traces F₋ (`kink::thornton_fold_minus_surface`) and
-//! the lowest E₋ (`kink::thornton_end_minus_surface`) over that range and prints the time each
-//! took and how many grid nodes hold the kink.
+//! the lowest E₋ (`kink::thornton_end_minus_surface`) and the edges of the `+` strip
+//! (`kink::thornton_plus_strip_surfaces`) over that range and prints the time each took and how
+//! many grid nodes hold the kink. With a fifth argument `--only-strip` only the strip; with
+//! `--print G,E...` also the strip's edges interpolated at those `(γ, e_n)` pairs.
 
 fn main() -> anyhow::Result<()> {
-    let a: Vec<f64> = std::env::args()
-        .skip(1)
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let a: Vec<f64> = args
+        .iter()
+        .take(4)
         .map(|s| s.parse())
         .collect::<Result<_, _>>()?;
-    anyhow::ensure!(a.len() == 4, "usage: thornsurf GAMMA_LO GAMMA_HI E_LO E_HI");
+    anyhow::ensure!(
+        a.len() == 4,
+        "usage: thornsurf GAMMA_LO GAMMA_HI E_LO E_HI [--only-strip] [--print G,E ...]"
+    );
     let (gammas, e_range) = ((a[0], a[1]), (a[2], a[3]));
+    let only_strip = args.iter().any(|s| s == "--only-strip");
+    let points = args
+        .iter()
+        .skip_while(|s| *s != "--print")
+        .skip(1)
+        .map(|s| oblique_tools::point(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let t = std::time::Instant::now();
+    let strip = oblique_sweep::kink::thornton_plus_strip_surfaces(gammas, e_range)?;
+    for (edge, name) in strip.iter().zip(["F+lo", "F+hi"]) {
+        let n = edge.as_ref().map_or(0, |s| s.traced_nodes());
+        println!(
+            "{name}: {:.1} s (both), {n} nodes",
+            t.elapsed().as_secs_f64()
+        );
+    }
+    for &(g, e) in &points {
+        let at = |k: usize| strip[k].as_ref().and_then(|s| s.alpha_at(g, e));
+        println!("{g} {e}: {:?} {:?}", at(0), at(1));
+    }
+    if only_strip {
+        return Ok(());
+    }
     let t = std::time::Instant::now();
     let f = oblique_sweep::kink::thornton_fold_minus_surface(gammas, e_range)?;
     let n = f.as_ref().map_or(0, |s| s.traced_nodes());

@@ -220,15 +220,20 @@ fn start_column(i_lo: i64) -> i64 {
 /// the stick patch, α_E ≤ α_c2(γ) for the partial-slip patch. E₋ bends where it crosses α_c2
 /// (α_E = 1.0914, 1.0363, 1.0116 at γ = 1.90, 1.91, 1.92 and `e_n` = 0.99, α_c2 = 1.0423 at
 /// 1.91): a stencil across the bend errs by up to 0.8 %, so each side is interpolated from its
-/// own nodes and extrapolated up to one grid step beyond them.
+/// own nodes and extrapolated up to one grid step beyond them. The same for any surface that
+/// crosses α_c2 (Thornton's E₋ and the edges of its `+` strip, stored as `ln α`).
 pub fn end_minus_in_patch(surface: &KinkSurface, kind: PatchKind) -> KinkSurface {
     let mut out = surface.clone();
     out.patch = kind;
     for i in 0..out.n_gamma {
-        let inv_c2 = 1.0 / alpha_c2(out.gamma_0 + i as f64 * out.step);
+        let c2 = alpha_c2(out.gamma_0 + i as f64 * out.step);
+        let (inv_c2, ln_c2) = (1.0 / c2, c2.ln());
         for l in 0..out.n_e {
             let v = &mut out.values[i * out.n_e + l];
-            let stick = *v <= inv_c2;
+            let stick = match out.scale {
+                CurveScale::Reciprocal => *v <= inv_c2,
+                CurveScale::Ln => *v >= ln_c2,
+            };
             if stick != (kind == PatchKind::Stick) {
                 *v = f64::NAN;
             }

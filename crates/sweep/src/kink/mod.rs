@@ -35,8 +35,9 @@ pub use interlude::{
 };
 
 pub use thornton::{
-    thornton_end_minus_surface, thornton_fold_minus_surface, THORNTON_END_STEP,
-    THORNTON_ROWS_PER_UNIT_E, THORNTON_STEP, THORNTON_TRACE_STEPS,
+    thornton_end_minus_surface, thornton_fold_minus_surface, thornton_plus_strip_surfaces,
+    PLUS_STRIP_FROM, THORNTON_END_STEP, THORNTON_ROWS_PER_UNIT_E, THORNTON_STEP,
+    THORNTON_TRACE_STEPS,
 };
 
 pub use end_minus::{
@@ -91,8 +92,9 @@ pub trait Kink: std::fmt::Debug + Send + Sync {
 }
 
 /// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ and E₋ of every law
-/// (of Thornton's law [`thornton_fold_minus_surface`] and [`thornton_end_minus_surface`]; its
-/// other kinks in the slip regions, `docs/solver.md`, are knots or not followed).
+/// (of Thornton's law [`thornton_fold_minus_surface`] and [`thornton_end_minus_surface`], and
+/// the edges of its `+` strip, [`thornton_plus_strip_surfaces`]; its other kinks in the slip
+/// regions, `docs/solver.md`, are knots or not followed).
 pub fn probes_implemented(law: Law) -> bool {
     matches!(law, Law::Elastic | Law::KelvinVoigt | Law::Thornton)
 }
@@ -108,6 +110,8 @@ pub struct Traced {
     end_minus_curve: Option<((f64, f64), Option<KinkCurve>)>,
     /// Thornton's E₋ and the γ and `e_n` ranges it was traced for.
     end_minus_thornton: Option<(TracedOver, Option<KinkSurface>)>,
+    /// The edges of Thornton's `+` strip and the γ and `e_n` ranges they were traced for.
+    plus_strip_thornton: Option<(TracedOver, [Option<KinkSurface>; 2])>,
 }
 
 impl Traced {
@@ -163,8 +167,9 @@ type TracedOver = ((f64, f64), (f64, f64));
 /// [`end_minus_in_patch`]), each traced once per `traced` for both patches; the sheet I₊ of the
 /// Kelvin–Voigt partial-slip patch across the `e_n` axis ([`interlude_sheet`]); F₋ of
 /// Thornton's partial-slip patch ([`thornton_fold_minus_surface`]) and its E₋ in both patches
-/// ([`thornton_end_minus_surface`], split by [`end_minus_in_patch`], traced once per `traced`);
-/// none where the range holds no such kink or the law has none traced.
+/// ([`thornton_end_minus_surface`], split by [`end_minus_in_patch`], traced once per `traced`),
+/// and the two edges of its `+` strip in both patches ([`thornton_plus_strip_surfaces`], the
+/// same way); none where the range holds no such kink or the law has none traced.
 pub fn trace(
     law: Law,
     kind: PatchKind,
@@ -226,6 +231,17 @@ pub fn trace(
             };
             if let Some(full) = full {
                 out.push(Box::new(end_minus_in_patch(&full, kind)));
+            }
+            let strip = match &traced.plus_strip_thornton {
+                Some((over, s)) if *over == (gammas, e_range) => s.clone(),
+                _ => {
+                    let s = thornton_plus_strip_surfaces(gammas, e_range)?;
+                    traced.plus_strip_thornton = Some(((gammas, e_range), s.clone()));
+                    s
+                }
+            };
+            for edge in strip.into_iter().flatten() {
+                out.push(Box::new(end_minus_in_patch(&edge, kind)));
             }
         }
         _ => {}
@@ -1324,6 +1340,39 @@ mod tests {
             .is_none());
     }
 
+    /// The edges of Thornton's `+` strip for the probes: two surfaces that match the edges
+    /// located between their nodes (to 5e-4 relative up to 0.02 in `e_n` below the strip's
+    /// end; closer to it, where the edges rise ever faster, up to 3.6e-3 at γ 2.31, `e_n` 0.56),
+    /// split at α_c2 as the strip rises into the stick patch, and undefined beyond where it ends
+    /// (γ 2.3: near `e_n` 0.575).
+    #[test]
+    fn thornton_plus_strip_edges_are_traced_as_surfaces() {
+        let [lo, hi] = thornton_plus_strip_surfaces((2.28, 2.32), (0.52, 0.56)).unwrap();
+        let (lo, hi) = (lo.expect("F+lo"), hi.expect("F+hi"));
+        assert_eq!((lo.name, hi.name, lo.knotted), ("F+lo", "F+hi", false));
+        for (g, e) in [(2.2913, 0.5237), (2.3071, 0.5462), (2.2856, 0.535)] {
+            let (a_lo, a_hi) = restitution_plus_strip_thornton(g, e, THORNTON_TRACE_STEPS)
+                .unwrap()
+                .expect("the strip there");
+            for (s, direct) in [(&lo, a_lo), (&hi, a_hi)] {
+                let a = s.alpha_at(g, e).expect("traced there");
+                assert!((a / direct - 1.0).abs() < 5e-4, "{g} {e}: {a} vs {direct}");
+            }
+        }
+        assert!(lo.alpha_at(2.3, 0.6).is_none() && hi.alpha_at(2.3, 0.6).is_none());
+        // At γ 2.3 the strip lies below α_c2 = 1.511 at e_n 0.52 and above it at 0.555.
+        let c2 = oblique_physics::regimes::alpha_c2(2.3);
+        let [partial, stick] =
+            [PatchKind::PartialSlip, PatchKind::Stick].map(|kind| end_minus_in_patch(&lo, kind));
+        assert!(partial.alpha_at(2.3, 0.52).is_some_and(|a| a < c2));
+        assert!(stick.alpha_at(2.3, 0.52).is_none());
+        assert!(stick.alpha_at(2.3, 0.555).is_some_and(|a| a > c2));
+        assert!(partial.alpha_at(2.3, 0.555).is_none());
+        // None below the lowest γ it is looked for at.
+        let none = thornton_plus_strip_surfaces((1.0, PLUS_STRIP_FROM - 0.1), (0.3, 0.4)).unwrap();
+        assert!(none.iter().all(Option::is_none));
+    }
+
     /// Thornton's F₋ and E₋ for the probes: surfaces in the partial-slip patch that match the
     /// kinks located between their nodes, not knotted; F₋ ends where it does along `e_n`.
     #[test]
@@ -1336,8 +1385,10 @@ mod tests {
             &mut Traced::default(),
         )
         .unwrap();
-        // F₋, and E₋ (below it here, α_E ≈ 0.44–0.50).
-        assert_eq!(k.len(), 2);
+        // F₋, E₋ (below it here, α_E ≈ 0.44–0.50) and the edges of the `+` strip (its part
+        // below α_c2: at γ 2.34 it crosses α_c2 between `e_n` 0.55 and 0.57).
+        let names: Vec<_> = k.iter().map(|k| k.name()).collect();
+        assert_eq!(names, ["F-", "E-", "F+lo", "F+hi"]);
         let f = &k[0];
         assert_eq!(
             (f.name(), f.patch(), f.knotted()),

@@ -11,7 +11,8 @@ use rayon::prelude::*;
 use super::{e_of_row, CurveScale, KinkSurface, SweepError, CONTINUATION_SPAN, PROBE_OFFSETS};
 use oblique_solver::history::{
     end_minus_at_thornton_within, end_minus_edges_thornton, fold_minus_at_thornton,
-    fold_minus_free_below_thornton, fold_minus_thornton,
+    fold_minus_free_below_thornton, fold_minus_thornton, has_restitution_plus,
+    restitution_plus_change_thornton, restitution_plus_strip_thornton, slip_history_thornton,
 };
 use oblique_table::surface::PatchKind;
 
@@ -83,13 +84,7 @@ fn column(gamma: f64, top: usize, n_e: usize) -> Result<Vec<f64>, SweepError> {
             gamma,
             what: format!("at e_n = {e_n}: {what}"),
         };
-        let k = found.len();
-        let guess = match k {
-            0 => None,
-            1 => Some(found[0]),
-            2 => Some(2.0 * found[1] - found[0]),
-            _ => Some(3.0 * found[k - 1] - 3.0 * found[k - 2] + found[k - 3]),
-        };
+        let guess = (!found.is_empty()).then(|| extrapolated(&found));
         let a = match guess {
             None => fold_minus_thornton(gamma, e_n, THORNTON_TRACE_STEPS)
                 .map_err(|e| fail(e.to_string()))?,
@@ -215,4 +210,184 @@ fn end_minus_row(l: usize, (i_lo, i_hi): (i64, i64), i_start: i64) -> Result<Vec
         .map(|a| 1.0 / a))
     })?;
     Ok(inv)
+}
+
+/// The two edges of the strip of Thornton's law where a `+μF_N` episode of the restitution
+/// exists (`oblique_solver::history::restitution_plus_strip_thornton`; `docs/solver.md`):
+/// `[F+lo, F+hi]`, each a surface `α(γ, e_n)` over both patches (split by
+/// [`super::end_minus_in_patch`] as E₋; the strip rises with `e_n` from the partial-slip patch
+/// into the stick patch), on a grid of γ spacing [`THORNTON_STEP`] from one step below
+/// `max(γ_lo, PLUS_STRIP_FROM)` to one beyond `γ_hi` and rows `1/PLUS_STRIP_ROWS_PER_UNIT_E`
+/// apart in `e_n` from one below `e_lo` to one above `e_hi`, at [`THORNTON_TRACE_STEPS`].
+/// Each column is traced from its lowest row up, as the strip is born at small `e_n` and ends
+/// as `e_n` grows (γ 2.3: from below 0.3 to 0.575): the first row by the full search, the next
+/// by continuation ([`strip_at`]) once two rows give a slope (the full search again where that
+/// finds nothing), up to the first row where it is not found. `None` for both where no node
+/// holds the strip.
+///
+/// Between its nodes the surfaces are within 5e-4 (relative) of the edges located there up to
+/// 0.02 in `e_n` below the strip's end; closer to the end, where the edges rise ever faster in
+/// `e_n` and fall in γ, up to 3.6e-3 (γ 2.31, `e_n` 0.56: `α_hi` 1.8310 against 1.8380).
+/// The lower edge converges late in the steps (1.6263 at 2 048 and 4 096 steps, 1.62651 from
+/// 8 192 at γ 2.3, `e_n` 0.55: 1.3e-4 relative, a tenth of the node spacing of the cells
+/// next to it); the probes measure a cell at several offsets around each edge.
+pub fn thornton_plus_strip_surfaces(
+    (gamma_lo, gamma_hi): (f64, f64),
+    (e_lo, e_hi): (f64, f64),
+) -> Result<[Option<KinkSurface>; 2], SweepError> {
+    if gamma_hi < PLUS_STRIP_FROM {
+        return Ok([None, None]);
+    }
+    let step = THORNTON_STEP;
+    let rows = PLUS_STRIP_ROWS_PER_UNIT_E;
+    let gamma_0 = gamma_lo.max(PLUS_STRIP_FROM) - step;
+    let n_gamma = ((gamma_hi - gamma_0) / step - 1e-9).ceil().max(0.0) as usize + 2;
+    let min_row = ((1.0 - oblique_solver::law::MIN_RESTITUTION) * rows).round() as usize;
+    let n_e = (((1.0 - e_lo) * rows - 1e-9).ceil().max(0.0) as usize + 2).min(min_row + 1);
+    let top = (((1.0 - e_hi) * rows + 1e-9).floor() as usize).saturating_sub(1);
+    let columns = (0..n_gamma)
+        .into_par_iter()
+        .map(|i| strip_column(gamma_0 + i as f64 * step, top, n_e))
+        .collect::<Result<Vec<[Vec<f64>; 2]>, SweepError>>()?;
+    let surface = |edge: usize, name: &'static str| {
+        let values: Vec<f64> = columns.iter().flat_map(|c| c[edge].clone()).collect();
+        values.iter().any(|v| v.is_finite()).then_some(KinkSurface {
+            name,
+            patch: PatchKind::PartialSlip,
+            scale: CurveScale::Ln,
+            gamma_0,
+            step,
+            rows_per_unit: rows,
+            n_gamma,
+            n_e,
+            offsets: &PROBE_OFFSETS,
+            extrapolate: true,
+            knotted: false,
+            values,
+        })
+    };
+    Ok([surface(0, "F+lo"), surface(1, "F+hi")])
+}
+
+/// Rows of the strip's surfaces per unit of `e_n` (0.005 apart): the strip rises ever faster
+/// with `e_n` towards its end (γ 2.3: `α_lo` 1.2284 at `e_n` 0.5, 1.6263 at 0.55, none from
+/// 0.575), and rows 0.01 apart put `α_lo` 2.2e-3 off at γ 2.3071, `e_n` 0.5462.
+pub const PLUS_STRIP_ROWS_PER_UNIT_E: f64 = 200.0;
+
+/// Lowest γ at which [`thornton_plus_strip_surfaces`] looks for the strip: none at γ 1.9 for
+/// `e_n` 0.3–0.75 nor at 1.95 for 0.3–0.35; at 1.98 on 0.705–0.713 `α_c2` for `e_n` = 0.3
+/// (`thornfold -- --strip 1.9,1.95,1.98,2.0 0.3,0.32,0.35 2048`; it is born at smaller γ the
+/// smaller `e_n`, and 0.3 is the smallest).
+pub const PLUS_STRIP_FROM: f64 = 1.9;
+
+/// How far (in `ln α`) the continuation of [`strip_at`] looks beyond an extrapolated edge before
+/// it widens the bracket, and the widest it goes (the strip's edges move by up to 8 % a row of
+/// 0.005 in `e_n` where it rises through α_c2).
+const STRIP_SPAN: (f64, f64) = (0.03, 0.25);
+
+/// One column of [`thornton_plus_strip_surfaces`]: `ln α` of both edges at `γ` on rows
+/// `top..n_e`, from the lowest row up; NaN below the first row where the strip is found (none:
+/// the whole column) and from the first row above it where it is not.
+fn strip_column(gamma: f64, top: usize, n_e: usize) -> Result<[Vec<f64>; 2], SweepError> {
+    let mut out = [vec![f64::NAN; n_e], vec![f64::NAN; n_e]];
+    let mut found: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
+    for l in (top..n_e).rev() {
+        let e_n = e_of_row(l, PLUS_STRIP_ROWS_PER_UNIT_E);
+        let fail = |what: String| SweepError::Kink {
+            curve: "F+",
+            gamma,
+            what: format!("at e_n = {e_n}: {what}"),
+        };
+        // By continuation once two rows give a slope; the full search where that finds
+        // nothing (the strip may have moved further than the bracket widens).
+        let followed = if found[0].len() >= 2 {
+            let guess = [extrapolated(&found[0]), extrapolated(&found[1])];
+            strip_at(gamma, e_n, guess).map_err(|e| fail(e.to_string()))?
+        } else {
+            None
+        };
+        let strip = match followed {
+            Some(s) => Some(s),
+            None => restitution_plus_strip_thornton(gamma, e_n, THORNTON_TRACE_STEPS)
+                .map_err(|e| fail(e.to_string()))?,
+        };
+        match strip {
+            Some((lo, hi)) => {
+                for (k, a) in [lo, hi].into_iter().enumerate() {
+                    out[k][l] = a.ln();
+                    found[k].push(a.ln());
+                }
+            }
+            // Not at the lowest row: none at higher e_n either (the strip rises from small
+            // e_n); above the rows where it was found: it has ended.
+            None => break,
+        }
+    }
+    Ok(out)
+}
+
+/// The next value of a sequence of equally spaced values, extrapolated by a polynomial through
+/// its last (up to) three.
+fn extrapolated(v: &[f64]) -> f64 {
+    let n = v.len();
+    match n {
+        0 => f64::NAN,
+        1 => v[0],
+        2 => 2.0 * v[1] - v[0],
+        _ => 3.0 * v[n - 1] - 3.0 * v[n - 2] + v[n - 3],
+    }
+}
+
+/// The strip at `(γ, e_n)` by continuation from the extrapolated edges `guess` (`ln α`): where
+/// the predicate holds between them, each edge is bracketed on its side (the bracket widened
+/// from [`STRIP_SPAN`]`.0` while the predicate still holds at its outer end, up to
+/// [`STRIP_SPAN`]`.1`, never below `(2/7)(1 + 10⁻³)`) and located by
+/// `restitution_plus_change_thornton`. `None` where the predicate fails between the guesses
+/// or an edge is not bracketed: the strip has ended (or moved too far to follow).
+fn strip_at(
+    gamma: f64,
+    e_n: f64,
+    [lo, hi]: [f64; 2],
+) -> Result<Option<(f64, f64)>, oblique_solver::PhysicsError> {
+    let holds = |ln_a: f64| -> Result<bool, oblique_solver::PhysicsError> {
+        Ok(has_restitution_plus(&slip_history_thornton(
+            gamma,
+            ln_a.exp(),
+            e_n,
+            THORNTON_TRACE_STEPS,
+        )?))
+    };
+    let mid = 0.5 * (lo + hi);
+    if !holds(mid)? {
+        return Ok(None);
+    }
+    let floor = (2.0f64 / 7.0 * (1.0 + 1e-3)).ln();
+    let outer = |edge: f64, down: bool| -> Result<Option<f64>, oblique_solver::PhysicsError> {
+        let mut span = STRIP_SPAN.0;
+        while span <= STRIP_SPAN.1 {
+            let x = if down {
+                (edge - span).max(floor)
+            } else {
+                edge + span
+            };
+            if !holds(x)? {
+                return Ok(Some(x));
+            }
+            if down && x <= floor {
+                return Ok(None);
+            }
+            span *= 2.0;
+        }
+        Ok(None)
+    };
+    let (Some(below), Some(above)) = (outer(lo.min(mid), true)?, outer(hi.max(mid), false)?) else {
+        return Ok(None);
+    };
+    let change = |(a, b): (f64, f64)| {
+        restitution_plus_change_thornton(gamma, e_n, (a.exp(), b.exp()), THORNTON_TRACE_STEPS)
+    };
+    match (change((below, mid))?, change((mid, above))?) {
+        (Some(l), Some(h)) => Ok(Some((l, h))),
+        _ => Ok(None),
+    }
 }
