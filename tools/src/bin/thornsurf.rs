@@ -2,8 +2,10 @@
 //! `thornsurf GAMMA_LO GAMMA_HI E_LO E_HI` traces F₋ (`kink::thornton_fold_minus_surface`) and
 //! the lowest E₋ (`kink::thornton_end_minus_surface`) and the edges of the `+` strip
 //! (`kink::thornton_plus_strip_surfaces`) over that range and prints the time each took and how
-//! many grid nodes hold the kink. With a fifth argument `--only-strip` only the strip; with
-//! `--print G,E...` also the strip's edges interpolated at those `(γ, e_n)` pairs.
+//! many grid nodes hold the kink, then the switch sheet `e_S` of the stick patch
+//! (`kink::switch_sheet_surface`). With `--only-strip` (`--only-sheet`) only the strip (the
+//! sheet); with `--print G,X ...` also the strip's edges interpolated at those `(γ, e_n)` pairs
+//! (with `--only-sheet`: `e_S` at those `(γ, α/α_c2)`, and with `--nodes` its located nodes).
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -14,10 +16,11 @@ fn main() -> anyhow::Result<()> {
         .collect::<Result<_, _>>()?;
     anyhow::ensure!(
         a.len() == 4,
-        "usage: thornsurf GAMMA_LO GAMMA_HI E_LO E_HI [--only-strip] [--print G,E ...]"
+        "usage: thornsurf GAMMA_LO GAMMA_HI E_LO E_HI [--only-strip|--only-sheet] [--print G,X ...]"
     );
     let (gammas, e_range) = ((a[0], a[1]), (a[2], a[3]));
     let only_strip = args.iter().any(|s| s == "--only-strip");
+    let only_sheet = args.iter().any(|s| s == "--only-sheet");
     let points = args
         .iter()
         .skip_while(|s| *s != "--print")
@@ -25,6 +28,22 @@ fn main() -> anyhow::Result<()> {
         .map(|s| oblique_tools::point(s))
         .collect::<Result<Vec<_>, _>>()?;
     let t = std::time::Instant::now();
+    if only_sheet {
+        let sheet = oblique_sweep::kink::switch_sheet_surface(gammas, e_range)?;
+        let n = sheet.as_ref().map_or(0, |s| s.traced_nodes());
+        println!("e_S: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
+        if args.iter().any(|s| s == "--nodes") {
+            for (g, r, e) in sheet.iter().flat_map(|s| s.points()) {
+                println!("node {g:.2} {r:.4} {e:.6}");
+            }
+        }
+        for &(g, r) in &points {
+            let alpha = r * oblique_physics::regimes::alpha_c2(g);
+            let e = sheet.as_ref().and_then(|s| s.e_at(g, alpha));
+            println!("{g} {r}: {e:?}");
+        }
+        return Ok(());
+    }
     let strip = oblique_sweep::kink::thornton_plus_strip_surfaces(gammas, e_range)?;
     for (edge, name) in strip.iter().zip(["F+lo", "F+hi"]) {
         let n = edge.as_ref().map_or(0, |s| s.traced_nodes());
@@ -48,5 +67,9 @@ fn main() -> anyhow::Result<()> {
     let e = oblique_sweep::kink::thornton_end_minus_surface(gammas, e_range)?;
     let n = e.as_ref().map_or(0, |s| s.traced_nodes());
     println!("E-: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
+    let t = std::time::Instant::now();
+    let sheet = oblique_sweep::kink::switch_sheet_surface(gammas, e_range)?;
+    let n = sheet.as_ref().map_or(0, |s| s.traced_nodes());
+    println!("e_S: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
     Ok(())
 }

@@ -27,7 +27,12 @@
 mod end_minus;
 mod interlude;
 pub mod stored;
+mod switch_sheet;
 mod thornton;
+
+pub use switch_sheet::{
+    switch_sheet_surface, SwitchSheet, SWITCH_PROBE_OFFSETS, SWITCH_SHEET_STEP, SWITCH_SHEET_STEPS,
+};
 
 pub use interlude::{
     interlude_sheet, near_interlude_points, InterludeSheet, SHEET_PROBE_OFFSETS, SHEET_STEP,
@@ -93,8 +98,9 @@ pub trait Kink: std::fmt::Debug + Send + Sync {
 
 /// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ and E₋ of every law
 /// (of Thornton's law [`thornton_fold_minus_surface`] and [`thornton_end_minus_surface`], and
-/// the edges of its `+` strip, [`thornton_plus_strip_surfaces`]; its other kinks in the slip
-/// regions, `docs/solver.md`, are knots or not followed).
+/// the edges of its `+` strip, [`thornton_plus_strip_surfaces`], and its switch sheet,
+/// [`switch_sheet_surface`]; its other kinks in the slip regions, `docs/solver.md`, are knots
+/// or not followed).
 pub fn probes_implemented(law: Law) -> bool {
     matches!(law, Law::Elastic | Law::KelvinVoigt | Law::Thornton)
 }
@@ -168,8 +174,10 @@ type TracedOver = ((f64, f64), (f64, f64));
 /// Kelvin–Voigt partial-slip patch across the `e_n` axis ([`interlude_sheet`]); F₋ of
 /// Thornton's partial-slip patch ([`thornton_fold_minus_surface`]) and its E₋ in both patches
 /// ([`thornton_end_minus_surface`], split by [`end_minus_in_patch`], traced once per `traced`),
-/// and the two edges of its `+` strip in both patches ([`thornton_plus_strip_surfaces`], the
-/// same way); none where the range holds no such kink or the law has none traced.
+/// the two edges of its `+` strip in both patches ([`thornton_plus_strip_surfaces`], the same
+/// way) and the switch sheet `e_S` across the `e_n` axis of its stick patch
+/// ([`switch_sheet_surface`]); none where the range holds no such kink or the law has none
+/// traced.
 pub fn trace(
     law: Law,
     kind: PatchKind,
@@ -242,6 +250,11 @@ pub fn trace(
             };
             for edge in strip.into_iter().flatten() {
                 out.push(Box::new(end_minus_in_patch(&edge, kind)));
+            }
+            if kind == PatchKind::Stick {
+                if let Some(s) = switch_sheet_surface(gammas, e_range)? {
+                    out.push(Box::new(s));
+                }
             }
         }
         _ => {}
@@ -1340,6 +1353,34 @@ mod tests {
             .is_none());
     }
 
+    /// Thornton's switch sheet for the probes: `e_S(γ, α)` across the `e_n` axis of the stick
+    /// patch, matching the sheet located between its nodes, α = ∞ included (nearly flat
+    /// there), nothing below `α_c2`, and nothing for a range the sheet does not reach.
+    #[test]
+    fn thornton_switch_sheet_is_traced_across_e_n() {
+        let s = switch_sheet_surface((1.68, 1.72), (0.45, 0.55))
+            .unwrap()
+            .expect("a sheet");
+        assert_eq!(
+            (s.name(), s.patch(), s.across_e_n(), s.alpha(1.7, 0.5)),
+            ("e_S", PatchKind::Stick, true, None)
+        );
+        let c2 = |g: f64| oblique_physics::regimes::alpha_c2(g);
+        for (g, r) in [(1.71, 2.2), (1.6933, 1.37), (1.7, 7.5)] {
+            let direct = switch_sheet_thornton(g, r * c2(g), (0.35, 0.6), SWITCH_SHEET_STEPS)
+                .unwrap()
+                .expect("e_S there");
+            let e = s.e_n_at(g, r * c2(g)).expect("traced there");
+            assert!((e - direct).abs() < 1e-4, "{g} {r}: {e} vs {direct}");
+        }
+        let at_infinity = s.e_at(1.7, f64::INFINITY).expect("alpha = inf");
+        assert!((0.45..0.55).contains(&at_infinity), "{at_infinity}");
+        assert_eq!(s.e_at(1.7, 0.5 * c2(1.7)), None);
+        assert!(switch_sheet_surface((1.68, 1.72), (0.8, 0.9))
+            .unwrap()
+            .is_none());
+    }
+
     /// The edges of Thornton's `+` strip for the probes: two surfaces that match the edges
     /// located between their nodes (to 5e-4 relative up to 0.02 in `e_n` below the strip's
     /// end; closer to it, where the edges rise ever faster, up to 3.6e-3 at γ 2.31, `e_n` 0.56),
@@ -1432,15 +1473,9 @@ mod tests {
         assert!(probes_implemented(Law::Elastic) && probes_implemented(Law::KelvinVoigt));
         assert!(probes_implemented(Law::Thornton));
         // Nothing for the stick patch of an elastic table above E₋'s end, nor for Thornton's
-        // patches below F₋'s birth and E₋'s reach (γ 1–1.2, e_n 0.95–1).
+        // partial-slip patch below F₋'s birth and E₋'s reach (γ 1–1.2, e_n 0.95–1).
         for (law, kind, e, g) in [
             (Law::Elastic, PatchKind::Stick, None, (2.4, 2.6)),
-            (
-                Law::Thornton,
-                PatchKind::Stick,
-                Some((0.95, 1.0)),
-                (1.0, 1.2),
-            ),
             (
                 Law::Thornton,
                 PatchKind::PartialSlip,
@@ -1451,6 +1486,24 @@ mod tests {
             let k = trace(law, kind, g, e, &mut Traced::default()).unwrap();
             assert!(k.is_empty(), "{law:?}");
         }
+        // Its stick patch there: only the switch sheet, at a few nodes next to α_c2 near γ 1
+        // (up to 1.06 and 1.053 α_c2, e_S 0.93–0.98), too few for a stencil.
+        let k = trace(
+            Law::Thornton,
+            PatchKind::Stick,
+            (1.0, 1.2),
+            Some((0.95, 1.0)),
+            &mut Traced::default(),
+        )
+        .unwrap();
+        assert!(k.iter().all(|k| k.name() == "e_S"));
+        let sheet = switch_sheet_surface((1.0, 1.2), (0.95, 1.0)).unwrap();
+        for (g, r, _) in sheet.iter().flat_map(|s| s.points()) {
+            assert!(g <= 1.06 + 1e-9 && r < 1.06, "{g} {r}");
+        }
+        assert!(k.iter().all(|k| k
+            .e_n_at(1.1, 2.0 * oblique_physics::regimes::alpha_c2(1.1))
+            .is_none()));
         // Below F₋'s end with damping, E₋ alone, in the partial-slip patch (α_E ≈ 0.46–0.7 at
         // γ 2.5, below α_c2 = 1.79); traced once for both patches.
         let mut traced = Traced::default();

@@ -40,13 +40,13 @@ pub fn thornton_fold_minus_surface(
     if gamma_hi < free {
         return Ok(None);
     }
-    let step = THORNTON_STEP;
-    let rows = THORNTON_ROWS_PER_UNIT_E;
-    let gamma_0 = gamma_lo.max(free) - step;
-    let n_gamma = ((gamma_hi - gamma_0) / step - 1e-9).ceil().max(0.0) as usize + 2;
-    let min_row = ((1.0 - oblique_solver::law::MIN_RESTITUTION) * rows).round() as usize;
-    let n_e = (((1.0 - e_lo) * rows - 1e-9).ceil().max(0.0) as usize + 2).min(min_row + 1);
-    let top = (((1.0 - e_hi) * rows + 1e-9).floor() as usize).saturating_sub(1);
+    let (step, rows) = (THORNTON_STEP, THORNTON_ROWS_PER_UNIT_E);
+    let ColumnGrid {
+        gamma_0,
+        n_gamma,
+        n_e,
+        top,
+    } = ColumnGrid::new((gamma_lo.max(free), gamma_hi), (e_lo, e_hi), rows);
     let columns = (0..n_gamma)
         .into_par_iter()
         .map(|i| column(gamma_0 + i as f64 * step, top, n_e))
@@ -69,6 +69,34 @@ pub fn thornton_fold_minus_surface(
         knotted: false,
         values,
     }))
+}
+
+/// The grid of a surface traced column by column from its lowest row up (F₋ and the `+`
+/// strip): columns [`THORNTON_STEP`] apart from one step below `γ_from` to one beyond `γ_hi`,
+/// rows `1/rows` apart in `e_n` from `e_n` = 1 down to one below `e_lo` (at least 0.3), the
+/// first traced one (`top`) one above `e_hi`.
+struct ColumnGrid {
+    gamma_0: f64,
+    n_gamma: usize,
+    n_e: usize,
+    top: usize,
+}
+
+impl ColumnGrid {
+    fn new((gamma_from, gamma_hi): (f64, f64), (e_lo, e_hi): (f64, f64), rows: f64) -> Self {
+        let step = THORNTON_STEP;
+        let gamma_0 = gamma_from - step;
+        let n_gamma = ((gamma_hi - gamma_0) / step - 1e-9).ceil().max(0.0) as usize + 2;
+        let min_row = ((1.0 - oblique_solver::law::MIN_RESTITUTION) * rows).round() as usize;
+        let n_e = (((1.0 - e_lo) * rows - 1e-9).ceil().max(0.0) as usize + 2).min(min_row + 1);
+        let top = (((1.0 - e_hi) * rows + 1e-9).floor() as usize).saturating_sub(1);
+        ColumnGrid {
+            gamma_0,
+            n_gamma,
+            n_e,
+            top,
+        }
+    }
 }
 
 /// One column of [`thornton_fold_minus_surface`]: `ln α_F` at `γ` on rows `top..n_e`, from the
@@ -238,13 +266,17 @@ pub fn thornton_plus_strip_surfaces(
     if gamma_hi < PLUS_STRIP_FROM {
         return Ok([None, None]);
     }
-    let step = THORNTON_STEP;
-    let rows = PLUS_STRIP_ROWS_PER_UNIT_E;
-    let gamma_0 = gamma_lo.max(PLUS_STRIP_FROM) - step;
-    let n_gamma = ((gamma_hi - gamma_0) / step - 1e-9).ceil().max(0.0) as usize + 2;
-    let min_row = ((1.0 - oblique_solver::law::MIN_RESTITUTION) * rows).round() as usize;
-    let n_e = (((1.0 - e_lo) * rows - 1e-9).ceil().max(0.0) as usize + 2).min(min_row + 1);
-    let top = (((1.0 - e_hi) * rows + 1e-9).floor() as usize).saturating_sub(1);
+    let (step, rows) = (THORNTON_STEP, PLUS_STRIP_ROWS_PER_UNIT_E);
+    let ColumnGrid {
+        gamma_0,
+        n_gamma,
+        n_e,
+        top,
+    } = ColumnGrid::new(
+        (gamma_lo.max(PLUS_STRIP_FROM), gamma_hi),
+        (e_lo, e_hi),
+        rows,
+    );
     let columns = (0..n_gamma)
         .into_par_iter()
         .map(|i| strip_column(gamma_0 + i as f64 * step, top, n_e))

@@ -1,0 +1,219 @@
+//! The switch sheet `e_S(γ, α)` of Thornton's stick patch as a kink across the `e_n` axis for
+//! the probes of `nodes.probe_kinks` (`docs/solver.md`, "Kinks inside the slip regions"): at
+//! small `e_n` the field clipped at the switch to unloading keeps a `+` zone at the contact's
+//! edge, which ceases as `e_n` grows on a sheet nearly flat in α far from `α_c2` (γ 1.7: 0.5216
+//! at 3 `α_c2`, 0.5208 at 20) and falling towards it (0.3916 at 1.02 `α_c2`). `P` leaves its
+//! smooth continuation below it, and a table over γ 2.2–2.4, `e_n` 0.5–0.7 (target 1e-4) erred
+//! next to it by 9.8e-5 against a bound of 1.43e-4, the most next to any kink it was checked at.
+
+use rayon::prelude::*;
+
+use super::{lagrange_weights, local_stencil, Kink};
+use crate::SweepError;
+use oblique_physics::regimes::alpha_c2;
+use oblique_solver::history::{has_switch_zone_thornton, switch_sheet_thornton};
+use oblique_table::surface::PatchKind;
+
+/// Spacing of the traced columns in γ.
+pub const SWITCH_SHEET_STEP: f64 = 0.02;
+/// Nodes of a column in `s = α_c2/α`, evenly spaced from `s` = 1 (`α_c2`) to 0 (α → ∞): 0.05
+/// apart, 0.05 in `ln α` next to `α_c2` where the sheet falls fastest (by 0.22 per unit of
+/// `ln α` at γ 1.7), and ever wider in `ln α` where it is flat.
+const S_NODES: usize = 21;
+/// The α of the nodes at the ends of a column, as `α/α_c2`: just inside the patch, and the
+/// stand-in for α → ∞ (`e_S` changes by 6e-3 from 5 to 200 `α_c2` at γ 1.5).
+const RATIO_ENDS: (f64, f64) = (1.001, 1000.0);
+/// Spacing of the scan along `e_n` that brackets the sheet at a node.
+const SCAN_STEP: f64 = 0.02;
+/// How far beyond a table's `e_n` range the sheet is looked for.
+const REACH: f64 = 0.02;
+/// Steps per contact time of the tracing (2 048 and 8 192 steps put `e_S` within 1e-4 of each
+/// other at γ 1.7, `docs/solver.md`).
+pub const SWITCH_SHEET_STEPS: usize = 2048;
+
+/// Where a cell next to `e_S` is measured on each line of nodes along `e_n`, in node intervals
+/// from it along `e_n`: `P` departs below it.
+pub const SWITCH_PROBE_OFFSETS: [f64; 4] = [-1.0, -0.5, 0.0, 0.5];
+
+/// The switch sheet over a γ range ([`switch_sheet_surface`]): `e_S` on a grid of γ (spacing
+/// [`SWITCH_SHEET_STEP`]) and `s = α_c2/α`, interpolated along γ on each `s` node, then across
+/// them (Lagrange, up to 4 points each, fewer at the edge of the located nodes); a [`Kink`]
+/// across the `e_n` axis of the stick patch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SwitchSheet {
+    gamma_0: f64,
+    step: f64,
+    n_gamma: usize,
+    /// `e_S` of node `(i, j)` (γ = `gamma_0 + i step`, `s = 1 − j/(S_NODES − 1)`) at
+    /// `i S_NODES + j`; NaN where no falling edge of the zone lies in the range looked at.
+    values: Vec<f64>,
+}
+
+impl SwitchSheet {
+    fn node(&self, i: usize, j: usize) -> f64 {
+        self.values[i * S_NODES + j]
+    }
+
+    /// The value at node `j` of `s` interpolated along γ (position `u` in grid steps).
+    fn along_gamma(&self, u: f64, j: usize) -> Option<f64> {
+        let (start, k) = local_stencil(u, self.n_gamma, |i| self.node(i, j).is_finite())?;
+        let w = lagrange_weights(u, start, k);
+        Some((0..k).map(|m| w[m] * self.node(start + m, j)).sum())
+    }
+
+    /// `e_S(γ, α)` for `α ≥ α_c2` (α = ∞ included), `None` outside the traced grid or where the
+    /// nodes around it do not all hold the sheet.
+    pub fn e_at(&self, gamma: f64, alpha: f64) -> Option<f64> {
+        let u = (gamma - self.gamma_0) / self.step;
+        if !(u >= 0.0 && u <= (self.n_gamma - 1) as f64) || alpha.is_nan() {
+            return None;
+        }
+        let s = alpha_c2(gamma) / alpha;
+        if !(0.0..=1.0).contains(&s) {
+            return None;
+        }
+        let x = (1.0 - s) * (S_NODES - 1) as f64;
+        let cell = (x as usize).min(S_NODES - 2);
+        let first = cell.saturating_sub(1);
+        let rows: Vec<Option<f64>> = (first..(cell + 3).min(S_NODES))
+            .map(|j| self.along_gamma(u, j))
+            .collect();
+        let row = |j: usize| {
+            j.checked_sub(first)
+                .and_then(|r| rows.get(r).copied().flatten())
+        };
+        let (start, k) = local_stencil(x, S_NODES, |j| row(j).is_some())?;
+        let w = lagrange_weights(x, start, k);
+        Some(
+            (0..k)
+                .map(|m| w[m] * row(start + m).unwrap_or(f64::NAN))
+                .sum(),
+        )
+    }
+
+    /// The located nodes: `(γ, α/α_c2, e_S)`.
+    pub fn points(&self) -> Vec<(f64, f64, f64)> {
+        (0..self.values.len())
+            .filter(|&n| self.values[n].is_finite())
+            .map(|n| {
+                let (i, j) = (n / S_NODES, n % S_NODES);
+                (
+                    self.gamma_0 + i as f64 * self.step,
+                    node_ratio(j),
+                    self.values[n],
+                )
+            })
+            .collect()
+    }
+
+    /// How many nodes hold the sheet.
+    pub fn traced_nodes(&self) -> usize {
+        self.values.iter().filter(|e| e.is_finite()).count()
+    }
+}
+
+impl Kink for SwitchSheet {
+    fn name(&self) -> &'static str {
+        "e_S"
+    }
+
+    fn patch(&self) -> PatchKind {
+        PatchKind::Stick
+    }
+
+    fn alpha(&self, _gamma: f64, _e_n: f64) -> Option<f64> {
+        None
+    }
+
+    fn e_n_at(&self, gamma: f64, alpha: f64) -> Option<f64> {
+        self.e_at(gamma, alpha)
+    }
+
+    fn across_e_n(&self) -> bool {
+        true
+    }
+
+    fn offsets(&self) -> &'static [f64] {
+        &SWITCH_PROBE_OFFSETS
+    }
+}
+
+/// The switch sheet of Thornton's stick patch over `gammas` × `e_range` ([`SwitchSheet`]):
+/// columns of γ multiples of [`SWITCH_SHEET_STEP`] from one below `γ_lo` (at least 1) to one
+/// beyond `γ_hi`, each node located by [`falling_edge`] within [`REACH`] of the `e_n` range,
+/// the nodes in parallel. `None` where no node holds it.
+pub fn switch_sheet_surface(
+    (gamma_lo, gamma_hi): (f64, f64),
+    (e_lo, e_hi): (f64, f64),
+) -> Result<Option<SwitchSheet>, SweepError> {
+    let h = SWITCH_SHEET_STEP;
+    let i_lo = ((gamma_lo / h - 1e-9).floor() as i64 - 1).max((1.0 / h).round() as i64);
+    let i_hi = (gamma_hi / h + 1e-9).ceil() as i64 + 1;
+    let range = (
+        (e_lo - REACH).max(oblique_solver::law::MIN_RESTITUTION),
+        (e_hi + REACH).min(E_TOP),
+    );
+    if i_hi < i_lo + 1 || range.0 >= range.1 {
+        return Ok(None);
+    }
+    let n_gamma = (i_hi - i_lo + 1) as usize;
+    let values = (0..n_gamma * S_NODES)
+        .into_par_iter()
+        .map(|n| {
+            let gamma = (i_lo + (n / S_NODES) as i64) as f64 * h;
+            let alpha = node_ratio(n % S_NODES) * alpha_c2(gamma);
+            falling_edge(gamma, alpha, range).map_err(|e| SweepError::Kink {
+                curve: "e_S",
+                gamma,
+                what: format!("at alpha = {alpha}: {e}"),
+            })
+        })
+        .collect::<Result<Vec<f64>, SweepError>>()?;
+    let sheet = SwitchSheet {
+        gamma_0: i_lo as f64 * h,
+        step: h,
+        n_gamma,
+        values,
+    };
+    Ok((sheet.traced_nodes() > 0).then_some(sheet))
+}
+
+/// `α/α_c2` of node `j` of a column: `1/s` with `s = 1 − j/(S_NODES − 1)`, within
+/// [`RATIO_ENDS`].
+fn node_ratio(j: usize) -> f64 {
+    let s = 1.0 - j as f64 / (S_NODES - 1) as f64;
+    (1.0 / s).clamp(RATIO_ENDS.0, RATIO_ENDS.1)
+}
+
+/// Highest `e_n` the sheet is looked for at (`e_n` = 1 is the elastic law, whose limits do not
+/// jump).
+const E_TOP: f64 = 0.999;
+
+/// The highest `e_n` in `range` where the switch zone ([`has_switch_zone_thornton`]) stops
+/// holding as `e_n` grows: a scan of [`SCAN_STEP`] brackets it, `switch_sheet_thornton`
+/// bisects it to 1e-9; NaN where the scan finds none (the zone holds at the top of the range,
+/// or nowhere in it).
+fn falling_edge(
+    gamma: f64,
+    alpha: f64,
+    (lo, hi): (f64, f64),
+) -> Result<f64, oblique_solver::PhysicsError> {
+    let n = ((hi - lo) / SCAN_STEP).ceil().max(1.0) as usize;
+    let e = |k: usize| {
+        if k == n {
+            hi
+        } else {
+            lo + (hi - lo) * k as f64 / n as f64
+        }
+    };
+    let holds = (0..=n)
+        .map(|k| has_switch_zone_thornton(gamma, alpha, e(k), SWITCH_SHEET_STEPS))
+        .collect::<Result<Vec<bool>, _>>()?;
+    let Some(k) = (0..n).rev().find(|&k| holds[k] && !holds[k + 1]) else {
+        return Ok(f64::NAN);
+    };
+    Ok(
+        switch_sheet_thornton(gamma, alpha, (e(k), e(k + 1)), SWITCH_SHEET_STEPS)?
+            .unwrap_or(f64::NAN),
+    )
+}
