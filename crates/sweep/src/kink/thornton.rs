@@ -306,10 +306,13 @@ pub fn thornton_plus_strip_surfaces(
 /// 0.575), and rows 0.01 apart put `α_lo` 2.2e-3 off at γ 2.3071, `e_n` 0.5462.
 pub const PLUS_STRIP_ROWS_PER_UNIT_E: f64 = 200.0;
 
-/// Lowest γ at which [`thornton_plus_strip_surfaces`] looks for the strip: none at γ 1.9 for
-/// `e_n` 0.3–0.75 nor at 1.95 for 0.3–0.35; at 1.98 on 0.705–0.713 `α_c2` for `e_n` = 0.3
-/// (`thornfold -- --strip 1.9,1.95,1.98,2.0 0.3,0.32,0.35 2048`; it is born at smaller γ the
-/// smaller `e_n`, and 0.3 is the smallest).
+/// Lowest γ at which [`thornton_plus_strip_surfaces`] looks for the strip. It is born near
+/// γ 1.95 at `e_n` = 0.3 (the smallest), narrow: 0.7496–0.7531 `α_c2` at γ 1.955, 0.7403–0.7447
+/// at 1.96, 0.7224–0.7285 at 1.97 (`thornfold -- --strip 1.955,1.96,1.965,1.97 0.3 2048`),
+/// only its upper edge a visible kink there (`thornscan -- 1.955 0.3 0.72 0.8 320 2048`), and
+/// none shows at 1.945 or 1.93 (the same scan). The full search steps up by 1 % and misses a
+/// strip narrower than that (at γ 1.965 it finds none), so the columns next to the birth may
+/// hold no nodes.
 pub const PLUS_STRIP_FROM: f64 = 1.9;
 
 /// How far (in `ln α`) the continuation of [`strip_at`] looks beyond an extrapolated edge before
