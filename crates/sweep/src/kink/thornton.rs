@@ -40,35 +40,16 @@ pub fn thornton_fold_minus_surface(
     if gamma_hi < free {
         return Ok(None);
     }
-    let (step, rows) = (THORNTON_STEP, THORNTON_ROWS_PER_UNIT_E);
-    let ColumnGrid {
-        gamma_0,
-        n_gamma,
-        n_e,
-        top,
-    } = ColumnGrid::new((gamma_lo.max(free), gamma_hi), (e_lo, e_hi), rows);
-    let columns = (0..n_gamma)
+    let grid = ColumnGrid::new(
+        (gamma_lo.max(free), gamma_hi),
+        (e_lo, e_hi),
+        THORNTON_ROWS_PER_UNIT_E,
+    );
+    let columns = (0..grid.n_gamma)
         .into_par_iter()
-        .map(|i| column(gamma_0 + i as f64 * step, top, n_e))
+        .map(|i| column(grid.gamma(i), grid.top, grid.n_e))
         .collect::<Result<Vec<Vec<f64>>, SweepError>>()?;
-    let values = columns.concat();
-    if values.iter().all(|v| !v.is_finite()) {
-        return Ok(None);
-    }
-    Ok(Some(KinkSurface {
-        name: "F-",
-        patch: PatchKind::PartialSlip,
-        scale: CurveScale::Ln,
-        gamma_0,
-        step,
-        rows_per_unit: rows,
-        n_gamma,
-        n_e,
-        offsets: &PROBE_OFFSETS,
-        extrapolate: false,
-        knotted: false,
-        values,
-    }))
+    Ok(grid.surface("F-", false, columns.concat()))
 }
 
 /// The grid of a surface traced column by column from its lowest row up (F₋ and the `+`
@@ -77,6 +58,7 @@ pub fn thornton_fold_minus_surface(
 /// first traced one (`top`) one above `e_hi`.
 struct ColumnGrid {
     gamma_0: f64,
+    rows: f64,
     n_gamma: usize,
     n_e: usize,
     top: usize,
@@ -92,10 +74,40 @@ impl ColumnGrid {
         let top = (((1.0 - e_hi) * rows + 1e-9).floor() as usize).saturating_sub(1);
         ColumnGrid {
             gamma_0,
+            rows,
             n_gamma,
             n_e,
             top,
         }
+    }
+
+    /// γ of column `i`.
+    fn gamma(&self, i: usize) -> f64 {
+        self.gamma_0 + i as f64 * THORNTON_STEP
+    }
+
+    /// The partial-slip surface `name` of `ln α` on this grid (`values` column by column),
+    /// `None` where no node holds it.
+    fn surface(
+        &self,
+        name: &'static str,
+        extrapolate: bool,
+        values: Vec<f64>,
+    ) -> Option<KinkSurface> {
+        values.iter().any(|v| v.is_finite()).then_some(KinkSurface {
+            name,
+            patch: PatchKind::PartialSlip,
+            scale: CurveScale::Ln,
+            gamma_0: self.gamma_0,
+            step: THORNTON_STEP,
+            rows_per_unit: self.rows,
+            n_gamma: self.n_gamma,
+            n_e: self.n_e,
+            offsets: &PROBE_OFFSETS,
+            extrapolate,
+            knotted: false,
+            values,
+        })
     }
 }
 
@@ -266,37 +278,21 @@ pub fn thornton_plus_strip_surfaces(
     if gamma_hi < PLUS_STRIP_FROM {
         return Ok([None, None]);
     }
-    let (step, rows) = (THORNTON_STEP, PLUS_STRIP_ROWS_PER_UNIT_E);
-    let ColumnGrid {
-        gamma_0,
-        n_gamma,
-        n_e,
-        top,
-    } = ColumnGrid::new(
+    let grid = ColumnGrid::new(
         (gamma_lo.max(PLUS_STRIP_FROM), gamma_hi),
         (e_lo, e_hi),
-        rows,
+        PLUS_STRIP_ROWS_PER_UNIT_E,
     );
-    let columns = (0..n_gamma)
+    let columns = (0..grid.n_gamma)
         .into_par_iter()
-        .map(|i| strip_column(gamma_0 + i as f64 * step, top, n_e))
+        .map(|i| strip_column(grid.gamma(i), grid.top, grid.n_e))
         .collect::<Result<Vec<[Vec<f64>; 2]>, SweepError>>()?;
     let surface = |edge: usize, name: &'static str| {
-        let values: Vec<f64> = columns.iter().flat_map(|c| c[edge].clone()).collect();
-        values.iter().any(|v| v.is_finite()).then_some(KinkSurface {
+        grid.surface(
             name,
-            patch: PatchKind::PartialSlip,
-            scale: CurveScale::Ln,
-            gamma_0,
-            step,
-            rows_per_unit: rows,
-            n_gamma,
-            n_e,
-            offsets: &PROBE_OFFSETS,
-            extrapolate: true,
-            knotted: false,
-            values,
-        })
+            true,
+            columns.iter().flat_map(|c| c[edge].clone()).collect(),
+        )
     };
     Ok([surface(0, "F+lo"), surface(1, "F+hi")])
 }
