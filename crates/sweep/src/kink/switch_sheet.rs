@@ -190,8 +190,8 @@ fn node_ratio(j: usize) -> f64 {
 const E_TOP: f64 = 0.999;
 
 /// The highest `e_n` in `range` where the switch zone ([`has_switch_zone_thornton`]) stops
-/// holding as `e_n` grows: a scan of [`SCAN_STEP`] brackets it, `switch_sheet_thornton`
-/// bisects it to 1e-9; NaN where the scan finds none (the zone holds at the top of the range,
+/// holding as `e_n` grows: a scan of [`SCAN_STEP`] down from the top of the range brackets
+/// it, `switch_sheet_thornton` bisects it to 1e-9; NaN where the scan finds none (the zone holds at the top of the range,
 /// or nowhere in it).
 fn falling_edge(
     gamma: f64,
@@ -206,14 +206,17 @@ fn falling_edge(
             lo + (hi - lo) * k as f64 / n as f64
         }
     };
-    let holds = (0..=n)
-        .map(|k| has_switch_zone_thornton(gamma, alpha, e(k), SWITCH_SHEET_STEPS))
-        .collect::<Result<Vec<bool>, _>>()?;
-    let Some(k) = (0..n).rev().find(|&k| holds[k] && !holds[k + 1]) else {
-        return Ok(f64::NAN);
-    };
-    Ok(
-        switch_sheet_thornton(gamma, alpha, (e(k), e(k + 1)), SWITCH_SHEET_STEPS)?
-            .unwrap_or(f64::NAN),
-    )
+    let holds = |k: usize| has_switch_zone_thornton(gamma, alpha, e(k), SWITCH_SHEET_STEPS);
+    // Down from the top: the first bracket where the zone holds below and not above is the
+    // highest one.
+    let mut above = holds(n)?;
+    for k in (0..n).rev() {
+        let here = holds(k)?;
+        if here && !above {
+            let edge = switch_sheet_thornton(gamma, alpha, (e(k), e(k + 1)), SWITCH_SHEET_STEPS)?;
+            return Ok(edge.unwrap_or(f64::NAN));
+        }
+        above = here;
+    }
+    Ok(f64::NAN)
 }
