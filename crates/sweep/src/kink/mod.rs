@@ -165,6 +165,23 @@ pub fn has_damped_surfaces(law: Law) -> bool {
 /// The γ and `e_n` ranges a kink was traced over.
 type TracedOver = ((f64, f64), (f64, f64));
 
+/// What `slot` holds if it was traced over `over`, else `trace()`, kept in `slot` for the
+/// other patch of the same build.
+fn traced_once<T: Clone>(
+    slot: &mut Option<(TracedOver, T)>,
+    over: TracedOver,
+    trace: impl FnOnce() -> Result<T, SweepError>,
+) -> Result<T, SweepError> {
+    if let Some((o, t)) = slot {
+        if *o == over {
+            return Ok(t.clone());
+        }
+    }
+    let t = trace()?;
+    *slot = Some((over, t.clone()));
+    Ok(t)
+}
+
 /// The kinks of `law` in the patch `kind` that the probes measure, traced over γ in `gammas`
 /// (and `e_n` in `e_range` for a table with an `e_n` axis): F₋ of the partial-slip patch as a
 /// curve (elastic, [`fold_minus_curve`]) or as a surface (Kelvin–Voigt,
@@ -206,14 +223,9 @@ pub fn trace(
                     out.push(Box::new(s));
                 }
             }
-            let full = match &traced.end_minus {
-                Some((over, s)) if *over == (gammas, e_range) => s.clone(),
-                _ => {
-                    let s = end_minus_surface(gammas, e_range, kind)?;
-                    traced.end_minus = Some(((gammas, e_range), s.clone()));
-                    s
-                }
-            };
+            let full = traced_once(&mut traced.end_minus, (gammas, e_range), || {
+                end_minus_surface(gammas, e_range, kind)
+            })?;
             if let Some(full) = full {
                 out.push(Box::new(end_minus_in_patch(&full, kind)));
             }
@@ -229,25 +241,15 @@ pub fn trace(
                     out.push(Box::new(s));
                 }
             }
-            let full = match &traced.end_minus_thornton {
-                Some((over, s)) if *over == (gammas, e_range) => s.clone(),
-                _ => {
-                    let s = thornton_end_minus_surface(gammas, e_range)?;
-                    traced.end_minus_thornton = Some(((gammas, e_range), s.clone()));
-                    s
-                }
-            };
+            let full = traced_once(&mut traced.end_minus_thornton, (gammas, e_range), || {
+                thornton_end_minus_surface(gammas, e_range)
+            })?;
             if let Some(full) = full {
                 out.push(Box::new(end_minus_in_patch(&full, kind)));
             }
-            let strip = match &traced.plus_strip_thornton {
-                Some((over, s)) if *over == (gammas, e_range) => s.clone(),
-                _ => {
-                    let s = thornton_plus_strip_surfaces(gammas, e_range)?;
-                    traced.plus_strip_thornton = Some(((gammas, e_range), s.clone()));
-                    s
-                }
-            };
+            let strip = traced_once(&mut traced.plus_strip_thornton, (gammas, e_range), || {
+                thornton_plus_strip_surfaces(gammas, e_range)
+            })?;
             for edge in strip.into_iter().flatten() {
                 out.push(Box::new(end_minus_in_patch(&edge, kind)));
             }
