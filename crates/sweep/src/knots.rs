@@ -11,12 +11,17 @@
 //! | `2/7` | the end of the first gross-slip episode at the switch: a jump of curvature | 3/4 | none |
 //! | `α_S(γ, e_n)` | the switch fold: `P` departs like `(1 − α/α_S)^{3/2}` below it | 7/8 | below |
 //!
+//! | `α₊lo(γ, e_n)`, `α₊hi(γ, e_n)` | the edges of the `+` strip (γ ≳ 1.95, small `e_n`), where the table's range meets it | 15/16, 61/64 | none |
+//!
 //! As `e_n → 1` the folds merge towards `α = 2/7` (`α_S` − 2/7 falls like `√(1 − e_n)`), so
-//! the knots apply up to [`E_N_MAX`] only.
+//! the knots apply up to [`E_N_MAX`] only. The strip exists over part of the knots' region
+//! only ([`strip_shares`]): elsewhere its two knots continue its edges as ghosts, cell edges
+//! where `P` has no kink.
 
 use rayon::prelude::*;
 
 use super::SweepError;
+use crate::kink::KinkSurface;
 use oblique_solver::history::{loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton};
 use oblique_table::surface::{Knots, PartialMap, PatchKind};
 
@@ -39,6 +44,19 @@ pub const C_STAR: [f64; 4] = [0.5, 0.625, 0.75, 0.875];
 pub const GRADE: [u8; 4] = [0, 2, 0, 1];
 /// Names of the knots in messages.
 const NAMES: [&str; 4] = ["alpha_c1", "alpha_R", "2/7", "alpha_S"];
+/// Where the edges of the `+` strip are sent, between `α_S` (7/8) and `α_c2` (1), near their
+/// usual share of that span (the lower edge at 0.3–0.7 of it, the strip 0.01–0.05 wide): not
+/// root-cell edges, so the tree splits every cell across them without evaluating it.
+pub const STRIP_C_STAR: [f64; 2] = [0.9375, 0.953125];
+/// Largest degree in each of γ and `e_n` of the strip knots' fitted surfaces
+/// ([`strip_shares`]; lower where fewer than twice the coefficients' points hold the strip).
+/// Over γ 2–2.2, `e_n` 0.3–0.4 the fitted edges lie within 1e-3 of the traced ones (shares of
+/// `(c_S, 1)`) at nine in ten points with degree 5 (2e-3 and 3e-3 with degree 4 and 3), up to
+/// 2.1e-3 (`cargo run --release -p oblique-tools --bin stripknots -- 2 2.2 0.3 0.4`).
+pub const STRIP_FIT_DEGREE: usize = 5;
+/// Smallest share of `(c_S, 1)` between two strip knots, and between them and its ends: the
+/// strip is born with zero width, and its ghosts keep this gap.
+pub const STRIP_GAP: f64 = 0.005;
 
 /// `n ≥ 4` points over `[first, last]` at equal steps of at most the step asked for.
 #[derive(Debug, Clone, Copy)]
@@ -75,11 +93,17 @@ impl Grid {
 /// ([`PartialMap::Slip`]); `None` when the `e_n` range starts above [`E_N_MAX`] or the γ range
 /// ends below [`GAMMA_MIN`]. `Err` names the kink and the point where it is missing or out of
 /// order.
+///
+/// With `strip` (the traced edges of the `+` strip, `kink::thornton_plus_strip_surfaces`)
+/// two more knots follow its edges ([`STRIP_C_STAR`], [`strip_shares`]) where some grid
+/// point of the region holds it inside the patch, and the knots' line stays strictly increasing
+/// between the grid points (checked on a grid four times finer; else the four knots alone).
 pub fn thornton_knots(
     gammas: (f64, f64),
     bg: usize,
     e_range: (f64, f64),
     be: usize,
+    strip: Option<&[Option<KinkSurface>; 2]>,
 ) -> Result<Option<Knots>, SweepError> {
     let (e_lo, e_hi) = e_range;
     // The region along e_n: root-cell units, down to a multiple of 1/16.
@@ -113,31 +137,151 @@ pub fn thornton_knots(
         .par_iter()
         .map(|&(g, e)| knots_at(g, e))
         .collect::<Result<_, _>>()?;
-    // `knot[j, i, l]`, j the knot.
-    let mut knot = vec![0.0; 4 * ng * ne];
-    for (p, k) in traced.iter().enumerate() {
-        for (j, &v) in k.iter().enumerate() {
-            knot[j * ng * ne + p] = v;
+    let region = [from, bg as f64, 0.0, top];
+    let make = |k: usize, extra: &[[f64; 2]]| {
+        // `knot[j, i, l]`, j the knot.
+        let mut knot = vec![0.0; k * ng * ne];
+        for (p, t) in traced.iter().enumerate() {
+            let all = t.iter().chain(extra.get(p).into_iter().flatten());
+            for (j, &v) in all.enumerate() {
+                knot[j * ng * ne + p] = v;
+            }
+        }
+        let (c_star, grade) = if k == 4 {
+            (C_STAR.to_vec(), GRADE.to_vec())
+        } else {
+            (
+                C_STAR.iter().chain(&STRIP_C_STAR).copied().collect(),
+                GRADE.iter().chain(&[0, 0]).copied().collect(),
+            )
+        };
+        Knots::new(
+            gg.first,
+            gg.step,
+            eg.first,
+            eg.step,
+            region,
+            c_star,
+            grade,
+            [k, ng, ne],
+            knot,
+        )
+        .map_err(|what| SweepError::Knots {
+            knot: "all",
+            gamma: gammas.0,
+            e_n: e_lo,
+            what,
+        })
+    };
+    if let Some(strip) = strip {
+        // `c` of `α_S`, the knot below the strip's.
+        let s_of = |p: usize| traced[p][3];
+        let raw: Vec<Option<[f64; 2]>> = points
+            .iter()
+            .enumerate()
+            .map(|(p, &(g, e))| {
+                let c = |a: Option<f64>| {
+                    a.map(|a| {
+                        PatchKind::PartialSlip.coord_at(PartialMap::Slip, g, a, e, f64::INFINITY)
+                    })
+                };
+                let edge = |k: usize| c(strip[k].as_ref().and_then(|s| s.alpha_at(g, e)));
+                let (lo, hi) = (edge(0), edge(1));
+                let cs = s_of(p);
+                let share = |c: f64| (c - cs) / (1.0 - cs);
+                match (lo, hi) {
+                    (Some(lo), Some(hi)) if share(lo) > 0.0 && share(hi) < 1.0 && hi > lo => {
+                        Some([share(lo), share(hi)])
+                    }
+                    _ => None,
+                }
+            })
+            .collect();
+        if let Some(shares) = strip_shares(&points, &raw) {
+            let extra: Vec<[f64; 2]> = shares
+                .iter()
+                .enumerate()
+                .map(|(p, f)| {
+                    let cs = s_of(p);
+                    [cs + f[0] * (1.0 - cs), cs + f[1] * (1.0 - cs)]
+                })
+                .collect();
+            let knots = make(6, &extra)?;
+            if increasing_between(&knots, (gg, eg)) {
+                return Ok(Some(knots));
+            }
         }
     }
-    let knots = Knots::new(
-        gg.first,
-        gg.step,
-        eg.first,
-        eg.step,
-        [from, bg as f64, 0.0, top],
-        C_STAR.to_vec(),
-        GRADE.to_vec(),
-        [4, ng, ne],
-        knot,
-    )
-    .map_err(|what| SweepError::Knots {
-        knot: "all",
-        gamma: gammas.0,
-        e_n: e_lo,
-        what,
-    })?;
+    let knots = make(4, &[])?;
     Ok(Some(knots))
+}
+
+/// The shares `f = (c − c_S)/(1 − c_S)` of the strip's two knots at the grid's `points` from
+/// the edges found there (`raw`, both inside `(c_S, 1)`): a smooth surface fitted to them
+/// and continued smoothly where the strip is not (a kink of a knot along `e_n` or γ would
+/// put a kink into `P` over the whole coordinate between its neighbours). The lower edge as
+/// `f_lo = g + (1 − 3g) σ(u)` and the width as `f_hi = f_lo + g + (1 − 2g − f_lo) σ(v)`
+/// ([`STRIP_GAP`] `g`, `σ` the logistic function), `u` and `v` polynomials of degree up to
+/// [`STRIP_FIT_DEGREE`] in each of γ and `e_n` (least squares over the points that hold the
+/// strip), so that the knots keep their order and gaps everywhere. `None` with fewer than
+/// eight such points or a singular fit.
+fn strip_shares(points: &[(f64, f64)], raw: &[Option<[f64; 2]>]) -> Option<Vec<[f64; 2]>> {
+    let g = STRIP_GAP;
+    let held: Vec<((f64, f64), [f64; 2])> = points
+        .iter()
+        .zip(raw)
+        .filter_map(|(&p, r)| r.map(|r| (p, r)))
+        .filter(|(_, [lo, hi])| *lo > g && *hi < 1.0 - g && hi - lo > g)
+        .collect();
+    let n = (2..=STRIP_FIT_DEGREE + 1)
+        .rev()
+        .find(|n| held.len() >= 2 * n * n)?;
+    let tensor = Tensor::over(held.iter().map(|&(p, _)| p), n);
+    let basis = |gm: f64, e: f64| tensor.basis(gm, e);
+    let logit = |t: f64| (t / (1.0 - t)).ln();
+    let sigma = |x: f64| 1.0 / (1.0 + (-x).exp());
+    let u = least_squares(
+        &held
+            .iter()
+            .map(|&((gm, e), [lo, _])| (basis(gm, e), logit((lo - g) / (1.0 - 3.0 * g))))
+            .collect::<Vec<_>>(),
+    )?;
+    let v = least_squares(
+        &held
+            .iter()
+            .map(|&((gm, e), [lo, hi])| (basis(gm, e), logit((hi - lo - g) / (1.0 - 2.0 * g - lo))))
+            .collect::<Vec<_>>(),
+    )?;
+    let eval = |c: &[f64], gm: f64, e: f64| -> f64 {
+        basis(gm, e).iter().zip(c).map(|(b, c)| b * c).sum()
+    };
+    Some(
+        points
+            .iter()
+            .map(|&(gm, e)| {
+                let lo = g + (1.0 - 3.0 * g) * sigma(eval(&u, gm, e));
+                let hi = lo + g + (1.0 - 2.0 * g - lo) * sigma(eval(&v, gm, e));
+                [lo, hi]
+            })
+            .collect(),
+    )
+}
+
+/// Whether the knots' line is strictly increasing (and inside `(0, 1)`) on a grid four times
+/// finer than theirs along both axes: the line between grid points is interpolated.
+fn increasing_between(knots: &Knots, (gg, eg): (Grid, Grid)) -> bool {
+    let (ng, ne) = (4 * (gg.n - 1), 4 * (eg.n - 1));
+    (0..=ng).all(|i| {
+        let g = gg.first + (gg.last - gg.first) * i as f64 / ng as f64;
+        (0..=ne).all(|l| {
+            let e = eg.first + (eg.last - eg.first) * l as f64 / ne as f64;
+            let k = knots.line(g, e);
+            let k = k.knots();
+            k.first().is_some_and(|&f| f > 0.0)
+                && k.last().is_some_and(|&f| f < 1.0)
+                && k.windows(2).all(|w| w[1] > w[0])
+        })
+    })
 }
 
 /// The coordinates `c` of the four kinks at `(γ, e_n)`, checked to lie in order inside `(0, 1)`.
@@ -328,32 +472,9 @@ pub fn fold_minus_knots(
         e_n,
         what,
     };
-    // Scaled variables on the traced box.
-    let (mut g0, mut g1, mut e0, mut e1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for &(g, e, _) in &nodes {
-        (g0, g1, e0, e1) = (g0.min(g), g1.max(g), e0.min(e), e1.max(e));
-    }
-    let scale = |v: f64, lo: f64, hi: f64| {
-        if hi > lo {
-            2.0 * (v - lo) / (hi - lo) - 1.0
-        } else {
-            0.0
-        }
-    };
-    let basis = |g: f64, e: f64| -> Vec<f64> {
-        let (x, y) = (scale(g, g0, g1), scale(e, e0, e1));
-        let mut b = Vec::with_capacity((FIT_DEGREE + 1) * (FIT_DEGREE + 1));
-        let mut xi = 1.0;
-        for _ in 0..=FIT_DEGREE {
-            let mut yj = 1.0;
-            for _ in 0..=FIT_DEGREE {
-                b.push(xi * yj);
-                yj *= y;
-            }
-            xi *= x;
-        }
-        b
-    };
+    let tensor = Tensor::over(nodes.iter().map(|&(g, e, _)| (g, e)), FIT_DEGREE + 1);
+    let [g0, _, e0, _] = tensor.bounds;
+    let basis = |g: f64, e: f64| tensor.basis(g, e);
     let coef = least_squares(
         &nodes
             .iter()
@@ -442,6 +563,47 @@ pub const BOX_MARGIN: f64 = 0.02;
 const STEP_F_MINUS_GAMMA: f64 = 0.01;
 const STEP_F_MINUS_E_N: f64 = 0.005;
 
+/// The tensor basis `x^i y^j` (`i, j < n`) of a polynomial fit in `(γ, e_n)`, each scaled to
+/// `[−1, 1]` over the box of the fitted points.
+struct Tensor {
+    /// `[γ lo, γ hi, e_n lo, e_n hi]` of the points.
+    bounds: [f64; 4],
+    n: usize,
+}
+
+impl Tensor {
+    fn over(points: impl Iterator<Item = (f64, f64)>, n: usize) -> Self {
+        let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
+        for (g, e) in points {
+            b = [b[0].min(g), b[1].max(g), b[2].min(e), b[3].max(e)];
+        }
+        Tensor { bounds: b, n }
+    }
+
+    fn basis(&self, g: f64, e: f64) -> Vec<f64> {
+        let scale = |v: f64, lo: f64, hi: f64| {
+            if hi > lo {
+                2.0 * (v - lo) / (hi - lo) - 1.0
+            } else {
+                0.0
+            }
+        };
+        let [g0, g1, e0, e1] = self.bounds;
+        let (x, y) = (scale(g, g0, g1), scale(e, e0, e1));
+        let mut b = Vec::with_capacity(self.n * self.n);
+        let mut xi = 1.0;
+        for _ in 0..self.n {
+            let mut yj = 1.0;
+            for _ in 0..self.n {
+                b.push(xi * yj);
+                yj *= y;
+            }
+            xi *= x;
+        }
+        b
+    }
+}
+
 /// The least-squares coefficients of `rows` (`(basis values, value)`), by the normal equations
 /// and Gaussian elimination with partial pivoting; `None` when they are singular.
 fn least_squares(rows: &[(Vec<f64>, f64)]) -> Option<Vec<f64>> {
@@ -483,21 +645,62 @@ mod tests {
     /// sixteenth of a root cell), their grid from there, and a range below it has none.
     #[test]
     fn thornton_knots_start_at_gamma_min() {
-        let k = thornton_knots((1.1, 1.3), 1, (0.8, 0.9), 1)
+        let k = thornton_knots((1.1, 1.3), 1, (0.8, 0.9), 1, None)
             .expect("traced")
             .expect("knots from 1.2");
         assert_eq!(k.region(), [0.5, 1.0, 0.0, 1.0]);
         assert!((k.gamma_0() - 1.2).abs() < 1e-12, "{}", k.gamma_0());
         // 1.2 is 0.4 of the way through 1.1–1.35: up to 7/16.
-        let k = thornton_knots((1.1, 1.35), 1, (0.8, 0.85), 1)
+        let k = thornton_knots((1.1, 1.35), 1, (0.8, 0.85), 1, None)
             .expect("traced")
             .expect("knots");
         assert_eq!(k.region()[0], 7.0 / 16.0);
-        assert!(thornton_knots((1.0, 1.15), 1, (0.8, 0.9), 1)
+        assert!(thornton_knots((1.0, 1.15), 1, (0.8, 0.9), 1, None)
             .expect("nothing traced")
             .is_none());
         // Without the start, the tracing fails where α_R is missing.
         assert!(knots_at(1.1, 0.8).is_err());
+    }
+
+    /// Where the table's range meets the `+` strip (γ 2.1–2.15, `e_n` 0.3–0.35: born below
+    /// γ 2 at `e_n` 0.3, gone above about 0.4 at γ 2.1), its edges are the fifth and sixth knots:
+    /// at the grid's corners within 2e-3 of the traced edges (shares of `(c_S, 1)`, the strip
+    /// 0.017–0.022 wide there), and in order in between.
+    #[test]
+    fn the_strip_edges_are_knots_where_the_range_meets_it() {
+        let (gammas, e_range) = ((2.1, 2.15), (0.3, 0.35));
+        let strip = crate::kink::thornton_plus_strip_surfaces(gammas, e_range).expect("traced");
+        let k = thornton_knots(gammas, 1, e_range, 1, Some(&strip))
+            .expect("traced")
+            .expect("knots");
+        assert_eq!(k.c_star().len(), 6);
+        assert_eq!(&k.c_star()[4..], &STRIP_C_STAR);
+        let coord = |g: f64, a: f64, e: f64| {
+            PatchKind::PartialSlip.coord_at(PartialMap::Slip, g, a, e, f64::INFINITY)
+        };
+        for (g, e) in [
+            (2.1, 0.3),
+            (2.15, 0.3),
+            (2.1, 0.35),
+            (2.15, 0.35),
+            (2.125, 0.325),
+        ] {
+            let line = k.line(g, e);
+            let knots = line.knots();
+            assert!(knots.windows(2).all(|w| w[1] > w[0]), "{knots:?}");
+            let share = |c: f64| (c - knots[3]) / (1.0 - knots[3]);
+            for j in 0..2 {
+                let a = strip[j]
+                    .as_ref()
+                    .and_then(|s| s.alpha_at(g, e))
+                    .expect("edge");
+                let (traced, knot) = (share(coord(g, a, e)), share(knots[4 + j]));
+                assert!(
+                    (traced - knot).abs() < 2e-3,
+                    "{g} {e}: {knot} against {traced}"
+                );
+            }
+        }
     }
 
     /// The loading fold's knot ends along `e_n` at the last root-cell edge below the last row of

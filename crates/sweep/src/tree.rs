@@ -444,7 +444,16 @@ impl Layout<'_> {
             let r = k.region();
             let (g, e) = (Self::rows(cell), Self::e_rows(cell));
             let bits = (1u8 << (self.dims() - 1)) * u8::from(cuts(g, r[0]) || cuts(g, r[1]));
-            return bits | u8::from(cuts(e, r[2]) || cuts(e, r[3]));
+            let bits = bits | u8::from(cuts(e, r[2]) || cuts(e, r[3]));
+            // Inside the region, a knot sent inside the cell along the coordinate (one not on
+            // a root-cell edge): split along it.
+            if bits == 0 && self.warped(cell) {
+                let scale = f64::from(1u32 << cell.d[1]) * self.bc as f64;
+                let c = (cell.ic as f64 / scale, (cell.ic + 1) as f64 / scale);
+                let inside = |s: &f64| c.0 < s - 1e-12 && s + 1e-12 < c.1;
+                return u8::from(k.c_star().iter().any(inside)) << 1;
+            }
+            return bits;
         }
         match self.warp {
             Some(w) if cuts(Self::rows(cell), w.start()) => (1u8 << self.dims()) - 1,
@@ -831,7 +840,8 @@ pub(crate) fn build_patch(
                 let alpha_max = cfg.domain.alpha_max;
                 knots::loading_fold_knots(gammas, bg, e_range, be, alpha_max)?
             } else if cfg.law() == oblique_solver::Law::Thornton {
-                knots::thornton_knots(gammas, bg, e_range, be)?
+                let strip = kink::plus_strip(&mut run.traced, gammas, e_range)?;
+                knots::thornton_knots(gammas, bg, e_range, be, Some(&strip))?
             } else {
                 let bc = cfg.nodes.blocks_coord;
                 knots::fold_minus_knots(gammas, bg, e_range, be, bc, cfg.partial_map())?
@@ -1358,6 +1368,47 @@ mod tests {
         fn offsets(&self) -> &'static [f64] {
             &crate::kink::SHEET_PROBE_OFFSETS
         }
+    }
+
+    /// A knot sent inside a root cell along the coordinate (here 5/16 and 3/8 with root cells of
+    /// 1/4) splits every cell across it inside the knots' region, along the coordinate only,
+    /// until it lies on an edge; a cell outside the region, or with the knot on its edge, is not.
+    #[test]
+    fn a_cell_across_a_knot_off_the_root_edges_is_split_along_the_coordinate() {
+        let spec = kv_spec();
+        let knots = Knots::new(
+            2.3,
+            0.1,
+            0.9,
+            0.05,
+            [0.0, 1.0, 0.0, 1.0],
+            vec![0.3125, 0.375],
+            vec![0, 0],
+            [2, 4, 4],
+            [vec![0.3; 16], vec![0.4; 16]].concat(),
+        )
+        .expect("knots");
+        let layout = Layout {
+            knots: Some(&knots),
+            ..kv_layout(&spec)
+        };
+        let cell = |d: [u32; 3], ic: u64, ie: u64| Cell {
+            depth: d[1],
+            d,
+            ig: 0,
+            ic,
+            ie,
+        };
+        // Root column 1 (c 1/4–1/2) holds both: split along c; its upper half (3/8–1/2) not.
+        assert_eq!(layout.straddles(cell([0, 0, 0], 1, 0)), 0b010);
+        assert_eq!(layout.straddles(cell([0, 1, 0], 2, 0)), 0b010);
+        assert_eq!(layout.straddles(cell([0, 1, 0], 3, 0)), 0);
+        // Its halves 1/4–5/16 and 5/16–3/8 hold none inside.
+        assert_eq!(layout.straddles(cell([0, 2, 0], 4, 0)), 0);
+        assert_eq!(layout.straddles(cell([0, 2, 0], 5, 0)), 0);
+        // Outside the region (the second root cell along e_n) the knots do not apply.
+        assert_eq!(layout.straddles(cell([0, 0, 0], 1, 1)), 0);
+        assert_eq!(layout.straddles(cell([0, 0, 0], 0, 0)), 0);
     }
 
     #[test]

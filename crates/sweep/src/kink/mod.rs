@@ -165,6 +165,19 @@ pub fn has_damped_surfaces(law: Law) -> bool {
 /// The γ and `e_n` ranges a kink was traced over.
 type TracedOver = ((f64, f64), (f64, f64));
 
+/// The edges of Thornton's `+` strip over `gammas` × `e_range` ([`thornton_plus_strip_surfaces`]),
+/// traced on the first call for that range: the knots of the partial-slip patch and the probes
+/// of both patches share them.
+pub(crate) fn plus_strip(
+    traced: &mut Traced,
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+) -> Result<[Option<KinkSurface>; 2], SweepError> {
+    traced_once(&mut traced.plus_strip_thornton, (gammas, e_range), || {
+        thornton_plus_strip_surfaces(gammas, e_range)
+    })
+}
+
 /// What `slot` holds if it was traced over `over`, else `trace()`, kept in `slot` for the
 /// other patch of the same build.
 fn traced_once<T: Clone>(
@@ -247,9 +260,7 @@ pub fn trace(
             if let Some(full) = full {
                 out.push(Box::new(end_minus_in_patch(&full, kind)));
             }
-            let strip = traced_once(&mut traced.plus_strip_thornton, (gammas, e_range), || {
-                thornton_plus_strip_surfaces(gammas, e_range)
-            })?;
+            let strip = plus_strip(traced, gammas, e_range)?;
             for edge in strip.into_iter().flatten() {
                 out.push(Box::new(end_minus_in_patch(&edge, kind)));
             }
