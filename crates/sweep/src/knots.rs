@@ -10,7 +10,6 @@
 //! | `α_R(γ, e_n)` | the re-slip fold: `P` departs like `(α/α_R − 1)^{3/2}` above it | 5/8 | above |
 //! | `2/7` | the end of the first gross-slip episode at the switch: a jump of curvature | 3/4 | none |
 //! | `α_S(γ, e_n)` | the switch fold: `P` departs like `(1 − α/α_S)^{3/2}` below it | 7/8 | below |
-//!
 //! | `α₊lo(γ, e_n)`, `α₊hi(γ, e_n)` | the edges of the `+` strip (γ ≳ 1.95, small `e_n`), where the table's range meets it | 15/16, 61/64 | none |
 //!
 //! As `e_n → 1` the folds merge towards `α = 2/7` (`α_S` − 2/7 falls like `√(1 − e_n)`), so
@@ -138,7 +137,9 @@ pub fn thornton_knots(
         .map(|&(g, e)| knots_at(g, e))
         .collect::<Result<_, _>>()?;
     let region = [from, bg as f64, 0.0, top];
-    let make = |k: usize, extra: &[[f64; 2]]| {
+    // The four knots, and the strip's two where `extra` holds them at every point.
+    let make = |extra: &[[f64; 2]]| {
+        let k = if extra.is_empty() { 4 } else { 6 };
         // `knot[j, i, l]`, j the knot.
         let mut knot = vec![0.0; k * ng * ne];
         for (p, t) in traced.iter().enumerate() {
@@ -206,13 +207,13 @@ pub fn thornton_knots(
                     [cs + f[0] * (1.0 - cs), cs + f[1] * (1.0 - cs)]
                 })
                 .collect();
-            let knots = make(6, &extra)?;
+            let knots = make(&extra)?;
             if increasing_between(&knots, (gg, eg)) {
                 return Ok(Some(knots));
             }
         }
     }
-    let knots = make(4, &[])?;
+    let knots = make(&[])?;
     Ok(Some(knots))
 }
 

@@ -451,7 +451,7 @@ impl Layout<'_> {
                 let scale = f64::from(1u32 << cell.d[1]) * self.bc as f64;
                 let c = (cell.ic as f64 / scale, (cell.ic + 1) as f64 / scale);
                 let inside = |s: &f64| c.0 < s - 1e-12 && s + 1e-12 < c.1;
-                return u8::from(k.c_star().iter().any(inside)) << 1;
+                return u8::from(k.c_star().iter().any(inside)) << (self.dims() - 2);
             }
             return bits;
         }
