@@ -48,7 +48,8 @@ const NAMES: [&str; 4] = ["alpha_c1", "alpha_R", "2/7", "alpha_S"];
 /// root-cell edges, so the tree splits every cell across them without evaluating it.
 pub const STRIP_C_STAR: [f64; 2] = [0.9375, 0.953125];
 /// Largest degree in each of γ and `e_n` of the strip knots' fitted surfaces
-/// ([`strip_shares`]; lower where fewer than twice the coefficients' points hold the strip).
+/// ([`strip_shares`]; lower where fewer than twice the coefficients' points hold the strip,
+/// or where the knots of this degree cross between grid points).
 /// Over γ 2–2.2, `e_n` 0.3–0.4 the fitted edges lie within 1e-3 of the traced ones (shares of
 /// `(c_S, 1)`) at nine in ten points with degree 5 (2e-3 and 3e-3 with degree 4 and 3), up to
 /// 2.1e-3 (`cargo run --release -p oblique-tools --bin stripknots -- 2 2.2 0.3 0.4`).
@@ -96,7 +97,8 @@ impl Grid {
 /// With `strip` (the traced edges of the `+` strip, `kink::thornton_plus_strip_surfaces`)
 /// two more knots follow its edges ([`STRIP_C_STAR`], [`strip_shares`]) where some grid
 /// point of the region holds it inside the patch, and the knots' line stays strictly increasing
-/// between the grid points (checked on a grid four times finer; else the four knots alone).
+/// between the grid points (checked on a grid four times finer): the fit of the highest degree
+/// up to [`STRIP_FIT_DEGREE`] that does, else the four knots alone.
 pub fn thornton_knots(
     gammas: (f64, f64),
     bg: usize,
@@ -198,7 +200,12 @@ pub fn thornton_knots(
                 }
             })
             .collect();
-        if let Some(shares) = strip_shares(&points, &raw) {
+        // From the highest degree the points allow down to a plane: the first fit whose
+        // knots stay in order between the grid points.
+        for degree in (1..=STRIP_FIT_DEGREE).rev() {
+            let Some(shares) = strip_shares(&points, &raw, degree) else {
+                continue;
+            };
             let extra: Vec<[f64; 2]> = shares
                 .iter()
                 .enumerate()
@@ -226,7 +233,11 @@ pub fn thornton_knots(
 /// [`STRIP_FIT_DEGREE`] in each of γ and `e_n` (least squares over the points that hold the
 /// strip), so that the knots keep their order and gaps everywhere. `None` with fewer than
 /// eight such points or a singular fit.
-fn strip_shares(points: &[(f64, f64)], raw: &[Option<[f64; 2]>]) -> Option<Vec<[f64; 2]>> {
+fn strip_shares(
+    points: &[(f64, f64)],
+    raw: &[Option<[f64; 2]>],
+    degree: usize,
+) -> Option<Vec<[f64; 2]>> {
     let g = STRIP_GAP;
     let held: Vec<((f64, f64), [f64; 2])> = points
         .iter()
@@ -234,9 +245,7 @@ fn strip_shares(points: &[(f64, f64)], raw: &[Option<[f64; 2]>]) -> Option<Vec<[
         .filter_map(|(&p, r)| r.map(|r| (p, r)))
         .filter(|(_, [lo, hi])| *lo > g && *hi < 1.0 - g && hi - lo > g)
         .collect();
-    let n = (2..=STRIP_FIT_DEGREE + 1)
-        .rev()
-        .find(|n| held.len() >= 2 * n * n)?;
+    let n = (2..=degree + 1).rev().find(|n| held.len() >= 2 * n * n)?;
     let tensor = Tensor::over(held.iter().map(|&(p, _)| p), n);
     let basis = |gm: f64, e: f64| tensor.basis(gm, e);
     let logit = |t: f64| (t / (1.0 - t)).ln();
