@@ -24,7 +24,7 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion};
 use oblique_bench::ClockIter;
 use oblique_clock::Clock;
-use oblique_solver::kelvin_voigt::{tau_for_restitution, unit_bodies};
+use oblique_solver::kelvin_voigt::{contact_fit, tau_for_restitution, unit_bodies};
 use oblique_solver::{Accuracy, Law, Request};
 
 const GAMMAS: [f64; 3] = [0.5, 1.754, 3.0];
@@ -102,8 +102,9 @@ fn bench_solve(c: &mut Criterion, clock: Clock, name: &str, e_n: f64, law: Optio
 }
 
 /// What a first Kelvin–Voigt impact computes once per thread: the fine normal motion of a
-/// relaxation time; and the restitution of one (physical bodies, the root search that checks
-/// the fitted relaxation time of an `e_n`).
+/// relaxation time; the restitution of one, integrated (the root search that checks the
+/// fitted relaxation time of an `e_n`) and fitted with the contact time (the end of every
+/// normal motion, the `e_n` of physical bodies).
 fn bench_once(c: &mut Criterion, clock: Clock) {
     let mut group = c.benchmark_group(format!("kelvin_voigt_once{}", clock.suffix()));
     group
@@ -116,6 +117,9 @@ fn bench_once(c: &mut Criterion, clock: Clock) {
     });
     group.bench_function("restitution/e0.9", |b| {
         clock.iter(b, || unit_bodies(black_box(tau)).restitution())
+    });
+    group.bench_function("contact_fit/e0.9", |b| {
+        clock.iter(b, || contact_fit(black_box(tau)))
     });
     group.finish();
 }

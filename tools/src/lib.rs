@@ -74,3 +74,46 @@ pub fn xorshift(mut seed: u64) -> impl FnMut() -> f64 {
         (seed >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// Least squares `min |A c − b|` by Householder QR (`A` is `m × n`, rows).
+#[allow(clippy::needless_range_loop)] // Householder reflections read clearest with indices.
+pub fn least_squares(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+    let (m, n) = (a.len(), a[0].len());
+    for k in 0..n {
+        let norm = (k..m).map(|i| a[i][k] * a[i][k]).sum::<f64>().sqrt();
+        let alpha = if a[k][k] > 0.0 { -norm } else { norm };
+        let mut v: Vec<f64> = (k..m).map(|i| a[i][k]).collect();
+        v[0] -= alpha;
+        let vv: f64 = v.iter().map(|x| x * x).sum();
+        if vv == 0.0 {
+            continue;
+        }
+        for j in k..n {
+            let s: f64 = (k..m).map(|i| v[i - k] * a[i][j]).sum::<f64>() * 2.0 / vv;
+            for i in k..m {
+                a[i][j] -= s * v[i - k];
+            }
+        }
+        let s: f64 = (k..m).map(|i| v[i - k] * b[i]).sum::<f64>() * 2.0 / vv;
+        for i in k..m {
+            b[i] -= s * v[i - k];
+        }
+    }
+    let mut c = vec![0.0; n];
+    for k in (0..n).rev() {
+        let s: f64 = (k + 1..n).map(|j| a[k][j] * c[j]).sum();
+        c[k] = (b[k] - s) / a[k][k];
+    }
+    c
+}
+
+/// `T_0(u) … T_{n-1}(u)`.
+pub fn chebyshev(u: f64, n: usize) -> Vec<f64> {
+    let mut t = vec![1.0, u];
+    while t.len() < n {
+        let k = t.len();
+        t.push(2.0 * u * t[k - 1] - t[k - 2]);
+    }
+    t.truncate(n);
+    t
+}

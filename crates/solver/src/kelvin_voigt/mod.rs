@@ -2,8 +2,11 @@
 //! Kelvin–Voigt element with one relaxation time `τ` in the normal and tangential direction,
 //! non-adhesive unloading. Within the law `P` depends on `(γ, α, e_n)` only.
 
+pub mod fit;
 pub mod normal;
 pub mod row;
+
+pub use fit::{contact_fit, tau_fit, TAU_HAT_MAX};
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -117,59 +120,6 @@ pub fn damping_number(tau: f64) -> f64 {
 /// (kg), Hertz stiffness `k` (N/m^{3/2}) meeting at `v_z0` (m/s).
 pub fn dimensionless_tau(tau: f64, mass: f64, stiffness: f64, approach_speed: f64) -> f64 {
     tau * (stiffness / mass).powf(0.4) * approach_speed.powf(0.2) * 0.75f64.powf(0.4)
-}
-
-/// Chebyshev coefficients of `τ̂(e_n)/x` in `u = x/0.35 − 1`, `x = 1 − e_n ∈ [0, 0.7]`: the
-/// least-squares fit of degree 28 to the root search from the series at 600 Chebyshev-spread
-/// points, each weighed as the error in `τ̂` it gives, and to the exact limit `1/(C1 b₁)` at
-/// `x = 0` (`cargo run --release -p oblique-tools --bin taufit`). Its residuals are 5.8e-15
-/// of `τ̂` for `e_n ≤ 0.9`, 3.7e-14 for `0.9 < e_n ≤ 0.99` and 1.4e-10 nearer 1, all below
-/// the search's own resolution (a few ulps of `e_n` over `1 − e_n`).
-const TAU_FIT: [f64; 29] = [
-    8.174367809627743e-1,
-    3.774336328919117e-1,
-    9.468123757493672e-2,
-    2.474229870665735e-2,
-    6.6218908928035196e-3,
-    1.8000362408721864e-3,
-    4.946775090525393e-4,
-    1.3704694457156687e-4,
-    3.8204325659985004e-5,
-    1.0702671767251201e-5,
-    3.010274673155798e-6,
-    8.494847393862056e-7,
-    2.4038796287988863e-7,
-    6.818673993449707e-8,
-    1.9380975453575352e-8,
-    5.518575494065826e-9,
-    1.573823479503945e-9,
-    4.4947016240008847e-10,
-    1.2851165413698164e-10,
-    3.679632909038257e-11,
-    1.0535659654443624e-11,
-    3.028712526441891e-12,
-    8.634650494147622e-13,
-    2.5279890577593616e-13,
-    6.910110476759705e-14,
-    2.2471980364851982e-14,
-    4.967998730133029e-15,
-    2.2191750388926598e-15,
-    5.712339521534509e-16,
-];
-
-/// The fitted `τ̂(e_n)` ([`TAU_FIT`], Clenshaw), `e_n ∈ [0.3, 1]` (unchecked): within 1e-13
-/// of the root search ([`tau_for_restitution_search`]) for `e_n ≤ 0.9` (2.7e-15 measured),
-/// and within 1e-13 plus the search's own resolution above
-/// (`crates/solver/tests/kelvin_voigt.rs`); [`tau_for_restitution`] takes the series' inverse
-/// instead next to `e_n = 1`.
-pub fn tau_fit(e_n: f64) -> f64 {
-    let x = 1.0 - e_n;
-    let u = x / 0.35 - 1.0;
-    let (mut b1, mut b2) = (0.0, 0.0);
-    for &c in TAU_FIT.iter().skip(1).rev() {
-        (b1, b2) = (2.0 * u * b1 - b2 + c, b1);
-    }
-    x * (u * b1 - b2 + TAU_FIT[0])
 }
 
 /// Check a normal restitution: finite, in `[0.3, 1]` ([`crate::law`] owns the range).
@@ -311,7 +261,7 @@ fn illinois(
 }
 
 /// The root search from the series alone, without the fit: the data of the fit
-/// ([`TAU_FIT`]) and an independent check of it.
+/// (`fit::TAU_FIT`) and an independent check of it.
 pub fn tau_for_restitution_from_series(e_n: f64) -> Result<f64, PhysicsError> {
     let e_n = check_restitution(e_n)?;
     if e_n == 1.0 {
@@ -566,7 +516,7 @@ impl ContactLaw for KelvinVoigt {
     }
 
     /// `τ̂` of the bodies' `τ` at their speed ([`dimensionless_tau`]) and its `e_n`
-    /// ([`restitution`]), which must lie in `[0.3, 1]`.
+    /// ([`contact_fit`]; [`restitution`] beyond it), which must lie in `[0.3, 1]`.
     fn of_bodies(
         parameters: BodiesParameters,
         normal: &BodiesNormal,
@@ -585,7 +535,7 @@ impl ContactLaw for KelvinVoigt {
             normal.stiffness,
             normal.approach_speed,
         );
-        let e_n = restitution(hat);
+        let e_n = contact_fit(hat).map_or_else(|| restitution(hat), |(_, e_n)| e_n);
         // `restitution` is ≤ 1: outside the solver's range means NaN or below 0.3.
         if check_restitution(e_n).is_err() {
             return Err(PhysicsError::InvalidParameter {

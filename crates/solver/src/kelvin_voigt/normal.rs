@@ -159,11 +159,27 @@ impl ViscoelasticBodies {
         .contact_time()
     }
 
-    /// Integrate from first touch to the end of contact (`D = 0`) on [`CONTACT_SUBSTEPS`]
-    /// steps: the contact time `t_c` (s) and the state there ([`Self::separation`]), the span
-    /// and the last node of the motion's grid.
+    /// The contact time `t_c` (s) and the state at the end of contact (`D = 0`), the span and
+    /// the last node of the motion's grid: from the fitted contact of the dimensionless
+    /// relaxation time `τ̂ = τ t̂_H/t_H` (`kelvin_voigt::contact_fit`, scaled by the Hertz time
+    /// `t_H`; the end `ḋ = −e_n v_z0`, `d = −τ ḋ`) wherever it covers `τ̂`, else integrated
+    /// on [`CONTACT_SUBSTEPS`] steps ([`Self::separation`]).
     fn until_separation(&self) -> (f64, State) {
-        self.separation(CONTACT_SUBSTEPS)
+        let t_h = self.hertz_time();
+        let hat = self.tau * (unit_hertz_time() / t_h);
+        match super::fit::contact_fit(hat) {
+            Some((ratio, e_n)) => {
+                let rate = -e_n * self.approach_speed;
+                (
+                    ratio * t_h,
+                    State {
+                        d: -self.tau * rate,
+                        rate,
+                    },
+                )
+            }
+            None => self.separation(CONTACT_SUBSTEPS),
+        }
     }
 
     /// Integrate from first touch to the end of contact (`D = 0`) by RK4 on steps
@@ -265,7 +281,15 @@ impl ViscoelasticBodies {
     /// [`RESTITUTION_SUBSTEPS`] steps ([`Self::separation`]): within 2e-15 of 262 144 steps,
     /// and smooth in `τ` to its roundoff.
     pub fn restitution(&self) -> f64 {
-        -self.separation(RESTITUTION_SUBSTEPS).1.rate / self.approach_speed
+        self.contact_integrated().1
+    }
+
+    /// The contact time `t_c` (s) and the normal restitution `e_n` of the impact, both
+    /// integrated on [`RESTITUTION_SUBSTEPS`] steps ([`Self::separation`]; `t_c` within 1e-15
+    /// of 262 144 steps): the data of the fitted contact (`kelvin_voigt::contact_fit`).
+    pub fn contact_integrated(&self) -> (f64, f64) {
+        let (tc, end) = self.separation(RESTITUTION_SUBSTEPS);
+        (tc, -end.rate / self.approach_speed)
     }
 
     /// The normal motion on `steps` uniform steps spanning the measured contact. Sampled from
@@ -370,6 +394,16 @@ impl ViscoelasticBodies {
         }
         self.uniform(y, lo, sub).d
     }
+}
+
+/// The Hertz contact time `t̂_H` of the dimensionless bodies (`m* = v_z0 = 1`, `k = 4/3`).
+fn unit_hertz_time() -> f64 {
+    HertzClosedForm {
+        mass: 1.0,
+        stiffness: 4.0 / 3.0,
+        approach_speed: 1.0,
+    }
+    .contact_time()
 }
 
 /// The normal motion on [`FINE_STEPS`] steps, sampled for coarser grids.
