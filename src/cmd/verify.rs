@@ -76,8 +76,9 @@ pub struct VerifyArgs {
     /// fold alpha_L, the fold F- (from gamma ~ 1.9), the end-of-contact curves E- (one of
     /// those up to 100 alpha_c2) and the edges F+lo and F+hi of the strip where a +mu F_N
     /// episode of the restitution exists (gamma above ~2); and next to the switch sheet e_S of
-    /// the stick patch (below e_n ~ 0.52 at gamma 1.7): gamma uniform, alpha/alpha_c2
-    /// log-uniform in [1.2, 10], e_n = e_S + s·r (each kink located at its point first,
+    /// the stick patch (below e_n ~ 0.52 at gamma 1.7; from gamma ~ 2 in bands of e_n, with a
+    /// lower edge too): gamma uniform, alpha/alpha_c2 log-uniform in [1.2, 10], e_n = e_S +
+    /// s·r next to the edge of the sheet nearest a uniform e_n (each kink located at its point first,
     /// 0.1-2 s; a point where it does not exist is drawn again, a kink found nowhere is left
     /// out); the largest error next to each is printed too.
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet"])]

@@ -19,7 +19,7 @@ use oblique_solver::history::{
     full_slip_edge_thornton, has_loading_zone_thornton, has_reslip_thornton,
     has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton,
     restitution_plus_strip_thornton, slip_history_thornton, switch_fold_thornton,
-    switch_sheet_thornton, switch_zones_thornton, SlipSign,
+    switch_sheet_edges_thornton, switch_sheet_thornton, switch_zones_thornton, SlipSign,
 };
 use oblique_solver::thornton::{
     dimensionless_motion, dimensionless_p, yield_pressure_for_restitution,
@@ -329,6 +329,45 @@ fn the_switch_sheet_of_the_stick_patch_lies_across_e_n() {
     let (above, further, below) = (d2(e_s + 3e-3), d2(e_s + 6e-3), d2(e_s - 3e-3));
     assert!((above / further - 1.0).abs() < 0.05, "{above} {further}");
     assert!((below / above - 1.0).abs() > 0.2, "{below} {above}");
+}
+
+#[test]
+fn from_gamma_two_the_switch_sheet_bounds_bands_of_e_n() {
+    // γ = 2.3, 10 α_c2 (docs/solver.md, the bands table): the zone exists in e_n 0.3–0.3051 and
+    // 0.4001–0.7252, so three edges, the middle one a lower edge.
+    let g = 2.3;
+    let a = 10.0 * alpha_c2(g);
+    let edges = switch_sheet_edges_thornton(g, a, (0.3, 0.99), 0.01, 2048).unwrap();
+    let expected = [(0.305124, false), (0.400095, true), (0.725186, false)];
+    assert_eq!(edges.len(), 3, "{edges:?}");
+    for (&(e, above), (want, want_above)) in edges.iter().zip(expected) {
+        assert_eq!(above, want_above, "{edges:?}");
+        assert!((e - want).abs() < 1e-5, "{e} against {want}");
+    }
+    // The upper edges are those of `switch_sheet_thornton` on their brackets.
+    let top = switch_sheet_thornton(g, a, (0.7, 0.75), 2048)
+        .unwrap()
+        .expect("upper edge");
+    assert!((top - edges[2].0).abs() < 2e-9, "{top}");
+    // `P` leaves its smooth continuation above the lower edge, where the zone exists: at a fixed
+    // 8 192 steps its second differences along `e_n` (spacing 1e-3) keep their trend below it
+    // (−217 and −211 at 6e-3 and 3e-3 below) and move above it (−169 at 6e-3 above).
+    let lower = edges[1].0;
+    let d2 = |e: f64| {
+        let h = 1e-3;
+        (p_fixed(g, a, e - h, 8192) - 2.0 * p_fixed(g, a, e, 8192) + p_fixed(g, a, e + h, 8192))
+            / h
+            / h
+    };
+    let (below, further, above) = (d2(lower - 3e-3), d2(lower - 6e-3), d2(lower + 6e-3));
+    assert!((below / further - 1.0).abs() < 0.05, "{below} {further}");
+    assert!((above / below - 1.0).abs() > 0.15, "{above} {below}");
+    // A range without an edge has none; an empty range or scan is refused.
+    assert!(switch_sheet_edges_thornton(g, a, (0.45, 0.6), 0.01, 2048)
+        .unwrap()
+        .is_empty());
+    assert!(switch_sheet_edges_thornton(g, a, (0.6, 0.45), 0.01, 2048).is_err());
+    assert!(switch_sheet_edges_thornton(g, a, (0.45, 0.6), 0.0, 2048).is_err());
 }
 
 #[test]

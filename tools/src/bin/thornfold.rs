@@ -11,10 +11,14 @@
 //! (`end_minus_edges_thornton`, α from 0.8 · 2/7 to 100 `α_c2`, 250 log intervals) and their
 //! ratios to `α_c2`. `thornfold --sheet GAMMAS RATIOS [STEPS]` prints the switch sheet `e_S(γ, α)` of the
 //! stick patch (`switch_sheet_thornton`, searched in `e_n` 0.3–0.99) at `α = RATIO α_c2`.
+//! `thornfold --band GAMMAS RATIOS [STEPS]` prints the bands of `e_n` in 0.3–0.99 where the
+//! sheet's `+` zone exists (`has_switch_zone_thornton`), their edges located on a scan of 0.01
+//! (`switch_sheet_edges_thornton`; `0.3` or `0.99` where a band reaches the end of the scan).
 
 use oblique_solver::history::{
-    end_minus_edges_thornton, fold_minus_thornton, loading_fold_thornton, reslip_fold_thornton,
-    restitution_plus_strip_thornton, switch_fold_thornton, switch_sheet_thornton,
+    end_minus_edges_thornton, fold_minus_thornton, has_switch_zone_thornton, loading_fold_thornton,
+    reslip_fold_thornton, restitution_plus_strip_thornton, switch_fold_thornton,
+    switch_sheet_edges_thornton, switch_sheet_thornton,
 };
 
 fn list(s: &str) -> anyhow::Result<Vec<f64>> {
@@ -37,6 +41,42 @@ fn main() -> anyhow::Result<()> {
                     Some(e) => println!("{g} {r} {e:.6}"),
                     None => println!("{g} {r} none"),
                 }
+            }
+        }
+        return Ok(());
+    }
+    if a.first().is_some_and(|s| s == "--band") {
+        anyhow::ensure!(
+            a.len() >= 3,
+            "usage: thornfold --band GAMMAS RATIOS [STEPS]"
+        );
+        let (gammas, ratios) = (list(&a[1])?, list(&a[2])?);
+        let steps = if a.len() > 3 { a[3].parse()? } else { 2048 };
+        for &g in &gammas {
+            for &r in &ratios {
+                let alpha = r * 2.0 * g * g / 7.0;
+                let edges = switch_sheet_edges_thornton(g, alpha, (0.3, 0.99), 0.01, steps)?;
+                // The bands: from a lower edge (or 0.3 where the zone holds there) to the next
+                // upper edge (or 0.99).
+                let mut bands = Vec::new();
+                let mut from =
+                    has_switch_zone_thornton(g, alpha, 0.3, steps)?.then(|| "0.3".to_string());
+                for (e, above) in edges {
+                    if above {
+                        from = Some(format!("{e:.6}"));
+                    } else if let Some(f) = from.take() {
+                        bands.push(format!("{f}-{e:.6}"));
+                    }
+                }
+                if let Some(f) = from {
+                    bands.push(format!("{f}-0.99"));
+                }
+                let text = if bands.is_empty() {
+                    "none".to_string()
+                } else {
+                    bands.join(" ")
+                };
+                println!("{g} {r} {text}");
             }
         }
         return Ok(());

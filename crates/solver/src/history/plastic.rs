@@ -588,6 +588,59 @@ pub fn switch_sheet_thornton(
     bisect_edge((lo, hi), 1e-9, holds).map(Some)
 }
 
+/// Every edge of the switch sheet in `(e_lo, e_hi)` at `(γ, α)`: where the `+` zone of the
+/// clipped field ([`has_switch_zone_thornton`]) appears or ceases as `e_n` grows, bracketed by
+/// a scan in steps of at most `scan` and bisected to `1e-9` (as [`switch_sheet_thornton`]), in
+/// increasing `e_n`, each with whether the zone exists above it (a lower edge of a band, where
+/// `P` leaves its smooth continuation above it) or below it (an upper edge). The zone exists in
+/// a band of `e_n` over much of the stick patch from γ ≈ 2: at γ 2.3, 10 `α_c2` in two,
+/// `e_n` 0.3–0.305 and 0.400–0.725 (`cargo run --release -p oblique-tools --bin thornfold --
+/// --band 2.3 10`). Two edges closer than the scan are missed.
+///
+/// Errors: as [`switch_sheet_thornton`], or `scan` not positive.
+pub fn switch_sheet_edges_thornton(
+    gamma: f64,
+    alpha: f64,
+    (e_lo, e_hi): (f64, f64),
+    scan: f64,
+    steps: usize,
+) -> Result<Vec<(f64, bool)>, PhysicsError> {
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
+    let (lo, hi) = (check_restitution(e_lo)?, check_restitution(e_hi)?);
+    if lo >= hi || scan.is_nan() || scan <= 0.0 {
+        return Err(PhysicsError::InvalidParameter {
+            name: "e_n range",
+            value: hi - lo,
+            allowed: "> 0 (its upper end above its lower), scanned in steps > 0",
+        });
+    }
+    let n = ((hi - lo) / scan).ceil().max(1.0) as usize;
+    let e = |k: usize| {
+        if k == n {
+            hi
+        } else {
+            lo + (hi - lo) * k as f64 / n as f64
+        }
+    };
+    let holds = |e: f64| has_switch_zone_thornton(gamma, alpha, e, steps);
+    let mut edges = Vec::new();
+    let mut below = holds(e(0))?;
+    for k in 1..=n {
+        let here = holds(e(k))?;
+        if here != below {
+            let bracket = (e(k - 1), e(k));
+            let edge = if below {
+                bisect_edge(bracket, 1e-9, holds)?
+            } else {
+                bisect_edge(bracket, 1e-9, |e| holds(e).map(|h| !h))?
+            };
+            edges.push((edge, here));
+        }
+        below = here;
+    }
+    Ok(edges)
+}
+
 /// The factor by which [`fold_minus_thornton`] steps up in α while it looks for F₋'s
 /// predicate: the interval below F₋ where it holds is 1.2 % of α wide at γ 2.0, `e_n` 0.3
 /// (next to its birth), 3–12 % elsewhere up to γ 2.6.

@@ -56,7 +56,7 @@ use oblique_solver::history::{
     end_minus_edges_thornton, fold_minus_at, fold_minus_at_e, fold_minus_free_below,
     fold_minus_free_below_thornton, fold_minus_thornton, loading_fold_thornton,
     reslip_fold_thornton, restitution_minus_somewhere_e, restitution_plus_change_thornton,
-    restitution_plus_strip_thornton, switch_fold_thornton, switch_sheet_thornton,
+    restitution_plus_strip_thornton, switch_fold_thornton, switch_sheet_edges_thornton,
 };
 use oblique_solver::Law;
 use oblique_table::surface::{stencil4, PatchKind, Point};
@@ -1017,6 +1017,11 @@ const END_MINUS_SCAN: (f64, usize) = (100.0, 250);
 /// knots do, `nodes.knots`).
 const THORNTON_FOLD_STEPS: usize = 2048;
 
+/// The scan along `e_n` with which [`near_thornton_fold_points`] brackets the edges of the
+/// switch sheet (`switch_sheet_edges_thornton`): the narrowest gap between two bands of the zone
+/// found over γ 1.05–2.6, 1.2–10 `α_c2` is 0.06 (`thornfold -- --band`).
+const SHEET_SCAN: f64 = 0.01;
+
 /// `n` points next to the kinks of Thornton's law inside `gammas × e_range`, each with the index
 /// of its kink in [`THORNTON_FOLDS`], point `i` next to kink `i mod 9` (`docs/solver.md`, "Kinks
 /// inside the slip regions"):
@@ -1024,7 +1029,9 @@ const THORNTON_FOLD_STEPS: usize = 2048;
 ///   `α_L`: `(γ, e_n)` uniform (`e_n` at most `1 − 1e-4`, where the folds still exist), the fold
 ///   located there on 2 048 steps, `α = α_K (1 + s·10^u)`, `s = ±1`, `u` uniform in `[−4, −2]`;
 /// - the switch sheet `e_S(γ, α)` of the stick patch: γ uniform, `α/α_c2` log-uniform in
-///   `[1.2, 10]`, the sheet located inside the table's `e_n` range, `e_n = e_S + s·10^u`;
+///   `[1.2, 10]`, the edges of the sheet located inside the table's `e_n` range (an upper or a
+///   lower edge of a band of `e_n` where the zone exists, scanned in steps of [`SHEET_SCAN`]),
+///   `e_n = e_S + s·10^u` next to the edge nearest the `e_n` drawn;
 /// - the fold F₋, the end-of-contact curves E₋ and the edges of the strip of a `+μF_N`
 ///   episode of the restitution as the folds along α (E₋: one of the curves found up to 100
 ///   `α_c2`, each as likely; the strip's edges bracketed on 2 048 steps, placed on 8 192).
@@ -1073,7 +1080,19 @@ pub fn near_thornton_fold_points(
                 let c2 = oblique_physics::regimes::alpha_c2(gamma);
                 let point = if i % kinds == 4 {
                     let alpha = 1.2 * (10.0f64 / 1.2).powf(pick) * c2;
-                    switch_sheet_thornton(gamma, alpha, (e_lo, e_hi), THORNTON_FOLD_STEPS)?
+                    // The edge of the sheet nearest the drawn e_n (upper or lower edge of a
+                    // band of the zone).
+                    let edges = switch_sheet_edges_thornton(
+                        gamma,
+                        alpha,
+                        (e_lo, e_hi),
+                        SHEET_SCAN,
+                        THORNTON_FOLD_STEPS,
+                    )?;
+                    edges
+                        .iter()
+                        .map(|&(e_s, _)| e_s)
+                        .min_by(|a, b| (a - e_n).abs().total_cmp(&(b - e_n).abs()))
                         .map(|e_s| e_s + r)
                         .filter(|&e| e >= e_lo && e <= e_hi && alpha <= alpha_max)
                         .map(|e| Point::new(gamma, alpha, e))
@@ -1143,6 +1162,7 @@ pub fn near_thornton_fold_points(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use oblique_solver::history::switch_sheet_thornton;
 
     /// Over a range that holds seven of the kinks, each gets its share of the points, next to it:
     /// the folds within 1e-2 (relative) in α, the switch sheet within 1e-2 in `e_n`; the same
@@ -1174,11 +1194,13 @@ mod tests {
                 (_, Some(a)) => assert!(near(a), "{k}: {p:?} {a}"),
                 (4, None) => {
                     assert!(p.alpha > 1.2 * oblique_physics::regimes::alpha_c2(p.gamma));
-                    let e_s = switch_sheet_thornton(p.gamma, p.alpha, e_range, steps)
-                        .unwrap()
-                        .expect("the sheet");
-                    let d = (p.e_n - e_s).abs();
-                    assert!((1e-4 * 0.999..=1e-2 * 1.001).contains(&d), "{p:?} {e_s}");
+                    let edges =
+                        switch_sheet_edges_thornton(p.gamma, p.alpha, e_range, SHEET_SCAN, steps)
+                            .unwrap();
+                    let near_edge = |&(e_s, _): &(f64, bool)| {
+                        (1e-4 * 0.999..=1e-2 * 1.001).contains(&(p.e_n - e_s).abs())
+                    };
+                    assert!(edges.iter().any(near_edge), "{p:?} {edges:?}");
                 }
                 (6, None) => {
                     let edges =
@@ -1191,6 +1213,38 @@ mod tests {
         let again =
             near_thornton_fold_points(gammas, e_range, f64::INFINITY, 14, 3).expect("located");
         assert_eq!(format!("{pts:?}"), format!("{again:?}"));
+    }
+
+    /// Where the switch sheet's zone exists in a band of `e_n` whose lower edge alone lies in
+    /// the range (γ 2.28–2.32, `e_n` 0.32–0.45: from 0.35 at 2 `α_c2` to 0.40 at 10), the points
+    /// of the sheet lie next to that lower edge, the zone present above it.
+    #[test]
+    fn thornton_fold_points_lie_next_to_the_lower_edge_of_the_sheet() {
+        let e_range = (0.32, 0.45);
+        let pts = near_thornton_fold_points((2.28, 2.32), e_range, f64::INFINITY, 14, 9)
+            .expect("located");
+        let sheet: Vec<Point> = pts.iter().filter(|p| p.0 == 4).map(|p| p.1).collect();
+        assert_eq!(sheet.len(), 2, "{pts:?}");
+        for p in sheet {
+            let edges = switch_sheet_edges_thornton(
+                p.gamma,
+                p.alpha,
+                e_range,
+                SHEET_SCAN,
+                THORNTON_FOLD_STEPS,
+            )
+            .unwrap();
+            assert!(
+                edges.iter().all(|&(_, above)| above),
+                "{p:?}: only lower edges here, {edges:?}"
+            );
+            assert!(
+                edges
+                    .iter()
+                    .any(|&(e, _)| (1e-4 * 0.999..=1e-2 * 1.001).contains(&(p.e_n - e).abs())),
+                "{p:?} {edges:?}"
+            );
+        }
     }
 
     /// Where the strip of a `+μF_N` episode of the restitution lies (γ 2.25–2.35, e_n 0.3–0.4:
