@@ -1806,6 +1806,15 @@ fn h_a_table_is_not_written_or_verified_against_a_bound_it_breaks() {
         msg.contains("refusing to write") && msg.contains("error bound the table states"),
         "{msg}"
     );
+    // The check's point, e_n included.
+    let c = built.checks[3];
+    assert!(
+        msg.contains(&format!(
+            "gamma = {}, alpha = {}, e_n = {}",
+            c.gamma, c.alpha, c.e_n
+        )),
+        "{msg}"
+    );
     assert!(!out.exists(), "nothing written");
     assert_eq!(dir_names(&dir), Vec::<String>::new(), "no temporary left");
     // A table whose stated bound is 0 (no predicted or node error): written without checks,

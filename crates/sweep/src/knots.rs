@@ -347,8 +347,9 @@ pub const LOADING_C_MIN: f64 = 0.05;
 /// [`GAMMA_STEP`] by [`E_N_STEP`] from [`GAMMA_MIN`] (up to a root-cell edge) and from the
 /// lowest `e_n` upwards, each γ column up to the first row where the fold is gone or lies below
 /// [`LOADING_C_MIN`]; the region holds the rows where it lies above that at every γ (its top
-/// the last such row, down to a root-cell edge), sent to [`LOADING_C_STAR`] and
-/// graded below. `None` where fewer than four rows qualify, the region would hold no whole root
+/// the last such row, down to a root-cell edge) and on one branch of it (from the first row
+/// above the highest jump of any column, [`branch_start`], up to a root-cell edge), sent to
+/// [`LOADING_C_STAR`] and graded below. `None` where fewer than four rows qualify, the region would hold no whole root
 /// cell, or the γ range ends below [`GAMMA_MIN`]. `alpha_max` is the table's `α_max`.
 pub fn loading_fold_knots(
     gammas: (f64, f64),
@@ -397,37 +398,51 @@ pub fn loading_fold_knots(
         })
         .collect::<Result<_, SweepError>>()?;
     let ne = columns.iter().map(Vec::len).min().unwrap_or(0);
-    if ne < 4 {
+    // From γ ≈ 1.75 the located fold jumps between two branches at small e_n (0.32 at γ 1.75,
+    // 0.46 at 2.6): the knot follows the branch above the highest jump of any column, from
+    // its first row, so that it is continuous where it is interpolated.
+    let start = columns
+        .iter()
+        .map(|c| branch_start(&c[..ne]))
+        .max()
+        .unwrap_or(0);
+    if ne < start + 4 {
         return Ok(None);
     }
-    // The region along e_n: up to the last common row, down to a root-cell edge. An edge
-    // inside a root cell splits every cell across it down to its depth without evaluating
-    // them, and there the knot lies next to α_c2, where the map stretches the patch most: at
-    // a sixteenth, over γ 1.6–2.0 and e_n 0.65–0.9 (target 5e-5), the stick patch needed
-    // 66 458 nodes with the knot against 51 895 without.
-    let e_last = eg.at(ne - 1);
+    // The region along e_n: from that row up to the last common row, both rounded into the
+    // grid to root-cell edges. An edge inside a root cell splits every cell across it down to
+    // its depth without evaluating them, and there the knot lies next to α_c2, where the map
+    // stretches the patch most: at a sixteenth, over γ 1.6–2.0 and e_n 0.65–0.9 (target 5e-5),
+    // the stick patch needed 66 458 nodes with the knot against 51 895 without.
+    let cells = |e: f64| (e - e_lo) / (e_hi - e_lo) * be as f64;
+    let e_first = eg.at(start);
+    let bottom = if start == 0 {
+        0.0
+    } else {
+        (cells(e_first) - 1e-9).ceil()
+    };
     let top = if ne == ne_all {
         be as f64
     } else {
-        ((e_last - e_lo) / (e_hi - e_lo) * be as f64).floor()
+        cells(eg.at(ne - 1)).floor()
     };
-    if top <= 0.0 {
+    if top <= bottom {
         return Ok(None);
     }
-    let mut knot = Vec::with_capacity(ng * ne);
+    let mut knot = Vec::with_capacity(ng * (ne - start));
     for column in &columns {
-        knot.extend_from_slice(&column[..ne]);
+        knot.extend_from_slice(&column[start..ne]);
     }
-    // The grid is the tracing's, up to the last common row.
+    // The grid is the tracing's, over the rows of the branch.
     Knots::new(
         gg.first,
         gg.step,
-        eg.first,
+        e_first,
         eg.step,
-        [from, bg as f64, 0.0, top],
+        [from, bg as f64, bottom, top],
         vec![LOADING_C_STAR],
         vec![1],
-        [1, ng, ne],
+        [1, ng, ne - start],
         knot,
     )
     .map(Some)
@@ -437,6 +452,22 @@ pub fn loading_fold_knots(
         e_n: e_lo,
         what,
     })
+}
+
+/// Largest second difference along `e_n` of the loading fold's coordinate (rows
+/// [`E_N_STEP`] apart) on one branch: over γ 1.6–2.6 it is at most 2e-4 on a branch, and
+/// 0.055–0.15 where the located fold jumps to another (`thornfold` on that grid).
+pub const LOADING_JUMP: f64 = 0.01;
+
+/// The first row of the branch of the loading fold's column `c` (coordinates by rows of
+/// `e_n`) that holds its top row: the row after the highest jump, where a second difference
+/// exceeds [`LOADING_JUMP`] (a jump between rows `j − 1` and `j` shows at rows `j` and `j + 1`);
+/// 0 where there is none.
+fn branch_start(c: &[f64]) -> usize {
+    (2..c.len())
+        .rev()
+        .find(|&k| (c[k] - 2.0 * c[k - 1] + c[k - 2]).abs() > LOADING_JUMP)
+        .map_or(0, |k| k - 1)
 }
 
 /// Degree of the fitted fold surface F₋ in each of γ and `e_n` ([`fold_minus_knots`]).
@@ -751,6 +782,41 @@ mod tests {
             .expect("traced")
             .expect("alpha_L from 1.2");
         assert_eq!(k.region()[..2], [1.0, 2.0]);
+    }
+
+    /// From γ ≈ 1.75 the located loading fold jumps to another branch at small `e_n` (γ 2.3:
+    /// from about 4.05 to 2.80 `α_c2` between `e_n` 0.40 and 0.41): the knot's region and grid
+    /// start above the jump, at a root-cell edge, and the knot is continuous there.
+    #[test]
+    fn the_loading_fold_knot_starts_above_the_jump_of_its_branch() {
+        // Three root cells along e_n (0.1 each): the region from 0.5.
+        let k = loading_fold_knots((2.25, 2.35), 1, (0.3, 0.6), 3, f64::INFINITY)
+            .expect("traced")
+            .expect("alpha_L above the jump");
+        assert_eq!(k.region(), [0.0, 1.0, 2.0, 3.0]);
+        assert!(
+            k.e_n_0() > 0.41 && k.e_n_0() <= 0.5,
+            "grid from {}",
+            k.e_n_0()
+        );
+        // The located fold jumps below the grid and lies on the knot's branch above it.
+        let c = |g: f64, e: f64| {
+            loading_fold_thornton(g, e, STEPS)
+                .expect("solve")
+                .map(|a| PatchKind::Stick.coord_at(PartialMap::Slip, g, a, e, f64::INFINITY))
+                .expect("a fold")
+        };
+        assert!(c(2.3, 0.39) - c(2.3, 0.42) > 0.05, "the jump");
+        for (g, e) in [(2.25, 0.5), (2.3, 0.55), (2.35, 0.6)] {
+            let knot = k.line(g, e).knots()[0];
+            assert!((knot - c(g, e)).abs() < 1e-4, "γ {g}, e_n {e}: {knot}");
+        }
+        // With one root cell along e_n the region would start inside it: no knot.
+        assert!(
+            loading_fold_knots((2.25, 2.35), 1, (0.3, 0.45), 1, f64::INFINITY)
+                .expect("traced")
+                .is_none()
+        );
     }
 
     /// The fitted F₋ against F₋ located directly where it exists: within 1e-4 (relative),

@@ -69,10 +69,11 @@ pub enum StorageError {
     /// A held-out check is off by more than the error bound the table would state: the file
     /// is not written.
     #[error(
-        "refusing to write {path}: the held-out check at gamma = {gamma}, alpha = {alpha} is off \
-         by {error:.3e}, more than the error bound the table states, {bound:.3e} (largest leaf \
-         prediction + 2.66 x node error estimate, docs/table-format.md); the refinement's \
-         prediction does not hold there: lower nodes.target_error or solver.tol"
+        "refusing to write {path}: the held-out check at gamma = {gamma}, alpha = {alpha}, \
+         e_n = {e_n} is off by {error:.3e}, more than the error bound the table states, \
+         {bound:.3e} (largest leaf prediction + 2.66 x node error estimate, \
+         docs/table-format.md); the refinement's prediction does not hold there: lower \
+         nodes.target_error or solver.tol"
     )]
     BoundContradicted {
         /// Output path.
@@ -85,6 +86,8 @@ pub enum StorageError {
         gamma: f64,
         /// α of the check.
         alpha: f64,
+        /// `e_n` of the check (1 in an elastic table).
+        e_n: f64,
     },
     /// Filesystem error (directory, rename).
     #[error("writing {path}: {source}")]
@@ -223,6 +226,7 @@ pub fn write_table(out: &Path, built: &Built, prov: &Provenance) -> Result<(), S
             error: c.interpolation_error,
             gamma: c.gamma,
             alpha: c.alpha,
+            e_n: c.e_n,
         });
     }
     let io = |source| StorageError::Io {
