@@ -38,6 +38,20 @@ pub fn point(s: &str) -> Result<(f64, f64)> {
     Ok((g, a))
 }
 
+/// The four arguments `GAMMA_LO GAMMA_HI E_LO E_HI` of a probe over a box of (γ, `e_n`);
+/// `tool` names it in the usage message.
+pub fn gamma_e_box(tool: &str) -> Result<[f64; 4]> {
+    let a: Vec<f64> = args()
+        .iter()
+        .map(|s| s.parse())
+        .collect::<Result<_, _>>()
+        .with_context(|| format!("usage: {tool} GAMMA_LO GAMMA_HI E_LO E_HI"))?;
+    let [g0, g1, e0, e1] = a[..] else {
+        bail!("usage: {tool} GAMMA_LO GAMMA_HI E_LO E_HI");
+    };
+    Ok([g0, g1, e0, e1])
+}
+
 /// The command-line arguments after the program name.
 pub fn args() -> Vec<String> {
     std::env::args().skip(1).collect()

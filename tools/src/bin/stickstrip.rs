@@ -7,13 +7,7 @@ use oblique_physics::regimes::alpha_c2;
 use oblique_solver::history::loading_fold_thornton;
 
 fn main() -> anyhow::Result<()> {
-    let a: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|s| s.parse())
-        .collect::<Result<_, _>>()?;
-    let [g0, g1, e0, e1] = a[..] else {
-        anyhow::bail!("usage: stickstrip GAMMA_LO GAMMA_HI E_LO E_HI");
-    };
+    let [g0, g1, e0, e1] = oblique_tools::gamma_e_box("stickstrip")?;
     let strip = oblique_sweep::kink::thornton_plus_strip_surfaces((g0, g1), (e0, e1))?;
     for i in 0..=8 {
         let g = g0 + (g1 - g0) * i as f64 / 8.0;

@@ -7,13 +7,7 @@
 use oblique_table::surface::{PartialMap, PatchKind};
 
 fn main() -> anyhow::Result<()> {
-    let a: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|s| s.parse())
-        .collect::<Result<_, _>>()?;
-    let [g0, g1, e0, e1] = a[..] else {
-        anyhow::bail!("usage: stripknots GAMMA_LO GAMMA_HI E_LO E_HI");
-    };
+    let [g0, g1, e0, e1] = oblique_tools::gamma_e_box("stripknots")?;
     let strip = oblique_sweep::kink::thornton_plus_strip_surfaces((g0, g1), (e0, e1))?;
     let Some(k) = oblique_sweep::knots::thornton_knots((g0, g1), 1, (e0, e1), 1, Some(&strip))?
     else {
