@@ -2,8 +2,8 @@
 //! `thornsurf GAMMA_LO GAMMA_HI E_LO E_HI` traces F₋ (`kink::thornton_fold_minus_surface`) and
 //! the lowest E₋ (`kink::thornton_end_minus_surface`) and the edges of the `+` strip
 //! (`kink::thornton_plus_strip_surfaces`) over that range and prints the time each took and how
-//! many grid nodes hold the kink, then the switch sheet `e_S` of the stick patch
-//! (`kink::switch_sheet_surface`). With `--only-strip` (`--only-sheet`) only the strip (the
+//! many grid nodes hold the kink, then the upper and lower edges of the switch sheet `e_S` of
+//! the stick patch (`kink::switch_sheet_surfaces`). With `--only-strip` (`--only-sheet`) only the strip (the
 //! sheet); with `--print G,X ...` also the strip's edges interpolated at those `(γ, e_n)` pairs
 //! (with `--only-sheet`: `e_S` at those `(γ, α/α_c2)`, and with `--nodes` its located nodes).
 
@@ -29,18 +29,27 @@ fn main() -> anyhow::Result<()> {
         .collect::<Result<Vec<_>, _>>()?;
     let t = std::time::Instant::now();
     if only_sheet {
-        let sheet = oblique_sweep::kink::switch_sheet_surface(gammas, e_range)?;
-        let n = sheet.as_ref().map_or(0, |s| s.traced_nodes());
-        println!("e_S: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
-        if args.iter().any(|s| s == "--nodes") {
-            for (g, r, e) in sheet.iter().flat_map(|s| s.points()) {
-                println!("node {g:.2} {r:.4} {e:.6}");
+        let sheets = oblique_sweep::kink::switch_sheet_surfaces(gammas, e_range)?;
+        let n = sheets
+            .each_ref()
+            .map(|s| s.as_ref().map_or(0, |s| s.traced_nodes()));
+        println!(
+            "e_S: {:.1} s, {} nodes on its upper edges, {} on its lower edges",
+            t.elapsed().as_secs_f64(),
+            n[0],
+            n[1]
+        );
+        for (sheet, edge) in sheets.iter().zip(["upper", "lower"]) {
+            if args.iter().any(|s| s == "--nodes") {
+                for (g, r, e) in sheet.iter().flat_map(|s| s.points()) {
+                    println!("{edge} node {g:.2} {r:.4} {e:.6}");
+                }
             }
-        }
-        for &(g, r) in &points {
-            let alpha = r * oblique_physics::regimes::alpha_c2(g);
-            let e = sheet.as_ref().and_then(|s| s.e_at(g, alpha));
-            println!("{g} {r}: {e:?}");
+            for &(g, r) in &points {
+                let alpha = r * oblique_physics::regimes::alpha_c2(g);
+                let e = sheet.as_ref().and_then(|s| s.e_at(g, alpha));
+                println!("{edge} {g} {r}: {e:?}");
+            }
         }
         return Ok(());
     }
@@ -68,8 +77,15 @@ fn main() -> anyhow::Result<()> {
     let n = e.as_ref().map_or(0, |s| s.traced_nodes());
     println!("E-: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
     let t = std::time::Instant::now();
-    let sheet = oblique_sweep::kink::switch_sheet_surface(gammas, e_range)?;
-    let n = sheet.as_ref().map_or(0, |s| s.traced_nodes());
-    println!("e_S: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
+    let sheets = oblique_sweep::kink::switch_sheet_surfaces(gammas, e_range)?;
+    let n = sheets
+        .each_ref()
+        .map(|s| s.as_ref().map_or(0, |s| s.traced_nodes()));
+    println!(
+        "e_S: {:.1} s, {} nodes on its upper edges, {} on its lower edges",
+        t.elapsed().as_secs_f64(),
+        n[0],
+        n[1]
+    );
     Ok(())
 }

@@ -31,7 +31,8 @@ mod switch_sheet;
 mod thornton;
 
 pub use switch_sheet::{
-    switch_sheet_surface, SwitchSheet, SWITCH_PROBE_OFFSETS, SWITCH_SHEET_STEP, SWITCH_SHEET_STEPS,
+    switch_sheet_surface, switch_sheet_surfaces, SwitchSheet, SWITCH_LOWER_PROBE_OFFSETS,
+    SWITCH_PROBE_OFFSETS, SWITCH_SHEET_STEP, SWITCH_SHEET_STEPS,
 };
 
 pub use interlude::{
@@ -98,9 +99,9 @@ pub trait Kink: std::fmt::Debug + Send + Sync {
 
 /// Whether `nodes.probe_kinks` has kinks to trace for tables of `law`: F₋ and E₋ of every law
 /// (of Thornton's law [`thornton_fold_minus_surface`] and [`thornton_end_minus_surface`], and
-/// the edges of its `+` strip, [`thornton_plus_strip_surfaces`], and its switch sheet,
-/// [`switch_sheet_surface`]; its other kinks in the slip regions, `docs/solver.md`, are knots
-/// or not followed).
+/// the edges of its `+` strip, [`thornton_plus_strip_surfaces`], and the upper and lower
+/// edges of its switch sheet, [`switch_sheet_surfaces`]; its other kinks in the slip regions,
+/// `docs/solver.md`, are knots or not followed).
 pub fn probes_implemented(law: Law) -> bool {
     matches!(law, Law::Elastic | Law::KelvinVoigt | Law::Thornton)
 }
@@ -205,9 +206,9 @@ fn traced_once<T: Clone>(
 /// Thornton's partial-slip patch ([`thornton_fold_minus_surface`]) and its E₋ in both patches
 /// ([`thornton_end_minus_surface`], split by [`end_minus_in_patch`], traced once per `traced`),
 /// the two edges of its `+` strip in both patches ([`thornton_plus_strip_surfaces`], the same
-/// way) and the switch sheet `e_S` across the `e_n` axis of its stick patch
-/// ([`switch_sheet_surface`]); none where the range holds no such kink or the law has none
-/// traced.
+/// way) and the upper and lower edges of the switch sheet `e_S` across the `e_n` axis of its
+/// stick patch ([`switch_sheet_surfaces`]); none where the range holds no such kink or the
+/// law has none traced.
 pub fn trace(
     law: Law,
     kind: PatchKind,
@@ -265,7 +266,10 @@ pub fn trace(
                 out.push(Box::new(end_minus_in_patch(&edge, kind)));
             }
             if kind == PatchKind::Stick {
-                if let Some(s) = switch_sheet_surface(gammas, e_range)? {
+                for s in switch_sheet_surfaces(gammas, e_range)?
+                    .into_iter()
+                    .flatten()
+                {
                     out.push(Box::new(s));
                 }
             }
@@ -1446,6 +1450,44 @@ mod tests {
         assert!(switch_sheet_surface((1.68, 1.72), (0.8, 0.9))
             .unwrap()
             .is_none());
+    }
+
+    /// Where the switch sheet's zone exists in a band of `e_n` (γ 2.28–2.32, `e_n` 0.32–0.45),
+    /// its lower edge is traced as a second sheet, probed on the side above it, and matches the
+    /// edge located directly.
+    #[test]
+    fn thornton_switch_sheet_lower_edge_is_traced_as_a_second_sheet() {
+        let [upper, lower] = switch_sheet_surfaces((2.28, 2.32), (0.32, 0.45)).unwrap();
+        // The upper edges near the range are those of the lower band (far from α_c2, below
+        // the range, within the reach of the tracing), the top band's beyond it.
+        let upper = upper.expect("the lower band's upper edge");
+        assert!(
+            upper.points().iter().all(|&(_, r, e)| e < 0.32 && r > 2.0),
+            "{upper:?}"
+        );
+        let lower = lower.expect("a lower edge");
+        assert_eq!(
+            (lower.name(), lower.offsets(), lower.across_e_n()),
+            ("e_S lower", &SWITCH_LOWER_PROBE_OFFSETS[..], true)
+        );
+        let c2 = |g: f64| oblique_physics::regimes::alpha_c2(g);
+        for (g, r) in [(2.29, 2.0), (2.3, 5.0), (2.31, 9.0)] {
+            let edges =
+                switch_sheet_edges_thornton(g, r * c2(g), (0.3, 0.47), 0.01, SWITCH_SHEET_STEPS)
+                    .unwrap();
+            let direct = edges
+                .iter()
+                .rev()
+                .find(|e| e.1)
+                .expect("a lower edge there")
+                .0;
+            let e = lower.e_n_at(g, r * c2(g)).expect("traced there");
+            assert!((e - direct).abs() < 1e-3, "{g} {r}: {e} vs {direct}");
+        }
+        // Where the band reaches below the range (γ 1.7: the zone from 0.3 up to about 0.52),
+        // no lower edge.
+        let [upper, lower] = switch_sheet_surfaces((1.68, 1.72), (0.45, 0.55)).unwrap();
+        assert!(upper.is_some() && lower.is_none());
     }
 
     /// The edges of Thornton's `+` strip for the probes: two surfaces that match the edges

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use super::{lagrange_weights, local_stencil, Kink};
 use crate::SweepError;
 use oblique_physics::regimes::alpha_c2;
-use oblique_solver::history::{has_switch_zone_thornton, switch_sheet_thornton};
+use oblique_solver::history::switch_sheet_edges_thornton;
 use oblique_table::surface::PatchKind;
 
 /// Spacing of the traced columns in γ.
@@ -34,6 +34,8 @@ pub const SWITCH_SHEET_STEPS: usize = 2048;
 /// Where a cell next to `e_S` is measured on each line of nodes along `e_n`, in node intervals
 /// from it along `e_n`: `P` departs below it.
 pub const SWITCH_PROBE_OFFSETS: [f64; 4] = [-1.0, -0.5, 0.0, 0.5];
+/// The same next to a lower edge of the sheet, where `P` departs above it.
+pub const SWITCH_LOWER_PROBE_OFFSETS: [f64; 4] = [-0.5, 0.0, 0.5, 1.0];
 
 /// The switch sheet over a γ range ([`switch_sheet_surface`]): `e_S` on a grid of γ (spacing
 /// [`SWITCH_SHEET_STEP`]) and `s = α_c2/α`, interpolated along γ on each `s` node, then across
@@ -45,8 +47,10 @@ pub struct SwitchSheet {
     step: f64,
     n_gamma: usize,
     /// `e_S` of node `(i, j)` (γ = `gamma_0 + i step`, `s = 1 − j/(S_NODES − 1)`) at
-    /// `i S_NODES + j`; NaN where no falling edge of the zone lies in the range looked at.
+    /// `i S_NODES + j`; NaN where no such edge of the zone lies in the range looked at.
     values: Vec<f64>,
+    /// Whether this is the lower edge of a band (the zone exists above it), else the upper.
+    lower: bool,
 }
 
 impl SwitchSheet {
@@ -114,7 +118,11 @@ impl SwitchSheet {
 
 impl Kink for SwitchSheet {
     fn name(&self) -> &'static str {
-        "e_S"
+        if self.lower {
+            "e_S lower"
+        } else {
+            "e_S"
+        }
     }
 
     fn patch(&self) -> PatchKind {
@@ -134,18 +142,32 @@ impl Kink for SwitchSheet {
     }
 
     fn offsets(&self) -> &'static [f64] {
-        &SWITCH_PROBE_OFFSETS
+        if self.lower {
+            &SWITCH_LOWER_PROBE_OFFSETS
+        } else {
+            &SWITCH_PROBE_OFFSETS
+        }
     }
 }
 
-/// The switch sheet of Thornton's stick patch over `gammas` × `e_range` ([`SwitchSheet`]):
-/// columns of γ multiples of [`SWITCH_SHEET_STEP`] from one below `γ_lo` (at least 1) to one
-/// beyond `γ_hi`, each node located by [`falling_edge`] within [`REACH`] of the `e_n` range,
-/// the nodes in parallel. `None` where no node holds it.
+/// The switch sheet of Thornton's stick patch over `gammas` × `e_range` ([`SwitchSheet`]): its
+/// upper edge ([`switch_sheet_surfaces`]); `None` where no node holds it.
 pub fn switch_sheet_surface(
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+) -> Result<Option<SwitchSheet>, SweepError> {
+    let [upper, _] = switch_sheet_surfaces(gammas, e_range)?;
+    Ok(upper)
+}
+
+/// The upper and the lower edge of the switch sheet of Thornton's stick patch over `gammas` ×
+/// `e_range` ([`SwitchSheet`]): columns of γ multiples of [`SWITCH_SHEET_STEP`] from one below
+/// `γ_lo` (at least 1) to one beyond `γ_hi`, at each node the edges within [`REACH`] of the
+/// `e_n` range ([`edges_at`]), the nodes in parallel. Each `None` where no node holds it.
+pub fn switch_sheet_surfaces(
     (gamma_lo, gamma_hi): (f64, f64),
     (e_lo, e_hi): (f64, f64),
-) -> Result<Option<SwitchSheet>, SweepError> {
+) -> Result<[Option<SwitchSheet>; 2], SweepError> {
     let h = SWITCH_SHEET_STEP;
     let i_lo = ((gamma_lo / h - 1e-9).floor() as i64 - 1).max((1.0 / h).round() as i64);
     let i_hi = (gamma_hi / h + 1e-9).ceil() as i64 + 1;
@@ -154,28 +176,32 @@ pub fn switch_sheet_surface(
         (e_hi + REACH).min(E_TOP),
     );
     if i_hi < i_lo + 1 || range.0 >= range.1 {
-        return Ok(None);
+        return Ok([None, None]);
     }
     let n_gamma = (i_hi - i_lo + 1) as usize;
-    let values = (0..n_gamma * S_NODES)
+    let edges = (0..n_gamma * S_NODES)
         .into_par_iter()
         .map(|n| {
             let gamma = (i_lo + (n / S_NODES) as i64) as f64 * h;
             let alpha = node_ratio(n % S_NODES) * alpha_c2(gamma);
-            falling_edge(gamma, alpha, range).map_err(|e| SweepError::Kink {
+            edges_at(gamma, alpha, range).map_err(|e| SweepError::Kink {
                 curve: "e_S",
                 gamma,
                 what: format!("at alpha = {alpha}: {e}"),
             })
         })
-        .collect::<Result<Vec<f64>, SweepError>>()?;
-    let sheet = SwitchSheet {
-        gamma_0: i_lo as f64 * h,
-        step: h,
-        n_gamma,
-        values,
+        .collect::<Result<Vec<[f64; 2]>, SweepError>>()?;
+    let sheet = |k: usize| {
+        let sheet = SwitchSheet {
+            gamma_0: i_lo as f64 * h,
+            step: h,
+            n_gamma,
+            values: edges.iter().map(|e| e[k]).collect(),
+            lower: k == 1,
+        };
+        (sheet.traced_nodes() > 0).then_some(sheet)
     };
-    Ok((sheet.traced_nodes() > 0).then_some(sheet))
+    Ok([sheet(0), sheet(1)])
 }
 
 /// `α/α_c2` of node `j` of a column: `1/s` with `s = 1 − j/(S_NODES − 1)`, within
@@ -189,34 +215,23 @@ fn node_ratio(j: usize) -> f64 {
 /// jump).
 const E_TOP: f64 = 0.999;
 
-/// The highest `e_n` in `range` where the switch zone ([`has_switch_zone_thornton`]) stops
-/// holding as `e_n` grows: a scan of [`SCAN_STEP`] down from the top of the range brackets
-/// it, `switch_sheet_thornton` bisects it to 1e-9; NaN where the scan finds none (the zone holds at the top of the range,
-/// or nowhere in it).
-fn falling_edge(
+/// The highest upper edge and the highest lower edge of the switch sheet in `range` (NaN where
+/// there is none): the edges where the switch zone appears or ceases as `e_n` grows,
+/// bracketed by a scan of [`SCAN_STEP`] and bisected to 1e-9
+/// (`switch_sheet_edges_thornton`). The upper edge is the one the scan from the top found
+/// first before lower edges were traced, to the bit.
+fn edges_at(
     gamma: f64,
     alpha: f64,
-    (lo, hi): (f64, f64),
-) -> Result<f64, oblique_solver::PhysicsError> {
-    let n = ((hi - lo) / SCAN_STEP).ceil().max(1.0) as usize;
-    let e = |k: usize| {
-        if k == n {
-            hi
-        } else {
-            lo + (hi - lo) * k as f64 / n as f64
-        }
+    range: (f64, f64),
+) -> Result<[f64; 2], oblique_solver::PhysicsError> {
+    let edges = switch_sheet_edges_thornton(gamma, alpha, range, SCAN_STEP, SWITCH_SHEET_STEPS)?;
+    let highest = |lower: bool| {
+        edges
+            .iter()
+            .rev()
+            .find(|&&(_, above)| above == lower)
+            .map_or(f64::NAN, |&(e, _)| e)
     };
-    let holds = |k: usize| has_switch_zone_thornton(gamma, alpha, e(k), SWITCH_SHEET_STEPS);
-    // Down from the top: the first bracket where the zone holds below and not above is the
-    // highest one.
-    let mut above = holds(n)?;
-    for k in (0..n).rev() {
-        let here = holds(k)?;
-        if here && !above {
-            let edge = switch_sheet_thornton(gamma, alpha, (e(k), e(k + 1)), SWITCH_SHEET_STEPS)?;
-            return Ok(edge.unwrap_or(f64::NAN));
-        }
-        above = here;
-    }
-    Ok(f64::NAN)
+    Ok([highest(false), highest(true)])
 }
