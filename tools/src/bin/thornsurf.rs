@@ -27,18 +27,8 @@ fn main() -> anyhow::Result<()> {
         .skip(1)
         .map(|s| oblique_tools::point(s))
         .collect::<Result<Vec<_>, _>>()?;
-    let t = std::time::Instant::now();
     if only_sheet {
-        let sheets = oblique_sweep::kink::switch_sheet_surfaces(gammas, e_range)?;
-        let n = sheets
-            .each_ref()
-            .map(|s| s.as_ref().map_or(0, |s| s.traced_nodes()));
-        println!(
-            "e_S: {:.1} s, {} nodes on its upper edges, {} on its lower edges",
-            t.elapsed().as_secs_f64(),
-            n[0],
-            n[1]
-        );
+        let sheets = switch_sheet(gammas, e_range)?;
         for (sheet, edge) in sheets.iter().zip(["upper", "lower"]) {
             if args.iter().any(|s| s == "--nodes") {
                 for (g, r, e) in sheet.iter().flat_map(|s| s.points()) {
@@ -53,6 +43,7 @@ fn main() -> anyhow::Result<()> {
         }
         return Ok(());
     }
+    let t = std::time::Instant::now();
     let strip = oblique_sweep::kink::thornton_plus_strip_surfaces(gammas, e_range)?;
     for (edge, name) in strip.iter().zip(["F+lo", "F+hi"]) {
         let n = edge.as_ref().map_or(0, |s| s.traced_nodes());
@@ -76,6 +67,16 @@ fn main() -> anyhow::Result<()> {
     let e = oblique_sweep::kink::thornton_end_minus_surface(gammas, e_range)?;
     let n = e.as_ref().map_or(0, |s| s.traced_nodes());
     println!("E-: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
+    switch_sheet(gammas, e_range)?;
+    Ok(())
+}
+
+/// The upper and lower edges of the switch sheet over the range, with the time they took and
+/// their located nodes printed.
+fn switch_sheet(
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+) -> anyhow::Result<[Option<oblique_sweep::kink::SwitchSheet>; 2]> {
     let t = std::time::Instant::now();
     let sheets = oblique_sweep::kink::switch_sheet_surfaces(gammas, e_range)?;
     let n = sheets
@@ -87,5 +88,5 @@ fn main() -> anyhow::Result<()> {
         n[0],
         n[1]
     );
-    Ok(())
+    Ok(sheets)
 }
