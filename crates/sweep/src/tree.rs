@@ -836,11 +836,19 @@ pub(crate) fn build_patch(
                 roots_gamma(cfg, spec),
                 cfg.nodes.blocks_e_n.unwrap_or(1),
             );
+            let tracing = |what: &str| {
+                progress.phase(
+                    STAGE_KNOTS,
+                    &format!("{what} for the knots of {}", spec.name),
+                )
+            };
             if spec.kind == PatchKind::Stick {
                 let alpha_max = cfg.domain.alpha_max;
                 knots::loading_fold_knots(gammas, bg, e_range, be, alpha_max)?
             } else if cfg.law() == oblique_solver::Law::Thornton {
+                tracing("the edges of the + strip");
                 let strip = kink::plus_strip(&mut run.traced, gammas, e_range)?;
+                tracing("alpha_R, 2/7 and alpha_S");
                 knots::thornton_knots(gammas, bg, e_range, be, Some(&strip))?
             } else {
                 let bc = cfg.nodes.blocks_coord;
@@ -868,6 +876,12 @@ pub(crate) fn build_patch(
             (spec.gamma_lo, spec.gamma_hi),
             e_range,
             &mut run.traced,
+            &|what| {
+                progress.phase(
+                    STAGE_KINKS,
+                    &format!("{what} for the probes of {}", spec.name),
+                )
+            },
         )?
     } else {
         Vec::new()

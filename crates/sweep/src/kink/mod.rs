@@ -208,35 +208,42 @@ fn traced_once<T: Clone>(
 /// the two edges of its `+` strip in both patches ([`thornton_plus_strip_surfaces`], the same
 /// way) and the upper and lower edges of the switch sheet `e_S` across the `e_n` axis of its
 /// stick patch ([`switch_sheet_surfaces`]); none where the range holds no such kink or the
-/// law has none traced.
+/// law has none traced. `tracing` is told the name of each kink before it is traced (a
+/// surface can take minutes over a wide range).
 pub fn trace(
     law: Law,
     kind: PatchKind,
     gammas: (f64, f64),
     e_range: Option<(f64, f64)>,
     traced: &mut Traced,
+    tracing: &dyn Fn(&str),
 ) -> Result<Vec<Box<dyn Kink>>, SweepError> {
     let mut out: Vec<Box<dyn Kink>> = Vec::new();
     match (law, kind, e_range) {
         (Law::Elastic, PatchKind::PartialSlip, None) => {
+            tracing("F-");
             if let Some(c) = fold_minus_curve(gammas.0, gammas.1)? {
                 out.push(Box::new(c));
             }
+            tracing("E-");
             if let Some(c) = traced.end_minus_curve(kind, gammas)? {
                 out.push(Box::new(c));
             }
         }
         (Law::Elastic, PatchKind::Stick, None) => {
+            tracing("E-");
             if let Some(c) = traced.end_minus_curve(kind, gammas)? {
                 out.push(Box::new(c));
             }
         }
         (Law::KelvinVoigt, _, Some(e_range)) => {
             if kind == PatchKind::PartialSlip {
+                tracing("F-");
                 if let Some(s) = fold_minus_surface(gammas, e_range)? {
                     out.push(Box::new(s));
                 }
             }
+            tracing("E-");
             let full = traced_once(&mut traced.end_minus, (gammas, e_range), || {
                 end_minus_surface(gammas, e_range, kind)
             })?;
@@ -244,6 +251,7 @@ pub fn trace(
                 out.push(Box::new(end_minus_in_patch(&full, kind)));
             }
             if kind == PatchKind::PartialSlip {
+                tracing("I+");
                 if let Some(s) = interlude_sheet(gammas, e_range)? {
                     out.push(Box::new(s));
                 }
@@ -251,21 +259,25 @@ pub fn trace(
         }
         (Law::Thornton, _, Some(e_range)) => {
             if kind == PatchKind::PartialSlip {
+                tracing("F-");
                 if let Some(s) = thornton_fold_minus_surface(gammas, e_range)? {
                     out.push(Box::new(s));
                 }
             }
+            tracing("E-");
             let full = traced_once(&mut traced.end_minus_thornton, (gammas, e_range), || {
                 thornton_end_minus_surface(gammas, e_range)
             })?;
             if let Some(full) = full {
                 out.push(Box::new(end_minus_in_patch(&full, kind)));
             }
+            tracing("the edges of the + strip");
             let strip = plus_strip(traced, gammas, e_range)?;
             for edge in strip.into_iter().flatten() {
                 out.push(Box::new(end_minus_in_patch(&edge, kind)));
             }
             if kind == PatchKind::Stick {
+                tracing("the edges of the switch sheet e_S");
                 for s in switch_sheet_surfaces(gammas, e_range)?
                     .into_iter()
                     .flatten()
@@ -1534,6 +1546,7 @@ mod tests {
             (2.28, 2.34),
             Some((0.55, 0.65)),
             &mut Traced::default(),
+            &|_| {},
         )
         .unwrap();
         // F₋, E₋ (below it here, α_E ≈ 0.44–0.50) and the edges of the `+` strip (its part
@@ -1593,7 +1606,7 @@ mod tests {
                 (1.0, 1.2),
             ),
         ] {
-            let k = trace(law, kind, g, e, &mut Traced::default()).unwrap();
+            let k = trace(law, kind, g, e, &mut Traced::default(), &|_| {}).unwrap();
             assert!(k.is_empty(), "{law:?}");
         }
         // Its stick patch there: only the switch sheet, at a few nodes next to α_c2 near γ 1
@@ -1604,6 +1617,7 @@ mod tests {
             (1.0, 1.2),
             Some((0.95, 1.0)),
             &mut Traced::default(),
+            &|_| {},
         )
         .unwrap();
         assert!(k.iter().all(|k| k.name() == "e_S"));
@@ -1624,6 +1638,7 @@ mod tests {
             (2.4, 2.6),
             e,
             &mut traced,
+            &|_| {},
         );
         let k = k.unwrap();
         let names: Vec<_> = k.iter().map(|k| (k.name(), k.patch())).collect();
@@ -1635,6 +1650,7 @@ mod tests {
             (2.4, 2.6),
             e,
             &mut traced,
+            &|_| {},
         )
         .unwrap();
         assert_eq!(stick[0].alpha(2.5, 0.7), None);
@@ -1644,6 +1660,7 @@ mod tests {
             (2.4, 2.45),
             None,
             &mut traced,
+            &|_| {},
         )
         .unwrap();
         assert_eq!(elastic.len(), 1);
@@ -1656,7 +1673,7 @@ mod tests {
         assert_eq!(elastic[0].alpha(2.42, 0.99), None);
         // E₋ in both patches of an elastic table below F₋'s birth.
         for kind in [PatchKind::Stick, PatchKind::PartialSlip] {
-            let k = trace(Law::Elastic, kind, (1.85, 2.0), None, &mut traced).unwrap();
+            let k = trace(Law::Elastic, kind, (1.85, 2.0), None, &mut traced, &|_| {}).unwrap();
             let names: Vec<_> = k.iter().map(|k| (k.name(), k.patch())).collect();
             assert_eq!(names, [("E-", kind)]);
         }
