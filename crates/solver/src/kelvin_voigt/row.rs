@@ -849,7 +849,12 @@ impl ViscoelasticRow {
         if finite {
             self.relax(&up);
         }
-        let center = self.center(c, up.load0);
+        // Read only where the contact vanishes without a limit.
+        let center = if finite {
+            0.0
+        } else {
+            self.center(c, up.load0)
+        };
         self.offset += dw;
         let w = self.offset;
         let count = self.chunks.len();
