@@ -189,7 +189,9 @@ impl PieceChunk for Chunk {
             self.sums.remove(&p);
         }
     }
-    #[inline]
+    // Every truncation and every merge at the outer end (`#[inline]` alone left it a call, as
+    // in the elastic row).
+    #[inline(always)]
     fn replace_last(&mut self, old: &Piece) {
         if let Some(p) = self.pieces.last() {
             self.sums.remove(old);
@@ -971,11 +973,11 @@ impl ViscoelasticRow {
                 let kind = if s > 0.0 { Kind::Plus } else { Kind::Minus };
                 let abq = (self.entry[sign_index(kind)], 0.0, 0.0);
                 let slip = piece(kind, y0, y1, b0, abq, c, r);
-                self.release(slip, up, &mut out, None);
+                self.release(&slip, up, &mut out, None);
             } else {
                 let abq = (k1 - k2 - w, (2.0 * k2 - k1) / span, -k2 / (span * span));
                 let stuck = piece(Kind::Stuck, y0, y1, b0, abq, c, r);
-                self.clip(stuck, up, &mut out);
+                self.clip(&stuck, up, &mut out);
             }
         }
         // Into the last chunk with its sums updated in place (a whole re-summation per step
@@ -1092,9 +1094,9 @@ impl ViscoelasticRow {
         while let Some(p) = old.get(i) {
             if !unchanged(p) {
                 if p.kind == Kind::Stuck {
-                    self.clip(*p, up, &mut out);
+                    self.clip(p, up, &mut out);
                 } else {
-                    self.release(*p, up, &mut out, None);
+                    self.release(p, up, &mut out, None);
                 }
                 changed_end = out.len();
                 i += 1;
@@ -1152,7 +1154,7 @@ impl ViscoelasticRow {
     /// error is O(h³).
     fn release(
         &mut self,
-        p: Piece,
+        p: &Piece,
         up: &Update,
         out: &mut Vec<Piece>,
         start: Option<(f64, f64, f64)>,
@@ -1169,7 +1171,7 @@ impl ViscoelasticRow {
             f.actual(p.upper) + up.viscous < 0.0
         };
         if whole {
-            push_slip(out, p, c, r);
+            push_slip(out, *p, c, r);
             return;
         }
         let start = start.unwrap_or_else(|| {
@@ -1225,7 +1227,7 @@ impl ViscoelasticRow {
                         e * start.2,
                     );
                     let stuck = piece(Kind::Stuck, lo, hi, p.y_ref, abq, c, r);
-                    self.clip(stuck, up, out);
+                    self.clip(&stuck, up, out);
                 }
             }
             lo = hi;
@@ -1238,14 +1240,14 @@ impl ViscoelasticRow {
 
     /// Clip a stuck piece (after the increment) against `|u + τẇ₁| ≤ c (D₁ − y)`: the parts
     /// outside start to slip with `δ = u − s c (D₁ − y)`.
-    fn clip(&mut self, p: Piece, up: &Update, out: &mut Vec<Piece>) {
+    fn clip(&mut self, p: &Piece, up: &Update, out: &mut Vec<Piece>) {
         let r = self.radius;
         let c = up.c;
         if p.x1 <= p.x0 {
             return;
         }
         if !c.is_finite() {
-            out.push(p);
+            out.push(*p);
             return;
         }
         let w = self.offset;
@@ -1271,7 +1273,7 @@ impl ViscoelasticRow {
                     Kind::Stuck
                 };
                 let part = match kind {
-                    Kind::Stuck if lo == p.y0 && hi == p.y1 => p,
+                    Kind::Stuck if lo == p.y0 && hi == p.y1 => *p,
                     Kind::Stuck => piece(kind, lo, hi, p.y_ref, (p.a, p.b, p.q), c, r),
                     _ => {
                         // The part starts to slip at t* where s (u + τẇ) = c (D − y) (at its
