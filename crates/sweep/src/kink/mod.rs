@@ -31,8 +31,8 @@ mod switch_sheet;
 mod thornton;
 
 pub use switch_sheet::{
-    switch_sheet_surface, switch_sheet_surfaces, SwitchSheet, SWITCH_LOWER_PROBE_OFFSETS,
-    SWITCH_PROBE_OFFSETS, SWITCH_SHEET_STEP, SWITCH_SHEET_STEPS,
+    switch_sheet_surfaces, SwitchSheet, SWITCH_LOWER_PROBE_OFFSETS, SWITCH_PROBE_OFFSETS,
+    SWITCH_SHEET_STEP, SWITCH_SHEET_STEPS,
 };
 
 pub use interlude::{
@@ -1441,9 +1441,8 @@ mod tests {
     /// there), nothing below `α_c2`, and nothing for a range the sheet does not reach.
     #[test]
     fn thornton_switch_sheet_is_traced_across_e_n() {
-        let s = switch_sheet_surface((1.68, 1.72), (0.45, 0.55))
-            .unwrap()
-            .expect("a sheet");
+        let [s, _] = switch_sheet_surfaces((1.68, 1.72), (0.45, 0.55)).unwrap();
+        let s = s.expect("a sheet");
         assert_eq!(
             (s.name(), s.patch(), s.across_e_n(), s.alpha(1.7, 0.5)),
             ("e_S", PatchKind::Stick, true, None)
@@ -1459,9 +1458,8 @@ mod tests {
         let at_infinity = s.e_at(1.7, f64::INFINITY).expect("alpha = inf");
         assert!((0.45..0.55).contains(&at_infinity), "{at_infinity}");
         assert_eq!(s.e_at(1.7, 0.5 * c2(1.7)), None);
-        assert!(switch_sheet_surface((1.68, 1.72), (0.8, 0.9))
-            .unwrap()
-            .is_none());
+        let [upper, _] = switch_sheet_surfaces((1.68, 1.72), (0.8, 0.9)).unwrap();
+        assert!(upper.is_none());
     }
 
     /// Where the switch sheet's zone exists in a band of `e_n` (γ 2.26–2.34, `e_n` 0.31–0.41),
@@ -1621,7 +1619,7 @@ mod tests {
         )
         .unwrap();
         assert!(k.iter().all(|k| k.name() == "e_S"));
-        let sheet = switch_sheet_surface((1.0, 1.2), (0.95, 1.0)).unwrap();
+        let [sheet, _] = switch_sheet_surfaces((1.0, 1.2), (0.95, 1.0)).unwrap();
         for (g, r, _) in sheet.iter().flat_map(|s| s.points()) {
             assert!(g <= 1.06 + 1e-9 && r < 1.06, "{g} {r}");
         }

@@ -37,9 +37,9 @@ pub const SWITCH_PROBE_OFFSETS: [f64; 4] = [-1.0, -0.5, 0.0, 0.5];
 /// The same next to a lower edge of the sheet, where `P` departs above it.
 pub const SWITCH_LOWER_PROBE_OFFSETS: [f64; 4] = [-0.5, 0.0, 0.5, 1.0];
 
-/// The switch sheet over a γ range ([`switch_sheet_surface`]): `e_S` on a grid of γ (spacing
-/// [`SWITCH_SHEET_STEP`]) and `s = α_c2/α`, interpolated along γ on each `s` node, then across
-/// them (Lagrange, up to 4 points each, fewer at the edge of the located nodes); a [`Kink`]
+/// One edge of the switch sheet over a γ range ([`switch_sheet_surfaces`]): `e_S` on a grid of
+/// γ (spacing [`SWITCH_SHEET_STEP`]) and `s = α_c2/α`, interpolated along γ on each `s` node,
+/// then across them (Lagrange, up to 4 points each, fewer at the edge of the located nodes); a [`Kink`]
 /// across the `e_n` axis of the stick patch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SwitchSheet {
@@ -148,16 +148,6 @@ impl Kink for SwitchSheet {
             &SWITCH_PROBE_OFFSETS
         }
     }
-}
-
-/// The switch sheet of Thornton's stick patch over `gammas` × `e_range` ([`SwitchSheet`]): its
-/// upper edge ([`switch_sheet_surfaces`]); `None` where no node holds it.
-pub fn switch_sheet_surface(
-    gammas: (f64, f64),
-    e_range: (f64, f64),
-) -> Result<Option<SwitchSheet>, SweepError> {
-    let [upper, _] = switch_sheet_surfaces(gammas, e_range)?;
-    Ok(upper)
 }
 
 /// The upper and the lower edge of the switch sheet of Thornton's stick patch over `gammas` ×
