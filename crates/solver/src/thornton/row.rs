@@ -760,7 +760,7 @@ impl ThorntonRow {
 
     /// Drop everything at `y ≥ top` (springs leaving contact drop their state).
     fn truncate(&mut self, top: f64) {
-        let line = self.line;
+        let (line, radius) = (self.line, self.radius);
         while self
             .chunks
             .last()
@@ -773,34 +773,40 @@ impl ThorntonRow {
         if k == 0 {
             return;
         }
-        let needs = self.chunks[k - 1].pieces.last().is_some_and(|p| p.y1 > top);
-        if needs {
-            let chunk = &mut self.chunks[k - 1];
-            // Where only pieces at a limit are cut or dropped, the stuck pieces' sums hold: the
-            // chunk is cut in place (its signs counted again).
-            let from = chunk.pieces.partition_point(|p| p.y1 <= top);
-            if chunk.pieces[from..].iter().all(|p| p.kind != Kind::Stuck) {
-                chunk.pieces.retain(|p| p.y0 < top);
-                if let Some(last) = chunk.pieces.last_mut() {
-                    if last.y1 > top {
-                        *last = last.part(last.y0, top, &line, self.radius);
-                    }
-                }
-                chunk.signs = [Kind::Plus, Kind::Minus]
-                    .map(|kind| chunk.pieces.iter().any(|p| p.kind == kind));
-                self.dirty = self.dirty.min(k - 1);
-                return;
-            }
-            let mut pieces = std::mem::take(&mut self.chunks[k - 1].pieces);
-            pieces.retain(|p| p.y0 < top);
-            if let Some(last) = pieces.last_mut() {
-                if last.y1 > top {
-                    *last = last.part(last.y0, top, &line, self.radius);
-                }
-            }
-            let s = self.chunks[k - 1].slope;
-            self.install(k - 1, pieces, s);
+        let chunk = &mut self.chunks[k - 1];
+        if chunk.pieces.last().is_none_or(|p| p.y1 <= top) {
+            return;
         }
+        // The pieces from `from` on are cut (the first, where it starts below `top`) or
+        // dropped. Their shares of the stuck pieces' sums are taken out and the cut piece's
+        // added: O(1) a step instead of counting the chunk again (every step of the
+        // restitution cuts the outermost stuck piece). The bounds are left as they are: still
+        // bounds.
+        let from = chunk.pieces.partition_point(|p| p.y1 <= top);
+        for p in chunk.pieces[from..]
+            .iter()
+            .filter(|p| p.kind == Kind::Stuck)
+        {
+            chunk.stuck_length -= p.x1 - p.x0;
+            chunk.rel -= p.rel;
+        }
+        let keep = chunk.pieces.partition_point(|p| p.y0 < top);
+        chunk.pieces.truncate(keep);
+        if keep > from {
+            let mut cut = chunk.pieces[from].part(chunk.pieces[from].y0, top, &line, radius);
+            if cut.kind == Kind::Stuck {
+                chunk.count(&mut cut);
+            }
+            chunk.pieces[from] = cut;
+        }
+        if chunk.pieces.iter().all(|p| p.kind != Kind::Stuck) {
+            // Exactly nothing, not the rounding the subtractions left.
+            chunk.stuck_length = 0.0;
+            chunk.rel = 0.0;
+        }
+        chunk.signs =
+            [Kind::Plus, Kind::Minus].map(|kind| chunk.pieces.iter().any(|p| p.kind == kind));
+        self.dirty = self.dirty.min(k - 1);
     }
 
     /// Whether some piece sits at the `+` / `−` limit.

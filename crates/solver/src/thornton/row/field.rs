@@ -370,7 +370,12 @@ impl Chunk {
     pub(super) fn count(&mut self, p: &mut Piece) {
         if p.kind == Kind::Stuck {
             if p.slope != self.slope {
-                *p = p.bounded(self.slope);
+                if self.slope.is_finite() {
+                    *p = p.bounded(self.slope);
+                } else {
+                    // Without slip (`c = ∞`) no limit is ever tested: no bounds to compute.
+                    p.slope = self.slope;
+                }
             }
             self.stuck_length += p.x1 - p.x0;
             self.rel += p.rel;
