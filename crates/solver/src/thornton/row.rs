@@ -608,7 +608,7 @@ impl ThorntonRow {
         self.cuts.clear();
         let mut p = p;
         // `None`: the crossings are found (a quadratic against a line); else whether the `+` /
-        // `−` limit may be crossed, to be searched.
+        // `−` limit may be crossed, to be searched, and the limit at the piece's ends.
         let general = if lim.linear_from(p.y0) {
             // Linear limits ±s (D − y): the piece's bounds for slope s decide most steps.
             if p.slope != lim.c {
@@ -639,7 +639,7 @@ impl ThorntonRow {
                 }
                 None
             } else {
-                Some(sides)
+                Some((sides, (lim.at(p.y0), lim.at(p.y1))))
             }
         } else {
             // A curved limit: above its smallest value on the piece, and above its chord (it
@@ -652,11 +652,8 @@ impl ThorntonRow {
                 return;
             }
             let span = p.y1 - p.y0;
-            let s = if span > 0.0 {
-                (lim.at(p.y0) - floor) / span
-            } else {
-                0.0
-            };
+            let l0 = lim.at(p.y0);
+            let s = if span > 0.0 { (l0 - floor) / span } else { 0.0 };
             let (upper, lower) = p.bounds(s);
             let top = floor + s * p.y1;
             // Each limit is crossed only where neither its floor nor its chord says otherwise.
@@ -669,9 +666,9 @@ impl ThorntonRow {
                 out.push(p);
                 return;
             }
-            Some(sides)
+            Some((sides, (l0, floor)))
         };
-        if let Some((plus_side, minus_side)) = general {
+        if let Some(((plus_side, minus_side), ends)) = general {
             let kinks = [
                 p.top - line.yield_indentation,
                 lim.reach - lim.line.yield_indentation,
@@ -702,13 +699,17 @@ impl ThorntonRow {
                 (low, high)
             };
             let mut cuts = std::mem::take(&mut self.cuts);
+            // The gaps' values at the piece's ends, from the piece's and the limit's values
+            // there (the same doubles as the closures give).
+            let (v0, v1) = p.end_values();
+            let (l0, l1) = ends;
             if plus_side {
                 let plus = |y: f64| w + p.value(y, &line) - lim.at(y);
                 crossings(
                     &plus,
                     &|a, b| curvature(a, b, 1.0),
-                    p.y0,
-                    p.y1,
+                    (p.y0, w + v0 - l0),
+                    (p.y1, w + v1 - l1),
                     &kinks,
                     &mut cuts,
                 );
@@ -718,8 +719,8 @@ impl ThorntonRow {
                 crossings(
                     &minus,
                     &|a, b| curvature(a, b, -1.0),
-                    p.y0,
-                    p.y1,
+                    (p.y0, w + v0 + l0),
+                    (p.y1, w + v1 + l1),
                     &kinks,
                     &mut cuts,
                 );
@@ -827,6 +828,7 @@ impl ThorntonRow {
     }
 
     /// `∫₀^a ũ dx` (m²) of the field under the limit `lim`.
+    #[inline(never)]
     fn integral(&self, lim: &Limit) -> f64 {
         let w = self.offset;
         let mut total = 0.0;

@@ -215,6 +215,21 @@ impl Piece {
         }
     }
 
+    /// `ũ − W` of a stuck piece at `y0` and at `y1`: [`Piece::value`] there, the curved part
+    /// taken from [`Piece::curve`] (the same doubles, without its arctangents).
+    pub(super) fn end_values(&self) -> (f64, f64) {
+        let at = |y: f64, curved: f64| {
+            let z = y - self.y_ref;
+            let quad = self.a + z * (self.b + self.q * z);
+            if self.k == 0.0 {
+                quad
+            } else {
+                quad + curved
+            }
+        };
+        (at(self.y0, self.curve[0]), at(self.y1, self.curve[1]))
+    }
+
     /// `∫ (ũ − W) dx` over a stuck piece (m²).
     pub(super) fn integral(&self, line: &Truncated, radius: f64) -> f64 {
         let dx = self.x1 - self.x0;
@@ -367,6 +382,7 @@ impl Chunk {
     }
 
     /// Add a piece's share to the sums (a stuck piece bounded for the chunk's slope first).
+    #[inline]
     pub(super) fn count(&mut self, p: &mut Piece) {
         if p.kind == Kind::Stuck {
             if p.slope != self.slope {
@@ -538,12 +554,13 @@ pub(super) fn front(lim: &Limit, rate: f64, u: f64) -> f64 {
 ///   `2⁻⁴⁰` of the stretch wide (judged by its ends).
 ///
 /// Each bracket is closed to the rounding ([`bisect`]); exact zeros met inside `(y0, y1)` are
-/// kept as they are. At most [`BUDGET`] evaluations of `f` per stretch refine it.
+/// kept as they are. At most [`BUDGET`] evaluations of `f` per stretch refine it. The ends come
+/// with their values, `(y0, f(y0))` and `(y1, f(y1))`, which the caller mostly has at hand.
 pub(super) fn crossings(
     f: &dyn Fn(f64) -> f64,
     curvature: &dyn Fn(f64, f64) -> (f64, f64),
-    y0: f64,
-    y1: f64,
+    (y0, f0): (f64, f64),
+    (y1, f1): (f64, f64),
     kinks: &[f64],
     out: &mut Vec<f64>,
 ) {
@@ -558,13 +575,13 @@ pub(super) fn crossings(
     ends[n] = y1;
     let ends = &mut ends[..=n];
     ends.sort_by(f64::total_cmp);
-    let mut start = (y0, f(y0));
+    let mut start = (y0, f0);
     for pair in ends.windows(2) {
         let (a, b) = (pair[0], pair[1]);
         if b <= a {
             continue;
         }
-        let end = (b, f(b));
+        let end = (b, if b == y1 { f1 } else { f(b) });
         let mut search = Search {
             f,
             curvature,
@@ -820,7 +837,8 @@ mod tests {
             f(y)
         };
         let mut out = Vec::new();
-        crossings(&counted, curvature, y0, y1, kinks, &mut out);
+        let ends = ((y0, counted(y0)), (y1, counted(y1)));
+        crossings(&counted, curvature, ends.0, ends.1, kinks, &mut out);
         out.sort_by(f64::total_cmp);
         (out, calls.get())
     }
