@@ -381,7 +381,7 @@ impl ThorntonRow {
                     continue;
                 }
                 match p.kind {
-                    Kind::Stuck => self.clip(*p, &lim1, &mut pieces),
+                    Kind::Stuck => self.clip(p, &lim1, &mut pieces),
                     Kind::Plus | Kind::Minus => {
                         self.slip(*p, (&lim0, &lim1), rates, m, w_old, &mut pieces);
                     }
@@ -410,7 +410,7 @@ impl ThorntonRow {
             );
             let mut out = std::mem::take(&mut self.spare);
             out.clear();
-            self.clip(entry, &lim1, &mut out);
+            self.clip(&entry, &lim1, &mut out);
             // Into the last chunk while it has room.
             let last = self.chunks.len();
             if last > 0 && self.chunks[last - 1].pieces.len() + out.len() <= CHUNK_MAX {
@@ -502,7 +502,7 @@ impl ThorntonRow {
                     )
                 }
             };
-            self.clip(stuck, &new_limit, &mut out);
+            self.clip(&stuck, &new_limit, &mut out);
         }
         self.chunks.push(Chunk::default());
         self.install(0, out, new_limit.c);
@@ -587,7 +587,7 @@ impl ThorntonRow {
                     &self.line,
                     self.radius,
                 );
-                self.clip(stuck, lim1, out);
+                self.clip(&stuck, lim1, out);
             }
             lo = hi;
         }
@@ -595,18 +595,18 @@ impl ThorntonRow {
 
     /// Clip a stuck piece (after the increment) against `±` the limit `lim` and append the
     /// parts: stuck where inside, limit pieces where outside.
-    fn clip(&mut self, p: Piece, lim: &Limit, out: &mut Vec<Piece>) {
+    fn clip(&mut self, p: &Piece, lim: &Limit, out: &mut Vec<Piece>) {
         if p.x1 <= p.x0 {
             return;
         }
         if !lim.c.is_finite() {
-            out.push(p);
+            out.push(*p);
             return;
         }
         let w = self.offset;
         let line = self.line;
         self.cuts.clear();
-        let mut p = p;
+        let mut p = *p;
         // `None`: the crossings are found (a quadratic against a line); else whether the `+` /
         // `−` limit may be crossed, to be searched, and the limit at the piece's ends.
         let general = if lim.linear_from(p.y0) {

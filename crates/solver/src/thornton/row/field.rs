@@ -72,7 +72,7 @@ impl Piece {
             b -= k;
             k = 0.0;
         }
-        Piece {
+        let mut p = Piece {
             kind: Kind::Stuck,
             y0,
             y1,
@@ -92,8 +92,9 @@ impl Piece {
             slope: f64::NAN,
             curve: [0.0; 4],
             caps: [f64::NAN; 2],
-        }
-        .refreshed(line, radius)
+        };
+        p.refresh(line, radius);
+        p
     }
 
     pub(super) fn limit(kind: Kind, y0: f64, y1: f64, radius: f64) -> Self {
@@ -122,7 +123,7 @@ impl Piece {
 
     /// The same piece on `[y0, y1]` (a stuck one with its sums recomputed).
     pub(super) fn part(&self, y0: f64, y1: f64, line: &Truncated, radius: f64) -> Self {
-        let p = Piece {
+        let mut p = Piece {
             y0,
             y1,
             x0: (radius * y0).sqrt(),
@@ -131,14 +132,13 @@ impl Piece {
             ..*self
         };
         if p.kind == Kind::Stuck {
-            p.refreshed(line, radius)
-        } else {
-            p
+            p.refresh(line, radius);
         }
+        p
     }
 
-    /// A stuck piece with its integral and range computed.
-    pub(super) fn refreshed(mut self, line: &Truncated, radius: f64) -> Self {
+    /// Compute a stuck piece's integral and range (in place: a `Piece` is large to copy).
+    pub(super) fn refresh(&mut self, line: &Truncated, radius: f64) {
         self.caps = [f64::NAN; 2];
         self.curve = if self.k == 0.0 {
             [0.0; 4]
@@ -154,7 +154,6 @@ impl Piece {
         self.rel = self.integral(line, radius);
         (self.lo, self.hi) = self.range();
         self.slope = f64::NAN;
-        self
     }
 
     /// A stuck piece with its bounds for the limit slope `s` ([`Piece::upper`]).
