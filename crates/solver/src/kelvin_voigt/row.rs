@@ -952,6 +952,9 @@ impl ViscoelasticRow {
                 }
             }
         }
+        if n == 1 && self.extend_slipping(m, (b0, b1), up) {
+            return;
+        }
         let cuts = &mut cuts[..=n];
         cuts[n] = 1.0;
         cuts.sort_by(|a, b| a.total_cmp(b));
@@ -996,6 +999,59 @@ impl ViscoelasticRow {
             }
         }
         self.entering = out;
+    }
+
+    /// [`ViscoelasticRow::enter`] where the entry law does not switch within the step (no cut
+    /// inside the band) and the whole band enters slipping with the shared entry state, keeps
+    /// slipping over the step and continues the last piece of the row (of the same sign, with
+    /// the same uniform state, below [`CHUNK_MAX`] pieces in its chunk): that piece is
+    /// extended to `b1` and its chunk's sums updated, the same arithmetic as building the
+    /// band's piece, releasing it and merging it into the last one ([`Chunk::push`]), at about
+    /// a third of the instructions (the compression of a partial slip: every step). Returns
+    /// whether it did.
+    #[inline]
+    fn extend_slipping(&mut self, m: &StepMotion, (b0, b1): (f64, f64), up: &Update) -> bool {
+        let c = up.c;
+        if !c.is_finite() {
+            return false;
+        }
+        // The band's midpoint θ = 1/2, as in `enter`.
+        let t = 0.5;
+        let w_rate = m.slip_velocity + m.slip_accel * m.h * t;
+        let bound = c * (m.rate0 + (m.rate1 - m.rate0) * t);
+        let slips = w_rate.abs() > bound;
+        if !slips {
+            return false;
+        }
+        let kind = if w_rate.signum() > 0.0 {
+            Kind::Plus
+        } else {
+            Kind::Minus
+        };
+        // `δ̃` of the band: its `upper` and `lower` (the test of `release`).
+        let a = self.entry[sign_index(kind)];
+        let v = self.frame(kind).actual(a) + up.viscous;
+        let keeps = if kind == Kind::Plus { v > 0.0 } else { v < 0.0 };
+        let r = self.radius;
+        let Some(ch) = self.chunks.last_mut() else {
+            return false;
+        };
+        if !keeps || ch.pieces.len() >= CHUNK_MAX {
+            return false;
+        }
+        let Some(last) = ch.pieces.last_mut() else {
+            return false;
+        };
+        // `merges` of the band's piece (`y0 = b0`, `b = q = 0`).
+        if !(last.b == 0.0 && last.q == 0.0 && last.kind == kind && last.y1 == b0 && last.a == a) {
+            return false;
+        }
+        let old = *last;
+        last.y1 = b1;
+        last.x1 = (r * b1).sqrt();
+        refresh(last, c, r);
+        ch.replace_last(&old);
+        true
     }
 
     /// `u` at the centre (for the no-slip end of contact).
