@@ -56,7 +56,8 @@ pub(crate) struct Piece {
     pub(crate) a: f64,
     pub(crate) b: f64,
     pub(crate) q: f64,
-    /// `∫ (ũ − W) dx` over a stuck piece (m²).
+    /// `∫ (ũ − W) dx` over a stuck piece (m²); unused at a limit here (the Kelvin–Voigt row
+    /// keeps a slipping piece's `x1³ − x0³` in it, m³).
     pub(crate) rel_integral: f64,
     /// `max (ũ − W + c y)` and `min (ũ − W − c y)` over a stuck piece (m): it stays inside the
     /// limits `±c (d − y)` while `upper ≤ c d − W` and `lower ≥ −c d − W`.

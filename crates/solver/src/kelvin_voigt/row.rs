@@ -27,7 +27,7 @@ use crate::springs::{StepMotion, StepResult};
 
 /// A piece of this row on `[y0, y1]` with `z = y − y_ref` (the elastic row's [`Piece`]): a
 /// stuck one holds `u − W = a + b z + q z²`, a slipping one (`Kind::Plus`, `Kind::Minus`) its
-/// state `δ̃ = a + b z + q z²` in the frame of its sign.
+/// state `δ̃ = a + b z + q z²` in the frame of its sign (and `x1³ − x0³` in `rel_integral`).
 fn piece(kind: Kind, y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64, r: f64) -> Piece {
     let mut p = Piece {
         kind,
@@ -48,7 +48,9 @@ fn piece(kind: Kind, y0: f64, y1: f64, y_ref: f64, abq: (f64, f64, f64), c: f64,
 }
 
 /// Recompute a piece's sums after its ends changed: for a stuck piece those of the elastic
-/// row, for a slipping one `upper = max δ̃` and `lower = min δ̃`.
+/// row, for a slipping one `upper = max δ̃`, `lower = min δ̃` and, in `rel_integral` (unused
+/// at a limit), `x1³ − x0³` (m³, [`cube`]: read by every summation of its chunk, computed once
+/// per change of its ends).
 fn refresh(p: &mut Piece, c: f64, r: f64) {
     match p.kind {
         Kind::Stuck => Piece::refresh(p, c, r),
@@ -66,11 +68,12 @@ fn refresh(p: &mut Piece, c: f64, r: f64) {
             }
             p.upper = upper;
             p.lower = lower;
+            p.rel_integral = cube(p);
         }
     }
 }
 
-/// `x1³ − x0³` of a piece (m³).
+/// `x1³ − x0³` of a piece (m³): held by a slipping piece ([`refresh`]).
 fn cube(p: &Piece) -> f64 {
     p.x1 * p.x1 * p.x1 - p.x0 * p.x0 * p.x0
 }
@@ -275,13 +278,13 @@ impl Sums {
             Kind::Plus => {
                 self.slipping[0] += 1;
                 self.slip_length[0] += p.x1 - p.x0;
-                self.slip_cube[0] += cube(p);
+                self.slip_cube[0] += p.rel_integral;
                 lower_to(&mut self.plus_min, p.lower);
             }
             Kind::Minus => {
                 self.slipping[1] += 1;
                 self.slip_length[1] += p.x1 - p.x0;
-                self.slip_cube[1] += cube(p);
+                self.slip_cube[1] += p.rel_integral;
                 raise(&mut self.minus_max, p.upper);
             }
         }
@@ -306,7 +309,7 @@ impl Sums {
                     self.slip_cube[i] = 0.0;
                 } else {
                     self.slip_length[i] -= p.x1 - p.x0;
-                    self.slip_cube[i] -= cube(p);
+                    self.slip_cube[i] -= p.rel_integral;
                 }
             }
         }
