@@ -16,7 +16,7 @@ use super::model::{
     ExplicitEuler, Integrator, NormalModel, StepEnd, TangentialModel, VelocityVerlet,
 };
 use super::springs::{SpringRow, StepMotion};
-use super::zones::{self, Level, ZoneClock};
+use super::zones::{self, Level, ZoneClock, ZoneLog};
 pub use crate::model::TangentialBodies;
 pub use crate::resolution::Resolution;
 
@@ -402,6 +402,32 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
     shear_modulus: f64,
     limit: f64,
 ) -> f64 {
+    let clock = ZoneClock::new(normal.contact_time(), normal.steps());
+    run_contact_clocked(bodies, normal, row, (radius, shear_modulus, limit), clock).shortest()
+}
+
+/// [`run_contact_with`] that returns every zone of the run, of any kind ([`ZoneLog`]): a
+/// diagnostic; the run itself is the same.
+pub fn run_contact_zones<B: TangentialBodies, N: NormalModel, T: TangentialModel>(
+    bodies: &mut B,
+    normal: &N,
+    row: T,
+    radius: f64,
+    shear_modulus: f64,
+    limit: f64,
+) -> ZoneLog {
+    let clock = ZoneClock::logging(normal.contact_time(), normal.steps());
+    run_contact_clocked(bodies, normal, row, (radius, shear_modulus, limit), clock).log()
+}
+
+/// The run of [`run_contact_with`], its zones counted by `clock`.
+fn run_contact_clocked<B: TangentialBodies, N: NormalModel, T: TangentialModel>(
+    bodies: &mut B,
+    normal: &N,
+    row: T,
+    (radius, shear_modulus, limit): (f64, f64, f64),
+    clock: ZoneClock,
+) -> ZoneClock {
     let mean = row.touch_mean(bodies.slip_velocity(), normal.rate(0), limit);
     let mut stepper = Stepper {
         row,
@@ -412,7 +438,7 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
         force: 0.0,
         mean,
         limit_gap: f64::INFINITY,
-        zones: ZoneClock::new(normal.contact_time(), normal.steps()),
+        zones: clock,
     };
     let steps = normal.steps();
     // Grid steps that end within GRADED_SPAN of the separation are graded (finite limit only).
@@ -427,7 +453,7 @@ pub fn run_contact_with<B: TangentialBodies, N: NormalModel, T: TangentialModel>
     if graded > 0 {
         stepper.graded_end(bodies, steps - graded);
     }
-    stepper.zones.shortest()
+    stepper.zones
 }
 
 /// The end value `m₁` that makes the product rule `∫ a dt · (m₀ + m₁)/2` exact over the step

@@ -103,6 +103,9 @@ pub(crate) struct ZoneClock {
     state: Option<u8>,
     length: f64,
     shortest: f64,
+    /// Every finished zone as `(state, length)` (s or dimensionless), where the clock keeps
+    /// them ([`ZoneClock::logging`]; a diagnostic, [`ZoneLog`]).
+    log: Option<Vec<(u8, f64)>>,
 }
 
 impl ZoneClock {
@@ -115,6 +118,15 @@ impl ZoneClock {
             state: None,
             length: 0.0,
             shortest: f64::INFINITY,
+            log: None,
+        }
+    }
+
+    /// [`ZoneClock::new`] that also keeps every zone ([`ZoneClock::log`]).
+    pub(crate) fn logging(contact_time: f64, steps: usize) -> Self {
+        Self {
+            log: Some(Vec::new()),
+            ..Self::new(contact_time, steps)
         }
     }
 
@@ -126,6 +138,9 @@ impl ZoneClock {
             if onset && self.length >= ZONE_MIN * self.contact_time {
                 self.shortest = self.shortest.min(self.length);
             }
+            if let (Some(log), Some(s)) = (self.log.as_mut(), self.state) {
+                log.push((s, self.length));
+            }
             self.state = Some(state);
             self.length = 0.0;
         }
@@ -135,6 +150,68 @@ impl ZoneClock {
     /// The shortest zone counted, in grid steps ([`Level::shortest_zone`]).
     pub(crate) fn shortest(self) -> f64 {
         self.shortest * self.steps as f64 / self.contact_time
+    }
+
+    /// Every zone of the run, the last one included (empty where the clock did not keep them,
+    /// [`ZoneClock::logging`]).
+    pub(crate) fn log(self) -> ZoneLog {
+        let scale = self.steps as f64 / self.contact_time;
+        let mut zones: Vec<Zone> = self
+            .log
+            .unwrap_or_default()
+            .into_iter()
+            .map(|(state, length)| Zone {
+                state,
+                steps: length * scale,
+            })
+            .collect();
+        if let Some(state) = self.state {
+            zones.push(Zone {
+                state,
+                steps: self.length * scale,
+            });
+        }
+        ZoneLog {
+            zones,
+            steps: self.steps,
+        }
+    }
+}
+
+/// One zone of a run ([`ZoneLog`]): its state (`+` limit bit 1, `−` limit bit 2, stuck bit 4)
+/// and its length in grid steps `t_c/N`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Zone {
+    /// The state of the row over the zone ([`state`]).
+    pub state: u8,
+    /// The zone's length in grid steps.
+    pub steps: f64,
+}
+
+/// Every zone of one run, of any kind, in order from touch to separation: a diagnostic of how
+/// finely a level resolves its slip history (the refinement counts only the zones that end in
+/// gross slip, [`Level::shortest_zone`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ZoneLog {
+    /// The zones in order.
+    pub zones: Vec<Zone>,
+    /// The grid steps of the run.
+    pub steps: usize,
+}
+
+impl ZoneLog {
+    /// The shortest zone in grid steps (`∞` with no zone); with `interior`, leaving out the
+    /// first zone (cut by the touch) and the last (cut by the separation), `∞` where there
+    /// are fewer than three zones.
+    pub fn shortest(&self, interior: bool) -> f64 {
+        let zones = if interior {
+            self.zones
+                .get(1..self.zones.len().saturating_sub(1))
+                .unwrap_or(&[])
+        } else {
+            &self.zones[..]
+        };
+        zones.iter().map(|z| z.steps).fold(f64::INFINITY, f64::min)
     }
 }
 
@@ -182,6 +259,27 @@ mod tests {
         };
         assert!(!level.resolved());
         assert!(Level::unwatched(0.5).resolved());
+    }
+
+    /// A logging clock keeps every zone, of any kind, the last one included, in grid steps.
+    #[test]
+    fn a_logging_clock_keeps_every_zone() {
+        let mut clock = ZoneClock::logging(1.0, 100);
+        for (state, steps) in [(4, 30), (5, 2), (4, 40), (1, 28)] {
+            for _ in 0..steps {
+                clock.record(state, 0.01);
+            }
+        }
+        let log = clock.log();
+        let got: Vec<(u8, f64)> = log.zones.iter().map(|z| (z.state, z.steps)).collect();
+        let want = [(4, 30.0), (5, 2.0), (4, 40.0), (1, 28.0)];
+        assert_eq!(got.len(), want.len());
+        for ((s, l), (ws, wl)) in got.iter().zip(want) {
+            assert!(*s == ws && (l - wl).abs() < 1e-9, "{got:?}");
+        }
+        assert!((log.shortest(false) - 2.0).abs() < 1e-9);
+        assert!((log.shortest(true) - 2.0).abs() < 1e-9);
+        assert_eq!(ZoneClock::new(1.0, 100).log().zones, Vec::new());
     }
 
     /// The brief-zone floor is 1.5/N² exactly where the shortest counted zone lasts under 0.05

@@ -22,7 +22,8 @@ use serde::Serialize;
 
 use crate::error::PhysicsError;
 use crate::impact::{
-    check_alpha, check_gamma, run_contact_with, ContactPoint, Scheme, TangentialBodies,
+    check_alpha, check_gamma, run_contact_with, run_contact_zones, ContactPoint, Scheme,
+    TangentialBodies,
 };
 use crate::law::{
     accurate_only, continuum_only, shear_and_limit, BodiesNormal, ContactLaw, Floor, NormalSummary,
@@ -31,7 +32,7 @@ use crate::law::{
 use crate::model::{NormalModel, TangentialModel};
 use crate::resolution::Resolution;
 use crate::springs::{StepMotion, StepResult};
-use crate::zones::Level;
+use crate::zones::{Level, ZoneLog};
 use normal::{HertzPhase, Loading, Motion, Trajectory};
 use row::ThorntonRow;
 
@@ -170,6 +171,26 @@ fn started_p(u0: f64, shear: f64, limit: f64, motion: &Motion, steps: usize) -> 
     let mut cp = ContactPoint { u: u0 };
     run_contact_with(&mut cp, &*trajectory, row, 1.0, shear, limit);
     cp.u / u0
+}
+
+/// [`dimensionless_p`] with every zone of the run ([`ZoneLog`]): a diagnostic of how finely
+/// `steps` steps resolve the slip history (the refinement does not watch this law's zones).
+pub fn dimensionless_zones(
+    shear: f64,
+    limit: f64,
+    motion: &Motion,
+    steps: usize,
+) -> (f64, ZoneLog) {
+    let trajectory = dimensionless_trajectory(motion, steps);
+    let row = ThorntonRow::new(
+        1.0,
+        motion.loading.yield_indentation,
+        motion.unloading.ratio,
+        motion.unloading.plastic_indentation,
+    );
+    let mut cp = ContactPoint { u: 1.0 };
+    let zones = run_contact_zones(&mut cp, &*trajectory, row, 1.0, shear, limit);
+    (cp.u, zones)
 }
 
 /// Thornton's law ([`ContactLaw`]): `e_n ∈ [0.3, 1]`, the limiting pressure that gives it, the
