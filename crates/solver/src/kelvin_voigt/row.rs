@@ -1178,13 +1178,19 @@ impl ViscoelasticRow {
         };
         let mut i = 0;
         let mut changed_end = 0;
+        // The number of changed pieces, the last one's index and where its parts start in `out`.
+        let mut changes = 0;
+        let (mut changed_at, mut changed_start) = (0, 0);
         while let Some(p) = old.get(i) {
             if !unchanged(p) {
+                changed_start = out.len();
                 if p.kind == Kind::Stuck {
                     self.clip(p, up, &mut out);
                 } else {
                     self.release(p, up, &mut out, None);
                 }
+                changes += 1;
+                changed_at = i;
                 changed_end = out.len();
                 i += 1;
                 continue;
@@ -1212,6 +1218,24 @@ impl ViscoelasticRow {
             out.extend_from_slice(&rest[..run]);
             i += 1 + run;
         }
+        // One stuck piece clipped, no piece merged (`out` holds the others and its parts) and a
+        // stuck part kept: the chunk's sums are updated by the difference, in place (the bounds
+        // of the clipped piece stay, still bounds); every other way sums the chunk again.
+        let mut incremental = false;
+        if let (1, Some(p)) = (changes, old.get(changed_at)) {
+            let parts = &out[changed_start..changed_end];
+            if p.kind == Kind::Stuck
+                && out.len() + 1 == old.len() + parts.len()
+                && parts.iter().any(|q| q.kind == Kind::Stuck)
+            {
+                let sums = &mut self.chunks[k].sums;
+                sums.remove(p);
+                for q in parts {
+                    sums.add(q);
+                }
+                incremental = true;
+            }
+        }
         self.spare = old;
         // A run of at least `PEEL` unchanged pieces after the last changed one goes to a chunk
         // of its own, after this one (both within `CHUNK_MAX`: `install` keeps this one whole).
@@ -1225,6 +1249,10 @@ impl ViscoelasticRow {
             next.summarize();
             self.chunks.insert(k + 1, next);
             return self.install(k, out) + 1;
+        }
+        if incremental && out.len() <= CHUNK_MAX {
+            self.chunks[k].pieces = out;
+            return 1;
         }
         self.install(k, out)
     }
@@ -1461,7 +1489,10 @@ mod tests {
         for _ in 0..100_000 {
             let x = (rng.uniform() - 0.5) / 16.0 * 10f64.powf(-6.0 * rng.uniform());
             let (got, exact) = (expm1(x), x.exp_m1());
-            assert!((got - exact).abs() <= 4.0 * f64::EPSILON * exact.abs(), "{x}");
+            assert!(
+                (got - exact).abs() <= 4.0 * f64::EPSILON * exact.abs(),
+                "{x}"
+            );
         }
         assert!(expm1(-0.0) == 0.0 && expm1(-0.0).is_sign_negative());
         assert_eq!(expm1(0.5), 0.5f64.exp_m1());
