@@ -197,8 +197,7 @@ impl PieceChunk for Chunk {
     #[inline(always)]
     fn replace_last(&mut self, old: &Piece) {
         if let Some(p) = self.pieces.last() {
-            self.sums.remove(old);
-            self.sums.add(p);
+            self.sums.replace(old, p);
         }
     }
 }
@@ -286,6 +285,37 @@ impl Sums {
                 self.slip_length[1] += p.x1 - p.x0;
                 self.slip_cube[1] += p.rel_integral;
                 raise(&mut self.minus_max, p.upper);
+            }
+        }
+    }
+
+    /// Replace a piece the sums hold by `p` of the same kind (its ends moved: a truncation, an
+    /// extension): the differences added, the bounds widened by `p`'s (as [`Sums::remove`]
+    /// then [`Sums::add`], rounded otherwise).
+    #[inline(always)]
+    fn replace(&mut self, old: &Piece, p: &Piece) {
+        let dx = (p.x1 - p.x0) - (old.x1 - old.x0);
+        let d_rel = p.rel_integral - old.rel_integral;
+        match (old.kind, p.kind) {
+            (Kind::Stuck, Kind::Stuck) => {
+                self.rel_integral += d_rel;
+                self.stuck_length += dx;
+                raise(&mut self.upper, p.upper);
+                lower_to(&mut self.lower, p.lower);
+            }
+            (Kind::Plus, Kind::Plus) => {
+                self.slip_length[0] += dx;
+                self.slip_cube[0] += d_rel;
+                lower_to(&mut self.plus_min, p.lower);
+            }
+            (Kind::Minus, Kind::Minus) => {
+                self.slip_length[1] += dx;
+                self.slip_cube[1] += d_rel;
+                raise(&mut self.minus_max, p.upper);
+            }
+            _ => {
+                self.remove(old);
+                self.add(p);
             }
         }
     }
