@@ -1110,7 +1110,8 @@ impl ViscoelasticRow {
         let old = *last;
         last.y1 = b1;
         last.x1 = (r * b1).sqrt();
-        refresh(last, c, r);
+        // `refresh` of a uniform piece: its extremes are `a`, as they were; only the cube.
+        last.rel_integral = cube(last);
         ch.replace_last(&old);
         true
     }
