@@ -131,20 +131,29 @@ impl ZoneClock {
     }
 
     /// Count one step of length `h` that left the row in `state`.
+    #[inline]
     pub(crate) fn record(&mut self, state: u8, h: f64) {
         if self.state != Some(state) {
-            // A zone with a stuck part ends in gross slip.
-            let onset = state & STUCK == 0 && self.state.is_some_and(|s| s & STUCK != 0);
-            if onset && self.length >= ZONE_MIN * self.contact_time {
-                self.shortest = self.shortest.min(self.length);
-            }
-            if let (Some(log), Some(s)) = (self.log.as_mut(), self.state) {
-                log.push((s, self.length));
-            }
-            self.state = Some(state);
-            self.length = 0.0;
+            self.enter(state);
         }
         self.length += h;
+    }
+
+    /// The zone in `state` begins: the one before ends (rare against the steps, so out of the
+    /// steps' line of code).
+    #[cold]
+    #[inline(never)]
+    fn enter(&mut self, state: u8) {
+        // A zone with a stuck part ends in gross slip.
+        let onset = state & STUCK == 0 && self.state.is_some_and(|s| s & STUCK != 0);
+        if onset && self.length >= ZONE_MIN * self.contact_time {
+            self.shortest = self.shortest.min(self.length);
+        }
+        if let (Some(log), Some(s)) = (self.log.as_mut(), self.state) {
+            log.push((s, self.length));
+        }
+        self.state = Some(state);
+        self.length = 0.0;
     }
 
     /// The shortest zone counted, in grid steps ([`Level::shortest_zone`]).
