@@ -131,3 +131,43 @@ pub fn chebyshev(u: f64, n: usize) -> Vec<f64> {
     t.truncate(n);
     t
 }
+
+/// The points of `thornhonest` (and `thornshare`), `(γ, α, e_n)`: the nine benchmark points at
+/// `e_n` 0.9 and 0.6, the cusp of Thornton's stick patch at γ = 1.9182, α = 3.1582,
+/// `e_n` = 0.9143, then `n` random points of seed `seed`: γ 0.3–3.5 log-uniform, `e_n` uniform
+/// in 0.3–1; α a tenth at ∞, a third within 1e-4–1e-1 (relative) of α = 2/7, the
+/// Kelvin–Voigt `α_c1(γ, e_n)` or `α_c2`, the rest log-uniform over 0.01–30.
+pub fn thornton_honesty_points(n: usize, seed: u64) -> Vec<(f64, f64, f64)> {
+    use oblique_physics::regimes;
+    let mut rnd = xorshift(seed);
+    let mut points = Vec::new();
+    for e in [0.9, 0.6] {
+        for g in [0.5, 1.754, 3.0] {
+            for a in [0.3, 1.0, f64::INFINITY] {
+                points.push((g, a, e));
+            }
+        }
+    }
+    points.push((1.9182, 3.1582, 0.9143));
+    for _ in 0..n {
+        let g = 0.3 * (3.5f64 / 0.3).powf(rnd());
+        let e = 0.3 + 0.7 * rnd();
+        let pick = rnd();
+        let a = if pick < 0.1 {
+            f64::INFINITY
+        } else if pick < 0.43 {
+            let c1 = if g > 1.0 {
+                regimes::alpha_c1_dissipative(g, e)
+            } else {
+                regimes::alpha_c2(g)
+            };
+            let curve = [2.0 / 7.0, c1, regimes::alpha_c2(g)][(rnd() * 3.0) as usize];
+            let off = 10f64.powf(-4.0 + 3.0 * rnd()) * if rnd() < 0.5 { -1.0 } else { 1.0 };
+            curve * (1.0 + off)
+        } else {
+            0.01 * 3000f64.powf(rnd())
+        };
+        points.push((g, a, e));
+    }
+    points
+}

@@ -221,7 +221,7 @@ fn estimate(values: &[f64], order: i32) -> f64 {
 /// 32 points spanning every regime (γ 0.3–3.5, α from just above the linear limit to ∞,
 /// 128–8192 steps): never below the true error where that error exceeds the 2e-8 accuracy of
 /// the reference (`tools/src/bin/estim.rs`).
-fn extrapolate(values: &[f64], order: i32, floor: Floor, steps: usize) -> (f64, f64) {
+pub fn extrapolate(values: &[f64], order: i32, floor: Floor, steps: usize) -> (f64, f64) {
     let r = 2f64.powi(order) - 1.0;
     let n = values.len();
     let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / r;
@@ -254,7 +254,7 @@ fn extrapolate(values: &[f64], order: i32, floor: Floor, steps: usize) -> (f64, 
 /// this share is 0.167 there (estimate 4.31e-9). Over 761 regular levels of 159 points
 /// (`cargo run --release -p oblique-tools --bin ladder -- 150 7 11`, against the Richardson
 /// value of the two finest levels) no other level needed more than 0.031 |d|.
-fn tail_share(values: &[f64], order: i32) -> f64 {
+pub fn tail_share(values: &[f64], order: i32) -> f64 {
     let Some(ratios) = last_ratios(values) else {
         return 0.0;
     };
@@ -269,7 +269,7 @@ fn tail_share(values: &[f64], order: i32) -> f64 {
 /// The last two ratios of successive differences of `values`,
 /// `(P_{k−1} − P_{k−2}) / (P_k − P_{k−1})` and the one before it (`None` with fewer than four
 /// values).
-fn last_ratios(values: &[f64]) -> Option<[f64; 2]> {
+pub fn last_ratios(values: &[f64]) -> Option<[f64; 2]> {
     let n = values.len();
     if n < 4 {
         return None;
@@ -284,7 +284,7 @@ const TAIL_MARGIN: f64 = 1.5;
 /// Whether the last three ratios of successive differences of `values` are within
 /// `[0.95, 1.05] · 2^order` ([`Floor::steady`]): the sequence has converged at its order for
 /// four levels.
-fn steady(values: &[f64], order: i32) -> bool {
+pub fn steady(values: &[f64], order: i32) -> bool {
     within_last_three(values, order, STEADY_SPREAD)
 }
 
@@ -293,7 +293,7 @@ const STEADY_SPREAD: f64 = 0.05;
 
 /// Whether the last three ratios of successive differences of `values` are within
 /// `[0.99, 1.01] · 2^order` ([`Floor::tight`]): four doublings at the order, to 1 %.
-fn tight(values: &[f64], order: i32) -> bool {
+pub fn tight(values: &[f64], order: i32) -> bool {
     within_last_three(values, order, TIGHT_SPREAD)
 }
 
@@ -316,7 +316,7 @@ fn within_last_three(values: &[f64], order: i32, spread: f64) -> bool {
 
 /// Whether the last two ratios of successive differences of `values` are within
 /// `[0.75, 1.375] · 2^order`.
-fn regular(values: &[f64], order: i32) -> bool {
+pub fn regular(values: &[f64], order: i32) -> bool {
     let r = 2f64.powi(order);
     last_ratios(values).is_some_and(|q| q.iter().all(|q| (0.75 * r..=1.375 * r).contains(q)))
 }
@@ -338,7 +338,7 @@ fn regular(values: &[f64], order: i32) -> bool {
 ///
 /// `previous_floor` is the level before's [`Level::brief_zone_floor`], which its estimate
 /// keeps.
-fn previous_estimate_agrees(
+pub fn previous_estimate_agrees(
     values: &[f64],
     order: i32,
     tol: f64,

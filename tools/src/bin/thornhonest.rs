@@ -10,7 +10,6 @@
 //! tolerance, the points whose estimate is below the error, the count of such points, the
 //! largest error/estimate, the answers above the tolerance and the sum of the finest steps.
 //! Points run in parallel.
-use oblique_physics::regimes;
 use oblique_solver::{Accuracy, Law, Request, Resolution};
 use rayon::prelude::*;
 
@@ -26,36 +25,7 @@ fn main() -> anyhow::Result<()> {
     } else {
         vec![1e-4, 1e-5, 1e-6, 1e-7]
     };
-    let mut rnd = oblique_tools::xorshift(seed);
-    let mut points = Vec::new();
-    for e in [0.9, 0.6] {
-        for g in [0.5, 1.754, 3.0] {
-            for a in [0.3, 1.0, f64::INFINITY] {
-                points.push((g, a, e));
-            }
-        }
-    }
-    points.push((1.9182, 3.1582, 0.9143));
-    for _ in 0..n {
-        let g = 0.3 * (3.5f64 / 0.3).powf(rnd());
-        let e = 0.3 + 0.7 * rnd();
-        let pick = rnd();
-        let a = if pick < 0.1 {
-            f64::INFINITY
-        } else if pick < 0.43 {
-            let c1 = if g > 1.0 {
-                regimes::alpha_c1_dissipative(g, e)
-            } else {
-                regimes::alpha_c2(g)
-            };
-            let curve = [2.0 / 7.0, c1, regimes::alpha_c2(g)][(rnd() * 3.0) as usize];
-            let off = 10f64.powf(-4.0 + 3.0 * rnd()) * if rnd() < 0.5 { -1.0 } else { 1.0 };
-            curve * (1.0 + off)
-        } else {
-            0.01 * 3000f64.powf(rnd())
-        };
-        points.push((g, a, e));
-    }
+    let points = oblique_tools::thornton_honesty_points(n, seed);
     // Per point: the reference and its uncertainty, then (P, estimate, steps) per tolerance.
     type Answers = Vec<Option<(f64, f64, usize)>>;
     let rows: Vec<(f64, f64, Answers)> = points

@@ -31,8 +31,8 @@
 //!   and 1e-7 (with `SOLVER` = 1, the default; 0: not run, -1: failed).
 //!
 //! Points run in parallel (rayon).
-use oblique_physics::regimes;
 use oblique_solver::law::Floor;
+use oblique_solver::refine;
 use oblique_solver::thornton::{
     dimensionless_motion, dimensionless_zones, yield_pressure_for_restitution, RAW_FLOOR,
 };
@@ -41,76 +41,29 @@ use rayon::prelude::*;
 
 const ORDER: i32 = 2;
 
-/// `refine::last_ratios`.
 fn last_ratios(values: &[f64]) -> Option<[f64; 2]> {
-    let n = values.len();
-    if n < 4 {
-        return None;
-    }
-    let d = |k: usize| values[k] - values[k - 1];
-    Some([d(n - 2) / d(n - 1), d(n - 3) / d(n - 2)])
-}
-
-/// `refine::within_last_three`.
-fn within_last_three(values: &[f64], spread: f64) -> bool {
-    let n = values.len();
-    if n < 5 {
-        return false;
-    }
-    let r = 2f64.powi(ORDER);
-    let d = |k: usize| values[k] - values[k - 1];
-    [n - 1, n - 2, n - 3]
-        .iter()
-        .all(|&k| ((1.0 - spread) * r..=(1.0 + spread) * r).contains(&(d(k - 1) / d(k))))
+    refine::last_ratios(values)
 }
 
 fn steady(values: &[f64]) -> bool {
-    within_last_three(values, 0.05)
+    refine::steady(values, ORDER)
 }
 
 fn tight(values: &[f64]) -> bool {
-    within_last_three(values, 0.01)
+    refine::tight(values, ORDER)
 }
 
-/// `refine::regular`.
 fn regular(values: &[f64]) -> bool {
-    let r = 2f64.powi(ORDER);
-    last_ratios(values).is_some_and(|q| q.iter().all(|q| (0.75 * r..=1.375 * r).contains(q)))
+    refine::regular(values, ORDER)
 }
 
-/// `refine::tail_share`.
 fn tail_share(values: &[f64]) -> f64 {
-    let Some(ratios) = last_ratios(values) else {
-        return 0.0;
-    };
-    let r = 2f64.powi(ORDER);
-    ratios
-        .iter()
-        .filter(|&&q| q > 1.0)
-        .map(|&q| 1.5 * (r - q).abs() / ((r - 1.0) * (q - 1.0)))
-        .fold(0.0, f64::max)
+    refine::tail_share(values, ORDER)
 }
 
 /// `refine::extrapolate`: the Richardson value and its estimate.
 fn extrapolate(values: &[f64], floor: Floor, steps: usize) -> (f64, f64) {
-    let r = 2f64.powi(ORDER) - 1.0;
-    let n = values.len();
-    let rich = |k: usize| values[k] + (values[k] - values[k - 1]) / r;
-    let last = rich(n - 1);
-    let share = if tight(values) {
-        floor.tight.max(tail_share(values))
-    } else if steady(values) {
-        floor.steady.max(tail_share(values))
-    } else if regular(values) {
-        floor.regular.max(tail_share(values))
-    } else {
-        floor.irregular
-    };
-    let est = (last - rich(n - 2))
-        .abs()
-        .max(share * (values[n - 1] - values[n - 2]).abs())
-        .max(floor.scatter / (steps as f64).powi(2));
-    (last, est)
+    refine::extrapolate(values, ORDER, floor, steps)
 }
 
 /// The offline replica of `refine::refine_core` for this law (its levels are unwatched: no
@@ -119,10 +72,7 @@ fn accepted(values: &[f64], steps: &[usize], tol: f64, floor: Floor) -> Option<u
     (2..values.len()).find(|&k| {
         let v = &values[..=k];
         let est = extrapolate(v, floor, steps[k]).1;
-        est <= tol
-            && (tight(v)
-                || (v.len() >= 4
-                    && extrapolate(&v[..k], floor, steps[k] / 2).1 <= 2f64.powi(ORDER) * tol))
+        est <= tol && refine::previous_estimate_agrees(v, ORDER, tol, floor, steps[k], 0.0)
     })
 }
 
@@ -145,36 +95,7 @@ fn main() -> anyhow::Result<()> {
     let top: usize = oblique_tools::arg_or(&args, 2, "TOP", 16_384)?;
     let solver: u8 = oblique_tools::arg_or(&args, 3, "SOLVER", 1)?;
     // thornhonest's draw.
-    let mut rnd = oblique_tools::xorshift(seed);
-    let mut points = Vec::new();
-    for e in [0.9, 0.6] {
-        for g in [0.5, 1.754, 3.0] {
-            for a in [0.3, 1.0, f64::INFINITY] {
-                points.push((g, a, e));
-            }
-        }
-    }
-    points.push((1.9182, 3.1582, 0.9143));
-    for _ in 0..n {
-        let g = 0.3 * (3.5f64 / 0.3).powf(rnd());
-        let e = 0.3 + 0.7 * rnd();
-        let pick = rnd();
-        let a = if pick < 0.1 {
-            f64::INFINITY
-        } else if pick < 0.43 {
-            let c1 = if g > 1.0 {
-                regimes::alpha_c1_dissipative(g, e)
-            } else {
-                regimes::alpha_c2(g)
-            };
-            let curve = [2.0 / 7.0, c1, regimes::alpha_c2(g)][(rnd() * 3.0) as usize];
-            let off = 10f64.powf(-4.0 + 3.0 * rnd()) * if rnd() < 0.5 { -1.0 } else { 1.0 };
-            curve * (1.0 + off)
-        } else {
-            0.01 * 3000f64.powf(rnd())
-        };
-        points.push((g, a, e));
-    }
+    let mut points = oblique_tools::thornton_honesty_points(n, seed);
     // The grid around the cusp.
     for g in [1.9, 1.9182, 1.95] {
         for e in [0.9, 0.9143, 0.93] {

@@ -162,15 +162,20 @@ pub fn dimensionless_p(shear: f64, limit: f64, motion: &Motion, steps: usize) ->
 /// [`dimensionless_p`] of the impact started with the slip velocity `u0` (`P = u/u0`).
 fn started_p(u0: f64, shear: f64, limit: f64, motion: &Motion, steps: usize) -> f64 {
     let trajectory = dimensionless_trajectory(motion, steps);
-    let row = ThorntonRow::new(
+    let row = dimensionless_row(motion);
+    let mut cp = ContactPoint { u: u0 };
+    run_contact_with(&mut cp, &*trajectory, row, 1.0, shear, limit);
+    cp.u / u0
+}
+
+/// The row of a dimensionless impact of `motion` (`R* = 1`).
+fn dimensionless_row(motion: &Motion) -> ThorntonRow {
+    ThorntonRow::new(
         1.0,
         motion.loading.yield_indentation,
         motion.unloading.ratio,
         motion.unloading.plastic_indentation,
-    );
-    let mut cp = ContactPoint { u: u0 };
-    run_contact_with(&mut cp, &*trajectory, row, 1.0, shear, limit);
-    cp.u / u0
+    )
 }
 
 /// [`dimensionless_p`] with every zone of the run ([`ZoneLog`]): a diagnostic of how finely
@@ -182,12 +187,7 @@ pub fn dimensionless_zones(
     steps: usize,
 ) -> (f64, ZoneLog) {
     let trajectory = dimensionless_trajectory(motion, steps);
-    let row = ThorntonRow::new(
-        1.0,
-        motion.loading.yield_indentation,
-        motion.unloading.ratio,
-        motion.unloading.plastic_indentation,
-    );
+    let row = dimensionless_row(motion);
     let mut cp = ContactPoint { u: 1.0 };
     let zones = run_contact_zones(&mut cp, &*trajectory, row, 1.0, shear, limit);
     (cp.u, zones)
