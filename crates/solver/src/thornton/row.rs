@@ -827,6 +827,37 @@ impl ThorntonRow {
         })
     }
 
+    /// How far the chunks' sums have drifted from their pieces (a test of the sums kept by
+    /// differences): the largest gap of `Σ Δx` and `Σ ∫ (ũ − W) dx` over the stuck pieces to
+    /// their recount, relative to the recount's scale, and whether every chunk's bounds still
+    /// bound its stuck pieces (`lo`, `hi`, and `upper`, `lower` for the chunk's slope).
+    #[cfg(test)]
+    pub(crate) fn sums_drift(&self) -> (f64, bool) {
+        let mut drift: f64 = 0.0;
+        let mut bounded = true;
+        for ch in &self.chunks {
+            let stuck = ch.pieces.iter().filter(|p| p.kind == Kind::Stuck);
+            let (mut length, mut rel, mut scale) = (0.0, 0.0, 0.0f64);
+            for p in stuck {
+                length += p.x1 - p.x0;
+                rel += p.rel;
+                scale = scale.max(p.rel.abs());
+                bounded &= ch.lo <= p.lo && ch.hi >= p.hi;
+                if ch.slope.is_finite() && p.slope == ch.slope {
+                    bounded &= ch.upper >= p.upper && ch.lower <= p.lower;
+                }
+            }
+            let x = ch.pieces.last().map_or(0.0, |p| p.x1);
+            if x > 0.0 {
+                drift = drift.max((ch.stuck_length - length).abs() / x);
+            }
+            if scale > 0.0 {
+                drift = drift.max((ch.rel - rel).abs() / (scale * ch.pieces.len() as f64));
+            }
+        }
+        (drift, bounded)
+    }
+
     /// `∫₀^a ũ dx` (m²) of the field under the limit `lim`.
     #[inline(never)]
     fn integral(&self, lim: &Limit) -> f64 {
