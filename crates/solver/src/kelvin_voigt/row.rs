@@ -1116,6 +1116,50 @@ impl ViscoelasticRow {
         true
     }
 
+    /// How far the chunks' sums have drifted from their pieces (a test of the sums kept by
+    /// differences): the largest gaps of `Σ ∫ (u − W) dx` (m²), of the lengths `Σ Δx` (stuck
+    /// and per sign, m) and of `Σ Δ(x³)` (per sign, m³) to their recounts, the scales they are
+    /// measured against (the largest `Σ |∫ (u − W) dx|` of a chunk, the contact's extent and
+    /// its cube), and whether the counts of slipping pieces are exact and every bound still
+    /// bounds the pieces.
+    #[cfg(test)]
+    pub(crate) fn sums_drift(&self) -> ([f64; 3], [f64; 3], bool) {
+        let mut gaps = [0.0f64; 3];
+        let mut rel_scale = 0.0f64;
+        let mut exact = true;
+        for ch in &self.chunks {
+            let mut recount = Sums::EMPTY;
+            for p in &ch.pieces {
+                recount.add(p);
+            }
+            rel_scale = rel_scale.max(
+                ch.pieces
+                    .iter()
+                    .filter(|p| p.kind == Kind::Stuck)
+                    .map(|p| p.rel_integral.abs())
+                    .sum(),
+            );
+            let (s, r) = (&ch.sums, &recount);
+            gaps[0] = gaps[0].max((s.rel_integral - r.rel_integral).abs());
+            gaps[1] = gaps[1].max((s.stuck_length - r.stuck_length).abs());
+            for i in 0..2 {
+                gaps[1] = gaps[1].max((s.slip_length[i] - r.slip_length[i]).abs());
+                gaps[2] = gaps[2].max((s.slip_cube[i] - r.slip_cube[i]).abs());
+            }
+            exact &= s.slipping == r.slipping
+                && s.upper >= r.upper
+                && s.lower <= r.lower
+                && s.plus_min <= r.plus_min
+                && s.minus_max >= r.minus_max;
+        }
+        let x = self
+            .chunks
+            .last()
+            .and_then(|ch| ch.pieces.last())
+            .map_or(0.0, |p| p.x1);
+        (gaps, [rel_scale, x, x * x * x], exact)
+    }
+
     /// `u` at the centre (for the no-slip end of contact).
     fn center(&self, c: f64, load: f64) -> f64 {
         let first = self.chunks.first().and_then(|ch| ch.pieces.first());
