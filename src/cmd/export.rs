@@ -77,6 +77,15 @@ pub fn run(args: ExportArgs) -> Result<()> {
             args.table.display()
         )));
     }
+    let e_map = table.surface().e_n_map();
+    if e_map != oblique_table::surface::AxisMap::Linear {
+        return Err(Failure::usage(format!(
+            "{}: its e_n axis is mapped as '{}' (schema 5), which the export layout does not \
+             hold yet: query it with sweep query, Python or the Rust crate oblique-lookup",
+            args.table.display(),
+            e_map.name()
+        )));
+    }
     let mut curves = Vec::with_capacity(args.gammas.len());
     let (g_min, g_max) = (table.surface().gamma_min(), table.surface().gamma_max());
     for &g in &args.gammas {

@@ -420,19 +420,19 @@ fn files_with_a_bad_warp_are_refused_naming_the_field() {
 }
 
 #[test]
-fn schema_5_is_refused() {
+fn schema_6_is_refused() {
     let path = write(
-        "schema5.h5",
+        "schema6.h5",
         &Spec {
-            schema: 5.0,
+            schema: 6.0,
             ..good()
         },
     );
     let msg = Table::open(&path)
         .map(|_| ())
-        .expect_err("schema 5")
+        .expect_err("schema 6")
         .to_string();
-    assert!(msg.contains("schema version 5"), "{msg}");
+    assert!(msg.contains("schema version 6"), "{msg}");
 }
 
 #[test]

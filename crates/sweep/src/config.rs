@@ -3,9 +3,14 @@
 
 use std::path::{Path, PathBuf};
 
-use oblique_table::surface::PartialMap;
+use oblique_table::surface::{AxisMap, PartialMap};
 use serde::{Deserialize, Deserializer, Serialize};
 use thiserror::Error;
+
+/// `nodes.e_n_coordinate` of a linear `e_n` axis (the default).
+pub const E_N_LINEAR: &str = "linear";
+/// `nodes.e_n_coordinate` of an axis over `t = (1 − e_n)^{1/4}` ([`AxisMap::QuarterRoot`]).
+pub const E_N_QUARTER_ROOT: &str = "quarter-root";
 
 /// A config error: which file, which key, what is wrong.
 #[derive(Debug, Error)]
@@ -140,6 +145,11 @@ pub struct Nodes {
     /// Root cells along `e_n` (a table with an `e_n` axis; default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub blocks_e_n: Option<usize>,
+    /// How the `e_n` axis maps to its coordinate: `"linear"` (the default) or `"quarter-root"`
+    /// (`t = (1 − e_n)^{1/4}`, a table of Thornton's law: its `P` is smooth in `t`, not in
+    /// `e_n`, next to `e_n = 1`; written as schema 5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub e_n_coordinate: Option<String>,
     /// Refuse to place more nodes than this in total.
     #[serde(default = "default_max_nodes")]
     pub max_nodes: usize,
@@ -402,6 +412,15 @@ impl Config {
         self.nodes.blocks_e_n.unwrap_or(1)
     }
 
+    /// The map of the `e_n` axis (`nodes.e_n_coordinate`, checked by validation; linear by
+    /// default).
+    pub fn e_n_map(&self) -> AxisMap {
+        match self.nodes.e_n_coordinate.as_deref() {
+            Some(E_N_QUARTER_ROOT) => AxisMap::QuarterRoot,
+            _ => AxisMap::Linear,
+        }
+    }
+
     /// `domain.gamma` (one pair) in place of `gamma_min` and `gamma_max`, which it then sets;
     /// without it both are required.
     fn validate_pair(&mut self, path: &str) -> Result<(), ConfigError> {
@@ -594,6 +613,30 @@ impl Config {
                     "nodes.blocks_e_n",
                     b.to_string(),
                     "in [1, 64], with domain.e_n_min and e_n_max".into(),
+                ));
+            }
+        }
+        if let Some(map) = &n.e_n_coordinate {
+            let known = [E_N_LINEAR, E_N_QUARTER_ROOT].contains(&map.as_str());
+            if !known || d.e_n_range().is_none() {
+                return Err(err(
+                    "nodes.e_n_coordinate",
+                    format!("\"{map}\""),
+                    format!(
+                        "\"{E_N_LINEAR}\" or \"{E_N_QUARTER_ROOT}\" (solver.law = \"thornton\"), \
+                         with domain.e_n_min and e_n_max"
+                    ),
+                ));
+            }
+            if map == E_N_QUARTER_ROOT && law != oblique_solver::Law::Thornton {
+                return Err(err(
+                    "nodes.e_n_coordinate",
+                    format!("\"{map}\""),
+                    format!(
+                        "\"{E_N_LINEAR}\" for the law '{}' (\"{E_N_QUARTER_ROOT}\" is for \
+                         solver.law = \"thornton\")",
+                        law.name()
+                    ),
                 ));
             }
         }

@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use super::SweepError;
 use crate::kink::KinkSurface;
 use oblique_solver::history::{loading_fold_thornton, reslip_fold_thornton, switch_fold_thornton};
-use oblique_table::surface::{Knots, PartialMap, PatchKind};
+use oblique_table::surface::{Axis, AxisMap, Knots, PartialMap, PatchKind};
 
 /// Highest `e_n` the knots apply at (rounded down to a sixteenth of a root cell).
 pub const E_N_MAX: f64 = 0.98;
@@ -88,6 +88,54 @@ impl Grid {
     }
 }
 
+/// Root-cell positions along `e_n` of a patch over `e_range` with `blocks` root cells and the
+/// map `map` of the axis ([`Axis::x`], [`Axis::at`]), and back; for a linear axis the linear
+/// expressions themselves, `(e − lo)/(hi − lo)·blocks` and `lo + (hi − lo)·v/blocks`.
+#[derive(Debug, Clone, Copy)]
+struct ECells {
+    lo: f64,
+    hi: f64,
+    blocks: f64,
+    map: AxisMap,
+}
+
+impl ECells {
+    fn new((lo, hi): (f64, f64), blocks: usize, map: AxisMap) -> ECells {
+        ECells {
+            lo,
+            hi,
+            blocks: blocks as f64,
+            map,
+        }
+    }
+
+    /// The root-cell position of `e`.
+    fn cells(&self, e: f64) -> f64 {
+        match self.map {
+            AxisMap::Linear => (e - self.lo) / (self.hi - self.lo) * self.blocks,
+            _ => self.axis().x(e) * self.blocks,
+        }
+    }
+
+    /// The `e_n` at root-cell position `v`.
+    fn at(&self, v: f64) -> f64 {
+        match self.map {
+            AxisMap::Linear => self.lo + (self.hi - self.lo) * v / self.blocks,
+            _ => self.axis().at(v / self.blocks),
+        }
+    }
+
+    fn axis(&self) -> Axis {
+        Axis {
+            name: oblique_table::surface::AxisName::RESTITUTION_N,
+            map: self.map,
+            lo: self.lo,
+            hi: self.hi,
+            blocks: 1,
+        }
+    }
+}
+
 /// The knots of the partial-slip patch over `γ ∈ gammas` (`bg` root cells) and `e_n ∈ e_range`
 /// (`be` root cells), with the partial-slip coordinate of Thornton's law
 /// ([`PartialMap::Slip`]); `None` when the `e_n` range starts above [`E_N_MAX`] or the γ range
@@ -104,19 +152,21 @@ pub fn thornton_knots(
     bg: usize,
     e_range: (f64, f64),
     be: usize,
+    e_map: AxisMap,
     strip: Option<&[Option<KinkSurface>; 2]>,
 ) -> Result<Option<Knots>, SweepError> {
     let (e_lo, e_hi) = e_range;
+    let ec = ECells::new(e_range, be, e_map);
     // The region along e_n: root-cell units, down to a multiple of 1/16.
     let top = if e_hi <= E_N_MAX {
         be as f64
     } else {
-        ((E_N_MAX - e_lo) / (e_hi - e_lo) * be as f64 * 16.0).floor() / 16.0
+        (ec.cells(E_N_MAX) * 16.0).floor() / 16.0
     };
     if top <= 0.0 {
         return Ok(None);
     }
-    let e_top = e_lo + (e_hi - e_lo) * top / be as f64;
+    let e_top = ec.at(top);
     // The region along γ: from GAMMA_MIN, up to a multiple of 1/16 of a root cell.
     let (g_lo, g_hi) = gammas;
     let from = if g_lo >= GAMMA_MIN {
@@ -356,10 +406,12 @@ pub fn loading_fold_knots(
     bg: usize,
     e_range: (f64, f64),
     be: usize,
+    e_map: AxisMap,
     alpha_max: f64,
 ) -> Result<Option<Knots>, SweepError> {
     let (g_lo, g_hi) = gammas;
     let (e_lo, e_hi) = e_range;
+    let ec = ECells::new(e_range, be, e_map);
     // From GAMMA_MIN up to a root-cell edge (as the top along e_n below).
     let from = if g_lo >= GAMMA_MIN {
         0.0
@@ -414,7 +466,7 @@ pub fn loading_fold_knots(
     // its depth without evaluating them, and there the knot lies next to α_c2, where the map
     // stretches the patch most: at a sixteenth, over γ 1.6–2.0 and e_n 0.65–0.9 (target 5e-5),
     // the stick patch needed 66 458 nodes with the knot against 51 895 without.
-    let cells = |e: f64| (e - e_lo) / (e_hi - e_lo) * be as f64;
+    let cells = |e: f64| ec.cells(e);
     let e_first = eg.at(start);
     let bottom = if start == 0 {
         0.0
@@ -686,19 +738,21 @@ mod tests {
     /// sixteenth of a root cell), their grid from there, and a range below it has none.
     #[test]
     fn thornton_knots_start_at_gamma_min() {
-        let k = thornton_knots((1.1, 1.3), 1, (0.8, 0.9), 1, None)
+        let k = thornton_knots((1.1, 1.3), 1, (0.8, 0.9), 1, AxisMap::Linear, None)
             .expect("traced")
             .expect("knots from 1.2");
         assert_eq!(k.region(), [0.5, 1.0, 0.0, 1.0]);
         assert!((k.gamma_0() - 1.2).abs() < 1e-12, "{}", k.gamma_0());
         // 1.2 is 0.4 of the way through 1.1–1.35: up to 7/16.
-        let k = thornton_knots((1.1, 1.35), 1, (0.8, 0.85), 1, None)
+        let k = thornton_knots((1.1, 1.35), 1, (0.8, 0.85), 1, AxisMap::Linear, None)
             .expect("traced")
             .expect("knots");
         assert_eq!(k.region()[0], 7.0 / 16.0);
-        assert!(thornton_knots((1.0, 1.15), 1, (0.8, 0.9), 1, None)
-            .expect("nothing traced")
-            .is_none());
+        assert!(
+            thornton_knots((1.0, 1.15), 1, (0.8, 0.9), 1, AxisMap::Linear, None)
+                .expect("nothing traced")
+                .is_none()
+        );
         // Without the start, the tracing fails where α_R is missing.
         assert!(knots_at(1.1, 0.8).is_err());
     }
@@ -711,7 +765,7 @@ mod tests {
     fn the_strip_edges_are_knots_where_the_range_meets_it() {
         let (gammas, e_range) = ((2.1, 2.15), (0.3, 0.35));
         let strip = crate::kink::thornton_plus_strip_surfaces(gammas, e_range).expect("traced");
-        let k = thornton_knots(gammas, 1, e_range, 1, Some(&strip))
+        let k = thornton_knots(gammas, 1, e_range, 1, AxisMap::Linear, Some(&strip))
             .expect("traced")
             .expect("knots");
         assert_eq!(k.c_star().len(), 6);
@@ -751,7 +805,7 @@ mod tests {
     #[test]
     fn the_loading_fold_knot_ends_where_the_fold_nears_alpha_c2() {
         // Four root cells along e_n (0.05 each): the knot's region ends at 0.8.
-        let k = loading_fold_knots((1.6, 1.7), 1, (0.7, 0.9), 4, f64::INFINITY)
+        let k = loading_fold_knots((1.6, 1.7), 1, (0.7, 0.9), 4, AxisMap::Linear, f64::INFINITY)
             .expect("traced")
             .expect("alpha_L above alpha_c2 from 0.7");
         assert_eq!(k.region(), [0.0, 1.0, 0.0, 2.0]);
@@ -768,17 +822,22 @@ mod tests {
         assert!(beyond.is_none_or(|c| c < LOADING_C_MIN), "{beyond:?}");
         // One root cell along e_n: the fold leaves inside it, no knot.
         assert!(
-            loading_fold_knots((1.6, 1.7), 1, (0.7, 0.9), 1, f64::INFINITY)
+            loading_fold_knots((1.6, 1.7), 1, (0.7, 0.9), 1, AxisMap::Linear, f64::INFINITY)
                 .expect("traced")
                 .is_none()
         );
-        assert!(
-            loading_fold_knots((1.6, 1.7), 1, (0.9, 0.95), 1, f64::INFINITY)
-                .expect("traced")
-                .is_none()
-        );
+        assert!(loading_fold_knots(
+            (1.6, 1.7),
+            1,
+            (0.9, 0.95),
+            1,
+            AxisMap::Linear,
+            f64::INFINITY
+        )
+        .expect("traced")
+        .is_none());
         // Below GAMMA_MIN the region starts at the next root-cell edge along γ.
-        let k = loading_fold_knots((1.1, 1.3), 2, (0.6, 0.7), 1, f64::INFINITY)
+        let k = loading_fold_knots((1.1, 1.3), 2, (0.6, 0.7), 1, AxisMap::Linear, f64::INFINITY)
             .expect("traced")
             .expect("alpha_L from 1.2");
         assert_eq!(k.region()[..2], [1.0, 2.0]);
@@ -792,9 +851,16 @@ mod tests {
     #[test]
     fn the_loading_fold_knot_starts_above_the_jump_of_its_branch() {
         // Two root cells along e_n (0.1 each): the region from 0.45.
-        let k = loading_fold_knots((2.25, 2.35), 1, (0.35, 0.55), 2, f64::INFINITY)
-            .expect("traced")
-            .expect("alpha_L above the jump");
+        let k = loading_fold_knots(
+            (2.25, 2.35),
+            1,
+            (0.35, 0.55),
+            2,
+            AxisMap::Linear,
+            f64::INFINITY,
+        )
+        .expect("traced")
+        .expect("alpha_L above the jump");
         assert_eq!(k.region(), [0.0, 1.0, 1.0, 2.0]);
         let e0 = k.e_n_0();
         assert!(e0 > 0.41 && e0 <= 0.45, "grid from {e0}");

@@ -68,7 +68,11 @@ pub(crate) fn patch_specs(cfg: &Config) -> Vec<PatchSpec> {
 fn restitution_axis(cfg: &Config) -> Result<Option<Axis>, SweepError> {
     cfg.domain
         .e_n_range()
-        .map(|(lo, hi)| Axis::restitution(lo, hi, cfg.blocks_e_n()).map_err(SweepError::Model))
+        .map(|(lo, hi)| {
+            Axis::restitution(lo, hi, cfg.blocks_e_n())
+                .map(|a| a.with_map(cfg.e_n_map()))
+                .map_err(SweepError::Model)
+        })
         .transpose()
 }
 
@@ -844,12 +848,12 @@ pub(crate) fn build_patch(
             };
             if spec.kind == PatchKind::Stick {
                 let alpha_max = cfg.domain.alpha_max;
-                knots::loading_fold_knots(gammas, bg, e_range, be, alpha_max)?
+                knots::loading_fold_knots(gammas, bg, e_range, be, cfg.e_n_map(), alpha_max)?
             } else if cfg.law() == oblique_solver::Law::Thornton {
                 tracing("the edges of the + strip");
                 let strip = kink::plus_strip(&mut run.traced, gammas, e_range)?;
                 tracing("alpha_R, 2/7 and alpha_S");
-                knots::thornton_knots(gammas, bg, e_range, be, Some(&strip))?
+                knots::thornton_knots(gammas, bg, e_range, be, cfg.e_n_map(), Some(&strip))?
             } else {
                 let bc = cfg.nodes.blocks_coord;
                 knots::fold_minus_knots(gammas, bg, e_range, be, bc, cfg.partial_map())?

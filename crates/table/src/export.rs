@@ -170,7 +170,8 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// full-slip line that is not a table with an `e_n` axis over a range of `γ` (which
 /// [`Surface::with_partial_map`] never makes), and for knots in a patch other than the
 /// partial-slip patch and `stick_high` of such a table (which the reader and the writer
-/// refuse).
+/// refuse), and for a surface whose `e_n` axis is not linear ([`Surface::e_n_map`]; `sweep
+/// export` refuses such a table before it gets here).
 pub fn export(
     surface: &Surface,
     error_bound: f64,
@@ -181,6 +182,10 @@ pub fn export(
     assert!(
         axis.is_none() || (with_surface && curves.is_empty()),
         "the export of a table with an e_n axis holds its surface and no curves"
+    );
+    assert!(
+        surface.e_n_map() == crate::surface::AxisMap::Linear,
+        "the export layout holds tables whose e_n axis is linear"
     );
     let knotted = surface.patches().any(|(_, p)| p.knots().is_some());
     let stick_knotted = surface

@@ -1,8 +1,16 @@
 //! Names of the HDF5 objects of a table (schema v4, v3). `docs/table-format.md` documents each.
 
 /// Newest schema version this crate reads and writes: v4 adds the normal-restitution axis
-/// (`e_n`) to v3; a table with that axis is written as v4.
-pub const SCHEMA_VERSION: u32 = 4;
+/// (`e_n`) to v3; v5 adds the map of that axis ([`ATTR_E_N_COORDINATE`]). A table with the
+/// axis is written as v4 when the map is linear, as v5 otherwise.
+pub const SCHEMA_VERSION: u32 = 5;
+/// Schema version of a table with an `e_n` axis mapped linearly: v4, which every reader of v4
+/// reads.
+pub const E_N_SCHEMA_VERSION: u32 = 4;
+/// Root attribute (schema 5, required there; absent before): how the patches map `e_n` to
+/// their coordinate, `e_n` (linear) or `(1-e_n)^(1/4)`
+/// ([`crate::surface::AxisMap::QuarterRoot`]).
+pub const ATTR_E_N_COORDINATE: &str = "e_n_coordinate";
 /// Schema version of an elastic table (no `e_n` axis): v3, which every reader of v3 reads.
 pub const ELASTIC_SCHEMA_VERSION: u32 = 3;
 /// Oldest schema version this crate reads: v2 is v3 without the optional warp.

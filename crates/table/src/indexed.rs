@@ -8,7 +8,7 @@ use crate::leaf::{
     cubic_tensor, cubic_tensor3_fast, descend, descend_masked, floor_f64, floor_index,
     floor_index32,
 };
-use crate::surface::{bound_p, Knots, Patch, PatchKind, Warp};
+use crate::surface::{bound_p, AxisMap, Knots, Patch, PatchKind, Warp};
 
 /// One cell of a patch's tree with its position, for the fine index: `2^depth` and the
 /// integer origin per axis in units of the cell's size along it, `tree[cell]`, and the axes it
@@ -33,6 +33,8 @@ pub struct IndexedPatch<const D: usize> {
     /// Per axis, `x = (value − lo)/width` (the `c` axis, `k = 1`, is given as `x`: unused).
     lo: [f64; D],
     width: [f64; D],
+    /// Per axis, the map `m` of [`Patch::axis_map`]: `x = (m(value) − lo)/width`.
+    map: [AxisMap; D],
     /// Root cells per axis, as floats.
     blocks: [f64; D],
     /// `2^depth` of the index per axis.
@@ -91,6 +93,7 @@ impl<const D: usize> IndexedPatch<D> {
             kind: patch.kind(),
             lo: std::array::from_fn(|k| patch.axis(k).0),
             width: std::array::from_fn(|k| patch.axis(k).1),
+            map: std::array::from_fn(|k| patch.axis_map(k)),
             blocks: std::array::from_fn(|k| patch.axis(k).2 as f64),
             fine: std::array::from_fn(|k| f64::from(1u32 << fine.depth[k])),
             shape: std::array::from_fn(|k| fine.shape[k]),
@@ -167,10 +170,11 @@ impl<const D: usize> IndexedPatch<D> {
                 .is_some_and(|e| e <= self.p.len())
     }
 
-    /// Step 6 along axis `k` (not the `c` axis): `v = x·blocks` of `x = (value − lo)/width`,
-    /// clamped to `[0, blocks]` (as [`crate::leaf::locate`]).
+    /// Step 6 along axis `k` (not the `c` axis): `v = x·blocks` of `x = (m(value) − lo)/width`
+    /// (`m` the axis map), clamped to `[0, blocks]` (as [`crate::leaf::locate`]).
     #[inline(always)]
     pub fn position(&self, k: usize, value: f64) -> f64 {
+        let value = self.map[k].forward(value);
         ((value - self.lo[k]) / self.width[k] * self.blocks[k]).clamp(0.0, self.blocks[k])
     }
 

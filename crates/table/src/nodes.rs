@@ -7,7 +7,7 @@
 //! shifted) would answer every query with values from other places: the check refuses it.
 
 use crate::format::E_N;
-use crate::surface::Patch;
+use crate::surface::{AxisMap, Patch};
 
 /// Relative tolerance of a stored coordinate, as a share of its axis's span: far above the
 /// rounding of the builder's and this module's arithmetic (a few ulps), far below any
@@ -70,23 +70,25 @@ pub fn check_positions(name: &str, patch: &Patch, stored: StoredNodes<'_>) -> Re
     let m = patch.leaf_intervals();
     let n1 = m + 1;
     // The dataset, value range and root cells of each tree axis: (name, values, lo, span,
-    // blocks).
-    let axis_data: Vec<(&str, &[f64], f64, f64, f64)> = (0..dims)
+    // blocks, map).
+    type AxisData<'a> = (&'a str, &'a [f64], f64, f64, f64, AxisMap);
+    let axis_data: Vec<AxisData> = (0..dims)
         .map(|k| {
             let (lo, width, blocks) = patch.axis(k);
+            let map = patch.axis_map(k);
             let ds = match (patch.is_pair(), k) {
                 (false, 0) => ("gamma", stored.gamma),
                 (false, 1) | (true, 0) => ("coord", stored.coord),
                 _ => (E_N.name, stored.e_n.unwrap_or(&[])),
             };
-            (ds.0, ds.1, lo, width, blocks as f64)
+            (ds.0, ds.1, lo, width, blocks as f64, map)
         })
         .collect();
     let boxes = patch.leaf_boxes();
     for (leaf, (pos, depth)) in boxes.iter().enumerate() {
         // Root cells per unit of the axis coordinate at this leaf's depth, per axis.
         let mut scale = [1.0; 3];
-        for (k, &(.., blocks)) in axis_data.iter().enumerate() {
+        for (k, &(.., blocks, _)) in axis_data.iter().enumerate() {
             scale[k] = blocks * f64::from(depth[k].min(1000) as i32).exp2();
         }
         for node in 0..size {
@@ -98,11 +100,13 @@ pub fn check_positions(name: &str, patch: &Patch, stored: StoredNodes<'_>) -> Re
                 idx[k] = rest % n1;
                 rest /= n1;
             }
-            for (k, &(ds, values, lo, span, _)) in axis_data.iter().enumerate() {
+            for (k, &(ds, values, lo, span, _, map)) in axis_data.iter().enumerate() {
                 let x = (pos[k] + idx[k] as f64 / m as f64) / scale[k];
+                // Compared in the axis's mapped values (the values themselves when linear).
                 let want = lo + span * x;
                 let got = values[at];
-                let off = (got - want).abs();
+                let off = (map.forward(got) - want).abs();
+                let want = map.inverse(want);
                 if off.is_nan() || off > POSITION_TOL * span.abs() {
                     return Err(format!(
                         "patch '{name}': {ds}[{at}] = {got} where the tree and the axis \

@@ -6,7 +6,7 @@ use hdf5::types::VarLenUnicode;
 
 use crate::format::*;
 use crate::surface::{
-    Axis, Knots, PartialMap, Patch, PatchData, PatchId, PatchKind, Surface, Warp,
+    Axis, AxisMap, Knots, PartialMap, Patch, PatchData, PatchId, PatchKind, Surface, Warp,
 };
 use crate::TableError;
 
@@ -271,6 +271,7 @@ impl Reader<'_> {
         stencil: usize,
         version: u32,
         e_range: Option<(f64, f64)>,
+        e_map: AxisMap,
         pair: bool,
         law: &str,
     ) -> Result<Option<Patch>, TableError> {
@@ -337,7 +338,8 @@ impl Reader<'_> {
                 let be = self.count_attr(&g, E_N.attr_blocks, 1 << 16)?;
                 Some(
                     Axis::extra(&E_N, lo, hi, be)
-                        .map_err(|m| self.invalid(format!("patch '{name}': {m}")))?,
+                        .map_err(|m| self.invalid(format!("patch '{name}': {m}")))?
+                        .with_map(e_map),
                 )
             }
             None => None,
@@ -616,6 +618,29 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
             r.attr_str(&file, ATTR_AXES).unwrap_or_default()
         )));
     }
+    // Schema 5 names the map of the e_n axis; before it the axis is linear.
+    let e_map = if version >= 5 {
+        let name = r.attr_str(&file, ATTR_E_N_COORDINATE)?;
+        match AxisMap::of_name(&name) {
+            Some(map) if e_range.is_some() => map,
+            Some(_) => {
+                return Err(r.invalid(format!(
+                    "root attribute '{ATTR_E_N_COORDINATE}' = '{name}' in a table without an \
+                     e_n axis"
+                )))
+            }
+            None => {
+                return Err(r.invalid(format!(
+                    "root attribute '{ATTR_E_N_COORDINATE}' = '{name}': this reader understands \
+                     '{}' and '{}'",
+                    AxisMap::Linear.name(),
+                    AxisMap::QuarterRoot.name()
+                )))
+            }
+        }
+    } else {
+        AxisMap::Linear
+    };
     let patches = file
         .group(GROUP_PATCHES)
         .map_err(|_| r.invalid(format!("missing group '{GROUP_PATCHES}'")))?;
@@ -628,6 +653,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Contents, TableError> {
             stencil,
             version,
             e_range,
+            e_map,
             pair,
             &law,
         )?;

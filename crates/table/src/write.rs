@@ -10,7 +10,7 @@ use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 
 use crate::format::*;
 use crate::read::{Check, Provenance};
-use crate::surface::{Patch, PatchKind, Surface};
+use crate::surface::{AxisMap, Patch, PatchKind, Surface};
 use thiserror::Error;
 
 /// The deflate (zlib) level of every dataset, after the byte-shuffle filter: level 6 writes
@@ -261,11 +261,16 @@ fn write_to(tmp: &Path, path: &str, built: &Built, prov: &Provenance) -> Result<
     let s = &built.surface;
     let e_range = s.restitution();
     w.attr_str(&file, ATTR_FORMAT, FORMAT_NAME)?;
+    let e_map = s.e_n_map();
     let version = match e_range {
-        Some(_) => SCHEMA_VERSION,
+        Some(_) if e_map != AxisMap::Linear => SCHEMA_VERSION,
+        Some(_) => E_N_SCHEMA_VERSION,
         None => ELASTIC_SCHEMA_VERSION,
     };
     w.attr_f64(&file, ATTR_SCHEMA, version as f64)?;
+    if version >= 5 {
+        w.attr_str(&file, ATTR_E_N_COORDINATE, e_map.name())?;
+    }
     if let Some((lo, hi)) = e_range {
         let axes = axes_attr([&E_N], s.pair_gamma().is_some());
         w.attr_str(&file, ATTR_AXES, &axes)?;

@@ -9,7 +9,14 @@ use oblique_table::surface::{PartialMap, PatchKind};
 fn main() -> anyhow::Result<()> {
     let [g0, g1, e0, e1] = oblique_tools::gamma_e_box("stripknots")?;
     let strip = oblique_sweep::kink::thornton_plus_strip_surfaces((g0, g1), (e0, e1))?;
-    let Some(k) = oblique_sweep::knots::thornton_knots((g0, g1), 1, (e0, e1), 1, Some(&strip))?
+    let Some(k) = oblique_sweep::knots::thornton_knots(
+        (g0, g1),
+        1,
+        (e0, e1),
+        1,
+        oblique_table::surface::AxisMap::Linear,
+        Some(&strip),
+    )?
     else {
         anyhow::bail!("no knots over this range");
     };

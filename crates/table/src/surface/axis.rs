@@ -78,6 +78,9 @@ impl AxisName {
 pub struct Axis {
     /// Which quantity.
     pub name: AxisName,
+    /// How a value maps to the axis coordinate ([`AxisMap::Linear`] but for the `e_n` axis of
+    /// a table that names another, [`AxisMap::QuarterRoot`]).
+    pub map: AxisMap,
     /// Lowest value.
     pub lo: f64,
     /// Highest value.
@@ -92,6 +95,7 @@ impl Axis {
     pub fn gamma(lo: f64, hi: f64, blocks: usize) -> Axis {
         Axis {
             name: AxisName::Gamma,
+            map: AxisMap::Linear,
             lo,
             hi,
             blocks,
@@ -102,6 +106,7 @@ impl Axis {
     pub fn coord(blocks: usize) -> Axis {
         Axis {
             name: AxisName::Alpha,
+            map: AxisMap::Linear,
             lo: 0.0,
             hi: 1.0,
             blocks,
@@ -126,6 +131,7 @@ impl Axis {
         }
         Ok(Axis {
             name: AxisName::Extra(spec.name),
+            map: AxisMap::Linear,
             lo,
             hi,
             blocks,
@@ -147,18 +153,149 @@ impl Axis {
         self.blocks
     }
 
-    /// The coordinate `x = (value − lo)/(hi − lo)` of `value`.
-    #[inline(always)]
-    pub fn x(&self, value: f64) -> f64 {
-        (value - self.lo) / (self.hi - self.lo)
+    /// The same axis with the map `map` from its values to its coordinate.
+    pub fn with_map(self, map: AxisMap) -> Axis {
+        Axis { map, ..self }
     }
 
-    /// The value at coordinate `x` (`hi` exactly at `x = 1`).
+    /// The ends of the axis in mapped values, `(m(lo), m(hi) − m(lo))` ([`AxisMap::forward`]):
+    /// the coordinate is `x = (m(value) − m(lo))/(m(hi) − m(lo))`. `(lo, hi − lo)` for a linear
+    /// axis.
+    #[inline(always)]
+    pub fn mapped_span(&self) -> (f64, f64) {
+        let lo = self.map.forward(self.lo);
+        (lo, self.map.forward(self.hi) - lo)
+    }
+
+    /// The coordinate `x = (m(value) − m(lo))/(m(hi) − m(lo))` of `value`
+    /// ([`AxisMap::forward`]; `(value − lo)/(hi − lo)` on a linear axis).
+    #[inline(always)]
+    pub fn x(&self, value: f64) -> f64 {
+        match self.map {
+            AxisMap::Linear => (value - self.lo) / (self.hi - self.lo),
+            map => {
+                let (lo, width) = self.mapped_span();
+                (map.forward(value) - lo) / width
+            }
+        }
+    }
+
+    /// The value at coordinate `x` (`lo` exactly at `x ≤ 0`, `hi` exactly at `x ≥ 1`).
     pub fn at(&self, x: f64) -> f64 {
         if x >= 1.0 {
             self.hi
+        } else if x <= 0.0 {
+            self.lo
         } else {
-            self.lo + (self.hi - self.lo) * x
+            match self.map {
+                AxisMap::Linear => self.lo + (self.hi - self.lo) * x,
+                map => {
+                    let (lo, width) = self.mapped_span();
+                    map.inverse(lo + width * x).clamp(self.lo, self.hi)
+                }
+            }
         }
+    }
+}
+
+/// How the values of an axis map to its coordinate.
+///
+/// Thornton's law takes `e_n` from the yield velocity ratio `V_y/V` (`physics.md`,
+/// "Elastic–plastic impacts"); near `e_n = 1` the plastic radius at the deepest indentation
+/// grows like `(1 − e_n)^{1/4}`, and `P` goes like `P(1) − a(1 − e_n) + b(1 − e_n)^{5/4}`:
+/// smooth in `t = (1 − e_n)^{1/4}`, not in `e_n` (its second derivative is unbounded at 1).
+/// A table of that law over a range that reaches `e_n = 1` is built over `t`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AxisMap {
+    /// `x = (value − lo)/(hi − lo)`.
+    #[default]
+    Linear,
+    /// `m(e) = −(1 − e)^{1/4}` (as `−√√(1 − e)`, correctly rounded square roots in every
+    /// reader), for an axis inside `(−∞, 1]`: `x = (m(e) − m(lo))/(m(hi) − m(lo))`.
+    QuarterRoot,
+}
+
+impl AxisMap {
+    /// The stored name of the map (the root attribute `e_n_coordinate` of a schema-5 table).
+    pub fn name(self) -> &'static str {
+        match self {
+            AxisMap::Linear => "e_n",
+            AxisMap::QuarterRoot => "(1-e_n)^(1/4)",
+        }
+    }
+
+    /// The map of a stored name, `None` for a name this reader does not know.
+    pub fn of_name(name: &str) -> Option<AxisMap> {
+        [AxisMap::Linear, AxisMap::QuarterRoot]
+            .into_iter()
+            .find(|m| m.name() == name)
+    }
+
+    /// The mapped value `m(value)`.
+    #[inline(always)]
+    pub fn forward(self, value: f64) -> f64 {
+        match self {
+            AxisMap::Linear => value,
+            AxisMap::QuarterRoot => -(1.0 - value).sqrt().sqrt(),
+        }
+    }
+
+    /// The value of a mapped value `w` (the inverse of [`AxisMap::forward`], to rounding).
+    #[inline(always)]
+    pub fn inverse(self, w: f64) -> f64 {
+        match self {
+            AxisMap::Linear => w,
+            AxisMap::QuarterRoot => {
+                let t2 = w * w;
+                1.0 - t2 * t2
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_linear_axis_keeps_its_expressions() {
+        let a = Axis::restitution(0.3, 0.95, 2).unwrap();
+        assert_eq!(a.map, AxisMap::Linear);
+        for &e in &[0.3, 0.41, 0.5, 0.77, 0.95] {
+            assert_eq!(a.x(e), (e - 0.3) / (0.95 - 0.3));
+        }
+        for &x in &[0.0, 0.125, 0.5, 0.9] {
+            assert_eq!(a.at(x), 0.3 + (0.95 - 0.3) * x);
+        }
+        assert_eq!(a.mapped_span(), (0.3, 0.95 - 0.3));
+    }
+
+    #[test]
+    fn the_quarter_root_map_is_monotone_exact_at_its_ends_and_inverts() {
+        let a = Axis::restitution(0.3, 1.0, 4)
+            .unwrap()
+            .with_map(AxisMap::QuarterRoot);
+        assert_eq!((a.x(0.3), a.x(1.0)), (0.0, 1.0));
+        assert_eq!((a.at(0.0), a.at(1.0)), (0.3, 1.0));
+        // x(e) = 1 − ((1 − e)/0.7)^{1/4}: the coordinate of t = (1 − e)^{1/4}.
+        let mut last = -1.0;
+        for i in 0..=1000 {
+            let e = 0.3 + 0.7 * i as f64 / 1000.0;
+            let x = a.x(e);
+            let want = 1.0 - ((1.0 - e) / 0.7).powf(0.25);
+            assert!((x - want).abs() < 1e-14, "x({e}) = {x}, want {want}");
+            assert!(x > last, "x must increase: x({e}) = {x} after {last}");
+            last = x;
+            // Back to e_n within rounding.
+            assert!((a.at(x) - e).abs() < 1e-14, "at(x({e})) = {}", a.at(x));
+        }
+        // Next to e_n = 1 the coordinate spreads the axis: the last 1e-4 of e_n holds a tenth.
+        assert!(a.x(1.0 - 1e-4) < 0.9);
+        assert_eq!(
+            AxisMap::of_name(AxisMap::QuarterRoot.name()),
+            Some(AxisMap::QuarterRoot)
+        );
+        assert_eq!(AxisMap::of_name("e_n"), Some(AxisMap::Linear));
+        assert_eq!(AxisMap::of_name("sqrt(1-e_n)"), None);
     }
 }

@@ -193,6 +193,21 @@ impl Surface {
                      patch must have the table's"
                 ));
             }
+            let map = p.restitution().map_or(AxisMap::Linear, |r| r.map);
+            let first = patches
+                .iter()
+                .flatten()
+                .next()
+                .and_then(Patch::restitution)
+                .map_or(AxisMap::Linear, |r| r.map);
+            if map != first {
+                return Err(format!(
+                    "patch '{name}' maps e_n as '{}', another patch as '{}': every patch must \
+                     map it as the table does",
+                    map.name(),
+                    first.name()
+                ));
+            }
             if p.is_pair() != pair || (pair && p.gamma_lo() != gamma_min) {
                 return Err(format!(
                     "patch '{name}' has the gamma edges [{}, {}], the table the gamma domain \
@@ -341,6 +356,17 @@ impl Surface {
         self.restitution
     }
 
+    /// How the patches map `e_n` to their coordinate ([`AxisMap::Linear`] for an elastic
+    /// table): the root attribute `e_n_coordinate` of a schema-5 table.
+    pub fn e_n_map(&self) -> AxisMap {
+        self.patches
+            .iter()
+            .flatten()
+            .next()
+            .and_then(Patch::restitution)
+            .map_or(AxisMap::Linear, |r| r.map)
+    }
+
     /// The single `γ` of the table of one pair of materials (axes `α`, `e_n`; `gamma_min =
     /// gamma_max`), `None` for a table over a range of `γ`.
     pub fn pair_gamma(&self) -> Option<f64> {
@@ -368,6 +394,7 @@ impl Surface {
         if self.pair_gamma().is_none() {
             axes.push(Axis {
                 name: AxisName::Gamma,
+                map: AxisMap::Linear,
                 lo: self.gamma_min,
                 hi: self.gamma_max,
                 blocks: 1,
@@ -375,6 +402,7 @@ impl Surface {
         }
         axes.extend([Axis {
             name: AxisName::Alpha,
+            map: AxisMap::Linear,
             lo: 0.0,
             hi: self.alpha_max,
             blocks: 1,
@@ -382,6 +410,7 @@ impl Surface {
         if let Some((lo, hi)) = self.restitution {
             axes.push(Axis {
                 name: AxisName::RESTITUTION_N,
+                map: self.e_n_map(),
                 lo,
                 hi,
                 blocks: 1,

@@ -132,7 +132,7 @@ impl Patch {
             [_, _, e] if e.name.extra().is_some() => e
                 .name
                 .extra()
-                .map(|spec| Axis::extra(spec, e.lo, e.hi, e.blocks))
+                .map(|spec| Axis::extra(spec, e.lo, e.hi, e.blocks).map(|a| a.with_map(e.map)))
                 .transpose()?,
             _ => {
                 return Err(format!(
@@ -583,11 +583,22 @@ impl Patch {
     }
 
     /// Axis `k` of the patch's tree (0 `γ`, 1 `c`, 2 `e_n`): `(lo, width, blocks)`, its
-    /// coordinate `x = (value − lo)/width` (`c` is its own coordinate: `(0, 1)`) and its root
-    /// cells; `(0, 1, 1)` beyond the patch's axes.
+    /// coordinate `x = (m(value) − lo)/width` with `m` its map ([`Patch::axis_map`],
+    /// [`Axis::mapped_span`]; `c` is its own coordinate: `(0, 1)`) and its root cells;
+    /// `(0, 1, 1)` beyond the patch's axes.
+    /// How axis `k` of the patch's tree maps its values ([`AxisMap::Linear`] but for an `e_n`
+    /// axis of a schema-5 table).
+    pub fn axis_map(&self, k: usize) -> AxisMap {
+        self.tree_axes().get(k).map_or(AxisMap::Linear, |a| a.map)
+    }
+
+    /// [`Patch::axis`]'s values: `(lo, width, blocks)` of axis `k`.
     pub fn axis(&self, k: usize) -> (f64, f64, usize) {
         match self.tree_axes().get(k) {
-            Some(a) => (a.lo, a.hi - a.lo, a.blocks),
+            Some(a) => {
+                let (lo, width) = a.mapped_span();
+                (lo, width, a.blocks)
+            }
             None => (0.0, 1.0, 1),
         }
     }
@@ -743,8 +754,11 @@ impl Patch {
         let at = |axis: usize, v: f64| {
             let (lo, hi) = if axis == 0 {
                 (self.gamma_lo(), self.gamma_hi())
-            } else {
+            } else if r.map == AxisMap::Linear {
                 (r.lo, r.hi)
+            } else {
+                // The e_n of a root-cell position through the axis map.
+                return r.at(v / blocks[axis]);
             };
             lo + (hi - lo) * v / blocks[axis]
         };
