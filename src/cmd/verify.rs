@@ -83,6 +83,12 @@ pub struct VerifyArgs {
     /// out); the largest error next to each is printed too.
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet"])]
     near_folds: bool,
+    /// Draw e_n next to 1 instead of uniform (a table with an e_n range up to 1): e_n = 1 - r, r
+    /// log-uniform in [1e-6, 0.05] (within the range), gamma and alpha as without it. Under
+    /// Thornton's law P leaves e_n = 1 like P(1) - a(1 - e_n) + b(1 - e_n)^(5/4), which a linear
+    /// e_n axis cannot follow (docs/table-format.md, "Schema v5").
+    #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet", "near_folds"])]
+    near_one: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
@@ -105,7 +111,11 @@ pub struct BoundExceeded {
 /// `[0, s_max)` with `s_max = alpha_max/(1 + alpha_max)` (1 for `alpha_max = inf`), and, when
 /// the table includes no slip, every [`NO_SLIP_EVERY`]-th point at `α = inf` instead; `e_n`
 /// uniform in the table's range for a table with an `e_n` axis (1 otherwise).
-fn sample(table: &Table, n: usize, seed: u64, near_curves: bool) -> Vec<Point> {
+/// The range of `1 − e_n` of `--near-one`, log-uniform.
+const NEAR_ONE_MIN: f64 = 1e-6;
+const NEAR_ONE_MAX: f64 = 0.05;
+
+fn sample(table: &Table, n: usize, seed: u64, near_curves: bool, near_one: bool) -> Vec<Point> {
     if near_curves {
         return sample_near_curves(table, n, seed);
     }
@@ -127,6 +137,11 @@ fn sample(table: &Table, n: usize, seed: u64, near_curves: bool) -> Vec<Point> {
             };
             // Drawn last, and only with an e_n axis: an elastic table's points are unchanged.
             let e_n = match s.restitution() {
+                Some((lo, _)) if near_one => {
+                    // 1 − e_n log-uniform in [NEAR_ONE_MIN, min(NEAR_ONE_MAX, 1 − e_n_min)].
+                    let (a, b) = (NEAR_ONE_MIN.log10(), NEAR_ONE_MAX.min(1.0 - lo).log10());
+                    (1.0 - 10f64.powf(a + (b - a) * rng.uniform())).max(lo)
+                }
                 Some((lo, hi)) => (lo + (hi - lo) * rng.uniform()).min(hi),
                 None => 1.0,
             };
@@ -445,7 +460,26 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         near_end_range = Some(range);
         points
     } else {
-        sample(&table, args.points, args.seed, args.near_curves)
+        if args.near_one {
+            match table.restitution() {
+                Some((_, hi)) if hi == 1.0 => {}
+                Some((_, hi)) => {
+                    return Err(Failure::usage(format!(
+                        "--near-one: {} answers e_n up to {hi}, not up to 1",
+                        args.table.display()
+                    ))
+                    .into())
+                }
+                None => {
+                    return Err(Failure::usage(format!(
+                        "--near-one: {} has no e_n axis (an elastic table answers e_n = 1 only)",
+                        args.table.display()
+                    ))
+                    .into())
+                }
+            }
+        }
+        sample(&table, args.points, args.seed, args.near_curves, args.near_one)
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)
@@ -499,6 +533,11 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             Some((lo, hi)) if args.near_sheet => {
                 format!(" within e_n [{lo}, {hi}], law {}", law.name())
             }
+            Some((lo, _)) if args.near_one => format!(
+                ", 1 - e_n log-uniform in [{NEAR_ONE_MIN:e}, {:e}], law {}",
+                NEAR_ONE_MAX.min(1.0 - lo),
+                law.name()
+            ),
             Some((lo, hi)) => format!(
                 ", e_n uniform in [{lo}, {hi}]{}, law {}",
                 match (args.near_fold, table.surface().pair_gamma()) {
