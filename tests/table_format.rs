@@ -1565,7 +1565,7 @@ fn f_bad_files_are_refused_with_clear_messages() {
     oblique_table::write::seal(&wrong_format).unwrap();
     refused(&wrong_format, &["not a p table"]);
 
-    for (name, version) in [("schema1.h5", 1.0), ("schema5.h5", 5.0)] {
+    for (name, version) in [("schema1.h5", 1.0), ("schema6.h5", 6.0)] {
         let other = dir.join(name);
         std::fs::copy(&fx.table, &other).unwrap();
         {
