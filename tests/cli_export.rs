@@ -1,5 +1,6 @@
 //! `sweep export`: the file it writes is the format crate's export of the table, the C source
-//! holds the same bytes, and bad arguments are refused with exit status 2.
+//! holds the same bytes, bad arguments are refused with exit status 2, and the exports of the
+//! shipped tables keep their bytes.
 
 mod common;
 use common::sweep;
@@ -130,5 +131,45 @@ fn export_refuses_c_names_a_compiler_would_refuse() {
         );
         let src = std::fs::read_to_string(o).expect("source");
         assert!(src.contains(&format!("const unsigned long long {name}[")));
+    }
+}
+
+/// The exports of the shipped tables keep their bytes: layout versions 1 (with two curves), 2,
+/// 3, 5 and 6, each pinned by its length and 64-bit FNV-1a hash (a later version, or a field
+/// of a later version, changes no byte of an export that has no use for it).
+#[test]
+fn the_exports_of_the_shipped_tables_keep_their_bytes() {
+    for (name, gammas, version, len, hash) in [
+        (
+            "quick",
+            &[1.2, 0.5][..],
+            1,
+            41_360,
+            0xa72d_78b9_5346_cfe7u64,
+        ),
+        ("dissipative-demo", &[], 2, 231_680, 0x4dab_aa27_b9e7_1fc2),
+        ("dissipative-pair", &[], 3, 22_584, 0xd5d5_e5ac_6dfd_82d6),
+        ("dissipative", &[], 5, 6_093_888, 0x82cf_83bb_1f3c_a66d),
+        ("full", &[], 6, 1_584_616, 0xc594_0e27_c219_12dc),
+    ] {
+        let t = Table::open(Path::new(ROOT).join(format!("tables/{name}.h5"))).expect("table");
+        let curves: Vec<_> = gammas
+            .iter()
+            .map(|&g| {
+                let c = t.curve(g, OutOfDomain::Error).expect("curve");
+                c.export_data().expect("inside")
+            })
+            .collect();
+        let bytes = oblique_table::export::export(t.surface(), t.error_bound(), true, &curves);
+        assert_eq!(
+            bytes[8..12],
+            u32::to_le_bytes(version),
+            "{name}: the version"
+        );
+        assert_eq!(
+            (bytes.len(), oblique_table::format::fnv1a64(&bytes)),
+            (len, hash),
+            "{name}: the export's bytes changed"
+        );
     }
 }
