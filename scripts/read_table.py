@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Reference reader of the P(gamma, alpha) table (HDF5, schema v4, v3 or v2), h5py + numpy only.
+"""Reference reader of the P(gamma, alpha) table (HDF5, schema v5, v4, v3 or v2), h5py + numpy
+only.
 
 Implements the interpolation rule of docs/table-format.md (steps 1-10, the rule of a table with
 a normal-restitution axis, schema v4, that of the table of one pair, axes 'alpha,e_n', and that
 of a table of Thornton's law, which has no full-slip line: "Tables of Thornton's law", with the
-knots of its partial-slip and stick coordinates where the table has them: "The knots") exactly,
+knots of its partial-slip and stick coordinates where the table has them: "The knots", and its
+e_n axis over (1 - e_n)^(1/4) where the table maps it: "Schema v5") exactly,
 independently of the Rust code, so that it can cross-check both the `oblique-lookup` crate and
 the simulator.
 
@@ -47,8 +49,15 @@ except ImportError as e:  # pragma: no cover - depends on the machine
     sys.exit(2)
 
 FORMAT_NAME = "oblique-P-table"
-SCHEMA_VERSION = 4
-SCHEMA_VERSIONS = (2, 3, 4)  # v2: v3 without the optional warp; v4: v3 with optional e_n axis
+SCHEMA_VERSION = 5
+# v2: v3 without the optional warp; v4: v3 with an optional e_n axis; v5: v4 whose root attribute
+# 'e_n_coordinate' names the map of the e_n axis
+SCHEMA_VERSIONS = (2, 3, 4, 5)
+# The maps of the e_n axis a schema-5 table may name (root attribute 'e_n_coordinate'): the
+# linear axis of schema 4, and the axis over t = (1 - e_n)^(1/4).
+E_N_LINEAR = "e_n"
+E_N_QUARTER_ROOT = "(1-e_n)^(1/4)"
+E_N_COORDINATES = (E_N_LINEAR, E_N_QUARTER_ROOT)
 AXES_PAIR = "alpha,e_n"  # the axes of the table of one pair (schema 4): P(alpha, e_n) at one gamma
 # The contact laws whose tables (with an e_n axis) this reader answers (root attribute 'law'),
 # each with the partial-slip coordinate its tables have (attribute 'coordinate' of
@@ -69,7 +78,7 @@ PATCH_KINDS = {"stick_low": "stick", "partial_high": "partial-slip", "stick_high
 
 
 class TableError(Exception):
-    """The file is not a readable P table of schema v2, v3 or v4."""
+    """The file is not a readable P table of schema v2, v3, v4 or v5."""
 
 
 class DomainError(ValueError):
@@ -270,6 +279,49 @@ def _float_attr(attrs, name):
     return float(v.reshape(()))
 
 
+def quarter_root(e):
+    """The mapped value m(e) = -(1 - e)^(1/4) of an e_n axis over (1 - e_n)^(1/4), as
+    -sqrt(sqrt(1 - e)): two correctly rounded square roots (Python floats are binary64)."""
+    return -math.sqrt(math.sqrt(1.0 - e))
+
+
+class EAxis:
+    """The e_n axis of a table, [lo, hi], and how e_n maps to its coordinate: linearly,
+    x_e = (e_n - lo)/(hi - lo), or over t = (1 - e_n)^(1/4) (schema 5, 'e_n_coordinate' =
+    '(1-e_n)^(1/4)'), x_e = (m(e_n) - m(lo))/(m(hi) - m(lo)) with m = quarter_root, i.e.
+    (t_min - t)/(t_min - t_max) (docs/table-format.md, "Schema v5")."""
+
+    def __init__(self, lo, hi, quarter):
+        self.lo, self.hi, self.quarter = lo, hi, quarter
+        # The mapped ends: x_e = (m(e_n) - m_lo)/m_width (lo, hi - lo on a linear axis).
+        if quarter:
+            self.m_lo = quarter_root(lo)
+            self.m_width = quarter_root(hi) - self.m_lo
+        else:
+            self.m_lo, self.m_width = lo, hi - lo
+
+    def x(self, e_n):
+        """The coordinate x_e of e_n (steps 6 and 7, and the knots' region)."""
+        if self.quarter:
+            return (quarter_root(e_n) - self.m_lo) / self.m_width
+        return (e_n - self.lo) / (self.hi - self.lo)
+
+    def at_cells(self, v, blocks):
+        """The e_n at root-cell position v of the axis's `blocks` root cells (the knots' check):
+        lo + (hi - lo) v/blocks on a linear axis; over t at x = v/blocks, lo at x <= 0, hi at
+        x >= 1, else 1 - w^4 of w = m_lo + m_width x, clamped to [lo, hi]."""
+        if not self.quarter:
+            return self.lo + (self.hi - self.lo) * v / blocks
+        x = v / blocks
+        if x >= 1.0:
+            return self.hi
+        if x <= 0.0:
+            return self.lo
+        w = self.m_lo + self.m_width * x
+        w = w * w
+        return min(max(1.0 - w * w, self.lo), self.hi)
+
+
 class Warp:
     """The optional warp of the partial-slip coordinate (group /patches/partial_high/warp)."""
 
@@ -372,7 +424,7 @@ class Patch:
 
     def __init__(self, name, kind, gamma_lo, gamma_hi, blocks_gamma, blocks_coord,
                  leaf_intervals, tree, p, warp=None, blocks_e_n=None, e_n_range=None,
-                 split=None, pair=False, knots=None):
+                 split=None, pair=False, knots=None, e_axis=None):
         self.name = name
         self.kind = kind
         self.gamma_lo = gamma_lo
@@ -385,6 +437,10 @@ class Patch:
         self.warp = warp  # Warp or None
         self.blocks_e_n = blocks_e_n  # root cells along e_n, or None (no e_n axis)
         self.e_n_range = e_n_range  # (e_n_min, e_n_max) or None
+        # The e_n axis and its map (EAxis; linear over e_n_range when not given), or None.
+        if e_axis is None and e_n_range is not None:
+            e_axis = EAxis(e_n_range[0], e_n_range[1], False)
+        self.e_axis = e_axis
         # Per cell, the axes a split cell halves (bit 4: gamma, 2: c, 1: e_n), or None: all.
         self.split = split
         # The patch of one pair: gamma_lo = gamma_hi, its tree over (c, e_n) only.
@@ -487,8 +543,7 @@ class Patch:
         """Steps 6 to 10 of the patch of one pair (the cubic stencil over (c, x_e)), c clamped:
         the rows along e_n first, r_j = P[s_c + j, s_e] w_e0 + ... + P[s_c + j, s_e + 3] w_e3,
         then w_c0 r_0 + ... + w_c3 r_3, each sum from left to right."""
-        lo, hi = self.e_n_range
-        leaf, fc, fe = self.find_leaf_pair(c, (e_n - lo) / (hi - lo))
+        leaf, fc, fe = self.find_leaf_pair(c, self.e_axis.x(e_n))
         m = self.leaf_intervals
         n1 = m + 1
         sc, wc = cubic_stencil(fc * m, n1)
@@ -504,12 +559,12 @@ class Patch:
 
     def interpolate_e(self, gamma, c, e_n):
         """Steps 6 to 10 of a patch with an e_n axis (the cubic stencil), c clamped, at
-        x_e = (e_n - e_n_min)/(e_n_max - e_n_min): the tensor product summed e_n innermost,
-        gamma outermost, each sum from left to right. The patch of one pair: over (c, x_e)."""
+        x_e = (e_n - e_n_min)/(e_n_max - e_n_min) (through the axis's map, EAxis.x): the tensor
+        product summed e_n innermost, gamma outermost, each sum from left to right. The patch of
+        one pair: over (c, x_e)."""
         if self.pair:
             return self.interpolate_pair(c, e_n)
-        lo, hi = self.e_n_range
-        xe = (e_n - lo) / (hi - lo)
+        xe = self.e_axis.x(e_n)
         c = self.knotted(gamma, c, xe, e_n)
         leaf, fg, fc, fe = self.find_leaf3(gamma, c, xe)
         m = self.leaf_intervals
@@ -683,6 +738,31 @@ class Table:
                 raise self._invalid(
                     f"root attribute 'axes' = '{axes}': this reader understands 'gamma,alpha', "
                     f"'gamma,alpha,e_n' and '{AXES_PAIR}'")
+        # Schema 5 names the map of the e_n axis (root attribute 'e_n_coordinate', required
+        # there); before it the axis is linear.
+        self.e_n_coordinate = E_N_LINEAR
+        if self.schema_version >= 5:
+            try:
+                coord = _str_attr(f.attrs, "e_n_coordinate")
+            except (KeyError, TypeError):
+                raise self._invalid(
+                    "missing or non-string root attribute 'e_n_coordinate' (schema 5)") from None
+            if coord not in E_N_COORDINATES:
+                raise self._invalid(
+                    f"root attribute 'e_n_coordinate' = '{coord}': this reader understands "
+                    + " and ".join(f"'{c}'" for c in E_N_COORDINATES))
+            if self.e_n_range is None:
+                raise self._invalid(
+                    f"root attribute 'e_n_coordinate' = '{coord}' in a table without an e_n "
+                    "axis")
+            self.e_n_coordinate = coord
+        self.e_axis = None
+        if self.e_n_range is not None:
+            self.e_axis = EAxis(*self.e_n_range, self.e_n_coordinate == E_N_QUARTER_ROOT)
+            if not self.e_axis.m_width > 0.0:
+                raise self._invalid(
+                    f"e_n range [{self.e_n_range[0]}, {self.e_n_range[1]}] over "
+                    f"'{self.e_n_coordinate}': its ends map to the same coordinate")
         pair = axes == AXES_PAIR
         if pair != (self.gamma_min == self.gamma_max):
             raise self._invalid(
@@ -842,7 +922,7 @@ class Table:
                 bound = float(per_leaf.max(initial=0.0))
         self.bounds[name] = bound
         return Patch(name, kind, lo, hi, bg, bc, m, tree, p, warp, be, self.e_n_range, split,
-                     pair, knots)
+                     pair, knots, self.e_axis)
 
     def _check_nodes(self, g, where, lo, hi, bg, bc, be, m, tree, split, dims, pair, leaves,
                      shape):
@@ -862,15 +942,13 @@ class Table:
             stored[n] = d[()].astype(np.float64).reshape(leaves, -1)
         if not np.all(stored["alpha"] >= 0):
             raise self._invalid(f"{where}: node alphas must be >= 0 (inf allowed)")
-        # The tree's axes: (values, lo, span, root cells) in tree order.
+        # The tree's axes: (values, lo, span, root cells) in tree order; the e_n axis in its
+        # mapped values (EAxis: m_lo, m_width), its stored values compared through the map.
+        e_axis = [("e_n", self.e_axis.m_lo, self.e_axis.m_width, be)] if be is not None else []
         if pair:
-            axes = [("coord", 0.0, 1.0, bc),
-                    ("e_n", self.e_n_range[0], self.e_n_range[1] - self.e_n_range[0], be)]
+            axes = [("coord", 0.0, 1.0, bc)] + e_axis
         else:
-            axes = [("gamma", lo, hi - lo, bg), ("coord", 0.0, 1.0, bc)]
-            if be is not None:
-                axes.append(("e_n", self.e_n_range[0], self.e_n_range[1] - self.e_n_range[0],
-                             be))
+            axes = [("gamma", lo, hi - lo, bg), ("coord", 0.0, 1.0, bc)] + e_axis
         blocks = [a[3] for a in axes]
         pos = np.zeros((leaves, dims))
         depth = np.zeros((leaves, dims))
@@ -898,14 +976,22 @@ class Table:
         for k, (n, a_lo, span, b) in enumerate(axes):
             scale = b * np.exp2(depth[:, k])[:, None]
             want = a_lo + span * (pos[:, k][:, None] + idx[k][None, :] / m) / scale
-            bad = ~(np.abs(stored[n] - want) <= POSITION_TOL * abs(span))
+            got = stored[n]
+            if n == "e_n" and self.e_axis.quarter:
+                # m(e) = -sqrt(sqrt(1 - e)); a stored e_n above 1 gives NaN: refused.
+                with np.errstate(invalid="ignore"):
+                    got = -np.sqrt(np.sqrt(1.0 - got))
+                want_value = 1.0 - (want * want) ** 2
+            else:
+                want_value = want
+            bad = ~(np.abs(got - want) <= POSITION_TOL * abs(span))
             if bad.any():
                 leaf, node = np.argwhere(bad)[0]
                 raise self._invalid(
                     f"{where}: {n}[{leaf * idx.shape[1] + node}] = "
                     f"{stored[n][leaf, node]!r} where the tree and the axis attributes put the "
-                    f"node at {want[leaf, node]!r} (leaf {leaf}): the attributes do not describe "
-                    "the stored nodes")
+                    f"node at {want_value[leaf, node]!r} (leaf {leaf}): the attributes do not "
+                    "describe the stored nodes")
         if pair and not np.all(stored["gamma"] == lo):
             raise self._invalid(f"{where}: node gammas differ from the pair's gamma {lo!r}")
 
@@ -1057,13 +1143,16 @@ class Table:
                     f"{where}: dataset 'region' = {region}: the {axis_name} edges must be "
                     f"multiples of 2^-20 with 0 <= from < to <= {blocks[axis]} (root cells of "
                     "the patch)")
-        # The grid covers the region (within 1e-12 of the value).
-        spans = ((gamma_lo, gamma_hi), self.e_n_range)
+        # The grid covers the region (within 1e-12 of the value; along e_n through the axis's
+        # map).
+        def at(axis, v):
+            if axis == 1:
+                return self.e_axis.at_cells(v, blocks[1])
+            return gamma_lo + (gamma_hi - gamma_lo) * v / blocks[0]
         for axis, (axis_name, first, step, n) in enumerate(
                 (("gamma", gamma_0, gamma_step, ng), ("e_n", e_n_0, e_n_step, ne))):
-            a_lo, a_hi = spans[axis]
-            at_from = a_lo + (a_hi - a_lo) * region[2 * axis] / blocks[axis]
-            at_to = a_lo + (a_hi - a_lo) * region[2 * axis + 1] / blocks[axis]
+            at_from = at(axis, region[2 * axis])
+            at_to = at(axis, region[2 * axis + 1])
             end = first + (n - 1) * step
             slack = 1e-12 * max(abs(at_to), 1.0)
             if not (first <= at_from + slack and end >= at_to - slack):
