@@ -54,7 +54,8 @@
  * differs in the last bits only, by at most 2e-15 (on an NVIDIA H200 over 2^24 random points:
  * 1.2e-15, about 1 answer in 4000 not the host's bits; a curve's P 3.3e-16; on the host with
  * half of the logs off by an ulp: 2e-15; oblq_p_e of a table with an e_n axis likewise: log is
- * its only call that CUDA may round otherwise; on the table of one pair,
+ * its only call that CUDA may round otherwise, the square roots of an e_n axis over
+ * (1 - e_n)^(1/4) (layout version 8) being correctly rounded there too; on the table of one pair,
  * tables/dissipative-pair.h5, over 2^24 random points on an NVIDIA H100: every status the
  * host's, 3840 answers not the host's bits, by at most 4.4e-16).
  * A 3-D rebound carries that difference into the fields computed from P: over 2^24 random
@@ -96,11 +97,12 @@ extern "C" {
    with a normal-restitution axis e_n), 3 (the table of one pair: P(alpha, e_n) at a single
    gamma), 4 (a table of Thornton's law: version 2 without a closed-form full-slip line), 5
    (version 2 or 4 whose partial-slip coordinate has knots), 6 (an elastic table whose
-   split cells halve only the axes their masks name) and 7 (version 5 whose stick patch
-   stick_high has knots too). */
-#define OBLQ_EXPORT_VERSION 7u
+   split cells halve only the axes their masks name), 7 (version 5 whose stick patch
+   stick_high has knots too) and 8 (version 2, 4, 5 or 7 whose e_n axis is mapped: its trees
+   over x_e = (t(e_n_min) - t(e_n))/(t(e_n_min) - t(e_n_max)), t(e) = (1 - e)^(1/4)). */
+#define OBLQ_EXPORT_VERSION 8u
 
-/* Most knots of a patch's coordinate (layout versions 5 and 7). */
+/* Most knots of a patch's coordinate (layout versions 5, 7 and 8). */
 #define OBLQ_MAX_KNOTS 8
 
 /* Status codes of the file loader oblq_load_file (host only; the others follow). */
@@ -169,8 +171,8 @@ typedef struct {
        every axis. With the axis bit 4: gamma, 2: c, 1: e_n (1 to 3 in the patch of one pair:
        c, e_n); without it (layout version 6) bit 2: gamma, 1: c; 0 for a leaf. */
     const unsigned char *split;
-    /* The knots of the patch's coordinate (layout version 5: partial_high; 7: partial_high
-       and stick_high; k_n = 0: none): k_n kink
+    /* The knots of the patch's coordinate (layout version 5: partial_high; 7 and 8:
+       partial_high and stick_high; k_n = 0: none): k_n kink
        surfaces K_j tabulated at (k_gamma_0 + i k_gamma_step, k_e_n_0 + l k_e_n_step),
        k_knot [k_n][k_ng][k_ne], sent to k_c_star[j] inside k_region (root cells: gamma from,
        gamma to, e_n from, e_n to); k_grade[j]: 0 linear, 1 the segment below graded, 2 the
@@ -191,11 +193,17 @@ typedef struct {
     const unsigned char *data; /* the export */
     uint64_t size;
     uint64_t curves; /* offset of the curve records */
-    int has_e_n; /* 1: a table with a normal-restitution axis (layout versions 2 to 5 and 7) */
+    int has_e_n; /* 1: a table with a normal-restitution axis (layout versions 2 to 5, 7, 8) */
     double e_n_min, e_n_max;  /* the e_n range it answers: 1, 1 for an elastic table */
+    /* The map of the e_n axis: 0 linear, x_e = (e_n - e_n_min)/(e_n_max - e_n_min); 1 (layout
+       version 8) over t = (1 - e_n)^(1/4), x_e = (m(e_n) - e_n_lo)/e_n_width with
+       m(e) = -sqrt(sqrt(1 - e)), e_n_lo = m(e_n_min), e_n_width = m(e_n_max) - e_n_lo, i.e.
+       (t_min - t)/(t_min - t_max) (0 and 1 for a linear axis: unused). */
+    int e_n_map;
+    double e_n_lo, e_n_width;
     int pair; /* 1: the table of one pair (layout version 3): gamma_min == gamma_max, its gamma */
-    /* 1: a table without a closed-form full-slip line (layout version 4, or 5 and 7 with the flag,
-       Thornton's law): its partial-slip patch answers every alpha < alpha_c2 for gamma >= 1
+    /* 1: a table without a closed-form full-slip line (layout version 4, or 5, 7 and 8 with the
+       flag, Thornton's law): its partial-slip patch answers every alpha < alpha_c2 for gamma >= 1
        (gamma_min >= 1). */
     int no_line;
 } oblq_table;
@@ -254,6 +262,35 @@ OBLQ_FN int oblq__finite_array(const double *v, size_t n) {
     for (i = 0; i < n; i++)
         if (!isfinite(v[i])) return 0;
     return 1;
+}
+
+/* The mapped value m(e) = -(1 - e)^(1/4) of an e_n axis over (1 - e_n)^(1/4) (layout version
+   8), as -sqrt(sqrt(1 - e)): two correctly rounded square roots (host and CUDA alike), the
+   Rust library's operations. */
+OBLQ_FN double oblq__quarter_root(double e) { return -sqrt(sqrt(1.0 - e)); }
+
+/* The coordinate x_e of e_n along the table's e_n axis (steps 6 and 7, and where the knots
+   apply): (e_n - e_n_min)/(e_n_max - e_n_min) on a linear axis, (m(e_n) - e_n_lo)/e_n_width
+   on an axis over (1 - e_n)^(1/4) (layout version 8): the same bits as the Rust library. */
+OBLQ_FN double oblq__x_e(const oblq_table *t, double e_n) {
+    if (t->e_n_map) return (oblq__quarter_root(e_n) - t->e_n_lo) / t->e_n_width;
+    return (e_n - t->e_n_min) / (t->e_n_max - t->e_n_min);
+}
+
+/* The e_n at root-cell position v of an e_n axis of `blocks` root cells (the knots' check):
+   e_n_min + (e_n_max - e_n_min) v/blocks on a linear axis; over (1 - e_n)^(1/4) the inverse
+   of the map at x = v/blocks, e_n_min at x <= 0, e_n_max at x >= 1, else 1 - w^4 of
+   w = e_n_lo + e_n_width x, clamped to [e_n_min, e_n_max]. */
+OBLQ_FN double oblq__e_n_at(const oblq_table *t, double v, double blocks) {
+    double x, w;
+    if (!t->e_n_map) return t->e_n_min + (t->e_n_max - t->e_n_min) * v / blocks;
+    x = v / blocks;
+    if (x >= 1.0) return t->e_n_max;
+    if (x <= 0.0) return t->e_n_min;
+    w = t->e_n_lo + t->e_n_width * x;
+    w = w * w;
+    w = 1.0 - w * w;
+    return w < t->e_n_min ? t->e_n_min : w > t->e_n_max ? t->e_n_max : w;
 }
 
 /* A patch record; `axes`: 2 of an elastic table (versions 1 and 6), 3 of a table with an e_n
@@ -426,19 +463,19 @@ OBLQ_FN int oblq__straddles(uint64_t a, unsigned d, uint64_t e) {
     return a * w < e && e < (a + 1) * w;
 }
 
-/* The knots block of a patch at offset `off` (layout versions 5 and 7), checked as the
+/* The knots block of a patch at offset `off` (layout versions 5, 7 and 8), checked as the
    other blocks are: inside the export, the counts and values in their ranges (c_star strictly
    increasing in (0, 1), grades 0 to 2 with no segment graded at both ends, the knot values
    strictly increasing in (0, 1) at every grid point), the region finite multiples of 2^-20
    with 0 <= from < to <= blocks per axis, the grid covering it (within 1e-12 of the value),
    and no leaf across an edge of the region along gamma or e_n (a walk down the cells that
    straddle one, on a path of at most 64 of them, whose splits would halve one axis 21 times).
-   `e_lo`, `e_hi`: the table's e_n range. */
+   `t`: the table's e_n range and map. */
 OBLQ_FN int oblq__knots(oblq_patch *p, const unsigned char *d, uint64_t len, uint64_t off,
-                        double e_lo, double e_hi) {
+                        const oblq_table *t) {
     const unsigned char *b;
     uint64_t n, ng, ne, i, j, l, edge[4];
-    double g[4], v, blocks[2], lo[2], hi[2];
+    double g[4], v, blocks[2];
     struct { uint64_t cell, ag, ae; unsigned dg, de, q; } st[64];
     unsigned sp;
     if (off == 0 || !oblq__span(off, 1, 88, len)) return OBLQ_E_CORRUPT;
@@ -491,14 +528,13 @@ OBLQ_FN int oblq__knots(oblq_patch *p, const unsigned char *d, uint64_t len, uin
                     return OBLQ_E_CORRUPT;
             }
     /* The grid covers the region: gamma_0 <= its lowest value, the last grid point >= its
-       highest (within 1e-12 of the value), along gamma and along e_n. */
-    lo[0] = p->gamma_lo;
-    hi[0] = p->gamma_hi;
-    lo[1] = e_lo;
-    hi[1] = e_hi;
+       highest (within 1e-12 of the value), along gamma and along e_n (through the axis's
+       map). */
     for (i = 0; i < 2; i++) {
-        double from = lo[i] + (hi[i] - lo[i]) * p->k_region[2 * i] / blocks[i];
-        double to = lo[i] + (hi[i] - lo[i]) * p->k_region[2 * i + 1] / blocks[i];
+        double from = i ? oblq__e_n_at(t, p->k_region[2], blocks[1])
+                        : p->gamma_lo + (p->gamma_hi - p->gamma_lo) * p->k_region[0] / blocks[0];
+        double to = i ? oblq__e_n_at(t, p->k_region[3], blocks[1])
+                      : p->gamma_lo + (p->gamma_hi - p->gamma_lo) * p->k_region[1] / blocks[0];
         double first = g[2 * i], end = first + (double)((i ? ne : ng) - 1) * g[2 * i + 1];
         double slack = 1e-12 * (fabs(to) > 1.0 ? fabs(to) : 1.0);
         if (!(first <= from + slack && end >= to - slack)) return OBLQ_E_CORRUPT;
@@ -644,8 +680,8 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         if (d[k] != (unsigned char)"OBLQEVAL"[k]) return OBLQ_E_FORMAT;
     if (size < 96) return OBLQ_E_TRUNCATED;
     version = oblq__u32(d + 8);
-    if (version < 1 || version > 7) return OBLQ_E_VERSION;
-    /* Versions 2 to 5 and 7 add the e_n range; version 6 is version 1 with split masks. */
+    if (version < 1 || version > OBLQ_EXPORT_VERSION) return OBLQ_E_VERSION;
+    /* Versions 2 to 5, 7 and 8 add the e_n range; version 6 is version 1 with split masks. */
     header = version == 1 || version == 6 ? 96 : 112;
     if (oblq__u32(d + 12) != header) return OBLQ_E_CORRUPT;
     if (((uintptr_t)data) % 8 != 0) return OBLQ_E_CORRUPT;
@@ -671,9 +707,14 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
        patches and curves. */
     out.pair = version == 3;
     /* The flag of a table without a full-slip line: 1 in version 4, 0 (reserved) before, 0 or
-       1 in versions 5 and 7 (the knots of a table of either kind). */
-    out.no_line = version == 4 || ((version == 5 || version == 7) && oblq__u32(d + 68) == 1);
+       1 in versions 5, 7 and 8 (the knots, or the e_n map, of a table of either kind). */
+    out.no_line = version == 4 ||
+                  ((version == 5 || version == 7 || version == 8) && oblq__u32(d + 68) == 1);
     if (oblq__u32(d + 68) != (uint32_t)out.no_line) return OBLQ_E_CORRUPT;
+    /* The map of the e_n axis: 1, over (1 - e_n)^(1/4), in version 8 (the only map it knows);
+       0 (reserved) in every other version, an elastic table's included. */
+    out.e_n_map = version == 8;
+    if (oblq__u32(d + 84) != (uint32_t)out.e_n_map) return OBLQ_E_CORRUPT;
     /* A table without the line starts at gamma = 1 or above (no stick_low). */
     if (out.no_line && !(out.gamma_min >= 1.0)) return OBLQ_E_CORRUPT;
     if (!(isfinite(out.gamma_min) && out.gamma_min > 0.0 &&
@@ -688,7 +729,9 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
     if (oblq__u32(d + 64) != 4) return OBLQ_E_CORRUPT; /* the cubic stencil */
     out.e_n_min = 1.0;
     out.e_n_max = 1.0;
-    if ((version >= 2 && version <= 5) || version == 7) {
+    out.e_n_lo = 0.0;
+    out.e_n_width = 1.0;
+    if ((version >= 2 && version <= 5) || version == 7 || version == 8) {
         /* A table with an e_n axis (of one pair in version 3): its range, its surface, no
            curves. */
         out.has_e_n = 1;
@@ -696,6 +739,12 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
         out.e_n_max = oblq__f64(d + 104);
         if (!(out.e_n_min > 0.0 && out.e_n_max > out.e_n_min && out.e_n_max <= 1.0))
             return OBLQ_E_CORRUPT;
+        if (out.e_n_map) {
+            /* The mapped ends, once: x_e = (m(e_n) - e_n_lo)/e_n_width. */
+            out.e_n_lo = oblq__quarter_root(out.e_n_min);
+            out.e_n_width = oblq__quarter_root(out.e_n_max) - out.e_n_lo;
+            if (!(out.e_n_width > 0.0)) return OBLQ_E_CORRUPT;
+        }
         if (oblq__u64(d + 72) == 0 || oblq__u32(d + 80) != 0 || oblq__u64(d + 88) != 0)
             return OBLQ_E_CORRUPT;
     }
@@ -709,12 +758,13 @@ OBLQ_FN int oblq_open(oblq_table *t, const void *data, size_t size) {
                              version == 6);
             if (rc != OBLQ_OK) return rc;
             /* The knots blocks: in the record of partial_high of version 5 (and there), of
-               stick_high of version 7 (and there), of partial_high of version 7 where named. */
+               stick_high of version 7 (and there), of partial_high of version 7 where named,
+               of partial_high and stick_high of version 8 where named. */
             if ((version == 5 && k == 1) || (version == 7 && k == 2) ||
-                (version == 7 && k == 1 && oblq__u64(r + 152) != 0)) {
+                ((version == 7 || version == 8) && k == 1 && oblq__u64(r + 152) != 0) ||
+                (version == 8 && k == 2 && oblq__u64(r + 152) != 0)) {
                 if (!out.patch[k].present) return OBLQ_E_CORRUPT;
-                rc = oblq__knots(&out.patch[k], d, len, oblq__u64(r + 152), out.e_n_min,
-                                 out.e_n_max);
+                rc = oblq__knots(&out.patch[k], d, len, oblq__u64(r + 152), &out);
                 if (rc != OBLQ_OK) return rc;
             } else if (oblq__u64(r + 152) != 0) {
                 return OBLQ_E_CORRUPT;
@@ -1227,7 +1277,7 @@ OBLQ_FN double oblq__eval_in_e(const oblq_table *t, int region, double gamma, do
         : t->no_line ? oblq__partial_coord_slip(gamma, alpha, e_n)
                      : oblq__partial_coord_e(gamma, alpha, e_n);
     c = oblq__clamp(c, 0.0, 1.0);
-    xe = (e_n - t->e_n_min) / (t->e_n_max - t->e_n_min);
+    xe = oblq__x_e(t, e_n);
     if (p->k_n) c = oblq__knotted(p, gamma, c, xe, e_n);
     return oblq__clamp(t->pair ? oblq__tensor_pair(p, c, xe) : oblq__tensor3(p, gamma, c, xe),
                        -1.0, 1.0);

@@ -615,9 +615,9 @@ fn damaged_truncated_and_foreign_files_are_refused_with_their_code() {
     assert!(case("hdf5", &hdf5).starts_with("3 not an export"));
     let mut newer = good.clone();
     // 1, 2 (a table with an e_n axis), 3 (the table of one pair), 4 (Thornton's law), 5
-    // (knots of the partial-slip coordinate), 6 (an elastic table with split masks) and 7
-    // (knots of the stick patch too) are known.
-    newer[8] = 8;
+    // (knots of the partial-slip coordinate), 6 (an elastic table with split masks), 7
+    // (knots of the stick patch too) and 8 (a mapped e_n axis) are known.
+    newer[8] = 9;
     assert!(case("newer", &newer).starts_with("4 "));
     // A consistent checksum over inconsistent contents: an offset beyond the end.
     let mut bad = good.clone();
@@ -1283,8 +1283,12 @@ fn damaged_e_n_exports_are_refused_with_their_code() {
     flipped[good.len() / 2] ^= 0x04;
     assert!(case("flipped", &flipped).starts_with("5 "));
     let mut newer = good.clone();
-    newer[8] = 8;
+    newer[8] = 9;
     assert!(case("newer", &newer).starts_with("4 "));
+    // Version 8 (a mapped e_n axis) without its map at offset 84.
+    let mut v8 = good.clone();
+    v8[8] = 8;
+    assert!(case("v8", &v8).starts_with("6 "));
     // Version 4 (Thornton's law) without its flag.
     let mut v4 = good.clone();
     v4[8] = 4;
@@ -2223,7 +2227,7 @@ fn damaged_pair_exports_are_refused() {
     flipped[good.len() / 2] ^= 0x08;
     assert!(open("flipped", &flipped).starts_with("5 "));
     let mut newer = good.clone();
-    newer[8] = 8;
+    newer[8] = 9;
     assert!(open("newer", &newer).starts_with("4 "));
     let mut v2 = good.clone();
     v2[8] = 2;
@@ -2600,7 +2604,7 @@ fn damaged_thornton_exports_are_refused_with_their_code() {
     };
     assert!(case("good", &good).starts_with("0 ok"));
     let mut newer = good.clone();
-    newer[8] = 8;
+    newer[8] = 9;
     assert!(case("newer", &newer).starts_with("4 "));
     let dir_at = u64::from_le_bytes(good[72..80].try_into().expect("8 bytes")) as usize;
     let partial = dir_at + 160;
@@ -2612,6 +2616,7 @@ fn damaged_thornton_exports_are_refused_with_their_code() {
     let edits: Vec<(&str, usize, Vec<u8>)> = vec![
         ("as_v2", 8, 2u32.to_le_bytes().to_vec()),
         ("as_v3", 8, 3u32.to_le_bytes().to_vec()),
+        ("as_v8", 8, 8u32.to_le_bytes().to_vec()),
         ("no_flag", 68, 0u32.to_le_bytes().to_vec()),
         ("flag_2", 68, 2u32.to_le_bytes().to_vec()),
         ("gamma_min_below_1", 32, 0.9f64.to_le_bytes().to_vec()),
@@ -2748,7 +2753,8 @@ fn damaged_masks_of_an_elastic_export_are_refused() {
         sealed(b)
     };
     assert!(open("as_v1", &with(8, &1u32.to_le_bytes())).starts_with("6 "));
-    assert!(open("as_v8", &with(8, &8u32.to_le_bytes())).starts_with("4 "));
+    assert!(open("as_v8", &with(8, &8u32.to_le_bytes())).starts_with("6 "));
+    assert!(open("as_v9", &with(8, &9u32.to_le_bytes())).starts_with("4 "));
     let mut cases = 0;
     for rec in masked_records(&good) {
         let MaskedRecord {

@@ -383,8 +383,9 @@ fn the_reference_reader_refuses_damaged_knots() {
 }
 
 /// The C header refuses an export whose knots block was damaged and resealed (`OBLQ_E_CORRUPT`),
-/// one labelled 4 (a reader of version 4 sees the block's offset where it reserves 0), and
-/// refuses a later version by its version (`OBLQ_E_VERSION`).
+/// one labelled 4 (a reader of version 4 sees the block's offset where it reserves 0) or 8
+/// (without the map of the `e_n` axis that version 8 states), and refuses a later version by
+/// its version (`OBLQ_E_VERSION`).
 #[test]
 fn the_c_header_refuses_a_damaged_knots_block() {
     let (export, driver) = export();
@@ -433,6 +434,7 @@ fn the_c_header_refuses_a_damaged_knots_block() {
         ),
         ("region_uncovered", region(3), 1f64.to_le_bytes().to_vec()),
         ("as_v4", 8, 4u32.to_le_bytes().to_vec()),
+        ("as_v8_without_map", 8, 8u32.to_le_bytes().to_vec()),
     ];
     for (name, at, value) in edits {
         let mut b = good.clone();
@@ -441,7 +443,7 @@ fn the_c_header_refuses_a_damaged_knots_block() {
         assert!(said.starts_with("6 "), "{name} at {at}: {said}");
     }
     let mut newer = good.clone();
-    newer[8] = 8;
+    newer[8] = 9;
     assert!(case("newer", &sealed(newer)).starts_with("4 "));
 }
 

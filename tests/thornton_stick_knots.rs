@@ -193,7 +193,8 @@ fn the_reference_reader_and_the_c_header_give_the_bits_of_the_rule() {
 
 /// The C header refuses a version-7 export without the stick patch's knots block or with a
 /// damaged one (`OBLQ_E_CORRUPT`), one labelled 5 (a reader of version 5 sees the stick
-/// record's offset where it reserves 0), and a later version by its version (`OBLQ_E_VERSION`);
+/// record's offset where it reserves 0) or 8 (without the map of the `e_n` axis that version 8
+/// states), and a later version by its version (`OBLQ_E_VERSION`);
 /// the reference reader refuses a damaged stick knots group, naming it (exit 2).
 #[test]
 fn damaged_stick_knots_are_refused() {
@@ -219,6 +220,7 @@ fn damaged_stick_knots_are_refused() {
         ("c_star_1", block + 88, 1f64.to_le_bytes().to_vec()),
         ("knot_1", block + 96, 1f64.to_le_bytes().to_vec()),
         ("as_v5", 8, 5u32.to_le_bytes().to_vec()),
+        ("as_v8_without_map", 8, 8u32.to_le_bytes().to_vec()),
     ] {
         let mut b = good.clone();
         b[at..at + value.len()].copy_from_slice(&value);
@@ -226,7 +228,7 @@ fn damaged_stick_knots_are_refused() {
         assert!(said.starts_with("6 "), "{name} at {at}: {said}");
     }
     let mut newer = good.clone();
-    newer[8] = 8;
+    newer[8] = 9;
     assert!(case("newer", &sealed(newer)).starts_with("4 "));
 
     let bad = dir.join("c_star.h5");

@@ -177,12 +177,12 @@ static Knots knots_of(const oblq_table &t) {
     const oblq_patch &p = t.patch[1];
     if (!t.has_e_n || !p.present || p.k_n == 0) return k;
     double wg = (p.gamma_hi - p.gamma_lo) / (double)p.blocks_gamma;
-    double we = (t.e_n_max - t.e_n_min) / (double)p.blocks_e_n;
     k.any = true;
     k.gamma_from = p.gamma_lo + p.k_region[0] * wg;
     k.gamma_to = p.gamma_lo + p.k_region[1] * wg;
-    k.e_n_from = t.e_n_min + p.k_region[2] * we;
-    k.e_n_to = t.e_n_min + p.k_region[3] * we;
+    /* Along e_n through the axis's map (layout version 8: over (1 - e_n)^(1/4)). */
+    k.e_n_from = oblq__e_n_at(&t, p.k_region[2], (double)p.blocks_e_n);
+    k.e_n_to = oblq__e_n_at(&t, p.k_region[3], (double)p.blocks_e_n);
     return k;
 }
 
@@ -198,7 +198,7 @@ static bool knotted(const oblq_table &t, const PointE &x) {
                                    x.alpha < oblq_alpha_c2(x.gamma);
     double bg = (double)p.blocks_gamma, be = (double)p.blocks_e_n;
     double vg = fmin(fmax((x.gamma - p.gamma_lo) / (p.gamma_hi - p.gamma_lo) * bg, 0.0), bg);
-    double ve = fmin(fmax((x.e_n - t.e_n_min) / (t.e_n_max - t.e_n_min) * be, 0.0), be);
+    double ve = fmin(fmax(oblq__x_e(&t, x.e_n) * be, 0.0), be);
     const double *r = p.k_region;
     return partial && vg >= r[0] && (vg < r[1] || r[1] >= bg) && ve >= r[2] &&
            (ve < r[3] || r[3] >= be);

@@ -77,11 +77,15 @@ pub fn run(args: ExportArgs) -> Result<()> {
             args.table.display()
         )));
     }
+    // A mapped e_n axis is written as layout version 8, which holds tables over a range of
+    // gamma (the builder makes no other).
     let e_map = table.surface().e_n_map();
-    if e_map != oblique_table::surface::AxisMap::Linear {
+    let mapped = e_map != oblique_table::surface::AxisMap::Linear;
+    if mapped && table.surface().pair_gamma().is_some() {
         return Err(Failure::usage(format!(
-            "{}: its e_n axis is mapped as '{}' (schema 5), which the export layout does not \
-             hold yet: query it with sweep query, Python or the Rust crate oblique-lookup",
+            "{}: the table of one pair with its e_n axis mapped as '{}' (schema 5), which the \
+             export layout does not hold: query it with sweep query, Python or the Rust crate \
+             oblique-lookup",
             args.table.display(),
             e_map.name()
         )));
@@ -165,10 +169,20 @@ pub fn run(args: ExportArgs) -> Result<()> {
             (false, None) => "the table and ".into(),
             (false, Some((lo, hi))) => match pair {
                 Some(g) => format!("the table of one pair (gamma = {g}, e_n in [{lo}, {hi}]) and "),
-                None => match &law {
-                    Some(l) => format!("the table of the {l} law (e_n in [{lo}, {hi}]) and "),
-                    None => format!("the table (e_n in [{lo}, {hi}]) and "),
-                },
+                None => {
+                    // The map of a schema-5 table's axis (layout version 8).
+                    let over = if mapped {
+                        format!(", over {}", e_map.name())
+                    } else {
+                        String::new()
+                    };
+                    match &law {
+                        Some(l) => {
+                            format!("the table of the {l} law (e_n in [{lo}, {hi}]{over}) and ")
+                        }
+                        None => format!("the table (e_n in [{lo}, {hi}]{over}) and "),
+                    }
+                }
             },
         },
         curves.len(),

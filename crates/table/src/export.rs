@@ -29,10 +29,15 @@
 //! patches has split masks (`nodes.anisotropic`: cells that halve only the axes they need) as
 //! version 6: version 1 (its header and records) whose patch records name the masks at offset
 //! 144, as version 2 does, and whose patches with masks have no fine index (a reader of version
-//! 1 only refuses it by its version instead of descending as if every split halved both axes).
+//! 1 only refuses it by its version instead of descending as if every split halved both axes);
+//! a table over a range of `γ` whose `e_n` axis is mapped ([`crate::surface::AxisMap`], schema
+//! 5) as version 8: version 2, 4, 5 or 7 (the flag at offset 68 and the records' knots blocks
+//! say which) with the map at offset 84 (`0`, reserved, in versions 1 to 7), whose patches'
+//! trees are over the mapped coordinate (a reader of versions 1 to 7 only refuses it by its
+//! version instead of answering it over a linear `e_n` axis).
 
 use crate::format::fnv1a64;
-use crate::surface::{PatchId, PatchKind, Surface, MAX_INDEX_ENTRIES};
+use crate::surface::{AxisMap, PatchId, PatchKind, Surface, MAX_INDEX_ENTRIES};
 
 /// The first 8 bytes of an export.
 pub const MAGIC: &[u8; 8] = b"OBLQEVAL";
@@ -58,12 +63,24 @@ pub const VERSION_STICK_KNOTS: u32 = 7;
 /// Offset, in a patch record, of the `u64` offset of its split masks (`u8[cells]`; versions 2,
 /// 3 and 6, or 0: every split halves every axis).
 pub const SPLIT_AT: usize = 144;
+/// Layout version of the export of a table over a range of `γ` whose `e_n` axis is mapped
+/// ([`crate::surface::AxisMap`] other than linear): version 2, 4, 5 or 7 with the map at
+/// [`E_N_MAP_AT`].
+pub const VERSION_E_N_MAP: u32 = 8;
+/// Offset of the `u32` map of the `e_n` axis: [`E_N_MAP_QUARTER_ROOT`] in version 8, `0`
+/// (reserved) in versions 1 to 7.
+pub const E_N_MAP_AT: usize = 84;
+/// The map [`crate::surface::AxisMap::QuarterRoot`] at [`E_N_MAP_AT`]: `x_e = (m(e_n) −
+/// m(e_n_min))/(m(e_n_max) − m(e_n_min))`, `m(e) = −√√(1 − e)`.
+pub const E_N_MAP_QUARTER_ROOT: u32 = 1;
 /// Offset of the `u32` flag of a table without a full-slip line: `1` in version 4, `0` in
-/// versions 1 to 3, either in version 5 (a reader checks it against the version).
+/// versions 1 to 3 and 6, either in versions 5, 7 and 8 (a reader checks it against the
+/// version).
 pub const NO_LINE_AT: usize = 68;
-/// Offset, in the record of `partial_high` (version 5 and 7) and of `stick_high` (version 7),
-/// of the `u64` offset of its knots block (reserved, 0, in every other record and version; 0 in
-/// the record of `partial_high` of version 7 without knots).
+/// Offset, in the record of `partial_high` (versions 5, 7 and 8) and of `stick_high` (versions
+/// 7 and 8), of the `u64` offset of its knots block (reserved, 0, in every other record and
+/// version; 0 in a record of version 7 or 8 without knots but that of `stick_high` of version
+/// 7).
 pub const KNOTS_AT: usize = 152;
 /// Bytes of the knots block before its arrays: `k`, `n_γ`, `n_e` and a reserved `u32`, the
 /// grid's `gamma_0`, `gamma_step`, `e_n_0`, `e_n_step`, the `region` (4 `f64`) and the grades
@@ -71,7 +88,7 @@ pub const KNOTS_AT: usize = 152;
 pub const KNOTS_HEAD_BYTES: usize = 88;
 /// Bytes of the header (version 1).
 pub const HEADER_BYTES: usize = 96;
-/// Bytes of the header of versions 2, 3 and 4: the version-1 header, then `e_n_min` and
+/// Bytes of the header of versions 2 to 5, 7 and 8: the version-1 header, then `e_n_min` and
 /// `e_n_max`.
 pub const HEADER_BYTES_E_N: usize = 112;
 /// Bytes of one patch record (three follow the header when the export holds the surface).
@@ -161,7 +178,10 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// patch `stick_high` has knots as version 7 (version 5 with that patch's knots), and an elastic
 /// surface one of whose patches has split masks ([`crate::surface::Patch::split`]) as version 6
 /// (version 1 otherwise, byte for byte as before version 6 existed); curves belong to elastic
-/// tables only.
+/// tables only. A surface whose `e_n` axis is mapped ([`Surface::e_n_map`], schema 5) is written
+/// as version 8: the version it would have with a linear axis (2, 4, 5 or 7) with the map's
+/// code at [`E_N_MAP_AT`]; its trees, node values and knots are stored as they are, and a
+/// reader takes `x_e` through the map.
 ///
 /// # Panics
 ///
@@ -170,8 +190,8 @@ fn push_f64s(v: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) -> u64 {
 /// full-slip line that is not a table with an `e_n` axis over a range of `γ` (which
 /// [`Surface::with_partial_map`] never makes), and for knots in a patch other than the
 /// partial-slip patch and `stick_high` of such a table (which the reader and the writer
-/// refuse), and for a surface whose `e_n` axis is not linear ([`Surface::e_n_map`]; `sweep
-/// export` refuses such a table before it gets here).
+/// refuse), and for the table of one pair whose `e_n` axis is mapped (which the builder never
+/// makes; `sweep export` refuses such a table before it gets here).
 pub fn export(
     surface: &Surface,
     error_bound: f64,
@@ -183,9 +203,10 @@ pub fn export(
         axis.is_none() || (with_surface && curves.is_empty()),
         "the export of a table with an e_n axis holds its surface and no curves"
     );
+    let e_map = map_code(surface.e_n_map());
     assert!(
-        surface.e_n_map() == crate::surface::AxisMap::Linear,
-        "the export layout holds tables whose e_n axis is linear"
+        e_map == 0 || surface.pair_gamma().is_none(),
+        "the export layout holds the e_n map of a table over a range of gamma only"
     );
     let knotted = surface.patches().any(|(_, p)| p.knots().is_some());
     let stick_knotted = surface
@@ -215,12 +236,18 @@ pub fn export(
         (None, _, _) if masked => (VERSION_SPLIT, HEADER_BYTES),
         (None, _, _) => (VERSION, HEADER_BYTES),
     };
+    // A mapped e_n axis: version 8 over any of the versions above with the axis (the flag at
+    // 68 and the knots blocks tell 2, 4, 5 and 7 apart).
+    let version = if e_map != 0 { VERSION_E_N_MAP } else { version };
     let mut v = vec![0u8; header];
     v[..8].copy_from_slice(MAGIC);
     put_u32(&mut v, 8, version);
     put_u32(&mut v, 12, header as u32);
     if !surface.has_line() {
         put_u32(&mut v, NO_LINE_AT, 1);
+    }
+    if e_map != 0 {
+        put_u32(&mut v, E_N_MAP_AT, e_map);
     }
     if let Some((lo, hi)) = axis {
         put_f64(&mut v, 96, lo);
@@ -378,6 +405,14 @@ pub fn export(
     let sum = fnv1a64(&v[CHECKSUM_AT + 8..]);
     put_u64(&mut v, CHECKSUM_AT, sum);
     v
+}
+
+/// The code of the `e_n` axis's map at [`E_N_MAP_AT`]: `0` linear, [`E_N_MAP_QUARTER_ROOT`].
+fn map_code(map: AxisMap) -> u32 {
+    match map {
+        AxisMap::Linear => 0,
+        AxisMap::QuarterRoot => E_N_MAP_QUARTER_ROOT,
+    }
 }
 
 /// The export as a C source file: the bytes as an array of `unsigned long long` words (8-byte
