@@ -2399,7 +2399,8 @@ fn p_at_gives_the_bits_of_the_rust_point_query() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// A table of Thornton's law: no closed-form full-slip line (export layout version 4)
+// A table of Thornton's law: no closed-form full-slip line (export layout version 8: version 4
+// with its e_n axis over (1 - e_n)^(1/4))
 
 /// `configs/thornton-demo.toml` built (once for all test processes of this build,
 /// `common::shared_build`), its export by `sweep export` (once per process) and the table file.
@@ -2413,7 +2414,7 @@ fn thornton() -> &'static (Table, PathBuf, PathBuf) {
         let arg = |p: &Path| p.to_str().expect("path").to_string();
         let said = evaluator::sweep_ok(&["export", &arg(&table), "-o", &arg(&path)]);
         assert!(
-            said.contains("the table of the thornton law (e_n in [0.8, 1])"),
+            said.contains("the table of the thornton law (e_n in [0.8, 1], over (1-e_n)^(1/4))"),
             "{said}"
         );
         (Table::open(&table).expect("the table"), path, table)
@@ -2474,8 +2475,8 @@ fn thornton_tables_give_the_same_bits_in_rust_batches_c_and_python_on_random_poi
     );
     assert_eq!(
         &bytes[8..16],
-        &[4, 0, 0, 0, 112, 0, 0, 0],
-        "version 4, 112-byte header"
+        &[8, 0, 0, 0, 112, 0, 0, 0],
+        "version 8 (version 4 over (1 - e_n)^(1/4)), 112-byte header"
     );
     assert_eq!(
         &bytes[68..72],
@@ -2616,8 +2617,9 @@ fn damaged_thornton_exports_are_refused_with_their_code() {
     let edits: Vec<(&str, usize, Vec<u8>)> = vec![
         ("as_v2", 8, 2u32.to_le_bytes().to_vec()),
         ("as_v3", 8, 3u32.to_le_bytes().to_vec()),
-        ("as_v8", 8, 8u32.to_le_bytes().to_vec()),
-        ("no_flag", 68, 0u32.to_le_bytes().to_vec()),
+        // The map in a version that has none, and version 8 without it.
+        ("as_v4", 8, 4u32.to_le_bytes().to_vec()),
+        ("no_map", 84, 0u32.to_le_bytes().to_vec()),
         ("flag_2", 68, 2u32.to_le_bytes().to_vec()),
         ("gamma_min_below_1", 32, 0.9f64.to_le_bytes().to_vec()),
         (

@@ -3,7 +3,7 @@
 //! simulated nodes below `α_c1` (the law has no closed-form full-slip line), every query path
 //! answers with the same bits, the table holds its stated bound against direct solves at
 //! random points, next to `α_c1` and at the law's own edge of full slip, the export (layout
-//! version 4) and the reference reader answer it with the same bits, and a file whose law and
+//! version 8: version 4 over `(1 − e_n)^{1/4}`) and the reference reader answer it with the same bits, and a file whose law and
 //! coordinate disagree or a config it cannot be built from is refused by name.
 
 mod common;
@@ -306,7 +306,7 @@ fn sweep_query_answers_below_alpha_c1_from_the_table() {
     );
 }
 
-/// `sweep export` writes the table as layout version 4 and `scripts/read_table.py` answers it,
+/// `sweep export` writes the table as layout version 8 (version 4 over `(1 − e_n)^{1/4}`) and `scripts/read_table.py` answers it,
 /// below `α_c1` too, with the bits of `Table::p_e` (the C header's bits on random points:
 /// `tests/c_evaluator.rs`).
 #[test]
@@ -315,7 +315,11 @@ fn the_export_and_the_reference_reader_answer_it() {
     let said = ok(&["export", t(), "--output", out.to_str().expect("path")]);
     assert!(said.contains("the table of the thornton law"), "{said}");
     let bytes = std::fs::read(&out).expect("the export");
-    assert_eq!(&bytes[8..12], &[4, 0, 0, 0], "layout version 4");
+    // Version 8: version 4 with its e_n axis over (1 - e_n)^(1/4) (the default of a Thornton
+    // table whose range reaches e_n = 1), the flag at offset 84.
+    assert_eq!(&bytes[8..12], &[8, 0, 0, 0], "layout version 8");
+    assert_eq!(&bytes[84..88], &[1, 0, 0, 0], "the e_n map");
+    assert_eq!(&bytes[68..72], &[1, 0, 0, 0], "no full-slip line");
     let table = Table::open(table()).expect("the table");
     for (g, a, e) in [
         (1.7, 0.05, 0.8),

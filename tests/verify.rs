@@ -103,6 +103,38 @@ fn verify_refuses_bad_arguments() {
             "{all:?}: {err}"
         );
     }
+    // --near-one needs an e_n range that reaches 1, and draws its points there.
+    let out = sweep(&["verify", FULL, "--near-one"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--near-one") && err.contains("no e_n axis"),
+        "{err}"
+    );
+    let demo = concat!(env!("CARGO_MANIFEST_DIR"), "/tables/dissipative-demo.h5");
+    let out = sweep(&[
+        "verify",
+        demo,
+        "--near-one",
+        "--points",
+        "40",
+        "--seed",
+        "2",
+    ]);
+    let (text, err) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("1 - e_n log-uniform in [1e-6, 5e-2]"), "{err}");
+    let worst_e: f64 = text
+        .lines()
+        .find_map(|l| l.strip_prefix("worst point"))
+        .and_then(|l| l.split("e_n = ").nth(1))
+        .and_then(|l| l.split(':').next())
+        .and_then(|v| v.trim().parse().ok())
+        .expect("the worst point's e_n");
+    assert!((1.0 - 0.05..1.0).contains(&worst_e), "{text}");
     let out = sweep(&["verify", "/nonexistent/table.h5"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/table.h5"));

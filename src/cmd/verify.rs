@@ -462,24 +462,28 @@ pub fn run(args: VerifyArgs) -> Result<()> {
     } else {
         if args.near_one {
             match table.restitution() {
-                Some((_, hi)) if hi == 1.0 => {}
+                Some((_, 1.0)) => {}
                 Some((_, hi)) => {
                     return Err(Failure::usage(format!(
                         "--near-one: {} answers e_n up to {hi}, not up to 1",
                         args.table.display()
-                    ))
-                    .into())
+                    )))
                 }
                 None => {
                     return Err(Failure::usage(format!(
                         "--near-one: {} has no e_n axis (an elastic table answers e_n = 1 only)",
                         args.table.display()
-                    ))
-                    .into())
+                    )))
                 }
             }
         }
-        sample(&table, args.points, args.seed, args.near_curves, args.near_one)
+        sample(
+            &table,
+            args.points,
+            args.seed,
+            args.near_curves,
+            args.near_one,
+        )
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads)

@@ -145,9 +145,10 @@ pub struct Nodes {
     /// Root cells along `e_n` (a table with an `e_n` axis; default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub blocks_e_n: Option<usize>,
-    /// How the `e_n` axis maps to its coordinate: `"linear"` (the default) or `"quarter-root"`
-    /// (`t = (1 − e_n)^{1/4}`, a table of Thornton's law: its `P` is smooth in `t`, not in
-    /// `e_n`, next to `e_n = 1`; written as schema 5).
+    /// How the `e_n` axis maps to its coordinate: `"linear"` or `"quarter-root"` (`t = (1 −
+    /// e_n)^{1/4}`, a table of Thornton's law: its `P` is smooth in `t`, not in `e_n`, next to
+    /// `e_n = 1`; written as schema 5). Default: `"quarter-root"` for a Thornton table whose
+    /// range reaches `e_n = 1`, `"linear"` otherwise ([`Config::e_n_map`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub e_n_coordinate: Option<String>,
     /// Refuse to place more nodes than this in total.
@@ -412,12 +413,19 @@ impl Config {
         self.nodes.blocks_e_n.unwrap_or(1)
     }
 
-    /// The map of the `e_n` axis (`nodes.e_n_coordinate`, checked by validation; linear by
-    /// default).
+    /// The map of the `e_n` axis (`nodes.e_n_coordinate`, checked by validation). By default
+    /// [`AxisMap::QuarterRoot`] for a table of Thornton's law whose range reaches `e_n = 1`,
+    /// where its `P` is smooth in `(1 − e_n)^{1/4}` and not in `e_n`; linear otherwise.
     pub fn e_n_map(&self) -> AxisMap {
         match self.nodes.e_n_coordinate.as_deref() {
             Some(E_N_QUARTER_ROOT) => AxisMap::QuarterRoot,
-            _ => AxisMap::Linear,
+            Some(_) => AxisMap::Linear,
+            None => match self.domain.e_n_range() {
+                Some((_, hi)) if hi == 1.0 && self.law() == oblique_solver::Law::Thornton => {
+                    AxisMap::QuarterRoot
+                }
+                _ => AxisMap::Linear,
+            },
         }
     }
 
