@@ -259,7 +259,7 @@ mod tests {
 
     #[test]
     fn a_linear_axis_keeps_its_expressions() {
-        let a = Axis::restitution(0.3, 0.95, 2).unwrap();
+        let a = Axis::extra(&E_N, 0.3, 0.95, 2).unwrap();
         assert_eq!(a.map, AxisMap::Linear);
         for &e in &[0.3, 0.41, 0.5, 0.77, 0.95] {
             assert_eq!(a.x(e), (e - 0.3) / (0.95 - 0.3));
@@ -272,7 +272,7 @@ mod tests {
 
     #[test]
     fn the_quarter_root_map_is_monotone_exact_at_its_ends_and_inverts() {
-        let a = Axis::restitution(0.3, 1.0, 4)
+        let a = Axis::extra(&E_N, 0.3, 1.0, 4)
             .unwrap()
             .with_map(AxisMap::QuarterRoot);
         assert_eq!((a.x(0.3), a.x(1.0)), (0.0, 1.0));
