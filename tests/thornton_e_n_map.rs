@@ -159,19 +159,13 @@ fn worst(table: &Table, pts: &[(f64, f64, f64)], truth: &[f64]) -> f64 {
 }
 
 /// `scripts/read_table.py` on `path` refuses it (status 2), its message naming every one of
-/// `want`.
+/// `want` ([`common::python_refuses`] at one query).
 fn python_refuses(path: &Path, want: &[&str]) {
-    let r = Command::new("python3")
-        .arg(Path::new(ROOT).join("scripts/read_table.py"))
-        .arg(path)
-        .args(["--gamma", "1.72", "--alpha", "0.5", "--e-n", "0.99"])
-        .output()
-        .expect("python3 (with h5py: the test command installs it)");
-    let err = String::from_utf8_lossy(&r.stderr);
-    assert_eq!(r.status.code(), Some(2), "{}: {err}", path.display());
-    for w in want {
-        assert!(err.contains(w), "{}: {w:?} not in {err}", path.display());
-    }
+    common::python_refuses(
+        path,
+        &["--gamma", "1.72", "--alpha", "0.5", "--e-n", "0.99"],
+        want,
+    );
 }
 
 #[test]

@@ -492,19 +492,13 @@ fn the_reference_reader_gives_the_bits_of_p_e() {
 }
 
 /// `scripts/read_table.py` on `path` refuses it (status 2), its message naming every one of
-/// `want`.
+/// `want` ([`common::python_refuses`] at one query).
 fn python_refuses(path: &Path, want: &[&str]) {
-    let r = Command::new("python3")
-        .arg(Path::new(ROOT).join("scripts/read_table.py"))
-        .arg(path)
-        .args(["--gamma", "1.7", "--alpha", "0.05", "--e-n", "0.9"])
-        .output()
-        .expect("python3 (with h5py: the test command installs it)");
-    let err = String::from_utf8_lossy(&r.stderr);
-    assert_eq!(r.status.code(), Some(2), "{}: {err}", path.display());
-    for w in want {
-        assert!(err.contains(w), "{}: {w:?} not in {err}", path.display());
-    }
+    common::python_refuses(
+        path,
+        &["--gamma", "1.7", "--alpha", "0.05", "--e-n", "0.9"],
+        want,
+    );
 }
 
 /// A law and a partial-slip coordinate that do not go together are refused, naming both.

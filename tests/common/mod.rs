@@ -142,3 +142,19 @@ pub fn subdir(name: &str) -> PathBuf {
     std::fs::create_dir_all(&d).expect("create test directory");
     d
 }
+
+/// `scripts/read_table.py TABLE QUERY` refuses the table (status 2), its message naming every
+/// one of `want`.
+pub fn python_refuses(path: &Path, query: &[&str], want: &[&str]) {
+    let r = Command::new("python3")
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/read_table.py"))
+        .arg(path)
+        .args(query)
+        .output()
+        .expect("python3 (with h5py: the test command installs it)");
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{}: {err}", path.display());
+    for w in want {
+        assert!(err.contains(w), "{}: {w:?} not in {err}", path.display());
+    }
+}
