@@ -205,6 +205,20 @@ fn next_to_e_n_one_only_the_quarter_root_axis_holds_its_bound() {
         Some(qr.p_e(g, a, e).expect("inside")),
         "{out}"
     );
+    // `sweep inspect` names the map (text and JSON).
+    let text = ok(&["inspect", q]);
+    assert!(
+        text.contains("e_n in [0.95, 1] over (1-e_n)^(1/4)"),
+        "{text}"
+    );
+    for (path, want) in [
+        (q, "(1-e_n)^(1/4)"),
+        (linear.to_str().expect("path"), "e_n"),
+    ] {
+        let v: serde_json::Value =
+            serde_json::from_str(&ok(&["inspect", path, "--json"])).expect("JSON");
+        assert_eq!(v["e_n_coordinate"].as_str(), Some(want), "{v}");
+    }
 }
 
 /// A map a reader does not know, a schema-5 file without its map, the linear name on the

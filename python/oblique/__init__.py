@@ -717,7 +717,9 @@ class Table:
     def info(self) -> dict:
         """Domain (``gamma_min``, ``gamma_max``, ``alpha_max``, and ``e_n_min``, ``e_n_max``:
         both 1 for an elastic table; ``pair_gamma``, the γ of the table of one pair, else
-        ``None``; ``axes``, the names of the table's axes), the contact ``law``, the stated
+        ``None``; ``axes``, the names of the table's axes; ``e_n_coordinate``, how its ``e_n``
+        axis maps to the coordinate, ``"e_n"`` or ``"(1-e_n)^(1/4)"``, ``None`` for an elastic
+        table), the contact ``law``, the stated
         ``error_bound`` (the
         largest absolute error of any P the table answers), the held-out checks (``checks``,
         ``checks_max_error``) and the provenance (``schema_version``, ``engine_version``,

@@ -351,6 +351,12 @@ impl PyTable {
                 "elastic"
             },
         )?;
+        // How the e_n axis maps to its coordinate ("e_n" linear, "(1-e_n)^(1/4)"), None for an
+        // elastic table.
+        d.set_item(
+            "e_n_coordinate",
+            s.restitution().map(|_| s.e_n_map().name()),
+        )?;
         d.set_item("error_bound", t.error_bound())?;
         d.set_item("schema_version", p.schema_version)?;
         d.set_item("engine_version", &p.engine_version)?;

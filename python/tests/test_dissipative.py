@@ -48,9 +48,11 @@ def test_info_states_the_e_n_range_and_the_law(dissipative, full):
     assert i["schema_version"] == 4
     assert (i["e_n_min"], i["e_n_max"]) == (0.5, 1.0)
     assert i["law"] == "kelvin-voigt"
+    assert i["e_n_coordinate"] == "e_n"
     f = full.info
     assert (f["e_n_min"], f["e_n_max"]) == (1.0, 1.0)
     assert f["law"] == "elastic"
+    assert f["e_n_coordinate"] is None
 
 
 def test_p_broadcasts_over_e_n(dissipative):

@@ -9,6 +9,7 @@ use clap::Args;
 use serde_json::json;
 
 use oblique_lookup::{Table, EXTRA_AXES};
+use oblique_table::surface::AxisMap;
 
 #[derive(Args)]
 pub struct InspectArgs {
@@ -81,6 +82,7 @@ pub fn run(args: InspectArgs) -> Result<()> {
             "alpha_max": if s.alpha_max().is_finite() { json!(s.alpha_max()) } else { json!("inf") },
             "axes": s.axes().iter().map(|a| a.name.name()).collect::<Vec<_>>(),
             "law": if s.restitution().is_some() { pv.law.as_str() } else { "elastic" },
+            "e_n_coordinate": s.restitution().map(|_| s.e_n_map().name()),
             "stencil_points": s.stencil(),
             "nodes": patches.iter().map(|(_, p)| p.p().len()).sum::<usize>(),
             "patches": ps,
@@ -108,7 +110,13 @@ pub fn run(args: InspectArgs) -> Result<()> {
         .axes()
         .iter()
         .filter(|a| a.name.extra().is_some())
-        .map(|a| format!(", {} in [{}, {}]", a.name.name(), a.lo(), a.hi()))
+        .map(|a| {
+            let map = match a.map {
+                AxisMap::Linear => String::new(),
+                m => format!(" over {}", m.name()),
+            };
+            format!(", {} in [{}, {}]{map}", a.name.name(), a.lo(), a.hi())
+        })
         .collect();
     let e_n = match extra.is_empty() {
         false => format!("{} ({} law)", extra.concat(), pv.law),
