@@ -22,6 +22,7 @@ fn shipped_configs_write_outside_the_tracked_tables() {
         "dissipative-pair",
         "dissipative-fold",
         "thornton-demo",
+        "thornton-solid",
     ] {
         let path = root.join("configs").join(format!("{name}.toml"));
         let (cfg, _) = Config::load(&path).expect("shipped config parses");
