@@ -263,18 +263,7 @@ fn readers_refuse_a_map_they_cannot_use() {
         python_refuses(&bad, &[needle]);
     }
     // The map itself, named as schema 5 names it, is read by both.
-    let r = Command::new("python3")
-        .arg(Path::new(ROOT).join("scripts/read_table.py"))
-        .arg(quarter())
-        .arg("--check-stored")
-        .output()
-        .expect("python3");
-    assert!(
-        r.status.success(),
-        "{}{}",
-        String::from_utf8_lossy(&r.stdout),
-        String::from_utf8_lossy(&r.stderr)
-    );
+    common::python_check_stored(Path::new(quarter()));
 }
 
 /// `sweep export` writes a quarter-root table as layout version 8: the version it would have

@@ -471,18 +471,7 @@ fn the_reference_reader_gives_the_bits_of_p_e() {
         "{answered} answered ({below} at alpha <= alpha_c1), refused {refused_e_n} for e_n, \
          {refused_gamma} for gamma"
     );
-    let r = Command::new("python3")
-        .arg(Path::new(ROOT).join("scripts/read_table.py"))
-        .arg(t())
-        .arg("--check-stored")
-        .output()
-        .expect("python3");
-    assert!(
-        r.status.success(),
-        "{}{}",
-        String::from_utf8_lossy(&r.stdout),
-        String::from_utf8_lossy(&r.stderr)
-    );
+    common::python_check_stored(Path::new(t()));
     eprintln!(
         "Thornton table: {answered} of {n} points ({below} at α ≤ α_c1) the same bits in Rust \
          and read_table.py, {refused_e_n} refused for e_n and {refused_gamma} for gamma by both \

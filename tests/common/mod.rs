@@ -158,3 +158,20 @@ pub fn python_refuses(path: &Path, query: &[&str], want: &[&str]) {
         assert!(err.contains(w), "{}: {w:?} not in {err}", path.display());
     }
 }
+
+/// `scripts/read_table.py TABLE --check-stored` succeeds: the reference reader gives every
+/// stored node value back from the table.
+pub fn python_check_stored(path: &Path) {
+    let r = Command::new("python3")
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/read_table.py"))
+        .arg(path)
+        .arg("--check-stored")
+        .output()
+        .expect("python3");
+    assert!(
+        r.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&r.stdout),
+        String::from_utf8_lossy(&r.stderr)
+    );
+}

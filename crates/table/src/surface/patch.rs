@@ -579,7 +579,7 @@ impl Patch {
     /// Root cells along each of the first `D` axes (`γ`, `c`, `e_n`; 1 beyond the patch's).
     #[inline(always)]
     fn blocks_of<const D: usize>(&self) -> [usize; D] {
-        std::array::from_fn(|k| self.axis(k).2)
+        std::array::from_fn(|k| self.axis_blocks(k))
     }
 
     /// Axis `k` of the patch's tree (0 `γ`, 1 `c`, 2 `e_n`): `(lo, width, blocks)`, its
@@ -590,6 +590,13 @@ impl Patch {
     /// axis of a schema-5 table).
     pub fn axis_map(&self, k: usize) -> AxisMap {
         self.tree_axes().get(k).map_or(AxisMap::Linear, |a| a.map)
+    }
+
+    /// Root cells along axis `k` of the patch's tree (1 beyond its axes): [`Patch::axis`]'s
+    /// third value, without the map's span.
+    #[inline(always)]
+    pub fn axis_blocks(&self, k: usize) -> usize {
+        self.tree_axes().get(k).map_or(1, |a| a.blocks)
     }
 
     /// [`Patch::axis`]'s values: `(lo, width, blocks)` of axis `k`.
@@ -871,7 +878,7 @@ impl Patch {
     /// `pos` (`pos = root·2^depth + offset`), following the `split` masks. Exact: dyadic values.
     pub fn leaf_boxes(&self) -> Vec<([f64; 3], [u32; 3])> {
         let dims = self.dims() as usize;
-        let blocks: Vec<usize> = (0..dims).map(|k| self.axis(k).2).collect();
+        let blocks: Vec<usize> = (0..dims).map(|k| self.axis_blocks(k)).collect();
         let tree = self.tree();
         let mut boxes = vec![([0.0; 3], [0u32; 3]); self.leaves()];
         let mut stack: Vec<(usize, [f64; 3], [u32; 3])> = (0..self.roots())
