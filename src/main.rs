@@ -158,12 +158,14 @@ sweep verify tables/full.h5 --points 300                 # a sample (about 10 s 
 sweep verify tables/full.h5 --points 20000 --seed 1      # the published measurement (15 min)\n  \
 sweep verify tables/quick.h5 --points 100 --tol 1e-9\n  \
 sweep verify tables/dissipative-demo.h5 --points 300 --near-curves   # next to the kinks\n  \
-sweep verify out/thornton-demo.h5 --points 200 --near-folds   # a Thornton table next to its folds\n\n\
+sweep verify out/thornton-demo.h5 --points 200 --near-folds   # a Thornton table next to its folds\n  \
+sweep verify out/thornton-demo.h5 --points 200 --near-band    # ... next to its loading band\n\n\
 Points: gamma uniform over the table's domain, alpha/(1 + alpha) uniform in [0, 1) (so alpha from 0\n\
 to infinity, half of them below 1); when the table includes no slip, every 100th point is at\n\
 alpha = inf instead; e_n uniform in the range of a table with an e_n axis. With --near-curves,\n\
 alpha is drawn next to alpha_c1(gamma, e_n) and alpha_c2(gamma), where the surface has kinks;\n\
-with --near-folds next to the folds of a table of Thornton's law. Each point is simulated at\n\
+with --near-folds next to the folds of a table of Thornton's law, with --near-band next to the\n\
+edges of its loading band. Each point is simulated at\n\
 --tol (at most 1e-8) in parallel and compared with the table's answer. The stated bound is the\n\
 one `sweep inspect` prints and `sweep query` shows as +/- (docs/table-format.md, \"The stated\n\
 error bound\"). Exit status: 0 when every point is within it, 1 when one is not, 2 for a bad\n\

@@ -17,7 +17,7 @@ use oblique_table::surface::{linear_limit_dissipative, Region, Surface};
 
 #[derive(Args)]
 pub struct QueryArgs {
-    /// Table file written by `sweep run` (HDF5, schema v2 to v4). Default: the table built into
+    /// Table file written by `sweep run` (HDF5, schema v2 to v5). Default: the table built into
     /// sweep, tables/default.h5 (Kelvin-Voigt law: 1.3 <= gamma <= 2.2, alpha from 0 to inf,
     /// 0.3 <= e_n <= 1; every body of the material catalogue; stated error bound 8.1e-6).
     table: Option<PathBuf>,

@@ -89,6 +89,17 @@ pub struct VerifyArgs {
     /// e_n axis cannot follow (docs/table-format.md, "Schema v5").
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet", "near_folds"])]
     near_one: bool,
+    /// Draw points next to the two edges of the loading band of a table of Thornton's law
+    /// instead, in turn: the alpha where a zone of the contact at the +mu q limit opens and
+    /// closes while it loads, a band that rises through alpha_c2 as e_n falls (at gamma 1.7:
+    /// 0.63-0.64 alpha_c2 at e_n 0.98, 0.86-0.92 at 0.9, 0.95-1.12 at 0.8); P changes its
+    /// slope at the upper edge (the loading fold alpha_L above alpha_c2) and shows no kink at
+    /// the lower one, where the zone is born: (gamma, e_n) uniform over the
+    /// table's range (e_n at most 0.9999), the band located there (0.1-0.4 s; a point where
+    /// none is found is drawn again), alpha = edge times 1 + s·r, s = +1 or -1, r log-uniform
+    /// in [1e-4, 1e-2]; the largest error next to each edge is printed too.
+    #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet", "near_folds", "near_one"])]
+    near_band: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
@@ -385,6 +396,49 @@ fn sample_near_folds(
     Ok(points)
 }
 
+/// The `n` points of `--near-band`: [`oblique_sweep::kink::near_loading_band_points`] over a
+/// table of Thornton's law, each with the index of its edge.
+fn sample_near_band(
+    table: &Table,
+    path: &std::path::Path,
+    law: Law,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<(usize, Point)>> {
+    let s = table.surface();
+    let refuse = |has: String| {
+        Failure::usage(format!(
+            "--near-band: {} has {has}; the loading band is located for tables of the thornton \
+             law (an e_n axis over a range of gamma)",
+            path.display()
+        ))
+    };
+    let Some(e_range) = table.restitution() else {
+        return Err(refuse("no e_n axis (an elastic table)".into()));
+    };
+    if law != Law::Thornton {
+        return Err(refuse(format!("the {} law", law.name())));
+    }
+    let points = oblique_sweep::kink::near_loading_band_points(
+        (s.gamma_min(), s.gamma_max()),
+        e_range,
+        s.alpha_max(),
+        n,
+        seed,
+    )
+    .context("locating the loading band")?;
+    if points.is_empty() {
+        return Err(refuse(format!(
+            "gamma in [{}, {}] and e_n in [{}, {}], where no band was found",
+            s.gamma_min(),
+            s.gamma_max(),
+            e_range.0,
+            e_range.1
+        )));
+    }
+    Ok(points)
+}
+
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
 #[derive(Clone, Copy)]
 struct Outcome {
@@ -443,10 +497,20 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         None => Law::Elastic,
     };
     let mut near_end_range = None;
-    // With --near-folds, the fold of each point (an index into THORNTON_FOLDS).
+    // With --near-folds (--near-band), the kink of each point: an index into THORNTON_FOLDS
+    // (LOADING_BAND_EDGES).
     let mut folds: Vec<usize> = Vec::new();
-    let points = if args.near_folds {
-        let tagged = sample_near_folds(&table, &args.table, law, args.points, args.seed)?;
+    let kink_names: &[&str] = if args.near_band {
+        &oblique_sweep::kink::LOADING_BAND_EDGES
+    } else {
+        &oblique_sweep::kink::THORNTON_FOLDS
+    };
+    let points = if args.near_folds || args.near_band {
+        let tagged = if args.near_band {
+            sample_near_band(&table, &args.table, law, args.points, args.seed)?
+        } else {
+            sample_near_folds(&table, &args.table, law, args.points, args.seed)?
+        };
         folds = tagged.iter().map(|&(k, _)| k).collect();
         tagged.into_iter().map(|(_, p)| p).collect()
     } else if args.near_fold {
@@ -517,6 +581,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         if args.near_folds {
             "alpha within 1e-4 to 1e-2 (relative) of alpha_R, 2/7, alpha_S, alpha_L, F-, E-, \
              F+lo and F+hi and e_n within 1e-4 to 1e-2 of the switch sheet e_S, in turn"
+        } else if args.near_band {
+            "alpha within 1e-4 to 1e-2 (relative) of the lower and upper edges of the loading \
+             band, in turn"
         } else if args.near_sheet {
             "ln(alpha) uniform up to alpha_c2, e_n within 1e-4 to 0.03 of the sheet I+"
         } else if args.near_end && table.restitution().is_some() {
@@ -559,6 +626,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             && !args.near_end
             && !args.near_sheet
             && !args.near_folds
+            && !args.near_band
         {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {
@@ -638,7 +706,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         worst.p_table,
         worst.p_sim
     )?;
-    for (k, name) in oblique_sweep::kink::THORNTON_FOLDS.iter().enumerate() {
+    for (k, name) in kink_names.iter().enumerate() {
         let near: Vec<&Outcome> = outcomes
             .iter()
             .zip(&folds)

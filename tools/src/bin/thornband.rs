@@ -2,15 +2,39 @@
 //! (`oblique_solver::history::has_loading_zone_thornton`, 2048 steps): `thornband GAMMA E_N LO
 //! HI N` prints, at `N + 1` values of `α/α_c2` from `LO` to `HI`, `Y` where the zone exists and
 //! `.` where it does not. Both edges of that band are folds of `P`; the upper one is the loading
-//! fold `α_L` (`loading_fold_thornton`) while it lies above `α_c2`.
+//! fold `α_L` (`loading_fold_thornton`) while it lies above `α_c2`. `thornband --locate GAMMA
+//! E_N[,E_N…] [STEPS]` prints both edges located (`loading_band_thornton`, on STEPS steps,
+//! default 2048) as multiples of `α_c2`.
 
-use oblique_solver::history::has_loading_zone_thornton;
+use oblique_solver::history::{has_loading_zone_thornton, loading_band_thornton};
 
 fn main() -> anyhow::Result<()> {
-    let a: Vec<f64> = std::env::args()
-        .skip(1)
-        .map(|s| s.parse())
-        .collect::<Result<_, _>>()?;
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("--locate") {
+        anyhow::ensure!(
+            (3..=4).contains(&args.len()),
+            "usage: thornband --locate GAMMA E_N[,E_N...] [STEPS]"
+        );
+        let steps: usize = args.get(3).map_or(Ok(2048), |s| s.parse())?;
+        let g: f64 = args[1].parse()?;
+        let c2 = oblique_physics::regimes::alpha_c2(g);
+        for e in args[2].split(',') {
+            let e: f64 = e.parse()?;
+            let t = std::time::Instant::now();
+            let band = loading_band_thornton(g, e, None, steps)?;
+            let us = t.elapsed().as_secs_f64();
+            match band {
+                Some((lo, hi)) => println!(
+                    "gamma {g} e_n {e}: band {:.6}..{:.6} alpha_c2 ({lo:.8}..{hi:.8}) in {us:.2} s",
+                    lo / c2,
+                    hi / c2
+                ),
+                None => println!("gamma {g} e_n {e}: no band found in {us:.2} s"),
+            }
+        }
+        return Ok(());
+    }
+    let a: Vec<f64> = args.iter().map(|s| s.parse()).collect::<Result<_, _>>()?;
     anyhow::ensure!(a.len() == 5, "usage: thornband GAMMA E_N LO HI N");
     let (g, e, lo, hi) = (a[0], a[1], a[2], a[3]);
     let n = a[4] as usize;

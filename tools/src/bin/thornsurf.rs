@@ -6,6 +6,8 @@
 //! the stick patch (`kink::switch_sheet_surfaces`). With `--only-strip` (`--only-sheet`) only the strip (the
 //! sheet); with `--print G,X ...` also the strip's edges interpolated at those `(γ, e_n)` pairs
 //! (with `--only-sheet`: `e_S` at those `(γ, α/α_c2)`, and with `--nodes` its located nodes).
+//! With `--only-band` only the upper edge of the loading band
+//! (`kink::thornton_loading_band_surface`), and with `--print` it interpolated.
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -16,7 +18,7 @@ fn main() -> anyhow::Result<()> {
         .collect::<Result<_, _>>()?;
     anyhow::ensure!(
         a.len() == 4,
-        "usage: thornsurf GAMMA_LO GAMMA_HI E_LO E_HI [--only-strip|--only-sheet] [--print G,X ...]"
+        "usage: thornsurf GAMMA_LO GAMMA_HI E_LO E_HI [--only-strip|--only-sheet|--only-band] [--print G,X ...]"
     );
     let (gammas, e_range) = ((a[0], a[1]), (a[2], a[3]));
     let only_strip = args.iter().any(|s| s == "--only-strip");
@@ -27,6 +29,19 @@ fn main() -> anyhow::Result<()> {
         .skip(1)
         .map(|s| oblique_tools::point(s))
         .collect::<Result<Vec<_>, _>>()?;
+    if args.iter().any(|s| s == "--only-band") {
+        let t = std::time::Instant::now();
+        let band = oblique_sweep::kink::thornton_loading_band_surface(gammas, e_range)?;
+        let n = band.as_ref().map_or(0, |s| s.traced_nodes());
+        println!("L-hi: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
+        for &(g, e) in &points {
+            println!(
+                "{g} {e}: {:?}",
+                band.as_ref().and_then(|s| s.alpha_at(g, e))
+            );
+        }
+        return Ok(());
+    }
     if only_sheet {
         let sheets = switch_sheet(gammas, e_range)?;
         for (sheet, edge) in sheets.iter().zip(["upper", "lower"]) {

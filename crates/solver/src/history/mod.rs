@@ -31,11 +31,13 @@ pub use plastic::{
     end_minus_at_thornton_within, end_minus_edges_thornton, ends_in_full_slip_thornton,
     fold_minus_at_thornton, fold_minus_free_below_thornton, fold_minus_thornton,
     full_slip_edge_thornton, has_loading_zone_thornton, has_reslip_thornton,
-    has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton,
-    restitution_plus_change_thornton, restitution_plus_strip_thornton, slip_history_thornton,
-    slip_pattern_thornton, slip_zones_thornton, switch_fold_thornton, switch_sheet_edges_thornton,
-    switch_sheet_thornton, switch_zones_thornton, ZoneSnapshot, FOLD_MINUS_BIRTH_MARGIN,
-    FOLD_MINUS_SCAN, LOADING_ZONE_MIN, PLUS_STRIP_MAX, SWITCH_FOLD_MAX, SWITCH_ZONE_MIN,
+    has_switch_zone_thornton, loading_band_thornton, loading_band_top_within_thornton,
+    loading_fold_thornton, reslip_fold_thornton, restitution_plus_change_thornton,
+    restitution_plus_strip_thornton, slip_history_thornton, slip_pattern_thornton,
+    slip_zones_thornton, switch_fold_thornton, switch_sheet_edges_thornton, switch_sheet_thornton,
+    switch_zones_thornton, ZoneSnapshot, FOLD_MINUS_BIRTH_MARGIN, FOLD_MINUS_SCAN,
+    LOADING_BAND_MIN, LOADING_BAND_SCAN, LOADING_ZONE_MIN, PLUS_STRIP_MAX, SWITCH_FOLD_MAX,
+    SWITCH_ZONE_MIN,
 };
 
 /// Direction of the friction force during a gross-slip episode.

@@ -298,6 +298,148 @@ pub fn loading_fold_thornton(
     fold_above(start, 1.1, 1e3 * c2, holds)
 }
 
+/// How far below `α_c2` (a multiple of it) [`loading_band_thornton`] looks for the loading
+/// band: as `e_n` grows to 1 the band falls (at γ = 1.7: 0.955–1.115 `α_c2` at `e_n` = 0.8,
+/// 0.635–0.645 at 0.98, 0.450–0.451 at 0.999; `thornband`).
+pub const LOADING_BAND_MIN: f64 = 0.2;
+
+/// The factor of the scan down from `α_c2` with which [`loading_band_thornton`] looks for a
+/// band that lies wholly below it: a band narrower than 0.2 % in α is missed (at γ = 1.7 the
+/// band is 0.5 % wide at `e_n` = 0.99, 0.2 % at 0.999).
+pub const LOADING_BAND_SCAN: f64 = 1.002;
+
+/// The loading band of Thornton's law at `(γ, e_n)`: the interval `(α_lo, α_hi)` of α where a
+/// zone at the `+μq` limit opens and closes while the contact loads
+/// ([`has_loading_zone_thornton`]). Its upper edge is a kink of `P` (`P` changes its slope
+/// there), the loading fold `α_L` ([`loading_fold_thornton`]) while that lies above `α_c2`; at
+/// its lower edge the zone is born with zero size and `P` shows no kink (second differences
+/// smooth to 1e-9 at γ = 1.7, `e_n` = 0.6, 0.9, 0.98 and γ = 2.5, `e_n` = 0.85), and the located
+/// edge moves by up to 4e-3 between 2 048 and 8 192 steps. As `e_n` falls the band
+/// rises through `α_c2` (γ = 1.7: 0.635–0.645 `α_c2` at `e_n` = 0.98, 0.86–0.925 at 0.9,
+/// 0.955–1.115 at 0.8), its lower edge ever closer below `α_c2` (0.996 `α_c2` at 0.6, 0.9999
+/// at 0.4) and its upper edge ever higher (2.3 `α_c2` at 0.5).
+///
+/// Located on `steps` steps: a point of the band from `hint` where the predicate holds there,
+/// else `α_c2 (1 + 1e-4)` where it holds there, else the first α where it holds on a scan down
+/// from `α_c2` by factors of [`LOADING_BAND_SCAN`] to [`LOADING_BAND_MIN`] `α_c2`; from that
+/// point each edge is bracketed by steps that double in `ln α` (from 1 %) and bisected to
+/// `1e-8` in `ln α`. `None` where no point of the band is found, its upper edge lies beyond
+/// `1e3 α_c2` or its lower edge below [`LOADING_BAND_MIN`] `α_c2`; `e_n = 1` (elastic) gives
+/// `None`.
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`.
+pub fn loading_band_thornton(
+    gamma: f64,
+    e_n: f64,
+    hint: Option<f64>,
+    steps: usize,
+) -> Result<Option<(f64, f64)>, PhysicsError> {
+    let Some((gamma, e_n)) = fold_inputs(gamma, e_n)? else {
+        return Ok(None);
+    };
+    let c2 = oblique_physics::regimes::alpha_c2(gamma);
+    let holds = |a: f64| has_loading_zone_thornton(gamma, a, e_n, steps);
+    let (min, max) = (LOADING_BAND_MIN * c2, 1e3 * c2);
+    let mut inside = None;
+    if let Some(h) = hint.filter(|h| (min..=max).contains(h)) {
+        if holds(h)? {
+            inside = Some(h);
+        }
+    }
+    if inside.is_none() && holds(c2 * (1.0 + 1e-4))? {
+        inside = Some(c2 * (1.0 + 1e-4));
+    }
+    if inside.is_none() {
+        let mut a = c2;
+        while a > min {
+            a /= LOADING_BAND_SCAN;
+            if holds(a)? {
+                inside = Some(a);
+                break;
+            }
+        }
+    }
+    let Some(inside) = inside else {
+        return Ok(None);
+    };
+    let (Some(lo), Some(hi)) = (
+        band_edge(inside, min, &holds)?,
+        band_edge(inside, max, &holds)?,
+    ) else {
+        return Ok(None);
+    };
+    Ok(Some((lo, hi)))
+}
+
+/// The upper edge of the loading band ([`loading_band_thornton`]) inside `(below, above)`, where
+/// [`has_loading_zone_thornton`] holds at `below` and fails at `above`, bisected to `1e-8` in
+/// `ln α` on `steps` steps; `None` where the ends do not differ so (the tracing of the probes
+/// then searches the band again).
+///
+/// Errors: `γ` not positive and finite, `e_n` outside `[0.3, 1]`, `steps < 8`, a bracket not
+/// `0 < below < above`, finite.
+pub fn loading_band_top_within_thornton(
+    gamma: f64,
+    e_n: f64,
+    (below, above): (f64, f64),
+    steps: usize,
+) -> Result<Option<f64>, PhysicsError> {
+    if !(below > 0.0 && above > below && above.is_finite()) {
+        return Err(PhysicsError::InvalidParameter {
+            name: "alpha bracket",
+            value: above,
+            allowed: "0 < below < above, finite",
+        });
+    }
+    let Some((gamma, e_n)) = fold_inputs(gamma, e_n)? else {
+        return Ok(None);
+    };
+    let holds = |a: f64| has_loading_zone_thornton(gamma, a, e_n, steps);
+    if !holds(below)? || holds(above)? {
+        return Ok(None);
+    }
+    let edge = bisect_edge((below.ln(), above.ln()), BAND_LN_TOL, |l| holds(l.exp()))?;
+    Ok(Some(edge.exp()))
+}
+
+/// How closely (in `ln α`) the edges of the loading band are located: the upper edge moves by
+/// about 1e-6 relative between 2 048 and 8 192 steps (γ = 1.7, `e_n` = 0.9: 0.922311 and 0.922310
+/// `α_c2`), the lower one by up to 4e-3 (0.85575 and 0.85501).
+const BAND_LN_TOL: f64 = 1e-8;
+
+/// The edge of a band from a point `inside` it towards `limit` (below or above): steps from
+/// `inside` that double in `ln α` from 1 % while the predicate holds (`None` once a step passes
+/// `limit`), then the last bracket bisected to `1e-8` in `ln α`.
+fn band_edge(
+    inside: f64,
+    limit: f64,
+    holds: &impl Fn(f64) -> Result<bool, PhysicsError>,
+) -> Result<Option<f64>, PhysicsError> {
+    let dir = if limit > inside { 1.0 } else { -1.0 };
+    let (start, end) = (inside.ln(), limit.ln());
+    let (mut held, mut step) = (start, 0.01);
+    loop {
+        let next = held + dir * step;
+        if dir * (next - end) > 0.0 {
+            return Ok(None);
+        }
+        if !holds(next.exp())? {
+            // The edge lies between `held` (holds) and `next` (fails).
+            let (a, b) = if dir > 0.0 {
+                (held, next)
+            } else {
+                (next, held)
+            };
+            let edge = bisect_edge((a, b), BAND_LN_TOL, |l| {
+                holds(l.exp()).map(|h| h == (dir > 0.0))
+            })?;
+            return Ok(Some(edge.exp()));
+        }
+        held = next;
+        step *= 2.0;
+    }
+}
+
 /// The predicate of the re-slip fold `α_R(γ, e_n)` of Thornton's law
 /// ([`reslip_fold_thornton`]): the impact at `steps` steps per contact time has a `+μF_N`
 /// gross-slip episode that starts after the switch to unloading (past `1.01 t_s`) and ends

@@ -41,9 +41,9 @@ pub use interlude::{
 };
 
 pub use thornton::{
-    thornton_end_minus_surface, thornton_fold_minus_surface, thornton_plus_strip_surfaces,
-    PLUS_STRIP_FROM, THORNTON_END_STEP, THORNTON_ROWS_PER_UNIT_E, THORNTON_STEP,
-    THORNTON_TRACE_STEPS,
+    thornton_end_minus_surface, thornton_fold_minus_surface, thornton_loading_band_surface,
+    thornton_plus_strip_surfaces, BAND_TRACE_STEPS, PLUS_STRIP_FROM, THORNTON_END_STEP,
+    THORNTON_ROWS_PER_UNIT_E, THORNTON_STEP, THORNTON_TRACE_STEPS,
 };
 
 pub use end_minus::{
@@ -55,9 +55,10 @@ use rayon::prelude::*;
 use super::SweepError;
 use oblique_solver::history::{
     end_minus_edges_thornton, fold_minus_at, fold_minus_at_e, fold_minus_free_below,
-    fold_minus_free_below_thornton, fold_minus_thornton, loading_fold_thornton,
-    reslip_fold_thornton, restitution_minus_somewhere_e, restitution_plus_change_thornton,
-    restitution_plus_strip_thornton, switch_fold_thornton, switch_sheet_edges_thornton,
+    fold_minus_free_below_thornton, fold_minus_thornton, loading_band_thornton,
+    loading_fold_thornton, reslip_fold_thornton, restitution_minus_somewhere_e,
+    restitution_plus_change_thornton, restitution_plus_strip_thornton, switch_fold_thornton,
+    switch_sheet_edges_thornton,
 };
 use oblique_solver::Law;
 use oblique_table::surface::{stencil4, PatchKind, Point};
@@ -119,6 +120,8 @@ pub struct Traced {
     end_minus_thornton: Option<(TracedOver, Option<KinkSurface>)>,
     /// The edges of Thornton's `+` strip and the γ and `e_n` ranges they were traced for.
     plus_strip_thornton: Option<(TracedOver, [Option<KinkSurface>; 2])>,
+    /// The upper edge of Thornton's loading band and the γ and `e_n` ranges it was traced for.
+    loading_band_thornton: Option<(TracedOver, Option<KinkSurface>)>,
 }
 
 impl Traced {
@@ -274,6 +277,13 @@ pub fn trace(
             tracing("the edges of the + strip");
             let strip = plus_strip(traced, gammas, e_range)?;
             for edge in strip.into_iter().flatten() {
+                out.push(Box::new(end_minus_in_patch(&edge, kind)));
+            }
+            tracing("the upper edge of the loading band");
+            let band = traced_once(&mut traced.loading_band_thornton, (gammas, e_range), || {
+                thornton_loading_band_surface(gammas, e_range)
+            })?;
+            if let Some(edge) = band {
                 out.push(Box::new(end_minus_in_patch(&edge, kind)));
             }
             if kind == PatchKind::Stick {
@@ -1175,6 +1185,66 @@ pub fn near_thornton_fold_points(
         .collect())
 }
 
+/// The edges of Thornton's loading band that [`near_loading_band_points`] draws next to, in
+/// turn.
+pub const LOADING_BAND_EDGES: [&str; 2] = ["L-lo", "L-hi"];
+
+/// `n` points next to the edges of Thornton's loading band inside `gammas × e_range` (the α
+/// where a zone at the `+μq` limit opens and closes while the contact loads, `loading_band_thornton`),
+/// each with the index of its edge in [`LOADING_BAND_EDGES`], point `i` next to edge `i mod 2`:
+/// `(γ, e_n)` uniform (`e_n` at most `1 − 1e-4`), the band located there on 2 048 steps (a
+/// full search, 0.1–0.4 s), `α = α_edge (1 + s·10^u)`, `s = ±1`, `u` uniform in `[−4, −2]`. A
+/// draw where no band is found (next to `e_n` = 1 it is narrower than the search's scan) or
+/// whose `α` lies beyond `alpha_max` is drawn again, up to 20 rounds. The same `seed` gives
+/// the same points (`sweep verify --near-band`). `Err`: a solve's error.
+pub fn near_loading_band_points(
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+    alpha_max: f64,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
+    let (g_lo, g_hi) = gammas;
+    let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
+    let mut rng = oblique_physics::sample::SplitMix(seed);
+    let mut slots: Vec<Option<Point>> = vec![None; n];
+    for _ in 0..20 {
+        let open: Vec<usize> = (0..n).filter(|&i| slots[i].is_none()).collect();
+        if open.is_empty() {
+            break;
+        }
+        let draws: Vec<(usize, f64, f64, f64)> = open
+            .iter()
+            .map(|&i| {
+                let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
+                let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
+                let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+                let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+                (i, gamma, e_n, sign * r)
+            })
+            .collect();
+        let found: Vec<(usize, Option<Point>)> = draws
+            .par_iter()
+            .map(|&(i, gamma, e_n, r)| {
+                let band = loading_band_thornton(gamma, e_n, None, THORNTON_FOLD_STEPS)?;
+                let point = band
+                    .map(|(lo, hi)| if i % 2 == 0 { lo } else { hi } * (1.0 + r))
+                    .filter(|&a| a <= alpha_max)
+                    .map(|a| Point::new(gamma, a, e_n));
+                Ok((i, point))
+            })
+            .collect::<Result<_, oblique_solver::PhysicsError>>()?;
+        for (i, point) in found {
+            slots[i] = point;
+        }
+    }
+    Ok(slots
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, p)| p.map(|p| (i % 2, p)))
+        .collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1534,6 +1604,40 @@ mod tests {
         assert!(none.iter().all(Option::is_none));
     }
 
+    /// The upper edge of Thornton's loading band for the probes: a surface that matches the edge
+    /// located between its nodes (within 1e-3 of α, where it moves by 2 % a row), split between
+    /// the patches where it crosses α_c2, not knotted.
+    #[test]
+    fn thornton_loading_band_is_traced_in_both_patches() {
+        let hi = thornton_loading_band_surface((1.62, 1.66), (0.84, 0.89))
+            .unwrap()
+            .expect("L-hi");
+        assert_eq!((hi.name, hi.knotted), ("L-hi", false));
+        for (g, e) in [
+            (1.6428193451026516, 0.8758696542440176),
+            (1.6317, 0.8433),
+            (1.655, 0.8871),
+        ] {
+            let (_, direct) = loading_band_thornton(g, e, None, 8192)
+                .unwrap()
+                .expect("a band");
+            let a = hi.alpha_at(g, e).expect("traced there");
+            assert!((a / direct - 1.0).abs() < 1e-3, "{g} {e}: {a} vs {direct}");
+        }
+        // The upper edge lies below α_c2 at e_n 0.8759 (0.9926 α_c2 at γ 1.6428, where a table
+        // without these probes erred beyond its bound) and above it at 0.84.
+        let g = 1.6428193451026516;
+        let c2 = oblique_physics::regimes::alpha_c2(g);
+        let [partial, stick] =
+            [PatchKind::PartialSlip, PatchKind::Stick].map(|kind| end_minus_in_patch(&hi, kind));
+        assert!(partial
+            .alpha_at(g, 0.8759)
+            .is_some_and(|a| a < c2 && a > 0.99 * c2));
+        assert!(stick.alpha_at(g, 0.8759).is_none());
+        assert!(stick.alpha_at(g, 0.84).is_some_and(|a| a > c2));
+        assert!(partial.alpha_at(g, 0.84).is_none());
+    }
+
     /// Thornton's F₋ and E₋ for the probes: surfaces in the partial-slip patch that match the
     /// kinks located between their nodes, not knotted; F₋ ends where it does along `e_n`.
     #[test]
@@ -1547,10 +1651,11 @@ mod tests {
             &|_| {},
         )
         .unwrap();
-        // F₋, E₋ (below it here, α_E ≈ 0.44–0.50) and the edges of the `+` strip (its part
-        // below α_c2: at γ 2.34 it crosses α_c2 between `e_n` 0.55 and 0.57).
+        // F₋, E₋ (below it here, α_E ≈ 0.44–0.50), the edges of the `+` strip (its part
+        // below α_c2: at γ 2.34 it crosses α_c2 between `e_n` 0.55 and 0.57) and the upper edge
+        // of the loading band.
         let names: Vec<_> = k.iter().map(|k| k.name()).collect();
-        assert_eq!(names, ["F-", "E-", "F+lo", "F+hi"]);
+        assert_eq!(names, ["F-", "E-", "F+lo", "F+hi", "L-hi"]);
         let f = &k[0];
         assert_eq!(
             (f.name(), f.patch(), f.knotted()),

@@ -12,7 +12,8 @@ use super::{e_of_row, CurveScale, KinkSurface, SweepError, CONTINUATION_SPAN, PR
 use oblique_solver::history::{
     end_minus_at_thornton_within, end_minus_edges_thornton, fold_minus_at_thornton,
     fold_minus_free_below_thornton, fold_minus_thornton, has_restitution_plus,
-    restitution_plus_change_thornton, restitution_plus_strip_thornton, slip_history_thornton,
+    loading_band_thornton, loading_band_top_within_thornton, restitution_plus_change_thornton,
+    restitution_plus_strip_thornton, slip_history_thornton,
 };
 use oblique_table::surface::PatchKind;
 
@@ -421,4 +422,93 @@ fn strip_at(
         (Some(l), Some(h)) => Ok(Some((l, h))),
         _ => Ok(None),
     }
+}
+
+/// Steps per contact time on which [`thornton_loading_band_surface`] locates the upper edge of
+/// the loading band: it moves by 4e-6 relative from 1 024 to 8 192 steps (γ = 1.7, `e_n` = 0.9;
+/// 1.2e-5 at γ = 2.5, `e_n` = 0.5: `thornband -- --locate 2.5 0.5 1024` and `8192`).
+pub const BAND_TRACE_STEPS: usize = 1024;
+
+/// The upper edge of Thornton's loading band (`loading_band_thornton`: the band of α where a
+/// zone at the `+μq` limit opens and closes while the contact loads; `docs/solver.md`, "Kinks
+/// inside the slip regions") as the kink surface `L-hi` of `ln α` over `gammas` × `e_range`, for
+/// the probes of both patches: columns [`THORNTON_STEP`] apart in γ from one below `γ_lo` to one
+/// beyond `γ_hi` and rows `1/`[`PLUS_STRIP_ROWS_PER_UNIT_E`] apart in `e_n` from one below
+/// `e_lo` to one above `e_hi`, at [`BAND_TRACE_STEPS`]. The band rises through `α_c2` as `e_n`
+/// falls (its upper edge at γ = 1.6428, `e_n` = 0.8759 lies at 0.9926 `α_c2`, where a table
+/// over γ 1.6–1.8, `e_n` 0.8–1 without these probes erred by 1.65e-4 against its bound
+/// 1.43e-4), and `P` changes its slope there; its lower edge is no visible kink and is not
+/// traced. Each column is traced from its lowest row up, where the band is widest: the first
+/// row by the band's search, the next ones by continuation ([`band_top_at`]), up to the first
+/// row where no band is found (next to `e_n` = 1 it is narrower than the search's scan: 0.2 %
+/// of α at γ = 1.7, `e_n` = 0.999). `None` where no node holds it.
+pub fn thornton_loading_band_surface(
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+) -> Result<Option<KinkSurface>, SweepError> {
+    let grid = ColumnGrid::new(gammas, e_range, PLUS_STRIP_ROWS_PER_UNIT_E);
+    let columns = (0..grid.n_gamma)
+        .into_par_iter()
+        .map(|i| band_column(grid.gamma(i), grid.top, grid.n_e))
+        .collect::<Result<Vec<Vec<f64>>, SweepError>>()?;
+    Ok(grid.surface("L-hi", true, columns.concat()))
+}
+
+/// One column of [`thornton_loading_band_surface`]: `ln α` of the band's upper edge at `γ` on
+/// rows `top..n_e`, from the lowest row up; NaN from the first row where the band is not found.
+fn band_column(gamma: f64, top: usize, n_e: usize) -> Result<Vec<f64>, SweepError> {
+    let mut out = vec![f64::NAN; n_e];
+    let mut found: Vec<f64> = Vec::new();
+    // The band's width in ln α where it was last searched whole.
+    let mut width = f64::NAN;
+    for l in (top..n_e).rev() {
+        let e_n = e_of_row(l, PLUS_STRIP_ROWS_PER_UNIT_E);
+        let fail = |what: String| SweepError::Kink {
+            curve: "L-hi",
+            gamma,
+            what: format!("at e_n = {e_n}: {what}"),
+        };
+        let followed = match found.is_empty() {
+            true => None,
+            false => band_top_at(gamma, e_n, extrapolated(&found), width)
+                .map_err(|e| fail(e.to_string()))?,
+        };
+        let top_edge = match followed {
+            Some(a) => Some(a),
+            None => loading_band_thornton(gamma, e_n, None, BAND_TRACE_STEPS)
+                .map_err(|e| fail(e.to_string()))?
+                .map(|(lo, hi)| {
+                    width = (hi / lo).ln();
+                    hi
+                }),
+        };
+        let Some(a) = top_edge else { break };
+        out[l] = a.ln();
+        found.push(a.ln());
+    }
+    Ok(out)
+}
+
+/// The band's upper edge at `(γ, e_n)` by continuation from its extrapolated `ln α` `guess`: the
+/// bracket `guess ± δ`, `δ` 1 % or a third of the band's last known width `width` (`ln α`), if
+/// the predicate holds at its lower end and fails at its upper one, bisected there
+/// (`loading_band_top_within_thornton`); `None` where it does not bracket the edge (the band
+/// moved further or narrowed: the caller searches it whole).
+fn band_top_at(
+    gamma: f64,
+    e_n: f64,
+    guess: f64,
+    width: f64,
+) -> Result<Option<f64>, oblique_solver::PhysicsError> {
+    let delta = if width.is_finite() {
+        0.01f64.min(width / 3.0)
+    } else {
+        0.01
+    };
+    loading_band_top_within_thornton(
+        gamma,
+        e_n,
+        ((guess - delta).exp(), (guess + delta).exp()),
+        BAND_TRACE_STEPS,
+    )
 }
