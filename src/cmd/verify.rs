@@ -352,21 +352,30 @@ fn sample_near_sheet(
     Ok((points, (lo, hi)))
 }
 
-/// The `n` points of `--near-folds`: [`oblique_sweep::kink::near_thornton_fold_points`] over a
-/// table of Thornton's law, each with the index of its fold.
-fn sample_near_folds(
+/// The `n` points of `--near-folds` ([`oblique_sweep::kink::near_thornton_fold_points`]) or
+/// of `--near-band` ([`oblique_sweep::kink::near_loading_band_points`]) over a table of
+/// Thornton's law, each with the index of its kink.
+fn sample_near_thornton_kinks(
     table: &Table,
     path: &std::path::Path,
     law: Law,
-    n: usize,
-    seed: u64,
+    (n, seed): (usize, u64),
+    band: bool,
 ) -> Result<Vec<(usize, Point)>> {
     let s = table.surface();
+    let (flag, what) = if band {
+        ("--near-band", "the loading band is located")
+    } else {
+        (
+            "--near-folds",
+            "the folds alpha_R, 2/7, alpha_S, alpha_L and F-, the curves E-, the strip's edges \
+             F+lo and F+hi and the switch sheet e_S are located",
+        )
+    };
     let refuse = |has: String| {
         Failure::usage(format!(
-            "--near-folds: {} has {has}; the folds alpha_R, 2/7, alpha_S, alpha_L and F-, the \
-             curves E-, the strip's edges F+lo and F+hi and the switch sheet e_S are located for \
-             tables of the thornton law (an e_n axis over a range of gamma)",
+            "{flag}: {} has {has}; {what} for tables of the thornton law (an e_n axis over a \
+             range of gamma)",
             path.display()
         ))
     };
@@ -376,64 +385,22 @@ fn sample_near_folds(
     if law != Law::Thornton {
         return Err(refuse(format!("the {} law", law.name())));
     }
-    let points = oblique_sweep::kink::near_thornton_fold_points(
-        (s.gamma_min(), s.gamma_max()),
-        e_range,
-        s.alpha_max(),
-        n,
-        seed,
-    )
-    .context("locating the folds")?;
+    let gammas = (s.gamma_min(), s.gamma_max());
+    let points = if band {
+        oblique_sweep::kink::near_loading_band_points(gammas, e_range, s.alpha_max(), n, seed)
+            .context("locating the loading band")?
+    } else {
+        oblique_sweep::kink::near_thornton_fold_points(gammas, e_range, s.alpha_max(), n, seed)
+            .context("locating the folds")?
+    };
     if points.is_empty() {
         return Err(refuse(format!(
-            "gamma in [{}, {}] and e_n in [{}, {}], where no fold was found",
+            "gamma in [{}, {}] and e_n in [{}, {}], where no {} was found",
             s.gamma_min(),
             s.gamma_max(),
             e_range.0,
-            e_range.1
-        )));
-    }
-    Ok(points)
-}
-
-/// The `n` points of `--near-band`: [`oblique_sweep::kink::near_loading_band_points`] over a
-/// table of Thornton's law, each with the index of its edge.
-fn sample_near_band(
-    table: &Table,
-    path: &std::path::Path,
-    law: Law,
-    n: usize,
-    seed: u64,
-) -> Result<Vec<(usize, Point)>> {
-    let s = table.surface();
-    let refuse = |has: String| {
-        Failure::usage(format!(
-            "--near-band: {} has {has}; the loading band is located for tables of the thornton \
-             law (an e_n axis over a range of gamma)",
-            path.display()
-        ))
-    };
-    let Some(e_range) = table.restitution() else {
-        return Err(refuse("no e_n axis (an elastic table)".into()));
-    };
-    if law != Law::Thornton {
-        return Err(refuse(format!("the {} law", law.name())));
-    }
-    let points = oblique_sweep::kink::near_loading_band_points(
-        (s.gamma_min(), s.gamma_max()),
-        e_range,
-        s.alpha_max(),
-        n,
-        seed,
-    )
-    .context("locating the loading band")?;
-    if points.is_empty() {
-        return Err(refuse(format!(
-            "gamma in [{}, {}] and e_n in [{}, {}], where no band was found",
-            s.gamma_min(),
-            s.gamma_max(),
-            e_range.0,
-            e_range.1
+            e_range.1,
+            if band { "band" } else { "fold" }
         )));
     }
     Ok(points)
@@ -506,11 +473,13 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         &oblique_sweep::kink::THORNTON_FOLDS
     };
     let points = if args.near_folds || args.near_band {
-        let tagged = if args.near_band {
-            sample_near_band(&table, &args.table, law, args.points, args.seed)?
-        } else {
-            sample_near_folds(&table, &args.table, law, args.points, args.seed)?
-        };
+        let tagged = sample_near_thornton_kinks(
+            &table,
+            &args.table,
+            law,
+            (args.points, args.seed),
+            args.near_band,
+        )?;
         folds = tagged.iter().map(|&(k, _)| k).collect();
         tagged.into_iter().map(|(_, p)| p).collect()
     } else if args.near_fold {

@@ -1078,6 +1078,86 @@ pub fn near_thornton_fold_points(
     let kinds = THORNTON_FOLDS.len();
     let (g_lo, g_hi) = gammas;
     let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
+    let draw = |rng: &mut oblique_physics::sample::SplitMix| {
+        let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
+        let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
+        let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        // The sheet's α (e_S) or which E₋ (E-).
+        let pick = rng.uniform();
+        (gamma, e_n, sign * r, pick)
+    };
+    draw_rounds(n, kinds, seed, draw, |i, &(gamma, e_n, r, pick)| {
+        let c2 = oblique_physics::regimes::alpha_c2(gamma);
+        let point = if i % kinds == 4 {
+            let alpha = 1.2 * (10.0f64 / 1.2).powf(pick) * c2;
+            // The edge of the sheet nearest the drawn e_n (upper or lower edge of a
+            // band of the zone).
+            let edges = switch_sheet_edges_thornton(
+                gamma,
+                alpha,
+                (e_lo, e_hi),
+                SHEET_SCAN,
+                THORNTON_FOLD_STEPS,
+            )?;
+            edges
+                .iter()
+                .map(|&(e_s, _)| e_s)
+                .min_by(|a, b| (a - e_n).abs().total_cmp(&(b - e_n).abs()))
+                .map(|e_s| e_s + r)
+                .filter(|&e| e >= e_lo && e <= e_hi && alpha <= alpha_max)
+                .map(|e| Point::new(gamma, alpha, e))
+        } else {
+            let fold = match i % kinds {
+                0 => reslip_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                1 => Ok(Some(2.0 / 7.0)),
+                2 => switch_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                3 => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                // None below its birth (the search would scan up to α_c2 for it).
+                5 if gamma < fold_minus_free_below_thornton(e_n) => Ok(None),
+                5 => fold_minus_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
+                7 | 8 => match restitution_plus_strip_thornton(gamma, e_n, THORNTON_FOLD_STEPS)? {
+                    Some((lo, hi)) => {
+                        let edge = if i % kinds == 7 { lo } else { hi };
+                        restitution_plus_change_thornton(
+                            gamma,
+                            e_n,
+                            (edge * (1.0 - 2e-3), edge * (1.0 + 2e-3)),
+                            PLUS_STRIP_STEPS,
+                        )
+                    }
+                    None => Ok(None),
+                },
+                _ => {
+                    let (up, n) = END_MINUS_SCAN;
+                    let lo = 0.8 * 2.0 / 7.0;
+                    let hi = (up * c2).min(alpha_max).max(2.0 * lo);
+                    let edges =
+                        end_minus_edges_thornton(gamma, e_n, (lo, hi), n, THORNTON_FOLD_STEPS)?;
+                    let k =
+                        ((pick * edges.len() as f64) as usize).min(edges.len().saturating_sub(1));
+                    Ok(edges.get(k).copied())
+                }
+            }?;
+            fold.map(|a| a * (1.0 + r))
+                .filter(|&a| a <= alpha_max)
+                .map(|a| Point::new(gamma, a, e_n))
+        };
+        Ok(point)
+    })
+}
+
+/// `n` points drawn in rounds, point `i` next to kind `i mod kinds`: each round draws the open
+/// slots in order from `seed` (`draw`) and locates them in parallel (`locate`, `None` where
+/// the kind does not exist there), up to 20 rounds; a kind none of whose draws of a round
+/// exists is not drawn again. Each point with its kind.
+fn draw_rounds<D: Sync>(
+    n: usize,
+    kinds: usize,
+    seed: u64,
+    mut draw: impl FnMut(&mut oblique_physics::sample::SplitMix) -> D,
+    locate: impl Fn(usize, &D) -> Result<Option<Point>, oblique_solver::PhysicsError> + Sync,
+) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
     let mut rng = oblique_physics::sample::SplitMix(seed);
     let mut slots: Vec<Option<Point>> = vec![None; n];
     let mut gone = vec![false; kinds];
@@ -1088,86 +1168,10 @@ pub fn near_thornton_fold_points(
         if open.is_empty() {
             break;
         }
-        let draws: Vec<(usize, f64, f64, f64, f64)> = open
-            .iter()
-            .map(|&i| {
-                let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
-                let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
-                let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
-                let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-                // The sheet's α (e_S) or which E₋ (E-).
-                let pick = rng.uniform();
-                (i, gamma, e_n, sign * r, pick)
-            })
-            .collect();
+        let draws: Vec<(usize, D)> = open.iter().map(|&i| (i, draw(&mut rng))).collect();
         let found: Vec<(usize, Option<Point>)> = draws
             .par_iter()
-            .map(|&(i, gamma, e_n, r, pick)| {
-                let c2 = oblique_physics::regimes::alpha_c2(gamma);
-                let point = if i % kinds == 4 {
-                    let alpha = 1.2 * (10.0f64 / 1.2).powf(pick) * c2;
-                    // The edge of the sheet nearest the drawn e_n (upper or lower edge of a
-                    // band of the zone).
-                    let edges = switch_sheet_edges_thornton(
-                        gamma,
-                        alpha,
-                        (e_lo, e_hi),
-                        SHEET_SCAN,
-                        THORNTON_FOLD_STEPS,
-                    )?;
-                    edges
-                        .iter()
-                        .map(|&(e_s, _)| e_s)
-                        .min_by(|a, b| (a - e_n).abs().total_cmp(&(b - e_n).abs()))
-                        .map(|e_s| e_s + r)
-                        .filter(|&e| e >= e_lo && e <= e_hi && alpha <= alpha_max)
-                        .map(|e| Point::new(gamma, alpha, e))
-                } else {
-                    let fold = match i % kinds {
-                        0 => reslip_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
-                        1 => Ok(Some(2.0 / 7.0)),
-                        2 => switch_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
-                        3 => loading_fold_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
-                        // None below its birth (the search would scan up to α_c2 for it).
-                        5 if gamma < fold_minus_free_below_thornton(e_n) => Ok(None),
-                        5 => fold_minus_thornton(gamma, e_n, THORNTON_FOLD_STEPS),
-                        7 | 8 => {
-                            match restitution_plus_strip_thornton(gamma, e_n, THORNTON_FOLD_STEPS)?
-                            {
-                                Some((lo, hi)) => {
-                                    let edge = if i % kinds == 7 { lo } else { hi };
-                                    restitution_plus_change_thornton(
-                                        gamma,
-                                        e_n,
-                                        (edge * (1.0 - 2e-3), edge * (1.0 + 2e-3)),
-                                        PLUS_STRIP_STEPS,
-                                    )
-                                }
-                                None => Ok(None),
-                            }
-                        }
-                        _ => {
-                            let (up, n) = END_MINUS_SCAN;
-                            let lo = 0.8 * 2.0 / 7.0;
-                            let hi = (up * c2).min(alpha_max).max(2.0 * lo);
-                            let edges = end_minus_edges_thornton(
-                                gamma,
-                                e_n,
-                                (lo, hi),
-                                n,
-                                THORNTON_FOLD_STEPS,
-                            )?;
-                            let k = ((pick * edges.len() as f64) as usize)
-                                .min(edges.len().saturating_sub(1));
-                            Ok(edges.get(k).copied())
-                        }
-                    }?;
-                    fold.map(|a| a * (1.0 + r))
-                        .filter(|&a| a <= alpha_max)
-                        .map(|a| Point::new(gamma, a, e_n))
-                };
-                Ok((i, point))
-            })
+            .map(|(i, d)| Ok((*i, locate(*i, d)?)))
             .collect::<Result<_, oblique_solver::PhysicsError>>()?;
         let mut any = vec![false; kinds];
         for (i, point) in found {
@@ -1195,8 +1199,9 @@ pub const LOADING_BAND_EDGES: [&str; 2] = ["L-lo", "L-hi"];
 /// `(γ, e_n)` uniform (`e_n` at most `1 − 1e-4`), the band located there on 2 048 steps (a
 /// full search, 0.1–0.4 s), `α = α_edge (1 + s·10^u)`, `s = ±1`, `u` uniform in `[−4, −2]`. A
 /// draw where no band is found (next to `e_n` = 1 it is narrower than the search's scan) or
-/// whose `α` lies beyond `alpha_max` is drawn again, up to 20 rounds. The same `seed` gives
-/// the same points (`sweep verify --near-band`). `Err`: a solve's error.
+/// whose `α` lies beyond `alpha_max` is drawn again, up to 20 rounds (an edge found nowhere in
+/// a round is not drawn again). The same `seed` gives the same points (`sweep verify
+/// --near-band`). `Err`: a solve's error.
 pub fn near_loading_band_points(
     gammas: (f64, f64),
     e_range: (f64, f64),
@@ -1206,43 +1211,20 @@ pub fn near_loading_band_points(
 ) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
     let (g_lo, g_hi) = gammas;
     let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
-    let mut rng = oblique_physics::sample::SplitMix(seed);
-    let mut slots: Vec<Option<Point>> = vec![None; n];
-    for _ in 0..20 {
-        let open: Vec<usize> = (0..n).filter(|&i| slots[i].is_none()).collect();
-        if open.is_empty() {
-            break;
-        }
-        let draws: Vec<(usize, f64, f64, f64)> = open
-            .iter()
-            .map(|&i| {
-                let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
-                let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
-                let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
-                let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-                (i, gamma, e_n, sign * r)
-            })
-            .collect();
-        let found: Vec<(usize, Option<Point>)> = draws
-            .par_iter()
-            .map(|&(i, gamma, e_n, r)| {
-                let band = loading_band_thornton(gamma, e_n, None, THORNTON_FOLD_STEPS)?;
-                let point = band
-                    .map(|(lo, hi)| if i % 2 == 0 { lo } else { hi } * (1.0 + r))
-                    .filter(|&a| a <= alpha_max)
-                    .map(|a| Point::new(gamma, a, e_n));
-                Ok((i, point))
-            })
-            .collect::<Result<_, oblique_solver::PhysicsError>>()?;
-        for (i, point) in found {
-            slots[i] = point;
-        }
-    }
-    Ok(slots
-        .into_iter()
-        .enumerate()
-        .filter_map(|(i, p)| p.map(|p| (i % 2, p)))
-        .collect())
+    let draw = |rng: &mut oblique_physics::sample::SplitMix| {
+        let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
+        let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
+        let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        (gamma, e_n, sign * r)
+    };
+    draw_rounds(n, 2, seed, draw, |i, &(gamma, e_n, r)| {
+        let band = loading_band_thornton(gamma, e_n, None, THORNTON_FOLD_STEPS)?;
+        Ok(band
+            .map(|(lo, hi)| if i % 2 == 0 { lo } else { hi } * (1.0 + r))
+            .filter(|&a| a <= alpha_max)
+            .map(|a| Point::new(gamma, a, e_n)))
+    })
 }
 
 #[cfg(test)]
@@ -1698,22 +1680,37 @@ mod tests {
     fn kinks_are_traced_for_the_laws_that_have_them() {
         assert!(probes_implemented(Law::Elastic) && probes_implemented(Law::KelvinVoigt));
         assert!(probes_implemented(Law::Thornton));
-        // Nothing for the stick patch of an elastic table above E₋'s end, nor for Thornton's
-        // partial-slip patch below F₋'s birth and E₋'s reach (γ 1–1.2, e_n 0.95–1).
-        for (law, kind, e, g) in [
-            (Law::Elastic, PatchKind::Stick, None, (2.4, 2.6)),
-            (
-                Law::Thornton,
-                PatchKind::PartialSlip,
-                Some((0.95, 1.0)),
-                (1.0, 1.2),
-            ),
-        ] {
-            let k = trace(law, kind, g, e, &mut Traced::default(), &|_| {}).unwrap();
-            assert!(k.is_empty(), "{law:?}");
-        }
-        // Its stick patch there: only the switch sheet, at a few nodes next to α_c2 near γ 1
-        // (up to 1.06 and 1.053 α_c2, e_S 0.93–0.98), too few for a stencil.
+        // Nothing for the stick patch of an elastic table above E₋'s end; for Thornton's
+        // partial-slip patch below F₋'s birth and E₋'s reach (γ 1–1.2, e_n 0.95–1) only the
+        // upper edge of the loading band where it lies below α_c2 (0.9818 α_c2 at γ 1.15,
+        // e_n 0.97).
+        let k = trace(
+            Law::Elastic,
+            PatchKind::Stick,
+            (2.4, 2.6),
+            None,
+            &mut Traced::default(),
+            &|_| {},
+        )
+        .unwrap();
+        assert!(k.is_empty());
+        let k = trace(
+            Law::Thornton,
+            PatchKind::PartialSlip,
+            (1.0, 1.2),
+            Some((0.95, 1.0)),
+            &mut Traced::default(),
+            &|_| {},
+        )
+        .unwrap();
+        let names: Vec<_> = k.iter().map(|k| k.name()).collect();
+        assert_eq!(names, ["L-hi"]);
+        let c2 = oblique_physics::regimes::alpha_c2(1.15);
+        let a = k[0].alpha(1.15, 0.97).expect("below alpha_c2 there");
+        assert!((a / c2 - 0.98185).abs() < 1e-3, "{}", a / c2);
+        // Its stick patch there: the band's edge where it lies above α_c2, and the switch
+        // sheet, at a few nodes next to α_c2 near γ 1 (up to 1.06 and 1.053 α_c2, e_S
+        // 0.93–0.98), too few for a stencil.
         let k = trace(
             Law::Thornton,
             PatchKind::Stick,
@@ -1723,7 +1720,7 @@ mod tests {
             &|_| {},
         )
         .unwrap();
-        assert!(k.iter().all(|k| k.name() == "e_S"));
+        assert!(k.iter().all(|k| ["e_S", "L-hi"].contains(&k.name())));
         let [sheet, _] = switch_sheet_surfaces((1.0, 1.2), (0.95, 1.0)).unwrap();
         for (g, r, _) in sheet.iter().flat_map(|s| s.points()) {
             assert!(g <= 1.06 + 1e-9 && r < 1.06, "{g} {r}");
