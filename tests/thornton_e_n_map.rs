@@ -311,6 +311,16 @@ fn the_export_and_the_reference_reader_give_the_bits_of_p_e() {
             let e_mapped = axis.at(top / blocks);
             let e_linear = e_lo + (e_hi - e_lo) * top / blocks;
             assert!(e_linear + 0.02 < e_mapped, "{e_linear} vs {e_mapped}");
+            // `sweep inspect` states the region's e_n through the map, not linearly.
+            let text = ok(&["inspect", table.to_str().expect("path")]);
+            let line = text
+                .lines()
+                .find(|l| l.contains("knots:") && l.contains("c' = 0.5, 0.625"))
+                .unwrap_or_else(|| panic!("no knots line: {text}"));
+            assert!(
+                line.contains(&format!(", {e_mapped}]")) && !line.contains(&format!("{e_linear}]")),
+                "{line}: region top {e_mapped} (a linear axis: {e_linear})"
+            );
             let mut r = SplitMix(5);
             let mut between = 0;
             for i in 0..1000 {

@@ -165,6 +165,12 @@ pub fn run(args: InspectArgs) -> Result<()> {
         if let (Some(k), Some(r)) = (p.knots(), p.restitution()) {
             let reg = k.region();
             let at = |lo: f64, hi: f64, blocks: usize, v: f64| lo + (hi - lo) * v / blocks as f64;
+            // A root-cell position along e_n through the axis's map (over (1 - e_n)^(1/4) the
+            // edges are not equally spaced in e_n).
+            let at_e = |v: f64| match r.map {
+                oblique_table::surface::AxisMap::Linear => at(r.lo(), r.hi(), r.blocks(), v),
+                _ => r.at(v / r.blocks() as f64),
+            };
             let stars: Vec<String> = k.c_star().iter().map(|c| c.to_string()).collect();
             outln!(
                 "                knots: {} {} on c' = {} (grades {:?}: 0 linear, 1 graded below, 2 above) for gamma [{}, {}], e_n [{}, {}]; traced on a {} x {} grid",
@@ -174,8 +180,8 @@ pub fn run(args: InspectArgs) -> Result<()> {
                 k.grade_values(),
                 at(p.gamma_lo(), p.gamma_hi(), p.blocks_gamma(), reg[0]),
                 at(p.gamma_lo(), p.gamma_hi(), p.blocks_gamma(), reg[1]),
-                at(r.lo(), r.hi(), r.blocks(), reg[2]),
-                at(r.lo(), r.hi(), r.blocks(), reg[3]),
+                at_e(reg[2]),
+                at_e(reg[3]),
                 k.shape()[1],
                 k.shape()[2]
             )?;
