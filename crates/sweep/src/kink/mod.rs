@@ -1232,6 +1232,17 @@ mod tests {
     use super::*;
     use oblique_solver::history::switch_sheet_thornton;
 
+    /// The kinks [`trace`] traces for `law` in the patch `kind` over `gammas` (and `e_range`),
+    /// traced afresh.
+    fn traced(
+        law: Law,
+        kind: PatchKind,
+        gammas: (f64, f64),
+        e_range: Option<(f64, f64)>,
+    ) -> Vec<Box<dyn Kink>> {
+        trace(law, kind, gammas, e_range, &mut Traced::default(), &|_| {}).expect("traced")
+    }
+
     /// Over a range that holds seven of the kinks, each gets its share of the points, next to it:
     /// the folds within 1e-2 (relative) in α, the switch sheet within 1e-2 in `e_n`; the same
     /// seed draws the same points.
@@ -1624,15 +1635,12 @@ mod tests {
     /// kinks located between their nodes, not knotted; F₋ ends where it does along `e_n`.
     #[test]
     fn thornton_fold_minus_is_traced_as_a_surface() {
-        let k = trace(
+        let k = traced(
             Law::Thornton,
             PatchKind::PartialSlip,
             (2.28, 2.34),
             Some((0.55, 0.65)),
-            &mut Traced::default(),
-            &|_| {},
-        )
-        .unwrap();
+        );
         // F₋, E₋ (below it here, α_E ≈ 0.44–0.50), the edges of the `+` strip (its part
         // below α_c2: at γ 2.34 it crosses α_c2 between `e_n` 0.55 and 0.57) and the upper edge
         // of the loading band.
@@ -1684,25 +1692,14 @@ mod tests {
         // partial-slip patch below F₋'s birth and E₋'s reach (γ 1–1.2, e_n 0.95–1) only the
         // upper edge of the loading band where it lies below α_c2 (0.9818 α_c2 at γ 1.15,
         // e_n 0.97).
-        let k = trace(
-            Law::Elastic,
-            PatchKind::Stick,
-            (2.4, 2.6),
-            None,
-            &mut Traced::default(),
-            &|_| {},
-        )
-        .unwrap();
+        let k = traced(Law::Elastic, PatchKind::Stick, (2.4, 2.6), None);
         assert!(k.is_empty());
-        let k = trace(
+        let k = traced(
             Law::Thornton,
             PatchKind::PartialSlip,
             (1.0, 1.2),
             Some((0.95, 1.0)),
-            &mut Traced::default(),
-            &|_| {},
-        )
-        .unwrap();
+        );
         let names: Vec<_> = k.iter().map(|k| k.name()).collect();
         assert_eq!(names, ["L-hi"]);
         let c2 = oblique_physics::regimes::alpha_c2(1.15);
@@ -1711,15 +1708,12 @@ mod tests {
         // Its stick patch there: the band's edge where it lies above α_c2, and the switch
         // sheet, at a few nodes next to α_c2 near γ 1 (up to 1.06 and 1.053 α_c2, e_S
         // 0.93–0.98), too few for a stencil.
-        let k = trace(
+        let k = traced(
             Law::Thornton,
             PatchKind::Stick,
             (1.0, 1.2),
             Some((0.95, 1.0)),
-            &mut Traced::default(),
-            &|_| {},
-        )
-        .unwrap();
+        );
         assert!(k.iter().all(|k| ["e_S", "L-hi"].contains(&k.name())));
         let [sheet, _] = switch_sheet_surfaces((1.0, 1.2), (0.95, 1.0)).unwrap();
         for (g, r, _) in sheet.iter().flat_map(|s| s.points()) {
