@@ -1,8 +1,9 @@
 //! Where Thornton's law has a zone at the `+μq` limit while the contact loads
 //! (`oblique_solver::history::has_loading_zone_thornton`, 2048 steps): `thornband GAMMA E_N LO
 //! HI N` prints, at `N + 1` values of `α/α_c2` from `LO` to `HI`, `Y` where the zone exists and
-//! `.` where it does not. Both edges of that band are folds of `P`; the upper one is the loading
-//! fold `α_L` (`loading_fold_thornton`) while it lies above `α_c2`. `thornband --locate GAMMA
+//! `.` where it does not. `P` changes its slope at the band's upper edge, the loading fold
+//! `α_L` (`loading_fold_thornton`) while it lies above `α_c2`, and shows no kink at its lower
+//! edge (`docs/solver.md`, "The loading band"). `thornband --locate GAMMA
 //! E_N[,E_N…] [STEPS]` prints both edges located (`loading_band_thornton`, on STEPS steps,
 //! default 2048) as multiples of `α_c2`.
 
