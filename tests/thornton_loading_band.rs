@@ -32,7 +32,7 @@ fn the_demo_holds_its_bound_across_the_upper_edge_of_the_band() {
     let bound = table.error_bound();
     let (g, e) = (1.642_819_345_102_651_6, 0.875_869_654_244_017_6);
     let c2 = oblique_physics::regimes::alpha_c2(g);
-    let (_, hi) = loading_band_thornton(g, e, None, 2048)
+    let (_, hi) = loading_band_thornton(g, e, 2048)
         .expect("solve")
         .expect("the band");
     assert!((hi / c2 - 0.99264).abs() < 1e-4, "{}", hi / c2);

@@ -22,7 +22,7 @@ fn main() -> anyhow::Result<()> {
         for e in args[2].split(',') {
             let e: f64 = e.parse()?;
             let t = std::time::Instant::now();
-            let band = loading_band_thornton(g, e, None, steps)?;
+            let band = loading_band_thornton(g, e, steps)?;
             let us = t.elapsed().as_secs_f64();
             match band {
                 Some((lo, hi)) => println!(

@@ -319,8 +319,8 @@ pub const LOADING_BAND_SCAN: f64 = 1.002;
 /// 0.955–1.115 at 0.8), its lower edge ever closer below `α_c2` (0.996 `α_c2` at 0.6, 0.9999
 /// at 0.4) and its upper edge ever higher (2.3 `α_c2` at 0.5).
 ///
-/// Located on `steps` steps: a point of the band from `hint` where the predicate holds there,
-/// else `α_c2 (1 + 1e-4)` where it holds there, else the first α where it holds on a scan down
+/// Located on `steps` steps: a point of the band at `α_c2 (1 + 1e-4)` where the predicate holds
+/// there, else the first α where it holds on a scan down
 /// from `α_c2` by factors of [`LOADING_BAND_SCAN`] to [`LOADING_BAND_MIN`] `α_c2`; from that
 /// point each edge is bracketed by steps that double in `ln α` (from 1 %) and bisected to
 /// `1e-8` in `ln α`. `None` where no point of the band is found, its upper edge lies beyond
@@ -331,7 +331,6 @@ pub const LOADING_BAND_SCAN: f64 = 1.002;
 pub fn loading_band_thornton(
     gamma: f64,
     e_n: f64,
-    hint: Option<f64>,
     steps: usize,
 ) -> Result<Option<(f64, f64)>, PhysicsError> {
     let Some((gamma, e_n)) = fold_inputs(gamma, e_n)? else {
@@ -341,15 +340,9 @@ pub fn loading_band_thornton(
     let holds = |a: f64| has_loading_zone_thornton(gamma, a, e_n, steps);
     let (min, max) = (LOADING_BAND_MIN * c2, 1e3 * c2);
     let mut inside = None;
-    if let Some(h) = hint.filter(|h| (min..=max).contains(h)) {
-        if holds(h)? {
-            inside = Some(h);
-        }
-    }
-    if inside.is_none() && holds(c2 * (1.0 + 1e-4))? {
+    if holds(c2 * (1.0 + 1e-4))? {
         inside = Some(c2 * (1.0 + 1e-4));
-    }
-    if inside.is_none() {
+    } else {
         let mut a = c2;
         while a > min {
             a /= LOADING_BAND_SCAN;

@@ -1219,7 +1219,7 @@ pub fn near_loading_band_points(
         (gamma, e_n, sign * r)
     };
     draw_rounds(n, 2, seed, draw, |i, &(gamma, e_n, r)| {
-        let band = loading_band_thornton(gamma, e_n, None, THORNTON_FOLD_STEPS)?;
+        let band = loading_band_thornton(gamma, e_n, THORNTON_FOLD_STEPS)?;
         Ok(band
             .map(|(lo, hi)| if i % 2 == 0 { lo } else { hi } * (1.0 + r))
             .filter(|&a| a <= alpha_max)
@@ -1611,9 +1611,7 @@ mod tests {
             (1.6317, 0.8433),
             (1.655, 0.8871),
         ] {
-            let (_, direct) = loading_band_thornton(g, e, None, 8192)
-                .unwrap()
-                .expect("a band");
+            let (_, direct) = loading_band_thornton(g, e, 8192).unwrap().expect("a band");
             let a = hi.alpha_at(g, e).expect("traced there");
             assert!((a / direct - 1.0).abs() < 1e-3, "{g} {e}: {a} vs {direct}");
         }

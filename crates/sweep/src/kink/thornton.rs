@@ -468,14 +468,14 @@ fn band_column(gamma: f64, top: usize, n_e: usize) -> Result<Vec<f64>, SweepErro
             gamma,
             what: format!("at e_n = {e_n}: {what}"),
         };
-        let followed = match found.is_empty() {
-            true => None,
-            false => band_top_at(gamma, e_n, extrapolated(&found), width)
-                .map_err(|e| fail(e.to_string()))?,
+        let followed = if found.is_empty() {
+            None
+        } else {
+            band_top_at(gamma, e_n, extrapolated(&found), width).map_err(|e| fail(e.to_string()))?
         };
         let top_edge = match followed {
             Some(a) => Some(a),
-            None => loading_band_thornton(gamma, e_n, None, BAND_TRACE_STEPS)
+            None => loading_band_thornton(gamma, e_n, BAND_TRACE_STEPS)
                 .map_err(|e| fail(e.to_string()))?
                 .map(|(lo, hi)| {
                     width = (hi / lo).ln();
