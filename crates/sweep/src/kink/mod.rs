@@ -1076,16 +1076,12 @@ pub fn near_thornton_fold_points(
     seed: u64,
 ) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
     let kinds = THORNTON_FOLDS.len();
-    let (g_lo, g_hi) = gammas;
     let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
     let draw = |rng: &mut oblique_physics::sample::SplitMix| {
-        let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
-        let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
-        let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
-        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+        let (gamma, e_n, r) = draw_next_to(rng, gammas, (e_lo, e_hi));
         // The sheet's α (e_S) or which E₋ (E-).
         let pick = rng.uniform();
-        (gamma, e_n, sign * r, pick)
+        (gamma, e_n, r, pick)
     };
     draw_rounds(n, kinds, seed, draw, |i, &(gamma, e_n, r, pick)| {
         let c2 = oblique_physics::regimes::alpha_c2(gamma);
@@ -1145,6 +1141,21 @@ pub fn near_thornton_fold_points(
         };
         Ok(point)
     })
+}
+
+/// One draw of the points next to Thornton's kinks: γ uniform over `gammas`, `e_n` uniform
+/// over `e_range`, and the signed relative offset `s·10^u`, `s = ±1`, `u` uniform in
+/// `[−4, −2]`, in that order from `rng`.
+fn draw_next_to(
+    rng: &mut oblique_physics::sample::SplitMix,
+    (g_lo, g_hi): (f64, f64),
+    (e_lo, e_hi): (f64, f64),
+) -> (f64, f64, f64) {
+    let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
+    let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
+    let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
+    let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+    (gamma, e_n, sign * r)
 }
 
 /// `n` points drawn in rounds, point `i` next to kind `i mod kinds`: each round draws the open
@@ -1209,15 +1220,8 @@ pub fn near_loading_band_points(
     n: usize,
     seed: u64,
 ) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
-    let (g_lo, g_hi) = gammas;
-    let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
-    let draw = |rng: &mut oblique_physics::sample::SplitMix| {
-        let gamma = (g_lo + (g_hi - g_lo) * rng.uniform()).min(g_hi);
-        let e_n = (e_lo + (e_hi - e_lo) * rng.uniform()).min(e_hi);
-        let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
-        let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
-        (gamma, e_n, sign * r)
-    };
+    let e_range = (e_range.0, e_range.1.min(1.0 - 1e-4));
+    let draw = |rng: &mut oblique_physics::sample::SplitMix| draw_next_to(rng, gammas, e_range);
     draw_rounds(n, 2, seed, draw, |i, &(gamma, e_n, r)| {
         let band = loading_band_thornton(gamma, e_n, THORNTON_FOLD_STEPS)?;
         Ok(band
