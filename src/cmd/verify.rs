@@ -100,6 +100,17 @@ pub struct VerifyArgs {
     /// in [1e-4, 1e-2]; the largest error next to each edge is printed too.
     #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet", "near_folds", "near_one"])]
     near_band: bool,
+    /// Draw points next to the end-of-contact sheet e_E of a table of Thornton's law instead:
+    /// the e_n where the contact stops ending in a -mu F_N episode (a short +mu F_N episode
+    /// takes the end), a sheet across the e_n axis nearly flat in alpha far from alpha_c2
+    /// (gamma 1.66: e_n 0.307 at 2 alpha_c2, 0.328 at 3, 0.322 at 10; rising with gamma to
+    /// 0.44 at 2.0 and 0.74 at 2.6, into the partial-slip patch from gamma 1.86), where the
+    /// curvature of P jumps: gamma uniform over the table's range, alpha/alpha_c2
+    /// log-uniform in [0.5, 30], e_n = e_E + s·r next to the edge of the sheet
+    /// nearest a uniform e_n (located at its point first, 0.1-0.5 s; a point where none lies in
+    /// the table's e_n range is drawn again), s = +1 or -1, r log-uniform in [1e-4, 1e-2].
+    #[arg(long, conflicts_with_all = ["near_curves", "near_fold", "near_end", "near_sheet", "near_folds", "near_one", "near_band"])]
+    near_end_sheet: bool,
     /// No progress lines (otherwise one every 10 s on stderr: points done, rate, ETA).
     #[arg(long)]
     quiet: bool,
@@ -360,17 +371,17 @@ fn sample_near_thornton_kinks(
     path: &std::path::Path,
     law: Law,
     (n, seed): (usize, u64),
-    band: bool,
+    set: ThorntonKinks,
 ) -> Result<Vec<(usize, Point)>> {
     let s = table.surface();
-    let (flag, what) = if band {
-        ("--near-band", "the loading band is located")
-    } else {
-        (
+    let (flag, what) = match set {
+        ThorntonKinks::Band => ("--near-band", "the loading band is located"),
+        ThorntonKinks::EndSheet => ("--near-end-sheet", "the end-of-contact sheet is located"),
+        ThorntonKinks::Folds => (
             "--near-folds",
             "the folds alpha_R, 2/7, alpha_S, alpha_L and F-, the curves E-, the strip's edges \
              F+lo and F+hi and the switch sheet e_S are located",
-        )
+        ),
     };
     let refuse = |has: String| {
         Failure::usage(format!(
@@ -386,12 +397,20 @@ fn sample_near_thornton_kinks(
         return Err(refuse(format!("the {} law", law.name())));
     }
     let gammas = (s.gamma_min(), s.gamma_max());
-    let points = if band {
-        oblique_sweep::kink::near_loading_band_points(gammas, e_range, s.alpha_max(), n, seed)
-            .context("locating the loading band")?
-    } else {
-        oblique_sweep::kink::near_thornton_fold_points(gammas, e_range, s.alpha_max(), n, seed)
-            .context("locating the folds")?
+    let a_max = s.alpha_max();
+    let points = match set {
+        ThorntonKinks::Band => {
+            oblique_sweep::kink::near_loading_band_points(gammas, e_range, a_max, n, seed)
+                .context("locating the loading band")?
+        }
+        ThorntonKinks::EndSheet => {
+            oblique_sweep::kink::near_end_sheet_points(gammas, e_range, a_max, n, seed)
+                .context("locating the end-of-contact sheet")?
+        }
+        ThorntonKinks::Folds => {
+            oblique_sweep::kink::near_thornton_fold_points(gammas, e_range, a_max, n, seed)
+                .context("locating the folds")?
+        }
     };
     if points.is_empty() {
         return Err(refuse(format!(
@@ -400,10 +419,25 @@ fn sample_near_thornton_kinks(
             s.gamma_max(),
             e_range.0,
             e_range.1,
-            if band { "band" } else { "fold" }
+            match set {
+                ThorntonKinks::Band => "band",
+                ThorntonKinks::EndSheet => "sheet",
+                ThorntonKinks::Folds => "fold",
+            }
         )));
     }
     Ok(points)
+}
+
+/// Which kinks of Thornton's law [`sample_near_thornton_kinks`] draws next to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ThorntonKinks {
+    /// `--near-folds` ([`oblique_sweep::kink::THORNTON_FOLDS`]).
+    Folds,
+    /// `--near-band` ([`oblique_sweep::kink::LOADING_BAND_EDGES`]).
+    Band,
+    /// `--near-end-sheet` ([`oblique_sweep::kink::END_SHEET_EDGES`]).
+    EndSheet,
 }
 
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
@@ -467,19 +501,21 @@ pub fn run(args: VerifyArgs) -> Result<()> {
     // With --near-folds (--near-band), the kink of each point: an index into THORNTON_FOLDS
     // (LOADING_BAND_EDGES).
     let mut folds: Vec<usize> = Vec::new();
-    let kink_names: &[&str] = if args.near_band {
-        &oblique_sweep::kink::LOADING_BAND_EDGES
+    let set = if args.near_band {
+        ThorntonKinks::Band
+    } else if args.near_end_sheet {
+        ThorntonKinks::EndSheet
     } else {
-        &oblique_sweep::kink::THORNTON_FOLDS
+        ThorntonKinks::Folds
     };
-    let points = if args.near_folds || args.near_band {
-        let tagged = sample_near_thornton_kinks(
-            &table,
-            &args.table,
-            law,
-            (args.points, args.seed),
-            args.near_band,
-        )?;
+    let kink_names: &[&str] = match set {
+        ThorntonKinks::Band => &oblique_sweep::kink::LOADING_BAND_EDGES,
+        ThorntonKinks::EndSheet => &oblique_sweep::kink::END_SHEET_EDGES,
+        ThorntonKinks::Folds => &oblique_sweep::kink::THORNTON_FOLDS,
+    };
+    let points = if args.near_folds || args.near_band || args.near_end_sheet {
+        let tagged =
+            sample_near_thornton_kinks(&table, &args.table, law, (args.points, args.seed), set)?;
         folds = tagged.iter().map(|&(k, _)| k).collect();
         tagged.into_iter().map(|(_, p)| p).collect()
     } else if args.near_fold {
@@ -553,6 +589,9 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         } else if args.near_band {
             "alpha within 1e-4 to 1e-2 (relative) of the lower and upper edges of the loading \
              band, in turn"
+        } else if args.near_end_sheet {
+            "alpha/alpha_c2 log-uniform in [0.5, 30], e_n within 1e-4 to 1e-2 of the \
+             end-of-contact sheet e_E"
         } else if args.near_sheet {
             "ln(alpha) uniform up to alpha_c2, e_n within 1e-4 to 0.03 of the sheet I+"
         } else if args.near_end && table.restitution().is_some() {
@@ -596,6 +635,7 @@ pub fn run(args: VerifyArgs) -> Result<()> {
             && !args.near_sheet
             && !args.near_folds
             && !args.near_band
+            && !args.near_end_sheet
         {
             format!(", every {NO_SLIP_EVERY}th point at alpha = inf")
         } else {

@@ -15,11 +15,12 @@
 
 use oblique_physics::regimes::{alpha_c1_dissipative, alpha_c2};
 use oblique_solver::history::{
-    end_minus_at, end_minus_edges_thornton, ends_in_full_slip_thornton, fold_minus_thornton,
-    full_slip_edge_thornton, has_loading_zone_thornton, has_reslip_thornton,
-    has_switch_zone_thornton, loading_fold_thornton, reslip_fold_thornton,
-    restitution_plus_strip_thornton, slip_history_thornton, switch_fold_thornton,
-    switch_sheet_edges_thornton, switch_sheet_thornton, switch_zones_thornton, SlipSign,
+    end_minus_at, end_minus_edges_thornton, end_minus_sheet_edges_thornton,
+    ends_in_full_slip_thornton, fold_minus_thornton, full_slip_edge_thornton, has_end_minus,
+    has_loading_zone_thornton, has_reslip_thornton, has_switch_zone_thornton,
+    loading_fold_thornton, reslip_fold_thornton, restitution_plus_strip_thornton,
+    slip_history_thornton, switch_fold_thornton, switch_sheet_edges_thornton,
+    switch_sheet_thornton, switch_zones_thornton, SlipSign,
 };
 use oblique_solver::thornton::{
     dimensionless_motion, dimensionless_p, yield_pressure_for_restitution,
@@ -368,6 +369,51 @@ fn from_gamma_two_the_switch_sheet_bounds_bands_of_e_n() {
         .is_empty());
     assert!(switch_sheet_edges_thornton(g, a, (0.6, 0.45), 0.01, 2048).is_err());
     assert!(switch_sheet_edges_thornton(g, a, (0.45, 0.6), 0.0, 2048).is_err());
+}
+
+/// The end-of-contact sheet `e_E` of the stick patch: at γ 1.66 the contact ends in a `−μF_N`
+/// episode below about `e_n` 0.33 and a `+` episode takes the end above it, on a sheet across
+/// `e_n` nearly flat in α (0.3276 at 3 `α_c2`, 0.322 at 10) that the search along α misses;
+/// `P`'s curvature in `e_n` jumps there.
+#[test]
+fn the_end_of_contact_sheet_lies_across_e_n() {
+    let g = 1.66;
+    let c2 = alpha_c2(g);
+    let edge = |r: f64, steps: usize| {
+        let edges = end_minus_sheet_edges_thornton(g, r * c2, (0.3, 0.45), 0.01, steps).unwrap();
+        assert_eq!(edges.len(), 1, "{r} α_c2: {edges:?}");
+        // An upper edge: the `−` episode ends the contact below it.
+        assert!(!edges[0].1, "{edges:?}");
+        edges[0].0
+    };
+    let e_e = edge(3.0, 2048);
+    assert!((e_e - 0.32762).abs() < 1e-4, "{e_e}");
+    assert!((edge(3.0, 8192) - e_e).abs() < 1e-5, "{e_e}");
+    assert!((edge(10.0, 2048) - 0.3224).abs() < 1e-3);
+    let a = 3.0 * c2;
+    let ends_minus = |e: f64| has_end_minus(&slip_history_thornton(g, a, e, 2048).unwrap());
+    assert!(ends_minus(e_e - 1e-5) && !ends_minus(e_e + 1e-5));
+    // Along α at e_n = 0.33 the predicate does not change between 2.5 and 30 α_c2: the curves
+    // E₋ of the search along α do not hold this sheet.
+    let along = end_minus_edges_thornton(g, 0.33, (2.5 * c2, 30.0 * c2), 100, 2048).unwrap();
+    assert!(along.is_empty(), "{along:?}");
+    // At a fixed 8 192 steps the second differences of `P` along `e_n` (spacing 1e-3) keep their
+    // value below the sheet (9.2e-5 at 1e-3 spacing) and grow about fourfold above it.
+    let d2 = |e: f64| {
+        let h = 1e-3;
+        p_fixed(g, a, e - h, 8192) - 2.0 * p_fixed(g, a, e, 8192) + p_fixed(g, a, e + h, 8192)
+    };
+    let (below, further, above) = (d2(e_e - 3e-3), d2(e_e - 6e-3), d2(e_e + 4e-3));
+    assert!((below / further - 1.0).abs() < 0.05, "{below} {further}");
+    assert!(above / below > 3.0, "{above} {below}");
+    // A range without an edge has none; an empty range or scan is refused.
+    assert!(
+        end_minus_sheet_edges_thornton(g, a, (0.34, 0.45), 0.01, 2048)
+            .unwrap()
+            .is_empty()
+    );
+    assert!(end_minus_sheet_edges_thornton(g, a, (0.45, 0.34), 0.01, 2048).is_err());
+    assert!(end_minus_sheet_edges_thornton(g, a, (0.34, 0.45), 0.0, 2048).is_err());
 }
 
 #[test]

@@ -7,7 +7,12 @@
 //! sheet); with `--print G,X ...` also the strip's edges interpolated at those `(γ, e_n)` pairs
 //! (with `--only-sheet`: `e_S` at those `(γ, α/α_c2)`, and with `--nodes` its located nodes).
 //! With `--only-band` only the upper edge of the loading band
-//! (`kink::thornton_loading_band_surface`), and with `--print` it interpolated.
+//! (`kink::thornton_loading_band_surface`), and with `--print` it interpolated. With
+//! `--end-sheet` the end-of-contact sheet `e_E` (`kink::end_minus_sheet_surface`: its stick
+//! and partial-slip parts in place of the upper and lower edges) in place of `e_S`, alone or
+//! with `--only-sheet`.
+
+use oblique_table::surface::PatchKind;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -18,11 +23,12 @@ fn main() -> anyhow::Result<()> {
         .collect::<Result<_, _>>()?;
     anyhow::ensure!(
         a.len() == 4,
-        "usage: thornsurf GAMMA_LO GAMMA_HI E_LO E_HI [--only-strip|--only-sheet|--only-band] [--print G,X ...]"
+        "usage: thornsurf GAMMA_LO GAMMA_HI E_LO E_HI [--only-strip|--only-sheet|--only-band] [--end-sheet] [--print G,X ...]"
     );
     let (gammas, e_range) = ((a[0], a[1]), (a[2], a[3]));
     let only_strip = args.iter().any(|s| s == "--only-strip");
     let only_sheet = args.iter().any(|s| s == "--only-sheet");
+    let end_sheet = args.iter().any(|s| s == "--end-sheet");
     let points = args
         .iter()
         .skip_while(|s| *s != "--print")
@@ -43,8 +49,13 @@ fn main() -> anyhow::Result<()> {
         return Ok(());
     }
     if only_sheet {
-        let sheets = switch_sheet(gammas, e_range)?;
-        for (sheet, edge) in sheets.iter().zip(["upper", "lower"]) {
+        let sheets = switch_sheet(gammas, e_range, end_sheet)?;
+        let labels = if end_sheet {
+            ["stick", "partial"]
+        } else {
+            ["upper", "lower"]
+        };
+        for (sheet, edge) in sheets.iter().zip(labels) {
             if args.iter().any(|s| s == "--nodes") {
                 for (g, r, e) in sheet.iter().flat_map(|s| s.points()) {
                     println!("{edge} node {g:.2} {r:.4} {e:.6}");
@@ -82,26 +93,47 @@ fn main() -> anyhow::Result<()> {
     let e = oblique_sweep::kink::thornton_end_minus_surface(gammas, e_range)?;
     let n = e.as_ref().map_or(0, |s| s.traced_nodes());
     println!("E-: {:.1} s, {n} nodes", t.elapsed().as_secs_f64());
-    switch_sheet(gammas, e_range)?;
+    switch_sheet(gammas, e_range, end_sheet)?;
     Ok(())
 }
 
-/// The upper and lower edges of the switch sheet over the range, with the time they took and
-/// their located nodes printed.
+/// The upper and lower edges of the switch sheet (the end-of-contact sheet with `end`) over
+/// the range, with the time they took and their located nodes printed.
 fn switch_sheet(
     gammas: (f64, f64),
     e_range: (f64, f64),
+    end: bool,
 ) -> anyhow::Result<[Option<oblique_sweep::kink::SwitchSheet>; 2]> {
     let t = std::time::Instant::now();
-    let sheets = oblique_sweep::kink::switch_sheet_surfaces(gammas, e_range)?;
+    let sheets = if end {
+        [PatchKind::Stick, PatchKind::PartialSlip]
+            .map(|p| oblique_sweep::kink::end_minus_sheet_surface(p, gammas, e_range))
+            .into_iter()
+            .collect::<Result<Vec<_>, _>>()?
+            .try_into()
+            .map_err(|_| anyhow::anyhow!("two patches"))?
+    } else {
+        oblique_sweep::kink::switch_sheet_surfaces(gammas, e_range)?
+    };
     let n = sheets
         .each_ref()
         .map(|s| s.as_ref().map_or(0, |s| s.traced_nodes()));
     println!(
-        "e_S: {:.1} s, {} nodes on its upper edges, {} on its lower edges",
+        "{}: {:.1} s, {} nodes {}, {} {}",
+        if end { "e_E" } else { "e_S" },
         t.elapsed().as_secs_f64(),
         n[0],
-        n[1]
+        if end {
+            "in the stick patch"
+        } else {
+            "on its upper edges"
+        },
+        n[1],
+        if end {
+            "in the partial-slip patch"
+        } else {
+            "on its lower edges"
+        },
     );
     Ok(sheets)
 }

@@ -28,9 +28,9 @@ pub use damped::{
     restitution_minus_somewhere_e, slip_history_e, zone_runs_e, INTERLUDE_LONG, INTERLUDE_MIN,
 };
 pub use plastic::{
-    end_minus_at_thornton_within, end_minus_edges_thornton, ends_in_full_slip_thornton,
-    fold_minus_at_thornton, fold_minus_free_below_thornton, fold_minus_thornton,
-    full_slip_edge_thornton, has_loading_zone_thornton, has_reslip_thornton,
+    end_minus_at_thornton_within, end_minus_edges_thornton, end_minus_sheet_edges_thornton,
+    ends_in_full_slip_thornton, fold_minus_at_thornton, fold_minus_free_below_thornton,
+    fold_minus_thornton, full_slip_edge_thornton, has_loading_zone_thornton, has_reslip_thornton,
     has_switch_zone_thornton, loading_band_thornton, loading_band_top_within_thornton,
     loading_fold_thornton, reslip_fold_thornton, restitution_plus_change_thornton,
     restitution_plus_strip_thornton, slip_history_thornton, slip_pattern_thornton,

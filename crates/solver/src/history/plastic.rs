@@ -736,11 +736,53 @@ pub fn switch_sheet_thornton(
 pub fn switch_sheet_edges_thornton(
     gamma: f64,
     alpha: f64,
-    (e_lo, e_hi): (f64, f64),
+    range: (f64, f64),
     scan: f64,
     steps: usize,
 ) -> Result<Vec<(f64, bool)>, PhysicsError> {
     let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
+    edges_along_e_n(range, scan, |e| {
+        has_switch_zone_thornton(gamma, alpha, e, steps)
+    })
+}
+
+/// Every edge in `e_n` of the end-of-contact sheet `e_E(γ, α)` of Thornton's stick patch in
+/// `(e_lo, e_hi)` at `(γ, α)`: where the impact starts or stops ending in a `−μF_N` episode
+/// that runs into the separation ([`has_end_minus`], the predicate of the curves E₋ of
+/// [`end_minus_edges_thornton`]) as `e_n` grows, bracketed by a scan in steps of at most `scan`
+/// and bisected to `1e-9`, in increasing `e_n`, each with whether the episode exists above it
+/// (a lower edge) or below it (an upper edge). At small `e_n` the contact ends in a `−` episode
+/// over most of the stick patch, and a short `+` episode takes the end from an upper edge
+/// nearly flat in α above about 2.5 `α_c2` (γ 1.66: 0.307 at 2 `α_c2`, 0.328 at 3, 0.322 at
+/// 10), where `P` leaves its smooth continuation above it like a power `3/2` in `e_n`
+/// (`docs/solver.md`, "The end-of-contact sheet"). Along α that edge is nearly parallel to the
+/// axis, so the search of [`end_minus_edges_thornton`] finds it only where it falls towards
+/// `α_c2`. Two edges closer than the scan are missed.
+///
+/// Errors: `γ` or `α` not positive and finite, `e_lo < e_hi` not inside `[0.3, 1]`, `scan` not
+/// positive, `steps < 8`.
+pub fn end_minus_sheet_edges_thornton(
+    gamma: f64,
+    alpha: f64,
+    range: (f64, f64),
+    scan: f64,
+    steps: usize,
+) -> Result<Vec<(f64, bool)>, PhysicsError> {
+    let (gamma, alpha) = check_history_input(gamma, alpha, steps)?;
+    edges_along_e_n(range, scan, |e| {
+        Ok(has_end_minus(&slip_history_thornton(
+            gamma, alpha, e, steps,
+        )?))
+    })
+}
+
+/// The edges of `holds` in `(e_lo, e_hi)` (checked): a scan in steps of at most `scan`, each
+/// change bisected to `1e-9`, with whether `holds` is true above it.
+fn edges_along_e_n(
+    (e_lo, e_hi): (f64, f64),
+    scan: f64,
+    holds: impl Fn(f64) -> Result<bool, PhysicsError>,
+) -> Result<Vec<(f64, bool)>, PhysicsError> {
     let (lo, hi) = (check_restitution(e_lo)?, check_restitution(e_hi)?);
     if lo >= hi || scan.is_nan() || scan <= 0.0 {
         return Err(PhysicsError::InvalidParameter {
@@ -757,7 +799,6 @@ pub fn switch_sheet_edges_thornton(
             lo + (hi - lo) * k as f64 / n as f64
         }
     };
-    let holds = |e: f64| has_switch_zone_thornton(gamma, alpha, e, steps);
     let mut edges = Vec::new();
     let mut below = holds(e(0))?;
     for k in 1..=n {
@@ -765,7 +806,7 @@ pub fn switch_sheet_edges_thornton(
         if here != below {
             let bracket = (e(k - 1), e(k));
             let edge = if below {
-                bisect_edge(bracket, 1e-9, holds)?
+                bisect_edge(bracket, 1e-9, &holds)?
             } else {
                 bisect_edge(bracket, 1e-9, |e| holds(e).map(|h| !h))?
             };

@@ -31,8 +31,9 @@ mod switch_sheet;
 mod thornton;
 
 pub use switch_sheet::{
-    switch_sheet_surfaces, SwitchSheet, SWITCH_LOWER_PROBE_OFFSETS, SWITCH_PROBE_OFFSETS,
-    SWITCH_SHEET_STEP, SWITCH_SHEET_STEPS,
+    end_minus_sheet_surface, switch_sheet_surfaces, SheetKind, SwitchSheet,
+    END_SHEET_PROBE_OFFSETS, PARTIAL_RATIO_FROM, PARTIAL_SHEET_FROM, SWITCH_LOWER_PROBE_OFFSETS,
+    SWITCH_PROBE_OFFSETS, SWITCH_SHEET_STEP, SWITCH_SHEET_STEPS,
 };
 
 pub use interlude::{
@@ -54,11 +55,11 @@ use rayon::prelude::*;
 
 use super::SweepError;
 use oblique_solver::history::{
-    end_minus_edges_thornton, fold_minus_at, fold_minus_at_e, fold_minus_free_below,
-    fold_minus_free_below_thornton, fold_minus_thornton, loading_band_thornton,
-    loading_fold_thornton, reslip_fold_thornton, restitution_minus_somewhere_e,
-    restitution_plus_change_thornton, restitution_plus_strip_thornton, switch_fold_thornton,
-    switch_sheet_edges_thornton,
+    end_minus_edges_thornton, end_minus_sheet_edges_thornton, fold_minus_at, fold_minus_at_e,
+    fold_minus_free_below, fold_minus_free_below_thornton, fold_minus_thornton,
+    loading_band_thornton, loading_fold_thornton, reslip_fold_thornton,
+    restitution_minus_somewhere_e, restitution_plus_change_thornton,
+    restitution_plus_strip_thornton, switch_fold_thornton, switch_sheet_edges_thornton,
 };
 use oblique_solver::Law;
 use oblique_table::surface::{stencil4, PatchKind, Point};
@@ -294,6 +295,10 @@ pub fn trace(
                 {
                     out.push(Box::new(s));
                 }
+            }
+            tracing("the end-of-contact sheet e_E");
+            if let Some(s) = end_minus_sheet_surface(kind, gammas, e_range)? {
+                out.push(Box::new(s));
             }
         }
         _ => {}
@@ -1231,6 +1236,62 @@ pub fn near_loading_band_points(
     })
 }
 
+/// The kink [`near_end_sheet_points`] draws next to.
+pub const END_SHEET_EDGES: [&str; 1] = ["e_E"];
+
+/// The range of `α/α_c2` (log-uniform) of [`near_end_sheet_points`]: the sheet is nearly flat
+/// in α far from `α_c2`; it falls below `e_n` 0.3 under about 2 `α_c2` at γ 1.66 and reaches
+/// `α_c2` from γ ≈ 1.86, below which it goes on into the partial-slip patch (γ 2.2: 0.377 at
+/// 0.6 `α_c2`, 0.470 at 0.95).
+const END_SHEET_RATIOS: (f64, f64) = (0.5, 30.0);
+
+/// `n` points next to the end-of-contact sheet `e_E(γ, α)` of Thornton's stick patch inside
+/// `gammas × e_range` (where the contact stops ending in a `−μF_N` episode as `e_n` grows,
+/// the upper edges of `end_minus_sheet_edges_thornton`; its lower edges are E₋, which
+/// `--near-folds` draws next to), each with the index 0 of [`END_SHEET_EDGES`]: γ
+/// uniform, `e_n` uniform (at most `1 − 1e-4`), the signed offset `s·10^u` (`s = ±1`, `u`
+/// uniform in `[−4, −2]`) and `α/α_c2` log-uniform in [`END_SHEET_RATIOS`], in that order; the
+/// edges of the sheet at `(γ, α)` located inside the range (scanned in steps of
+/// [`SHEET_SCAN`] on 2 048 steps, 0.1–0.5 s), `e_n = e_E + s·10^u` next to the edge nearest
+/// the `e_n` drawn. A draw where no such edge lies in the range, or whose `α` or `e_n` leaves the
+/// table, is drawn again, up to 20 rounds. The same `seed` gives the same points (`sweep
+/// verify --near-end-sheet`). `Err`: a solve's error.
+pub fn near_end_sheet_points(
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+    alpha_max: f64,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
+    let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
+    let draw = |rng: &mut oblique_physics::sample::SplitMix| {
+        let (gamma, e_n, r) = draw_next_to(rng, gammas, (e_lo, e_hi));
+        (gamma, e_n, r, rng.uniform())
+    };
+    let (r_lo, r_hi) = END_SHEET_RATIOS;
+    draw_rounds(n, 1, seed, draw, |_, &(gamma, e_n, r, pick)| {
+        let alpha = r_lo * (r_hi / r_lo).powf(pick) * oblique_physics::regimes::alpha_c2(gamma);
+        if alpha > alpha_max {
+            return Ok(None);
+        }
+        let edges = end_minus_sheet_edges_thornton(
+            gamma,
+            alpha,
+            (e_lo, e_hi),
+            SHEET_SCAN,
+            THORNTON_FOLD_STEPS,
+        )?;
+        Ok(edges
+            .iter()
+            .filter(|&&(_, above)| !above)
+            .map(|&(e, _)| e)
+            .min_by(|a, b| (a - e_n).abs().total_cmp(&(b - e_n).abs()))
+            .map(|e| e + r)
+            .filter(|&e| e >= e_lo && e <= e_hi)
+            .map(|e| Point::new(gamma, alpha, e)))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1527,6 +1588,62 @@ mod tests {
         assert_eq!(s.e_at(1.7, 0.5 * c2(1.7)), None);
         let [upper, _] = switch_sheet_surfaces((1.68, 1.72), (0.8, 0.9)).unwrap();
         assert!(upper.is_none());
+    }
+
+    /// Thornton's end-of-contact sheet for the probes: `e_E(γ, α)` across the `e_n` axis of the
+    /// stick patch, probed on the side above it, matching the edge located between its nodes
+    /// within 5e-4 (the 4-point rule across the fold of the sheet where the loading fold `α_L`
+    /// crosses it, γ 1.66: about 4.65 `α_c2`, flat above and falling below, errs by 2.7e-4 at
+    /// 6 `α_c2` and 1.5e-3 at 4.5);
+    /// `trace` hands it to the stick patch.
+    #[test]
+    fn thornton_end_of_contact_sheet_is_traced_across_e_n() {
+        let (gammas, e_range) = ((1.65, 1.67), (0.31, 0.34));
+        let s = end_minus_sheet_surface(PatchKind::Stick, gammas, e_range)
+            .unwrap()
+            .expect("a sheet");
+        assert_eq!(
+            (s.name(), s.patch(), s.across_e_n(), s.offsets()),
+            ("e_E", PatchKind::Stick, true, &END_SHEET_PROBE_OFFSETS[..])
+        );
+        let c2 = |g: f64| oblique_physics::regimes::alpha_c2(g);
+        for (g, r) in [(1.655, 3.0), (1.66, 6.0), (1.665, 12.0)] {
+            let edges =
+                end_minus_sheet_edges_thornton(g, r * c2(g), (0.3, 0.36), 0.01, SWITCH_SHEET_STEPS)
+                    .unwrap();
+            assert_eq!(edges.len(), 1, "{edges:?}");
+            let e = s.e_n_at(g, r * c2(g)).expect("traced there");
+            assert!((e - edges[0].0).abs() < 5e-4, "{g} {r}: {e} vs {edges:?}");
+        }
+        let stick = traced(Law::Thornton, PatchKind::Stick, gammas, Some(e_range));
+        assert!(stick.iter().any(|k| k.name() == "e_E"));
+    }
+
+    /// From γ ≈ 1.86 the end-of-contact sheet goes on into the partial-slip patch: traced there
+    /// over `α/α_c2` from 0.4 up, matching the edge located directly; not traced for a range
+    /// below γ 1.84.
+    #[test]
+    fn thornton_end_of_contact_sheet_is_traced_in_the_partial_slip_patch() {
+        let s = end_minus_sheet_surface(PatchKind::PartialSlip, (2.2, 2.2), (0.35, 0.5))
+            .unwrap()
+            .expect("a sheet");
+        assert_eq!((s.name(), s.patch()), ("e_E", PatchKind::PartialSlip));
+        let c2 = oblique_physics::regimes::alpha_c2(2.2);
+        for r in [0.6, 0.8, 0.95] {
+            let edges =
+                end_minus_sheet_edges_thornton(2.2, r * c2, (0.33, 0.52), 0.01, SWITCH_SHEET_STEPS)
+                    .unwrap();
+            let direct = edges.iter().find(|e| !e.1).expect("an upper edge").0;
+            let e = s.e_n_at(2.2, r * c2).expect("traced there");
+            assert!((e - direct).abs() < 5e-4, "{r}: {e} vs {edges:?}");
+        }
+        assert_eq!(s.e_at(2.2, 1.5 * c2), None);
+        assert_eq!(s.e_at(2.2, 0.3 * c2), None);
+        assert!(
+            end_minus_sheet_surface(PatchKind::PartialSlip, (1.6, 1.8), (0.3, 0.4))
+                .unwrap()
+                .is_none()
+        );
     }
 
     /// Where the switch sheet's zone exists in a band of `e_n` (γ 2.26–2.34, `e_n` 0.31–0.41),
