@@ -1,4 +1,4 @@
-//! Sheets of Thornton's stick patch across the `e_n` axis, as kinks for the probes of
+//! Sheets of Thornton's law across the `e_n` axis, as kinks for the probes of
 //! `nodes.probe_kinks` (`docs/solver.md`, "Kinks inside the slip regions"):
 //! - the switch sheet `e_S(γ, α)`: at small `e_n` the field clipped at the switch to unloading
 //!   keeps a `+` zone at the contact's edge, which ceases as `e_n` grows on a sheet nearly flat
@@ -8,7 +8,8 @@
 //!   1.43e-4, the most next to any kink it was checked at;
 //! - the end-of-contact sheet `e_E(γ, α)`: below it the contact ends in a `−μF_N` episode, above
 //!   it a `+` episode takes the end (γ 1.66: 0.307 at 2 `α_c2`, 0.328 at 3, 0.322 at 10), and
-//!   `P` leaves its smooth continuation above it (`end_minus_sheet_edges_thornton`).
+//!   the curvature of `P` along `e_n` changes above it (`end_minus_sheet_edges_thornton`); in
+//!   the stick patch, and from γ ≈ 1.86 in the partial-slip patch too.
 
 use rayon::prelude::*;
 
@@ -53,17 +54,18 @@ pub enum SheetKind {
 }
 
 /// One edge of a sheet ([`SheetKind`]) over a γ range ([`switch_sheet_surfaces`],
-/// [`end_minus_sheet_surface`]): the edge on a grid of
-/// γ (spacing [`SWITCH_SHEET_STEP`]) and `s = α_c2/α`, interpolated along γ on each `s` node,
-/// then across them (Lagrange, up to 4 points each, fewer at the edge of the located nodes); a [`Kink`]
-/// across the `e_n` axis of the stick patch.
+/// [`end_minus_sheet_surface`]): the edge on a grid of γ (spacing [`SWITCH_SHEET_STEP`]) and
+/// α (columns of 21 nodes: `s = α_c2/α` evenly spaced in the stick patch, `α/α_c2` from
+/// [`PARTIAL_RATIO_FROM`] in the partial-slip patch), interpolated along γ on each node of the
+/// columns, then across them (Lagrange, up to 4 points each, fewer at the edge of the located
+/// nodes); a [`Kink`] across the `e_n` axis of its patch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SwitchSheet {
     gamma_0: f64,
     step: f64,
     n_gamma: usize,
-    /// `e_S` of node `(i, j)` (γ = `gamma_0 + i step`, `s = 1 − j/(S_NODES − 1)`) at
-    /// `i S_NODES + j`; NaN where no such edge of the zone lies in the range looked at.
+    /// The edge at node `(i, j)` (γ = `gamma_0 + i step`, `α/α_c2` = [`node_ratio`] of `j`)
+    /// at `i S_NODES + j`; NaN where no such edge lies in the range looked at.
     values: Vec<f64>,
     /// Whether this is the lower edge of a band (the zone exists above it), else the upper.
     lower: bool,
