@@ -77,38 +77,18 @@ fn verify_near_end_sheet_draws_next_to_the_sheet() {
 fn verify_near_end_sheet_refuses_tables_without_it() {
     // The demo table's range (e_n 0.8-1) holds no upper edge of the sheet.
     let demo = common::shared_build(&root("configs/thornton-demo.toml"));
-    refused(
-        &[
-            "verify",
-            demo.to_str().expect("path"),
-            "--near-end-sheet",
-            "--points",
-            "4",
-        ],
-        &["--near-end-sheet", "no sheet was found"],
-    );
-    let kv = root("tables/dissipative-demo.h5");
-    refused(
-        &[
-            "verify",
-            kv.to_str().expect("path"),
-            "--near-end-sheet",
-            "--points",
-            "4",
-        ],
-        &["--near-end-sheet", "kelvin-voigt law", "thornton"],
-    );
-    let elastic = root("tables/quick.h5");
-    refused(
-        &[
-            "verify",
-            elastic.to_str().expect("path"),
-            "--near-end-sheet",
-            "--points",
-            "4",
-        ],
-        &["--near-end-sheet", "no e_n axis"],
-    );
+    let (kv, elastic) = (root("tables/dissipative-demo.h5"), root("tables/quick.h5"));
+    for (table, needles) in [
+        (&demo, &["no sheet was found"][..]),
+        (&kv, &["kelvin-voigt law", "thornton"][..]),
+        (&elastic, &["no e_n axis"][..]),
+    ] {
+        let t = table.to_str().expect("path");
+        refused(
+            &["verify", t, "--near-end-sheet", "--points", "4"],
+            &[&["--near-end-sheet"][..], needles].concat(),
+        );
+    }
     refused(
         &[
             "verify",

@@ -746,16 +746,16 @@ pub fn switch_sheet_edges_thornton(
     })
 }
 
-/// Every edge in `e_n` of the end-of-contact sheet `e_E(γ, α)` of Thornton's stick patch in
-/// `(e_lo, e_hi)` at `(γ, α)`: where the impact starts or stops ending in a `−μF_N` episode
+/// Every edge in `e_n` of the end-of-contact sheet `e_E(γ, α)` of Thornton's law (the stick
+/// patch, and from γ ≈ 1.86 the partial-slip patch) in `(e_lo, e_hi)` at `(γ, α)`: where the impact starts or stops ending in a `−μF_N` episode
 /// that runs into the separation ([`has_end_minus`], the predicate of the curves E₋ of
 /// [`end_minus_edges_thornton`]) as `e_n` grows, bracketed by a scan in steps of at most `scan`
 /// and bisected to `1e-9`, in increasing `e_n`, each with whether the episode exists above it
 /// (a lower edge) or below it (an upper edge). At small `e_n` the contact ends in a `−` episode
 /// over most of the stick patch, and a short `+` episode takes the end from an upper edge
 /// nearly flat in α above about 2.5 `α_c2` (γ 1.66: 0.307 at 2 `α_c2`, 0.328 at 3, 0.322 at
-/// 10), where `P` leaves its smooth continuation above it like a power `3/2` in `e_n`
-/// (`docs/solver.md`, "The end-of-contact sheet"). Along α that edge is nearly parallel to the
+/// 10), where the curvature of `P` along `e_n` jumps (about fourfold there at 3 `α_c2`;
+/// `docs/solver.md`, "The end-of-contact sheet"). Along α that edge is nearly parallel to the
 /// axis, so the search of [`end_minus_edges_thornton`] finds it only where it falls towards
 /// `α_c2`. Two edges closer than the scan are missed.
 ///

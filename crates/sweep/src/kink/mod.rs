@@ -1101,12 +1101,8 @@ pub fn near_thornton_fold_points(
                 SHEET_SCAN,
                 THORNTON_FOLD_STEPS,
             )?;
-            edges
-                .iter()
-                .map(|&(e_s, _)| e_s)
-                .min_by(|a, b| (a - e_n).abs().total_cmp(&(b - e_n).abs()))
-                .map(|e_s| e_s + r)
-                .filter(|&e| e >= e_lo && e <= e_hi && alpha <= alpha_max)
+            next_to_nearest(edges.iter().map(|&(e_s, _)| e_s), e_n, r, (e_lo, e_hi))
+                .filter(|_| alpha <= alpha_max)
                 .map(|e| Point::new(gamma, alpha, e))
         } else {
             let fold = match i % kinds {
@@ -1281,15 +1277,23 @@ pub fn near_end_sheet_points(
             SHEET_SCAN,
             THORNTON_FOLD_STEPS,
         )?;
-        Ok(edges
-            .iter()
-            .filter(|&&(_, above)| !above)
-            .map(|&(e, _)| e)
-            .min_by(|a, b| (a - e_n).abs().total_cmp(&(b - e_n).abs()))
-            .map(|e| e + r)
-            .filter(|&e| e >= e_lo && e <= e_hi)
-            .map(|e| Point::new(gamma, alpha, e)))
+        let upper = edges.iter().filter(|&&(_, above)| !above).map(|&(e, _)| e);
+        Ok(next_to_nearest(upper, e_n, r, (e_lo, e_hi)).map(|e| Point::new(gamma, alpha, e)))
     })
+}
+
+/// `e + r` for the edge `e` among `edges` nearest `e_n`, where that lies in `[e_lo, e_hi]`
+/// (the samplers next to the sheets across `e_n`).
+fn next_to_nearest(
+    edges: impl Iterator<Item = f64>,
+    e_n: f64,
+    r: f64,
+    (e_lo, e_hi): (f64, f64),
+) -> Option<f64> {
+    edges
+        .min_by(|a, b| (a - e_n).abs().total_cmp(&(b - e_n).abs()))
+        .map(|e| e + r)
+        .filter(|&e| e >= e_lo && e <= e_hi)
 }
 
 #[cfg(test)]
@@ -1761,10 +1765,10 @@ mod tests {
             Some((0.55, 0.65)),
         );
         // F₋, E₋ (below it here, α_E ≈ 0.44–0.50), the edges of the `+` strip (its part
-        // below α_c2: at γ 2.34 it crosses α_c2 between `e_n` 0.55 and 0.57) and the upper edge
-        // of the loading band.
+        // below α_c2: at γ 2.34 it crosses α_c2 between `e_n` 0.55 and 0.57), the upper edge
+        // of the loading band and the end-of-contact sheet (`e_n` 0.53–0.60 next to α_c2).
         let names: Vec<_> = k.iter().map(|k| k.name()).collect();
-        assert_eq!(names, ["F-", "E-", "F+lo", "F+hi", "L-hi"]);
+        assert_eq!(names, ["F-", "E-", "F+lo", "F+hi", "L-hi", "e_E"]);
         let f = &k[0];
         assert_eq!(
             (f.name(), f.patch(), f.knotted()),
