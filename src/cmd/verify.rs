@@ -363,9 +363,10 @@ fn sample_near_sheet(
     Ok((points, (lo, hi)))
 }
 
-/// The `n` points of `--near-folds` ([`oblique_sweep::kink::near_thornton_fold_points`]) or
-/// of `--near-band` ([`oblique_sweep::kink::near_loading_band_points`]) over a table of
-/// Thornton's law, each with the index of its kink.
+/// The `n` points of `--near-folds` ([`oblique_sweep::kink::near_thornton_fold_points`]),
+/// `--near-band` ([`oblique_sweep::kink::near_loading_band_points`]) or `--near-end-sheet`
+/// ([`oblique_sweep::kink::near_end_sheet_points`]) over a table of Thornton's law, each with
+/// the index of its kink.
 fn sample_near_thornton_kinks(
     table: &Table,
     path: &std::path::Path,
@@ -374,14 +375,14 @@ fn sample_near_thornton_kinks(
     set: ThorntonKinks,
 ) -> Result<Vec<(usize, Point)>> {
     let s = table.surface();
-    let (flag, what) = match set {
-        ThorntonKinks::Band => ("--near-band", "the loading band is located"),
-        ThorntonKinks::EndSheet => ("--near-end-sheet", "the end-of-contact sheet is located"),
-        ThorntonKinks::Folds => (
-            "--near-folds",
+    let flag = set.flag();
+    let what = match set {
+        ThorntonKinks::Band => "the loading band is located",
+        ThorntonKinks::EndSheet => "the end-of-contact sheet is located",
+        ThorntonKinks::Folds => {
             "the folds alpha_R, 2/7, alpha_S, alpha_L and F-, the curves E-, the strip's edges \
-             F+lo and F+hi and the switch sheet e_S are located",
-        ),
+             F+lo and F+hi and the switch sheet e_S are located"
+        }
     };
     let refuse = |has: String| {
         Failure::usage(format!(
@@ -438,6 +439,39 @@ enum ThorntonKinks {
     Band,
     /// `--near-end-sheet` ([`oblique_sweep::kink::END_SHEET_EDGES`]).
     EndSheet,
+}
+
+impl ThorntonKinks {
+    /// The set the flags ask for, `None` without one of its flags.
+    fn of(args: &VerifyArgs) -> Option<Self> {
+        if args.near_folds {
+            Some(Self::Folds)
+        } else if args.near_band {
+            Some(Self::Band)
+        } else if args.near_end_sheet {
+            Some(Self::EndSheet)
+        } else {
+            None
+        }
+    }
+
+    /// Its flag.
+    fn flag(self) -> &'static str {
+        match self {
+            Self::Folds => "--near-folds",
+            Self::Band => "--near-band",
+            Self::EndSheet => "--near-end-sheet",
+        }
+    }
+
+    /// The names of its kinks, by the index each point carries.
+    fn names(self) -> &'static [&'static str] {
+        match self {
+            Self::Folds => &oblique_sweep::kink::THORNTON_FOLDS,
+            Self::Band => &oblique_sweep::kink::LOADING_BAND_EDGES,
+            Self::EndSheet => &oblique_sweep::kink::END_SHEET_EDGES,
+        }
+    }
 }
 
 /// One point's result: the table's and the simulation's `P`, the simulation's error estimate.
@@ -498,22 +532,12 @@ pub fn run(args: VerifyArgs) -> Result<()> {
         None => Law::Elastic,
     };
     let mut near_end_range = None;
-    // With --near-folds (--near-band), the kink of each point: an index into THORNTON_FOLDS
-    // (LOADING_BAND_EDGES).
+    // With --near-folds, --near-band or --near-end-sheet, the kink of each point: an index
+    // into the set's names.
     let mut folds: Vec<usize> = Vec::new();
-    let set = if args.near_band {
-        ThorntonKinks::Band
-    } else if args.near_end_sheet {
-        ThorntonKinks::EndSheet
-    } else {
-        ThorntonKinks::Folds
-    };
-    let kink_names: &[&str] = match set {
-        ThorntonKinks::Band => &oblique_sweep::kink::LOADING_BAND_EDGES,
-        ThorntonKinks::EndSheet => &oblique_sweep::kink::END_SHEET_EDGES,
-        ThorntonKinks::Folds => &oblique_sweep::kink::THORNTON_FOLDS,
-    };
-    let points = if args.near_folds || args.near_band || args.near_end_sheet {
+    let thornton_set = ThorntonKinks::of(&args);
+    let kink_names: &[&str] = thornton_set.map_or(&[], ThorntonKinks::names);
+    let points = if let Some(set) = thornton_set {
         let tagged =
             sample_near_thornton_kinks(&table, &args.table, law, (args.points, args.seed), set)?;
         folds = tagged.iter().map(|&(k, _)| k).collect();

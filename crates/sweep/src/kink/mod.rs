@@ -1082,12 +1082,8 @@ pub fn near_thornton_fold_points(
 ) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
     let kinds = THORNTON_FOLDS.len();
     let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
-    let draw = |rng: &mut oblique_physics::sample::SplitMix| {
-        let (gamma, e_n, r) = draw_next_to(rng, gammas, (e_lo, e_hi));
-        // The sheet's α (e_S) or which E₋ (E-).
-        let pick = rng.uniform();
-        (gamma, e_n, r, pick)
-    };
+    // The pick: the sheet's α (e_S) or which E₋ (E-).
+    let draw = |rng: &mut _| draw_with_pick(rng, gammas, (e_lo, e_hi));
     draw_rounds(n, kinds, seed, draw, |i, &(gamma, e_n, r, pick)| {
         let c2 = oblique_physics::regimes::alpha_c2(gamma);
         let point = if i % kinds == 4 {
@@ -1157,6 +1153,17 @@ fn draw_next_to(
     let r = 10f64.powf(-4.0 + 2.0 * rng.uniform());
     let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
     (gamma, e_n, sign * r)
+}
+
+/// [`draw_next_to`], then one more uniform number from `rng` (a pick among the kink's places:
+/// the α of a sheet, which E₋).
+fn draw_with_pick(
+    rng: &mut oblique_physics::sample::SplitMix,
+    gammas: (f64, f64),
+    e_range: (f64, f64),
+) -> (f64, f64, f64, f64) {
+    let (gamma, e_n, r) = draw_next_to(rng, gammas, e_range);
+    (gamma, e_n, r, rng.uniform())
 }
 
 /// `n` points drawn in rounds, point `i` next to kind `i mod kinds`: each round draws the open
@@ -1260,10 +1267,8 @@ pub fn near_end_sheet_points(
     seed: u64,
 ) -> Result<Vec<(usize, Point)>, oblique_solver::PhysicsError> {
     let (e_lo, e_hi) = (e_range.0, e_range.1.min(1.0 - 1e-4));
-    let draw = |rng: &mut oblique_physics::sample::SplitMix| {
-        let (gamma, e_n, r) = draw_next_to(rng, gammas, (e_lo, e_hi));
-        (gamma, e_n, r, rng.uniform())
-    };
+    // The pick: α/α_c2.
+    let draw = |rng: &mut _| draw_with_pick(rng, gammas, (e_lo, e_hi));
     let (r_lo, r_hi) = END_SHEET_RATIOS;
     draw_rounds(n, 1, seed, draw, |_, &(gamma, e_n, r, pick)| {
         let alpha = r_lo * (r_hi / r_lo).powf(pick) * oblique_physics::regimes::alpha_c2(gamma);
